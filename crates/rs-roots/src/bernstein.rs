@@ -1,0 +1,236 @@
+//! Polynomials in the Bernstein basis on `[0, 1]`.
+
+use crate::Polynomial;
+
+/// A polynomial `b(s) = sum_{k=0}^{n} b_k C(n,k) s^k (1-s)^(n-k)` in the Bernstein basis of
+/// degree `n` on `[0, 1]`.
+///
+/// Bernstein coefficients are stored in ascending index order `b_0 .. b_n`. Unlike
+/// [`Polynomial`], the degree is the basis degree `len - 1` and is never trimmed: a cubic
+/// Bernstein polynomial may represent a quadratic. Evaluation by de Casteljau's algorithm is
+/// numerically stable on `[0, 1]`, and the number of sign changes of the coefficients bounds the
+/// number of roots in `(0, 1)` (Descartes' rule of signs / variation diminishing).
+///
+/// # Examples
+///
+/// ```
+/// use rs_roots::{Bernstein, Polynomial};
+/// let p = Polynomial::new(vec![0.25, -1.0, 1.0]); // (t - 0.5)^2
+/// let b = Bernstein::from_power(&p, 2);
+/// assert_eq!(b.coeffs(), &[0.25, -0.25, 0.25]);
+/// assert_eq!(b.eval(0.5), 0.0);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bernstein {
+    coeffs: Vec<f64>,
+}
+
+/// Binomial coefficient `C(n, k)` as `f64` (exact for the degrees used here).
+pub(crate) fn binomial(n: usize, k: usize) -> f64 {
+    if k > n {
+        return 0.0;
+    }
+    let k = k.min(n - k);
+    let mut r = 1.0;
+    for i in 0..k {
+        r = r * (n - i) as f64 / (i + 1) as f64;
+    }
+    r.round()
+}
+
+impl Bernstein {
+    /// Builds a Bernstein polynomial from its coefficients `b_0 .. b_n`.
+    ///
+    /// An empty coefficient list is treated as the degree-0 zero polynomial.
+    pub fn new(coeffs: impl Into<Vec<f64>>) -> Self {
+        let mut coeffs = coeffs.into();
+        if coeffs.is_empty() {
+            coeffs.push(0.0);
+        }
+        Self { coeffs }
+    }
+
+    /// Coefficients `b_0 .. b_n`.
+    pub fn coeffs(&self) -> &[f64] {
+        &self.coeffs
+    }
+
+    /// The basis degree `n` (number of coefficients minus one).
+    pub fn degree(&self) -> usize {
+        self.coeffs.len() - 1
+    }
+
+    /// Converts a power-basis polynomial to the Bernstein basis of degree `n` on `[0, 1]`:
+    /// `b_k = sum_{i<=k} C(k,i) / C(n,i) a_i`.
+    ///
+    /// `n` is raised to the polynomial's degree if it is smaller.
+    pub fn from_power(p: &Polynomial, n: usize) -> Self {
+        let a = p.coeffs();
+        let n = n.max(a.len().saturating_sub(1));
+        let coeffs = (0..=n)
+            .map(|k| {
+                (0..=k.min(a.len().saturating_sub(1)))
+                    .filter(|&i| i < a.len())
+                    .map(|i| binomial(k, i) / binomial(n, i) * a[i])
+                    .sum()
+            })
+            .collect::<Vec<f64>>();
+        Self::new(coeffs)
+    }
+
+    /// Converts to the power basis: `a_i = sum_{k<=i} (-1)^(i-k) C(n,i) C(i,k) b_k`.
+    pub fn to_power(&self) -> Polynomial {
+        let n = self.degree();
+        let b = &self.coeffs;
+        let a: Vec<f64> = (0..=n)
+            .map(|i| {
+                let s: f64 = (0..=i)
+                    .map(|k| {
+                        let sign = if (i - k) % 2 == 0 { 1.0 } else { -1.0 };
+                        sign * binomial(i, k) * b[k]
+                    })
+                    .sum();
+                binomial(n, i) * s
+            })
+            .collect();
+        Polynomial::new(a)
+    }
+
+    /// Evaluates `b(s)` by de Casteljau's algorithm (stable for `s` in `[0, 1]`).
+    pub fn eval(&self, s: f64) -> f64 {
+        let n = self.coeffs.len();
+        if n <= 8 {
+            let mut buf = [0.0; 8];
+            buf[..n].copy_from_slice(&self.coeffs);
+            de_casteljau_in_place(&mut buf[..n], s)
+        } else {
+            let mut buf = self.coeffs.clone();
+            de_casteljau_in_place(&mut buf, s)
+        }
+    }
+
+    /// Splits at `s` into the Bernstein representations of `b` on `[0, s]` and on `[s, 1]`,
+    /// each reparametrised to `[0, 1]`.
+    pub fn split(&self, s: f64) -> (Self, Self) {
+        let n = self.coeffs.len();
+        let mut work = self.coeffs.clone();
+        let mut left = Vec::with_capacity(n);
+        let mut right = vec![0.0; n];
+        left.push(work[0]);
+        right[n - 1] = work[n - 1];
+        for r in 1..n {
+            for i in 0..n - r {
+                work[i] = (1.0 - s) * work[i] + s * work[i + 1];
+            }
+            left.push(work[0]);
+            right[n - 1 - r] = work[n - 1 - r];
+        }
+        (Self::new(left), Self::new(right))
+    }
+
+    /// The derivative as a Bernstein polynomial of degree `n - 1`:
+    /// `b'(s) = n sum_k (b_{k+1} - b_k) B_{k,n-1}(s)`.
+    pub fn derivative(&self) -> Self {
+        let n = self.degree();
+        if n == 0 {
+            return Self::new(vec![0.0]);
+        }
+        Self::new(
+            self.coeffs
+                .windows(2)
+                .map(|w| n as f64 * (w[1] - w[0]))
+                .collect::<Vec<_>>(),
+        )
+    }
+
+    /// Number of sign changes in the coefficient sequence, ignoring exact zeros.
+    ///
+    /// It is an upper bound on the number of roots in the open interval `(0, 1)`, counted with
+    /// multiplicity, and has the same parity.
+    pub fn sign_variations(&self) -> usize {
+        let mut count = 0;
+        let mut last = 0.0f64;
+        for &c in &self.coeffs {
+            if c != 0.0 {
+                if last != 0.0 && (c > 0.0) != (last > 0.0) {
+                    count += 1;
+                }
+                last = c;
+            }
+        }
+        count
+    }
+
+    /// Sum of `|b_k|`: bounds `|b(s)|` on `[0, 1]` and scales rounding-error estimates.
+    pub fn magnitude(&self) -> f64 {
+        self.coeffs.iter().map(|c| c.abs()).sum()
+    }
+}
+
+/// De Casteljau on a work buffer; returns the value at `s` and destroys the buffer.
+fn de_casteljau_in_place(buf: &mut [f64], s: f64) -> f64 {
+    let n = buf.len();
+    let r = 1.0 - s;
+    for k in 1..n {
+        for i in 0..n - k {
+            buf[i] = r * buf[i] + s * buf[i + 1];
+        }
+    }
+    buf[0]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn binomials() {
+        assert_eq!(binomial(5, 2), 10.0);
+        assert_eq!(binomial(20, 10), 184_756.0);
+        assert_eq!(binomial(3, 4), 0.0);
+    }
+
+    #[test]
+    fn power_round_trip_and_evaluation() {
+        let p = Polynomial::new(vec![0.3, -1.0, 2.0, 0.5, -0.125]);
+        for n in 4..8 {
+            let b = Bernstein::from_power(&p, n);
+            assert_eq!(b.degree(), n);
+            let back = b.to_power();
+            for &s in &[0.0, 0.1, 0.5, 0.77, 1.0] {
+                assert_relative_eq!(b.eval(s), p.eval(s), epsilon = 1e-13);
+                assert_relative_eq!(back.eval(s), p.eval(s), epsilon = 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn split_reproduces_both_halves() {
+        let b = Bernstein::new(vec![1.0, -2.0, 0.5, 3.0, -1.0, 0.25, 2.0, -0.5, 1.5, 0.0]);
+        let (l, r) = b.split(0.3);
+        for &u in &[0.0, 0.25, 0.5, 0.9, 1.0] {
+            assert_relative_eq!(l.eval(u), b.eval(0.3 * u), epsilon = 1e-13);
+            assert_relative_eq!(r.eval(u), b.eval(0.3 + 0.7 * u), epsilon = 1e-13);
+        }
+    }
+
+    #[test]
+    fn derivative_matches_power_derivative() {
+        let p = Polynomial::new(vec![0.3, -1.0, 2.0, 0.5]);
+        let db = Bernstein::from_power(&p, 3).derivative();
+        let dp = p.derivative();
+        for &s in &[0.0, 0.4, 1.0] {
+            assert_relative_eq!(db.eval(s), dp.eval(s), epsilon = 1e-13);
+        }
+    }
+
+    #[test]
+    fn sign_variations_ignore_zeros() {
+        assert_eq!(
+            Bernstein::new(vec![1.0, 0.0, -1.0, 0.0, 2.0]).sign_variations(),
+            2
+        );
+        assert_eq!(Bernstein::new(vec![0.0, 0.0]).sign_variations(), 0);
+    }
+}

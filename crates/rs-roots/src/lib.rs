@@ -1,0 +1,41 @@
+//! Real roots of real polynomials, for the inRS containment layers.
+//!
+//! # Conventions
+//! Every power-basis coefficient slice in this crate (and in the crates above it) is in
+//! **ascending** order: `c[i]` multiplies `t^i`. Bernstein coefficients `b_0 .. b_n` are on
+//! `[0, 1]`.
+//!
+//! # What is here
+//! - [`Polynomial`]: power basis; Horner evaluation with a rounding bound, derivative,
+//!   arithmetic, Taylor shift.
+//! - [`Bernstein`]: Bernstein basis on `[0, 1]`; conversions, de Casteljau evaluation and split.
+//! - [`real_roots_in`]: all real roots in `[a, b]` from the companion matrix, hardened to
+//!   terminate on every input (see its docs), with [`bernstein_roots_in`] as fallback.
+//! - [`linear_root`], [`quadratic_roots`]: closed forms, cancellation-free.
+//! - [`itp`] and [`newton_bracketed`]: guaranteed-convergence solvers for one sign change.
+//! - [`bernstein_roots`]: certified sign-variation root isolation.
+//!
+//! # Examples
+//!
+//! ```
+//! use rs_roots::{real_roots_in, Polynomial};
+//! // t^3 - t = t (t - 1)(t + 1)
+//! let p = Polynomial::new(vec![0.0, -1.0, 0.0, 1.0]);
+//! assert_eq!(real_roots_in(&p, -2.0, 2.0).unwrap(), vec![-1.0, 0.0, 1.0]);
+//! ```
+
+mod bernstein;
+mod bracket;
+mod closed_form;
+mod companion;
+mod error;
+mod isolate;
+mod polynomial;
+
+pub use bernstein::Bernstein;
+pub use bracket::{itp, newton_bracketed};
+pub use closed_form::{linear_root, quadratic_roots};
+pub use companion::real_roots_in;
+pub use error::RootsError;
+pub use isolate::{bernstein_roots, bernstein_roots_in};
+pub use polynomial::Polynomial;
