@@ -1,0 +1,351 @@
+//! Rational Bezier curves on `[0, 1]`.
+
+use rs_roots::{Bernstein, Polynomial, real_roots_in};
+
+use crate::homogeneous::{Hpoint, rational_derivatives};
+use crate::{BoundingBox, CurveDerivatives, Point, SplineError};
+
+/// A rational Bezier curve `C(t) = sum_i B_{i,n}(t) w_i P_i / sum_i B_{i,n}(t) w_i`, `t` in
+/// `[0, 1]`, with the parameter range `[u0, u1]` it came from (the knot span of a NURBS, or
+/// `[0, 1]`).
+///
+/// Precondition (enforced by [`RationalBezier::new`]): at least two finite control points and
+/// finite weights > 0, so the denominator is positive on `[0, 1]`.
+///
+/// # Examples
+///
+/// ```
+/// use rs_spline::{Point, RationalBezier};
+/// let b = RationalBezier::new(
+///     vec![Point::new(0.0, 0.0), Point::new(1.0, 2.0), Point::new(2.0, 0.0)],
+///     vec![1.0, 1.0, 1.0],
+/// )
+/// .unwrap();
+/// assert_eq!(b.point_at(0.5), Point::new(1.0, 1.0));
+/// let (left, right) = b.subdivide(0.5);
+/// assert_eq!(left.end_point(), right.start_point());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct RationalBezier {
+    points: Vec<Point>,
+    weights: Vec<f64>,
+    range: (f64, f64),
+}
+
+impl RationalBezier {
+    /// Validates and builds a rational Bezier curve on `[0, 1]` with parameter range `[0, 1]`.
+    ///
+    /// # Errors
+    /// [`SplineError::TooFewControlPoints`], [`SplineError::NonFiniteControlPoint`],
+    /// [`SplineError::WeightCountMismatch`], [`SplineError::NonPositiveWeight`].
+    pub fn new(points: Vec<Point>, weights: Vec<f64>) -> Result<Self, SplineError> {
+        if points.len() < 2 {
+            return Err(SplineError::TooFewControlPoints {
+                degree: points.len().saturating_sub(1).max(1),
+                needed: 2,
+                got: points.len(),
+            });
+        }
+        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+            return Err(SplineError::NonFiniteControlPoint {
+                index,
+                x: points[index].x,
+                y: points[index].y,
+            });
+        }
+        if weights.len() != points.len() {
+            return Err(SplineError::WeightCountMismatch {
+                weights: weights.len(),
+                points: points.len(),
+            });
+        }
+        if let Some(index) = weights.iter().position(|&w| !(w.is_finite() && w > 0.0)) {
+            return Err(SplineError::NonPositiveWeight {
+                index,
+                value: weights[index],
+            });
+        }
+        Ok(Self {
+            points,
+            weights,
+            range: (0.0, 1.0),
+        })
+    }
+
+    /// The same curve labelled with another parameter range.
+    pub fn with_param_range(mut self, u0: f64, u1: f64) -> Self {
+        self.range = (u0, u1);
+        self
+    }
+
+    pub(crate) fn from_valid_parts(
+        points: Vec<Point>,
+        weights: Vec<f64>,
+        range: (f64, f64),
+    ) -> Self {
+        Self {
+            points,
+            weights,
+            range,
+        }
+    }
+
+    fn from_homogeneous(hp: &[Hpoint], range: (f64, f64)) -> Self {
+        Self {
+            points: hp.iter().map(|h| h.project()).collect(),
+            weights: hp.iter().map(|h| h.w).collect(),
+            range,
+        }
+    }
+
+    fn homogeneous(&self) -> Vec<Hpoint> {
+        self.points
+            .iter()
+            .zip(&self.weights)
+            .map(|(&p, &w)| Hpoint::weighted(p, w))
+            .collect()
+    }
+
+    /// Degree `n` (number of control points minus one).
+    pub fn degree(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    /// Control points `P_0 .. P_n`.
+    pub fn control_points(&self) -> &[Point] {
+        &self.points
+    }
+
+    /// Weights `w_0 .. w_n` (all > 0).
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// The original parameter range `[u0, u1]`; local `t` maps to `u0 + t (u1 - u0)`.
+    pub fn param_range(&self) -> (f64, f64) {
+        self.range
+    }
+
+    /// `C(0) = P_0`.
+    pub fn start_point(&self) -> Point {
+        self.points[0]
+    }
+
+    /// `C(1) = P_n`.
+    pub fn end_point(&self) -> Point {
+        self.points[self.points.len() - 1]
+    }
+
+    /// `C(t)` by de Casteljau's algorithm in homogeneous coordinates (stable, any `t`; meant
+    /// for `t` in `[0, 1]`).
+    pub fn point_at(&self, t: f64) -> Point {
+        let mut h = self.homogeneous();
+        let n = h.len();
+        for r in 1..n {
+            for i in 0..n - r {
+                h[i] = h[i].lerp(h[i + 1], t);
+            }
+        }
+        h[0].project()
+    }
+
+    /// `C(t)`, `C'(t)`, `C''(t)` with respect to the local parameter `t` (multiply by
+    /// `1 / (u1 - u0)` and its square for derivatives with respect to the original parameter).
+    pub fn derivatives(&self, t: f64) -> CurveDerivatives {
+        let h = self.homogeneous();
+        let n = h.len() - 1;
+        let eval = |c: &[Hpoint]| -> Hpoint {
+            let mut b = c.to_vec();
+            let m = b.len();
+            for r in 1..m {
+                for i in 0..m - r {
+                    b[i] = b[i].lerp(b[i + 1], t);
+                }
+            }
+            b.first().copied().unwrap_or_default()
+        };
+        let d1: Vec<Hpoint> = h.windows(2).map(|w| (w[1] - w[0]) * n as f64).collect();
+        let d2: Vec<Hpoint> = d1
+            .windows(2)
+            .map(|w| (w[1] - w[0]) * (n as f64 - 1.0))
+            .collect();
+        rational_derivatives([eval(&h), eval(&d1), eval(&d2)])
+    }
+
+    /// Splits at local `t` (de Casteljau in homogeneous coordinates) into the pieces on
+    /// `[0, t]` and `[t, 1]`, each reparametrised to `[0, 1]`, with parameter ranges split
+    /// accordingly.
+    pub fn subdivide(&self, t: f64) -> (Self, Self) {
+        let mut work = self.homogeneous();
+        let n = work.len();
+        let mut left = Vec::with_capacity(n);
+        let mut right = vec![Hpoint::default(); n];
+        left.push(work[0]);
+        right[n - 1] = work[n - 1];
+        for r in 1..n {
+            for i in 0..n - r {
+                work[i] = work[i].lerp(work[i + 1], t);
+            }
+            left.push(work[0]);
+            right[n - 1 - r] = work[n - 1 - r];
+        }
+        let (u0, u1) = self.range;
+        let um = u0 + t * (u1 - u0);
+        (
+            Self::from_homogeneous(&left, (u0, um)),
+            Self::from_homogeneous(&right, (um, u1)),
+        )
+    }
+
+    /// The piece on local `[t0, t1]` (`0 <= t0 < t1 <= 1`), reparametrised to `[0, 1]`.
+    pub fn sub_curve(&self, t0: f64, t1: f64) -> Self {
+        let right = if t0 > 0.0 {
+            self.subdivide(t0).1
+        } else {
+            self.clone()
+        };
+        if t1 < 1.0 {
+            right.subdivide((t1 - t0) / (1.0 - t0)).0
+        } else {
+            right
+        }
+    }
+
+    /// The same curve traversed backwards; the parameter range is kept.
+    pub fn reversed(&self) -> Self {
+        Self {
+            points: self.points.iter().rev().copied().collect(),
+            weights: self.weights.iter().rev().copied().collect(),
+            range: self.range,
+        }
+    }
+
+    /// Bounding box of the control points (contains the curve because weights are > 0).
+    pub fn control_bounding_box(&self) -> BoundingBox {
+        BoundingBox::from_points(self.points.iter().copied())
+            .unwrap_or(BoundingBox::from_point(self.points[0]))
+    }
+
+    /// Tight bounding box: end points and the points where `x'(t) = 0` or `y'(t) = 0` in
+    /// `(0, 1)`, found as roots of the derivative numerators (see
+    /// [`RationalBezier::derivative_numerators`]).
+    pub fn bounding_box(&self) -> BoundingBox {
+        let mut b = BoundingBox::from_point(self.start_point()).including(self.end_point());
+        let (dx, dy) = self.derivative_numerators();
+        for d in [dx, dy] {
+            // The zero polynomial (constant coordinate) has no isolated extremes.
+            for t in real_roots_in(&d, 0.0, 1.0).unwrap_or_default() {
+                b = b.including(self.point_at(t));
+            }
+        }
+        b
+    }
+
+    /// The numerators `X(t) = sum w_i x_i B_i`, `Y(t) = sum w_i y_i B_i` and the denominator
+    /// `W(t) = sum w_i B_i` as power-basis polynomials in `t`, so `C(t) = (X/W, Y/W)`.
+    pub fn numerators(&self) -> (Polynomial, Polynomial, Polynomial) {
+        let xs: Vec<f64> = self
+            .points
+            .iter()
+            .zip(&self.weights)
+            .map(|(p, w)| w * p.x)
+            .collect();
+        let ys: Vec<f64> = self
+            .points
+            .iter()
+            .zip(&self.weights)
+            .map(|(p, w)| w * p.y)
+            .collect();
+        (
+            Bernstein::new(xs).to_power(),
+            Bernstein::new(ys).to_power(),
+            Bernstein::new(self.weights.clone()).to_power(),
+        )
+    }
+
+    /// Numerators of the derivative, `x'(t) = (X' W - X W') / W^2` and likewise for `y`:
+    /// returns `(X' W - X W', Y' W - Y W')`, polynomials of degree at most `2n - 2` whose signs
+    /// are the signs of `x'(t)` and `y'(t)`.
+    pub fn derivative_numerators(&self) -> (Polynomial, Polynomial) {
+        let (x, y, w) = self.numerators();
+        let dw = w.derivative();
+        let dx = &(&x.derivative() * &w) - &(&x * &dw);
+        let dy = &(&y.derivative() * &w) - &(&y * &dw);
+        (dx, dy)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quarter_circle() -> RationalBezier {
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        RationalBezier::new(
+            vec![
+                Point::new(1.0, 0.0),
+                Point::new(1.0, 1.0),
+                Point::new(0.0, 1.0),
+            ],
+            vec![1.0, w, 1.0],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn evaluation_matches_numerators() {
+        let b = quarter_circle();
+        let (x, y, w) = b.numerators();
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            let p = b.point_at(t);
+            assert!((p.x - x.eval(t) / w.eval(t)).abs() < 1e-15);
+            assert!((p.y - y.eval(t) / w.eval(t)).abs() < 1e-15);
+            assert!((p.length() - 1.0).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn subdivision_preserves_the_curve() {
+        let b = quarter_circle().with_param_range(2.0, 4.0);
+        let (l, r) = b.subdivide(0.3);
+        assert_eq!(l.param_range(), (2.0, 2.6));
+        assert_eq!(r.param_range(), (2.6, 4.0));
+        for i in 0..=10 {
+            let s = i as f64 / 10.0;
+            assert!(l.point_at(s).distance(b.point_at(0.3 * s)) < 1e-15);
+            assert!(r.point_at(s).distance(b.point_at(0.3 + 0.7 * s)) < 1e-15);
+        }
+        let mid = b.sub_curve(0.2, 0.7);
+        assert!(mid.start_point().distance(b.point_at(0.2)) < 1e-15);
+        assert!(mid.end_point().distance(b.point_at(0.7)) < 1e-15);
+    }
+
+    #[test]
+    fn tight_box_is_inside_control_box() {
+        let b = RationalBezier::new(
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 2.0),
+                Point::new(2.0, 0.0),
+            ],
+            vec![1.0, 1.0, 1.0],
+        )
+        .unwrap();
+        let tight = b.bounding_box();
+        assert!((tight.max.y - 1.0).abs() < 1e-15);
+        assert_eq!(b.control_bounding_box().max.y, 2.0);
+    }
+
+    #[test]
+    fn validation() {
+        assert!(RationalBezier::new(vec![Point::new(0.0, 0.0)], vec![1.0]).is_err());
+        assert!(
+            RationalBezier::new(
+                vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+                vec![1.0, -1.0]
+            )
+            .is_err()
+        );
+    }
+}

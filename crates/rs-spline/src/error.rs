@@ -1,0 +1,213 @@
+//! Error types for curves and domains.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+/// Invalid curve data or an invalid request on a curve.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SplineError {
+    /// Degree 0 curves are not supported.
+    #[error("degree must be at least 1")]
+    ZeroDegree,
+    /// Fewer control points than `degree + 1`.
+    #[error("degree {degree} needs at least {needed} control points, got {got}")]
+    TooFewControlPoints {
+        /// Curve degree.
+        degree: usize,
+        /// `degree + 1`.
+        needed: usize,
+        /// Number given.
+        got: usize,
+    },
+    /// Knot vector length is not `n + degree + 1`.
+    #[error("expected {expected} knots (control points + degree + 1), got {got}")]
+    WrongKnotCount {
+        /// `n + degree + 1`.
+        expected: usize,
+        /// Number given.
+        got: usize,
+    },
+    /// `knots` omitted although the curve is not a single Bezier piece.
+    #[error(
+        "knots may be omitted only when there are degree + 1 = {needed} control points, got {got}"
+    )]
+    MissingKnots {
+        /// `degree + 1`.
+        needed: usize,
+        /// Number of control points given.
+        got: usize,
+    },
+    /// A knot is NaN or infinite.
+    #[error("knot {index} is not finite ({value})")]
+    NonFiniteKnot {
+        /// Knot index.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// `knots[index] < knots[index - 1]`.
+    #[error("knots decrease at index {index}: {previous} > {value}")]
+    DecreasingKnots {
+        /// Index of the smaller knot.
+        index: usize,
+        /// The knot before it.
+        previous: f64,
+        /// The knot itself.
+        value: f64,
+    },
+    /// The parameter domain `[knots[p], knots[n]]` is empty.
+    #[error("empty parameter domain [{start}, {end}]")]
+    EmptyDomain {
+        /// `knots[degree]`.
+        start: f64,
+        /// `knots[n]`.
+        end: f64,
+    },
+    /// A knot strictly inside the domain is repeated more than `degree` times (the curve would
+    /// fall apart there).
+    #[error("interior knot {value} has multiplicity {multiplicity} > degree {degree}")]
+    InteriorMultiplicity {
+        /// Knot value.
+        value: f64,
+        /// Its multiplicity.
+        multiplicity: usize,
+        /// Curve degree.
+        degree: usize,
+    },
+    /// A control point coordinate is NaN or infinite.
+    #[error("control point {index} is not finite ({x}, {y})")]
+    NonFiniteControlPoint {
+        /// Control point index.
+        index: usize,
+        /// Abscissa.
+        x: f64,
+        /// Ordinate.
+        y: f64,
+    },
+    /// Weights and control points differ in number.
+    #[error("{weights} weights for {points} control points")]
+    WeightCountMismatch {
+        /// Number of weights.
+        weights: usize,
+        /// Number of control points.
+        points: usize,
+    },
+    /// A weight is zero, negative, NaN or infinite.
+    #[error("weight {index} must be finite and > 0, got {value}")]
+    NonPositiveWeight {
+        /// Weight index.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// A parameter is outside the curve's domain (or not finite).
+    #[error("parameter {u} is outside the domain [{start}, {end}]")]
+    ParameterOutOfDomain {
+        /// The parameter.
+        u: f64,
+        /// Domain start.
+        start: f64,
+        /// Domain end.
+        end: f64,
+    },
+    /// Knot insertion would exceed the allowed multiplicity.
+    #[error("inserting {value} {times} times exceeds multiplicity {max} (it has {current})")]
+    MultiplicityExceeded {
+        /// Knot value.
+        value: f64,
+        /// Requested insertions.
+        times: usize,
+        /// Current multiplicity.
+        current: usize,
+        /// Largest allowed multiplicity.
+        max: usize,
+    },
+    /// A primitive got an invalid size or angle.
+    #[error("invalid {what}: {value}")]
+    InvalidPrimitive {
+        /// Which parameter.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+    },
+}
+
+/// Invalid domain file or domain.
+#[derive(Debug, Error)]
+pub enum DomainError {
+    /// The file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// The text is not valid JSON.
+    #[error("invalid JSON at line {line}, column {column}: {message}")]
+    Json {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What `serde_json` said.
+        message: String,
+    },
+    /// The JSON is valid but not a domain (top level).
+    #[error("not a domain file: {0}")]
+    Format(String),
+    /// A curve entry has the wrong shape (missing key, wrong type, ...).
+    #[error("curve {curve}: {message}")]
+    CurveFormat {
+        /// Index of the curve in the file.
+        curve: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A curve entry is well-formed JSON but an invalid curve.
+    #[error("curve {curve}: {source}")]
+    Curve {
+        /// Index of the curve in the file.
+        curve: usize,
+        /// What is wrong.
+        source: SplineError,
+    },
+    /// A domain needs at least one curve.
+    #[error("the domain has no curves")]
+    NoCurves,
+    /// A boundary loop does not close (required for crossing-number containment).
+    #[error(
+        "open boundary: the loop of curves {first_curve}..={last_curve} ends {gap:e} away from its start (tolerance {tolerance:e})"
+    )]
+    OpenLoop {
+        /// First curve of the loop.
+        first_curve: usize,
+        /// Last curve of the loop.
+        last_curve: usize,
+        /// Distance from the loop's end to its start.
+        gap: f64,
+        /// The closure tolerance in force.
+        tolerance: f64,
+    },
+    /// The closure tolerance must be finite and non-negative.
+    #[error("invalid closure tolerance {0}")]
+    InvalidTolerance(f64),
+}
+
+impl DomainError {
+    /// Converts a `serde_json` error into [`DomainError::Json`].
+    pub(crate) fn from_json(e: &serde_json::Error) -> Self {
+        let full = e.to_string();
+        // serde_json appends " at line L column C"; keep only the message part.
+        let message = match full.rfind(" at line ") {
+            Some(i) => full[..i].to_string(),
+            None => full,
+        };
+        DomainError::Json {
+            line: e.line(),
+            column: e.column(),
+            message,
+        }
+    }
+}

@@ -1,0 +1,94 @@
+//! Homogeneous (weighted) points `(w x, w y, w)` used by rational algorithms, and the quotient
+//! rule that turns homogeneous derivatives into Cartesian ones.
+
+use std::ops::{Add, Mul, Sub};
+
+use crate::Point;
+
+/// A point in homogeneous coordinates `(w x, w y, w)`.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub(crate) struct Hpoint {
+    pub(crate) x: f64,
+    pub(crate) y: f64,
+    pub(crate) w: f64,
+}
+
+impl Hpoint {
+    /// `(w p.x, w p.y, w)`.
+    pub(crate) fn weighted(p: Point, w: f64) -> Self {
+        Self {
+            x: w * p.x,
+            y: w * p.y,
+            w,
+        }
+    }
+
+    /// The Cartesian point `(x / w, y / w)`.
+    pub(crate) fn project(self) -> Point {
+        Point::new(self.x / self.w, self.y / self.w)
+    }
+
+    /// `(1 - t) self + t o`.
+    pub(crate) fn lerp(self, o: Hpoint, t: f64) -> Hpoint {
+        self * (1.0 - t) + o * t
+    }
+}
+
+impl Add for Hpoint {
+    type Output = Hpoint;
+    fn add(self, o: Hpoint) -> Hpoint {
+        Hpoint {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            w: self.w + o.w,
+        }
+    }
+}
+
+impl Sub for Hpoint {
+    type Output = Hpoint;
+    fn sub(self, o: Hpoint) -> Hpoint {
+        Hpoint {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            w: self.w - o.w,
+        }
+    }
+}
+
+impl Mul<f64> for Hpoint {
+    type Output = Hpoint;
+    fn mul(self, s: f64) -> Hpoint {
+        Hpoint {
+            x: self.x * s,
+            y: self.y * s,
+            w: self.w * s,
+        }
+    }
+}
+
+/// A curve point with its first and second parametric derivatives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurveDerivatives {
+    /// `C(u)`.
+    pub point: Point,
+    /// `C'(u)`.
+    pub first: Point,
+    /// `C''(u)`.
+    pub second: Point,
+}
+
+/// Quotient rule for `C = A / w` from homogeneous derivatives `h = [A, A', A'']` (with the
+/// weight in `.w`): `C' = (A' - w' C) / w`, `C'' = (A'' - 2 w' C' - w'' C) / w`.
+pub(crate) fn rational_derivatives(h: [Hpoint; 3]) -> CurveDerivatives {
+    let w = h[0].w;
+    let a = |hp: Hpoint| Point::new(hp.x, hp.y);
+    let point = a(h[0]) / w;
+    let first = (a(h[1]) - point * h[1].w) / w;
+    let second = (a(h[2]) - first * (2.0 * h[1].w) - point * h[2].w) / w;
+    CurveDerivatives {
+        point,
+        first,
+        second,
+    }
+}

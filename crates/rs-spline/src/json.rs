@@ -1,0 +1,273 @@
+//! The JSON domain file (`shared/design/CONTRACTS.md`, section 1): load and save.
+
+use std::path::Path;
+
+use serde_json::{Map, Value, json};
+
+use crate::{
+    Domain, DomainError, KnotVector, NurbsCurve, Point, SplineError, circle, circular_arc, ellipse,
+    elliptic_arc, polyline, segment,
+};
+
+/// Curve forms accepted besides the NURBS form, for error messages.
+const FORMS: &str = "a NURBS curve (degree, control_points, knots, weights) or one of \
+                     segment, polyline, arc, circle, elliptic_arc, ellipse";
+
+impl Domain {
+    /// Parses a domain file from JSON text (default closure tolerance).
+    ///
+    /// Every curve is a NURBS object `{"degree", "control_points", "knots"?, "weights"?}`;
+    /// `knots` may be omitted for a single Bezier piece and `weights` for a B-spline. These
+    /// primitive forms are accepted too and converted to exact NURBS:
+    /// `{"segment": {"from": [x, y], "to": [x, y]}}`, `{"polyline": [[x, y], ...]}`,
+    /// `{"arc": {"center": [x, y], "radius": r, "start_angle": a, "sweep": s}}` (radians),
+    /// `{"circle": {"center": [x, y], "radius": r}}`,
+    /// `{"elliptic_arc": {"center", "rx", "ry", "tilt"?, "start_angle", "sweep"}}`,
+    /// `{"ellipse": {"center", "rx", "ry", "tilt"?}}`. Unknown keys are ignored.
+    ///
+    /// # Errors
+    /// [`DomainError::Json`] (with line and column), [`DomainError::Format`],
+    /// [`DomainError::CurveFormat`] and [`DomainError::Curve`] (with the curve index),
+    /// [`DomainError::NoCurves`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_spline::Domain;
+    /// let d = Domain::from_json_str(r#"{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}"#).unwrap();
+    /// assert!(d.is_closed());
+    /// let err = Domain::from_json_str(r#"{"curves": [{"degree": 1, "control_points": [[0, 0]]}]}"#)
+    ///     .unwrap_err();
+    /// assert!(err.to_string().starts_with("curve 0:"));
+    /// ```
+    pub fn from_json_str(text: &str) -> Result<Self, DomainError> {
+        Self::from_json_str_with_tolerance(text, crate::DEFAULT_CLOSURE_TOLERANCE)
+    }
+
+    /// As [`Domain::from_json_str`] with a relative closure tolerance.
+    ///
+    /// # Errors
+    /// As [`Domain::from_json_str`], plus [`DomainError::InvalidTolerance`].
+    pub fn from_json_str_with_tolerance(
+        text: &str,
+        relative_tolerance: f64,
+    ) -> Result<Self, DomainError> {
+        let value: Value = serde_json::from_str(text).map_err(|e| DomainError::from_json(&e))?;
+        let top = value
+            .as_object()
+            .ok_or_else(|| DomainError::Format("the top level must be a JSON object".into()))?;
+        let curves = top
+            .get("curves")
+            .ok_or_else(|| DomainError::Format("missing \"curves\"".into()))?
+            .as_array()
+            .ok_or_else(|| DomainError::Format("\"curves\" must be an array".into()))?;
+        let curves = curves
+            .iter()
+            .enumerate()
+            .map(|(i, c)| parse_curve(i, c))
+            .collect::<Result<Vec<_>, _>>()?;
+        let domain = Domain::with_closure_tolerance(curves, relative_tolerance)?;
+        Ok(match top.get("name").and_then(Value::as_str) {
+            Some(name) => domain.with_name(name),
+            None => domain,
+        })
+    }
+
+    /// Reads a domain file.
+    ///
+    /// # Errors
+    /// [`DomainError::Io`] if it cannot be read, otherwise as [`Domain::from_json_str`].
+    pub fn from_json_file(path: impl AsRef<Path>) -> Result<Self, DomainError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| DomainError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_json_str(&text)
+    }
+
+    /// The domain as JSON text in the NURBS form (primitives are written as their NURBS).
+    /// Numbers are written with enough digits to round-trip.
+    pub fn to_json_string(&self) -> String {
+        let curves: Vec<Value> = self
+            .curves()
+            .iter()
+            .map(|c| {
+                json!({
+                    "degree": c.degree(),
+                    "knots": c.knots().knots(),
+                    "control_points": c.control_points().iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                    "weights": c.weights(),
+                })
+            })
+            .collect();
+        let mut top = Map::new();
+        if let Some(name) = self.name() {
+            top.insert("name".into(), Value::String(name.into()));
+        }
+        top.insert("curves".into(), Value::Array(curves));
+        // Serialising a Value built from finite f64s cannot fail.
+        serde_json::to_string_pretty(&Value::Object(top)).unwrap_or_default()
+    }
+
+    /// Writes [`Domain::to_json_string`] to `path`.
+    ///
+    /// # Errors
+    /// [`DomainError::Io`].
+    pub fn save_json(&self, path: impl AsRef<Path>) -> Result<(), DomainError> {
+        let path = path.as_ref();
+        std::fs::write(path, self.to_json_string() + "\n").map_err(|source| DomainError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+}
+
+fn format_err(curve: usize, message: impl Into<String>) -> DomainError {
+    DomainError::CurveFormat {
+        curve,
+        message: message.into(),
+    }
+}
+
+fn spline_err(curve: usize) -> impl Fn(SplineError) -> DomainError {
+    move |source| DomainError::Curve { curve, source }
+}
+
+fn number(curve: usize, v: &Value, what: &str) -> Result<f64, DomainError> {
+    v.as_f64()
+        .ok_or_else(|| format_err(curve, format!("{what} must be a number, got {v}")))
+}
+
+fn field<'a>(
+    curve: usize,
+    obj: &'a Map<String, Value>,
+    key: &str,
+    form: &str,
+) -> Result<&'a Value, DomainError> {
+    obj.get(key)
+        .ok_or_else(|| format_err(curve, format!("{form} needs \"{key}\"")))
+}
+
+fn point(curve: usize, v: &Value, what: &str) -> Result<Point, DomainError> {
+    match v.as_array().map(Vec::as_slice) {
+        Some([x, y]) => Ok(Point::new(number(curve, x, what)?, number(curve, y, what)?)),
+        _ => Err(format_err(curve, format!("{what} must be [x, y], got {v}"))),
+    }
+}
+
+fn points(curve: usize, v: &Value, what: &str) -> Result<Vec<Point>, DomainError> {
+    v.as_array()
+        .ok_or_else(|| format_err(curve, format!("{what} must be an array of [x, y]")))?
+        .iter()
+        .enumerate()
+        .map(|(i, p)| point(curve, p, &format!("{what}[{i}]")))
+        .collect()
+}
+
+fn numbers(curve: usize, v: &Value, what: &str) -> Result<Vec<f64>, DomainError> {
+    v.as_array()
+        .ok_or_else(|| format_err(curve, format!("{what} must be an array of numbers")))?
+        .iter()
+        .enumerate()
+        .map(|(i, x)| number(curve, x, &format!("{what}[{i}]")))
+        .collect()
+}
+
+fn object<'a>(
+    curve: usize,
+    v: &'a Value,
+    form: &str,
+) -> Result<&'a Map<String, Value>, DomainError> {
+    v.as_object()
+        .ok_or_else(|| format_err(curve, format!("\"{form}\" must be an object")))
+}
+
+/// Parses curve `i` of the file.
+fn parse_curve(i: usize, v: &Value) -> Result<NurbsCurve, DomainError> {
+    let obj = v
+        .as_object()
+        .ok_or_else(|| format_err(i, format!("expected {FORMS}")))?;
+    if obj.contains_key("degree") || obj.contains_key("control_points") {
+        return parse_nurbs(i, obj);
+    }
+    let se = spline_err(i);
+    if let Some(s) = obj.get("segment") {
+        let s = object(i, s, "segment")?;
+        let a = point(i, field(i, s, "from", "segment")?, "segment.from")?;
+        let b = point(i, field(i, s, "to", "segment")?, "segment.to")?;
+        return segment(a, b).map_err(se);
+    }
+    if let Some(p) = obj.get("polyline") {
+        return polyline(&points(i, p, "polyline")?).map_err(se);
+    }
+    if let Some(a) = obj.get("arc") {
+        let a = object(i, a, "arc")?;
+        let num = |k: &str| number(i, field(i, a, k, "arc")?, &format!("arc.{k}"));
+        let c = point(i, field(i, a, "center", "arc")?, "arc.center")?;
+        return circular_arc(c, num("radius")?, num("start_angle")?, num("sweep")?).map_err(se);
+    }
+    if let Some(a) = obj.get("circle") {
+        let a = object(i, a, "circle")?;
+        let c = point(i, field(i, a, "center", "circle")?, "circle.center")?;
+        let r = number(i, field(i, a, "radius", "circle")?, "circle.radius")?;
+        return circle(c, r).map_err(se);
+    }
+    for form in ["elliptic_arc", "ellipse"] {
+        if let Some(a) = obj.get(form) {
+            let a = object(i, a, form)?;
+            let num = |k: &str| number(i, field(i, a, k, form)?, &format!("{form}.{k}"));
+            let c = point(i, field(i, a, "center", form)?, &format!("{form}.center"))?;
+            let tilt = match a.get("tilt") {
+                Some(t) => number(i, t, &format!("{form}.tilt"))?,
+                None => 0.0,
+            };
+            let (rx, ry) = (num("rx")?, num("ry")?);
+            return if form == "ellipse" {
+                ellipse(c, rx, ry, tilt)
+            } else {
+                elliptic_arc(c, rx, ry, tilt, num("start_angle")?, num("sweep")?)
+            }
+            .map_err(se);
+        }
+    }
+    Err(format_err(i, format!("expected {FORMS}")))
+}
+
+fn parse_nurbs(i: usize, obj: &Map<String, Value>) -> Result<NurbsCurve, DomainError> {
+    let dv = field(i, obj, "degree", "a NURBS curve")?;
+    let degree = match dv.as_u64() {
+        Some(d) if d <= 64 => d as usize,
+        _ => {
+            return Err(format_err(
+                i,
+                format!("degree must be an integer between 1 and 64, got {dv}"),
+            ));
+        }
+    };
+    let pts = points(
+        i,
+        field(i, obj, "control_points", "a NURBS curve")?,
+        "control_points",
+    )?;
+    let weights = match obj.get("weights") {
+        Some(Value::Null) | None => None,
+        Some(w) => Some(numbers(i, w, "weights")?),
+    };
+    let se = spline_err(i);
+    match obj.get("knots") {
+        Some(Value::Null) | None => {
+            if degree == 0 {
+                return Err(se(SplineError::ZeroDegree));
+            }
+            if pts.len() != degree + 1 {
+                return Err(se(SplineError::MissingKnots {
+                    needed: degree + 1,
+                    got: pts.len(),
+                }));
+            }
+            NurbsCurve::from_parts(KnotVector::bezier(degree), pts, weights).map_err(se)
+        }
+        Some(k) => NurbsCurve::new(degree, numbers(i, k, "knots")?, pts, weights).map_err(se),
+    }
+}

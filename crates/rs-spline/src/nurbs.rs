@@ -1,0 +1,469 @@
+//! Planar NURBS curves.
+
+use crate::homogeneous::{Hpoint, rational_derivatives};
+use crate::{BoundingBox, CurveDerivatives, KnotVector, Point, RationalBezier, SplineError};
+
+/// A planar NURBS curve `C(u) = sum_i N_{i,p}(u) w_i P_i / sum_i N_{i,p}(u) w_i` on the domain
+/// `[u_p, u_n]` of its knot vector.
+///
+/// Preconditions enforced by [`NurbsCurve::new`]: degree >= 1, at least `degree + 1` finite
+/// control points, a valid [`KnotVector`], weights finite and > 0. All weights positive means
+/// the curve lies in the convex hull of its control points and every Bezier piece has a
+/// positive denominator.
+///
+/// # Examples
+///
+/// ```
+/// use rs_spline::{NurbsCurve, Point};
+/// // A quarter of the unit circle as a rational quadratic.
+/// let w = std::f64::consts::FRAC_1_SQRT_2;
+/// let c = NurbsCurve::new(
+///     2,
+///     vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+///     vec![Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)],
+///     Some(vec![1.0, w, 1.0]),
+/// )
+/// .unwrap();
+/// let p = c.point_at(0.3);
+/// assert!((p.length() - 1.0).abs() < 1e-15);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsCurve {
+    knots: KnotVector,
+    points: Vec<Point>,
+    weights: Vec<f64>,
+}
+
+impl NurbsCurve {
+    /// Validates and builds a curve. `weights: None` means all weights 1 (a B-spline).
+    ///
+    /// # Errors
+    /// Every [`SplineError`] about degree, knots, control points and weights.
+    pub fn new(
+        degree: usize,
+        knots: Vec<f64>,
+        points: Vec<Point>,
+        weights: Option<Vec<f64>>,
+    ) -> Result<Self, SplineError> {
+        let knots = KnotVector::new(knots, degree, points.len())?;
+        Self::from_parts(knots, points, weights)
+    }
+
+    /// A single Bezier piece of degree `points.len() - 1` on `[0, 1]`.
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::new`].
+    pub fn bezier(points: Vec<Point>, weights: Option<Vec<f64>>) -> Result<Self, SplineError> {
+        if points.len() < 2 {
+            return Err(SplineError::TooFewControlPoints {
+                degree: 1,
+                needed: 2,
+                got: points.len(),
+            });
+        }
+        Self::from_parts(KnotVector::bezier(points.len() - 1), points, weights)
+    }
+
+    /// Builds from an already validated knot vector.
+    ///
+    /// # Errors
+    /// Control point and weight errors.
+    pub fn from_parts(
+        knots: KnotVector,
+        points: Vec<Point>,
+        weights: Option<Vec<f64>>,
+    ) -> Result<Self, SplineError> {
+        if points.len() != knots.n_control() {
+            return Err(SplineError::WrongKnotCount {
+                expected: points.len() + knots.degree() + 1,
+                got: knots.knots().len(),
+            });
+        }
+        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+            return Err(SplineError::NonFiniteControlPoint {
+                index,
+                x: points[index].x,
+                y: points[index].y,
+            });
+        }
+        let weights = weights.unwrap_or_else(|| vec![1.0; points.len()]);
+        if weights.len() != points.len() {
+            return Err(SplineError::WeightCountMismatch {
+                weights: weights.len(),
+                points: points.len(),
+            });
+        }
+        if let Some(index) = weights.iter().position(|&w| !(w.is_finite() && w > 0.0)) {
+            return Err(SplineError::NonPositiveWeight {
+                index,
+                value: weights[index],
+            });
+        }
+        Ok(Self {
+            knots,
+            points,
+            weights,
+        })
+    }
+
+    fn from_homogeneous(knots: Vec<f64>, degree: usize, hp: &[Hpoint]) -> Self {
+        Self {
+            knots: KnotVector::from_raw(knots, degree),
+            points: hp.iter().map(|h| h.project()).collect(),
+            weights: hp.iter().map(|h| h.w).collect(),
+        }
+    }
+
+    fn homogeneous(&self) -> Vec<Hpoint> {
+        self.points
+            .iter()
+            .zip(&self.weights)
+            .map(|(&p, &w)| Hpoint::weighted(p, w))
+            .collect()
+    }
+
+    /// Degree `p`.
+    pub fn degree(&self) -> usize {
+        self.knots.degree()
+    }
+
+    /// The knot vector.
+    pub fn knots(&self) -> &KnotVector {
+        &self.knots
+    }
+
+    /// Control points `P_i`.
+    pub fn control_points(&self) -> &[Point] {
+        &self.points
+    }
+
+    /// Weights `w_i` (all > 0).
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// True if every weight equals the first (the curve is then polynomial).
+    pub fn is_polynomial(&self) -> bool {
+        self.weights.iter().all(|&w| w == self.weights[0])
+    }
+
+    /// The parameter domain `[u_p, u_n]`.
+    pub fn domain(&self) -> (f64, f64) {
+        self.knots.domain()
+    }
+
+    /// `C(u_p)`.
+    pub fn start_point(&self) -> Point {
+        self.point_at(self.domain().0)
+    }
+
+    /// `C(u_n)`.
+    pub fn end_point(&self) -> Point {
+        self.point_at(self.domain().1)
+    }
+
+    /// Homogeneous derivatives `[A, A', A'']` at `u` (clamped to the domain).
+    fn homogeneous_derivatives(&self, u: f64, nd: usize) -> [Hpoint; 3] {
+        let (a, b) = self.domain();
+        let u = u.clamp(a, b);
+        let p = self.degree();
+        let k = self.knots.span(u);
+        let basis = self.knots.basis_derivatives(k, u, nd);
+        let mut out = [Hpoint::default(); 3];
+        for (d, row) in basis.iter().enumerate().take(3) {
+            for (j, &n) in row.iter().enumerate() {
+                let i = k - p + j;
+                out[d] = out[d] + Hpoint::weighted(self.points[i], self.weights[i]) * n;
+            }
+        }
+        out
+    }
+
+    /// `C(u)`; `u` is clamped into the domain.
+    pub fn point_at(&self, u: f64) -> Point {
+        self.homogeneous_derivatives(u, 0)[0].project()
+    }
+
+    /// `C(u)`, `C'(u)` and `C''(u)` by the rational quotient rule; `u` is clamped into the
+    /// domain. At a knot the derivatives are those of the span to its right (of the last span
+    /// at the domain end).
+    pub fn derivatives(&self, u: f64) -> CurveDerivatives {
+        rational_derivatives(self.homogeneous_derivatives(u, 2))
+    }
+
+    /// Bounding box of the control polygon (it contains the curve, since weights are > 0).
+    pub fn control_bounding_box(&self) -> BoundingBox {
+        BoundingBox::from_points(self.points.iter().copied())
+            .unwrap_or(BoundingBox::from_point(Point::default()))
+    }
+
+    /// Tight bounding box: the union of the tight boxes of the Bezier pieces.
+    pub fn bounding_box(&self) -> BoundingBox {
+        self.to_bezier()
+            .iter()
+            .map(RationalBezier::bounding_box)
+            .reduce(BoundingBox::union)
+            .unwrap_or_else(|| self.control_bounding_box())
+    }
+
+    fn check_in_domain(&self, u: f64) -> Result<(), SplineError> {
+        let (start, end) = self.domain();
+        if u.is_finite() && u >= start && u <= end {
+            Ok(())
+        } else {
+            Err(SplineError::ParameterOutOfDomain { u, start, end })
+        }
+    }
+
+    /// Inserts `u` once (Boehm) in span `k`: `u_k <= u < u_{k+1}`, or `u_k < u = u_{k+1}` at
+    /// the domain end `u = u_n` (the half-open span there would need a control point `P_n`).
+    fn insert_once(knots: &mut Vec<f64>, hp: &mut Vec<Hpoint>, p: usize, u: f64) {
+        let n = hp.len();
+        let k = if u >= knots[n] {
+            knots.iter().rposition(|&x| x < u)
+        } else {
+            knots.iter().rposition(|&x| x <= u)
+        }
+        .unwrap_or(p);
+        let mut q = Vec::with_capacity(hp.len() + 1);
+        for i in 0..=hp.len() {
+            if i + p <= k {
+                q.push(hp[i]);
+            } else if i > k {
+                q.push(hp[i - 1]);
+            } else {
+                let alpha = (u - knots[i]) / (knots[i + p] - knots[i]);
+                q.push(hp[i - 1].lerp(hp[i], alpha));
+            }
+        }
+        knots.insert(k + 1, u);
+        *hp = q;
+    }
+
+    /// Inserts the knot `u` `times` times (Boehm's algorithm, in homogeneous coordinates). The
+    /// curve is unchanged as a point set and as a function of `u`.
+    ///
+    /// # Errors
+    /// [`SplineError::ParameterOutOfDomain`] if `u` is outside `[u_p, u_n]`;
+    /// [`SplineError::MultiplicityExceeded`] if the multiplicity would exceed `p`.
+    pub fn insert_knot(&self, u: f64, times: usize) -> Result<Self, SplineError> {
+        self.check_in_domain(u)?;
+        let p = self.degree();
+        let current = self.knots.multiplicity(u);
+        if current + times > p {
+            return Err(SplineError::MultiplicityExceeded {
+                value: u,
+                times,
+                current,
+                max: p,
+            });
+        }
+        let mut knots = self.knots.knots().to_vec();
+        let mut hp = self.homogeneous();
+        for _ in 0..times {
+            Self::insert_once(&mut knots, &mut hp, p, u);
+        }
+        Ok(Self::from_homogeneous(knots, p, &hp))
+    }
+
+    /// Inserts every value of `new_knots` once (knot refinement). Values may repeat.
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::insert_knot`] for each value.
+    pub fn refine(&self, new_knots: &[f64]) -> Result<Self, SplineError> {
+        let mut c = self.clone();
+        for &u in new_knots {
+            c = c.insert_knot(u, 1)?;
+        }
+        Ok(c)
+    }
+
+    /// The same curve traversed backwards on the same domain: `C_rev(u) = C(a + b - u)` for the
+    /// domain `[a, b]`.
+    pub fn reversed(&self) -> Self {
+        let (a, b) = self.domain();
+        let knots: Vec<f64> = self
+            .knots
+            .knots()
+            .iter()
+            .rev()
+            .map(|&k| a + b - k)
+            .collect();
+        Self {
+            knots: KnotVector::from_raw(knots, self.degree()),
+            points: self.points.iter().rev().copied().collect(),
+            weights: self.weights.iter().rev().copied().collect(),
+        }
+    }
+
+    /// Clamps the start: afterwards `u_0 = ... = u_p` and `C(u_p) = P_0`.
+    fn clamp_start(&self) -> Self {
+        let p = self.degree();
+        let a = self.domain().0;
+        let mut knots = self.knots.knots().to_vec();
+        let mut hp = self.homogeneous();
+        while knots.iter().filter(|&&k| k == a).count() < p {
+            Self::insert_once(&mut knots, &mut hp, p, a);
+        }
+        let j = knots.iter().position(|&k| k == a).unwrap_or(0);
+        let mult = knots.iter().filter(|&&k| k == a).count();
+        // Keep exactly p + 1 copies of a in front; drop what precedes them.
+        let start = (j + mult).saturating_sub(p + 1);
+        let mut new_knots = knots[start..].to_vec();
+        new_knots[0] = a;
+        Self::from_homogeneous(new_knots, p, &hp[start..])
+    }
+
+    /// Clamps the end: afterwards `u_n = ... = u_{n+p}` and `C(u_n) = P_{n-1}`.
+    fn clamp_end(&self) -> Self {
+        let p = self.degree();
+        let b = self.domain().1;
+        let mut knots = self.knots.knots().to_vec();
+        let mut hp = self.homogeneous();
+        while knots.iter().filter(|&&k| k == b).count() < p {
+            Self::insert_once(&mut knots, &mut hp, p, b);
+        }
+        let j = knots.iter().position(|&k| k == b).unwrap_or(0);
+        // Keep exactly p + 1 copies of b at the end; drop what follows them.
+        let mut new_knots = knots[..j + p + 1].to_vec();
+        new_knots[j + p] = b;
+        Self::from_homogeneous(new_knots, p, &hp[..j])
+    }
+
+    /// The same curve with clamped end knots (multiplicity `p + 1`), so that `P_0` and
+    /// `P_{n-1}` are the end points. Unclamped curves are converted by knot insertion; knot
+    /// values are kept exactly.
+    pub fn clamped(&self) -> Self {
+        self.clamp_start().clamp_end()
+    }
+
+    /// Splits at `u` strictly inside the domain into the curves on `[a, u]` and `[u, b]`.
+    ///
+    /// # Errors
+    /// [`SplineError::ParameterOutOfDomain`] unless `a < u < b`.
+    pub fn split_at(&self, u: f64) -> Result<(Self, Self), SplineError> {
+        let (a, b) = self.domain();
+        if !(u > a && u < b) {
+            return Err(SplineError::ParameterOutOfDomain {
+                u,
+                start: a,
+                end: b,
+            });
+        }
+        let p = self.degree();
+        let have = self.knots.multiplicity(u);
+        let c = self.insert_knot(u, p - have)?;
+        let knots = c.knots.knots();
+        let hp = c.homogeneous();
+        let j = knots.iter().position(|&k| k == u).unwrap_or(0);
+        let mut left_knots = knots[..j + p].to_vec();
+        left_knots.push(u);
+        let mut right_knots = vec![u];
+        right_knots.extend_from_slice(&knots[j..]);
+        Ok((
+            Self::from_homogeneous(left_knots, p, &hp[..j]),
+            Self::from_homogeneous(right_knots, p, &hp[j - 1..]),
+        ))
+    }
+
+    /// Bezier extraction: the rational Bezier pieces of the curve, one per non-empty knot span,
+    /// in order, each on `[0, 1]` and carrying its original parameter range.
+    pub fn to_bezier(&self) -> Vec<RationalBezier> {
+        let p = self.degree();
+        let mut c = self.clamped();
+        let breaks = c.knots.interior_breaks();
+        for &u in &breaks {
+            let have = c.knots.multiplicity(u);
+            if have < p {
+                // Cannot fail: u is interior and the multiplicity stays <= p.
+                if let Ok(next) = c.insert_knot(u, p - have) {
+                    c = next;
+                }
+            }
+        }
+        let (a, b) = c.domain();
+        let mut ends = vec![a];
+        ends.extend_from_slice(&breaks);
+        ends.push(b);
+        ends.windows(2)
+            .enumerate()
+            .map(|(s, r)| {
+                let range = s * p..=s * p + p;
+                RationalBezier::from_valid_parts(
+                    c.points[range.clone()].to_vec(),
+                    c.weights[range].to_vec(),
+                    (r[0], r[1]),
+                )
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample_curve() -> NurbsCurve {
+        NurbsCurve::new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.5, 0.5, 1.0, 1.0, 1.0, 1.0],
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 2.0),
+                Point::new(2.0, -1.0),
+                Point::new(3.0, 0.5),
+                Point::new(4.0, 2.0),
+                Point::new(5.0, 0.0),
+                Point::new(6.0, 1.0),
+            ],
+            Some(vec![1.0, 0.5, 2.0, 1.0, 3.0, 0.7, 1.0]),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn clamped_curve_interpolates_end_points() {
+        let c = sample_curve();
+        assert!(c.start_point().distance(Point::new(0.0, 0.0)) < 1e-15);
+        assert!(c.end_point().distance(Point::new(6.0, 1.0)) < 1e-15);
+    }
+
+    #[test]
+    fn rejects_bad_weights_and_points() {
+        let pts = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)];
+        assert!(matches!(
+            NurbsCurve::bezier(pts.clone(), Some(vec![1.0, 0.0])),
+            Err(SplineError::NonPositiveWeight { index: 1, .. })
+        ));
+        assert!(matches!(
+            NurbsCurve::bezier(pts.clone(), Some(vec![1.0])),
+            Err(SplineError::WeightCountMismatch { .. })
+        ));
+        assert!(matches!(
+            NurbsCurve::bezier(vec![Point::new(f64::NAN, 0.0), Point::new(1.0, 0.0)], None),
+            Err(SplineError::NonFiniteControlPoint { index: 0, .. })
+        ));
+    }
+
+    #[test]
+    fn insertion_limits() {
+        let c = sample_curve();
+        assert!(matches!(
+            c.insert_knot(0.5, 2),
+            Err(SplineError::MultiplicityExceeded { current: 2, .. })
+        ));
+        assert!(matches!(
+            c.insert_knot(1.5, 1),
+            Err(SplineError::ParameterOutOfDomain { .. })
+        ));
+        assert!(c.split_at(0.0).is_err());
+    }
+
+    #[test]
+    fn bezier_pieces_follow_the_spans() {
+        let pieces = sample_curve().to_bezier();
+        let ranges: Vec<(f64, f64)> = pieces.iter().map(|b| b.param_range()).collect();
+        assert_eq!(ranges, vec![(0.0, 0.3), (0.3, 0.5), (0.5, 1.0)]);
+        assert!(pieces.iter().all(|b| b.degree() == 3));
+    }
+}
