@@ -52,6 +52,17 @@ const POLISH_ITERATIONS: usize = 100;
 /// assert!((r[0] - 0.25).abs() < 1e-7 && (r[1] - 0.75).abs() < 1e-14);
 /// ```
 pub fn real_roots_in(p: &Polynomial, a: f64, b: f64) -> Result<Vec<f64>, RootsError> {
+    roots_with_schur_limit(p, a, b, SCHUR_ITERATIONS_PER_DIM)
+}
+
+/// [`real_roots_in`] with the Schur iteration budget per matrix dimension as a parameter, so
+/// tests can force the shifted retries and the fallback.
+fn roots_with_schur_limit(
+    p: &Polynomial,
+    a: f64,
+    b: f64,
+    iterations_per_dim: usize,
+) -> Result<Vec<f64>, RootsError> {
     check_finite(p.coeffs())?;
     check_interval(a, b)?;
     if p.is_zero() {
@@ -76,7 +87,7 @@ pub fn real_roots_in(p: &Polynomial, a: f64, b: f64) -> Result<Vec<f64>, RootsEr
                 rc.get(2).copied().unwrap_or(0.0),
             ));
         }
-        Some(_) => match eigen_candidates(&reduced) {
+        Some(_) => match eigen_candidates(&reduced, iterations_per_dim) {
             Some(z) => candidates.extend(z),
             None => return bernstein_roots_in(p, a, b),
         },
@@ -96,18 +107,19 @@ pub fn real_roots_in(p: &Polynomial, a: f64, b: f64) -> Result<Vec<f64>, RootsEr
 
 /// Real parts of the nearly-real eigenvalues of the companion matrix of `p` (degree >= 3,
 /// `p(0) != 0`), with shifted retries; `None` if the Schur iteration never converged.
-fn eigen_candidates(p: &Polynomial) -> Option<Vec<f64>> {
-    if let Some(z) = companion_eigenvalues(p) {
+fn eigen_candidates(p: &Polynomial, iterations_per_dim: usize) -> Option<Vec<f64>> {
+    if let Some(z) = companion_eigenvalues(p, iterations_per_dim) {
         return Some(z);
     }
     RETRY_SHIFTS.iter().find_map(|&h| {
-        companion_eigenvalues(&p.taylor_shift(h)).map(|z| z.into_iter().map(|x| x + h).collect())
+        companion_eigenvalues(&p.taylor_shift(h), iterations_per_dim)
+            .map(|z| z.into_iter().map(|x| x + h).collect())
     })
 }
 
 /// Eigenvalues `z` of the (balanced) companion matrix with `|Im z| <= cutoff (1 + |z|)`,
 /// as their real parts.
-fn companion_eigenvalues(p: &Polynomial) -> Option<Vec<f64>> {
+fn companion_eigenvalues(p: &Polynomial, iterations_per_dim: usize) -> Option<Vec<f64>> {
     let c = p.coeffs();
     let n = c.len() - 1;
     let lead = c[n];
@@ -122,7 +134,9 @@ fn companion_eigenvalues(p: &Polynomial) -> Option<Vec<f64>> {
         return None;
     }
     balance(&mut m);
-    let schur = Schur::try_new(m, f64::EPSILON, SCHUR_ITERATIONS_PER_DIM * n.max(4))?;
+    // nalgebra treats a limit of 0 as "no limit": never pass 0.
+    let limit = (iterations_per_dim * n.max(4)).max(1);
+    let schur = Schur::try_new(m, f64::EPSILON, limit)?;
     let (_, t) = schur.unpack();
     Some(
         quasi_triangular_eigenvalues(&t)
@@ -311,6 +325,32 @@ mod tests {
         let r = real_roots_in(&p, 0.0, 1.0).unwrap();
         assert_eq!(r.len(), 2, "{r:?}");
         assert!((r[0] - 0.16458150284226603).abs() < 1e-7);
+    }
+
+    #[test]
+    fn schur_failure_falls_back_to_isolation() {
+        // One Schur iteration cannot converge on a degree-6 companion matrix: the shifted
+        // retries fail too and the Bernstein isolator must answer, with the same roots.
+        let p = Polynomial::from_roots(&[-0.5, 0.1, 0.35, 0.6, 0.6, 2.0]);
+        assert!(eigen_candidates(&p, 1).is_none());
+        let r = roots_with_schur_limit(&p, 0.0, 1.0, 1).unwrap();
+        assert_eq!(r.len(), 3, "{r:?}");
+        assert!((r[0] - 0.1).abs() < 1e-14 && (r[1] - 0.35).abs() < 1e-14);
+        assert!((r[2] - 0.6).abs() < 1e-7);
+        assert_eq!(real_roots_in(&p, 0.0, 1.0).unwrap().len(), 3);
+    }
+
+    #[test]
+    fn shifted_retry_recovers_roots() {
+        // The retry path on its own: eigenvalues of the shifted polynomial, shifted back.
+        let p = Polynomial::from_roots(&[0.2, 0.45, 0.9]);
+        let h = RETRY_SHIFTS[0];
+        let mut z = companion_eigenvalues(&p.taylor_shift(h), SCHUR_ITERATIONS_PER_DIM).unwrap();
+        z.iter_mut().for_each(|x| *x += h);
+        z.sort_by(f64::total_cmp);
+        for (x, e) in z.iter().zip([0.2, 0.45, 0.9]) {
+            assert!((x - e).abs() < 1e-13);
+        }
     }
 
     #[test]
