@@ -1,0 +1,21 @@
+//! Monotone boxes of NURBS boundaries (Sommariva and Vianello, inRS, section 2).
+//!
+//! The boundary is cut where `x'(t) = 0` or `y'(t) = 0` into pieces on which both coordinates
+//! are monotone; each piece's bounding box is spanned by its end points (a *monotone box*), and
+//! a vertical or horizontal line meets the piece at most once, at a parameter found by a
+//! bracketed solve. Boxes may be refined (Remark 2.1); the critical points where a ray can touch
+//! the boundary without crossing it are collected for the containment layer.
+//!
+//! - [`MonotoneBoxes`]: construction, global bounding box, critical abscissas/ordinates.
+//! - [`MonotoneBox`]: one box, with its piece, directions and a boundary-distance test.
+//! - [`BezierPiece`]: homogeneous Bernstein coefficients, evaluation, monotone solves, split.
+
+mod boxes;
+mod error;
+mod monotone_box;
+mod piece;
+
+pub use boxes::{BoxOptions, CriticalKind, CriticalPoint, DEFAULT_SUBDIVISIONS, MonotoneBoxes};
+pub use error::BoxError;
+pub use monotone_box::{MonotoneBox, Monotonicity};
+pub use piece::BezierPiece;

@@ -1,0 +1,287 @@
+//! A rational Bezier piece stored as homogeneous Bernstein coefficients, with the fast
+//! evaluations and monotone solves the containment tests need.
+
+use smallvec::SmallVec;
+
+use rs_spline::{Point, RationalBezier, SplineError};
+
+/// Coefficient storage: degree <= 7 stays on the stack.
+pub(crate) type Coeffs = SmallVec<[f64; 8]>;
+
+/// Iteration cap of [`bernstein_sign_change_root`] (bisection alone needs < 1100 steps to
+/// reach one ulp anywhere in `[0, 1]`).
+const MAX_SOLVE_ITER: usize = 1100;
+
+/// A rational Bezier piece `C(t) = (X(t), Y(t)) / W(t)` on `[0, 1]`, kept as the Bernstein
+/// coefficients `w_i x_i`, `w_i y_i`, `w_i` (weights > 0).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BezierPiece {
+    hx: Coeffs,
+    hy: Coeffs,
+    w: Coeffs,
+}
+
+impl BezierPiece {
+    /// The piece of a rational Bezier curve.
+    pub fn from_bezier(b: &RationalBezier) -> Self {
+        let w: Coeffs = b.weights().iter().copied().collect();
+        let hx = b
+            .control_points()
+            .iter()
+            .zip(&w)
+            .map(|(p, w)| p.x * w)
+            .collect();
+        let hy = b
+            .control_points()
+            .iter()
+            .zip(&w)
+            .map(|(p, w)| p.y * w)
+            .collect();
+        Self { hx, hy, w }
+    }
+
+    /// Degree `n`.
+    pub fn degree(&self) -> usize {
+        self.w.len() - 1
+    }
+
+    /// Control point `i` in Cartesian coordinates.
+    pub fn control_point(&self, i: usize) -> Point {
+        Point::new(self.hx[i] / self.w[i], self.hy[i] / self.w[i])
+    }
+
+    /// `C(0)`.
+    pub fn start(&self) -> Point {
+        self.control_point(0)
+    }
+
+    /// `C(1)`.
+    pub fn end(&self) -> Point {
+        self.control_point(self.degree())
+    }
+
+    /// Moves the first control point to `p`, keeping its weight (used to make loops
+    /// watertight).
+    pub(crate) fn set_start(&mut self, p: Point) {
+        self.hx[0] = p.x * self.w[0];
+        self.hy[0] = p.y * self.w[0];
+    }
+
+    /// The control points' x (`axis = 0`) or y (`axis = 1`) coordinates, all equal?
+    pub(crate) fn is_constant(&self, axis: usize) -> bool {
+        let c0 = self.coord(axis, 0);
+        (1..self.w.len()).all(|i| self.coord(axis, i) == c0)
+    }
+
+    fn coord(&self, axis: usize, i: usize) -> f64 {
+        if axis == 0 {
+            self.hx[i] / self.w[i]
+        } else {
+            self.hy[i] / self.w[i]
+        }
+    }
+
+    /// `C(t)` by de Casteljau in homogeneous coordinates.
+    pub fn point_at(&self, t: f64) -> Point {
+        let x = de_casteljau(&self.hx, t);
+        let y = de_casteljau(&self.hy, t);
+        let w = de_casteljau(&self.w, t);
+        Point::new(x / w, y / w)
+    }
+
+    /// `x(t)`.
+    pub fn x_at(&self, t: f64) -> f64 {
+        de_casteljau(&self.hx, t) / de_casteljau(&self.w, t)
+    }
+
+    /// `y(t)`.
+    pub fn y_at(&self, t: f64) -> f64 {
+        de_casteljau(&self.hy, t) / de_casteljau(&self.w, t)
+    }
+
+    /// The parameter where `x(t) = px`, for a piece whose `x(0) - px` and `x(1) - px` differ in
+    /// sign (or vanish): the root of `sum_i w_i (x_i - px) B_i(t)` (NOTES.md: no rational root
+    /// finding needed). `None` if there is no sign change.
+    pub fn solve_x(&self, px: f64) -> Option<f64> {
+        solve_axis(&self.hx, &self.w, px)
+    }
+
+    /// The parameter where `y(t) = py` (see [`BezierPiece::solve_x`]).
+    pub fn solve_y(&self, py: f64) -> Option<f64> {
+        solve_axis(&self.hy, &self.w, py)
+    }
+
+    /// Splits at `t` into the pieces on `[0, t]` and `[t, 1]`; the shared point is the same
+    /// `f64` value in both.
+    pub fn split(&self, t: f64) -> (Self, Self) {
+        let (lx, rx) = split_coeffs(&self.hx, t);
+        let (ly, ry) = split_coeffs(&self.hy, t);
+        let (lw, rw) = split_coeffs(&self.w, t);
+        (
+            Self {
+                hx: lx,
+                hy: ly,
+                w: lw,
+            },
+            Self {
+                hx: rx,
+                hy: ry,
+                w: rw,
+            },
+        )
+    }
+
+    /// The piece as a [`RationalBezier`] on `[0, 1]`.
+    ///
+    /// # Errors
+    /// Only if the coefficients were corrupted (subdivision keeps weights positive).
+    pub fn to_bezier(&self) -> Result<RationalBezier, SplineError> {
+        let pts = (0..self.w.len()).map(|i| self.control_point(i)).collect();
+        RationalBezier::new(pts, self.w.to_vec())
+    }
+}
+
+fn solve_axis(h: &[f64], w: &[f64], v: f64) -> Option<f64> {
+    let mut c: Coeffs = h.iter().zip(w).map(|(h, w)| h - v * w).collect();
+    bernstein_sign_change_root(&mut c)
+}
+
+/// De Casteljau evaluation of Bernstein coefficients at `t`.
+pub(crate) fn de_casteljau(c: &[f64], t: f64) -> f64 {
+    let mut buf: Coeffs = SmallVec::from_slice(c);
+    let n = buf.len();
+    let s = 1.0 - t;
+    for k in 1..n {
+        for i in 0..n - k {
+            buf[i] = s * buf[i] + t * buf[i + 1];
+        }
+    }
+    buf[0]
+}
+
+/// Value and derivative of Bernstein coefficients at `t`.
+fn value_and_slope(c: &[f64], t: f64) -> (f64, f64) {
+    let n = c.len();
+    if n == 1 {
+        return (c[0], 0.0);
+    }
+    let mut buf: Coeffs = SmallVec::from_slice(c);
+    let s = 1.0 - t;
+    for k in 1..n - 1 {
+        for i in 0..n - k {
+            buf[i] = s * buf[i] + t * buf[i + 1];
+        }
+    }
+    let value = s * buf[0] + t * buf[1];
+    let slope = (n - 1) as f64 * (buf[1] - buf[0]);
+    (value, slope)
+}
+
+/// The root in `[0, 1]` of a Bernstein polynomial whose end coefficients differ in sign (or
+/// one vanishes), by Newton's method safeguarded with bisection; `None` without a sign change.
+/// On a monotone piece this is the unique root. Converges to a bracket of one ulp at most.
+pub(crate) fn bernstein_sign_change_root(c: &mut [f64]) -> Option<f64> {
+    let n = c.len() - 1;
+    let (f0, f1) = (c[0], c[n]);
+    if f0 == 0.0 {
+        return Some(0.0);
+    }
+    if f1 == 0.0 {
+        return Some(1.0);
+    }
+    if (f0 > 0.0) == (f1 > 0.0) || f0.is_nan() || f1.is_nan() {
+        return None;
+    }
+    if f0 > 0.0 {
+        c.iter_mut().for_each(|v| *v = -*v);
+    }
+    // Now c(0) < 0 < c(1).
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    let mut t = c[0] / (c[0] - c[n]);
+    for _ in 0..MAX_SOLVE_ITER {
+        let (f, df) = value_and_slope(c, t);
+        if f == 0.0 {
+            return Some(t);
+        }
+        if f < 0.0 {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            return Some(t);
+        }
+        let newton = t - f / df;
+        let next = if df > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            mid
+        };
+        if (next - t).abs() <= f64::EPSILON * 0.5 {
+            return Some(next);
+        }
+        t = next;
+    }
+    Some(t)
+}
+
+/// Splits Bernstein coefficients at `t`.
+fn split_coeffs(c: &[f64], t: f64) -> (Coeffs, Coeffs) {
+    let n = c.len();
+    let mut work: Coeffs = SmallVec::from_slice(c);
+    let mut left: Coeffs = SmallVec::with_capacity(n);
+    let mut right: Coeffs = SmallVec::from_elem(0.0, n);
+    left.push(work[0]);
+    right[n - 1] = work[n - 1];
+    let s = 1.0 - t;
+    for r in 1..n {
+        for i in 0..n - r {
+            work[i] = s * work[i] + t * work[i + 1];
+        }
+        left.push(work[0]);
+        right[n - 1 - r] = work[n - 1 - r];
+    }
+    (left, right)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn arc() -> BezierPiece {
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        BezierPiece::from_bezier(
+            &RationalBezier::new(
+                vec![
+                    Point::new(1.0, 0.0),
+                    Point::new(1.0, 1.0),
+                    Point::new(0.0, 1.0),
+                ],
+                vec![1.0, w, 1.0],
+            )
+            .unwrap(),
+        )
+    }
+
+    #[test]
+    fn solves_on_a_quarter_circle() {
+        let a = arc();
+        for &px in &[0.0, 0.1, 0.5, 0.999, 1.0] {
+            let t = a.solve_x(px).unwrap();
+            let p = a.point_at(t);
+            assert!((p.x - px).abs() < 1e-15, "{px}: {p:?}");
+            assert!((p.y - (1.0 - px * px).sqrt()).abs() < 1e-7);
+        }
+        assert!(a.solve_x(1.5).is_none());
+        let t = a.solve_y(0.6).unwrap();
+        assert!((a.y_at(t) - 0.6).abs() < 1e-15);
+    }
+
+    #[test]
+    fn split_shares_the_point_exactly() {
+        let (l, r) = arc().split(0.37);
+        assert_eq!(l.end(), r.start());
+        assert!((l.point_at(0.5).length() - 1.0).abs() < 1e-15);
+    }
+}

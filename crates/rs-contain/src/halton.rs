@@ -1,0 +1,41 @@
+//! Halton points, the test and benchmark clouds of the paper.
+
+use rs_spline::{BoundingBox, Point};
+
+/// The radical inverse of `i` in `base`: the digits of `i` mirrored about the radix point.
+pub fn radical_inverse(mut i: u64, base: u64) -> f64 {
+    let inv = 1.0 / base as f64;
+    let mut factor = inv;
+    let mut value = 0.0;
+    while i > 0 {
+        value += (i % base) as f64 * factor;
+        i /= base;
+        factor *= inv;
+    }
+    value
+}
+
+/// The first `n` Halton points in bases 2 and 3, starting with `(0, 0)` (no skip), mapped to
+/// the box: `(xmin + h2(i) (xmax - xmin), ymin + h3(i) (ymax - ymin))`. This is the protocol of
+/// the inRS paper and of the reference counts stored in the fixtures.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::halton_points;
+/// use rs_spline::{BoundingBox, Point};
+/// let b = BoundingBox { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) };
+/// let p = halton_points(3, b);
+/// assert_eq!(p, vec![Point::new(0.0, 0.0), Point::new(0.5, 1.0 / 3.0), Point::new(0.25, 2.0 / 3.0)]);
+/// ```
+pub fn halton_points(n: usize, bbox: BoundingBox) -> Vec<Point> {
+    let (w, h) = (bbox.width(), bbox.height());
+    (0..n as u64)
+        .map(|i| {
+            Point::new(
+                bbox.min.x + radical_inverse(i, 2) * w,
+                bbox.min.y + radical_inverse(i, 3) * h,
+            )
+        })
+        .collect()
+}

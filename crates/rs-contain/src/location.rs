@@ -1,0 +1,81 @@
+//! Where a point is relative to a domain.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// The location of a point relative to a domain.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Location {
+    /// Strictly inside (farther than the boundary tolerance from the boundary).
+    Inside,
+    /// Strictly outside.
+    Outside,
+    /// On the boundary, up to the boundary tolerance.
+    Boundary,
+}
+
+impl Location {
+    /// The CSV word: `inside`, `outside` or `boundary`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Inside => "inside",
+            Self::Outside => "outside",
+            Self::Boundary => "boundary",
+        }
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// How a point was decided (for diagnostics and tests).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Decision {
+    /// Outside the global bounding box grown by the tolerance.
+    BoundingBox,
+    /// Crossing number of the vertical ray (the normal case).
+    VerticalRay,
+    /// The vertical ray met a critical abscissa: crossing number of the horizontal ray.
+    HorizontalRay,
+    /// Both rays met critical points: winding number.
+    WindingNumber,
+}
+
+/// The classification algorithm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Method {
+    /// Each point against each candidate box: `O(M N)` (the paper's inRS1).
+    InRS1,
+    /// Points sorted by abscissa, a binary search per box (the paper's inRS2). The default.
+    #[default]
+    InRS2,
+}
+
+impl Method {
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::InRS1 => "inrs1",
+            Self::InRS2 => "inrs2",
+        }
+    }
+
+    /// Every method, for tests and benchmarks.
+    pub const ALL: [Method; 2] = [Method::InRS1, Method::InRS2];
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "inrs1" => Ok(Self::InRS1),
+            "inrs2" => Ok(Self::InRS2),
+            other => Err(format!(
+                "unknown method {other:?} (expected inrs1 or inrs2)"
+            )),
+        }
+    }
+}

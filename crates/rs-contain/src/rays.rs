@@ -1,0 +1,74 @@
+//! One monotone box against one ray: crossing, miss, or boundary.
+
+use rs_boxes::{MonotoneBox, Monotonicity};
+use rs_spline::Point;
+
+/// The outcome of testing a ray from a point against one box.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Hit {
+    /// The point is within the tolerance of the box's piece.
+    Boundary,
+    /// The ray crosses the piece.
+    Cross,
+    /// It does not.
+    Miss,
+}
+
+/// The downward vertical ray `{x = p.x, y < p.y}` against box `b`.
+///
+/// Crossings use the half-open rule `xmin <= p.x < xmax`: the ray is treated as lying an
+/// infinitesimal distance to the right of `p.x` (simulation of simplicity). Consecutive boxes
+/// share their end points exactly, so a ray through a shared end point is counted once where the
+/// boundary passes through and zero or two times where it turns back, which is the right parity;
+/// vertical pieces are never crossed.
+pub(crate) fn vertical(b: &MonotoneBox, p: Point, tol: f64) -> Hit {
+    if b.is_near(p, tol) {
+        return Hit::Boundary;
+    }
+    if b.x_dir == Monotonicity::Constant || !(b.xmin <= p.x && p.x < b.xmax) || p.y < b.ymin {
+        return Hit::Miss;
+    }
+    if p.y > b.ymax {
+        return Hit::Cross;
+    }
+    match b.piece.solve_x(p.x).map(|t| b.piece.y_at(t)) {
+        Some(y) if y < p.y => Hit::Cross,
+        Some(y) if y > p.y => Hit::Miss,
+        _ => Hit::Boundary,
+    }
+}
+
+/// The leftward horizontal ray `{y = p.y, x < p.x}` against box `b`, with the half-open rule
+/// `ymin <= p.y < ymax` (see [`vertical`]).
+pub(crate) fn horizontal(b: &MonotoneBox, p: Point, tol: f64) -> Hit {
+    if b.is_near(p, tol) {
+        return Hit::Boundary;
+    }
+    if b.y_dir == Monotonicity::Constant || !(b.ymin <= p.y && p.y < b.ymax) || p.x < b.xmin {
+        return Hit::Miss;
+    }
+    if p.x > b.xmax {
+        return Hit::Cross;
+    }
+    match b.piece.solve_y(p.y).map(|t| b.piece.x_at(t)) {
+        Some(x) if x < p.x => Hit::Cross,
+        Some(x) if x > p.x => Hit::Miss,
+        _ => Hit::Boundary,
+    }
+}
+
+/// Crossing parity of a ray over `boxes`, or `None` if the point is on the boundary.
+pub(crate) fn parity<'a>(
+    boxes: impl IntoIterator<Item = &'a MonotoneBox>,
+    hit: impl Fn(&MonotoneBox) -> Hit,
+) -> Option<bool> {
+    let mut odd = false;
+    for b in boxes {
+        match hit(b) {
+            Hit::Boundary => return None,
+            Hit::Cross => odd = !odd,
+            Hit::Miss => {}
+        }
+    }
+    Some(odd)
+}
