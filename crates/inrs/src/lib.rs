@@ -4,9 +4,11 @@
 //! This facade re-exports the layers so that downstream code can depend on one crate:
 //! - [`roots`] (`rs-roots`): real polynomial roots.
 //! - [`spline`] (`rs-spline`): NURBS algebra, primitives, domains and domain files.
+//! - [`boxes`] (`rs-boxes`): monotone boxes and critical points.
+//! - [`contain`] (`rs-contain`): the inRS classifier (inRS1, inRS2, fallbacks, boundary).
 //!
-//! The containment algorithms (crossing-number inRS and generalized winding numbers) are added
-//! as their own layers and re-exported here as they land.
+//! Plus [`Classify`] (containment methods on [`Domain`]), the points file reader
+//! [`parse_points`] and the domain summary printed by `inrs info`.
 //!
 //! # Examples
 //!
@@ -18,11 +20,18 @@
 //! assert!((s.signed_area - std::f64::consts::PI).abs() < 1e-13);
 //! ```
 
+pub use rs_boxes as boxes;
+pub use rs_contain as contain;
 pub use rs_roots as roots;
 pub use rs_spline as spline;
 
+pub use rs_contain::{Classifier, ContainError, ContainOptions, Location, Method};
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 
+mod classify;
+mod points_csv;
 mod summary;
 
+pub use classify::Classify;
+pub use points_csv::{PointRecord, PointsError, parse_points, read_points};
 pub use summary::{DomainSummary, LoopSummary};

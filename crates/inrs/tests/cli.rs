@@ -13,6 +13,14 @@ fn fixture(rel: &str) -> String {
     format!("{}/../../fixtures/{rel}", env!("CARGO_MANIFEST_DIR"))
 }
 
+fn temp_file(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("inrs-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
 #[test]
 fn info_prints_a_summary() {
     let out = inrs(&[
@@ -37,34 +45,175 @@ fn info_prints_a_summary() {
 }
 
 #[test]
+fn classify_writes_csv_in_input_order_with_points_echoed() {
+    let points = temp_file(
+        "pts.csv",
+        "x,y\n# centre, outside, on the circle\n0,0\n2.0 , 0\n1,0\n0.6,0.8\n1e-1,-0.0\n",
+    );
+    for method in ["inrs1", "inrs2"] {
+        let out = inrs(&[
+            "classify",
+            "--domain",
+            &fixture("inrs-paper/circle.json"),
+            "--points",
+            &points,
+            "--method",
+            method,
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(
+            String::from_utf8(out.stdout).unwrap(),
+            "x,y,location\n0,0,inside\n2.0,0,outside\n1,0,boundary\n0.6,0.8,boundary\n1e-1,-0.0,inside\n"
+        );
+    }
+}
+
+#[test]
+fn classify_output_file_and_tolerance() {
+    let points = temp_file("near.csv", "1.0000001,0\n");
+    let out_path = temp_file("out.csv", "");
+    let domain = fixture("inrs-paper/circle.json");
+    let out = inrs(&[
+        "classify", "--domain", &domain, "--points", &points, "--output", &out_path,
+    ]);
+    assert!(out.status.success());
+    assert!(out.stdout.is_empty());
+    assert_eq!(
+        std::fs::read_to_string(&out_path).unwrap(),
+        "x,y,location\n1.0000001,0,outside\n"
+    );
+    // A looser tolerance (1e-6 x diagonal 2.83 > 1e-7) makes the same point boundary.
+    let out = inrs(&[
+        "classify", "--domain", &domain, "--points", &points, "--tol", "1e-6",
+    ]);
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap(),
+        "x,y,location\n1.0000001,0,boundary\n"
+    );
+}
+
+#[test]
 fn bad_input_gives_one_line_errors() {
-    for (args, needle) in [
+    let good_points = temp_file("good.csv", "0,0\n");
+    let bad_points = temp_file("bad.csv", "0,0\n1,2,3\n");
+    let nan_points = temp_file("nan.csv", "0,0\nNaN,1\n");
+    let circle = fixture("inrs-paper/circle.json");
+    let malformed = fixture("bad/malformed.json");
+    let negative = fixture("bad/negative_weight.json");
+    let open = fixture("bad/open_loop.json");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
         (
             vec!["info", "--domain", "/nonexistent/d.json"],
             "/nonexistent/d.json",
         ),
         (
-            vec!["info", "--domain", &fixture("bad/malformed.json")],
+            vec!["info", "--domain", &malformed],
             "invalid JSON at line 3",
         ),
+        (vec!["info", "--domain", &negative], "curve 0: weight 1"),
         (
-            vec!["info", "--domain", &fixture("bad/negative_weight.json")],
-            "curve 0: weight 1",
+            vec!["info", "--require-closed", "--domain", &open],
+            "open boundary",
         ),
         (
             vec![
-                "info",
-                "--require-closed",
+                "classify",
                 "--domain",
-                &fixture("bad/open_loop.json"),
+                "/nonexistent/d.json",
+                "--points",
+                &good_points,
             ],
-            "open boundary",
+            "/nonexistent/d.json",
         ),
-    ] {
+        (
+            vec!["classify", "--domain", &malformed, "--points", &good_points],
+            "invalid JSON at line 3",
+        ),
+        (
+            vec!["classify", "--domain", &open, "--points", &good_points],
+            "open boundary: the loop of curves 0..=2",
+        ),
+        (
+            vec![
+                "classify",
+                "--domain",
+                &circle,
+                "--points",
+                "/nonexistent/p.csv",
+            ],
+            "/nonexistent/p.csv",
+        ),
+        (
+            vec!["classify", "--domain", &circle, "--points", &bad_points],
+            "line 2: expected two numbers",
+        ),
+        (
+            vec!["classify", "--domain", &circle, "--points", &nan_points],
+            "line 2: \"NaN\" is not a finite number",
+        ),
+        (
+            vec![
+                "classify",
+                "--domain",
+                &circle,
+                "--points",
+                &good_points,
+                "--tol",
+                "-1",
+            ],
+            "invalid boundary tolerance",
+        ),
+        (
+            vec![
+                "classify",
+                "--domain",
+                &circle,
+                "--points",
+                &good_points,
+                "--subdivisions",
+                "0",
+            ],
+            "subdivisions must be at least 1",
+        ),
+    ];
+    for (args, needle) in cases {
         let out = inrs(&args);
         assert!(!out.status.success(), "{args:?}");
         let err = String::from_utf8(out.stderr).unwrap();
-        assert_eq!(err.lines().count(), 1, "{err}");
-        assert!(err.starts_with("inrs: ") && err.contains(needle), "{err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(
+            err.starts_with("inrs: ") && err.contains(needle),
+            "{args:?}: {err}"
+        );
     }
+    // An unknown method is rejected by the argument parser (non-zero exit, message names it).
+    let out = inrs(&[
+        "classify",
+        "--domain",
+        &circle,
+        "--points",
+        &good_points,
+        "--method",
+        "magic",
+    ]);
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8(out.stderr)
+            .unwrap()
+            .contains("unknown method \"magic\"")
+    );
+}
+
+#[test]
+fn help_documents_the_tolerance() {
+    let out = inrs(&["classify", "--help"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("--tol") && text.contains("Boundary tolerance"),
+        "{text}"
+    );
 }

@@ -12,32 +12,41 @@ pub(crate) type Coeffs = SmallVec<[f64; 8]>;
 /// reach one ulp anywhere in `[0, 1]`).
 const MAX_SOLVE_ITER: usize = 1100;
 
-/// A rational Bezier piece `C(t) = (X(t), Y(t)) / W(t)` on `[0, 1]`, kept as the Bernstein
-/// coefficients `w_i x_i`, `w_i y_i`, `w_i` (weights > 0).
+/// A rational Bezier piece `C(t) = (X(t), Y(t)) / W(t)` on `[0, 1]`, kept as Cartesian control
+/// coordinates `x_i`, `y_i`, weights `w_i > 0` and the homogeneous Bernstein coefficients
+/// `w_i x_i`, `w_i y_i`.
+///
+/// The end points are the stored Cartesian `(x_0, y_0)` and `(x_n, y_n)`, returned exactly by
+/// every evaluation at `t = 0` and `t = 1`, and solves use the coefficients `w_i (x_i - v)`, so
+/// the sign of a solve's end coefficient always agrees with comparing `v` to the end point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BezierPiece {
+    x: Coeffs,
+    y: Coeffs,
+    w: Coeffs,
     hx: Coeffs,
     hy: Coeffs,
-    w: Coeffs,
 }
 
 impl BezierPiece {
     /// The piece of a rational Bezier curve.
     pub fn from_bezier(b: &RationalBezier) -> Self {
         let w: Coeffs = b.weights().iter().copied().collect();
-        let hx = b
-            .control_points()
-            .iter()
-            .zip(&w)
-            .map(|(p, w)| p.x * w)
-            .collect();
-        let hy = b
-            .control_points()
-            .iter()
-            .zip(&w)
-            .map(|(p, w)| p.y * w)
-            .collect();
-        Self { hx, hy, w }
+        let x = b.control_points().iter().map(|p| p.x).collect();
+        let y = b.control_points().iter().map(|p| p.y).collect();
+        Self::from_cartesian(x, y, w)
+    }
+
+    fn from_cartesian(x: Coeffs, y: Coeffs, w: Coeffs) -> Self {
+        let hx = x.iter().zip(&w).map(|(x, w)| x * w).collect();
+        let hy = y.iter().zip(&w).map(|(y, w)| y * w).collect();
+        Self { x, y, w, hx, hy }
+    }
+
+    fn from_homogeneous(hx: Coeffs, hy: Coeffs, w: Coeffs) -> Self {
+        let x = hx.iter().zip(&w).map(|(h, w)| h / w).collect();
+        let y = hy.iter().zip(&w).map(|(h, w)| h / w).collect();
+        Self { x, y, w, hx, hy }
     }
 
     /// Degree `n`.
@@ -47,7 +56,7 @@ impl BezierPiece {
 
     /// Control point `i` in Cartesian coordinates.
     pub fn control_point(&self, i: usize) -> Point {
-        Point::new(self.hx[i] / self.w[i], self.hy[i] / self.w[i])
+        Point::new(self.x[i], self.y[i])
     }
 
     /// `C(0)`.
@@ -63,52 +72,43 @@ impl BezierPiece {
     /// Moves the first control point to `p`, keeping its weight (used to make loops
     /// watertight).
     pub(crate) fn set_start(&mut self, p: Point) {
+        self.x[0] = p.x;
+        self.y[0] = p.y;
         self.hx[0] = p.x * self.w[0];
         self.hy[0] = p.y * self.w[0];
     }
 
     /// The control points' x (`axis = 0`) or y (`axis = 1`) coordinates, all equal?
     pub(crate) fn is_constant(&self, axis: usize) -> bool {
-        let c0 = self.coord(axis, 0);
-        (1..self.w.len()).all(|i| self.coord(axis, i) == c0)
+        let c = if axis == 0 { &self.x } else { &self.y };
+        c.iter().all(|&v| v == c[0])
     }
 
-    fn coord(&self, axis: usize, i: usize) -> f64 {
-        if axis == 0 {
-            self.hx[i] / self.w[i]
-        } else {
-            self.hy[i] / self.w[i]
-        }
-    }
-
-    /// `C(t)` by de Casteljau in homogeneous coordinates.
+    /// `C(t)` by de Casteljau in homogeneous coordinates (the stored end points at `t = 0, 1`).
     pub fn point_at(&self, t: f64) -> Point {
-        let x = de_casteljau(&self.hx, t);
-        let y = de_casteljau(&self.hy, t);
-        let w = de_casteljau(&self.w, t);
-        Point::new(x / w, y / w)
+        Point::new(self.x_at(t), self.y_at(t))
     }
 
     /// `x(t)`.
     pub fn x_at(&self, t: f64) -> f64 {
-        de_casteljau(&self.hx, t) / de_casteljau(&self.w, t)
+        rational_at(&self.x, &self.hx, &self.w, t)
     }
 
     /// `y(t)`.
     pub fn y_at(&self, t: f64) -> f64 {
-        de_casteljau(&self.hy, t) / de_casteljau(&self.w, t)
+        rational_at(&self.y, &self.hy, &self.w, t)
     }
 
     /// The parameter where `x(t) = px`, for a piece whose `x(0) - px` and `x(1) - px` differ in
     /// sign (or vanish): the root of `sum_i w_i (x_i - px) B_i(t)` (NOTES.md: no rational root
     /// finding needed). `None` if there is no sign change.
     pub fn solve_x(&self, px: f64) -> Option<f64> {
-        solve_axis(&self.hx, &self.w, px)
+        solve_axis(&self.x, &self.w, px)
     }
 
     /// The parameter where `y(t) = py` (see [`BezierPiece::solve_x`]).
     pub fn solve_y(&self, py: f64) -> Option<f64> {
-        solve_axis(&self.hy, &self.w, py)
+        solve_axis(&self.y, &self.w, py)
     }
 
     /// Splits at `t` into the pieces on `[0, t]` and `[t, 1]`; the shared point is the same
@@ -117,18 +117,14 @@ impl BezierPiece {
         let (lx, rx) = split_coeffs(&self.hx, t);
         let (ly, ry) = split_coeffs(&self.hy, t);
         let (lw, rw) = split_coeffs(&self.w, t);
-        (
-            Self {
-                hx: lx,
-                hy: ly,
-                w: lw,
-            },
-            Self {
-                hx: rx,
-                hy: ry,
-                w: rw,
-            },
-        )
+        let (left, mut right) = (
+            Self::from_homogeneous(lx, ly, lw),
+            Self::from_homogeneous(rx, ry, rw),
+        );
+        // Both sides must agree on the shared point bit for bit.
+        right.x[0] = left.x[left.x.len() - 1];
+        right.y[0] = left.y[left.y.len() - 1];
+        (left, right)
     }
 
     /// The piece as a [`RationalBezier`] on `[0, 1]`.
@@ -141,9 +137,22 @@ impl BezierPiece {
     }
 }
 
-fn solve_axis(h: &[f64], w: &[f64], v: f64) -> Option<f64> {
-    let mut c: Coeffs = h.iter().zip(w).map(|(h, w)| h - v * w).collect();
-    bernstein_sign_change_root(&mut c)
+/// `X(t) / W(t)`, exact at the ends.
+fn rational_at(c: &[f64], h: &[f64], w: &[f64], t: f64) -> f64 {
+    if t == 0.0 {
+        c[0]
+    } else if t == 1.0 {
+        c[c.len() - 1]
+    } else {
+        de_casteljau(h, t) / de_casteljau(w, t)
+    }
+}
+
+/// Root of `sum_i w_i (c_i - v) B_i(t)`: the end coefficients vanish exactly when `v` equals
+/// an end point's coordinate.
+fn solve_axis(c: &[f64], w: &[f64], v: f64) -> Option<f64> {
+    let mut f: Coeffs = c.iter().zip(w).map(|(c, w)| w * (c - v)).collect();
+    bernstein_sign_change_root(&mut f)
 }
 
 /// De Casteljau evaluation of Bernstein coefficients at `t`.
