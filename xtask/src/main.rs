@@ -3,14 +3,29 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use inrs::{Domain, DomainSummary};
+use std::time::Instant;
+
+use inrs::contain::halton_points;
+use inrs::{
+    BoundingBox, Classifier, ContainOptions, Domain, DomainSummary, Location, Method, Point,
+};
+
+mod bench;
 
 const HELP: &str = "\
 cargo xtask <command>
 
 Commands:
   demo [--fixtures DIR]   Load the built-in fixtures (default: fixtures/inrs-paper), print a
-                          summary of each domain and check it against the file's reference data.
+                          summary of each domain, classify Halton points and check the inside
+                          counts and areas against the reference data stored in the files.
+  bench [OPTIONS]         Time inRS1 and inRS2 on the paper domains (median of repeated runs in
+                          one process); writes target/bench-report/bench.{md,csv}.
+      --quick             N = 10^3, 10^4 and 3 repetitions
+      --domains A,B       fixture names (default s3_m_shape,s4_disk_ellipse_segment,s5_lune)
+      --sizes N,M         numbers of Halton points (default 1000,10000,100000)
+      --reps R            repetitions per timing (default 11)
+      --sweep             also time inRS2 for 1..128 sub-boxes per monotone piece
   help                    Show this help.
 ";
 
@@ -19,6 +34,44 @@ fn workspace_root() -> PathBuf {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default()
+}
+
+/// Reference inside counts `(N, count)` stored in a fixture's metadata.
+fn reference_counts(meta: &serde_json::Value) -> Vec<(usize, usize)> {
+    let refs = &meta["reference_inside_counts_halton"];
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    if let Some(paper) = refs["paper_protocol"].as_object() {
+        for (n, r) in paper {
+            if let (Ok(n), Some(c)) = (n.parse(), r["inRS_nbox200_safe1_in"].as_u64()) {
+                out.push((n, c as usize));
+            }
+        }
+    }
+    if let (Some(n), Some(c)) = (
+        refs["N10000_check"]["N"].as_u64(),
+        refs["N10000_check"]["inRS_nbox100_safe1_in"].as_u64(),
+    ) {
+        out.push((n as usize, c as usize));
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The reference bounding box of a fixture (the box its Halton points were mapped to).
+fn reference_box(meta: &serde_json::Value, fallback: BoundingBox) -> BoundingBox {
+    let b: Vec<f64> = meta["bbox_xmin_xmax_ymin_ymax"]
+        .as_array()
+        .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
+        .unwrap_or_default();
+    if b.len() == 4 {
+        BoundingBox {
+            min: Point::new(b[0], b[2]),
+            max: Point::new(b[1], b[3]),
+        }
+    } else {
+        fallback
+    }
 }
 
 fn demo(dir: &Path) -> Result<(), String> {
@@ -32,45 +85,90 @@ fn demo(dir: &Path) -> Result<(), String> {
         return Err(format!("no domain files in {}", dir.display()));
     }
     println!(
-        "{:<28} {:>6} {:>6} {:>4} {:>6} {:>8} {:>20} {:>20}",
-        "file", "curves", "pieces", "deg", "loops", "closed", "signed area", "reference area"
+        "{:<24} {:>6} {:>6} {:>6} {:>18} {:>8} {:>9} {:>9} {:>9} {:>10}",
+        "domain",
+        "curves",
+        "pieces",
+        "boxes",
+        "signed area",
+        "N",
+        "inside",
+        "boundary",
+        "reference",
+        "time"
     );
+    let mut failures = Vec::new();
     let mut summaries = Vec::new();
-    let mut mismatches = 0;
     for path in &files {
+        let stem = path
+            .file_stem()
+            .and_then(|x| x.to_str())
+            .unwrap_or("?")
+            .to_string();
         let d = Domain::from_json_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let s = DomainSummary::of(&d);
-        let reference = std::fs::read_to_string(path)
+        let meta: serde_json::Value = std::fs::read_to_string(path)
             .ok()
-            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-            .and_then(|v| v.get("signed_area").and_then(serde_json::Value::as_f64));
-        let ok = reference.is_none_or(|r| (r - s.signed_area).abs() <= 1e-12 * r.abs());
-        mismatches += usize::from(!ok);
-        let stem = path.file_stem().and_then(|x| x.to_str()).unwrap_or("?");
-        println!(
-            "{:<28} {:>6} {:>6} {:>4} {:>6} {:>8} {:>20.15} {:>20}",
-            stem,
-            s.curves,
-            s.bezier_pieces,
-            s.max_degree,
-            s.loops.len(),
-            if s.is_closed() { "yes" } else { "NO" },
-            s.signed_area,
-            reference.map_or("-".to_string(), |r| format!("{r:.15}"))
-                + if ok { "" } else { " MISMATCH" },
-        );
+            .and_then(|t| serde_json::from_str(&t).ok())
+            .unwrap_or_default();
+        let s = DomainSummary::of(&d);
+        if let Some(r) = meta.get("signed_area").and_then(serde_json::Value::as_f64)
+            && (r - s.signed_area).abs() > 1e-12 * r.abs()
+        {
+            failures.push(format!(
+                "{stem}: area {} differs from reference {r}",
+                s.signed_area
+            ));
+        }
+        let classifier = Classifier::new(&d, ContainOptions::default())
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let bbox = reference_box(&meta, d.bounding_box());
+        let mut counts = reference_counts(&meta);
+        if counts.is_empty() {
+            counts.push((10_000, usize::MAX));
+        }
+        for (n, expected) in counts {
+            let pts = halton_points(n, bbox);
+            let start = Instant::now();
+            let loc = classifier.classify(&pts, Method::InRS2);
+            let elapsed = start.elapsed();
+            let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
+            let boundary = loc.iter().filter(|&&l| l == Location::Boundary).count();
+            let reference = if expected == usize::MAX {
+                "-".to_string()
+            } else {
+                expected.to_string()
+            };
+            if expected != usize::MAX && inside != expected {
+                failures.push(format!(
+                    "{stem}: N = {n}: {inside} inside, reference {expected}"
+                ));
+            }
+            println!(
+                "{:<24} {:>6} {:>6} {:>6} {:>18.15} {:>8} {:>9} {:>9} {:>9} {:>8.2}ms",
+                stem,
+                s.curves,
+                s.bezier_pieces,
+                classifier.boxes().boxes().len(),
+                s.signed_area,
+                n,
+                inside,
+                boundary,
+                reference,
+                elapsed.as_secs_f64() * 1e3
+            );
+        }
         summaries.push(s);
     }
     println!();
     for s in &summaries {
         println!("{s}\n");
     }
-    if mismatches > 0 {
-        return Err(format!(
-            "{mismatches} domain(s) differ from their reference area"
-        ));
+    if failures.is_empty() {
+        println!("all inside counts and areas match the reference data");
+        Ok(())
+    } else {
+        Err(failures.join("; "))
     }
-    Ok(())
 }
 
 fn main() -> ExitCode {
@@ -88,6 +186,9 @@ fn main() -> ExitCode {
                 None => workspace_root().join("fixtures/inrs-paper"),
             };
             demo(&dir)
+        }
+        Some("bench") => {
+            bench::BenchOptions::parse(&args[1..]).and_then(|o| bench::run(&workspace_root(), &o))
         }
         None | Some("help" | "--help" | "-h") => {
             print!("{HELP}");

@@ -84,6 +84,18 @@ impl BezierPiece {
         c.iter().all(|&v| v == c[0])
     }
 
+    fn set_constant(&mut self, axis: usize, v: f64) {
+        let (c, h) = if axis == 0 {
+            (&mut self.x, &mut self.hx)
+        } else {
+            (&mut self.y, &mut self.hy)
+        };
+        for (i, w) in self.w.iter().enumerate() {
+            c[i] = v;
+            h[i] = v * w;
+        }
+    }
+
     /// `C(t)` by de Casteljau in homogeneous coordinates (the stored end points at `t = 0, 1`).
     pub fn point_at(&self, t: f64) -> Point {
         Point::new(self.x_at(t), self.y_at(t))
@@ -117,10 +129,19 @@ impl BezierPiece {
         let (lx, rx) = split_coeffs(&self.hx, t);
         let (ly, ry) = split_coeffs(&self.hy, t);
         let (lw, rw) = split_coeffs(&self.w, t);
-        let (left, mut right) = (
+        let (mut left, mut right) = (
             Self::from_homogeneous(lx, ly, lw),
             Self::from_homogeneous(rx, ry, rw),
         );
+        // A constant coordinate (vertical or horizontal piece) stays exactly constant: rounding
+        // in `(1 - t) a + t a` would otherwise tilt it by an ulp.
+        for axis in 0..2 {
+            if self.is_constant(axis) {
+                let v = if axis == 0 { self.x[0] } else { self.y[0] };
+                left.set_constant(axis, v);
+                right.set_constant(axis, v);
+            }
+        }
         // Both sides must agree on the shared point bit for bit.
         right.x[0] = left.x[left.x.len() - 1];
         right.y[0] = left.y[left.y.len() - 1];

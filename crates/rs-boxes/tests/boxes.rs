@@ -1,0 +1,254 @@
+//! Monotone boxes: monotone, covering, watertight, critical points of known shapes,
+//! refinement, and the boundary band.
+
+use std::f64::consts::PI;
+
+use rs_boxes::{BoxOptions, CriticalKind, MonotoneBoxes, Monotonicity};
+use rs_spline::{Domain, Point, circle, circular_arc, polyline, segment};
+
+fn fixtures() -> Vec<(String, Domain)> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/inrs-paper");
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            (p.display().to_string(), Domain::from_json_file(&p).unwrap())
+        })
+        .collect()
+}
+
+fn lens() -> Domain {
+    let r = 1.36f64.sqrt();
+    let (a_low, b_low) = ((-0.6f64).atan2(-1.0), (-0.6f64).atan2(1.0));
+    let (a_up, b_up) = (0.6f64.atan2(1.0), 0.6f64.atan2(-1.0));
+    Domain::new(vec![
+        circular_arc(Point::new(0.0, 0.6), r, a_low, b_low - a_low).unwrap(),
+        circular_arc(Point::new(0.0, -0.6), r, a_up, b_up - a_up).unwrap(),
+    ])
+    .unwrap()
+}
+
+fn staircase() -> Domain {
+    let p = Point::new;
+    Domain::new(vec![
+        polyline(&[
+            p(0.0, 0.0),
+            p(4.0, 0.0),
+            p(4.0, 1.0),
+            p(3.0, 1.0),
+            p(3.0, 2.0),
+            p(2.0, 2.0),
+            p(2.0, 3.0),
+            p(1.0, 3.0),
+            p(1.0, 4.0),
+            p(0.0, 4.0),
+            p(0.0, 0.0),
+        ])
+        .unwrap(),
+        polyline(&[
+            p(0.5, 0.5),
+            p(0.5, 1.5),
+            p(1.5, 1.5),
+            p(1.5, 0.5),
+            p(0.5, 0.5),
+        ])
+        .unwrap(),
+        segment(p(5.0, 0.0), p(6.0, 0.0)).unwrap(),
+        segment(p(6.0, 0.0), p(5.0, 2.0)).unwrap(),
+        segment(p(5.0, 2.0), p(5.0, 0.0)).unwrap(),
+    ])
+    .unwrap()
+}
+
+fn all_domains() -> Vec<(String, Domain)> {
+    let mut v = fixtures();
+    v.push(("lens".into(), lens()));
+    v.push(("staircase".into(), staircase()));
+    v
+}
+
+#[test]
+fn every_box_is_monotone_and_spanned_by_its_end_points() {
+    for (name, d) in all_domains() {
+        let size = d.bounding_box().diagonal();
+        for k in [1, 4] {
+            let mb = MonotoneBoxes::new(&d, BoxOptions { subdivisions: k }).unwrap();
+            for b in mb.boxes() {
+                let pts: Vec<Point> = (0..=200)
+                    .map(|i| b.piece.point_at(i as f64 / 200.0))
+                    .collect();
+                for w in pts.windows(2) {
+                    let (dx, dy) = (w[1].x - w[0].x, w[1].y - w[0].y);
+                    let slack = 1e-13 * size;
+                    match b.x_dir {
+                        Monotonicity::Increasing => {
+                            assert!(dx >= -slack, "{name}: x not increasing")
+                        }
+                        Monotonicity::Decreasing => {
+                            assert!(dx <= slack, "{name}: x not decreasing")
+                        }
+                        Monotonicity::Constant => assert!(dx.abs() <= slack),
+                    }
+                    match b.y_dir {
+                        Monotonicity::Increasing => {
+                            assert!(dy >= -slack, "{name}: y not increasing")
+                        }
+                        Monotonicity::Decreasing => {
+                            assert!(dy <= slack, "{name}: y not decreasing")
+                        }
+                        Monotonicity::Constant => assert!(dy.abs() <= slack),
+                    }
+                }
+                for p in pts {
+                    assert!(
+                        b.contains_with(p, 1e-13 * size),
+                        "{name}: {p:?} outside its box"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn boxes_cover_the_boundary_and_are_watertight() {
+    for (name, d) in all_domains() {
+        let size = d.bounding_box().diagonal();
+        let mb = MonotoneBoxes::new(&d, BoxOptions::default()).unwrap();
+        for c in d.curves() {
+            let (a, b) = c.domain();
+            for i in 0..=500 {
+                let p = c.point_at(a + (b - a) * i as f64 / 500.0);
+                assert!(
+                    mb.boxes()
+                        .iter()
+                        .any(|bx| bx.contains_with(p, 1e-13 * size)),
+                    "{name}: {p:?} in no box"
+                );
+            }
+        }
+        // Consecutive boxes of a loop share their end points exactly, including the closure.
+        let boxes = mb.boxes();
+        for l in 0..d.loops().len() {
+            let lb: Vec<_> = boxes.iter().filter(|b| b.boundary_loop == l).collect();
+            for i in 0..lb.len() {
+                let next = lb[(i + 1) % lb.len()];
+                assert_eq!(lb[i].end, next.start, "{name}: loop {l} box {i}");
+            }
+        }
+        let bb = mb.bounding_box();
+        let tight = d.bounding_box();
+        assert!(
+            (bb.min.x - tight.min.x).abs() < 1e-15 && (bb.max.y - tight.max.y).abs() < 1e-15,
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn refinement_multiplies_the_boxes() {
+    for (name, d) in all_domains() {
+        let n1 = MonotoneBoxes::new(&d, BoxOptions { subdivisions: 1 })
+            .unwrap()
+            .boxes()
+            .len();
+        let n7 = MonotoneBoxes::new(&d, BoxOptions { subdivisions: 7 })
+            .unwrap()
+            .boxes()
+            .len();
+        assert_eq!(n7, 7 * n1, "{name}");
+    }
+    let d = &fixtures()[0].1;
+    assert!(MonotoneBoxes::new(d, BoxOptions { subdivisions: 0 }).is_err());
+}
+
+#[test]
+fn critical_points_of_known_shapes() {
+    // Circle: vertical tangents at x = +-1, horizontal at y = +-1 (at knots).
+    let c = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+    let mb = MonotoneBoxes::new(&c, BoxOptions { subdivisions: 3 }).unwrap();
+    assert_eq!(mb.critical_abscissas(), &[-1.0, 1.0]);
+    assert_eq!(mb.critical_ordinates(), &[-1.0, 1.0]);
+
+    // A circle of 3 arcs starting at 10 degrees: the tangencies fall inside the pieces.
+    let arc = circular_arc(Point::new(0.0, 0.0), 1.0, 0.2, 2.0 * PI).unwrap();
+    let mb = MonotoneBoxes::new(&Domain::new(vec![arc]).unwrap(), BoxOptions::default()).unwrap();
+    let xs = mb.critical_abscissas();
+    assert_eq!(xs.len(), 2, "{xs:?}");
+    assert!(
+        (xs[0] + 1.0).abs() < 1e-14 && (xs[1] - 1.0).abs() < 1e-14,
+        "{xs:?}"
+    );
+    assert!(
+        mb.critical_points()
+            .iter()
+            .any(|c| c.kind == CriticalKind::VerticalTangent)
+    );
+
+    // Lens: x-turning corners at (+-1, 0); horizontal tangents at the top and bottom.
+    let mb = MonotoneBoxes::new(&lens(), BoxOptions::default()).unwrap();
+    let xs = mb.critical_abscissas();
+    assert_eq!(xs.len(), 2, "{xs:?}");
+    assert!((xs[0] + 1.0).abs() < 1e-15 && (xs[1] - 1.0).abs() < 1e-15);
+    let ys = mb.critical_ordinates();
+    let h = 1.36f64.sqrt() - 0.6;
+    assert_eq!(ys.len(), 2, "{ys:?}");
+    assert!(
+        (ys[0] + h).abs() < 1e-14 && (ys[1] - h).abs() < 1e-14,
+        "{ys:?}"
+    );
+    assert!(
+        mb.critical_points()
+            .iter()
+            .any(|c| c.kind == CriticalKind::XTurningVertex)
+    );
+
+    // Staircase: vertical and horizontal pieces everywhere, plus the triangle's turning corners.
+    let mb = MonotoneBoxes::new(&staircase(), BoxOptions::default()).unwrap();
+    assert_eq!(
+        mb.critical_abscissas(),
+        &[0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0]
+    );
+    assert_eq!(
+        mb.critical_ordinates(),
+        &[0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0]
+    );
+    assert!(mb.is_critical_x(1.5 + 1e-14, 1e-13));
+    assert!(!mb.is_critical_x(1.25, 1e-13));
+}
+
+#[test]
+fn tiny_gaps_are_closed_exactly() {
+    let p = Point::new;
+    let d = Domain::new(vec![
+        segment(p(0.0, 0.0), p(1.0, 0.0)).unwrap(),
+        segment(p(1.0 + 1e-13, 0.0), p(0.0, 1.0)).unwrap(),
+        segment(p(0.0, 1.0 - 1e-13), p(0.0, 1e-13)).unwrap(),
+    ])
+    .unwrap();
+    assert!(d.is_closed());
+    let mb = MonotoneBoxes::new(&d, BoxOptions::default()).unwrap();
+    let b = mb.boxes();
+    for i in 0..b.len() {
+        assert_eq!(b[i].end, b[(i + 1) % b.len()].start);
+    }
+}
+
+#[test]
+fn boundary_band_semantics() {
+    // On a circle of radius 1: a point at distance tol/2 is near, at 2 tol is not, in every
+    // direction (the band is between tol/sqrt(2) and tol).
+    let c = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+    let mb = MonotoneBoxes::new(&c, BoxOptions::default()).unwrap();
+    let tol = 1e-9;
+    for k in 0..360 {
+        let th = (k as f64 + 0.37).to_radians();
+        let dir = Point::new(th.cos(), th.sin());
+        let near = |r: f64| mb.boxes().iter().any(|b| b.is_near(dir * r, tol));
+        assert!(
+            near(1.0 + 0.5 * tol) && near(1.0 - 0.5 * tol) && near(1.0),
+            "{k}"
+        );
+        assert!(!near(1.0 + 2.0 * tol) && !near(1.0 - 2.0 * tol), "{k}");
+    }
+}

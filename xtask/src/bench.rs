@@ -1,0 +1,189 @@
+//! `cargo xtask bench`: timings of the classifiers on the paper domains, as tables of medians
+//! and ratios measured in one process.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use inrs::contain::halton_points;
+use inrs::{Classifier, ContainOptions, Domain, Location, Method};
+
+/// Options of a run.
+pub(crate) struct BenchOptions {
+    pub(crate) domains: Vec<String>,
+    pub(crate) sizes: Vec<usize>,
+    pub(crate) reps: usize,
+    pub(crate) sweep: bool,
+}
+
+impl BenchOptions {
+    pub(crate) fn parse(args: &[String]) -> Result<Self, String> {
+        let mut o = Self {
+            domains: vec![
+                "s3_m_shape".into(),
+                "s4_disk_ellipse_segment".into(),
+                "s5_lune".into(),
+            ],
+            sizes: vec![1_000, 10_000, 100_000],
+            reps: 11,
+            sweep: false,
+        };
+        let mut it = args.iter();
+        while let Some(a) = it.next() {
+            let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
+            match a.as_str() {
+                "--quick" => {
+                    o.sizes = vec![1_000, 10_000];
+                    o.reps = 3;
+                }
+                "--domains" => o.domains = value()?.split(',').map(str::to_string).collect(),
+                "--sizes" => {
+                    o.sizes = value()?
+                        .split(',')
+                        .map(|s| s.parse().map_err(|_| format!("bad size {s:?}")))
+                        .collect::<Result<_, _>>()?
+                }
+                "--reps" => o.reps = value()?.parse().map_err(|_| "bad --reps".to_string())?,
+                "--sweep" => o.sweep = true,
+                other => return Err(format!("unknown bench option {other:?}")),
+            }
+        }
+        if o.reps == 0 {
+            return Err("--reps must be at least 1".into());
+        }
+        Ok(o)
+    }
+}
+
+/// Median wall time in seconds of `reps` runs of `f`.
+fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..reps)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[t.len() / 2]
+}
+
+fn count_inside(v: &[Location]) -> usize {
+    v.iter().filter(|&&l| l == Location::Inside).count()
+}
+
+pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
+    let mut md = String::new();
+    let mut csv = String::from("domain,n,method,subdivisions,seconds,inside\n");
+    let _ = writeln!(
+        md,
+        "| domain | N | build | inRS1 | inRS2 | inRS1 / inRS2 | inside |"
+    );
+    let _ = writeln!(md, "| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+    let mut domains = Vec::new();
+    for name in &o.domains {
+        let path = root
+            .join("fixtures/inrs-paper")
+            .join(format!("{name}.json"));
+        let d = Domain::from_json_file(&path).map_err(|e| e.to_string())?;
+        domains.push((name.clone(), d));
+    }
+    for (name, d) in &domains {
+        let bbox = d.bounding_box();
+        for &n in &o.sizes {
+            let pts = halton_points(n, bbox);
+            let build = median_time(o.reps, || {
+                std::hint::black_box(Classifier::new(d, ContainOptions::default()).ok());
+            });
+            let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
+            let mut inside = 0;
+            let t2 = median_time(o.reps, || {
+                inside = count_inside(&c.classify(&pts, Method::InRS2))
+            });
+            let t1 = if n <= 10_000 {
+                let mut inside1 = 0;
+                let t = median_time(o.reps, || {
+                    inside1 = count_inside(&c.classify(&pts, Method::InRS1))
+                });
+                if inside1 != inside {
+                    return Err(format!("{name} N={n}: inRS1 {inside1} != inRS2 {inside}"));
+                }
+                Some(t)
+            } else {
+                None
+            };
+            let _ = writeln!(
+                md,
+                "| {name} | {n} | {:.2e} s | {} | {:.2e} s | {} | {inside} |",
+                build,
+                t1.map_or("-".into(), |t| format!("{t:.2e} s")),
+                t2,
+                t1.map_or("-".into(), |t| format!("{:.1}", t / t2)),
+            );
+            if let Some(t) = t1 {
+                let _ = writeln!(csv, "{name},{n},inrs1,default,{t},{inside}");
+            }
+            let _ = writeln!(csv, "{name},{n},inrs2,default,{t2},{inside}");
+        }
+    }
+    if o.sweep {
+        let n = *o.sizes.iter().max().unwrap_or(&100_000);
+        let ks = [1usize, 2, 4, 8, 16, 32, 64, 128];
+        let _ = writeln!(
+            md,
+            "\nBox refinement (Remark 2.1): inRS2 time for N = {n}, by sub-boxes per monotone piece; ratio to 1 sub-box.\n"
+        );
+        let _ = writeln!(md, "| domain | {} |", ks.map(|k| k.to_string()).join(" | "));
+        let _ = writeln!(md, "| --- |{}", " ---: |".repeat(ks.len()));
+        for (name, d) in &domains {
+            let pts = halton_points(n, d.bounding_box());
+            let mut row = format!("| {name} |");
+            let mut base = 0.0;
+            for k in ks {
+                let c = Classifier::new(
+                    d,
+                    ContainOptions {
+                        subdivisions: k,
+                        ..Default::default()
+                    },
+                )
+                .map_err(|e| e.to_string())?;
+                let t = median_time(o.reps, || {
+                    std::hint::black_box(c.classify(&pts, Method::InRS2));
+                });
+                if k == 1 {
+                    base = t;
+                }
+                let _ = write!(row, " {t:.2e} s ({:.2}) |", t / base);
+                let _ = writeln!(csv, "{name},{n},inrs2,{k},{t},");
+            }
+            let _ = writeln!(md, "{row}");
+        }
+    }
+    let machine = machine_line();
+    let report = format!(
+        "Machine: {machine}\n\nMedian of {} runs, single thread.\n\n{md}",
+        o.reps
+    );
+    println!("{report}");
+    let dir = root.join("target/bench-report");
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    std::fs::write(dir.join("bench.md"), &report).map_err(|e| e.to_string())?;
+    std::fs::write(dir.join("bench.csv"), &csv).map_err(|e| e.to_string())?;
+    println!("written: target/bench-report/bench.md, target/bench-report/bench.csv");
+    Ok(())
+}
+
+fn machine_line() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    format!("{cpu}, {cores} cores")
+}
