@@ -5,7 +5,7 @@ use rs_spline::{BoundingBox, Domain, Point};
 
 use crate::rays::{Hit, horizontal, parity, vertical};
 use crate::winding::winding_number;
-use crate::{ContainError, Decision, Location, Method};
+use crate::{ContainError, Decision, FillRule, Location, Method, WindingField};
 
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 pub const DEFAULT_TOLERANCE: f64 = 1e-12;
@@ -50,6 +50,7 @@ impl Default for ContainOptions {
 #[derive(Clone, Debug)]
 pub struct Classifier {
     boxes: MonotoneBoxes,
+    field: WindingField,
     tol: f64,
     outer: BoundingBox,
 }
@@ -77,12 +78,23 @@ impl Classifier {
             min: Point::new(bbox.min.x - tol, bbox.min.y - tol),
             max: Point::new(bbox.max.x + tol, bbox.max.y + tol),
         };
-        Ok(Self { boxes, tol, outer })
+        let field = WindingField::with_boxes(domain, boxes.clone(), options.tolerance)?;
+        Ok(Self {
+            boxes,
+            field,
+            tol,
+            outer,
+        })
     }
 
     /// The monotone boxes and critical points in use.
     pub fn boxes(&self) -> &MonotoneBoxes {
         &self.boxes
+    }
+
+    /// The generalized winding-number field of the same boundary.
+    pub fn winding_field(&self) -> &WindingField {
+        &self.field
     }
 
     /// The absolute boundary tolerance: the relative tolerance times the bounding-box diagonal.
@@ -131,6 +143,16 @@ impl Classifier {
         match method {
             Method::InRS1 => points.iter().map(|&p| self.classify_point(p)).collect(),
             Method::InRS2 => self.classify_sorted(points),
+            Method::Gwn => points
+                .iter()
+                .map(|&p| {
+                    if self.outer.contains(p) {
+                        self.field.classify_point(p, FillRule::EvenOdd)
+                    } else {
+                        Location::Outside
+                    }
+                })
+                .collect(),
         }
     }
 

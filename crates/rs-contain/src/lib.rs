@@ -1,6 +1,8 @@
 //! Point containment for planar domains bounded by NURBS curves: the crossing-number algorithm
 //! inRS of Sommariva and Vianello (2022), with inRS1 and inRS2 point loops, horizontal-ray and
-//! winding-number fallbacks, and boundary detection.
+//! winding-number fallbacks, and boundary detection; and generalized winding numbers for any
+//! collection of rational Bezier / NURBS curves (Spainhour, Gunderman and Weiss 2024,
+//! [`WindingField`]), with the paper's two ray-casting baselines.
 //!
 //! # Semantics
 //! - **Domain**: the boundary loops of an [`rs_spline::Domain`], every loop closed (within the
@@ -46,6 +48,7 @@
 
 mod classifier;
 mod error;
+mod gwn;
 mod halton;
 mod location;
 mod rays;
@@ -53,5 +56,6 @@ mod winding;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_TOLERANCE};
 pub use error::ContainError;
+pub use gwn::{FillRule, QueryStats, WindingAlgorithm, WindingField, curve_winding_number};
 pub use halton::{halton_points, radical_inverse};
 pub use location::{Decision, Location, Method};

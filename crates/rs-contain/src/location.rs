@@ -52,6 +52,8 @@ pub enum Method {
     /// Points sorted by abscissa, a binary search per box (the paper's inRS2). The default.
     #[default]
     InRS2,
+    /// Generalized winding number, rounded, even-odd rule (see [`crate::WindingField`]).
+    Gwn,
 }
 
 impl Method {
@@ -60,11 +62,12 @@ impl Method {
         match self {
             Self::InRS1 => "inrs1",
             Self::InRS2 => "inrs2",
+            Self::Gwn => "gwn",
         }
     }
 
     /// Every method, for tests and benchmarks.
-    pub const ALL: [Method; 2] = [Method::InRS1, Method::InRS2];
+    pub const ALL: [Method; 3] = [Method::InRS1, Method::InRS2, Method::Gwn];
 }
 
 impl FromStr for Method {

@@ -1,0 +1,220 @@
+//! The two ray-casting baselines of the GWN paper (section 7.2), used inside the same closure
+//! framework: the integer winding number of `curve + closure` from signed ray crossings, minus
+//! the closure's angle. They need the query in general position (not on the curve or on the
+//! closure line) and serve as comparisons; the adaptive algorithm is the reference.
+
+use std::f64::consts::TAU;
+
+use rs_spline::{Point, RationalBezier};
+
+use super::QueryStats;
+use super::curve::MAX_DEPTH;
+
+/// Which ray-casting baseline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum RayCaster {
+    /// Recursive bisection until a piece is straight to machine precision (Farin 2001).
+    BinarySearch,
+    /// Bezier clipping against the ray's line (Nishita, Sederberg and Kakimoto 1990).
+    BezierClipping,
+}
+
+/// A ray from `q` along one of the four axis directions.
+#[derive(Clone, Copy)]
+struct Ray {
+    q: Point,
+    d: Point,
+}
+
+impl Ray {
+    /// Towards the nearest side of the box `[lo, hi]` (the paper's choice).
+    fn towards_nearest_side(q: Point, lo: Point, hi: Point) -> Self {
+        let options = [
+            (hi.x - q.x, Point::new(1.0, 0.0)),
+            (q.x - lo.x, Point::new(-1.0, 0.0)),
+            (hi.y - q.y, Point::new(0.0, 1.0)),
+            (q.y - lo.y, Point::new(0.0, -1.0)),
+        ];
+        let d = options
+            .iter()
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map_or(Point::new(1.0, 0.0), |o| o.1);
+        Self { q, d }
+    }
+
+    /// Signed distance of `p` to the ray's line (positive on the left).
+    fn side(&self, p: Point) -> f64 {
+        self.d.cross(p - self.q)
+    }
+
+    fn along(&self, p: Point) -> f64 {
+        self.d.dot(p - self.q)
+    }
+
+    /// Signed crossing of the segment `a -> b` with the ray (half-open in the side coordinate):
+    /// +1 when it passes from right to left.
+    fn segment_crossing(&self, a: Point, b: Point) -> i32 {
+        let (sa, sb) = (self.side(a), self.side(b));
+        if (sa > 0.0) == (sb > 0.0) {
+            return 0;
+        }
+        let s = self.along(a) + (self.along(b) - self.along(a)) * (sa / (sa - sb));
+        if s <= 0.0 {
+            return 0;
+        }
+        if sb > sa { 1 } else { -1 }
+    }
+
+    /// Could the ray meet anything inside the box `[lo, hi]`?
+    fn meets_box(&self, lo: Point, hi: Point) -> bool {
+        let (q, d) = (self.q, self.d);
+        if d.x != 0.0 {
+            q.y >= lo.y && q.y <= hi.y && if d.x > 0.0 { hi.x >= q.x } else { lo.x <= q.x }
+        } else {
+            q.x >= lo.x && q.x <= hi.x && if d.y > 0.0 { hi.y >= q.y } else { lo.y <= q.y }
+        }
+    }
+}
+
+fn bounds(p: &[Point]) -> (Point, Point) {
+    p.iter().fold((p[0], p[0]), |(lo, hi), x| {
+        (
+            Point::new(lo.x.min(x.x), lo.y.min(x.y)),
+            Point::new(hi.x.max(x.x), hi.y.max(x.y)),
+        )
+    })
+}
+
+fn closure_angle(q: Point, curve: &RationalBezier) -> f64 {
+    let (u, v) = (curve.end_point() - q, curve.start_point() - q);
+    u.cross(v).atan2(u.dot(v)) / TAU
+}
+
+/// Generalized winding number of `curve` at `q` by ray casting within the closure framework.
+pub(crate) fn ray_winding_number(
+    curve: &RationalBezier,
+    q: Point,
+    method: RayCaster,
+    stats: &mut QueryStats,
+) -> f64 {
+    stats.curve_evaluations += 1;
+    let (lo, hi) = bounds(curve.control_points());
+    let w_c = closure_angle(q, curve);
+    if q.x < lo.x || q.x > hi.x || q.y < lo.y || q.y > hi.y {
+        return -w_c;
+    }
+    let ray = Ray::towards_nearest_side(q, lo, hi);
+    let closed = match method {
+        RayCaster::BinarySearch => binary_search(curve, &ray, stats),
+        RayCaster::BezierClipping => bezier_clipping(curve, &ray, stats),
+    } + ray.segment_crossing(curve.end_point(), curve.start_point());
+    f64::from(closed) - w_c
+}
+
+/// Squared distance of every control point to the chord below `(eps size)^2`.
+fn straight_to_machine_precision(p: &[Point]) -> bool {
+    let (a, b) = (p[0], p[p.len() - 1]);
+    let d = b - a;
+    let len2 = d.dot(d);
+    let (lo, hi) = bounds(p);
+    let size2 = (hi - lo).dot(hi - lo);
+    let eps2 = (f64::EPSILON * f64::EPSILON) * size2.max(f64::MIN_POSITIVE);
+    p.iter().all(|&x| {
+        let c = d.cross(x - a);
+        if len2 > 0.0 {
+            c * c / len2 <= eps2
+        } else {
+            (x - a).dot(x - a) <= eps2
+        }
+    })
+}
+
+fn binary_search(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) -> i32 {
+    let mut crossings = 0;
+    let mut stack = vec![(curve.clone(), 0u32)];
+    while let Some((c, depth)) = stack.pop() {
+        stats.curve_evaluations += 1;
+        let p = c.control_points();
+        let (lo, hi) = bounds(p);
+        if !ray.meets_box(lo, hi) {
+            continue;
+        }
+        if depth >= MAX_DEPTH || straight_to_machine_precision(p) {
+            crossings += ray.segment_crossing(p[0], p[p.len() - 1]);
+            continue;
+        }
+        stats.subdivisions += 1;
+        let (l, r) = c.subdivide(0.5);
+        stack.push((r, depth + 1));
+        stack.push((l, depth + 1));
+    }
+    crossings
+}
+
+/// The parameter interval where the convex hull of `(i / n, f_i)` meets the axis, or `None`.
+fn hull_axis_interval(f: &[f64]) -> Option<(f64, f64)> {
+    let n = (f.len() - 1) as f64;
+    let (mut tmin, mut tmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for i in 0..f.len() {
+        if f[i] == 0.0 {
+            tmin = tmin.min(i as f64 / n);
+            tmax = tmax.max(i as f64 / n);
+        }
+        for j in i + 1..f.len() {
+            if (f[i] > 0.0 && f[j] < 0.0) || (f[i] < 0.0 && f[j] > 0.0) {
+                let (ti, tj) = (i as f64 / n, j as f64 / n);
+                let t = ti + (tj - ti) * f[i] / (f[i] - f[j]);
+                tmin = tmin.min(t);
+                tmax = tmax.max(t);
+            }
+        }
+    }
+    (tmin <= tmax).then_some((tmin.max(0.0), tmax.min(1.0)))
+}
+
+fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) -> i32 {
+    let mut crossings = 0;
+    let mut stack = vec![(curve.clone(), 0u32)];
+    while let Some((c, depth)) = stack.pop() {
+        stats.curve_evaluations += 1;
+        let p = c.control_points();
+        if p.iter().all(|&x| ray.along(x) < 0.0) {
+            continue; // entirely behind the query
+        }
+        // Bernstein coefficients of the numerator of the signed distance to the ray's line.
+        let f: Vec<f64> = p
+            .iter()
+            .zip(c.weights())
+            .map(|(&x, w)| w * ray.side(x))
+            .collect();
+        let Some((t0, t1)) = hull_axis_interval(&f) else {
+            continue;
+        };
+        let (lo, hi) = bounds(p);
+        let tiny = (hi - lo).length() <= 4.0 * f64::EPSILON * (ray.q.x.abs() + ray.q.y.abs() + 1.0);
+        if depth >= MAX_DEPTH || t1 - t0 <= 1e-15 || tiny {
+            let t = 0.5 * (t0 + t1);
+            let d = c.derivatives(t);
+            if ray.along(d.point) > 0.0 {
+                let s = ray.d.cross(d.first);
+                crossings += if s > 0.0 {
+                    1
+                } else if s < 0.0 {
+                    -1
+                } else {
+                    0
+                };
+            }
+            continue;
+        }
+        stats.subdivisions += 1;
+        if t1 - t0 > 0.8 {
+            let (l, r) = c.subdivide(0.5);
+            stack.push((r, depth + 1));
+            stack.push((l, depth + 1));
+        } else {
+            stack.push((c.sub_curve(t0, t1), depth + 1));
+        }
+    }
+    crossings
+}
