@@ -7,7 +7,8 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
 use inrs::contain::DEFAULT_TOLERANCE;
-use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Method, read_points};
+use inrs::contain::{FillRule, QueryStats, WindingAlgorithm, WindingField};
+use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Method, PointRecord, read_points};
 
 const TOLERANCE_HELP: &str = "\
 Boundary tolerance: with T = tol x (diagonal of the domain's bounding box), a point is 'boundary'
@@ -36,10 +37,15 @@ enum Command {
         /// The points file (CSV `x,y` per line, optional header, `#` comments).
         #[arg(long)]
         points: PathBuf,
-        /// Algorithm: inrs1 (each point against each box) or inrs2 (sorted points, binary
-        /// search per box; the default and the fastest). All give the same answers.
+        /// Algorithm: inrs1 (each point against each box), inrs2 (sorted points, binary search
+        /// per box; the default and the fastest) or gwn (rounded generalized winding number; the
+        /// only one that accepts open or overlapping boundaries). All agree on closed domains.
         #[arg(long, default_value = "inrs2", value_parser = parse_method)]
         method: Method,
+        /// Fill rule of --method gwn: even-odd (default; agrees with the crossing methods) or
+        /// nonzero.
+        #[arg(long, default_value = "even-odd", value_parser = parse_fill_rule)]
+        fill_rule: FillRule,
         /// Write the CSV here instead of standard output.
         #[arg(long)]
         output: Option<PathBuf>,
@@ -49,6 +55,23 @@ enum Command {
         /// Sub-boxes per monotone piece (the paper's box refinement).
         #[arg(long, default_value_t = DEFAULT_SUBDIVISIONS)]
         subdivisions: usize,
+    },
+    /// Generalized winding number of every point with respect to the curves of a domain file
+    /// (any collection: open chains, gaps and overlaps are fine); writes CSV `x,y,winding`.
+    Winding {
+        /// The domain file (JSON, see CONTRACTS.md).
+        #[arg(long)]
+        domain: PathBuf,
+        /// The points file (CSV `x,y` per line, optional header, `#` comments).
+        #[arg(long)]
+        points: PathBuf,
+        /// Write the CSV here instead of standard output.
+        #[arg(long)]
+        output: Option<PathBuf>,
+        /// Per-curve algorithm: adaptive (the default, exact at any distance and at points on
+        /// the curves), binary-search or bezier-clipping (ray-casting baselines).
+        #[arg(long, default_value = "adaptive", value_parser = parse_algorithm)]
+        algorithm: WindingAlgorithm,
     },
     /// Print a summary of a domain file: curves, Bezier pieces, loops, orientation, area, size.
     Info {
@@ -65,6 +88,56 @@ fn parse_method(s: &str) -> Result<Method, String> {
     s.parse()
 }
 
+fn parse_fill_rule(s: &str) -> Result<FillRule, String> {
+    match s {
+        "even-odd" | "evenodd" => Ok(FillRule::EvenOdd),
+        "nonzero" | "non-zero" => Ok(FillRule::NonZero),
+        other => Err(format!(
+            "unknown fill rule {other:?} (expected even-odd or nonzero)"
+        )),
+    }
+}
+
+fn parse_algorithm(s: &str) -> Result<WindingAlgorithm, String> {
+    match s {
+        "adaptive" => Ok(WindingAlgorithm::Adaptive),
+        "binary-search" => Ok(WindingAlgorithm::BinarySearch),
+        "bezier-clipping" => Ok(WindingAlgorithm::BezierClipping),
+        other => Err(format!(
+            "unknown algorithm {other:?} (expected adaptive, binary-search or bezier-clipping)"
+        )),
+    }
+}
+
+fn load_points(path: &PathBuf) -> Result<Vec<PointRecord>, String> {
+    read_points(path).map_err(|e| match e {
+        inrs::PointsError::Io { .. } => e.to_string(),
+        other => format!("{}: {other}", path.display()),
+    })
+}
+
+/// Writes a CSV with the given header and one `x,y,value` row per record.
+fn write_csv<T: std::fmt::Display>(
+    output: Option<&PathBuf>,
+    header: &str,
+    records: &[PointRecord],
+    values: &[T],
+) -> Result<(), String> {
+    let sink: Box<dyn Write> = match output {
+        Some(path) => {
+            Box::new(std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?)
+        }
+        None => Box::new(std::io::stdout().lock()),
+    };
+    let mut w = BufWriter::new(sink);
+    let write_err = |e: std::io::Error| format!("writing output: {e}");
+    writeln!(w, "{header}").map_err(write_err)?;
+    for (r, v) in records.iter().zip(values) {
+        writeln!(w, "{},{},{}", r.x_text, r.y_text, v).map_err(write_err)?;
+    }
+    w.flush().map_err(write_err)
+}
+
 fn load_domain(path: &PathBuf) -> Result<Domain, String> {
     Domain::from_json_file(path).map_err(|e| match e {
         inrs::DomainError::Io { .. } => e.to_string(),
@@ -78,36 +151,47 @@ fn run(cli: Cli) -> Result<(), String> {
             domain,
             points,
             method,
+            fill_rule,
             output,
             tol,
             subdivisions,
         } => {
             let d = load_domain(&domain)?;
-            let options = ContainOptions {
-                tolerance: tol,
-                subdivisions,
+            let in_domain = |e: inrs::ContainError| format!("{}: {e}", domain.display());
+            let locations = if method == Method::Gwn {
+                let field = WindingField::new(&d, tol).map_err(in_domain)?;
+                let records = load_points(&points)?;
+                let pts: Vec<_> = records.iter().map(|r| r.point).collect();
+                (records, field.classify(&pts, fill_rule))
+            } else {
+                let options = ContainOptions {
+                    tolerance: tol,
+                    subdivisions,
+                };
+                let classifier = Classifier::new(&d, options).map_err(in_domain)?;
+                let records = load_points(&points)?;
+                let pts: Vec<_> = records.iter().map(|r| r.point).collect();
+                let loc = classifier.classify(&pts, method);
+                (records, loc)
             };
-            let classifier =
-                Classifier::new(&d, options).map_err(|e| format!("{}: {e}", domain.display()))?;
-            let records = read_points(&points).map_err(|e| match e {
-                inrs::PointsError::Io { .. } => e.to_string(),
-                other => format!("{}: {other}", points.display()),
-            })?;
-            let pts: Vec<_> = records.iter().map(|r| r.point).collect();
-            let locations = classifier.classify(&pts, method);
-            let sink: Box<dyn Write> = match &output {
-                Some(path) => Box::new(
-                    std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?,
-                ),
-                None => Box::new(std::io::stdout().lock()),
-            };
-            let mut w = BufWriter::new(sink);
-            let write_err = |e: std::io::Error| format!("writing output: {e}");
-            writeln!(w, "x,y,location").map_err(write_err)?;
-            for (r, l) in records.iter().zip(&locations) {
-                writeln!(w, "{},{},{}", r.x_text, r.y_text, l).map_err(write_err)?;
-            }
-            w.flush().map_err(write_err)
+            write_csv(output.as_ref(), "x,y,location", &locations.0, &locations.1)
+        }
+        Command::Winding {
+            domain,
+            points,
+            output,
+            algorithm,
+        } => {
+            let d = load_domain(&domain)?;
+            let field = WindingField::new(&d, inrs::contain::DEFAULT_TOLERANCE)
+                .map_err(|e| format!("{}: {e}", domain.display()))?;
+            let records = load_points(&points)?;
+            let mut stats = QueryStats::default();
+            let values: Vec<f64> = records
+                .iter()
+                .map(|r| field.winding_number_with(r.point, algorithm, &mut stats))
+                .collect();
+            write_csv(output.as_ref(), "x,y,winding", &records, &values)
         }
         Command::Info {
             domain,

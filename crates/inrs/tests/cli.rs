@@ -217,3 +217,116 @@ fn help_documents_the_tolerance() {
         "{text}"
     );
 }
+
+#[test]
+fn winding_prints_the_field_with_round_trip_digits() {
+    let points = temp_file("w.csv", "x,y\n0,0\n3,0\n1,0\n0.25,0.5\n");
+    let out = inrs(&[
+        "winding",
+        "--domain",
+        &fixture("inrs-paper/circle.json"),
+        "--points",
+        &points,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("x,y,winding"));
+    let values: Vec<f64> = lines
+        .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+        .collect();
+    let expected = [1.0, 0.0, 0.5, 1.0];
+    for (v, e) in values.iter().zip(expected) {
+        assert!((v - e).abs() < 1e-14, "{text}");
+    }
+    // Every algorithm gives the same field away from the curve.
+    for alg in ["binary-search", "bezier-clipping"] {
+        let out = inrs(&[
+            "winding",
+            "--domain",
+            &fixture("inrs-paper/circle.json"),
+            "--points",
+            &temp_file("w2.csv", "0.1,0.2\n2,2\n"),
+            "--algorithm",
+            alg,
+        ]);
+        let text = String::from_utf8(out.stdout).unwrap();
+        let v: Vec<f64> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+            .collect();
+        assert!(
+            (v[0] - 1.0).abs() < 1e-12 && v[1].abs() < 1e-12,
+            "{alg}: {text}"
+        );
+    }
+}
+
+#[test]
+fn gwn_accepts_open_collections_and_fill_rules() {
+    // An open arc (no closure) and a doubly wound circle.
+    let open = temp_file(
+        "open.json",
+        r#"{"curves": [{"arc": {"center": [0, 0], "radius": 1, "start_angle": 0, "sweep": 5.5}}]}"#,
+    );
+    let twice = temp_file(
+        "twice.json",
+        r#"{"curves": [{"arc": {"center": [0, 0], "radius": 1, "start_angle": 0, "sweep": 12.566370614359172}}]}"#,
+    );
+    let points = temp_file("o.csv", "0,0\n2,0\n");
+    // inRS refuses the open arc; gwn classifies (the centre sees 5.5 / 2pi ~ 0.88 -> 1).
+    let out = inrs(&["classify", "--domain", &open, "--points", &points]);
+    assert!(!out.status.success());
+    let out = inrs(&[
+        "classify", "--domain", &open, "--points", &points, "--method", "gwn",
+    ]);
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap(),
+        "x,y,location\n0,0,inside\n2,0,outside\n"
+    );
+    // Winding 2 at the centre: outside by even-odd, inside by nonzero.
+    let out = inrs(&[
+        "classify", "--domain", &twice, "--points", &points, "--method", "gwn",
+    ]);
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap(),
+        "x,y,location\n0,0,outside\n2,0,outside\n"
+    );
+    let out = inrs(&[
+        "classify",
+        "--domain",
+        &twice,
+        "--points",
+        &points,
+        "--method",
+        "gwn",
+        "--fill-rule",
+        "nonzero",
+    ]);
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap(),
+        "x,y,location\n0,0,inside\n2,0,outside\n"
+    );
+    // The crossing methods and gwn agree on a closed fixture.
+    let pts = temp_file("agree.csv", "0.1,0.1\n0.9,0.9\n-0.2,0.3\n0.5,-0.6\n");
+    let domain = fixture("inrs-paper/s5_lune.json");
+    let outputs: Vec<String> = ["inrs1", "inrs2", "gwn"]
+        .iter()
+        .map(|m| {
+            String::from_utf8(
+                inrs(&[
+                    "classify", "--domain", &domain, "--points", &pts, "--method", m,
+                ])
+                .stdout,
+            )
+            .unwrap()
+        })
+        .collect();
+    assert_eq!(outputs[0], outputs[1]);
+    assert_eq!(outputs[0], outputs[2]);
+}

@@ -76,8 +76,9 @@ impl FromStr for Method {
         match s.to_ascii_lowercase().as_str() {
             "inrs1" => Ok(Self::InRS1),
             "inrs2" => Ok(Self::InRS2),
+            "gwn" => Ok(Self::Gwn),
             other => Err(format!(
-                "unknown method {other:?} (expected inrs1 or inrs2)"
+                "unknown method {other:?} (expected inrs1, inrs2 or gwn)"
             )),
         }
     }

@@ -27,6 +27,11 @@ fn chord_angle(q: Point, a: Point, b: Point) -> f64 {
 }
 
 /// Algorithm 4 (after Ma and Hewitt 2003): is the control polygon simple and convex?
+///
+/// The paper's local test (each `P_i` separated from `P_n`, or `P_0`, by the line
+/// `P_{i-1} P_{i+1}`) accepts polygons that turn more than a full revolution; we also require
+/// every turn of the closed polygon to have the same sign and the turns to add up to one
+/// revolution, so that the polygon really is its own convex hull.
 pub(crate) fn is_simple_convex(p: &[Point]) -> bool {
     let n = p.len() - 1;
     let side = |a: Point, b: Point, x: Point| (b - a).cross(x - a);
@@ -37,7 +42,23 @@ pub(crate) fn is_simple_convex(p: &[Point]) -> bool {
             return false;
         }
     }
-    true
+    let edges: Vec<Point> = (0..=n)
+        .map(|i| p[(i + 1) % (n + 1)] - p[i])
+        .filter(|e| *e != Point::default())
+        .collect();
+    let m = edges.len();
+    if m < 3 {
+        return true; // degenerate (collinear or a point): handled as straight by the caller
+    }
+    let (mut pos, mut neg, mut turning) = (false, false, 0.0);
+    for i in 0..m {
+        let (e, f) = (edges[i], edges[(i + 1) % m]);
+        let c = e.cross(f);
+        pos |= c > 0.0;
+        neg |= c < 0.0;
+        turning += c.atan2(e.dot(f));
+    }
+    !(pos && neg) && turning.abs() < 3.0 * std::f64::consts::PI
 }
 
 /// Algorithm 3 with tolerance 0: every control point lies exactly on the chord's line (the

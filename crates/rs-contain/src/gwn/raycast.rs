@@ -10,6 +10,9 @@ use rs_spline::{Point, RationalBezier};
 use super::QueryStats;
 use super::curve::MAX_DEPTH;
 
+/// Bezier clipping stops when the root is located to this fraction of the parameter range.
+const CLIP_CONVERGED: f64 = 1e-9;
+
 /// Which ray-casting baseline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum RayCaster {
@@ -187,14 +190,29 @@ fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) ->
             .zip(c.weights())
             .map(|(&x, w)| w * ray.side(x))
             .collect();
-        let Some((t0, t1)) = hull_axis_interval(&f) else {
+        // Rounding level of those coefficients: a piece whose coefficients are all within it
+        // lies on the ray's line to machine precision, so it is the crossing itself.
+        let noise: f64 = 64.0
+            * f64::EPSILON
+            * p.iter()
+                .zip(c.weights())
+                .map(|(&x, w)| w * ((x - ray.q).length() + ray.q.length()))
+                .sum::<f64>();
+        let on_line = f.iter().all(|v| v.abs() <= noise);
+        let interval = hull_axis_interval(&f);
+        if interval.is_none() && !on_line {
             continue;
-        };
-        let (lo, hi) = bounds(p);
-        let tiny = (hi - lo).length() <= 4.0 * f64::EPSILON * (ray.q.x.abs() + ray.q.y.abs() + 1.0);
-        if depth >= MAX_DEPTH || t1 - t0 <= 1e-15 || tiny {
-            let t = 0.5 * (t0 + t1);
-            let d = c.derivatives(t);
+        }
+        let (t0, t1) = interval.unwrap_or((0.0, 1.0));
+        let (a, b) = c.param_range();
+        let (ua, ub) = curve.param_range();
+        // Converged: the root is located to 1e-9 of the curve's parameter range. Going further
+        // lets rounding flip the sign of a coefficient next to the root and lose it.
+        let converged = (t1 - t0) * (b - a) <= CLIP_CONVERGED * (ub - ua);
+        if on_line || converged || depth >= MAX_DEPTH {
+            // Evaluate on the original curve: a converged sliver may have collapsed to a point.
+            let u = a + 0.5 * (t0 + t1) * (b - a);
+            let d = curve.derivatives(((u - ua) / (ub - ua)).clamp(0.0, 1.0));
             if ray.along(d.point) > 0.0 {
                 let s = ray.d.cross(d.first);
                 crossings += if s > 0.0 {
