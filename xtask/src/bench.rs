@@ -77,9 +77,12 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     let mut csv = String::from("domain,n,method,subdivisions,seconds,inside\n");
     let _ = writeln!(
         md,
-        "| domain | N | build | inRS1 | inRS2 | inRS1 / inRS2 | inside |"
+        "| domain | N | build | inRS1 | inRS2 | GWN | inRS1 / inRS2 | GWN / inRS2 | inside |"
     );
-    let _ = writeln!(md, "| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+    let _ = writeln!(
+        md,
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    );
     let mut domains = Vec::new();
     for name in &o.domains {
         let path = root
@@ -112,13 +115,23 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
             } else {
                 None
             };
+            let mut inside_gwn = 0;
+            let tg = median_time(o.reps, || {
+                inside_gwn = count_inside(&c.classify(&pts, Method::Gwn))
+            });
+            if inside_gwn != inside {
+                return Err(format!("{name} N={n}: GWN {inside_gwn} != inRS2 {inside}"));
+            }
+            let _ = writeln!(csv, "{name},{n},gwn,default,{tg},{inside}");
             let _ = writeln!(
                 md,
-                "| {name} | {n} | {:.2e} s | {} | {:.2e} s | {} | {inside} |",
+                "| {name} | {n} | {:.2e} s | {} | {:.2e} s | {:.2e} s | {} | {:.1} | {inside} |",
                 build,
                 t1.map_or("-".into(), |t| format!("{t:.2e} s")),
                 t2,
+                tg,
                 t1.map_or("-".into(), |t| format!("{:.1}", t / t2)),
+                tg / t2,
             );
             if let Some(t) = t1 {
                 let _ = writeln!(csv, "{name},{n},inrs1,default,{t},{inside}");
