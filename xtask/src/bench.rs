@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use inrs::contain::halton_points;
+use inrs::contain::{LocatorOptions, PointLocator, halton_points};
 use inrs::{Classifier, ContainOptions, Domain, Location, Method};
 
 /// Options of a run.
@@ -139,6 +139,59 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
             let _ = writeln!(csv, "{name},{n},inrs2,default,{t2},{inside}");
         }
     }
+    let _ = writeln!(
+        md,
+        "\nFast paths: grid point locator (`PointLocator`, {} cells per side): index build, classification on one thread and on all threads; throughput in million points per second; ratios to inRS2 in the same run.\n",
+        inrs::contain::DEFAULT_GRID_CELLS
+    );
+    let _ = writeln!(
+        md,
+        "| domain | N | inRS2 | locator build | locator 1 thread | Mpts/s | vs inRS2 | locator parallel | Mpts/s |"
+    );
+    let _ = writeln!(
+        md,
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    );
+    for (name, d) in &domains {
+        let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
+        for &n in &o.sizes {
+            let pts = halton_points(n, d.bounding_box());
+            let expected = count_inside(&c.classify(&pts, Method::InRS2));
+            let t2 = median_time(o.reps, || {
+                std::hint::black_box(c.classify(&pts, Method::InRS2));
+            });
+            let tb = median_time(o.reps, || {
+                std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
+            });
+            let loc = PointLocator::new(&c, LocatorOptions::default());
+            let mut inside = 0;
+            let t1 = median_time(o.reps, || inside = count_inside(&loc.classify(&pts)));
+            if inside != expected {
+                return Err(format!(
+                    "{name} N={n}: locator {inside} != inRS2 {expected}"
+                ));
+            }
+            let tp = median_time(o.reps, || {
+                inside = count_inside(&loc.classify_parallel(&pts))
+            });
+            if inside != expected {
+                return Err(format!(
+                    "{name} N={n}: parallel locator {inside} != inRS2 {expected}"
+                ));
+            }
+            let mpts = |t: f64| n as f64 / t / 1e6;
+            let _ = writeln!(
+                md,
+                "| {name} | {n} | {t2:.2e} s | {tb:.2e} s | {t1:.2e} s | {:.0} | {:.1}x | {tp:.2e} s | {:.0} |",
+                mpts(t1),
+                t2 / t1,
+                mpts(tp),
+            );
+            let _ = writeln!(csv, "{name},{n},locator-build,default,{tb},");
+            let _ = writeln!(csv, "{name},{n},locator,default,{t1},{inside}");
+            let _ = writeln!(csv, "{name},{n},locator-parallel,default,{tp},{inside}");
+        }
+    }
     if o.sweep {
         let n = *o.sizes.iter().max().unwrap_or(&100_000);
         let ks = [1usize, 2, 4, 8, 16, 32, 64, 128];
@@ -169,6 +222,42 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
                 }
                 let _ = write!(row, " {t:.2e} s ({:.2}) |", t / base);
                 let _ = writeln!(csv, "{name},{n},inrs2,{k},{t},");
+            }
+            let _ = writeln!(md, "{row}");
+        }
+    }
+    if o.sweep {
+        let n = *o.sizes.iter().max().unwrap_or(&100_000);
+        let grids = [128usize, 256, 512, 1024, 2048, 4096];
+        let _ = writeln!(
+            md,
+            "\nGrid resolution: locator build + one-thread classification of N = {n} points, mixed-cell fraction.\n"
+        );
+        let _ = writeln!(
+            md,
+            "| domain | {} |",
+            grids.map(|g| g.to_string()).join(" | ")
+        );
+        let _ = writeln!(md, "| --- |{}", " ---: |".repeat(grids.len()));
+        for (name, d) in &domains {
+            let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
+            let pts = halton_points(n, d.bounding_box());
+            let mut row = format!("| {name} |");
+            for g in grids {
+                let tb = median_time(o.reps, || {
+                    std::hint::black_box(
+                        PointLocator::new(&c, LocatorOptions { cells: g }).cells(),
+                    );
+                });
+                let loc = PointLocator::new(&c, LocatorOptions { cells: g });
+                let tq = median_time(o.reps, || {
+                    std::hint::black_box(loc.classify(&pts));
+                });
+                let _ = write!(
+                    row,
+                    " {tb:.1e} + {tq:.1e} s ({:.2}%) |",
+                    100.0 * loc.mixed_fraction()
+                );
             }
             let _ = writeln!(md, "{row}");
         }

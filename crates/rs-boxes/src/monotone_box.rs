@@ -4,6 +4,10 @@ use rs_spline::Point;
 
 use crate::BezierPiece;
 
+/// Relative rounding margin added to [`MonotoneBox::vertical_slack`], far above the error of
+/// the crossing solve and far below any boundary tolerance in use.
+const SLACK_MARGIN: f64 = 1e-13;
+
 /// How a coordinate varies along a piece, from its start to its end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Monotonicity {
@@ -62,6 +66,13 @@ pub struct MonotoneBox {
     pub x_dir: Monotonicity,
     /// Direction of `y(t)`.
     pub y_dir: Monotonicity,
+    /// Largest distance of a control point from the chord `start -> end`: the piece lies
+    /// within this distance of its chord (convex hull property).
+    pub flatness: f64,
+    /// For a piece that is not vertical: the largest vertical distance of a control point from
+    /// the chord's line, plus a rounding margin. At any abscissa of the box the piece lies within
+    /// this vertical distance of the chord's line.
+    pub vertical_slack: f64,
 }
 
 impl MonotoneBox {
@@ -84,6 +95,31 @@ impl MonotoneBox {
         } else {
             Monotonicity::of(start.y, end.y)
         };
+        let chord = end - start;
+        let len = chord.length();
+        let n = piece.degree();
+        let controls = (0..=n).map(|i| piece.control_point(i));
+        let flatness = if len > 0.0 {
+            controls
+                .clone()
+                .map(|q| chord.cross(q - start).abs() / len)
+                .fold(0.0, f64::max)
+        } else {
+            controls
+                .clone()
+                .map(|q| q.distance(start))
+                .fold(0.0, f64::max)
+        };
+        let vertical_slack = if x_dir != Monotonicity::Constant {
+            let slope = chord.y / chord.x;
+            let scale = start.x.abs().max(end.x.abs()) + start.y.abs().max(end.y.abs());
+            controls
+                .map(|q| (q.y - (start.y + (q.x - start.x) * slope)).abs())
+                .fold(0.0, f64::max)
+                + SLACK_MARGIN * (scale + len)
+        } else {
+            f64::INFINITY
+        };
         Self {
             piece,
             curve,
@@ -97,7 +133,38 @@ impl MonotoneBox {
             ymax: start.y.max(end.y),
             x_dir,
             y_dir,
+            flatness,
+            vertical_slack,
         }
+    }
+
+    /// True if the downward vertical ray from `p` crosses the piece, for a `p` that is not near
+    /// it (see [`MonotoneBox::is_near`]). Half-open in x (`xmin <= p.x < xmax`): the ray runs an
+    /// infinitesimal distance to the right of `p.x`, so a ray through a shared end point counts
+    /// once where the boundary passes and zero or two times where it turns back, and vertical
+    /// pieces are never crossed. Decided without a solve when `p` is above or below the piece by
+    /// more than its vertical slack; otherwise by one bracketed solve of `x(t) = p.x`.
+    pub fn crosses_below(&self, p: Point) -> bool {
+        if self.x_dir == Monotonicity::Constant
+            || !(self.xmin <= p.x && p.x < self.xmax)
+            || p.y < self.ymin
+        {
+            return false;
+        }
+        if p.y > self.ymax {
+            return true;
+        }
+        let line = self.start.y
+            + (p.x - self.start.x) * ((self.end.y - self.start.y) / (self.end.x - self.start.x));
+        if p.y > line + self.vertical_slack {
+            return true;
+        }
+        if p.y < line - self.vertical_slack {
+            return false;
+        }
+        self.piece
+            .solve_x(p.x)
+            .is_some_and(|t| self.piece.y_at(t) < p.y)
     }
 
     /// True if `p` lies in the box grown by `tol` on every side.
@@ -115,7 +182,21 @@ impl MonotoneBox {
         if !self.contains_with(p, tol) {
             return false;
         }
-        if p.distance(self.start) <= tol || p.distance(self.end) <= tol {
+        // The piece lies within `flatness` of its chord: farther than that plus `tol` from the
+        // chord segment, p is not near (decides most points without a solve).
+        let chord = self.end - self.start;
+        let len2 = chord.dot(chord);
+        if len2 > 0.0 {
+            let t = ((p - self.start).dot(chord) / len2).clamp(0.0, 1.0);
+            let d = p - (self.start + chord * t);
+            let reach = self.flatness + tol;
+            if d.dot(d) > reach * reach * (1.0 + 1e-9) {
+                return false;
+            }
+        }
+        let tol2 = tol * tol;
+        let (ds, de) = (p - self.start, p - self.end);
+        if ds.dot(ds) <= tol2 || de.dot(de) <= tol2 {
             return true;
         }
         // Vertical distance (a vertical piece is covered by the horizontal distance and the

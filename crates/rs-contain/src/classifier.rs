@@ -92,6 +92,11 @@ impl Classifier {
         &self.boxes
     }
 
+    /// The bounding box grown by the tolerance: everything outside is outside.
+    pub(crate) fn outer(&self) -> BoundingBox {
+        self.outer
+    }
+
     /// The generalized winding-number field of the same boundary.
     pub fn winding_field(&self) -> &WindingField {
         &self.field
@@ -120,7 +125,7 @@ impl Classifier {
     }
 
     /// Paper steps (vii)-(viii): the horizontal ray, then the winding number.
-    fn fallback(&self, p: Point) -> (Location, Decision) {
+    pub(crate) fn fallback(&self, p: Point) -> (Location, Decision) {
         if !self.boxes.is_critical_y(p.y, self.tol) {
             let odd = parity(self.boxes.boxes(), |b| horizontal(b, p, self.tol));
             return (location(odd), Decision::HorizontalRay);

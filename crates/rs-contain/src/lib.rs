@@ -51,6 +51,7 @@ mod error;
 mod gwn;
 mod halton;
 mod location;
+mod locator;
 mod rays;
 mod winding;
 
@@ -59,3 +60,4 @@ pub use error::ContainError;
 pub use gwn::{FillRule, QueryStats, WindingAlgorithm, WindingField, curve_winding_number};
 pub use halton::{halton_points, radical_inverse};
 pub use location::{Decision, Location, Method};
+pub use locator::{DEFAULT_GRID_CELLS, LocatorOptions, PointLocator};

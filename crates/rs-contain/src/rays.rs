@@ -14,27 +14,15 @@ pub(crate) enum Hit {
     Miss,
 }
 
-/// The downward vertical ray `{x = p.x, y < p.y}` against box `b`.
-///
-/// Crossings use the half-open rule `xmin <= p.x < xmax`: the ray is treated as lying an
-/// infinitesimal distance to the right of `p.x` (simulation of simplicity). Consecutive boxes
-/// share their end points exactly, so a ray through a shared end point is counted once where the
-/// boundary passes through and zero or two times where it turns back, which is the right parity;
-/// vertical pieces are never crossed.
+/// The downward vertical ray `{x = p.x, y < p.y}` against box `b`: boundary if `p` is near
+/// the piece, otherwise [`MonotoneBox::crosses_below`] (half-open rule, see there).
 pub(crate) fn vertical(b: &MonotoneBox, p: Point, tol: f64) -> Hit {
     if b.is_near(p, tol) {
-        return Hit::Boundary;
-    }
-    if b.x_dir == Monotonicity::Constant || !(b.xmin <= p.x && p.x < b.xmax) || p.y < b.ymin {
-        return Hit::Miss;
-    }
-    if p.y > b.ymax {
-        return Hit::Cross;
-    }
-    match b.piece.solve_x(p.x).map(|t| b.piece.y_at(t)) {
-        Some(y) if y < p.y => Hit::Cross,
-        Some(y) if y > p.y => Hit::Miss,
-        _ => Hit::Boundary,
+        Hit::Boundary
+    } else if b.crosses_below(p) {
+        Hit::Cross
+    } else {
+        Hit::Miss
     }
 }
 

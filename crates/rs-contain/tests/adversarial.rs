@@ -4,14 +4,35 @@
 mod common;
 
 use common::{Case, DensePolygon, all_cases};
-use rs_contain::{Classifier, ContainOptions, Decision, Location, Method, halton_points};
+use rs_contain::{
+    Classifier, ContainOptions, Decision, Location, LocatorOptions, Method, PointLocator,
+    halton_points,
+};
 use rs_spline::Point;
 
-/// Classifies with every method and several refinements; asserts they all agree and returns
-/// the common answer.
+/// Classifies with every method, several refinements and the fast paths (grid locator at
+/// several resolutions, sequential, parallel and streaming); asserts they all agree with inRS2
+/// and returns the common answer.
 fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
     let reference = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
     let expected = reference.classify(pts, Method::InRS2);
+    for cells in [1, 7, 64, 300] {
+        let loc = PointLocator::new(&reference, LocatorOptions { cells });
+        let fast = [
+            loc.classify(pts),
+            loc.classify_parallel(pts),
+            loc.locate_iter(pts.iter().copied()).collect(),
+        ];
+        for got in fast {
+            for (i, (g, e)) in got.iter().zip(&expected).enumerate() {
+                assert_eq!(
+                    g, e,
+                    "{}: locator with {cells} cells disagrees at {:?}",
+                    case.name, pts[i]
+                );
+            }
+        }
+    }
     for subdivisions in [1, 3, 8, 32] {
         let c = Classifier::new(
             &case.domain,

@@ -1,7 +1,9 @@
 //! The reference inside-counts of the fixtures for 10^3, 10^4 and 10^5 Halton points must match
 //! exactly, with every method and several box refinements.
 
-use rs_contain::{Classifier, ContainOptions, Location, Method, halton_points};
+use rs_contain::{
+    Classifier, ContainOptions, Location, LocatorOptions, Method, PointLocator, halton_points,
+};
 use rs_spline::{BoundingBox, Domain, Point};
 use serde_json::Value;
 
@@ -90,6 +92,13 @@ fn inside_counts_match_the_reference_exactly() {
                     );
                     checked += 1;
                 }
+                let locator = PointLocator::new(&c, LocatorOptions::default());
+                let loc = locator.classify_parallel(&pts);
+                let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
+                assert_eq!(
+                    inside, expected,
+                    "{name}: N = {n}, locator, {subdivisions} sub-boxes"
+                );
             }
         }
     }

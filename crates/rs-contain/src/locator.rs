@@ -1,0 +1,390 @@
+//! Sub-linear point location: a uniform grid of cells with precomputed locations over the
+//! monotone boxes, answering almost every point in constant time with the same result as inRS2.
+
+use rs_spline::Point;
+
+use rs_boxes::BezierPiece;
+use smallvec::SmallVec;
+
+use crate::{Classifier, Location, Method};
+
+/// Cell state: every point of the cell is outside.
+const OUTSIDE: u8 = 0;
+/// Cell state: every point of the cell is inside.
+const INSIDE: u8 = 1;
+/// Cell state: the cell meets a box (grown by the tolerance); decide point by point.
+const MIXED: u8 = 2;
+
+/// Locations of the uniform states, indexed by state.
+const UNIFORM: [Location; 2] = [Location::Outside, Location::Inside];
+
+/// Default grid resolution: cells per side of the bounding box. Chosen by measurement
+/// (`cargo xtask bench`, README): on the paper's domains, 1024 x 1024 cells leave well under 1% of
+/// uniformly spread points in boundary cells, and finer grids only add build time and memory.
+pub const DEFAULT_GRID_CELLS: usize = 1024;
+
+/// Options of a [`PointLocator`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LocatorOptions {
+    /// Cells per side of the grid (clamped to `1..=8192`).
+    pub cells: usize,
+}
+
+impl Default for LocatorOptions {
+    fn default() -> Self {
+        Self {
+            cells: DEFAULT_GRID_CELLS,
+        }
+    }
+}
+
+/// A point-location index over a [`Classifier`]'s monotone boxes.
+///
+/// # Design
+/// A uniform `n x n` grid covers the bounding box grown by the tolerance. Each monotone box,
+/// grown by the boundary tolerance, is registered in every cell it meets (compressed sparse
+/// rows). A cell that meets no box contains no boundary point, so all of its points share one
+/// location: for each column, the first cell of every run of such cells is classified exactly by
+/// inRS2 (one batch for the whole grid) and the run inherits it. A query then costs:
+/// - outside the grown bounding box, or in a uniform cell: one cell lookup, `O(1)`;
+/// - in a *mixed* cell: the boundary test against the boxes of its cell, then the crossing
+///   parity from the nearest uniform cell below in the same column (its known location) plus
+///   the crossings of the vertical ray with the distinct boxes registered between the two, one
+///   bracketed solve at most per box, `O(k)` for `k` boxes in that stretch of the column. Points
+///   on a critical abscissa take inRS2's fallback (horizontal ray, winding number).
+///
+/// Results are identical to [`Method::InRS2`]: uniform cells are classified by inRS2 itself and
+/// no box below the reference cell can reach it, so the crossings counted above it are exactly
+/// those inRS2 counts there, with the same per-box test.
+///
+/// # Cost
+/// Build: `O(n^2 + (cells met by boxes))` memory and time plus one inRS2 batch over the run
+/// starts; memory is 5.25 bytes per cell (a byte and two bits of state, a 4-byte offset) plus
+/// 4 bytes per (box, cell) incidence: about 5.5 MiB for the default 1024 x 1024 grid,
+/// independent of the number of points. Queries read only the 2-bit states (256 KiB at 1024). For `10^5` boxes the number of
+/// incidences grows with the boxes' total size in cells, not their count (see the README's
+/// measurements). Worst case per query: a mixed cell in a column that is mixed all the way down,
+/// `O(N)` for `N` boxes in that column; fine grids and refined boxes keep `k` small.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::{Classifier, ContainOptions, Location, LocatorOptions, Method, PointLocator};
+/// use rs_spline::{circle, Domain, Point};
+/// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+/// let c = Classifier::new(&d, ContainOptions::default()).unwrap();
+/// let loc = PointLocator::new(&c, LocatorOptions { cells: 64 });
+/// let pts = [Point::new(0.0, 0.0), Point::new(0.9, 0.0), Point::new(1.0, 0.0)];
+/// assert_eq!(loc.classify(&pts), c.classify(&pts, Method::InRS2));
+/// assert_eq!(loc.locate(Point::new(3.0, 0.0)), Location::Outside);
+/// ```
+#[derive(Clone, Debug)]
+pub struct PointLocator<'a> {
+    classifier: &'a Classifier,
+    x0: f64,
+    y0: f64,
+    inv_w: f64,
+    inv_h: f64,
+    n: usize,
+    state: Vec<u8>,
+    /// `state` packed two bits per cell (32 cells per word) for cache-friendly queries.
+    packed: Vec<u64>,
+    offsets: Vec<u32>,
+    boxes: Vec<u32>,
+}
+
+impl<'a> PointLocator<'a> {
+    /// Builds the index.
+    pub fn new(classifier: &'a Classifier, options: LocatorOptions) -> Self {
+        let n = options.cells.clamp(1, 8192);
+        let outer = classifier.outer();
+        let (x0, y0) = (outer.min.x, outer.min.y);
+        let (w, h) = (outer.width(), outer.height());
+        let inv_w = if w > 0.0 { n as f64 / w } else { 0.0 };
+        let inv_h = if h > 0.0 { n as f64 / h } else { 0.0 };
+        let mut loc = Self {
+            classifier,
+            x0,
+            y0,
+            inv_w,
+            inv_h,
+            n,
+            state: vec![OUTSIDE; n * n],
+            packed: Vec::new(),
+            offsets: vec![0; n * n + 1],
+            boxes: Vec::new(),
+        };
+        loc.register_boxes();
+        loc.classify_uniform_cells();
+        loc.packed = vec![0u64; (n * n).div_ceil(32)];
+        for (i, &st) in loc.state.iter().enumerate() {
+            loc.packed[i >> 5] |= u64::from(st) << ((i & 31) * 2);
+        }
+        loc
+    }
+
+    fn col(&self, x: f64) -> usize {
+        (((x - self.x0) * self.inv_w) as usize).min(self.n - 1)
+    }
+
+    fn row(&self, y: f64) -> usize {
+        (((y - self.y0) * self.inv_h) as usize).min(self.n - 1)
+    }
+
+    /// Cell range (columns, rows) of the rectangle spanned by `a` and `b`, grown by the
+    /// tolerance. The cell index is a monotone function of the coordinate, so every point of the
+    /// grown rectangle falls in it.
+    fn cell_range(&self, a: Point, b: Point) -> (usize, usize, usize, usize) {
+        let tol = self.classifier.tolerance();
+        let cx = |x: f64| self.col(x.max(self.x0));
+        let cy = |y: f64| self.row(y.max(self.y0));
+        (
+            cx(a.x.min(b.x) - tol),
+            cx(a.x.max(b.x) + tol),
+            cy(a.y.min(b.y) - tol),
+            cy(a.y.max(b.y) + tol),
+        )
+    }
+
+    /// The cell ranges covering box `b`'s curve: its monotone piece is halved until each part's
+    /// rectangle (grown by the tolerance) spans at most a few cells each way. A monotone part
+    /// lies in the rectangle of its end points, so the ranges cover every point within the
+    /// tolerance of the curve, and over any one column they form one run of rows (the part of
+    /// an x-monotone arc over a column is connected).
+    fn covering_ranges(
+        &self,
+        b: &rs_boxes::MonotoneBox,
+        out: &mut Vec<(usize, usize, usize, usize)>,
+    ) {
+        let mut stack: SmallVec<[(BezierPiece, u32); 16]> = SmallVec::new();
+        stack.push((b.piece.clone(), 0));
+        while let Some((piece, depth)) = stack.pop() {
+            let r = self.cell_range(piece.start(), piece.end());
+            if (r.1 - r.0 <= 2 && r.3 - r.2 <= 2) || depth >= MAX_REGISTER_DEPTH {
+                out.push(r);
+            } else {
+                let (left, right) = piece.split(0.5);
+                stack.push((right, depth + 1));
+                stack.push((left, depth + 1));
+            }
+        }
+    }
+
+    fn register_boxes(&mut self) {
+        let n = self.n;
+        let all = self.classifier.boxes().boxes();
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let mut ranges = Vec::new();
+        for (bi, b) in all.iter().enumerate() {
+            ranges.clear();
+            self.covering_ranges(b, &mut ranges);
+            for &(c0, c1, r0, r1) in &ranges {
+                for c in c0..=c1 {
+                    for r in r0..=r1 {
+                        pairs.push(((c * n + r) as u32, bi as u32));
+                    }
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut counts = vec![0u32; n * n];
+        for &(cell, _) in &pairs {
+            counts[cell as usize] += 1;
+        }
+        let mut total = 0u32;
+        for (i, &k) in counts.iter().enumerate() {
+            self.offsets[i] = total;
+            total += k;
+        }
+        self.offsets[n * n] = total;
+        // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance to
+        // their right): flag them so the walk down a column skips them.
+        self.boxes = pairs
+            .into_iter()
+            .map(|(_, b)| {
+                if all[b as usize].x_dir == rs_boxes::Monotonicity::Constant {
+                    b | VERTICAL_FLAG
+                } else {
+                    b
+                }
+            })
+            .collect();
+    }
+
+    fn classify_uniform_cells(&mut self) {
+        let n = self.n;
+        let (cw, ch) = (
+            1.0 / self.inv_w.max(f64::MIN_POSITIVE),
+            1.0 / self.inv_h.max(f64::MIN_POSITIVE),
+        );
+        // Run starts: the first cell of every run of box-free cells in each column.
+        let mut starts: Vec<usize> = Vec::new();
+        for c in 0..n {
+            let mut prev_mixed = true;
+            for r in 0..n {
+                let cell = c * n + r;
+                let mixed = self.offsets[cell + 1] > self.offsets[cell];
+                if mixed {
+                    self.state[cell] = MIXED;
+                } else if prev_mixed {
+                    starts.push(cell);
+                }
+                prev_mixed = mixed;
+            }
+        }
+        let centers: Vec<Point> = starts
+            .iter()
+            .map(|&cell| {
+                let (c, r) = (cell / n, cell % n);
+                Point::new(
+                    self.x0 + (c as f64 + 0.5) * cw,
+                    self.y0 + (r as f64 + 0.5) * ch,
+                )
+            })
+            .collect();
+        let located = self.classifier.classify(&centers, Method::InRS2);
+        for (&cell, &l) in starts.iter().zip(&located) {
+            let s = match l {
+                Location::Inside => INSIDE,
+                Location::Outside => OUTSIDE,
+                // Cannot happen for a box-free cell; deciding point by point is always right.
+                Location::Boundary => MIXED,
+            };
+            let (c, r0) = (cell / n, cell % n);
+            for r in r0..n {
+                let i = c * n + r;
+                if self.offsets[i + 1] > self.offsets[i] {
+                    break;
+                }
+                self.state[i] = s;
+            }
+        }
+    }
+
+    /// The grid resolution (cells per side).
+    pub fn cells(&self) -> usize {
+        self.n
+    }
+
+    /// Fraction of cells that are mixed (meet a box).
+    pub fn mixed_fraction(&self) -> f64 {
+        self.state.iter().filter(|&&s| s == MIXED).count() as f64 / self.state.len() as f64
+    }
+
+    /// Number of (box, cell) incidences stored.
+    pub fn incidences(&self) -> usize {
+        self.boxes.len()
+    }
+
+    /// The location of one point (same as [`Method::InRS2`]).
+    pub fn locate(&self, p: Point) -> Location {
+        if !self.classifier.outer().contains(p) {
+            return Location::Outside;
+        }
+        let (c, r) = (self.col(p.x), self.row(p.y));
+        let cell = c * self.n + r;
+        let state = ((self.packed[cell >> 5] >> ((cell & 31) * 2)) & 3) as usize;
+        // Inside and outside cells come in no predictable order: look the answer up instead of
+        // branching on it; only mixed cells (rare) branch.
+        if state == MIXED as usize {
+            self.locate_mixed(p, c, r)
+        } else {
+            UNIFORM[state]
+        }
+    }
+
+    fn cell_boxes(&self, cell: usize) -> &[u32] {
+        &self.boxes[self.offsets[cell] as usize..self.offsets[cell + 1] as usize]
+    }
+
+    fn locate_mixed(&self, p: Point, c: usize, r: usize) -> Location {
+        let cls = self.classifier;
+        let tol = cls.tolerance();
+        let all = cls.boxes().boxes();
+        if cls.boxes().is_critical_x(p.x, tol) {
+            return cls.fallback(p).0;
+        }
+        let n = self.n;
+        if self
+            .cell_boxes(c * n + r)
+            .iter()
+            .any(|&b| all[(b & !VERTICAL_FLAG) as usize].is_near(p, tol))
+        {
+            return Location::Boundary;
+        }
+        // Nearest uniform cell below in this column; below the grid everything is outside.
+        let mut odd = false;
+        let mut first = 0;
+        for k in (0..r).rev() {
+            let s = self.state[c * n + k];
+            if s != MIXED {
+                odd = s == INSIDE;
+                first = k + 1;
+                break;
+            }
+        }
+        let mut seen: SmallVec<[u32; 32]> = (first..=r)
+            .flat_map(|row| self.cell_boxes(c * n + row).iter().copied())
+            .filter(|&b| b & VERTICAL_FLAG == 0)
+            .collect();
+        seen.sort_unstable();
+        seen.dedup();
+        // No box is near p (checked above), so inRS2's per-box test reduces to the crossing.
+        let crossings = seen
+            .iter()
+            .filter(|&&b| all[b as usize].crosses_below(p))
+            .count();
+        if odd ^ (crossings % 2 == 1) {
+            Location::Inside
+        } else {
+            Location::Outside
+        }
+    }
+
+    /// Locations of `points`, in input order, on the current thread.
+    pub fn classify(&self, points: &[Point]) -> Vec<Location> {
+        points.iter().map(|&p| self.locate(p)).collect()
+    }
+
+    /// Locations of a stream of points, lazily: nothing is held but the index.
+    pub fn locate_iter<I>(&'a self, points: I) -> impl Iterator<Item = Location> + 'a
+    where
+        I: IntoIterator<Item = Point>,
+        I::IntoIter: 'a,
+    {
+        points.into_iter().map(move |p| self.locate(p))
+    }
+
+    /// Locations of `points`, in input order, split over rayon's thread pool in chunks (with
+    /// the `parallel` feature, on by default; otherwise on the current thread).
+    pub fn classify_parallel(&self, points: &[Point]) -> Vec<Location> {
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            let mut out = vec![Location::Outside; points.len()];
+            out.par_chunks_mut(PARALLEL_CHUNK)
+                .zip(points.par_chunks(PARALLEL_CHUNK))
+                .for_each(|(o, p)| {
+                    for (slot, &q) in o.iter_mut().zip(p) {
+                        *slot = self.locate(q);
+                    }
+                });
+            out
+        }
+        #[cfg(not(feature = "parallel"))]
+        {
+            self.classify(points)
+        }
+    }
+}
+
+/// High bit of a registered box index: the box is vertical (constant x).
+const VERTICAL_FLAG: u32 = 1 << 31;
+
+/// Halving depth cap when registering a box's curve in the grid.
+const MAX_REGISTER_DEPTH: u32 = 24;
+
+/// Points per parallel task.
+#[cfg(feature = "parallel")]
+const PARALLEL_CHUNK: usize = 4096;
