@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use inrs::contain::{LocatorOptions, PointLocator, halton_points};
+use inrs::contain::{FastWindingField, LocatorOptions, PointLocator, WindingField, halton_points};
 use inrs::{Classifier, ContainOptions, Domain, Location, Method};
 
 /// Options of a run.
@@ -191,6 +191,96 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
             let _ = writeln!(csv, "{name},{n},locator,default,{t1},{inside}");
             let _ = writeln!(csv, "{name},{n},locator-parallel,default,{tp},{inside}");
         }
+    }
+    // Generalized winding numbers on the 500-curve flower: reference versus accelerated.
+    {
+        let path = root.join("fixtures/synthetic/flower500.json");
+        let d = Domain::from_json_file(&path).map_err(|e| e.to_string())?;
+        let field =
+            WindingField::new(&d, inrs::contain::DEFAULT_TOLERANCE).map_err(|e| e.to_string())?;
+        let n = 100_000.min(*o.sizes.iter().max().unwrap_or(&100_000));
+        let pts = halton_points(n, d.bounding_box());
+        let reference_n = (n / 10).max(1);
+        let t_ref = median_time(o.reps.min(3), || {
+            std::hint::black_box(
+                pts[..reference_n]
+                    .iter()
+                    .map(|&q| field.winding_number(q))
+                    .sum::<f64>(),
+            );
+        }) * (n as f64 / reference_n as f64);
+        let t_build = median_time(o.reps, || {
+            std::hint::black_box(FastWindingField::new(&field).winding_number(pts[0]));
+        });
+        let fast = FastWindingField::new(&field);
+        let t_fast = median_time(o.reps, || {
+            std::hint::black_box(fast.winding_numbers(&pts));
+        });
+        let t_par = median_time(o.reps, || {
+            std::hint::black_box(fast.winding_numbers_parallel(&pts));
+        });
+        let mq = |t: f64| n as f64 / t / 1e6;
+        let _ = writeln!(
+            md,
+            "\nGeneralized winding numbers, 500-curve flower (`fixtures/synthetic/flower500.json`), {n} Halton points of its box; million queries per second.\n"
+        );
+        let _ = writeln!(
+            md,
+            "| reference (per curve) | accelerated build | accelerated 1 thread | vs reference | accelerated parallel |"
+        );
+        let _ = writeln!(md, "| ---: | ---: | ---: | ---: | ---: |");
+        let _ = writeln!(
+            md,
+            "| {:.2} Mq/s | {t_build:.2e} s | {:.2} Mq/s | {:.0}x | {:.2} Mq/s |",
+            mq(t_ref),
+            mq(t_fast),
+            t_ref / t_fast,
+            mq(t_par)
+        );
+        let _ = writeln!(csv, "flower500,{n},gwn-reference,,{t_ref},");
+        let _ = writeln!(csv, "flower500,{n},gwn-fast,,{t_fast},");
+        let _ = writeln!(csv, "flower500,{n},gwn-fast-parallel,,{t_par},");
+    }
+    // The locator at scale: about 10^5 boxes (the flower with fine box refinement).
+    {
+        let path = root.join("fixtures/synthetic/flower500.json");
+        let d = Domain::from_json_file(&path).map_err(|e| e.to_string())?;
+        let one = Classifier::new(
+            &d,
+            ContainOptions {
+                subdivisions: 1,
+                ..Default::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        let k = 100_000usize.div_ceil(one.boxes().boxes().len());
+        let c = Classifier::new(
+            &d,
+            ContainOptions {
+                subdivisions: k,
+                ..Default::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        let nboxes = c.boxes().boxes().len();
+        let t_build = median_time(o.reps.min(3), || {
+            std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
+        });
+        let loc = PointLocator::new(&c, LocatorOptions::default());
+        let cells = loc.cells() * loc.cells();
+        let bytes = 4 * loc.incidences() + 4 * (cells + 1) + cells + cells / 4;
+        let pts = halton_points(1_000_000, d.bounding_box());
+        let t_q = median_time(o.reps.min(3), || {
+            std::hint::black_box(loc.classify(&pts));
+        });
+        let _ = writeln!(
+            md,
+            "\nLocator at scale: flower500 with {k} sub-boxes per monotone piece = {nboxes} boxes; build {t_build:.2e} s, {} (box, cell) incidences, index memory {:.1} MiB, 10^6 Halton points in {t_q:.2e} s on one thread ({:.0} Mpts/s), mixed cells {:.2}%.",
+            loc.incidences(),
+            bytes as f64 / (1024.0 * 1024.0),
+            1e6 / t_q / 1e6,
+            100.0 * loc.mixed_fraction()
+        );
     }
     if o.sweep {
         let n = *o.sizes.iter().max().unwrap_or(&100_000);

@@ -37,10 +37,11 @@ enum Command {
         /// The points file (CSV `x,y` per line, optional header, `#` comments).
         #[arg(long)]
         points: PathBuf,
-        /// Algorithm: inrs1 (each point against each box), inrs2 (sorted points, binary search
-        /// per box; the default and the fastest) or gwn (rounded generalized winding number; the
-        /// only one that accepts open or overlapping boundaries). All agree on closed domains.
-        #[arg(long, default_value = "inrs2", value_parser = parse_method)]
+        /// Algorithm: fast (the default: inRS2 for small batches, the parallel grid point
+        /// locator for large ones), inrs1 (each point against each box), inrs2 (sorted points,
+        /// binary search per box) or gwn (rounded generalized winding number; the only one that
+        /// accepts open or overlapping boundaries). All agree on closed domains.
+        #[arg(long, default_value = "fast", value_parser = parse_method)]
         method: Method,
         /// Fill rule of --method gwn: even-odd (default; agrees with the crossing methods) or
         /// nonzero.

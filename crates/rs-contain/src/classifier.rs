@@ -5,7 +5,10 @@ use rs_spline::{BoundingBox, Domain, Point};
 
 use crate::rays::{Hit, horizontal, parity, vertical};
 use crate::winding::winding_number;
-use crate::{ContainError, Decision, FillRule, Location, Method, WindingField};
+use crate::{
+    ContainError, Decision, FAST_METHOD_MIN_POINTS, FillRule, Location, LocatorOptions, Method,
+    PointLocator, WindingField,
+};
 
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 pub const DEFAULT_TOLERANCE: f64 = 1e-12;
@@ -148,6 +151,10 @@ impl Classifier {
         match method {
             Method::InRS1 => points.iter().map(|&p| self.classify_point(p)).collect(),
             Method::InRS2 => self.classify_sorted(points),
+            Method::Fast if points.len() < FAST_METHOD_MIN_POINTS => self.classify_sorted(points),
+            Method::Fast => {
+                PointLocator::new(self, LocatorOptions::default()).classify_parallel(points)
+            }
             Method::Gwn => points
                 .iter()
                 .map(|&p| {

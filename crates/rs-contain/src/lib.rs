@@ -57,7 +57,10 @@ mod winding;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_TOLERANCE};
 pub use error::ContainError;
-pub use gwn::{FillRule, QueryStats, WindingAlgorithm, WindingField, curve_winding_number};
+pub use gwn::{
+    CurveHierarchy, FastWindingField, FillRule, HIERARCHY_DEPTH, QueryStats, WindingAlgorithm,
+    WindingField, curve_winding_number,
+};
 pub use halton::{halton_points, radical_inverse};
-pub use location::{Decision, Location, Method};
+pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorOptions, PointLocator};

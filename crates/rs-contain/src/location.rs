@@ -54,7 +54,15 @@ pub enum Method {
     InRS2,
     /// Generalized winding number, rounded, even-odd rule (see [`crate::WindingField`]).
     Gwn,
+    /// The fastest exact path for the batch size: inRS2 below
+    /// [`FAST_METHOD_MIN_POINTS`] points, otherwise the grid [`crate::PointLocator`] run on all
+    /// threads. Same results as inRS2.
+    Fast,
 }
+
+/// Batch size from which [`Method::Fast`] builds a [`crate::PointLocator`] (its build, a few
+/// milliseconds, pays for itself from there on; measured with `cargo xtask bench`).
+pub const FAST_METHOD_MIN_POINTS: usize = 50_000;
 
 impl Method {
     /// The name used on the command line.
@@ -63,11 +71,12 @@ impl Method {
             Self::InRS1 => "inrs1",
             Self::InRS2 => "inrs2",
             Self::Gwn => "gwn",
+            Self::Fast => "fast",
         }
     }
 
     /// Every method, for tests and benchmarks.
-    pub const ALL: [Method; 3] = [Method::InRS1, Method::InRS2, Method::Gwn];
+    pub const ALL: [Method; 4] = [Method::InRS1, Method::InRS2, Method::Gwn, Method::Fast];
 }
 
 impl FromStr for Method {
@@ -77,8 +86,9 @@ impl FromStr for Method {
             "inrs1" => Ok(Self::InRS1),
             "inrs2" => Ok(Self::InRS2),
             "gwn" => Ok(Self::Gwn),
+            "fast" => Ok(Self::Fast),
             other => Err(format!(
-                "unknown method {other:?} (expected inrs1, inrs2 or gwn)"
+                "unknown method {other:?} (expected fast, inrs1, inrs2 or gwn)"
             )),
         }
     }

@@ -5,8 +5,8 @@ mod common;
 
 use common::{Case, DensePolygon, all_cases};
 use rs_contain::{
-    Classifier, ContainOptions, Decision, Location, LocatorOptions, Method, PointLocator,
-    halton_points,
+    Classifier, ContainOptions, Decision, FastWindingField, FillRule, Location, LocatorOptions,
+    Method, PointLocator, halton_points,
 };
 use rs_spline::Point;
 
@@ -16,6 +16,16 @@ use rs_spline::Point;
 fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
     let reference = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
     let expected = reference.classify(pts, Method::InRS2);
+    let fast_gwn = FastWindingField::new(reference.winding_field());
+    for (i, e) in expected.iter().enumerate() {
+        assert_eq!(
+            fast_gwn.classify_point(pts[i], FillRule::EvenOdd),
+            *e,
+            "{}: fast GWN disagrees at {:?}",
+            case.name,
+            pts[i]
+        );
+    }
     for cells in [1, 7, 64, 300] {
         let loc = PointLocator::new(&reference, LocatorOptions { cells });
         let fast = [

@@ -110,7 +110,9 @@ fn merge_clusters(sorted: Vec<f64>, f: impl Fn(f64) -> f64, noise: f64) -> Vec<f
 
 /// All real roots of `p` in `[a, b]` by Bernstein isolation of `p(a + (b - a) s)`.
 ///
-/// This is the certified fallback of [`crate::real_roots_in`], usable on its own.
+/// This is the certified fallback of [`crate::real_roots_in`], usable on its own. Like it, it
+/// reports a root where `p` has a local extremum within Horner's rounding bound of zero (a
+/// double root blurred by rounding in the coefficients).
 ///
 /// # Errors
 /// As [`bernstein_roots`], plus [`RootsError::InvalidInterval`].
@@ -133,11 +135,44 @@ pub fn bernstein_roots_in(p: &Polynomial, a: f64, b: f64) -> Result<Vec<f64>, Ro
         return Ok(vec![0.5 * (a + b)]);
     }
     let n = q.degree().unwrap_or(0);
-    let roots = bernstein_roots(&Bernstein::from_power(&q, n))?;
-    Ok(roots
+    let mut roots: Vec<f64> = bernstein_roots(&Bernstein::from_power(&q, n))?
         .into_iter()
         .map(|s| polish_in_t(p, (a + s * (b - a)).clamp(a, b), a, b))
-        .collect())
+        .collect();
+    // A double root of the intended polynomial may be, for the coefficients as stored, a
+    // near-miss whose minimum is within Horner's rounding bound: it is a root of p' at which p
+    // vanishes to rounding (the criterion of `real_roots_in`).
+    let dp = p.derivative();
+    if !dp.is_zero() && dp.degree().unwrap_or(0) >= 1 {
+        for x in bernstein_roots_in(&dp, a, b)? {
+            if p.eval(x).abs() <= p.eval_error_bound(x) {
+                roots.push(x);
+            }
+        }
+    }
+    roots.sort_by(f64::total_cmp);
+    Ok(merge_numerical_roots(p, roots))
+}
+
+/// Merges sorted neighbours whose midpoint is still a numerical root of `p` (one multiple root
+/// or an unresolvable cluster), keeping the member with the smaller residual.
+fn merge_numerical_roots(p: &Polynomial, sorted: Vec<f64>) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::with_capacity(sorted.len());
+    for x in sorted {
+        if let Some(last) = out.last_mut() {
+            let mid = 0.5 * (*last + x);
+            if x - *last <= DEDUP_WIDTH * (1.0 + x.abs())
+                || p.eval(mid).abs() <= p.eval_error_bound(mid)
+            {
+                if p.eval(x).abs() < p.eval(*last).abs() {
+                    *last = x;
+                }
+                continue;
+            }
+        }
+        out.push(x);
+    }
+    out
 }
 
 /// A few Newton steps on `p` itself: the change of variable to `[0, 1]` costs accuracy on wide
@@ -181,6 +216,24 @@ mod tests {
         let r = bernstein_roots_in(&p, 0.0, 1.0).unwrap();
         assert_eq!(r.len(), 2, "{r:?}");
         assert!((r[0] - 0.4).abs() < 1e-7 && (r[1] - 0.9).abs() < 1e-14);
+    }
+
+    #[test]
+    fn double_root_blurred_into_a_near_miss() {
+        // Regression (found by proptest): the stored coefficients turn the double root at
+        // 0.92 into a minimum ~1e-14 above zero, within Horner's bound but above the Bernstein
+        // form's own rounding level.
+        let p = Polynomial::from_roots(&[
+            0.016886577981135513,
+            0.342783837638317,
+            0.5046241779113043,
+            0.7912837046169144,
+            0.9217156081048709,
+            0.9217156081048709,
+        ]);
+        let r = bernstein_roots_in(&p, 0.0, 1.0).unwrap();
+        assert_eq!(r.len(), 5, "{r:?}");
+        assert!((r[4] - 0.9217156081048709).abs() < 1e-6);
     }
 
     #[test]

@@ -18,7 +18,7 @@ fn signed_angle(a: Point, b: Point) -> f64 {
 
 /// Angle subtended at `q` by the chord from `a` to `b`, with the coincidence convention: a
 /// query on the open chord (angle +-pi, the average of the two sides being 0) contributes 0.
-fn chord_angle(q: Point, a: Point, b: Point) -> f64 {
+pub(crate) fn chord_angle(q: Point, a: Point, b: Point) -> f64 {
     let (u, v) = (a - q, b - q);
     if u.cross(v) == 0.0 && u.dot(v) <= 0.0 {
         return 0.0;
@@ -114,6 +114,36 @@ pub(crate) fn convex_endpoint_winding(p: &[Point], q: Point) -> f64 {
     }
 }
 
+/// Where the adaptive algorithm gets its sub-curves: computed on the fly, or from a
+/// precomputed hierarchy (see [`super::fast::CurveHierarchy`]).
+pub(crate) trait SubCurves {
+    /// A handle to one sub-curve.
+    type Node;
+    /// Its control points.
+    fn points<'s>(&'s self, node: &'s Self::Node) -> &'s [Point];
+    /// Its simple-convex flag, given whether its parent was simple and convex.
+    fn convex(&self, node: &Self::Node, parent_convex: bool) -> bool;
+    /// Its two halves (de Casteljau at 1/2); `true` if they had to be computed.
+    fn halves(&self, node: &Self::Node) -> (Self::Node, Self::Node, bool);
+}
+
+/// Sub-curves computed on demand.
+pub(crate) struct OnTheFly;
+
+impl SubCurves for OnTheFly {
+    type Node = RationalBezier;
+    fn points<'s>(&'s self, node: &'s RationalBezier) -> &'s [Point] {
+        node.control_points()
+    }
+    fn convex(&self, node: &RationalBezier, parent_convex: bool) -> bool {
+        parent_convex || is_simple_convex(node.control_points())
+    }
+    fn halves(&self, node: &RationalBezier) -> (RationalBezier, RationalBezier, bool) {
+        let (l, r) = node.subdivide(0.5);
+        (l, r, true)
+    }
+}
+
 /// Algorithms 1 and 2: the generalized winding number of `curve` at `q`, exact up to rounding.
 ///
 /// Far field: if `q` is outside the curve's control bounding box, the curve is replaced by its
@@ -128,19 +158,31 @@ pub(crate) fn convex_endpoint_winding(p: &[Point], q: Point) -> f64 {
 /// straight piece, the tangent formula at end points, and 0 for a piece still holding `q` at
 /// the depth cap (a point within rounding of the curve's interior).
 pub fn curve_winding_number(curve: &RationalBezier, q: Point, stats: &mut QueryStats) -> f64 {
-    let pts = curve.control_points();
+    adaptive_winding(&OnTheFly, curve.clone(), q, stats)
+}
+
+/// The adaptive algorithm over any source of sub-curves.
+pub(crate) fn adaptive_winding<S: SubCurves>(
+    source: &S,
+    root: S::Node,
+    q: Point,
+    stats: &mut QueryStats,
+) -> f64 {
     stats.curve_evaluations += 1;
-    if outside_box(pts, q) {
-        return chord_angle(q, curve.start_point(), curve.end_point()) / TAU;
+    {
+        let pts = source.points(&root);
+        if outside_box(pts, q) {
+            return chord_angle(q, pts[0], pts[pts.len() - 1]) / TAU;
+        }
     }
     let mut total = 0.0;
-    let mut stack: Vec<(RationalBezier, u32, bool)> = vec![(curve.clone(), 0, false)];
-    while let Some((c, depth, known_convex)) = stack.pop() {
-        let p = c.control_points();
+    let mut stack: Vec<(S::Node, u32, bool)> = vec![(root, 0, false)];
+    while let Some((c, depth, parent_convex)) = stack.pop() {
         if depth > 0 {
             stats.curve_evaluations += 1;
         }
-        let convex = known_convex || is_simple_convex(p);
+        let convex = source.convex(&c, parent_convex);
+        let p = source.points(&c);
         let (a, b) = (p[0], p[p.len() - 1]);
         if is_linear(p) {
             total += chord_angle(q, a, b) / TAU;
@@ -158,8 +200,10 @@ pub fn curve_winding_number(curve: &RationalBezier, q: Point, stats: &mut QueryS
             // q is within rounding of this tiny piece: coincident, average 0 over the piece.
             continue;
         }
-        stats.subdivisions += 1;
-        let (l, r) = c.subdivide(0.5);
+        let (l, r, computed) = source.halves(&c);
+        if computed {
+            stats.subdivisions += 1;
+        }
         // Sub-curves of a simple convex curve are simple and convex (paper, section 5).
         stack.push((r, depth + 1, convex));
         stack.push((l, depth + 1, convex));

@@ -2,6 +2,7 @@
 //! (Spainhour, Gunderman and Weiss 2024).
 
 mod curve;
+mod fast;
 mod raycast;
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
@@ -10,6 +11,7 @@ use rs_spline::{Domain, Point, RationalBezier};
 use crate::{ContainError, Location};
 
 pub use curve::curve_winding_number;
+pub use fast::{CurveHierarchy, FastWindingField, HIERARCHY_DEPTH};
 
 /// Work counters of one or more queries, for the paper's comparison (its Fig. 15 and 16).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -142,7 +144,12 @@ impl WindingField {
         if self.is_on_boundary(q) {
             return Location::Boundary;
         }
-        let w = self.winding_number(q).round() as i64;
+        self.location_from_winding(self.winding_number(q), rule)
+    }
+
+    /// Inside or outside from a winding number off the boundary: rounded, then the fill rule.
+    pub(crate) fn location_from_winding(&self, w: f64, rule: FillRule) -> Location {
+        let w = w.round() as i64;
         let inside = match rule {
             FillRule::EvenOdd => w.rem_euclid(2) == 1,
             FillRule::NonZero => w != 0,

@@ -1,0 +1,89 @@
+//! The accelerated winding-number field equals the reference everywhere: far, near, on the
+//! curves, for closed shapes, open chains and gaps; far queries cost O(log N).
+
+mod common;
+
+use common::all_cases;
+use rs_contain::{FastWindingField, FillRule, QueryStats, WindingField, halton_points};
+use rs_spline::{Domain, Point, circular_arc, segment};
+
+fn flower() -> Domain {
+    Domain::from_json_file(format!(
+        "{}/../../fixtures/synthetic/flower500.json",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+}
+
+fn check_equal(name: &str, d: &Domain) {
+    let field = WindingField::new(d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let fast = FastWindingField::new(&field);
+    let s = d.bounding_box().diagonal();
+    let mut bb = d.bounding_box();
+    bb.min = bb.min - Point::new(0.1 * s, 0.1 * s);
+    bb.max = bb.max + Point::new(0.1 * s, 0.1 * s);
+    let mut pts = halton_points(2000, bb);
+    for b in field.pieces().iter().step_by(7) {
+        pts.push(b.start_point());
+        pts.push(b.point_at(0.5));
+        let d1 = b.derivatives(0.3);
+        let n = d1.first.perp() / d1.first.length();
+        pts.push(d1.point + n * 1e-9);
+        pts.push(d1.point - n * 1e-7);
+    }
+    for q in pts {
+        let (w, f) = (field.winding_number(q), fast.winding_number(q));
+        assert!((w - f).abs() < 1e-12, "{name} at {q:?}: {w} vs {f}");
+        assert_eq!(
+            field.classify_point(q, FillRule::EvenOdd),
+            fast.classify_point(q, FillRule::EvenOdd),
+            "{name} at {q:?}"
+        );
+    }
+}
+
+#[test]
+fn fast_field_equals_the_reference() {
+    for case in all_cases() {
+        check_equal(&case.name, &case.domain);
+    }
+    check_equal("flower500", &flower());
+    // An open chain with a gap and an overlap.
+    let open = Domain::new(vec![
+        circular_arc(Point::new(0.0, 0.0), 1.0, 0.0, 4.0).unwrap(),
+        segment(Point::new(-0.7, -0.7), Point::new(0.9, -0.2)).unwrap(),
+        circular_arc(Point::new(0.2, 0.1), 0.5, 1.0, 7.0).unwrap(),
+    ])
+    .unwrap();
+    check_equal("open chain", &open);
+}
+
+#[test]
+fn far_queries_take_one_angle_per_chain() {
+    let d = flower();
+    let field = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let fast = FastWindingField::new(&field);
+    // The whole loop is one exact chain: a query outside its box costs one angle.
+    let mut stats = QueryStats::default();
+    let w = fast.winding_number_counted(Point::new(3.0, 0.5), &mut stats);
+    assert!(w.abs() < 1e-15);
+    assert_eq!(stats.curve_evaluations, 1);
+    // A query inside visits O(log N) nodes, not the 500 curves.
+    let mut stats = QueryStats::default();
+    let w = fast.winding_number_counted(Point::new(0.1, 0.2), &mut stats);
+    assert!((w - 1.0).abs() < 1e-12);
+    assert!(stats.curve_evaluations < 60, "{stats:?}");
+    // The reference visits every curve.
+    let mut reference = QueryStats::default();
+    field.winding_number_with(
+        Point::new(0.1, 0.2),
+        rs_contain::WindingAlgorithm::Adaptive,
+        &mut reference,
+    );
+    assert!(reference.curve_evaluations >= 500);
+    // Near the boundary the precomputed hierarchy answers without new subdivisions.
+    let mut near = QueryStats::default();
+    let q = field.pieces()[10].point_at(0.37);
+    fast.winding_number_counted(q * (1.0 - 1e-3), &mut near);
+    assert_eq!(near.subdivisions, 0, "{near:?}");
+}
