@@ -1,6 +1,7 @@
 //! A rational Bezier piece stored as homogeneous Bernstein coefficients, with the fast
 //! evaluations and monotone solves the containment tests need.
 
+use rs_roots::{de_casteljau, de_casteljau_split};
 use smallvec::SmallVec;
 
 use rs_spline::{Point, RationalBezier, SplineError};
@@ -176,19 +177,6 @@ fn solve_axis(c: &[f64], w: &[f64], v: f64) -> Option<f64> {
     bernstein_sign_change_root(&mut f)
 }
 
-/// De Casteljau evaluation of Bernstein coefficients at `t`.
-pub(crate) fn de_casteljau(c: &[f64], t: f64) -> f64 {
-    let mut buf: Coeffs = SmallVec::from_slice(c);
-    let n = buf.len();
-    let s = 1.0 - t;
-    for k in 1..n {
-        for i in 0..n - k {
-            buf[i] = s * buf[i] + t * buf[i + 1];
-        }
-    }
-    buf[0]
-}
-
 /// Value and derivative of Bernstein coefficients at `t`.
 fn value_and_slope(c: &[f64], t: f64) -> (f64, f64) {
     let n = c.len();
@@ -256,22 +244,12 @@ pub(crate) fn bernstein_sign_change_root(c: &mut [f64]) -> Option<f64> {
     Some(t)
 }
 
-/// Splits Bernstein coefficients at `t`.
+/// Splits Bernstein coefficients at `t` into stack-allocated halves.
 fn split_coeffs(c: &[f64], t: f64) -> (Coeffs, Coeffs) {
     let n = c.len();
-    let mut work: Coeffs = SmallVec::from_slice(c);
-    let mut left: Coeffs = SmallVec::with_capacity(n);
-    let mut right: Coeffs = SmallVec::from_elem(0.0, n);
-    left.push(work[0]);
-    right[n - 1] = work[n - 1];
-    let s = 1.0 - t;
-    for r in 1..n {
-        for i in 0..n - r {
-            work[i] = s * work[i] + t * work[i + 1];
-        }
-        left.push(work[0]);
-        right[n - 1 - r] = work[n - 1 - r];
-    }
+    let (mut left, mut right): (Coeffs, Coeffs) =
+        (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
+    de_casteljau_split(c, t, &mut left, &mut right);
     (left, right)
 }
 

@@ -98,33 +98,15 @@ impl Bernstein {
 
     /// Evaluates `b(s)` by de Casteljau's algorithm (stable for `s` in `[0, 1]`).
     pub fn eval(&self, s: f64) -> f64 {
-        let n = self.coeffs.len();
-        if n <= 8 {
-            let mut buf = [0.0; 8];
-            buf[..n].copy_from_slice(&self.coeffs);
-            de_casteljau_in_place(&mut buf[..n], s)
-        } else {
-            let mut buf = self.coeffs.clone();
-            de_casteljau_in_place(&mut buf, s)
-        }
+        de_casteljau(&self.coeffs, s)
     }
 
     /// Splits at `s` into the Bernstein representations of `b` on `[0, s]` and on `[s, 1]`,
     /// each reparametrised to `[0, 1]`.
     pub fn split(&self, s: f64) -> (Self, Self) {
         let n = self.coeffs.len();
-        let mut work = self.coeffs.clone();
-        let mut left = Vec::with_capacity(n);
-        let mut right = vec![0.0; n];
-        left.push(work[0]);
-        right[n - 1] = work[n - 1];
-        for r in 1..n {
-            for i in 0..n - r {
-                work[i] = (1.0 - s) * work[i] + s * work[i + 1];
-            }
-            left.push(work[0]);
-            right[n - 1 - r] = work[n - 1 - r];
-        }
+        let (mut left, mut right) = (vec![0.0; n], vec![0.0; n]);
+        de_casteljau_split(&self.coeffs, s, &mut left, &mut right);
         (Self::new(left), Self::new(right))
     }
 
@@ -167,16 +149,54 @@ impl Bernstein {
     }
 }
 
-/// De Casteljau on a work buffer; returns the value at `s` and destroys the buffer.
-fn de_casteljau_in_place(buf: &mut [f64], s: f64) -> f64 {
-    let n = buf.len();
+/// Value at `s` of the Bernstein polynomial with coefficients `c`, by de Casteljau's algorithm
+/// (`(1 - s) a + s b` at every step; no allocation for up to 16 coefficients).
+pub fn de_casteljau(c: &[f64], s: f64) -> f64 {
+    let n = c.len();
+    let mut small = [0.0; 16];
+    let mut large = Vec::new();
+    let buf: &mut [f64] = if n <= 16 {
+        small[..n].copy_from_slice(c);
+        &mut small[..n]
+    } else {
+        large.extend_from_slice(c);
+        &mut large
+    };
     let r = 1.0 - s;
     for k in 1..n {
         for i in 0..n - k {
             buf[i] = r * buf[i] + s * buf[i + 1];
         }
     }
-    buf[0]
+    buf.first().copied().unwrap_or(0.0)
+}
+
+/// Splits the Bernstein coefficients `c` at `s` (de Casteljau): `left` and `right` (each as
+/// long as `c`) receive the coefficients of the polynomial on `[0, s]` and on `[s, 1]`, each
+/// reparametrised to `[0, 1]`; `left[n]` and `right[0]` are the same value, bit for bit.
+///
+/// # Panics
+/// If `left` or `right` is not as long as `c`.
+pub fn de_casteljau_split(c: &[f64], s: f64, left: &mut [f64], right: &mut [f64]) {
+    let n = c.len();
+    assert!(
+        left.len() == n && right.len() == n,
+        "split buffers must match the coefficients"
+    );
+    if n == 0 {
+        return;
+    }
+    // `right` is the work array: after level r its entry n-1-r is final, and later levels only
+    // touch lower entries.
+    right.copy_from_slice(c);
+    left[0] = right[0];
+    let r = 1.0 - s;
+    for level in 1..n {
+        for i in 0..n - level {
+            right[i] = r * right[i] + s * right[i + 1];
+        }
+        left[level] = right[0];
+    }
 }
 
 #[cfg(test)]

@@ -32,7 +32,7 @@ mod error;
 mod isolate;
 mod polynomial;
 
-pub use bernstein::Bernstein;
+pub use bernstein::{Bernstein, de_casteljau, de_casteljau_split};
 pub use bracket::{itp, newton_bracketed};
 pub use closed_form::{linear_root, quadratic_roots};
 pub use companion::real_roots_in;

@@ -194,6 +194,36 @@ fn negligible_leading_coefficient() {
     }
 }
 
+/// Tolerance for a simple root `r` of `p`: the coefficients determine it only to about
+/// `rounding bound / |p'(r)|` (its condition), so no fixed tolerance is right for random roots.
+fn conditioned_tol(p: &Polynomial, r: f64, floor: f64) -> f64 {
+    let (_, d) = p.eval_with_derivative(r);
+    floor.max(10.0 * p.eval_error_bound(r) / d.abs())
+}
+
+/// As `assert_roots`, with the tolerance of every simple root set by its condition.
+fn assert_conditioned(name: &str, p: &Polynomial, found: &[f64], expected: &[f64]) {
+    let mut exp: Vec<f64> = expected
+        .iter()
+        .copied()
+        .filter(|r| (0.0..=1.0).contains(r))
+        .collect();
+    exp.sort_by(f64::total_cmp);
+    exp.dedup();
+    assert_eq!(
+        found.len(),
+        exp.len(),
+        "{name}: found {found:?}, expected {exp:?}"
+    );
+    for (f, e) in found.iter().zip(&exp) {
+        let tol = conditioned_tol(p, *e, 1e-10);
+        assert!(
+            (f - e).abs() <= tol,
+            "{name}: root {f} vs expected {e} (tol {tol})"
+        );
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
@@ -213,7 +243,7 @@ proptest! {
         let p = &Polynomial::from_roots(&roots) * &quad;
         for (name, finder) in FINDERS {
             let found = finder(&p, 0.0, 1.0).unwrap();
-            assert_roots(name, &found, &roots, 0.0, 1.0, 1e-8);
+            assert_conditioned(name, &p, &found, &roots);
         }
     }
 

@@ -2,6 +2,7 @@
 
 use rs_roots::{Bernstein, Polynomial, real_roots_in};
 
+use crate::error::check_control_points;
 use crate::homogeneous::{Hpoint, rational_derivatives};
 use crate::{BoundingBox, CurveDerivatives, Point, SplineError};
 
@@ -46,25 +47,7 @@ impl RationalBezier {
                 got: points.len(),
             });
         }
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-            return Err(SplineError::NonFiniteControlPoint {
-                index,
-                x: points[index].x,
-                y: points[index].y,
-            });
-        }
-        if weights.len() != points.len() {
-            return Err(SplineError::WeightCountMismatch {
-                weights: weights.len(),
-                points: points.len(),
-            });
-        }
-        if let Some(index) = weights.iter().position(|&w| !(w.is_finite() && w > 0.0)) {
-            return Err(SplineError::NonPositiveWeight {
-                index,
-                value: weights[index],
-            });
-        }
+        check_control_points(&points, &weights)?;
         Ok(Self {
             points,
             weights,

@@ -4,6 +4,33 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
+use crate::Point;
+
+/// Checks what every rational curve needs of its control data: finite control points, one
+/// weight per point, and every weight finite and > 0.
+pub(crate) fn check_control_points(points: &[Point], weights: &[f64]) -> Result<(), SplineError> {
+    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        return Err(SplineError::NonFiniteControlPoint {
+            index,
+            x: points[index].x,
+            y: points[index].y,
+        });
+    }
+    if weights.len() != points.len() {
+        return Err(SplineError::WeightCountMismatch {
+            weights: weights.len(),
+            points: points.len(),
+        });
+    }
+    if let Some(index) = weights.iter().position(|&w| !(w.is_finite() && w > 0.0)) {
+        return Err(SplineError::NonPositiveWeight {
+            index,
+            value: weights[index],
+        });
+    }
+    Ok(())
+}
+
 /// Invalid curve data or an invalid request on a curve.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum SplineError {

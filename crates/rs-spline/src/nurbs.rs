@@ -1,5 +1,6 @@
 //! Planar NURBS curves.
 
+use crate::error::check_control_points;
 use crate::homogeneous::{Hpoint, rational_derivatives};
 use crate::{BoundingBox, CurveDerivatives, KnotVector, Point, RationalBezier, SplineError};
 
@@ -79,26 +80,8 @@ impl NurbsCurve {
                 got: knots.knots().len(),
             });
         }
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-            return Err(SplineError::NonFiniteControlPoint {
-                index,
-                x: points[index].x,
-                y: points[index].y,
-            });
-        }
         let weights = weights.unwrap_or_else(|| vec![1.0; points.len()]);
-        if weights.len() != points.len() {
-            return Err(SplineError::WeightCountMismatch {
-                weights: weights.len(),
-                points: points.len(),
-            });
-        }
-        if let Some(index) = weights.iter().position(|&w| !(w.is_finite() && w > 0.0)) {
-            return Err(SplineError::NonPositiveWeight {
-                index,
-                value: weights[index],
-            });
-        }
+        check_control_points(&points, &weights)?;
         Ok(Self {
             knots,
             points,
