@@ -191,11 +191,11 @@ pub fn de_casteljau_split(c: &[f64], s: f64, left: &mut [f64], right: &mut [f64]
     right.copy_from_slice(c);
     left[0] = right[0];
     let r = 1.0 - s;
-    for level in 1..n {
+    for (level, out) in left.iter_mut().enumerate().skip(1) {
         for i in 0..n - level {
             right[i] = r * right[i] + s * right[i + 1];
         }
-        left[level] = right[0];
+        *out = right[0];
     }
 }
 
