@@ -52,6 +52,7 @@ mod gwn;
 mod halton;
 mod location;
 mod locator;
+mod polygon;
 mod rays;
 mod winding;
 
@@ -64,3 +65,4 @@ pub use gwn::{
 pub use halton::{halton_points, radical_inverse};
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorOptions, PointLocator};
+pub use polygon::FlattenedPolygon;

@@ -104,3 +104,23 @@ fn inside_counts_match_the_reference_exactly() {
     }
     assert!(checked >= 30, "{checked}");
 }
+
+/// The polygon baseline (flattened within 1e-10, as in the paper's Table 2) reproduces the
+/// reference counts too, with about 10^5 sides.
+#[test]
+fn polygon_baseline_matches_the_reference() {
+    for (name, domain, meta) in fixtures() {
+        let poly = rs_contain::FlattenedPolygon::new(&domain, 1e-10);
+        let bbox = reference_box(&meta);
+        for (n, expected) in references(&meta) {
+            let pts = halton_points(n, bbox);
+            let inside = poly.classify(&pts).iter().filter(|&&b| b).count();
+            assert_eq!(
+                inside,
+                expected,
+                "{name}: N = {n}, {} sides",
+                poly.edge_count()
+            );
+        }
+    }
+}

@@ -1,0 +1,124 @@
+//! The polygon baseline of the papers: the boundary flattened to polylines within a tolerance,
+//! classified by a sorted-points crossing algorithm in the manner of INPOLY2.
+
+use rs_spline::{Domain, Point, RationalBezier};
+
+/// Depth cap of the adaptive flattening (2^-40 of a piece's parameter range).
+const MAX_FLATTEN_DEPTH: u32 = 40;
+
+/// The boundary of a domain flattened to closed polylines, for comparisons.
+///
+/// Each rational Bezier piece is halved until the control points of every part are within
+/// `tolerance` of its chord, so the polyline is within `tolerance` of the curve (convex-hull
+/// property). Classification (even-odd rule) sorts the points by ordinate and, for each edge,
+/// finds the points in its ordinate span `[y0, y1)` by binary search and toggles those whose
+/// rightward horizontal ray crosses it: `O(E log M + M k)` for `E` edges, `M` points and `k`
+/// edges met per horizontal line, the strategy of INPOLY2 (Engwirda) that the inRS paper
+/// compares against. Points exactly on an edge are not singled out (there is no boundary
+/// class): this is a baseline, not a replacement.
+#[derive(Clone, Debug)]
+pub struct FlattenedPolygon {
+    edges: Vec<(Point, Point)>,
+}
+
+impl FlattenedPolygon {
+    /// Flattens every loop of `domain` to within `tolerance` (absolute); each loop is closed by
+    /// an edge back to its start.
+    pub fn new(domain: &Domain, tolerance: f64) -> Self {
+        let mut edges = Vec::new();
+        for l in domain.loops() {
+            let mut pts: Vec<Point> = Vec::new();
+            for ci in l.curves() {
+                for b in domain.curves()[ci].to_bezier() {
+                    if pts.is_empty() {
+                        pts.push(b.start_point());
+                    }
+                    flatten(&b, tolerance, 0, &mut pts);
+                }
+            }
+            if let (Some(&first), Some(&last)) = (pts.first(), pts.last()) {
+                if first != last {
+                    pts.push(first);
+                }
+            }
+            edges.extend(pts.windows(2).map(|w| (w[0], w[1])));
+        }
+        Self { edges }
+    }
+
+    /// A fixed linearisation: every piece replaced by `segments` chords of equal parameter
+    /// length, whatever its shape (the approximation the GWN paper's Fig. 14 warns about).
+    pub fn uniform(domain: &Domain, segments: usize) -> Self {
+        let k = segments.max(1);
+        let mut edges = Vec::new();
+        for l in domain.loops() {
+            let mut pts: Vec<Point> = Vec::new();
+            for ci in l.curves() {
+                for b in domain.curves()[ci].to_bezier() {
+                    if pts.is_empty() {
+                        pts.push(b.start_point());
+                    }
+                    pts.extend((1..=k).map(|j| b.point_at(j as f64 / k as f64)));
+                }
+            }
+            if let (Some(&first), Some(&last)) = (pts.first(), pts.last()) {
+                if first != last {
+                    pts.push(first);
+                }
+            }
+            edges.extend(pts.windows(2).map(|w| (w[0], w[1])));
+        }
+        Self { edges }
+    }
+
+    /// Number of edges (sides).
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Inside (`true`) or not for every point, in input order (even-odd rule).
+    pub fn classify(&self, points: &[Point]) -> Vec<bool> {
+        let mut order: Vec<usize> = (0..points.len()).collect();
+        order.sort_by(|&a, &b| points[a].y.total_cmp(&points[b].y));
+        let ys: Vec<f64> = order.iter().map(|&i| points[i].y).collect();
+        let mut odd = vec![false; points.len()];
+        for &(a, b) in &self.edges {
+            let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
+            if lo.y == hi.y {
+                continue; // horizontal edges never cross a horizontal ray (half-open spans)
+            }
+            let start = ys.partition_point(|&y| y < lo.y);
+            let end = ys.partition_point(|&y| y < hi.y);
+            let slope = (hi.x - lo.x) / (hi.y - lo.y);
+            for &i in &order[start..end] {
+                let p = points[i];
+                if p.x < lo.x + (p.y - lo.y) * slope {
+                    odd[i] = !odd[i];
+                }
+            }
+        }
+        odd
+    }
+}
+
+fn flatten(b: &RationalBezier, tol: f64, depth: u32, out: &mut Vec<Point>) {
+    let p = b.control_points();
+    let (a, e) = (p[0], p[p.len() - 1]);
+    let chord = e - a;
+    let len = chord.length();
+    let flat = p.iter().all(|&q| {
+        let d = if len > 0.0 {
+            chord.cross(q - a).abs() / len
+        } else {
+            q.distance(a)
+        };
+        d <= tol
+    });
+    if flat || depth >= MAX_FLATTEN_DEPTH {
+        out.push(e);
+    } else {
+        let (l, r) = b.subdivide(0.5);
+        flatten(&l, tol, depth + 1, out);
+        flatten(&r, tol, depth + 1, out);
+    }
+}
