@@ -19,6 +19,8 @@ pub(crate) struct BenchOptions {
     pub(crate) reps: usize,
     pub(crate) sweep: bool,
     pub(crate) quick: bool,
+    /// Time inRS1 and the reference GWN at every size (they stop at 10^5 otherwise).
+    pub(crate) full: bool,
 }
 
 const ALL_DOMAINS: [&str; 6] = [
@@ -38,6 +40,7 @@ impl BenchOptions {
             reps: 11,
             sweep: false,
             quick: false,
+            full: false,
         };
         let mut it = args.iter();
         while let Some(a) = it.next() {
@@ -66,6 +69,7 @@ impl BenchOptions {
                 }
                 "--reps" => o.reps = value()?.parse().map_err(|_| "bad --reps".to_string())?,
                 "--sweep" => o.sweep = true,
+                "--full" => o.full = true,
                 other => return Err(format!("unknown bench option {other:?}")),
             }
         }
@@ -103,7 +107,8 @@ const PATHS: [&str; 6] = [
     "gwn",
 ];
 
-/// inRS1 (O(MN)) and the reference GWN (every curve per point) stop at this size.
+/// inRS1 (O(MN)) and the reference GWN (every curve per point) stop at this size unless
+/// `--full` is given.
 const SLOW_PATH_MAX: usize = 100_000;
 
 struct Row {
@@ -129,7 +134,7 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
         for &n in &o.sizes {
             let pts = halton_points(n, d.bounding_box());
             for path in PATHS {
-                if (path == "inrs1" || path == "gwn") && n > SLOW_PATH_MAX {
+                if (path == "inrs1" || path == "gwn") && n > SLOW_PATH_MAX && !o.full {
                     continue;
                 }
                 let mut inside = 0;

@@ -11,21 +11,27 @@ use inrs::{
 };
 
 mod bench;
+mod figures;
 
 const HELP: &str = "\
 cargo xtask <command>
 
 Commands:
-  demo [--fixtures DIR]   Load the built-in fixtures (default: fixtures/inrs-paper), print a
-                          summary of each domain, classify Halton points and check the inside
-                          counts and areas against the reference data stored in the files.
-  bench [OPTIONS]         Time inRS1 and inRS2 on the paper domains (median of repeated runs in
-                          one process); writes target/bench-report/bench.{md,csv}.
-      --quick             N = 10^3, 10^4 and 3 repetitions
-      --domains A,B       fixture names (default s3_m_shape,s4_disk_ellipse_segment,s5_lune)
-      --sizes N,M         numbers of Halton points (default 1000,10000,100000)
+  demo [--fixtures DIR]   Load the built-in fixtures (default: fixtures/inrs-paper), classify
+                          Halton points, check the inside counts and areas against the reference
+                          data stored in the files, print a table and a summary of each domain,
+                          and write SVG figures to target/figures/ (monotone boxes, refined
+                          boxes, classified points, a winding-number field with a gap).
+  bench [OPTIONS]         The papers' comparisons in one process (medians of repeated runs):
+                          Tables 1-2 (inRS1, inRS2, polygon within 1e-10), the fast paths and
+                          GWN, evaluation histograms and linearisation errors of the GWN paper;
+                          writes target/bench-report/bench.{md,csv}.
+      --quick             N = 10^3, 10^4, 3 repetitions, smaller GWN point sets
+      --domains A,B       fixture names, or `paper` (S3, S4, S5) or `all` (the default)
+      --sizes N,M         numbers of Halton points (default 1000,10000,100000,1000000)
       --reps R            repetitions per timing (default 11)
-      --sweep             also time inRS2 for 1..128 sub-boxes per monotone piece
+      --sweep             also the box-refinement and grid-resolution sweeps
+      --full              time inRS1 and the reference GWN at every size (default: up to 10^5)
   help                    Show this help.
 ";
 
@@ -99,6 +105,8 @@ fn demo(dir: &Path) -> Result<(), String> {
     );
     let mut failures = Vec::new();
     let mut summaries = Vec::new();
+    let figures_dir = workspace_root().join("target/figures");
+    let mut figures_written = Vec::new();
     for path in &files {
         let stem = path
             .file_stem()
@@ -157,11 +165,35 @@ fn demo(dir: &Path) -> Result<(), String> {
                 elapsed.as_secs_f64() * 1e3
             );
         }
+        let fig_pts = halton_points(1000, d.bounding_box());
+        let fig_loc = classifier.classify(&fig_pts, Method::Fast);
+        figures_written.extend(figures::domain_figures(
+            &figures_dir,
+            &stem,
+            &d,
+            &fig_pts,
+            &fig_loc,
+        )?);
+        if stem == "s4_disk_ellipse_segment" {
+            figures_written.push(figures::gap_figure(
+                &figures_dir,
+                &d,
+                1,
+                Point::new(0.2, -0.15),
+            )?);
+        }
         summaries.push(s);
     }
     println!();
     for s in &summaries {
         println!("{s}\n");
+    }
+    println!("figures written to {}:", figures_dir.display());
+    for f in &figures_written {
+        println!(
+            "  {}",
+            f.file_name().and_then(|n| n.to_str()).unwrap_or("?")
+        );
     }
     if failures.is_empty() {
         println!("all inside counts and areas match the reference data");

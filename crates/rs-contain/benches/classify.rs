@@ -5,7 +5,7 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use rs_contain::{Classifier, ContainOptions, Location, Method, halton_points};
+use rs_contain::{Classifier, ContainOptions, FlattenedPolygon, Location, Method, halton_points};
 use rs_spline::{BoundingBox, Domain, Point};
 
 /// (fixture, reference bounding box, N, reference inside count) from the fixture files.
@@ -47,6 +47,18 @@ fn bench(c: &mut Criterion) {
                 })
             });
         }
+        let polygon = FlattenedPolygon::new(&domain, 1e-10);
+        group.bench_with_input(BenchmarkId::new("polygon-1e-10", name), &pts, |bch, pts| {
+            bch.iter(|| {
+                let inside = polygon
+                    .classify(black_box(pts))
+                    .iter()
+                    .filter(|&&b| b)
+                    .count();
+                assert_eq!(inside, expected);
+                inside
+            })
+        });
         group.bench_function(BenchmarkId::new("build", name), |bch| {
             bch.iter(|| {
                 Classifier::new(black_box(&domain), ContainOptions::default())
