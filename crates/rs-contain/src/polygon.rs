@@ -25,31 +25,23 @@ impl FlattenedPolygon {
     /// Flattens every loop of `domain` to within `tolerance` (absolute); each loop is closed by
     /// an edge back to its start.
     pub fn new(domain: &Domain, tolerance: f64) -> Self {
-        let mut edges = Vec::new();
-        for l in domain.loops() {
-            let mut pts: Vec<Point> = Vec::new();
-            for ci in l.curves() {
-                for b in domain.curves()[ci].to_bezier() {
-                    if pts.is_empty() {
-                        pts.push(b.start_point());
-                    }
-                    flatten(&b, tolerance, 0, &mut pts);
-                }
-            }
-            if let (Some(&first), Some(&last)) = (pts.first(), pts.last()) {
-                if first != last {
-                    pts.push(first);
-                }
-            }
-            edges.extend(pts.windows(2).map(|w| (w[0], w[1])));
-        }
-        Self { edges }
+        Self::from_pieces(domain, |b, pts| flatten(b, tolerance, 0, pts))
     }
 
     /// A fixed linearisation: every piece replaced by `segments` chords of equal parameter
     /// length, whatever its shape (the approximation the GWN paper's Fig. 14 warns about).
     pub fn uniform(domain: &Domain, segments: usize) -> Self {
         let k = segments.max(1);
+        Self::from_pieces(domain, |b, pts| {
+            pts.extend((1..=k).map(|j| b.point_at(j as f64 / k as f64)));
+        })
+    }
+
+    /// Closed polylines, one per loop: each piece appends its points after its start point.
+    fn from_pieces(
+        domain: &Domain,
+        mut append: impl FnMut(&RationalBezier, &mut Vec<Point>),
+    ) -> Self {
         let mut edges = Vec::new();
         for l in domain.loops() {
             let mut pts: Vec<Point> = Vec::new();
@@ -58,13 +50,13 @@ impl FlattenedPolygon {
                     if pts.is_empty() {
                         pts.push(b.start_point());
                     }
-                    pts.extend((1..=k).map(|j| b.point_at(j as f64 / k as f64)));
+                    append(&b, &mut pts);
                 }
             }
-            if let (Some(&first), Some(&last)) = (pts.first(), pts.last()) {
-                if first != last {
-                    pts.push(first);
-                }
+            if let (Some(&first), Some(&last)) = (pts.first(), pts.last())
+                && first != last
+            {
+                pts.push(first);
             }
             edges.extend(pts.windows(2).map(|w| (w[0], w[1])));
         }

@@ -75,18 +75,14 @@ impl RationalBezier {
 
     fn from_homogeneous(hp: &[Hpoint], range: (f64, f64)) -> Self {
         Self {
-            points: hp.iter().map(|h| h.project()).collect(),
+            points: Hpoint::project_all(hp),
             weights: hp.iter().map(|h| h.w).collect(),
             range,
         }
     }
 
     fn homogeneous(&self) -> Vec<Hpoint> {
-        self.points
-            .iter()
-            .zip(&self.weights)
-            .map(|(&p, &w)| Hpoint::weighted(p, w))
-            .collect()
+        Hpoint::weighted_all(&self.points, &self.weights)
     }
 
     /// Degree `n` (number of control points minus one).

@@ -23,6 +23,20 @@ impl Hpoint {
         }
     }
 
+    /// The homogeneous points of control points and their weights.
+    pub(crate) fn weighted_all(points: &[Point], weights: &[f64]) -> Vec<Hpoint> {
+        points
+            .iter()
+            .zip(weights)
+            .map(|(&p, &w)| Hpoint::weighted(p, w))
+            .collect()
+    }
+
+    /// The Cartesian points of homogeneous points.
+    pub(crate) fn project_all(hp: &[Hpoint]) -> Vec<Point> {
+        hp.iter().map(|h| h.project()).collect()
+    }
+
     /// The Cartesian point `(x / w, y / w)`.
     pub(crate) fn project(self) -> Point {
         Point::new(self.x / self.w, self.y / self.w)

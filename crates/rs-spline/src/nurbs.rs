@@ -92,17 +92,13 @@ impl NurbsCurve {
     fn from_homogeneous(knots: Vec<f64>, degree: usize, hp: &[Hpoint]) -> Self {
         Self {
             knots: KnotVector::from_raw(knots, degree),
-            points: hp.iter().map(|h| h.project()).collect(),
+            points: Hpoint::project_all(hp),
             weights: hp.iter().map(|h| h.w).collect(),
         }
     }
 
     fn homogeneous(&self) -> Vec<Hpoint> {
-        self.points
-            .iter()
-            .zip(&self.weights)
-            .map(|(&p, &w)| Hpoint::weighted(p, w))
-            .collect()
+        Hpoint::weighted_all(&self.points, &self.weights)
     }
 
     /// Degree `p`.
