@@ -9,13 +9,16 @@
 //! - [`MonotoneBoxes`]: construction, global bounding box, critical abscissas/ordinates.
 //! - [`MonotoneBox`]: one box, with its piece, directions and a boundary-distance test.
 //! - [`BezierPiece`]: homogeneous Bernstein coefficients, evaluation, monotone solves, split.
+//! - [`BoxGrid`]: a uniform grid finding the boxes that can be near a point.
 
 mod boxes;
 mod error;
+mod grid;
 mod monotone_box;
 mod piece;
 
 pub use boxes::{BoxOptions, CriticalKind, CriticalPoint, DEFAULT_SUBDIVISIONS, MonotoneBoxes};
 pub use error::BoxError;
+pub use grid::BoxGrid;
 pub use monotone_box::{MonotoneBox, Monotonicity};
 pub use piece::BezierPiece;

@@ -252,3 +252,47 @@ fn boundary_band_semantics() {
         assert!(!near(1.0 + 2.0 * tol) && !near(1.0 - 2.0 * tol), "{k}");
     }
 }
+
+#[test]
+fn box_grid_finds_every_near_box() {
+    use rs_boxes::BoxGrid;
+    for (name, d) in all_domains() {
+        let size = d.bounding_box().diagonal();
+        let tol = 1e-6 * size;
+        let mb = MonotoneBoxes::new(&d, BoxOptions::default()).unwrap();
+        let grid = BoxGrid::new(mb.boxes(), tol);
+        let mut pts = Vec::new();
+        for c in d.curves() {
+            let (a, b) = c.domain();
+            for i in 0..=200 {
+                let dv = c.derivatives(a + (b - a) * i as f64 / 200.0);
+                let n = dv.first.perp() / dv.first.length().max(f64::MIN_POSITIVE);
+                for off in [0.0, 0.5 * tol, -0.5 * tol, 3.0 * tol] {
+                    pts.push(dv.point + n * off);
+                }
+            }
+        }
+        let bb = d.bounding_box();
+        for i in 0..400 {
+            let (u, v) = ((i as f64 * 0.618_034) % 1.0, (i as f64 * 0.414_214) % 1.0);
+            pts.push(Point::new(
+                bb.min.x + u * bb.width(),
+                bb.min.y + v * bb.height(),
+            ));
+        }
+        let mut near_count = 0;
+        for p in pts {
+            let candidates = grid.candidates(p);
+            for (i, b) in mb.boxes().iter().enumerate() {
+                if b.is_near(p, tol) {
+                    near_count += 1;
+                    assert!(
+                        candidates.contains(&(i as u32)),
+                        "{name}: box {i} near {p:?} missing"
+                    );
+                }
+            }
+        }
+        assert!(near_count > 100, "{name}");
+    }
+}

@@ -5,7 +5,7 @@ mod curve;
 mod fast;
 mod raycast;
 
-use rs_boxes::{BoxOptions, MonotoneBoxes};
+use rs_boxes::{BoxGrid, BoxOptions, MonotoneBoxes};
 use rs_spline::{Domain, Point, RationalBezier};
 
 use crate::{ContainError, Location};
@@ -75,6 +75,7 @@ pub enum FillRule {
 pub struct WindingField {
     pieces: Vec<RationalBezier>,
     boxes: MonotoneBoxes,
+    grid: BoxGrid,
     tol: f64,
 }
 
@@ -99,7 +100,13 @@ impl WindingField {
         }
         let tol = tolerance * boxes.bounding_box().diagonal();
         let pieces = domain.bezier_pieces().into_iter().map(|(_, b)| b).collect();
-        Ok(Self { pieces, boxes, tol })
+        let grid = BoxGrid::new(boxes.boxes(), tol);
+        Ok(Self {
+            pieces,
+            boxes,
+            grid,
+            tol,
+        })
     }
 
     /// The rational Bezier pieces of the collection.
@@ -136,7 +143,11 @@ impl WindingField {
 
     /// True if `q` is within the boundary tolerance of a curve.
     pub fn is_on_boundary(&self, q: Point) -> bool {
-        self.boxes.boxes().iter().any(|b| b.is_near(q, self.tol))
+        let boxes = self.boxes.boxes();
+        self.grid
+            .candidates(q)
+            .iter()
+            .any(|&i| boxes[i as usize].is_near(q, self.tol))
     }
 
     /// Containment of `q` from the field (see the type's semantics).
