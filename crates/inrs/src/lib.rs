@@ -6,6 +6,8 @@
 //! - [`spline`] (`rs-spline`): NURBS algebra, primitives, domains and domain files.
 //! - [`boxes`] (`rs-boxes`): monotone boxes and critical points.
 //! - [`contain`] (`rs-contain`): the inRS classifier (inRS1, inRS2, fallbacks, boundary).
+//! - `io` (`rs-io`, feature `io`, on by default): domains from SVG paths and files,
+//!   TrueType/OpenType glyphs and DXF drawings.
 //!
 //! Plus [`Classify`] (containment methods on [`Domain`]), the points file reader
 //! [`parse_points`] and the domain summary printed by `inrs info`.
@@ -22,6 +24,8 @@
 
 pub use rs_boxes as boxes;
 pub use rs_contain as contain;
+#[cfg(feature = "io")]
+pub use rs_io as io;
 pub use rs_roots as roots;
 pub use rs_spline as spline;
 

@@ -31,7 +31,8 @@ enum Command {
     /// `x,y,location` in input order.
     #[command(after_help = TOLERANCE_HELP)]
     Classify {
-        /// The domain file (JSON, see CONTRACTS.md); every loop must close.
+        /// The domain: a JSON file (CONTRACTS.md), an .svg or .dxf file, or a font glyph
+        /// (`font.ttf#B`, `#U+0040`, `#gid:37`); every loop must close.
         #[arg(long)]
         domain: PathBuf,
         /// The points file (CSV `x,y` per line, optional header, `#` comments).
@@ -60,7 +61,7 @@ enum Command {
     /// Generalized winding number of every point with respect to the curves of a domain file
     /// (any collection: open chains, gaps and overlaps are fine); writes CSV `x,y,winding`.
     Winding {
-        /// The domain file (JSON, see CONTRACTS.md).
+        /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
         #[arg(long)]
         domain: PathBuf,
         /// The points file (CSV `x,y` per line, optional header, `#` comments).
@@ -74,9 +75,18 @@ enum Command {
         #[arg(long, default_value = "adaptive", value_parser = parse_algorithm)]
         algorithm: WindingAlgorithm,
     },
+    /// Convert a domain (SVG, DXF, font glyph or JSON) to the JSON domain file format.
+    Convert {
+        /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
+        #[arg(long)]
+        domain: PathBuf,
+        /// Write the JSON here instead of standard output.
+        #[arg(long)]
+        output: Option<PathBuf>,
+    },
     /// Print a summary of a domain file: curves, Bezier pieces, loops, orientation, area, size.
     Info {
-        /// The domain file (JSON, see CONTRACTS.md).
+        /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
         #[arg(long)]
         domain: PathBuf,
         /// Exit with an error if some loop does not close.
@@ -139,7 +149,21 @@ fn write_csv<T: std::fmt::Display>(
     w.flush().map_err(write_err)
 }
 
-fn load_domain(path: &PathBuf) -> Result<Domain, String> {
+/// Reads a domain: JSON, or (feature `io`) SVG, DXF or a font glyph `font.ttf#B`.
+#[cfg(feature = "io")]
+fn load_domain(path: &std::path::Path) -> Result<Domain, String> {
+    let spec = path.to_string_lossy();
+    inrs::io::load_domain(&spec).map_err(|e| match e {
+        inrs::io::IoError::Read { .. }
+        | inrs::io::IoError::Domain(inrs::DomainError::Io { .. })
+        | inrs::io::IoError::UnknownFormat { .. } => e.to_string(),
+        other => format!("{spec}: {other}"),
+    })
+}
+
+/// Reads a JSON domain file.
+#[cfg(not(feature = "io"))]
+fn load_domain(path: &std::path::Path) -> Result<Domain, String> {
     Domain::from_json_file(path).map_err(|e| match e {
         inrs::DomainError::Io { .. } => e.to_string(),
         other => format!("{}: {other}", path.display()),
@@ -193,6 +217,18 @@ fn run(cli: Cli) -> Result<(), String> {
                 .map(|r| field.winding_number_with(r.point, algorithm, &mut stats))
                 .collect();
             write_csv(output.as_ref(), "x,y,winding", &records, &values)
+        }
+        Command::Convert { domain, output } => {
+            let d = load_domain(&domain)?;
+            let json = d.to_json_string();
+            match output {
+                Some(path) => std::fs::write(&path, json + "\n")
+                    .map_err(|e| format!("{}: {e}", path.display())),
+                None => {
+                    println!("{json}");
+                    Ok(())
+                }
+            }
         }
         Command::Info {
             domain,

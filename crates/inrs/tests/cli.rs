@@ -330,3 +330,137 @@ fn gwn_accepts_open_collections_and_fill_rules() {
     assert_eq!(outputs[0], outputs[1]);
     assert_eq!(outputs[0], outputs[2]);
 }
+
+#[test]
+fn svg_dxf_and_font_domains_are_accepted_wherever_json_is() {
+    let points = temp_file(
+        "io-pts.csv",
+        "x,y\n20,20\n40,38\n40,30\n75,30\n110,75\n15,12\n5,10\n",
+    );
+    // The plate: inside, the round hole's centre, on the hole's circle, in the slot, outside,
+    // inside the rounded corner, outside it.
+    let out = inrs(&[
+        "classify",
+        "--domain",
+        &fixture("io/gear.svg"),
+        "--points",
+        &points,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let locations: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(
+        locations,
+        [
+            "inside", "outside", "boundary", "outside", "outside", "inside", "outside"
+        ],
+        "{text}"
+    );
+
+    // DXF: a bulged slot with a circular hole and a periodic cubic spline hole.
+    let points = temp_file(
+        "io-pts2.csv",
+        "x,y\n5,5\n10,10\n28,10\n-4,10\n45,10\n51,10\n",
+    );
+    let out = inrs(&[
+        "classify",
+        "--domain",
+        &fixture("io/plate.dxf"),
+        "--points",
+        &points,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let locations: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(
+        locations,
+        [
+            "inside", "outside", "outside", "inside", "inside", "outside"
+        ],
+        "{text}"
+    );
+
+    // Convert to JSON and back: the same summary.
+    let json = std::env::temp_dir().join(format!("inrs-cli-{}/plate.json", std::process::id()));
+    let json = json.display().to_string();
+    let out = inrs(&[
+        "convert",
+        "--domain",
+        &fixture("io/plate.dxf"),
+        "--output",
+        &json,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let a = inrs(&["info", "--domain", &fixture("io/plate.dxf")]).stdout;
+    let b = inrs(&["info", "--domain", &json]).stdout;
+    let strip = |t: Vec<u8>| {
+        String::from_utf8(t)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert_eq!(strip(a), strip(b));
+
+    let font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+    if std::path::Path::new(font).exists() {
+        // 'o' in font units: the counter is outside, the ring inside.
+        let points = temp_file("io-pts3.csv", "x,y\n600,560\n1000,560\n");
+        let out = inrs(&[
+            "classify",
+            "--domain",
+            &format!("{font}#o"),
+            "--points",
+            &points,
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(
+            text.contains("600,560,outside") && text.contains("1000,560,inside"),
+            "{text}"
+        );
+        let out = inrs(&["info", "--domain", font]);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(!out.status.success() && err.contains("#B"), "{err}");
+    } else {
+        eprintln!("SKIPPED font part: {font} absent (install fonts-dejavu-core)");
+    }
+
+    let bad = temp_file(
+        "bad.svg",
+        "<svg xmlns='http://www.w3.org/2000/svg'>\n<path d='M 0 0 L 1'/></svg>",
+    );
+    let out = inrs(&["info", "--domain", &bad]);
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(!out.status.success(), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("<path> at line 2") && err.contains("number"),
+        "{err}"
+    );
+}

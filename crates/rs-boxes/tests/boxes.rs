@@ -4,67 +4,13 @@
 use std::f64::consts::PI;
 
 use rs_boxes::{BoxOptions, CriticalKind, MonotoneBoxes, Monotonicity};
-use rs_spline::{Domain, Point, circle, circular_arc, polyline, segment};
-
-fn fixtures() -> Vec<(String, Domain)> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/inrs-paper");
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| {
-            let p = e.unwrap().path();
-            (p.display().to_string(), Domain::from_json_file(&p).unwrap())
-        })
-        .collect()
-}
-
-fn lens() -> Domain {
-    let r = 1.36f64.sqrt();
-    let (a_low, b_low) = ((-0.6f64).atan2(-1.0), (-0.6f64).atan2(1.0));
-    let (a_up, b_up) = (0.6f64.atan2(1.0), 0.6f64.atan2(-1.0));
-    Domain::new(vec![
-        circular_arc(Point::new(0.0, 0.6), r, a_low, b_low - a_low).unwrap(),
-        circular_arc(Point::new(0.0, -0.6), r, a_up, b_up - a_up).unwrap(),
-    ])
-    .unwrap()
-}
-
-fn staircase() -> Domain {
-    let p = Point::new;
-    Domain::new(vec![
-        polyline(&[
-            p(0.0, 0.0),
-            p(4.0, 0.0),
-            p(4.0, 1.0),
-            p(3.0, 1.0),
-            p(3.0, 2.0),
-            p(2.0, 2.0),
-            p(2.0, 3.0),
-            p(1.0, 3.0),
-            p(1.0, 4.0),
-            p(0.0, 4.0),
-            p(0.0, 0.0),
-        ])
-        .unwrap(),
-        polyline(&[
-            p(0.5, 0.5),
-            p(0.5, 1.5),
-            p(1.5, 1.5),
-            p(1.5, 0.5),
-            p(0.5, 0.5),
-        ])
-        .unwrap(),
-        segment(p(5.0, 0.0), p(6.0, 0.0)).unwrap(),
-        segment(p(6.0, 0.0), p(5.0, 2.0)).unwrap(),
-        segment(p(5.0, 2.0), p(5.0, 0.0)).unwrap(),
-    ])
-    .unwrap()
-}
+use rs_spline::{Domain, Point, circle, circular_arc, segment};
 
 fn all_domains() -> Vec<(String, Domain)> {
-    let mut v = fixtures();
-    v.push(("lens".into(), lens()));
-    v.push(("staircase".into(), staircase()));
-    v
+    let mut v = rs_testkit::fixtures();
+    v.push(rs_testkit::lens());
+    v.push(rs_testkit::staircase());
+    v.into_iter().map(|c| (c.name, c.domain)).collect()
 }
 
 #[test]
@@ -158,7 +104,7 @@ fn refinement_multiplies_the_boxes() {
             .len();
         assert_eq!(n7, 7 * n1, "{name}");
     }
-    let d = &fixtures()[0].1;
+    let d = &rs_testkit::fixtures()[0].domain;
     assert!(MonotoneBoxes::new(d, BoxOptions { subdivisions: 0 }).is_err());
 }
 
@@ -186,7 +132,7 @@ fn critical_points_of_known_shapes() {
     );
 
     // Lens: x-turning corners at (+-1, 0); horizontal tangents at the top and bottom.
-    let mb = MonotoneBoxes::new(&lens(), BoxOptions::default()).unwrap();
+    let mb = MonotoneBoxes::new(&rs_testkit::lens().domain, BoxOptions::default()).unwrap();
     let xs = mb.critical_abscissas();
     assert_eq!(xs.len(), 2, "{xs:?}");
     assert!((xs[0] + 1.0).abs() < 1e-15 && (xs[1] - 1.0).abs() < 1e-15);
@@ -204,7 +150,7 @@ fn critical_points_of_known_shapes() {
     );
 
     // Staircase: vertical and horizontal pieces everywhere, plus the triangle's turning corners.
-    let mb = MonotoneBoxes::new(&staircase(), BoxOptions::default()).unwrap();
+    let mb = MonotoneBoxes::new(&rs_testkit::staircase().domain, BoxOptions::default()).unwrap();
     assert_eq!(
         mb.critical_abscissas(),
         &[0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0]

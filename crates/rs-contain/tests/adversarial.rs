@@ -1,14 +1,12 @@
 //! Zero misclassifications against independent truth on fixtures and synthetic domains, for
 //! ordinary and adversarial points; inRS1 and inRS2 agree everywhere; both fallbacks are forced.
 
-mod common;
-
-use common::{Case, DensePolygon, all_cases};
 use rs_contain::{
     Classifier, ContainOptions, Decision, FastWindingField, FillRule, Location, LocatorOptions,
     Method, PointLocator, halton_points,
 };
 use rs_spline::Point;
+use rs_testkit::{Case, DensePolygon, all_cases};
 
 /// Classifies with every method, several refinements and the fast paths (grid locator at
 /// several resolutions, sequential, parallel and streaming); asserts they all agree with inRS2
@@ -310,7 +308,7 @@ fn critical_lines_force_both_fallbacks() {
 /// circle and points exactly on the critical lines x = 0.5 +- r and y = -0.25 +- r.
 #[test]
 fn annulus_is_exact() {
-    let case = common::annulus();
+    let case = rs_testkit::annulus();
     let s = size(&case);
     let center = Point::new(0.5, -0.25);
     let mut pts = halton_points(4000, case.domain.bounding_box());

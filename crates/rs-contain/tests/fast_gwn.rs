@@ -1,11 +1,9 @@
 //! The accelerated winding-number field equals the reference everywhere: far, near, on the
 //! curves, for closed shapes, open chains and gaps; far queries cost O(log N).
 
-mod common;
-
-use common::all_cases;
 use rs_contain::{FastWindingField, FillRule, QueryStats, WindingField, halton_points};
 use rs_spline::{Domain, Point, circular_arc, segment};
+use rs_testkit::all_cases;
 
 fn flower() -> Domain {
     Domain::from_json_file(format!(

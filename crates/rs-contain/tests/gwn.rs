@@ -2,11 +2,8 @@
 //! sum, graceful behaviour at defects, the three algorithms agree, the coincident-point
 //! convention, work counters.
 
-mod common;
-
 use std::f64::consts::{PI, TAU};
 
-use common::DensePolygon;
 use rs_contain::{
     Classifier, ContainOptions, FillRule, Location, Method, QueryStats, WindingAlgorithm,
     WindingField, curve_winding_number, halton_points,
@@ -14,6 +11,7 @@ use rs_contain::{
 use rs_spline::{
     BoundingBox, Domain, NurbsCurve, Point, RationalBezier, circle, circular_arc, segment,
 };
+use rs_testkit::DensePolygon;
 
 fn field(curves: Vec<NurbsCurve>) -> WindingField {
     WindingField::new(&Domain::new(curves).unwrap(), rs_contain::DEFAULT_TOLERANCE).unwrap()

@@ -1,5 +1,9 @@
-//! Test domains and an independent dense-polygon reference.
-#![allow(dead_code, unreachable_pub)]
+//! Test support shared by the workspace's integration tests: named test domains (the paper
+//! fixtures and adversarial synthetic shapes) and [`DensePolygon`], an independent reference
+//! that flattens the boundary adaptively and answers by even-odd parity.
+//!
+//! Test-only code: it panics on bad input instead of returning errors.
+#![allow(clippy::unwrap_used)]
 
 use std::f64::consts::PI;
 
@@ -7,11 +11,14 @@ use rs_spline::{Domain, NurbsCurve, Point, circle, circular_arc, polyline, segme
 
 /// A named test domain.
 pub struct Case {
+    /// Name shown in assertion messages.
     pub name: String,
+    /// The domain.
     pub domain: Domain,
 }
 
-fn case(name: &str, curves: Vec<NurbsCurve>) -> Case {
+/// A [`Case`] from curves (panics if they do not form a domain).
+pub fn case(name: &str, curves: Vec<NurbsCurve>) -> Case {
     Case {
         name: name.to_string(),
         domain: Domain::new(curves).unwrap(),
@@ -173,10 +180,12 @@ pub fn all_cases() -> Vec<Case> {
 /// The boundary flattened to polygons, one per loop, within about `eps` of the curves
 /// (adaptive midpoint test, at least 8 segments per Bezier piece).
 pub struct DensePolygon {
+    /// The polygon edges of every loop.
     pub edges: Vec<(Point, Point)>,
 }
 
 impl DensePolygon {
+    /// Flattens every loop of `d` within about `eps`.
     pub fn new(d: &Domain, eps: f64) -> Self {
         let mut edges = Vec::new();
         for l in d.loops() {
@@ -215,18 +224,92 @@ impl DensePolygon {
     pub fn distance(&self, p: Point) -> f64 {
         self.edges
             .iter()
-            .map(|&(a, b)| {
-                let ab = b - a;
-                let len2 = ab.dot(ab);
-                let t = if len2 > 0.0 {
-                    ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                p.distance(a + ab * t)
-            })
+            .map(|&e| segment_distance(p, e))
             .fold(f64::INFINITY, f64::min)
     }
+}
+
+/// Answers "is `p` within `radius` of the polygon?" fast, by bucketing the edges (their
+/// boxes grown by `radius`) in a uniform grid.
+pub struct NearBoundary {
+    edges: Vec<(Point, Point)>,
+    radius: f64,
+    min: Point,
+    cell: f64,
+    n: usize,
+    buckets: Vec<Vec<usize>>,
+}
+
+impl NearBoundary {
+    /// Indexes the edges of `poly` for queries at distance `radius`.
+    pub fn new(poly: &DensePolygon, radius: f64) -> Self {
+        let edges = poly.edges.clone();
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for &(a, b) in &edges {
+            for q in [a, b] {
+                lo = Point::new(lo.x.min(q.x), lo.y.min(q.y));
+                hi = Point::new(hi.x.max(q.x), hi.y.max(q.y));
+            }
+        }
+        let n = ((edges.len() as f64).sqrt().ceil() as usize).clamp(1, 512);
+        let min = lo - Point::new(radius, radius);
+        let span = (hi.x - lo.x).max(hi.y - lo.y) + 2.0 * radius;
+        let cell = (span / n as f64).max(f64::MIN_POSITIVE);
+        let mut buckets = vec![Vec::new(); n * n];
+        let index = |v: f64, o: f64| (((v - o) / cell).floor().max(0.0) as usize).min(n - 1);
+        for (k, &(a, b)) in edges.iter().enumerate() {
+            let (x0, x1) = (
+                index(a.x.min(b.x) - radius, min.x),
+                index(a.x.max(b.x) + radius, min.x),
+            );
+            let (y0, y1) = (
+                index(a.y.min(b.y) - radius, min.y),
+                index(a.y.max(b.y) + radius, min.y),
+            );
+            for j in y0..=y1 {
+                for i in x0..=x1 {
+                    buckets[j * n + i].push(k);
+                }
+            }
+        }
+        Self {
+            edges,
+            radius,
+            min,
+            cell,
+            n,
+            buckets,
+        }
+    }
+
+    /// True if `p` is within the radius of an edge.
+    pub fn is_near(&self, p: Point) -> bool {
+        let (fx, fy) = (
+            (p.x - self.min.x) / self.cell,
+            (p.y - self.min.y) / self.cell,
+        );
+        if !(fx >= 0.0 && fy >= 0.0 && fx < self.n as f64 && fy < self.n as f64) {
+            return false;
+        }
+        let bucket = &self.buckets[fy as usize * self.n + fx as usize];
+        bucket
+            .iter()
+            .any(|&k| segment_distance(p, self.edges[k]) <= self.radius)
+    }
+}
+
+fn segment_distance(p: Point, (a, b): (Point, Point)) -> f64 {
+    let ab = b - a;
+    let len2 = ab.dot(ab);
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
 }
 
 fn refine(f: &impl Fn(f64) -> Point, t0: f64, t1: f64, eps: f64, depth: u32, out: &mut Vec<Point>) {

@@ -1,0 +1,249 @@
+//! Assembles drawing commands (move, line, curve, close) into closed boundary loops.
+
+use rs_spline::{NurbsCurve, Point, SplineError, segment};
+
+use crate::Affine;
+
+/// Gaps up to this fraction of a loop's size are closed by moving the loop's last control
+/// point onto its start (a rounding difference, not a missing edge).
+const SNAP_RELATIVE: f64 = 1e-12;
+
+/// Builds closed loops from pen commands, the way an SVG/font renderer fills a path: every
+/// subpath is closed (explicitly by `close` or implicitly at the next `move_to` / the end) with
+/// a straight segment, zero-length pieces are dropped, and subpaths without area (all control
+/// points on one line) are dropped, since they enclose nothing.
+///
+/// Curves are mapped by the current transform as they are added, so loops stay watertight:
+/// shared end points map to bit-identical images.
+#[derive(Debug)]
+pub(crate) struct LoopBuilder {
+    done: Vec<NurbsCurve>,
+    current: Vec<NurbsCurve>,
+    start: Point,
+    pen: Point,
+    transform: Affine,
+}
+
+impl LoopBuilder {
+    pub(crate) fn new() -> Self {
+        Self {
+            done: Vec::new(),
+            current: Vec::new(),
+            start: Point::new(0.0, 0.0),
+            pen: Point::new(0.0, 0.0),
+            transform: Affine::IDENTITY,
+        }
+    }
+
+    /// Sets the map applied to the curves of the next subpaths (finishes the current one).
+    pub(crate) fn set_transform(&mut self, t: Affine) {
+        self.finish();
+        self.transform = t;
+    }
+
+    /// The current pen position (untransformed).
+    pub(crate) fn pen(&self) -> Point {
+        self.pen
+    }
+
+    /// Starts a new subpath at `p`, closing the current one.
+    pub(crate) fn move_to(&mut self, p: Point) {
+        self.finish();
+        self.start = p;
+        self.pen = p;
+    }
+
+    /// A straight segment from the pen to `p`.
+    pub(crate) fn line_to(&mut self, p: Point) -> Result<(), SplineError> {
+        if p != self.pen {
+            self.current.push(segment(self.pen, p)?);
+        }
+        self.pen = p;
+        Ok(())
+    }
+
+    /// A polynomial Bezier piece from the pen through `controls` (the last one is the end).
+    pub(crate) fn bezier_to(&mut self, controls: &[Point]) -> Result<(), SplineError> {
+        let Some(&end) = controls.last() else {
+            return Ok(());
+        };
+        let mut points = Vec::with_capacity(controls.len() + 1);
+        points.push(self.pen);
+        points.extend_from_slice(controls);
+        if points.iter().all(|&q| q == self.pen) {
+            return Ok(());
+        }
+        self.current.push(NurbsCurve::bezier(points, None)?);
+        self.pen = end;
+        Ok(())
+    }
+
+    /// A curve that starts at the pen (its start point must equal the pen exactly).
+    pub(crate) fn curve(&mut self, c: NurbsCurve) {
+        debug_assert!(c.start_point() == self.pen);
+        self.pen = c.end_point();
+        self.current.push(c);
+    }
+
+    /// Closes the current subpath; the pen returns to its start.
+    pub(crate) fn close(&mut self) {
+        self.finish();
+        self.pen = self.start;
+    }
+
+    /// Finishes the current subpath (adding the closing segment if needed) and returns every
+    /// loop's curves, in order.
+    pub(crate) fn into_curves(mut self) -> Vec<NurbsCurve> {
+        self.finish();
+        self.done
+    }
+
+    fn finish(&mut self) {
+        if self.current.is_empty() {
+            return;
+        }
+        let mut curves = std::mem::take(&mut self.current);
+        let size = loop_size(&curves);
+        let gap = self.pen.distance(self.start);
+        if gap > SNAP_RELATIVE * size {
+            if let Ok(s) = segment(self.pen, self.start) {
+                curves.push(s);
+            }
+        } else if gap > 0.0 {
+            if let Some(last) = curves.pop() {
+                curves.push(with_end_point(&last, self.start).unwrap_or(last));
+            }
+        }
+        self.pen = self.start;
+        if encloses_area(&curves) {
+            for c in curves {
+                let mapped = self.transform.apply_to_curve(&c).unwrap_or(c);
+                self.done.push(mapped);
+            }
+        }
+    }
+}
+
+/// `c` with its last control point moved to `end` (a clamped curve ends there).
+pub(crate) fn with_end_point(c: &NurbsCurve, end: Point) -> Result<NurbsCurve, SplineError> {
+    let mut pts = c.control_points().to_vec();
+    if let Some(last) = pts.last_mut() {
+        *last = end;
+    }
+    NurbsCurve::new(
+        c.degree(),
+        c.knots().knots().to_vec(),
+        pts,
+        Some(c.weights().to_vec()),
+    )
+}
+
+/// `c` with its first and last control points moved to `a` and `b`.
+pub(crate) fn with_end_points(
+    c: &NurbsCurve,
+    a: Point,
+    b: Point,
+) -> Result<NurbsCurve, SplineError> {
+    let mut pts = c.control_points().to_vec();
+    if let Some(first) = pts.first_mut() {
+        *first = a;
+    }
+    if let Some(last) = pts.last_mut() {
+        *last = b;
+    }
+    NurbsCurve::new(
+        c.degree(),
+        c.knots().knots().to_vec(),
+        pts,
+        Some(c.weights().to_vec()),
+    )
+}
+
+fn loop_size(curves: &[NurbsCurve]) -> f64 {
+    curves
+        .iter()
+        .map(NurbsCurve::control_bounding_box)
+        .reduce(rs_spline::BoundingBox::union)
+        .map_or(0.0, |b| b.diagonal())
+}
+
+/// False if every control point lies on one line through the first (no enclosed area).
+fn encloses_area(curves: &[NurbsCurve]) -> bool {
+    let pts: Vec<Point> = curves
+        .iter()
+        .flat_map(|c| c.control_points().iter().copied())
+        .collect();
+    let Some(&p0) = pts.first() else {
+        return false;
+    };
+    let Some(&far) = pts
+        .iter()
+        .max_by(|a, b| a.distance(p0).total_cmp(&b.distance(p0)))
+    else {
+        return false;
+    };
+    let d = far - p0;
+    let len = d.length();
+    if len == 0.0 {
+        return false;
+    }
+    pts.iter()
+        .any(|&q| (q - p0).cross(d).abs() > 1e-14 * len * len)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    #[test]
+    fn open_subpaths_are_closed_and_lines_without_area_dropped() {
+        let mut b = LoopBuilder::new();
+        b.move_to(p(0.0, 0.0));
+        b.line_to(p(1.0, 0.0)).unwrap();
+        b.line_to(p(1.0, 1.0)).unwrap();
+        // Implicitly closed at the next move.
+        b.move_to(p(5.0, 5.0));
+        b.line_to(p(6.0, 6.0)).unwrap(); // a line: no area, dropped
+        b.move_to(p(9.0, 9.0)); // a lone move: nothing
+        let curves = b.into_curves();
+        assert_eq!(curves.len(), 3);
+        assert_eq!(curves[2].end_point(), p(0.0, 0.0));
+        let d = rs_spline::Domain::new(curves).unwrap();
+        assert_eq!(d.loops().len(), 1);
+        assert!(d.require_closed().is_ok());
+        assert!((d.signed_area() - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rounding_gaps_are_snapped_not_bridged() {
+        let mut b = LoopBuilder::new();
+        b.move_to(p(0.0, 0.0));
+        b.line_to(p(1.0, 0.0)).unwrap();
+        b.line_to(p(1.0, 1.0)).unwrap();
+        b.line_to(p(1e-17, 1e-17)).unwrap();
+        b.close();
+        let curves = b.into_curves();
+        assert_eq!(curves.len(), 3);
+        assert_eq!(curves[2].end_point(), p(0.0, 0.0));
+    }
+
+    #[test]
+    fn transform_keeps_loops_watertight() {
+        let mut b = LoopBuilder::new();
+        b.set_transform(Affine::rotate(0.3).then_apply_to(Affine::scale(1.7, 0.2)));
+        b.move_to(p(0.1, 0.2));
+        b.bezier_to(&[p(1.0, 3.0), p(2.0, -1.0), p(3.0, 0.7)])
+            .unwrap();
+        b.bezier_to(&[p(2.0, 2.0), p(0.3, 0.9)]).unwrap();
+        b.close();
+        let curves = b.into_curves();
+        assert_eq!(curves.len(), 3);
+        for w in 0..3 {
+            assert_eq!(curves[w].end_point(), curves[(w + 1) % 3].start_point());
+        }
+    }
+}

@@ -1,0 +1,259 @@
+//! SVG documents: every rendered `path`, `rect`, `circle`, `ellipse`, `polygon` and `polyline`,
+//! with the transforms of the element and its ancestors applied.
+
+use rs_spline::{Point, SplineError};
+
+use super::path_data::read_path_data;
+use super::transform::parse_transform;
+use crate::builder::LoopBuilder;
+use crate::{Affine, IoError};
+
+/// Containers whose children are not drawn where they stand (definitions, clip paths, masks,
+/// patterns, markers) or are not geometry.
+const SKIPPED: &[&str] = &[
+    "defs",
+    "clipPath",
+    "mask",
+    "symbol",
+    "pattern",
+    "marker",
+    "metadata",
+    "title",
+    "desc",
+    "style",
+    "script",
+    "linearGradient",
+    "radialGradient",
+    "filter",
+    "text",
+    "foreignObject",
+];
+
+const SVG_NS: &str = "http://www.w3.org/2000/svg";
+
+/// Reads the shapes of an SVG document into `builder`.
+pub(crate) fn read_document(text: &str, builder: &mut LoopBuilder) -> Result<(), IoError> {
+    let doc = roxmltree::Document::parse(text).map_err(|e| IoError::Xml(e.to_string()))?;
+    let root = doc.root_element();
+    if root.tag_name().name() != "svg" {
+        return Err(IoError::Xml(format!(
+            "the root element is <{}>, not <svg>",
+            root.tag_name().name()
+        )));
+    }
+    visit(&doc, root, Affine::IDENTITY, builder)
+}
+
+fn visit(
+    doc: &roxmltree::Document<'_>,
+    node: roxmltree::Node<'_, '_>,
+    parent: Affine,
+    builder: &mut LoopBuilder,
+) -> Result<(), IoError> {
+    let ns = node.tag_name().namespace();
+    if ns.is_some_and(|n| n != SVG_NS) {
+        return Ok(());
+    }
+    let name = node.tag_name().name();
+    if SKIPPED.contains(&name) || is_hidden(node) {
+        return Ok(());
+    }
+    let fail = |message: String| {
+        let element = match node.attribute("id") {
+            Some(id) => format!("{name} id={id:?}"),
+            None => name.to_string(),
+        };
+        IoError::SvgElement {
+            element,
+            line: doc.text_pos_at(node.range().start).row,
+            message,
+        }
+    };
+    let own = match node.attribute("transform") {
+        Some(t) => parse_transform(t).map_err(|m| fail(format!("transform: {m}")))?,
+        None => Affine::IDENTITY,
+    };
+    let ctm = parent.then_apply_to(own);
+    let curve_err = |e: SplineError| fail(e.to_string());
+    builder.set_transform(ctm);
+    match name {
+        "svg" | "g" | "a" | "switch" => {
+            for child in node.children().filter(roxmltree::Node::is_element) {
+                visit(doc, child, ctm, builder)?;
+            }
+        }
+        "path" => {
+            if let Some(d) = node.attribute("d") {
+                read_path_data(d, builder).map_err(|e| fail(e.to_string()))?;
+            }
+        }
+        "rect" => {
+            let x = length(node, "x", 0.0).map_err(fail)?;
+            let y = length(node, "y", 0.0).map_err(fail)?;
+            let w = length(node, "width", 0.0).map_err(fail)?;
+            let h = length(node, "height", 0.0).map_err(fail)?;
+            if w < 0.0 || h < 0.0 {
+                return Err(fail(format!("negative size {w} x {h}")));
+            }
+            let rx = optional_length(node, "rx").map_err(fail)?;
+            let ry = optional_length(node, "ry").map_err(fail)?;
+            if w > 0.0 && h > 0.0 {
+                rect(builder, x, y, w, h, rx, ry).map_err(curve_err)?;
+            }
+        }
+        "circle" | "ellipse" => {
+            let cx = length(node, "cx", 0.0).map_err(fail)?;
+            let cy = length(node, "cy", 0.0).map_err(fail)?;
+            let (rx, ry) = if name == "circle" {
+                let r = length(node, "r", 0.0).map_err(fail)?;
+                (r, r)
+            } else {
+                (
+                    length(node, "rx", 0.0).map_err(fail)?,
+                    length(node, "ry", 0.0).map_err(fail)?,
+                )
+            };
+            if rx < 0.0 || ry < 0.0 {
+                return Err(fail(format!("negative radius {rx}, {ry}")));
+            }
+            if rx > 0.0 && ry > 0.0 {
+                let e = rs_spline::ellipse(Point::new(cx, cy), rx, ry, 0.0).map_err(curve_err)?;
+                builder.move_to(e.start_point());
+                builder.curve(e);
+                builder.close();
+            }
+        }
+        "polygon" | "polyline" => {
+            if let Some(points) = node.attribute("points") {
+                let values = numbers(points).map_err(fail)?;
+                let mut it = values.chunks_exact(2).map(|c| Point::new(c[0], c[1]));
+                if let Some(first) = it.next() {
+                    builder.move_to(first);
+                    for p in it {
+                        builder.line_to(p).map_err(curve_err)?;
+                    }
+                    builder.close();
+                }
+            }
+        }
+        // Lines enclose nothing; images, `use` references and unknown elements are not read.
+        _ => {}
+    }
+    builder.set_transform(parent);
+    Ok(())
+}
+
+fn is_hidden(node: roxmltree::Node<'_, '_>) -> bool {
+    node.attribute("display") == Some("none")
+        || node.attribute("style").is_some_and(|s| {
+            s.split(';').any(|decl| {
+                let mut kv = decl.splitn(2, ':');
+                let (k, v) = (
+                    kv.next().unwrap_or("").trim(),
+                    kv.next().unwrap_or("").trim(),
+                );
+                k == "display" && v == "none"
+            })
+        })
+}
+
+/// A rectangle, with elliptical corners when `rx`/`ry` are given (SVG 2 rules: one radius
+/// stands for both, each is clamped to half the side).
+fn rect(
+    b: &mut LoopBuilder,
+    x: f64,
+    y: f64,
+    w: f64,
+    h: f64,
+    rx: Option<f64>,
+    ry: Option<f64>,
+) -> Result<(), SplineError> {
+    let (rx, ry) = match (rx, ry) {
+        (None, None) => (0.0, 0.0),
+        (Some(r), None) | (None, Some(r)) => (r, r),
+        (Some(a), Some(b)) => (a, b),
+    };
+    let (rx, ry) = (rx.clamp(0.0, w / 2.0), ry.clamp(0.0, h / 2.0));
+    let p = Point::new;
+    if rx == 0.0 || ry == 0.0 {
+        b.move_to(p(x, y));
+        for q in [p(x + w, y), p(x + w, y + h), p(x, y + h)] {
+            b.line_to(q)?;
+        }
+        b.close();
+        return Ok(());
+    }
+    use std::f64::consts::{FRAC_PI_2, PI};
+    // Each corner: a straight side to the arc's exact start, then the quarter ellipse
+    // (centre, start angle) with its ends set to the exact tangent points.
+    let corner = |b: &mut LoopBuilder,
+                  from: Point,
+                  to: Point,
+                  centre: Point,
+                  start: f64|
+     -> Result<(), SplineError> {
+        b.line_to(from)?;
+        let arc = rs_spline::elliptic_arc(centre, rx, ry, 0.0, start, FRAC_PI_2)?;
+        b.curve(crate::builder::with_end_points(&arc, from, to)?);
+        Ok(())
+    };
+    let (x1, y1) = (x + w, y + h);
+    b.move_to(p(x + rx, y));
+    corner(
+        b,
+        p(x1 - rx, y),
+        p(x1, y + ry),
+        p(x1 - rx, y + ry),
+        -FRAC_PI_2,
+    )?;
+    corner(b, p(x1, y1 - ry), p(x1 - rx, y1), p(x1 - rx, y1 - ry), 0.0)?;
+    corner(
+        b,
+        p(x + rx, y1),
+        p(x, y1 - ry),
+        p(x + rx, y1 - ry),
+        FRAC_PI_2,
+    )?;
+    corner(b, p(x, y + ry), p(x + rx, y), p(x + rx, y + ry), PI)?;
+    b.close();
+    Ok(())
+}
+
+fn length(node: roxmltree::Node<'_, '_>, attr: &str, default: f64) -> Result<f64, String> {
+    Ok(optional_length(node, attr)?.unwrap_or(default))
+}
+
+/// A length attribute in user units (a number, optionally with `px`).
+fn optional_length(node: roxmltree::Node<'_, '_>, attr: &str) -> Result<Option<f64>, String> {
+    let Some(text) = node.attribute(attr) else {
+        return Ok(None);
+    };
+    let t = text.trim();
+    let t = t.strip_suffix("px").unwrap_or(t);
+    match t.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(Some(v)),
+        _ => Err(format!(
+            "attribute {attr}={text:?} is not a length in user units"
+        )),
+    }
+}
+
+fn numbers(text: &str) -> Result<Vec<f64>, String> {
+    let values: Vec<f64> = text
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("points: {s:?} is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    if values.len() % 2 == 1 {
+        return Err(format!(
+            "points: odd number of coordinates ({})",
+            values.len()
+        ));
+    }
+    Ok(values)
+}

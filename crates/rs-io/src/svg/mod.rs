@@ -1,0 +1,95 @@
+//! SVG input: path data strings and SVG files.
+//!
+//! Coordinates are SVG user units as written (y pointing down, `viewBox` not applied): the
+//! domain is the shape, not its rendering. Every subpath is closed as a renderer fills it;
+//! containment is by crossing parity (even-odd), so overlapping shapes cancel where they
+//! overlap.
+
+mod arc;
+mod document;
+mod path_data;
+mod transform;
+
+use std::path::Path;
+
+use rs_spline::{Domain, NurbsCurve};
+
+use crate::IoError;
+use crate::builder::LoopBuilder;
+
+/// The boundary curves of SVG path data, one closed loop per subpath (open subpaths closed
+/// by a straight segment, as for filling). Elliptical arcs become exact rational quadratics;
+/// lines and Bezier commands keep their degree.
+///
+/// # Errors
+/// [`IoError::PathData`] with the byte position of the first malformed token.
+///
+/// # Examples
+///
+/// ```
+/// let curves = rs_io::svg::curves_from_path_data("M0 0 H2 V1 A1 1 0 0 1 0 1 z").unwrap();
+/// assert_eq!(curves.len(), 4);
+/// assert_eq!(curves[3].degree(), 1); // the closing segment
+/// ```
+pub fn curves_from_path_data(d: &str) -> Result<Vec<NurbsCurve>, IoError> {
+    let mut b = LoopBuilder::new();
+    path_data::read_path_data(d, &mut b)?;
+    Ok(b.into_curves())
+}
+
+/// The domain bounded by SVG path data (see [`curves_from_path_data`]).
+///
+/// # Errors
+/// As [`curves_from_path_data`]; [`IoError::Empty`] if no subpath encloses area.
+///
+/// # Examples
+///
+/// ```
+/// // A ring: two circles drawn with arcs.
+/// let d = rs_io::svg::domain_from_path_data(
+///     "M 3 0 A 3 3 0 1 1 -3 0 A 3 3 0 1 1 3 0 Z M 1 0 A 1 1 0 1 0 -1 0 A 1 1 0 1 0 1 0 Z",
+/// )
+/// .unwrap();
+/// assert_eq!(d.loops().len(), 2);
+/// assert!((d.signed_area() - 8.0 * std::f64::consts::PI).abs() < 1e-12);
+/// ```
+pub fn domain_from_path_data(d: &str) -> Result<Domain, IoError> {
+    domain(curves_from_path_data(d)?, "SVG path data")
+}
+
+/// The domain bounded by every drawn shape of an SVG document (`path`, `rect`, `circle`,
+/// `ellipse`, `polygon`, `polyline`), transforms applied; shapes inside `defs`, `clipPath`,
+/// `mask`, `symbol`, `pattern` and `marker`, hidden ones (`display: none`), text, images and
+/// `use` references are not read.
+///
+/// # Errors
+/// [`IoError::Xml`] for malformed XML, [`IoError::SvgElement`] naming the element (and its
+/// line) with a bad attribute or path data, [`IoError::Empty`] if nothing encloses area.
+pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
+    let mut b = LoopBuilder::new();
+    document::read_document(text, &mut b)?;
+    domain(b.into_curves(), "SVG document")
+}
+
+/// [`domain_from_svg_str`] on a file (named in the domain).
+///
+/// # Errors
+/// [`IoError::Read`], then as [`domain_from_svg_str`].
+pub fn domain_from_svg_file(path: impl AsRef<Path>) -> Result<Domain, IoError> {
+    let path = path.as_ref();
+    let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let mut b = LoopBuilder::new();
+    document::read_document(&text, &mut b)?;
+    let name = path.display().to_string();
+    Ok(domain(b.into_curves(), &name)?.with_name(name))
+}
+
+fn domain(curves: Vec<NurbsCurve>, what: &str) -> Result<Domain, IoError> {
+    if curves.is_empty() {
+        return Err(IoError::Empty(what.to_string()));
+    }
+    Ok(Domain::new(curves)?)
+}

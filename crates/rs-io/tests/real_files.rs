@@ -1,0 +1,188 @@
+//! Real files that no one on the team drew: `DejaVu` glyphs (TrueType quadratic contours with
+//! holes) and Adwaita icons (SVG, cubic paths, arcs, transforms). Grid points are classified by
+//! every method; all must agree, and agree with an independent dense polygon wherever the
+//! point is clearly away from the boundary. Tests skip with a message when the system files
+//! are absent (`.ci/run` installs `fonts-dejavu-core` and `adwaita-icon-theme`).
+
+use std::path::{Path, PathBuf};
+
+use rs_contain::{
+    Classifier, ContainOptions, FastWindingField, FillRule, Location, LocatorOptions, Method,
+    PointLocator,
+};
+use rs_io::font::{Glyph, glyph_domain};
+use rs_spline::{Domain, Point};
+use rs_testkit::{DensePolygon, NearBoundary};
+
+const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+const ADWAITA: &str = "/usr/share/icons/Adwaita";
+
+/// Classifies an `n x n` grid over the grown bounding box with every method; asserts they
+/// agree with each other and with the dense polygon away from the boundary. Returns the number
+/// of points checked against the polygon.
+fn check_domain(name: &str, d: &Domain, n: usize) -> usize {
+    let s = d.bounding_box().diagonal();
+    let mut bb = d.bounding_box();
+    let grow = Point::new(0.03 * s, 0.03 * s);
+    bb.min = bb.min - grow;
+    bb.max = bb.max + grow;
+    // An irrational offset keeps grid lines off the (often integer) coordinates of the files;
+    // points on vertices are covered by the inRS adversarial suites.
+    let pts: Vec<Point> = (0..n * n)
+        .map(|k| {
+            let (i, j) = (k % n, k / n);
+            Point::new(
+                bb.min.x
+                    + (i as f64 + 0.5 + 0.1 * std::f64::consts::SQRT_2) / n as f64 * bb.width(),
+                bb.min.y + (j as f64 + 0.5 + 0.1 * std::f64::consts::E) / n as f64 * bb.height(),
+            )
+        })
+        .collect();
+    let classifier =
+        Classifier::new(d, ContainOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let expected = classifier.classify(&pts, Method::InRS2);
+    for method in Method::ALL {
+        assert_eq!(
+            classifier.classify(&pts, method),
+            expected,
+            "{name}: {method:?}"
+        );
+    }
+    let locator = PointLocator::new(&classifier, LocatorOptions { cells: 64 });
+    assert_eq!(locator.classify(&pts), expected, "{name}: locator");
+    let fast = FastWindingField::new(classifier.winding_field());
+    for (p, e) in pts.iter().zip(&expected) {
+        assert_eq!(
+            fast.classify_point(*p, FillRule::EvenOdd),
+            *e,
+            "{name}: fast GWN at {p:?}"
+        );
+    }
+    let poly = DensePolygon::new(d, 1e-7 * s);
+    let near = NearBoundary::new(&poly, 1e-5 * s);
+    let mut checked = 0;
+    for (p, e) in pts.iter().zip(&expected) {
+        if !near.is_near(*p) {
+            let want = if poly.contains(*p) {
+                Location::Inside
+            } else {
+                Location::Outside
+            };
+            assert_eq!(*e, want, "{name}: {p:?}");
+            checked += 1;
+        }
+    }
+    checked
+}
+
+/// Shoelace area of the dense polygon (independent of the domain's quadrature).
+fn polygon_area(poly: &DensePolygon) -> f64 {
+    0.5 * poly.edges.iter().map(|(a, b)| a.cross(*b)).sum::<f64>()
+}
+
+fn dejavu() -> Option<Vec<u8>> {
+    match std::fs::read(DEJAVU) {
+        Ok(data) => Some(data),
+        Err(e) => {
+            eprintln!("SKIPPED: {DEJAVU} not readable ({e}); install fonts-dejavu-core");
+            None
+        }
+    }
+}
+
+#[test]
+fn dejavu_glyphs_with_holes_have_the_right_loops_and_area() {
+    let Some(font) = dejavu() else { return };
+    // (glyph, contours): the outline plus one loop per counter (and the dot of 'i').
+    for (c, loops) in [
+        ('B', 3),
+        ('8', 3),
+        ('@', 2),
+        ('g', 2),
+        ('Q', 2),
+        ('o', 2),
+        ('i', 2),
+    ] {
+        let d = glyph_domain(&font, &Glyph::Char(c)).unwrap();
+        assert_eq!(d.loops().len(), loops, "{c:?}");
+        assert!(d.require_closed().is_ok(), "{c:?}");
+        // TrueType draws outer contours clockwise and counters counter-clockwise.
+        let area = d.signed_area();
+        let reference = polygon_area(&DensePolygon::new(&d, 1e-9 * d.bounding_box().diagonal()));
+        assert!(area < 0.0, "{c:?}: {area}");
+        assert!(
+            (area - reference).abs() < 1e-6 * area.abs(),
+            "{c:?}: {area} vs {reference}"
+        );
+    }
+}
+
+#[test]
+fn dejavu_printable_ascii_classifies_like_the_dense_polygon() {
+    let Some(font) = dejavu() else { return };
+    let mut glyphs = 0;
+    let mut checked = 0;
+    for code in 0x21u8..=0x7e {
+        let c = char::from(code);
+        let d = glyph_domain(&font, &Glyph::Char(c)).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+        checked += check_domain(&format!("DejaVuSans {c:?}"), &d, 40);
+        glyphs += 1;
+    }
+    assert_eq!(glyphs, 94);
+    assert!(
+        checked > 94 * 1400,
+        "only {checked} points were away from the boundaries"
+    );
+}
+
+#[test]
+fn a_space_has_no_outline() {
+    let Some(font) = dejavu() else { return };
+    let e = glyph_domain(&font, &Glyph::Char(' ')).unwrap_err();
+    assert!(e.to_string().contains("no outline"), "{e}");
+    let e = glyph_domain(&font, &Glyph::Char('\u{10FFFD}')).unwrap_err();
+    assert!(e.to_string().contains("not in the font"), "{e}");
+}
+
+fn svg_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            svg_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "svg") {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn adwaita_icons_classify_like_the_dense_polygon() {
+    let mut files = Vec::new();
+    svg_files(Path::new(ADWAITA), &mut files);
+    if files.is_empty() {
+        eprintln!("SKIPPED: no SVG icons under {ADWAITA}; install adwaita-icon-theme");
+        return;
+    }
+    files.sort();
+    let (mut icons, mut empty, mut checked) = (0, 0, 0);
+    for f in &files {
+        match rs_io::svg::domain_from_svg_file(f) {
+            Ok(d) => {
+                checked += check_domain(&f.display().to_string(), &d, 24);
+                icons += 1;
+            }
+            // Icons drawn only with images or strokes have no filled boundary.
+            Err(rs_io::IoError::Empty(_)) => empty += 1,
+            Err(e) => panic!("{}: {e}", f.display()),
+        }
+    }
+    eprintln!("{icons} icons classified, {empty} without curves, {checked} points checked");
+    assert!(
+        icons > 0 && icons >= 10 * empty,
+        "{icons} icons, {empty} empty"
+    );
+    assert!(checked > icons * 300);
+}
