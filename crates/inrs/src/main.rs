@@ -84,6 +84,38 @@ enum Command {
         #[arg(long)]
         output: Option<PathBuf>,
     },
+    /// Where may one control point of a curve move so that the curvature (planar curve) or
+    /// torsion (space curve) keeps its sign? Prints, per refinement level, the number of
+    /// inequalities, vertices (faces in space), area (volume) and absolute and relative error
+    /// of the inner approximation, then the sampled outer bound.
+    ConvexDomain {
+        /// The curve: a JSON domain file (curve --curve-index is used) or one curve object
+        /// `{"degree", "control_points", "knots"?, "weights"?}` with [x, y] or [x, y, z] points.
+        #[arg(long)]
+        curve: PathBuf,
+        /// Which curve of a domain file.
+        #[arg(long, default_value_t = 0)]
+        curve_index: usize,
+        /// Index of the free control point (0-based).
+        #[arg(long)]
+        free_index: usize,
+        /// The box: xmin,xmax,ymin,ymax (plane) or xmin,xmax,ymin,ymax,zmin,zmax (space).
+        #[arg(long = "box", allow_hyphen_values = true, value_delimiter = ',')]
+        bbox: Vec<f64>,
+        /// The sign to keep: positive, negative, or auto (the sign of the given curve at the
+        /// middle of its first piece).
+        #[arg(long, default_value = "auto")]
+        sign: String,
+        /// Stop when the relative area (volume) growth is at most this.
+        #[arg(long, default_value_t = 1e-3)]
+        tol: f64,
+        /// The last refinement level tried.
+        #[arg(long, default_value_t = 10)]
+        max_level: u32,
+        /// Write an SVG of the nested polygons, the outer bound and the curve (plane only).
+        #[arg(long)]
+        svg: Option<PathBuf>,
+    },
     /// Print a summary of a domain file: curves, Bezier pieces, loops, orientation, area, size.
     Info {
         /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
@@ -93,6 +125,105 @@ enum Command {
         #[arg(long)]
         require_closed: bool,
     },
+}
+
+#[allow(clippy::too_many_arguments)]
+fn convex_domain(
+    path: &std::path::Path,
+    curve_index: usize,
+    free: usize,
+    bbox: &[f64],
+    sign: &str,
+    tol: f64,
+    max_level: u32,
+    svg: Option<PathBuf>,
+) -> Result<(), String> {
+    use inrs::convex::{BoundingBox3, ConvexDomainOptions, FreeCurve, Region, Sign};
+    let in_file = |e: inrs::convex::ConvexError| format!("{}: {e}", path.display());
+    let curve = inrs::convex::load_curve(path, curve_index).map_err(in_file)?;
+    let bbox = BoundingBox3::from_ranges(bbox).map_err(|e| e.to_string())?;
+    let h = curve.numerator(free).map_err(in_file)?;
+    let sign = match sign {
+        "positive" => Sign::Positive,
+        "negative" => Sign::Negative,
+        "auto" => {
+            let d = curve.control_point(free).unwrap_or([0.0; 3]);
+            if h.at(0, 0.5).eval(d) >= 0.0 {
+                Sign::Positive
+            } else {
+                Sign::Negative
+            }
+        }
+        other => {
+            return Err(format!(
+                "--sign {other:?}: expected positive, negative or auto"
+            ));
+        }
+    };
+    let options = ConvexDomainOptions {
+        sign,
+        tolerance: tol,
+        max_level,
+        ..Default::default()
+    };
+    let k = inrs::convex::approximate(&h, &bbox, &options).map_err(|e| e.to_string())?;
+    let space = curve.dimension() == 3;
+    let (what, measure) = if space {
+        ("faces", "volume")
+    } else {
+        ("vertices", "area")
+    };
+    let invariant = if space { "torsion" } else { "curvature" };
+    println!(
+        "{invariant} sign {sign:?}, free control point {free}, numerator degree {} on {} piece(s)",
+        h.degree(),
+        h.piece_count()
+    );
+    println!(
+        "level  inequalities  {what:>8}  {measure:>14}  {:>12}  {:>12}",
+        "abs.error", "rel.error"
+    );
+    let opt = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.5e}"));
+    for l in &k.levels {
+        let count = if space {
+            l.region.face_count()
+        } else {
+            l.region.vertex_count()
+        };
+        println!(
+            "{:>5}  {:>12}  {:>8}  {:>14.8e}  {:>12}  {:>12}",
+            l.level,
+            l.inequalities,
+            count,
+            l.region.measure(),
+            opt(l.abs_error),
+            opt(l.rel_error)
+        );
+    }
+    println!(
+        "outer bound ({} sampled parameters per piece): {measure} {:.8e}, {} {what}",
+        ConvexDomainOptions::default().outer_samples,
+        k.outer.measure(),
+        if space {
+            k.outer.face_count()
+        } else {
+            k.outer.vertex_count()
+        }
+    );
+    println!("outcome: {:?}", k.outcome);
+    if let Some(out) = svg {
+        let planar = match &curve {
+            FreeCurve::Planar(c) => Some(c),
+            FreeCurve::Space(_) => None,
+        };
+        let text = match (&k.outer, planar) {
+            (Region::Polygon(_), Some(c)) => inrs::convex::to_svg(&k, Some(c), free),
+            _ => None,
+        }
+        .ok_or_else(|| "--svg draws planar domains only".to_string())?;
+        std::fs::write(&out, text).map_err(|e| format!("{}: {e}", out.display()))?;
+    }
+    Ok(())
 }
 
 fn parse_method(s: &str) -> Result<Method, String> {
@@ -218,6 +349,25 @@ fn run(cli: Cli) -> Result<(), String> {
                 .collect();
             write_csv(output.as_ref(), "x,y,winding", &records, &values)
         }
+        Command::ConvexDomain {
+            curve,
+            curve_index,
+            free_index,
+            bbox,
+            sign,
+            tol,
+            max_level,
+            svg,
+        } => convex_domain(
+            &curve,
+            curve_index,
+            free_index,
+            &bbox,
+            &sign,
+            tol,
+            max_level,
+            svg,
+        ),
         Command::Convert { domain, output } => {
             let d = load_domain(&domain)?;
             let json = d.to_json_string();

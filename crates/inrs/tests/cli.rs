@@ -464,3 +464,84 @@ fn svg_dxf_and_font_domains_are_accepted_wherever_json_is() {
         "{err}"
     );
 }
+
+#[test]
+fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
+    let svg = std::env::temp_dir().join(format!("inrs-cli-{}-convex.svg", std::process::id()));
+    let svg = svg.display().to_string();
+    let out = inrs(&[
+        "convex-domain",
+        "--curve",
+        &fixture("convex/cubic.json"),
+        "--free-index",
+        "2",
+        "--box=-10,10,-11,9",
+        "--tol",
+        "1e-4",
+        "--svg",
+        &svg,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("level  inequalities  vertices"), "{text}");
+    // 4, 8, 16, ... inequalities (a cubic's numerator has degree 3).
+    for (level, n) in [(0, 4), (1, 8), (2, 16), (5, 128)] {
+        assert!(
+            text.lines().any(|l| l
+                .split_whitespace()
+                .take(2)
+                .eq([level.to_string(), n.to_string()])),
+            "level {level}: {text}"
+        );
+    }
+    assert!(text.contains("outcome: Converged"), "{text}");
+    let figure = std::fs::read_to_string(&svg).unwrap();
+    assert!(figure.starts_with("<svg") && figure.contains("level 5"));
+
+    let out = inrs(&[
+        "convex-domain",
+        "--curve",
+        &fixture("convex/quintic_space.json"),
+        "--free-index",
+        "2",
+        "--box=-100,100,-100,100,-100,100",
+        "--max-level",
+        "3",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.starts_with("torsion sign") && text.contains("faces") && text.contains("volume"),
+        "{text}"
+    );
+
+    for (args, want) in [
+        (vec!["--free-index", "9", "--box=-1,1,-1,1"], "out of range"),
+        (vec!["--free-index", "2", "--box=-1,1,-1"], "invalid box"),
+        (
+            vec!["--free-index", "2", "--box=-1,1,-1,1,-1,1"],
+            "2-D but the box is 3-D",
+        ),
+        (
+            vec!["--free-index", "2", "--box=-1,1,-1,1", "--sign", "up"],
+            "--sign",
+        ),
+    ] {
+        let mut all = vec!["convex-domain", "--curve"];
+        let cubic = fixture("convex/cubic.json");
+        all.push(&cubic);
+        all.extend(args);
+        let out = inrs(&all);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(!out.status.success() && err.contains(want), "{want}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+}

@@ -125,6 +125,50 @@ impl Bernstein {
         )
     }
 
+    /// The product `a(s) b(s)` in the Bernstein basis of degree `m + n`:
+    /// `c_k = sum_{i + j = k} C(m, i) C(n, j) / C(m + n, k) a_i b_j` (exact, no conversion to
+    /// the power basis).
+    pub fn mul(&self, other: &Bernstein) -> Bernstein {
+        let (m, n) = (self.degree(), other.degree());
+        let cm: Vec<f64> = (0..=m).map(|i| binomial(m, i)).collect();
+        let cn: Vec<f64> = (0..=n).map(|j| binomial(n, j)).collect();
+        let cmn: Vec<f64> = (0..=m + n).map(|k| binomial(m + n, k)).collect();
+        let mut c = vec![0.0; m + n + 1];
+        for (i, a) in self.coeffs.iter().enumerate() {
+            for (j, b) in other.coeffs.iter().enumerate() {
+                c[i + j] += cm[i] * cn[j] * a * b;
+            }
+        }
+        for (ck, binom) in c.iter_mut().zip(&cmn) {
+            *ck /= binom;
+        }
+        Bernstein::new(c)
+    }
+
+    /// `self + other` (both of the same degree).
+    ///
+    /// # Panics
+    /// If the degrees differ (a programming error, not an input error).
+    pub fn add(&self, other: &Bernstein) -> Bernstein {
+        assert_eq!(
+            self.degree(),
+            other.degree(),
+            "Bernstein::add needs equal degrees"
+        );
+        Bernstein::new(
+            self.coeffs
+                .iter()
+                .zip(&other.coeffs)
+                .map(|(a, b)| a + b)
+                .collect::<Vec<_>>(),
+        )
+    }
+
+    /// `c * self`.
+    pub fn scale(&self, c: f64) -> Bernstein {
+        Bernstein::new(self.coeffs.iter().map(|a| c * a).collect::<Vec<_>>())
+    }
+
     /// Number of sign changes in the coefficient sequence, ignoring exact zeros.
     ///
     /// It is an upper bound on the number of roots in the open interval `(0, 1)`, counted with
@@ -201,6 +245,21 @@ pub fn de_casteljau_split(c: &[f64], s: f64, left: &mut [f64], right: &mut [f64]
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn product_sum_and_scale_evaluate_pointwise() {
+        let a = Bernstein::new(vec![1.0, -2.0, 0.5, 3.0]);
+        let b = Bernstein::new(vec![0.25, 4.0, -1.0]);
+        let c = Bernstein::new(vec![2.0, 1.0, -3.0, 0.0]);
+        let ab = a.mul(&b);
+        assert_eq!(ab.degree(), 5);
+        for i in 0..=20 {
+            let s = i as f64 / 20.0;
+            assert!((ab.eval(s) - a.eval(s) * b.eval(s)).abs() < 1e-13);
+            assert!((a.add(&c).eval(s) - a.eval(s) - c.eval(s)).abs() < 1e-14);
+            assert!((a.scale(-1.5).eval(s) + 1.5 * a.eval(s)).abs() < 1e-14);
+        }
+    }
+
     use super::*;
     use approx::assert_relative_eq;
 

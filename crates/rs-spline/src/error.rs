@@ -37,6 +37,14 @@ pub enum SplineError {
     /// Degree 0 curves are not supported.
     #[error("degree must be at least 1")]
     ZeroDegree,
+    /// A control point index past the end.
+    #[error("control point index {index} out of range (the curve has {count})")]
+    ControlPointIndex {
+        /// The index asked for.
+        index: usize,
+        /// Number of control points.
+        count: usize,
+    },
     /// Fewer control points than `degree + 1`.
     #[error("degree {degree} needs at least {needed} control points, got {got}")]
     TooFewControlPoints {

@@ -101,6 +101,27 @@ impl NurbsCurve {
         Hpoint::weighted_all(&self.points, &self.weights)
     }
 
+    /// The same curve with control point `i` moved to `p` (weights and knots kept).
+    ///
+    /// # Errors
+    /// [`SplineError::ControlPointIndex`], [`SplineError::NonFiniteControlPoint`].
+    pub fn with_control_point(&self, i: usize, p: Point) -> Result<Self, SplineError> {
+        if i >= self.points.len() {
+            return Err(SplineError::ControlPointIndex {
+                index: i,
+                count: self.points.len(),
+            });
+        }
+        let mut points = self.points.clone();
+        points[i] = p;
+        check_control_points(&points, &self.weights)?;
+        Ok(Self {
+            knots: self.knots.clone(),
+            points,
+            weights: self.weights.clone(),
+        })
+    }
+
     /// Degree `p`.
     pub fn degree(&self) -> usize {
         self.knots.degree()

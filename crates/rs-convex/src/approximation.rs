@@ -1,0 +1,302 @@
+//! The paper's algorithm APPROXIMATECONVEXDOMAIN: inner polytopes from the Bernstein
+//! coefficients of the sign numerator, refined by midpoint knot insertion until the relative
+//! area (volume) growth (20) is below a tolerance; plus an outer polytope from sampled
+//! parameters, so the exact domain is bracketed.
+
+use rs_spline::{AffineForm, SignNumerator};
+
+use crate::{ConvexError, ConvexPolygon, ConvexPolytope};
+
+/// The sign to keep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sign {
+    /// Positive curvature (counter-clockwise turning) or positive torsion.
+    Positive,
+    /// Negative curvature or torsion.
+    Negative,
+}
+
+/// Settings of [`approximate`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConvexDomainOptions {
+    /// The sign the curve must keep everywhere.
+    pub sign: Sign,
+    /// Stop when `area(K_l \ K_{l-1}) / area(K_{l-1}) <= tolerance` (formula (20)).
+    pub tolerance: f64,
+    /// The last refinement level tried (each level doubles the inequalities).
+    pub max_level: u32,
+    /// Parameters sampled per Bezier piece of the numerator for the outer bound.
+    pub outer_samples: usize,
+}
+
+impl Default for ConvexDomainOptions {
+    fn default() -> Self {
+        Self {
+            sign: Sign::Positive,
+            tolerance: 1e-3,
+            max_level: 10,
+            outer_samples: 256,
+        }
+    }
+}
+
+/// An axis-aligned box `B` restricting the domain (2 or 3 coordinates used).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundingBox3 {
+    /// Lower corner.
+    pub min: [f64; 3],
+    /// Upper corner.
+    pub max: [f64; 3],
+}
+
+impl BoundingBox3 {
+    /// The box from `[xmin, xmax, ymin, ymax]` or `[xmin, xmax, ymin, ymax, zmin, zmax]`.
+    ///
+    /// # Errors
+    /// [`ConvexError::InvalidBox`] for another length, non-finite or empty ranges.
+    pub fn from_ranges(r: &[f64]) -> Result<Self, ConvexError> {
+        let bad = |m: &str| ConvexError::InvalidBox(m.to_string());
+        if r.len() != 4 && r.len() != 6 {
+            return Err(bad(
+                "give xmin,xmax,ymin,ymax (plane) or six numbers (space)",
+            ));
+        }
+        if r.iter().any(|v| !v.is_finite()) {
+            return Err(bad("coordinates must be finite"));
+        }
+        for k in 0..r.len() / 2 {
+            if r[2 * k] >= r[2 * k + 1] {
+                return Err(bad("every range must have min < max"));
+            }
+        }
+        let (zmin, zmax) = if r.len() == 6 {
+            (r[4], r[5])
+        } else {
+            (0.0, 0.0)
+        };
+        Ok(Self {
+            min: [r[0], r[2], zmin],
+            max: [r[1], r[3], zmax],
+        })
+    }
+
+    /// 2 for a planar box (zero z extent), 3 otherwise.
+    pub fn dimension(&self) -> usize {
+        if self.min[2] == self.max[2] { 2 } else { 3 }
+    }
+
+    fn size(&self) -> f64 {
+        (0..3)
+            .map(|k| (self.max[k] - self.min[k]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+}
+
+/// A convex region of the free point: a polygon (curvature) or a polytope (torsion).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Region {
+    /// Plane.
+    Polygon(ConvexPolygon),
+    /// Space.
+    Polytope(ConvexPolytope),
+}
+
+impl Region {
+    /// Area or volume.
+    pub fn measure(&self) -> f64 {
+        match self {
+            Region::Polygon(p) => p.area(),
+            Region::Polytope(p) => p.volume(),
+        }
+    }
+
+    /// True if nothing with area (volume) is left.
+    pub fn is_empty(&self) -> bool {
+        match self {
+            Region::Polygon(p) => p.is_empty(),
+            Region::Polytope(p) => p.is_empty(),
+        }
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        match self {
+            Region::Polygon(p) => p.vertices().len(),
+            Region::Polytope(p) => p.vertices().len(),
+        }
+    }
+
+    /// Number of faces (edges of a polygon).
+    pub fn face_count(&self) -> usize {
+        match self {
+            Region::Polygon(p) => p.vertices().len(),
+            Region::Polytope(p) => p.face_count(),
+        }
+    }
+
+    /// The vertices as 3-D points (`z = 0` in the plane).
+    pub fn vertices3(&self) -> Vec<[f64; 3]> {
+        match self {
+            Region::Polygon(p) => p.vertices().iter().map(|v| [v.x, v.y, 0.0]).collect(),
+            Region::Polytope(p) => p.vertices(),
+        }
+    }
+
+    fn from_box(b: &BoundingBox3) -> Self {
+        if b.dimension() == 2 {
+            Region::Polygon(ConvexPolygon::rectangle(
+                b.min[0], b.max[0], b.min[1], b.max[1],
+            ))
+        } else {
+            Region::Polytope(ConvexPolytope::cuboid(b.min, b.max))
+        }
+    }
+
+    fn clipped(&self, forms: &[AffineForm], size: f64) -> Self {
+        match self {
+            Region::Polygon(p) => {
+                let mut p = p.clone();
+                for f in forms {
+                    if p.is_empty() {
+                        break;
+                    }
+                    p = p.clip(f.a[0], f.a[1], f.b, size);
+                }
+                Region::Polygon(p)
+            }
+            Region::Polytope(p) => {
+                let mut p = p.clone();
+                for f in forms {
+                    if p.is_empty() {
+                        break;
+                    }
+                    p = p.clip(f.a, f.b, size);
+                }
+                Region::Polytope(p)
+            }
+        }
+    }
+}
+
+/// One iteration: the paper's table columns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    /// Refinement level `l` (0: the curve's own Bezier pieces).
+    pub level: u32,
+    /// Number of inequalities (Bernstein coefficients).
+    pub inequalities: usize,
+    /// The inner approximation `K_discr^(l)` within the box.
+    pub region: Region,
+    /// Area (volume) growth from the previous level, formula (19); `None` if that was empty.
+    pub abs_error: Option<f64>,
+    /// `abs_error / measure(previous)`, formula (20).
+    pub rel_error: Option<f64>,
+}
+
+/// How the iteration ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// The relative growth fell below the tolerance at this level.
+    Converged,
+    /// The outer bound is empty: no position in the box keeps the sign (a proof, up to
+    /// rounding, since every outer half-plane is necessary).
+    Empty,
+    /// `max_level` was reached first (the inner approximation may still be empty if the
+    /// domain is thin or empty but the sampled outer bound is not).
+    NotConverged,
+}
+
+/// The result: inner approximations per level (nested, growing) and an outer bound.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvexDomain {
+    /// Every level computed, in order.
+    pub levels: Vec<Level>,
+    /// Intersection of the box with the half-planes (half-spaces) `h_t > 0` at the sampled
+    /// parameters: contains the exact domain within the box.
+    pub outer: Region,
+    /// How the iteration ended.
+    pub outcome: Outcome,
+}
+
+impl ConvexDomain {
+    /// The last (best) inner approximation.
+    pub fn inner(&self) -> &Region {
+        &self.levels[self.levels.len() - 1].region
+    }
+}
+
+/// Runs the algorithm of section 4 for the numerator `h` of a curve with a free control point,
+/// within `bbox`: level 0 intersects the box with the half-planes (14) of the Bernstein
+/// coefficients; level `l` with those (16) after `l` rounds of midpoint subdivision. Stops when
+/// the previous level was non-empty and its relative growth (20) is at most the tolerance.
+/// By Remark 2 the levels are nested and by Theorem 1 they converge to the domain.
+///
+/// # Errors
+/// [`ConvexError::DimensionMismatch`] if the box and the numerator disagree,
+/// [`ConvexError::InvalidTolerance`] for a tolerance that is negative or not finite.
+pub fn approximate(
+    h: &SignNumerator,
+    bbox: &BoundingBox3,
+    options: &ConvexDomainOptions,
+) -> Result<ConvexDomain, ConvexError> {
+    if bbox.dimension() != h.dimension() {
+        return Err(ConvexError::DimensionMismatch {
+            curve: h.dimension(),
+            bbox: bbox.dimension(),
+        });
+    }
+    if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
+        return Err(ConvexError::InvalidTolerance(options.tolerance));
+    }
+    let orient = |f: AffineForm| match options.sign {
+        Sign::Positive => f,
+        Sign::Negative => f.negated(),
+    };
+    let size = bbox.size();
+    let start = Region::from_box(bbox);
+    let samples = options.outer_samples.max(2);
+    let outer_forms: Vec<AffineForm> = (0..h.piece_count())
+        .flat_map(|k| (0..samples).map(move |i| (k, i as f64 / (samples - 1) as f64)))
+        .map(|(k, s)| orient(h.at(k, s)))
+        .collect();
+    let outer = start.clipped(&outer_forms, size);
+    let mut levels: Vec<Level> = Vec::new();
+    let mut current = h.clone();
+    let mut outcome = Outcome::NotConverged;
+    for level in 0..=options.max_level {
+        if level > 0 {
+            current = current.refined(1);
+        }
+        let forms: Vec<AffineForm> = current.inequalities().into_iter().map(orient).collect();
+        let region = start.clipped(&forms, size);
+        let (abs_error, rel_error) = match levels.last() {
+            Some(prev) if !prev.region.is_empty() => {
+                let before = prev.region.measure();
+                let grown = (region.measure() - before).max(0.0);
+                (Some(grown), Some(grown / before))
+            }
+            _ => (None, None),
+        };
+        levels.push(Level {
+            level,
+            inequalities: forms.len(),
+            region,
+            abs_error,
+            rel_error,
+        });
+        if outer.is_empty() {
+            outcome = Outcome::Empty;
+            break;
+        }
+        if rel_error.is_some_and(|r| r <= options.tolerance) {
+            outcome = Outcome::Converged;
+            break;
+        }
+    }
+    Ok(ConvexDomain {
+        levels,
+        outer,
+        outcome,
+    })
+}

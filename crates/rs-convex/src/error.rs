@@ -1,0 +1,32 @@
+//! Errors.
+
+use rs_spline::{DomainError, SplineError};
+use thiserror::Error;
+
+/// Why a convex domain could not be computed.
+#[derive(Debug, Error)]
+pub enum ConvexError {
+    /// The bounding box is malformed.
+    #[error("invalid box: {0}")]
+    InvalidBox(String),
+    /// The tolerance is negative or not finite.
+    #[error("invalid tolerance {0}: must be finite and non-negative")]
+    InvalidTolerance(f64),
+    /// A planar curve with a 3-D box or the reverse.
+    #[error("the curve is {curve}-D but the box is {bbox}-D")]
+    DimensionMismatch {
+        /// Dimension of the curve.
+        curve: usize,
+        /// Dimension of the box.
+        bbox: usize,
+    },
+    /// The curve file is malformed.
+    #[error("curve file: {0}")]
+    CurveFile(String),
+    /// The curve is invalid.
+    #[error(transparent)]
+    Spline(#[from] SplineError),
+    /// A domain file could not be read.
+    #[error(transparent)]
+    Domain(#[from] DomainError),
+}

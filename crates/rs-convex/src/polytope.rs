@@ -1,0 +1,239 @@
+//! Convex polytopes in 3-D clipped by half-spaces (face lists).
+
+/// A point of `R^3`.
+pub type P3 = [f64; 3];
+
+fn sub(a: P3, b: P3) -> P3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn add(a: P3, b: P3) -> P3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn scale(a: P3, s: f64) -> P3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+fn dot(a: P3, b: P3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: P3, b: P3) -> P3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn norm(a: P3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// A convex polytope as a list of planar faces (each a cyclically ordered vertex list).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ConvexPolytope {
+    faces: Vec<Vec<P3>>,
+}
+
+impl ConvexPolytope {
+    /// The box `[min, max]`.
+    pub fn cuboid(min: P3, max: P3) -> Self {
+        let v = |i: usize| {
+            [
+                if i & 1 == 0 { min[0] } else { max[0] },
+                if i & 2 == 0 { min[1] } else { max[1] },
+                if i & 4 == 0 { min[2] } else { max[2] },
+            ]
+        };
+        let faces = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ]
+        .iter()
+        .map(|f| f.iter().map(|&i| v(i)).collect())
+        .collect();
+        Self { faces }
+    }
+
+    /// The faces.
+    pub fn faces(&self) -> &[Vec<P3>] {
+        &self.faces
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// The distinct vertices (merged within `1e-12` of the polytope's size).
+    pub fn vertices(&self) -> Vec<P3> {
+        let all: Vec<P3> = self.faces.iter().flatten().copied().collect();
+        let size = bounding_size(&all);
+        let mut out: Vec<P3> = Vec::new();
+        for p in all {
+            if !out.iter().any(|q| norm(sub(p, *q)) <= 1e-12 * size) {
+                out.push(p);
+            }
+        }
+        out
+    }
+
+    /// True if nothing with volume is left.
+    pub fn is_empty(&self) -> bool {
+        self.faces.len() < 4 || self.volume() <= 0.0
+    }
+
+    /// Volume: tetrahedra from the vertex centroid over a fan of every face.
+    pub fn volume(&self) -> f64 {
+        let Some(c) = self.vertex_centroid() else {
+            return 0.0;
+        };
+        let mut v = 0.0;
+        for f in &self.faces {
+            for i in 1..f.len().saturating_sub(1) {
+                let d = dot(sub(f[0], c), cross(sub(f[i], c), sub(f[i + 1], c)));
+                v += d.abs() / 6.0;
+            }
+        }
+        v
+    }
+
+    /// The mean of the distinct vertices (inside a non-empty polytope).
+    pub fn vertex_centroid(&self) -> Option<P3> {
+        let v = self.vertices();
+        (!v.is_empty()).then(|| {
+            scale(
+                v.iter().fold([0.0; 3], |a, &p| add(a, p)),
+                1.0 / v.len() as f64,
+            )
+        })
+    }
+
+    /// The part where `a . x + b >= 0`; `size` is a length typical of the polytope (for the
+    /// rounding threshold). `a = 0` keeps everything if `b > 0`, nothing otherwise.
+    pub fn clip(&self, a: P3, b: f64, size: f64) -> Self {
+        let na = norm(a);
+        if na <= 1e-300 || na * size <= 1e-14 * b.abs() {
+            return if b > 0.0 {
+                self.clone()
+            } else {
+                Self::default()
+            };
+        }
+        let eps = 1e-13 * (na * size + b.abs());
+        let f = |p: P3| dot(a, p) + b;
+        let mut faces = Vec::new();
+        let mut cap: Vec<P3> = Vec::new();
+        for face in &self.faces {
+            let n = face.len();
+            let mut out = Vec::with_capacity(n + 1);
+            for i in 0..n {
+                let (p, q) = (face[i], face[(i + 1) % n]);
+                let (fp, fq) = (f(p), f(q));
+                if fp >= -eps {
+                    out.push(p);
+                    if fp.abs() <= eps {
+                        cap.push(p);
+                    }
+                }
+                if (fp > eps && fq < -eps) || (fp < -eps && fq > eps) {
+                    let x = add(p, scale(sub(q, p), fp / (fp - fq)));
+                    out.push(x);
+                    cap.push(x);
+                }
+            }
+            out.dedup_by(|x, y| norm(sub(*x, *y)) <= 1e-14 * size);
+            if out.len() > 1 && norm(sub(out[0], out[out.len() - 1])) <= 1e-14 * size {
+                out.pop();
+            }
+            if out.len() >= 3 {
+                faces.push(out);
+            }
+        }
+        // The cap: the section of the polytope by the plane, ordered by angle about its centre.
+        let mut pts: Vec<P3> = Vec::new();
+        for p in cap {
+            if !pts.iter().any(|q| norm(sub(p, *q)) <= 1e-12 * size) {
+                pts.push(p);
+            }
+        }
+        if pts.len() >= 3 && faces.len() >= 3 {
+            let c = scale(
+                pts.iter().fold([0.0; 3], |s, &p| add(s, p)),
+                1.0 / pts.len() as f64,
+            );
+            let nrm = scale(a, 1.0 / na);
+            let helper = if nrm[0].abs() < 0.9 {
+                [1.0, 0.0, 0.0]
+            } else {
+                [0.0, 1.0, 0.0]
+            };
+            let u = cross(nrm, helper);
+            let u = scale(u, 1.0 / norm(u));
+            let v = cross(nrm, u);
+            pts.sort_by(|p, q| {
+                let ap = dot(sub(*p, c), v).atan2(dot(sub(*p, c), u));
+                let aq = dot(sub(*q, c), v).atan2(dot(sub(*q, c), u));
+                ap.total_cmp(&aq)
+            });
+            faces.push(pts);
+        }
+        if faces.len() < 4 {
+            faces.clear();
+        }
+        Self { faces }
+    }
+}
+
+fn bounding_size(points: &[P3]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if lo[0].is_finite() {
+        norm(sub(hi, lo))
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cube_cut_by_planes() {
+        let c = ConvexPolytope::cuboid([0.0; 3], [1.0, 2.0, 3.0]);
+        assert!((c.volume() - 6.0).abs() < 1e-14);
+        assert_eq!(c.vertices().len(), 8);
+        // Cut off the corner x + y + z <= 1 from the unit cube: volume 1 - 1/6 remains.
+        let u = ConvexPolytope::cuboid([0.0; 3], [1.0; 3]);
+        let cut = u.clip([1.0, 1.0, 1.0], -1.0, 1.0);
+        assert!(
+            (cut.volume() - (1.0 - 1.0 / 6.0)).abs() < 1e-14,
+            "{}",
+            cut.volume()
+        );
+        assert_eq!(cut.face_count(), 7);
+        assert_eq!(cut.vertices().len(), 7); // the plane passes through three vertices
+        // Keep only the corner: a tetrahedron.
+        let tet = u.clip([-1.0, -1.0, -1.0], 1.0, 1.0);
+        assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-15);
+        assert_eq!(tet.face_count(), 4);
+        assert!(u.clip([1.0, 0.0, 0.0], -2.0, 1.0).is_empty());
+        // Halving along the plane through four vertices.
+        let half = u.clip([1.0, -1.0, 0.0], 0.0, 1.0);
+        assert!((half.volume() - 0.5).abs() < 1e-15);
+        assert_eq!(half.face_count(), 5);
+    }
+}
