@@ -21,7 +21,8 @@ Commands:
                           Halton points, check the inside counts and areas against the reference
                           data stored in the files, print a table and a summary of each domain,
                           and write SVG figures to target/figures/ (monotone boxes, refined
-                          boxes, classified points, a winding-number field with a gap).
+                          boxes, classified points, a winding-number field with a gap, curved
+                          triangulations of S(4) and of a disc with an elliptic hole).
   bench [OPTIONS]         The papers' comparisons in one process (medians of repeated runs):
                           Tables 1-2 (inRS1, inRS2, polygon within 1e-10), the fast paths and
                           GWN, evaluation histograms and linearisation errors of the GWN paper;
@@ -78,6 +79,31 @@ fn reference_box(meta: &serde_json::Value, fallback: BoundingBox) -> BoundingBox
     } else {
         fallback
     }
+}
+
+/// Writes the curved triangulation of `d` (well-spaced points with `ny` bands) as an SVG and
+/// records a failure if its curved triangles do not add up to the domain's area.
+fn mesh_figure(
+    dir: &Path,
+    stem: &str,
+    d: &Domain,
+    ny: usize,
+    failures: &mut Vec<String>,
+) -> Result<std::path::PathBuf, String> {
+    let pts = inrs::mesh::well_spaced_points(d, ny).map_err(|e| format!("{stem}: {e}"))?;
+    let m = inrs::mesh::CurvedTriangulation::new(d, &pts).map_err(|e| format!("{stem}: {e}"))?;
+    let area: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+    let exact = d.signed_area().abs();
+    if (area - exact).abs() > 1e-10 * exact {
+        failures.push(format!(
+            "{stem}: curved triangles cover {area}, domain area {exact}"
+        ));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let path = dir.join(format!("{stem}_curved_triangulation.svg"));
+    std::fs::write(&path, inrs::mesh::mesh_svg(&m, 700.0))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(path)
 }
 
 fn demo(dir: &Path) -> Result<(), String> {
@@ -181,6 +207,7 @@ fn demo(dir: &Path) -> Result<(), String> {
                 1,
                 Point::new(0.2, -0.15),
             )?);
+            figures_written.push(mesh_figure(&figures_dir, &stem, &d, 12, &mut failures)?);
         }
         summaries.push(s);
     }
@@ -188,6 +215,21 @@ fn demo(dir: &Path) -> Result<(), String> {
     for s in &summaries {
         println!("{s}\n");
     }
+    // A domain with a hole: a disc minus an off-centre elliptic hole.
+    let ring = Domain::new(vec![
+        inrs::spline::circle(Point::new(0.0, 0.0), 1.0).map_err(|e| e.to_string())?,
+        inrs::spline::ellipse(Point::new(0.2, 0.1), 0.45, 0.25, 0.4)
+            .map_err(|e| e.to_string())?
+            .reversed(),
+    ])
+    .map_err(|e| e.to_string())?;
+    figures_written.push(mesh_figure(
+        &figures_dir,
+        "disc_with_hole",
+        &ring,
+        14,
+        &mut failures,
+    )?);
     println!("figures written to {}:", figures_dir.display());
     for f in &figures_written {
         println!(

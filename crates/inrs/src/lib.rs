@@ -6,6 +6,8 @@
 //! - [`spline`] (`rs-spline`): NURBS algebra, primitives, domains and domain files.
 //! - [`boxes`] (`rs-boxes`): monotone boxes and critical points.
 //! - [`contain`] (`rs-contain`): the inRS classifier (inRS1, inRS2, fallbacks, boundary).
+//! - [`mesh`] (`rs-mesh`): well-spaced points, curved triangulations and point location in
+//!   them.
 //! - [`convex`] (`rs-convex`): convex domains of a free control point keeping the sign of
 //!   curvature or torsion.
 //! - `io` (`rs-io`, feature `io`, on by default): domains from SVG paths and files,
@@ -29,6 +31,7 @@ pub use rs_contain as contain;
 pub use rs_convex as convex;
 #[cfg(feature = "io")]
 pub use rs_io as io;
+pub use rs_mesh as mesh;
 pub use rs_roots as roots;
 pub use rs_spline as spline;
 

@@ -84,6 +84,45 @@ enum Command {
         #[arg(long)]
         output: Option<PathBuf>,
     },
+    /// Sample points in a domain: well-spaced points (Schumaker-Yu Algorithm 11.1: horizontal
+    /// lines h apart cut exactly with the boundary, interior points ~h apart, boundary points
+    /// ~h apart by arc length) or the first --count Halton points inside. Writes CSV
+    /// `x,y,kind` with kind `interior` or `boundary`.
+    Sample {
+        /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
+        #[arg(long)]
+        domain: PathBuf,
+        /// lines (Algorithm 11.1) or halton.
+        #[arg(long, default_value = "lines")]
+        method: String,
+        /// Number of horizontal bands for --method lines: h = height / ny.
+        #[arg(long, default_value_t = 20)]
+        ny: usize,
+        /// Number of points for --method halton.
+        #[arg(long, default_value_t = 1000)]
+        count: usize,
+        /// Write the CSV here instead of standard output.
+        #[arg(long)]
+        output: Option<PathBuf>,
+    },
+    /// Curved triangulation of a domain: well-spaced points (--ny), constrained Delaunay
+    /// inscribed triangulation, boundary points inserted until it is convertible, boundary
+    /// edges replaced by boundary arcs. Writes JSON (vertices, triangles, `curved_edges`) and a
+    /// summary line on stderr.
+    Mesh {
+        /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
+        #[arg(long)]
+        domain: PathBuf,
+        /// Number of horizontal bands for the sampling: h = height / ny.
+        #[arg(long, default_value_t = 20)]
+        ny: usize,
+        /// Write the JSON here instead of standard output.
+        #[arg(long)]
+        output: Option<PathBuf>,
+        /// Also write an SVG figure of the curved triangulation.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+    },
     /// Where may one control point of a curve move so that the curvature (planar curve) or
     /// torsion (space curve) keeps its sign? Prints, per refinement level, the number of
     /// inequalities, vertices (faces in space), area (volume) and absolute and relative error
@@ -125,6 +164,43 @@ enum Command {
         #[arg(long)]
         require_closed: bool,
     },
+}
+
+fn write_text(output: Option<&PathBuf>, text: &str) -> Result<(), String> {
+    match output {
+        Some(path) => std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display())),
+        None => {
+            let mut out = std::io::stdout().lock();
+            out.write_all(text.as_bytes())
+                .and_then(|()| out.flush())
+                .map_err(|e| format!("standard output: {e}"))
+        }
+    }
+}
+
+/// The mesh as JSON: vertices, counter-clockwise triangles, and the curved edges (triangle,
+/// edge k from vertex k to k+1, the domain curve and its parameter range from `from` to `to`).
+fn mesh_json(m: &inrs::mesh::CurvedTriangulation) -> String {
+    use inrs::mesh::EdgeKind;
+    let vertices: Vec<[f64; 2]> = m.vertices().iter().map(|p| [p.x, p.y]).collect();
+    let mut curved = Vec::new();
+    for t in 0..m.triangles().len() {
+        for (k, kind) in m.edge_kinds(t).iter().enumerate() {
+            if let EdgeKind::Curved(i) = kind {
+                let a = &m.arcs()[*i];
+                curved.push(serde_json::json!({
+                    "triangle": t, "edge": k, "curve": a.curve, "loop": a.loop_index,
+                    "u0": a.u0, "u1": a.u1, "from": a.from, "to": a.to,
+                }));
+            }
+        }
+    }
+    serde_json::json!({
+        "vertices": vertices,
+        "triangles": m.triangles(),
+        "curved_edges": curved,
+    })
+    .to_string()
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -348,6 +424,60 @@ fn run(cli: Cli) -> Result<(), String> {
                 .map(|r| field.winding_number_with(r.point, algorithm, &mut stats))
                 .collect();
             write_csv(output.as_ref(), "x,y,winding", &records, &values)
+        }
+        Command::Sample {
+            domain,
+            method,
+            ny,
+            count,
+            output,
+        } => {
+            let d = load_domain(&domain)?;
+            let in_domain = |e: inrs::mesh::MeshError| format!("{}: {e}", domain.display());
+            let mut text = String::from("x,y,kind\n");
+            match method.as_str() {
+                "lines" => {
+                    let pts = inrs::mesh::well_spaced_points(&d, ny).map_err(in_domain)?;
+                    for b in pts.boundary.iter().flatten() {
+                        text.push_str(&format!("{:?},{:?},boundary\n", b.point.x, b.point.y));
+                    }
+                    for p in &pts.interior {
+                        text.push_str(&format!("{:?},{:?},interior\n", p.x, p.y));
+                    }
+                }
+                "halton" => {
+                    for p in inrs::mesh::halton_points_in(&d, count).map_err(in_domain)? {
+                        text.push_str(&format!("{:?},{:?},interior\n", p.x, p.y));
+                    }
+                }
+                other => return Err(format!("--method {other:?}: expected lines or halton")),
+            }
+            write_text(output.as_ref(), &text)
+        }
+        Command::Mesh {
+            domain,
+            ny,
+            output,
+            svg,
+        } => {
+            let d = load_domain(&domain)?;
+            let in_domain = |e: inrs::mesh::MeshError| format!("{}: {e}", domain.display());
+            let pts = inrs::mesh::well_spaced_points(&d, ny).map_err(in_domain)?;
+            let m = inrs::mesh::CurvedTriangulation::new(&d, &pts).map_err(in_domain)?;
+            let area: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+            eprintln!(
+                "{} vertices, {} curved triangles, {} boundary arcs, {} boundary points inserted for convertibility, total area {area:.15e}",
+                m.vertices().len(),
+                m.triangles().len(),
+                m.arcs().len(),
+                m.inserted_boundary_points()
+            );
+            write_text(output.as_ref(), &(mesh_json(&m) + "\n"))?;
+            if let Some(path) = svg {
+                std::fs::write(&path, inrs::mesh::mesh_svg(&m, 800.0))
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+            }
+            Ok(())
         }
         Command::ConvexDomain {
             curve,

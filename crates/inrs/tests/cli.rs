@@ -545,3 +545,104 @@ fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
         assert_eq!(err.lines().count(), 1, "{err}");
     }
 }
+
+#[test]
+fn sample_and_mesh_write_points_and_curved_triangulations() {
+    let domain = fixture("inrs-paper/s4_disk_ellipse_segment.json");
+    let out = inrs(&["sample", "--domain", &domain, "--ny", "10"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("x,y,kind\n"));
+    let boundary = text.lines().filter(|l| l.ends_with(",boundary")).count();
+    let interior = text.lines().filter(|l| l.ends_with(",interior")).count();
+    assert!(boundary > 10 && interior > 20, "{boundary} {interior}");
+    // The sampled points classify as they are labelled.
+    let pts = temp_file(
+        "sampled.csv",
+        &text
+            .replace(",boundary", "")
+            .replace(",interior", "")
+            .replace("x,y,kind", "x,y"),
+    );
+    let out = inrs(&["classify", "--domain", &domain, "--points", &pts]);
+    let classified = String::from_utf8(out.stdout).unwrap();
+    let labels: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    let got: Vec<&str> = classified
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    let want: Vec<&str> = labels
+        .iter()
+        .map(|l| {
+            if *l == "interior" {
+                "inside"
+            } else {
+                "boundary"
+            }
+        })
+        .collect();
+    assert_eq!(got, want);
+
+    let out = inrs(&[
+        "sample", "--domain", &domain, "--method", "halton", "--count", "77",
+    ]);
+    assert!(out.status.success());
+    assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 78);
+
+    let json = std::env::temp_dir().join(format!("inrs-cli-{}-mesh.json", std::process::id()));
+    let svg = std::env::temp_dir().join(format!("inrs-cli-{}-mesh.svg", std::process::id()));
+    let (json, svg) = (json.display().to_string(), svg.display().to_string());
+    let out = inrs(&[
+        "mesh", "--domain", &domain, "--ny", "8", "--output", &json, "--svg", &svg,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        summary.contains("curved triangles") && summary.contains("total area 2.0707963267"),
+        "{summary}"
+    );
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let nv = m["vertices"].as_array().unwrap().len();
+    let tris = m["triangles"].as_array().unwrap();
+    assert!(
+        tris.iter()
+            .flat_map(|t| t.as_array().unwrap())
+            .all(|i| (i.as_u64().unwrap() as usize) < nv)
+    );
+    let curved = m["curved_edges"].as_array().unwrap();
+    assert!(!curved.is_empty() && curved.iter().all(|c| c["u0"].as_f64() < c["u1"].as_f64()));
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+
+    for (args, want) in [
+        (
+            vec!["sample", "--domain", &domain, "--ny", "1"],
+            "ny must be at least 2",
+        ),
+        (
+            vec!["sample", "--domain", &domain, "--method", "grid"],
+            "--method",
+        ),
+        (
+            vec!["mesh", "--domain", &domain, "--ny", "0"],
+            "ny must be at least 2",
+        ),
+    ] {
+        let out = inrs(&args);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(!out.status.success() && err.contains(want), "{want}: {err}");
+    }
+}

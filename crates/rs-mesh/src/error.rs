@@ -1,0 +1,46 @@
+//! Errors.
+
+use rs_boxes::BoxError;
+use rs_contain::ContainError;
+use rs_spline::{DomainError, SplineError};
+use thiserror::Error;
+
+/// Why sampling or meshing failed.
+#[derive(Debug, Error)]
+pub enum MeshError {
+    /// `ny` must be at least 2.
+    #[error("ny must be at least 2, got {0}")]
+    TooFewLines(usize),
+    /// The requested number of points is zero or unreachable.
+    #[error("invalid point count {0}")]
+    InvalidCount(usize),
+    /// The domain has no area.
+    #[error("the domain has no area (zero height)")]
+    NoArea,
+    /// The boundary could not be made convertible by inserting boundary points.
+    #[error(
+        "the inscribed triangulation is still not convertible after {rounds} rounds of boundary point insertion ({failing} boundary arcs still cross edges)"
+    )]
+    NotConvertible {
+        /// Rounds tried.
+        rounds: usize,
+        /// Arcs still failing.
+        failing: usize,
+    },
+    /// A boundary chord could not be inserted even after refinement (the boundary touches
+    /// itself or loops cross).
+    #[error("the constrained Delaunay triangulation failed: {0}")]
+    Triangulation(String),
+    /// The domain is invalid for containment (open loops, ...).
+    #[error(transparent)]
+    Contain(#[from] ContainError),
+    /// Monotone boxes could not be built.
+    #[error(transparent)]
+    Boxes(#[from] BoxError),
+    /// A curve operation failed.
+    #[error(transparent)]
+    Spline(#[from] SplineError),
+    /// The domain is invalid.
+    #[error(transparent)]
+    Domain(#[from] DomainError),
+}

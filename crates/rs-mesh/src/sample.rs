@@ -1,0 +1,163 @@
+//! Point sampling in a curved domain: the paper's Algorithm 11.1 and quasi-Monte Carlo.
+
+use rs_boxes::{BoxOptions, MonotoneBoxes};
+use rs_contain::{Classifier, ContainOptions, Location, halton_points};
+use rs_spline::{Domain, Point};
+
+use crate::MeshError;
+use crate::boundary::{BoundaryPoint, place_boundary_points};
+
+/// Points from [`well_spaced_points`].
+#[derive(Clone, Debug)]
+pub struct WellSpacedPoints {
+    /// The spacing `h = (b - a) / ny`.
+    pub h: f64,
+    /// Interior points.
+    pub interior: Vec<Point>,
+    /// Boundary points of each loop, in loop order.
+    pub boundary: Vec<Vec<BoundaryPoint>>,
+}
+
+impl WellSpacedPoints {
+    /// Every point, boundary first.
+    pub fn all_points(&self) -> Vec<Point> {
+        let mut v: Vec<Point> = self.boundary.iter().flatten().map(|b| b.point).collect();
+        v.extend_from_slice(&self.interior);
+        v
+    }
+}
+
+/// The paper's Algorithm 11.1. With `a`, `b` the lowest and highest `y` of the domain and
+/// `h = (b - a) / ny`: every line `y = a + i h` (`i = 1..ny-1`) is cut exactly with the boundary
+/// through the monotone boxes (one bracketed root per box, half-open in `y` so vertices count
+/// once); its segments inside the domain get their end points as boundary points and interior
+/// points at spacing `~h`. Then every loop gets nearly equally spaced boundary points (spacing
+/// `~h` by arc length, curve starts always included, the line end points kept unless closer
+/// than `h/3` to another).
+///
+/// Interior points closer than `h / 2` to a boundary point, or within `h / 4` of the boundary
+/// (the containment test's boundary band), are dropped so no triangle gets a sliver there.
+/// Spacing: interior points on one line are `~h` apart, lines are `h` apart; boundary points
+/// are at least `h / 3` apart except at curve junctions closer than that (short curves).
+///
+/// # Errors
+/// [`MeshError::TooFewLines`] for `ny < 2`, [`MeshError::NoArea`] for a flat domain,
+/// containment errors for an open boundary.
+pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints, MeshError> {
+    if ny < 2 {
+        return Err(MeshError::TooFewLines(ny));
+    }
+    domain.require_closed()?;
+    let bb = domain.bounding_box();
+    let (a, b) = (bb.min.y, bb.max.y);
+    let h = (b - a) / ny as f64;
+    if h.is_nan() || h <= 0.0 {
+        return Err(MeshError::NoArea);
+    }
+    let boxes = MonotoneBoxes::new(domain, BoxOptions { subdivisions: 1 })?;
+    let mut interior = Vec::new();
+    let mut extra = Vec::new();
+    for i in 1..ny {
+        let y = a + i as f64 * h;
+        let mut hits: Vec<(f64, usize, f64)> = Vec::new();
+        for bx in boxes.boxes() {
+            if bx.ymin <= y && y < bx.ymax {
+                if let Some(t) = bx.piece.solve_y(y) {
+                    let (u0, u1) = bx.param_range;
+                    hits.push((bx.piece.x_at(t), bx.curve, u0 + t * (u1 - u0)));
+                }
+            }
+        }
+        if hits.len() % 2 == 1 {
+            continue; // cannot happen for a closed boundary; never pair wrongly
+        }
+        hits.sort_by(|p, q| p.0.total_cmp(&q.0));
+        for pair in hits.chunks_exact(2) {
+            let (x0, x1) = (pair[0].0, pair[1].0);
+            extra.push((pair[0].1, pair[0].2));
+            extra.push((pair[1].1, pair[1].2));
+            let n = ((x1 - x0) / h).round() as usize;
+            for k in 1..n {
+                interior.push(Point::new(x0 + (x1 - x0) * k as f64 / n as f64, y));
+            }
+        }
+    }
+    let boundary = place_boundary_points(domain, h, &extra);
+    let near = PointGrid::new(boundary.iter().flatten().map(|p| p.point), h);
+    let diag = bb.diagonal();
+    let band = Classifier::new(
+        domain,
+        ContainOptions {
+            tolerance: 0.25 * h / diag,
+            ..Default::default()
+        },
+    )?;
+    interior
+        .retain(|&p| !near.any_within(p, 0.5 * h) && band.classify_point(p) == Location::Inside);
+    Ok(WellSpacedPoints {
+        h,
+        interior,
+        boundary,
+    })
+}
+
+/// The first `count` Halton points (bases 2 and 3, over the bounding box) that lie inside the
+/// domain: a deterministic quasi-Monte Carlo sample.
+///
+/// # Errors
+/// [`MeshError::InvalidCount`] for `count = 0` or when a billion candidates do not yield
+/// `count` inside points; containment errors for an open boundary.
+pub fn halton_points_in(domain: &Domain, count: usize) -> Result<Vec<Point>, MeshError> {
+    if count == 0 {
+        return Err(MeshError::InvalidCount(count));
+    }
+    let classifier = Classifier::new(domain, ContainOptions::default())?;
+    let bb = domain.bounding_box();
+    let mut n = 2 * count;
+    loop {
+        let candidates = halton_points(n, bb);
+        let inside: Vec<Point> = candidates
+            .into_iter()
+            .filter(|&p| classifier.classify_point(p) == Location::Inside)
+            .take(count)
+            .collect();
+        if inside.len() == count {
+            return Ok(inside);
+        }
+        if n > 1_000_000_000 {
+            return Err(MeshError::InvalidCount(count));
+        }
+        n *= 2;
+    }
+}
+
+/// A uniform hash grid of points for "is any point within r" queries (r <= cell size).
+pub(crate) struct PointGrid {
+    cell: f64,
+    map: std::collections::HashMap<(i64, i64), Vec<Point>>,
+}
+
+impl PointGrid {
+    pub(crate) fn new(points: impl Iterator<Item = Point>, cell: f64) -> Self {
+        let mut map: std::collections::HashMap<(i64, i64), Vec<Point>> = Default::default();
+        for p in points {
+            map.entry(Self::key(p, cell)).or_default().push(p);
+        }
+        Self { cell, map }
+    }
+
+    fn key(p: Point, cell: f64) -> (i64, i64) {
+        ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64)
+    }
+
+    pub(crate) fn any_within(&self, p: Point, r: f64) -> bool {
+        let (i, j) = Self::key(p, self.cell);
+        (i - 1..=i + 1).any(|a| {
+            (j - 1..=j + 1).any(|b| {
+                self.map
+                    .get(&(a, b))
+                    .is_some_and(|v| v.iter().any(|q| q.distance(p) < r))
+            })
+        })
+    }
+}

@@ -1,0 +1,613 @@
+//! Inscribed triangulations (constrained Delaunay, by `spade`), the convertibility check of
+//! Definition 4.2 with automatic boundary point insertion, and the curved triangulation of
+//! Algorithm 4.1.
+
+use std::collections::{HashMap, HashSet, VecDeque};
+
+use rs_roots::{Bernstein, bernstein_roots};
+use rs_spline::quadrature::integrate_adaptive;
+use rs_spline::{BoundingBox, Domain, NurbsCurve, Point, RationalBezier};
+use spade::handles::FixedVertexHandle;
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
+
+use crate::MeshError;
+use crate::boundary::BoundaryPoint;
+use crate::sample::WellSpacedPoints;
+
+/// Rounds of boundary point insertion tried before giving up.
+const MAX_ROUNDS: usize = 16;
+
+/// Which kind of edge a triangle edge is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeKind {
+    /// A straight (interior) edge.
+    Straight,
+    /// A boundary arc: index into [`CurvedTriangulation::arcs`].
+    Curved(usize),
+}
+
+/// A piece of a boundary curve between two consecutive boundary vertices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoundaryArc {
+    /// Loop of the domain.
+    pub loop_index: usize,
+    /// Curve of the domain the arc lies on.
+    pub curve: usize,
+    /// Parameter range on that curve, from `u0` (at vertex `from`) to `u1` (at vertex `to`).
+    pub u0: f64,
+    /// End parameter.
+    pub u1: f64,
+    /// Vertex at `u0`.
+    pub from: usize,
+    /// Vertex at `u1`.
+    pub to: usize,
+    /// The curved triangle it bounds.
+    pub triangle: usize,
+}
+
+/// A curved triangulation of a domain (Definition 3.2) with straight interior edges: an
+/// inscribed constrained Delaunay triangulation whose boundary edges are replaced by the
+/// boundary arcs they cut off (Algorithm 4.1).
+#[derive(Debug)]
+pub struct CurvedTriangulation {
+    pub(crate) domain: Domain,
+    pub(crate) vertices: Vec<Point>,
+    pub(crate) boundary_vertex: Vec<Option<BoundaryPoint>>,
+    pub(crate) triangles: Vec<[usize; 3]>,
+    pub(crate) edges: Vec<[EdgeKind; 3]>,
+    pub(crate) arcs: Vec<BoundaryArc>,
+    pub(crate) cdt: ConstrainedDelaunayTriangulation<Point2<f64>>,
+    /// spade face index -> triangle index.
+    pub(crate) face_triangle: HashMap<usize, usize>,
+    pub(crate) inserted_boundary_points: usize,
+    pub(crate) dropped_interior_points: usize,
+}
+
+impl CurvedTriangulation {
+    /// Builds the curved triangulation of `domain` from sampled points (boundary points per
+    /// loop in loop order, interior points): a constrained Delaunay triangulation with every
+    /// boundary chord as a constraint, triangles kept by crossing parity of the constraint
+    /// loops (holes excluded), then checked for convertibility (Definition 4.2: no boundary arc
+    /// meets an edge of the triangulation except at that edge's end points, every chord an
+    /// edge). Arcs that fail get their parameter midpoint inserted as a new boundary point,
+    /// and the triangulation is rebuilt, until it is convertible. Interior points that end up
+    /// between a boundary arc and its chord are dropped.
+    ///
+    /// # Errors
+    /// [`MeshError::NotConvertible`] if 16 rounds of insertion do not suffice,
+    /// [`MeshError::Triangulation`] if spade rejects a point.
+    pub fn new(domain: &Domain, points: &WellSpacedPoints) -> Result<Self, MeshError> {
+        let mut boundary = normalized_loops(domain, &points.boundary);
+        let mut interior = points.interior.clone();
+        let mut inserted = 0;
+        let mut dropped = 0;
+        let size = domain.bounding_box().diagonal();
+        for round in 0..MAX_ROUNDS {
+            let attempt = build(domain, &boundary, &interior, size)?;
+            match attempt {
+                Attempt::Done(mut t) => {
+                    t.inserted_boundary_points = inserted;
+                    t.dropped_interior_points = dropped;
+                    return Ok(*t);
+                }
+                Attempt::DropInterior(stray) => {
+                    dropped += stray.len();
+                    let stray: HashSet<usize> = stray.into_iter().collect();
+                    interior = interior
+                        .into_iter()
+                        .enumerate()
+                        .filter(|(i, _)| !stray.contains(i))
+                        .map(|(_, p)| p)
+                        .collect();
+                }
+                Attempt::Refine(failing) => {
+                    if round + 1 == MAX_ROUNDS {
+                        return Err(MeshError::NotConvertible {
+                            rounds: MAX_ROUNDS,
+                            failing: failing.len(),
+                        });
+                    }
+                    inserted += failing.len();
+                    boundary = refine_loops(domain, &boundary, &failing);
+                }
+            }
+        }
+        Err(MeshError::NotConvertible {
+            rounds: MAX_ROUNDS,
+            failing: 0,
+        })
+    }
+
+    /// The domain.
+    pub fn domain(&self) -> &Domain {
+        &self.domain
+    }
+
+    /// Vertex coordinates.
+    pub fn vertices(&self) -> &[Point] {
+        &self.vertices
+    }
+
+    /// For each vertex: where it lies on the boundary, or `None` for an interior vertex.
+    pub fn boundary_vertex(&self, v: usize) -> Option<&BoundaryPoint> {
+        self.boundary_vertex[v].as_ref()
+    }
+
+    /// Triangles as counter-clockwise vertex triples (the companion triangles).
+    pub fn triangles(&self) -> &[[usize; 3]] {
+        &self.triangles
+    }
+
+    /// Kinds of the three edges of triangle `t`; edge `k` joins vertex `k` to vertex `k + 1`.
+    pub fn edge_kinds(&self, t: usize) -> [EdgeKind; 3] {
+        self.edges[t]
+    }
+
+    /// The boundary arcs (one per boundary edge of the inscribed triangulation).
+    pub fn arcs(&self) -> &[BoundaryArc] {
+        &self.arcs
+    }
+
+    /// Boundary points inserted to make the triangulation convertible.
+    pub fn inserted_boundary_points(&self) -> usize {
+        self.inserted_boundary_points
+    }
+
+    /// Interior points dropped because they lay between a boundary arc and its chord.
+    pub fn dropped_interior_points(&self) -> usize {
+        self.dropped_interior_points
+    }
+
+    /// The curve piece of an arc as its own NURBS, oriented from `from` to `to`.
+    ///
+    /// # Errors
+    /// [`MeshError::Spline`] if the parameters fall outside the curve (never for arcs built
+    /// here).
+    pub fn arc_curve(&self, arc: &BoundaryArc) -> Result<NurbsCurve, MeshError> {
+        Ok(sub_curve(&self.domain.curves()[arc.curve], arc.u0, arc.u1)?)
+    }
+
+    /// Signed area of curved triangle `t` by Green's theorem, `1/2 closed-integral(x dy - y dx)`:
+    /// the shoelace terms for straight edges, adaptive Gauss-Legendre on each knot span of a
+    /// curved edge (orientation taken from the triangle).
+    pub fn triangle_area(&self, t: usize) -> f64 {
+        let tri = self.triangles[t];
+        let mut area = 0.0;
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            match self.edges[t][k] {
+                EdgeKind::Straight => {
+                    area += 0.5 * self.vertices[a].cross(self.vertices[b]);
+                }
+                EdgeKind::Curved(i) => {
+                    let arc = &self.arcs[i];
+                    let c = &self.domain.curves()[arc.curve];
+                    let sign = if arc.from == a { 1.0 } else { -1.0 };
+                    area += sign * green_integral(c, arc.u0, arc.u1);
+                }
+            }
+        }
+        area
+    }
+}
+
+/// Boundary points grouped by their loop, every curve's start added if missing, sorted along
+/// the loop (so each arc between consecutive points lies on one curve).
+fn normalized_loops(domain: &Domain, given: &[Vec<BoundaryPoint>]) -> Vec<Vec<BoundaryPoint>> {
+    let mut loops: Vec<Vec<BoundaryPoint>> = vec![Vec::new(); domain.loops().len()];
+    for bp in given.iter().flatten() {
+        if let Some(l) = loops.get_mut(bp.loop_index) {
+            l.push(*bp);
+        }
+    }
+    for (j, l) in domain.loops().iter().enumerate() {
+        for ci in l.curves() {
+            let c = &domain.curves()[ci];
+            let u = c.domain().0;
+            if !loops[j].iter().any(|b| b.curve == ci && b.u == u) {
+                loops[j].push(BoundaryPoint {
+                    loop_index: j,
+                    curve: ci,
+                    u,
+                    point: c.start_point(),
+                });
+            }
+        }
+        loops[j].sort_by(|a, b| a.curve.cmp(&b.curve).then(a.u.total_cmp(&b.u)));
+        loops[j].dedup_by(|a, b| a.curve == b.curve && a.u == b.u);
+    }
+    loops
+}
+
+/// `1/2 integral_{u0}^{u1} (x y' - y x') du`, split at the curve's knots.
+pub(crate) fn green_integral(c: &NurbsCurve, u0: f64, u1: f64) -> f64 {
+    let f = |u: f64| {
+        let d = c.derivatives(u);
+        0.5 * d.point.cross(d.first)
+    };
+    let mut cuts = vec![u0];
+    cuts.extend(
+        c.knots()
+            .interior_breaks()
+            .into_iter()
+            .filter(|&k| k > u0 && k < u1),
+    );
+    cuts.push(u1);
+    let scale = c
+        .control_bounding_box()
+        .diagonal()
+        .powi(2)
+        .max(f64::MIN_POSITIVE);
+    cuts.windows(2)
+        .map(|w| integrate_adaptive(f, w[0], w[1], 1e-15 * scale))
+        .sum()
+}
+
+/// The part of `c` between parameters `u0 < u1`.
+pub(crate) fn sub_curve(
+    c: &NurbsCurve,
+    u0: f64,
+    u1: f64,
+) -> Result<NurbsCurve, rs_spline::SplineError> {
+    let (a, b) = c.domain();
+    let right = if u0 > a { c.split_at(u0)?.1 } else { c.clone() };
+    if u1 < b {
+        Ok(right.split_at(u1)?.0)
+    } else {
+        Ok(right)
+    }
+}
+
+enum Attempt {
+    Done(Box<CurvedTriangulation>),
+    /// Interior points (indices) lying outside every kept triangle.
+    DropInterior(Vec<usize>),
+    /// Arcs (loop, index of the arc's first point in the loop) to split.
+    Refine(Vec<(usize, usize)>),
+}
+
+fn p2(p: Point) -> Point2<f64> {
+    Point2::new(p.x, p.y)
+}
+
+fn build(
+    domain: &Domain,
+    boundary: &[Vec<BoundaryPoint>],
+    interior: &[Point],
+    size: f64,
+) -> Result<Attempt, MeshError> {
+    let tri_err = |e: spade::InsertionError| MeshError::Triangulation(format!("{e:?}"));
+    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = Default::default();
+    let mut vertices: Vec<Point> = Vec::new();
+    let mut boundary_vertex: Vec<Option<BoundaryPoint>> = Vec::new();
+    let mut handle_index: HashMap<FixedVertexHandle, usize> = HashMap::new();
+    let mut loop_vertices: Vec<Vec<usize>> = Vec::new();
+    for l in boundary {
+        let mut ids = Vec::with_capacity(l.len());
+        for bp in l {
+            let h = cdt.insert(p2(bp.point)).map_err(tri_err)?;
+            let id = *handle_index.entry(h).or_insert_with(|| {
+                vertices.push(bp.point);
+                boundary_vertex.push(Some(*bp));
+                vertices.len() - 1
+            });
+            ids.push(id);
+        }
+        loop_vertices.push(ids);
+    }
+    let index_handle: HashMap<usize, FixedVertexHandle> =
+        handle_index.iter().map(|(h, i)| (*i, *h)).collect();
+    let mut failing = Vec::new();
+    let mut chords: Vec<((usize, usize), (usize, usize))> = Vec::new();
+    for (j, ids) in loop_vertices.iter().enumerate() {
+        for k in 0..ids.len() {
+            let (a, b) = (ids[k], ids[(k + 1) % ids.len()]);
+            let (ha, hb) = (index_handle[&a], index_handle[&b]);
+            if a == b || !cdt.can_add_constraint(ha, hb) {
+                // Split this chord and every chord already inserted that it crosses.
+                failing.push((j, k));
+                for &((j2, k2), (c, d)) in &chords {
+                    if chords_meet(vertices[a], vertices[b], vertices[c], vertices[d]) {
+                        failing.push((j2, k2));
+                    }
+                }
+            } else {
+                cdt.add_constraint(ha, hb);
+                chords.push(((j, k), (a, b)));
+            }
+        }
+    }
+    if !failing.is_empty() {
+        return Ok(Attempt::Refine(failing));
+    }
+    let mut interior_vertex = Vec::with_capacity(interior.len());
+    for &p in interior {
+        let h = cdt.insert(p2(p)).map_err(tri_err)?;
+        let id = *handle_index.entry(h).or_insert_with(|| {
+            vertices.push(p);
+            boundary_vertex.push(None);
+            vertices.len() - 1
+        });
+        interior_vertex.push(id);
+    }
+    // Crossing parity of the constraint loops, by flood fill from the convex hull.
+    let mut inside: HashMap<usize, bool> = HashMap::new();
+    let mut queue = VecDeque::new();
+    for e in cdt.convex_hull() {
+        if let Some(f) = e.rev().face().as_inner() {
+            let parity = cdt.is_constraint_edge(e.as_undirected().fix());
+            if inside.insert(f.fix().index(), parity).is_none() {
+                queue.push_back(f);
+            }
+        }
+    }
+    while let Some(f) = queue.pop_front() {
+        let parity = inside[&f.fix().index()];
+        for e in f.adjacent_edges() {
+            if let Some(g) = e.rev().face().as_inner() {
+                if let std::collections::hash_map::Entry::Vacant(slot) =
+                    inside.entry(g.fix().index())
+                {
+                    slot.insert(parity ^ cdt.is_constraint_edge(e.as_undirected().fix()));
+                    queue.push_back(g);
+                }
+            }
+        }
+    }
+    let mut triangles = Vec::new();
+    let mut face_triangle = HashMap::new();
+    for f in cdt.inner_faces() {
+        if inside.get(&f.fix().index()).copied().unwrap_or(false) {
+            let v = f.vertices().map(|h| handle_index[&h.fix()]);
+            face_triangle.insert(f.fix().index(), triangles.len());
+            triangles.push(v);
+        }
+    }
+    // Interior points that belong to no kept triangle lie between an arc and its chord.
+    let mut used = vec![false; vertices.len()];
+    for t in &triangles {
+        for &v in t {
+            used[v] = true;
+        }
+    }
+    let stray: Vec<usize> = interior_vertex
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| !used[**v])
+        .map(|(i, _)| i)
+        .collect();
+    if !stray.is_empty() {
+        return Ok(Attempt::DropInterior(stray));
+    }
+    // Edges of the kept triangles, for the convertibility check.
+    let mut edge_of: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            edge_of.insert((tri[k], tri[(k + 1) % 3]), (t, k));
+        }
+    }
+    let all_edges: Vec<(usize, usize)> = edge_of
+        .keys()
+        .filter(|(a, b)| a < b || !edge_of.contains_key(&(*b, *a)))
+        .copied()
+        .collect();
+    let grid = EdgeGrid::new(&vertices, &all_edges, size);
+    let mut arcs = Vec::new();
+    let mut edges = vec![[EdgeKind::Straight; 3]; triangles.len()];
+    for (j, ids) in loop_vertices.iter().enumerate() {
+        for k in 0..ids.len() {
+            let (a, b) = (ids[k], ids[(k + 1) % ids.len()]);
+            let (Some(pa), Some(pb)) = (boundary_vertex[a], boundary_vertex[b]) else {
+                failing.push((j, k));
+                continue;
+            };
+            let curve = &domain.curves()[pa.curve];
+            let u1 = if pb.curve == pa.curve && pb.u > pa.u {
+                pb.u
+            } else {
+                curve.domain().1
+            };
+            let owner = edge_of.get(&(a, b)).or_else(|| edge_of.get(&(b, a)));
+            let Some(&(t, e)) = owner else {
+                failing.push((j, k));
+                continue;
+            };
+            let arc_curve = sub_curve(curve, pa.u, u1)?;
+            if !arc_is_clear(&arc_curve, (a, b), &vertices, &grid, size) {
+                failing.push((j, k));
+                continue;
+            }
+            edges[t][e] = EdgeKind::Curved(arcs.len());
+            arcs.push(BoundaryArc {
+                loop_index: j,
+                curve: pa.curve,
+                u0: pa.u,
+                u1,
+                from: a,
+                to: b,
+                triangle: t,
+            });
+        }
+    }
+    if !failing.is_empty() {
+        return Ok(Attempt::Refine(failing));
+    }
+    Ok(Attempt::Done(Box::new(CurvedTriangulation {
+        domain: domain.clone(),
+        vertices,
+        boundary_vertex,
+        triangles,
+        edges,
+        arcs,
+        cdt,
+        face_triangle,
+        inserted_boundary_points: 0,
+        dropped_interior_points: 0,
+    })))
+}
+
+/// True if segments `ab` and `cd` share a point other than a common end point.
+fn chords_meet(a: Point, b: Point, c: Point, d: Point) -> bool {
+    if a == c || a == d || b == c || b == d {
+        return false;
+    }
+    let o = |p: Point, q: Point, r: Point| (q - p).cross(r - p);
+    let (d1, d2, d3, d4) = (o(c, d, a), o(c, d, b), o(a, b, c), o(a, b, d));
+    (d1 * d2 <= 0.0) && (d3 * d4 <= 0.0)
+}
+
+/// New boundary points: every failing arc gets the point at its parameter midpoint.
+fn refine_loops(
+    domain: &Domain,
+    boundary: &[Vec<BoundaryPoint>],
+    failing: &[(usize, usize)],
+) -> Vec<Vec<BoundaryPoint>> {
+    let mut out = boundary.to_vec();
+    let mut by_loop: HashMap<usize, Vec<usize>> = HashMap::new();
+    for &(j, k) in failing {
+        by_loop.entry(j).or_default().push(k);
+    }
+    for (j, mut ks) in by_loop {
+        ks.sort_unstable();
+        ks.dedup();
+        let l = &boundary[j];
+        for &k in ks.iter().rev() {
+            let (pa, pb) = (l[k], l[(k + 1) % l.len()]);
+            let c = &domain.curves()[pa.curve];
+            let u1 = if pb.curve == pa.curve && pb.u > pa.u {
+                pb.u
+            } else {
+                c.domain().1
+            };
+            let u = 0.5 * (pa.u + u1);
+            out[j].insert(
+                k + 1,
+                BoundaryPoint {
+                    loop_index: j,
+                    curve: pa.curve,
+                    u,
+                    point: c.point_at(u),
+                },
+            );
+        }
+    }
+    out
+}
+
+/// True if the arc meets no edge of the triangulation other than its own chord `(a, b)`,
+/// except at that edge's end points.
+fn arc_is_clear(
+    arc: &NurbsCurve,
+    chord: (usize, usize),
+    vertices: &[Point],
+    grid: &EdgeGrid,
+    size: f64,
+) -> bool {
+    let pieces = arc.to_bezier();
+    let straight = pieces.iter().all(|b| {
+        let p = b.control_points();
+        let (s, e) = (p[0], p[p.len() - 1]);
+        let len = e.distance(s);
+        p.iter()
+            .all(|q| (*q - s).cross(e - s).abs() <= 1e-13 * len * len.max(size))
+    });
+    if straight && pieces.len() == 1 {
+        return true;
+    }
+    let bbox = arc.control_bounding_box();
+    for (a, b) in grid.candidates(bbox) {
+        if (a, b) == chord || (b, a) == chord {
+            continue;
+        }
+        let (p, q) = (vertices[a], vertices[b]);
+        for piece in &pieces {
+            if crosses_inside_segment(piece, p, q, size) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// True if the piece meets the segment `p q` at a point that is not one of `p`, `q`.
+fn crosses_inside_segment(piece: &RationalBezier, p: Point, q: Point, size: f64) -> bool {
+    let d = q - p;
+    let len2 = d.dot(d);
+    let n = d.perp();
+    let coeffs: Vec<f64> = piece
+        .control_points()
+        .iter()
+        .zip(piece.weights())
+        .map(|(c, w)| w * n.dot(*c - p))
+        .collect();
+    let eps = 1e-11 * size;
+    let at_end = |x: Point| x.distance(p) <= eps || x.distance(q) <= eps;
+    let within = |x: Point| {
+        let s = (x - p).dot(d) / len2;
+        (-1e-12..=1.0 + 1e-12).contains(&s) && !at_end(x)
+    };
+    let scale = coeffs.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    if scale <= 1e-14 * len2.sqrt() * size {
+        // The piece lies on the segment's line: test its sampled points against the segment.
+        return (1..16).any(|i| within(piece.point_at(i as f64 / 16.0)));
+    }
+    let roots = bernstein_roots(&Bernstein::new(coeffs)).unwrap_or_default();
+    roots.into_iter().any(|t| within(piece.point_at(t)))
+}
+
+/// Edges bucketed by bounding box in a uniform grid.
+struct EdgeGrid {
+    min: Point,
+    cell: f64,
+    n: usize,
+    buckets: Vec<Vec<(usize, usize)>>,
+}
+
+impl EdgeGrid {
+    fn new(vertices: &[Point], edges: &[(usize, usize)], size: f64) -> Self {
+        let bb = BoundingBox::from_points(vertices.iter().copied())
+            .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)));
+        let n = ((edges.len() as f64).sqrt().ceil() as usize).clamp(1, 256);
+        let span = bb.width().max(bb.height()).max(1e-12 * size.max(1.0));
+        let cell = span / n as f64 * (1.0 + 1e-9);
+        let mut grid = Self {
+            min: bb.min,
+            cell,
+            n,
+            buckets: vec![Vec::new(); n * n],
+        };
+        for &(a, b) in edges {
+            let eb = BoundingBox::from_point(vertices[a]).including(vertices[b]);
+            for idx in grid.cells(eb) {
+                grid.buckets[idx].push((a, b));
+            }
+        }
+        grid
+    }
+
+    fn cells(&self, b: BoundingBox) -> Vec<usize> {
+        let clamp = |v: f64| ((v / self.cell).floor().max(0.0) as usize).min(self.n - 1);
+        let (x0, x1) = (clamp(b.min.x - self.min.x), clamp(b.max.x - self.min.x));
+        let (y0, y1) = (clamp(b.min.y - self.min.y), clamp(b.max.y - self.min.y));
+        let mut v = Vec::new();
+        for j in y0..=y1 {
+            for i in x0..=x1 {
+                v.push(j * self.n + i);
+            }
+        }
+        v
+    }
+
+    fn candidates(&self, b: BoundingBox) -> Vec<(usize, usize)> {
+        let mut seen = HashSet::new();
+        let mut out = Vec::new();
+        for idx in self.cells(b) {
+            for &e in &self.buckets[idx] {
+                if seen.insert(e) {
+                    out.push(e);
+                }
+            }
+        }
+        out
+    }
+}

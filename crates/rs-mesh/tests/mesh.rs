@@ -1,0 +1,354 @@
+//! Sampling, curved triangulations and point location against independent truth: inRS
+//! containment, the domains' exact areas, dense polygons of the curved triangles, and the
+//! documented spacing bounds.
+
+use rs_contain::{Classifier, ContainOptions, Location, halton_points};
+use rs_mesh::{
+    CurvedLocator, CurvedTriangulation, EdgeKind, WellSpacedPoints, halton_points_in,
+    well_spaced_points,
+};
+use rs_spline::{Domain, Point};
+use rs_testkit::{Case, all_cases};
+
+fn cases() -> Vec<Case> {
+    all_cases()
+}
+
+fn min_pair_distance(a: &[Point], b: &[Point], same: bool) -> f64 {
+    let mut m = f64::INFINITY;
+    for (i, p) in a.iter().enumerate() {
+        for (j, q) in b.iter().enumerate() {
+            if !(same && i >= j) {
+                m = m.min(p.distance(*q));
+            }
+        }
+    }
+    m
+}
+
+#[test]
+fn well_spaced_points_are_inside_and_well_spaced() {
+    for case in cases() {
+        let d = &case.domain;
+        let pts = well_spaced_points(d, 16).unwrap();
+        let h = pts.h;
+        let c = Classifier::new(d, ContainOptions::default()).unwrap();
+        for p in &pts.interior {
+            assert_eq!(
+                c.classify_point(*p),
+                Location::Inside,
+                "{}: {p:?}",
+                case.name
+            );
+        }
+        let boundary: Vec<Point> = pts.boundary.iter().flatten().map(|b| b.point).collect();
+        for p in &boundary {
+            assert_eq!(
+                c.classify_point(*p),
+                Location::Boundary,
+                "{}: {p:?}",
+                case.name
+            );
+        }
+        // Documented bounds: interior >= 0.75 h apart, >= h/2 from boundary points.
+        let ii = min_pair_distance(&pts.interior, &pts.interior, true);
+        let ib = min_pair_distance(&pts.interior, &boundary, false);
+        assert!(
+            ii >= 0.75 * h * (1.0 - 1e-9),
+            "{}: interior spacing {}",
+            case.name,
+            ii / h
+        );
+        assert!(
+            ib >= 0.5 * h * (1.0 - 1e-9),
+            "{}: interior-boundary {}",
+            case.name,
+            ib / h
+        );
+        // Boundary points >= h/3 apart by arc length, except where curves are shorter: check
+        // the chord distance of consecutive points that are not both curve starts.
+        for l in &pts.boundary {
+            for w in l.windows(2) {
+                let both_starts = [w[0], w[1]]
+                    .iter()
+                    .all(|b| b.u == d.curves()[b.curve].domain().0);
+                if !both_starts {
+                    let gap = w[0].point.distance(w[1].point);
+                    assert!(gap > 0.0, "{}: repeated boundary point", case.name);
+                }
+            }
+        }
+        // Coverage: every inside point of the domain is within 1.2 h of a sample.
+        let all = pts.all_points();
+        let probe: Vec<Point> = halton_points(400, d.bounding_box())
+            .into_iter()
+            .filter(|p| c.classify_point(*p) == Location::Inside)
+            .collect();
+        for p in probe {
+            let near = all
+                .iter()
+                .map(|q| q.distance(p))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                near <= 1.2 * h,
+                "{}: hole in the sample at {p:?} ({})",
+                case.name,
+                near / h
+            );
+        }
+    }
+}
+
+#[test]
+fn point_count_scales_like_ny_squared() {
+    for case in rs_testkit::fixtures() {
+        let n = |ny| {
+            let p: WellSpacedPoints = well_spaced_points(&case.domain, ny).unwrap();
+            (p.interior.len() + p.boundary.iter().map(Vec::len).sum::<usize>()) as f64
+        };
+        let (a, b) = (n(24), n(48));
+        let ratio = b / a;
+        assert!(
+            (3.2..=4.6).contains(&ratio),
+            "{}: {a} -> {b} ({ratio})",
+            case.name
+        );
+    }
+}
+
+#[test]
+fn halton_sampling_gives_the_requested_count_inside() {
+    for case in rs_testkit::synthetic() {
+        let d = &case.domain;
+        let pts = halton_points_in(d, 500).unwrap();
+        assert_eq!(pts.len(), 500);
+        let c = Classifier::new(d, ContainOptions::default()).unwrap();
+        assert!(pts.iter().all(|p| c.classify_point(*p) == Location::Inside));
+        assert_eq!(pts, halton_points_in(d, 500).unwrap(), "deterministic");
+    }
+    let d = &rs_testkit::annulus().domain;
+    assert!(halton_points_in(d, 0).is_err());
+}
+
+/// The closed boundary of curved triangle `t` as a dense polygon.
+fn curved_triangle_polygon(m: &CurvedTriangulation, t: usize) -> Vec<Point> {
+    let tri = m.triangles()[t];
+    let mut poly = Vec::new();
+    for (&a, kind) in tri.iter().zip(m.edge_kinds(t)) {
+        match kind {
+            EdgeKind::Straight => poly.push(m.vertices()[a]),
+            EdgeKind::Curved(i) => {
+                let arc = &m.arcs()[i];
+                let c = &m.domain().curves()[arc.curve];
+                let n = 400;
+                for j in 0..n {
+                    let s = j as f64 / n as f64;
+                    let s = if arc.from == a { s } else { 1.0 - s };
+                    let u = arc.u0 + (arc.u1 - arc.u0) * s;
+                    poly.push(if j == 0 {
+                        m.vertices()[a]
+                    } else {
+                        c.point_at(u)
+                    });
+                }
+            }
+        }
+    }
+    poly
+}
+
+fn polygon_contains(poly: &[Point], p: Point) -> bool {
+    let mut odd = false;
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        if (a.x <= p.x) != (b.x <= p.x) {
+            let y = a.y + (p.x - a.x) * (b.y - a.y) / (b.x - a.x);
+            if y < p.y {
+                odd = !odd;
+            }
+        }
+    }
+    odd
+}
+
+fn distance_to_polygon(poly: &[Point], p: Point) -> f64 {
+    (0..poly.len())
+        .map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let ab = b - a;
+            let len2 = ab.dot(ab);
+            let s = if len2 > 0.0 {
+                ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            p.distance(a + ab * s)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
+    let o = |p: Point, q: Point, r: Point| (q - p).cross(r - p);
+    let (d1, d2, d3, d4) = (o(c, d, a), o(c, d, b), o(a, b, c), o(a, b, d));
+    (d1 > 0.0) != (d2 > 0.0)
+        && (d3 > 0.0) != (d4 > 0.0)
+        && d1 != 0.0
+        && d2 != 0.0
+        && d3 != 0.0
+        && d4 != 0.0
+}
+
+fn mesh(d: &Domain, ny: usize) -> CurvedTriangulation {
+    CurvedTriangulation::new(d, &well_spaced_points(d, ny).unwrap()).unwrap()
+}
+
+#[test]
+fn curved_triangles_are_valid_and_add_up_to_the_domain() {
+    for case in cases() {
+        let d = &case.domain;
+        let m = mesh(d, 12);
+        let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+        let exact = region_area(d);
+        assert!(
+            (total - exact).abs() <= 1e-9 * exact,
+            "{}: triangles {total} vs domain {exact}",
+            case.name
+        );
+        for t in 0..m.triangles().len() {
+            assert!(
+                m.triangle_area(t) > 0.0,
+                "{}: triangle {t} not positive",
+                case.name
+            );
+            // Valid curved triangle: its boundary (arcs densely sampled) does not cross itself.
+            let poly = curved_triangle_polygon(&m, t);
+            let n = poly.len();
+            for i in 0..n {
+                for j in i + 2..n {
+                    if i == 0 && j == n - 1 {
+                        continue;
+                    }
+                    assert!(
+                        !segments_cross(poly[i], poly[(i + 1) % n], poly[j], poly[(j + 1) % n]),
+                        "{}: triangle {t} crosses itself",
+                        case.name
+                    );
+                }
+            }
+        }
+        // Every loop is covered by arcs: one arc per boundary vertex of the loop.
+        for (j, _) in d.loops().iter().enumerate() {
+            let arcs = m.arcs().iter().filter(|a| a.loop_index == j).count();
+            let verts = (0..m.vertices().len())
+                .filter(|&v| m.boundary_vertex(v).is_some_and(|b| b.loop_index == j))
+                .count();
+            assert_eq!(arcs, verts, "{}: loop {j}", case.name);
+        }
+    }
+}
+
+/// Area of the region by parity, for domains whose loops do not cross: each loop's absolute
+/// area, added at even nesting depth and subtracted at odd depth (depth = number of other
+/// loops around one of its points, each tested on its own).
+fn region_area(d: &Domain) -> f64 {
+    let loops: Vec<Domain> = d
+        .loops()
+        .iter()
+        .map(|l| Domain::new(d.curves()[l.curves()].to_vec()).unwrap())
+        .collect();
+    let classifiers: Vec<Classifier> = loops
+        .iter()
+        .map(|l| Classifier::new(l, ContainOptions::default()).unwrap())
+        .collect();
+    let mut total = 0.0;
+    for (i, l) in loops.iter().enumerate() {
+        let p = l.curves()[0].start_point();
+        let depth = (0..loops.len())
+            .filter(|&j| j != i && classifiers[j].classify_point(p) == Location::Inside)
+            .count();
+        let a = l.signed_area().abs();
+        total += if depth % 2 == 0 { a } else { -a };
+    }
+    total
+}
+
+#[test]
+fn point_location_agrees_with_containment() {
+    let mut total_lens = 0;
+    for case in cases() {
+        let d = &case.domain;
+        let m = mesh(d, 10);
+        let loc = CurvedLocator::new(&m).unwrap();
+        let c = Classifier::new(d, ContainOptions::default()).unwrap();
+        let s = d.bounding_box().diagonal();
+        let mut bb = d.bounding_box();
+        bb.min = bb.min - Point::new(0.02 * s, 0.02 * s);
+        bb.max = bb.max + Point::new(0.02 * s, 0.02 * s);
+        let polys: Vec<Vec<Point>> = (0..m.triangles().len())
+            .map(|t| curved_triangle_polygon(&m, t))
+            .collect();
+        let mut in_lens = 0;
+        for p in halton_points(3000, bb) {
+            let located = loc.locate(p);
+            let inside = c.classify_point(p) != Location::Outside;
+            assert_eq!(located.is_some(), inside, "{}: {p:?}", case.name);
+            if let Some(t) = located {
+                let poly = &polys[t];
+                if distance_to_polygon(poly, p) > 1e-9 * s {
+                    assert!(
+                        polygon_contains(poly, p),
+                        "{}: {p:?} not in triangle {t}",
+                        case.name
+                    );
+                }
+                let v = m.triangles()[t].map(|i| m.vertices()[i]);
+                let companion = polygon_contains(&v, p);
+                if !companion {
+                    in_lens += 1;
+                }
+            }
+        }
+        total_lens += in_lens;
+    }
+    assert!(total_lens > 0, "no point fell between an arc and its chord");
+}
+
+#[test]
+fn coarse_samples_are_made_convertible_by_inserting_boundary_points() {
+    let mut inserted = 0;
+    for case in cases() {
+        let d = &case.domain;
+        for ny in [2, 3, 5] {
+            let m = mesh(d, ny);
+            inserted += m.inserted_boundary_points();
+            let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+            let exact = region_area(d);
+            assert!(
+                (total - exact).abs() <= 1e-9 * exact,
+                "{} ny={ny}: {total} vs {exact}",
+                case.name
+            );
+            assert!((0..m.triangles().len()).all(|t| m.triangle_area(t) > 0.0));
+        }
+    }
+    assert!(
+        inserted > 0,
+        "no case needed insertion: the test does not exercise it"
+    );
+}
+
+#[test]
+fn user_points_without_boundary_points_still_give_a_curved_triangulation() {
+    // Only interior points: the curve starts are added and arcs split until convertible.
+    let d = &rs_testkit::annulus().domain;
+    let interior = halton_points_in(d, 40).unwrap();
+    let pts = WellSpacedPoints {
+        h: 0.5,
+        interior,
+        boundary: Vec::new(),
+    };
+    let m = CurvedTriangulation::new(d, &pts).unwrap();
+    assert!(m.inserted_boundary_points() > 0);
+    let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+    assert!((total - region_area(d)).abs() <= 1e-9 * total);
+}
