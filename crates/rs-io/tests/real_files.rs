@@ -15,6 +15,7 @@ use rs_spline::{Domain, Point};
 use rs_testkit::{DensePolygon, NearBoundary};
 
 const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+const FREESANS: &str = "/usr/share/fonts/opentype/freefont/FreeSans.otf";
 const ADWAITA: &str = "/usr/share/icons/Adwaita";
 
 /// Classifies an `n x n` grid over the grown bounding box with every method; asserts they
@@ -132,6 +133,29 @@ fn dejavu_printable_ascii_classifies_like_the_dense_polygon() {
     assert!(
         checked > 94 * 1400,
         "only {checked} points were away from the boundaries"
+    );
+}
+
+#[test]
+fn opentype_cff_glyphs_have_cubic_contours_and_classify_like_the_dense_polygon() {
+    let font = match std::fs::read(FREESANS) {
+        Ok(data) => data,
+        Err(e) => {
+            eprintln!("SKIPPED: {FREESANS} not readable ({e}); install fonts-freefont-otf");
+            return;
+        }
+    };
+    let mut cubic = 0;
+    for c in ['B', '8', '@', 'g', 'Q', 'S', '&', 'e'] {
+        let d = glyph_domain(&font, &Glyph::Char(c)).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+        cubic += d.curves().iter().filter(|k| k.degree() == 3).count();
+        assert!(d.require_closed().is_ok(), "{c:?}");
+        let checked = check_domain(&format!("FreeSans {c:?}"), &d, 40);
+        assert!(checked > 1200, "{c:?}: {checked}");
+    }
+    assert!(
+        cubic > 50,
+        "CFF outlines should be cubic: {cubic} cubic curves"
     );
 }
 
