@@ -126,16 +126,7 @@ impl LoopBuilder {
 
 /// `c` with its last control point moved to `end` (a clamped curve ends there).
 pub(crate) fn with_end_point(c: &NurbsCurve, end: Point) -> Result<NurbsCurve, SplineError> {
-    let mut pts = c.control_points().to_vec();
-    if let Some(last) = pts.last_mut() {
-        *last = end;
-    }
-    NurbsCurve::new(
-        c.degree(),
-        c.knots().knots().to_vec(),
-        pts,
-        Some(c.weights().to_vec()),
-    )
+    with_end_points(c, c.control_points()[0], end)
 }
 
 /// `c` with its first and last control points moved to `a` and `b`.

@@ -49,29 +49,19 @@ fn lwpolyline(vertices: &[(f64, f64, f64)], closed: bool) -> EntityType {
 #[test]
 fn rational_spline_circle_has_area_pi() {
     // The nine-point rational quadratic circle of radius 1 as a DXF SPLINE.
-    let w = FRAC_1_SQRT_2;
+    let circle = rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap();
     let mut s = Spline::default();
     s.degree_of_curve = 2;
     s.set_is_rational(true);
     s.set_is_closed(true);
-    s.knot_values = vec![
-        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
-    ];
-    s.control_points = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ]
-    .iter()
-    .map(|&(x, y)| p3(x, y))
-    .collect();
-    s.weight_values = vec![1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
+    s.knot_values = circle.knots().knots().to_vec();
+    s.control_points = circle
+        .control_points()
+        .iter()
+        .map(|p| p3(p.x, p.y))
+        .collect();
+    s.weight_values = circle.weights().to_vec();
+    assert!(s.weight_values.contains(&FRAC_1_SQRT_2));
     let d = read(vec![EntityType::Spline(s)]).unwrap();
     assert_eq!(d.loops().len(), 1);
     assert!((d.signed_area() - PI).abs() < 1e-11);

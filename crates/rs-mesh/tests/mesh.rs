@@ -173,17 +173,7 @@ fn polygon_contains(poly: &[Point], p: Point) -> bool {
 
 fn distance_to_polygon(poly: &[Point], p: Point) -> f64 {
     (0..poly.len())
-        .map(|i| {
-            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-            let ab = b - a;
-            let len2 = ab.dot(ab);
-            let s = if len2 > 0.0 {
-                ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            p.distance(a + ab * s)
-        })
+        .map(|i| rs_testkit::segment_distance(p, (poly[i], poly[(i + 1) % poly.len()])))
         .fold(f64::INFINITY, f64::min)
 }
 

@@ -50,10 +50,8 @@ impl SpaceCurve {
                 got: n,
             });
         }
-        let p = n - 1;
-        let mut knots = vec![0.0; p + 1];
-        knots.extend(vec![1.0; p + 1]);
-        Self::new(p, knots, points, weights)
+        let knots = crate::KnotVector::bezier(n - 1).knots().to_vec();
+        Self::new(n - 1, knots, points, weights)
     }
 
     /// The `(x, y)` projection (same knots and weights).

@@ -301,7 +301,8 @@ impl NearBoundary {
     }
 }
 
-fn segment_distance(p: Point, (a, b): (Point, Point)) -> f64 {
+/// Distance from `p` to the segment `a b`.
+pub fn segment_distance(p: Point, (a, b): (Point, Point)) -> f64 {
     let ab = b - a;
     let len2 = ab.dot(ab);
     let t = if len2 > 0.0 {

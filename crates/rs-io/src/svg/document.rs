@@ -239,16 +239,7 @@ fn optional_length(node: roxmltree::Node<'_, '_>, attr: &str) -> Result<Option<f
 }
 
 fn numbers(text: &str) -> Result<Vec<f64>, String> {
-    let values: Vec<f64> = text
-        .split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|s| !s.is_empty())
-        .map(|s| {
-            s.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| format!("points: {s:?} is not a number"))
-        })
-        .collect::<Result<_, _>>()?;
+    let values = super::transform::number_list(text, "points")?;
     if values.len() % 2 == 1 {
         return Err(format!(
             "points: odd number of coordinates ({})",

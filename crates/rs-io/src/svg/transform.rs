@@ -19,16 +19,7 @@ pub(crate) fn parse_transform(text: &str) -> Result<Affine, String> {
             .find(')')
             .map(|i| i + open)
             .ok_or_else(|| format!("missing ')' after {name}("))?;
-        let args: Vec<f64> = rest[open + 1..close]
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|s| !s.is_empty())
-            .map(|s| {
-                s.parse::<f64>()
-                    .ok()
-                    .filter(|v| v.is_finite())
-                    .ok_or_else(|| format!("{name}: {s:?} is not a number"))
-            })
-            .collect::<Result<_, _>>()?;
+        let args = number_list(&rest[open + 1..close], name)?;
         let arity = |allowed: &[usize]| {
             if allowed.contains(&args.len()) {
                 Ok(())
@@ -84,6 +75,19 @@ pub(crate) fn parse_transform(text: &str) -> Result<Affine, String> {
         rest = rest[close + 1..].trim_start_matches(is_separator);
     }
     Ok(total)
+}
+
+/// Numbers separated by commas and/or white space; `what` names the list in errors.
+pub(crate) fn number_list(text: &str, what: &str) -> Result<Vec<f64>, String> {
+    text.split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("{what}: {s:?} is not a number"))
+        })
+        .collect()
 }
 
 fn is_separator(c: char) -> bool {
