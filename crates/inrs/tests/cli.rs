@@ -21,16 +21,20 @@ fn temp_file(name: &str, text: &str) -> String {
     path.display().to_string()
 }
 
-/// `inrs classify` of a points file against a domain: the location column, in order.
-fn classify_locations(domain: &str, points: &str) -> Vec<String> {
-    let out = inrs(&["classify", "--domain", domain, "--points", points]);
+/// Runs `inrs`, asserts success and returns standard output.
+fn inrs_ok(args: &[&str]) -> String {
+    let out = inrs(args);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    String::from_utf8(out.stdout)
-        .unwrap()
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// `inrs classify` of a points file against a domain: the location column, in order.
+fn classify_locations(domain: &str, points: &str) -> Vec<String> {
+    inrs_ok(&["classify", "--domain", domain, "--points", points])
         .lines()
         .skip(1)
         .map(|l| l.rsplit(',').next().unwrap_or("").to_string())
@@ -237,19 +241,13 @@ fn help_documents_the_tolerance() {
 #[test]
 fn winding_prints_the_field_with_round_trip_digits() {
     let points = temp_file("w.csv", "x,y\n0,0\n3,0\n1,0\n0.25,0.5\n");
-    let out = inrs(&[
+    let text = inrs_ok(&[
         "winding",
         "--domain",
         &fixture("inrs-paper/circle.json"),
         "--points",
         &points,
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("x,y,winding"));
     let values: Vec<f64> = lines
@@ -447,7 +445,7 @@ fn svg_dxf_and_font_domains_are_accepted_wherever_json_is() {
 fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
     let svg = std::env::temp_dir().join(format!("inrs-cli-{}-convex.svg", std::process::id()));
     let svg = svg.display().to_string();
-    let out = inrs(&[
+    let text = inrs_ok(&[
         "convex-domain",
         "--curve",
         &fixture("convex/cubic.json"),
@@ -459,12 +457,6 @@ fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
         "--svg",
         &svg,
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("level  inequalities  vertices"), "{text}");
     // 4, 8, 16, ... inequalities (a cubic's numerator has degree 3).
     for (level, n) in [(0, 4), (1, 8), (2, 16), (5, 128)] {
@@ -480,7 +472,7 @@ fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
     let figure = std::fs::read_to_string(&svg).unwrap();
     assert!(figure.starts_with("<svg") && figure.contains("level 5"));
 
-    let out = inrs(&[
+    let text = inrs_ok(&[
         "convex-domain",
         "--curve",
         &fixture("convex/quintic_space.json"),
@@ -490,12 +482,6 @@ fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
         "--max-level",
         "3",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
     assert!(
         text.starts_with("torsion sign") && text.contains("faces") && text.contains("volume"),
         "{text}"
@@ -527,13 +513,7 @@ fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
 #[test]
 fn sample_and_mesh_write_points_and_curved_triangulations() {
     let domain = fixture("inrs-paper/s4_disk_ellipse_segment.json");
-    let out = inrs(&["sample", "--domain", &domain, "--ny", "10"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = inrs_ok(&["sample", "--domain", &domain, "--ny", "10"]);
     assert!(text.starts_with("x,y,kind\n"));
     let boundary = text.lines().filter(|l| l.ends_with(",boundary")).count();
     let interior = text.lines().filter(|l| l.ends_with(",interior")).count();

@@ -42,16 +42,16 @@ impl SpaceCurve {
     /// # Errors
     /// As [`SpaceCurve::new`].
     pub fn bezier(points: &[[f64; 3]], weights: Option<Vec<f64>>) -> Result<Self, SplineError> {
-        let n = points.len();
-        if n < 2 {
-            return Err(SplineError::TooFewControlPoints {
-                degree: 1,
-                needed: 2,
-                got: n,
-            });
-        }
-        let knots = crate::KnotVector::bezier(n - 1).knots().to_vec();
-        Self::new(n - 1, knots, points, weights)
+        Ok(Self {
+            xy: NurbsCurve::bezier(
+                points.iter().map(|p| Point::new(p[0], p[1])).collect(),
+                weights.clone(),
+            )?,
+            z: NurbsCurve::bezier(
+                points.iter().map(|p| Point::new(p[2], 0.0)).collect(),
+                weights,
+            )?,
+        })
     }
 
     /// The `(x, y)` projection (same knots and weights).
