@@ -311,6 +311,28 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
         }
     }
     assert!(k.outer.measure() >= k.inner().measure());
+    // Just beyond a vertex of the outer polytope that is not on the box, some sampled
+    // half-space is violated: the torsion changes sign (checked at the sampled parameters).
+    let Region::Polytope(outer) = &k.outer else {
+        panic!()
+    };
+    let c_out = outer.vertex_centroid().unwrap();
+    let on_box = |v: [f64; 3]| v.iter().any(|x| x.abs() >= 100.0 - 1e-9);
+    let signed_min_at_samples = |d: [f64; 3]| {
+        let mut q = pts;
+        q[2] = d;
+        (0..options.outer_samples)
+            .map(|i| torsion_numerator(&q, i as f64 / (options.outer_samples - 1) as f64))
+            .map(|v| if sign == Sign::Positive { v } else { -v })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut beyond = 0;
+    for v in outer.vertices().into_iter().filter(|v| !on_box(*v)) {
+        let d: [f64; 3] = std::array::from_fn(|i| v[i] + 1e-3 * (v[i] - c_out[i]));
+        assert!(signed_min_at_samples(d) < 0.0, "beyond {v:?}");
+        beyond += 1;
+    }
+    assert!(beyond >= 3, "{beyond}");
     // A point well inside the last polytope keeps the sign strictly.
     let Region::Polytope(p) = k.inner() else {
         panic!()

@@ -1,0 +1,72 @@
+//! Sampling (Algorithm 11.1 at the paper's `ny = 251`), curved triangulation and point
+//! location on the inRS paper's domains, with inRS containment of the same points as the
+//! baseline measured in the same run. Each closure asserts its result.
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use rs_contain::{Classifier, ContainOptions, Location, halton_points};
+use rs_mesh::{CurvedLocator, CurvedTriangulation, well_spaced_points};
+use rs_spline::Domain;
+
+const FIXTURES: [&str; 3] = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune"];
+
+fn mesh(c: &mut Criterion) {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/inrs-paper");
+    let mut group = c.benchmark_group("mesh");
+    group.sample_size(10);
+    for name in FIXTURES {
+        let d = Domain::from_json_file(format!("{dir}/{name}.json")).unwrap();
+        let area = d.signed_area().abs();
+        group.bench_function(BenchmarkId::new("sample ny=251", name), |b| {
+            b.iter(|| {
+                let p = well_spaced_points(black_box(&d), 251).unwrap();
+                assert!(p.interior.len() > 20_000);
+                p
+            })
+        });
+        let pts = well_spaced_points(&d, 251).unwrap();
+        group.bench_function(BenchmarkId::new("curved triangulation ny=251", name), |b| {
+            b.iter(|| {
+                let m = CurvedTriangulation::new(black_box(&d), &pts).unwrap();
+                let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+                assert!((total - area).abs() < 1e-9 * area);
+                m
+            })
+        });
+        let small = CurvedTriangulation::new(&d, &well_spaced_points(&d, 40).unwrap()).unwrap();
+        let locator = CurvedLocator::new(&small).unwrap();
+        let classifier = Classifier::new(&d, ContainOptions::default()).unwrap();
+        let queries = halton_points(10_000, d.bounding_box());
+        let inside = classifier
+            .classify(&queries, rs_contain::Method::InRS2)
+            .iter()
+            .filter(|&&l| l != Location::Outside)
+            .count();
+        group.bench_function(BenchmarkId::new("locate 1e4 (ny=40)", name), |b| {
+            b.iter(|| {
+                let found = queries
+                    .iter()
+                    .filter(|&&p| locator.locate(p).is_some())
+                    .count();
+                assert_eq!(found, inside);
+            })
+        });
+        group.bench_function(
+            BenchmarkId::new("baseline: inRS containment 1e4", name),
+            |b| {
+                b.iter(|| {
+                    let n = queries
+                        .iter()
+                        .filter(|&&p| classifier.classify_point(p) != Location::Outside)
+                        .count();
+                    assert_eq!(n, inside);
+                })
+            },
+        );
+    }
+    group.finish();
+}
+
+criterion_group!(benches, mesh);
+criterion_main!(benches);
