@@ -140,15 +140,25 @@ fn entity_curves(e: &Entity) -> Result<Option<Chain>, IoError> {
                 bulge_polyline(&vertices, p.is_closed(), &p.extrusion_direction),
             )
         }
+        // Polygon and polyface meshes are surfaces, not boundaries.
+        EntityType::Polyline(p) if p.is_3d_polygon_mesh() || p.is_polyface_mesh() => {
+            return Ok(None);
+        }
         EntityType::Polyline(p) => {
             let vertices: Vec<(Point, f64)> = p
                 .vertices()
                 .map(|v| (Point::new(v.location.x, v.location.y), v.bulge))
                 .collect();
-            (
-                "POLYLINE",
-                bulge_polyline(&vertices, p.is_closed(), &p.normal),
-            )
+            let z0 = p.vertices().next().map_or(0.0, |v| v.location.z);
+            let planar = p
+                .vertices()
+                .all(|v| (v.location.z - z0).abs() <= 1e-12 * (1.0 + z0.abs()));
+            let curves = if p.is_3d_polyline() && !planar {
+                Err("3-D polyline with vertices at different heights: not in the XY plane".into())
+            } else {
+                bulge_polyline(&vertices, p.is_closed(), &p.normal)
+            };
+            ("POLYLINE", curves)
         }
         EntityType::Spline(s) => ("SPLINE", spline(s)),
         _ => return Ok(None),

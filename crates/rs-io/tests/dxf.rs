@@ -257,3 +257,47 @@ fn errors_name_the_entity() {
     .unwrap_err();
     assert!(matches!(e, IoError::Dxf(_)), "{e}");
 }
+
+#[test]
+fn old_style_polylines_with_bulges_and_3d_polylines() {
+    use dxf::entities::{Polyline, Vertex};
+    let build = |z: [f64; 4], three_d: bool| {
+        let mut d = Drawing::new();
+        d.header.version = AcadVersion::R2018;
+        let mut p = Polyline::default();
+        p.set_is_closed(true);
+        p.set_is_3d_polyline(three_d);
+        for (i, (x, y, bulge)) in [
+            (0.0, 0.0, 0.0),
+            (2.0, 0.0, 1.0),
+            (2.0, 2.0, 0.0),
+            (0.0, 2.0, 0.0),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let mut v = Vertex::new(dxf::Point::new(x, y, z[i]));
+            v.bulge = bulge;
+            p.add_vertex(&mut d, v);
+        }
+        d.add_entity(Entity::new(EntityType::Polyline(p)));
+        let mut out = Vec::new();
+        d.save(&mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        domain_from_dxf_str(&text, &DxfOptions::default())
+    };
+    // A 2 x 2 square with a half disc of radius 1 on its right side.
+    let d = build([0.0; 4], false).unwrap();
+    assert!(
+        (d.signed_area() - (4.0 + PI / 2.0)).abs() < 1e-11,
+        "{}",
+        d.signed_area()
+    );
+    // A flat 3-D polyline is accepted; one that leaves the plane is named in the error.
+    assert!(build([1.0; 4], true).is_ok());
+    let msg = build([0.0, 0.0, 1.0, 0.0], true).unwrap_err().to_string();
+    assert!(
+        msg.contains("POLYLINE") && msg.contains("XY plane"),
+        "{msg}"
+    );
+}
