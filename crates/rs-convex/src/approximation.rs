@@ -7,6 +7,9 @@ use rs_spline::{AffineForm, SignNumerator};
 
 use crate::{ConvexError, ConvexPolygon, ConvexPolytope};
 
+/// The deepest refinement level accepted (`2^20` times the original inequalities).
+pub const MAX_LEVEL: u32 = 20;
+
 /// The sign to keep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Sign {
@@ -234,7 +237,8 @@ impl ConvexDomain {
 ///
 /// # Errors
 /// [`ConvexError::DimensionMismatch`] if the box and the numerator disagree,
-/// [`ConvexError::InvalidTolerance`] for a tolerance that is negative or not finite.
+/// [`ConvexError::InvalidTolerance`] for a tolerance that is negative or not finite,
+/// [`ConvexError::InvalidLevel`] for `max_level >` [`MAX_LEVEL`].
 pub fn approximate(
     h: &SignNumerator,
     bbox: &BoundingBox3,
@@ -248,6 +252,9 @@ pub fn approximate(
     }
     if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
         return Err(ConvexError::InvalidTolerance(options.tolerance));
+    }
+    if options.max_level > MAX_LEVEL {
+        return Err(ConvexError::InvalidLevel(options.max_level));
     }
     let orient = |f: AffineForm| match options.sign {
         Sign::Positive => f,

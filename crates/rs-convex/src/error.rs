@@ -12,6 +12,9 @@ pub enum ConvexError {
     /// The tolerance is negative or not finite.
     #[error("invalid tolerance {0}: must be finite and non-negative")]
     InvalidTolerance(f64),
+    /// The refinement level is too deep.
+    #[error("max level {0} is above {max} (each level doubles the inequalities)", max = crate::MAX_LEVEL)]
+    InvalidLevel(u32),
     /// A planar curve with a 3-D box or the reverse.
     #[error("the curve is {curve}-D but the box is {bbox}-D")]
     DimensionMismatch {

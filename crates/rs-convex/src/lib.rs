@@ -33,7 +33,8 @@ mod polytope;
 mod svg;
 
 pub use approximation::{
-    BoundingBox3, ConvexDomain, ConvexDomainOptions, Level, Outcome, Region, Sign, approximate,
+    BoundingBox3, ConvexDomain, ConvexDomainOptions, Level, MAX_LEVEL, Outcome, Region, Sign,
+    approximate,
 };
 pub use curve_file::{FreeCurve, load_curve, parse_curve};
 pub use error::ConvexError;

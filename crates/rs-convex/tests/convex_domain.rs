@@ -355,4 +355,10 @@ fn bad_input_is_an_error_not_a_panic() {
         ..Default::default()
     };
     assert!(approximate(&h, &b2, &bad).is_err());
+    let too_deep = ConvexDomainOptions {
+        max_level: 40,
+        ..Default::default()
+    };
+    let e = approximate(&h, &b2, &too_deep).unwrap_err().to_string();
+    assert!(e.contains("max level 40"), "{e}");
 }

@@ -115,11 +115,13 @@ impl LoopBuilder {
             }
         }
         self.pen = self.start;
-        if encloses_area(&curves) {
-            for c in curves {
-                let mapped = self.transform.apply_to_curve(&c).unwrap_or(c);
-                self.done.push(mapped);
-            }
+        // Map first: a singular transform (scale(0), say) flattens the loop to no area.
+        let mapped: Vec<NurbsCurve> = curves
+            .iter()
+            .filter_map(|c| self.transform.apply_to_curve(c).ok())
+            .collect();
+        if mapped.len() == curves.len() && encloses_area(&mapped) {
+            self.done.extend(mapped);
         }
     }
 }

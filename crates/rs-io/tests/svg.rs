@@ -203,6 +203,9 @@ fn bad_documents_name_the_element_and_the_problem() {
     let doc = "<svg xmlns='http://www.w3.org/2000/svg'><g transform='rotate(1 2)'><rect width='1' height='1'/></g></svg>";
     let e = domain_from_svg_str(doc).unwrap_err().to_string();
     assert!(e.contains("<g>") && e.contains("rotate"), "{e}");
+    // A singular transform flattens the shape: nothing with area is left.
+    let doc = "<svg xmlns='http://www.w3.org/2000/svg'><rect width='2' height='1' transform='scale(0 1)'/></svg>";
+    assert!(matches!(domain_from_svg_str(doc), Err(IoError::Empty(_))));
     let doc = "<svg xmlns='http://www.w3.org/2000/svg'><circle r='-1'/></svg>";
     let e = domain_from_svg_str(doc).unwrap_err().to_string();
     assert!(e.contains("circle") && e.contains("negative"), "{e}");

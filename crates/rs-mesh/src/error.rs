@@ -8,8 +8,8 @@ use thiserror::Error;
 /// Why sampling or meshing failed.
 #[derive(Debug, Error)]
 pub enum MeshError {
-    /// `ny` must be at least 2.
-    #[error("ny must be at least 2, got {0}")]
+    /// `ny` must be at least 2 and at most [`crate::MAX_LINES`].
+    #[error("ny must be at least 2 and at most 100000, got {0}")]
     TooFewLines(usize),
     /// The requested number of points is zero or unreachable.
     #[error("invalid point count {0}")]

@@ -38,6 +38,6 @@ mod triangulation;
 pub use boundary::BoundaryPoint;
 pub use error::MeshError;
 pub use locate::CurvedLocator;
-pub use sample::{WellSpacedPoints, halton_points_in, well_spaced_points};
+pub use sample::{MAX_LINES, WellSpacedPoints, halton_points_in, well_spaced_points};
 pub use svg::mesh_svg;
 pub use triangulation::{BoundaryArc, CurvedTriangulation, EdgeKind};

@@ -7,6 +7,9 @@ use rs_spline::{Domain, Point};
 use crate::MeshError;
 use crate::boundary::{BoundaryPoint, place_boundary_points};
 
+/// The largest `ny` accepted by [`well_spaced_points`] (about `10^10` points).
+pub const MAX_LINES: usize = 100_000;
+
 /// Points from [`well_spaced_points`].
 #[derive(Clone, Debug)]
 pub struct WellSpacedPoints {
@@ -41,10 +44,10 @@ impl WellSpacedPoints {
 /// are at least `h / 3` apart except at curve junctions closer than that (short curves).
 ///
 /// # Errors
-/// [`MeshError::TooFewLines`] for `ny < 2`, [`MeshError::NoArea`] for a flat domain,
+/// [`MeshError::TooFewLines`] for `ny < 2` or `ny >` [`MAX_LINES`], [`MeshError::NoArea`] for a flat domain,
 /// containment errors for an open boundary.
 pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints, MeshError> {
-    if ny < 2 {
+    if !(2..=MAX_LINES).contains(&ny) {
         return Err(MeshError::TooFewLines(ny));
     }
     domain.require_closed()?;

@@ -128,6 +128,8 @@ fn halton_sampling_gives_the_requested_count_inside() {
     }
     let d = &rs_testkit::annulus().domain;
     assert!(halton_points_in(d, 0).is_err());
+    assert!(well_spaced_points(d, 1).is_err());
+    assert!(well_spaced_points(d, rs_mesh::MAX_LINES + 1).is_err());
 }
 
 /// The closed boundary of curved triangle `t` as a dense polygon.
