@@ -61,18 +61,22 @@ pub fn to_svg(domain: &ConvexDomain, curve: Option<&NurbsCurve>, free: usize) ->
         r##"<polygon points="{}" fill="#f3d6d6" stroke="#b03030" stroke-dasharray="6 3" stroke-width="1.2"><title>outer bound</title></polygon>"##,
         poly(outer.vertices())
     );
+    // Inner levels as outlines from light to dark blue, the last one filled.
     let n = domain.levels.len().max(1);
     for (i, l) in domain.levels.iter().enumerate() {
         if let Region::Polygon(p) = &l.region {
             if p.is_empty() {
                 continue;
             }
-            let shade = 230 - (150 * (i + 1) / n) as i32;
+            let last = i + 1 == domain.levels.len();
+            let shade = 200 - (170 * (i + 1) / n) as i32;
+            let fill = if last { "#7f96d9" } else { "none" };
             let _ = writeln!(
                 out,
-                r##"<polygon points="{}" fill="rgb({shade},{shade},255)" fill-opacity="0.35" stroke="#203080" stroke-width="1"><title>level {}</title></polygon>"##,
+                r##"<polygon points="{}" fill="{fill}" fill-opacity="0.5" stroke="rgb({shade},{shade},230)" stroke-width="1.2"><title>level {}: {} inequalities</title></polygon>"##,
                 poly(p.vertices()),
-                l.level
+                l.level,
+                l.inequalities
             );
         }
     }
