@@ -365,6 +365,61 @@ mod tests {
         }
     }
 
+    /// The torsion numerator `[C', C'', C''']` of a space curve: first and second derivatives
+    /// by the rational quotient rule, the third by central differences of the second.
+    fn torsion_sign(c: &SpaceCurve, u: f64) -> f64 {
+        let d = |u: f64| {
+            let (a, b) = (c.xy().derivatives(u), c.z().derivatives(u));
+            (
+                [a.first.x, a.first.y, b.first.x],
+                [a.second.x, a.second.y, b.second.x],
+            )
+        };
+        let (d1, d2) = d(u);
+        let h = 1e-5;
+        let (p, m) = (d(u + h).1, d(u - h).1);
+        let d3: [f64; 3] = std::array::from_fn(|k| (p[k] - m[k]) / (2.0 * h));
+        d1[0] * (d2[1] * d3[2] - d2[2] * d3[1]) - d1[1] * (d2[0] * d3[2] - d2[2] * d3[0])
+            + d1[2] * (d2[0] * d3[1] - d2[1] * d3[0])
+    }
+
+    #[test]
+    fn rational_torsion_numerator_has_the_sign_of_the_torsion() {
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [1.0, 2.0, 0.5],
+            [3.0, 1.0, -1.0],
+            [4.0, -1.0, 2.0],
+            [5.0, 1.0, 1.0],
+        ];
+        let c = SpaceCurve::new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
+            &pts,
+            Some(vec![1.0, 2.5, 0.6, 1.4, 1.0]),
+        )
+        .unwrap();
+        let h = SignNumerator::torsion(&c, 2).unwrap();
+        assert_eq!(h.dimension(), 3);
+        let mut compared = 0;
+        for d in [[3.0, 1.0, -1.0], [0.5, -2.0, 4.0], [-1.0, 3.0, 2.0]] {
+            let moved = c.with_control_point(2, d).unwrap();
+            for (k, (u0, u1)) in [(0.0, 0.5), (0.5, 1.0)].into_iter().enumerate() {
+                for i in 1..10 {
+                    let s = i as f64 / 10.0;
+                    let exact = torsion_sign(&moved, u0 + s * (u1 - u0));
+                    let ours = h.at(k, s).eval(d);
+                    // Skip near-zeros, where the finite difference cannot tell the sign.
+                    if exact.abs() > 1e-6 {
+                        assert!(exact * ours > 0.0, "{exact} vs {ours} at piece {k}, s {s}");
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert!(compared > 40, "{compared}");
+    }
+
     #[test]
     fn out_of_range_free_index_is_an_error() {
         let c = NurbsCurve::bezier(vec![Point::new(0.0, 0.0), Point::new(1.0, 1.0)], None).unwrap();
