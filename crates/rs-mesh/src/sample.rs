@@ -40,8 +40,11 @@ impl WellSpacedPoints {
 ///
 /// Interior points closer than `h / 2` to a boundary point, or within `h / 4` of the boundary
 /// (the containment test's boundary band), are dropped so no triangle gets a sliver there.
-/// Spacing: interior points on one line are `~h` apart, lines are `h` apart; boundary points
-/// are at least `h / 3` apart except at curve junctions closer than that (short curves).
+/// Spacing bounds (tested): any two interior points are at least `0.75 h` apart (a segment of
+/// length `L` gets `round(L / h)` equal parts, lines are `h` apart); interior points are at
+/// least `h / 2` from boundary points; consecutive boundary points on one curve are at least
+/// `h / 3` apart by arc length (curve junctions can be closer where a curve is shorter than
+/// that). Coverage: every point of the domain is within about `h` of a sample.
 ///
 /// # Errors
 /// [`MeshError::TooFewLines`] for `ny < 2` or `ny >` [`MAX_LINES`], [`MeshError::NoArea`] for a flat domain,
