@@ -593,3 +593,34 @@ fn sample_and_mesh_write_points_and_curved_triangulations() {
         assert!(!out.status.success() && err.contains(want), "{want}: {err}");
     }
 }
+
+#[test]
+fn svg_overlaps_follow_even_odd_by_default_and_nonzero_through_gwn() {
+    // Two overlapping squares drawn in the same direction: their overlap has winding number 2.
+    let svg = temp_file(
+        "overlap.svg",
+        "<svg xmlns='http://www.w3.org/2000/svg'><path d='M0 0h4v4h-4z M2 2h4v4h-4z'/></svg>",
+    );
+    let points = temp_file("overlap.csv", "x,y\n1,1\n3,3\n5,5\n7,7\n");
+    assert_eq!(
+        classify_locations(&svg, &points),
+        ["inside", "outside", "inside", "outside"]
+    );
+    let text = inrs_ok(&[
+        "classify",
+        "--domain",
+        &svg,
+        "--points",
+        &points,
+        "--method",
+        "gwn",
+        "--fill-rule",
+        "nonzero",
+    ]);
+    let got: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(got, ["inside", "inside", "inside", "outside"]);
+}
