@@ -403,19 +403,8 @@ fn svg_dxf_and_font_domains_are_accepted_wherever_json_is() {
     if std::path::Path::new(font).exists() {
         // 'o' in font units: the counter is outside, the ring inside.
         let points = temp_file("io-pts3.csv", "x,y\n600,560\n1000,560\n");
-        let out = inrs(&[
-            "classify",
-            "--domain",
-            &format!("{font}#o"),
-            "--points",
-            &points,
-        ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let text = String::from_utf8(out.stdout).unwrap();
+        let glyph = format!("{font}#o");
+        let text = inrs_ok(&["classify", "--domain", &glyph, "--points", &points]);
         assert!(
             text.contains("600,560,outside") && text.contains("1000,560,inside"),
             "{text}"
