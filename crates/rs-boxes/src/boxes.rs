@@ -1,9 +1,9 @@
 //! Building the monotone boxes of a domain (paper steps (i)-(ii) and Remark 2.1).
 
-use rs_roots::real_roots_in;
+use rs_roots::{RootsError, real_roots_in};
 use rs_spline::{BoundingBox, Domain, Point};
 
-use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity};
+use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 
 /// Default number of sub-boxes each monotone piece is cut into (Remark 2.1), chosen by
 /// measurement (`cargo xtask bench --sweep`, table in the README). Smaller boxes let most points
@@ -13,6 +13,19 @@ use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity};
 /// keeps build plus classification within about 10% of the best choice from `10^3` to `10^5`
 /// points.
 pub const DEFAULT_SUBDIVISIONS: usize = 32;
+
+/// The most sub-boxes per monotone piece a caller may ask for.
+pub const MAX_SUBDIVISIONS: usize = 4096;
+
+/// The number of boxes the refinement aims at for a whole domain: a boundary with many monotone
+/// pieces gets fewer sub-boxes each (at least one), so that the boxes take at most about
+/// `BOX_BUDGET * BYTES_PER_BOX` = 64 MiB. The paper's domains (10-100 monotone pieces) keep the
+/// default 32.
+pub const BOX_BUDGET: usize = 1 << 17;
+
+/// The memory of one box (its Bezier piece inline for degree <= 7, bounds, directions,
+/// flatness), in bytes.
+pub const BYTES_PER_BOX: usize = std::mem::size_of::<MonotoneBox>();
 
 /// Roots of `x'` or `y'` closer than this to a piece's end (in its `[0, 1]` parameter) do not
 /// split it; they mark the end point as a tangency instead.
@@ -102,6 +115,7 @@ pub struct MonotoneBoxes {
     critical: Vec<CriticalPoint>,
     critical_x: Vec<f64>,
     critical_y: Vec<f64>,
+    subdivisions: usize,
 }
 
 /// Tangency flags at a piece's ends: (vertical, horizontal).
@@ -110,15 +124,29 @@ type EndFlags = (bool, bool);
 impl MonotoneBoxes {
     /// Builds the boxes of every loop of `domain` (closed or not).
     ///
+    /// The refinement is fitted to the boundary's size: with `m` monotone pieces each is cut
+    /// into `min(subdivisions, max(1, BOX_BUDGET / m))` boxes, so memory stays linear in the
+    /// boundary (about [`BYTES_PER_BOX`] bytes a box) whatever the requested refinement.
+    ///
     /// # Errors
-    /// [`BoxError::ZeroSubdivisions`].
+    /// [`BoxError::ZeroSubdivisions`], [`BoxError::TooManySubdivisions`] (more than
+    /// [`MAX_SUBDIVISIONS`]), [`BoxError::Roots`] if the tangency roots of a piece cannot be
+    /// computed (its pieces would not be monotone).
     pub fn new(domain: &Domain, options: BoxOptions) -> Result<Self, BoxError> {
         if options.subdivisions == 0 {
             return Err(BoxError::ZeroSubdivisions);
         }
-        let mut boxes = Vec::new();
-        let mut critical = Vec::new();
-        for (li, l) in domain.loops().iter().enumerate() {
+        if options.subdivisions > MAX_SUBDIVISIONS {
+            return Err(BoxError::TooManySubdivisions {
+                requested: options.subdivisions,
+                limit: MAX_SUBDIVISIONS,
+            });
+        }
+        // First pass: the watertight pieces of every loop and their monotone splits, so that
+        // the refinement can be fitted to the box budget.
+        let mut loops = Vec::with_capacity(domain.loops().len());
+        let mut monotone_pieces = 0usize;
+        for l in domain.loops() {
             let mut pieces: Vec<(usize, (f64, f64), BezierPiece)> = l
                 .curves()
                 .flat_map(|ci| {
@@ -136,12 +164,29 @@ impl MonotoneBoxes {
                 let end = pieces[pieces.len() - 1].2.end();
                 pieces[0].2.set_start(end);
             }
+            let mut split = Vec::with_capacity(pieces.len());
+            for (ci, range, piece) in pieces {
+                let s = monotone_splits(&piece).map_err(|source| BoxError::Piece {
+                    curve: ci,
+                    parameter: range.0,
+                    source,
+                })?;
+                monotone_pieces += s.0.len() + 1;
+                split.push((ci, range, piece, s));
+            }
+            loops.push(split);
+        }
+        let subdivisions = options
+            .subdivisions
+            .min((BOX_BUDGET / monotone_pieces.max(1)).max(1));
+        let mut boxes = Vec::with_capacity(monotone_pieces * subdivisions);
+        let mut critical = Vec::new();
+        for (li, (l, split)) in domain.loops().iter().zip(loops).enumerate() {
             let first = boxes.len();
             // Tangency flags at the start of each box of this loop.
             let mut start_flags: Vec<EndFlags> = Vec::new();
             let mut pending_end: EndFlags = (false, false);
-            for (ci, range, piece) in pieces {
-                let (splits, at_start, at_end) = monotone_splits(&piece);
+            for (ci, range, piece, (splits, at_start, at_end)) in split {
                 let before = boxes.len();
                 split_piece(
                     &piece,
@@ -149,7 +194,7 @@ impl MonotoneBoxes {
                     li,
                     range,
                     &splits,
-                    options.subdivisions,
+                    subdivisions,
                     &mut boxes,
                     &mut start_flags,
                 );
@@ -198,7 +243,15 @@ impl MonotoneBoxes {
             critical,
             critical_x,
             critical_y,
+            subdivisions,
         })
+    }
+
+    /// The sub-boxes per monotone piece actually used: the requested
+    /// [`BoxOptions::subdivisions`], reduced if needed so that the domain has at most about
+    /// [`BOX_BUDGET`] boxes (never below 1).
+    pub fn subdivisions(&self) -> usize {
+        self.subdivisions
     }
 
     /// The boxes, loop by loop in boundary order.
@@ -244,18 +297,23 @@ fn near_sorted(v: &[f64], x: f64, tol: f64) -> bool {
 
 /// Split parameters of a piece at the roots of `x'` and `y'` in `(0, 1)`, each with its
 /// (vertical, horizontal) tangency flags, plus the flags of roots at the ends.
-fn monotone_splits(piece: &BezierPiece) -> (Vec<(f64, EndFlags)>, EndFlags, EndFlags) {
+fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
     let mut splits: Vec<(f64, EndFlags)> = Vec::new();
     let (mut at_start, mut at_end) = ((false, false), (false, false));
-    let Ok(bez) = piece.to_bezier() else {
-        return (splits, at_start, at_end);
-    };
+    let bez = piece.to_bezier()?;
     let (dx, dy) = bez.derivative_numerators();
     for (axis, d) in [(0usize, dx), (1usize, dy)] {
         if piece.is_constant(axis) {
             continue;
         }
-        for t in real_roots_in(&d, 0.0, 1.0).unwrap_or_default() {
+        let roots = match real_roots_in(&d, 0.0, 1.0) {
+            Ok(r) => r,
+            // The numerator cancels to zero: the coordinate is constant up to rounding, so the
+            // piece is monotone in it either way.
+            Err(RootsError::ZeroPolynomial) => Vec::new(),
+            Err(e) => return Err(e.into()),
+        };
+        for t in roots {
             let flags = if axis == 0 {
                 (true, false)
             } else {
@@ -279,8 +337,11 @@ fn monotone_splits(piece: &BezierPiece) -> (Vec<(f64, EndFlags)>, EndFlags, EndF
             _ => merged.push((t, f)),
         }
     }
-    (merged, at_start, at_end)
+    Ok((merged, at_start, at_end))
 }
+
+/// Split parameters with their tangency flags, and the flags at the piece's two ends.
+type Splits = (Vec<(f64, EndFlags)>, EndFlags, EndFlags);
 
 fn or(a: EndFlags, b: EndFlags) -> EndFlags {
     (a.0 || b.0, a.1 || b.1)

@@ -17,8 +17,11 @@ mod grid;
 mod monotone_box;
 mod piece;
 
-pub use boxes::{BoxOptions, CriticalKind, CriticalPoint, DEFAULT_SUBDIVISIONS, MonotoneBoxes};
-pub use error::BoxError;
+pub use boxes::{
+    BOX_BUDGET, BYTES_PER_BOX, BoxOptions, CriticalKind, CriticalPoint, DEFAULT_SUBDIVISIONS,
+    MAX_SUBDIVISIONS, MonotoneBoxes,
+};
+pub use error::{BoxError, PieceError};
 pub use grid::BoxGrid;
 pub use monotone_box::{MonotoneBox, Monotonicity};
 pub use piece::BezierPiece;

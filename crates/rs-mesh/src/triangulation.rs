@@ -5,7 +5,6 @@
 use std::collections::{HashMap, HashSet, VecDeque};
 
 use rs_roots::{Bernstein, bernstein_roots};
-use rs_spline::quadrature::integrate_adaptive;
 use rs_spline::{BoundingBox, Domain, NurbsCurve, Point, RationalBezier};
 use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
@@ -183,7 +182,7 @@ impl CurvedTriangulation {
                     let arc = &self.arcs[i];
                     let c = &self.domain.curves()[arc.curve];
                     let sign = if arc.from == a { 1.0 } else { -1.0 };
-                    area += sign * green_integral(c, arc.u0, arc.u1);
+                    area += sign * c.area_integral(arc.u0, arc.u1).value;
                 }
             }
         }
@@ -217,30 +216,6 @@ fn normalized_loops(domain: &Domain, given: &[Vec<BoundaryPoint>]) -> Vec<Vec<Bo
         loops[j].dedup_by(|a, b| a.curve == b.curve && a.u == b.u);
     }
     loops
-}
-
-/// `1/2 integral_{u0}^{u1} (x y' - y x') du`, split at the curve's knots.
-pub(crate) fn green_integral(c: &NurbsCurve, u0: f64, u1: f64) -> f64 {
-    let f = |u: f64| {
-        let d = c.derivatives(u);
-        0.5 * d.point.cross(d.first)
-    };
-    let mut cuts = vec![u0];
-    cuts.extend(
-        c.knots()
-            .interior_breaks()
-            .into_iter()
-            .filter(|&k| k > u0 && k < u1),
-    );
-    cuts.push(u1);
-    let scale = c
-        .control_bounding_box()
-        .diagonal()
-        .powi(2)
-        .max(f64::MIN_POSITIVE);
-    cuts.windows(2)
-        .map(|w| integrate_adaptive(f, w[0], w[1], 1e-15 * scale))
-        .sum()
 }
 
 /// The part of `c` between parameters `u0 < u1`.
@@ -551,8 +526,13 @@ fn crosses_inside_segment(piece: &RationalBezier, p: Point, q: Point, size: f64)
         // The piece lies on the segment's line: test its sampled points against the segment.
         return (1..16).any(|i| within(piece.point_at(i as f64 / 16.0)));
     }
-    let roots = bernstein_roots(&Bernstein::new(coeffs)).unwrap_or_default();
-    roots.into_iter().any(|t| within(piece.point_at(t)))
+    match bernstein_roots(&Bernstein::new(coeffs)) {
+        Ok(roots) => roots.into_iter().any(|t| within(piece.point_at(t))),
+        // Crossings that cannot be computed cannot be ruled out: report one, so that the
+        // caller inserts boundary points (or fails with NotConvertible) instead of keeping an
+        // arc that might cross an edge.
+        Err(_) => true,
+    }
 }
 
 /// Edges bucketed by bounding box in a uniform grid.

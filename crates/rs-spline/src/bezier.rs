@@ -4,6 +4,7 @@ use rs_roots::{Bernstein, Polynomial, real_roots_in};
 
 use crate::error::check_control_points;
 use crate::homogeneous::{Hpoint, rational_derivatives};
+use crate::quadrature::{Integral, integrate_adaptive};
 use crate::{BoundingBox, CurveDerivatives, Point, SplineError};
 
 /// A rational Bezier curve `C(t) = sum_i B_{i,n}(t) w_i P_i / sum_i B_{i,n}(t) w_i`, `t` in
@@ -207,17 +208,44 @@ impl RationalBezier {
 
     /// Tight bounding box: end points and the points where `x'(t) = 0` or `y'(t) = 0` in
     /// `(0, 1)`, found as roots of the derivative numerators (see
-    /// [`RationalBezier::derivative_numerators`]).
+    /// [`RationalBezier::derivative_numerators`]). Should the root finder fail, the control
+    /// bounding box is returned: larger, but still a box that contains the curve.
     pub fn bounding_box(&self) -> BoundingBox {
         let mut b = BoundingBox::from_point(self.start_point()).including(self.end_point());
         let (dx, dy) = self.derivative_numerators();
         for d in [dx, dy] {
-            // The zero polynomial (constant coordinate) has no isolated extremes.
-            for t in real_roots_in(&d, 0.0, 1.0).unwrap_or_default() {
-                b = b.including(self.point_at(t));
+            match real_roots_in(&d, 0.0, 1.0) {
+                Ok(roots) => {
+                    for t in roots {
+                        b = b.including(self.point_at(t));
+                    }
+                }
+                // The zero polynomial (constant coordinate) has no isolated extremes.
+                Err(rs_roots::RootsError::ZeroPolynomial) => {}
+                // Roots that cannot be computed: the control box still contains the curve.
+                Err(_) => return self.control_bounding_box(),
             }
         }
         b
+    }
+
+    /// The Green integral `1/2 integral_0^1 (x y' - y x') dt` of the piece: its contribution to
+    /// the signed area of a closed loop (adaptive Gauss-Legendre to about `1e-15` of the
+    /// squared size of its control polygon, bounded work; see
+    /// [`crate::quadrature::integrate_adaptive`]).
+    pub fn area_integral(&self) -> Integral {
+        self.area_integral_on(0.0, 1.0)
+    }
+
+    /// The Green integral over local `[t0, t1]`.
+    pub fn area_integral_on(&self, t0: f64, t1: f64) -> Integral {
+        let scale = self.control_bounding_box().diagonal().powi(2);
+        let f = |t: f64| {
+            let d = self.derivatives(t);
+            let (a, b) = (d.point.x * d.first.y, d.point.y * d.first.x);
+            (0.5 * (a - b), 0.5 * (a.abs() + b.abs()))
+        };
+        integrate_adaptive(f, t0, t1, 1e-15 * scale.max(f64::MIN_POSITIVE))
     }
 
     /// The numerators `X(t) = sum w_i x_i B_i`, `Y(t) = sum w_i y_i B_i` and the denominator

@@ -2,7 +2,7 @@
 
 use std::ops::RangeInclusive;
 
-use crate::quadrature::integrate_adaptive;
+use crate::quadrature::Integral;
 use crate::{BoundingBox, DomainError, NurbsCurve, Point, RationalBezier};
 
 /// Default closure tolerance, relative to the diagonal of the domain's bounding box: a curve's
@@ -149,16 +149,30 @@ impl Domain {
         self.tolerance
     }
 
-    /// True if every loop is closed.
+    /// True if every loop is closed and no curve has a gap at a break (see
+    /// [`Domain::require_closed`]).
     pub fn is_closed(&self) -> bool {
-        self.loops.iter().all(BoundaryLoop::is_closed)
+        self.require_closed().is_ok()
     }
 
-    /// `Ok` if every loop is closed.
+    /// `Ok` if every loop is closed and no curve falls apart at a break (an interior knot of
+    /// multiplicity `degree + 1` whose neighbouring pieces are more than the closure tolerance
+    /// apart).
     ///
     /// # Errors
-    /// [`DomainError::OpenLoop`] naming the first open loop's curves and its gap.
+    /// [`DomainError::CurveGap`] naming the first curve with a gap and the parameter of the
+    /// break; [`DomainError::OpenLoop`] naming the first open loop's curves and its gap.
     pub fn require_closed(&self) -> Result<(), DomainError> {
+        for (curve, c) in self.curves.iter().enumerate() {
+            if let Some(&(parameter, gap)) = c.breaks().iter().find(|b| b.1 > self.tolerance) {
+                return Err(DomainError::CurveGap {
+                    curve,
+                    parameter,
+                    gap,
+                    tolerance: self.tolerance,
+                });
+            }
+        }
         match self.loops.iter().find(|l| !l.closed) {
             None => Ok(()),
             Some(l) => Err(DomainError::OpenLoop {
@@ -171,22 +185,39 @@ impl Domain {
     }
 
     /// Signed area enclosed by loop `i` (closed by the chord from its end to its start if it is
-    /// open): `1/2 oint (x dy - y dx)`, positive for counter-clockwise loops.
+    /// open): `1/2 oint (x dy - y dx)`, positive for counter-clockwise loops. See
+    /// [`Domain::loop_area_integral`] for its error estimate.
     ///
     /// # Panics
     /// If `i` is not a loop index.
     pub fn loop_signed_area(&self, i: usize) -> f64 {
+        self.loop_area_integral(i).value
+    }
+
+    /// The signed area of loop `i` with the quadrature's error estimate and whether every piece
+    /// converged (the work per piece is bounded by
+    /// [`crate::quadrature::MAX_INTERVALS`]).
+    ///
+    /// # Panics
+    /// If `i` is not a loop index.
+    pub fn loop_area_integral(&self, i: usize) -> Integral {
         let l = &self.loops[i];
         let curves = &self.curves[l.first..=l.last];
-        let scale = self.bbox.diagonal().powi(2);
-        let arcs: f64 = curves
-            .iter()
-            .flat_map(NurbsCurve::to_bezier)
-            .map(|b| bezier_area_integral(&b, scale))
-            .sum();
+        let mut total = Integral {
+            value: 0.0,
+            error: 0.0,
+            converged: true,
+        };
+        for b in curves.iter().flat_map(NurbsCurve::to_bezier) {
+            let part = b.area_integral();
+            total.value += part.value;
+            total.error += part.error;
+            total.converged &= part.converged;
+        }
         let end = curves[curves.len() - 1].end_point();
         let start = curves[0].start_point();
-        arcs + 0.5 * end.cross(start)
+        total.value += 0.5 * end.cross(start);
+        total
     }
 
     /// Sum of the loops' signed areas: the area of the domain when outer loops run
@@ -220,16 +251,6 @@ impl Domain {
             .flat_map(|(i, c)| c.to_bezier().into_iter().map(move |b| (i, b)))
             .collect()
     }
-}
-
-/// `1/2 integral_0^1 (x y' - y x') dt` over one rational Bezier piece, adaptively to about
-/// `1e-15 * scale`.
-fn bezier_area_integral(b: &RationalBezier, scale: f64) -> f64 {
-    let f = |t: f64| {
-        let d = b.derivatives(t);
-        0.5 * d.point.cross(d.first)
-    };
-    integrate_adaptive(f, 0.0, 1.0, 1e-15 * scale.max(f64::MIN_POSITIVE))
 }
 
 /// Splits the curve list into loops (see [`Domain`]'s semantics).

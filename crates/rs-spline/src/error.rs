@@ -5,15 +5,27 @@ use std::path::PathBuf;
 use thiserror::Error;
 
 use crate::Point;
+use crate::limits::{MAX_COORDINATE, MAX_WEIGHT_RATIO};
 
-/// Checks what every rational curve needs of its control data: finite control points, one
-/// weight per point, and every weight finite and > 0.
+/// Checks what every rational curve needs of its control data: finite control points within
+/// [`MAX_COORDINATE`], one weight per point, every weight finite and > 0, and a weight spread
+/// within [`MAX_WEIGHT_RATIO`].
 pub(crate) fn check_control_points(points: &[Point], weights: &[f64]) -> Result<(), SplineError> {
     if let Some(index) = points.iter().position(|p| !p.is_finite()) {
         return Err(SplineError::NonFiniteControlPoint {
             index,
             x: points[index].x,
             y: points[index].y,
+        });
+    }
+    if let Some(index) = points
+        .iter()
+        .position(|p| p.x.abs().max(p.y.abs()) > MAX_COORDINATE)
+    {
+        return Err(SplineError::LimitExceeded {
+            what: "control point coordinate",
+            value: points[index].x.abs().max(points[index].y.abs()),
+            limit: MAX_COORDINATE,
         });
     }
     if weights.len() != points.len() {
@@ -28,7 +40,41 @@ pub(crate) fn check_control_points(points: &[Point], weights: &[f64]) -> Result<
             value: weights[index],
         });
     }
+    let (lo, hi) = weights
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| (lo.min(w), hi.max(w)));
+    // Compare as hi > lo * limit, which neither overflows nor underflows for the finite
+    // positive weights checked above.
+    if hi / MAX_WEIGHT_RATIO > lo {
+        return Err(SplineError::LimitExceeded {
+            what: "weight ratio max/min",
+            value: hi / lo,
+            limit: MAX_WEIGHT_RATIO,
+        });
+    }
     Ok(())
+}
+
+/// The weights rescaled by one power of two (exact: the curve and every point on it are
+/// unchanged) so that the largest lies in `[2^-32, 2^32]`, keeping homogeneous coordinates
+/// `w x` far from overflow and underflow. Weights already in range are returned as they are.
+pub(crate) fn normalized_weights(mut weights: Vec<f64>) -> Vec<f64> {
+    let hi = weights.iter().copied().fold(0.0f64, f64::max);
+    let bound = 2f64.powi(32);
+    if hi > bound || hi < 1.0 / bound {
+        // hi = m 2^e with m in [0.5, 1): multiply by 2^-e, done in steps that stay normal.
+        let e = hi.log2().floor() as i32 + 1;
+        let mut k = -e;
+        while k != 0 {
+            let step = k.clamp(-1000, 1000);
+            let s = 2f64.powi(step);
+            for w in &mut weights {
+                *w *= s;
+            }
+            k -= step;
+        }
+    }
+    weights
 }
 
 /// Invalid curve data or an invalid request on a curve.
@@ -99,9 +145,10 @@ pub enum SplineError {
         /// `knots[n]`.
         end: f64,
     },
-    /// A knot strictly inside the domain is repeated more than `degree` times (the curve would
-    /// fall apart there).
-    #[error("interior knot {value} has multiplicity {multiplicity} > degree {degree}")]
+    /// A knot strictly inside the domain is repeated more than `degree + 1` times (a knot of
+    /// multiplicity `degree + 1` is a break between independent Bezier pieces; more has no
+    /// meaning).
+    #[error("interior knot {value} has multiplicity {multiplicity} > degree + 1 = {}", degree + 1)]
     InteriorMultiplicity {
         /// Knot value.
         value: f64,
@@ -157,6 +204,24 @@ pub enum SplineError {
         current: usize,
         /// Largest allowed multiplicity.
         max: usize,
+    },
+    /// A knot span (or the whole knot range) is so long that its length overflows.
+    #[error("knots {start} .. {end}: the span length is not finite")]
+    NonFiniteSpan {
+        /// First knot of the range.
+        start: f64,
+        /// Last knot of the range.
+        end: f64,
+    },
+    /// A documented limit (see [`crate::limits`]) is exceeded.
+    #[error("{what} {value:e} exceeds the limit {limit:e}")]
+    LimitExceeded {
+        /// What was too large.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// The limit.
+        limit: f64,
     },
     /// A primitive got an invalid size or angle.
     #[error("invalid {what}: {value}")]
@@ -221,6 +286,21 @@ pub enum DomainError {
         /// Last curve of the loop.
         last_curve: usize,
         /// Distance from the loop's end to its start.
+        gap: f64,
+        /// The closure tolerance in force.
+        tolerance: f64,
+    },
+    /// A curve's Bezier pieces do not meet at a break (an interior knot of multiplicity
+    /// `degree + 1`): the boundary has a gap there.
+    #[error(
+        "curve {curve} has a gap at parameter {parameter}: its pieces are {gap:e} apart there (tolerance {tolerance:e}); only the winding-number methods accept gaps"
+    )]
+    CurveGap {
+        /// Index of the curve.
+        curve: usize,
+        /// The knot value of the break.
+        parameter: f64,
+        /// Distance between the end of the piece before and the start of the piece after.
         gap: f64,
         /// The closure tolerance in force.
         tolerance: f64,

@@ -237,11 +237,14 @@ fn parse_curve(i: usize, v: &Value) -> Result<NurbsCurve, DomainError> {
 fn parse_nurbs(i: usize, obj: &Map<String, Value>) -> Result<NurbsCurve, DomainError> {
     let dv = field(i, obj, "degree", "a NURBS curve")?;
     let degree = match dv.as_u64() {
-        Some(d) if d <= 64 => d as usize,
+        Some(d) if d <= crate::limits::MAX_DEGREE as u64 => d as usize,
         _ => {
             return Err(format_err(
                 i,
-                format!("degree must be an integer between 1 and 64, got {dv}"),
+                format!(
+                    "degree must be an integer between 1 and {}, got {dv}",
+                    crate::limits::MAX_DEGREE
+                ),
             ));
         }
     };

@@ -1,14 +1,19 @@
 //! Validated knot vectors and B-spline basis functions.
 
 use crate::SplineError;
+use crate::limits::MAX_DEGREE;
 
 /// A validated knot vector `u_0 <= u_1 <= ... <= u_m` for a B-spline of degree `p` with
 /// `n = m - p` control points.
 ///
-/// Invariants (checked by [`KnotVector::new`]): `m + 1 = n + p + 1`, every knot finite,
-/// non-decreasing, a non-empty parameter domain `[u_p, u_n]`, and no knot strictly inside the
-/// domain with multiplicity above `p`. Clamped (end knots repeated `p + 1` times) and unclamped
-/// vectors are both accepted; the curve is defined on the domain `[u_p, u_n]` either way.
+/// Invariants (checked by [`KnotVector::new`]): `1 <= p <= MAX_DEGREE`, `m + 1 = n + p + 1`,
+/// every knot finite with a finite range `u_m - u_0`, non-decreasing, a non-empty parameter
+/// domain `[u_p, u_n]`, and no knot strictly inside the domain with multiplicity above `p + 1`.
+/// Clamped (end knots repeated `p + 1` times) and unclamped vectors are both accepted; the curve
+/// is defined on the domain `[u_p, u_n]` either way. An interior knot of multiplicity `p + 1`
+/// is a break: the Bezier pieces on either side have independent control points (the inRS
+/// Matlab package writes polygons this way), and the curve is continuous there only if those
+/// points coincide (see [`crate::NurbsCurve::breaks`]).
 ///
 /// # Examples
 ///
@@ -32,10 +37,18 @@ impl KnotVector {
     /// [`SplineError::ZeroDegree`], [`SplineError::TooFewControlPoints`],
     /// [`SplineError::WrongKnotCount`], [`SplineError::NonFiniteKnot`],
     /// [`SplineError::DecreasingKnots`], [`SplineError::EmptyDomain`],
-    /// [`SplineError::InteriorMultiplicity`].
+    /// [`SplineError::InteriorMultiplicity`], [`SplineError::NonFiniteSpan`],
+    /// [`SplineError::LimitExceeded`] (degree above [`MAX_DEGREE`]).
     pub fn new(knots: Vec<f64>, degree: usize, n_control: usize) -> Result<Self, SplineError> {
         if degree == 0 {
             return Err(SplineError::ZeroDegree);
+        }
+        if degree > MAX_DEGREE {
+            return Err(SplineError::LimitExceeded {
+                what: "degree",
+                value: degree as f64,
+                limit: MAX_DEGREE as f64,
+            });
         }
         if n_control < degree + 1 {
             return Err(SplineError::TooFewControlPoints {
@@ -64,6 +77,13 @@ impl KnotVector {
                 value: knots[i],
             });
         }
+        let (first, last) = (knots[0], knots[knots.len() - 1]);
+        if !(last - first).is_finite() {
+            return Err(SplineError::NonFiniteSpan {
+                start: first,
+                end: last,
+            });
+        }
         let (start, end) = (knots[degree], knots[n_control]);
         if start >= end {
             return Err(SplineError::EmptyDomain { start, end });
@@ -71,7 +91,7 @@ impl KnotVector {
         let mut i = 0;
         while i < knots.len() {
             let mult = knots[i..].iter().take_while(|&&k| k == knots[i]).count();
-            if knots[i] > start && knots[i] < end && mult > degree {
+            if knots[i] > start && knots[i] < end && mult > degree + 1 {
                 return Err(SplineError::InteriorMultiplicity {
                     value: knots[i],
                     multiplicity: mult,
@@ -278,12 +298,21 @@ mod tests {
             KnotVector::new(vec![0.0, 1.0, 1.0, 1.0], 1, 2),
             Err(SplineError::EmptyDomain { .. })
         ));
+        assert!(KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0], 2, 6).is_ok());
         assert!(matches!(
-            KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0], 2, 6),
+            KnotVector::new(vec![0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0], 1, 5),
             Err(SplineError::InteriorMultiplicity {
                 multiplicity: 3,
                 ..
             })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![-1e308, 0.0, 1.0, 1e308], 1, 2),
+            Err(SplineError::NonFiniteSpan { .. })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![0.0; 68], 33, 34),
+            Err(SplineError::LimitExceeded { what: "degree", .. })
         ));
         assert!(matches!(
             KnotVector::new(vec![0.0, 1.0], 1, 1),

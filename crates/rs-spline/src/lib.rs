@@ -33,6 +33,7 @@ mod error;
 mod homogeneous;
 mod json;
 mod knots;
+pub mod limits;
 mod line;
 mod nurbs;
 mod point;

@@ -1,7 +1,8 @@
 //! Planar NURBS curves.
 
-use crate::error::check_control_points;
+use crate::error::{check_control_points, normalized_weights};
 use crate::homogeneous::{Hpoint, rational_derivatives};
+use crate::quadrature::Integral;
 use crate::{BoundingBox, CurveDerivatives, KnotVector, Point, RationalBezier, SplineError};
 
 /// A planar NURBS curve `C(u) = sum_i N_{i,p}(u) w_i P_i / sum_i N_{i,p}(u) w_i` on the domain
@@ -37,6 +38,9 @@ pub struct NurbsCurve {
 
 impl NurbsCurve {
     /// Validates and builds a curve. `weights: None` means all weights 1 (a B-spline).
+    ///
+    /// Weights whose largest value is beyond `2^32` or below `2^-32` are rescaled exactly by a
+    /// power of two (the curve is unchanged); the limits of [`crate::limits`] apply.
     ///
     /// # Errors
     /// Every [`SplineError`] about degree, knots, control points and weights.
@@ -82,6 +86,7 @@ impl NurbsCurve {
         }
         let weights = weights.unwrap_or_else(|| vec![1.0; points.len()]);
         check_control_points(&points, &weights)?;
+        let weights = normalized_weights(weights);
         Ok(Self {
             knots,
             points,
@@ -352,6 +357,16 @@ impl NurbsCurve {
         }
         let p = self.degree();
         let have = self.knots.multiplicity(u);
+        if have > p {
+            // A break: the pieces on either side already have their own control points.
+            let knots = self.knots.knots();
+            let hp = self.homogeneous();
+            let j = knots.iter().position(|&k| k == u).unwrap_or(0);
+            return Ok((
+                Self::from_homogeneous(knots[..j + p + 1].to_vec(), p, &hp[..j]),
+                Self::from_homogeneous(knots[j..].to_vec(), p, &hp[j..]),
+            ));
+        }
         let c = self.insert_knot(u, p - have)?;
         let knots = c.knots.knots();
         let hp = c.homogeneous();
@@ -368,34 +383,79 @@ impl NurbsCurve {
 
     /// Bezier extraction: the rational Bezier pieces of the curve, one per non-empty knot span,
     /// in order, each on `[0, 1]` and carrying its original parameter range.
+    ///
+    /// Each span is extracted on its own: its `p + 1` control points and `2p` neighbouring
+    /// knots form a one-span curve that is clamped at both ends by Boehm insertion, so the work
+    /// is `O(p^2)` per span and linear in the number of spans.
     pub fn to_bezier(&self) -> Vec<RationalBezier> {
         let p = self.degree();
-        let mut c = self.clamped();
-        let breaks = c.knots.interior_breaks();
-        for &u in &breaks {
-            let have = c.knots.multiplicity(u);
-            if have < p {
-                // Cannot fail: u is interior and the multiplicity stays <= p.
-                if let Ok(next) = c.insert_knot(u, p - have) {
-                    c = next;
+        let knots = self.knots.knots();
+        let n = self.points.len();
+        let mut pieces: Vec<RationalBezier> = Vec::with_capacity(n - p);
+        for k in (p..n).filter(|&k| knots[k] < knots[k + 1]) {
+            let mut local = Self {
+                knots: KnotVector::from_raw(knots[k - p..=k + p + 1].to_vec(), p),
+                points: self.points[k - p..=k].to_vec(),
+                weights: self.weights[k - p..=k].to_vec(),
+            }
+            .clamped();
+            // Where the curve is continuous (multiplicity <= p) both pieces have C(u_k) as an
+            // end; share it bit for bit instead of two roundings of the same point.
+            if let Some(prev) = pieces.last() {
+                if knots[k - p..=k].iter().filter(|&&x| x == knots[k]).count() <= p {
+                    local.points[0] = prev.end_point();
+                    local.weights[0] = prev.weights()[p];
                 }
             }
+            pieces.push(RationalBezier::from_valid_parts(
+                local.points,
+                local.weights,
+                (knots[k], knots[k + 1]),
+            ));
         }
-        let (a, b) = c.domain();
-        let mut ends = vec![a];
-        ends.extend_from_slice(&breaks);
-        ends.push(b);
-        ends.windows(2)
-            .enumerate()
-            .map(|(s, r)| {
-                let range = s * p..=s * p + p;
-                RationalBezier::from_valid_parts(
-                    c.points[range.clone()].to_vec(),
-                    c.weights[range].to_vec(),
-                    (r[0], r[1]),
-                )
-            })
-            .collect()
+        pieces
+    }
+
+    /// The Green integral `1/2 integral_{u0}^{u1} (x y' - y x') du` over `[u0, u1]` within the
+    /// domain, piece by piece (see [`RationalBezier::area_integral`]); summed over a closed
+    /// loop it is the loop's signed area.
+    pub fn area_integral(&self, u0: f64, u1: f64) -> Integral {
+        let mut total = Integral {
+            value: 0.0,
+            error: 0.0,
+            converged: true,
+        };
+        for b in self.to_bezier() {
+            let (a, c) = b.param_range();
+            let (lo, hi) = (u0.max(a), u1.min(c));
+            if lo >= hi {
+                continue;
+            }
+            let part = b.area_integral_on((lo - a) / (c - a), (hi - a) / (c - a));
+            total.value += part.value;
+            total.error += part.error;
+            total.converged &= part.converged;
+        }
+        total
+    }
+
+    /// The breaks of the curve: every interior knot of multiplicity `p + 1`, with the distance
+    /// between the end of the Bezier piece before it and the start of the piece after it (zero
+    /// where the pieces meet; a gap otherwise). Ascending in the parameter.
+    pub fn breaks(&self) -> Vec<(f64, f64)> {
+        let p = self.degree();
+        let knots = self.knots.knots();
+        let (start, end) = self.domain();
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i < knots.len() {
+            let mult = knots[i..].iter().take_while(|&&k| k == knots[i]).count();
+            if knots[i] > start && knots[i] < end && mult > p && i >= 1 {
+                out.push((knots[i], self.points[i - 1].distance(self.points[i])));
+            }
+            i += mult;
+        }
+        out
     }
 }
 
@@ -457,6 +517,80 @@ mod tests {
             Err(SplineError::ParameterOutOfDomain { .. })
         ));
         assert!(c.split_at(0.0).is_err());
+    }
+
+    #[test]
+    fn breaks_split_into_independent_pieces() {
+        // A degree-2 polygon with multiplicity-3 breaks, the way the inRS Matlab package
+        // writes polygons.
+        let pts = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 0.0), (2.0, 1.0), (2.0, 2.0)];
+        let c = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0],
+            pts.iter().map(|&(x, y)| Point::new(x, y)).collect(),
+            None,
+        )
+        .unwrap();
+        let pieces = c.to_bezier();
+        assert_eq!(pieces.len(), 2);
+        assert_eq!(pieces[0].end_point(), Point::new(2.0, 0.0));
+        assert_eq!(pieces[1].start_point(), Point::new(2.0, 0.0));
+        assert_eq!(c.breaks(), vec![(0.5, 0.0)]);
+        assert_eq!(c.point_at(0.75), Point::new(2.0, 1.0));
+        let (l, r) = c.split_at(0.5).unwrap();
+        assert_eq!(l.end_point(), Point::new(2.0, 0.0));
+        assert_eq!(r.start_point(), Point::new(2.0, 0.0));
+        assert_eq!(r.point_at(0.75), Point::new(2.0, 1.0));
+        // A gap: the second piece starts elsewhere.
+        let mut moved = pts.to_vec();
+        moved[3] = (2.0, 0.5);
+        let g = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0],
+            moved.iter().map(|&(x, y)| Point::new(x, y)).collect(),
+            None,
+        )
+        .unwrap();
+        assert_eq!(g.breaks(), vec![(0.5, 0.5)]);
+    }
+
+    #[test]
+    fn extraction_is_linear_in_the_spans() {
+        // 10^5 control points: the old global insertion was quadratic (minutes); this must
+        // take well under a second even unoptimised.
+        let n = 100_000;
+        let pts: Vec<Point> = (0..n)
+            .map(|i| Point::new(i as f64, ((i * 7919) % 13) as f64))
+            .collect();
+        let c = NurbsCurve::new(3, KnotVector::uniform_clamped(3, n).unwrap().knots().to_vec(), pts, None)
+            .unwrap();
+        let pieces = c.to_bezier();
+        assert_eq!(pieces.len(), n - 3);
+        for (i, b) in pieces.iter().enumerate().step_by(997) {
+            let (u0, u1) = b.param_range();
+            let u = 0.5 * (u0 + u1);
+            assert!(b.point_at(0.5).distance(c.point_at(u)) < 1e-9, "span {i}");
+        }
+    }
+
+    #[test]
+    fn huge_and_tiny_weights_are_rescaled_exactly() {
+        let pts = vec![Point::new(0.0, 0.0), Point::new(0.5, -1.0), Point::new(1.0, 0.0)];
+        let plain = NurbsCurve::bezier(pts.clone(), Some(vec![1.0, 2.0, 1.0])).unwrap();
+        for s in [1e50, 1e-300, 1e300] {
+            let c = NurbsCurve::bezier(pts.clone(), Some(vec![s, 2.0 * s, s])).unwrap();
+            let w = c.weights();
+            assert!(w.iter().all(|&x| (2f64.powi(-33)..=2f64.powi(32)).contains(&x)));
+            assert_eq!(w[1] / w[0], 2.0);
+            for i in 0..=8 {
+                let t = i as f64 / 8.0;
+                assert!(c.point_at(t).distance(plain.point_at(t)) < 1e-15);
+            }
+        }
+        assert!(matches!(
+            NurbsCurve::bezier(pts, Some(vec![1e20, 1e35, 1e50])),
+            Err(SplineError::LimitExceeded { .. })
+        ));
     }
 
     #[test]
