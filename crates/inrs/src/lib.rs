@@ -43,5 +43,7 @@ mod points_csv;
 mod summary;
 
 pub use classify::Classify;
-pub use points_csv::{PointRecord, PointsError, parse_points, read_points};
+pub use points_csv::{
+    MAX_LINE_BYTES, PointReader, PointRecord, PointsError, open_points, parse_points, read_points,
+};
 pub use summary::{DomainSummary, LoopSummary};

@@ -34,8 +34,15 @@ pub struct DomainSummary {
     pub rational: bool,
     /// The loops.
     pub loops: Vec<LoopSummary>,
-    /// Sum of the loops' signed areas.
+    /// Sum of the loops' signed areas (the area when outer loops run counter-clockwise and
+    /// holes clockwise).
     pub signed_area: f64,
+    /// The area filled under the even-odd rule, the region the crossing methods classify
+    /// ([`rs_contain::even_odd_area`]); `None` for open or coincident loops.
+    pub filled_area: Option<f64>,
+    /// False if some piece's area quadrature stopped at its work limit before meeting its
+    /// tolerance (the areas are then estimates).
+    pub areas_converged: bool,
     /// Tight bounding box.
     pub bounding_box: BoundingBox,
     /// Absolute closure tolerance in force.
@@ -64,6 +71,8 @@ impl DomainSummary {
             max_degree: d.curves().iter().map(|c| c.degree()).max().unwrap_or(0),
             rational: d.curves().iter().any(|c| !c.is_polynomial()),
             signed_area: loops.iter().map(|l| l.signed_area).sum(),
+            filled_area: rs_contain::even_odd_area(d),
+            areas_converged: (0..d.loops().len()).all(|i| d.loop_area_integral(i).converged),
             loops,
             bounding_box: d.bounding_box(),
             closure_tolerance: d.closure_tolerance(),
@@ -100,6 +109,10 @@ impl fmt::Display for DomainSummary {
                 "polynomial"
             }
         )?;
+        match self.filled_area {
+            Some(a) => writeln!(f, "  filled area (even-odd): {a:.15}")?,
+            None => writeln!(f, "  filled area (even-odd): - (open or coincident loops)")?,
+        }
         writeln!(
             f,
             "  bounding box: [{}, {}] x [{}, {}]  closure tolerance: {:e}",
@@ -117,6 +130,15 @@ impl fmt::Display for DomainSummary {
                 l.gap
             )?;
         }
-        write!(f, "  total signed area: {:.15}", self.signed_area)
+        write!(
+            f,
+            "  sum of signed loop areas: {:.15}{}",
+            self.signed_area,
+            if self.areas_converged {
+                ""
+            } else {
+                "  (quadrature stopped at its work limit: estimates)"
+            }
+        )
     }
 }

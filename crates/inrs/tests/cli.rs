@@ -169,7 +169,7 @@ fn bad_input_gives_one_line_errors() {
         ),
         (
             vec!["classify", "--domain", &circle, "--points", &bad_points],
-            "line 2: expected two numbers",
+            "line 2: expected at least two numbers",
         ),
         (
             vec!["classify", "--domain", &circle, "--points", &nan_points],

@@ -48,6 +48,7 @@
 
 mod classifier;
 mod error;
+mod filled_area;
 mod gwn;
 mod halton;
 mod location;
@@ -58,6 +59,7 @@ mod winding;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_TOLERANCE};
 pub use error::ContainError;
+pub use filled_area::{MAX_NESTED_LOOPS, even_odd_area};
 pub use gwn::{
     CurveHierarchy, FastWindingField, FillRule, HIERARCHY_DEPTH, QueryStats, WindingAlgorithm,
     WindingField, curve_winding_number,

@@ -10,6 +10,11 @@ use crate::{ConvexError, ConvexPolygon, ConvexPolytope};
 /// The deepest refinement level accepted (`2^20` times the original inequalities).
 pub const MAX_LEVEL: u32 = 20;
 
+/// The largest absolute box coordinate accepted by [`BoundingBox3::from_ranges`]: areas and
+/// volumes of regions within such a box stay finite, so an empty result is a proof, never an
+/// overflow.
+pub const MAX_BOX_COORDINATE: f64 = 1e100;
+
 /// The sign to keep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Sign {
@@ -67,10 +72,21 @@ impl BoundingBox3 {
         if r.iter().any(|v| !v.is_finite()) {
             return Err(bad("coordinates must be finite"));
         }
+        if r.iter().any(|v| v.abs() > MAX_BOX_COORDINATE) {
+            return Err(bad(
+                "coordinates must be at most 1e100 in absolute value (so areas and volumes stay finite)",
+            ));
+        }
         for k in 0..r.len() / 2 {
             if r[2 * k] >= r[2 * k + 1] {
                 return Err(bad("every range must have min < max"));
             }
+        }
+        let measure: f64 = (0..r.len() / 2).map(|k| r[2 * k + 1] - r[2 * k]).product();
+        if !(measure > 0.0 && measure.is_finite()) {
+            return Err(bad(
+                "the box's area or volume underflows or overflows: rescale the problem",
+            ));
         }
         let (zmin, zmax) = if r.len() == 6 {
             (r[4], r[5])

@@ -137,7 +137,7 @@ pub fn parse_curve(text: &str, index: usize) -> Result<FreeCurve, ConvexError> {
 /// [`ConvexError::CurveFile`] if the file cannot be read, then as [`parse_curve`].
 pub fn load_curve(path: impl AsRef<Path>, index: usize) -> Result<FreeCurve, ConvexError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path)
+    let text = rs_spline::limits::read_text_file(path)
         .map_err(|e| ConvexError::CurveFile(format!("{}: {e}", path.display())))?;
     parse_curve(&text, index)
 }

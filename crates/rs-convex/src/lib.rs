@@ -33,7 +33,8 @@ mod polytope;
 mod svg;
 
 pub use approximation::{
-    BoundingBox3, ConvexDomain, ConvexDomainOptions, Level, MAX_LEVEL, Outcome, Region, Sign,
+    BoundingBox3, ConvexDomain, ConvexDomainOptions, Level, MAX_BOX_COORDINATE, MAX_LEVEL, Outcome,
+    Region, Sign,
     approximate,
 };
 pub use curve_file::{FreeCurve, load_curve, parse_curve};

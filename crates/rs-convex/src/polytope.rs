@@ -130,8 +130,16 @@ impl ConvexPolytope {
         let f = |p: P3| dot(a, p) + b;
         let mut faces = Vec::new();
         let mut cap: Vec<P3> = Vec::new();
+        // A face lying in the cutting plane is already the cap (a plane through a face, a
+        // duplicate plane): adding the section again would count that face twice.
+        let mut face_in_plane = false;
         for face in &self.faces {
             let n = face.len();
+            if face.iter().all(|&p| f(p).abs() <= eps) {
+                face_in_plane = true;
+                faces.push(face.clone());
+                continue;
+            }
             let mut out = Vec::with_capacity(n + 1);
             for i in 0..n {
                 let (p, q) = (face[i], face[(i + 1) % n]);
@@ -163,7 +171,7 @@ impl ConvexPolytope {
                 pts.push(p);
             }
         }
-        if pts.len() >= 3 && faces.len() >= 3 {
+        if pts.len() >= 3 && faces.len() >= 3 && !face_in_plane {
             let c = scale(
                 pts.iter().fold([0.0; 3], |s, &p| add(s, p)),
                 1.0 / pts.len() as f64,
@@ -231,6 +239,20 @@ mod tests {
         assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-15);
         assert_eq!(tet.face_count(), 4);
         assert!(u.clip([1.0, 0.0, 0.0], -2.0, 1.0).is_empty());
+        // Clipping by the plane of a face, from either side, or twice by one plane.
+        for (a, b) in [([0.0, 0.0, 1.0], 0.0), ([0.0, 0.0, -1.0], 1.0), ([1.0, 0.0, 0.0], 0.0)] {
+            let same = u.clip(a, b, 1.0);
+            assert_eq!(same.face_count(), 6, "{a:?} {b}");
+            assert!((same.volume() - 1.0).abs() < 1e-15, "{}", same.volume());
+        }
+        assert!(u.clip([0.0, 0.0, -1.0], 0.0, 1.0).is_empty());
+        let twice = cut.clip([1.0, 1.0, 1.0], -1.0, 1.0);
+        assert_eq!(twice.face_count(), 7);
+        assert!((twice.volume() - cut.volume()).abs() < 1e-15);
+        // A parallel plane inside: half the cube, still six faces.
+        let upper = u.clip([0.0, 0.0, 1.0], -0.5, 1.0).clip([0.0, 0.0, 2.0], -1.0, 1.0);
+        assert_eq!(upper.face_count(), 6);
+        assert!((upper.volume() - 0.5).abs() < 1e-15);
         // Halving along the plane through four vertices.
         let half = u.clip([1.0, -1.0, 0.0], 0.0, 1.0);
         assert!((half.volume() - 0.5).abs() < 1e-15);

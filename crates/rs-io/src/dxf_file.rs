@@ -40,11 +40,12 @@ pub fn domain_from_dxf_file(
     options: &DxfOptions,
 ) -> Result<Domain, IoError> {
     let path = path.as_ref();
-    let mut file = std::fs::File::open(path).map_err(|source| IoError::Read {
+    let data = rs_spline::limits::read_file(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;
-    let drawing = dxf::Drawing::load(&mut file).map_err(|e| IoError::Dxf(e.to_string()))?;
+    let drawing =
+        dxf::Drawing::load(&mut data.as_slice()).map_err(|e| IoError::Dxf(e.to_string()))?;
     Ok(domain_from_drawing(&drawing, options)?.with_name(path.display().to_string()))
 }
 

@@ -71,7 +71,7 @@ pub enum IoError {
         message: String,
     },
     /// The input holds no boundary with area (no paths, only open lines, empty glyph, ...).
-    #[error("{0}: no boundary curves found")]
+    #[error("no boundary curves found in the {0}")]
     Empty(String),
     /// A curve built from the input is invalid (reported with its origin).
     #[error("{origin}: {source}")]

@@ -125,7 +125,7 @@ pub fn glyph_domain(font: &[u8], glyph: &Glyph) -> Result<Domain, IoError> {
 /// ```
 pub fn glyph_domain_from_file(path: impl AsRef<Path>, glyph: &Glyph) -> Result<Domain, IoError> {
     let path = path.as_ref();
-    let data = std::fs::read(path).map_err(|source| IoError::Read {
+    let data = rs_spline::limits::read_file(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;

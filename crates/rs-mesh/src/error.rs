@@ -11,9 +11,19 @@ pub enum MeshError {
     /// `ny` must be at least 2 and at most [`crate::MAX_LINES`].
     #[error("ny must be at least 2 and at most 100000, got {0}")]
     TooFewLines(usize),
-    /// The requested number of points is zero or unreachable.
-    #[error("invalid point count {0}")]
+    /// The requested number of points is zero, above the limit, or unreachable.
+    #[error(
+        "cannot sample {0} points: the count must be between 1 and 10000000, and the domain must fill at least 1/1000 of its bounding box"
+    )]
     InvalidCount(usize),
+    /// The sampling would produce more points than [`crate::MAX_SAMPLE_POINTS`].
+    #[error("about {estimate:.3e} sample points exceed the limit {limit}: choose a smaller ny")]
+    TooManyPoints {
+        /// The estimated or reached count.
+        estimate: f64,
+        /// The limit.
+        limit: usize,
+    },
     /// The domain has no area.
     #[error("the domain has no area (zero height)")]
     NoArea,

@@ -38,6 +38,9 @@ mod triangulation;
 pub use boundary::BoundaryPoint;
 pub use error::MeshError;
 pub use locate::CurvedLocator;
-pub use sample::{MAX_LINES, WellSpacedPoints, halton_points_in, well_spaced_points};
+pub use sample::{
+    MAX_HALTON_TRIES_PER_POINT, MAX_LINES, MAX_SAMPLE_POINTS, WellSpacedPoints, halton_points_in,
+    well_spaced_points,
+};
 pub use svg::mesh_svg;
-pub use triangulation::{BoundaryArc, CurvedTriangulation, EdgeKind};
+pub use triangulation::{BoundaryArc, CurvedTriangulation, EdgeKind, MAX_MESH_VERTICES};

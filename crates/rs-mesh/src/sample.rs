@@ -1,14 +1,23 @@
 //! Point sampling in a curved domain: the paper's Algorithm 11.1 and quasi-Monte Carlo.
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
-use rs_contain::{Classifier, ContainOptions, Location, halton_points};
+use rs_contain::{Classifier, ContainOptions, Location, radical_inverse};
 use rs_spline::{Domain, Point};
 
 use crate::MeshError;
 use crate::boundary::{BoundaryPoint, place_boundary_points};
 
-/// The largest `ny` accepted by [`well_spaced_points`] (about `10^10` points).
+/// The largest `ny` accepted by [`well_spaced_points`].
 pub const MAX_LINES: usize = 100_000;
+
+/// The most points [`well_spaced_points`] and [`halton_points_in`] produce: `10^7` (160 MB of
+/// coordinates). `well_spaced_points` refuses an `ny` whose grid over the bounding box,
+/// `ny^2 * width / height` positions, exceeds four times this.
+pub const MAX_SAMPLE_POINTS: usize = 10_000_000;
+
+/// The most Halton candidates [`halton_points_in`] draws per point asked for (the domain must
+/// fill at least `1 / 1000` of its bounding box).
+pub const MAX_HALTON_TRIES_PER_POINT: usize = 1000;
 
 /// Points from [`well_spaced_points`].
 #[derive(Clone, Debug)]
@@ -60,6 +69,13 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
     if h.is_nan() || h <= 0.0 {
         return Err(MeshError::NoArea);
     }
+    let grid = ny as f64 * (bb.width() / h + 1.0);
+    if !(grid <= 4.0 * MAX_SAMPLE_POINTS as f64) {
+        return Err(MeshError::TooManyPoints {
+            estimate: grid,
+            limit: MAX_SAMPLE_POINTS,
+        });
+    }
     let boxes = MonotoneBoxes::new(domain, BoxOptions { subdivisions: 1 })?;
     let mut interior = Vec::new();
     let mut extra = Vec::new();
@@ -78,6 +94,12 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
             continue; // cannot happen for a closed boundary; never pair wrongly
         }
         hits.sort_by(|p, q| p.0.total_cmp(&q.0));
+        if interior.len() > MAX_SAMPLE_POINTS {
+            return Err(MeshError::TooManyPoints {
+                estimate: interior.len() as f64,
+                limit: MAX_SAMPLE_POINTS,
+            });
+        }
         for pair in hits.chunks_exact(2) {
             let (x0, x1) = (pair[0].0, pair[1].0);
             extra.push((pair[0].1, pair[0].2));
@@ -108,33 +130,34 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
 }
 
 /// The first `count` Halton points (bases 2 and 3, over the bounding box) that lie inside the
-/// domain: a deterministic quasi-Monte Carlo sample.
+/// domain: a deterministic quasi-Monte Carlo sample. Candidates are drawn one at a time, so
+/// memory is the output only.
 ///
 /// # Errors
-/// [`MeshError::InvalidCount`] for `count = 0` or when a billion candidates do not yield
-/// `count` inside points; containment errors for an open boundary.
+/// [`MeshError::InvalidCount`] for `count = 0` or above [`MAX_SAMPLE_POINTS`], or when
+/// [`MAX_HALTON_TRIES_PER_POINT`]` * count` candidates do not yield `count` inside points
+/// (the domain fills almost none of its box); containment errors for an open boundary.
 pub fn halton_points_in(domain: &Domain, count: usize) -> Result<Vec<Point>, MeshError> {
-    if count == 0 {
+    if count == 0 || count > MAX_SAMPLE_POINTS {
         return Err(MeshError::InvalidCount(count));
     }
     let classifier = Classifier::new(domain, ContainOptions::default())?;
     let bb = domain.bounding_box();
-    let mut n = 2 * count;
-    loop {
-        let candidates = halton_points(n, bb);
-        let inside: Vec<Point> = candidates
-            .into_iter()
-            .filter(|&p| classifier.classify_point(p) == Location::Inside)
-            .take(count)
-            .collect();
-        if inside.len() == count {
-            return Ok(inside);
+    let tries = (count as u64).saturating_mul(MAX_HALTON_TRIES_PER_POINT as u64);
+    let mut inside = Vec::with_capacity(count);
+    for i in 0..tries {
+        let p = Point::new(
+            bb.min.x + radical_inverse(i, 2) * bb.width(),
+            bb.min.y + radical_inverse(i, 3) * bb.height(),
+        );
+        if classifier.classify_point(p) == Location::Inside {
+            inside.push(p);
+            if inside.len() == count {
+                return Ok(inside);
+            }
         }
-        if n > 1_000_000_000 {
-            return Err(MeshError::InvalidCount(count));
-        }
-        n *= 2;
     }
+    Err(MeshError::InvalidCount(count))
 }
 
 /// A uniform hash grid of points for "is any point within r" queries (r <= cell size).

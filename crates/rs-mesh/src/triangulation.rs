@@ -76,6 +76,13 @@ impl CurvedTriangulation {
     /// [`MeshError::NotConvertible`] if 16 rounds of insertion do not suffice,
     /// [`MeshError::Triangulation`] if spade rejects a point.
     pub fn new(domain: &Domain, points: &WellSpacedPoints) -> Result<Self, MeshError> {
+        let vertices = points.interior.len() + points.boundary.iter().map(Vec::len).sum::<usize>();
+        if vertices > MAX_MESH_VERTICES {
+            return Err(MeshError::TooManyPoints {
+                estimate: vertices as f64,
+                limit: MAX_MESH_VERTICES,
+            });
+        }
         let mut boundary = normalized_loops(domain, &points.boundary);
         let mut interior = points.interior.clone();
         let mut inserted = 0;
@@ -218,6 +225,9 @@ fn normalized_loops(domain: &Domain, given: &[Vec<BoundaryPoint>]) -> Vec<Vec<Bo
     loops
 }
 
+/// The most vertices a curved triangulation is built with (about 1 GB of triangulation data).
+pub const MAX_MESH_VERTICES: usize = 2_000_000;
+
 /// The part of `c` between parameters `u0 < u1`.
 pub(crate) fn sub_curve(
     c: &NurbsCurve,
@@ -251,7 +261,20 @@ fn build(
     interior: &[Point],
     size: f64,
 ) -> Result<Attempt, MeshError> {
-    let tri_err = |e: spade::InsertionError| MeshError::Triangulation(format!("{e:?}"));
+    let tri_err = |e: spade::InsertionError| {
+        MeshError::Triangulation(
+            match e {
+                spade::InsertionError::TooLarge => {
+                    "a vertex coordinate is beyond the triangulator's range (|x| <= 3.2e60): meshing needs smaller coordinates"
+                }
+                spade::InsertionError::TooSmall => {
+                    "a nonzero vertex coordinate is below the triangulator's range (|x| >= 1.8e-43): meshing needs larger coordinates"
+                }
+                spade::InsertionError::NAN => "a vertex coordinate is NaN",
+            }
+            .to_string(),
+        )
+    };
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = Default::default();
     let mut vertices: Vec<Point> = Vec::new();
     let mut boundary_vertex: Vec<Option<BoundaryPoint>> = Vec::new();

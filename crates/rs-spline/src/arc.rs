@@ -2,6 +2,7 @@
 
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
 
+use crate::limits::MAX_ARC_PIECES;
 use crate::{NurbsCurve, Point, SplineError};
 
 /// The elliptic arc `c + R(tilt) (rx cos(theta), ry sin(theta))` for `theta` from
@@ -16,7 +17,8 @@ use crate::{NurbsCurve, Point, SplineError};
 ///
 /// # Errors
 /// [`SplineError::InvalidPrimitive`] for non-positive or non-finite radii, a zero or
-/// non-finite sweep, or non-finite angles or centre.
+/// non-finite sweep, or non-finite angles or centre; [`SplineError::LimitExceeded`] for a sweep
+/// of more than [`MAX_ARC_PIECES`] quarter turns.
 pub fn elliptic_arc(
     center: Point,
     rx: f64,
@@ -37,7 +39,15 @@ pub fn elliptic_arc(
             value: sweep,
         });
     }
-    let k = ((sweep.abs() / FRAC_PI_2) - 1e-12).ceil().max(1.0) as usize;
+    let pieces = ((sweep.abs() / FRAC_PI_2) - 1e-12).ceil().max(1.0);
+    if pieces > MAX_ARC_PIECES as f64 {
+        return Err(SplineError::LimitExceeded {
+            what: "arc sweep (radians)",
+            value: sweep.abs(),
+            limit: MAX_ARC_PIECES as f64 * FRAC_PI_2,
+        });
+    }
+    let k = pieces as usize;
     let delta = sweep / k as f64;
     let w_mid = (0.5 * delta).cos();
     let unit = |theta: f64| Point::new(theta.cos(), theta.sin());

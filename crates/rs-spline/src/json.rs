@@ -79,7 +79,7 @@ impl Domain {
     /// [`DomainError::Io`] if it cannot be read, otherwise as [`Domain::from_json_str`].
     pub fn from_json_file(path: impl AsRef<Path>) -> Result<Self, DomainError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| DomainError::Io {
+        let text = crate::limits::read_text_file(path).map_err(|source| DomainError::Io {
             path: path.to_path_buf(),
             source,
         })?;

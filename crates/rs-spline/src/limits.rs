@@ -26,3 +26,38 @@ pub const MAX_WEIGHT_RATIO: f64 = 1e12;
 /// The most quarter-turn pieces a circular or elliptic arc may have (`|sweep| <= 1024 * 2 pi`,
 /// 4096 rational quadratic pieces).
 pub const MAX_ARC_PIECES: usize = 4096;
+
+/// The largest input file read (domain files, SVG, DXF, fonts, curve files): 256 MiB. Points
+/// files are streamed and have no size limit.
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+
+/// Reads a whole file of at most [`MAX_FILE_BYTES`].
+///
+/// # Errors
+/// The I/O error, or one of kind [`std::io::ErrorKind::FileTooLarge`] naming the limit.
+pub fn read_file(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let file = std::fs::File::open(path)?;
+    let mut data = Vec::new();
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut data)?;
+    if data.len() as u64 > MAX_FILE_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            format!("larger than {} MiB (the limit)", MAX_FILE_BYTES >> 20),
+        ));
+    }
+    Ok(data)
+}
+
+/// Reads a whole UTF-8 text file of at most [`MAX_FILE_BYTES`].
+///
+/// # Errors
+/// As [`read_file`], or [`std::io::ErrorKind::InvalidData`] for text that is not UTF-8.
+pub fn read_text_file(path: &std::path::Path) -> std::io::Result<String> {
+    String::from_utf8(read_file(path)?).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to() + 1),
+        )
+    })
+}

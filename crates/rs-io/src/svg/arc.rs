@@ -2,6 +2,7 @@
 
 use std::f64::consts::{PI, TAU};
 
+use rs_spline::limits::MAX_COORDINATE;
 use rs_spline::{NurbsCurve, Point, SplineError, elliptic_arc};
 
 use crate::builder::with_end_points;
@@ -42,11 +43,43 @@ pub(crate) fn endpoint_arc(
     if rx == 0.0 || ry == 0.0 {
         return Ok(ArcSegment::Line);
     }
+    if !(rx.max(ry) <= MAX_COORDINATE) {
+        return Err(SplineError::LimitExceeded {
+            what: "arc radius",
+            value: rx.max(ry),
+            limit: MAX_COORDINATE,
+        });
+    }
+    if !phi_deg.is_finite() {
+        return Err(SplineError::InvalidPrimitive {
+            what: "x-axis rotation",
+            value: phi_deg,
+        });
+    }
     let phi = (phi_deg % 360.0).to_radians();
     let (s, c) = phi.sin_cos();
-    let (hx, hy) = (0.5 * (p0.x - p1.x), 0.5 * (p0.y - p1.y));
+    // The centre conversion multiplies four lengths: work in units of the larger radius so
+    // that nothing overflows or underflows, and scale the centre back at the end.
+    let unit = rx.max(ry);
+    rx /= unit;
+    ry /= unit;
+    let (hx, hy) = (0.5 * (p0.x - p1.x) / unit, 0.5 * (p0.y - p1.y) / unit);
     let ux = c * hx + s * hy;
     let uy = -s * hx + c * hy;
+    // A chord below 1e-15 of the radii: the small arc is the chord in double precision (its
+    // sagitta is below rounding), and the large one a full ellipse whose start and end angles
+    // cannot be told apart.
+    let chord_ratio = ux.hypot(uy) / rx.min(ry);
+    if chord_ratio < 1e-15 {
+        if large_arc {
+            return Err(SplineError::LimitExceeded {
+                what: "large arc's radius / chord",
+                value: 1.0 / chord_ratio,
+                limit: 1e15,
+            });
+        }
+        return Ok(ArcSegment::Line);
+    }
     let lambda = (ux / rx).powi(2) + (uy / ry).powi(2);
     if lambda > 1.0 {
         let k = lambda.sqrt();
@@ -63,8 +96,8 @@ pub(crate) fn endpoint_arc(
     let cxp = coef * rx * uy / ry;
     let cyp = -coef * ry * ux / rx;
     let center = Point::new(
-        c * cxp - s * cyp + 0.5 * (p0.x + p1.x),
-        s * cxp + c * cyp + 0.5 * (p0.y + p1.y),
+        unit * (c * cxp - s * cyp) + 0.5 * (p0.x + p1.x),
+        unit * (s * cxp + c * cyp) + 0.5 * (p0.y + p1.y),
     );
     let theta1 = ((uy - cyp) / ry).atan2((ux - cxp) / rx);
     let theta2 = ((-uy - cyp) / ry).atan2((-ux - cxp) / rx);
@@ -78,7 +111,7 @@ pub(crate) fn endpoint_arc(
     if dtheta.abs() > TAU - 1e-12 {
         dtheta = dtheta.signum() * PI;
     }
-    let curve = elliptic_arc(center, rx, ry, phi, theta1, dtheta)?;
+    let curve = elliptic_arc(center, rx * unit, ry * unit, phi, theta1, dtheta)?;
     Ok(ArcSegment::Curve(with_end_points(&curve, p0, p1)?))
 }
 
@@ -91,6 +124,36 @@ mod tests {
             ArcSegment::Curve(c) => c,
             other => panic!("expected a curve, got {other:?}"),
         }
+    }
+
+    #[test]
+    fn huge_radii_are_scaled_or_refused_never_nan() {
+        // A radius of 1e6 on a unit chord: a nearly straight arc with the right sagitta.
+        let (p0, p1) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0));
+        match endpoint_arc(p0, 1e6, 1e6, 0.0, false, true, p1) {
+            Ok(ArcSegment::Curve(c)) => {
+                assert_eq!(c.end_point(), p1);
+                let sagitta = 1e6 - (1e12f64 - 0.25).sqrt();
+                // The centre lies 1e6 away: its rounding (1e-10) bounds the accuracy.
+                assert!((c.point_at(0.5).y.abs() - sagitta).abs() < 1e-9, "{:?}", c.point_at(0.5));
+            }
+            other => panic!("{other:?}"),
+        }
+        // A radius of 1e100: the chord itself in double precision; the large arc is refused.
+        assert!(matches!(
+            endpoint_arc(p0, 1e100, 1e100, 0.0, false, true, p1),
+            Ok(ArcSegment::Line)
+        ));
+        let e = endpoint_arc(p0, 1e100, 1e100, 0.0, true, true, p1).unwrap_err();
+        assert!(e.to_string().contains("radius / chord"), "{e}");
+        let e = endpoint_arc(p0, 1e308, 1e308, 0.0, false, true, p1).unwrap_err();
+        assert!(e.to_string().contains("arc radius"), "{e}");
+        // Large arcs scale with the chord: radii 1e-200 on a chord of 2e-200.
+        let (q0, q1) = (Point::new(-1e-200, 0.0), Point::new(1e-200, 0.0));
+        assert!(matches!(
+            endpoint_arc(q0, 1e-200, 1e-200, 0.0, false, true, q1),
+            Ok(ArcSegment::Curve(_))
+        ));
     }
 
     #[test]

@@ -29,11 +29,27 @@ const SKIPPED: &[&str] = &[
     "foreignObject",
 ];
 
+/// The deepest nesting of `svg`, `g`, `a` and `switch` elements read (drawing programs nest a
+/// few levels; the reader recurses, so the depth is bounded).
+pub const MAX_SVG_DEPTH: usize = 256;
+
+/// The most XML nodes a document may have (elements, attributes' text, text nodes).
+pub const MAX_SVG_NODES: u32 = 10_000_000;
+
 const SVG_NS: &str = "http://www.w3.org/2000/svg";
 
 /// Reads the shapes of an SVG document into `builder`.
 pub(crate) fn read_document(text: &str, builder: &mut LoopBuilder) -> Result<(), IoError> {
-    let doc = roxmltree::Document::parse(text).map_err(|e| IoError::Xml(e.to_string()))?;
+    // DTDs are accepted (matplotlib, Illustrator and Inkscape write the SVG 1.1 one); roxmltree
+    // expands internal entities with a depth and reference-count limit (entity-expansion
+    // bombs fail fast) and never fetches external ones.
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: MAX_SVG_NODES,
+        entity_resolver: None,
+    };
+    let doc = roxmltree::Document::parse_with_options(text, options)
+        .map_err(|e| IoError::Xml(e.to_string()))?;
     let root = doc.root_element();
     if root.tag_name().name() != "svg" {
         return Err(IoError::Xml(format!(
@@ -41,7 +57,7 @@ pub(crate) fn read_document(text: &str, builder: &mut LoopBuilder) -> Result<(),
             root.tag_name().name()
         )));
     }
-    visit(&doc, root, Affine::IDENTITY, builder)
+    visit(&doc, root, Affine::IDENTITY, builder, 0)
 }
 
 fn visit(
@@ -49,6 +65,7 @@ fn visit(
     node: roxmltree::Node<'_, '_>,
     parent: Affine,
     builder: &mut LoopBuilder,
+    depth: usize,
 ) -> Result<(), IoError> {
     let ns = node.tag_name().namespace();
     if ns.is_some_and(|n| n != SVG_NS) {
@@ -78,8 +95,13 @@ fn visit(
     builder.set_transform(ctm);
     match name {
         "svg" | "g" | "a" | "switch" => {
+            if depth >= MAX_SVG_DEPTH {
+                return Err(fail(format!(
+                    "groups nested more than {MAX_SVG_DEPTH} deep (the limit)"
+                )));
+            }
             for child in node.children().filter(roxmltree::Node::is_element) {
-                visit(doc, child, ctm, builder)?;
+                visit(doc, child, ctm, builder, depth + 1)?;
             }
         }
         "path" => {

@@ -10,6 +10,8 @@ mod document;
 mod path_data;
 mod transform;
 
+pub use document::{MAX_SVG_DEPTH, MAX_SVG_NODES};
+
 use std::path::Path;
 
 use rs_spline::{Domain, NurbsCurve};
@@ -77,14 +79,14 @@ pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
 /// [`IoError::Read`], then as [`domain_from_svg_str`].
 pub fn domain_from_svg_file(path: impl AsRef<Path>) -> Result<Domain, IoError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
+    let text = rs_spline::limits::read_text_file(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;
     let mut b = LoopBuilder::new();
     document::read_document(&text, &mut b)?;
     let name = path.display().to_string();
-    Ok(domain(b.into_curves(), &name)?.with_name(name))
+    Ok(domain(b.into_curves(), "SVG file")?.with_name(name))
 }
 
 fn domain(curves: Vec<NurbsCurve>, what: &str) -> Result<Domain, IoError> {
