@@ -1,25 +1,33 @@
 //! The `inrs` command-line tool.
 
-use std::io::{BufWriter, Write};
+mod cli;
+
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use cli::limits::{
+    parse_count, parse_free_index, parse_level, parse_ny, parse_relative_tolerance,
+    parse_subdivisions, parse_tolerance,
+};
+use cli::output::{Failure, Output, write_text};
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
 use inrs::contain::DEFAULT_TOLERANCE;
-use inrs::contain::{FillRule, QueryStats, WindingAlgorithm, WindingField};
-use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Method, PointRecord, read_points};
-
-const TOLERANCE_HELP: &str = "\
-Boundary tolerance: with T = tol x (diagonal of the domain's bounding box), a point is 'boundary'
-when its vertical or horizontal distance to the boundary curve is at most T. Every point within
-Euclidean distance T/sqrt(2) of the boundary is 'boundary', none farther than T is; all other
-points are 'inside' or 'outside' exactly (up to floating-point rounding, far below T). Default
-tol = 1e-12 (relative).";
+use inrs::contain::{
+    FAST_METHOD_MIN_POINTS, FillRule, LocatorOptions, PointLocator, QueryStats, WindingAlgorithm,
+    WindingField,
+};
+use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Location, Method, PointRecord};
 
 /// Exact point containment for planar domains bounded by NURBS curves.
 #[derive(Parser)]
-#[command(name = "inrs", version, about, after_help = TOLERANCE_HELP)]
+#[command(
+    name = "inrs",
+    version,
+    about = "Exact point containment for planar domains bounded by NURBS and rational Bezier curves",
+    after_help = cli::limits::AFTER_HELP
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -29,13 +37,14 @@ struct Cli {
 enum Command {
     /// Classify points as inside, outside or boundary of a closed domain; writes CSV
     /// `x,y,location` in input order.
-    #[command(after_help = TOLERANCE_HELP)]
+    #[command(after_help = cli::limits::AFTER_HELP)]
     Classify {
         /// The domain: a JSON file (CONTRACTS.md), an .svg or .dxf file, or a font glyph
         /// (`font.ttf#B`, `#U+0040`, `#gid:37`); every loop must close.
         #[arg(long)]
         domain: PathBuf,
-        /// The points file (CSV `x,y` per line, optional header, `#` comments).
+        /// The points file: CSV `x,y` per line (extra columns ignored; optional header; `#`
+        /// comments), streamed: any number of points.
         #[arg(long)]
         points: PathBuf,
         /// Algorithm: fast (the default: inRS2 for small batches, the parallel grid point
@@ -51,11 +60,12 @@ enum Command {
         /// Write the CSV here instead of standard output.
         #[arg(long)]
         output: Option<PathBuf>,
-        /// Boundary tolerance relative to the bounding-box diagonal (see below).
-        #[arg(long, default_value_t = DEFAULT_TOLERANCE, allow_negative_numbers = true)]
+        /// Boundary tolerance relative to the bounding-box diagonal (>= 0, see below).
+        #[arg(long, default_value = "1e-12", value_parser = parse_tolerance, allow_negative_numbers = true)]
         tol: f64,
-        /// Sub-boxes per monotone piece (the paper's box refinement).
-        #[arg(long, default_value_t = DEFAULT_SUBDIVISIONS)]
+        /// Sub-boxes per monotone piece (the paper's box refinement), 1 to 4096; reduced
+        /// automatically so that a domain has at most about 131072 boxes.
+        #[arg(long, default_value_t = DEFAULT_SUBDIVISIONS, value_parser = parse_subdivisions, allow_negative_numbers = true)]
         subdivisions: usize,
     },
     /// Generalized winding number of every point with respect to the curves of a domain file
@@ -64,7 +74,8 @@ enum Command {
         /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
         #[arg(long)]
         domain: PathBuf,
-        /// The points file (CSV `x,y` per line, optional header, `#` comments).
+        /// The points file: CSV `x,y` per line (extra columns ignored; optional header; `#`
+        /// comments), streamed: any number of points.
         #[arg(long)]
         points: PathBuf,
         /// Write the CSV here instead of standard output.
@@ -95,11 +106,12 @@ enum Command {
         /// lines (Algorithm 11.1) or halton.
         #[arg(long, default_value = "lines")]
         method: String,
-        /// Number of horizontal bands for --method lines: h = height / ny.
-        #[arg(long, default_value_t = 20)]
+        /// Number of horizontal bands for --method lines: h = height / ny (2 to 100000; at most
+        /// 10^7 points).
+        #[arg(long, default_value_t = 20, value_parser = parse_ny, allow_negative_numbers = true)]
         ny: usize,
-        /// Number of points for --method halton.
-        #[arg(long, default_value_t = 1000)]
+        /// Number of points for --method halton (1 to 10^7).
+        #[arg(long, default_value_t = 1000, value_parser = parse_count, allow_negative_numbers = true)]
         count: usize,
         /// Write the CSV here instead of standard output.
         #[arg(long)]
@@ -113,8 +125,9 @@ enum Command {
         /// The domain: JSON, .svg, .dxf or `font.ttf#glyph` (see classify).
         #[arg(long)]
         domain: PathBuf,
-        /// Number of horizontal bands for the sampling: h = height / ny.
-        #[arg(long, default_value_t = 20)]
+        /// Number of horizontal bands for the sampling: h = height / ny (2 to 100000; at most
+        /// 2 x 10^6 vertices).
+        #[arg(long, default_value_t = 20, value_parser = parse_ny, allow_negative_numbers = true)]
         ny: usize,
         /// Write the JSON here instead of standard output.
         #[arg(long)]
@@ -133,23 +146,29 @@ enum Command {
         #[arg(long)]
         curve: PathBuf,
         /// Which curve of a domain file.
-        #[arg(long, default_value_t = 0)]
+        #[arg(long, default_value_t = 0, value_parser = parse_free_index, allow_negative_numbers = true)]
         curve_index: usize,
         /// Index of the free control point (0-based).
-        #[arg(long)]
+        #[arg(long, value_parser = parse_free_index, allow_negative_numbers = true)]
         free_index: usize,
-        /// The box: xmin,xmax,ymin,ymax (plane) or xmin,xmax,ymin,ymax,zmin,zmax (space).
-        #[arg(long = "box", allow_hyphen_values = true, value_delimiter = ',')]
+        /// The box: xmin,xmax,ymin,ymax (plane) or xmin,xmax,ymin,ymax,zmin,zmax (space);
+        /// |coordinates| <= 1e100. Write it as --box=-1,1,-1,1.
+        #[arg(
+            long = "box",
+            required = true,
+            allow_hyphen_values = true,
+            value_delimiter = ','
+        )]
         bbox: Vec<f64>,
         /// The sign to keep: positive, negative, or auto (the sign of the given curve at the
         /// middle of its first piece).
         #[arg(long, default_value = "auto")]
         sign: String,
-        /// Stop when the relative area (volume) growth is at most this.
-        #[arg(long, default_value_t = 1e-3)]
+        /// Stop when the relative area (volume) growth is at most this (>= 0).
+        #[arg(long, default_value = "1e-3", value_parser = parse_relative_tolerance, allow_negative_numbers = true)]
         tol: f64,
-        /// The last refinement level tried.
-        #[arg(long, default_value_t = 10)]
+        /// The last refinement level tried (0 to 20).
+        #[arg(long, default_value_t = 10, value_parser = parse_level, allow_negative_numbers = true)]
         max_level: u32,
         /// Write an SVG of the nested polygons, the outer bound and the curve (plane only).
         #[arg(long)]
@@ -164,18 +183,6 @@ enum Command {
         #[arg(long)]
         require_closed: bool,
     },
-}
-
-fn write_text(output: Option<&PathBuf>, text: &str) -> Result<(), String> {
-    match output {
-        Some(path) => std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display())),
-        None => {
-            let mut out = std::io::stdout().lock();
-            out.write_all(text.as_bytes())
-                .and_then(|()| out.flush())
-                .map_err(|e| format!("standard output: {e}"))
-        }
-    }
 }
 
 /// The mesh as JSON: vertices, counter-clockwise triangles, and the curved edges (triangle,
@@ -213,8 +220,9 @@ fn convex_domain(
     tol: f64,
     max_level: u32,
     svg: Option<PathBuf>,
-) -> Result<(), String> {
+) -> Result<(), Failure> {
     use inrs::convex::{BoundingBox3, ConvexDomainOptions, FreeCurve, Region, Sign};
+    use std::fmt::Write as _;
     let in_file = |e: inrs::convex::ConvexError| format!("{}: {e}", path.display());
     let curve = inrs::convex::load_curve(path, curve_index).map_err(in_file)?;
     let bbox = BoundingBox3::from_ranges(bbox).map_err(|e| e.to_string())?;
@@ -231,9 +239,7 @@ fn convex_domain(
             }
         }
         other => {
-            return Err(format!(
-                "--sign {other:?}: expected positive, negative or auto"
-            ));
+            return Err(format!("--sign {other:?}: expected positive, negative or auto").into());
         }
     };
     let options = ConvexDomainOptions {
@@ -250,12 +256,15 @@ fn convex_domain(
         ("vertices", "area")
     };
     let invariant = if space { "torsion" } else { "curvature" };
-    println!(
+    let mut text = String::new();
+    let _ = writeln!(
+        text,
         "{invariant} sign {sign:?}, free control point {free}, numerator degree {} on {} piece(s)",
         h.degree(),
         h.piece_count()
     );
-    println!(
+    let _ = writeln!(
+        text,
         "level  inequalities  {what:>8}  {measure:>14}  {:>12}  {:>12}",
         "abs.error", "rel.error"
     );
@@ -266,7 +275,8 @@ fn convex_domain(
         } else {
             l.region.vertex_count()
         };
-        println!(
+        let _ = writeln!(
+            text,
             "{:>5}  {:>12}  {:>8}  {:>14.8e}  {:>12}  {:>12}",
             l.level,
             l.inequalities,
@@ -276,7 +286,8 @@ fn convex_domain(
             opt(l.rel_error)
         );
     }
-    println!(
+    let _ = writeln!(
+        text,
         "outer bound ({} sampled parameters per piece): {measure} {:.8e}, {} {what}",
         ConvexDomainOptions::default().outer_samples,
         k.outer.measure(),
@@ -286,20 +297,20 @@ fn convex_domain(
             k.outer.vertex_count()
         }
     );
-    println!("outcome: {:?}", k.outcome);
+    let _ = writeln!(text, "outcome: {:?}", k.outcome);
     if let Some(out) = svg {
         let planar = match &curve {
             FreeCurve::Planar(c) => Some(c),
             FreeCurve::Space(_) => None,
         };
-        let text = match (&k.outer, planar) {
+        let svg_text = match (&k.outer, planar) {
             (Region::Polygon(_), Some(c)) => inrs::convex::to_svg(&k, Some(c), free),
             _ => None,
         }
         .ok_or_else(|| "--svg draws planar domains only".to_string())?;
-        std::fs::write(&out, text).map_err(|e| format!("{}: {e}", out.display()))?;
+        write_text(Some(&out), &svg_text)?;
     }
-    Ok(())
+    write_text(None, &text)
 }
 
 fn parse_method(s: &str) -> Result<Method, String> {
@@ -327,57 +338,73 @@ fn parse_algorithm(s: &str) -> Result<WindingAlgorithm, String> {
     }
 }
 
-fn load_points(path: &PathBuf) -> Result<Vec<PointRecord>, String> {
-    read_points(path).map_err(|e| match e {
-        inrs::PointsError::Io { .. } => e.to_string(),
-        other => format!("{}: {other}", path.display()),
-    })
-}
+/// Points per batch when streaming a points file: large enough for the parallel locator,
+/// small enough that memory does not depend on the file's length.
+const BATCH: usize = 1 << 16;
 
-/// Writes a CSV with the given header and one `x,y,value` row per record.
-fn write_csv<T: std::fmt::Display>(
-    output: Option<&PathBuf>,
+/// Streams the points file through `values` in batches and writes `x,y,value` rows (the
+/// coordinates echoed as written) under `header`.
+fn stream_points<T: std::fmt::Display>(
+    points: &std::path::Path,
+    output: Option<&std::path::Path>,
     header: &str,
-    records: &[PointRecord],
-    values: &[T],
-) -> Result<(), String> {
-    let sink: Box<dyn Write> = match output {
-        Some(path) => {
-            Box::new(std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?)
-        }
-        None => Box::new(std::io::stdout().lock()),
+    mut values: impl FnMut(&[inrs::Point]) -> Vec<T>,
+) -> Result<(), Failure> {
+    let in_file = |e: inrs::PointsError| match e {
+        inrs::PointsError::Io { .. } => e.to_string(),
+        other => format!("{}: {other}", points.display()),
     };
-    let mut w = BufWriter::new(sink);
-    let write_err = |e: std::io::Error| format!("writing output: {e}");
-    writeln!(w, "{header}").map_err(write_err)?;
-    for (r, v) in records.iter().zip(values) {
-        writeln!(w, "{},{},{}", r.x_text, r.y_text, v).map_err(write_err)?;
+    let mut reader = inrs::open_points(points).map_err(in_file)?;
+    let mut out = Output::create(output)?;
+    writeln!(out, "{header}")?;
+    let mut records: Vec<PointRecord> = Vec::with_capacity(BATCH);
+    let mut pts = Vec::with_capacity(BATCH);
+    loop {
+        records.clear();
+        for r in reader.by_ref().take(BATCH) {
+            records.push(r.map_err(in_file)?);
+        }
+        if records.is_empty() {
+            break;
+        }
+        pts.clear();
+        pts.extend(records.iter().map(|r| r.point));
+        for (r, v) in records.iter().zip(values(&pts)) {
+            writeln!(out, "{},{},{}", r.x_text, r.y_text, v)?;
+        }
+        if records.len() < BATCH {
+            break;
+        }
     }
-    w.flush().map_err(write_err)
+    out.finish()
 }
 
 /// Reads a domain: JSON, or (feature `io`) SVG, DXF or a font glyph `font.ttf#B`.
 #[cfg(feature = "io")]
-fn load_domain(path: &std::path::Path) -> Result<Domain, String> {
+fn load_domain(path: &std::path::Path) -> Result<Domain, Failure> {
     let spec = path.to_string_lossy();
-    inrs::io::load_domain(&spec).map_err(|e| match e {
-        inrs::io::IoError::Read { .. }
-        | inrs::io::IoError::Domain(inrs::DomainError::Io { .. })
-        | inrs::io::IoError::UnknownFormat { .. } => e.to_string(),
-        other => format!("{spec}: {other}"),
+    inrs::io::load_domain(&spec).map_err(|e| {
+        Failure::Message(match e {
+            inrs::io::IoError::Read { .. }
+            | inrs::io::IoError::Domain(inrs::DomainError::Io { .. })
+            | inrs::io::IoError::UnknownFormat { .. } => e.to_string(),
+            other => format!("{spec}: {other}"),
+        })
     })
 }
 
 /// Reads a JSON domain file.
 #[cfg(not(feature = "io"))]
-fn load_domain(path: &std::path::Path) -> Result<Domain, String> {
-    Domain::from_json_file(path).map_err(|e| match e {
-        inrs::DomainError::Io { .. } => e.to_string(),
-        other => format!("{}: {other}", path.display()),
+fn load_domain(path: &std::path::Path) -> Result<Domain, Failure> {
+    Domain::from_json_file(path).map_err(|e| {
+        Failure::Message(match e {
+            inrs::DomainError::Io { .. } => e.to_string(),
+            other => format!("{}: {other}", path.display()),
+        })
     })
 }
 
-fn run(cli: Cli) -> Result<(), String> {
+fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Classify {
             domain,
@@ -390,23 +417,34 @@ fn run(cli: Cli) -> Result<(), String> {
         } => {
             let d = load_domain(&domain)?;
             let in_domain = |e: inrs::ContainError| format!("{}: {e}", domain.display());
-            let locations = if method == Method::Gwn {
+            let output = output.as_deref();
+            if method == Method::Gwn {
                 let field = WindingField::new(&d, tol).map_err(in_domain)?;
-                let records = load_points(&points)?;
-                let pts: Vec<_> = records.iter().map(|r| r.point).collect();
-                (records, field.classify(&pts, fill_rule))
-            } else {
-                let options = ContainOptions {
-                    tolerance: tol,
-                    subdivisions,
-                };
-                let classifier = Classifier::new(&d, options).map_err(in_domain)?;
-                let records = load_points(&points)?;
-                let pts: Vec<_> = records.iter().map(|r| r.point).collect();
-                let loc = classifier.classify(&pts, method);
-                (records, loc)
+                return stream_points(&points, output, "x,y,location", |pts| {
+                    field.classify(pts, fill_rule)
+                });
+            }
+            let options = ContainOptions {
+                tolerance: tol,
+                subdivisions,
             };
-            write_csv(output.as_ref(), "x,y,location", &locations.0, &locations.1)
+            let classifier = Classifier::new(&d, options).map_err(in_domain)?;
+            // The fast method builds its grid once, on the first batch large enough to pay
+            // for it, and reuses it for every later batch.
+            let mut locator: Option<PointLocator<'_>> = None;
+            stream_points(&points, output, "x,y,location", |pts| -> Vec<Location> {
+                if method == Method::Fast && pts.len() >= FAST_METHOD_MIN_POINTS {
+                    locator
+                        .get_or_insert_with(|| {
+                            PointLocator::new(&classifier, LocatorOptions::default())
+                        })
+                        .classify_parallel(pts)
+                } else if let (Method::Fast, Some(l)) = (method, &locator) {
+                    l.classify_parallel(pts)
+                } else {
+                    classifier.classify(pts, method)
+                }
+            })
         }
         Command::Winding {
             domain,
@@ -415,15 +453,14 @@ fn run(cli: Cli) -> Result<(), String> {
             algorithm,
         } => {
             let d = load_domain(&domain)?;
-            let field = WindingField::new(&d, inrs::contain::DEFAULT_TOLERANCE)
+            let field = WindingField::new(&d, DEFAULT_TOLERANCE)
                 .map_err(|e| format!("{}: {e}", domain.display()))?;
-            let records = load_points(&points)?;
             let mut stats = QueryStats::default();
-            let values: Vec<f64> = records
-                .iter()
-                .map(|r| field.winding_number_with(r.point, algorithm, &mut stats))
-                .collect();
-            write_csv(output.as_ref(), "x,y,winding", &records, &values)
+            stream_points(&points, output.as_deref(), "x,y,winding", |pts| {
+                pts.iter()
+                    .map(|&q| field.winding_number_with(q, algorithm, &mut stats))
+                    .collect()
+            })
         }
         Command::Sample {
             domain,
@@ -434,25 +471,28 @@ fn run(cli: Cli) -> Result<(), String> {
         } => {
             let d = load_domain(&domain)?;
             let in_domain = |e: inrs::mesh::MeshError| format!("{}: {e}", domain.display());
-            let mut text = String::from("x,y,kind\n");
+            let mut out = Output::create(output.as_deref())?;
+            writeln!(out, "x,y,kind")?;
             match method.as_str() {
                 "lines" => {
                     let pts = inrs::mesh::well_spaced_points(&d, ny).map_err(in_domain)?;
                     for b in pts.boundary.iter().flatten() {
-                        text.push_str(&format!("{:?},{:?},boundary\n", b.point.x, b.point.y));
+                        writeln!(out, "{:?},{:?},boundary", b.point.x, b.point.y)?;
                     }
                     for p in &pts.interior {
-                        text.push_str(&format!("{:?},{:?},interior\n", p.x, p.y));
+                        writeln!(out, "{:?},{:?},interior", p.x, p.y)?;
                     }
                 }
                 "halton" => {
                     for p in inrs::mesh::halton_points_in(&d, count).map_err(in_domain)? {
-                        text.push_str(&format!("{:?},{:?},interior\n", p.x, p.y));
+                        writeln!(out, "{:?},{:?},interior", p.x, p.y)?;
                     }
                 }
-                other => return Err(format!("--method {other:?}: expected lines or halton")),
+                other => {
+                    return Err(format!("--method {other:?}: expected lines or halton").into());
+                }
             }
-            write_text(output.as_ref(), &text)
+            out.finish()
         }
         Command::Mesh {
             domain,
@@ -465,6 +505,21 @@ fn run(cli: Cli) -> Result<(), String> {
             let pts = inrs::mesh::well_spaced_points(&d, ny).map_err(in_domain)?;
             let m = inrs::mesh::CurvedTriangulation::new(&d, &pts).map_err(in_domain)?;
             let area: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+            // Both outputs are written under temporary names and put in place together, so a
+            // failure leaves neither.
+            let mut json = Output::create(output.as_deref())?;
+            let mut figure = svg
+                .as_deref()
+                .map(|p| Output::create(Some(p)))
+                .transpose()?;
+            json.write_str(&(mesh_json(&m) + "\n"))?;
+            if let Some(f) = figure.as_mut() {
+                f.write_str(&inrs::mesh::mesh_svg(&m, 800.0))?;
+            }
+            if let Some(f) = figure {
+                f.finish()?;
+            }
+            json.finish()?;
             eprintln!(
                 "{} vertices, {} curved triangles, {} boundary arcs, {} boundary points inserted for convertibility, total area {area:.15e}",
                 m.vertices().len(),
@@ -472,11 +527,6 @@ fn run(cli: Cli) -> Result<(), String> {
                 m.arcs().len(),
                 m.inserted_boundary_points()
             );
-            write_text(output.as_ref(), &(mesh_json(&m) + "\n"))?;
-            if let Some(path) = svg {
-                std::fs::write(&path, inrs::mesh::mesh_svg(&m, 800.0))
-                    .map_err(|e| format!("{}: {e}", path.display()))?;
-            }
             Ok(())
         }
         Command::ConvexDomain {
@@ -500,15 +550,7 @@ fn run(cli: Cli) -> Result<(), String> {
         ),
         Command::Convert { domain, output } => {
             let d = load_domain(&domain)?;
-            let json = d.to_json_string();
-            match output {
-                Some(path) => std::fs::write(&path, json + "\n")
-                    .map_err(|e| format!("{}: {e}", path.display())),
-                None => {
-                    println!("{json}");
-                    Ok(())
-                }
-            }
+            write_text(output.as_deref(), &(d.to_json_string() + "\n"))
         }
         Command::Info {
             domain,
@@ -519,17 +561,37 @@ fn run(cli: Cli) -> Result<(), String> {
                 d.require_closed()
                     .map_err(|e| format!("{}: {e}", domain.display()))?;
             }
-            println!("{}", DomainSummary::of(&d));
-            Ok(())
+            write_text(None, &format!("{}\n", DomainSummary::of(&d)))
         }
     }
 }
 
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // Help and version go to standard output; a closed pipe there is not an error.
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
         Err(e) => {
-            eprintln!("inrs: {e}");
+            // Usage errors: one line on standard error, clap's exit status 2.
+            let text = e.render().to_string();
+            let message: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let message = message.join(" ");
+            let message = message.strip_prefix("error: ").unwrap_or(&message);
+            let _ = writeln!(std::io::stderr(), "inrs: {message} (see inrs --help)");
+            return ExitCode::from(2);
+        }
+    };
+    match run(cli) {
+        Ok(()) | Err(Failure::ClosedPipe) => ExitCode::SUCCESS,
+        Err(Failure::Message(e)) => {
+            let _ = writeln!(std::io::stderr(), "inrs: {e}");
             ExitCode::FAILURE
         }
     }

@@ -119,7 +119,7 @@ fn classify_output_file_and_tolerance() {
 #[test]
 fn bad_input_gives_one_line_errors() {
     let good_points = temp_file("good.csv", "0,0\n");
-    let bad_points = temp_file("bad.csv", "0,0\n1,2,3\n");
+    let bad_points = temp_file("bad.csv", "0,0\n1\n");
     let nan_points = temp_file("nan.csv", "0,0\nNaN,1\n");
     let circle = fixture("inrs-paper/circle.json");
     let malformed = fixture("bad/malformed.json");
@@ -185,7 +185,7 @@ fn bad_input_gives_one_line_errors() {
                 "--tol",
                 "-1",
             ],
-            "invalid boundary tolerance",
+            "-1 must be finite and >= 0",
         ),
         (
             vec![
@@ -197,7 +197,7 @@ fn bad_input_gives_one_line_errors() {
                 "--subdivisions",
                 "0",
             ],
-            "subdivisions must be at least 1",
+            "0 is out of range: expected 1 to 4096",
         ),
     ];
     for (args, needle) in cases {
@@ -566,7 +566,7 @@ fn sample_and_mesh_write_points_and_curved_triangulations() {
     for (args, want) in [
         (
             vec!["sample", "--domain", &domain, "--ny", "1"],
-            "ny must be at least 2",
+            "1 is out of range: expected 2 to 100000",
         ),
         (
             vec!["sample", "--domain", &domain, "--method", "grid"],
@@ -574,7 +574,7 @@ fn sample_and_mesh_write_points_and_curved_triangulations() {
         ),
         (
             vec!["mesh", "--domain", &domain, "--ny", "0"],
-            "ny must be at least 2",
+            "--ny <NY>': 0 is out of range: expected 2 to 100000",
         ),
     ] {
         let out = inrs(&args);

@@ -18,7 +18,7 @@ pub enum BoxError {
     },
     /// A piece could not be cut into monotone parts (its tangency roots could not be
     /// computed): containment would not be exact, so nothing is built.
-    #[error("curve {curve}, piece starting at parameter {parameter}: {source}")]
+    #[error("curve {curve}, piece starting at parameter {parameter:?}: {source}")]
     Piece {
         /// Index of the curve.
         curve: usize,

@@ -14,6 +14,6 @@ pub enum ContainError {
     #[error(transparent)]
     Boxes(#[from] BoxError),
     /// The boundary tolerance must be finite and >= 0.
-    #[error("invalid boundary tolerance {0} (must be finite and >= 0)")]
+    #[error("invalid boundary tolerance {0:?} (must be finite and >= 0)")]
     InvalidTolerance(f64),
 }

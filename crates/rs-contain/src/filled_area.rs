@@ -62,7 +62,11 @@ pub fn even_odd_area(domain: &Domain) -> Option<f64> {
 
 /// The number of loops other than `own` that enclose `q`, or `None` if `q` is (within
 /// rounding) on one of them.
-fn enclosing_loops(pieces: &[Vec<rs_spline::RationalBezier>], own: usize, q: Point) -> Option<usize> {
+fn enclosing_loops(
+    pieces: &[Vec<rs_spline::RationalBezier>],
+    own: usize,
+    q: Point,
+) -> Option<usize> {
     let mut stats = QueryStats::default();
     let mut depth = 0;
     for (j, other) in pieces.iter().enumerate() {

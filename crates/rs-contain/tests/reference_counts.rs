@@ -101,7 +101,8 @@ fn inside_counts_match_the_reference_exactly() {
                     );
                     checked += 1;
                 }
-                let field = WindingField::new(&domain, ContainOptions::default().tolerance).unwrap();
+                let field =
+                    WindingField::new(&domain, ContainOptions::default().tolerance).unwrap();
                 let fast = FastWindingField::new(&field);
                 let inside = pts
                     .iter()
@@ -145,11 +146,17 @@ fn polygon_baseline_matches_the_reference() {
 /// curve and the parameter; the winding numbers accept it and degrade only near the gap.
 #[test]
 fn a_gap_at_a_break_is_an_error_for_crossings_and_fine_for_winding_numbers() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/breaks/circle_gap.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fixtures/breaks/circle_gap.json"
+    );
     let d = Domain::from_json_file(path).unwrap();
     let err = Classifier::new(&d, ContainOptions::default()).unwrap_err();
     let msg = err.to_string();
-    assert!(msg.contains("curve 0") && msg.contains("parameter 0.5"), "{msg}");
+    assert!(
+        msg.contains("curve 0") && msg.contains("parameter 0.5"),
+        "{msg}"
+    );
     let field = WindingField::new(&d, 1e-12).unwrap();
     let w = |x: f64, y: f64| field.winding_number(Point::new(x, y));
     assert!((w(0.0, 0.0) - 1.0).abs() < 1e-3, "{}", w(0.0, 0.0));

@@ -34,8 +34,7 @@ mod svg;
 
 pub use approximation::{
     BoundingBox3, ConvexDomain, ConvexDomainOptions, Level, MAX_BOX_COORDINATE, MAX_LEVEL, Outcome,
-    Region, Sign,
-    approximate,
+    Region, Sign, approximate,
 };
 pub use curve_file::{FreeCurve, load_curve, parse_curve};
 pub use error::ConvexError;

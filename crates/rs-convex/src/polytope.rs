@@ -240,7 +240,11 @@ mod tests {
         assert_eq!(tet.face_count(), 4);
         assert!(u.clip([1.0, 0.0, 0.0], -2.0, 1.0).is_empty());
         // Clipping by the plane of a face, from either side, or twice by one plane.
-        for (a, b) in [([0.0, 0.0, 1.0], 0.0), ([0.0, 0.0, -1.0], 1.0), ([1.0, 0.0, 0.0], 0.0)] {
+        for (a, b) in [
+            ([0.0, 0.0, 1.0], 0.0),
+            ([0.0, 0.0, -1.0], 1.0),
+            ([1.0, 0.0, 0.0], 0.0),
+        ] {
             let same = u.clip(a, b, 1.0);
             assert_eq!(same.face_count(), 6, "{a:?} {b}");
             assert!((same.volume() - 1.0).abs() < 1e-15, "{}", same.volume());
@@ -250,7 +254,9 @@ mod tests {
         assert_eq!(twice.face_count(), 7);
         assert!((twice.volume() - cut.volume()).abs() < 1e-15);
         // A parallel plane inside: half the cube, still six faces.
-        let upper = u.clip([0.0, 0.0, 1.0], -0.5, 1.0).clip([0.0, 0.0, 2.0], -1.0, 1.0);
+        let upper = u
+            .clip([0.0, 0.0, 1.0], -0.5, 1.0)
+            .clip([0.0, 0.0, 2.0], -1.0, 1.0);
         assert_eq!(upper.face_count(), 6);
         assert!((upper.volume() - 0.5).abs() < 1e-15);
         // Halving along the plane through four vertices.

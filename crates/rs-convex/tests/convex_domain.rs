@@ -413,7 +413,11 @@ fn torsion_volumes_bracket_a_monte_carlo_estimate_when_a_constraint_is_a_box_fac
         q[2] = d;
         let keeps = (0..=128).all(|i| {
             let v = torsion_numerator(&q, i as f64 / 128.0);
-            if sign == Sign::Positive { v >= 0.0 } else { v <= 0.0 }
+            if sign == Sign::Positive {
+                v >= 0.0
+            } else {
+                v <= 0.0
+            }
         });
         hits += usize::from(keeps);
     }
@@ -424,8 +428,16 @@ fn torsion_volumes_bracket_a_monte_carlo_estimate_when_a_constraint_is_a_box_fac
     assert!(p > 0.01, "the test needs a non-trivial domain: {p}");
     for l in &k.levels {
         let v = l.region.measure();
-        assert!(v <= truth + 3.0 * sigma, "level {}: {v} > {truth} +- {sigma}", l.level);
+        assert!(
+            v <= truth + 3.0 * sigma,
+            "level {}: {v} > {truth} +- {sigma}",
+            l.level
+        );
     }
-    assert!(k.outer.measure() >= truth - 3.0 * sigma, "outer {} < {truth}", k.outer.measure());
+    assert!(
+        k.outer.measure() >= truth - 3.0 * sigma,
+        "outer {} < {truth}",
+        k.outer.measure()
+    );
     assert!(k.outer.measure() >= k.inner().measure());
 }

@@ -6,7 +6,7 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RootsError {
     /// A coefficient is NaN or infinite.
-    #[error("coefficient {index} is not finite ({value})")]
+    #[error("coefficient {index} is not finite ({value:?})")]
     NonFiniteCoefficient {
         /// Index of the offending coefficient (ascending order).
         index: usize,
@@ -17,7 +17,7 @@ pub enum RootsError {
     #[error("the zero polynomial has infinitely many roots")]
     ZeroPolynomial,
     /// The search interval is empty, reversed or not finite.
-    #[error("invalid interval [{a}, {b}]")]
+    #[error("invalid interval [{a:?}, {b:?}]")]
     InvalidInterval {
         /// Lower end.
         a: f64,
@@ -25,7 +25,7 @@ pub enum RootsError {
         b: f64,
     },
     /// A bracketed solver was given an interval without a sign change.
-    #[error("no sign change on the bracket: f(a) = {fa}, f(b) = {fb}")]
+    #[error("no sign change on the bracket: f(a) = {fa:?}, f(b) = {fb:?}")]
     NoSignChange {
         /// Function value at the lower end.
         fa: f64,
@@ -33,7 +33,7 @@ pub enum RootsError {
         fb: f64,
     },
     /// The function returned NaN or an infinity during a bracketed solve.
-    #[error("function value is not finite at t = {t}")]
+    #[error("function value is not finite at t = {t:?}")]
     NonFiniteValue {
         /// Where it happened.
         t: f64,

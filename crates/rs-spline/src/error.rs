@@ -42,7 +42,9 @@ pub(crate) fn check_control_points(points: &[Point], weights: &[f64]) -> Result<
     }
     let (lo, hi) = weights
         .iter()
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| (lo.min(w), hi.max(w)));
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| {
+            (lo.min(w), hi.max(w))
+        });
     // Compare as hi > lo * limit, which neither overflows nor underflows for the finite
     // positive weights checked above.
     if hi / MAX_WEIGHT_RATIO > lo {
@@ -120,7 +122,7 @@ pub enum SplineError {
         got: usize,
     },
     /// A knot is NaN or infinite.
-    #[error("knot {index} is not finite ({value})")]
+    #[error("knot {index} is not finite ({value:?})")]
     NonFiniteKnot {
         /// Knot index.
         index: usize,
@@ -128,7 +130,7 @@ pub enum SplineError {
         value: f64,
     },
     /// `knots[index] < knots[index - 1]`.
-    #[error("knots decrease at index {index}: {previous} > {value}")]
+    #[error("knots decrease at index {index}: {previous:?} > {value:?}")]
     DecreasingKnots {
         /// Index of the smaller knot.
         index: usize,
@@ -138,7 +140,7 @@ pub enum SplineError {
         value: f64,
     },
     /// The parameter domain `[knots[p], knots[n]]` is empty.
-    #[error("empty parameter domain [{start}, {end}]")]
+    #[error("empty parameter domain [{start:?}, {end:?}]")]
     EmptyDomain {
         /// `knots[degree]`.
         start: f64,
@@ -148,7 +150,7 @@ pub enum SplineError {
     /// A knot strictly inside the domain is repeated more than `degree + 1` times (a knot of
     /// multiplicity `degree + 1` is a break between independent Bezier pieces; more has no
     /// meaning).
-    #[error("interior knot {value} has multiplicity {multiplicity} > degree + 1 = {}", degree + 1)]
+    #[error("interior knot {value:?} has multiplicity {multiplicity} > degree + 1 = {}", degree + 1)]
     InteriorMultiplicity {
         /// Knot value.
         value: f64,
@@ -158,7 +160,7 @@ pub enum SplineError {
         degree: usize,
     },
     /// A control point coordinate is NaN or infinite.
-    #[error("control point {index} is not finite ({x}, {y})")]
+    #[error("control point {index} is not finite ({x:?}, {y:?})")]
     NonFiniteControlPoint {
         /// Control point index.
         index: usize,
@@ -176,7 +178,7 @@ pub enum SplineError {
         points: usize,
     },
     /// A weight is zero, negative, NaN or infinite.
-    #[error("weight {index} must be finite and > 0, got {value}")]
+    #[error("weight {index} must be finite and > 0, got {value:?}")]
     NonPositiveWeight {
         /// Weight index.
         index: usize,
@@ -184,7 +186,7 @@ pub enum SplineError {
         value: f64,
     },
     /// A parameter is outside the curve's domain (or not finite).
-    #[error("parameter {u} is outside the domain [{start}, {end}]")]
+    #[error("parameter {u:?} is outside the domain [{start:?}, {end:?}]")]
     ParameterOutOfDomain {
         /// The parameter.
         u: f64,
@@ -194,7 +196,7 @@ pub enum SplineError {
         end: f64,
     },
     /// Knot insertion would exceed the allowed multiplicity.
-    #[error("inserting {value} {times} times exceeds multiplicity {max} (it has {current})")]
+    #[error("inserting {value:?} {times} times exceeds multiplicity {max} (it has {current})")]
     MultiplicityExceeded {
         /// Knot value.
         value: f64,
@@ -206,7 +208,7 @@ pub enum SplineError {
         max: usize,
     },
     /// A knot span (or the whole knot range) is so long that its length overflows.
-    #[error("knots {start} .. {end}: the span length is not finite")]
+    #[error("knots {start:?} .. {end:?}: the span length is not finite")]
     NonFiniteSpan {
         /// First knot of the range.
         start: f64,
@@ -224,7 +226,7 @@ pub enum SplineError {
         limit: f64,
     },
     /// A primitive got an invalid size or angle.
-    #[error("invalid {what}: {value}")]
+    #[error("invalid {what}: {value:?}")]
     InvalidPrimitive {
         /// Which parameter.
         what: &'static str,
@@ -293,7 +295,7 @@ pub enum DomainError {
     /// A curve's Bezier pieces do not meet at a break (an interior knot of multiplicity
     /// `degree + 1`): the boundary has a gap there.
     #[error(
-        "curve {curve} has a gap at parameter {parameter}: its pieces are {gap:e} apart there (tolerance {tolerance:e}); only the winding-number methods accept gaps"
+        "curve {curve} has a gap at parameter {parameter:?}: its pieces are {gap:e} apart there (tolerance {tolerance:e}); only the winding-number methods accept gaps"
     )]
     CurveGap {
         /// Index of the curve.
@@ -306,7 +308,7 @@ pub enum DomainError {
         tolerance: f64,
     },
     /// The closure tolerance must be finite and non-negative.
-    #[error("invalid closure tolerance {0}")]
+    #[error("invalid closure tolerance {0:?}")]
     InvalidTolerance(f64),
 }
 

@@ -523,7 +523,14 @@ mod tests {
     fn breaks_split_into_independent_pieces() {
         // A degree-2 polygon with multiplicity-3 breaks, the way the inRS Matlab package
         // writes polygons.
-        let pts = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 0.0), (2.0, 1.0), (2.0, 2.0)];
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (2.0, 2.0),
+        ];
         let c = NurbsCurve::new(
             2,
             vec![0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0],
@@ -562,8 +569,13 @@ mod tests {
         let pts: Vec<Point> = (0..n)
             .map(|i| Point::new(i as f64, ((i * 7919) % 13) as f64))
             .collect();
-        let c = NurbsCurve::new(3, KnotVector::uniform_clamped(3, n).unwrap().knots().to_vec(), pts, None)
-            .unwrap();
+        let c = NurbsCurve::new(
+            3,
+            KnotVector::uniform_clamped(3, n).unwrap().knots().to_vec(),
+            pts,
+            None,
+        )
+        .unwrap();
         let pieces = c.to_bezier();
         assert_eq!(pieces.len(), n - 3);
         for (i, b) in pieces.iter().enumerate().step_by(997) {
@@ -575,12 +587,19 @@ mod tests {
 
     #[test]
     fn huge_and_tiny_weights_are_rescaled_exactly() {
-        let pts = vec![Point::new(0.0, 0.0), Point::new(0.5, -1.0), Point::new(1.0, 0.0)];
+        let pts = vec![
+            Point::new(0.0, 0.0),
+            Point::new(0.5, -1.0),
+            Point::new(1.0, 0.0),
+        ];
         let plain = NurbsCurve::bezier(pts.clone(), Some(vec![1.0, 2.0, 1.0])).unwrap();
         for s in [1e50, 1e-300, 1e300] {
             let c = NurbsCurve::bezier(pts.clone(), Some(vec![s, 2.0 * s, s])).unwrap();
             let w = c.weights();
-            assert!(w.iter().all(|&x| (2f64.powi(-33)..=2f64.powi(32)).contains(&x)));
+            assert!(
+                w.iter()
+                    .all(|&x| (2f64.powi(-33)..=2f64.powi(32)).contains(&x))
+            );
             assert_eq!(w[1] / w[0], 2.0);
             for i in 0..=8 {
                 let t = i as f64 / 8.0;

@@ -135,7 +135,11 @@ mod tests {
                 assert_eq!(c.end_point(), p1);
                 let sagitta = 1e6 - (1e12f64 - 0.25).sqrt();
                 // The centre lies 1e6 away: its rounding (1e-10) bounds the accuracy.
-                assert!((c.point_at(0.5).y.abs() - sagitta).abs() < 1e-9, "{:?}", c.point_at(0.5));
+                assert!(
+                    (c.point_at(0.5).y.abs() - sagitta).abs() < 1e-9,
+                    "{:?}",
+                    c.point_at(0.5)
+                );
             }
             other => panic!("{other:?}"),
         }

@@ -1,0 +1,101 @@
+//! Option parsers that state their limits, and the help text listing every limit.
+
+/// Printed after `--help`: the boundary tolerance and every documented limit.
+pub(crate) const AFTER_HELP: &str = "\
+Boundary tolerance: with T = tol x (diagonal of the domain's bounding box), a point is 'boundary'
+when its vertical or horizontal distance to the boundary curve is at most T. Every point within
+Euclidean distance T/sqrt(2) of the boundary is 'boundary', none farther than T is; all other
+points are 'inside' or 'outside' exactly (up to floating-point rounding, far below T). Default
+tol = 1e-12 (relative).
+
+Limits (inputs beyond them are errors, never a crash or a hang):
+  input files (domain, SVG, DXF, font, curve)   256 MiB; points files are streamed (any size,
+                                                lines up to 64 KiB)
+  curve degree                                  32
+  |control point coordinate|                    1e150 (meshing: 3.2e60)
+  weight ratio max/min within one curve         1e12 (uniform scaling of weights is free)
+  arc sweep                                     1024 turns
+  SVG group nesting / XML nodes                 256 / 10^7
+  --subdivisions                                1..4096, reduced so a domain has at most about
+                                                131072 boxes (520 bytes a box)
+  sample --count / points from sample           10^7
+  mesh vertices                                 2 x 10^6
+  convex-domain --box coordinates / --max-level 1e100 / 20";
+
+fn whole(s: &str) -> Result<u64, String> {
+    s.parse::<u64>()
+        .map_err(|_| format!("{s:?} is not a whole number >= 0"))
+}
+
+fn in_range(s: &str, lo: u64, hi: u64) -> Result<u64, String> {
+    let v = whole(s).map_err(|_| format!("{s:?}: expected a whole number from {lo} to {hi}"))?;
+    if (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} is out of range: expected {lo} to {hi}"))
+    }
+}
+
+/// `--tol` of classify: a finite number >= 0.
+pub(crate) fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        Ok(v) => Err(format!("{v} must be finite and >= 0")),
+        Err(_) => Err(format!("{s:?} is not a number")),
+    }
+}
+
+/// `--tol` of convex-domain: a finite number >= 0.
+pub(crate) fn parse_relative_tolerance(s: &str) -> Result<f64, String> {
+    parse_tolerance(s)
+}
+
+/// `--subdivisions`: 1 to [`inrs::boxes::MAX_SUBDIVISIONS`].
+pub(crate) fn parse_subdivisions(s: &str) -> Result<usize, String> {
+    in_range(s, 1, inrs::boxes::MAX_SUBDIVISIONS as u64).map(|v| v as usize)
+}
+
+/// `--ny`: 2 to [`inrs::mesh::MAX_LINES`].
+pub(crate) fn parse_ny(s: &str) -> Result<usize, String> {
+    in_range(s, 2, inrs::mesh::MAX_LINES as u64).map(|v| v as usize)
+}
+
+/// `--count`: 1 to [`inrs::mesh::MAX_SAMPLE_POINTS`].
+pub(crate) fn parse_count(s: &str) -> Result<usize, String> {
+    in_range(s, 1, inrs::mesh::MAX_SAMPLE_POINTS as u64).map(|v| v as usize)
+}
+
+/// `--max-level`: 0 to [`inrs::convex::MAX_LEVEL`].
+pub(crate) fn parse_level(s: &str) -> Result<u32, String> {
+    in_range(s, 0, u64::from(inrs::convex::MAX_LEVEL)).map(|v| v as u32)
+}
+
+/// `--free-index`, `--curve-index`: a whole number (checked against the curve later).
+pub(crate) fn parse_free_index(s: &str) -> Result<usize, String> {
+    in_range(s, 0, u32::MAX as u64).map(|v| v as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn limits_are_checked_with_messages() {
+        assert_eq!(
+            parse_tolerance("-1").unwrap_err(),
+            "-1 must be finite and >= 0"
+        );
+        assert!(parse_tolerance("inf").is_err());
+        assert_eq!(parse_tolerance("1e-9"), Ok(1e-9));
+        assert!(parse_subdivisions("0").unwrap_err().contains("1 to 4096"));
+        assert!(
+            parse_subdivisions("10000000")
+                .unwrap_err()
+                .contains("out of range")
+        );
+        assert!(parse_ny("-5").unwrap_err().contains("from 2 to 100000"));
+        assert!(parse_count("1000000000").is_err());
+        assert_eq!(parse_count("10"), Ok(10));
+        assert!(parse_level("21").is_err());
+    }
+}
