@@ -413,6 +413,10 @@ fn svg_dxf_and_font_domains_are_accepted_wherever_json_is() {
         let err = String::from_utf8(out.stderr).unwrap();
         assert!(!out.status.success() && err.contains("#B"), "{err}");
     } else {
+        assert!(
+            std::env::var("INRS_REQUIRE_SYSTEM_FILES").as_deref() != Ok("1"),
+            "{font} is missing and INRS_REQUIRE_SYSTEM_FILES=1: install fonts-dejavu-core"
+        );
         eprintln!("SKIPPED font part: {font} absent (install fonts-dejavu-core)");
     }
 

@@ -52,7 +52,8 @@ impl Default for ContainOptions {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Classifier {
-    boxes: MonotoneBoxes,
+    /// The winding-number field of the boundary; it owns the monotone boxes, which the
+    /// crossing tests share (one copy).
     field: WindingField,
     tol: f64,
     outer: BoundingBox,
@@ -81,18 +82,13 @@ impl Classifier {
             min: Point::new(bbox.min.x - tol, bbox.min.y - tol),
             max: Point::new(bbox.max.x + tol, bbox.max.y + tol),
         };
-        let field = WindingField::with_boxes(domain, boxes.clone(), options.tolerance)?;
-        Ok(Self {
-            boxes,
-            field,
-            tol,
-            outer,
-        })
+        let field = WindingField::with_boxes(domain, boxes, options.tolerance)?;
+        Ok(Self { field, tol, outer })
     }
 
     /// The monotone boxes and critical points in use.
     pub fn boxes(&self) -> &MonotoneBoxes {
-        &self.boxes
+        self.field.monotone_boxes()
     }
 
     /// The bounding box grown by the tolerance: everything outside is outside.
@@ -120,8 +116,8 @@ impl Classifier {
         if !self.outer.contains(p) {
             return (Location::Outside, Decision::BoundingBox);
         }
-        if !self.boxes.is_critical_x(p.x, self.tol) {
-            let odd = parity(self.boxes.boxes(), |b| vertical(b, p, self.tol));
+        if !self.boxes().is_critical_x(p.x, self.tol) {
+            let odd = parity(self.boxes().boxes(), |b| vertical(b, p, self.tol));
             return (location(odd), Decision::VerticalRay);
         }
         self.fallback(p)
@@ -129,14 +125,14 @@ impl Classifier {
 
     /// Paper steps (vii)-(viii): the horizontal ray, then the winding number.
     pub(crate) fn fallback(&self, p: Point) -> (Location, Decision) {
-        if !self.boxes.is_critical_y(p.y, self.tol) {
-            let odd = parity(self.boxes.boxes(), |b| horizontal(b, p, self.tol));
+        if !self.boxes().is_critical_y(p.y, self.tol) {
+            let odd = parity(self.boxes().boxes(), |b| horizontal(b, p, self.tol));
             return (location(odd), Decision::HorizontalRay);
         }
-        if self.boxes.boxes().iter().any(|b| b.is_near(p, self.tol)) {
+        if self.boxes().boxes().iter().any(|b| b.is_near(p, self.tol)) {
             return (Location::Boundary, Decision::WindingNumber);
         }
-        let w = winding_number(self.boxes.boxes(), p).round() as i64;
+        let w = winding_number(self.boxes().boxes(), p).round() as i64;
         let loc = if w.rem_euclid(2) == 1 {
             Location::Inside
         } else {
@@ -178,7 +174,7 @@ impl Classifier {
             if !self.outer.contains(p) {
                 continue;
             }
-            if self.boxes.is_critical_x(p.x, self.tol) {
+            if self.boxes().is_critical_x(p.x, self.tol) {
                 out[i] = self.fallback(p).0;
             } else {
                 order.push(i);
@@ -189,7 +185,7 @@ impl Classifier {
         let mut odd = vec![false; order.len()];
         let mut on_boundary = vec![false; order.len()];
         let tol = self.tol;
-        for b in self.boxes.boxes() {
+        for b in self.boxes().boxes() {
             let lo = xs.partition_point(|&x| x < b.xmin - tol);
             let hi = xs.partition_point(|&x| x <= b.xmax + tol);
             for j in lo..hi {

@@ -2,7 +2,8 @@
 //! holes) and Adwaita icons (SVG, cubic paths, arcs, transforms). Grid points are classified by
 //! every method; all must agree, and agree with an independent dense polygon wherever the
 //! point is clearly away from the boundary. Tests skip with a message when the system files
-//! are absent (`.ci/run` installs `fonts-dejavu-core` and `adwaita-icon-theme`).
+//! are absent, and fail instead where `INRS_REQUIRE_SYSTEM_FILES=1` (`.ci/run` installs
+//! `fonts-dejavu-core`, `fonts-freefont-otf` and `adwaita-icon-theme` and sets it).
 
 use std::path::{Path, PathBuf};
 
@@ -82,13 +83,7 @@ fn polygon_area(poly: &DensePolygon) -> f64 {
 }
 
 fn dejavu() -> Option<Vec<u8>> {
-    match std::fs::read(DEJAVU) {
-        Ok(data) => Some(data),
-        Err(e) => {
-            eprintln!("SKIPPED: {DEJAVU} not readable ({e}); install fonts-dejavu-core");
-            None
-        }
-    }
+    rs_testkit::system_file(DEJAVU, "fonts-dejavu-core")
 }
 
 #[test]
@@ -138,12 +133,8 @@ fn dejavu_printable_ascii_classifies_like_the_dense_polygon() {
 
 #[test]
 fn opentype_cff_glyphs_have_cubic_contours_and_classify_like_the_dense_polygon() {
-    let font = match std::fs::read(FREESANS) {
-        Ok(data) => data,
-        Err(e) => {
-            eprintln!("SKIPPED: {FREESANS} not readable ({e}); install fonts-freefont-otf");
-            return;
-        }
+    let Some(font) = rs_testkit::system_file(FREESANS, "fonts-freefont-otf") else {
+        return;
     };
     let mut cubic = 0;
     for c in ['B', '8', '@', 'g', 'Q', 'S', '&', 'e'] {
@@ -187,7 +178,10 @@ fn adwaita_icons_classify_like_the_dense_polygon() {
     let mut files = Vec::new();
     svg_files(Path::new(ADWAITA), &mut files);
     if files.is_empty() {
-        eprintln!("SKIPPED: no SVG icons under {ADWAITA}; install adwaita-icon-theme");
+        rs_testkit::missing_system_files(
+            &format!("SVG icons under {ADWAITA}"),
+            "adwaita-icon-theme",
+        );
         return;
     }
     files.sort();

@@ -10,8 +10,7 @@ const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 #[test]
 fn every_ascii_glyph_gets_a_curved_triangulation_covering_it_exactly() {
-    let Ok(font) = std::fs::read(DEJAVU) else {
-        eprintln!("SKIPPED: {DEJAVU} not readable; install fonts-dejavu-core");
+    let Some(font) = rs_testkit::system_file(DEJAVU, "fonts-dejavu-core") else {
         return;
     };
     for code in 0x21u8..=0x7e {

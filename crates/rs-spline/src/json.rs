@@ -86,28 +86,29 @@ impl Domain {
         Self::from_json_str(&text)
     }
 
-    /// The domain as JSON text in the NURBS form (primitives are written as their NURBS).
-    /// Numbers are written with enough digits to round-trip.
+    /// The domain as JSON text in the NURBS form (primitives are written as their NURBS), one
+    /// curve per line. Numbers are written in shortest round-trip form, so reading the text
+    /// back gives the same curves bit for bit.
     pub fn to_json_string(&self) -> String {
-        let curves: Vec<Value> = self
-            .curves()
-            .iter()
-            .map(|c| {
-                json!({
-                    "degree": c.degree(),
-                    "knots": c.knots().knots(),
-                    "control_points": c.control_points().iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-                    "weights": c.weights(),
-                })
-            })
-            .collect();
-        let mut top = Map::new();
+        let mut out = String::from("{");
         if let Some(name) = self.name() {
-            top.insert("name".into(), Value::String(name.into()));
+            out.push_str("\"name\": ");
+            out.push_str(&Value::String(name.into()).to_string());
+            out.push_str(",\n ");
         }
-        top.insert("curves".into(), Value::Array(curves));
-        // Serialising a Value built from finite f64s cannot fail.
-        serde_json::to_string_pretty(&Value::Object(top)).unwrap_or_default()
+        out.push_str("\"curves\": [");
+        for (i, c) in self.curves().iter().enumerate() {
+            let curve = json!({
+                "degree": c.degree(),
+                "knots": c.knots().knots(),
+                "control_points": c.control_points().iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                "weights": c.weights(),
+            });
+            out.push_str(if i == 0 { "\n  " } else { ",\n  " });
+            out.push_str(&curve.to_string());
+        }
+        out.push_str("\n]}");
+        out
     }
 
     /// Writes [`Domain::to_json_string`] to `path`.

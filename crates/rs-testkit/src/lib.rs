@@ -17,6 +17,40 @@ pub struct Case {
     pub domain: Domain,
 }
 
+/// The environment variable that makes a missing system file (font, icon theme) a test
+/// failure instead of a skip; `.ci/run` sets it, so CI never passes without running the
+/// real-file tests.
+pub const REQUIRE_SYSTEM_FILES: &str = "INRS_REQUIRE_SYSTEM_FILES";
+
+/// Reads a system file a test needs (installed by `package`). Where it is missing the test is
+/// skipped with a message, unless [`REQUIRE_SYSTEM_FILES`] is set to `1`: then it fails.
+///
+/// # Panics
+/// If the file is missing and [`REQUIRE_SYSTEM_FILES`] is `1`.
+pub fn system_file(path: &str, package: &str) -> Option<Vec<u8>> {
+    match std::fs::read(path) {
+        Ok(data) => Some(data),
+        Err(e) => {
+            missing_system_files(&format!("{path} ({e})"), package);
+            None
+        }
+    }
+}
+
+/// Reports that system files a test needs are missing: a skip with a message, or a panic
+/// when [`REQUIRE_SYSTEM_FILES`] is `1`.
+///
+/// # Panics
+/// When [`REQUIRE_SYSTEM_FILES`] is `1`.
+pub fn missing_system_files(what: &str, package: &str) {
+    let required = std::env::var(REQUIRE_SYSTEM_FILES).is_ok_and(|v| v == "1");
+    assert!(
+        !required,
+        "{what} is missing and {REQUIRE_SYSTEM_FILES}=1: install {package}"
+    );
+    eprintln!("SKIPPED: {what} is missing; install {package}");
+}
+
 /// A [`Case`] from curves (panics if they do not form a domain).
 pub fn case(name: &str, curves: Vec<NurbsCurve>) -> Case {
     Case {

@@ -109,6 +109,11 @@ impl WindingField {
         })
     }
 
+    /// The monotone boxes of the collection's curves.
+    pub fn monotone_boxes(&self) -> &MonotoneBoxes {
+        &self.boxes
+    }
+
     /// The rational Bezier pieces of the collection.
     pub fn pieces(&self) -> &[RationalBezier] {
         &self.pieces
