@@ -22,6 +22,9 @@ pub(crate) struct LoopBuilder {
     start: Point,
     pen: Point,
     transform: Affine,
+    /// The first curve a transform could not map (say, past the coordinate limit): reported by
+    /// [`LoopBuilder::take_error`] instead of dropping the loop silently.
+    error: Option<SplineError>,
 }
 
 impl LoopBuilder {
@@ -32,7 +35,18 @@ impl LoopBuilder {
             start: Point::new(0.0, 0.0),
             pen: Point::new(0.0, 0.0),
             transform: Affine::IDENTITY,
+            error: None,
         }
+    }
+
+    /// The first error met while mapping finished subpaths, if any (and clears it).
+    pub(crate) fn take_error(&mut self) -> Option<SplineError> {
+        self.error.take()
+    }
+
+    /// Finishes the current subpath now (as a new subpath or the end would).
+    pub(crate) fn end_subpath(&mut self) {
+        self.finish();
     }
 
     /// Sets the map applied to the curves of the next subpaths (finishes the current one).
@@ -93,9 +107,15 @@ impl LoopBuilder {
 
     /// Finishes the current subpath (adding the closing segment if needed) and returns every
     /// loop's curves, in order.
-    pub(crate) fn into_curves(mut self) -> Vec<NurbsCurve> {
+    ///
+    /// # Errors
+    /// The first curve that could not be mapped by its transform.
+    pub(crate) fn into_curves(mut self) -> Result<Vec<NurbsCurve>, SplineError> {
         self.finish();
-        self.done
+        match self.error {
+            Some(e) => Err(e),
+            None => Ok(self.done),
+        }
     }
 
     fn finish(&mut self) {
@@ -116,12 +136,16 @@ impl LoopBuilder {
         }
         self.pen = self.start;
         // Map first: a singular transform (scale(0), say) flattens the loop to no area.
-        let mapped: Vec<NurbsCurve> = curves
+        let mapped: Result<Vec<NurbsCurve>, SplineError> = curves
             .iter()
-            .filter_map(|c| self.transform.apply_to_curve(c).ok())
+            .map(|c| self.transform.apply_to_curve(c))
             .collect();
-        if mapped.len() == curves.len() && encloses_area(&mapped) {
-            self.done.extend(mapped);
+        match mapped {
+            Ok(mapped) if encloses_area(&mapped) => self.done.extend(mapped),
+            Ok(_) => {}
+            Err(e) => {
+                self.error.get_or_insert(e);
+            }
         }
     }
 }
@@ -202,7 +226,7 @@ mod tests {
         b.move_to(p(5.0, 5.0));
         b.line_to(p(6.0, 6.0)).unwrap(); // a line: no area, dropped
         b.move_to(p(9.0, 9.0)); // a lone move: nothing
-        let curves = b.into_curves();
+        let curves = b.into_curves().unwrap();
         assert_eq!(curves.len(), 3);
         assert_eq!(curves[2].end_point(), p(0.0, 0.0));
         let d = rs_spline::Domain::new(curves).unwrap();
@@ -219,7 +243,7 @@ mod tests {
         b.line_to(p(1.0, 1.0)).unwrap();
         b.line_to(p(1e-17, 1e-17)).unwrap();
         b.close();
-        let curves = b.into_curves();
+        let curves = b.into_curves().unwrap();
         assert_eq!(curves.len(), 3);
         assert_eq!(curves[2].end_point(), p(0.0, 0.0));
     }
@@ -233,7 +257,7 @@ mod tests {
             .unwrap();
         b.bezier_to(&[p(2.0, 2.0), p(0.3, 0.9)]).unwrap();
         b.close();
-        let curves = b.into_curves();
+        let curves = b.into_curves().unwrap();
         assert_eq!(curves.len(), 3);
         for w in 0..3 {
             assert_eq!(curves[w].end_point(), curves[(w + 1) % 3].start_point());

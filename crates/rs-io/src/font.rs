@@ -95,7 +95,7 @@ pub fn glyph_curves(
     if let Some(e) = sink.error {
         return Err(bad(e.to_string()));
     }
-    let curves = sink.builder.into_curves();
+    let curves = sink.builder.into_curves().map_err(|e| bad(e.to_string()))?;
     if curves.is_empty() {
         return Err(bad("the glyph's outline encloses no area".to_string()));
     }

@@ -161,6 +161,10 @@ fn visit(
         // Lines enclose nothing; images, `use` references and unknown elements are not read.
         _ => {}
     }
+    builder.end_subpath();
+    if let Some(e) = builder.take_error() {
+        return Err(fail(e.to_string()));
+    }
     builder.set_transform(parent);
     Ok(())
 }

@@ -36,7 +36,10 @@ use crate::builder::LoopBuilder;
 pub fn curves_from_path_data(d: &str) -> Result<Vec<NurbsCurve>, IoError> {
     let mut b = LoopBuilder::new();
     path_data::read_path_data(d, &mut b)?;
-    Ok(b.into_curves())
+    b.into_curves().map_err(|e| IoError::PathData {
+        position: d.len(),
+        message: e.to_string(),
+    })
 }
 
 /// The domain bounded by SVG path data (see [`curves_from_path_data`]).
@@ -70,7 +73,7 @@ pub fn domain_from_path_data(d: &str) -> Result<Domain, IoError> {
 pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
     let mut b = LoopBuilder::new();
     document::read_document(text, &mut b)?;
-    domain(b.into_curves(), "SVG document")
+    domain(b.into_curves().map_err(svg_error)?, "SVG document")
 }
 
 /// [`domain_from_svg_str`] on a file (named in the domain).
@@ -86,7 +89,11 @@ pub fn domain_from_svg_file(path: impl AsRef<Path>) -> Result<Domain, IoError> {
     let mut b = LoopBuilder::new();
     document::read_document(&text, &mut b)?;
     let name = path.display().to_string();
-    Ok(domain(b.into_curves(), "SVG file")?.with_name(name))
+    Ok(domain(b.into_curves().map_err(svg_error)?, "SVG file")?.with_name(name))
+}
+
+fn svg_error(e: rs_spline::SplineError) -> IoError {
+    IoError::Xml(e.to_string())
 }
 
 fn domain(curves: Vec<NurbsCurve>, what: &str) -> Result<Domain, IoError> {

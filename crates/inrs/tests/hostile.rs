@@ -1,0 +1,708 @@
+//! Hostile input: the CLI binary run on malformed and extreme files and options, each case
+//! under a time limit and an address-space limit (`ulimit -v`). Every case asserts its exit
+//! status, that a failure is one line on standard error naming the cause (never a panic or an
+//! abort), that no output file (nor a temporary one) is left behind, and the bounds.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Address space for one run: far below what the defects this suite guards against took
+/// (3-9 GB), far above what a correct run needs.
+const MEMORY_LIMIT_MB: u64 = 2048;
+
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+    elapsed: Duration,
+}
+
+/// Runs `inrs args` under `sh -c 'ulimit -v ...; exec inrs "$@"'`, killing it after `secs`.
+fn run_limited(args: &[&str], secs: u64) -> Run {
+    let script = format!("ulimit -v {}; exec \"$0\" \"$@\"", MEMORY_LIMIT_MB * 1024);
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(script)
+        .arg(env!("CARGO_BIN_EXE_inrs"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("sh runs");
+    let mut out = child.stdout.take().expect("piped");
+    let mut err = child.stderr.take().expect("piped");
+    let reader = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = out.read_to_end(&mut s);
+        s
+    });
+    let err_reader = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = err.read_to_end(&mut s);
+        s
+    });
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
+        }
+        if start.elapsed() > Duration::from_secs(secs) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{args:?}: still running after {secs} s");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    let elapsed = start.elapsed();
+    Run {
+        code: status.code(),
+        stdout: String::from_utf8_lossy(&reader.join().unwrap_or_default()).into_owned(),
+        stderr: String::from_utf8_lossy(&err_reader.join().unwrap_or_default()).into_owned(),
+        elapsed,
+    }
+}
+
+/// A scratch directory of its own for one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("inrs-hostile-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, content: impl AsRef<[u8]>) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, content).unwrap();
+    p.display().to_string()
+}
+
+fn fixture(rel: &str) -> String {
+    format!("{}/../../fixtures/{rel}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// What a case must do.
+enum Expect {
+    /// Exit 0.
+    Success,
+    /// Exit 1 with one line on standard error containing this.
+    Error(&'static str),
+    /// Exit 2 (a usage error) with one line containing this.
+    Usage(&'static str),
+}
+
+/// Runs a case and checks the exit status, the message, the bounds and that the directory
+/// holds no file the run left behind.
+fn check(dir: &Path, args: &[&str], expect: Expect, secs: u64) -> Run {
+    let before: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    let r = run_limited(args, secs);
+    assert!(
+        !r.stderr.contains("panicked"),
+        "{args:?}: panic: {}",
+        r.stderr
+    );
+    assert!(
+        !r.stderr.contains("memory allocation"),
+        "{args:?}: allocation failure: {}",
+        r.stderr
+    );
+    let (code, needle) = match expect {
+        Expect::Success => (0, None),
+        Expect::Error(m) => (1, Some(m)),
+        Expect::Usage(m) => (2, Some(m)),
+    };
+    assert_eq!(r.code, Some(code), "{args:?}: stderr {}", r.stderr);
+    if let Some(needle) = needle {
+        assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+        assert!(
+            r.stderr.starts_with("inrs: ") && r.stderr.contains(needle),
+            "{args:?}: expected {needle:?} in {}",
+            r.stderr
+        );
+        let after: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.path())
+            .collect();
+        let left: Vec<_> = after.iter().filter(|p| !before.contains(p)).collect();
+        assert!(left.is_empty(), "{args:?}: left behind {left:?}");
+    }
+    assert!(r.elapsed < Duration::from_secs(secs), "{args:?}");
+    r
+}
+
+fn curve_json(body: &str) -> String {
+    format!("{{\"curves\": [{body}]}}")
+}
+
+/// Closes a curve from (0, 0) to (1, 0).
+const CHORD: &str = r#"{"segment": {"from": [1,0], "to": [0,0]}}"#;
+/// Closes a curve from (1, 0) to (0, 0).
+const CHORD_BACK: &str = r#"{"segment": {"from": [0,0], "to": [1,0]}}"#;
+
+#[test]
+fn malformed_and_extreme_domain_files_fail_cleanly() {
+    let d = scratch("json");
+    let pts = write(&d, "p.csv", "0.5,0.5\n");
+    let out = d.join("out.csv").display().to_string();
+    let cases: Vec<(String, &str)> = vec![
+        (String::new(), "invalid JSON"),
+        ("\u{0}\u{1}\u{ff}garbage".into(), "invalid JSON"),
+        ("[1, 2]".into(), "not a domain file"),
+        ("{\"curves\": []}".into(), "no curves"),
+        ("[".repeat(100_000), "invalid JSON"),
+        (
+            curve_json(r#"{"degree": 1000, "control_points": [[0,0],[1,1]]}"#),
+            "degree must be an integer between 1 and 32",
+        ),
+        (
+            curve_json(
+                r#"{"degree": 1, "control_points": [[0,0],[1e308,0],[0,1],[0,0]], "knots": [0,0,1,2,3,3]}"#,
+            ),
+            "control point coordinate 1e308 exceeds the limit 1e150",
+        ),
+        (
+            curve_json(
+                r#"{"degree": 2, "control_points": [[0,0],[1,-1],[2,0]], "weights": [1e-300, 1, 1e300]}"#,
+            ),
+            "weight ratio",
+        ),
+        (
+            curve_json(
+                r#"{"degree": 1, "knots": [-1e308, -1e308, 1e308, 1e308], "control_points": [[0,0],[1,1]]}"#,
+            ),
+            "span length is not finite",
+        ),
+        (
+            curve_json(
+                r#"{"degree": 1, "knots": [0,0,0.5,0.5,0.5,1,1], "control_points": [[0,0],[1,0],[1,1],[0,1],[0,0]]}"#,
+            ),
+            "multiplicity 3 > degree + 1 = 2",
+        ),
+        (
+            curve_json(
+                r#"{"arc": {"center": [0,0], "radius": 1, "start_angle": 0, "sweep": 1e10}}"#,
+            ),
+            "arc sweep",
+        ),
+        (
+            curve_json(r#"{"circle": {"center": [0,0], "radius": 1e308}}"#),
+            "exceeds the limit 1e150",
+        ),
+        (
+            curve_json(r#"{"degree": 1, "control_points": [[0,0],["NaN",1]]}"#),
+            "curve 0",
+        ),
+        (
+            fixture_text("breaks/circle_gap.json"),
+            "gap at parameter 0.5",
+        ),
+    ];
+    for (i, (text, needle)) in cases.iter().enumerate() {
+        let f = write(&d, &format!("bad{i}.json"), text);
+        check(
+            &d,
+            &[
+                "classify", "--domain", &f, "--points", &pts, "--output", &out,
+            ],
+            Expect::Error(needle),
+            20,
+        );
+        // The message names the file once.
+        let r = run_limited(&["info", "--domain", &f, "--require-closed"], 20);
+        assert_eq!(r.stderr.matches(&f).count(), 1, "{}", r.stderr);
+    }
+}
+
+fn fixture_text(rel: &str) -> String {
+    std::fs::read_to_string(fixture(rel)).unwrap()
+}
+
+#[test]
+fn extreme_but_valid_domains_work_within_bounds() {
+    let d = scratch("valid");
+    let pts = write(&d, "p.csv", "x,y\n0.5,0.25\n5,5\n");
+    // Weights 1e-300 and 1e300 uniformly (rescaled exactly), a weight of 1e4 (area used to
+    // hang), subnormal-free tiny and huge coordinates.
+    let valid = [
+        curve_json(&format!(
+            r#"{{"degree": 2, "control_points": [[0,0],[0.5,1],[1,0]], "weights": [1e-300,1e-300,1e-300]}}, {CHORD}"#
+        )),
+        curve_json(&format!(
+            r#"{{"degree": 2, "control_points": [[1,0],[0.5,1],[0,0]], "weights": [1e300,2e300,1e300]}}, {CHORD_BACK}"#
+        )),
+        curve_json(
+            r#"{"degree": 2, "control_points": [[0,0],[1,1],[2,0]], "weights": [1,1e4,1]}, {"segment": {"from": [2,0], "to": [0,0]}}"#,
+        ),
+        curve_json(r#"{"polyline": [[0,0],[1e140,0],[1e140,1e140],[0,0]]}"#),
+        curve_json(r#"{"polyline": [[0,0],[1e-140,0],[1e-140,1e-140],[0,0]]}"#),
+    ];
+    for (i, text) in valid.iter().enumerate() {
+        let f = write(&d, &format!("ok{i}.json"), text);
+        check(&d, &["info", "--domain", &f], Expect::Success, 20);
+        check(
+            &d,
+            &["classify", "--domain", &f, "--points", &pts],
+            Expect::Success,
+            20,
+        );
+    }
+    // One B-spline with 10^5 control points (Bezier extraction used to be quadratic), and
+    // 10^5 separate segments (boxes used to take gigabytes).
+    let n = 100_000;
+    let cps: Vec<String> = (0..n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            format!("[{},{}]", t.cos(), t.sin())
+        })
+        .collect();
+    let spline = format!(
+        "{{\"curves\": [{{\"degree\": 3, \"control_points\": [{},{}]}}]}}",
+        cps.join(","),
+        cps[0]
+    )
+    .replace(
+        "\"degree\": 3,",
+        &format!("\"degree\": 3, \"knots\": [{}],", clamped_knots(n + 1, 3)),
+    );
+    let f = write(&d, "spline.json", spline);
+    let r = check(
+        &d,
+        &["classify", "--domain", &f, "--points", &pts],
+        Expect::Success,
+        60,
+    );
+    assert!(
+        r.stdout.contains("0.5,0.25,inside") && r.stdout.contains("5,5,outside"),
+        "{}",
+        r.stdout
+    );
+    let segs: Vec<String> = (0..n)
+        .map(|i| {
+            format!(
+                "{{\"segment\": {{\"from\": {}, \"to\": {}}}}}",
+                cps[i],
+                cps[(i + 1) % n]
+            )
+        })
+        .collect();
+    let f = write(&d, "segments.json", curve_json(&segs.join(",")));
+    let r = check(
+        &d,
+        &["classify", "--domain", &f, "--points", &pts],
+        Expect::Success,
+        60,
+    );
+    assert!(r.stdout.contains("0.5,0.25,inside"), "{}", r.stdout);
+}
+
+fn clamped_knots(n: usize, p: usize) -> String {
+    let spans = n - p;
+    let mut k = vec!["0".to_string(); p + 1];
+    k.extend((1..spans).map(|i| format!("{}", i as f64 / spans as f64)));
+    k.extend(std::iter::repeat_n("1".to_string(), p + 1));
+    k.join(",")
+}
+
+#[test]
+fn hostile_svg_dxf_and_font_files_fail_cleanly() {
+    let d = scratch("svg");
+    let pts = write(&d, "p.csv", "0.5,0.5\n");
+    let svg = |body: &str| format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{body}</svg>"#);
+    let deep = svg(&format!(
+        "{}<circle r=\"1\"/>{}",
+        "<g>".repeat(10_000),
+        "</g>".repeat(10_000)
+    ));
+    let bomb = format!(
+        "<?xml version=\"1.0\"?><!DOCTYPE svg [<!ENTITY a \"aaaaaaaaaa\">{}]>{}",
+        (1..12)
+            .map(|i| format!(
+                "<!ENTITY a{i} \"{}\">",
+                format!(
+                    "&a{};",
+                    if i == 1 {
+                        String::new()
+                    } else {
+                        (i - 1).to_string()
+                    }
+                )
+                .repeat(10)
+            ))
+            .collect::<String>(),
+        svg("<desc>&a11;</desc><circle r=\"1\"/>")
+    );
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("deep.svg", deep, "nested more than 256 deep"),
+        ("bomb.svg", bomb, "entity"),
+        ("notxml.svg", "<svg".into(), "not well-formed XML"),
+        (
+            "empty.svg",
+            svg(""),
+            "no boundary curves found in the SVG file",
+        ),
+        (
+            "huge.svg",
+            svg(r#"<circle r="1e308"/>"#),
+            "exceeds the limit 1e150",
+        ),
+        (
+            "arc.svg",
+            svg(r#"<path d="M0 0 A1e308 1e308 0 0 1 1 0 Z"/>"#),
+            "arc radius",
+        ),
+        (
+            "scale.svg",
+            svg(r#"<g transform="scale(1e300)"><circle r="1e10"/></g>"#),
+            "<circle> at line 1: control point 0 is not finite",
+        ),
+        ("badpath.svg", svg(r#"<path d="M0 0 L 1 Q"/>"#), "path data"),
+        (
+            "garbage.dxf",
+            "0\nSECTION\n2\nENTITIES\n0\nLINE\n10\nnot-a-number\n".into(),
+            "DXF",
+        ),
+        ("empty.dxf", "0\nEOF\n".into(), "no boundary curves found"),
+    ];
+    for (name, text, needle) in &cases {
+        let f = write(&d, name, text);
+        check(
+            &d,
+            &["classify", "--domain", &f, "--points", &pts],
+            Expect::Error(needle),
+            20,
+        );
+    }
+    let font = write(&d, "fake.ttf", "not a font at all");
+    check(
+        &d,
+        &["info", "--domain", &format!("{font}#A")],
+        Expect::Error("font"),
+        20,
+    );
+    // Valid extremes: an SVG 1.1 DTD (drawing programs write it) and a 10^5-command path.
+    let dtd = format!(
+        "<?xml version=\"1.0\"?>\n<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.1//EN\" \"http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd\">\n{}",
+        svg(r#"<circle cx="0.5" cy="0.5" r="1"/>"#)
+    );
+    let f = write(&d, "dtd.svg", dtd);
+    let r = check(
+        &d,
+        &["classify", "--domain", &f, "--points", &pts],
+        Expect::Success,
+        20,
+    );
+    assert!(r.stdout.contains("0.5,0.5,inside"));
+    let n = 100_000;
+    let path: Vec<String> = (0..n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            format!("L{:.9} {:.9}", t.cos(), t.sin())
+        })
+        .collect();
+    let f = write(
+        &d,
+        "long.svg",
+        svg(&format!("<path d=\"M1 0 {} Z\"/>", path.join(" "))),
+    );
+    let r = check(
+        &d,
+        &["classify", "--domain", &f, "--points", &pts],
+        Expect::Success,
+        60,
+    );
+    assert!(r.stdout.contains("0.5,0.5,inside"));
+}
+
+#[test]
+fn points_files_stream_and_bad_lines_fail_cleanly() {
+    let d = scratch("csv");
+    let domain = fixture("inrs-paper/circle.json");
+    let out = d.join("o.csv").display().to_string();
+    let bad: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "nan.csv",
+            b"0,0\nnan,1\n".to_vec(),
+            "line 2: \"nan\" is not a finite number",
+        ),
+        (
+            "inf.csv",
+            b"0,0\n1e999,1\n".to_vec(),
+            "line 2: \"1e999\" is not a finite number",
+        ),
+        (
+            "one.csv",
+            b"0,0\n3\n".to_vec(),
+            "line 2: expected at least two numbers",
+        ),
+        (
+            "binary.csv",
+            vec![0xff, 0xfe, 0x00, 0x01, b'\n'],
+            "line 1: not UTF-8",
+        ),
+        ("long.csv", vec![b'1'; 1 << 20], "longer than 65536 bytes"),
+    ];
+    for (name, content, needle) in &bad {
+        let p = write(&d, name, content);
+        for method in ["fast", "gwn", "inrs1"] {
+            check(
+                &d,
+                &[
+                    "classify", "--domain", &domain, "--points", &p, "--method", method,
+                    "--output", &out,
+                ],
+                Expect::Error(needle),
+                20,
+            );
+        }
+        check(
+            &d,
+            &[
+                "winding", "--domain", &domain, "--points", &p, "--output", &out,
+            ],
+            Expect::Error(needle),
+            20,
+        );
+    }
+    // A BOM, CRLF line ends and the tool's own outputs read back.
+    let p = write(&d, "bom.csv", "\u{feff}x,y\r\n0.1,0.2\r\n");
+    let r = check(
+        &d,
+        &["classify", "--domain", &domain, "--points", &p],
+        Expect::Success,
+        20,
+    );
+    assert_eq!(r.stdout, "x,y,location\n0.1,0.2,inside\n");
+    let sample = d.join("sample.csv").display().to_string();
+    check(
+        &d,
+        &[
+            "sample", "--domain", &domain, "--ny", "6", "--output", &sample,
+        ],
+        Expect::Success,
+        20,
+    );
+    let r = check(
+        &d,
+        &["classify", "--domain", &domain, "--points", &sample],
+        Expect::Success,
+        20,
+    );
+    let rows = r.stdout.lines().count();
+    assert_eq!(
+        rows,
+        std::fs::read_to_string(&sample).unwrap().lines().count()
+    );
+    // 10^6 points stream through (their memory is the batch, not the file).
+    let big: String = (0..1_000_000)
+        .map(|i| {
+            format!(
+                "{},{}\n",
+                (i % 1000) as f64 / 500.0 - 1.0,
+                (i / 1000) as f64 / 500.0 - 1.0
+            )
+        })
+        .collect();
+    let p = write(&d, "big.csv", big);
+    let classified = d.join("big-out.csv").display().to_string();
+    check(
+        &d,
+        &[
+            "classify",
+            "--domain",
+            &domain,
+            "--points",
+            &p,
+            "--output",
+            &classified,
+        ],
+        Expect::Success,
+        120,
+    );
+    let text = std::fs::read_to_string(&classified).unwrap();
+    assert_eq!(text.lines().count(), 1_000_001);
+    assert!(text.contains("\n0,0,inside\n"));
+}
+
+#[test]
+fn extreme_options_are_refused_with_their_limits() {
+    let d = scratch("options");
+    let domain = fixture("inrs-paper/circle.json");
+    let pts = write(&d, "p.csv", "0,0\n");
+    let curve = fixture("convex/cubic.json");
+    let cases: Vec<(Vec<&str>, Expect)> = vec![
+        (
+            vec![
+                "classify",
+                "--domain",
+                &domain,
+                "--points",
+                &pts,
+                "--subdivisions",
+                "10000000",
+            ],
+            Expect::Usage("expected 1 to 4096"),
+        ),
+        (
+            vec![
+                "classify", "--domain", &domain, "--points", &pts, "--tol", "-1",
+            ],
+            Expect::Usage("must be finite and >= 0"),
+        ),
+        (
+            vec![
+                "classify", "--domain", &domain, "--points", &pts, "--tol", "nan",
+            ],
+            Expect::Usage("must be finite"),
+        ),
+        (
+            vec![
+                "sample",
+                "--domain",
+                &domain,
+                "--method",
+                "halton",
+                "--count",
+                "1000000000",
+            ],
+            Expect::Usage("expected 1 to 10000000"),
+        ),
+        (
+            vec!["sample", "--domain", &domain, "--ny", "-3"],
+            Expect::Usage("from 2 to 100000"),
+        ),
+        (
+            vec!["sample", "--domain", &domain, "--ny", "100000"],
+            Expect::Error("exceed the limit 10000000"),
+        ),
+        (
+            vec!["mesh", "--domain", &domain, "--ny", "8000"],
+            Expect::Error("exceed the limit"),
+        ),
+        (
+            vec![
+                "convex-domain",
+                "--curve",
+                &curve,
+                "--free-index",
+                "2",
+                "--box=-1e154,1e154,-1e154,1e154",
+            ],
+            Expect::Error("at most 1e100"),
+        ),
+        (
+            vec![
+                "convex-domain",
+                "--curve",
+                &curve,
+                "--free-index",
+                "2",
+                "--box=-10,10,-10,10",
+                "--max-level",
+                "100",
+            ],
+            Expect::Usage("expected 0 to 20"),
+        ),
+        (
+            vec!["convex-domain", "--curve", &curve, "--free-index", "2"],
+            Expect::Usage("--box"),
+        ),
+        (
+            vec![
+                "classify",
+                "--domain",
+                &domain,
+                "--points",
+                &pts,
+                "--output",
+                "/nonexistent/dir/o.csv",
+            ],
+            Expect::Error("/nonexistent/dir/o.csv"),
+        ),
+    ];
+    for (args, expect) in cases {
+        check(&d, &args, expect, 30);
+    }
+}
+
+#[test]
+fn failures_leave_no_output_and_closed_pipes_end_quietly() {
+    let d = scratch("outputs");
+    let domain = fixture("inrs-paper/circle.json");
+    // The bad line comes after a full batch has been written: the output must still vanish.
+    let mut text: String = (0..70_000)
+        .map(|i| format!("{},0\n", i as f64 * 1e-5))
+        .collect();
+    text.push_str("oops\n");
+    let pts = write(&d, "late-error.csv", text);
+    let out = d.join("o.csv").display().to_string();
+    check(
+        &d,
+        &[
+            "classify", "--domain", &domain, "--points", &pts, "--output", &out,
+        ],
+        Expect::Error("line 70001"),
+        30,
+    );
+    // A mesh whose SVG cannot be written leaves no JSON either.
+    let json = d.join("m.json").display().to_string();
+    check(
+        &d,
+        &[
+            "mesh",
+            "--domain",
+            &domain,
+            "--ny",
+            "6",
+            "--output",
+            &json,
+            "--svg",
+            "/nonexistent/m.svg",
+        ],
+        Expect::Error("/nonexistent/m.svg"),
+        30,
+    );
+    assert!(!Path::new(&json).exists());
+    // An existing output is replaced only on success.
+    std::fs::write(&out, "keep me\n").unwrap();
+    let r = run_limited(
+        &[
+            "classify", "--domain", &domain, "--points", &pts, "--output", &out,
+        ],
+        30,
+    );
+    assert_eq!(r.code, Some(1));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "keep me\n");
+    // Closed pipes: the reader goes away at once; the tool ends quietly with status 0.
+    let bin = env!("CARGO_BIN_EXE_inrs");
+    let big = write(
+        &d,
+        "many.csv",
+        (0..200_000).map(|i| format!("{i},0\n")).collect::<String>(),
+    );
+    for cmd in [
+        format!("{bin} convert --domain {domain}"),
+        format!("{bin} info --domain {domain}"),
+        format!("{bin} classify --domain {domain} --points {big}"),
+        format!(
+            "{bin} convex-domain --curve {} --free-index 2 --box=-10,10,-11,9",
+            fixture("convex/cubic.json")
+        ),
+        format!("{bin} --help"),
+    ] {
+        let r = Command::new("bash")
+            .arg("-c")
+            .arg(format!("{cmd} | head -c0; exit ${{PIPESTATUS[0]}}"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(r.status.success(), "{cmd}: {:?} {err}", r.status);
+        assert!(err.is_empty(), "{cmd}: {err}");
+    }
+}
