@@ -70,7 +70,7 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
         return Err(MeshError::NoArea);
     }
     let grid = ny as f64 * (bb.width() / h + 1.0);
-    if !(grid <= 4.0 * MAX_SAMPLE_POINTS as f64) {
+    if grid.is_nan() || grid > 4.0 * MAX_SAMPLE_POINTS as f64 {
         return Err(MeshError::TooManyPoints {
             estimate: grid,
             limit: MAX_SAMPLE_POINTS,

@@ -43,7 +43,7 @@ pub(crate) fn endpoint_arc(
     if rx == 0.0 || ry == 0.0 {
         return Ok(ArcSegment::Line);
     }
-    if !(rx.max(ry) <= MAX_COORDINATE) {
+    if rx.max(ry) > MAX_COORDINATE || rx.is_nan() || ry.is_nan() {
         return Err(SplineError::LimitExceeded {
             what: "arc radius",
             value: rx.max(ry),
