@@ -130,7 +130,7 @@ impl MonotoneBoxes {
     ///
     /// # Errors
     /// [`BoxError::ZeroSubdivisions`], [`BoxError::TooManySubdivisions`] (more than
-    /// [`MAX_SUBDIVISIONS`]), [`BoxError::Roots`] if the tangency roots of a piece cannot be
+    /// [`MAX_SUBDIVISIONS`]), [`BoxError::Piece`] if the tangency roots of a piece cannot be
     /// computed (its pieces would not be monotone).
     pub fn new(domain: &Domain, options: BoxOptions) -> Result<Self, BoxError> {
         if options.subdivisions == 0 {
