@@ -52,6 +52,9 @@ pub struct DomainSummary {
 impl DomainSummary {
     /// Computes the summary of `d`.
     pub fn of(d: &Domain) -> Self {
+        let areas: Vec<_> = (0..d.loops().len())
+            .map(|i| d.loop_area_integral(i))
+            .collect();
         let loops = d
             .loops()
             .iter()
@@ -60,7 +63,7 @@ impl DomainSummary {
                 curves: (*l.curves().start(), *l.curves().end()),
                 closed: l.is_closed(),
                 gap: l.gap(),
-                signed_area: d.loop_signed_area(i),
+                signed_area: areas[i].value,
                 orientation: d.loop_orientation(i),
             })
             .collect::<Vec<_>>();
@@ -72,7 +75,7 @@ impl DomainSummary {
             rational: d.curves().iter().any(|c| !c.is_polynomial()),
             signed_area: loops.iter().map(|l| l.signed_area).sum(),
             filled_area: rs_contain::even_odd_area(d),
-            areas_converged: (0..d.loops().len()).all(|i| d.loop_area_integral(i).converged),
+            areas_converged: areas.iter().all(|a| a.converged),
             loops,
             bounding_box: d.bounding_box(),
             closure_tolerance: d.closure_tolerance(),
