@@ -256,6 +256,24 @@ fn torsion_numerator(p: &[[f64; 3]], t: f64) -> f64 {
         + a[2] * (b[0] * c[1] - b[1] * c[0])
 }
 
+/// The torsion numerator of a space Bezier curve with control point 2 free, and the sign the
+/// given curve has at the middle (the sign to keep).
+fn torsion_with_free_point_2(pts: &[[f64; 3]; 6]) -> (SignNumerator, Sign) {
+    let c = SpaceCurve::bezier(pts, None).unwrap();
+    let h = SignNumerator::torsion(&c, 2).unwrap();
+    let sign = if torsion_numerator(pts, 0.5) > 0.0 {
+        Sign::Positive
+    } else {
+        Sign::Negative
+    };
+    (h, sign)
+}
+
+/// `v` with the sign to keep made positive.
+fn signed(sign: Sign, v: f64) -> f64 {
+    if sign == Sign::Positive { v } else { -v }
+}
+
 #[test]
 fn torsion_polytopes_keep_the_sign_and_grow() {
     // A quintic helix-like space curve, free point 2 at the origin, a 200-unit box (as in the
@@ -268,14 +286,8 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
         [40.0, 10.0, 30.0],
         [20.0, 40.0, 50.0],
     ];
-    let c = SpaceCurve::bezier(&pts, None).unwrap();
-    let h = SignNumerator::torsion(&c, 2).unwrap();
+    let (h, sign) = torsion_with_free_point_2(&pts);
     assert_eq!(h.degree(), 9); // 3p - 6: ten coefficients, as in the paper's Table 3
-    let sign = if torsion_numerator(&pts, 0.5) > 0.0 {
-        Sign::Positive
-    } else {
-        Sign::Negative
-    };
     let options = ConvexDomainOptions {
         sign,
         tolerance: 1e-3,
@@ -292,7 +304,7 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
         q[2] = d;
         let values: Vec<f64> = (0..=2000)
             .map(|i| torsion_numerator(&q, i as f64 / 2000.0))
-            .map(|v| if sign == Sign::Positive { v } else { -v })
+            .map(|v| signed(sign, v))
             .collect();
         let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         values.iter().fold(f64::INFINITY, |m, &v| m.min(v)) / scale
@@ -323,7 +335,7 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
         q[2] = d;
         (0..options.outer_samples)
             .map(|i| torsion_numerator(&q, i as f64 / (options.outer_samples - 1) as f64))
-            .map(|v| if sign == Sign::Positive { v } else { -v })
+            .map(|v| signed(sign, v))
             .fold(f64::INFINITY, f64::min)
     };
     let mut beyond = 0;
@@ -376,13 +388,7 @@ fn torsion_volumes_bracket_a_monte_carlo_estimate_when_a_constraint_is_a_box_fac
         [40.0, 10.0, 30.0],
         [20.0, 40.0, 50.0],
     ];
-    let c = SpaceCurve::bezier(&pts, None).unwrap();
-    let h = SignNumerator::torsion(&c, 2).unwrap();
-    let sign = if torsion_numerator(&pts, 0.5) > 0.0 {
-        Sign::Positive
-    } else {
-        Sign::Negative
-    };
+    let (h, sign) = torsion_with_free_point_2(&pts);
     let options = ConvexDomainOptions {
         sign,
         tolerance: 1e-4,
@@ -411,14 +417,7 @@ fn torsion_volumes_bracket_a_monte_carlo_estimate_when_a_constraint_is_a_box_fac
         ];
         let mut q = pts;
         q[2] = d;
-        let keeps = (0..=128).all(|i| {
-            let v = torsion_numerator(&q, i as f64 / 128.0);
-            if sign == Sign::Positive {
-                v >= 0.0
-            } else {
-                v <= 0.0
-            }
-        });
+        let keeps = (0..=128).all(|i| signed(sign, torsion_numerator(&q, i as f64 / 128.0)) >= 0.0);
         hits += usize::from(keeps);
     }
     let volume = 200.0 * 200.0 * 100.0;
