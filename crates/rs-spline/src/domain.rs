@@ -203,17 +203,11 @@ impl Domain {
     pub fn loop_area_integral(&self, i: usize) -> Integral {
         let l = &self.loops[i];
         let curves = &self.curves[l.first..=l.last];
-        let mut total = Integral {
-            value: 0.0,
-            error: 0.0,
-            converged: true,
-        };
-        for b in curves.iter().flat_map(NurbsCurve::to_bezier) {
-            let part = b.area_integral();
-            total.value += part.value;
-            total.error += part.error;
-            total.converged &= part.converged;
-        }
+        let mut total: Integral = curves
+            .iter()
+            .flat_map(NurbsCurve::to_bezier)
+            .map(|b| b.area_integral())
+            .sum();
         let end = curves[curves.len() - 1].end_point();
         let start = curves[0].start_point();
         total.value += 0.5 * end.cross(start);

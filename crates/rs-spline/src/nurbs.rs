@@ -420,23 +420,14 @@ impl NurbsCurve {
     /// domain, piece by piece (see [`RationalBezier::area_integral`]); summed over a closed
     /// loop it is the loop's signed area.
     pub fn area_integral(&self, u0: f64, u1: f64) -> Integral {
-        let mut total = Integral {
-            value: 0.0,
-            error: 0.0,
-            converged: true,
-        };
-        for b in self.to_bezier() {
-            let (a, c) = b.param_range();
-            let (lo, hi) = (u0.max(a), u1.min(c));
-            if lo >= hi {
-                continue;
-            }
-            let part = b.area_integral_on((lo - a) / (c - a), (hi - a) / (c - a));
-            total.value += part.value;
-            total.error += part.error;
-            total.converged &= part.converged;
-        }
-        total
+        self.to_bezier()
+            .iter()
+            .filter_map(|b| {
+                let (a, c) = b.param_range();
+                let (lo, hi) = (u0.max(a), u1.min(c));
+                (lo < hi).then(|| b.area_integral_on((lo - a) / (c - a), (hi - a) / (c - a)))
+            })
+            .sum()
     }
 
     /// The breaks of the curve: every interior knot of multiplicity `p + 1`, with the distance

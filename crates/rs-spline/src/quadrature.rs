@@ -76,6 +76,34 @@ pub struct Integral {
     pub converged: bool,
 }
 
+impl Integral {
+    /// The integral of nothing: 0, exactly, converged.
+    pub const ZERO: Integral = Integral {
+        value: 0.0,
+        error: 0.0,
+        converged: true,
+    };
+}
+
+/// The integral over a union of intervals: values and error estimates add, and it converged
+/// if every part did.
+impl std::ops::Add for Integral {
+    type Output = Integral;
+    fn add(self, o: Integral) -> Integral {
+        Integral {
+            value: self.value + o.value,
+            error: self.error + o.error,
+            converged: self.converged && o.converged,
+        }
+    }
+}
+
+impl std::iter::Sum for Integral {
+    fn sum<I: Iterator<Item = Integral>>(iter: I) -> Integral {
+        iter.fold(Integral::ZERO, |a, b| a + b)
+    }
+}
+
 /// The 16-point rule on `[a, b]`: the integral of `f` and of its rounding magnitude.
 fn fixed(f: &impl Fn(f64) -> (f64, f64), a: f64, b: f64) -> (f64, f64) {
     let (x, w) = rule();
@@ -101,11 +129,7 @@ fn fixed(f: &impl Fn(f64) -> (f64, f64), a: f64, b: f64) -> (f64, f64) {
 /// Exact to rounding for polynomials of degree <= 31.
 pub fn integrate_adaptive(f: impl Fn(f64) -> (f64, f64), a: f64, b: f64, abs_tol: f64) -> Integral {
     let total = b - a;
-    let mut out = Integral {
-        value: 0.0,
-        error: 0.0,
-        converged: true,
-    };
+    let mut out = Integral::ZERO;
     let mut stack = vec![(a, b, fixed(&f, a, b).0, 0u32)];
     let mut examined = 0usize;
     while let Some((lo, hi, whole, depth)) = stack.pop() {
@@ -119,9 +143,12 @@ pub fn integrate_adaptive(f: impl Fn(f64) -> (f64, f64), a: f64, b: f64, abs_tol
         let met = diff <= (abs_tol * share).max(noise);
         if met || depth >= MAX_DEPTH || examined + stack.len() >= MAX_INTERVALS || !diff.is_finite()
         {
-            out.value += left + right;
-            out.error += diff;
-            out.converged &= met;
+            out = out
+                + Integral {
+                    value: left + right,
+                    error: diff,
+                    converged: met,
+                };
         } else {
             stack.push((mid, hi, right, depth + 1));
             stack.push((lo, mid, left, depth + 1));
