@@ -3,6 +3,28 @@
 use crate::SplineError;
 use crate::limits::MAX_DEGREE;
 
+/// The runs of equal knots of a non-decreasing `knots` whose value lies strictly inside
+/// `(start, end)`: (index of the first copy, value, multiplicity), ascending.
+fn interior_runs(
+    knots: &[f64],
+    start: f64,
+    end: f64,
+) -> impl Iterator<Item = (usize, f64, usize)> + '_ {
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        while i < knots.len() {
+            let first = i;
+            let value = knots[i];
+            let mult = knots[i..].iter().take_while(|&&k| k == value).count();
+            i += mult;
+            if value > start && value < end {
+                return Some((first, value, mult));
+            }
+        }
+        None
+    })
+}
+
 /// A validated knot vector `u_0 <= u_1 <= ... <= u_m` for a B-spline of degree `p` with
 /// `n = m - p` control points.
 ///
@@ -88,17 +110,14 @@ impl KnotVector {
         if start >= end {
             return Err(SplineError::EmptyDomain { start, end });
         }
-        let mut i = 0;
-        while i < knots.len() {
-            let mult = knots[i..].iter().take_while(|&&k| k == knots[i]).count();
-            if knots[i] > start && knots[i] < end && mult > degree + 1 {
-                return Err(SplineError::InteriorMultiplicity {
-                    value: knots[i],
-                    multiplicity: mult,
-                    degree,
-                });
-            }
-            i += mult;
+        if let Some((_, value, multiplicity)) =
+            interior_runs(&knots, start, end).find(|r| r.2 > degree + 1)
+        {
+            return Err(SplineError::InteriorMultiplicity {
+                value,
+                multiplicity,
+                degree,
+            });
         }
         Ok(Self { knots, degree })
     }
@@ -189,15 +208,14 @@ impl KnotVector {
 
     /// The distinct knot values strictly inside the domain, ascending.
     pub fn interior_breaks(&self) -> Vec<f64> {
+        self.interior_runs().map(|r| r.1).collect()
+    }
+
+    /// Each distinct knot value strictly inside the domain, ascending, as (index of its first
+    /// copy, value, multiplicity).
+    pub(crate) fn interior_runs(&self) -> impl Iterator<Item = (usize, f64, usize)> + '_ {
         let (start, end) = self.domain();
-        let mut v: Vec<f64> = self
-            .knots
-            .iter()
-            .copied()
-            .filter(|&k| k > start && k < end)
-            .collect();
-        v.dedup();
-        v
+        interior_runs(&self.knots, start, end)
     }
 
     /// Values and derivatives up to order `nd` of the `p + 1` basis functions that are non-zero

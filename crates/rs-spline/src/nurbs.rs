@@ -435,18 +435,12 @@ impl NurbsCurve {
     /// where the pieces meet; a gap otherwise). Ascending in the parameter.
     pub fn breaks(&self) -> Vec<(f64, f64)> {
         let p = self.degree();
-        let knots = self.knots.knots();
-        let (start, end) = self.domain();
-        let mut out = Vec::new();
-        let mut i = 0;
-        while i < knots.len() {
-            let mult = knots[i..].iter().take_while(|&&k| k == knots[i]).count();
-            if knots[i] > start && knots[i] < end && mult > p && i >= 1 {
-                out.push((knots[i], self.points[i - 1].distance(self.points[i])));
-            }
-            i += mult;
-        }
-        out
+        // An interior knot has index >= p + 1, so `i - 1` is a control point index.
+        self.knots
+            .interior_runs()
+            .filter(|&(_, _, mult)| mult > p)
+            .map(|(i, u, _)| (u, self.points[i - 1].distance(self.points[i])))
+            .collect()
     }
 }
 
