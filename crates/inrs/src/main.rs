@@ -8,8 +8,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use cli::limits::{
-    parse_count, parse_free_index, parse_level, parse_ny, parse_relative_tolerance,
-    parse_subdivisions, parse_tolerance,
+    parse_count, parse_free_index, parse_level, parse_ny, parse_subdivisions, parse_tolerance,
 };
 use cli::output::{Failure, Output, write_text};
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
@@ -61,7 +60,7 @@ enum Command {
         #[arg(long)]
         output: Option<PathBuf>,
         /// Boundary tolerance relative to the bounding-box diagonal (>= 0, see below).
-        #[arg(long, default_value = "1e-12", value_parser = parse_tolerance, allow_negative_numbers = true)]
+        #[arg(long, default_value = cli::limits::DEFAULT_TOL, value_parser = parse_tolerance, allow_negative_numbers = true)]
         tol: f64,
         /// Sub-boxes per monotone piece (the paper's box refinement), 1 to 4096; reduced
         /// automatically so that a domain has at most about 131072 boxes.
@@ -165,7 +164,7 @@ enum Command {
         #[arg(long, default_value = "auto")]
         sign: String,
         /// Stop when the relative area (volume) growth is at most this (>= 0).
-        #[arg(long, default_value = "1e-3", value_parser = parse_relative_tolerance, allow_negative_numbers = true)]
+        #[arg(long, default_value = cli::limits::DEFAULT_CONVEX_TOL, value_parser = parse_tolerance, allow_negative_numbers = true)]
         tol: f64,
         /// The last refinement level tried (0 to 20).
         #[arg(long, default_value_t = 10, value_parser = parse_level, allow_negative_numbers = true)]

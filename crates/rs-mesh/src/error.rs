@@ -9,11 +9,13 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum MeshError {
     /// `ny` must be at least 2 and at most [`crate::MAX_LINES`].
-    #[error("ny must be at least 2 and at most 100000, got {0}")]
+    #[error("ny must be at least 2 and at most {max}, got {0}", max = crate::MAX_LINES)]
     TooFewLines(usize),
     /// The requested number of points is zero, above the limit, or unreachable.
     #[error(
-        "cannot sample {0} points: the count must be between 1 and 10000000, and the domain must fill at least 1/1000 of its bounding box"
+        "cannot sample {0} points: the count must be between 1 and {max}, and the domain must fill at least 1/{tries} of its bounding box",
+        max = crate::MAX_SAMPLE_POINTS,
+        tries = crate::MAX_HALTON_TRIES_PER_POINT
     )]
     InvalidCount(usize),
     /// The sampling would produce more points than [`crate::MAX_SAMPLE_POINTS`].

@@ -22,6 +22,13 @@ Limits (inputs beyond them are errors, never a crash or a hang):
   mesh vertices                                 2 x 10^6
   convex-domain --box coordinates / --max-level 1e100 / 20";
 
+/// The default `--tol` of classify as shown by `--help` (the value is
+/// [`inrs::contain::DEFAULT_TOLERANCE`], checked by a test).
+pub(crate) const DEFAULT_TOL: &str = "1e-12";
+
+/// The default `--tol` of convex-domain (the value of `ConvexDomainOptions::default()`).
+pub(crate) const DEFAULT_CONVEX_TOL: &str = "1e-3";
+
 fn whole(s: &str) -> Result<u64, String> {
     s.parse::<u64>()
         .map_err(|_| format!("{s:?} is not a whole number >= 0"))
@@ -36,18 +43,13 @@ fn in_range(s: &str, lo: u64, hi: u64) -> Result<u64, String> {
     }
 }
 
-/// `--tol` of classify: a finite number >= 0.
+/// `--tol` (of classify and convex-domain): a finite number >= 0.
 pub(crate) fn parse_tolerance(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
         Ok(v) => Err(format!("{v} must be finite and >= 0")),
         Err(_) => Err(format!("{s:?} is not a number")),
     }
-}
-
-/// `--tol` of convex-domain: a finite number >= 0.
-pub(crate) fn parse_relative_tolerance(s: &str) -> Result<f64, String> {
-    parse_tolerance(s)
 }
 
 /// `--subdivisions`: 1 to [`inrs::boxes::MAX_SUBDIVISIONS`].
@@ -97,5 +99,40 @@ mod tests {
         assert!(parse_count("1000000000").is_err());
         assert_eq!(parse_count("10"), Ok(10));
         assert!(parse_level("21").is_err());
+    }
+
+    #[test]
+    fn defaults_and_help_agree_with_the_libraries() {
+        assert_eq!(
+            parse_tolerance(DEFAULT_TOL),
+            Ok(inrs::contain::DEFAULT_TOLERANCE)
+        );
+        assert_eq!(
+            parse_tolerance(DEFAULT_CONVEX_TOL),
+            Ok(inrs::convex::ConvexDomainOptions::default().tolerance)
+        );
+        let limits = [
+            format!("{}", inrs::spline::limits::MAX_DEGREE),
+            format!("{:e}", inrs::spline::limits::MAX_COORDINATE),
+            format!("{:e}", inrs::spline::limits::MAX_WEIGHT_RATIO),
+            format!("{} turns", inrs::spline::limits::MAX_ARC_PIECES / 4),
+            format!("{} MiB", inrs::spline::limits::MAX_FILE_BYTES >> 20),
+            format!("{} KiB", inrs::MAX_LINE_BYTES >> 10),
+            format!("{} / 10^7", inrs::io::svg::MAX_SVG_DEPTH),
+            format!("1..{}", inrs::boxes::MAX_SUBDIVISIONS),
+            format!(
+                "{} boxes ({} bytes",
+                inrs::boxes::BOX_BUDGET,
+                inrs::boxes::BYTES_PER_BOX
+            ),
+            format!("{:e}", inrs::convex::MAX_BOX_COORDINATE),
+            format!("/ {}", inrs::convex::MAX_LEVEL),
+        ];
+        for l in limits {
+            assert!(AFTER_HELP.contains(&l), "--help does not state {l}");
+        }
+        assert_eq!(inrs::io::svg::MAX_SVG_NODES, 10_000_000);
+        assert_eq!(inrs::mesh::MAX_SAMPLE_POINTS, 10_000_000);
+        assert_eq!(inrs::mesh::MAX_MESH_VERTICES, 2_000_000);
     }
 }

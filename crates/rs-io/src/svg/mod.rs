@@ -73,7 +73,7 @@ pub fn domain_from_path_data(d: &str) -> Result<Domain, IoError> {
 pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
     let mut b = LoopBuilder::new();
     document::read_document(text, &mut b)?;
-    domain(b.into_curves().map_err(svg_error)?, "SVG document")
+    domain(b.into_curves().map_err(curve_error)?, "SVG document")
 }
 
 /// [`domain_from_svg_str`] on a file (named in the domain).
@@ -89,11 +89,16 @@ pub fn domain_from_svg_file(path: impl AsRef<Path>) -> Result<Domain, IoError> {
     let mut b = LoopBuilder::new();
     document::read_document(&text, &mut b)?;
     let name = path.display().to_string();
-    Ok(domain(b.into_curves().map_err(svg_error)?, "SVG file")?.with_name(name))
+    Ok(domain(b.into_curves().map_err(curve_error)?, "SVG file")?.with_name(name))
 }
 
-fn svg_error(e: rs_spline::SplineError) -> IoError {
-    IoError::Xml(e.to_string())
+/// A curve of the document its transform could not map (the reader reports these per
+/// element; this covers the end of the document).
+fn curve_error(source: rs_spline::SplineError) -> IoError {
+    IoError::Curve {
+        origin: "SVG document".to_string(),
+        source,
+    }
 }
 
 fn domain(curves: Vec<NurbsCurve>, what: &str) -> Result<Domain, IoError> {
