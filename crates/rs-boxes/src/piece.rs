@@ -1,17 +1,13 @@
 //! A rational Bezier piece stored as homogeneous Bernstein coefficients, with the fast
 //! evaluations and monotone solves the containment tests need.
 
-use rs_roots::{de_casteljau, de_casteljau_split};
+use rs_roots::{bernstein_sign_change_root, de_casteljau, de_casteljau_split};
 use smallvec::SmallVec;
 
 use rs_spline::{Point, RationalBezier, SplineError};
 
 /// Coefficient storage: degree <= 7 stays on the stack.
 pub(crate) type Coeffs = SmallVec<[f64; 8]>;
-
-/// Iteration cap of [`bernstein_sign_change_root`] (bisection alone needs < 1100 steps to
-/// reach one ulp anywhere in `[0, 1]`).
-const MAX_SOLVE_ITER: usize = 1100;
 
 /// A rational Bezier piece `C(t) = (X(t), Y(t)) / W(t)` on `[0, 1]`, kept as Cartesian control
 /// coordinates `x_i`, `y_i`, weights `w_i > 0` and the homogeneous Bernstein coefficients
@@ -173,75 +169,8 @@ fn rational_at(c: &[f64], h: &[f64], w: &[f64], t: f64) -> f64 {
 /// Root of `sum_i w_i (c_i - v) B_i(t)`: the end coefficients vanish exactly when `v` equals
 /// an end point's coordinate.
 fn solve_axis(c: &[f64], w: &[f64], v: f64) -> Option<f64> {
-    let mut f: Coeffs = c.iter().zip(w).map(|(c, w)| w * (c - v)).collect();
-    bernstein_sign_change_root(&mut f)
-}
-
-/// Value and derivative of Bernstein coefficients at `t`.
-fn value_and_slope(c: &[f64], t: f64) -> (f64, f64) {
-    let n = c.len();
-    if n == 1 {
-        return (c[0], 0.0);
-    }
-    let mut buf: Coeffs = SmallVec::from_slice(c);
-    let s = 1.0 - t;
-    for k in 1..n - 1 {
-        for i in 0..n - k {
-            buf[i] = s * buf[i] + t * buf[i + 1];
-        }
-    }
-    let value = s * buf[0] + t * buf[1];
-    let slope = (n - 1) as f64 * (buf[1] - buf[0]);
-    (value, slope)
-}
-
-/// The root in `[0, 1]` of a Bernstein polynomial whose end coefficients differ in sign (or
-/// one vanishes), by Newton's method safeguarded with bisection; `None` without a sign change.
-/// On a monotone piece this is the unique root. Converges to a bracket of one ulp at most.
-pub(crate) fn bernstein_sign_change_root(c: &mut [f64]) -> Option<f64> {
-    let n = c.len() - 1;
-    let (f0, f1) = (c[0], c[n]);
-    if f0 == 0.0 {
-        return Some(0.0);
-    }
-    if f1 == 0.0 {
-        return Some(1.0);
-    }
-    if (f0 > 0.0) == (f1 > 0.0) || f0.is_nan() || f1.is_nan() {
-        return None;
-    }
-    if f0 > 0.0 {
-        c.iter_mut().for_each(|v| *v = -*v);
-    }
-    // Now c(0) < 0 < c(1).
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    let mut t = c[0] / (c[0] - c[n]);
-    for _ in 0..MAX_SOLVE_ITER {
-        let (f, df) = value_and_slope(c, t);
-        if f == 0.0 {
-            return Some(t);
-        }
-        if f < 0.0 {
-            lo = t;
-        } else {
-            hi = t;
-        }
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            return Some(t);
-        }
-        let newton = t - f / df;
-        let next = if df > 0.0 && newton > lo && newton < hi {
-            newton
-        } else {
-            mid
-        };
-        if (next - t).abs() <= f64::EPSILON * 0.5 {
-            return Some(next);
-        }
-        t = next;
-    }
-    Some(t)
+    let f: Coeffs = c.iter().zip(w).map(|(c, w)| w * (c - v)).collect();
+    bernstein_sign_change_root(&f)
 }
 
 /// Splits Bernstein coefficients at `t` into stack-allocated halves.

@@ -1,5 +1,7 @@
 //! Polynomials in the Bernstein basis on `[0, 1]`.
 
+use std::ops::{Add, Mul, Sub};
+
 use crate::Polynomial;
 
 /// A polynomial `b(s) = sum_{k=0}^{n} b_k C(n,k) s^k (1-s)^(n-k)` in the Bernstein basis of
@@ -193,35 +195,78 @@ impl Bernstein {
     }
 }
 
-/// Value at `s` of the Bernstein polynomial with coefficients `c`, by de Casteljau's algorithm
-/// (`(1 - s) a + s b` at every step; no allocation for up to 16 coefficients).
-pub fn de_casteljau(c: &[f64], s: f64) -> f64 {
-    let n = c.len();
-    let mut small = [0.0; 16];
-    let mut large = Vec::new();
-    let buf: &mut [f64] = if n <= 16 {
-        small[..n].copy_from_slice(c);
-        &mut small[..n]
+/// A value de Casteljau's algorithm can blend: scalars, points, homogeneous points. Every
+/// `Copy` type with `+`, `-` and scaling by `f64` qualifies.
+pub trait Blend:
+    Copy + Default + Add<Output = Self> + Sub<Output = Self> + Mul<f64, Output = Self>
+{
+}
+
+impl<T> Blend for T where
+    T: Copy + Default + Add<Output = T> + Sub<Output = T> + Mul<f64, Output = T>
+{
+}
+
+/// Coefficients kept on the stack by the de Casteljau kernels (larger degrees allocate).
+const STACK_COEFFS: usize = 16;
+
+/// Runs `f` on a scratch copy of `c`: on the stack for up to [`STACK_COEFFS`] entries.
+fn with_scratch<T: Blend, R>(c: &[T], f: impl FnOnce(&mut [T]) -> R) -> R {
+    if c.len() <= STACK_COEFFS {
+        let mut small = [T::default(); STACK_COEFFS];
+        small[..c.len()].copy_from_slice(c);
+        f(&mut small[..c.len()])
     } else {
-        large.extend_from_slice(c);
-        &mut large
-    };
+        f(&mut c.to_vec())
+    }
+}
+
+/// Reduces `work` by `levels` de Casteljau steps at `s`: afterwards `work[i]` for
+/// `i < len - levels` holds the level-`levels` blend `(1 - s) a + s b` of its neighbours.
+/// This loop is the one de Casteljau kernel of the workspace; every evaluation, split and
+/// derivative of a Bernstein form (scalar or rational curve) goes through it.
+fn reduce<T: Blend>(work: &mut [T], s: f64, levels: usize) {
     let r = 1.0 - s;
-    for k in 1..n {
+    let n = work.len();
+    for k in 1..=levels.min(n.saturating_sub(1)) {
         for i in 0..n - k {
-            buf[i] = r * buf[i] + s * buf[i + 1];
+            work[i] = work[i] * r + work[i + 1] * s;
         }
     }
-    buf.first().copied().unwrap_or(0.0)
+}
+
+/// Value at `s` of the Bernstein form with coefficients `c` (scalars or points), by de
+/// Casteljau's algorithm (`(1 - s) a + s b` at every step; no allocation for up to 16
+/// coefficients). An empty slice gives `T::default()`.
+pub fn de_casteljau<T: Blend>(c: &[T], s: f64) -> T {
+    with_scratch(c, |work| {
+        reduce(work, s, work.len());
+        work.first().copied().unwrap_or_default()
+    })
+}
+
+/// Value and first derivative at `s` of the Bernstein form `c` of degree `n = c.len() - 1`:
+/// after `n - 1` de Casteljau levels the two remaining entries `a`, `b` give
+/// `b(s) = (1 - s) a + s b` and `b'(s) = n (b - a)`.
+pub fn de_casteljau_with_derivative<T: Blend>(c: &[T], s: f64) -> (T, T) {
+    let n = c.len();
+    if n <= 1 {
+        return (c.first().copied().unwrap_or_default(), T::default());
+    }
+    with_scratch(c, |work| {
+        reduce(work, s, n - 2);
+        let (a, b) = (work[0], work[1]);
+        (a * (1.0 - s) + b * s, (b - a) * (n - 1) as f64)
+    })
 }
 
 /// Splits the Bernstein coefficients `c` at `s` (de Casteljau): `left` and `right` (each as
-/// long as `c`) receive the coefficients of the polynomial on `[0, s]` and on `[s, 1]`, each
+/// long as `c`) receive the coefficients of the form on `[0, s]` and on `[s, 1]`, each
 /// reparametrised to `[0, 1]`; `left[n]` and `right[0]` are the same value, bit for bit.
 ///
 /// # Panics
 /// If `left` or `right` is not as long as `c`.
-pub fn de_casteljau_split(c: &[f64], s: f64, left: &mut [f64], right: &mut [f64]) {
+pub fn de_casteljau_split<T: Blend>(c: &[T], s: f64, left: &mut [T], right: &mut [T]) {
     let n = c.len();
     assert!(
         left.len() == n && right.len() == n,
@@ -230,15 +275,13 @@ pub fn de_casteljau_split(c: &[f64], s: f64, left: &mut [f64], right: &mut [f64]
     if n == 0 {
         return;
     }
-    // `right` is the work array: after level r its entry n-1-r is final, and later levels only
+    // `right` is the work array: after level k its entry n-1-k is final, and later levels only
     // touch lower entries.
     right.copy_from_slice(c);
     left[0] = right[0];
-    let r = 1.0 - s;
     for (level, out) in left.iter_mut().enumerate().skip(1) {
-        for i in 0..n - level {
-            right[i] = r * right[i] + s * right[i + 1];
-        }
+        // One level more on the still-active prefix `right[..n - level + 1]`.
+        reduce(&mut right[..n - level + 1], s, 1);
         *out = right[0];
     }
 }
@@ -311,5 +354,54 @@ mod tests {
             2
         );
         assert_eq!(Bernstein::new(vec![0.0, 0.0]).sign_variations(), 0);
+    }
+
+    #[test]
+    fn derivative_kernel_matches_the_derivative_polynomial() {
+        // Degrees 0..=20: the stack path and the heap path of the scratch buffer.
+        for n in 0..=20usize {
+            let c: Vec<f64> = (0..=n).map(|k| ((k * 7 % 5) as f64) - 1.5).collect();
+            let b = Bernstein::new(c.clone());
+            for i in 0..=8 {
+                let s = i as f64 / 8.0;
+                let (v, d) = de_casteljau_with_derivative(&c, s);
+                assert_relative_eq!(v, b.eval(s), epsilon = 1e-12);
+                assert_relative_eq!(d, b.derivative().eval(s), epsilon = 1e-10);
+            }
+        }
+    }
+
+    #[test]
+    fn kernel_blends_points_like_scalars() {
+        // A 2-vector type through the generic kernel equals two scalar runs bit for bit.
+        #[derive(Clone, Copy, Default, Debug, PartialEq)]
+        struct V(f64, f64);
+        impl std::ops::Add for V {
+            type Output = V;
+            fn add(self, o: V) -> V {
+                V(self.0 + o.0, self.1 + o.1)
+            }
+        }
+        impl std::ops::Sub for V {
+            type Output = V;
+            fn sub(self, o: V) -> V {
+                V(self.0 - o.0, self.1 - o.1)
+            }
+        }
+        impl std::ops::Mul<f64> for V {
+            type Output = V;
+            fn mul(self, s: f64) -> V {
+                V(self.0 * s, self.1 * s)
+            }
+        }
+        let xs = [0.0, 1.0, 3.0, 2.5];
+        let ys = [1.0, -1.0, 0.5, 4.0];
+        let vs: Vec<V> = xs.iter().zip(&ys).map(|(&x, &y)| V(x, y)).collect();
+        let v = de_casteljau(&vs, 0.3);
+        assert_eq!(v, V(de_casteljau(&xs, 0.3), de_casteljau(&ys, 0.3)));
+        let (mut l, mut r) = (vs.clone(), vs.clone());
+        de_casteljau_split(&vs, 0.3, &mut l, &mut r);
+        assert_eq!(l[3], r[0]);
+        assert_eq!(l[3], v);
     }
 }

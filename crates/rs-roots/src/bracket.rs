@@ -1,5 +1,6 @@
 //! Bracketed solvers with guaranteed convergence for a sign change on `[a, b]`.
 
+use crate::de_casteljau_with_derivative;
 use crate::error::{RootsError, check_interval};
 
 /// Hard cap on iterations of every bracketed solver (far above what bisection needs to shrink any
@@ -86,12 +87,12 @@ pub fn itp<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, xtol: f64) -> Result<
     Ok(0.5 * (a + b))
 }
 
-/// Finds a root on `[a, b]` by Newton's method safeguarded with bisection (the classical
-/// `rtsafe`): a Newton step is taken when it stays inside the current bracket and shrinks it
-/// fast enough, otherwise the bracket is bisected.
+/// Finds a root on `[a, b]` by Newton's method safeguarded with bisection: a Newton step is
+/// taken when it stays strictly inside the current bracket, otherwise the bracket is bisected.
 ///
-/// `f_df(t)` returns `(f(t), f'(t))`. Preconditions as for [`itp`]. Stops when the last step
-/// is below `xtol` or the bracket is one ulp wide; the result always lies in `[a, b]`.
+/// `f_df(t)` returns `(f(t), f'(t))`. Preconditions as for [`itp`]. Starts from the secant
+/// through the end values and stops when a step is at most `xtol`, the bracket is one ulp wide,
+/// or `f` vanishes; the result always lies in `[a, b]`.
 ///
 /// # Examples
 ///
@@ -107,61 +108,89 @@ pub fn newton_bracketed<F: FnMut(f64) -> (f64, f64)>(
     xtol: f64,
 ) -> Result<f64, RootsError> {
     check_interval(a, b)?;
-    let (fa, _) = f_df(a);
-    let (fb, _) = f_df(b);
-    let fa = finite(fa, a)?;
-    let fb = finite(fb, b)?;
+    let fa = finite(f_df(a).0, a)?;
+    let fb = finite(f_df(b).0, b)?;
+    safeguarded_newton(f_df, (a, fa), (b, fb), xtol)
+}
+
+/// The one bracketed Newton iteration of the workspace, given the end values `fa = f(a)`,
+/// `fb = f(b)` (`a < b`) already computed: exact zeros at the ends are returned as they are,
+/// equal signs are [`RootsError::NoSignChange`], and otherwise `f` is oriented so that it is
+/// negative at the left end of the bracket before iterating.
+pub(crate) fn safeguarded_newton<F: FnMut(f64) -> (f64, f64)>(
+    mut f_df: F,
+    (a, fa): (f64, f64),
+    (b, fb): (f64, f64),
+    xtol: f64,
+) -> Result<f64, RootsError> {
     if fa == 0.0 {
         return Ok(a);
     }
     if fb == 0.0 {
         return Ok(b);
     }
-    if (fa > 0.0) == (fb > 0.0) {
+    if (fa > 0.0) == (fb > 0.0) || fa.is_nan() || fb.is_nan() {
         return Err(RootsError::NoSignChange { fa, fb });
     }
-    // Orient so that f(lo) < 0 < f(hi).
-    let (mut lo, mut hi) = if fa < 0.0 { (a, b) } else { (b, a) };
-    let mut x = 0.5 * (a + b);
-    let mut dx_old = (b - a).abs();
-    let mut dx = dx_old;
-    let (mut f, mut df) = f_df(x);
+    // Negation is exact, so the oriented values are the true ones up to sign.
+    let sign = if fa > 0.0 { -1.0 } else { 1.0 };
+    let (mut lo, mut hi) = (a, b);
+    let (ga, gb) = (sign * fa, sign * fb);
+    let mut t = a + (b - a) * (ga / (ga - gb));
+    if !(t >= a && t <= b) {
+        t = 0.5 * (a + b);
+    }
     for _ in 0..MAX_ITER {
-        finite(f, x)?;
-        let newton_leaves = ((x - hi) * df - f) * ((x - lo) * df - f) > 0.0;
-        let too_slow = (2.0 * f).abs() > (dx_old * df).abs();
-        if newton_leaves || too_slow || !df.is_finite() {
-            dx_old = dx;
-            dx = 0.5 * (hi - lo);
-            x = lo + dx;
-        } else {
-            dx_old = dx;
-            dx = f / df;
-            let prev = x;
-            x -= dx;
-            if x == prev {
-                return Ok(x);
-            }
+        let (f, df) = f_df(t);
+        let (f, df) = (sign * finite(f, t)?, sign * df);
+        if f == 0.0 {
+            return Ok(t);
         }
-        if dx.abs() < xtol {
-            return Ok(x);
-        }
-        let (nf, ndf) = f_df(x);
-        f = nf;
-        df = ndf;
         if f < 0.0 {
-            lo = x;
-        } else if f > 0.0 {
-            hi = x;
+            lo = t;
         } else {
-            return Ok(x);
+            hi = t;
         }
         let mid = 0.5 * (lo + hi);
-        if mid == lo || mid == hi {
-            return Ok(x);
+        if mid <= lo || mid >= hi {
+            return Ok(t);
         }
+        let newton = t - f / df;
+        let next = if df > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            mid
+        };
+        if (next - t).abs() <= xtol {
+            return Ok(next);
+        }
+        t = next;
     }
-    Ok(x)
+    Ok(t)
+}
+
+/// The root in `[0, 1]` of the Bernstein polynomial with coefficients `c` whose end
+/// coefficients differ in sign (or one vanishes), by [`newton_bracketed`]'s iteration to one
+/// ulp; `None` without a sign change. On a monotone piece this is the unique root, and the end
+/// coefficients decide exactly whether the root is an end point.
+///
+/// # Examples
+///
+/// ```
+/// use rs_roots::bernstein_sign_change_root;
+/// // b(s) = -1 (1-s)^2 + 2 * 0 s (1-s) + 1 s^2 = 2s - 1
+/// assert_eq!(bernstein_sign_change_root(&[-1.0, 0.0, 1.0]), Some(0.5));
+/// assert_eq!(bernstein_sign_change_root(&[1.0, 2.0, 1.0]), None);
+/// ```
+pub fn bernstein_sign_change_root(c: &[f64]) -> Option<f64> {
+    let (&first, &last) = (c.first()?, c.last()?);
+    safeguarded_newton(
+        |t| de_casteljau_with_derivative(c, t),
+        (0.0, first),
+        (1.0, last),
+        0.5 * f64::EPSILON,
+    )
+    .ok()
 }
 
 fn finite(v: f64, t: f64) -> Result<f64, RootsError> {

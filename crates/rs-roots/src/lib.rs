@@ -32,8 +32,10 @@ mod error;
 mod isolate;
 mod polynomial;
 
-pub use bernstein::{Bernstein, de_casteljau, de_casteljau_split};
-pub use bracket::{itp, newton_bracketed};
+pub use bernstein::{
+    Bernstein, Blend, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
+};
+pub use bracket::{bernstein_sign_change_root, itp, newton_bracketed};
 pub use closed_form::{linear_root, quadratic_roots};
 pub use companion::real_roots_in;
 pub use error::RootsError;

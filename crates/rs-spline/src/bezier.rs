@@ -1,6 +1,9 @@
 //! Rational Bezier curves on `[0, 1]`.
 
-use rs_roots::{Bernstein, Polynomial, real_roots_in};
+use rs_roots::{
+    Bernstein, Polynomial, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
+    real_roots_in,
+};
 
 use crate::error::check_control_points;
 use crate::homogeneous::{Hpoint, rational_derivatives};
@@ -119,14 +122,7 @@ impl RationalBezier {
     /// `C(t)` by de Casteljau's algorithm in homogeneous coordinates (stable, any `t`; meant
     /// for `t` in `[0, 1]`).
     pub fn point_at(&self, t: f64) -> Point {
-        let mut h = self.homogeneous();
-        let n = h.len();
-        for r in 1..n {
-            for i in 0..n - r {
-                h[i] = h[i].lerp(h[i + 1], t);
-            }
-        }
-        h[0].project()
+        de_casteljau(&self.homogeneous(), t).project()
     }
 
     /// `C(t)`, `C'(t)`, `C''(t)` with respect to the local parameter `t` (multiply by
@@ -134,41 +130,23 @@ impl RationalBezier {
     pub fn derivatives(&self, t: f64) -> CurveDerivatives {
         let h = self.homogeneous();
         let n = h.len() - 1;
-        let eval = |c: &[Hpoint]| -> Hpoint {
-            let mut b = c.to_vec();
-            let m = b.len();
-            for r in 1..m {
-                for i in 0..m - r {
-                    b[i] = b[i].lerp(b[i + 1], t);
-                }
-            }
-            b.first().copied().unwrap_or_default()
-        };
+        let (value, first) = de_casteljau_with_derivative(&h, t);
+        // Second differences of the control polygon, scaled: the Bernstein form of C''.
         let d1: Vec<Hpoint> = h.windows(2).map(|w| (w[1] - w[0]) * n as f64).collect();
         let d2: Vec<Hpoint> = d1
             .windows(2)
             .map(|w| (w[1] - w[0]) * (n as f64 - 1.0))
             .collect();
-        rational_derivatives([eval(&h), eval(&d1), eval(&d2)])
+        rational_derivatives([value, first, de_casteljau(&d2, t)])
     }
 
     /// Splits at local `t` (de Casteljau in homogeneous coordinates) into the pieces on
     /// `[0, t]` and `[t, 1]`, each reparametrised to `[0, 1]`, with parameter ranges split
     /// accordingly.
     pub fn subdivide(&self, t: f64) -> (Self, Self) {
-        let mut work = self.homogeneous();
-        let n = work.len();
-        let mut left = Vec::with_capacity(n);
-        let mut right = vec![Hpoint::default(); n];
-        left.push(work[0]);
-        right[n - 1] = work[n - 1];
-        for r in 1..n {
-            for i in 0..n - r {
-                work[i] = work[i].lerp(work[i + 1], t);
-            }
-            left.push(work[0]);
-            right[n - 1 - r] = work[n - 1 - r];
-        }
+        let h = self.homogeneous();
+        let (mut left, mut right) = (h.clone(), h.clone());
+        de_casteljau_split(&h, t, &mut left, &mut right);
         let (u0, u1) = self.range;
         let um = u0 + t * (u1 - u0);
         (
