@@ -1,6 +1,7 @@
 //! SVG figures for `cargo xtask demo`: monotone boxes (inRS paper Fig. 2), refined boxes
 //! (Fig. 3), classified points (Fig. 4) and a winding-number field of a non-watertight shape.
 
+use inrs::prelude::*;
 use std::path::{Path, PathBuf};
 
 use inrs::boxes::{BoxOptions, MonotoneBoxes};

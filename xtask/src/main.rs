@@ -1,5 +1,6 @@
 //! `cargo xtask`: project automation (demo now; benchmarks and reports as they land).
 
+use inrs::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 

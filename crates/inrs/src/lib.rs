@@ -47,3 +47,9 @@ pub use points_csv::{
     MAX_LINE_BYTES, PointReader, PointRecord, PointsError, open_points, parse_points, read_points,
 };
 pub use summary::{DomainSummary, LoopSummary};
+
+/// The traits most code wants in scope: the curve vocabulary of `rs-spline` and [`Classify`].
+pub mod prelude {
+    pub use crate::Classify;
+    pub use rs_spline::prelude::*;
+}

@@ -153,7 +153,7 @@ impl MonotoneBoxes {
                     domain.curves()[ci]
                         .to_bezier()
                         .into_iter()
-                        .map(move |b| (ci, b.param_range(), BezierPiece::from_bezier(&b)))
+                        .map(move |b| (ci, b.knot_span(), BezierPiece::from_bezier(&b)))
                 })
                 .collect();
             for i in 1..pieces.len() {

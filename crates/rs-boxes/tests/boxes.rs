@@ -1,6 +1,7 @@
 //! Monotone boxes: monotone, covering, watertight, critical points of known shapes,
 //! refinement, and the boundary band.
 
+use rs_spline::prelude::*;
 use std::f64::consts::PI;
 
 use rs_boxes::{BoxOptions, CriticalKind, MonotoneBoxes, Monotonicity};
@@ -62,7 +63,7 @@ fn boxes_cover_the_boundary_and_are_watertight() {
         let size = d.bounding_box().diagonal();
         let mb = MonotoneBoxes::new(&d, BoxOptions::default()).unwrap();
         for c in d.curves() {
-            let (a, b) = c.domain();
+            let (a, b) = c.param_range();
             for i in 0..=500 {
                 let p = c.point_at(a + (b - a) * i as f64 / 500.0);
                 assert!(
@@ -209,7 +210,7 @@ fn box_grid_finds_every_near_box() {
         let grid = BoxGrid::new(mb.boxes(), tol);
         let mut pts = Vec::new();
         for c in d.curves() {
-            let (a, b) = c.domain();
+            let (a, b) = c.param_range();
             for i in 0..=200 {
                 let dv = c.derivatives(a + (b - a) * i as f64 / 200.0);
                 let n = dv.first.perp() / dv.first.length().max(f64::MIN_POSITIVE);

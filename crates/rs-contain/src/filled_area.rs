@@ -1,5 +1,6 @@
 //! The area a domain fills under the even-odd rule.
 
+use rs_spline::prelude::*;
 use rs_spline::{Domain, Point};
 
 use crate::{QueryStats, curve_winding_number};

@@ -1,6 +1,7 @@
 //! The polygon baseline of the papers: the boundary flattened to polylines within a tolerance,
 //! classified by a sorted-points crossing algorithm in the manner of INPOLY2.
 
+use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
 /// Depth cap of the adaptive flattening (2^-40 of a piece's parameter range).
@@ -109,7 +110,7 @@ fn flatten(b: &RationalBezier, tol: f64, depth: u32, out: &mut Vec<Point>) {
     if flat || depth >= MAX_FLATTEN_DEPTH {
         out.push(e);
     } else {
-        let (l, r) = b.subdivide(0.5);
+        let (l, r) = b.subdivide();
         flatten(&l, tol, depth + 1, out);
         flatten(&r, tol, depth + 1, out);
     }

@@ -6,6 +6,7 @@ use rs_contain::{
     Method, PointLocator, halton_points,
 };
 use rs_spline::Point;
+use rs_spline::prelude::*;
 use rs_testkit::{Case, DensePolygon, all_cases};
 
 /// Classifies with every method, several refinements and the fast paths (grid locator at
@@ -102,7 +103,7 @@ fn points_on_the_curves_are_boundary() {
     for case in all_cases() {
         let mut pts = Vec::new();
         for c in case.domain.curves() {
-            let (a, b) = c.domain();
+            let (a, b) = c.param_range();
             pts.extend((0..=60).map(|i| c.point_at(a + (b - a) * i as f64 / 60.0)));
         }
         let got = classify_all(&case, &pts);
@@ -121,7 +122,7 @@ fn normal_offsets_land_on_the_correct_side() {
         let mut pts = Vec::new();
         let mut truth = Vec::new();
         for c in case.domain.curves() {
-            let (a, b) = c.domain();
+            let (a, b) = c.param_range();
             let mut ends = vec![a];
             ends.extend(c.knots().interior_breaks());
             ends.push(b);

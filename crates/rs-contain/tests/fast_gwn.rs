@@ -2,6 +2,7 @@
 //! curves, for closed shapes, open chains and gaps; far queries cost O(log N).
 
 use rs_contain::{FastWindingField, FillRule, QueryStats, WindingField, halton_points};
+use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, circular_arc, segment};
 use rs_testkit::all_cases;
 

@@ -2,6 +2,7 @@
 //! sum, graceful behaviour at defects, the three algorithms agree, the coincident-point
 //! convention, work counters.
 
+use rs_spline::prelude::*;
 use std::f64::consts::{PI, TAU};
 
 use rs_contain::{
@@ -75,7 +76,7 @@ fn closed_shapes_give_integers() {
         let d = fixture(name);
         let f = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
         for c in d.curves() {
-            let (a, b) = c.domain();
+            let (a, b) = c.param_range();
             for i in 1..20 {
                 let u = a + (b - a) * (i as f64 + 0.5) / 20.0;
                 let dv = c.derivatives(u);

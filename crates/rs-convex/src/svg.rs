@@ -1,6 +1,7 @@
 //! An SVG figure of a planar convex domain: the box, the nested inner polygons, the outer
 //! bound, and the curve with its control polygon and free point.
 
+use rs_spline::prelude::*;
 use std::fmt::Write;
 
 use rs_spline::{NurbsCurve, Point};
@@ -83,7 +84,7 @@ pub fn to_svg(domain: &ConvexDomain, curve: Option<&NurbsCurve>, free: usize) ->
     if let Some(c) = curve {
         let samples: Vec<Point> = (0..=400)
             .map(|i| {
-                let (a, b) = c.domain();
+                let (a, b) = c.param_range();
                 c.point_at(a + (b - a) * i as f64 / 400.0)
             })
             .collect();

@@ -6,11 +6,12 @@ use rs_convex::{
     BoundingBox3, ConvexDomain, ConvexDomainOptions, ConvexPolygon, Outcome, Region, Sign,
     approximate,
 };
+use rs_spline::prelude::*;
 use rs_spline::{NurbsCurve, Point, SignNumerator, SpaceCurve};
 
 /// Minimum of `C' x C''` (divided by `|C'|^3`, the curvature) over a dense parameter grid.
 fn min_curvature(c: &NurbsCurve) -> f64 {
-    let (a, b) = c.domain();
+    let (a, b) = c.param_range();
     (0..=4000)
         .map(|i| {
             let d = c.derivatives(a + (b - a) * i as f64 / 4000.0);
@@ -22,7 +23,7 @@ fn min_curvature(c: &NurbsCurve) -> f64 {
 /// Minimum of `C' x C''` over a dense grid, relative to the largest `|C'| |C''|` (for points
 /// on the domain's boundary, where the curve may lose regularity, e.g. `d` on a neighbour).
 fn min_numerator(c: &NurbsCurve) -> f64 {
-    let (a, b) = c.domain();
+    let (a, b) = c.param_range();
     let (mut lo, mut scale) = (f64::INFINITY, 0.0f64);
     for i in 0..=4000 {
         let d = c.derivatives(a + (b - a) * i as f64 / 4000.0);

@@ -91,6 +91,7 @@ impl Affine {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rs_spline::prelude::*;
 
     #[test]
     fn composition_applies_the_right_map_first() {

@@ -1,5 +1,6 @@
 //! Assembles drawing commands (move, line, curve, close) into closed boundary loops.
 
+use rs_spline::prelude::*;
 use rs_spline::{NurbsCurve, Point, SplineError, segment};
 
 use crate::Affine;

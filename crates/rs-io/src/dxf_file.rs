@@ -2,6 +2,7 @@
 //! `POLYLINE` with bulges (exact circular arcs), `LINE`, `ARC`, `CIRCLE` and `ELLIPSE` in
 //! model space, chained end to end into closed loops.
 
+use rs_spline::prelude::*;
 use std::f64::consts::TAU;
 use std::path::Path;
 

@@ -4,6 +4,7 @@
 // Entities are filled in field by field, as an exporter builds them.
 #![allow(clippy::field_reassign_with_default)]
 
+use rs_spline::prelude::*;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 use dxf::entities::{Arc, Circle, Ellipse, Entity, EntityType, Line, LwPolyline, Spline};

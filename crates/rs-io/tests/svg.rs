@@ -1,6 +1,7 @@
 //! SVG path data and documents against analytic answers: areas, exact conics, the equivalence
 //! of absolute/relative/shorthand forms, transforms, and error messages.
 
+use rs_spline::prelude::*;
 use std::f64::consts::PI;
 
 use rs_io::IoError;

@@ -1,5 +1,6 @@
 //! Boundary points placed by arc length on every loop.
 
+use rs_spline::prelude::*;
 use rs_spline::quadrature::gauss_legendre;
 use rs_spline::{Domain, NurbsCurve, Point};
 
@@ -31,9 +32,9 @@ impl ArcLength {
     pub(crate) fn new(c: &NurbsCurve) -> Self {
         let (nodes, weights) = gauss_legendre(4);
         let speed = |u: f64| c.derivatives(u).first.length();
-        let mut breaks = vec![c.domain().0];
+        let mut breaks = vec![c.param_range().0];
         breaks.extend(c.knots().interior_breaks());
-        breaks.push(c.domain().1);
+        breaks.push(c.param_range().1);
         let (mut us, mut ss) = (vec![breaks[0]], vec![0.0]);
         for w in breaks.windows(2) {
             for k in 0..PANELS {
@@ -97,7 +98,7 @@ pub(crate) fn place_boundary_points(
             let c = &domain.curves()[ci];
             let table = ArcLength::new(c);
             let len = table.length();
-            let (u_start, u_end) = c.domain();
+            let (u_start, u_end) = c.param_range();
             let mut wanted: Vec<f64> = extra
                 .iter()
                 .filter(|(k, u)| *k == ci && *u > u_start && *u < u_end)

@@ -1,6 +1,7 @@
 //! Point location in a curved triangulation.
 
 use rs_contain::{Classifier, ContainOptions, Location};
+use rs_spline::prelude::*;
 use rs_spline::{BoundingBox, Domain, Point, segment};
 use spade::{PositionInTriangulation, Triangulation as _};
 

@@ -1,5 +1,6 @@
 //! An SVG figure of a curved triangulation: straight edges thin, boundary arcs thick.
 
+use rs_spline::prelude::*;
 use std::fmt::Write;
 
 use rs_spline::Point;

@@ -2,6 +2,7 @@
 //! Definition 4.2 with automatic boundary point insertion, and the curved triangulation of
 //! Algorithm 4.1.
 
+use rs_spline::prelude::*;
 use std::collections::{HashMap, HashSet, VecDeque};
 
 use rs_roots::{Bernstein, bernstein_roots};
@@ -189,7 +190,7 @@ impl CurvedTriangulation {
                     let arc = &self.arcs[i];
                     let c = &self.domain.curves()[arc.curve];
                     let sign = if arc.from == a { 1.0 } else { -1.0 };
-                    area += sign * c.area_integral(arc.u0, arc.u1).value;
+                    area += sign * c.area_integral_on(arc.u0, arc.u1).value;
                 }
             }
         }
@@ -209,7 +210,7 @@ fn normalized_loops(domain: &Domain, given: &[Vec<BoundaryPoint>]) -> Vec<Vec<Bo
     for (j, l) in domain.loops().iter().enumerate() {
         for ci in l.curves() {
             let c = &domain.curves()[ci];
-            let u = c.domain().0;
+            let u = c.param_range().0;
             if !loops[j].iter().any(|b| b.curve == ci && b.u == u) {
                 loops[j].push(BoundaryPoint {
                     loop_index: j,
@@ -234,7 +235,7 @@ pub(crate) fn sub_curve(
     u0: f64,
     u1: f64,
 ) -> Result<NurbsCurve, rs_spline::SplineError> {
-    let (a, b) = c.domain();
+    let (a, b) = c.param_range();
     let right = if u0 > a { c.split_at(u0)?.1 } else { c.clone() };
     if u1 < b {
         Ok(right.split_at(u1)?.0)
@@ -403,7 +404,7 @@ fn build(
             let u1 = if pb.curve == pa.curve && pb.u > pa.u {
                 pb.u
             } else {
-                curve.domain().1
+                curve.param_range().1
             };
             let owner = edge_of.get(&(a, b)).or_else(|| edge_of.get(&(b, a)));
             let Some(&(t, e)) = owner else {
@@ -475,7 +476,7 @@ fn refine_loops(
             let u1 = if pb.curve == pa.curve && pb.u > pa.u {
                 pb.u
             } else {
-                c.domain().1
+                c.param_range().1
             };
             let u = 0.5 * (pa.u + u1);
             out[j].insert(

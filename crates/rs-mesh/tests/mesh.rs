@@ -7,6 +7,7 @@ use rs_mesh::{
     CurvedLocator, CurvedTriangulation, EdgeKind, WellSpacedPoints, halton_points_in,
     well_spaced_points,
 };
+use rs_spline::prelude::*;
 use rs_spline::{Domain, Point};
 use rs_testkit::{Case, all_cases};
 

@@ -87,7 +87,7 @@ pub fn elliptic_arc(
 /// # Examples
 ///
 /// ```
-/// use rs_spline::{circular_arc, Point};
+/// use rs_spline::{circular_arc, Point, prelude::*};
 /// let a = circular_arc(Point::new(1.0, 1.0), 2.0, 0.0, 3.0).unwrap();
 /// for i in 0..=10 {
 ///     let p = a.point_at(i as f64 / 10.0);
@@ -172,6 +172,7 @@ fn check_finite(what: &'static str, value: f64) -> Result<(), SplineError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prelude::*;
 
     #[test]
     fn arc_end_points_and_piece_count() {

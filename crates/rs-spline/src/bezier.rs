@@ -1,10 +1,11 @@
 //! Rational Bezier curves on `[0, 1]`.
 
 use rs_roots::{
-    Bernstein, Polynomial, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
-    real_roots_in,
+    Bernstein, Polynomial, RootsError, de_casteljau, de_casteljau_split,
+    de_casteljau_with_derivative, real_roots_in,
 };
 
+use crate::curve::prelude::*;
 use crate::error::check_control_points;
 use crate::homogeneous::{Hpoint, rational_derivatives};
 use crate::quadrature::{Integral, integrate_adaptive};
@@ -20,14 +21,14 @@ use crate::{BoundingBox, CurveDerivatives, Point, SplineError};
 /// # Examples
 ///
 /// ```
-/// use rs_spline::{Point, RationalBezier};
+/// use rs_spline::{Point, RationalBezier, prelude::*};
 /// let b = RationalBezier::new(
 ///     vec![Point::new(0.0, 0.0), Point::new(1.0, 2.0), Point::new(2.0, 0.0)],
 ///     vec![1.0, 1.0, 1.0],
 /// )
 /// .unwrap();
 /// assert_eq!(b.point_at(0.5), Point::new(1.0, 1.0));
-/// let (left, right) = b.subdivide(0.5);
+/// let (left, right) = b.subdivide();
 /// assert_eq!(left.end_point(), right.start_point());
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -59,8 +60,8 @@ impl RationalBezier {
         })
     }
 
-    /// The same curve labelled with another parameter range.
-    pub fn with_param_range(mut self, u0: f64, u1: f64) -> Self {
+    /// The same curve labelled with the knot span `[u0, u1]` of the NURBS it belongs to.
+    pub fn with_knot_span(mut self, u0: f64, u1: f64) -> Self {
         self.range = (u0, u1);
         self
     }
@@ -104,46 +105,16 @@ impl RationalBezier {
         &self.weights
     }
 
-    /// The original parameter range `[u0, u1]`; local `t` maps to `u0 + t (u1 - u0)`.
-    pub fn param_range(&self) -> (f64, f64) {
+    /// The knot span `[u0, u1]` of the NURBS this piece was extracted from (`[0, 1]` for a
+    /// piece built directly); local `t` corresponds to `u0 + t (u1 - u0)`.
+    pub fn knot_span(&self) -> (f64, f64) {
         self.range
     }
 
-    /// `C(0) = P_0`.
-    pub fn start_point(&self) -> Point {
-        self.points[0]
-    }
-
-    /// `C(1) = P_n`.
-    pub fn end_point(&self) -> Point {
-        self.points[self.points.len() - 1]
-    }
-
-    /// `C(t)` by de Casteljau's algorithm in homogeneous coordinates (stable, any `t`; meant
-    /// for `t` in `[0, 1]`).
-    pub fn point_at(&self, t: f64) -> Point {
-        de_casteljau(&self.homogeneous(), t).project()
-    }
-
-    /// `C(t)`, `C'(t)`, `C''(t)` with respect to the local parameter `t` (multiply by
-    /// `1 / (u1 - u0)` and its square for derivatives with respect to the original parameter).
-    pub fn derivatives(&self, t: f64) -> CurveDerivatives {
-        let h = self.homogeneous();
-        let n = h.len() - 1;
-        let (value, first) = de_casteljau_with_derivative(&h, t);
-        // Second differences of the control polygon, scaled: the Bernstein form of C''.
-        let d1: Vec<Hpoint> = h.windows(2).map(|w| (w[1] - w[0]) * n as f64).collect();
-        let d2: Vec<Hpoint> = d1
-            .windows(2)
-            .map(|w| (w[1] - w[0]) * (n as f64 - 1.0))
-            .collect();
-        rational_derivatives([value, first, de_casteljau(&d2, t)])
-    }
-
-    /// Splits at local `t` (de Casteljau in homogeneous coordinates) into the pieces on
-    /// `[0, t]` and `[t, 1]`, each reparametrised to `[0, 1]`, with parameter ranges split
-    /// accordingly.
-    pub fn subdivide(&self, t: f64) -> (Self, Self) {
+    /// Splits at local `t` in `[0, 1]` (one de Casteljau pass in homogeneous coordinates) into
+    /// the pieces on `[0, t]` and `[t, 1]`, each reparametrised to `[0, 1]`, with the knot span
+    /// split accordingly. Total on `[0, 1]`; [`ParamCurve::split_at`] is the checked form.
+    fn split_unchecked(&self, t: f64) -> (Self, Self) {
         let h = self.homogeneous();
         let (mut left, mut right) = (h.clone(), h.clone());
         de_casteljau_split(&h, t, &mut left, &mut right);
@@ -153,77 +124,6 @@ impl RationalBezier {
             Self::from_homogeneous(&left, (u0, um)),
             Self::from_homogeneous(&right, (um, u1)),
         )
-    }
-
-    /// The piece on local `[t0, t1]` (`0 <= t0 < t1 <= 1`), reparametrised to `[0, 1]`.
-    pub fn sub_curve(&self, t0: f64, t1: f64) -> Self {
-        let right = if t0 > 0.0 {
-            self.subdivide(t0).1
-        } else {
-            self.clone()
-        };
-        if t1 < 1.0 {
-            right.subdivide((t1 - t0) / (1.0 - t0)).0
-        } else {
-            right
-        }
-    }
-
-    /// The same curve traversed backwards; the parameter range is kept.
-    pub fn reversed(&self) -> Self {
-        Self {
-            points: self.points.iter().rev().copied().collect(),
-            weights: self.weights.iter().rev().copied().collect(),
-            range: self.range,
-        }
-    }
-
-    /// Bounding box of the control points (contains the curve because weights are > 0).
-    pub fn control_bounding_box(&self) -> BoundingBox {
-        BoundingBox::from_points(self.points.iter().copied())
-            .unwrap_or(BoundingBox::from_point(self.points[0]))
-    }
-
-    /// Tight bounding box: end points and the points where `x'(t) = 0` or `y'(t) = 0` in
-    /// `(0, 1)`, found as roots of the derivative numerators (see
-    /// [`RationalBezier::derivative_numerators`]). Should the root finder fail, the control
-    /// bounding box is returned: larger, but still a box that contains the curve.
-    pub fn bounding_box(&self) -> BoundingBox {
-        let mut b = BoundingBox::from_point(self.start_point()).including(self.end_point());
-        let (dx, dy) = self.derivative_numerators();
-        for d in [dx, dy] {
-            match real_roots_in(&d, 0.0, 1.0) {
-                Ok(roots) => {
-                    for t in roots {
-                        b = b.including(self.point_at(t));
-                    }
-                }
-                // The zero polynomial (constant coordinate) has no isolated extremes.
-                Err(rs_roots::RootsError::ZeroPolynomial) => {}
-                // Roots that cannot be computed: the control box still contains the curve.
-                Err(_) => return self.control_bounding_box(),
-            }
-        }
-        b
-    }
-
-    /// The Green integral `1/2 integral_0^1 (x y' - y x') dt` of the piece: its contribution to
-    /// the signed area of a closed loop (adaptive Gauss-Legendre to about `1e-15` of the
-    /// squared size of its control polygon, bounded work; see
-    /// [`crate::quadrature::integrate_adaptive`]).
-    pub fn area_integral(&self) -> Integral {
-        self.area_integral_on(0.0, 1.0)
-    }
-
-    /// The Green integral over local `[t0, t1]`.
-    pub fn area_integral_on(&self, t0: f64, t1: f64) -> Integral {
-        let scale = self.control_bounding_box().diagonal().powi(2);
-        let f = |t: f64| {
-            let d = self.derivatives(t);
-            let (a, b) = (d.point.x * d.first.y, d.point.y * d.first.x);
-            (0.5 * (a - b), 0.5 * (a.abs() + b.abs()))
-        };
-        integrate_adaptive(f, t0, t1, 1e-15 * scale.max(f64::MIN_POSITIVE))
     }
 
     /// The numerators `X(t) = sum w_i x_i B_i`, `Y(t) = sum w_i y_i B_i` and the denominator
@@ -260,6 +160,172 @@ impl RationalBezier {
     }
 }
 
+impl ParamCurve for RationalBezier {
+    /// Always `[0, 1]` (the knot span it came from is [`RationalBezier::knot_span`]).
+    fn param_range(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+
+    /// `C(t)` by de Casteljau's algorithm in homogeneous coordinates (stable, any `t`).
+    fn point_at(&self, t: f64) -> Point {
+        de_casteljau(&self.homogeneous(), t).project()
+    }
+
+    /// `C(0) = P_0`, exactly.
+    fn start_point(&self) -> Point {
+        self.points[0]
+    }
+
+    /// `C(1) = P_n`, exactly.
+    fn end_point(&self) -> Point {
+        self.points[self.points.len() - 1]
+    }
+
+    fn subsegment(&self, (t0, t1): (f64, f64)) -> Result<Self, SplineError> {
+        if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
+            return Err(SplineError::ParameterOutOfDomain {
+                u: if (0.0..=1.0).contains(&t0) { t1 } else { t0 },
+                start: 0.0,
+                end: 1.0,
+            });
+        }
+        let right = if t0 > 0.0 {
+            self.split_unchecked(t0).1
+        } else {
+            self.clone()
+        };
+        Ok(if t1 < 1.0 {
+            right.split_unchecked((t1 - t0) / (1.0 - t0)).0
+        } else {
+            right
+        })
+    }
+
+    fn split_at(&self, t: f64) -> Result<(Self, Self), SplineError> {
+        if t > 0.0 && t < 1.0 {
+            Ok(self.split_unchecked(t))
+        } else {
+            Err(SplineError::ParameterOutOfDomain {
+                u: t,
+                start: 0.0,
+                end: 1.0,
+            })
+        }
+    }
+
+    fn subdivide(&self) -> (Self, Self) {
+        self.split_unchecked(0.5)
+    }
+
+    /// Control points and weights in reverse order; the knot span is kept.
+    fn reversed(&self) -> Self {
+        Self {
+            points: self.points.iter().rev().copied().collect(),
+            weights: self.weights.iter().rev().copied().collect(),
+            range: self.range,
+        }
+    }
+}
+
+impl ParamCurveDeriv for RationalBezier {
+    /// Derivatives with respect to the local `t` (multiply by `1 / (u1 - u0)` and its square
+    /// for derivatives with respect to the knot-span parameter).
+    fn derivatives(&self, t: f64) -> CurveDerivatives {
+        let h = self.homogeneous();
+        let n = h.len() - 1;
+        let (value, first) = de_casteljau_with_derivative(&h, t);
+        // Second differences of the control polygon, scaled: the Bernstein form of C''.
+        let d1: Vec<Hpoint> = h.windows(2).map(|w| (w[1] - w[0]) * n as f64).collect();
+        let d2: Vec<Hpoint> = d1
+            .windows(2)
+            .map(|w| (w[1] - w[0]) * (n as f64 - 1.0))
+            .collect();
+        rational_derivatives([value, first, de_casteljau(&d2, t)])
+    }
+}
+
+impl ParamCurveArea for RationalBezier {
+    fn area_integral_on(&self, t0: f64, t1: f64) -> Integral {
+        let scale = self.control_bounding_box().diagonal().powi(2);
+        let f = |t: f64| {
+            let d = self.derivatives(t);
+            let (a, b) = (d.point.x * d.first.y, d.point.y * d.first.x);
+            (0.5 * (a - b), 0.5 * (a.abs() + b.abs()))
+        };
+        integrate_adaptive(f, t0, t1, 1e-15 * scale.max(f64::MIN_POSITIVE))
+    }
+}
+
+impl ParamCurveArclen for RationalBezier {
+    fn smooth_spans(&self) -> Vec<(f64, f64)> {
+        vec![(0.0, 1.0)]
+    }
+}
+
+impl ParamCurveExtrema for RationalBezier {
+    /// Roots in `(0, 1)` of the derivative numerators (see
+    /// [`RationalBezier::derivative_numerators`]); a constant coordinate has none.
+    fn extrema(&self) -> Result<Vec<f64>, RootsError> {
+        let (dx, dy) = self.derivative_numerators();
+        let mut out = Vec::new();
+        for d in [dx, dy] {
+            match real_roots_in(&d, 0.0, 1.0) {
+                Ok(roots) => out.extend(roots.into_iter().filter(|&t| t > 0.0 && t < 1.0)),
+                // The zero polynomial (constant coordinate) has no isolated extremes.
+                Err(RootsError::ZeroPolynomial) => {}
+                Err(e) => return Err(e),
+            }
+        }
+        out.sort_by(f64::total_cmp);
+        out.dedup();
+        Ok(out)
+    }
+
+    fn control_bounding_box(&self) -> BoundingBox {
+        BoundingBox::from_points(self.points.iter().copied())
+            .unwrap_or(BoundingBox::from_point(self.points[0]))
+    }
+}
+
+impl Flatten for RationalBezier {
+    fn flatten(&self, tolerance: f64, emit: &mut dyn FnMut(Point)) {
+        emit(self.start_point());
+        let floor = FLATTEN_RELATIVE_FLOOR * self.control_bounding_box().diagonal();
+        let tol = if tolerance > floor { tolerance } else { floor };
+        flatten_into(self, tol, 0, emit);
+    }
+}
+
+/// The smallest flattening tolerance, relative to a piece's control-box diagonal.
+const FLATTEN_RELATIVE_FLOOR: f64 = 1e-13;
+
+/// Halving depth cap of [`Flatten::flatten`] (2^-40 of a piece's parameter range).
+const MAX_FLATTEN_DEPTH: u32 = 40;
+
+/// Emits the end points of the parts of `b` whose control points lie within `tol` of their
+/// chords, left to right.
+fn flatten_into(b: &RationalBezier, tol: f64, depth: u32, emit: &mut dyn FnMut(Point)) {
+    let p = b.control_points();
+    let (a, e) = (p[0], p[p.len() - 1]);
+    let chord = e - a;
+    let len = chord.length();
+    let flat = p.iter().all(|&q| {
+        let d = if len > 0.0 {
+            chord.cross(q - a).abs() / len
+        } else {
+            q.distance(a)
+        };
+        d <= tol
+    });
+    if flat || depth >= MAX_FLATTEN_DEPTH {
+        emit(e);
+    } else {
+        let (l, r) = b.subdivide();
+        flatten_into(&l, tol, depth + 1, emit);
+        flatten_into(&r, tol, depth + 1, emit);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,16 +358,16 @@ mod tests {
 
     #[test]
     fn subdivision_preserves_the_curve() {
-        let b = quarter_circle().with_param_range(2.0, 4.0);
-        let (l, r) = b.subdivide(0.3);
-        assert_eq!(l.param_range(), (2.0, 2.6));
-        assert_eq!(r.param_range(), (2.6, 4.0));
+        let b = quarter_circle().with_knot_span(2.0, 4.0);
+        let (l, r) = b.split_at(0.3).unwrap();
+        assert_eq!(l.knot_span(), (2.0, 2.6));
+        assert_eq!(r.knot_span(), (2.6, 4.0));
         for i in 0..=10 {
             let s = i as f64 / 10.0;
             assert!(l.point_at(s).distance(b.point_at(0.3 * s)) < 1e-15);
             assert!(r.point_at(s).distance(b.point_at(0.3 + 0.7 * s)) < 1e-15);
         }
-        let mid = b.sub_curve(0.2, 0.7);
+        let mid = b.subsegment((0.2, 0.7)).unwrap();
         assert!(mid.start_point().distance(b.point_at(0.2)) < 1e-15);
         assert!(mid.end_point().distance(b.point_at(0.7)) < 1e-15);
     }

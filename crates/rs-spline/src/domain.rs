@@ -1,5 +1,6 @@
 //! Domains: curves grouped into boundary loops, with size, orientation and area.
 
+use crate::prelude::*;
 use std::ops::RangeInclusive;
 
 use crate::quadrature::Integral;
@@ -63,7 +64,7 @@ impl BoundaryLoop {
 /// # Examples
 ///
 /// ```
-/// use rs_spline::{circle, Domain, Orientation, Point};
+/// use rs_spline::{circle, Domain, Orientation, Point, prelude::*};
 /// let outer = circle(Point::new(0.0, 0.0), 2.0).unwrap();
 /// let hole = circle(Point::new(0.0, 0.0), 1.0).unwrap().reversed();
 /// let d = Domain::new(vec![outer, hole]).unwrap();

@@ -18,7 +18,7 @@
 //! # Examples
 //!
 //! ```
-//! use rs_spline::{circle, Point};
+//! use rs_spline::{circle, Point, prelude::*};
 //! let c = circle(Point::new(0.0, 0.0), 1.0).unwrap();
 //! // Knot insertion and Bezier extraction leave the curve unchanged.
 //! let refined = c.insert_knot(0.1, 2).unwrap();
@@ -28,6 +28,7 @@
 
 mod arc;
 mod bezier;
+mod curve;
 mod domain;
 mod error;
 mod homogeneous;
@@ -43,6 +44,10 @@ mod space_curve;
 
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
 pub use bezier::RationalBezier;
+pub use curve::{
+    Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv, ParamCurveExtrema,
+    prelude,
+};
 pub use domain::{BoundaryLoop, DEFAULT_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};
 pub use homogeneous::CurveDerivatives;

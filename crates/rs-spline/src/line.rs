@@ -10,7 +10,7 @@ use crate::{NurbsCurve, Point, SplineError};
 /// # Examples
 ///
 /// ```
-/// use rs_spline::{segment, Point};
+/// use rs_spline::{segment, Point, prelude::*};
 /// let s = segment(Point::new(0.0, 0.0), Point::new(2.0, 2.0)).unwrap();
 /// assert_eq!(s.point_at(0.5), Point::new(1.0, 1.0));
 /// ```
@@ -41,6 +41,7 @@ pub fn polyline(points: &[Point]) -> Result<NurbsCurve, SplineError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prelude::*;
 
     #[test]
     fn polyline_passes_through_its_vertices() {

@@ -1,5 +1,8 @@
 //! Planar NURBS curves.
 
+use rs_roots::RootsError;
+
+use crate::curve::prelude::*;
 use crate::error::{check_control_points, normalized_weights};
 use crate::homogeneous::{Hpoint, rational_derivatives};
 use crate::quadrature::Integral;
@@ -16,7 +19,7 @@ use crate::{BoundingBox, CurveDerivatives, KnotVector, Point, RationalBezier, Sp
 /// # Examples
 ///
 /// ```
-/// use rs_spline::{NurbsCurve, Point};
+/// use rs_spline::{NurbsCurve, Point, prelude::*};
 /// // A quarter of the unit circle as a rational quadratic.
 /// let w = std::f64::consts::FRAC_1_SQRT_2;
 /// let c = NurbsCurve::new(
@@ -152,24 +155,9 @@ impl NurbsCurve {
         self.weights.iter().all(|&w| w == self.weights[0])
     }
 
-    /// The parameter domain `[u_p, u_n]`.
-    pub fn domain(&self) -> (f64, f64) {
-        self.knots.domain()
-    }
-
-    /// `C(u_p)`.
-    pub fn start_point(&self) -> Point {
-        self.point_at(self.domain().0)
-    }
-
-    /// `C(u_n)`.
-    pub fn end_point(&self) -> Point {
-        self.point_at(self.domain().1)
-    }
-
     /// Homogeneous derivatives `[A, A', A'']` at `u` (clamped to the domain).
     fn homogeneous_derivatives(&self, u: f64, nd: usize) -> [Hpoint; 3] {
-        let (a, b) = self.domain();
+        let (a, b) = self.param_range();
         let u = u.clamp(a, b);
         let p = self.degree();
         let k = self.knots.span(u);
@@ -184,35 +172,8 @@ impl NurbsCurve {
         out
     }
 
-    /// `C(u)`; `u` is clamped into the domain.
-    pub fn point_at(&self, u: f64) -> Point {
-        self.homogeneous_derivatives(u, 0)[0].project()
-    }
-
-    /// `C(u)`, `C'(u)` and `C''(u)` by the rational quotient rule; `u` is clamped into the
-    /// domain. At a knot the derivatives are those of the span to its right (of the last span
-    /// at the domain end).
-    pub fn derivatives(&self, u: f64) -> CurveDerivatives {
-        rational_derivatives(self.homogeneous_derivatives(u, 2))
-    }
-
-    /// Bounding box of the control polygon (it contains the curve, since weights are > 0).
-    pub fn control_bounding_box(&self) -> BoundingBox {
-        BoundingBox::from_points(self.points.iter().copied())
-            .unwrap_or(BoundingBox::from_point(Point::default()))
-    }
-
-    /// Tight bounding box: the union of the tight boxes of the Bezier pieces.
-    pub fn bounding_box(&self) -> BoundingBox {
-        self.to_bezier()
-            .iter()
-            .map(RationalBezier::bounding_box)
-            .reduce(BoundingBox::union)
-            .unwrap_or_else(|| self.control_bounding_box())
-    }
-
     fn check_in_domain(&self, u: f64) -> Result<(), SplineError> {
-        let (start, end) = self.domain();
+        let (start, end) = self.param_range();
         if u.is_finite() && u >= start && u <= end {
             Ok(())
         } else {
@@ -283,28 +244,10 @@ impl NurbsCurve {
         Ok(c)
     }
 
-    /// The same curve traversed backwards on the same domain: `C_rev(u) = C(a + b - u)` for the
-    /// domain `[a, b]`.
-    pub fn reversed(&self) -> Self {
-        let (a, b) = self.domain();
-        let knots: Vec<f64> = self
-            .knots
-            .knots()
-            .iter()
-            .rev()
-            .map(|&k| a + b - k)
-            .collect();
-        Self {
-            knots: KnotVector::from_raw(knots, self.degree()),
-            points: self.points.iter().rev().copied().collect(),
-            weights: self.weights.iter().rev().copied().collect(),
-        }
-    }
-
     /// Clamps the start: afterwards `u_0 = ... = u_p` and `C(u_p) = P_0`.
     fn clamp_start(&self) -> Self {
         let p = self.degree();
-        let a = self.domain().0;
+        let a = self.param_range().0;
         let mut knots = self.knots.knots().to_vec();
         let mut hp = self.homogeneous();
         while knots.iter().filter(|&&k| k == a).count() < p {
@@ -322,7 +265,7 @@ impl NurbsCurve {
     /// Clamps the end: afterwards `u_n = ... = u_{n+p}` and `C(u_n) = P_{n-1}`.
     fn clamp_end(&self) -> Self {
         let p = self.degree();
-        let b = self.domain().1;
+        let b = self.param_range().1;
         let mut knots = self.knots.knots().to_vec();
         let mut hp = self.homogeneous();
         while knots.iter().filter(|&&k| k == b).count() < p {
@@ -340,45 +283,6 @@ impl NurbsCurve {
     /// values are kept exactly.
     pub fn clamped(&self) -> Self {
         self.clamp_start().clamp_end()
-    }
-
-    /// Splits at `u` strictly inside the domain into the curves on `[a, u]` and `[u, b]`.
-    ///
-    /// # Errors
-    /// [`SplineError::ParameterOutOfDomain`] unless `a < u < b`.
-    pub fn split_at(&self, u: f64) -> Result<(Self, Self), SplineError> {
-        let (a, b) = self.domain();
-        if !(u > a && u < b) {
-            return Err(SplineError::ParameterOutOfDomain {
-                u,
-                start: a,
-                end: b,
-            });
-        }
-        let p = self.degree();
-        let have = self.knots.multiplicity(u);
-        if have > p {
-            // A break: the pieces on either side already have their own control points.
-            let knots = self.knots.knots();
-            let hp = self.homogeneous();
-            let j = knots.iter().position(|&k| k == u).unwrap_or(0);
-            return Ok((
-                Self::from_homogeneous(knots[..j + p + 1].to_vec(), p, &hp[..j]),
-                Self::from_homogeneous(knots[j..].to_vec(), p, &hp[j..]),
-            ));
-        }
-        let c = self.insert_knot(u, p - have)?;
-        let knots = c.knots.knots();
-        let hp = c.homogeneous();
-        let j = knots.iter().position(|&k| k == u).unwrap_or(0);
-        let mut left_knots = knots[..j + p].to_vec();
-        left_knots.push(u);
-        let mut right_knots = vec![u];
-        right_knots.extend_from_slice(&knots[j..]);
-        Ok((
-            Self::from_homogeneous(left_knots, p, &hp[..j]),
-            Self::from_homogeneous(right_knots, p, &hp[j - 1..]),
-        ))
     }
 
     /// Bezier extraction: the rational Bezier pieces of the curve, one per non-empty knot span,
@@ -416,20 +320,6 @@ impl NurbsCurve {
         pieces
     }
 
-    /// The Green integral `1/2 integral_{u0}^{u1} (x y' - y x') du` over `[u0, u1]` within the
-    /// domain, piece by piece (see [`RationalBezier::area_integral`]); summed over a closed
-    /// loop it is the loop's signed area.
-    pub fn area_integral(&self, u0: f64, u1: f64) -> Integral {
-        self.to_bezier()
-            .iter()
-            .filter_map(|b| {
-                let (a, c) = b.param_range();
-                let (lo, hi) = (u0.max(a), u1.min(c));
-                (lo < hi).then(|| b.area_integral_on((lo - a) / (c - a), (hi - a) / (c - a)))
-            })
-            .sum()
-    }
-
     /// The breaks of the curve: every interior knot of multiplicity `p + 1`, with the distance
     /// between the end of the Bezier piece before it and the start of the piece after it (zero
     /// where the pieces meet; a gap otherwise). Ascending in the parameter.
@@ -441,6 +331,186 @@ impl NurbsCurve {
             .filter(|&(_, _, mult)| mult > p)
             .map(|(i, u, _)| (u, self.points[i - 1].distance(self.points[i])))
             .collect()
+    }
+}
+
+impl ParamCurve for NurbsCurve {
+    /// The knot domain `[u_p, u_n]`.
+    fn param_range(&self) -> (f64, f64) {
+        self.knots.domain()
+    }
+
+    /// `C(u)`; `u` is clamped into the domain.
+    fn point_at(&self, u: f64) -> Point {
+        self.homogeneous_derivatives(u, 0)[0].project()
+    }
+
+    fn subsegment(&self, (u0, u1): (f64, f64)) -> Result<Self, SplineError> {
+        let (a, b) = self.param_range();
+        if !(a <= u0 && u0 < u1 && u1 <= b) {
+            return Err(SplineError::ParameterOutOfDomain {
+                u: if (a..=b).contains(&u0) { u1 } else { u0 },
+                start: a,
+                end: b,
+            });
+        }
+        let right = if u0 > a {
+            self.split_at(u0)?.1
+        } else {
+            self.clone()
+        };
+        if u1 < b {
+            Ok(right.split_at(u1)?.0)
+        } else {
+            Ok(right)
+        }
+    }
+
+    /// Splits at `u` strictly inside the domain into the curves on `[a, u]` and `[u, b]`.
+    ///
+    /// # Errors
+    /// [`SplineError::ParameterOutOfDomain`] unless `a < u < b`.
+    fn split_at(&self, u: f64) -> Result<(Self, Self), SplineError> {
+        let (a, b) = self.param_range();
+        if !(u > a && u < b) {
+            return Err(SplineError::ParameterOutOfDomain {
+                u,
+                start: a,
+                end: b,
+            });
+        }
+        let p = self.degree();
+        let have = self.knots.multiplicity(u);
+        if have > p {
+            // A break: the pieces on either side already have their own control points.
+            let knots = self.knots.knots();
+            let hp = self.homogeneous();
+            let j = knots.iter().position(|&k| k == u).unwrap_or(0);
+            return Ok((
+                Self::from_homogeneous(knots[..j + p + 1].to_vec(), p, &hp[..j]),
+                Self::from_homogeneous(knots[j..].to_vec(), p, &hp[j..]),
+            ));
+        }
+        let c = self.insert_knot(u, p - have)?;
+        let knots = c.knots.knots();
+        let hp = c.homogeneous();
+        let j = knots.iter().position(|&k| k == u).unwrap_or(0);
+        let mut left_knots = knots[..j + p].to_vec();
+        left_knots.push(u);
+        let mut right_knots = vec![u];
+        right_knots.extend_from_slice(&knots[j..]);
+        Ok((
+            Self::from_homogeneous(left_knots, p, &hp[..j]),
+            Self::from_homogeneous(right_knots, p, &hp[j - 1..]),
+        ))
+    }
+
+    fn subdivide(&self) -> (Self, Self) {
+        let (a, b) = self.param_range();
+        // The midpoint of a non-empty domain is strictly inside it.
+        self.split_at(0.5 * (a + b))
+            .unwrap_or_else(|_| (self.clone(), self.clone()))
+    }
+
+    /// The same curve traversed backwards on the same domain: `C_rev(u) = C(a + b - u)` for the
+    /// domain `[a, b]`.
+    fn reversed(&self) -> Self {
+        let (a, b) = self.param_range();
+        let knots: Vec<f64> = self
+            .knots
+            .knots()
+            .iter()
+            .rev()
+            .map(|&k| a + b - k)
+            .collect();
+        Self {
+            knots: KnotVector::from_raw(knots, self.degree()),
+            points: self.points.iter().rev().copied().collect(),
+            weights: self.weights.iter().rev().copied().collect(),
+        }
+    }
+}
+
+impl ParamCurveDeriv for NurbsCurve {
+    /// `C(u)`, `C'(u)` and `C''(u)` by the rational quotient rule; `u` is clamped into the
+    /// domain. At a knot the derivatives are those of the span to its right (of the last span
+    /// at the domain end).
+    fn derivatives(&self, u: f64) -> CurveDerivatives {
+        rational_derivatives(self.homogeneous_derivatives(u, 2))
+    }
+}
+
+impl ParamCurveArea for NurbsCurve {
+    /// Piece by piece over the Bezier spans (see [`RationalBezier`]'s implementation).
+    fn area_integral_on(&self, u0: f64, u1: f64) -> Integral {
+        self.to_bezier()
+            .iter()
+            .filter_map(|b| {
+                let (a, c) = b.knot_span();
+                let (lo, hi) = (u0.max(a), u1.min(c));
+                (lo < hi).then(|| b.area_integral_on((lo - a) / (c - a), (hi - a) / (c - a)))
+            })
+            .sum()
+    }
+}
+
+impl ParamCurveArclen for NurbsCurve {
+    /// The non-empty knot spans.
+    fn smooth_spans(&self) -> Vec<(f64, f64)> {
+        let (a, b) = self.param_range();
+        let mut cuts = vec![a];
+        cuts.extend(self.knots.interior_breaks());
+        cuts.push(b);
+        cuts.windows(2).map(|w| (w[0], w[1])).collect()
+    }
+}
+
+impl ParamCurveExtrema for NurbsCurve {
+    /// The extrema of every Bezier piece, mapped to `u`. A knot where a coordinate's
+    /// derivative jumps across zero is not listed (it is a piece end point, which the tight
+    /// box includes anyway).
+    fn extrema(&self) -> Result<Vec<f64>, RootsError> {
+        let mut out = Vec::new();
+        for b in self.to_bezier() {
+            let (a, c) = b.knot_span();
+            out.extend(b.extrema()?.into_iter().map(|t| a + t * (c - a)));
+        }
+        Ok(out)
+    }
+
+    /// Bounding box of the control polygon (it contains the curve, since weights are > 0).
+    fn control_bounding_box(&self) -> BoundingBox {
+        BoundingBox::from_points(self.points.iter().copied())
+            .unwrap_or(BoundingBox::from_point(Point::default()))
+    }
+
+    /// The union of the tight boxes of the Bezier pieces (each falls back to its control box
+    /// on its own).
+    fn bounding_box(&self) -> BoundingBox {
+        self.to_bezier()
+            .iter()
+            .map(RationalBezier::bounding_box)
+            .reduce(BoundingBox::union)
+            .unwrap_or_else(|| self.control_bounding_box())
+    }
+}
+
+impl Flatten for NurbsCurve {
+    /// The Bezier pieces flattened in order; each piece's start (the previous piece's end)
+    /// is emitted once.
+    fn flatten(&self, tolerance: f64, emit: &mut dyn FnMut(Point)) {
+        let mut first = true;
+        for b in self.to_bezier() {
+            let mut skip = !first;
+            b.flatten(tolerance, &mut |p| {
+                if skip {
+                    skip = false;
+                } else {
+                    emit(p);
+                }
+            });
+            first = false;
+        }
     }
 }
 
@@ -564,7 +634,7 @@ mod tests {
         let pieces = c.to_bezier();
         assert_eq!(pieces.len(), n - 3);
         for (i, b) in pieces.iter().enumerate().step_by(997) {
-            let (u0, u1) = b.param_range();
+            let (u0, u1) = b.knot_span();
             let u = 0.5 * (u0 + u1);
             assert!(b.point_at(0.5).distance(c.point_at(u)) < 1e-9, "span {i}");
         }
@@ -600,7 +670,7 @@ mod tests {
     #[test]
     fn bezier_pieces_follow_the_spans() {
         let pieces = sample_curve().to_bezier();
-        let ranges: Vec<(f64, f64)> = pieces.iter().map(|b| b.param_range()).collect();
+        let ranges: Vec<(f64, f64)> = pieces.iter().map(|b| b.knot_span()).collect();
         assert_eq!(ranges, vec![(0.0, 0.3), (0.3, 0.5), (0.5, 1.0)]);
         assert!(pieces.iter().all(|b| b.degree() == 3));
     }

@@ -286,6 +286,7 @@ fn spatial_numerator(xy: &RationalBezier, z: &RationalBezier, polynomial: bool) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prelude::*;
 
     /// Signed curvature numerator `C' x C''` by the rational quotient rule.
     fn curvature_sign(c: &NurbsCurve, u: f64) -> f64 {

@@ -1,5 +1,6 @@
 //! Space NURBS curves (3-D), as a pair of planar NURBS sharing knots and weights.
 
+use crate::prelude::*;
 use crate::{NurbsCurve, Point, SplineError};
 
 /// A NURBS curve in 3-D: `C(u) = sum_i w_i P_i N_i(u) / sum_i w_i N_i(u)` with `P_i` in
@@ -86,7 +87,7 @@ impl SpaceCurve {
 
     /// The parameter domain.
     pub fn domain(&self) -> (f64, f64) {
-        self.xy.domain()
+        self.xy.param_range()
     }
 
     /// `C(u)`.

@@ -1,11 +1,12 @@
 //! First and second derivatives against central finite differences, and tight boxes against
 //! dense sampling.
 
+use rs_spline::prelude::*;
 use rs_spline::{Domain, NurbsCurve, Point, RationalBezier, circle, elliptic_arc};
 
 /// Checks `C'` and `C''` at points well inside knot spans, where the curve is smooth.
 fn check_nurbs(c: &NurbsCurve, what: &str) {
-    let (a, b) = c.domain();
+    let (a, b) = c.param_range();
     let mut ends = vec![a];
     ends.extend(c.knots().interior_breaks());
     ends.push(b);
@@ -119,7 +120,7 @@ fn tight_bounding_box_matches_dense_sampling() {
     for (name, d) in fixtures() {
         for c in d.curves() {
             let bb = c.bounding_box();
-            let (a, b) = c.domain();
+            let (a, b) = c.param_range();
             let tol = 1e-12 * bb.diagonal();
             let mut seen = rs_spline::BoundingBox::from_point(c.start_point());
             for i in 0..=20000 {

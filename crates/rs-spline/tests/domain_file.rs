@@ -1,5 +1,6 @@
 //! The JSON domain file: round trips, primitives, loops and every kind of bad input.
 
+use rs_spline::prelude::*;
 use rs_spline::{Domain, DomainError, Point, SplineError, circle, segment};
 
 fn bad(name: &str) -> DomainError {

@@ -1,5 +1,6 @@
 //! Every fixture loads, closes, and matches its recorded area, orientation and bounding box.
 
+use rs_spline::prelude::*;
 use rs_spline::{Domain, Orientation};
 use serde_json::Value;
 

@@ -2,6 +2,7 @@
 //! curve unchanged (sampled, 1e-12 relative to the curve's size).
 
 use proptest::prelude::*;
+use rs_spline::prelude::*;
 use rs_spline::{Domain, NurbsCurve, Point, RationalBezier};
 
 const REL: f64 = 1e-12;
@@ -11,7 +12,7 @@ fn size(c: &NurbsCurve) -> f64 {
 }
 
 fn samples(c: &NurbsCurve, n: usize) -> Vec<f64> {
-    let (a, b) = c.domain();
+    let (a, b) = c.param_range();
     (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect()
 }
 
@@ -20,11 +21,11 @@ fn eval_pieces(pieces: &[RationalBezier], u: f64) -> Point {
     let piece = pieces
         .iter()
         .find(|b| {
-            let (u0, u1) = b.param_range();
+            let (u0, u1) = b.knot_span();
             u >= u0 && u <= u1
         })
         .expect("pieces cover the domain");
-    let (u0, u1) = piece.param_range();
+    let (u0, u1) = piece.knot_span();
     piece.point_at((u - u0) / (u1 - u0))
 }
 
@@ -37,7 +38,7 @@ fn assert_same(c: &NurbsCurve, other: impl Fn(f64) -> Point, what: &str) {
 }
 
 fn check_invariants(c: &NurbsCurve) {
-    let (a, b) = c.domain();
+    let (a, b) = c.param_range();
     let p = c.degree();
     // Knot insertion, once and repeatedly, at a new value and at an existing knot.
     for &frac in &[0.137, 0.5, 0.861] {
@@ -63,7 +64,7 @@ fn check_invariants(c: &NurbsCurve) {
     }
     // Clamping.
     let cl = c.clamped();
-    assert_eq!(cl.domain(), c.domain());
+    assert_eq!(cl.param_range(), c.param_range());
     assert_same(c, |u| cl.point_at(u), "clamped");
     assert_eq!(cl.control_points()[0], cl.start_point());
     // Reversal.
@@ -72,8 +73,8 @@ fn check_invariants(c: &NurbsCurve) {
     // Splitting.
     let s = a + 0.4 * (b - a);
     let (l, r) = c.split_at(s).unwrap();
-    assert_eq!(l.domain(), (a, s));
-    assert_eq!(r.domain(), (s, b));
+    assert_eq!(l.param_range(), (a, s));
+    assert_eq!(r.param_range(), (s, b));
     assert_same(
         c,
         |u| if u <= s { l.point_at(u) } else { r.point_at(u) },
@@ -81,18 +82,18 @@ fn check_invariants(c: &NurbsCurve) {
     );
     // Bezier extraction.
     let pieces = c.to_bezier();
-    assert_eq!(pieces.first().unwrap().param_range().0, a);
-    assert_eq!(pieces.last().unwrap().param_range().1, b);
+    assert_eq!(pieces.first().unwrap().knot_span().0, a);
+    assert_eq!(pieces.last().unwrap().knot_span().1, b);
     assert!(
         pieces
             .windows(2)
-            .all(|w| w[0].param_range().1 == w[1].param_range().0)
+            .all(|w| w[0].knot_span().1 == w[1].knot_span().0)
     );
     // Consecutive pieces meet, except at a break (interior knot of multiplicity p + 1), where
     // the gap is the one `breaks` reports.
     let breaks = c.breaks();
     for w in pieces.windows(2) {
-        let u = w[0].param_range().1;
+        let u = w[0].knot_span().1;
         let gap = w[0].end_point().distance(w[1].start_point());
         match breaks.iter().find(|b| b.0 == u) {
             Some(&(_, reported)) => assert!((gap - reported).abs() <= REL * size(c)),
@@ -139,7 +140,7 @@ fn unclamped_curve_is_invariant() {
         Some(vec![1.0, 2.0, 0.5, 1.5, 1.0]),
     )
     .unwrap();
-    assert_eq!(c.domain(), (2.0, 5.0));
+    assert_eq!(c.param_range(), (2.0, 5.0));
     check_invariants(&c);
     let cl = c.clamped();
     assert_eq!(

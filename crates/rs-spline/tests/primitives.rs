@@ -1,5 +1,6 @@
 //! Arcs lie on their circle or ellipse; segments and polylines are straight; areas are exact.
 
+use rs_spline::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use rs_spline::{
@@ -15,7 +16,7 @@ fn ellipse_residual(p: Point, c: Point, rx: f64, ry: f64, tilt: f64) -> f64 {
 }
 
 fn dense(c: &NurbsCurve, n: usize) -> Vec<Point> {
-    let (a, b) = c.domain();
+    let (a, b) = c.param_range();
     (0..=n)
         .map(|i| c.point_at(a + (b - a) * i as f64 / n as f64))
         .collect()

@@ -5,6 +5,7 @@
 //! Test-only code: it panics on bad input instead of returning errors.
 #![allow(clippy::unwrap_used)]
 
+use rs_spline::prelude::*;
 use std::f64::consts::PI;
 
 use rs_spline::{Domain, NurbsCurve, Point, circle, circular_arc, polyline, segment};

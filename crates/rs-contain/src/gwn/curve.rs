@@ -1,6 +1,7 @@
 //! Generalized winding number of one rational Bezier curve (Spainhour, Gunderman and Weiss
 //! 2024, Algorithms 1-5).
 
+use rs_spline::prelude::*;
 use std::f64::consts::TAU;
 
 use rs_spline::{Point, RationalBezier};
@@ -139,7 +140,7 @@ impl SubCurves for OnTheFly {
         parent_convex || is_simple_convex(node.control_points())
     }
     fn halves(&self, node: &RationalBezier) -> (RationalBezier, RationalBezier, bool) {
-        let (l, r) = node.subdivide(0.5);
+        let (l, r) = node.subdivide();
         (l, r, true)
     }
 }

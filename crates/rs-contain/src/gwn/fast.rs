@@ -1,6 +1,7 @@
 //! Accelerated generalized winding numbers: a bounding-volume hierarchy over the pieces with
 //! exact chain shortcuts, and a precomputed subdivision hierarchy per piece.
 
+use rs_spline::prelude::*;
 use std::f64::consts::TAU;
 
 use rs_spline::{Point, RationalBezier};
@@ -42,7 +43,7 @@ impl CurveHierarchy {
             if depth >= HIERARCHY_DEPTH {
                 continue;
             }
-            let (l, r) = nodes[i].curve.subdivide(0.5);
+            let (l, r) = nodes[i].curve.subdivide();
             let parent_convex = nodes[i].convex;
             let li = nodes.len();
             for half in [l, r] {
@@ -85,12 +86,12 @@ impl SubCurves for CurveHierarchy {
             Node::Cached(i) => match self.nodes[*i].children {
                 Some((l, r)) => (Node::Cached(l), Node::Cached(r), false),
                 None => {
-                    let (l, r) = self.nodes[*i].curve.subdivide(0.5);
+                    let (l, r) = self.nodes[*i].curve.subdivide();
                     (Node::Owned(l), Node::Owned(r), true)
                 }
             },
             Node::Owned(c) => {
-                let (l, r) = c.subdivide(0.5);
+                let (l, r) = c.subdivide();
                 (Node::Owned(l), Node::Owned(r), true)
             }
         }

@@ -3,6 +3,7 @@
 //! the closure's angle. They need the query in general position (not on the curve or on the
 //! closure line) and serve as comparisons; the adaptive algorithm is the reference.
 
+use rs_spline::prelude::*;
 use std::f64::consts::TAU;
 
 use rs_spline::{Point, RationalBezier};
@@ -147,7 +148,7 @@ fn binary_search(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) -> i
             continue;
         }
         stats.subdivisions += 1;
-        let (l, r) = c.subdivide(0.5);
+        let (l, r) = c.subdivide();
         stack.push((r, depth + 1));
         stack.push((l, depth + 1));
     }
@@ -204,8 +205,8 @@ fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) ->
             continue;
         }
         let (t0, t1) = interval.unwrap_or((0.0, 1.0));
-        let (a, b) = c.param_range();
-        let (ua, ub) = curve.param_range();
+        let (a, b) = c.knot_span();
+        let (ua, ub) = curve.knot_span();
         // Converged: the root is located to 1e-9 of the curve's parameter range. Going further
         // lets rounding flip the sign of a coefficient next to the root and lose it.
         let converged = (t1 - t0) * (b - a) <= CLIP_CONVERGED * (ub - ua);
@@ -226,12 +227,15 @@ fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) ->
             continue;
         }
         stats.subdivisions += 1;
-        if t1 - t0 > 0.8 {
-            let (l, r) = c.subdivide(0.5);
-            stack.push((r, depth + 1));
-            stack.push((l, depth + 1));
-        } else {
-            stack.push((c.sub_curve(t0, t1), depth + 1));
+        // Clip to the hull's interval when it shrinks the piece enough (it is never empty
+        // here: an empty one has converged above), else halve.
+        match c.subsegment((t0, t1)) {
+            Ok(clipped) if t1 - t0 <= 0.8 => stack.push((clipped, depth + 1)),
+            _ => {
+                let (l, r) = c.subdivide();
+                stack.push((r, depth + 1));
+                stack.push((l, depth + 1));
+            }
         }
     }
     crossings

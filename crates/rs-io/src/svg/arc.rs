@@ -118,6 +118,7 @@ pub(crate) fn endpoint_arc(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rs_spline::prelude::*;
 
     fn arc(p0: Point, rx: f64, ry: f64, phi: f64, la: bool, sw: bool, p1: Point) -> NurbsCurve {
         match endpoint_arc(p0, rx, ry, phi, la, sw, p1).unwrap() {

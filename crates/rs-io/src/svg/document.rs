@@ -1,6 +1,7 @@
 //! SVG documents: every rendered `path`, `rect`, `circle`, `ellipse`, `polygon` and `polyline`,
 //! with the transforms of the element and its ancestors applied.
 
+use rs_spline::prelude::*;
 use rs_spline::{Point, SplineError};
 
 use super::path_data::read_path_data;
