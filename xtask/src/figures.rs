@@ -1,180 +1,131 @@
 //! SVG figures for `cargo xtask demo`: monotone boxes (inRS paper Fig. 2), refined boxes
 //! (Fig. 3), classified points (Fig. 4) and a winding-number field of a non-watertight shape.
 
-use inrs::prelude::*;
 use std::path::{Path, PathBuf};
 
 use inrs::boxes::{BoxOptions, MonotoneBoxes};
 use inrs::contain::WindingField;
 use inrs::{BoundingBox, Domain, Location, Point};
-use svg::Document;
-use svg::node::element::path::Data;
-use svg::node::element::{Circle, Path as SvgPath, Rectangle, Text};
+use rs_figure::{Figure, Marker, Style};
 
-/// Pixel size of the longer side of a figure.
+/// Pixel width of a figure's plot area.
 const SIZE: f64 = 560.0;
-const MARGIN: f64 = 20.0;
 
-/// Maps domain coordinates to SVG pixels (y up in the domain, down in SVG).
-struct Frame {
-    bbox: BoundingBox,
-    scale: f64,
-}
-
-impl Frame {
-    fn new(bbox: BoundingBox) -> Self {
-        let span = bbox.width().max(bbox.height()).max(f64::MIN_POSITIVE);
-        Self {
-            bbox,
-            scale: SIZE / span,
-        }
-    }
-
-    fn x(&self, x: f64) -> f64 {
-        MARGIN + (x - self.bbox.min.x) * self.scale
-    }
-
-    fn y(&self, y: f64) -> f64 {
-        MARGIN + (self.bbox.max.y - y) * self.scale
-    }
-
-    fn document(&self, title: &str) -> Document {
-        let w = 2.0 * MARGIN + self.bbox.width() * self.scale;
-        let h = 2.0 * MARGIN + self.bbox.height() * self.scale + 16.0;
-        Document::new()
-            .set("viewBox", (0.0, 0.0, w, h))
-            .set("width", w)
-            .set("height", h)
-            .add(
-                Rectangle::new()
-                    .set("width", w)
-                    .set("height", h)
-                    .set("fill", "white"),
-            )
-            .add(
-                Text::new(title)
-                    .set("x", MARGIN)
-                    .set("y", h - 4.0)
-                    .set("font-family", "sans-serif")
-                    .set("font-size", 12),
-            )
+/// The boundary curves drawn on top of a figure.
+fn draw_boundary(fig: &mut Figure, d: &Domain) {
+    let style = Style::stroke("#000000", 1.5).labelled("boundary curves");
+    for c in d.curves() {
+        fig.curve(c, &style);
     }
 }
 
-/// The boundary curves as one SVG path (each Bezier piece sampled at 64 points).
-fn boundary_path(d: &Domain, f: &Frame, color: &str) -> SvgPath {
-    let mut data = Data::new();
-    for (_, b) in d.bezier_pieces() {
-        let p0 = b.start_point();
-        data = data.move_to((f.x(p0.x), f.y(p0.y)));
-        for i in 1..=64 {
-            let p = b.point_at(i as f64 / 64.0);
-            data = data.line_to((f.x(p.x), f.y(p.y)));
-        }
-    }
-    SvgPath::new()
-        .set("d", data)
-        .set("fill", "none")
-        .set("stroke", color)
-        .set("stroke-width", 1.5)
-}
-
-fn boxes_figure(d: &Domain, subdivisions: usize, title: &str) -> Result<Document, String> {
+fn boxes_figure(d: &Domain, subdivisions: usize, caption: &str) -> Result<Figure, String> {
     let boxes = MonotoneBoxes::new(d, BoxOptions { subdivisions }).map_err(|e| e.to_string())?;
-    let f = Frame::new(d.bounding_box());
-    let mut doc = f.document(title);
+    let mut fig = Figure::new(d.bounding_box(), SIZE);
+    let style = Style::stroke("#3466c2", 0.7)
+        .with_fill("#dbe8ff", 0.5)
+        .labelled("monotone box");
     for b in boxes.boxes() {
-        doc = doc.add(
-            Rectangle::new()
-                .set("x", f.x(b.xmin))
-                .set("y", f.y(b.ymax))
-                .set("width", ((b.xmax - b.xmin) * f.scale).max(0.8))
-                .set("height", ((b.ymax - b.ymin) * f.scale).max(0.8))
-                .set("fill", "#dbe8ff")
-                .set("fill-opacity", 0.5)
-                .set("stroke", "#3466c2")
-                .set("stroke-width", 0.7),
-        );
+        let r = BoundingBox::from_point(Point::new(b.xmin, b.ymin))
+            .including(Point::new(b.xmax, b.ymax));
+        fig.rect(r, &style);
     }
-    doc = doc.add(boundary_path(d, &f, "black"));
+    draw_boundary(&mut fig, d);
+    let critical = Style::fill("#d62728")
+        .with_marker(Marker::Dot(2.5))
+        .labelled("critical point (x' = 0 or y' = 0)");
     for c in boxes.critical_points() {
-        doc = doc.add(
-            Circle::new()
-                .set("cx", f.x(c.point.x))
-                .set("cy", f.y(c.point.y))
-                .set("r", 2.5)
-                .set("fill", "#d62728"),
-        );
+        fig.mark(c.point, &critical);
     }
-    Ok(doc)
+    fig.caption(caption);
+    Ok(fig)
 }
 
-fn points_figure(d: &Domain, pts: &[Point], loc: &[Location], title: &str) -> Document {
-    let f = Frame::new(d.bounding_box());
-    let mut doc = f.document(title);
+fn points_figure(d: &Domain, pts: &[Point], loc: &[Location], caption: &str) -> Figure {
+    let mut fig = Figure::new(d.bounding_box(), SIZE);
+    let dot = |color: &str, label: &str| {
+        Style::fill(color)
+            .with_marker(Marker::Dot(1.6))
+            .labelled(label)
+    };
+    let (inside, outside, boundary) = (
+        dot("#2ca02c", "inside"),
+        dot("#d62728", "outside"),
+        dot("#000000", "on the boundary"),
+    );
     for (p, l) in pts.iter().zip(loc) {
-        let color = match l {
-            Location::Inside => "#2ca02c",
-            Location::Outside => "#d62728",
-            Location::Boundary => "black",
+        let style = match l {
+            Location::Inside => &inside,
+            Location::Outside => &outside,
+            Location::Boundary => &boundary,
         };
-        doc = doc.add(
-            Circle::new()
-                .set("cx", f.x(p.x))
-                .set("cy", f.y(p.y))
-                .set("r", 1.6)
-                .set("fill", color),
-        );
+        fig.mark(*p, style);
     }
-    doc.add(boundary_path(d, &f, "black"))
+    draw_boundary(&mut fig, d);
+    fig.caption(caption);
+    fig
 }
 
-/// The generalized winding number on a raster of `n x n` cells, white (0) to blue (1), then
-/// towards orange (2), with the curves on top.
-fn winding_figure(d: &Domain, n: usize, title: &str) -> Result<Document, String> {
+/// The colour of winding number `w`: white (0) to blue (1), then towards orange (2).
+fn winding_color(w: f64) -> String {
+    if w <= 1.0 {
+        let t = w.max(0.0);
+        format!(
+            "rgb({},{},255)",
+            (255.0 - 215.0 * t) as u8,
+            (255.0 - 160.0 * t) as u8
+        )
+    } else {
+        let u = (w - 1.0).min(1.0);
+        format!(
+            "rgb({},{},{})",
+            (40.0 + 215.0 * u) as u8,
+            (95.0 + 55.0 * u) as u8,
+            (255.0 - 215.0 * u) as u8
+        )
+    }
+}
+
+/// The generalized winding number on a raster of `n x n` cells, with the curves on top.
+fn winding_figure(d: &Domain, n: usize, caption: &str) -> Result<Figure, String> {
     let field =
         WindingField::new(d, inrs::contain::DEFAULT_TOLERANCE).map_err(|e| e.to_string())?;
     let mut bb = d.bounding_box();
     let pad = 0.1 * bb.diagonal();
     bb.min = bb.min - Point::new(pad, pad);
     bb.max = bb.max + Point::new(pad, pad);
-    let f = Frame::new(bb);
-    let mut doc = f.document(title);
+    let mut fig = Figure::new(bb, SIZE);
     let (cw, ch) = (bb.width() / n as f64, bb.height() / n as f64);
     for i in 0..n {
         for j in 0..n {
-            let q = Point::new(
-                bb.min.x + (i as f64 + 0.5) * cw,
-                bb.min.y + (j as f64 + 0.5) * ch,
-            );
-            let w = field.winding_number(q);
-            let color = if w <= 1.0 {
-                let t = w.max(0.0);
-                format!(
-                    "rgb({},{},255)",
-                    (255.0 - 215.0 * t) as u8,
-                    (255.0 - 160.0 * t) as u8
-                )
-            } else {
-                let u = (w - 1.0).min(1.0);
-                format!(
-                    "rgb({},{},{})",
-                    (40.0 + 215.0 * u) as u8,
-                    (95.0 + 55.0 * u) as u8,
-                    (255.0 - 215.0 * u) as u8
-                )
-            };
-            doc = doc.add(
-                Rectangle::new()
-                    .set("x", f.x(bb.min.x + i as f64 * cw))
-                    .set("y", f.y(bb.min.y + (j + 1) as f64 * ch))
-                    .set("width", cw * f.scale + 0.3)
-                    .set("height", ch * f.scale + 0.3)
-                    .set("fill", color),
-            );
+            let lo = Point::new(bb.min.x + i as f64 * cw, bb.min.y + j as f64 * ch);
+            let q = lo + Point::new(0.5 * cw, 0.5 * ch);
+            let color = winding_color(field.winding_number(q));
+            // Cells overlap by 0.6 pixel so that no seams show.
+            let grow = 0.6 / fig.scale();
+            let cell = BoundingBox::from_point(lo).including(lo + Point::new(cw + grow, ch + grow));
+            fig.rect(cell, &Style::fill(&color));
         }
     }
-    Ok(doc.add(boundary_path(d, &f, "black")))
+    for (w, label) in [
+        (0.0, "winding number 0"),
+        (0.5, "winding number 0.5"),
+        (1.0, "winding number 1"),
+        (2.0, "winding number 2"),
+    ] {
+        fig.legend_entry(
+            &Style::stroke("#888888", 0.5)
+                .with_fill(&winding_color(w), 1.0)
+                .labelled(label),
+        );
+    }
+    draw_boundary(&mut fig, d);
+    fig.caption(caption);
+    Ok(fig)
+}
+
+fn save(path: &Path, fig: &Figure) -> Result<(), String> {
+    std::fs::write(path, fig.to_svg()).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Writes the figures of one domain; returns the files written.
@@ -217,9 +168,9 @@ pub(crate) fn domain_figures(
         ),
     ];
     let mut written = Vec::new();
-    for (name, doc) in figures {
+    for (name, fig) in figures {
         let path = dir.join(name);
-        svg::save(&path, &doc).map_err(|e| format!("{}: {e}", path.display()))?;
+        save(&path, &fig)?;
         written.push(path);
     }
     Ok(written)
@@ -245,13 +196,14 @@ pub(crate) fn gap_figure(
     )
     .map_err(|e| e.to_string())?;
     let open = Domain::new(curves).map_err(|e| e.to_string())?;
-    let doc = winding_figure(
+    let fig = winding_figure(
         &open,
         120,
-        "generalized winding number of a boundary with a gap (white 0, blue 1)",
+        "Generalized winding number of a boundary with a gap: 1 deep inside, 0 far outside, \
+         varying smoothly across the gap, so a rounded value still classifies the points.",
     )?;
     let path = dir.join("winding_field_with_gap.svg");
-    svg::save(&path, &doc).map_err(|e| format!("{}: {e}", path.display()))?;
+    save(&path, &fig)?;
     Ok(path)
 }
 
@@ -265,13 +217,17 @@ mod tests {
             inrs::spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
         ])
         .unwrap();
-        let doc = boxes_figure(&d, 3, "t").unwrap().to_string();
-        // Background plus 4 quadrants x 3 sub-boxes.
-        assert_eq!(doc.matches("<rect").count(), 1 + 12);
-        assert_eq!(doc.matches("<circle").count(), 4); // the four tangency points
+        let svg = boxes_figure(&d, 3, "boxes caption").unwrap().to_svg();
+        // 4 quadrants x 3 sub-boxes, and the legend's swatch.
+        assert_eq!(svg.matches(r##"fill="#dbe8ff""##).count(), 12 + 1);
+        // The four tangency points, and the legend's swatch.
+        assert_eq!(svg.matches(r##"fill="#d62728""##).count(), 4 + 1);
+        assert!(svg.contains("boxes caption") && svg.contains("monotone box"));
+        assert!(svg.contains(r#"class="axes""#));
         let pts = [Point::new(0.0, 0.0), Point::new(2.0, 0.0)];
-        let doc = points_figure(&d, &pts, &[Location::Inside, Location::Outside], "t").to_string();
-        assert_eq!(doc.matches("<circle").count(), 2);
-        assert!(doc.contains("#2ca02c") && doc.contains("#d62728"));
+        let svg = points_figure(&d, &pts, &[Location::Inside, Location::Outside], "t").to_svg();
+        assert_eq!(svg.matches(r##"fill="#2ca02c""##).count(), 1 + 1);
+        assert_eq!(svg.matches(r##"fill="#d62728""##).count(), 1 + 1);
+        assert!(svg.contains(">inside<") && svg.contains(">outside<"));
     }
 }

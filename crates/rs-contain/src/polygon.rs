@@ -4,9 +4,6 @@
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
-/// Depth cap of the adaptive flattening (2^-40 of a piece's parameter range).
-const MAX_FLATTEN_DEPTH: u32 = 40;
-
 /// The boundary of a domain flattened to closed polylines, for comparisons.
 ///
 /// Each rational Bezier piece is halved until the control points of every part are within
@@ -23,10 +20,19 @@ pub struct FlattenedPolygon {
 }
 
 impl FlattenedPolygon {
-    /// Flattens every loop of `domain` to within `tolerance` (absolute); each loop is closed by
-    /// an edge back to its start.
+    /// Flattens every loop of `domain` to within `tolerance` (absolute, see
+    /// [`Flatten::flatten`](rs_spline::Flatten::flatten)); each loop is closed by an edge back
+    /// to its start.
     pub fn new(domain: &Domain, tolerance: f64) -> Self {
-        Self::from_pieces(domain, |b, pts| flatten(b, tolerance, 0, pts))
+        Self::from_pieces(domain, |b, pts| {
+            let mut after_start = false;
+            b.flatten(tolerance, &mut |p| {
+                if after_start {
+                    pts.push(p);
+                }
+                after_start = true;
+            });
+        })
     }
 
     /// A fixed linearisation: every piece replaced by `segments` chords of equal parameter
@@ -91,27 +97,5 @@ impl FlattenedPolygon {
             }
         }
         odd
-    }
-}
-
-fn flatten(b: &RationalBezier, tol: f64, depth: u32, out: &mut Vec<Point>) {
-    let p = b.control_points();
-    let (a, e) = (p[0], p[p.len() - 1]);
-    let chord = e - a;
-    let len = chord.length();
-    let flat = p.iter().all(|&q| {
-        let d = if len > 0.0 {
-            chord.cross(q - a).abs() / len
-        } else {
-            q.distance(a)
-        };
-        d <= tol
-    });
-    if flat || depth >= MAX_FLATTEN_DEPTH {
-        out.push(e);
-    } else {
-        let (l, r) = b.subdivide();
-        flatten(&l, tol, depth + 1, out);
-        flatten(&r, tol, depth + 1, out);
     }
 }

@@ -1,85 +1,77 @@
-//! An SVG figure of a curved triangulation: straight edges thin, boundary arcs thick.
+//! An SVG figure of a curved triangulation: each curved triangle filled up to its arc, straight
+//! edges thin, boundary arcs thick, the chords of the companion triangles dashed.
 
-use rs_spline::prelude::*;
-use std::fmt::Write;
-
-use rs_spline::Point;
+use rs_figure::{Figure, Marker, Style};
+use rs_spline::{Point, prelude::*};
 
 use crate::{CurvedTriangulation, EdgeKind};
 
-/// The figure as SVG text (`width` pixels wide, y up), with the companion triangles' chords
-/// dashed under the arcs so the conversion is visible, and vertices as dots.
+/// The figure as SVG text, the plot area `width` pixels wide, with axes, a legend and a
+/// caption.
 pub fn mesh_svg(mesh: &CurvedTriangulation, width: f64) -> String {
-    let bb = mesh.domain().bounding_box();
-    let margin = 10.0;
-    let s = (width - 2.0 * margin) / bb.width().max(bb.height()).max(f64::MIN_POSITIVE);
-    let height = bb.height() * s + 2.0 * margin;
-    let map = |p: Point| {
-        (
-            margin + (p.x - bb.min.x) * s,
-            height - margin - (p.y - bb.min.y) * s,
-        )
-    };
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}">"#
-    );
-    let _ = writeln!(
-        out,
-        r##"<rect width="100%" height="100%" fill="#ffffff"/>"##
-    );
+    let mut fig = Figure::new(mesh.domain().bounding_box(), width);
+    let cell = Style::stroke("#5070a0", 0.6)
+        .with_fill("#dde8f6", 1.0)
+        .labelled("curved triangle");
+    let arc_style = Style::stroke("#000000", 1.6).labelled("boundary arc");
+    let chord = Style::stroke("#c04040", 0.6)
+        .dashed("2 2")
+        .labelled("chord of the companion triangle");
     let v = mesh.vertices();
+    let tolerance = 0.25 / fig.scale();
+    let mut arcs: Vec<Vec<Point>> = Vec::new();
+    let mut chords: Vec<[Point; 2]> = Vec::new();
     for (t, tri) in mesh.triangles().iter().enumerate() {
-        let pts: Vec<String> = tri
-            .iter()
-            .map(|&i| {
-                let (x, y) = map(v[i]);
-                format!("{x:.2},{y:.2}")
-            })
-            .collect();
-        let _ = writeln!(
-            out,
-            r##"<polygon points="{}" fill="#dde8f6" stroke="#5070a0" stroke-width="0.6"/>"##,
-            pts.join(" ")
-        );
+        // The outline: straight edges as they are, curved ones along the arc, each traversed
+        // from corner k to corner k + 1.
+        let mut outline = Vec::new();
         for (k, kind) in mesh.edge_kinds(t).iter().enumerate() {
-            if let EdgeKind::Curved(i) = kind {
-                let arc = &mesh.arcs()[*i];
-                let c = &mesh.domain().curves()[arc.curve];
-                let samples: Vec<String> = (0..=24)
-                    .map(|j| {
-                        let u = arc.u0 + (arc.u1 - arc.u0) * j as f64 / 24.0;
-                        let (x, y) = map(c.point_at(u));
-                        format!("{x:.2},{y:.2}")
-                    })
-                    .collect();
-                let (a, b) = (map(v[tri[k]]), map(v[tri[(k + 1) % 3]]));
-                let _ = writeln!(
-                    out,
-                    r##"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" stroke="#c04040" stroke-width="0.5" stroke-dasharray="2 2"/>"##,
-                    a.0, a.1, b.0, b.1
-                );
-                let _ = writeln!(
-                    out,
-                    r##"<polyline points="{}" fill="none" stroke="#000000" stroke-width="1.6"/>"##,
-                    samples.join(" ")
-                );
+            let (a, b) = (v[tri[k]], v[tri[(k + 1) % 3]]);
+            // Each edge contributes its points from corner k up to, not including, corner k + 1.
+            let mut edge = vec![a];
+            if let EdgeKind::Curved(i) = kind
+                && let Ok(curve) = mesh.arc_curve(&mesh.arcs()[*i])
+            {
+                let mut pts = Vec::new();
+                curve.flatten(tolerance, &mut |p| pts.push(p));
+                let d = |p: Option<&Point>| p.map_or(0.0, |p| p.distance(a));
+                if d(pts.first()) > d(pts.last()) {
+                    pts.reverse();
+                }
+                arcs.push(pts.clone());
+                chords.push([a, b]);
+                pts.pop();
+                edge = pts;
             }
+            outline.extend(edge);
         }
+        fig.polygon(&outline, &cell);
     }
-    for (i, p) in v.iter().enumerate() {
-        let (x, y) = map(*p);
-        let fill = if mesh.boundary_vertex(i).is_some() {
-            "#c04040"
+    for c in &chords {
+        fig.polyline(c, &chord);
+    }
+    for a in &arcs {
+        fig.polyline(a, &arc_style);
+    }
+    let boundary = Style::fill("#c04040")
+        .with_marker(Marker::Dot(1.8))
+        .labelled("boundary vertex");
+    let interior = Style::fill("#203060")
+        .with_marker(Marker::Dot(1.8))
+        .labelled("interior vertex");
+    for (i, &p) in v.iter().enumerate() {
+        let s = if mesh.boundary_vertex(i).is_some() {
+            &boundary
         } else {
-            "#203060"
+            &interior
         };
-        let _ = writeln!(
-            out,
-            r#"<circle cx="{x:.2}" cy="{y:.2}" r="1.6" fill="{fill}"/>"#
-        );
+        fig.mark(p, s);
     }
-    out.push_str("</svg>\n");
-    out
+    fig.caption(&format!(
+        "Curved triangulation: {} vertices, {} triangles, {} of them with a boundary arc as one side.",
+        v.len(),
+        mesh.triangles().len(),
+        mesh.arcs().len()
+    ));
+    fig.to_svg()
 }

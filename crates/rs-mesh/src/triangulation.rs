@@ -171,7 +171,7 @@ impl CurvedTriangulation {
     /// [`MeshError::Spline`] if the parameters fall outside the curve (never for arcs built
     /// here).
     pub fn arc_curve(&self, arc: &BoundaryArc) -> Result<NurbsCurve, MeshError> {
-        Ok(sub_curve(&self.domain.curves()[arc.curve], arc.u0, arc.u1)?)
+        Ok(self.domain.curves()[arc.curve].subsegment((arc.u0, arc.u1))?)
     }
 
     /// Signed area of curved triangle `t` by Green's theorem, `1/2 closed-integral(x dy - y dx)`:
@@ -228,21 +228,6 @@ fn normalized_loops(domain: &Domain, given: &[Vec<BoundaryPoint>]) -> Vec<Vec<Bo
 
 /// The most vertices a curved triangulation is built with (about 1 GB of triangulation data).
 pub const MAX_MESH_VERTICES: usize = 2_000_000;
-
-/// The part of `c` between parameters `u0 < u1`.
-pub(crate) fn sub_curve(
-    c: &NurbsCurve,
-    u0: f64,
-    u1: f64,
-) -> Result<NurbsCurve, rs_spline::SplineError> {
-    let (a, b) = c.param_range();
-    let right = if u0 > a { c.split_at(u0)?.1 } else { c.clone() };
-    if u1 < b {
-        Ok(right.split_at(u1)?.0)
-    } else {
-        Ok(right)
-    }
-}
 
 enum Attempt {
     Done(Box<CurvedTriangulation>),
@@ -411,7 +396,7 @@ fn build(
                 failing.push((j, k));
                 continue;
             };
-            let arc_curve = sub_curve(curve, pa.u, u1)?;
+            let arc_curve = curve.subsegment((pa.u, u1))?;
             if !arc_is_clear(&arc_curve, (a, b), &vertices, &grid, size) {
                 failing.push((j, k));
                 continue;

@@ -134,6 +134,67 @@ pub trait ParamCurveArclen: ParamCurveDeriv {
     }
 }
 
+/// Cumulative arc length of a curve tabulated at a fixed number of panels per smooth span and
+/// interpolated linearly in between: `s(u)` and its inverse at the cost of a binary search,
+/// for code that needs many of them (placing points equally spaced along a boundary). Exact
+/// at the table's nodes to the quadrature accuracy; in between, the linear interpolation
+/// errs by `O(h^2 |C''| )` for panel width `h`.
+#[derive(Clone, Debug)]
+pub struct ArcLengthTable {
+    u: Vec<f64>,
+    s: Vec<f64>,
+}
+
+impl ArcLengthTable {
+    /// Tabulates `curve` at `panels` (at least 1) equal parameter steps per smooth span, each
+    /// panel's length by [`ParamCurveArclen::arclen_on`] to `1e-14` of the control box.
+    pub fn new<C: ParamCurveArclen + ParamCurveExtrema>(curve: &C, panels: usize) -> Self {
+        let panels = panels.max(1);
+        let accuracy = 1e-14 * curve.control_bounding_box().diagonal();
+        let (a, _) = curve.param_range();
+        let (mut us, mut ss) = (vec![a], vec![0.0]);
+        for (lo, hi) in curve.smooth_spans() {
+            for k in 0..panels {
+                let p0 = lo + (hi - lo) * k as f64 / panels as f64;
+                let p1 = lo + (hi - lo) * (k + 1) as f64 / panels as f64;
+                let len = curve.arclen_on(p0, p1, accuracy).value;
+                us.push(p1);
+                ss.push(ss[ss.len() - 1] + len);
+            }
+        }
+        Self { u: us, s: ss }
+    }
+
+    /// Total length.
+    pub fn length(&self) -> f64 {
+        self.s[self.s.len() - 1]
+    }
+
+    /// Arc length from the start to parameter `u` (clamped to the range).
+    pub fn s_at(&self, u: f64) -> f64 {
+        interpolate(&self.u, &self.s, u)
+    }
+
+    /// The parameter at arc length `s` (clamped to `[0, length]`).
+    pub fn u_at(&self, s: f64) -> f64 {
+        interpolate(&self.s, &self.u, s)
+    }
+}
+
+/// Piecewise-linear interpolation of the table `(xs, ys)` (ascending `xs`) at `x`, clamped.
+fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    if xs.len() < 2 {
+        return ys.first().copied().unwrap_or(0.0);
+    }
+    let i = xs.partition_point(|&v| v < x).clamp(1, xs.len() - 1);
+    let (x0, x1) = (xs[i - 1], xs[i]);
+    if x1 <= x0 {
+        return ys[i];
+    }
+    let t = ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
+    ys[i - 1] + t * (ys[i] - ys[i - 1])
+}
+
 /// Where a curve turns in x or y, and boxes that contain it.
 pub trait ParamCurveExtrema: ParamCurve {
     /// The parameters strictly inside the range where `x'(u) = 0` or `y'(u) = 0`, ascending.
@@ -173,4 +234,100 @@ pub mod prelude {
     pub use super::{
         Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv, ParamCurveExtrema,
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{NurbsCurve, circle, segment};
+    use std::f64::consts::PI;
+
+    #[test]
+    fn circle_length_and_its_inverse() {
+        let c = circle(Point::new(1.0, 2.0), 3.0).unwrap();
+        assert!((c.arclen(1e-13) - 6.0 * PI).abs() < 1e-12);
+        // A quarter of the length is reached at a quarter of the turn: the point there is
+        // 90 degrees round from the start.
+        let u = c.inv_arclen(1.5 * PI, 1e-13).unwrap();
+        let q = c.point_at(u) - Point::new(1.0, 2.0);
+        let start = c.start_point() - Point::new(1.0, 2.0);
+        assert!(q.dot(start).abs() < 1e-9, "{q:?} {start:?}");
+        let t = ArcLengthTable::new(&c, 32);
+        assert!((t.length() - 6.0 * PI).abs() < 1e-10);
+        for s in [0.5, 3.0, 10.0] {
+            assert!((t.s_at(t.u_at(s)) - s).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn segment_length_is_the_distance() {
+        let c = segment(Point::new(0.0, 0.0), Point::new(3.0, 4.0)).unwrap();
+        assert!((c.arclen(1e-14) - 5.0).abs() < 1e-14);
+        let u = c.inv_arclen(2.5, 1e-14).unwrap();
+        assert!(c.point_at(u).distance(Point::new(1.5, 2.0)) < 1e-13);
+        assert_eq!(c.inv_arclen(-1.0, 1e-14).unwrap(), c.param_range().0);
+        assert_eq!(c.inv_arclen(9.0, 1e-14).unwrap(), c.param_range().1);
+    }
+
+    #[test]
+    fn flatten_stays_within_tolerance() {
+        let c = circle(Point::new(0.0, 0.0), 2.0).unwrap();
+        for tol in [1e-2, 1e-4, 1e-7] {
+            let mut pts = Vec::new();
+            c.flatten(tol, &mut |p| pts.push(p));
+            assert_eq!(pts.first(), Some(&c.start_point()));
+            assert!(pts.last().unwrap().distance(c.end_point()) < 1e-15);
+            // The chord midpoints are within tol of the circle, and the vertices on it.
+            for w in pts.windows(2) {
+                let m = (w[0] + w[1]) * 0.5;
+                assert!(
+                    2.0 - m.length() <= tol * (1.0 + 1e-9),
+                    "{tol}: {}",
+                    2.0 - m.length()
+                );
+                assert!((w[1].length() - 2.0).abs() < 1e-14);
+            }
+            // No more than about twice the optimal count: angle step 2 acos(1 - tol / r).
+            let optimal = 2.0 * PI / (2.0 * (1.0 - tol / 2.0).acos());
+            assert!(
+                (pts.len() as f64) < 4.0 * optimal + 8.0,
+                "{tol}: {}",
+                pts.len()
+            );
+        }
+        // A zero tolerance still terminates (raised to the floor, 1e-13 of the piece's size).
+        let short = c.to_bezier()[0].subsegment((0.0, 0.01)).unwrap();
+        let mut n = 0usize;
+        short.flatten(0.0, &mut |_| n += 1);
+        assert!(n > 1000 && n <= (1 << 20) + 1, "{n}");
+    }
+
+    #[test]
+    fn extrema_and_tight_box() {
+        let c = NurbsCurve::bezier(
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 2.0),
+                Point::new(2.0, 0.0),
+            ],
+            None,
+        )
+        .unwrap();
+        assert_eq!(c.extrema().unwrap(), vec![0.5]);
+        let b = c.bounding_box();
+        assert!((b.max.y - 1.0).abs() < 1e-15);
+        assert_eq!(c.control_bounding_box().max.y, 2.0);
+        let (l, r) = c.subdivide();
+        assert_eq!(l.end_point(), r.start_point());
+        let mid = c.subsegment((0.25, 0.75)).unwrap();
+        assert!(mid.start_point().distance(c.point_at(0.25)) < 1e-15);
+        assert!(c.subsegment((0.5, 0.5)).is_err());
+        assert!(c.subsegment((-0.1, 0.5)).is_err());
+        assert!(c.split_at(1.0).is_err());
+        // Green: the parabola closed by its chord (on y = 0, which adds nothing) bounds 4/3,
+        // traversed clockwise.
+        assert!((c.area_integral().value + 4.0 / 3.0).abs() < 1e-15);
+        let half = c.area_integral_on(0.0, 0.5).value + c.area_integral_on(0.5, 1.0).value;
+        assert!((half + 4.0 / 3.0).abs() < 1e-15);
+    }
 }

@@ -45,8 +45,8 @@ mod space_curve;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
 pub use bezier::RationalBezier;
 pub use curve::{
-    Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv, ParamCurveExtrema,
-    prelude,
+    ArcLengthTable, Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv,
+    ParamCurveExtrema, prelude,
 };
 pub use domain::{BoundaryLoop, DEFAULT_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};
