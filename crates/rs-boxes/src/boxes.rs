@@ -1,7 +1,7 @@
 //! Building the monotone boxes of a domain (paper steps (i)-(ii) and Remark 2.1).
 
 use rs_roots::{RootsError, real_roots_in};
-use rs_spline::{BoundingBox, Domain, Point};
+use rs_spline::{Axis, BoundingBox, Domain, Point};
 
 use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 
@@ -302,7 +302,7 @@ fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
     let (mut at_start, mut at_end) = ((false, false), (false, false));
     let bez = piece.to_bezier()?;
     let (dx, dy) = bez.derivative_numerators();
-    for (axis, d) in [(0usize, dx), (1usize, dy)] {
+    for (axis, d) in [(Axis::X, dx), (Axis::Y, dy)] {
         if piece.is_constant(axis) {
             continue;
         }
@@ -314,10 +314,9 @@ fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
             Err(e) => return Err(e.into()),
         };
         for t in roots {
-            let flags = if axis == 0 {
-                (true, false)
-            } else {
-                (false, true)
+            let flags = match axis {
+                Axis::X => (true, false),
+                Axis::Y => (false, true),
             };
             if t <= END_ROOT_MARGIN {
                 at_start = or(at_start, flags);

@@ -1,6 +1,6 @@
 //! Monotone boxes: pieces of the boundary on which both coordinates are monotone.
 
-use rs_spline::Point;
+use rs_spline::{Axis, Point};
 
 use crate::BezierPiece;
 
@@ -85,12 +85,12 @@ impl MonotoneBox {
         param_range: (f64, f64),
     ) -> Self {
         let (start, end) = (piece.start(), piece.end());
-        let x_dir = if piece.is_constant(0) {
+        let x_dir = if piece.is_constant(Axis::X) {
             Monotonicity::Constant
         } else {
             Monotonicity::of(start.x, end.x)
         };
-        let y_dir = if piece.is_constant(1) {
+        let y_dir = if piece.is_constant(Axis::Y) {
             Monotonicity::Constant
         } else {
             Monotonicity::of(start.y, end.y)

@@ -4,7 +4,7 @@
 use rs_roots::{bernstein_sign_change_root, de_casteljau, de_casteljau_split};
 use smallvec::SmallVec;
 
-use rs_spline::{Point, RationalBezier, SplineError};
+use rs_spline::{Axis, Point, RationalBezier, SplineError};
 
 /// Coefficient storage: degree <= 7 stays on the stack.
 pub(crate) type Coeffs = SmallVec<[f64; 8]>;
@@ -75,17 +75,24 @@ impl BezierPiece {
         self.hy[0] = p.y * self.w[0];
     }
 
-    /// The control points' x (`axis = 0`) or y (`axis = 1`) coordinates, all equal?
-    pub(crate) fn is_constant(&self, axis: usize) -> bool {
-        let c = if axis == 0 { &self.x } else { &self.y };
+    /// The control points' coordinates along `axis`.
+    fn coords(&self, axis: Axis) -> &Coeffs {
+        match axis {
+            Axis::X => &self.x,
+            Axis::Y => &self.y,
+        }
+    }
+
+    /// Are the control points' coordinates along `axis` all equal?
+    pub(crate) fn is_constant(&self, axis: Axis) -> bool {
+        let c = self.coords(axis);
         c.iter().all(|&v| v == c[0])
     }
 
-    fn set_constant(&mut self, axis: usize, v: f64) {
-        let (c, h) = if axis == 0 {
-            (&mut self.x, &mut self.hx)
-        } else {
-            (&mut self.y, &mut self.hy)
+    fn set_constant(&mut self, axis: Axis, v: f64) {
+        let (c, h) = match axis {
+            Axis::X => (&mut self.x, &mut self.hx),
+            Axis::Y => (&mut self.y, &mut self.hy),
         };
         for (i, w) in self.w.iter().enumerate() {
             c[i] = v;
@@ -132,9 +139,9 @@ impl BezierPiece {
         );
         // A constant coordinate (vertical or horizontal piece) stays exactly constant: rounding
         // in `(1 - t) a + t a` would otherwise tilt it by an ulp.
-        for axis in 0..2 {
+        for axis in Axis::BOTH {
             if self.is_constant(axis) {
-                let v = if axis == 0 { self.x[0] } else { self.y[0] };
+                let v = self.coords(axis)[0];
                 left.set_constant(axis, v);
                 right.set_constant(axis, v);
             }

@@ -3,7 +3,7 @@
 use rs_spline::prelude::*;
 use rs_spline::{NurbsCurve, Point, SplineError, segment};
 
-use crate::Affine;
+use rs_spline::Affine;
 
 /// Gaps up to this fraction of a loop's size are closed by moving the loop's last control
 /// point onto its start (a rounding difference, not a missing edge).

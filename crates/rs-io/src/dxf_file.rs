@@ -9,8 +9,9 @@ use std::path::Path;
 use dxf::entities::{Entity, EntityType};
 use rs_spline::{BoundingBox, Domain, NurbsCurve, Point, SplineError};
 
+use crate::IoError;
 use crate::builder::with_end_points;
-use crate::{Affine, IoError};
+use rs_spline::Affine;
 
 /// How DXF entities are joined into loops.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -25,7 +25,6 @@
 //! assert!((d.signed_area() - area).abs() < 1e-12); // the hole is drawn clockwise
 //! ```
 
-mod affine;
 mod builder;
 pub mod dxf_file;
 mod error;
@@ -34,7 +33,6 @@ pub mod svg;
 
 use std::path::Path;
 
-pub use affine::Affine;
 pub use error::IoError;
 use rs_spline::Domain;
 

@@ -26,6 +26,7 @@
 //! assert_eq!(c.to_bezier().len(), 4);
 //! ```
 
+mod affine;
 mod arc;
 mod bezier;
 mod curve;
@@ -42,6 +43,7 @@ pub mod quadrature;
 mod sign_numerator;
 mod space_curve;
 
+pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
 pub use bezier::RationalBezier;
 pub use curve::{
@@ -54,6 +56,6 @@ pub use homogeneous::CurveDerivatives;
 pub use knots::KnotVector;
 pub use line::{polyline, segment};
 pub use nurbs::NurbsCurve;
-pub use point::{BoundingBox, Point};
+pub use point::{Axis, BoundingBox, Point};
 pub use sign_numerator::{AffineForm, SignNumerator};
 pub use space_curve::SpaceCurve;

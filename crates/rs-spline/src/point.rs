@@ -2,7 +2,30 @@
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// A point or vector in the plane.
+/// A coordinate axis of the plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// The abscissa `x`.
+    X,
+    /// The ordinate `y`.
+    Y,
+}
+
+impl Axis {
+    /// Both axes, `X` first.
+    pub const BOTH: [Axis; 2] = [Axis::X, Axis::Y];
+
+    /// The other axis.
+    pub fn other(self) -> Axis {
+        match self {
+            Axis::X => Axis::Y,
+            Axis::Y => Axis::X,
+        }
+    }
+}
+
+/// A point or a vector in the plane: one type for both, as in the papers' formulas (a
+/// difference of points, a derivative `C'(u)` and a normal are `Point`s too).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Point {
     /// Abscissa.
@@ -15,6 +38,14 @@ impl Point {
     /// The point `(x, y)`.
     pub const fn new(x: f64, y: f64) -> Self {
         Self { x, y }
+    }
+
+    /// The coordinate along `axis`.
+    pub fn coord(self, axis: Axis) -> f64 {
+        match axis {
+            Axis::X => self.x,
+            Axis::Y => self.y,
+        }
     }
 
     /// Dot product `x1 x2 + y1 y2`.

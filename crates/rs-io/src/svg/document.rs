@@ -6,8 +6,9 @@ use rs_spline::{Point, SplineError};
 
 use super::path_data::read_path_data;
 use super::transform::parse_transform;
+use crate::IoError;
 use crate::builder::LoopBuilder;
-use crate::{Affine, IoError};
+use rs_spline::Affine;
 
 /// Containers whose children are not drawn where they stand (definitions, clip paths, masks,
 /// patterns, markers) or are not geometry.

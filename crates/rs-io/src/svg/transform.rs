@@ -1,7 +1,7 @@
 //! The SVG `transform` attribute: a list of `matrix`, `translate`, `scale`, `rotate`, `skewX`
 //! and `skewY`, applied right to left.
 
-use crate::Affine;
+use rs_spline::Affine;
 
 /// Parses a transform list; the result maps element coordinates to parent coordinates.
 ///

@@ -1,7 +1,7 @@
 //! Affine maps of the plane; they map rational curves exactly (control points move, weights
 //! stay).
 
-use rs_spline::{NurbsCurve, Point, SplineError};
+use crate::{NurbsCurve, Point, SplineError};
 
 /// The affine map `(x, y) -> (a x + c y + e, b x + d y + f)`, the SVG `matrix(a b c d e f)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,7 +91,7 @@ impl Affine {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rs_spline::prelude::*;
+    use crate::prelude::*;
 
     #[test]
     fn composition_applies_the_right_map_first() {
@@ -106,7 +106,7 @@ mod tests {
 
     #[test]
     fn mapped_circle_is_the_mapped_point_set() {
-        let c = rs_spline::circle(Point::new(1.0, 0.0), 2.0).unwrap();
+        let c = crate::circle(Point::new(1.0, 0.0), 2.0).unwrap();
         let m = Affine {
             m: [2.0, 0.5, -0.3, 1.5, 4.0, -1.0],
         };
