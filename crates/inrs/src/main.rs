@@ -230,7 +230,7 @@ fn convex_domain(
         "positive" => Sign::Positive,
         "negative" => Sign::Negative,
         "auto" => {
-            let d = curve.control_point(free).unwrap_or([0.0; 3]);
+            let d = curve.control_point(free).unwrap_or_default();
             if h.at(0, 0.5).eval(d) >= 0.0 {
                 Sign::Positive
             } else {

@@ -3,7 +3,7 @@
 //! area (volume) growth (20) is below a tolerance; plus an outer polytope from sampled
 //! parameters, so the exact domain is bracketed.
 
-use rs_spline::{AffineForm, SignNumerator};
+use crate::{AffineForm, Point3, SignNumerator};
 
 use crate::{ConvexError, ConvexPolygon, ConvexPolytope};
 
@@ -52,9 +52,9 @@ impl Default for ConvexDomainOptions {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BoundingBox3 {
     /// Lower corner.
-    pub min: [f64; 3],
+    pub min: Point3,
     /// Upper corner.
-    pub max: [f64; 3],
+    pub max: Point3,
 }
 
 impl BoundingBox3 {
@@ -94,21 +94,18 @@ impl BoundingBox3 {
             (0.0, 0.0)
         };
         Ok(Self {
-            min: [r[0], r[2], zmin],
-            max: [r[1], r[3], zmax],
+            min: Point3::new(r[0], r[2], zmin),
+            max: Point3::new(r[1], r[3], zmax),
         })
     }
 
     /// 2 for a planar box (zero z extent), 3 otherwise.
     pub fn dimension(&self) -> usize {
-        if self.min[2] == self.max[2] { 2 } else { 3 }
+        if self.min.z == self.max.z { 2 } else { 3 }
     }
 
     fn size(&self) -> f64 {
-        (0..3)
-            .map(|k| (self.max[k] - self.min[k]).powi(2))
-            .sum::<f64>()
-            .sqrt()
+        (self.max - self.min).length()
     }
 }
 
@@ -155,18 +152,20 @@ impl Region {
     }
 
     /// The vertices as 3-D points (`z = 0` in the plane).
-    pub fn vertices3(&self) -> Vec<[f64; 3]> {
+    pub fn vertices3(&self) -> Vec<Point3> {
         match self {
-            Region::Polygon(p) => p.vertices().iter().map(|v| [v.x, v.y, 0.0]).collect(),
+            Region::Polygon(p) => p
+                .vertices()
+                .iter()
+                .map(|v| Point3::new(v.x, v.y, 0.0))
+                .collect(),
             Region::Polytope(p) => p.vertices(),
         }
     }
 
     fn from_box(b: &BoundingBox3) -> Self {
         if b.dimension() == 2 {
-            Region::Polygon(ConvexPolygon::rectangle(
-                b.min[0], b.max[0], b.min[1], b.max[1],
-            ))
+            Region::Polygon(ConvexPolygon::rectangle(b.min.x, b.max.x, b.min.y, b.max.y))
         } else {
             Region::Polytope(ConvexPolytope::cuboid(b.min, b.max))
         }
@@ -180,7 +179,7 @@ impl Region {
                     if p.is_empty() {
                         break;
                     }
-                    p = p.clip(f.a[0], f.a[1], f.b, size);
+                    p = p.clip(f.a.x, f.a.y, f.b, size);
                 }
                 Region::Polygon(p)
             }

@@ -2,7 +2,9 @@
 
 use std::path::Path;
 
-use rs_spline::{Domain, NurbsCurve, SignNumerator, SpaceCurve};
+use rs_spline::{Domain, NurbsCurve};
+
+use crate::{Point3, SignNumerator, SpaceCurve};
 use serde_json::Value;
 
 use crate::ConvexError;
@@ -34,9 +36,12 @@ impl FreeCurve {
     }
 
     /// Control point `i` (`z = 0` in the plane), if it exists.
-    pub fn control_point(&self, i: usize) -> Option<[f64; 3]> {
+    pub fn control_point(&self, i: usize) -> Option<Point3> {
         match self {
-            FreeCurve::Planar(c) => c.control_points().get(i).map(|p| [p.x, p.y, 0.0]),
+            FreeCurve::Planar(c) => c
+                .control_points()
+                .get(i)
+                .map(|p| Point3::new(p.x, p.y, 0.0)),
             FreeCurve::Space(c) => c.control_points().get(i).copied(),
         }
     }
@@ -100,7 +105,7 @@ pub fn parse_curve(text: &str, index: usize) -> Result<FreeCurve, ConvexError> {
             Some(_) => Err(bad(format!("\"{key}\" must be an array of numbers"))),
         }
     };
-    let points: Vec<[f64; 3]> = curve["control_points"]
+    let points: Vec<Point3> = curve["control_points"]
         .as_array()
         .ok_or_else(|| bad("\"control_points\" must be an array".into()))?
         .iter()
@@ -110,7 +115,7 @@ pub fn parse_curve(text: &str, index: usize) -> Result<FreeCurve, ConvexError> {
                 .as_array()
                 .and_then(|a| a.iter().map(Value::as_f64).collect());
             match c.as_deref() {
-                Some([x, y, z]) => Ok([*x, *y, *z]),
+                Some(&[x, y, z]) => Ok(Point3::new(x, y, z)),
                 _ => Err(bad(format!("control point {i} must be [x, y, z]"))),
             }
         })
@@ -156,7 +161,7 @@ mod tests {
         )
         .unwrap();
         assert_eq!(s.dimension(), 3);
-        assert_eq!(s.control_point(3), Some([1.0, 1.0, 1.0]));
+        assert_eq!(s.control_point(3), Some(Point3::new(1.0, 1.0, 1.0)));
         let d = parse_curve(
             r#"{"curves": [{"circle": {"center": [0,0], "radius": 1}}]}"#,
             0,

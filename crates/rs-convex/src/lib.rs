@@ -3,7 +3,8 @@
 //! its sign along the whole curve?
 //!
 //! The sign numerator `h_t(d) = a(t) . d + b(t)` is affine in the free point `d`
-//! ([`rs_spline::SignNumerator`]), so the exact domain `K = {d : h_t(d) > 0 for all t}` is
+//! ([`SignNumerator`]: the curvature or torsion numerator, exact as piecewise Bernstein
+//! polynomials with coefficients affine in the free point), so the exact domain `K = {d : h_t(d) > 0 for all t}` is
 //! convex. [`approximate`] brackets `K` within a user box:
 //! - inner polygons/polytopes from the Bernstein coefficients (`h` is a non-negative
 //!   combination of them), refined by midpoint knot insertion; nested and converging;
@@ -14,8 +15,8 @@
 //! # Examples
 //!
 //! ```
-//! use rs_convex::{approximate, BoundingBox3, ConvexDomainOptions, Sign};
-//! use rs_spline::{NurbsCurve, Point, SignNumerator};
+//! use rs_convex::{approximate, BoundingBox3, ConvexDomainOptions, Sign, SignNumerator};
+//! use rs_spline::{NurbsCurve, Point};
 //! // Quadratic Bezier (0,0), d, (2,0): positive curvature exactly when d is below the chord.
 //! let c = NurbsCurve::bezier(vec![Point::new(0.0, 0.0), Point::new(1.0, -1.0), Point::new(2.0, 0.0)], None).unwrap();
 //! let h = SignNumerator::curvature(&c, 1).unwrap();
@@ -28,8 +29,11 @@
 mod approximation;
 mod curve_file;
 mod error;
+mod point3;
 mod polygon;
 mod polytope;
+mod sign_numerator;
+mod space_curve;
 mod svg;
 
 pub use approximation::{
@@ -38,6 +42,9 @@ pub use approximation::{
 };
 pub use curve_file::{FreeCurve, load_curve, parse_curve};
 pub use error::ConvexError;
+pub use point3::Point3;
 pub use polygon::ConvexPolygon;
 pub use polytope::{ConvexPolytope, P3};
+pub use sign_numerator::{AffineForm, SignNumerator};
+pub use space_curve::SpaceCurve;
 pub use svg::to_svg;

@@ -1,35 +1,9 @@
 //! Convex polytopes in 3-D clipped by half-spaces (face lists).
 
-/// A point of `R^3`.
-pub type P3 = [f64; 3];
+use crate::Point3;
 
-fn sub(a: P3, b: P3) -> P3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn add(a: P3, b: P3) -> P3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn scale(a: P3, s: f64) -> P3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-fn dot(a: P3, b: P3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: P3, b: P3) -> P3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm(a: P3) -> f64 {
-    dot(a, a).sqrt()
-}
+/// The corner type of [`ConvexPolytope`] (kept as an alias of [`Point3`]).
+pub type P3 = Point3;
 
 /// A convex polytope as a list of planar faces (each a cyclically ordered vertex list).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -41,11 +15,11 @@ impl ConvexPolytope {
     /// The box `[min, max]`.
     pub fn cuboid(min: P3, max: P3) -> Self {
         let v = |i: usize| {
-            [
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]
+            Point3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
         };
         let faces = [
             [0, 2, 3, 1],
@@ -77,7 +51,7 @@ impl ConvexPolytope {
         let size = bounding_size(&all);
         let mut out: Vec<P3> = Vec::new();
         for p in all {
-            if !out.iter().any(|q| norm(sub(p, *q)) <= 1e-12 * size) {
+            if !out.iter().any(|q| (p - *q).length() <= 1e-12 * size) {
                 out.push(p);
             }
         }
@@ -97,7 +71,7 @@ impl ConvexPolytope {
         let mut v = 0.0;
         for f in &self.faces {
             for i in 1..f.len().saturating_sub(1) {
-                let d = dot(sub(f[0], c), cross(sub(f[i], c), sub(f[i + 1], c)));
+                let d = (f[0] - c).dot((f[i] - c).cross(f[i + 1] - c));
                 v += d.abs() / 6.0;
             }
         }
@@ -107,18 +81,14 @@ impl ConvexPolytope {
     /// The mean of the distinct vertices (inside a non-empty polytope).
     pub fn vertex_centroid(&self) -> Option<P3> {
         let v = self.vertices();
-        (!v.is_empty()).then(|| {
-            scale(
-                v.iter().fold([0.0; 3], |a, &p| add(a, p)),
-                1.0 / v.len() as f64,
-            )
-        })
+        (!v.is_empty())
+            .then(|| v.iter().fold(Point3::default(), |a, &p| a + p) * (1.0 / v.len() as f64))
     }
 
     /// The part where `a . x + b >= 0`; `size` is a length typical of the polytope (for the
     /// rounding threshold). `a = 0` keeps everything if `b > 0`, nothing otherwise.
     pub fn clip(&self, a: P3, b: f64, size: f64) -> Self {
-        let na = norm(a);
+        let na = a.length();
         if na <= 1e-300 || na * size <= 1e-14 * b.abs() {
             return if b > 0.0 {
                 self.clone()
@@ -127,7 +97,7 @@ impl ConvexPolytope {
             };
         }
         let eps = 1e-13 * (na * size + b.abs());
-        let f = |p: P3| dot(a, p) + b;
+        let f = |p: P3| a.dot(p) + b;
         let mut faces = Vec::new();
         let mut cap: Vec<P3> = Vec::new();
         // A face lying in the cutting plane is already the cap (a plane through a face, a
@@ -151,13 +121,13 @@ impl ConvexPolytope {
                     }
                 }
                 if (fp > eps && fq < -eps) || (fp < -eps && fq > eps) {
-                    let x = add(p, scale(sub(q, p), fp / (fp - fq)));
+                    let x = p + (q - p) * (fp / (fp - fq));
                     out.push(x);
                     cap.push(x);
                 }
             }
-            out.dedup_by(|x, y| norm(sub(*x, *y)) <= 1e-14 * size);
-            if out.len() > 1 && norm(sub(out[0], out[out.len() - 1])) <= 1e-14 * size {
+            out.dedup_by(|x, y| (*x - *y).length() <= 1e-14 * size);
+            if out.len() > 1 && (out[0] - out[out.len() - 1]).length() <= 1e-14 * size {
                 out.pop();
             }
             if out.len() >= 3 {
@@ -167,27 +137,24 @@ impl ConvexPolytope {
         // The cap: the section of the polytope by the plane, ordered by angle about its centre.
         let mut pts: Vec<P3> = Vec::new();
         for p in cap {
-            if !pts.iter().any(|q| norm(sub(p, *q)) <= 1e-12 * size) {
+            if !pts.iter().any(|q| (p - *q).length() <= 1e-12 * size) {
                 pts.push(p);
             }
         }
         if pts.len() >= 3 && faces.len() >= 3 && !face_in_plane {
-            let c = scale(
-                pts.iter().fold([0.0; 3], |s, &p| add(s, p)),
-                1.0 / pts.len() as f64,
-            );
-            let nrm = scale(a, 1.0 / na);
-            let helper = if nrm[0].abs() < 0.9 {
-                [1.0, 0.0, 0.0]
+            let c = pts.iter().fold(Point3::default(), |s, &p| s + p) * (1.0 / pts.len() as f64);
+            let nrm = a * (1.0 / na);
+            let helper = if nrm.x.abs() < 0.9 {
+                Point3::new(1.0, 0.0, 0.0)
             } else {
-                [0.0, 1.0, 0.0]
+                Point3::new(0.0, 1.0, 0.0)
             };
-            let u = cross(nrm, helper);
-            let u = scale(u, 1.0 / norm(u));
-            let v = cross(nrm, u);
+            let u = nrm.cross(helper);
+            let u = u * (1.0 / u.length());
+            let v = nrm.cross(u);
             pts.sort_by(|p, q| {
-                let ap = dot(sub(*p, c), v).atan2(dot(sub(*p, c), u));
-                let aq = dot(sub(*q, c), v).atan2(dot(sub(*q, c), u));
+                let ap = (*p - c).dot(v).atan2((*p - c).dot(u));
+                let aq = (*q - c).dot(v).atan2((*q - c).dot(u));
                 ap.total_cmp(&aq)
             });
             faces.push(pts);
@@ -200,16 +167,20 @@ impl ConvexPolytope {
 }
 
 fn bounding_size(points: &[P3]) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    if lo[0].is_finite() {
-        norm(sub(hi, lo))
+    let (lo, hi) = points.iter().fold(
+        (
+            Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+            Point3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+        ),
+        |(lo, hi), p| {
+            (
+                Point3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
+                Point3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
+            )
+        },
+    );
+    if lo.x.is_finite() {
+        (hi - lo).length()
     } else {
         0.0
     }
@@ -221,12 +192,12 @@ mod tests {
 
     #[test]
     fn cube_cut_by_planes() {
-        let c = ConvexPolytope::cuboid([0.0; 3], [1.0, 2.0, 3.0]);
+        let c = ConvexPolytope::cuboid(Point3::default(), Point3::new(1.0, 2.0, 3.0));
         assert!((c.volume() - 6.0).abs() < 1e-14);
         assert_eq!(c.vertices().len(), 8);
         // Cut off the corner x + y + z <= 1 from the unit cube: volume 1 - 1/6 remains.
-        let u = ConvexPolytope::cuboid([0.0; 3], [1.0; 3]);
-        let cut = u.clip([1.0, 1.0, 1.0], -1.0, 1.0);
+        let u = ConvexPolytope::cuboid(Point3::default(), Point3::new(1.0, 1.0, 1.0));
+        let cut = u.clip(Point3::new(1.0, 1.0, 1.0), -1.0, 1.0);
         assert!(
             (cut.volume() - (1.0 - 1.0 / 6.0)).abs() < 1e-14,
             "{}",
@@ -235,32 +206,34 @@ mod tests {
         assert_eq!(cut.face_count(), 7);
         assert_eq!(cut.vertices().len(), 7); // the plane passes through three vertices
         // Keep only the corner: a tetrahedron.
-        let tet = u.clip([-1.0, -1.0, -1.0], 1.0, 1.0);
+        let tet = u.clip(Point3::new(-1.0, -1.0, -1.0), 1.0, 1.0);
         assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-15);
         assert_eq!(tet.face_count(), 4);
-        assert!(u.clip([1.0, 0.0, 0.0], -2.0, 1.0).is_empty());
+        assert!(u.clip(Point3::new(1.0, 0.0, 0.0), -2.0, 1.0).is_empty());
         // Clipping by the plane of a face, from either side, or twice by one plane.
         for (a, b) in [
-            ([0.0, 0.0, 1.0], 0.0),
-            ([0.0, 0.0, -1.0], 1.0),
-            ([1.0, 0.0, 0.0], 0.0),
+            (Point3::new(0.0, 0.0, 1.0), 0.0),
+            (Point3::new(0.0, 0.0, -1.0), 1.0),
+            (Point3::new(1.0, 0.0, 0.0), 0.0),
         ] {
             let same = u.clip(a, b, 1.0);
             assert_eq!(same.face_count(), 6, "{a:?} {b}");
             assert!((same.volume() - 1.0).abs() < 1e-15, "{}", same.volume());
         }
-        assert!(u.clip([0.0, 0.0, -1.0], 0.0, 1.0).is_empty());
-        let twice = cut.clip([1.0, 1.0, 1.0], -1.0, 1.0);
+        assert!(u.clip(Point3::new(0.0, 0.0, -1.0), 0.0, 1.0).is_empty());
+        let twice = cut.clip(Point3::new(1.0, 1.0, 1.0), -1.0, 1.0);
         assert_eq!(twice.face_count(), 7);
         assert!((twice.volume() - cut.volume()).abs() < 1e-15);
         // A parallel plane inside: half the cube, still six faces.
-        let upper = u
-            .clip([0.0, 0.0, 1.0], -0.5, 1.0)
-            .clip([0.0, 0.0, 2.0], -1.0, 1.0);
+        let upper = u.clip(Point3::new(0.0, 0.0, 1.0), -0.5, 1.0).clip(
+            Point3::new(0.0, 0.0, 2.0),
+            -1.0,
+            1.0,
+        );
         assert_eq!(upper.face_count(), 6);
         assert!((upper.volume() - 0.5).abs() < 1e-15);
         // Halving along the plane through four vertices.
-        let half = u.clip([1.0, -1.0, 0.0], 0.0, 1.0);
+        let half = u.clip(Point3::new(1.0, -1.0, 0.0), 0.0, 1.0);
         assert!((half.volume() - 0.5).abs() < 1e-15);
         assert_eq!(half.face_count(), 5);
     }

@@ -3,11 +3,11 @@
 //! polynomial space curve from its hodographs, and an analytic half-plane.
 
 use rs_convex::{
-    BoundingBox3, ConvexDomain, ConvexDomainOptions, ConvexPolygon, Outcome, Region, Sign,
-    approximate,
+    BoundingBox3, ConvexDomain, ConvexDomainOptions, ConvexPolygon, Outcome, Point3, Region, Sign,
+    SignNumerator, SpaceCurve, approximate,
 };
 use rs_spline::prelude::*;
-use rs_spline::{NurbsCurve, Point, SignNumerator, SpaceCurve};
+use rs_spline::{NurbsCurve, Point};
 
 /// Minimum of `C' x C''` (divided by `|C'|^3`, the curvature) over a dense parameter grid.
 fn min_curvature(c: &NurbsCurve) -> f64 {
@@ -260,7 +260,7 @@ fn torsion_numerator(p: &[[f64; 3]], t: f64) -> f64 {
 /// The torsion numerator of a space Bezier curve with control point 2 free, and the sign the
 /// given curve has at the middle (the sign to keep).
 fn torsion_with_free_point_2(pts: &[[f64; 3]; 6]) -> (SignNumerator, Sign) {
-    let c = SpaceCurve::bezier(pts, None).unwrap();
+    let c = SpaceCurve::bezier(&pts.map(Point3::from), None).unwrap();
     let h = SignNumerator::torsion(&c, 2).unwrap();
     let sign = if torsion_numerator(pts, 0.5) > 0.0 {
         Sign::Positive
@@ -320,6 +320,7 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
         );
         last = v;
         for d in l.region.vertices3() {
+            let d = d.to_array();
             assert!(want(d) >= -1e-9, "vertex {d:?} of level {}", l.level);
         }
     }
@@ -329,7 +330,7 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
     let Region::Polytope(outer) = &k.outer else {
         panic!()
     };
-    let c_out = outer.vertex_centroid().unwrap();
+    let c_out = outer.vertex_centroid().unwrap().to_array();
     let on_box = |v: [f64; 3]| v.iter().any(|x| x.abs() >= 100.0 - 1e-9);
     let signed_min_at_samples = |d: [f64; 3]| {
         let mut q = pts;
@@ -340,7 +341,12 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
             .fold(f64::INFINITY, f64::min)
     };
     let mut beyond = 0;
-    for v in outer.vertices().into_iter().filter(|v| !on_box(*v)) {
+    for v in outer
+        .vertices()
+        .into_iter()
+        .map(|v| v.to_array())
+        .filter(|v| !on_box(*v))
+    {
         let d: [f64; 3] = std::array::from_fn(|i| v[i] + 1e-3 * (v[i] - c_out[i]));
         assert!(signed_min_at_samples(d) < 0.0, "beyond {v:?}");
         beyond += 1;
@@ -350,7 +356,7 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
     let Region::Polytope(p) = k.inner() else {
         panic!()
     };
-    let centre = p.vertex_centroid().unwrap();
+    let centre = p.vertex_centroid().unwrap().to_array();
     assert!(want(centre) > 0.0);
 }
 

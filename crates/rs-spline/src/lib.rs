@@ -7,9 +7,6 @@
 //!   coordinates, control and tight bounding boxes, conversion to `rs-roots` polynomials.
 //! - Primitives with exact rational representations: [`segment`], [`polyline`],
 //!   [`circular_arc`], [`circle`], [`elliptic_arc`], [`ellipse`].
-//! - [`SpaceCurve`] (3-D NURBS) and [`SignNumerator`]: the curvature / torsion numerator of
-//!   a curve with one free control point, exactly, as piecewise Bernstein polynomials with
-//!   coefficients affine in the free point (Ginnis, Karousos and Kaklis 2009).
 //! - [`Domain`]: curves grouped into boundary loops, orientation, signed area, bounding box,
 //!   and the JSON domain file of `shared/design/CONTRACTS.md`.
 //!
@@ -40,8 +37,6 @@ mod line;
 mod nurbs;
 mod point;
 pub mod quadrature;
-mod sign_numerator;
-mod space_curve;
 
 pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
@@ -57,5 +52,3 @@ pub use knots::KnotVector;
 pub use line::{polyline, segment};
 pub use nurbs::NurbsCurve;
 pub use point::{Axis, BoundingBox, Point};
-pub use sign_numerator::{AffineForm, SignNumerator};
-pub use space_curve::SpaceCurve;

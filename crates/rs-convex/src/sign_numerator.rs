@@ -20,28 +20,30 @@
 
 use rs_roots::Bernstein;
 
-use crate::{NurbsCurve, Point, RationalBezier, SpaceCurve, SplineError};
+use rs_spline::{NurbsCurve, Point, RationalBezier, SplineError};
+
+use crate::{Point3, SpaceCurve};
 
 /// One coefficient of the numerator: the affine function `a . d + b` of the free control point
-/// (`a[2] = 0` in the plane).
+/// (`a.z = 0` in the plane).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AffineForm {
     /// The linear part `(a1, a2, a3)`.
-    pub a: [f64; 3],
+    pub a: Point3,
     /// The constant part.
     pub b: f64,
 }
 
 impl AffineForm {
     /// `a . d + b`.
-    pub fn eval(&self, d: [f64; 3]) -> f64 {
-        self.a[0] * d[0] + self.a[1] * d[1] + self.a[2] * d[2] + self.b
+    pub fn eval(&self, d: Point3) -> f64 {
+        self.a.dot(d) + self.b
     }
 
     /// `-(a . d + b)`.
     pub fn negated(&self) -> Self {
         Self {
-            a: [-self.a[0], -self.a[1], -self.a[2]],
+            a: self.a * -1.0,
             b: -self.b,
         }
     }
@@ -65,7 +67,8 @@ impl SignNumerator {
     /// # Examples
     ///
     /// ```
-    /// use rs_spline::{NurbsCurve, Point, SignNumerator};
+    /// use rs_convex::SignNumerator;
+    /// use rs_spline::{NurbsCurve, Point};
     /// // Quadratic Bezier (0,0), d, (2,0): h = 4 (d - P0) x (P2 - d) = -8 y, for every t.
     /// let c = NurbsCurve::bezier(vec![Point::new(0.0, 0.0), Point::new(1.0, 1.0), Point::new(2.0, 0.0)], None).unwrap();
     /// let h = SignNumerator::curvature(&c, 1).unwrap();
@@ -107,7 +110,7 @@ impl SignNumerator {
     /// [`SplineError::ControlPointIndex`] if `free` is out of range.
     pub fn torsion(curve: &SpaceCurve, free: usize) -> Result<Self, SplineError> {
         let polynomial = all_equal(curve.weights());
-        let at = |d: [f64; 3]| -> Result<Vec<Bernstein>, SplineError> {
+        let at = |d: Point3| -> Result<Vec<Bernstein>, SplineError> {
             let moved = curve.with_control_point(free, d)?;
             let xy = moved.xy().to_bezier();
             let z = moved.z().to_bezier();
@@ -117,10 +120,10 @@ impl SignNumerator {
                 .map(|(a, b)| spatial_numerator(a, b, polynomial))
                 .collect())
         };
-        let h0 = at([0.0; 3])?;
-        let hx = at([1.0, 0.0, 0.0])?;
-        let hy = at([0.0, 1.0, 0.0])?;
-        let hz = at([0.0, 0.0, 1.0])?;
+        let h0 = at(Point3::default())?;
+        let hx = at(Point3::new(1.0, 0.0, 0.0))?;
+        let hy = at(Point3::new(0.0, 1.0, 0.0))?;
+        let hz = at(Point3::new(0.0, 0.0, 1.0))?;
         let pieces = h0
             .into_iter()
             .zip(hx)
@@ -181,7 +184,7 @@ impl SignNumerator {
         for [a1, a2, a3, b] in &self.pieces {
             for k in 0..b.coeffs().len() {
                 out.push(AffineForm {
-                    a: [a1.coeffs()[k], a2.coeffs()[k], a3.coeffs()[k]],
+                    a: Point3::new(a1.coeffs()[k], a2.coeffs()[k], a3.coeffs()[k]),
                     b: b.coeffs()[k],
                 });
             }
@@ -194,7 +197,7 @@ impl SignNumerator {
     pub fn at(&self, piece: usize, s: f64) -> AffineForm {
         let [a1, a2, a3, b] = &self.pieces[piece];
         AffineForm {
-            a: [a1.eval(s), a2.eval(s), a3.eval(s)],
+            a: Point3::new(a1.eval(s), a2.eval(s), a3.eval(s)),
             b: b.eval(s),
         }
     }
@@ -286,7 +289,7 @@ fn spatial_numerator(xy: &RationalBezier, z: &RationalBezier, polynomial: bool) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::prelude::*;
+    use rs_spline::prelude::*;
 
     /// Signed curvature numerator `C' x C''` by the rational quotient rule.
     fn curvature_sign(c: &NurbsCurve, u: f64) -> f64 {
@@ -324,7 +327,7 @@ mod tests {
                         let s = i as f64 / 10.0;
                         let u = u0 + s * (u1 - u0);
                         let exact = curvature_sign(&moved, u);
-                        let ours = h.at(k, s).eval([d.x, d.y, 0.0]);
+                        let ours = h.at(k, s).eval(Point3::new(d.x, d.y, 0.0));
                         // Same sign (up to rounding near zeros).
                         assert!(
                             exact * ours > 0.0 || exact.abs() < 1e-9 || ours.abs() < 1e-9,
@@ -354,7 +357,7 @@ mod tests {
         let r = h.refined(3);
         assert_eq!(r.piece_count(), 8);
         assert_eq!(r.inequalities().len(), 32);
-        let d = [0.3, -0.7, 0.0];
+        let d = Point3::new(0.3, -0.7, 0.0);
         for k in 0..8 {
             for i in 0..=4 {
                 let s = i as f64 / 4.0;
@@ -392,7 +395,8 @@ mod tests {
             [3.0, 1.0, -1.0],
             [4.0, -1.0, 2.0],
             [5.0, 1.0, 1.0],
-        ];
+        ]
+        .map(Point3::from);
         let c = SpaceCurve::new(
             3,
             vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
@@ -403,7 +407,7 @@ mod tests {
         let h = SignNumerator::torsion(&c, 2).unwrap();
         assert_eq!(h.dimension(), 3);
         let mut compared = 0;
-        for d in [[3.0, 1.0, -1.0], [0.5, -2.0, 4.0], [-1.0, 3.0, 2.0]] {
+        for d in [[3.0, 1.0, -1.0], [0.5, -2.0, 4.0], [-1.0, 3.0, 2.0]].map(Point3::from) {
             let moved = c.with_control_point(2, d).unwrap();
             for (k, (u0, u1)) in [(0.0, 0.5), (0.5, 1.0)].into_iter().enumerate() {
                 for i in 1..10 {

@@ -1,7 +1,9 @@
 //! Space NURBS curves (3-D), as a pair of planar NURBS sharing knots and weights.
 
-use crate::prelude::*;
-use crate::{NurbsCurve, Point, SplineError};
+use rs_spline::prelude::*;
+use rs_spline::{NurbsCurve, Point, SplineError};
+
+use crate::Point3;
 
 /// A NURBS curve in 3-D: `C(u) = sum_i w_i P_i N_i(u) / sum_i w_i N_i(u)` with `P_i` in
 /// `R^3`. Stored as the planar curves `(x, y)` and `(z, 0)`, which share knots and weights, so
@@ -20,19 +22,19 @@ impl SpaceCurve {
     pub fn new(
         degree: usize,
         knots: Vec<f64>,
-        points: &[[f64; 3]],
+        points: &[Point3],
         weights: Option<Vec<f64>>,
     ) -> Result<Self, SplineError> {
         let xy = NurbsCurve::new(
             degree,
             knots.clone(),
-            points.iter().map(|p| Point::new(p[0], p[1])).collect(),
+            points.iter().map(|p| Point::new(p.x, p.y)).collect(),
             weights.clone(),
         )?;
         let z = NurbsCurve::new(
             degree,
             knots,
-            points.iter().map(|p| Point::new(p[2], 0.0)).collect(),
+            points.iter().map(|p| Point::new(p.z, 0.0)).collect(),
             weights,
         )?;
         Ok(Self { xy, z })
@@ -42,14 +44,14 @@ impl SpaceCurve {
     ///
     /// # Errors
     /// As [`SpaceCurve::new`].
-    pub fn bezier(points: &[[f64; 3]], weights: Option<Vec<f64>>) -> Result<Self, SplineError> {
+    pub fn bezier(points: &[Point3], weights: Option<Vec<f64>>) -> Result<Self, SplineError> {
         Ok(Self {
             xy: NurbsCurve::bezier(
-                points.iter().map(|p| Point::new(p[0], p[1])).collect(),
+                points.iter().map(|p| Point::new(p.x, p.y)).collect(),
                 weights.clone(),
             )?,
             z: NurbsCurve::bezier(
-                points.iter().map(|p| Point::new(p[2], 0.0)).collect(),
+                points.iter().map(|p| Point::new(p.z, 0.0)).collect(),
                 weights,
             )?,
         })
@@ -71,12 +73,12 @@ impl SpaceCurve {
     }
 
     /// The control points.
-    pub fn control_points(&self) -> Vec<[f64; 3]> {
+    pub fn control_points(&self) -> Vec<Point3> {
         self.xy
             .control_points()
             .iter()
             .zip(self.z.control_points())
-            .map(|(p, q)| [p.x, p.y, q.x])
+            .map(|(p, q)| Point3::new(p.x, p.y, q.x))
             .collect()
     }
 
@@ -85,25 +87,25 @@ impl SpaceCurve {
         self.xy.weights()
     }
 
-    /// The parameter domain.
-    pub fn domain(&self) -> (f64, f64) {
+    /// The parameter range (the knot domain).
+    pub fn param_range(&self) -> (f64, f64) {
         self.xy.param_range()
     }
 
     /// `C(u)`.
-    pub fn point_at(&self, u: f64) -> [f64; 3] {
+    pub fn point_at(&self, u: f64) -> Point3 {
         let p = self.xy.point_at(u);
-        [p.x, p.y, self.z.point_at(u).x]
+        Point3::new(p.x, p.y, self.z.point_at(u).x)
     }
 
     /// The same curve with control point `i` moved to `p`.
     ///
     /// # Errors
     /// [`SplineError`] for an index out of range or a non-finite point.
-    pub fn with_control_point(&self, i: usize, p: [f64; 3]) -> Result<Self, SplineError> {
+    pub fn with_control_point(&self, i: usize, p: Point3) -> Result<Self, SplineError> {
         Ok(Self {
-            xy: self.xy.with_control_point(i, Point::new(p[0], p[1]))?,
-            z: self.z.with_control_point(i, Point::new(p[2], 0.0))?,
+            xy: self.xy.with_control_point(i, Point::new(p.x, p.y))?,
+            z: self.z.with_control_point(i, Point::new(p.z, 0.0))?,
         })
     }
 }
