@@ -122,7 +122,8 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
         let path = root
             .join("fixtures/inrs-paper")
             .join(format!("{name}.json"));
-        let d = Domain::from_json_file(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let d = inrs::io::json::domain_from_json_file(&path)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         domains.push((name.clone(), d));
     }
     let mut results: BTreeMap<(String, usize, &str), Row> = BTreeMap::new();
@@ -311,7 +312,7 @@ fn single_thread_locator(
 }
 
 fn flower(root: &Path) -> Result<Domain, String> {
-    Domain::from_json_file(root.join("fixtures/synthetic/flower500.json"))
+    inrs::io::json::domain_from_json_file(root.join("fixtures/synthetic/flower500.json"))
         .map_err(|e| e.to_string())
 }
 
@@ -423,8 +424,10 @@ fn uniform_points(n: usize, b: BoundingBox) -> Vec<Point> {
 /// (its Fig. 15) and misclassifications of fixed linearisations (its Fig. 14).
 fn gwn_comparison(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), String> {
     let name = "leaf_cubic";
-    let d = Domain::from_json_file(root.join(format!("fixtures/inrs-paper/{name}.json")))
-        .map_err(|e| e.to_string())?;
+    let d = inrs::io::json::domain_from_json_file(
+        root.join(format!("fixtures/inrs-paper/{name}.json")),
+    )
+    .map_err(|e| e.to_string())?;
     let field =
         WindingField::new(&d, inrs::contain::DEFAULT_TOLERANCE).map_err(|e| e.to_string())?;
     let n = if o.quick { 20_000 } else { 250_000 };

@@ -140,7 +140,8 @@ fn demo(dir: &Path) -> Result<(), String> {
             .and_then(|x| x.to_str())
             .unwrap_or("?")
             .to_string();
-        let d = Domain::from_json_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let d = inrs::io::json::domain_from_json_file(path)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         let meta: serde_json::Value = std::fs::read_to_string(path)
             .ok()
             .and_then(|t| serde_json::from_str(&t).ok())

@@ -3,15 +3,15 @@
 //!
 //! This facade re-exports the layers so that downstream code can depend on one crate:
 //! - [`roots`] (`rs-roots`): real polynomial roots.
-//! - [`spline`] (`rs-spline`): NURBS algebra, primitives, domains and domain files.
+//! - [`spline`] (`rs-spline`): NURBS algebra, the curve traits, primitives, domains.
 //! - [`boxes`] (`rs-boxes`): monotone boxes and critical points.
 //! - [`contain`] (`rs-contain`): the inRS classifier (inRS1, inRS2, fallbacks, boundary).
 //! - [`mesh`] (`rs-mesh`): well-spaced points, curved triangulations and point location in
 //!   them.
 //! - [`convex`] (`rs-convex`): convex domains of a free control point keeping the sign of
 //!   curvature or torsion.
-//! - `io` (`rs-io`, feature `io`, on by default): domains from SVG paths and files,
-//!   TrueType/OpenType glyphs and DXF drawings.
+//! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
+//!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings.
 //!
 //! Plus [`Classify`] (containment methods on [`Domain`]), the points file reader
 //! [`parse_points`] and the domain summary printed by `inrs info`.
@@ -29,7 +29,6 @@
 pub use rs_boxes as boxes;
 pub use rs_contain as contain;
 pub use rs_convex as convex;
-#[cfg(feature = "io")]
 pub use rs_io as io;
 pub use rs_mesh as mesh;
 pub use rs_roots as roots;

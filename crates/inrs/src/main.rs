@@ -378,27 +378,15 @@ fn stream_points<T: std::fmt::Display>(
     out.finish()
 }
 
-/// Reads a domain: JSON, or (feature `io`) SVG, DXF or a font glyph `font.ttf#B`.
-#[cfg(feature = "io")]
+/// Reads a domain: JSON, SVG, a font glyph `font.ttf#B`, or (feature `dxf`) DXF.
 fn load_domain(path: &std::path::Path) -> Result<Domain, Failure> {
     let spec = path.to_string_lossy();
     inrs::io::load_domain(&spec).map_err(|e| {
         Failure::Message(match e {
             inrs::io::IoError::Read { .. }
-            | inrs::io::IoError::Domain(inrs::DomainError::Io { .. })
-            | inrs::io::IoError::UnknownFormat { .. } => e.to_string(),
+            | inrs::io::IoError::UnknownFormat { .. }
+            | inrs::io::IoError::FormatDisabled { .. } => e.to_string(),
             other => format!("{spec}: {other}"),
-        })
-    })
-}
-
-/// Reads a JSON domain file.
-#[cfg(not(feature = "io"))]
-fn load_domain(path: &std::path::Path) -> Result<Domain, Failure> {
-    Domain::from_json_file(path).map_err(|e| {
-        Failure::Message(match e {
-            inrs::DomainError::Io { .. } => e.to_string(),
-            other => format!("{}: {other}", path.display()),
         })
     })
 }
@@ -549,7 +537,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         ),
         Command::Convert { domain, output } => {
             let d = load_domain(&domain)?;
-            write_text(output.as_deref(), &(d.to_json_string() + "\n"))
+            write_text(
+                output.as_deref(),
+                &(inrs::io::json::domain_to_json(&d) + "\n"),
+            )
         }
         Command::Info {
             domain,

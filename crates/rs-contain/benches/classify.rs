@@ -6,7 +6,7 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rs_contain::{Classifier, ContainOptions, FlattenedPolygon, Location, Method, halton_points};
-use rs_spline::{BoundingBox, Domain, Point};
+use rs_spline::{BoundingBox, Point};
 
 /// (fixture, reference bounding box, N, reference inside count) from the fixture files.
 const CASES: [(&str, [f64; 4], usize, usize); 3] = [
@@ -30,7 +30,8 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("classify");
     group.sample_size(20);
     for (name, b, n, expected) in CASES {
-        let domain = Domain::from_json_file(format!("{dir}/{name}.json")).expect("fixture loads");
+        let domain = rs_io::json::domain_from_json_file(format!("{dir}/{name}.json"))
+            .expect("fixture loads");
         let bbox = BoundingBox {
             min: Point::new(b[0], b[2]),
             max: Point::new(b[1], b[3]),

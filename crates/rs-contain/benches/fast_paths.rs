@@ -9,7 +9,7 @@ use rs_contain::{
     Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
     WindingField, halton_points,
 };
-use rs_spline::{BoundingBox, Domain, Point};
+use rs_spline::{BoundingBox, Point};
 
 /// (fixture, reference bounding box, N, reference inside count) from the fixture files.
 const CASES: [(&str, [f64; 4], usize, usize); 3] = [
@@ -37,8 +37,8 @@ fn locator(c: &mut Criterion) {
     let mut group = c.benchmark_group("fast");
     group.sample_size(10);
     for (name, b, n, expected) in CASES {
-        let domain =
-            Domain::from_json_file(format!("{dir}/inrs-paper/{name}.json")).expect("fixture");
+        let domain = rs_io::json::domain_from_json_file(format!("{dir}/inrs-paper/{name}.json"))
+            .expect("fixture");
         let bbox = BoundingBox {
             min: Point::new(b[0], b[2]),
             max: Point::new(b[1], b[3]),
@@ -70,8 +70,8 @@ fn locator(c: &mut Criterion) {
             })
         });
     }
-    let flower =
-        Domain::from_json_file(format!("{dir}/synthetic/flower500.json")).expect("fixture");
+    let flower = rs_io::json::domain_from_json_file(format!("{dir}/synthetic/flower500.json"))
+        .expect("fixture");
     let field = WindingField::new(&flower, rs_contain::DEFAULT_TOLERANCE).expect("field");
     let fast = FastWindingField::new(&field);
     let pts = halton_points(10_000, flower.bounding_box());

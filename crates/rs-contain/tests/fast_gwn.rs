@@ -7,7 +7,7 @@ use rs_spline::{Domain, Point, circular_arc, segment};
 use rs_testkit::all_cases;
 
 fn flower() -> Domain {
-    Domain::from_json_file(format!(
+    rs_io::json::domain_from_json_file(format!(
         "{}/../../fixtures/synthetic/flower500.json",
         env!("CARGO_MANIFEST_DIR")
     ))

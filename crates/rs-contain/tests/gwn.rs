@@ -19,7 +19,7 @@ fn field(curves: Vec<NurbsCurve>) -> WindingField {
 }
 
 fn fixture(name: &str) -> Domain {
-    Domain::from_json_file(format!(
+    rs_io::json::domain_from_json_file(format!(
         "{}/../../fixtures/inrs-paper/{name}.json",
         env!("CARGO_MANIFEST_DIR")
     ))

@@ -25,7 +25,7 @@ fn fixtures() -> Vec<(String, Domain, Value)> {
             }
             v.push((
                 format!("{sub}/{}", p.file_stem().unwrap().to_string_lossy()),
-                Domain::from_json_str(&text).unwrap(),
+                rs_io::json::domain_from_json(&text).unwrap(),
                 meta,
             ));
         }
@@ -150,7 +150,7 @@ fn a_gap_at_a_break_is_an_error_for_crossings_and_fine_for_winding_numbers() {
         env!("CARGO_MANIFEST_DIR"),
         "/../../fixtures/breaks/circle_gap.json"
     );
-    let d = Domain::from_json_file(path).unwrap();
+    let d = rs_io::json::domain_from_json_file(path).unwrap();
     let err = Classifier::new(&d, ContainOptions::default()).unwrap_err();
     let msg = err.to_string();
     assert!(

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use rs_spline::{Domain, NurbsCurve};
+use rs_spline::NurbsCurve;
 
 use crate::{Point3, SignNumerator, SpaceCurve};
 use serde_json::Value;
@@ -82,9 +82,9 @@ pub fn parse_curve(text: &str, index: usize) -> Result<FreeCurve, ConvexError> {
         .and_then(Value::as_array)
         .is_some_and(|p| p.len() == 3);
     if !is_space {
-        let wrapped = serde_json::json!({ "curves": [curve] });
-        let d = Domain::from_json_str(&wrapped.to_string())?;
-        return Ok(FreeCurve::Planar(d.curves()[0].clone()));
+        return Ok(FreeCurve::Planar(rs_io::json::curve_from_json(
+            index, &curve,
+        )?));
     }
     let degree = curve
         .get("degree")

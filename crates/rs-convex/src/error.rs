@@ -1,6 +1,6 @@
 //! Errors.
 
-use rs_spline::{DomainError, SplineError};
+use rs_spline::SplineError;
 use thiserror::Error;
 
 /// Why a convex domain could not be computed.
@@ -29,7 +29,7 @@ pub enum ConvexError {
     /// The curve is invalid.
     #[error(transparent)]
     Spline(#[from] SplineError),
-    /// A domain file could not be read.
+    /// A planar curve entry of the file is invalid.
     #[error(transparent)]
-    Domain(#[from] DomainError),
+    Curve(#[from] rs_io::IoError),
 }

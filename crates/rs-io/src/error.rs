@@ -16,6 +16,43 @@ pub enum IoError {
         /// The underlying error.
         source: std::io::Error,
     },
+    /// The file could not be written.
+    #[error("{}: {source}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// A domain file is not valid JSON.
+    #[error("invalid JSON at line {line}, column {column}: {message}")]
+    Json {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What the JSON parser said.
+        message: String,
+    },
+    /// The JSON is valid but not a domain file (its top level).
+    #[error("not a domain file: {0}")]
+    NotADomainFile(String),
+    /// A curve entry of a domain file has the wrong shape (missing key, wrong type, ...).
+    #[error("curve {curve}: {message}")]
+    CurveEntry {
+        /// Index of the curve in the file.
+        curve: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The format's reader was left out of this build.
+    #[error("{format} files are not supported by this build (Cargo feature \"{feature}\")")]
+    FormatDisabled {
+        /// The format.
+        format: &'static str,
+        /// The Cargo feature of `rs-io` that adds it.
+        feature: &'static str,
+    },
     /// The file name does not say which format it is in.
     #[error(
         "{}: unknown domain file type (expected .json, .svg, .ttf/.otf/.ttc with #glyph, or .dxf)",

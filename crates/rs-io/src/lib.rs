@@ -1,10 +1,11 @@
 //! Read planar domains for `inrs` from the files users hold their curves in.
 //!
+//! - [`json`]: the JSON domain file (read and write).
 //! - [`svg`]: SVG path data (every command, absolute and relative, shorthand forms, elliptical
 //!   arcs converted exactly to rational quadratics) and SVG files (all drawn shapes, transforms
 //!   applied).
 //! - [`font`]: TrueType/OpenType glyphs (quadratic or cubic contours) as domains with holes.
-//! - [`dxf_file`]: DXF drawings: `SPLINE`, `LWPOLYLINE`/`POLYLINE` with bulges (exact arcs),
+//! - [`dxf_file`] (feature `dxf`, on by default): DXF drawings: `SPLINE`, `LWPOLYLINE`/`POLYLINE` with bulges (exact arcs),
 //!   `LINE`, `ARC`, `CIRCLE`, `ELLIPSE`, chained into loops.
 //! - [`load_domain`]: one entry point choosing the reader from the file name, as the `inrs`
 //!   command line does.
@@ -26,9 +27,11 @@
 //! ```
 
 mod builder;
+#[cfg(feature = "dxf")]
 pub mod dxf_file;
 mod error;
 pub mod font;
+pub mod json;
 pub mod svg;
 
 use std::path::Path;
@@ -38,7 +41,7 @@ use rs_spline::Domain;
 
 /// Reads a domain from `spec`, choosing the reader by extension:
 ///
-/// - `*.json`: the domain file of CONTRACTS.md;
+/// - `*.json`: the domain file ([`json::domain_from_json_file`]);
 /// - `*.svg`: an SVG document ([`svg::domain_from_svg_file`]);
 /// - `*.dxf`: a DXF drawing ([`dxf_file::domain_from_dxf_file`], default options);
 /// - `*.ttf`, `*.otf`, `*.ttc`, `*.otc` followed by `#glyph`: one glyph of a font
@@ -67,9 +70,15 @@ pub fn load_domain(spec: &str) -> Result<Domain, IoError> {
                 "name the glyph after the font file: {spec}#B, {spec}#U+0042 or {spec}#gid:37"
             ),
         }),
-        Some("json") => Ok(Domain::from_json_file(path)?),
+        Some("json") => json::domain_from_json_file(path),
         Some("svg") => svg::domain_from_svg_file(path),
+        #[cfg(feature = "dxf")]
         Some("dxf") => dxf_file::domain_from_dxf_file(path, &dxf_file::DxfOptions::default()),
+        #[cfg(not(feature = "dxf"))]
+        Some("dxf") => Err(IoError::FormatDisabled {
+            format: "DXF",
+            feature: "dxf",
+        }),
         _ => Err(IoError::UnknownFormat {
             path: path.to_path_buf(),
         }),

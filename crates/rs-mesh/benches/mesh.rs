@@ -7,7 +7,6 @@ use std::hint::black_box;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rs_contain::{Classifier, ContainOptions, Location, halton_points};
 use rs_mesh::{CurvedLocator, CurvedTriangulation, well_spaced_points};
-use rs_spline::Domain;
 
 const FIXTURES: [&str; 3] = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune"];
 
@@ -16,7 +15,7 @@ fn mesh(c: &mut Criterion) {
     let mut group = c.benchmark_group("mesh");
     group.sample_size(10);
     for name in FIXTURES {
-        let d = Domain::from_json_file(format!("{dir}/{name}.json")).unwrap();
+        let d = rs_io::json::domain_from_json_file(format!("{dir}/{name}.json")).unwrap();
         let area = d.signed_area().abs();
         group.bench_function(BenchmarkId::new("sample ny=251", name), |b| {
             b.iter(|| {

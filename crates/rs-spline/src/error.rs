@@ -1,7 +1,5 @@
 //! Error types for curves and domains.
 
-use std::path::PathBuf;
-
 use thiserror::Error;
 
 use crate::Point;
@@ -238,43 +236,6 @@ pub enum SplineError {
 /// Invalid domain file or domain.
 #[derive(Debug, Error)]
 pub enum DomainError {
-    /// The file could not be read or written.
-    #[error("{}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
-    },
-    /// The text is not valid JSON.
-    #[error("invalid JSON at line {line}, column {column}: {message}")]
-    Json {
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// What `serde_json` said.
-        message: String,
-    },
-    /// The JSON is valid but not a domain (top level).
-    #[error("not a domain file: {0}")]
-    Format(String),
-    /// A curve entry has the wrong shape (missing key, wrong type, ...).
-    #[error("curve {curve}: {message}")]
-    CurveFormat {
-        /// Index of the curve in the file.
-        curve: usize,
-        /// What is wrong.
-        message: String,
-    },
-    /// A curve entry is well-formed JSON but an invalid curve.
-    #[error("curve {curve}: {source}")]
-    Curve {
-        /// Index of the curve in the file.
-        curve: usize,
-        /// What is wrong.
-        source: SplineError,
-    },
     /// A domain needs at least one curve.
     #[error("the domain has no curves")]
     NoCurves,
@@ -310,21 +271,4 @@ pub enum DomainError {
     /// The closure tolerance must be finite and non-negative.
     #[error("invalid closure tolerance {0:?}")]
     InvalidTolerance(f64),
-}
-
-impl DomainError {
-    /// Converts a `serde_json` error into [`DomainError::Json`].
-    pub(crate) fn from_json(e: &serde_json::Error) -> Self {
-        let full = e.to_string();
-        // serde_json appends " at line L column C"; keep only the message part.
-        let message = match full.rfind(" at line ") {
-            Some(i) => full[..i].to_string(),
-            None => full,
-        };
-        DomainError::Json {
-            line: e.line(),
-            column: e.column(),
-            message,
-        }
-    }
 }

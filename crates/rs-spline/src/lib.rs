@@ -30,7 +30,6 @@ mod curve;
 mod domain;
 mod error;
 mod homogeneous;
-mod json;
 mod knots;
 pub mod limits;
 mod line;

@@ -63,7 +63,7 @@ fn fixtures() -> Vec<(String, Domain)> {
             let path = e.unwrap().path();
             (
                 path.display().to_string(),
-                Domain::from_json_file(&path).unwrap(),
+                rs_io::json::domain_from_json_file(&path).unwrap(),
             )
         })
         .collect()

@@ -23,7 +23,7 @@ fn fixtures_load_close_and_match_metadata() {
         let name = path.display().to_string();
         let text = std::fs::read_to_string(&path).unwrap();
         let meta: Value = serde_json::from_str(&text).unwrap();
-        let d = Domain::from_json_file(&path).unwrap();
+        let d = rs_io::json::domain_from_json_file(&path).unwrap();
         assert!(d.is_closed(), "{name}: {:?}", d.loops());
         d.require_closed().unwrap();
         assert_eq!(d.loops().len(), 1, "{name}");
@@ -57,7 +57,7 @@ fn fixtures_load_close_and_match_metadata() {
 #[test]
 fn reversed_fixtures_flip_orientation() {
     for path in fixture_files() {
-        let d = Domain::from_json_file(&path).unwrap();
+        let d = rs_io::json::domain_from_json_file(&path).unwrap();
         let rev: Vec<_> = d.curves().iter().rev().map(|c| c.reversed()).collect();
         let r = Domain::new(rev).unwrap();
         assert!(r.is_closed());

@@ -3,7 +3,7 @@
 
 use proptest::prelude::*;
 use rs_spline::prelude::*;
-use rs_spline::{Domain, NurbsCurve, Point, RationalBezier};
+use rs_spline::{NurbsCurve, Point, RationalBezier};
 
 const REL: f64 = 1e-12;
 
@@ -108,7 +108,7 @@ fn fixture_curves() -> Vec<(String, NurbsCurve)> {
     let mut out = Vec::new();
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
-        let d = Domain::from_json_file(&path).unwrap();
+        let d = rs_io::json::domain_from_json_file(&path).unwrap();
         for (i, c) in d.curves().iter().enumerate() {
             out.push((format!("{} curve {i}", path.display()), c.clone()));
         }

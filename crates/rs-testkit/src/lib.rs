@@ -69,7 +69,7 @@ pub fn fixtures() -> Vec<Case> {
         .filter(|p| p.extension().is_some_and(|e| e == "json"))
         .map(|p| Case {
             name: p.file_stem().unwrap().to_string_lossy().into_owned(),
-            domain: Domain::from_json_file(&p).unwrap(),
+            domain: rs_io::json::domain_from_json_file(&p).unwrap(),
         })
         .collect();
     v.sort_by(|a, b| a.name.cmp(&b.name));

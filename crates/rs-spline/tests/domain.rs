@@ -1,0 +1,37 @@
+//! Domains: loops close within the closure tolerance only; holes and components.
+
+use rs_spline::prelude::*;
+use rs_spline::{Domain, DomainError, Point, circle, segment};
+
+#[test]
+fn loops_close_within_tolerance_only() {
+    let a = segment(Point::new(0.0, 0.0), Point::new(1.0, 0.0)).unwrap();
+    let b = segment(Point::new(1.0, 0.0), Point::new(0.0, 1.0)).unwrap();
+    // Gap of 1e-12 * size closes; 1e-6 does not (default relative tolerance 1e-9).
+    let c = segment(Point::new(0.0, 1.0), Point::new(1e-12, 0.0)).unwrap();
+    let d = Domain::new(vec![a.clone(), b.clone(), c]).unwrap();
+    assert!(d.is_closed());
+    let c = segment(Point::new(0.0, 1.0), Point::new(1e-6, 0.0)).unwrap();
+    let d = Domain::new(vec![a.clone(), b.clone(), c.clone()]).unwrap();
+    assert!(!d.is_closed());
+    assert!((d.loops()[0].gap() - 1e-6).abs() < 1e-18);
+    let looser = Domain::with_closure_tolerance(vec![a, b, c], 1e-5).unwrap();
+    assert!(looser.is_closed());
+    assert!(
+        Domain::with_closure_tolerance(vec![circle(Point::default(), 1.0).unwrap()], -1.0).is_err()
+    );
+    assert!(matches!(Domain::new(vec![]), Err(DomainError::NoCurves)));
+}
+
+#[test]
+fn holes_and_components() {
+    let outer = circle(Point::new(0.0, 0.0), 3.0).unwrap();
+    let hole = circle(Point::new(1.0, 0.0), 1.0).unwrap().reversed();
+    let island = circle(Point::new(10.0, 0.0), 0.5).unwrap();
+    let d = Domain::new(vec![outer, hole, island]).unwrap();
+    assert_eq!(d.loops().len(), 3);
+    let expected = std::f64::consts::PI * (9.0 - 1.0 + 0.25);
+    assert!((d.signed_area() - expected).abs() < 1e-12 * expected);
+    assert_eq!(d.bezier_pieces().len(), 12);
+    assert!((d.bounding_box().max.x - 10.5).abs() < 1e-12);
+}
