@@ -1,6 +1,7 @@
 //! `cargo xtask bench`: the papers' comparisons, measured in one process (medians of repeated
 //! runs), printed and written as Markdown and CSV under `target/bench-report/`.
 
+use inrs::contain::Locate;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -145,11 +146,11 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
                         "inrs2" => count_inside(&c.classify(&pts, Method::InRS2)),
                         "polygon" => poly.classify(&pts).iter().filter(|&&b| b).count(),
                         "locator" => count_inside(
-                            &PointLocator::new(&c, LocatorOptions::default()).classify(&pts),
+                            &PointLocator::new(&c, LocatorOptions::default()).locate_all(&pts),
                         ),
                         "locator-parallel" => count_inside(
                             &PointLocator::new(&c, LocatorOptions::default())
-                                .classify_parallel(&pts),
+                                .locate_all_parallel(&pts),
                         ),
                         _ => count_inside(&c.classify(&pts, Method::Gwn)),
                     }
@@ -299,7 +300,7 @@ fn single_thread_locator(
         });
         let loc = PointLocator::new(&c, LocatorOptions::default());
         let tq = median_time(o.reps, || {
-            std::hint::black_box(loc.classify(&pts));
+            std::hint::black_box(loc.locate_all(&pts));
         });
         let _ = writeln!(
             md,
@@ -366,23 +367,11 @@ fn gwn_flower(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), Stri
 /// The locator with about 10^5 boxes.
 fn locator_at_scale(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), String> {
     let d = flower(root)?;
-    let one = Classifier::new(
-        &d,
-        ContainOptions {
-            subdivisions: 1,
-            ..Default::default()
-        },
-    )
-    .map_err(|e| e.to_string())?;
+    let one = Classifier::new(&d, ContainOptions::DEFAULT.with_subdivisions(1))
+        .map_err(|e| e.to_string())?;
     let k = 100_000usize.div_ceil(one.boxes().boxes().len());
-    let c = Classifier::new(
-        &d,
-        ContainOptions {
-            subdivisions: k,
-            ..Default::default()
-        },
-    )
-    .map_err(|e| e.to_string())?;
+    let c = Classifier::new(&d, ContainOptions::DEFAULT.with_subdivisions(k))
+        .map_err(|e| e.to_string())?;
     let nboxes = c.boxes().boxes().len();
     let t_build = median_time(o.reps.min(3), || {
         std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
@@ -393,7 +382,7 @@ fn locator_at_scale(md: &mut String, root: &Path, o: &BenchOptions) -> Result<()
     let n = if o.quick { 100_000 } else { 1_000_000 };
     let pts = halton_points(n, d.bounding_box());
     let t_q = median_time(o.reps.min(3), || {
-        std::hint::black_box(loc.classify(&pts));
+        std::hint::black_box(loc.locate_all(&pts));
     });
     let _ = writeln!(
         md,
@@ -553,14 +542,8 @@ fn sweeps(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) -> Re
         let mut row = format!("| {name} |");
         let mut base = 0.0;
         for k in ks {
-            let c = Classifier::new(
-                d,
-                ContainOptions {
-                    subdivisions: k,
-                    ..Default::default()
-                },
-            )
-            .map_err(|e| e.to_string())?;
+            let c = Classifier::new(d, ContainOptions::DEFAULT.with_subdivisions(k))
+                .map_err(|e| e.to_string())?;
             let t = median_time(o.reps, || {
                 std::hint::black_box(c.classify(&pts, Method::InRS2));
             });
@@ -592,7 +575,7 @@ fn sweeps(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) -> Re
             });
             let loc = PointLocator::new(&c, LocatorOptions { cells: g });
             let tq = median_time(o.reps, || {
-                std::hint::black_box(loc.classify(&pts));
+                std::hint::black_box(loc.locate_all(&pts));
             });
             let _ = write!(
                 row,

@@ -1,6 +1,6 @@
 //! Containment queries directly on a [`Domain`].
 
-use rs_contain::{Classifier, ContainError, ContainOptions, Location, Method};
+use rs_contain::{Classifier, ContainError, ContainOptions, Locate, Location, Method};
 use rs_spline::{Domain, Point};
 
 /// Point containment on a [`Domain`]: `domain.classify(&points, method)`.
@@ -39,6 +39,6 @@ impl Classify for Domain {
     }
 
     fn classify_point(&self, point: Point) -> Result<Location, ContainError> {
-        Ok(Classifier::new(self, ContainOptions::default())?.classify_point(point))
+        Ok(Classifier::new(self, ContainOptions::default())?.locate(point))
     }
 }

@@ -2,6 +2,7 @@
 
 mod cli;
 
+use inrs::contain::Locate;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -13,11 +14,8 @@ use cli::limits::{
 use cli::output::{Failure, Output, write_text};
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
 use inrs::contain::DEFAULT_TOLERANCE;
-use inrs::contain::{
-    FAST_METHOD_MIN_POINTS, FillRule, LocatorOptions, PointLocator, QueryStats, WindingAlgorithm,
-    WindingField,
-};
-use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Location, Method, PointRecord};
+use inrs::contain::{FillRule, QueryStats, WindingAlgorithm, WindingField};
+use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Method, PointRecord};
 
 /// Exact point containment for planar domains bounded by NURBS curves.
 #[derive(Parser)]
@@ -406,31 +404,19 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let in_domain = |e: inrs::ContainError| format!("{}: {e}", domain.display());
             let output = output.as_deref();
             if method == Method::Gwn {
-                let field = WindingField::new(&d, tol).map_err(in_domain)?;
-                return stream_points(&points, output, "x,y,location", |pts| {
-                    field.classify(pts, fill_rule)
-                });
+                let field = WindingField::new(&d, tol)
+                    .map_err(in_domain)?
+                    .with_fill_rule(fill_rule);
+                return stream_points(&points, output, "x,y,location", |pts| field.locate_all(pts));
             }
-            let options = ContainOptions {
-                tolerance: tol,
-                subdivisions,
-            };
-            let classifier = Classifier::new(&d, options).map_err(in_domain)?;
+            let options = ContainOptions::DEFAULT
+                .with_tolerance(tol)
+                .with_subdivisions(subdivisions);
+            let classifier = Classifier::new(&d, options.with_method(method)).map_err(in_domain)?;
             // The fast method builds its grid once, on the first batch large enough to pay
-            // for it, and reuses it for every later batch.
-            let mut locator: Option<PointLocator<'_>> = None;
-            stream_points(&points, output, "x,y,location", |pts| -> Vec<Location> {
-                if method == Method::Fast && pts.len() >= FAST_METHOD_MIN_POINTS {
-                    locator
-                        .get_or_insert_with(|| {
-                            PointLocator::new(&classifier, LocatorOptions::default())
-                        })
-                        .classify_parallel(pts)
-                } else if let (Method::Fast, Some(l)) = (method, &locator) {
-                    l.classify_parallel(pts)
-                } else {
-                    classifier.classify(pts, method)
-                }
+            // for it, and the classifier keeps it for every later batch.
+            stream_points(&points, output, "x,y,location", |pts| {
+                classifier.locate_all(pts)
             })
         }
         Command::Winding {

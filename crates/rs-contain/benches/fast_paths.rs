@@ -2,6 +2,7 @@
 //! domains, and the accelerated winding-number field on the 500-curve flower. Each measured
 //! closure asserts its result (reference inside counts, or agreement with the reference field).
 
+use rs_contain::Locate;
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
@@ -55,13 +56,13 @@ fn locator(c: &mut Criterion) {
         });
         let loc = PointLocator::new(&classifier, LocatorOptions::default());
         group.bench_with_input(BenchmarkId::new("locator", name), &pts, |bch, pts| {
-            bch.iter(|| assert_eq!(inside(&loc.classify(black_box(pts))), expected))
+            bch.iter(|| assert_eq!(inside(&loc.locate_all(black_box(pts))), expected))
         });
         group.bench_with_input(
             BenchmarkId::new("locator-parallel", name),
             &pts,
             |bch, pts| {
-                bch.iter(|| assert_eq!(inside(&loc.classify_parallel(black_box(pts))), expected))
+                bch.iter(|| assert_eq!(inside(&loc.locate_all_parallel(black_box(pts))), expected))
             },
         );
         group.bench_function(BenchmarkId::new("locator-build", name), |bch| {

@@ -5,29 +5,68 @@ use rs_spline::{BoundingBox, Domain, Point};
 
 use crate::rays::{Hit, horizontal, parity, vertical};
 use crate::winding::winding_number;
+use std::sync::{Arc, OnceLock};
+
+use crate::locate::in_parallel_chunks;
+use crate::locator::LocatorIndex;
 use crate::{
-    ContainError, Decision, FAST_METHOD_MIN_POINTS, FillRule, Location, LocatorOptions, Method,
+    ContainError, Decision, FAST_METHOD_MIN_POINTS, Locate, Location, LocatorOptions, Method,
     PointLocator, WindingField,
 };
 
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 pub const DEFAULT_TOLERANCE: f64 = 1e-12;
 
-/// Options of a [`Classifier`].
+/// Options of a [`Classifier`]: start from [`ContainOptions::DEFAULT`] and change what you
+/// need with the `with_*` setters.
+///
+/// ```
+/// use rs_contain::{ContainOptions, Method};
+/// let o = ContainOptions::DEFAULT.with_tolerance(1e-10).with_method(Method::InRS2);
+/// assert_eq!(o.method, Method::InRS2);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ContainOptions {
     /// Boundary tolerance relative to the bounding-box diagonal (see the crate's Semantics).
     pub tolerance: f64,
     /// Sub-boxes per monotone piece (paper Remark 2.1).
     pub subdivisions: usize,
+    /// The method [`Locate::locate_all`] uses (all give the same answers; they differ in
+    /// speed). Default [`Method::Fast`], as on the command line.
+    pub method: Method,
+}
+
+impl ContainOptions {
+    /// Relative tolerance [`DEFAULT_TOLERANCE`], one box per monotone piece, [`Method::Fast`].
+    pub const DEFAULT: ContainOptions = ContainOptions {
+        tolerance: DEFAULT_TOLERANCE,
+        subdivisions: DEFAULT_SUBDIVISIONS,
+        method: Method::Fast,
+    };
+
+    /// With another relative boundary tolerance.
+    pub const fn with_tolerance(mut self, relative_tolerance: f64) -> Self {
+        self.tolerance = relative_tolerance;
+        self
+    }
+
+    /// With `subdivisions` sub-boxes per monotone piece.
+    pub const fn with_subdivisions(mut self, subdivisions: usize) -> Self {
+        self.subdivisions = subdivisions;
+        self
+    }
+
+    /// With another batch method.
+    pub const fn with_method(mut self, method: Method) -> Self {
+        self.method = method;
+        self
+    }
 }
 
 impl Default for ContainOptions {
     fn default() -> Self {
-        Self {
-            tolerance: DEFAULT_TOLERANCE,
-            subdivisions: DEFAULT_SUBDIVISIONS,
-        }
+        Self::DEFAULT
     }
 }
 
@@ -50,13 +89,36 @@ impl Default for ContainOptions {
 ///     vec![Location::Inside, Location::Outside, Location::Boundary]
 /// );
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Classifier {
-    /// The winding-number field of the boundary; it owns the monotone boxes, which the
-    /// crossing tests share (one copy).
-    field: WindingField,
+    /// The monotone boxes, shared with the winding-number field (one copy).
+    boxes: Arc<MonotoneBoxes>,
+    /// The domain's curves, for the winding-number field built on first use.
+    domain: Domain,
+    relative_tolerance: f64,
     tol: f64,
     outer: BoundingBox,
+    method: Method,
+    /// Built on first use: the generalized winding-number field ([`Method::Gwn`]).
+    field: OnceLock<WindingField>,
+    /// Built on first use: the grid of [`Method::Fast`] with the default options.
+    grid: OnceLock<LocatorIndex>,
+}
+
+impl Clone for Classifier {
+    /// A copy; the lazily built indexes are built again when needed.
+    fn clone(&self) -> Self {
+        Self {
+            boxes: Arc::clone(&self.boxes),
+            domain: self.domain.clone(),
+            relative_tolerance: self.relative_tolerance,
+            tol: self.tol,
+            outer: self.outer,
+            method: self.method,
+            field: OnceLock::new(),
+            grid: OnceLock::new(),
+        }
+    }
 }
 
 impl Classifier {
@@ -82,13 +144,34 @@ impl Classifier {
             min: Point::new(bbox.min.x - tol, bbox.min.y - tol),
             max: Point::new(bbox.max.x + tol, bbox.max.y + tol),
         };
-        let field = WindingField::with_boxes(domain, boxes, options.tolerance)?;
-        Ok(Self { field, tol, outer })
+        Ok(Self {
+            boxes: Arc::new(boxes),
+            domain: domain.clone(),
+            relative_tolerance: options.tolerance,
+            tol,
+            outer,
+            method: options.method,
+            field: OnceLock::new(),
+            grid: OnceLock::new(),
+        })
     }
 
     /// The monotone boxes and critical points in use.
     pub fn boxes(&self) -> &MonotoneBoxes {
-        self.field.monotone_boxes()
+        &self.boxes
+    }
+
+    /// The method of [`Locate::locate_all`].
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// The grid locator with the default options, its index built on the first call and kept.
+    pub fn locator(&self) -> PointLocator<'_> {
+        let index = self
+            .grid
+            .get_or_init(|| PointLocator::new(self, LocatorOptions::default()).into_index());
+        PointLocator::with_index(self, index)
     }
 
     /// The bounding box grown by the tolerance: everything outside is outside.
@@ -96,19 +179,21 @@ impl Classifier {
         self.outer
     }
 
-    /// The generalized winding-number field of the same boundary.
+    /// The generalized winding-number field of the same boundary (even-odd rule), built on
+    /// the first call and kept.
     pub fn winding_field(&self) -> &WindingField {
-        &self.field
+        self.field.get_or_init(|| {
+            WindingField::from_shared_boxes(
+                &self.domain,
+                Arc::clone(&self.boxes),
+                self.relative_tolerance,
+            )
+        })
     }
 
     /// The absolute boundary tolerance: the relative tolerance times the bounding-box diagonal.
     pub fn tolerance(&self) -> f64 {
         self.tol
-    }
-
-    /// The location of one point (the inRS1 path).
-    pub fn classify_point(&self, p: Point) -> Location {
-        self.classify_point_with_decision(p).0
     }
 
     /// The location of one point and which step of the algorithm decided it.
@@ -141,26 +226,27 @@ impl Classifier {
         (loc, Decision::WindingNumber)
     }
 
-    /// Classifies `points` with the chosen method; the result is in input order and the same
-    /// for every method.
+    /// Classifies `points` with the chosen method (rather than the one in the options); the
+    /// result is in input order and the same for every method.
     pub fn classify(&self, points: &[Point], method: Method) -> Vec<Location> {
         match method {
-            Method::InRS1 => points.iter().map(|&p| self.classify_point(p)).collect(),
+            Method::InRS1 => points.iter().map(|&p| self.locate(p)).collect(),
             Method::InRS2 => self.classify_sorted(points),
             Method::Fast if points.len() < FAST_METHOD_MIN_POINTS => self.classify_sorted(points),
-            Method::Fast => {
-                PointLocator::new(self, LocatorOptions::default()).classify_parallel(points)
+            Method::Fast => self.locator().locate_all_parallel(points),
+            Method::Gwn => {
+                let field = self.winding_field();
+                points
+                    .iter()
+                    .map(|&p| {
+                        if self.outer.contains(p) {
+                            field.locate(p)
+                        } else {
+                            Location::Outside
+                        }
+                    })
+                    .collect()
             }
-            Method::Gwn => points
-                .iter()
-                .map(|&p| {
-                    if self.outer.contains(p) {
-                        self.field.classify_point(p, FillRule::EvenOdd)
-                    } else {
-                        Location::Outside
-                    }
-                })
-                .collect(),
         }
     }
 
@@ -208,6 +294,26 @@ impl Classifier {
             };
         }
         out
+    }
+}
+
+impl Locate for Classifier {
+    /// The inRS1 path for one point.
+    fn locate(&self, p: Point) -> Location {
+        self.classify_point_with_decision(p).0
+    }
+
+    /// With the method of the options.
+    fn locate_all(&self, points: &[Point]) -> Vec<Location> {
+        self.classify(points, self.method)
+    }
+
+    fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
+        match self.method {
+            // Already parallel.
+            Method::Fast if points.len() >= FAST_METHOD_MIN_POINTS => self.locate_all(points),
+            _ => in_parallel_chunks(self, points),
+        }
     }
 }
 

@@ -32,7 +32,7 @@
 //! # Examples
 //!
 //! ```
-//! use rs_contain::{Classifier, ContainOptions, Location, Method};
+//! use rs_contain::{Classifier, ContainOptions, Locate, Location, Method};
 //! use rs_spline::{circle, Domain, Point};
 //! // An annulus: outer circle and a hole (orientation does not matter).
 //! let d = Domain::new(vec![
@@ -41,9 +41,9 @@
 //! ])
 //! .unwrap();
 //! let c = Classifier::new(&d, ContainOptions::default()).unwrap();
-//! assert_eq!(c.classify_point(Point::new(1.5, 0.0)), Location::Inside);
-//! assert_eq!(c.classify_point(Point::new(0.5, 0.0)), Location::Outside);
-//! assert_eq!(c.classify_point(Point::new(0.0, -1.0)), Location::Boundary);
+//! assert_eq!(c.locate(Point::new(1.5, 0.0)), Location::Inside);
+//! assert_eq!(c.locate(Point::new(0.5, 0.0)), Location::Outside);
+//! assert_eq!(c.locate(Point::new(0.0, -1.0)), Location::Boundary);
 //! ```
 
 mod classifier;
@@ -51,6 +51,7 @@ mod error;
 mod filled_area;
 mod gwn;
 mod halton;
+mod locate;
 mod location;
 mod locator;
 mod polygon;
@@ -65,6 +66,7 @@ pub use gwn::{
     WindingField, curve_winding_number,
 };
 pub use halton::{halton_points, radical_inverse};
+pub use locate::Locate;
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method};
-pub use locator::{DEFAULT_GRID_CELLS, LocatorOptions, PointLocator};
+pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
 pub use polygon::FlattenedPolygon;

@@ -1,12 +1,14 @@
 //! Sub-linear point location: a uniform grid of cells with precomputed locations over the
 //! monotone boxes, answering almost every point in constant time with the same result as inRS2.
 
+use std::borrow::Cow;
+
 use rs_spline::Point;
 
 use rs_boxes::BezierPiece;
 use smallvec::SmallVec;
 
-use crate::{Classifier, Location, Method};
+use crate::{Classifier, Locate, Location, Method};
 
 /// Cell state: every point of the cell is outside.
 const OUTSIDE: u8 = 0;
@@ -76,18 +78,25 @@ impl Default for LocatorOptions {
 /// # Examples
 ///
 /// ```
-/// use rs_contain::{Classifier, ContainOptions, Location, LocatorOptions, Method, PointLocator};
+/// use rs_contain::{Classifier, ContainOptions, Location, Locate, LocatorOptions, Method, PointLocator};
 /// use rs_spline::{circle, Domain, Point};
 /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
 /// let c = Classifier::new(&d, ContainOptions::default()).unwrap();
 /// let loc = PointLocator::new(&c, LocatorOptions { cells: 64 });
 /// let pts = [Point::new(0.0, 0.0), Point::new(0.9, 0.0), Point::new(1.0, 0.0)];
-/// assert_eq!(loc.classify(&pts), c.classify(&pts, Method::InRS2));
+/// assert_eq!(loc.locate_all(&pts), c.classify(&pts, Method::InRS2));
 /// assert_eq!(loc.locate(Point::new(3.0, 0.0)), Location::Outside);
 /// ```
 #[derive(Clone, Debug)]
 pub struct PointLocator<'a> {
     classifier: &'a Classifier,
+    ix: Cow<'a, LocatorIndex>,
+}
+
+/// The grid of a [`PointLocator`], without the classifier it indexes (so that a
+/// [`Classifier`] can build it once and lend it; see [`Classifier::locator`]).
+#[derive(Clone, Debug)]
+pub struct LocatorIndex {
     x0: f64,
     y0: f64,
     inv_w: f64,
@@ -111,31 +120,47 @@ impl<'a> PointLocator<'a> {
         let inv_h = if h > 0.0 { n as f64 / h } else { 0.0 };
         let mut loc = Self {
             classifier,
-            x0,
-            y0,
-            inv_w,
-            inv_h,
-            n,
-            state: vec![OUTSIDE; n * n],
-            packed: Vec::new(),
-            offsets: vec![0; n * n + 1],
-            boxes: Vec::new(),
+            ix: Cow::Owned(LocatorIndex {
+                x0,
+                y0,
+                inv_w,
+                inv_h,
+                n,
+                state: vec![OUTSIDE; n * n],
+                packed: Vec::new(),
+                offsets: vec![0; n * n + 1],
+                boxes: Vec::new(),
+            }),
         };
         loc.register_boxes();
         loc.classify_uniform_cells();
-        loc.packed = vec![0u64; (n * n).div_ceil(32)];
-        for (i, &st) in loc.state.iter().enumerate() {
-            loc.packed[i >> 5] |= u64::from(st) << ((i & 31) * 2);
+        let ix = loc.ix.to_mut();
+        ix.packed = vec![0u64; (n * n).div_ceil(32)];
+        for (i, &st) in ix.state.iter().enumerate() {
+            ix.packed[i >> 5] |= u64::from(st) << ((i & 31) * 2);
         }
         loc
     }
 
+    /// A locator over `classifier` with an index built before for it.
+    pub(crate) fn with_index(classifier: &'a Classifier, index: &'a LocatorIndex) -> Self {
+        Self {
+            classifier,
+            ix: Cow::Borrowed(index),
+        }
+    }
+
+    /// The index, to keep (see [`PointLocator::with_index`]).
+    pub(crate) fn into_index(self) -> LocatorIndex {
+        self.ix.into_owned()
+    }
+
     fn col(&self, x: f64) -> usize {
-        (((x - self.x0) * self.inv_w) as usize).min(self.n - 1)
+        (((x - self.ix.x0) * self.ix.inv_w) as usize).min(self.ix.n - 1)
     }
 
     fn row(&self, y: f64) -> usize {
-        (((y - self.y0) * self.inv_h) as usize).min(self.n - 1)
+        (((y - self.ix.y0) * self.ix.inv_h) as usize).min(self.ix.n - 1)
     }
 
     /// Cell range (columns, rows) of the rectangle spanned by `a` and `b`, grown by the
@@ -143,8 +168,8 @@ impl<'a> PointLocator<'a> {
     /// grown rectangle falls in it.
     fn cell_range(&self, a: Point, b: Point) -> (usize, usize, usize, usize) {
         let tol = self.classifier.tolerance();
-        let cx = |x: f64| self.col(x.max(self.x0));
-        let cy = |y: f64| self.row(y.max(self.y0));
+        let cx = |x: f64| self.col(x.max(self.ix.x0));
+        let cy = |y: f64| self.row(y.max(self.ix.y0));
         (
             cx(a.x.min(b.x) - tol),
             cx(a.x.max(b.x) + tol),
@@ -178,7 +203,7 @@ impl<'a> PointLocator<'a> {
     }
 
     fn register_boxes(&mut self) {
-        let n = self.n;
+        let n = self.ix.n;
         let all = self.classifier.boxes().boxes();
         let mut pairs: Vec<(u32, u32)> = Vec::new();
         let mut ranges = Vec::new();
@@ -199,15 +224,16 @@ impl<'a> PointLocator<'a> {
         for &(cell, _) in &pairs {
             counts[cell as usize] += 1;
         }
+        let ix = self.ix.to_mut();
         let mut total = 0u32;
         for (i, &k) in counts.iter().enumerate() {
-            self.offsets[i] = total;
+            ix.offsets[i] = total;
             total += k;
         }
-        self.offsets[n * n] = total;
+        ix.offsets[n * n] = total;
         // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance to
         // their right): flag them so the walk down a column skips them.
-        self.boxes = pairs
+        ix.boxes = pairs
             .into_iter()
             .map(|(_, b)| {
                 if all[b as usize].x_dir == rs_boxes::Monotonicity::Constant {
@@ -220,10 +246,12 @@ impl<'a> PointLocator<'a> {
     }
 
     fn classify_uniform_cells(&mut self) {
-        let n = self.n;
+        let classifier = self.classifier;
+        let ix = self.ix.to_mut();
+        let n = ix.n;
         let (cw, ch) = (
-            1.0 / self.inv_w.max(f64::MIN_POSITIVE),
-            1.0 / self.inv_h.max(f64::MIN_POSITIVE),
+            1.0 / ix.inv_w.max(f64::MIN_POSITIVE),
+            1.0 / ix.inv_h.max(f64::MIN_POSITIVE),
         );
         // Run starts: the first cell of every run of box-free cells in each column.
         let mut starts: Vec<usize> = Vec::new();
@@ -231,9 +259,9 @@ impl<'a> PointLocator<'a> {
             let mut prev_mixed = true;
             for r in 0..n {
                 let cell = c * n + r;
-                let mixed = self.offsets[cell + 1] > self.offsets[cell];
+                let mixed = ix.offsets[cell + 1] > ix.offsets[cell];
                 if mixed {
-                    self.state[cell] = MIXED;
+                    ix.state[cell] = MIXED;
                 } else if prev_mixed {
                     starts.push(cell);
                 }
@@ -244,13 +272,10 @@ impl<'a> PointLocator<'a> {
             .iter()
             .map(|&cell| {
                 let (c, r) = (cell / n, cell % n);
-                Point::new(
-                    self.x0 + (c as f64 + 0.5) * cw,
-                    self.y0 + (r as f64 + 0.5) * ch,
-                )
+                Point::new(ix.x0 + (c as f64 + 0.5) * cw, ix.y0 + (r as f64 + 0.5) * ch)
             })
             .collect();
-        let located = self.classifier.classify(&centers, Method::InRS2);
+        let located = classifier.classify(&centers, Method::InRS2);
         for (&cell, &l) in starts.iter().zip(&located) {
             let s = match l {
                 Location::Inside => INSIDE,
@@ -261,37 +286,37 @@ impl<'a> PointLocator<'a> {
             let (c, r0) = (cell / n, cell % n);
             for r in r0..n {
                 let i = c * n + r;
-                if self.offsets[i + 1] > self.offsets[i] {
+                if ix.offsets[i + 1] > ix.offsets[i] {
                     break;
                 }
-                self.state[i] = s;
+                ix.state[i] = s;
             }
         }
     }
 
     /// The grid resolution (cells per side).
     pub fn cells(&self) -> usize {
-        self.n
+        self.ix.n
     }
 
     /// Fraction of cells that are mixed (meet a box).
     pub fn mixed_fraction(&self) -> f64 {
-        self.state.iter().filter(|&&s| s == MIXED).count() as f64 / self.state.len() as f64
+        self.ix.state.iter().filter(|&&s| s == MIXED).count() as f64 / self.ix.state.len() as f64
     }
 
     /// Number of (box, cell) incidences stored.
     pub fn incidences(&self) -> usize {
-        self.boxes.len()
+        self.ix.boxes.len()
     }
 
     /// The location of one point (same as [`Method::InRS2`]).
-    pub fn locate(&self, p: Point) -> Location {
+    fn locate_point(&self, p: Point) -> Location {
         if !self.classifier.outer().contains(p) {
             return Location::Outside;
         }
         let (c, r) = (self.col(p.x), self.row(p.y));
-        let cell = c * self.n + r;
-        let state = ((self.packed[cell >> 5] >> ((cell & 31) * 2)) & 3) as usize;
+        let cell = c * self.ix.n + r;
+        let state = ((self.ix.packed[cell >> 5] >> ((cell & 31) * 2)) & 3) as usize;
         // Inside and outside cells come in no predictable order: look the answer up instead of
         // branching on it; only mixed cells (rare) branch.
         if state == MIXED as usize {
@@ -302,7 +327,7 @@ impl<'a> PointLocator<'a> {
     }
 
     fn cell_boxes(&self, cell: usize) -> &[u32] {
-        &self.boxes[self.offsets[cell] as usize..self.offsets[cell + 1] as usize]
+        &self.ix.boxes[self.ix.offsets[cell] as usize..self.ix.offsets[cell + 1] as usize]
     }
 
     fn locate_mixed(&self, p: Point, c: usize, r: usize) -> Location {
@@ -312,7 +337,7 @@ impl<'a> PointLocator<'a> {
         if cls.boxes().is_critical_x(p.x, tol) {
             return cls.fallback(p).0;
         }
-        let n = self.n;
+        let n = self.ix.n;
         if self
             .cell_boxes(c * n + r)
             .iter()
@@ -324,7 +349,7 @@ impl<'a> PointLocator<'a> {
         let mut odd = false;
         let mut first = 0;
         for k in (0..r).rev() {
-            let s = self.state[c * n + k];
+            let s = self.ix.state[c * n + k];
             if s != MIXED {
                 odd = s == INSIDE;
                 first = k + 1;
@@ -349,40 +374,20 @@ impl<'a> PointLocator<'a> {
         }
     }
 
-    /// Locations of `points`, in input order, on the current thread.
-    pub fn classify(&self, points: &[Point]) -> Vec<Location> {
-        points.iter().map(|&p| self.locate(p)).collect()
-    }
-
     /// Locations of a stream of points, lazily: nothing is held but the index.
     pub fn locate_iter<I>(&'a self, points: I) -> impl Iterator<Item = Location> + 'a
     where
         I: IntoIterator<Item = Point>,
         I::IntoIter: 'a,
     {
-        points.into_iter().map(move |p| self.locate(p))
+        points.into_iter().map(move |p| self.locate_point(p))
     }
+}
 
-    /// Locations of `points`, in input order, split over rayon's thread pool in chunks (with
-    /// the `parallel` feature, on by default; otherwise on the current thread).
-    pub fn classify_parallel(&self, points: &[Point]) -> Vec<Location> {
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            let mut out = vec![Location::Outside; points.len()];
-            out.par_chunks_mut(PARALLEL_CHUNK)
-                .zip(points.par_chunks(PARALLEL_CHUNK))
-                .for_each(|(o, p)| {
-                    for (slot, &q) in o.iter_mut().zip(p) {
-                        *slot = self.locate(q);
-                    }
-                });
-            out
-        }
-        #[cfg(not(feature = "parallel"))]
-        {
-            self.classify(points)
-        }
+impl Locate for PointLocator<'_> {
+    /// The location of one point (same as [`Method::InRS2`]).
+    fn locate(&self, p: Point) -> Location {
+        self.locate_point(p)
     }
 }
 
@@ -391,7 +396,3 @@ const VERTICAL_FLAG: u32 = 1 << 31;
 
 /// Halving depth cap when registering a box's curve in the grid.
 const MAX_REGISTER_DEPTH: u32 = 24;
-
-/// Points per parallel task.
-#[cfg(feature = "parallel")]
-const PARALLEL_CHUNK: usize = 4096;

@@ -1,9 +1,10 @@
 //! Zero misclassifications against independent truth on fixtures and synthetic domains, for
 //! ordinary and adversarial points; inRS1 and inRS2 agree everywhere; both fallbacks are forced.
 
+use rs_contain::Locate;
 use rs_contain::{
-    Classifier, ContainOptions, Decision, FastWindingField, FillRule, Location, LocatorOptions,
-    Method, PointLocator, halton_points,
+    Classifier, ContainOptions, Decision, FastWindingField, Location, LocatorOptions, Method,
+    PointLocator, halton_points,
 };
 use rs_spline::Point;
 use rs_spline::prelude::*;
@@ -18,7 +19,7 @@ fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
     let fast_gwn = FastWindingField::new(reference.winding_field());
     for (i, e) in expected.iter().enumerate() {
         assert_eq!(
-            fast_gwn.classify_point(pts[i], FillRule::EvenOdd),
+            fast_gwn.locate(pts[i]),
             *e,
             "{}: fast GWN disagrees at {:?}",
             case.name,
@@ -28,8 +29,8 @@ fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
     for cells in [1, 7, 64, 300] {
         let loc = PointLocator::new(&reference, LocatorOptions { cells });
         let fast = [
-            loc.classify(pts),
-            loc.classify_parallel(pts),
+            loc.locate_all(pts),
+            loc.locate_all_parallel(pts),
             loc.locate_iter(pts.iter().copied()).collect(),
         ];
         for got in fast {
@@ -45,10 +46,7 @@ fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
     for subdivisions in [1, 3, 8, 32] {
         let c = Classifier::new(
             &case.domain,
-            ContainOptions {
-                subdivisions,
-                ..Default::default()
-            },
+            ContainOptions::DEFAULT.with_subdivisions(subdivisions),
         )
         .unwrap();
         for method in Method::ALL {
@@ -220,14 +218,8 @@ fn critical_lines_force_both_fallbacks() {
         let s = size(&case);
         let c = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
         // Vertices: ends of the unrefined monotone boxes (Bezier junctions, tangency splits).
-        let unrefined = Classifier::new(
-            &case.domain,
-            ContainOptions {
-                subdivisions: 1,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let unrefined =
+            Classifier::new(&case.domain, ContainOptions::DEFAULT.with_subdivisions(1)).unwrap();
         let boxes = unrefined.boxes();
         let mut xs: Vec<f64> = boxes.critical_abscissas().to_vec();
         let mut ys: Vec<f64> = boxes.critical_ordinates().to_vec();

@@ -1,7 +1,8 @@
 //! The accelerated winding-number field equals the reference everywhere: far, near, on the
 //! curves, for closed shapes, open chains and gaps; far queries cost O(log N).
 
-use rs_contain::{FastWindingField, FillRule, QueryStats, WindingField, halton_points};
+use rs_contain::Locate;
+use rs_contain::{FastWindingField, QueryStats, WindingField, halton_points};
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, circular_arc, segment};
 use rs_testkit::all_cases;
@@ -33,11 +34,7 @@ fn check_equal(name: &str, d: &Domain) {
     for q in pts {
         let (w, f) = (field.winding_number(q), fast.winding_number(q));
         assert!((w - f).abs() < 1e-12, "{name} at {q:?}: {w} vs {f}");
-        assert_eq!(
-            field.classify_point(q, FillRule::EvenOdd),
-            fast.classify_point(q, FillRule::EvenOdd),
-            "{name} at {q:?}"
-        );
+        assert_eq!(field.locate(q), fast.locate(q), "{name} at {q:?}");
     }
 }
 

@@ -2,6 +2,7 @@
 //! sum, graceful behaviour at defects, the three algorithms agree, the coincident-point
 //! convention, work counters.
 
+use rs_contain::Locate;
 use rs_spline::prelude::*;
 use std::f64::consts::{PI, TAU};
 
@@ -171,7 +172,9 @@ fn a_thin_curved_sliver_is_resolved() {
 #[test]
 fn defects_change_containment_only_nearby() {
     let d = fixture("s4_disk_ellipse_segment");
-    let full = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let full = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE)
+        .unwrap()
+        .with_fill_rule(FillRule::NonZero);
     let pts = halton_points(20_000, d.bounding_box());
     // Removing a straight segment cannot change rounded containment (it subtends less than pi
     // everywhere). Removing the quarter circle (curve 0) changes it exactly where the arc
@@ -180,11 +183,12 @@ fn defects_change_containment_only_nearby() {
         &Domain::new(d.curves()[1..].to_vec()).unwrap(),
         rs_contain::DEFAULT_TOLERANCE,
     )
-    .unwrap();
+    .unwrap()
+    .with_fill_rule(FillRule::NonZero);
     let mut changed = 0;
     for &q in &pts {
-        let before = full.classify_point(q, FillRule::NonZero);
-        let after = removed.classify_point(q, FillRule::NonZero);
+        let before = full.locate(q);
+        let after = removed.locate(q);
         if before != after && before != Location::Boundary && after != Location::Boundary {
             changed += 1;
             assert!(
@@ -198,12 +202,10 @@ fn defects_change_containment_only_nearby() {
         &Domain::new(d.curves()[..2].to_vec()).unwrap(),
         rs_contain::DEFAULT_TOLERANCE,
     )
-    .unwrap();
+    .unwrap()
+    .with_fill_rule(FillRule::NonZero);
     for &q in &pts {
-        let (a, b) = (
-            full.classify_point(q, FillRule::NonZero),
-            without_segment.classify_point(q, FillRule::NonZero),
-        );
+        let (a, b) = (full.locate(q), without_segment.locate(q));
         assert!(
             a == b || a == Location::Boundary || b == Location::Boundary,
             "{q:?}"
@@ -222,8 +224,9 @@ fn defects_change_containment_only_nearby() {
     )
     .unwrap();
     let gap_at = d.curves()[1].start_point();
-    let moved =
-        WindingField::new(&Domain::new(curves).unwrap(), rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let moved = WindingField::new(&Domain::new(curves).unwrap(), rs_contain::DEFAULT_TOLERANCE)
+        .unwrap()
+        .with_fill_rule(FillRule::NonZero);
     let mut near: Vec<Point> = pts.clone();
     for i in -20..=20 {
         for j in -20..=20 {
@@ -231,8 +234,8 @@ fn defects_change_containment_only_nearby() {
         }
     }
     for &q in &near {
-        let before = full.classify_point(q, FillRule::NonZero);
-        let after = moved.classify_point(q, FillRule::NonZero);
+        let before = full.locate(q);
+        let after = moved.locate(q);
         if before != after && before != Location::Boundary && after != Location::Boundary {
             assert!(q.distance(gap_at) < 1e-5, "{q:?} changed far from the gap");
         }
@@ -368,7 +371,7 @@ fn gwn_containment_agrees_with_inrs_on_watertight_fixtures() {
         let gwn = c.classify(&pts, Method::Gwn);
         assert_eq!(gwn, c.classify(&pts, Method::InRS2), "{name}");
         // Non-zero and even-odd agree on these simple closed shapes.
-        let f = c.winding_field();
-        assert_eq!(f.classify(&pts, FillRule::NonZero), gwn, "{name}");
+        let f = c.winding_field().clone().with_fill_rule(FillRule::NonZero);
+        assert_eq!(f.locate_all(&pts), gwn, "{name}");
     }
 }

@@ -1,9 +1,10 @@
 //! The reference inside-counts of the fixtures for 10^3, 10^4 and 10^5 Halton points must match
 //! exactly, with every method and several box refinements.
 
+use rs_contain::Locate;
 use rs_contain::{
-    Classifier, ContainOptions, FastWindingField, FillRule, Location, LocatorOptions, Method,
-    PointLocator, WindingField, halton_points,
+    Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
+    WindingField, halton_points,
 };
 use rs_spline::{BoundingBox, Domain, Point};
 use serde_json::Value;
@@ -81,10 +82,7 @@ fn inside_counts_match_the_reference_exactly() {
             for subdivisions in [1, 8] {
                 let c = Classifier::new(
                     &domain,
-                    ContainOptions {
-                        subdivisions,
-                        ..Default::default()
-                    },
+                    ContainOptions::DEFAULT.with_subdivisions(subdivisions),
                 )
                 .unwrap();
                 for method in Method::ALL {
@@ -106,11 +104,11 @@ fn inside_counts_match_the_reference_exactly() {
                 let fast = FastWindingField::new(&field);
                 let inside = pts
                     .iter()
-                    .filter(|&&q| fast.classify_point(q, FillRule::EvenOdd) == Location::Inside)
+                    .filter(|&&q| fast.locate(q) == Location::Inside)
                     .count();
                 assert_eq!(inside, expected, "{name}: N = {n}, fast winding field");
                 let locator = PointLocator::new(&c, LocatorOptions::default());
-                let loc = locator.classify_parallel(&pts);
+                let loc = locator.locate_all_parallel(&pts);
                 let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
                 assert_eq!(
                     inside, expected,

@@ -9,6 +9,7 @@ use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 use dxf::entities::{Arc, Circle, Ellipse, Entity, EntityType, Line, LwPolyline, Spline};
 use dxf::{Drawing, LwPolylineVertex, Vector, enums::AcadVersion};
+use rs_contain::Locate;
 use rs_io::IoError;
 use rs_io::dxf_file::{DxfOptions, domain_from_dxf_str};
 use rs_spline::{Domain, Point};
@@ -141,7 +142,7 @@ fn lines_and_arcs_in_any_order_and_direction_are_chained() {
         (Point::new(0.8, 0.1), Inside),
         (Point::new(-0.1, 0.0), Outside),
     ] {
-        assert_eq!(c.classify_point(p), want, "{p:?}");
+        assert_eq!(c.locate(p), want, "{p:?}");
     }
 }
 

@@ -7,9 +7,9 @@
 
 use std::path::{Path, PathBuf};
 
+use rs_contain::Locate;
 use rs_contain::{
-    Classifier, ContainOptions, FastWindingField, FillRule, Location, LocatorOptions, Method,
-    PointLocator,
+    Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
 };
 use rs_io::font::{Glyph, glyph_domain};
 use rs_spline::{Domain, Point};
@@ -51,14 +51,10 @@ fn check_domain(name: &str, d: &Domain, n: usize) -> usize {
         );
     }
     let locator = PointLocator::new(&classifier, LocatorOptions { cells: 64 });
-    assert_eq!(locator.classify(&pts), expected, "{name}: locator");
+    assert_eq!(locator.locate_all(&pts), expected, "{name}: locator");
     let fast = FastWindingField::new(classifier.winding_field());
     for (p, e) in pts.iter().zip(&expected) {
-        assert_eq!(
-            fast.classify_point(*p, FillRule::EvenOdd),
-            *e,
-            "{name}: fast GWN at {p:?}"
-        );
+        assert_eq!(fast.locate(*p), *e, "{name}: fast GWN at {p:?}");
     }
     let poly = DensePolygon::new(d, 1e-7 * s);
     let near = NearBoundary::new(&poly, 1e-5 * s);

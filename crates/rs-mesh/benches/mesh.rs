@@ -2,6 +2,7 @@
 //! location on the inRS paper's domains, with inRS containment of the same points as the
 //! baseline measured in the same run. Each closure asserts its result.
 
+use rs_contain::Locate;
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
@@ -46,7 +47,7 @@ fn mesh(c: &mut Criterion) {
             b.iter(|| {
                 let found = queries
                     .iter()
-                    .filter(|&&p| locator.locate(p).is_some())
+                    .filter(|&&p| locator.triangle_at(p).is_some())
                     .count();
                 assert_eq!(found, inside);
             })
@@ -57,7 +58,7 @@ fn mesh(c: &mut Criterion) {
                 b.iter(|| {
                     let n = queries
                         .iter()
-                        .filter(|&&p| classifier.classify_point(p) != Location::Outside)
+                        .filter(|&&p| classifier.locate(p) != Location::Outside)
                         .count();
                     assert_eq!(n, inside);
                 })

@@ -24,8 +24,8 @@
 //! let area: f64 = (0..mesh.triangles().len()).map(|t| mesh.triangle_area(t)).sum();
 //! assert!((area - std::f64::consts::PI).abs() < 1e-10); // exactly the disc
 //! let locator = CurvedLocator::new(&mesh).unwrap();
-//! assert!(locator.locate(Point::new(0.999, 0.0)).is_some()); // between an arc and its chord
-//! assert!(locator.locate(Point::new(1.001, 0.0)).is_none());
+//! assert!(locator.triangle_at(Point::new(0.999, 0.0)).is_some()); // between an arc and its chord
+//! assert!(locator.triangle_at(Point::new(1.001, 0.0)).is_none());
 //! ```
 
 mod boundary;

@@ -1,5 +1,6 @@
 //! Point location in a curved triangulation.
 
+use rs_contain::Locate;
 use rs_contain::{Classifier, ContainOptions, Location};
 use rs_spline::prelude::*;
 use rs_spline::{BoundingBox, Domain, Point, segment};
@@ -50,8 +51,8 @@ impl<'a> CurvedLocator<'a> {
 
     /// The curved triangle holding `p` (closed triangles: points on shared edges get one of
     /// the neighbours), or `None` outside the domain.
-    pub fn locate(&self, p: Point) -> Option<usize> {
-        if !p.is_finite() || self.domain.classify_point(p) == Location::Outside {
+    pub fn triangle_at(&self, p: Point) -> Option<usize> {
+        if !p.is_finite() || self.domain.locate(p) == Location::Outside {
             return None;
         }
         let m = self.mesh;
@@ -80,7 +81,7 @@ impl<'a> CurvedLocator<'a> {
             _ => {}
         }
         for (bbox, i, lens) in &self.lenses {
-            if bbox.contains(p) && lens.classify_point(p) != Location::Outside {
+            if bbox.contains(p) && lens.locate(p) != Location::Outside {
                 return Some(m.arcs()[*i].triangle);
             }
         }
@@ -102,4 +103,12 @@ fn distance_to_triangle(m: &CurvedTriangulation, t: usize, p: Point) -> f64 {
             p.distance(a + ab * s)
         })
         .fold(f64::INFINITY, f64::min)
+}
+
+impl Locate for CurvedLocator<'_> {
+    /// Containment in the curved triangulation's domain (the union of its curved triangles):
+    /// the domain's own exact test, boundary band included.
+    fn locate(&self, p: Point) -> Location {
+        self.domain.locate(p)
+    }
 }

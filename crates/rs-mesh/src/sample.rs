@@ -1,6 +1,7 @@
 //! Point sampling in a curved domain: the paper's Algorithm 11.1 and quasi-Monte Carlo.
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
+use rs_contain::Locate;
 use rs_contain::{Classifier, ContainOptions, Location, radical_inverse};
 use rs_spline::{Domain, Point};
 
@@ -115,13 +116,9 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
     let diag = bb.diagonal();
     let band = Classifier::new(
         domain,
-        ContainOptions {
-            tolerance: 0.25 * h / diag,
-            ..Default::default()
-        },
+        ContainOptions::DEFAULT.with_tolerance(0.25 * h / diag),
     )?;
-    interior
-        .retain(|&p| !near.any_within(p, 0.5 * h) && band.classify_point(p) == Location::Inside);
+    interior.retain(|&p| !near.any_within(p, 0.5 * h) && band.locate(p) == Location::Inside);
     Ok(WellSpacedPoints {
         h,
         interior,
@@ -150,7 +147,7 @@ pub fn halton_points_in(domain: &Domain, count: usize) -> Result<Vec<Point>, Mes
             bb.min.x + radical_inverse(i, 2) * bb.width(),
             bb.min.y + radical_inverse(i, 3) * bb.height(),
         );
-        if classifier.classify_point(p) == Location::Inside {
+        if classifier.locate(p) == Location::Inside {
             inside.push(p);
             if inside.len() == count {
                 return Ok(inside);

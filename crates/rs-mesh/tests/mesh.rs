@@ -2,6 +2,7 @@
 //! containment, the domains' exact areas, dense polygons of the curved triangles, and the
 //! documented spacing bounds.
 
+use rs_contain::Locate;
 use rs_contain::{Classifier, ContainOptions, Location, halton_points};
 use rs_mesh::{
     CurvedLocator, CurvedTriangulation, EdgeKind, WellSpacedPoints, halton_points_in,
@@ -35,21 +36,11 @@ fn well_spaced_points_are_inside_and_well_spaced() {
         let h = pts.h;
         let c = Classifier::new(d, ContainOptions::default()).unwrap();
         for p in &pts.interior {
-            assert_eq!(
-                c.classify_point(*p),
-                Location::Inside,
-                "{}: {p:?}",
-                case.name
-            );
+            assert_eq!(c.locate(*p), Location::Inside, "{}: {p:?}", case.name);
         }
         let boundary: Vec<Point> = pts.boundary.iter().flatten().map(|b| b.point).collect();
         for p in &boundary {
-            assert_eq!(
-                c.classify_point(*p),
-                Location::Boundary,
-                "{}: {p:?}",
-                case.name
-            );
+            assert_eq!(c.locate(*p), Location::Boundary, "{}: {p:?}", case.name);
         }
         // Documented bounds: interior >= 0.75 h apart, >= h/2 from boundary points.
         let ii = min_pair_distance(&pts.interior, &pts.interior, true);
@@ -80,7 +71,7 @@ fn well_spaced_points_are_inside_and_well_spaced() {
         let all = pts.all_points();
         let probe: Vec<Point> = halton_points(400, d.bounding_box())
             .into_iter()
-            .filter(|p| c.classify_point(*p) == Location::Inside)
+            .filter(|p| c.locate(*p) == Location::Inside)
             .collect();
         for p in probe {
             let near = all
@@ -121,7 +112,7 @@ fn halton_sampling_gives_the_requested_count_inside() {
         let pts = halton_points_in(d, 500).unwrap();
         assert_eq!(pts.len(), 500);
         let c = Classifier::new(d, ContainOptions::default()).unwrap();
-        assert!(pts.iter().all(|p| c.classify_point(*p) == Location::Inside));
+        assert!(pts.iter().all(|p| c.locate(*p) == Location::Inside));
         assert_eq!(pts, halton_points_in(d, 500).unwrap(), "deterministic");
     }
     let d = &rs_testkit::annulus().domain;
@@ -254,7 +245,7 @@ fn region_area(d: &Domain) -> f64 {
     for (i, l) in loops.iter().enumerate() {
         let p = l.curves()[0].start_point();
         let depth = (0..loops.len())
-            .filter(|&j| j != i && classifiers[j].classify_point(p) == Location::Inside)
+            .filter(|&j| j != i && classifiers[j].locate(p) == Location::Inside)
             .count();
         let a = l.signed_area().abs();
         total += if depth % 2 == 0 { a } else { -a };
@@ -279,8 +270,8 @@ fn point_location_agrees_with_containment() {
             .collect();
         let mut in_lens = 0;
         for p in halton_points(3000, bb) {
-            let located = loc.locate(p);
-            let inside = c.classify_point(p) != Location::Outside;
+            let located = loc.triangle_at(p);
+            let inside = c.locate(p) != Location::Outside;
             assert_eq!(located.is_some(), inside, "{}: {p:?}", case.name);
             if let Some(t) = located {
                 let poly = &polys[t];

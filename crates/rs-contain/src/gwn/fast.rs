@@ -7,8 +7,8 @@ use std::f64::consts::TAU;
 use rs_spline::{Point, RationalBezier};
 
 use super::curve::{SubCurves, adaptive_winding, chord_angle, is_simple_convex};
-use super::{FillRule, QueryStats, WindingField};
-use crate::Location;
+use super::{QueryStats, WindingField};
+use crate::{Locate, Location};
 
 /// Levels of each piece's precomputed subdivision hierarchy (`2^(d+1) - 1` sub-curves).
 pub const HIERARCHY_DEPTH: u32 = 6;
@@ -223,14 +223,16 @@ impl<'a> FastWindingField<'a> {
             self.winding_numbers(points)
         }
     }
+}
 
-    /// Containment of `q` (boundary test as [`WindingField::classify_point`]).
-    pub fn classify_point(&self, q: Point, rule: FillRule) -> Location {
+impl Locate for FastWindingField<'_> {
+    /// As the [`WindingField`]'s [`Locate`], with its fill rule, from the fast winding number.
+    fn locate(&self, q: Point) -> Location {
         if self.field.is_on_boundary(q) {
             return Location::Boundary;
         }
         self.field
-            .location_from_winding(self.winding_number(q), rule)
+            .location_from_winding(self.winding_number(q), self.field.fill_rule())
     }
 }
 

@@ -6,9 +6,11 @@ mod fast;
 mod raycast;
 
 use rs_boxes::{BoxGrid, BoxOptions, MonotoneBoxes};
+use std::sync::Arc;
+
 use rs_spline::{Domain, Point, RationalBezier};
 
-use crate::{ContainError, Location};
+use crate::{ContainError, Locate, Location};
 
 pub use curve::curve_winding_number;
 pub use fast::{CurveHierarchy, FastWindingField, HIERARCHY_DEPTH};
@@ -63,50 +65,65 @@ pub enum FillRule {
 /// # Examples
 ///
 /// ```
-/// use rs_contain::{FillRule, Location, WindingField};
+/// use rs_contain::{FillRule, Locate, Location, WindingField};
 /// use rs_spline::{circle, Domain, Point};
 /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
 /// let f = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
 /// assert!((f.winding_number(Point::new(0.3, 0.2)) - 1.0).abs() < 1e-14);
 /// assert!((f.winding_number(Point::new(1.0, 0.0)) - 0.5).abs() < 1e-14); // on the curve
-/// assert_eq!(f.classify_point(Point::new(2.0, 0.0), FillRule::NonZero), Location::Outside);
+/// let nonzero = f.with_fill_rule(FillRule::NonZero);
+/// assert_eq!(nonzero.locate(Point::new(2.0, 0.0)), Location::Outside);
 /// ```
 #[derive(Clone, Debug)]
 pub struct WindingField {
     pieces: Vec<RationalBezier>,
-    boxes: MonotoneBoxes,
+    boxes: Arc<MonotoneBoxes>,
     grid: BoxGrid,
     tol: f64,
+    rule: FillRule,
 }
 
 impl WindingField {
     /// The field of every curve of `domain`, with boundary tolerance `tolerance` relative to the
-    /// bounding-box diagonal.
+    /// bounding-box diagonal, and the even-odd fill rule.
     ///
     /// # Errors
-    /// [`ContainError::InvalidTolerance`].
+    /// [`ContainError::InvalidTolerance`], [`ContainError::Boxes`].
     pub fn new(domain: &Domain, tolerance: f64) -> Result<Self, ContainError> {
-        let boxes = MonotoneBoxes::new(domain, BoxOptions::default())?;
-        Self::with_boxes(domain, boxes, tolerance)
-    }
-
-    pub(crate) fn with_boxes(
-        domain: &Domain,
-        boxes: MonotoneBoxes,
-        tolerance: f64,
-    ) -> Result<Self, ContainError> {
         if !(tolerance.is_finite() && tolerance >= 0.0) {
             return Err(ContainError::InvalidTolerance(tolerance));
         }
+        let boxes = MonotoneBoxes::new(domain, BoxOptions::default())?;
+        Ok(Self::from_shared_boxes(domain, Arc::new(boxes), tolerance))
+    }
+
+    /// The field over boxes built before from the same domain; `tolerance` already checked.
+    pub(crate) fn from_shared_boxes(
+        domain: &Domain,
+        boxes: Arc<MonotoneBoxes>,
+        tolerance: f64,
+    ) -> Self {
         let tol = tolerance * boxes.bounding_box().diagonal();
         let pieces = domain.bezier_pieces().into_iter().map(|(_, b)| b).collect();
         let grid = BoxGrid::new(boxes.boxes(), tol);
-        Ok(Self {
+        Self {
             pieces,
             boxes,
             grid,
             tol,
-        })
+            rule: FillRule::EvenOdd,
+        }
+    }
+
+    /// The same field answering [`Locate`] with fill rule `rule`.
+    pub fn with_fill_rule(mut self, rule: FillRule) -> Self {
+        self.rule = rule;
+        self
+    }
+
+    /// The fill rule of [`Locate`].
+    pub fn fill_rule(&self) -> FillRule {
+        self.rule
     }
 
     /// The monotone boxes of the collection's curves.
@@ -155,14 +172,6 @@ impl WindingField {
             .any(|&i| boxes[i as usize].is_near(q, self.tol))
     }
 
-    /// Containment of `q` from the field (see the type's semantics).
-    pub fn classify_point(&self, q: Point, rule: FillRule) -> Location {
-        if self.is_on_boundary(q) {
-            return Location::Boundary;
-        }
-        self.location_from_winding(self.winding_number(q), rule)
-    }
-
     /// Inside or outside from a winding number off the boundary: rounded, then the fill rule.
     pub(crate) fn location_from_winding(&self, w: f64, rule: FillRule) -> Location {
         let w = w.round() as i64;
@@ -176,12 +185,14 @@ impl WindingField {
             Location::Outside
         }
     }
+}
 
-    /// Containment of every point, in input order.
-    pub fn classify(&self, points: &[Point], rule: FillRule) -> Vec<Location> {
-        points
-            .iter()
-            .map(|&q| self.classify_point(q, rule))
-            .collect()
+impl Locate for WindingField {
+    /// Boundary within the tolerance, otherwise the rounded winding number and the fill rule.
+    fn locate(&self, q: Point) -> Location {
+        if self.is_on_boundary(q) {
+            return Location::Boundary;
+        }
+        self.location_from_winding(self.winding_number(q), self.rule)
     }
 }
