@@ -7,10 +7,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use inrs::contain::{
-    FastWindingField, FlattenedPolygon, LocatorOptions, PointLocator, QueryStats, WindingAlgorithm,
-    WindingField, halton_points,
-};
+use inrs::contain::baselines::{FlattenedPolygon, WindingAlgorithm, halton_points};
+use inrs::contain::{FastWindingField, LocatorOptions, PointLocator, QueryStats, WindingField};
 use inrs::{BoundingBox, Classifier, ContainOptions, Domain, Location, Method, Point};
 
 /// Options of a run.

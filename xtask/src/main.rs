@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use std::time::Instant;
 
-use inrs::contain::halton_points;
+use inrs::contain::baselines::halton_points;
 use inrs::{
     BoundingBox, Classifier, ContainOptions, Domain, DomainSummary, Location, Method, Point,
 };

@@ -14,7 +14,8 @@ use cli::limits::{
 use cli::output::{Failure, Output, write_text};
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
 use inrs::contain::DEFAULT_TOLERANCE;
-use inrs::contain::{FillRule, QueryStats, WindingAlgorithm, WindingField};
+use inrs::contain::baselines::WindingAlgorithm;
+use inrs::contain::{FillRule, QueryStats, WindingField};
 use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Method, PointRecord};
 
 /// Exact point containment for planar domains bounded by NURBS curves.

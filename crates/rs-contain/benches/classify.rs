@@ -5,7 +5,8 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use rs_contain::{Classifier, ContainOptions, FlattenedPolygon, Location, Method, halton_points};
+use rs_contain::baselines::{FlattenedPolygon, halton_points};
+use rs_contain::{Classifier, ContainOptions, Location, Method};
 use rs_spline::{BoundingBox, Point};
 
 /// (fixture, reference bounding box, N, reference inside count) from the fixture files.

@@ -6,9 +6,10 @@ use rs_contain::Locate;
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use rs_contain::baselines::halton_points;
 use rs_contain::{
     Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
-    WindingField, halton_points,
+    WindingField,
 };
 use rs_spline::{BoundingBox, Point};
 

@@ -72,9 +72,11 @@ impl Default for ContainOptions {
 
 /// A point classifier for one closed domain: the paper's Algorithm inRS.
 ///
-/// Build it once (monotone boxes, critical points, bounding box) and classify any number of
-/// points with [`Classifier::classify`] (inRS1 or inRS2, same results) or
-/// [`Classifier::classify_point`]. See the crate documentation for the exact semantics.
+/// Build it once (monotone boxes, critical points, bounding box) and locate any number of
+/// points through [`Locate`] (one point, or a batch with the method of its options), or with
+/// [`Classifier::classify`] and a method of your choice (every method gives the same answers).
+/// The winding-number field and the grid of [`Method::Fast`] are built on first use and kept.
+/// See the crate documentation for the exact semantics.
 ///
 /// # Examples
 ///

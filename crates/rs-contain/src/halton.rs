@@ -22,7 +22,7 @@ pub fn radical_inverse(mut i: u64, base: u64) -> f64 {
 /// # Examples
 ///
 /// ```
-/// use rs_contain::halton_points;
+/// use rs_contain::baselines::halton_points;
 /// use rs_spline::{BoundingBox, Point};
 /// let b = BoundingBox { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) };
 /// let p = halton_points(3, b);

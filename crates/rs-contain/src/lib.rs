@@ -62,11 +62,26 @@ pub use classifier::{Classifier, ContainOptions, DEFAULT_TOLERANCE};
 pub use error::ContainError;
 pub use filled_area::{MAX_NESTED_LOOPS, even_odd_area};
 pub use gwn::{
-    CurveHierarchy, FastWindingField, FillRule, HIERARCHY_DEPTH, QueryStats, WindingAlgorithm,
-    WindingField, curve_winding_number,
+    CurveHierarchy, FastWindingField, FillRule, HIERARCHY_DEPTH, QueryStats, WindingField,
+    curve_winding_number,
 };
-pub use halton::{halton_points, radical_inverse};
 pub use locate::Locate;
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
-pub use polygon::FlattenedPolygon;
+
+/// What the papers compare against, and the points they compare on: kept out of the core API
+/// because no one should classify with them, but needed to reproduce the papers' tables.
+///
+/// - [`FlattenedPolygon`](baselines::FlattenedPolygon): the boundary flattened to a polygon
+///   and an INPOLY2-style crossing test (the inRS paper's baseline).
+/// - [`WindingAlgorithm`](baselines::WindingAlgorithm): the GWN paper's two ray-casting
+///   variants besides the adaptive algorithm, for
+///   [`WindingField::winding_number_with`].
+/// - [`halton_points`](baselines::halton_points) and
+///   [`radical_inverse`](baselines::radical_inverse): the quasi-random test points of the
+///   papers' experiments.
+pub mod baselines {
+    pub use crate::gwn::WindingAlgorithm;
+    pub use crate::halton::{halton_points, radical_inverse};
+    pub use crate::polygon::FlattenedPolygon;
+}

@@ -49,14 +49,14 @@ pub enum Decision {
 pub enum Method {
     /// Each point against each candidate box: `O(M N)` (the paper's inRS1).
     InRS1,
-    /// Points sorted by abscissa, a binary search per box (the paper's inRS2). The default.
-    #[default]
+    /// Points sorted by abscissa, a binary search per box (the paper's inRS2).
     InRS2,
     /// Generalized winding number, rounded, even-odd rule (see [`crate::WindingField`]).
     Gwn,
     /// The fastest exact path for the batch size: inRS2 below
     /// [`FAST_METHOD_MIN_POINTS`] points, otherwise the grid [`crate::PointLocator`] run on all
-    /// threads. Same results as inRS2.
+    /// threads. Same results as inRS2. The default, in the library as on the command line.
+    #[default]
     Fast,
 }
 

@@ -2,9 +2,10 @@
 //! ordinary and adversarial points; inRS1 and inRS2 agree everywhere; both fallbacks are forced.
 
 use rs_contain::Locate;
+use rs_contain::baselines::halton_points;
 use rs_contain::{
     Classifier, ContainOptions, Decision, FastWindingField, Location, LocatorOptions, Method,
-    PointLocator, halton_points,
+    PointLocator,
 };
 use rs_spline::Point;
 use rs_spline::prelude::*;

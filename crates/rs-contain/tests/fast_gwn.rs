@@ -2,7 +2,8 @@
 //! curves, for closed shapes, open chains and gaps; far queries cost O(log N).
 
 use rs_contain::Locate;
-use rs_contain::{FastWindingField, QueryStats, WindingField, halton_points};
+use rs_contain::baselines::halton_points;
+use rs_contain::{FastWindingField, QueryStats, WindingField};
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, circular_arc, segment};
 use rs_testkit::all_cases;
@@ -73,7 +74,7 @@ fn far_queries_take_one_angle_per_chain() {
     let mut reference = QueryStats::default();
     field.winding_number_with(
         Point::new(0.1, 0.2),
-        rs_contain::WindingAlgorithm::Adaptive,
+        rs_contain::baselines::WindingAlgorithm::Adaptive,
         &mut reference,
     );
     assert!(reference.curve_evaluations >= 500);

@@ -6,9 +6,10 @@ use rs_contain::Locate;
 use rs_spline::prelude::*;
 use std::f64::consts::{PI, TAU};
 
+use rs_contain::baselines::{WindingAlgorithm, halton_points};
 use rs_contain::{
-    Classifier, ContainOptions, FillRule, Location, Method, QueryStats, WindingAlgorithm,
-    WindingField, curve_winding_number, halton_points,
+    Classifier, ContainOptions, FillRule, Location, Method, QueryStats, WindingField,
+    curve_winding_number,
 };
 use rs_spline::{
     BoundingBox, Domain, NurbsCurve, Point, RationalBezier, circle, circular_arc, segment,

@@ -2,9 +2,10 @@
 //! exactly, with every method and several box refinements.
 
 use rs_contain::Locate;
+use rs_contain::baselines::halton_points;
 use rs_contain::{
     Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
-    WindingField, halton_points,
+    WindingField,
 };
 use rs_spline::{BoundingBox, Domain, Point};
 use serde_json::Value;
@@ -125,7 +126,7 @@ fn inside_counts_match_the_reference_exactly() {
 #[test]
 fn polygon_baseline_matches_the_reference() {
     for (name, domain, meta) in fixtures() {
-        let poly = rs_contain::FlattenedPolygon::new(&domain, 1e-10);
+        let poly = rs_contain::baselines::FlattenedPolygon::new(&domain, 1e-10);
         let bbox = reference_box(&meta);
         for (n, expected) in references(&meta) {
             let pts = halton_points(n, bbox);

@@ -6,7 +6,8 @@ use rs_contain::Locate;
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use rs_contain::{Classifier, ContainOptions, Location, halton_points};
+use rs_contain::baselines::halton_points;
+use rs_contain::{Classifier, ContainOptions, Location};
 use rs_mesh::{CurvedLocator, CurvedTriangulation, well_spaced_points};
 
 const FIXTURES: [&str; 3] = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune"];

@@ -2,7 +2,8 @@
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::Locate;
-use rs_contain::{Classifier, ContainOptions, Location, radical_inverse};
+use rs_contain::baselines::radical_inverse;
+use rs_contain::{Classifier, ContainOptions, Location};
 use rs_spline::{Domain, Point};
 
 use crate::MeshError;

@@ -3,7 +3,8 @@
 //! fine. Skips with a message when the font is absent (`.ci/run` installs it).
 
 use rs_contain::Locate;
-use rs_contain::{Classifier, ContainOptions, Location, halton_points};
+use rs_contain::baselines::halton_points;
+use rs_contain::{Classifier, ContainOptions, Location};
 use rs_io::font::{Glyph, glyph_domain};
 use rs_mesh::{CurvedLocator, CurvedTriangulation, well_spaced_points};
 

@@ -3,7 +3,8 @@
 //! documented spacing bounds.
 
 use rs_contain::Locate;
-use rs_contain::{Classifier, ContainOptions, Location, halton_points};
+use rs_contain::baselines::halton_points;
+use rs_contain::{Classifier, ContainOptions, Location};
 use rs_mesh::{
     CurvedLocator, CurvedTriangulation, EdgeKind, WellSpacedPoints, halton_points_in,
     well_spaced_points,
