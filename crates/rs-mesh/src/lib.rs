@@ -30,6 +30,7 @@
 
 mod boundary;
 mod error;
+mod json;
 mod locate;
 mod sample;
 mod svg;
@@ -37,6 +38,7 @@ mod triangulation;
 
 pub use boundary::BoundaryPoint;
 pub use error::MeshError;
+pub use json::mesh_json;
 pub use locate::CurvedLocator;
 pub use sample::{
     MAX_HALTON_TRIES_PER_POINT, MAX_LINES, MAX_SAMPLE_POINTS, WellSpacedPoints, halton_points_in,

@@ -183,31 +183,6 @@ enum Command {
     },
 }
 
-/// The mesh as JSON: vertices, counter-clockwise triangles, and the curved edges (triangle,
-/// edge k from vertex k to k+1, the domain curve and its parameter range from `from` to `to`).
-fn mesh_json(m: &inrs::mesh::CurvedTriangulation) -> String {
-    use inrs::mesh::EdgeKind;
-    let vertices: Vec<[f64; 2]> = m.vertices().iter().map(|p| [p.x, p.y]).collect();
-    let mut curved = Vec::new();
-    for t in 0..m.triangles().len() {
-        for (k, kind) in m.edge_kinds(t).iter().enumerate() {
-            if let EdgeKind::Curved(i) = kind {
-                let a = &m.arcs()[*i];
-                curved.push(serde_json::json!({
-                    "triangle": t, "edge": k, "curve": a.curve, "loop": a.loop_index,
-                    "u0": a.u0, "u1": a.u1, "from": a.from, "to": a.to,
-                }));
-            }
-        }
-    }
-    serde_json::json!({
-        "vertices": vertices,
-        "triangles": m.triangles(),
-        "curved_edges": curved,
-    })
-    .to_string()
-}
-
 #[allow(clippy::too_many_arguments)]
 fn convex_domain(
     path: &std::path::Path,
@@ -486,7 +461,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 .as_deref()
                 .map(|p| Output::create(Some(p)))
                 .transpose()?;
-            json.write_str(&(mesh_json(&m) + "\n"))?;
+            json.write_str(&(inrs::mesh::mesh_json(&m) + "\n"))?;
             if let Some(f) = figure.as_mut() {
                 f.write_str(&inrs::mesh::mesh_svg(&m, 800.0))?;
             }
