@@ -224,7 +224,7 @@ fn bad_input_gives_one_line_errors() {
     assert!(
         String::from_utf8(out.stderr)
             .unwrap()
-            .contains("unknown method \"magic\"")
+            .contains("invalid value 'magic' for '--method <METHOD>'")
     );
 }
 

@@ -1,4 +1,5 @@
-//! The command-line tool's plumbing: outputs and option limits.
+//! The command-line tool's plumbing: its error, outputs and option limits.
 
+pub(crate) mod error;
 pub(crate) mod limits;
 pub(crate) mod output;

@@ -1,23 +1,10 @@
-//! Where a command writes: a file replaced atomically, or standard output; and how it fails.
+//! Where a command writes: a file replaced atomically, or standard output.
 
 use std::fs::File;
 use std::io::{BufWriter, ErrorKind, Write};
 use std::path::{Path, PathBuf};
 
-/// Why a command stopped.
-#[derive(Debug)]
-pub(crate) enum Failure {
-    /// A one-line message for standard error; the exit status is 1.
-    Message(String),
-    /// Standard output was closed by its reader (`| head`): end quietly, as other tools do.
-    ClosedPipe,
-}
-
-impl From<String> for Failure {
-    fn from(m: String) -> Self {
-        Failure::Message(m)
-    }
-}
+use crate::cli::error::CliError;
 
 /// An output stream. A file is written under a temporary name in the same directory and
 /// renamed over the target by [`Output::finish`]; if the command fails (or panics) first, the
@@ -29,7 +16,7 @@ pub(crate) struct Output {
 
 impl Output {
     /// Standard output, or a new temporary file next to `path`.
-    pub(crate) fn create(path: Option<&Path>) -> Result<Self, Failure> {
+    pub(crate) fn create(path: Option<&Path>) -> Result<Self, CliError> {
         match path {
             None => Ok(Self {
                 sink: BufWriter::with_capacity(1 << 16, Box::new(std::io::stdout().lock())),
@@ -53,28 +40,28 @@ impl Output {
     }
 
     /// What a write error means here.
-    fn failure(&self, e: std::io::Error) -> Failure {
+    fn failure(&self, e: std::io::Error) -> CliError {
         match &self.file {
-            None if e.kind() == ErrorKind::BrokenPipe => Failure::ClosedPipe,
-            None => Failure::Message(format!("standard output: {e}")),
-            Some((_, target)) => Failure::Message(format!("{}: {e}", target.display())),
+            None if e.kind() == ErrorKind::BrokenPipe => CliError::ClosedPipe,
+            None => CliError::Message(format!("standard output: {e}")),
+            Some((_, target)) => CliError::Message(format!("{}: {e}", target.display())),
         }
     }
 
     /// Writes `text`.
-    pub(crate) fn write_str(&mut self, text: &str) -> Result<(), Failure> {
+    pub(crate) fn write_str(&mut self, text: &str) -> Result<(), CliError> {
         self.sink
             .write_all(text.as_bytes())
             .map_err(|e| self.failure(e))
     }
 
     /// Writes formatted text.
-    pub(crate) fn write_fmt(&mut self, args: std::fmt::Arguments<'_>) -> Result<(), Failure> {
+    pub(crate) fn write_fmt(&mut self, args: std::fmt::Arguments<'_>) -> Result<(), CliError> {
         self.sink.write_fmt(args).map_err(|e| self.failure(e))
     }
 
     /// Flushes and, for a file, moves it into place.
-    pub(crate) fn finish(mut self) -> Result<(), Failure> {
+    pub(crate) fn finish(mut self) -> Result<(), CliError> {
         self.sink.flush().map_err(|e| self.failure(e))?;
         if let Some((tmp, target)) = self.file.take() {
             // Close the file before renaming it.
@@ -84,7 +71,7 @@ impl Output {
             ));
             if let Err(e) = std::fs::rename(&tmp, &target) {
                 let _ = std::fs::remove_file(&tmp);
-                return Err(Failure::Message(format!("{}: {e}", target.display())));
+                return Err(CliError::Message(format!("{}: {e}", target.display())));
             }
         }
         Ok(())
@@ -100,7 +87,7 @@ impl Drop for Output {
 }
 
 /// Writes `text` to `path` (atomically) or to standard output.
-pub(crate) fn write_text(path: Option<&Path>, text: &str) -> Result<(), Failure> {
+pub(crate) fn write_text(path: Option<&Path>, text: &str) -> Result<(), CliError> {
     let mut out = Output::create(path)?;
     out.write_str(text)?;
     out.finish()

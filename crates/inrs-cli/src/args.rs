@@ -1,0 +1,124 @@
+//! Arguments shared by several subcommands, and the option enums (each a clap `ValueEnum`
+//! mapped onto the library's type).
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use inrs::Domain;
+use inrs::contain::FillRule;
+use inrs::contain::baselines::WindingAlgorithm;
+
+use crate::cli::error::CliError;
+
+/// `--domain`: the domain every subcommand but `convex-domain` reads.
+#[derive(Args, Debug)]
+pub(crate) struct DomainArg {
+    /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, or a font
+    /// glyph (`font.ttf#B`, `#U+0040`, `#gid:37`).
+    #[arg(long)]
+    pub(crate) domain: PathBuf,
+}
+
+impl DomainArg {
+    /// Reads the domain, choosing the reader by the file name.
+    pub(crate) fn load(&self) -> Result<Domain, CliError> {
+        let spec = self.domain.to_string_lossy();
+        inrs::io::load_domain(&spec).map_err(|e| match e {
+            inrs::io::IoError::Read { .. }
+            | inrs::io::IoError::UnknownFormat { .. }
+            | inrs::io::IoError::FormatDisabled { .. } => CliError::Message(e.to_string()),
+            other => CliError::Message(format!("{spec}: {other}")),
+        })
+    }
+
+    /// An error about the domain, prefixed with its file name.
+    pub(crate) fn error(&self, e: impl std::fmt::Display) -> CliError {
+        CliError::Message(format!("{}: {e}", self.domain.display()))
+    }
+}
+
+/// `classify --method`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum MethodArg {
+    /// inRS2 for small batches, the parallel grid point locator for large ones (the default).
+    Fast,
+    /// Each point against each box (the paper's inRS1).
+    Inrs1,
+    /// Points sorted by abscissa, a binary search per box (the paper's inRS2).
+    Inrs2,
+    /// Rounded generalized winding number: the only method that accepts open or overlapping
+    /// boundaries.
+    Gwn,
+}
+
+impl From<MethodArg> for inrs::Method {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Fast => inrs::Method::Fast,
+            MethodArg::Inrs1 => inrs::Method::InRS1,
+            MethodArg::Inrs2 => inrs::Method::InRS2,
+            MethodArg::Gwn => inrs::Method::Gwn,
+        }
+    }
+}
+
+/// `classify --fill-rule`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum FillRuleArg {
+    /// Inside where the winding number is odd (agrees with the crossing methods).
+    #[value(alias = "evenodd")]
+    EvenOdd,
+    /// Inside where the winding number is not zero.
+    #[value(alias = "non-zero")]
+    Nonzero,
+}
+
+impl From<FillRuleArg> for FillRule {
+    fn from(r: FillRuleArg) -> Self {
+        match r {
+            FillRuleArg::EvenOdd => FillRule::EvenOdd,
+            FillRuleArg::Nonzero => FillRule::NonZero,
+        }
+    }
+}
+
+/// `winding --algorithm`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum AlgorithmArg {
+    /// Exact at any distance and at points on the curves (the default).
+    Adaptive,
+    /// Ray casting by geometric binary search (the GWN paper's baseline).
+    BinarySearch,
+    /// Ray casting by Bezier clipping (the GWN paper's baseline).
+    BezierClipping,
+}
+
+impl From<AlgorithmArg> for WindingAlgorithm {
+    fn from(a: AlgorithmArg) -> Self {
+        match a {
+            AlgorithmArg::Adaptive => WindingAlgorithm::Adaptive,
+            AlgorithmArg::BinarySearch => WindingAlgorithm::BinarySearch,
+            AlgorithmArg::BezierClipping => WindingAlgorithm::BezierClipping,
+        }
+    }
+}
+
+/// `sample --method`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SampleMethod {
+    /// Schumaker-Yu Algorithm 11.1: horizontal lines cut exactly with the boundary.
+    Lines,
+    /// The first Halton points inside the domain.
+    Halton,
+}
+
+/// `convex-domain --sign`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SignArg {
+    /// Keep the curvature (torsion) positive.
+    Positive,
+    /// Keep it negative.
+    Negative,
+    /// The sign of the given curve at the middle of its first piece.
+    Auto,
+}

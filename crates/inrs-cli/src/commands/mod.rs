@@ -1,0 +1,9 @@
+//! One module per subcommand: its arguments (`#[derive(Args)]`) and its `run`.
+
+pub(crate) mod classify;
+pub(crate) mod convert;
+pub(crate) mod convex_domain;
+pub(crate) mod info;
+pub(crate) mod mesh;
+pub(crate) mod sample;
+pub(crate) mod winding;
