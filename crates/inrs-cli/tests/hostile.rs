@@ -485,6 +485,34 @@ fn points_files_stream_and_bad_lines_fail_cleanly() {
             20,
         );
     }
+    // A tolerance far wider than a grid cell: the fast method's grid (built for batches of
+    // 50000 points and more) coarsens instead of registering every box part in millions of
+    // cells; every point is then within the boundary band of a circle of radius 1.
+    let many: String = (0..60_000)
+        .map(|i| {
+            format!(
+                "{},{}\n",
+                (i % 300) as f64 / 100.0 - 1.5,
+                (i / 300) as f64 / 100.0 - 1.0
+            )
+        })
+        .collect();
+    let p = write(&d, "many.csv", &many);
+    let wide = check(
+        &d,
+        &[
+            "classify", "--domain", &domain, "--points", &p, "--tol", "0.5",
+        ],
+        Expect::Success,
+        20,
+    );
+    assert_eq!(
+        wide.stdout
+            .lines()
+            .filter(|l| l.ends_with(",boundary"))
+            .count(),
+        60_000
+    );
     // A BOM, CRLF line ends and the tool's own outputs read back.
     let p = write(&d, "bom.csv", "\u{feff}x,y\r\n0.1,0.2\r\n");
     let r = check(

@@ -1,6 +1,8 @@
 //! Monotone boxes: pieces of the boundary on which both coordinates are monotone.
 
-use rs_spline::{Axis, Point};
+use rs_spline::grid::GridFrame;
+use rs_spline::{Axis, BoundingBox, Point};
+use smallvec::SmallVec;
 
 use crate::BezierPiece;
 
@@ -75,7 +77,35 @@ pub struct MonotoneBox {
     pub vertical_slack: f64,
 }
 
+/// Halving depth cap of [`MonotoneBox::for_cells_near`].
+const MAX_REGISTER_DEPTH: u32 = 24;
+
 impl MonotoneBox {
+    /// Calls `f` with every cell of `frame` that holds a point within `tol` of the box's curve
+    /// (some cells twice): the piece is halved until each part's end-point rectangle spans at
+    /// most two cells each way (or 24 halvings), and each part registers the cells of its
+    /// rectangle grown by `tol`. A monotone part lies in the
+    /// rectangle of its end points, so the cells cover the curve's `tol`-neighbourhood while
+    /// following the curve, not the box: the number of cells grows with the curve's length
+    /// in cells, not with the box's area.
+    pub fn for_cells_near(&self, frame: &GridFrame, tol: f64, mut f: impl FnMut(usize)) {
+        let mut stack: SmallVec<[(BezierPiece, u32); 16]> = SmallVec::new();
+        stack.push((self.piece.clone(), 0));
+        while let Some((piece, depth)) = stack.pop() {
+            let part = BoundingBox::from_point(piece.start()).including(piece.end());
+            // The stopping test is on the part itself, not grown by the tolerance: a
+            // tolerance wider than a cell must not make the halving run to its cap.
+            let (c0, c1, r0, r1) = frame.cell_range(part);
+            if (c1 - c0 <= 1 && r1 - r0 <= 1) || depth >= MAX_REGISTER_DEPTH {
+                frame.for_cells_in(part.grown_by(tol), &mut f);
+            } else {
+                let (left, right) = piece.split(0.5);
+                stack.push((right, depth + 1));
+                stack.push((left, depth + 1));
+            }
+        }
+    }
+
     /// Builds the box of a monotone piece. Directions come from the end points; a piece whose
     /// control points share one x (y) is constant in x (y) exactly.
     pub fn new(

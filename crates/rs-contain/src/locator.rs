@@ -4,8 +4,8 @@
 use std::borrow::Cow;
 
 use rs_spline::Point;
+use rs_spline::grid::{CellIndex, GridFrame};
 
-use rs_boxes::BezierPiece;
 use smallvec::SmallVec;
 
 use crate::{Classifier, Locate, Location, Method};
@@ -97,49 +97,107 @@ pub struct PointLocator<'a> {
 /// [`Classifier`] can build it once and lend it; see [`Classifier::locator`]).
 #[derive(Clone, Debug)]
 pub struct LocatorIndex {
-    x0: f64,
-    y0: f64,
-    inv_w: f64,
-    inv_h: f64,
+    /// The boxes registered in the cells near their curves (vertical ones flagged).
+    cells: CellIndex<u32>,
     n: usize,
     state: Vec<u8>,
     /// `state` packed two bits per cell (32 cells per word) for cache-friendly queries.
     packed: Vec<u64>,
-    offsets: Vec<u32>,
-    boxes: Vec<u32>,
+}
+
+impl LocatorIndex {
+    /// Registers every box in the cells near its curve, then classifies the box-free cells.
+    fn build(classifier: &Classifier, cells: usize) -> Self {
+        let tol = classifier.tolerance();
+        let frame = GridFrame::new(
+            classifier.outer(),
+            cells_for_tolerance(classifier.outer(), tol, cells),
+        );
+        let n = frame.n();
+        let all = classifier.boxes().boxes();
+        let mut pairs: Vec<(usize, u32)> = Vec::new();
+        for (bi, b) in all.iter().enumerate() {
+            // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance
+            // to their right): flag them so the walk down a column skips them.
+            let id = if b.x_dir == rs_boxes::Monotonicity::Constant {
+                bi as u32 | VERTICAL_FLAG
+            } else {
+                bi as u32
+            };
+            b.for_cells_near(&frame, tol, |c| pairs.push((c, id)));
+        }
+        let mut ix = Self {
+            cells: CellIndex::new(frame, pairs),
+            n,
+            state: vec![OUTSIDE; n * n],
+            packed: Vec::new(),
+        };
+        ix.classify_uniform_cells(classifier);
+        ix.packed = vec![0u64; (n * n).div_ceil(32)];
+        for (i, &st) in ix.state.iter().enumerate() {
+            ix.packed[i >> 5] |= u64::from(st) << ((i & 31) * 2);
+        }
+        ix
+    }
+
+    /// Marks the cells that meet a box mixed, and classifies each run of box-free cells in a
+    /// column by its first cell (one inRS2 batch for the whole grid).
+    fn classify_uniform_cells(&mut self, classifier: &Classifier) {
+        let n = self.n;
+        let frame = *self.cells.frame();
+        let (cw, ch) = frame.cell_size();
+        let origin = frame.bounding_box().min;
+        let mut starts: Vec<usize> = Vec::new();
+        for c in 0..n {
+            let mut prev_mixed = true;
+            for r in 0..n {
+                let cell = c * n + r;
+                let mixed = self.cells.is_occupied(cell);
+                if mixed {
+                    self.state[cell] = MIXED;
+                } else if prev_mixed {
+                    starts.push(cell);
+                }
+                prev_mixed = mixed;
+            }
+        }
+        let centers: Vec<Point> = starts
+            .iter()
+            .map(|&cell| {
+                let (c, r) = (cell / n, cell % n);
+                Point::new(
+                    origin.x + (c as f64 + 0.5) * cw,
+                    origin.y + (r as f64 + 0.5) * ch,
+                )
+            })
+            .collect();
+        let located = classifier.classify(&centers, Method::InRS2);
+        for (&cell, &l) in starts.iter().zip(&located) {
+            let s = match l {
+                Location::Inside => INSIDE,
+                Location::Outside => OUTSIDE,
+                // Cannot happen for a box-free cell; deciding point by point is always right.
+                Location::Boundary => MIXED,
+            };
+            let (c, r0) = (cell / n, cell % n);
+            for r in r0..n {
+                let i = c * n + r;
+                if self.cells.is_occupied(i) {
+                    break;
+                }
+                self.state[i] = s;
+            }
+        }
+    }
 }
 
 impl<'a> PointLocator<'a> {
     /// Builds the index.
     pub fn new(classifier: &'a Classifier, options: LocatorOptions) -> Self {
-        let n = options.cells.clamp(1, 8192);
-        let outer = classifier.outer();
-        let (x0, y0) = (outer.min.x, outer.min.y);
-        let (w, h) = (outer.width(), outer.height());
-        let inv_w = if w > 0.0 { n as f64 / w } else { 0.0 };
-        let inv_h = if h > 0.0 { n as f64 / h } else { 0.0 };
-        let mut loc = Self {
+        Self {
             classifier,
-            ix: Cow::Owned(LocatorIndex {
-                x0,
-                y0,
-                inv_w,
-                inv_h,
-                n,
-                state: vec![OUTSIDE; n * n],
-                packed: Vec::new(),
-                offsets: vec![0; n * n + 1],
-                boxes: Vec::new(),
-            }),
-        };
-        loc.register_boxes();
-        loc.classify_uniform_cells();
-        let ix = loc.ix.to_mut();
-        ix.packed = vec![0u64; (n * n).div_ceil(32)];
-        for (i, &st) in ix.state.iter().enumerate() {
-            ix.packed[i >> 5] |= u64::from(st) << ((i & 31) * 2);
+            ix: Cow::Owned(LocatorIndex::build(classifier, options.cells)),
         }
-        loc
     }
 
     /// A locator over `classifier` with an index built before for it.
@@ -155,145 +213,6 @@ impl<'a> PointLocator<'a> {
         self.ix.into_owned()
     }
 
-    fn col(&self, x: f64) -> usize {
-        (((x - self.ix.x0) * self.ix.inv_w) as usize).min(self.ix.n - 1)
-    }
-
-    fn row(&self, y: f64) -> usize {
-        (((y - self.ix.y0) * self.ix.inv_h) as usize).min(self.ix.n - 1)
-    }
-
-    /// Cell range (columns, rows) of the rectangle spanned by `a` and `b`, grown by the
-    /// tolerance. The cell index is a monotone function of the coordinate, so every point of the
-    /// grown rectangle falls in it.
-    fn cell_range(&self, a: Point, b: Point) -> (usize, usize, usize, usize) {
-        let tol = self.classifier.tolerance();
-        let cx = |x: f64| self.col(x.max(self.ix.x0));
-        let cy = |y: f64| self.row(y.max(self.ix.y0));
-        (
-            cx(a.x.min(b.x) - tol),
-            cx(a.x.max(b.x) + tol),
-            cy(a.y.min(b.y) - tol),
-            cy(a.y.max(b.y) + tol),
-        )
-    }
-
-    /// The cell ranges covering box `b`'s curve: its monotone piece is halved until each part's
-    /// rectangle (grown by the tolerance) spans at most a few cells each way. A monotone part
-    /// lies in the rectangle of its end points, so the ranges cover every point within the
-    /// tolerance of the curve, and over any one column they form one run of rows (the part of
-    /// an x-monotone arc over a column is connected).
-    fn covering_ranges(
-        &self,
-        b: &rs_boxes::MonotoneBox,
-        out: &mut Vec<(usize, usize, usize, usize)>,
-    ) {
-        let mut stack: SmallVec<[(BezierPiece, u32); 16]> = SmallVec::new();
-        stack.push((b.piece.clone(), 0));
-        while let Some((piece, depth)) = stack.pop() {
-            let r = self.cell_range(piece.start(), piece.end());
-            if (r.1 - r.0 <= 2 && r.3 - r.2 <= 2) || depth >= MAX_REGISTER_DEPTH {
-                out.push(r);
-            } else {
-                let (left, right) = piece.split(0.5);
-                stack.push((right, depth + 1));
-                stack.push((left, depth + 1));
-            }
-        }
-    }
-
-    fn register_boxes(&mut self) {
-        let n = self.ix.n;
-        let all = self.classifier.boxes().boxes();
-        let mut pairs: Vec<(u32, u32)> = Vec::new();
-        let mut ranges = Vec::new();
-        for (bi, b) in all.iter().enumerate() {
-            ranges.clear();
-            self.covering_ranges(b, &mut ranges);
-            for &(c0, c1, r0, r1) in &ranges {
-                for c in c0..=c1 {
-                    for r in r0..=r1 {
-                        pairs.push(((c * n + r) as u32, bi as u32));
-                    }
-                }
-            }
-        }
-        pairs.sort_unstable();
-        pairs.dedup();
-        let mut counts = vec![0u32; n * n];
-        for &(cell, _) in &pairs {
-            counts[cell as usize] += 1;
-        }
-        let ix = self.ix.to_mut();
-        let mut total = 0u32;
-        for (i, &k) in counts.iter().enumerate() {
-            ix.offsets[i] = total;
-            total += k;
-        }
-        ix.offsets[n * n] = total;
-        // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance to
-        // their right): flag them so the walk down a column skips them.
-        ix.boxes = pairs
-            .into_iter()
-            .map(|(_, b)| {
-                if all[b as usize].x_dir == rs_boxes::Monotonicity::Constant {
-                    b | VERTICAL_FLAG
-                } else {
-                    b
-                }
-            })
-            .collect();
-    }
-
-    fn classify_uniform_cells(&mut self) {
-        let classifier = self.classifier;
-        let ix = self.ix.to_mut();
-        let n = ix.n;
-        let (cw, ch) = (
-            1.0 / ix.inv_w.max(f64::MIN_POSITIVE),
-            1.0 / ix.inv_h.max(f64::MIN_POSITIVE),
-        );
-        // Run starts: the first cell of every run of box-free cells in each column.
-        let mut starts: Vec<usize> = Vec::new();
-        for c in 0..n {
-            let mut prev_mixed = true;
-            for r in 0..n {
-                let cell = c * n + r;
-                let mixed = ix.offsets[cell + 1] > ix.offsets[cell];
-                if mixed {
-                    ix.state[cell] = MIXED;
-                } else if prev_mixed {
-                    starts.push(cell);
-                }
-                prev_mixed = mixed;
-            }
-        }
-        let centers: Vec<Point> = starts
-            .iter()
-            .map(|&cell| {
-                let (c, r) = (cell / n, cell % n);
-                Point::new(ix.x0 + (c as f64 + 0.5) * cw, ix.y0 + (r as f64 + 0.5) * ch)
-            })
-            .collect();
-        let located = classifier.classify(&centers, Method::InRS2);
-        for (&cell, &l) in starts.iter().zip(&located) {
-            let s = match l {
-                Location::Inside => INSIDE,
-                Location::Outside => OUTSIDE,
-                // Cannot happen for a box-free cell; deciding point by point is always right.
-                Location::Boundary => MIXED,
-            };
-            let (c, r0) = (cell / n, cell % n);
-            for r in r0..n {
-                let i = c * n + r;
-                if ix.offsets[i + 1] > ix.offsets[i] {
-                    break;
-                }
-                ix.state[i] = s;
-            }
-        }
-    }
-
     /// The grid resolution (cells per side).
     pub fn cells(&self) -> usize {
         self.ix.n
@@ -306,7 +225,7 @@ impl<'a> PointLocator<'a> {
 
     /// Number of (box, cell) incidences stored.
     pub fn incidences(&self) -> usize {
-        self.ix.boxes.len()
+        self.ix.cells.len()
     }
 
     /// The location of one point (same as [`Method::InRS2`]).
@@ -314,7 +233,8 @@ impl<'a> PointLocator<'a> {
         if !self.classifier.outer().contains(p) {
             return Location::Outside;
         }
-        let (c, r) = (self.col(p.x), self.row(p.y));
+        let frame = self.ix.cells.frame();
+        let (c, r) = (frame.col(p.x), frame.row(p.y));
         let cell = c * self.ix.n + r;
         let state = ((self.ix.packed[cell >> 5] >> ((cell & 31) * 2)) & 3) as usize;
         // Inside and outside cells come in no predictable order: look the answer up instead of
@@ -327,7 +247,7 @@ impl<'a> PointLocator<'a> {
     }
 
     fn cell_boxes(&self, cell: usize) -> &[u32] {
-        &self.ix.boxes[self.ix.offsets[cell] as usize..self.ix.offsets[cell + 1] as usize]
+        self.ix.cells.cell(cell)
     }
 
     fn locate_mixed(&self, p: Point, c: usize, r: usize) -> Location {
@@ -391,8 +311,18 @@ impl Locate for PointLocator<'_> {
     }
 }
 
+/// At most `cells` per side, and no more than keep a cell at least as wide as the tolerance:
+/// each box part registers the cells of its rectangle grown by the tolerance, so cells much
+/// narrower than the tolerance would multiply the registrations (and the memory) without
+/// sharpening anything.
+fn cells_for_tolerance(b: rs_spline::BoundingBox, tol: f64, cells: usize) -> usize {
+    let span = b.width().max(b.height());
+    if tol > 0.0 && span.is_finite() {
+        cells.min(((span / tol) as usize).max(1))
+    } else {
+        cells
+    }
+}
+
 /// High bit of a registered box index: the box is vertical (constant x).
 const VERTICAL_FLAG: u32 = 1 << 31;
-
-/// Halving depth cap when registering a box's curve in the grid.
-const MAX_REGISTER_DEPTH: u32 = 24;

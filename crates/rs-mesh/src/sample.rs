@@ -4,7 +4,8 @@ use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::Locate;
 use rs_contain::baselines::radical_inverse;
 use rs_contain::{Classifier, ContainOptions, Location};
-use rs_spline::{Domain, Point};
+use rs_spline::grid::{CellIndex, GridFrame};
+use rs_spline::{BoundingBox, Domain, Point};
 
 use crate::MeshError;
 use crate::boundary::{BoundaryPoint, place_boundary_points};
@@ -158,33 +159,50 @@ pub fn halton_points_in(domain: &Domain, count: usize) -> Result<Vec<Point>, Mes
     Err(MeshError::InvalidCount(count))
 }
 
-/// A uniform hash grid of points for "is any point within r" queries (r <= cell size).
+/// Points registered by cell, to ask whether any lies within `r` of a query point.
 pub(crate) struct PointGrid {
-    cell: f64,
-    map: std::collections::HashMap<(i64, i64), Vec<Point>>,
+    points: Vec<Point>,
+    index: CellIndex<u32>,
 }
 
 impl PointGrid {
+    /// Cells about `cell` wide (at most 1024 per side): a query with `r` near `cell` looks at
+    /// a few cells around the point.
     pub(crate) fn new(points: impl Iterator<Item = Point>, cell: f64) -> Self {
-        let mut map: std::collections::HashMap<(i64, i64), Vec<Point>> = Default::default();
-        for p in points {
-            map.entry(Self::key(p, cell)).or_default().push(p);
+        let points: Vec<Point> = points.collect();
+        let bb = BoundingBox::from_points(points.iter().copied())
+            .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)));
+        let span = bb.width().max(bb.height());
+        let n = if cell > 0.0 && span.is_finite() {
+            ((span / cell).floor() as usize).clamp(1, 1024)
+        } else {
+            1
+        };
+        let frame = GridFrame::new(bb, n);
+        let pairs = points
+            .iter()
+            .enumerate()
+            .filter_map(|(i, &p)| frame.cell_of(p).map(|c| (c, i as u32)))
+            .collect();
+        Self {
+            points,
+            index: CellIndex::new(frame, pairs),
         }
-        Self { cell, map }
     }
 
-    fn key(p: Point, cell: f64) -> (i64, i64) {
-        ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64)
-    }
-
+    /// Is some registered point closer than `r` to `p`? (Every cell meeting the square of
+    /// half-side `r` round `p` is searched.)
     pub(crate) fn any_within(&self, p: Point, r: f64) -> bool {
-        let (i, j) = Self::key(p, self.cell);
-        (i - 1..=i + 1).any(|a| {
-            (j - 1..=j + 1).any(|b| {
-                self.map
-                    .get(&(a, b))
-                    .is_some_and(|v| v.iter().any(|q| q.distance(p) < r))
-            })
-        })
+        let near = BoundingBox::from_point(p).grown_by(r);
+        let mut found = false;
+        self.index.frame().for_cells_in(near, |c| {
+            found = found
+                || self
+                    .index
+                    .cell(c)
+                    .iter()
+                    .any(|&i| self.points[i as usize].distance(p) < r);
+        });
+        found
     }
 }

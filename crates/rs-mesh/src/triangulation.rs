@@ -6,6 +6,7 @@ use rs_spline::prelude::*;
 use std::collections::{HashMap, HashSet, VecDeque};
 
 use rs_roots::{Bernstein, bernstein_roots};
+use rs_spline::grid::{CellIndex, GridFrame};
 use rs_spline::{BoundingBox, Domain, NurbsCurve, Point, RationalBezier};
 use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
@@ -375,7 +376,7 @@ fn build(
         .filter(|(a, b)| a < b || !edge_of.contains_key(&(*b, *a)))
         .copied()
         .collect();
-    let grid = EdgeGrid::new(&vertices, &all_edges, size);
+    let grid = EdgeGrid::new(&vertices, &all_edges);
     let mut arcs = Vec::new();
     let mut edges = vec![[EdgeKind::Straight; 3]; triangles.len()];
     for (j, ids) in loop_vertices.iter().enumerate() {
@@ -544,59 +545,36 @@ fn crosses_inside_segment(piece: &RationalBezier, p: Point, q: Point, size: f64)
     }
 }
 
-/// Edges bucketed by bounding box in a uniform grid.
+/// Edges registered in the cells their bounding boxes meet.
 struct EdgeGrid {
-    min: Point,
-    cell: f64,
-    n: usize,
-    buckets: Vec<Vec<(usize, usize)>>,
+    index: CellIndex<(usize, usize)>,
 }
 
 impl EdgeGrid {
-    fn new(vertices: &[Point], edges: &[(usize, usize)], size: f64) -> Self {
+    /// About one edge per cell, at most 256 cells per side.
+    fn new(vertices: &[Point], edges: &[(usize, usize)]) -> Self {
         let bb = BoundingBox::from_points(vertices.iter().copied())
             .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)));
         let n = ((edges.len() as f64).sqrt().ceil() as usize).clamp(1, 256);
-        let span = bb.width().max(bb.height()).max(1e-12 * size.max(1.0));
-        let cell = span / n as f64 * (1.0 + 1e-9);
-        let mut grid = Self {
-            min: bb.min,
-            cell,
-            n,
-            buckets: vec![Vec::new(); n * n],
-        };
+        let frame = GridFrame::new(bb, n);
+        let mut pairs = Vec::new();
         for &(a, b) in edges {
             let eb = BoundingBox::from_point(vertices[a]).including(vertices[b]);
-            for idx in grid.cells(eb) {
-                grid.buckets[idx].push((a, b));
-            }
+            frame.for_cells_in(eb, |c| pairs.push((c, (a, b))));
         }
-        grid
+        Self {
+            index: CellIndex::new(frame, pairs),
+        }
     }
 
-    fn cells(&self, b: BoundingBox) -> Vec<usize> {
-        let clamp = |v: f64| ((v / self.cell).floor().max(0.0) as usize).min(self.n - 1);
-        let (x0, x1) = (clamp(b.min.x - self.min.x), clamp(b.max.x - self.min.x));
-        let (y0, y1) = (clamp(b.min.y - self.min.y), clamp(b.max.y - self.min.y));
-        let mut v = Vec::new();
-        for j in y0..=y1 {
-            for i in x0..=x1 {
-                v.push(j * self.n + i);
-            }
-        }
-        v
-    }
-
+    /// The distinct edges registered in the cells meeting `b`.
     fn candidates(&self, b: BoundingBox) -> Vec<(usize, usize)> {
-        let mut seen = HashSet::new();
         let mut out = Vec::new();
-        for idx in self.cells(b) {
-            for &e in &self.buckets[idx] {
-                if seen.insert(e) {
-                    out.push(e);
-                }
-            }
-        }
+        self.index
+            .frame()
+            .for_cells_in(b, |c| out.extend_from_slice(self.index.cell(c)));
+        out.sort_unstable();
+        out.dedup();
         out
     }
 }

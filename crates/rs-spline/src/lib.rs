@@ -29,6 +29,7 @@ mod bezier;
 mod curve;
 mod domain;
 mod error;
+pub mod grid;
 mod homogeneous;
 mod knots;
 pub mod limits;

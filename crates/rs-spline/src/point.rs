@@ -182,7 +182,15 @@ impl BoundingBox {
         self.width().hypot(self.height())
     }
 
-    /// True if `p` lies in the closed box.
+    /// The box grown by `d` on every side.
+    pub fn grown_by(self, d: f64) -> Self {
+        Self {
+            min: Point::new(self.min.x - d, self.min.y - d),
+            max: Point::new(self.max.x + d, self.max.y + d),
+        }
+    }
+
+    /// Is `p` in the closed box?
     pub fn contains(&self, p: Point) -> bool {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
     }

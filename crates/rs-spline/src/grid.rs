@@ -1,0 +1,236 @@
+//! One uniform-grid index for the workspace: a [`GridFrame`] maps points to the cells of an
+//! `n x n` grid over a box, and a [`CellIndex`] stores, in compressed sparse rows, the items
+//! registered in each cell. The monotone-box grid, the point locator, the mesh's edge index
+//! and its point-spacing test are all one of these.
+
+use crate::{BoundingBox, Point};
+
+/// An `n x n` grid of equal cells over a box. Cell `(c, r)` (column, row) has index
+/// `c * n + r`. The column of `x` is `floor((x - x0) n / width)` clamped to `0..n`: a monotone
+/// function of `x`, so every point of a rectangle falls in the cells of
+/// [`GridFrame::cell_range`] of that rectangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridFrame {
+    bbox: BoundingBox,
+    inv_w: f64,
+    inv_h: f64,
+    n: usize,
+}
+
+impl GridFrame {
+    /// The largest resolution accepted (cells per side): 8192^2 cells take 256 MiB of `u32`
+    /// offsets.
+    pub const MAX_CELLS: usize = 8192;
+
+    /// `n` cells per side (clamped to `1..=MAX_CELLS`) over `bbox`; a side of zero (or
+    /// non-finite) width is one column (row) wide.
+    pub fn new(bbox: BoundingBox, n: usize) -> Self {
+        let n = n.clamp(1, Self::MAX_CELLS);
+        let inv = |span: f64| {
+            if span > 0.0 && span.is_finite() {
+                n as f64 / span
+            } else {
+                0.0
+            }
+        };
+        Self {
+            bbox,
+            inv_w: inv(bbox.width()),
+            inv_h: inv(bbox.height()),
+            n,
+        }
+    }
+
+    /// Cells per side.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Number of cells, `n^2`.
+    pub fn cell_count(&self) -> usize {
+        self.n * self.n
+    }
+
+    /// The box covered.
+    pub fn bounding_box(&self) -> BoundingBox {
+        self.bbox
+    }
+
+    /// The width and height of a cell.
+    pub fn cell_size(&self) -> (f64, f64) {
+        let n = self.n as f64;
+        (self.bbox.width() / n, self.bbox.height() / n)
+    }
+
+    /// The column of abscissa `x` (clamped into the grid).
+    pub fn col(&self, x: f64) -> usize {
+        (((x - self.bbox.min.x) * self.inv_w).max(0.0) as usize).min(self.n - 1)
+    }
+
+    /// The row of ordinate `y` (clamped into the grid).
+    pub fn row(&self, y: f64) -> usize {
+        (((y - self.bbox.min.y) * self.inv_h).max(0.0) as usize).min(self.n - 1)
+    }
+
+    /// The index of the cell holding `p`, or `None` outside the box.
+    pub fn cell_of(&self, p: Point) -> Option<usize> {
+        self.bbox
+            .contains(p)
+            .then(|| self.col(p.x) * self.n + self.row(p.y))
+    }
+
+    /// Columns `c0..=c1` and rows `r0..=r1` of the cells meeting the rectangle `r` (clamped).
+    pub fn cell_range(&self, r: BoundingBox) -> (usize, usize, usize, usize) {
+        (
+            self.col(r.min.x),
+            self.col(r.max.x),
+            self.row(r.min.y),
+            self.row(r.max.y),
+        )
+    }
+
+    /// Calls `f` with the index of every cell meeting the rectangle `r`.
+    pub fn for_cells_in(&self, r: BoundingBox, mut f: impl FnMut(usize)) {
+        let (c0, c1, r0, r1) = self.cell_range(r);
+        for c in c0..=c1 {
+            for row in r0..=r1 {
+                f(c * self.n + row);
+            }
+        }
+    }
+}
+
+/// Items registered per cell of a [`GridFrame`], in compressed sparse rows: `offsets[cell]` to
+/// `offsets[cell + 1]` index `items`. Built once from `(cell, item)` pairs; each cell's items
+/// are sorted and distinct.
+///
+/// # Examples
+///
+/// ```
+/// use rs_spline::grid::{CellIndex, GridFrame};
+/// use rs_spline::{BoundingBox, Point};
+/// let frame = GridFrame::new(
+///     BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1.0, 1.0)),
+///     4,
+/// );
+/// let mut pairs = Vec::new();
+/// // Item 7 covers the lower-left quarter, item 3 one cell at the top right.
+/// frame.for_cells_in(
+///     BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(0.4, 0.4)),
+///     |c| pairs.push((c, 7u32)),
+/// );
+/// pairs.push((frame.cell_of(Point::new(0.9, 0.9)).unwrap(), 3));
+/// let index = CellIndex::new(frame, pairs);
+/// assert_eq!(index.at(Point::new(0.1, 0.1)), &[7]);
+/// assert_eq!(index.at(Point::new(0.95, 0.99)), &[3]);
+/// assert!(index.at(Point::new(0.6, 0.1)).is_empty());
+/// assert!(index.at(Point::new(2.0, 0.0)).is_empty()); // outside the frame
+/// ```
+#[derive(Clone, Debug)]
+pub struct CellIndex<T> {
+    frame: GridFrame,
+    offsets: Vec<u32>,
+    items: Vec<T>,
+}
+
+impl<T: Copy + Ord> CellIndex<T> {
+    /// The index of `pairs` (cell, item); pairs naming a cell outside the frame are dropped.
+    /// At most `u32::MAX` pairs are kept.
+    pub fn new(frame: GridFrame, mut pairs: Vec<(usize, T)>) -> Self {
+        let cells = frame.cell_count();
+        pairs.retain(|&(c, _)| c < cells);
+        pairs.truncate(u32::MAX as usize);
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut offsets = vec![0u32; cells + 1];
+        for &(c, _) in &pairs {
+            offsets[c + 1] += 1;
+        }
+        for c in 0..cells {
+            offsets[c + 1] += offsets[c];
+        }
+        Self {
+            frame,
+            offsets,
+            items: pairs.into_iter().map(|(_, t)| t).collect(),
+        }
+    }
+}
+
+impl<T> CellIndex<T> {
+    /// The frame.
+    pub fn frame(&self) -> &GridFrame {
+        &self.frame
+    }
+
+    /// The items of cell `cell` (empty past the last cell).
+    pub fn cell(&self, cell: usize) -> &[T] {
+        match (self.offsets.get(cell), self.offsets.get(cell + 1)) {
+            (Some(&a), Some(&b)) => &self.items[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+
+    /// The items of the cell holding `p` (empty outside the frame).
+    pub fn at(&self, p: Point) -> &[T] {
+        self.frame.cell_of(p).map_or(&[], |c| self.cell(c))
+    }
+
+    /// Does cell `cell` hold any item?
+    pub fn is_occupied(&self, cell: usize) -> bool {
+        !self.cell(cell).is_empty()
+    }
+
+    /// Number of (cell, item) registrations.
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    /// No registrations at all?
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit() -> BoundingBox {
+        BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1.0, 2.0))
+    }
+
+    #[test]
+    fn cells_are_monotone_and_cover_rectangles() {
+        let f = GridFrame::new(unit(), 10);
+        assert_eq!(f.col(-5.0), 0);
+        assert_eq!(f.col(0.99999), 9);
+        assert_eq!(f.col(7.0), 9);
+        assert_eq!(f.row(1.0), 5);
+        assert_eq!(f.cell_of(Point::new(1.5, 0.0)), None);
+        let r = BoundingBox::from_point(Point::new(0.05, 0.05)).including(Point::new(0.25, 0.3));
+        let mut cells = Vec::new();
+        f.for_cells_in(r, |c| cells.push(c));
+        // Columns 0..=2, rows 0..=1.
+        assert_eq!(cells, vec![0, 1, 10, 11, 20, 21]);
+        for i in 0..=20 {
+            for j in 0..=20 {
+                let p = Point::new(
+                    r.min.x + r.width() * i as f64 / 20.0,
+                    r.min.y + r.height() * j as f64 / 20.0,
+                );
+                assert!(cells.contains(&f.cell_of(p).unwrap()));
+            }
+        }
+    }
+
+    #[test]
+    fn degenerate_frames_have_one_column() {
+        let f = GridFrame::new(BoundingBox::from_point(Point::new(1.0, 1.0)), 16);
+        assert_eq!(f.cell_of(Point::new(1.0, 1.0)), Some(0));
+        let idx = CellIndex::new(f, vec![(0, 5u32), (0, 5), (0, 2), (99_999, 1)]);
+        assert_eq!(idx.cell(0), &[2, 5]);
+        assert_eq!(idx.len(), 2);
+        assert!(idx.cell(300).is_empty());
+    }
+}
