@@ -1,6 +1,13 @@
 //! inrs: exact point containment for planar domains bounded by NURBS and rational Bezier
 //! curves.
 //!
+//! A point `q` is inside a domain bounded by closed curves when a ray from `q` crosses the
+//! boundary an odd number of times. inRS counts the crossings exactly: the boundary is cut into
+//! pieces monotone in `x` and `y`, so a vertical ray meets each piece's box at most once and one
+//! bracketed root of a Bernstein polynomial decides each crossing. For boundaries with gaps the
+//! generalized winding number `(1/2 pi) sum of the angles the curves subtend at q` decides
+//! instead. See docs/ARCHITECTURE.md for the layers and docs/FORMATS.md for the files.
+//!
 //! This facade re-exports the layers so that downstream code can depend on one crate:
 //! - [`roots`] (`rs-roots`): real polynomial roots.
 //! - [`spline`] (`rs-spline`): NURBS algebra, the curve traits, primitives, domains.
@@ -25,6 +32,17 @@
 //! assert_eq!(s.bezier_pieces, 4);
 //! assert!((s.signed_area - std::f64::consts::PI).abs() < 1e-13);
 //! ```
+//!
+//! # References
+//! - A. Sommariva, M. Vianello, *inRS: implementing the indicator function of NURBS-shaped
+//!   planar domains*, Applied Mathematics Letters 130 (2022) 108026,
+//!   doi:10.1016/j.aml.2022.108026.
+//! - J. Spainhour, D. Gunderman, K. Weiss, *Robust containment queries over collections of
+//!   rational parametric curves via generalized winding numbers* (2024), arXiv:2403.17371.
+//! - L. L. Schumaker, A. Yu, *Approximation by polynomial splines on curved triangulations*
+//!   (Vanderbilt University, 2021).
+//! - A. I. Ginnis, E. I. Karousos, P. D. Kaklis, *A discrete methodology for controlling the
+//!   sign of curvature and torsion for NURBS* (Springer, 2009).
 
 pub use rs_boxes as boxes;
 pub use rs_contain as contain;

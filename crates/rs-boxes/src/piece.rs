@@ -116,8 +116,8 @@ impl BezierPiece {
     }
 
     /// The parameter where `x(t) = px`, for a piece whose `x(0) - px` and `x(1) - px` differ in
-    /// sign (or vanish): the root of `sum_i w_i (x_i - px) B_i(t)` (NOTES.md: no rational root
-    /// finding needed). `None` if there is no sign change.
+    /// sign (or vanish): the root of `sum_i w_i (x_i - px) B_i(t)` (the weights
+    /// are positive, so no rational root finding is needed). `None` if there is no sign change.
     pub fn solve_x(&self, px: f64) -> Option<f64> {
         solve_axis(&self.x, &self.w, px)
     }

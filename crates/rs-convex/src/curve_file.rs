@@ -59,7 +59,7 @@ impl FreeCurve {
 }
 
 /// Parses a curve: either a domain file (`{"curves": [...]}`, curve `index` taken, every form
-/// of CONTRACTS.md accepted) or a single curve object `{"degree", "control_points", "knots"?,
+/// of docs/FORMATS.md accepted) or a single curve object `{"degree", "control_points", "knots"?,
 /// "weights"?}` whose control points have two (plane) or three (space) coordinates.
 ///
 /// # Errors

@@ -20,7 +20,7 @@ const POLISH_ITERATIONS: usize = 100;
 
 /// All real roots of `p` in the closed interval `[a, b]`, ascending, a multiple root once.
 ///
-/// Method (see `shared/design/NOTES.md`):
+/// Method:
 /// 1. Leading coefficients that are rounding noise on `[a, b]` are dropped
 ///    ([`Polynomial::trim_negligible`]); exact zero roots are deflated; degree <= 2 uses
 ///    [`quadratic_roots`].

@@ -1,5 +1,11 @@
 //! Real roots of real polynomials, for the inRS containment layers.
 //!
+//! The real roots of `p(t) = sum_i c_i t^i` in `[a, b]` are the real eigenvalues of its
+//! companion matrix, polished by Newton's method and accepted only within Horner's rounding
+//! bound; on `[0, 1]` the Bernstein form `sum_k b_k C(n,k) t^k (1-t)^(n-k)` is evaluated and
+//! split by de Casteljau's algorithm (the workspace's one kernel), and its coefficient sign
+//! changes bound the roots.
+//!
 //! # Conventions
 //! Every power-basis coefficient slice in this crate (and in the crates above it) is in
 //! **ascending** order: `c[i]` multiplies `t^i`. Bernstein coefficients `b_0 .. b_n` are on

@@ -53,7 +53,7 @@ fn check_none(p: &Polynomial, a: f64, b: f64) {
 
 #[test]
 fn t_cubed_is_one_root() {
-    // NOTES.md: the unbounded Schur iteration hangs on the companion matrix of t^3.
+    // Known hazard: the unbounded Schur iteration hangs on the companion matrix of t^3.
     let p = Polynomial::new(vec![0.0, 0.0, 0.0, 1.0]);
     for (name, finder) in FINDERS {
         let r = finder(&p, -1.0, 1.0).unwrap();
@@ -95,7 +95,7 @@ fn t10_minus_c() {
 
 #[test]
 fn t11_minus_at() {
-    // NOTES.md: t^11 - a t was one of the hanging cases. Roots: 0 and +-a^(1/10).
+    // Known hazard: t^11 - a t was one of the hanging cases. Roots: 0 and +-a^(1/10).
     let a = 0.3;
     let mut coeffs = vec![0.0; 12];
     coeffs[1] = -a;

@@ -1,5 +1,10 @@
 //! B-spline and NURBS algebra for planar boundary curves.
 //!
+//! A NURBS curve is `C(u) = sum_i N_{i,p}(u) w_i P_i / sum_i N_{i,p}(u) w_i`: B-spline basis
+//! functions of degree `p` on a knot vector, control points `P_i` and positive weights `w_i`.
+//! Between knots it is a rational Bezier piece, which every algorithm here works on in
+//! homogeneous coordinates `(w P, w)`, where the rational curve is polynomial.
+//!
 //! - [`KnotVector`] and [`NurbsCurve`]: validated NURBS, evaluation with first and second
 //!   derivatives (rational quotient rule), knot insertion (Boehm), refinement, splitting,
 //!   reversal, clamping, Bezier extraction.
@@ -7,10 +12,24 @@
 //!   coordinates, control and tight bounding boxes, conversion to `rs-roots` polynomials.
 //! - Primitives with exact rational representations: [`segment`], [`polyline`],
 //!   [`circular_arc`], [`circle`], [`elliptic_arc`], [`ellipse`].
-//! - [`Domain`]: curves grouped into boundary loops, orientation, signed area, bounding box,
-//!   and the JSON domain file of `shared/design/CONTRACTS.md`.
+//! - The curve traits ([`prelude`]): [`ParamCurve`], [`ParamCurveDeriv`], [`ParamCurveArea`]
+//!   (Green's theorem), [`ParamCurveArclen`], [`ParamCurveExtrema`], [`Flatten`], implemented by
+//!   both curve types; [`Affine`] maps; the uniform [`grid`] index.
+//! - [`Domain`]: curves grouped into boundary loops, orientation, signed area, bounding box.
+//!   (The JSON domain file is read and written by `rs-io`.)
 //!
 //! Polynomial coefficients follow `rs-roots`: ascending power basis.
+//!
+//! # References
+//! - A. Sommariva, M. Vianello, *inRS: implementing the indicator function of NURBS-shaped
+//!   planar domains*, Applied Mathematics Letters 130 (2022) 108026,
+//!   doi:10.1016/j.aml.2022.108026.
+//! - J. Spainhour, D. Gunderman, K. Weiss, *Robust containment queries over collections of
+//!   rational parametric curves via generalized winding numbers* (2024), arXiv:2403.17371.
+//! - L. L. Schumaker, A. Yu, *Approximation by polynomial splines on curved triangulations*
+//!   (Vanderbilt University, 2021).
+//! - A. I. Ginnis, E. I. Karousos, P. D. Kaklis, *A discrete methodology for controlling the
+//!   sign of curvature and torsion for NURBS* (Springer, 2009).
 //!
 //! # Examples
 //!
