@@ -569,9 +569,11 @@ fn sweeps(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) -> Re
         let mut row = format!("| {name} |");
         for g in grids {
             let tb = median_time(o.reps, || {
-                std::hint::black_box(PointLocator::new(&c, LocatorOptions { cells: g }).cells());
+                std::hint::black_box(
+                    PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(g)).cells(),
+                );
             });
-            let loc = PointLocator::new(&c, LocatorOptions { cells: g });
+            let loc = PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(g));
             let tq = median_time(o.reps, || {
                 std::hint::black_box(loc.locate_all(&pts));
             });

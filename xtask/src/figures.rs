@@ -20,7 +20,8 @@ fn draw_boundary(fig: &mut Figure, d: &Domain) {
 }
 
 fn boxes_figure(d: &Domain, subdivisions: usize, caption: &str) -> Result<Figure, String> {
-    let boxes = MonotoneBoxes::new(d, BoxOptions { subdivisions }).map_err(|e| e.to_string())?;
+    let boxes = MonotoneBoxes::new(d, BoxOptions::DEFAULT.with_subdivisions(subdivisions))
+        .map_err(|e| e.to_string())?;
     let mut fig = Figure::new(d.bounding_box(), SIZE);
     let style = Style::stroke("#3466c2", 0.7)
         .with_fill("#dbe8ff", 0.5)

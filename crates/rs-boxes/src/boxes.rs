@@ -31,18 +31,30 @@ pub const BYTES_PER_BOX: usize = std::mem::size_of::<MonotoneBox>();
 /// split it; they mark the end point as a tangency instead.
 const END_ROOT_MARGIN: f64 = 1e-10;
 
-/// Options for [`MonotoneBoxes::new`].
+/// Options for [`MonotoneBoxes::new`]: [`BoxOptions::DEFAULT`] and `with_*` setters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct BoxOptions {
     /// Sub-boxes per monotone piece (>= 1; 1 means no refinement).
     pub subdivisions: usize,
 }
 
+impl BoxOptions {
+    /// [`DEFAULT_SUBDIVISIONS`] sub-boxes per monotone piece.
+    pub const DEFAULT: BoxOptions = BoxOptions {
+        subdivisions: DEFAULT_SUBDIVISIONS,
+    };
+
+    /// With `subdivisions` sub-boxes per monotone piece.
+    pub const fn with_subdivisions(mut self, subdivisions: usize) -> Self {
+        self.subdivisions = subdivisions;
+        self
+    }
+}
+
 impl Default for BoxOptions {
     fn default() -> Self {
-        Self {
-            subdivisions: DEFAULT_SUBDIVISIONS,
-        }
+        Self::DEFAULT
     }
 }
 
@@ -104,7 +116,7 @@ pub struct CriticalPoint {
 /// use rs_boxes::{BoxOptions, MonotoneBoxes};
 /// use rs_spline::{circle, Domain, Point};
 /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
-/// let boxes = MonotoneBoxes::new(&d, BoxOptions { subdivisions: 1 }).unwrap();
+/// let boxes = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(1)).unwrap();
 /// assert_eq!(boxes.boxes().len(), 4); // one per quadrant
 /// assert_eq!(boxes.critical_abscissas(), &[-1.0, 1.0]);
 /// ```

@@ -19,7 +19,7 @@ fn every_box_is_monotone_and_spanned_by_its_end_points() {
     for (name, d) in all_domains() {
         let size = d.bounding_box().diagonal();
         for k in [1, 4] {
-            let mb = MonotoneBoxes::new(&d, BoxOptions { subdivisions: k }).unwrap();
+            let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(k)).unwrap();
             for b in mb.boxes() {
                 let pts: Vec<Point> = (0..=200)
                     .map(|i| b.piece.point_at(i as f64 / 200.0))
@@ -95,25 +95,25 @@ fn boxes_cover_the_boundary_and_are_watertight() {
 #[test]
 fn refinement_multiplies_the_boxes() {
     for (name, d) in all_domains() {
-        let n1 = MonotoneBoxes::new(&d, BoxOptions { subdivisions: 1 })
+        let n1 = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(1))
             .unwrap()
             .boxes()
             .len();
-        let n7 = MonotoneBoxes::new(&d, BoxOptions { subdivisions: 7 })
+        let n7 = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(7))
             .unwrap()
             .boxes()
             .len();
         assert_eq!(n7, 7 * n1, "{name}");
     }
     let d = &rs_testkit::fixtures()[0].domain;
-    assert!(MonotoneBoxes::new(d, BoxOptions { subdivisions: 0 }).is_err());
+    assert!(MonotoneBoxes::new(d, BoxOptions::DEFAULT.with_subdivisions(0)).is_err());
 }
 
 #[test]
 fn critical_points_of_known_shapes() {
     // Circle: vertical tangents at x = +-1, horizontal at y = +-1 (at knots).
     let c = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
-    let mb = MonotoneBoxes::new(&c, BoxOptions { subdivisions: 3 }).unwrap();
+    let mb = MonotoneBoxes::new(&c, BoxOptions::DEFAULT.with_subdivisions(3)).unwrap();
     assert_eq!(mb.critical_abscissas(), &[-1.0, 1.0]);
     assert_eq!(mb.critical_ordinates(), &[-1.0, 1.0]);
 

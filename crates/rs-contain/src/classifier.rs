@@ -136,9 +136,7 @@ impl Classifier {
         }
         let boxes = MonotoneBoxes::new(
             domain,
-            BoxOptions {
-                subdivisions: options.subdivisions,
-            },
+            BoxOptions::DEFAULT.with_subdivisions(options.subdivisions),
         )?;
         let bbox = boxes.bounding_box();
         let tol = options.tolerance * bbox.diagonal();

@@ -25,18 +25,31 @@ const UNIFORM: [Location; 2] = [Location::Outside, Location::Inside];
 /// uniformly spread points in boundary cells, and finer grids only add build time and memory.
 pub const DEFAULT_GRID_CELLS: usize = 1024;
 
-/// Options of a [`PointLocator`].
+/// Options of a [`PointLocator`]: [`LocatorOptions::DEFAULT`] and `with_*` setters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct LocatorOptions {
-    /// Cells per side of the grid (clamped to `1..=8192`).
+    /// Cells per side of the grid (clamped to `1..=8192`, and coarser when the boundary
+    /// tolerance is wider than a cell).
     pub cells: usize,
+}
+
+impl LocatorOptions {
+    /// [`DEFAULT_GRID_CELLS`] cells per side.
+    pub const DEFAULT: LocatorOptions = LocatorOptions {
+        cells: DEFAULT_GRID_CELLS,
+    };
+
+    /// With `cells` cells per side.
+    pub const fn with_cells(mut self, cells: usize) -> Self {
+        self.cells = cells;
+        self
+    }
 }
 
 impl Default for LocatorOptions {
     fn default() -> Self {
-        Self {
-            cells: DEFAULT_GRID_CELLS,
-        }
+        Self::DEFAULT
     }
 }
 
@@ -82,7 +95,7 @@ impl Default for LocatorOptions {
 /// use rs_spline::{circle, Domain, Point};
 /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
 /// let c = Classifier::new(&d, ContainOptions::default()).unwrap();
-/// let loc = PointLocator::new(&c, LocatorOptions { cells: 64 });
+/// let loc = PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(64));
 /// let pts = [Point::new(0.0, 0.0), Point::new(0.9, 0.0), Point::new(1.0, 0.0)];
 /// assert_eq!(loc.locate_all(&pts), c.classify(&pts, Method::InRS2));
 /// assert_eq!(loc.locate(Point::new(3.0, 0.0)), Location::Outside);

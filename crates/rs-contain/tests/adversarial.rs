@@ -28,7 +28,7 @@ fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
         );
     }
     for cells in [1, 7, 64, 300] {
-        let loc = PointLocator::new(&reference, LocatorOptions { cells });
+        let loc = PointLocator::new(&reference, LocatorOptions::DEFAULT.with_cells(cells));
         let fast = [
             loc.locate_all(pts),
             loc.locate_all_parallel(pts),

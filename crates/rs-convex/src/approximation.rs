@@ -26,6 +26,7 @@ pub enum Sign {
 
 /// Settings of [`approximate`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ConvexDomainOptions {
     /// The sign the curve must keep everywhere.
     pub sign: Sign,
@@ -37,14 +38,44 @@ pub struct ConvexDomainOptions {
     pub outer_samples: usize,
 }
 
+impl ConvexDomainOptions {
+    /// Positive sign, relative growth tolerance `1e-3`, at most 10 levels, 256 outer samples
+    /// per piece.
+    pub const DEFAULT: ConvexDomainOptions = ConvexDomainOptions {
+        sign: Sign::Positive,
+        tolerance: 1e-3,
+        max_level: 10,
+        outer_samples: 256,
+    };
+
+    /// With the sign to keep.
+    pub const fn with_sign(mut self, sign: Sign) -> Self {
+        self.sign = sign;
+        self
+    }
+
+    /// With another relative growth tolerance (formula (20)).
+    pub const fn with_tolerance(mut self, relative_tolerance: f64) -> Self {
+        self.tolerance = relative_tolerance;
+        self
+    }
+
+    /// With another last level.
+    pub const fn with_max_level(mut self, max_level: u32) -> Self {
+        self.max_level = max_level;
+        self
+    }
+
+    /// With another number of outer samples per piece.
+    pub const fn with_outer_samples(mut self, outer_samples: usize) -> Self {
+        self.outer_samples = outer_samples;
+        self
+    }
+}
+
 impl Default for ConvexDomainOptions {
     fn default() -> Self {
-        Self {
-            sign: Sign::Positive,
-            tolerance: 1e-3,
-            max_level: 10,
-            outer_samples: 256,
-        }
+        Self::DEFAULT
     }
 }
 

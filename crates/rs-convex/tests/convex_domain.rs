@@ -57,12 +57,10 @@ fn cubic() -> NurbsCurve {
 
 fn run(c: &NurbsCurve, free: usize, r: &[f64], sign: Sign) -> ConvexDomain {
     let h = SignNumerator::curvature(c, free).unwrap();
-    let options = ConvexDomainOptions {
-        sign,
-        tolerance: 1e-4,
-        max_level: 9,
-        ..Default::default()
-    };
+    let options = ConvexDomainOptions::DEFAULT
+        .with_sign(sign)
+        .with_tolerance(1e-4)
+        .with_max_level(9);
     approximate(&h, &BoundingBox3::from_ranges(r).unwrap(), &options).unwrap()
 }
 
@@ -289,12 +287,11 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
     ];
     let (h, sign) = torsion_with_free_point_2(&pts);
     assert_eq!(h.degree(), 9); // 3p - 6: ten coefficients, as in the paper's Table 3
-    let options = ConvexDomainOptions {
-        sign,
-        tolerance: 1e-3,
-        max_level: 5,
-        outer_samples: 128,
-    };
+    let options = ConvexDomainOptions::DEFAULT
+        .with_sign(sign)
+        .with_tolerance(1e-3)
+        .with_max_level(5)
+        .with_outer_samples(128);
     let bbox = BoundingBox3::from_ranges(&[-100.0, 100.0, -100.0, 100.0, -100.0, 100.0]).unwrap();
     let k = approximate(&h, &bbox, &options).unwrap();
     assert!(!k.inner().is_empty(), "{:?}", k.outcome);
@@ -369,15 +366,9 @@ fn bad_input_is_an_error_not_a_panic() {
     assert!(BoundingBox3::from_ranges(&[1.0, 0.0, 0.0, 1.0]).is_err());
     assert!(BoundingBox3::from_ranges(&[0.0, f64::NAN, 0.0, 1.0]).is_err());
     let b2 = BoundingBox3::from_ranges(&[0.0, 1.0, 0.0, 1.0]).unwrap();
-    let bad = ConvexDomainOptions {
-        tolerance: -1.0,
-        ..Default::default()
-    };
+    let bad = ConvexDomainOptions::DEFAULT.with_tolerance(-1.0);
     assert!(approximate(&h, &b2, &bad).is_err());
-    let too_deep = ConvexDomainOptions {
-        max_level: 40,
-        ..Default::default()
-    };
+    let too_deep = ConvexDomainOptions::DEFAULT.with_max_level(40);
     let e = approximate(&h, &b2, &too_deep).unwrap_err().to_string();
     assert!(e.contains("max level 40"), "{e}");
 }
@@ -396,12 +387,11 @@ fn torsion_volumes_bracket_a_monte_carlo_estimate_when_a_constraint_is_a_box_fac
         [20.0, 40.0, 50.0],
     ];
     let (h, sign) = torsion_with_free_point_2(&pts);
-    let options = ConvexDomainOptions {
-        sign,
-        tolerance: 1e-4,
-        max_level: 4,
-        outer_samples: 128,
-    };
+    let options = ConvexDomainOptions::DEFAULT
+        .with_sign(sign)
+        .with_tolerance(1e-4)
+        .with_max_level(4)
+        .with_outer_samples(128);
     let r = [-100.0, 100.0, -100.0, 100.0, 0.0, 100.0];
     let bbox = BoundingBox3::from_ranges(&r).unwrap();
     let k = approximate(&h, &bbox, &options).unwrap();

@@ -15,6 +15,7 @@ use rs_spline::Affine;
 
 /// How DXF entities are joined into loops.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct DxfOptions {
     /// Entity ends closer than this fraction of the drawing's bounding-box diagonal are
     /// joined (also the domain's closure tolerance).
@@ -23,12 +24,29 @@ pub struct DxfOptions {
     pub allow_open: bool,
 }
 
+impl DxfOptions {
+    /// Ends within `1e-9` of the diagonal are joined; open chains are an error.
+    pub const DEFAULT: DxfOptions = DxfOptions {
+        closure_tolerance: 1e-9,
+        allow_open: false,
+    };
+
+    /// With another relative closure tolerance.
+    pub const fn with_closure_tolerance(mut self, relative_tolerance: f64) -> Self {
+        self.closure_tolerance = relative_tolerance;
+        self
+    }
+
+    /// Keeping open chains (`true`) or refusing them.
+    pub const fn with_allow_open(mut self, allow_open: bool) -> Self {
+        self.allow_open = allow_open;
+        self
+    }
+}
+
 impl Default for DxfOptions {
     fn default() -> Self {
-        Self {
-            closure_tolerance: 1e-9,
-            allow_open: false,
-        }
+        Self::DEFAULT
     }
 }
 

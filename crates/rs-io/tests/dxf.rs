@@ -229,14 +229,8 @@ fn errors_name_the_entity() {
     let msg = read(open.clone()).unwrap_err().to_string();
     assert!(msg.contains("LINE") && msg.contains("open"), "{msg}");
     // Open chains are kept on request (for winding numbers).
-    let d = domain_from_dxf_str(
-        &drawing(open),
-        &DxfOptions {
-            allow_open: true,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let d =
+        domain_from_dxf_str(&drawing(open), &DxfOptions::DEFAULT.with_allow_open(true)).unwrap();
     assert!(!d.is_closed());
 
     let mut tilted = Circle::new(p3(0.0, 0.0), 1.0);

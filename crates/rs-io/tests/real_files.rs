@@ -50,7 +50,7 @@ fn check_domain(name: &str, d: &Domain, n: usize) -> usize {
             "{name}: {method:?}"
         );
     }
-    let locator = PointLocator::new(&classifier, LocatorOptions { cells: 64 });
+    let locator = PointLocator::new(&classifier, LocatorOptions::DEFAULT.with_cells(64));
     assert_eq!(locator.locate_all(&pts), expected, "{name}: locator");
     let fast = FastWindingField::new(classifier.winding_field());
     for (p, e) in pts.iter().zip(&expected) {

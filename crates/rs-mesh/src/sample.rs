@@ -79,7 +79,7 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
             limit: MAX_SAMPLE_POINTS,
         });
     }
-    let boxes = MonotoneBoxes::new(domain, BoxOptions { subdivisions: 1 })?;
+    let boxes = MonotoneBoxes::new(domain, BoxOptions::DEFAULT.with_subdivisions(1))?;
     let mut interior = Vec::new();
     let mut extra = Vec::new();
     for i in 1..ny {

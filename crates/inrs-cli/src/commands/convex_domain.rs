@@ -61,12 +61,10 @@ impl ConvexDomainArgs {
         let bbox = BoundingBox3::from_ranges(&self.bbox).map_err(|e| e.to_string())?;
         let h = curve.numerator(self.free_index).map_err(in_file)?;
         let sign = self.sign_to_keep(&curve, &h);
-        let options = ConvexDomainOptions {
-            sign,
-            tolerance: self.tol,
-            max_level: self.max_level,
-            ..Default::default()
-        };
+        let options = ConvexDomainOptions::DEFAULT
+            .with_sign(sign)
+            .with_tolerance(self.tol)
+            .with_max_level(self.max_level);
         let k = inrs::convex::approximate(&h, &bbox, &options).map_err(|e| e.to_string())?;
         if let Some(out) = &self.svg {
             write_text(Some(out), &self.figure(&curve, &k)?)?;
