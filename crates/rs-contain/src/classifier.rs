@@ -4,7 +4,6 @@ use rs_boxes::{BoxOptions, DEFAULT_SUBDIVISIONS, MonotoneBoxes};
 use rs_spline::{BoundingBox, Domain, Point};
 
 use crate::rays::{Hit, horizontal, parity, vertical};
-use crate::winding::winding_number;
 use std::sync::{Arc, OnceLock};
 
 use crate::locate::in_parallel_chunks;
@@ -217,7 +216,9 @@ impl Classifier {
         if self.boxes().boxes().iter().any(|b| b.is_near(p, self.tol)) {
             return (Location::Boundary, Decision::WindingNumber);
         }
-        let w = winding_number(self.boxes().boxes(), p).round() as i64;
+        // The generalized winding number (the one winding routine of the crate), exact up to
+        // rounding at a point off the boundary; its field is built on the first call.
+        let w = self.winding_field().winding_number(p).round() as i64;
         let loc = if w.rem_euclid(2) == 1 {
             Location::Inside
         } else {

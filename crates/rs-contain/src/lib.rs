@@ -23,7 +23,7 @@
 //!   `sum_i w_i (x_i - px) B_i(t) = 0` decides. If the point's abscissa is within `tol` of a
 //!   critical abscissa (vertical tangency, x-turning vertex, vertical piece), the leftward
 //!   horizontal ray is used; if its ordinate is also critical, the winding number (computed
-//!   exactly by chord angles of monotone pieces, see `winding.rs`) decides, by parity.
+//!   exactly by [`WindingField`]) decides, by parity.
 //!   Crossings use half-open intervals (the ray is moved an infinitesimal distance off the
 //!   vertices), so counts are exact at shared end points.
 //! - **Invalid input**: an open boundary is an error when building the [`Classifier`];
@@ -56,7 +56,6 @@ mod location;
 mod locator;
 mod polygon;
 mod rays;
-mod winding;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_TOLERANCE};
 pub use error::ContainError;
