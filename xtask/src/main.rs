@@ -7,9 +7,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use inrs::contain::baselines::halton_points;
-use inrs::{
-    BoundingBox, Classifier, ContainOptions, Domain, DomainSummary, Location, Method, Point,
-};
+use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Location, Method, Point};
+use rs_testkit::FixtureMeta;
 
 mod bench;
 mod figures;
@@ -42,44 +41,6 @@ fn workspace_root() -> PathBuf {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default()
-}
-
-/// Reference inside counts `(N, count)` stored in a fixture's metadata.
-fn reference_counts(meta: &serde_json::Value) -> Vec<(usize, usize)> {
-    let refs = &meta["reference_inside_counts_halton"];
-    let mut out: Vec<(usize, usize)> = Vec::new();
-    if let Some(paper) = refs["paper_protocol"].as_object() {
-        for (n, r) in paper {
-            if let (Ok(n), Some(c)) = (n.parse(), r["inRS_nbox200_safe1_in"].as_u64()) {
-                out.push((n, c as usize));
-            }
-        }
-    }
-    if let (Some(n), Some(c)) = (
-        refs["N10000_check"]["N"].as_u64(),
-        refs["N10000_check"]["inRS_nbox100_safe1_in"].as_u64(),
-    ) {
-        out.push((n as usize, c as usize));
-    }
-    out.sort_unstable();
-    out.dedup();
-    out
-}
-
-/// The reference bounding box of a fixture (the box its Halton points were mapped to).
-fn reference_box(meta: &serde_json::Value, fallback: BoundingBox) -> BoundingBox {
-    let b: Vec<f64> = meta["bbox_xmin_xmax_ymin_ymax"]
-        .as_array()
-        .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
-        .unwrap_or_default();
-    if b.len() == 4 {
-        BoundingBox {
-            min: Point::new(b[0], b[2]),
-            max: Point::new(b[1], b[3]),
-        }
-    } else {
-        fallback
-    }
 }
 
 /// Writes the curved triangulation of `d` (well-spaced points with `ny` bands) as an SVG and
@@ -140,14 +101,10 @@ fn demo(dir: &Path) -> Result<(), String> {
             .and_then(|x| x.to_str())
             .unwrap_or("?")
             .to_string();
-        let d = inrs::io::json::domain_from_json_file(path)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        let meta: serde_json::Value = std::fs::read_to_string(path)
-            .ok()
-            .and_then(|t| serde_json::from_str(&t).ok())
-            .unwrap_or_default();
-        let s = DomainSummary::of(&d);
-        if let Some(r) = meta.get("signed_area").and_then(serde_json::Value::as_f64)
+        let meta = FixtureMeta::load(path)?;
+        let d = &meta.domain;
+        let s = DomainSummary::of(d);
+        if let Some(r) = meta.signed_area
             && (r - s.signed_area).abs() > 1e-12 * r.abs()
         {
             failures.push(format!(
@@ -155,10 +112,10 @@ fn demo(dir: &Path) -> Result<(), String> {
                 s.signed_area
             ));
         }
-        let classifier = Classifier::new(&d, ContainOptions::default())
+        let classifier = Classifier::new(d, ContainOptions::default())
             .map_err(|e| format!("{}: {e}", path.display()))?;
-        let bbox = reference_box(&meta, d.bounding_box());
-        let mut counts = reference_counts(&meta);
+        let bbox = meta.reference_box.unwrap_or(d.bounding_box());
+        let mut counts = meta.inside_counts.clone();
         if counts.is_empty() {
             counts.push((10_000, usize::MAX));
         }
@@ -198,18 +155,18 @@ fn demo(dir: &Path) -> Result<(), String> {
         figures_written.extend(figures::domain_figures(
             &figures_dir,
             &stem,
-            &d,
+            d,
             &fig_pts,
             &fig_loc,
         )?);
         if stem == "s4_disk_ellipse_segment" {
             figures_written.push(figures::gap_figure(
                 &figures_dir,
-                &d,
+                d,
                 1,
                 Point::new(0.2, -0.15),
             )?);
-            figures_written.push(mesh_figure(&figures_dir, &stem, &d, 12, &mut failures)?);
+            figures_written.push(mesh_figure(&figures_dir, &stem, d, 12, &mut failures)?);
         }
         summaries.push(s);
     }

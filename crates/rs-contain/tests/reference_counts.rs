@@ -7,12 +7,13 @@ use rs_contain::{
     Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
     WindingField,
 };
-use rs_spline::{BoundingBox, Domain, Point};
-use serde_json::Value;
+use rs_spline::Point;
+use rs_testkit::FixtureMeta;
 
 /// The paper's fixtures and their rewrites with knots of multiplicity degree + 1 (the inRS
 /// Matlab package's form), each with reference counts.
-fn fixtures() -> Vec<(String, Domain, Value)> {
+/// The fixtures with reference inside counts, by name.
+fn fixtures() -> Vec<(String, FixtureMeta)> {
     let mut v = Vec::new();
     for sub in ["inrs-paper", "breaks"] {
         let dir = format!("{}/../../fixtures/{sub}", env!("CARGO_MANIFEST_DIR"));
@@ -20,14 +21,12 @@ fn fixtures() -> Vec<(String, Domain, Value)> {
             if p.extension().is_none_or(|e| e != "json") {
                 continue;
             }
-            let text = std::fs::read_to_string(&p).unwrap();
-            let meta: Value = serde_json::from_str(&text).unwrap();
-            if meta.get("reference_inside_counts_halton").is_none() {
+            let meta = FixtureMeta::load(&p).unwrap();
+            if meta.inside_counts.is_empty() {
                 continue;
             }
             v.push((
                 format!("{sub}/{}", p.file_stem().unwrap().to_string_lossy()),
-                rs_io::json::domain_from_json(&text).unwrap(),
                 meta,
             ));
         }
@@ -37,52 +36,17 @@ fn fixtures() -> Vec<(String, Domain, Value)> {
     v
 }
 
-/// (N, expected inside count) pairs recorded in a fixture.
-fn references(meta: &Value) -> Vec<(usize, usize)> {
-    let refs = &meta["reference_inside_counts_halton"];
-    let mut out = Vec::new();
-    if let Some(paper) = refs["paper_protocol"].as_object() {
-        for (n, r) in paper {
-            out.push((
-                n.parse().unwrap(),
-                r["inRS_nbox200_safe1_in"].as_u64().unwrap() as usize,
-            ));
-        }
-    }
-    if let Some(check) = refs.get("N10000_check") {
-        out.push((
-            check["N"].as_u64().unwrap() as usize,
-            check["inRS_nbox100_safe1_in"].as_u64().unwrap() as usize,
-        ));
-    }
-    out.sort();
-    out.dedup();
-    out
-}
-
-fn reference_box(meta: &Value) -> BoundingBox {
-    let b: Vec<f64> = meta["bbox_xmin_xmax_ymin_ymax"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
-    BoundingBox {
-        min: Point::new(b[0], b[2]),
-        max: Point::new(b[1], b[3]),
-    }
-}
-
 #[test]
 fn inside_counts_match_the_reference_exactly() {
     let mut checked = 0;
-    for (name, domain, meta) in fixtures() {
-        let bbox = reference_box(&meta);
-        for (n, expected) in references(&meta) {
+    for (name, meta) in fixtures() {
+        let domain = &meta.domain;
+        let bbox = meta.reference_box.unwrap();
+        for (n, expected) in meta.inside_counts.iter().copied() {
             let pts = halton_points(n, bbox);
             for subdivisions in [1, 8] {
                 let c = Classifier::new(
-                    &domain,
+                    domain,
                     ContainOptions::DEFAULT.with_subdivisions(subdivisions),
                 )
                 .unwrap();
@@ -100,8 +64,7 @@ fn inside_counts_match_the_reference_exactly() {
                     );
                     checked += 1;
                 }
-                let field =
-                    WindingField::new(&domain, ContainOptions::default().tolerance).unwrap();
+                let field = WindingField::new(domain, ContainOptions::default().tolerance).unwrap();
                 let fast = FastWindingField::new(&field);
                 let inside = pts
                     .iter()
@@ -125,10 +88,11 @@ fn inside_counts_match_the_reference_exactly() {
 /// reference counts too, with about 10^5 sides.
 #[test]
 fn polygon_baseline_matches_the_reference() {
-    for (name, domain, meta) in fixtures() {
-        let poly = rs_contain::baselines::FlattenedPolygon::new(&domain, 1e-10);
-        let bbox = reference_box(&meta);
-        for (n, expected) in references(&meta) {
+    for (name, meta) in fixtures() {
+        let domain = &meta.domain;
+        let poly = rs_contain::baselines::FlattenedPolygon::new(domain, 1e-10);
+        let bbox = meta.reference_box.unwrap();
+        for (n, expected) in meta.inside_counts.iter().copied() {
             let pts = halton_points(n, bbox);
             let inside = poly.classify(&pts).iter().filter(|&&b| b).count();
             assert_eq!(

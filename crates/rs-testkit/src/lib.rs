@@ -5,6 +5,10 @@
 //! Test-only code: it panics on bad input instead of returning errors.
 #![allow(clippy::unwrap_used)]
 
+mod fixture_meta;
+
+pub use fixture_meta::FixtureMeta;
+
 use rs_spline::prelude::*;
 use std::f64::consts::PI;
 
