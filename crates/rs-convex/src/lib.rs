@@ -27,6 +27,7 @@
 //! ```
 
 mod approximation;
+mod clip;
 mod curve_file;
 mod error;
 mod point3;

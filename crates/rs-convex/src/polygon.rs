@@ -2,6 +2,8 @@
 
 use rs_spline::Point;
 
+use crate::clip::{Cut, clip_cycle};
+
 /// A convex polygon, vertices counter-clockwise (empty when clipped away).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ConvexPolygon {
@@ -59,34 +61,19 @@ impl ConvexPolygon {
     /// length typical of the polygon) sets the rounding threshold below which a vertex counts
     /// as on the line.
     pub fn clip(&self, a1: f64, a2: f64, b: f64, scale: f64) -> Self {
-        let norm = a1.hypot(a2);
-        if norm <= 1e-300 || norm * scale <= 1e-14 * b.abs() {
-            return if b > 0.0 {
-                self.clone()
-            } else {
-                Self::default()
-            };
+        match Cut::new(a1.hypot(a2), b, scale) {
+            Cut::All(true) => self.clone(),
+            Cut::All(false) => Self::default(),
+            Cut::By { eps } => Self {
+                vertices: clip_cycle(
+                    &self.vertices,
+                    |p: Point| a1 * p.x + a2 * p.y + b,
+                    eps,
+                    scale,
+                    |_| {},
+                ),
+            },
         }
-        let eps = 1e-13 * (norm * scale + b.abs());
-        let f = |p: Point| a1 * p.x + a2 * p.y + b;
-        let n = self.vertices.len();
-        let mut out = Vec::with_capacity(n + 1);
-        for i in 0..n {
-            let (p, q) = (self.vertices[i], self.vertices[(i + 1) % n]);
-            let (fp, fq) = (f(p), f(q));
-            if fp >= -eps {
-                out.push(p);
-            }
-            if (fp > eps && fq < -eps) || (fp < -eps && fq > eps) {
-                let t = fp / (fp - fq);
-                out.push(p + (q - p) * t);
-            }
-        }
-        out.dedup_by(|a, b| a.distance(*b) <= 1e-14 * scale);
-        if out.len() > 1 && out[0].distance(out[out.len() - 1]) <= 1e-14 * scale {
-            out.pop();
-        }
-        Self { vertices: out }
     }
 
     /// True if `p` satisfies every edge's half-plane within `eps`.

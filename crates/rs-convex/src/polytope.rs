@@ -1,6 +1,7 @@
 //! Convex polytopes in 3-D clipped by half-spaces (face lists).
 
 use crate::Point3;
+use crate::clip::{Cut, clip_cycle};
 
 /// The corner type of [`ConvexPolytope`] (kept as an alias of [`Point3`]).
 pub type P3 = Point3;
@@ -88,15 +89,12 @@ impl ConvexPolytope {
     /// The part where `a . x + b >= 0`; `size` is a length typical of the polytope (for the
     /// rounding threshold). `a = 0` keeps everything if `b > 0`, nothing otherwise.
     pub fn clip(&self, a: P3, b: f64, size: f64) -> Self {
+        let eps = match Cut::new(a.length(), b, size) {
+            Cut::All(true) => return self.clone(),
+            Cut::All(false) => return Self::default(),
+            Cut::By { eps } => eps,
+        };
         let na = a.length();
-        if na <= 1e-300 || na * size <= 1e-14 * b.abs() {
-            return if b > 0.0 {
-                self.clone()
-            } else {
-                Self::default()
-            };
-        }
-        let eps = 1e-13 * (na * size + b.abs());
         let f = |p: P3| a.dot(p) + b;
         let mut faces = Vec::new();
         let mut cap: Vec<P3> = Vec::new();
@@ -104,32 +102,12 @@ impl ConvexPolytope {
         // duplicate plane): adding the section again would count that face twice.
         let mut face_in_plane = false;
         for face in &self.faces {
-            let n = face.len();
             if face.iter().all(|&p| f(p).abs() <= eps) {
                 face_in_plane = true;
                 faces.push(face.clone());
                 continue;
             }
-            let mut out = Vec::with_capacity(n + 1);
-            for i in 0..n {
-                let (p, q) = (face[i], face[(i + 1) % n]);
-                let (fp, fq) = (f(p), f(q));
-                if fp >= -eps {
-                    out.push(p);
-                    if fp.abs() <= eps {
-                        cap.push(p);
-                    }
-                }
-                if (fp > eps && fq < -eps) || (fp < -eps && fq > eps) {
-                    let x = p + (q - p) * (fp / (fp - fq));
-                    out.push(x);
-                    cap.push(x);
-                }
-            }
-            out.dedup_by(|x, y| (*x - *y).length() <= 1e-14 * size);
-            if out.len() > 1 && (out[0] - out[out.len() - 1]).length() <= 1e-14 * size {
-                out.pop();
-            }
+            let out = clip_cycle(face, f, eps, size, |p| cap.push(p));
             if out.len() >= 3 {
                 faces.push(out);
             }
