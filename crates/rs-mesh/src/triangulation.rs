@@ -242,57 +242,123 @@ fn p2(p: Point) -> Point2<f64> {
     Point2::new(p.x, p.y)
 }
 
+/// The constrained Delaunay triangulation of the inscribed polygon.
+type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
+
+/// The vertices inserted so far: coordinates, boundary data, and spade's handle of each.
+#[derive(Default)]
+struct Vertices {
+    points: Vec<Point>,
+    boundary: Vec<Option<BoundaryPoint>>,
+    index: HashMap<FixedVertexHandle, usize>,
+}
+
+impl Vertices {
+    /// Inserts `p` (a repeated position keeps its first index); returns its index.
+    fn insert(
+        &mut self,
+        cdt: &mut Cdt,
+        p: Point,
+        boundary: Option<BoundaryPoint>,
+    ) -> Result<usize, MeshError> {
+        let h = cdt.insert(p2(p)).map_err(insertion_error)?;
+        Ok(*self.index.entry(h).or_insert_with(|| {
+            self.points.push(p);
+            self.boundary.push(boundary);
+            self.points.len() - 1
+        }))
+    }
+}
+
+/// spade's insertion errors in words.
+fn insertion_error(e: spade::InsertionError) -> MeshError {
+    MeshError::Triangulation(
+        match e {
+            spade::InsertionError::TooLarge => {
+                "a vertex coordinate is beyond the triangulator's range (|x| <= 3.2e60): meshing needs smaller coordinates"
+            }
+            spade::InsertionError::TooSmall => {
+                "a nonzero vertex coordinate is below the triangulator's range (|x| >= 1.8e-43): meshing needs larger coordinates"
+            }
+            spade::InsertionError::NAN => "a vertex coordinate is NaN",
+        }
+        .to_string(),
+    )
+}
+
+/// One attempt at the curved triangulation (paper Algorithm 4.1): constrained Delaunay
+/// triangulation of the boundary chords, interior points added, the faces inside the chord
+/// loops kept, and every chord replaced by its arc if the arc meets no other edge. Says which
+/// chords to split or which interior points to drop when that fails.
 fn build(
     domain: &Domain,
     boundary: &[Vec<BoundaryPoint>],
     interior: &[Point],
     size: f64,
 ) -> Result<Attempt, MeshError> {
-    let tri_err = |e: spade::InsertionError| {
-        MeshError::Triangulation(
-            match e {
-                spade::InsertionError::TooLarge => {
-                    "a vertex coordinate is beyond the triangulator's range (|x| <= 3.2e60): meshing needs smaller coordinates"
-                }
-                spade::InsertionError::TooSmall => {
-                    "a nonzero vertex coordinate is below the triangulator's range (|x| >= 1.8e-43): meshing needs larger coordinates"
-                }
-                spade::InsertionError::NAN => "a vertex coordinate is NaN",
-            }
-            .to_string(),
-        )
-    };
-    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = Default::default();
-    let mut vertices: Vec<Point> = Vec::new();
-    let mut boundary_vertex: Vec<Option<BoundaryPoint>> = Vec::new();
-    let mut handle_index: HashMap<FixedVertexHandle, usize> = HashMap::new();
+    let mut cdt = Cdt::default();
+    let mut v = Vertices::default();
     let mut loop_vertices: Vec<Vec<usize>> = Vec::new();
     for l in boundary {
-        let mut ids = Vec::with_capacity(l.len());
-        for bp in l {
-            let h = cdt.insert(p2(bp.point)).map_err(tri_err)?;
-            let id = *handle_index.entry(h).or_insert_with(|| {
-                vertices.push(bp.point);
-                boundary_vertex.push(Some(*bp));
-                vertices.len() - 1
-            });
-            ids.push(id);
-        }
+        let ids = l
+            .iter()
+            .map(|bp| v.insert(&mut cdt, bp.point, Some(*bp)))
+            .collect::<Result<Vec<_>, _>>()?;
         loop_vertices.push(ids);
     }
-    let index_handle: HashMap<usize, FixedVertexHandle> =
-        handle_index.iter().map(|(h, i)| (*i, *h)).collect();
+    let failing = constrain_chords(&mut cdt, &v, &loop_vertices);
+    if !failing.is_empty() {
+        return Ok(Attempt::Refine(failing));
+    }
+    let interior_vertex = interior
+        .iter()
+        .map(|&p| v.insert(&mut cdt, p, None))
+        .collect::<Result<Vec<_>, _>>()?;
+    let inside = faces_inside(&cdt);
+    let mut triangles = Vec::new();
+    let mut face_triangle = HashMap::new();
+    for f in cdt.inner_faces() {
+        if inside.get(&f.fix().index()).copied().unwrap_or(false) {
+            face_triangle.insert(f.fix().index(), triangles.len());
+            triangles.push(f.vertices().map(|h| v.index[&h.fix()]));
+        }
+    }
+    let stray = stray_interior(&triangles, &interior_vertex, v.points.len());
+    if !stray.is_empty() {
+        return Ok(Attempt::DropInterior(stray));
+    }
+    let (arcs, edges, failing) = attach_arcs(domain, &v, &loop_vertices, &triangles, size)?;
+    if !failing.is_empty() {
+        return Ok(Attempt::Refine(failing));
+    }
+    Ok(Attempt::Done(Box::new(CurvedTriangulation {
+        domain: domain.clone(),
+        vertices: v.points,
+        boundary_vertex: v.boundary,
+        triangles,
+        edges,
+        arcs,
+        cdt,
+        face_triangle,
+        inserted_boundary_points: 0,
+        dropped_interior_points: 0,
+    })))
+}
+
+/// Adds every boundary chord as a constraint; returns the chords (loop, index in the loop)
+/// that cannot be added and those already added that they cross: all of them must be split.
+fn constrain_chords(cdt: &mut Cdt, v: &Vertices, loops: &[Vec<usize>]) -> Vec<(usize, usize)> {
+    let handle: HashMap<usize, FixedVertexHandle> = v.index.iter().map(|(h, i)| (*i, *h)).collect();
     let mut failing = Vec::new();
     let mut chords: Vec<((usize, usize), (usize, usize))> = Vec::new();
-    for (j, ids) in loop_vertices.iter().enumerate() {
+    for (j, ids) in loops.iter().enumerate() {
         for k in 0..ids.len() {
             let (a, b) = (ids[k], ids[(k + 1) % ids.len()]);
-            let (ha, hb) = (index_handle[&a], index_handle[&b]);
+            let (ha, hb) = (handle[&a], handle[&b]);
             if a == b || !cdt.can_add_constraint(ha, hb) {
-                // Split this chord and every chord already inserted that it crosses.
                 failing.push((j, k));
                 for &((j2, k2), (c, d)) in &chords {
-                    if chords_meet(vertices[a], vertices[b], vertices[c], vertices[d]) {
+                    if chords_meet(v.points[a], v.points[b], v.points[c], v.points[d]) {
                         failing.push((j2, k2));
                     }
                 }
@@ -302,20 +368,12 @@ fn build(
             }
         }
     }
-    if !failing.is_empty() {
-        return Ok(Attempt::Refine(failing));
-    }
-    let mut interior_vertex = Vec::with_capacity(interior.len());
-    for &p in interior {
-        let h = cdt.insert(p2(p)).map_err(tri_err)?;
-        let id = *handle_index.entry(h).or_insert_with(|| {
-            vertices.push(p);
-            boundary_vertex.push(None);
-            vertices.len() - 1
-        });
-        interior_vertex.push(id);
-    }
-    // Crossing parity of the constraint loops, by flood fill from the convex hull.
+    failing
+}
+
+/// Crossing parity of the constraint loops for every inner face, by flood fill from the
+/// convex hull: `true` inside the domain.
+fn faces_inside(cdt: &Cdt) -> HashMap<usize, bool> {
     let mut inside: HashMap<usize, bool> = HashMap::new();
     let mut queue = VecDeque::new();
     for e in cdt.convex_hull() {
@@ -329,42 +387,48 @@ fn build(
     while let Some(f) = queue.pop_front() {
         let parity = inside[&f.fix().index()];
         for e in f.adjacent_edges() {
-            if let Some(g) = e.rev().face().as_inner() {
-                if let std::collections::hash_map::Entry::Vacant(slot) =
+            if let Some(g) = e.rev().face().as_inner()
+                && let std::collections::hash_map::Entry::Vacant(slot) =
                     inside.entry(g.fix().index())
-                {
-                    slot.insert(parity ^ cdt.is_constraint_edge(e.as_undirected().fix()));
-                    queue.push_back(g);
-                }
+            {
+                slot.insert(parity ^ cdt.is_constraint_edge(e.as_undirected().fix()));
+                queue.push_back(g);
             }
         }
     }
-    let mut triangles = Vec::new();
-    let mut face_triangle = HashMap::new();
-    for f in cdt.inner_faces() {
-        if inside.get(&f.fix().index()).copied().unwrap_or(false) {
-            let v = f.vertices().map(|h| handle_index[&h.fix()]);
-            face_triangle.insert(f.fix().index(), triangles.len());
-            triangles.push(v);
-        }
-    }
-    // Interior points that belong to no kept triangle lie between an arc and its chord.
-    let mut used = vec![false; vertices.len()];
-    for t in &triangles {
+    inside
+}
+
+/// Interior points (indices into `interior_vertex`) in no kept triangle: they lie between an
+/// arc and its chord.
+fn stray_interior(triangles: &[[usize; 3]], interior_vertex: &[usize], n: usize) -> Vec<usize> {
+    let mut used = vec![false; n];
+    for t in triangles {
         for &v in t {
             used[v] = true;
         }
     }
-    let stray: Vec<usize> = interior_vertex
+    interior_vertex
         .iter()
         .enumerate()
         .filter(|(_, v)| !used[**v])
         .map(|(i, _)| i)
-        .collect();
-    if !stray.is_empty() {
-        return Ok(Attempt::DropInterior(stray));
-    }
-    // Edges of the kept triangles, for the convertibility check.
+        .collect()
+}
+
+/// Arcs, edge kinds per triangle, and the chords whose arcs cannot replace them (an arc
+/// meeting another edge, a chord owned by no kept triangle).
+type Attached = (Vec<BoundaryArc>, Vec<[EdgeKind; 3]>, Vec<(usize, usize)>);
+
+/// Replaces every boundary chord by its arc where the arc meets no other edge (paper
+/// Definition 4.2, convertibility).
+fn attach_arcs(
+    domain: &Domain,
+    v: &Vertices,
+    loops: &[Vec<usize>],
+    triangles: &[[usize; 3]],
+    size: f64,
+) -> Result<Attached, MeshError> {
     let mut edge_of: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
     for (t, tri) in triangles.iter().enumerate() {
         for k in 0..3 {
@@ -376,13 +440,14 @@ fn build(
         .filter(|(a, b)| a < b || !edge_of.contains_key(&(*b, *a)))
         .copied()
         .collect();
-    let grid = EdgeGrid::new(&vertices, &all_edges);
+    let grid = EdgeGrid::new(&v.points, &all_edges);
     let mut arcs = Vec::new();
     let mut edges = vec![[EdgeKind::Straight; 3]; triangles.len()];
-    for (j, ids) in loop_vertices.iter().enumerate() {
+    let mut failing = Vec::new();
+    for (j, ids) in loops.iter().enumerate() {
         for k in 0..ids.len() {
             let (a, b) = (ids[k], ids[(k + 1) % ids.len()]);
-            let (Some(pa), Some(pb)) = (boundary_vertex[a], boundary_vertex[b]) else {
+            let (Some(pa), Some(pb)) = (v.boundary[a], v.boundary[b]) else {
                 failing.push((j, k));
                 continue;
             };
@@ -398,7 +463,7 @@ fn build(
                 continue;
             };
             let arc_curve = curve.subsegment((pa.u, u1))?;
-            if !arc_is_clear(&arc_curve, (a, b), &vertices, &grid, size) {
+            if !arc_is_clear(&arc_curve, (a, b), &v.points, &grid, size) {
                 failing.push((j, k));
                 continue;
             }
@@ -414,21 +479,7 @@ fn build(
             });
         }
     }
-    if !failing.is_empty() {
-        return Ok(Attempt::Refine(failing));
-    }
-    Ok(Attempt::Done(Box::new(CurvedTriangulation {
-        domain: domain.clone(),
-        vertices,
-        boundary_vertex,
-        triangles,
-        edges,
-        arcs,
-        cdt,
-        face_triangle,
-        inserted_boundary_points: 0,
-        dropped_interior_points: 0,
-    })))
+    Ok((arcs, edges, failing))
 }
 
 /// True if segments `ab` and `cd` share a point other than a common end point.
