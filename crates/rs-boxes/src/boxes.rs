@@ -154,79 +154,11 @@ impl MonotoneBoxes {
                 limit: MAX_SUBDIVISIONS,
             });
         }
-        // First pass: the watertight pieces of every loop and their monotone splits, so that
-        // the refinement can be fitted to the box budget.
-        let mut loops = Vec::with_capacity(domain.loops().len());
-        let mut monotone_pieces = 0usize;
-        for l in domain.loops() {
-            let mut pieces: Vec<(usize, (f64, f64), BezierPiece)> = l
-                .curves()
-                .flat_map(|ci| {
-                    domain.curves()[ci]
-                        .to_bezier()
-                        .into_iter()
-                        .map(move |b| (ci, b.knot_span(), BezierPiece::from_bezier(&b)))
-                })
-                .collect();
-            for i in 1..pieces.len() {
-                let end = pieces[i - 1].2.end();
-                pieces[i].2.set_start(end);
-            }
-            if l.is_closed() {
-                let end = pieces[pieces.len() - 1].2.end();
-                pieces[0].2.set_start(end);
-            }
-            let mut split = Vec::with_capacity(pieces.len());
-            for (ci, range, piece) in pieces {
-                let s = monotone_splits(&piece).map_err(|source| BoxError::Piece {
-                    curve: ci,
-                    parameter: range.0,
-                    source,
-                })?;
-                monotone_pieces += s.0.len() + 1;
-                split.push((ci, range, piece, s));
-            }
-            loops.push(split);
-        }
+        let (loops, monotone_pieces) = split_loops(domain)?;
         let subdivisions = options
             .subdivisions
             .min((BOX_BUDGET / monotone_pieces.max(1)).max(1));
-        let mut boxes = Vec::with_capacity(monotone_pieces * subdivisions);
-        let mut critical = Vec::new();
-        for (li, (l, split)) in domain.loops().iter().zip(loops).enumerate() {
-            let first = boxes.len();
-            // Tangency flags at the start of each box of this loop.
-            let mut start_flags: Vec<EndFlags> = Vec::new();
-            let mut pending_end: EndFlags = (false, false);
-            for (ci, range, piece, (splits, at_start, at_end)) in split {
-                let before = boxes.len();
-                split_piece(
-                    &piece,
-                    ci,
-                    li,
-                    range,
-                    &splits,
-                    subdivisions,
-                    &mut boxes,
-                    &mut start_flags,
-                );
-                let idx = before - first;
-                start_flags[idx].0 |= at_start.0 || pending_end.0;
-                start_flags[idx].1 |= at_start.1 || pending_end.1;
-                pending_end = at_end;
-            }
-            let last = boxes.len();
-            if l.is_closed() {
-                start_flags[0].0 |= pending_end.0;
-                start_flags[0].1 |= pending_end.1;
-            }
-            collect_critical(
-                &boxes[first..last],
-                &start_flags,
-                l.is_closed(),
-                &mut critical,
-            );
-        }
+        let (boxes, critical) = build_boxes(domain, loops, monotone_pieces, subdivisions);
         let bbox = boxes
             .iter()
             .map(|b| BoundingBox {
@@ -305,6 +237,95 @@ impl MonotoneBoxes {
 fn near_sorted(v: &[f64], x: f64, tol: f64) -> bool {
     let i = v.partition_point(|&c| c < x - tol);
     i < v.len() && v[i] <= x + tol
+}
+
+/// One loop's pieces: (curve, knot span, watertight piece, its monotone splits).
+type SplitLoop = Vec<(usize, (f64, f64), BezierPiece, Splits)>;
+
+/// First pass: the watertight pieces of every loop (each piece starts exactly where the
+/// previous one ends) and their monotone splits, with the number of monotone pieces, so that
+/// the refinement can be fitted to the box budget.
+fn split_loops(domain: &Domain) -> Result<(Vec<SplitLoop>, usize), BoxError> {
+    let mut loops = Vec::with_capacity(domain.loops().len());
+    let mut monotone_pieces = 0usize;
+    for l in domain.loops() {
+        let mut pieces: Vec<(usize, (f64, f64), BezierPiece)> = l
+            .curves()
+            .flat_map(|ci| {
+                domain.curves()[ci]
+                    .to_bezier()
+                    .into_iter()
+                    .map(move |b| (ci, b.knot_span(), BezierPiece::from_bezier(&b)))
+            })
+            .collect();
+        for i in 1..pieces.len() {
+            let end = pieces[i - 1].2.end();
+            pieces[i].2.set_start(end);
+        }
+        if l.is_closed() {
+            let end = pieces[pieces.len() - 1].2.end();
+            pieces[0].2.set_start(end);
+        }
+        let mut split = Vec::with_capacity(pieces.len());
+        for (ci, range, piece) in pieces {
+            let s = monotone_splits(&piece).map_err(|source| BoxError::Piece {
+                curve: ci,
+                parameter: range.0,
+                source,
+            })?;
+            monotone_pieces += s.0.len() + 1;
+            split.push((ci, range, piece, s));
+        }
+        loops.push(split);
+    }
+    Ok((loops, monotone_pieces))
+}
+
+/// Second pass: the boxes of every loop (each monotone piece cut into `subdivisions`), with
+/// the tangency flags carried across piece joins, and the loop's critical points.
+fn build_boxes(
+    domain: &Domain,
+    loops: Vec<SplitLoop>,
+    monotone_pieces: usize,
+    subdivisions: usize,
+) -> (Vec<MonotoneBox>, Vec<CriticalPoint>) {
+    let mut boxes = Vec::with_capacity(monotone_pieces * subdivisions);
+    let mut critical = Vec::new();
+    for (li, (l, split)) in domain.loops().iter().zip(loops).enumerate() {
+        let first = boxes.len();
+        // Tangency flags at the start of each box of this loop.
+        let mut start_flags: Vec<EndFlags> = Vec::new();
+        let mut pending_end: EndFlags = (false, false);
+        for (ci, range, piece, (splits, at_start, at_end)) in split {
+            let before = boxes.len();
+            split_piece(
+                &piece,
+                ci,
+                li,
+                range,
+                &splits,
+                subdivisions,
+                &mut boxes,
+                &mut start_flags,
+            );
+            let idx = before - first;
+            start_flags[idx].0 |= at_start.0 || pending_end.0;
+            start_flags[idx].1 |= at_start.1 || pending_end.1;
+            pending_end = at_end;
+        }
+        let last = boxes.len();
+        if l.is_closed() {
+            start_flags[0].0 |= pending_end.0;
+            start_flags[0].1 |= pending_end.1;
+        }
+        collect_critical(
+            &boxes[first..last],
+            &start_flags,
+            l.is_closed(),
+            &mut critical,
+        );
+    }
+    (boxes, critical)
 }
 
 /// Split parameters of a piece at the roots of `x'` and `y'` in `(0, 1)`, each with its
