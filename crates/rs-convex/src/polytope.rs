@@ -6,6 +6,9 @@ use crate::clip::{Cut, clip_cycle};
 /// The corner type of [`ConvexPolytope`] (kept as an alias of [`Point3`]).
 pub type P3 = Point3;
 
+/// Vertices closer than this fraction of the polytope's size are one vertex.
+const SAME_VERTEX: f64 = 1e-12;
+
 /// A convex polytope as a list of planar faces (each a cyclically ordered vertex list).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ConvexPolytope {
@@ -52,7 +55,7 @@ impl ConvexPolytope {
         let size = bounding_size(&all);
         let mut out: Vec<P3> = Vec::new();
         for p in all {
-            if !out.iter().any(|q| (p - *q).length() <= 1e-12 * size) {
+            if !out.iter().any(|q| (p - *q).length() <= SAME_VERTEX * size) {
                 out.push(p);
             }
         }
@@ -115,7 +118,7 @@ impl ConvexPolytope {
         // The cap: the section of the polytope by the plane, ordered by angle about its centre.
         let mut pts: Vec<P3> = Vec::new();
         for p in cap {
-            if !pts.iter().any(|q| (p - *q).length() <= 1e-12 * size) {
+            if !pts.iter().any(|q| (p - *q).length() <= SAME_VERTEX * size) {
                 pts.push(p);
             }
         }

@@ -206,8 +206,12 @@ fn encloses_area(curves: &[NurbsCurve]) -> bool {
         return false;
     }
     pts.iter()
-        .any(|&q| (q - p0).cross(d).abs() > 1e-14 * len * len)
+        .any(|&q| (q - p0).cross(d).abs() > COLLINEAR * len * len)
 }
+
+/// Points whose distance from a line is below this times the squared length of its defining
+/// chord are on it.
+const COLLINEAR: f64 = 1e-14;
 
 #[cfg(test)]
 mod tests {

@@ -13,6 +13,14 @@ use crate::IoError;
 use crate::builder::with_end_points;
 use rs_spline::Affine;
 
+/// Heights that differ by less than this (relative to `1 + |z|`) are one plane.
+const SAME_HEIGHT: f64 = 1e-12;
+/// An extrusion direction whose x and y components are below this is the z axis.
+const AXIS_NORMAL: f64 = 1e-12;
+/// A sweep within this of zero or of a full turn (in the entity's angle unit: degrees for
+/// ARC, radians for ELLIPSE) is a full turn (the file's rounding of equal angles).
+const FULL_TURN_SLACK: f64 = 1e-10;
+
 /// How DXF entities are joined into loops.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -173,7 +181,7 @@ fn entity_curves(e: &Entity) -> Result<Option<Chain>, IoError> {
             let z0 = p.vertices().next().map_or(0.0, |v| v.location.z);
             let planar = p
                 .vertices()
-                .all(|v| (v.location.z - z0).abs() <= 1e-12 * (1.0 + z0.abs()));
+                .all(|v| (v.location.z - z0).abs() <= SAME_HEIGHT * (1.0 + z0.abs()));
             let curves = if p.is_3d_polyline() && !planar {
                 Err("3-D polyline with vertices at different heights: not in the XY plane".into())
             } else {
@@ -204,7 +212,7 @@ fn spline_err(e: SplineError) -> String {
 /// for extrusion `+z`, the mirror `x -> -x` for `-z` (the arbitrary-axis rule).
 fn ocs(normal: &dxf::Vector) -> Result<Affine, String> {
     let len = (normal.x * normal.x + normal.y * normal.y + normal.z * normal.z).sqrt();
-    if len > 0.0 && (normal.x / len).abs() < 1e-12 && (normal.y / len).abs() < 1e-12 {
+    if len > 0.0 && (normal.x / len).abs() < AXIS_NORMAL && (normal.y / len).abs() < AXIS_NORMAL {
         Ok(if normal.z > 0.0 {
             Affine::IDENTITY
         } else {
@@ -229,7 +237,7 @@ fn line(l: &dxf::entities::Line) -> Result<Vec<NurbsCurve>, String> {
 fn arc(a: &dxf::entities::Arc) -> Result<Vec<NurbsCurve>, String> {
     let map = ocs(&a.normal)?;
     let mut sweep = (a.end_angle - a.start_angle).rem_euclid(360.0);
-    if sweep < 1e-10 || 360.0 - sweep < 1e-10 {
+    if sweep < FULL_TURN_SLACK || 360.0 - sweep < FULL_TURN_SLACK {
         sweep = 360.0;
     }
     let c = rs_spline::circular_arc(
@@ -260,7 +268,7 @@ fn ellipse(e: &dxf::entities::Ellipse) -> Result<Vec<NurbsCurve>, String> {
     // Equal parameters, or parameters a full turn apart up to the file's rounding, mean
     // the whole ellipse.
     let mut sweep = (e.end_parameter - e.start_parameter).rem_euclid(TAU);
-    if sweep < 1e-10 || TAU - sweep < 1e-10 {
+    if sweep < FULL_TURN_SLACK || TAU - sweep < FULL_TURN_SLACK {
         sweep = TAU;
     }
     let (start, sweep) = if flip {
@@ -342,7 +350,7 @@ fn spline(s: &dxf::entities::Spline) -> Result<Vec<NurbsCurve>, String> {
     let z0 = s.control_points[0].z;
     if s.control_points
         .iter()
-        .any(|p| (p.z - z0).abs() > 1e-12 * (1.0 + z0.abs()))
+        .any(|p| (p.z - z0).abs() > SAME_HEIGHT * (1.0 + z0.abs()))
     {
         return Err("control points at different heights: the curve is not in the XY plane".into());
     }

@@ -8,6 +8,10 @@ use spade::{PositionInTriangulation, Triangulation as _};
 
 use crate::{CurvedTriangulation, MeshError};
 
+/// A lens (arc and chord) whose area is below this times its box's squared diagonal has no
+/// room for a point between arc and chord.
+const EMPTY_LENS: f64 = 1e-14;
+
 /// Answers "which curved triangle holds this point?" exactly: the domain's containment test
 /// (inRS) first, then the companion triangle by `spade`'s walk, and for points between a
 /// boundary arc and its chord (outside every companion triangle) an exact containment test
@@ -36,7 +40,7 @@ impl<'a> CurvedLocator<'a> {
             let (a, b) = (mesh.vertices()[arc.from], mesh.vertices()[arc.to]);
             let bbox = c.bounding_box().including(a).including(b);
             let lens = Domain::new(vec![c, segment(b, a)?])?;
-            if lens.signed_area().abs() <= 1e-14 * bbox.diagonal().powi(2) {
+            if lens.signed_area().abs() <= EMPTY_LENS * bbox.diagonal().powi(2) {
                 continue;
             }
             let classifier = Classifier::new(&lens, ContainOptions::default())?;

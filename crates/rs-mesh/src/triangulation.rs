@@ -530,6 +530,17 @@ fn refine_loops(
     out
 }
 
+/// An arc whose control points lie within this (relative to its chord length and the domain
+/// size) of its chord is straight: it cannot leave its chord's triangle.
+const STRAIGHT_ARC: f64 = 1e-13;
+/// A crossing within this fraction of the domain size of a segment's end vertex is the vertex.
+const AT_VERTEX: f64 = 1e-11;
+/// A crossing at segment parameter `s` is on the segment for `s` in `[-ON_SEGMENT, 1 + ON_SEGMENT]`.
+const ON_SEGMENT: f64 = 1e-12;
+/// A piece whose signed distances to a segment's line are all below this (relative to the
+/// segment's length and the domain size) lies on that line.
+const ON_LINE: f64 = 1e-14;
+
 /// True if the arc meets no edge of the triangulation other than its own chord `(a, b)`,
 /// except at that edge's end points.
 fn arc_is_clear(
@@ -545,7 +556,7 @@ fn arc_is_clear(
         let (s, e) = (p[0], p[p.len() - 1]);
         let len = e.distance(s);
         p.iter()
-            .all(|q| (*q - s).cross(e - s).abs() <= 1e-13 * len * len.max(size))
+            .all(|q| (*q - s).cross(e - s).abs() <= STRAIGHT_ARC * len * len.max(size))
     });
     if straight && pieces.len() == 1 {
         return true;
@@ -576,14 +587,14 @@ fn crosses_inside_segment(piece: &RationalBezier, p: Point, q: Point, size: f64)
         .zip(piece.weights())
         .map(|(c, w)| w * n.dot(*c - p))
         .collect();
-    let eps = 1e-11 * size;
+    let eps = AT_VERTEX * size;
     let at_end = |x: Point| x.distance(p) <= eps || x.distance(q) <= eps;
     let within = |x: Point| {
         let s = (x - p).dot(d) / len2;
-        (-1e-12..=1.0 + 1e-12).contains(&s) && !at_end(x)
+        (-ON_SEGMENT..=1.0 + ON_SEGMENT).contains(&s) && !at_end(x)
     };
     let scale = coeffs.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-    if scale <= 1e-14 * len2.sqrt() * size {
+    if scale <= ON_LINE * len2.sqrt() * size {
         // The piece lies on the segment's line: test its sampled points against the segment.
         return (1..16).any(|i| within(piece.point_at(i as f64 / 16.0)));
     }

@@ -7,6 +7,11 @@ use rs_spline::{NurbsCurve, Point, SplineError, elliptic_arc};
 
 use crate::builder::with_end_points;
 
+/// A chord shorter than this fraction of the smaller radius has no computable sagitta.
+const DEGENERATE_CHORD: f64 = 1e-15;
+/// A sweep this close to a full turn is a half-turn measured across the branch cut.
+const HALF_TURN_ROUNDING: f64 = 1e-12;
+
 /// What an SVG arc command draws.
 #[derive(Debug)]
 pub(crate) enum ArcSegment {
@@ -70,7 +75,7 @@ pub(crate) fn endpoint_arc(
     // sagitta is below rounding), and the large one a full ellipse whose start and end angles
     // cannot be told apart.
     let chord_ratio = ux.hypot(uy) / rx.min(ry);
-    if chord_ratio < 1e-15 {
+    if chord_ratio < DEGENERATE_CHORD {
         if large_arc {
             return Err(SplineError::LimitExceeded {
                 what: "large arc's radius / chord",
@@ -108,7 +113,7 @@ pub(crate) fn endpoint_arc(
         dtheta -= TAU;
     }
     // A half-turn found as a full turn (rounding at theta2 = theta1 + pi) is pulled back.
-    if dtheta.abs() > TAU - 1e-12 {
+    if dtheta.abs() > TAU - HALF_TURN_ROUNDING {
         dtheta = dtheta.signum() * PI;
     }
     let curve = elliptic_arc(center, rx * unit, ry * unit, phi, theta1, dtheta)?;
