@@ -68,7 +68,8 @@ fn mesh_figure(
     Ok(path)
 }
 
-fn demo(dir: &Path) -> Result<(), String> {
+/// The fixture files of `dir`, sorted.
+fn domain_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|e| format!("{}: {e}", dir.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -78,6 +79,79 @@ fn demo(dir: &Path) -> Result<(), String> {
     if files.is_empty() {
         return Err(format!("no domain files in {}", dir.display()));
     }
+    Ok(files)
+}
+
+/// Classifies the reference Halton point sets of one fixture, prints a table row for each and
+/// records a failure for every count or area that differs from the reference.
+fn check_fixture(
+    stem: &str,
+    meta: &FixtureMeta,
+    classifier: &Classifier,
+    failures: &mut Vec<String>,
+) -> DomainSummary {
+    let d = &meta.domain;
+    let s = DomainSummary::of(d);
+    if let Some(r) = meta.signed_area
+        && (r - s.signed_area).abs() > 1e-12 * r.abs()
+    {
+        failures.push(format!(
+            "{stem}: area {} differs from reference {r}",
+            s.signed_area
+        ));
+    }
+    let bbox = meta.reference_box.unwrap_or(d.bounding_box());
+    let mut counts = meta.inside_counts.clone();
+    if counts.is_empty() {
+        counts.push((10_000, usize::MAX));
+    }
+    for (n, expected) in counts {
+        let pts = halton_points(n, bbox);
+        let start = Instant::now();
+        let loc = classifier.classify(&pts, Method::InRS2);
+        let elapsed = start.elapsed();
+        let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
+        let boundary = loc.iter().filter(|&&l| l == Location::Boundary).count();
+        let reference = if expected == usize::MAX {
+            "-".to_string()
+        } else {
+            expected.to_string()
+        };
+        if expected != usize::MAX && inside != expected {
+            failures.push(format!(
+                "{stem}: N = {n}: {inside} inside, reference {expected}"
+            ));
+        }
+        println!(
+            "{:<24} {:>6} {:>6} {:>6} {:>18.15} {:>8} {:>9} {:>9} {:>9} {:>8.2}ms",
+            stem,
+            s.curves,
+            s.bezier_pieces,
+            classifier.boxes().boxes().len(),
+            s.signed_area,
+            n,
+            inside,
+            boundary,
+            reference,
+            elapsed.as_secs_f64() * 1e3
+        );
+    }
+    s
+}
+
+/// The disc with an off-centre elliptic hole of the curved-triangulation figure.
+fn disc_with_hole() -> Result<Domain, String> {
+    Domain::new(vec![
+        inrs::spline::circle(Point::new(0.0, 0.0), 1.0).map_err(|e| e.to_string())?,
+        inrs::spline::ellipse(Point::new(0.2, 0.1), 0.45, 0.25, 0.4)
+            .map_err(|e| e.to_string())?
+            .reversed(),
+    ])
+    .map_err(|e| e.to_string())
+}
+
+fn demo(dir: &Path) -> Result<(), String> {
+    let files = domain_files(dir)?;
     println!(
         "{:<24} {:>6} {:>6} {:>6} {:>18} {:>8} {:>9} {:>9} {:>9} {:>10}",
         "domain",
@@ -103,53 +177,9 @@ fn demo(dir: &Path) -> Result<(), String> {
             .to_string();
         let meta = FixtureMeta::load(path)?;
         let d = &meta.domain;
-        let s = DomainSummary::of(d);
-        if let Some(r) = meta.signed_area
-            && (r - s.signed_area).abs() > 1e-12 * r.abs()
-        {
-            failures.push(format!(
-                "{stem}: area {} differs from reference {r}",
-                s.signed_area
-            ));
-        }
         let classifier = Classifier::new(d, ContainOptions::default())
             .map_err(|e| format!("{}: {e}", path.display()))?;
-        let bbox = meta.reference_box.unwrap_or(d.bounding_box());
-        let mut counts = meta.inside_counts.clone();
-        if counts.is_empty() {
-            counts.push((10_000, usize::MAX));
-        }
-        for (n, expected) in counts {
-            let pts = halton_points(n, bbox);
-            let start = Instant::now();
-            let loc = classifier.classify(&pts, Method::InRS2);
-            let elapsed = start.elapsed();
-            let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
-            let boundary = loc.iter().filter(|&&l| l == Location::Boundary).count();
-            let reference = if expected == usize::MAX {
-                "-".to_string()
-            } else {
-                expected.to_string()
-            };
-            if expected != usize::MAX && inside != expected {
-                failures.push(format!(
-                    "{stem}: N = {n}: {inside} inside, reference {expected}"
-                ));
-            }
-            println!(
-                "{:<24} {:>6} {:>6} {:>6} {:>18.15} {:>8} {:>9} {:>9} {:>9} {:>8.2}ms",
-                stem,
-                s.curves,
-                s.bezier_pieces,
-                classifier.boxes().boxes().len(),
-                s.signed_area,
-                n,
-                inside,
-                boundary,
-                reference,
-                elapsed.as_secs_f64() * 1e3
-            );
-        }
+        summaries.push(check_fixture(&stem, &meta, &classifier, &mut failures));
         let fig_pts = halton_points(1000, d.bounding_box());
         let fig_loc = classifier.classify(&fig_pts, Method::Fast);
         figures_written.extend(figures::domain_figures(
@@ -168,24 +198,15 @@ fn demo(dir: &Path) -> Result<(), String> {
             )?);
             figures_written.push(mesh_figure(&figures_dir, &stem, d, 12, &mut failures)?);
         }
-        summaries.push(s);
     }
     println!();
     for s in &summaries {
         println!("{s}\n");
     }
-    // A domain with a hole: a disc minus an off-centre elliptic hole.
-    let ring = Domain::new(vec![
-        inrs::spline::circle(Point::new(0.0, 0.0), 1.0).map_err(|e| e.to_string())?,
-        inrs::spline::ellipse(Point::new(0.2, 0.1), 0.45, 0.25, 0.4)
-            .map_err(|e| e.to_string())?
-            .reversed(),
-    ])
-    .map_err(|e| e.to_string())?;
     figures_written.push(mesh_figure(
         &figures_dir,
         "disc_with_hole",
-        &ring,
+        &disc_with_hole()?,
         14,
         &mut failures,
     )?);
