@@ -41,23 +41,12 @@ impl BoxGrid {
             .reduce(BoundingBox::union)
             .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)))
             .grown_by(tol);
-        // About 2 sqrt(N) cells per side, and cells no narrower than the tolerance (each box
-        // part registers its rectangle grown by it).
-        let span = bbox.width().max(bbox.height());
-        let by_tol = if tol > 0.0 && span.is_finite() {
-            ((span / tol) as usize).max(1)
-        } else {
-            MAX_CELLS
-        };
-        let n =
-            ((2.0 * (boxes.len() as f64).sqrt()).ceil() as usize).clamp(1, MAX_CELLS.min(by_tol));
-        let frame = GridFrame::new(bbox, n);
+        // About 2 sqrt(N) cells per side, and cells no narrower than the tolerance.
+        let n = ((2.0 * (boxes.len() as f64).sqrt()).ceil() as usize).clamp(1, MAX_CELLS);
+        let frame = GridFrame::new(bbox, GridFrame::cells_for_tolerance(bbox, tol, n));
         let mut pairs = Vec::new();
         for (i, b) in boxes.iter().enumerate() {
             b.for_cells_near(&frame, tol, |c| pairs.push((c, i as u32)));
-        }
-        if boxes.is_empty() {
-            pairs.clear();
         }
         Self {
             index: CellIndex::new(frame, pairs),

@@ -124,7 +124,7 @@ impl LocatorIndex {
         let tol = classifier.tolerance();
         let frame = GridFrame::new(
             classifier.outer(),
-            cells_for_tolerance(classifier.outer(), tol, cells),
+            GridFrame::cells_for_tolerance(classifier.outer(), tol, cells),
         );
         let n = frame.n();
         let all = classifier.boxes().boxes();
@@ -321,19 +321,6 @@ impl Locate for PointLocator<'_> {
     /// The location of one point (same as [`Method::InRS2`]).
     fn locate(&self, p: Point) -> Location {
         self.locate_point(p)
-    }
-}
-
-/// At most `cells` per side, and no more than keep a cell at least as wide as the tolerance:
-/// each box part registers the cells of its rectangle grown by the tolerance, so cells much
-/// narrower than the tolerance would multiply the registrations (and the memory) without
-/// sharpening anything.
-fn cells_for_tolerance(b: rs_spline::BoundingBox, tol: f64, cells: usize) -> usize {
-    let span = b.width().max(b.height());
-    if tol > 0.0 && span.is_finite() {
-        cells.min(((span / tol) as usize).max(1))
-    } else {
-        cells
     }
 }
 

@@ -157,16 +157,11 @@ impl Figure {
         self.remember(style);
         let mut d = String::new();
         for l in loops {
-            let mut pts = Vec::new();
+            let mut pts: Vec<Point> = Vec::new();
             for c in l {
-                let mut first = !pts.is_empty();
-                let tol = CURVE_TOLERANCE_PX / self.scale;
-                c.flatten(tol, &mut |p| {
-                    if !first {
-                        pts.push(p);
-                    }
-                    first = false;
-                });
+                // Each curve starts where the previous one ends: keep that point once.
+                let skip = usize::from(!pts.is_empty());
+                pts.extend(self.flattened(*c).into_iter().skip(skip));
             }
             for (i, &p) in pts.iter().enumerate() {
                 let (x, y) = self.to_pixels(p);

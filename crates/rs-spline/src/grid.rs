@@ -41,6 +41,19 @@ impl GridFrame {
         }
     }
 
+    /// The resolution for registering shapes grown by `tol` over `bbox`: at most `cells` per
+    /// side, and cells no narrower than `tol` (at least 1 per side). Each shape registers the
+    /// cells of its rectangle grown by `tol`, so cells much narrower than that multiply the
+    /// registrations, and the memory, without sharpening anything.
+    pub fn cells_for_tolerance(bbox: BoundingBox, tol: f64, cells: usize) -> usize {
+        let span = bbox.width().max(bbox.height());
+        if tol > 0.0 && span.is_finite() {
+            cells.min(((span / tol) as usize).max(1))
+        } else {
+            cells
+        }
+    }
+
     /// Cells per side.
     pub fn n(&self) -> usize {
         self.n
