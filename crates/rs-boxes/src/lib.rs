@@ -7,8 +7,8 @@
 //! the boundary without crossing it are collected for the containment layer.
 //!
 //! - [`MonotoneBoxes`]: construction, global bounding box, critical abscissas/ordinates.
-//! - [`MonotoneBox`]: one box, with its piece, directions and a boundary-distance test.
-//! - [`BezierPiece`]: homogeneous Bernstein coefficients, evaluation, monotone solves, split.
+//! - [`MonotoneBox`]: one box, with its piece (private storage of a rational Bezier piece as
+//!   homogeneous Bernstein coefficients), directions, ray crossings and a boundary-distance test.
 //! - [`BoxGrid`]: a uniform grid finding the boxes that can be near a point.
 
 mod boxes;
@@ -24,4 +24,4 @@ pub use boxes::{
 pub use error::{BoxError, PieceError};
 pub use grid::BoxGrid;
 pub use monotone_box::{MonotoneBox, Monotonicity};
-pub use piece::BezierPiece;
+pub(crate) use piece::BezierPiece;

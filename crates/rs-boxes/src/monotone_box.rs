@@ -44,8 +44,9 @@ impl Monotonicity {
 /// and a vertical (horizontal) line meets the piece at most once.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MonotoneBox {
-    /// The piece of boundary.
-    pub piece: BezierPiece,
+    /// The piece of boundary (private storage: read it through [`MonotoneBox::point_at`],
+    /// [`MonotoneBox::at_x`] and [`MonotoneBox::at_y`]).
+    piece: BezierPiece,
     /// Index of the domain curve it comes from.
     pub curve: usize,
     /// Index of the boundary loop it belongs to.
@@ -108,7 +109,7 @@ impl MonotoneBox {
 
     /// Builds the box of a monotone piece. Directions come from the end points; a piece whose
     /// control points share one x (y) is constant in x (y) exactly.
-    pub fn new(
+    pub(crate) fn new(
         piece: BezierPiece,
         curve: usize,
         boundary_loop: usize,
@@ -168,6 +169,26 @@ impl MonotoneBox {
         }
     }
 
+    /// The piece's point at local parameter `t` in `[0, 1]` (exactly [`MonotoneBox::start`] and
+    /// [`MonotoneBox::end`] at `t = 0` and `t = 1`). The curve parameter is
+    /// `u0 + t (u1 - u0)` with `(u0, u1) = param_range`.
+    pub fn point_at(&self, t: f64) -> Point {
+        self.piece.point_at(t)
+    }
+
+    /// Where the piece meets the vertical line at abscissa `x`: its local parameter `t` and
+    /// ordinate `y(t)`, by one bracketed solve of `x(t) = x` (at most one root, the piece being
+    /// monotone). `None` if `x` is outside `[xmin, xmax]`.
+    pub fn at_x(&self, x: f64) -> Option<(f64, f64)> {
+        self.piece.solve_x(x).map(|t| (t, self.piece.y_at(t)))
+    }
+
+    /// Where the piece meets the horizontal line at ordinate `y`: its local parameter `t` and
+    /// abscissa `x(t)` (see [`MonotoneBox::at_x`]).
+    pub fn at_y(&self, y: f64) -> Option<(f64, f64)> {
+        self.piece.solve_y(y).map(|t| (t, self.piece.x_at(t)))
+    }
+
     /// True if the downward vertical ray from `p` crosses the piece, for a `p` that is not near
     /// it (see [`MonotoneBox::is_near`]). Half-open in x (`xmin <= p.x < xmax`): the ray runs an
     /// infinitesimal distance to the right of `p.x`, so a ray through a shared end point counts
@@ -192,9 +213,7 @@ impl MonotoneBox {
         if p.y < line - self.vertical_slack {
             return false;
         }
-        self.piece
-            .solve_x(p.x)
-            .is_some_and(|t| self.piece.y_at(t) < p.y)
+        self.at_x(p.x).is_some_and(|(_, y)| y < p.y)
     }
 
     /// True if `p` lies in the box grown by `tol` on every side.
@@ -232,15 +251,15 @@ impl MonotoneBox {
         // Vertical distance (a vertical piece is covered by the horizontal distance and the
         // end points, and vice versa).
         if self.x_dir != Monotonicity::Constant && p.x >= self.xmin && p.x <= self.xmax {
-            if let Some(t) = self.piece.solve_x(p.x) {
-                if (self.piece.y_at(t) - p.y).abs() <= tol {
+            if let Some((_, y)) = self.at_x(p.x) {
+                if (y - p.y).abs() <= tol {
                     return true;
                 }
             }
         }
         if self.y_dir != Monotonicity::Constant && p.y >= self.ymin && p.y <= self.ymax {
-            if let Some(t) = self.piece.solve_y(p.y) {
-                if (self.piece.x_at(t) - p.x).abs() <= tol {
+            if let Some((_, x)) = self.at_y(p.y) {
+                if (x - p.x).abs() <= tol {
                     return true;
                 }
             }

@@ -17,7 +17,7 @@ pub(crate) type Coeffs = SmallVec<[f64; 8]>;
 /// every evaluation at `t = 0` and `t = 1`, and solves use the coefficients `w_i (x_i - v)`, so
 /// the sign of a solve's end coefficient always agrees with comparing `v` to the end point.
 #[derive(Clone, Debug, PartialEq)]
-pub struct BezierPiece {
+pub(crate) struct BezierPiece {
     x: Coeffs,
     y: Coeffs,
     w: Coeffs,
@@ -27,7 +27,7 @@ pub struct BezierPiece {
 
 impl BezierPiece {
     /// The piece of a rational Bezier curve.
-    pub fn from_bezier(b: &RationalBezier) -> Self {
+    pub(crate) fn from_bezier(b: &RationalBezier) -> Self {
         let w: Coeffs = b.weights().iter().copied().collect();
         let x = b.control_points().iter().map(|p| p.x).collect();
         let y = b.control_points().iter().map(|p| p.y).collect();
@@ -47,22 +47,22 @@ impl BezierPiece {
     }
 
     /// Degree `n`.
-    pub fn degree(&self) -> usize {
+    pub(crate) fn degree(&self) -> usize {
         self.w.len() - 1
     }
 
     /// Control point `i` in Cartesian coordinates.
-    pub fn control_point(&self, i: usize) -> Point {
+    pub(crate) fn control_point(&self, i: usize) -> Point {
         Point::new(self.x[i], self.y[i])
     }
 
     /// `C(0)`.
-    pub fn start(&self) -> Point {
+    pub(crate) fn start(&self) -> Point {
         self.control_point(0)
     }
 
     /// `C(1)`.
-    pub fn end(&self) -> Point {
+    pub(crate) fn end(&self) -> Point {
         self.control_point(self.degree())
     }
 
@@ -101,35 +101,35 @@ impl BezierPiece {
     }
 
     /// `C(t)` by de Casteljau in homogeneous coordinates (the stored end points at `t = 0, 1`).
-    pub fn point_at(&self, t: f64) -> Point {
+    pub(crate) fn point_at(&self, t: f64) -> Point {
         Point::new(self.x_at(t), self.y_at(t))
     }
 
     /// `x(t)`.
-    pub fn x_at(&self, t: f64) -> f64 {
+    pub(crate) fn x_at(&self, t: f64) -> f64 {
         rational_at(&self.x, &self.hx, &self.w, t)
     }
 
     /// `y(t)`.
-    pub fn y_at(&self, t: f64) -> f64 {
+    pub(crate) fn y_at(&self, t: f64) -> f64 {
         rational_at(&self.y, &self.hy, &self.w, t)
     }
 
     /// The parameter where `x(t) = px`, for a piece whose `x(0) - px` and `x(1) - px` differ in
     /// sign (or vanish): the root of `sum_i w_i (x_i - px) B_i(t)` (the weights
     /// are positive, so no rational root finding is needed). `None` if there is no sign change.
-    pub fn solve_x(&self, px: f64) -> Option<f64> {
+    pub(crate) fn solve_x(&self, px: f64) -> Option<f64> {
         solve_axis(&self.x, &self.w, px)
     }
 
     /// The parameter where `y(t) = py` (see [`BezierPiece::solve_x`]).
-    pub fn solve_y(&self, py: f64) -> Option<f64> {
+    pub(crate) fn solve_y(&self, py: f64) -> Option<f64> {
         solve_axis(&self.y, &self.w, py)
     }
 
     /// Splits at `t` into the pieces on `[0, t]` and `[t, 1]`; the shared point is the same
     /// `f64` value in both.
-    pub fn split(&self, t: f64) -> (Self, Self) {
+    pub(crate) fn split(&self, t: f64) -> (Self, Self) {
         let (lx, rx) = split_coeffs(&self.hx, t);
         let (ly, ry) = split_coeffs(&self.hy, t);
         let (lw, rw) = split_coeffs(&self.w, t);
@@ -156,7 +156,7 @@ impl BezierPiece {
     ///
     /// # Errors
     /// Only if the coefficients were corrupted (subdivision keeps weights positive).
-    pub fn to_bezier(&self) -> Result<RationalBezier, SplineError> {
+    pub(crate) fn to_bezier(&self) -> Result<RationalBezier, SplineError> {
         let pts = (0..self.w.len()).map(|i| self.control_point(i)).collect();
         RationalBezier::new(pts, self.w.to_vec())
     }

@@ -15,15 +15,33 @@ fn all_domains() -> Vec<(String, Domain)> {
 }
 
 #[test]
+fn line_crossings_lie_on_the_piece_of_a_circle() {
+    let r = 2.5;
+    let d = Domain::new(vec![circle(Point::new(1.0, -1.0), r).unwrap()]).unwrap();
+    let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(3)).unwrap();
+    for b in mb.boxes() {
+        for s in [0.0, 0.3, 0.77] {
+            let x = b.xmin + s * (b.xmax - b.xmin);
+            let (t, y) = b.at_x(x).unwrap();
+            assert!((b.point_at(t) - Point::new(x, y)).length() < 1e-14);
+            assert!(((x - 1.0).hypot(y + 1.0) - r).abs() < 1e-13, "{x} {y}");
+            let y = b.ymin + s * (b.ymax - b.ymin);
+            let (t, x) = b.at_y(y).unwrap();
+            assert!((b.point_at(t) - Point::new(x, y)).length() < 1e-14);
+            assert!(((x - 1.0).hypot(y + 1.0) - r).abs() < 1e-13, "{x} {y}");
+        }
+        assert!(b.at_x(b.xmax + 0.1).is_none() && b.at_y(b.ymin - 0.1).is_none());
+    }
+}
+
+#[test]
 fn every_box_is_monotone_and_spanned_by_its_end_points() {
     for (name, d) in all_domains() {
         let size = d.bounding_box().diagonal();
         for k in [1, 4] {
             let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(k)).unwrap();
             for b in mb.boxes() {
-                let pts: Vec<Point> = (0..=200)
-                    .map(|i| b.piece.point_at(i as f64 / 200.0))
-                    .collect();
+                let pts: Vec<Point> = (0..=200).map(|i| b.point_at(i as f64 / 200.0)).collect();
                 for w in pts.windows(2) {
                     let (dx, dy) = (w[1].x - w[0].x, w[1].y - w[0].y);
                     let slack = 1e-13 * size;

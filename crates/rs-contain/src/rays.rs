@@ -38,7 +38,7 @@ pub(crate) fn horizontal(b: &MonotoneBox, p: Point, tol: f64) -> Hit {
     if p.x > b.xmax {
         return Hit::Cross;
     }
-    match b.piece.solve_y(p.y).map(|t| b.piece.x_at(t)) {
+    match b.at_y(p.y).map(|(_, x)| x) {
         Some(x) if x < p.x => Hit::Cross,
         Some(x) if x > p.x => Hit::Miss,
         _ => Hit::Boundary,

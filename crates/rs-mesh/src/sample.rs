@@ -87,9 +87,9 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
         let mut hits: Vec<(f64, usize, f64)> = Vec::new();
         for bx in boxes.boxes() {
             if bx.ymin <= y && y < bx.ymax {
-                if let Some(t) = bx.piece.solve_y(y) {
+                if let Some((t, x)) = bx.at_y(y) {
                     let (u0, u1) = bx.param_range;
-                    hits.push((bx.piece.x_at(t), bx.curve, u0 + t * (u1 - u0)));
+                    hits.push((x, bx.curve, u0 + t * (u1 - u0)));
                 }
             }
         }
