@@ -318,8 +318,8 @@ fn flower(root: &Path) -> Result<Domain, String> {
 /// Accelerated versus reference winding numbers on the 500-curve flower.
 fn gwn_flower(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), String> {
     let d = flower(root)?;
-    let field =
-        WindingField::new(&d, inrs::contain::DEFAULT_TOLERANCE).map_err(|e| e.to_string())?;
+    let field = WindingField::new(&d, inrs::contain::DEFAULT_RELATIVE_TOLERANCE)
+        .map_err(|e| e.to_string())?;
     let n = if o.quick { 10_000 } else { 100_000 };
     let pts = halton_points(n, d.bounding_box());
     let reference_n = (n / 10).max(1);
@@ -415,8 +415,8 @@ fn gwn_comparison(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), 
         root.join(format!("fixtures/inrs-paper/{name}.json")),
     )
     .map_err(|e| e.to_string())?;
-    let field =
-        WindingField::new(&d, inrs::contain::DEFAULT_TOLERANCE).map_err(|e| e.to_string())?;
+    let field = WindingField::new(&d, inrs::contain::DEFAULT_RELATIVE_TOLERANCE)
+        .map_err(|e| e.to_string())?;
     let n = if o.quick { 20_000 } else { 250_000 };
     let mut bb = d.bounding_box();
     let pad = 0.05 * bb.diagonal();

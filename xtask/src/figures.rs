@@ -89,8 +89,8 @@ fn winding_color(w: f64) -> String {
 
 /// The generalized winding number on a raster of `n x n` cells, with the curves on top.
 fn winding_figure(d: &Domain, n: usize, caption: &str) -> Result<Figure, String> {
-    let field =
-        WindingField::new(d, inrs::contain::DEFAULT_TOLERANCE).map_err(|e| e.to_string())?;
+    let field = WindingField::new(d, inrs::contain::DEFAULT_RELATIVE_TOLERANCE)
+        .map_err(|e| e.to_string())?;
     let mut bb = d.bounding_box();
     let pad = 0.1 * bb.diagonal();
     bb.min = bb.min - Point::new(pad, pad);

@@ -46,7 +46,7 @@ pub struct DomainSummary {
     /// Tight bounding box.
     pub bounding_box: BoundingBox,
     /// Absolute closure tolerance in force.
-    pub closure_tolerance: f64,
+    pub closure_abs_tol: f64,
 }
 
 impl DomainSummary {
@@ -78,7 +78,7 @@ impl DomainSummary {
             areas_converged: areas.iter().all(|a| a.converged),
             loops,
             bounding_box: d.bounding_box(),
-            closure_tolerance: d.closure_tolerance(),
+            closure_abs_tol: d.closure_abs_tol(),
         }
     }
 
@@ -119,7 +119,7 @@ impl fmt::Display for DomainSummary {
         writeln!(
             f,
             "  bounding box: [{}, {}] x [{}, {}]  closure tolerance: {:e}",
-            b.min.x, b.max.x, b.min.y, b.max.y, self.closure_tolerance
+            b.min.x, b.max.x, b.min.y, b.max.y, self.closure_abs_tol
         )?;
         for (i, l) in self.loops.iter().enumerate() {
             writeln!(

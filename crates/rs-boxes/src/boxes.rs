@@ -223,14 +223,14 @@ impl MonotoneBoxes {
         &self.critical_y
     }
 
-    /// True if `x` is within `tol` of a critical abscissa (binary search).
-    pub fn is_critical_x(&self, x: f64, tol: f64) -> bool {
-        near_sorted(&self.critical_x, x, tol)
+    /// True if `x` is within `abs_tol` of a critical abscissa (binary search).
+    pub fn is_critical_x(&self, x: f64, abs_tol: f64) -> bool {
+        near_sorted(&self.critical_x, x, abs_tol)
     }
 
-    /// True if `y` is within `tol` of a critical ordinate (binary search).
-    pub fn is_critical_y(&self, y: f64, tol: f64) -> bool {
-        near_sorted(&self.critical_y, y, tol)
+    /// True if `y` is within `abs_tol` of a critical ordinate (binary search).
+    pub fn is_critical_y(&self, y: f64, abs_tol: f64) -> bool {
+        near_sorted(&self.critical_y, y, abs_tol)
     }
 }
 

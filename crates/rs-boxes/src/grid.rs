@@ -32,21 +32,21 @@ pub struct BoxGrid {
 }
 
 impl BoxGrid {
-    /// Registers `boxes`, each in the cells within `tol` of its curve
+    /// Registers `boxes`, each in the cells within `abs_tol` of its curve
     /// ([`MonotoneBox::for_cells_near`]).
-    pub fn new(boxes: &[MonotoneBox], tol: f64) -> Self {
+    pub fn new(boxes: &[MonotoneBox], abs_tol: f64) -> Self {
         let bbox = boxes
             .iter()
             .map(|b| BoundingBox::from_point(b.start).including(b.end))
             .reduce(BoundingBox::union)
             .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)))
-            .grown_by(tol);
+            .grown_by(abs_tol);
         // About 2 sqrt(N) cells per side, and cells no narrower than the tolerance.
         let n = ((2.0 * (boxes.len() as f64).sqrt()).ceil() as usize).clamp(1, MAX_CELLS);
-        let frame = GridFrame::new(bbox, GridFrame::cells_for_tolerance(bbox, tol, n));
+        let frame = GridFrame::new(bbox, GridFrame::cells_for_tolerance(bbox, abs_tol, n));
         let mut pairs = Vec::new();
         for (i, b) in boxes.iter().enumerate() {
-            b.for_cells_near(&frame, tol, |c| pairs.push((c, i as u32)));
+            b.for_cells_near(&frame, abs_tol, |c| pairs.push((c, i as u32)));
         }
         Self {
             index: CellIndex::new(frame, pairs),

@@ -82,14 +82,14 @@ pub struct MonotoneBox {
 const MAX_REGISTER_DEPTH: u32 = 24;
 
 impl MonotoneBox {
-    /// Calls `f` with every cell of `frame` that holds a point within `tol` of the box's curve
+    /// Calls `f` with every cell of `frame` that holds a point within `abs_tol` of the box's curve
     /// (some cells twice): the piece is halved until each part's end-point rectangle spans at
     /// most two cells each way (or 24 halvings), and each part registers the cells of its
-    /// rectangle grown by `tol`. A monotone part lies in the
-    /// rectangle of its end points, so the cells cover the curve's `tol`-neighbourhood while
+    /// rectangle grown by `abs_tol`. A monotone part lies in the
+    /// rectangle of its end points, so the cells cover the curve's `abs_tol`-neighbourhood while
     /// following the curve, not the box: the number of cells grows with the curve's length
     /// in cells, not with the box's area.
-    pub fn for_cells_near(&self, frame: &GridFrame, tol: f64, mut f: impl FnMut(usize)) {
+    pub fn for_cells_near(&self, frame: &GridFrame, abs_tol: f64, mut f: impl FnMut(usize)) {
         let mut stack: SmallVec<[(BezierPiece, u32); 16]> = SmallVec::new();
         stack.push((self.piece.clone(), 0));
         while let Some((piece, depth)) = stack.pop() {
@@ -98,7 +98,7 @@ impl MonotoneBox {
             // tolerance wider than a cell must not make the halving run to its cap.
             let (c0, c1, r0, r1) = frame.cell_range(part);
             if (c1 - c0 <= 1 && r1 - r0 <= 1) || depth >= MAX_REGISTER_DEPTH {
-                frame.for_cells_in(part.grown_by(tol), &mut f);
+                frame.for_cells_in(part.grown_by(abs_tol), &mut f);
             } else {
                 let (left, right) = piece.split(0.5);
                 stack.push((right, depth + 1));
@@ -216,34 +216,34 @@ impl MonotoneBox {
         self.at_x(p.x).is_some_and(|(_, y)| y < p.y)
     }
 
-    /// True if `p` lies in the box grown by `tol` on every side.
-    pub fn contains_with(&self, p: Point, tol: f64) -> bool {
-        p.x >= self.xmin - tol
-            && p.x <= self.xmax + tol
-            && p.y >= self.ymin - tol
-            && p.y <= self.ymax + tol
+    /// True if `p` lies in the box grown by `abs_tol` on every side.
+    pub fn contains_with(&self, p: Point, abs_tol: f64) -> bool {
+        p.x >= self.xmin - abs_tol
+            && p.x <= self.xmax + abs_tol
+            && p.y >= self.ymin - abs_tol
+            && p.y <= self.ymax + abs_tol
     }
 
-    /// True if `p` is within `tol` of the piece, measured along a vertical or a horizontal line
+    /// True if `p` is within `abs_tol` of the piece, measured along a vertical or a horizontal line
     /// (or from an end point). For a monotone piece this catches every point at Euclidean
-    /// distance `<= tol / sqrt(2)` and none farther than `tol`.
-    pub fn is_near(&self, p: Point, tol: f64) -> bool {
-        if !self.contains_with(p, tol) {
+    /// distance `<= abs_tol / sqrt(2)` and none farther than `abs_tol`.
+    pub fn is_near(&self, p: Point, abs_tol: f64) -> bool {
+        if !self.contains_with(p, abs_tol) {
             return false;
         }
-        // The piece lies within `flatness` of its chord: farther than that plus `tol` from the
+        // The piece lies within `flatness` of its chord: farther than that plus `abs_tol` from the
         // chord segment, p is not near (decides most points without a solve).
         let chord = self.end - self.start;
         let len2 = chord.dot(chord);
         if len2 > 0.0 {
             let t = ((p - self.start).dot(chord) / len2).clamp(0.0, 1.0);
             let d = p - (self.start + chord * t);
-            let reach = self.flatness + tol;
+            let reach = self.flatness + abs_tol;
             if d.dot(d) > reach * reach * (1.0 + 1e-9) {
                 return false;
             }
         }
-        let tol2 = tol * tol;
+        let tol2 = abs_tol * abs_tol;
         let (ds, de) = (p - self.start, p - self.end);
         if ds.dot(ds) <= tol2 || de.dot(de) <= tol2 {
             return true;
@@ -252,14 +252,14 @@ impl MonotoneBox {
         // end points, and vice versa).
         if self.x_dir != Monotonicity::Constant && p.x >= self.xmin && p.x <= self.xmax {
             if let Some((_, y)) = self.at_x(p.x) {
-                if (y - p.y).abs() <= tol {
+                if (y - p.y).abs() <= abs_tol {
                     return true;
                 }
             }
         }
         if self.y_dir != Monotonicity::Constant && p.y >= self.ymin && p.y <= self.ymax {
             if let Some((_, x)) = self.at_y(p.y) {
-                if (x - p.x).abs() <= tol {
+                if (x - p.x).abs() <= abs_tol {
                     return true;
                 }
             }

@@ -63,8 +63,7 @@ fn bench(c: &mut Criterion) {
         });
         group.bench_function(BenchmarkId::new("build", name), |bch| {
             bch.iter(|| {
-                Classifier::new(black_box(&domain), ContainOptions::default())
-                    .map(|c| c.tolerance())
+                Classifier::new(black_box(&domain), ContainOptions::default()).map(|c| c.abs_tol())
             })
         });
     }

@@ -74,7 +74,7 @@ fn locator(c: &mut Criterion) {
     }
     let flower = rs_io::json::domain_from_json_file(format!("{dir}/synthetic/flower500.json"))
         .expect("fixture");
-    let field = WindingField::new(&flower, rs_contain::DEFAULT_TOLERANCE).expect("field");
+    let field = WindingField::new(&flower, rs_contain::DEFAULT_RELATIVE_TOLERANCE).expect("field");
     let fast = FastWindingField::new(&field);
     let pts = halton_points(10_000, flower.bounding_box());
     let check: Vec<f64> = pts[..100]

@@ -14,21 +14,21 @@ use crate::{
 };
 
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
-pub const DEFAULT_TOLERANCE: f64 = 1e-12;
+pub const DEFAULT_RELATIVE_TOLERANCE: f64 = 1e-12;
 
 /// Options of a [`Classifier`]: start from [`ContainOptions::DEFAULT`] and change what you
 /// need with the `with_*` setters.
 ///
 /// ```
 /// use rs_contain::{ContainOptions, Method};
-/// let o = ContainOptions::DEFAULT.with_tolerance(1e-10).with_method(Method::InRS2);
+/// let o = ContainOptions::DEFAULT.with_relative_tolerance(1e-10).with_method(Method::InRS2);
 /// assert_eq!(o.method, Method::InRS2);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct ContainOptions {
     /// Boundary tolerance relative to the bounding-box diagonal (see the crate's Semantics).
-    pub tolerance: f64,
+    pub relative_tolerance: f64,
     /// Sub-boxes per monotone piece (paper Remark 2.1).
     pub subdivisions: usize,
     /// The method [`Locate::locate_all`] uses (all give the same answers; they differ in
@@ -37,16 +37,17 @@ pub struct ContainOptions {
 }
 
 impl ContainOptions {
-    /// Relative tolerance [`DEFAULT_TOLERANCE`], one box per monotone piece, [`Method::Fast`].
+    /// Relative tolerance [`DEFAULT_RELATIVE_TOLERANCE`], one box per monotone piece,
+    /// [`Method::Fast`].
     pub const DEFAULT: ContainOptions = ContainOptions {
-        tolerance: DEFAULT_TOLERANCE,
+        relative_tolerance: DEFAULT_RELATIVE_TOLERANCE,
         subdivisions: DEFAULT_SUBDIVISIONS,
         method: Method::Fast,
     };
 
     /// With another relative boundary tolerance.
-    pub const fn with_tolerance(mut self, relative_tolerance: f64) -> Self {
-        self.tolerance = relative_tolerance;
+    pub const fn with_relative_tolerance(mut self, relative_tolerance: f64) -> Self {
+        self.relative_tolerance = relative_tolerance;
         self
     }
 
@@ -130,15 +131,15 @@ impl Classifier {
     /// [`ContainError::InvalidTolerance`], [`ContainError::Boxes`].
     pub fn new(domain: &Domain, options: ContainOptions) -> Result<Self, ContainError> {
         domain.require_closed()?;
-        if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
-            return Err(ContainError::InvalidTolerance(options.tolerance));
+        if !(options.relative_tolerance.is_finite() && options.relative_tolerance >= 0.0) {
+            return Err(ContainError::InvalidTolerance(options.relative_tolerance));
         }
         let boxes = MonotoneBoxes::new(
             domain,
             BoxOptions::DEFAULT.with_subdivisions(options.subdivisions),
         )?;
         let bbox = boxes.bounding_box();
-        let tol = options.tolerance * bbox.diagonal();
+        let tol = options.relative_tolerance * bbox.diagonal();
         let outer = BoundingBox {
             min: Point::new(bbox.min.x - tol, bbox.min.y - tol),
             max: Point::new(bbox.max.x + tol, bbox.max.y + tol),
@@ -146,7 +147,7 @@ impl Classifier {
         Ok(Self {
             boxes: Arc::new(boxes),
             domain: domain.clone(),
-            relative_tolerance: options.tolerance,
+            relative_tolerance: options.relative_tolerance,
             tol,
             outer,
             method: options.method,
@@ -191,7 +192,7 @@ impl Classifier {
     }
 
     /// The absolute boundary tolerance: the relative tolerance times the bounding-box diagonal.
-    pub fn tolerance(&self) -> f64 {
+    pub fn abs_tol(&self) -> f64 {
         self.tol
     }
 

@@ -10,10 +10,10 @@
 //!   the previous piece's end). A point is inside when a ray from it crosses the boundary an odd
 //!   number of times: the even-odd rule, which for properly nested loops is the usual region
 //!   with holes. Orientation is irrelevant: reversing any loop changes nothing.
-//! - **Boundary**: with `tol = tolerance x diagonal of the bounding box` (default tolerance
-//!   [`DEFAULT_TOLERANCE`] `= 1e-12`), a point is [`Location::Boundary`] when its vertical or
-//!   horizontal distance to a monotone piece of the boundary, or its distance to a piece's end
-//!   point, is at most `tol`. Every point within Euclidean distance `tol / sqrt(2)` of the
+//! - **Boundary**: with `tol = relative_tolerance x diagonal of the bounding box` (default
+//!   [`DEFAULT_RELATIVE_TOLERANCE`] `= 1e-12`), a point is [`Location::Boundary`] when its
+//!   vertical or horizontal distance to a monotone piece of the boundary, or its distance to a
+//!   piece's end point, is at most `tol`. Every point within Euclidean distance `tol / sqrt(2)` of the
 //!   boundary is `Boundary`; no point farther than `tol` is. All other points are `Inside` or
 //!   `Outside`, exactly up to floating-point rounding in the crossing solves, which is far below
 //!   `tol` (points `1e-8 x size` from the boundary are classified correctly).
@@ -57,7 +57,7 @@ mod locator;
 mod polygon;
 mod rays;
 
-pub use classifier::{Classifier, ContainOptions, DEFAULT_TOLERANCE};
+pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
 pub use error::ContainError;
 pub use filled_area::{MAX_NESTED_LOOPS, even_odd_area};
 pub use gwn::{

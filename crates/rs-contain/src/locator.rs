@@ -121,7 +121,7 @@ pub struct LocatorIndex {
 impl LocatorIndex {
     /// Registers every box in the cells near its curve, then classifies the box-free cells.
     fn build(classifier: &Classifier, cells: usize) -> Self {
-        let tol = classifier.tolerance();
+        let tol = classifier.abs_tol();
         let frame = GridFrame::new(
             classifier.outer(),
             GridFrame::cells_for_tolerance(classifier.outer(), tol, cells),
@@ -265,7 +265,7 @@ impl<'a> PointLocator<'a> {
 
     fn locate_mixed(&self, p: Point, c: usize, r: usize) -> Location {
         let cls = self.classifier;
-        let tol = cls.tolerance();
+        let tol = cls.abs_tol();
         let all = cls.boxes().boxes();
         if cls.boxes().is_critical_x(p.x, tol) {
             return cls.fallback(p).0;

@@ -20,13 +20,13 @@ pub struct FlattenedPolygon {
 }
 
 impl FlattenedPolygon {
-    /// Flattens every loop of `domain` to within `tolerance` (absolute, see
+    /// Flattens every loop of `domain` to within `accuracy` (an absolute distance, see
     /// [`Flatten::flatten`](rs_spline::Flatten::flatten)); each loop is closed by an edge back
     /// to its start.
-    pub fn new(domain: &Domain, tolerance: f64) -> Self {
+    pub fn new(domain: &Domain, accuracy: f64) -> Self {
         Self::from_pieces(domain, |b, pts| {
             let mut after_start = false;
-            b.flatten(tolerance, &mut |p| {
+            b.flatten(accuracy, &mut |p| {
                 if after_start {
                     pts.push(p);
                 }

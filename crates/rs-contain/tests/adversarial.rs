@@ -340,7 +340,7 @@ fn annulus_is_exact() {
 fn c_tol(case: &Case) -> f64 {
     Classifier::new(&case.domain, ContainOptions::default())
         .unwrap()
-        .tolerance()
+        .abs_tol()
 }
 
 /// Reversing every loop (and the curve order) changes nothing.

@@ -17,7 +17,7 @@ fn flower() -> Domain {
 }
 
 fn check_equal(name: &str, d: &Domain) {
-    let field = WindingField::new(d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let field = WindingField::new(d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
     let fast = FastWindingField::new(&field);
     let s = d.bounding_box().diagonal();
     let mut bb = d.bounding_box();
@@ -58,7 +58,7 @@ fn fast_field_equals_the_reference() {
 #[test]
 fn far_queries_take_one_angle_per_chain() {
     let d = flower();
-    let field = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let field = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
     let fast = FastWindingField::new(&field);
     // The whole loop is one exact chain: a query outside its box costs one angle.
     let mut stats = QueryStats::default();

@@ -17,7 +17,11 @@ use rs_spline::{
 use rs_testkit::DensePolygon;
 
 fn field(curves: Vec<NurbsCurve>) -> WindingField {
-    WindingField::new(&Domain::new(curves).unwrap(), rs_contain::DEFAULT_TOLERANCE).unwrap()
+    WindingField::new(
+        &Domain::new(curves).unwrap(),
+        rs_contain::DEFAULT_RELATIVE_TOLERANCE,
+    )
+    .unwrap()
 }
 
 fn fixture(name: &str) -> Domain {
@@ -76,7 +80,7 @@ fn closed_shapes_give_integers() {
         "leaf_cubic",
     ] {
         let d = fixture(name);
-        let f = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+        let f = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
         for c in d.curves() {
             let (a, b) = c.param_range();
             for i in 1..20 {
@@ -154,7 +158,7 @@ fn a_thin_curved_sliver_is_resolved() {
     let close_right = segment(outer.start_point(), inner.end_point()).unwrap();
     let close_left = segment(outer.end_point(), inner.start_point()).unwrap();
     let d = Domain::new(vec![outer, close_left, inner, close_right.reversed()]).unwrap();
-    let f = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let f = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
     for k in 1..50 {
         let th = PI * k as f64 / 50.0;
         let on_outer = Point::new(th.cos(), th.sin());
@@ -173,7 +177,7 @@ fn a_thin_curved_sliver_is_resolved() {
 #[test]
 fn defects_change_containment_only_nearby() {
     let d = fixture("s4_disk_ellipse_segment");
-    let full = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE)
+    let full = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE)
         .unwrap()
         .with_fill_rule(FillRule::NonZero);
     let pts = halton_points(20_000, d.bounding_box());
@@ -182,7 +186,7 @@ fn defects_change_containment_only_nearby() {
     // subtends more than pi: between the arc and its chord x + y = 1.
     let removed = WindingField::new(
         &Domain::new(d.curves()[1..].to_vec()).unwrap(),
-        rs_contain::DEFAULT_TOLERANCE,
+        rs_contain::DEFAULT_RELATIVE_TOLERANCE,
     )
     .unwrap()
     .with_fill_rule(FillRule::NonZero);
@@ -201,7 +205,7 @@ fn defects_change_containment_only_nearby() {
     assert!(changed > 500, "{changed}");
     let without_segment = WindingField::new(
         &Domain::new(d.curves()[..2].to_vec()).unwrap(),
-        rs_contain::DEFAULT_TOLERANCE,
+        rs_contain::DEFAULT_RELATIVE_TOLERANCE,
     )
     .unwrap()
     .with_fill_rule(FillRule::NonZero);
@@ -225,9 +229,12 @@ fn defects_change_containment_only_nearby() {
     )
     .unwrap();
     let gap_at = d.curves()[1].start_point();
-    let moved = WindingField::new(&Domain::new(curves).unwrap(), rs_contain::DEFAULT_TOLERANCE)
-        .unwrap()
-        .with_fill_rule(FillRule::NonZero);
+    let moved = WindingField::new(
+        &Domain::new(curves).unwrap(),
+        rs_contain::DEFAULT_RELATIVE_TOLERANCE,
+    )
+    .unwrap()
+    .with_fill_rule(FillRule::NonZero);
     let mut near: Vec<Point> = pts.clone();
     for i in -20..=20 {
         for j in -20..=20 {
@@ -264,7 +271,7 @@ fn the_three_algorithms_agree() {
     );
     let mut totals = [QueryStats::default(); 3];
     for d in &cases {
-        let f = WindingField::new(d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+        let f = WindingField::new(d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
         let poly = DensePolygon::new(d, 1e-8);
         let mut bb = d.bounding_box();
         bb.min = bb.min - Point::new(0.2, 0.2);
@@ -337,7 +344,7 @@ fn coincident_points_follow_the_convention() {
 #[test]
 fn far_queries_cost_one_evaluation_per_curve() {
     let d = fixture("s5_lune");
-    let f = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+    let f = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
     let mut stats = QueryStats::default();
     f.winding_number_with(
         Point::new(10.0, 10.0),

@@ -64,7 +64,8 @@ fn inside_counts_match_the_reference_exactly() {
                     );
                     checked += 1;
                 }
-                let field = WindingField::new(domain, ContainOptions::default().tolerance).unwrap();
+                let field = WindingField::new(domain, ContainOptions::default().relative_tolerance)
+                    .unwrap();
                 let fast = FastWindingField::new(&field);
                 let inside = pts
                     .iter()

@@ -30,8 +30,8 @@ pub enum Sign {
 pub struct ConvexDomainOptions {
     /// The sign the curve must keep everywhere.
     pub sign: Sign,
-    /// Stop when `area(K_l \ K_{l-1}) / area(K_{l-1}) <= tolerance` (formula (20)).
-    pub tolerance: f64,
+    /// Stop when `area(K_l \ K_{l-1}) / area(K_{l-1}) <= relative_tolerance` (formula (20)).
+    pub relative_tolerance: f64,
     /// The last refinement level tried (each level doubles the inequalities).
     pub max_level: u32,
     /// Parameters sampled per Bezier piece of the numerator for the outer bound.
@@ -43,7 +43,7 @@ impl ConvexDomainOptions {
     /// per piece.
     pub const DEFAULT: ConvexDomainOptions = ConvexDomainOptions {
         sign: Sign::Positive,
-        tolerance: 1e-3,
+        relative_tolerance: 1e-3,
         max_level: 10,
         outer_samples: 256,
     };
@@ -55,8 +55,8 @@ impl ConvexDomainOptions {
     }
 
     /// With another relative growth tolerance (formula (20)).
-    pub const fn with_tolerance(mut self, relative_tolerance: f64) -> Self {
-        self.tolerance = relative_tolerance;
+    pub const fn with_relative_tolerance(mut self, relative_tolerance: f64) -> Self {
+        self.relative_tolerance = relative_tolerance;
         self
     }
 
@@ -296,8 +296,8 @@ pub fn approximate(
             bbox: bbox.dimension(),
         });
     }
-    if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
-        return Err(ConvexError::InvalidTolerance(options.tolerance));
+    if !(options.relative_tolerance.is_finite() && options.relative_tolerance >= 0.0) {
+        return Err(ConvexError::InvalidTolerance(options.relative_tolerance));
     }
     if options.max_level > MAX_LEVEL {
         return Err(ConvexError::InvalidLevel(options.max_level));
@@ -342,7 +342,7 @@ pub fn approximate(
             outcome = Outcome::Empty;
             break;
         }
-        if rel_error.is_some_and(|r| r <= options.tolerance) {
+        if rel_error.is_some_and(|r| r <= options.relative_tolerance) {
             outcome = Outcome::Converged;
             break;
         }

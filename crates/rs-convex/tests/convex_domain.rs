@@ -59,7 +59,7 @@ fn run(c: &NurbsCurve, free: usize, r: &[f64], sign: Sign) -> ConvexDomain {
     let h = SignNumerator::curvature(c, free).unwrap();
     let options = ConvexDomainOptions::DEFAULT
         .with_sign(sign)
-        .with_tolerance(1e-4)
+        .with_relative_tolerance(1e-4)
         .with_max_level(9);
     approximate(&h, &BoundingBox3::from_ranges(r).unwrap(), &options).unwrap()
 }
@@ -289,7 +289,7 @@ fn torsion_polytopes_keep_the_sign_and_grow() {
     assert_eq!(h.degree(), 9); // 3p - 6: ten coefficients, as in the paper's Table 3
     let options = ConvexDomainOptions::DEFAULT
         .with_sign(sign)
-        .with_tolerance(1e-3)
+        .with_relative_tolerance(1e-3)
         .with_max_level(5)
         .with_outer_samples(128);
     let bbox = BoundingBox3::from_ranges(&[-100.0, 100.0, -100.0, 100.0, -100.0, 100.0]).unwrap();
@@ -366,7 +366,7 @@ fn bad_input_is_an_error_not_a_panic() {
     assert!(BoundingBox3::from_ranges(&[1.0, 0.0, 0.0, 1.0]).is_err());
     assert!(BoundingBox3::from_ranges(&[0.0, f64::NAN, 0.0, 1.0]).is_err());
     let b2 = BoundingBox3::from_ranges(&[0.0, 1.0, 0.0, 1.0]).unwrap();
-    let bad = ConvexDomainOptions::DEFAULT.with_tolerance(-1.0);
+    let bad = ConvexDomainOptions::DEFAULT.with_relative_tolerance(-1.0);
     assert!(approximate(&h, &b2, &bad).is_err());
     let too_deep = ConvexDomainOptions::DEFAULT.with_max_level(40);
     let e = approximate(&h, &b2, &too_deep).unwrap_err().to_string();
@@ -389,7 +389,7 @@ fn torsion_volumes_bracket_a_monte_carlo_estimate_when_a_constraint_is_a_box_fac
     let (h, sign) = torsion_with_free_point_2(&pts);
     let options = ConvexDomainOptions::DEFAULT
         .with_sign(sign)
-        .with_tolerance(1e-4)
+        .with_relative_tolerance(1e-4)
         .with_max_level(4)
         .with_outer_samples(128);
     let r = [-100.0, 100.0, -100.0, 100.0, 0.0, 100.0];

@@ -27,7 +27,7 @@ const FULL_TURN_SLACK: f64 = 1e-10;
 pub struct DxfOptions {
     /// Entity ends closer than this fraction of the drawing's bounding-box diagonal are
     /// joined (also the domain's closure tolerance).
-    pub closure_tolerance: f64,
+    pub relative_closure_tolerance: f64,
     /// Keep chains that do not close (for generalized winding numbers) instead of failing.
     pub allow_open: bool,
 }
@@ -35,13 +35,13 @@ pub struct DxfOptions {
 impl DxfOptions {
     /// Ends within `1e-9` of the diagonal are joined; open chains are an error.
     pub const DEFAULT: DxfOptions = DxfOptions {
-        closure_tolerance: 1e-9,
+        relative_closure_tolerance: 1e-9,
         allow_open: false,
     };
 
     /// With another relative closure tolerance.
-    pub const fn with_closure_tolerance(mut self, relative_tolerance: f64) -> Self {
-        self.closure_tolerance = relative_tolerance;
+    pub const fn with_relative_closure_tolerance(mut self, relative_tolerance: f64) -> Self {
+        self.relative_closure_tolerance = relative_tolerance;
         self
     }
 
@@ -100,9 +100,11 @@ pub fn domain_from_drawing(
     drawing: &dxf::Drawing,
     options: &DxfOptions,
 ) -> Result<Domain, IoError> {
-    if !(options.closure_tolerance.is_finite() && options.closure_tolerance >= 0.0) {
+    if !(options.relative_closure_tolerance.is_finite()
+        && options.relative_closure_tolerance >= 0.0)
+    {
         return Err(IoError::Domain(rs_spline::DomainError::InvalidTolerance(
-            options.closure_tolerance,
+            options.relative_closure_tolerance,
         )));
     }
     let mut chains = Vec::new();
@@ -119,11 +121,11 @@ pub fn domain_from_drawing(
         .flat_map(|c| c.curves.iter().map(NurbsCurve::bounding_box))
         .reduce(BoundingBox::union)
         .ok_or_else(|| IoError::Empty("DXF drawing".to_string()))?;
-    let tol = options.closure_tolerance * bbox.diagonal();
+    let tol = options.relative_closure_tolerance * bbox.diagonal();
     let curves = join_chains(chains, tol, options.allow_open)?;
-    Ok(Domain::with_closure_tolerance(
+    Ok(Domain::with_relative_closure_tolerance(
         curves,
-        options.closure_tolerance,
+        options.relative_closure_tolerance,
     )?)
 }
 

@@ -8,7 +8,7 @@ use std::path::Path;
 use serde_json::{Map, Value, json};
 
 use rs_spline::{
-    DEFAULT_CLOSURE_TOLERANCE, Domain, KnotVector, NurbsCurve, Point, SplineError, circle,
+    DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, KnotVector, NurbsCurve, Point, SplineError, circle,
     circular_arc, ellipse, elliptic_arc, limits, polyline, segment,
 };
 
@@ -45,14 +45,14 @@ const FORMS: &str = "a NURBS curve (degree, control_points, knots, weights) or o
 /// assert!(err.to_string().starts_with("curve 0:"));
 /// ```
 pub fn domain_from_json(text: &str) -> Result<Domain, IoError> {
-    domain_from_json_with_tolerance(text, DEFAULT_CLOSURE_TOLERANCE)
+    domain_from_json_with_relative_closure_tolerance(text, DEFAULT_RELATIVE_CLOSURE_TOLERANCE)
 }
 
 /// As [`domain_from_json`] with a relative closure tolerance.
 ///
 /// # Errors
 /// As [`domain_from_json`]; an invalid tolerance is [`IoError::Domain`].
-pub fn domain_from_json_with_tolerance(
+pub fn domain_from_json_with_relative_closure_tolerance(
     text: &str,
     relative_tolerance: f64,
 ) -> Result<Domain, IoError> {
@@ -70,7 +70,7 @@ pub fn domain_from_json_with_tolerance(
         .enumerate()
         .map(|(i, c)| parse_curve(i, c))
         .collect::<Result<Vec<_>, _>>()?;
-    let domain = Domain::with_closure_tolerance(curves, relative_tolerance)?;
+    let domain = Domain::with_relative_closure_tolerance(curves, relative_tolerance)?;
     Ok(match top.get("name").and_then(Value::as_str) {
         Some(name) => domain.with_name(name),
         None => domain,

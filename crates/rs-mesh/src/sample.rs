@@ -118,7 +118,7 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
     let diag = bb.diagonal();
     let band = Classifier::new(
         domain,
-        ContainOptions::DEFAULT.with_tolerance(0.25 * h / diag),
+        ContainOptions::DEFAULT.with_relative_tolerance(0.25 * h / diag),
     )?;
     interior.retain(|&p| !near.any_within(p, 0.5 * h) && band.locate(p) == Location::Inside);
     Ok(WellSpacedPoints {

@@ -288,10 +288,10 @@ impl ParamCurveExtrema for RationalBezier {
 }
 
 impl Flatten for RationalBezier {
-    fn flatten(&self, tolerance: f64, emit: &mut dyn FnMut(Point)) {
+    fn flatten(&self, accuracy: f64, emit: &mut dyn FnMut(Point)) {
         emit(self.start_point());
         let floor = FLATTEN_RELATIVE_FLOOR * self.control_bounding_box().diagonal();
-        let tol = if tolerance > floor { tolerance } else { floor };
+        let tol = if accuracy > floor { accuracy } else { floor };
         flatten_into(self, tol, 0, emit);
     }
 }

@@ -222,11 +222,11 @@ pub trait ParamCurveExtrema: ParamCurve {
 /// A polyline within a distance of the curve.
 pub trait Flatten {
     /// Calls `emit` with the start point and then every vertex of a polyline whose distance
-    /// from the curve is at most `tolerance` (absolute): each Bezier piece is halved until the
-    /// control points of every part are within `tolerance` of its chord (convex-hull
+    /// from the curve is at most `accuracy` (an absolute distance): each Bezier piece is halved
+    /// until the control points of every part are within `accuracy` of its chord (convex-hull
     /// property). The tolerance is raised to `1e-13` of a piece's control-box diagonal at the
     /// least, and halving stops at depth 40, so the work is bounded for every input.
-    fn flatten(&self, tolerance: f64, emit: &mut dyn FnMut(Point));
+    fn flatten(&self, accuracy: f64, emit: &mut dyn FnMut(Point));
 }
 
 /// The traits, for `use rs_spline::prelude::*`.

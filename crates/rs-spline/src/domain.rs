@@ -8,7 +8,7 @@ use crate::{BoundingBox, DomainError, NurbsCurve, Point, RationalBezier};
 
 /// Default closure tolerance, relative to the diagonal of the domain's bounding box: a curve's
 /// end meets the next curve's start when they are at most `1e-9 * diagonal` apart.
-pub const DEFAULT_CLOSURE_TOLERANCE: f64 = 1e-9;
+pub const DEFAULT_RELATIVE_CLOSURE_TOLERANCE: f64 = 1e-9;
 
 /// Orientation of a closed loop, from the sign of its signed area.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,8 +51,8 @@ impl BoundaryLoop {
 ///
 /// # Semantics
 /// - Curves are in boundary order. Consecutive curves whose end and start are within the
-///   closure tolerance ([`DEFAULT_CLOSURE_TOLERANCE`] times the bounding-box diagonal unless
-///   given) belong to one loop; a loop ends when the next curve does not continue it, or as soon
+///   closure tolerance ([`DEFAULT_RELATIVE_CLOSURE_TOLERANCE`] times the bounding-box diagonal
+///   unless given) belong to one loop; a loop ends when the next curve does not continue it, or as soon
 ///   as a curve returns to the loop's start point.
 /// - A loop is closed if its last curve ends within the tolerance of its first curve's start.
 ///   Crossing-number containment needs every loop closed ([`Domain::require_closed`]);
@@ -88,7 +88,7 @@ impl Domain {
     /// # Errors
     /// [`DomainError::NoCurves`] for an empty list.
     pub fn new(curves: Vec<NurbsCurve>) -> Result<Self, DomainError> {
-        Self::with_closure_tolerance(curves, DEFAULT_CLOSURE_TOLERANCE)
+        Self::with_relative_closure_tolerance(curves, DEFAULT_RELATIVE_CLOSURE_TOLERANCE)
     }
 
     /// Groups `curves` into loops; `relative_tolerance` times the bounding-box diagonal is the
@@ -96,7 +96,7 @@ impl Domain {
     ///
     /// # Errors
     /// [`DomainError::NoCurves`], [`DomainError::InvalidTolerance`].
-    pub fn with_closure_tolerance(
+    pub fn with_relative_closure_tolerance(
         curves: Vec<NurbsCurve>,
         relative_tolerance: f64,
     ) -> Result<Self, DomainError> {
@@ -146,7 +146,7 @@ impl Domain {
     }
 
     /// The absolute closure tolerance in force (relative tolerance times the diagonal).
-    pub fn closure_tolerance(&self) -> f64 {
+    pub fn closure_abs_tol(&self) -> f64 {
         self.tolerance
     }
 

@@ -41,14 +41,14 @@ impl GridFrame {
         }
     }
 
-    /// The resolution for registering shapes grown by `tol` over `bbox`: at most `cells` per
-    /// side, and cells no narrower than `tol` (at least 1 per side). Each shape registers the
-    /// cells of its rectangle grown by `tol`, so cells much narrower than that multiply the
+    /// The resolution for registering shapes grown by `abs_tol` over `bbox`: at most `cells` per
+    /// side, and cells no narrower than `abs_tol` (at least 1 per side). Each shape registers the
+    /// cells of its rectangle grown by `abs_tol`, so cells much narrower than that multiply the
     /// registrations, and the memory, without sharpening anything.
-    pub fn cells_for_tolerance(bbox: BoundingBox, tol: f64, cells: usize) -> usize {
+    pub fn cells_for_tolerance(bbox: BoundingBox, abs_tol: f64, cells: usize) -> usize {
         let span = bbox.width().max(bbox.height());
-        if tol > 0.0 && span.is_finite() {
-            cells.min(((span / tol) as usize).max(1))
+        if abs_tol > 0.0 && span.is_finite() {
+            cells.min(((span / abs_tol) as usize).max(1))
         } else {
             cells
         }

@@ -64,7 +64,7 @@ pub use curve::{
     ArcLengthTable, Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv,
     ParamCurveExtrema, prelude,
 };
-pub use domain::{BoundaryLoop, DEFAULT_CLOSURE_TOLERANCE, Domain, Orientation};
+pub use domain::{BoundaryLoop, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};
 pub use homogeneous::CurveDerivatives;
 pub use knots::KnotVector;

@@ -498,11 +498,11 @@ impl ParamCurveExtrema for NurbsCurve {
 impl Flatten for NurbsCurve {
     /// The Bezier pieces flattened in order; each piece's start (the previous piece's end)
     /// is emitted once.
-    fn flatten(&self, tolerance: f64, emit: &mut dyn FnMut(Point)) {
+    fn flatten(&self, accuracy: f64, emit: &mut dyn FnMut(Point)) {
         let mut first = true;
         for b in self.to_bezier() {
             let mut skip = !first;
-            b.flatten(tolerance, &mut |p| {
+            b.flatten(accuracy, &mut |p| {
                 if skip {
                     skip = false;
                 } else {

@@ -15,10 +15,11 @@ fn loops_close_within_tolerance_only() {
     let d = Domain::new(vec![a.clone(), b.clone(), c.clone()]).unwrap();
     assert!(!d.is_closed());
     assert!((d.loops()[0].gap() - 1e-6).abs() < 1e-18);
-    let looser = Domain::with_closure_tolerance(vec![a, b, c], 1e-5).unwrap();
+    let looser = Domain::with_relative_closure_tolerance(vec![a, b, c], 1e-5).unwrap();
     assert!(looser.is_closed());
     assert!(
-        Domain::with_closure_tolerance(vec![circle(Point::default(), 1.0).unwrap()], -1.0).is_err()
+        Domain::with_relative_closure_tolerance(vec![circle(Point::default(), 1.0).unwrap()], -1.0)
+            .is_err()
     );
     assert!(matches!(Domain::new(vec![]), Err(DomainError::NoCurves)));
 }

@@ -23,7 +23,7 @@ Limits (inputs beyond them are errors, never a crash or a hang):
   convex-domain --box coordinates / --max-level 1e100 / 20";
 
 /// The default `--tol` of classify as shown by `--help` (the value is
-/// [`inrs::contain::DEFAULT_TOLERANCE`], checked by a test).
+/// [`inrs::contain::DEFAULT_RELATIVE_TOLERANCE`], checked by a test).
 pub(crate) const DEFAULT_TOL: &str = "1e-12";
 
 /// The default `--tol` of convex-domain (the value of `ConvexDomainOptions::default()`).
@@ -105,11 +105,11 @@ mod tests {
     fn defaults_and_help_agree_with_the_libraries() {
         assert_eq!(
             parse_tolerance(DEFAULT_TOL),
-            Ok(inrs::contain::DEFAULT_TOLERANCE)
+            Ok(inrs::contain::DEFAULT_RELATIVE_TOLERANCE)
         );
         assert_eq!(
             parse_tolerance(DEFAULT_CONVEX_TOL),
-            Ok(inrs::convex::ConvexDomainOptions::default().tolerance)
+            Ok(inrs::convex::ConvexDomainOptions::default().relative_tolerance)
         );
         let limits = [
             format!("{}", inrs::spline::limits::MAX_DEGREE),

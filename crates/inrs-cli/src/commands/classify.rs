@@ -55,7 +55,7 @@ impl ClassifyArgs {
             });
         }
         let options = ContainOptions::DEFAULT
-            .with_tolerance(self.tol)
+            .with_relative_tolerance(self.tol)
             .with_subdivisions(self.subdivisions)
             .with_method(method);
         let classifier = Classifier::new(&d, options).map_err(|e| self.domain.error(e))?;

@@ -63,7 +63,7 @@ impl ConvexDomainArgs {
         let sign = self.sign_to_keep(&curve, &h);
         let options = ConvexDomainOptions::DEFAULT
             .with_sign(sign)
-            .with_tolerance(self.tol)
+            .with_relative_tolerance(self.tol)
             .with_max_level(self.max_level);
         let k = inrs::convex::approximate(&h, &bbox, &options).map_err(|e| e.to_string())?;
         if let Some(out) = &self.svg {

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use inrs::contain::{DEFAULT_TOLERANCE, QueryStats, WindingField};
+use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, QueryStats, WindingField};
 
 use crate::args::{AlgorithmArg, DomainArg};
 use crate::cli::error::CliError;
@@ -31,7 +31,8 @@ pub(crate) struct WindingArgs {
 impl WindingArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let d = self.domain.load()?;
-        let field = WindingField::new(&d, DEFAULT_TOLERANCE).map_err(|e| self.domain.error(e))?;
+        let field =
+            WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).map_err(|e| self.domain.error(e))?;
         let algorithm = self.algorithm.into();
         let mut stats = QueryStats::default();
         stream_points(&self.points, self.output.as_deref(), "x,y,winding", |pts| {

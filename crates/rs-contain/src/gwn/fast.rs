@@ -137,7 +137,7 @@ enum Kind {
 /// use rs_contain::{FastWindingField, WindingField};
 /// use rs_spline::{circle, Domain, Point};
 /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
-/// let field = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+/// let field = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
 /// let fast = FastWindingField::new(&field);
 /// let q = Point::new(0.3, -0.2);
 /// assert!((fast.winding_number(q) - field.winding_number(q)).abs() < 1e-14);

@@ -68,7 +68,7 @@ pub enum FillRule {
 /// use rs_contain::{FillRule, Locate, Location, WindingField};
 /// use rs_spline::{circle, Domain, Point};
 /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
-/// let f = WindingField::new(&d, rs_contain::DEFAULT_TOLERANCE).unwrap();
+/// let f = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
 /// assert!((f.winding_number(Point::new(0.3, 0.2)) - 1.0).abs() < 1e-14);
 /// assert!((f.winding_number(Point::new(1.0, 0.0)) - 0.5).abs() < 1e-14); // on the curve
 /// let nonzero = f.with_fill_rule(FillRule::NonZero);
@@ -84,26 +84,31 @@ pub struct WindingField {
 }
 
 impl WindingField {
-    /// The field of every curve of `domain`, with boundary tolerance `tolerance` relative to the
-    /// bounding-box diagonal, and the even-odd fill rule.
+    /// The field of every curve of `domain`, with boundary tolerance `relative_tolerance`
+    /// times the bounding-box diagonal, and the even-odd fill rule.
     ///
     /// # Errors
     /// [`ContainError::InvalidTolerance`], [`ContainError::Boxes`].
-    pub fn new(domain: &Domain, tolerance: f64) -> Result<Self, ContainError> {
-        if !(tolerance.is_finite() && tolerance >= 0.0) {
-            return Err(ContainError::InvalidTolerance(tolerance));
+    pub fn new(domain: &Domain, relative_tolerance: f64) -> Result<Self, ContainError> {
+        if !(relative_tolerance.is_finite() && relative_tolerance >= 0.0) {
+            return Err(ContainError::InvalidTolerance(relative_tolerance));
         }
         let boxes = MonotoneBoxes::new(domain, BoxOptions::default())?;
-        Ok(Self::from_shared_boxes(domain, Arc::new(boxes), tolerance))
+        Ok(Self::from_shared_boxes(
+            domain,
+            Arc::new(boxes),
+            relative_tolerance,
+        ))
     }
 
-    /// The field over boxes built before from the same domain; `tolerance` already checked.
+    /// The field over boxes built before from the same domain; `relative_tolerance` already
+    /// checked.
     pub(crate) fn from_shared_boxes(
         domain: &Domain,
         boxes: Arc<MonotoneBoxes>,
-        tolerance: f64,
+        relative_tolerance: f64,
     ) -> Self {
-        let tol = tolerance * boxes.bounding_box().diagonal();
+        let tol = relative_tolerance * boxes.bounding_box().diagonal();
         let pieces = domain.bezier_pieces().into_iter().map(|(_, b)| b).collect();
         let grid = BoxGrid::new(boxes.boxes(), tol);
         Self {
