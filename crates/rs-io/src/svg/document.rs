@@ -93,55 +93,68 @@ fn visit(
         None => Affine::IDENTITY,
     };
     let ctm = parent.then_apply_to(own);
-    let curve_err = |e: SplineError| fail(e.to_string());
     builder.set_transform(ctm);
-    match name {
-        "svg" | "g" | "a" | "switch" => {
-            if depth >= MAX_SVG_DEPTH {
-                return Err(fail(format!(
-                    "groups nested more than {MAX_SVG_DEPTH} deep (the limit)"
-                )));
-            }
-            for child in node.children().filter(roxmltree::Node::is_element) {
-                visit(doc, child, ctm, builder, depth + 1)?;
-            }
+    if matches!(name, "svg" | "g" | "a" | "switch") {
+        if depth >= MAX_SVG_DEPTH {
+            return Err(fail(format!(
+                "groups nested more than {MAX_SVG_DEPTH} deep (the limit)"
+            )));
         }
+        for child in node.children().filter(roxmltree::Node::is_element) {
+            visit(doc, child, ctm, builder, depth + 1)?;
+        }
+    } else {
+        shape(node, name, builder).map_err(fail)?;
+    }
+    builder.end_subpath();
+    if let Some(e) = builder.take_error() {
+        return Err(fail(e.to_string()));
+    }
+    builder.set_transform(parent);
+    Ok(())
+}
+
+/// Adds the outline of one shape element `name` to `builder`. Lines enclose nothing; images,
+/// `use` references and unknown elements are not read.
+fn shape(
+    node: roxmltree::Node<'_, '_>,
+    name: &str,
+    builder: &mut LoopBuilder,
+) -> Result<(), String> {
+    let curve_err = |e: SplineError| e.to_string();
+    match name {
         "path" => {
             if let Some(d) = node.attribute("d") {
-                read_path_data(d, builder).map_err(|e| fail(e.to_string()))?;
+                read_path_data(d, builder).map_err(|e| e.to_string())?;
             }
         }
         "rect" => {
-            let x = length(node, "x", 0.0).map_err(fail)?;
-            let y = length(node, "y", 0.0).map_err(fail)?;
-            let w = length(node, "width", 0.0).map_err(fail)?;
-            let h = length(node, "height", 0.0).map_err(fail)?;
+            let x = length(node, "x", 0.0)?;
+            let y = length(node, "y", 0.0)?;
+            let w = length(node, "width", 0.0)?;
+            let h = length(node, "height", 0.0)?;
             if w < 0.0 || h < 0.0 {
-                return Err(fail(format!("negative size {w} x {h}")));
+                return Err(format!("negative size {w} x {h}"));
             }
-            let rx = optional_length(node, "rx").map_err(fail)?;
-            let ry = optional_length(node, "ry").map_err(fail)?;
+            let rx = optional_length(node, "rx")?;
+            let ry = optional_length(node, "ry")?;
             if w > 0.0 && h > 0.0 {
                 rect(builder, x, y, w, h, rx, ry).map_err(curve_err)?;
             }
         }
         "circle" | "ellipse" => {
-            let cx = length(node, "cx", 0.0).map_err(fail)?;
-            let cy = length(node, "cy", 0.0).map_err(fail)?;
+            let center = Point::new(length(node, "cx", 0.0)?, length(node, "cy", 0.0)?);
             let (rx, ry) = if name == "circle" {
-                let r = length(node, "r", 0.0).map_err(fail)?;
+                let r = length(node, "r", 0.0)?;
                 (r, r)
             } else {
-                (
-                    length(node, "rx", 0.0).map_err(fail)?,
-                    length(node, "ry", 0.0).map_err(fail)?,
-                )
+                (length(node, "rx", 0.0)?, length(node, "ry", 0.0)?)
             };
             if rx < 0.0 || ry < 0.0 {
-                return Err(fail(format!("negative radius {rx}, {ry}")));
+                return Err(format!("negative radius {rx}, {ry}"));
             }
             if rx > 0.0 && ry > 0.0 {
-                let e = rs_spline::ellipse(Point::new(cx, cy), rx, ry, 0.0).map_err(curve_err)?;
+                let e = rs_spline::ellipse(center, rx, ry, 0.0).map_err(curve_err)?;
                 builder.move_to(e.start_point());
                 builder.curve(e);
                 builder.close();
@@ -149,7 +162,7 @@ fn visit(
         }
         "polygon" | "polyline" => {
             if let Some(points) = node.attribute("points") {
-                let values = numbers(points).map_err(fail)?;
+                let values = numbers(points)?;
                 let mut it = values.chunks_exact(2).map(|c| Point::new(c[0], c[1]));
                 if let Some(first) = it.next() {
                     builder.move_to(first);
@@ -160,14 +173,8 @@ fn visit(
                 }
             }
         }
-        // Lines enclose nothing; images, `use` references and unknown elements are not read.
         _ => {}
     }
-    builder.end_subpath();
-    if let Some(e) = builder.take_error() {
-        return Err(fail(e.to_string()));
-    }
-    builder.set_transform(parent);
     Ok(())
 }
 

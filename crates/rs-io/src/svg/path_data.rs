@@ -9,27 +9,47 @@ use crate::builder::LoopBuilder;
 
 /// Reads path data into `builder` (subpaths become loops).
 pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), IoError> {
-    let mut lexer = Lexer {
-        bytes: d.as_bytes(),
-        pos: 0,
+    let mut reader = PathReader {
+        lexer: Lexer {
+            bytes: d.as_bytes(),
+            pos: 0,
+        },
+        command: None,
+        last_cubic: None,
+        last_quad: None,
     };
-    let mut command: Option<u8> = None;
-    // Second control point of the last cubic / control point of the last quadratic, for the
-    // reflections of S and T.
-    let mut last_cubic: Option<Point> = None;
-    let mut last_quad: Option<Point> = None;
-    loop {
+    while let Some((cmd, start)) = reader.next_command()? {
+        reader.segment(cmd, start, builder)?;
+    }
+    Ok(())
+}
+
+/// The state of the path-data grammar between segments.
+struct PathReader<'a> {
+    lexer: Lexer<'a>,
+    /// The command in force (repeated implicitly when numbers follow).
+    command: Option<u8>,
+    /// Second control point of the last cubic, reflected by `S`.
+    last_cubic: Option<Point>,
+    /// Control point of the last quadratic, reflected by `T`.
+    last_quad: Option<Point>,
+}
+
+impl PathReader<'_> {
+    /// The next segment's command letter and its byte position: an explicit letter, or the
+    /// command in force repeated (pairs after a moveto are implicit linetos). `None` at the end.
+    fn next_command(&mut self) -> Result<Option<(u8, usize)>, IoError> {
+        let lexer = &mut self.lexer;
         lexer.skip_separators();
         let Some(&b) = lexer.bytes.get(lexer.pos) else {
-            break;
+            return Ok(None);
         };
         let start = lexer.pos;
         let cmd = if b.is_ascii_alphabetic() {
             lexer.pos += 1;
             b
         } else {
-            match command {
-                // Pairs after a moveto are implicit linetos.
+            match self.command {
                 Some(b'M') => b'L',
                 Some(b'm') => b'l',
                 Some(b'Z' | b'z') | None => {
@@ -38,35 +58,35 @@ pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), I
                 Some(c) => c,
             }
         };
-        if command.is_none() && !matches!(cmd, b'M' | b'm') {
+        if self.command.is_none() && !matches!(cmd, b'M' | b'm') {
             return Err(lexer.error(start, "path data must start with a moveto (M or m)"));
         }
-        command = Some(cmd);
+        self.command = Some(cmd);
+        Ok(Some((cmd, start)))
+    }
+
+    /// Reads the arguments of one segment of command `cmd` (at byte `start`) and adds it to
+    /// `builder`, keeping the control points that `S` and `T` reflect.
+    fn segment(&mut self, cmd: u8, start: usize, builder: &mut LoopBuilder) -> Result<(), IoError> {
         let rel = cmd.is_ascii_lowercase();
-        let origin = if rel {
-            builder.pen()
-        } else {
-            Point::new(0.0, 0.0)
-        };
+        let pen = builder.pen();
+        let origin = if rel { pen } else { Point::new(0.0, 0.0) };
         let at = |p: Point| p + origin;
         let curve_err = |e: SplineError| IoError::PathData {
             position: start,
             message: e.to_string(),
         };
+        let lexer = &mut self.lexer;
         let (mut new_cubic, mut new_quad) = (None, None);
         match cmd.to_ascii_uppercase() {
             b'M' => builder.move_to(at(lexer.point()?)),
             b'L' => builder.line_to(at(lexer.point()?)).map_err(curve_err)?,
             b'H' => {
-                let x = lexer.number()?;
-                let pen = builder.pen();
-                let x = if rel { pen.x + x } else { x };
+                let x = lexer.number()? + origin.x;
                 builder.line_to(Point::new(x, pen.y)).map_err(curve_err)?;
             }
             b'V' => {
-                let y = lexer.number()?;
-                let pen = builder.pen();
-                let y = if rel { pen.y + y } else { y };
+                let y = lexer.number()? + origin.y;
                 builder.line_to(Point::new(pen.x, y)).map_err(curve_err)?;
             }
             b'C' => {
@@ -75,8 +95,7 @@ pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), I
                 new_cubic = Some(c2);
             }
             b'S' => {
-                let pen = builder.pen();
-                let c1 = last_cubic.map_or(pen, |c| pen * 2.0 - c);
+                let c1 = self.last_cubic.map_or(pen, |c| pen * 2.0 - c);
                 let (c2, p) = (at(lexer.point()?), at(lexer.point()?));
                 builder.bezier_to(&[c1, c2, p]).map_err(curve_err)?;
                 new_cubic = Some(c2);
@@ -87,20 +106,15 @@ pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), I
                 new_quad = Some(c);
             }
             b'T' => {
-                let pen = builder.pen();
-                let c = last_quad.map_or(pen, |c| pen * 2.0 - c);
+                let c = self.last_quad.map_or(pen, |c| pen * 2.0 - c);
                 let p = at(lexer.point()?);
                 builder.bezier_to(&[c, p]).map_err(curve_err)?;
                 new_quad = Some(c);
             }
             b'A' => {
-                let rx = lexer.number()?;
-                let ry = lexer.number()?;
-                let phi = lexer.number()?;
-                let large = lexer.flag()?;
-                let sweep = lexer.flag()?;
+                let (rx, ry, phi) = (lexer.number()?, lexer.number()?, lexer.number()?);
+                let (large, sweep) = (lexer.flag()?, lexer.flag()?);
                 let p = at(lexer.point()?);
-                let pen = builder.pen();
                 match endpoint_arc(pen, rx, ry, phi, large, sweep, p).map_err(curve_err)? {
                     ArcSegment::Nothing => {}
                     ArcSegment::Line => builder.line_to(p).map_err(curve_err)?,
@@ -112,10 +126,10 @@ pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), I
                 return Err(lexer.error(start, &format!("unknown command {:?}", char::from(cmd))));
             }
         }
-        last_cubic = new_cubic;
-        last_quad = new_quad;
+        self.last_cubic = new_cubic;
+        self.last_quad = new_quad;
+        Ok(())
     }
-    Ok(())
 }
 
 struct Lexer<'a> {
