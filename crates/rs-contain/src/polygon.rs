@@ -25,13 +25,7 @@ impl FlattenedPolygon {
     /// to its start.
     pub fn new(domain: &Domain, accuracy: f64) -> Self {
         Self::from_pieces(domain, |b, pts| {
-            let mut after_start = false;
-            b.flatten(accuracy, &mut |p| {
-                if after_start {
-                    pts.push(p);
-                }
-                after_start = true;
-            });
+            b.flatten_after_start(accuracy, &mut |p| pts.push(p));
         })
     }
 

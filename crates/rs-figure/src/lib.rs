@@ -158,10 +158,14 @@ impl Figure {
         let mut d = String::new();
         for l in loops {
             let mut pts: Vec<Point> = Vec::new();
-            for c in l {
+            let accuracy = self.flattening_accuracy();
+            for (i, c) in l.iter().enumerate() {
                 // Each curve starts where the previous one ends: keep that point once.
-                let skip = usize::from(!pts.is_empty());
-                pts.extend(self.flattened(*c).into_iter().skip(skip));
+                if i == 0 {
+                    c.flatten(accuracy, &mut |p| pts.push(p));
+                } else {
+                    c.flatten_after_start(accuracy, &mut |p| pts.push(p));
+                }
             }
             for (i, &p) in pts.iter().enumerate() {
                 let (x, y) = self.to_pixels(p);
@@ -176,9 +180,14 @@ impl Figure {
         );
     }
 
+    /// A quarter pixel in data units.
+    fn flattening_accuracy(&self) -> f64 {
+        CURVE_TOLERANCE_PX / self.scale
+    }
+
     fn flattened(&self, curve: &dyn Flatten) -> Vec<Point> {
         let mut pts = Vec::new();
-        curve.flatten(CURVE_TOLERANCE_PX / self.scale, &mut |p| pts.push(p));
+        curve.flatten(self.flattening_accuracy(), &mut |p| pts.push(p));
         pts
     }
 

@@ -227,6 +227,18 @@ pub trait Flatten {
     /// property). The tolerance is raised to `1e-13` of a piece's control-box diagonal at the
     /// least, and halving stops at depth 40, so the work is bounded for every input.
     fn flatten(&self, accuracy: f64, emit: &mut dyn FnMut(Point));
+
+    /// The points of [`Flatten::flatten`] after the start point: for chaining curves that
+    /// meet end to start, so each shared point is emitted once.
+    fn flatten_after_start(&self, accuracy: f64, emit: &mut dyn FnMut(Point)) {
+        let mut started = false;
+        self.flatten(accuracy, &mut |p| {
+            if started {
+                emit(p);
+            }
+            started = true;
+        });
+    }
 }
 
 /// The traits, for `use rs_spline::prelude::*`.
@@ -300,6 +312,22 @@ mod tests {
         let mut n = 0usize;
         short.flatten(0.0, &mut |_| n += 1);
         assert!(n > 1000 && n <= (1 << 20) + 1, "{n}");
+    }
+
+    #[test]
+    fn flatten_after_start_drops_only_the_start_point() {
+        let c = circle(Point::new(1.0, 0.5), 2.0).unwrap();
+        for piece in [&c as &dyn Flatten, &c.to_bezier()[1]] {
+            let (mut all, mut rest) = (Vec::new(), Vec::new());
+            piece.flatten(1e-3, &mut |p| all.push(p));
+            piece.flatten_after_start(1e-3, &mut |p| rest.push(p));
+            assert!(all.len() > 4);
+            assert_eq!(all[1..], rest[..]);
+        }
+        // A NURBS emits each break point between its pieces once.
+        let mut pts = Vec::new();
+        c.flatten(1e-3, &mut |p| pts.push(p));
+        assert!(pts.windows(2).all(|w| w[0] != w[1]));
     }
 
     #[test]

@@ -499,17 +499,12 @@ impl Flatten for NurbsCurve {
     /// The Bezier pieces flattened in order; each piece's start (the previous piece's end)
     /// is emitted once.
     fn flatten(&self, accuracy: f64, emit: &mut dyn FnMut(Point)) {
-        let mut first = true;
-        for b in self.to_bezier() {
-            let mut skip = !first;
-            b.flatten(accuracy, &mut |p| {
-                if skip {
-                    skip = false;
-                } else {
-                    emit(p);
-                }
-            });
-            first = false;
+        for (i, b) in self.to_bezier().iter().enumerate() {
+            if i == 0 {
+                b.flatten(accuracy, emit);
+            } else {
+                b.flatten_after_start(accuracy, emit);
+            }
         }
     }
 }
