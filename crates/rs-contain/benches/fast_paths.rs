@@ -11,41 +11,22 @@ use rs_contain::{
     Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
     WindingField,
 };
-use rs_spline::{BoundingBox, Point};
 
-/// (fixture, reference bounding box, N, reference inside count) from the fixture files.
-const CASES: [(&str, [f64; 4], usize, usize); 3] = [
-    (
-        "s3_m_shape",
-        [-1.0000000000000002, 1.0, -1.0, 1.0000000000000002],
-        100_000,
-        49718,
-    ),
-    (
-        "s4_disk_ellipse_segment",
-        [-0.5, 1.0, -1.0000000000000002, 1.0],
-        100_000,
-        69031,
-    ),
-    ("s5_lune", [-1.0, 1.0, -1.0, 1.0], 100_000, 55285),
-];
+/// Halton points per domain; the fixture files record the reference inside count for it.
+const N: usize = 100_000;
 
 fn inside(v: &[Location]) -> usize {
     v.iter().filter(|&&l| l == Location::Inside).count()
 }
 
 fn locator(c: &mut Criterion) {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures");
     let mut group = c.benchmark_group("fast");
     group.sample_size(10);
-    for (name, b, n, expected) in CASES {
-        let domain = rs_io::json::domain_from_json_file(format!("{dir}/inrs-paper/{name}.json"))
-            .expect("fixture");
-        let bbox = BoundingBox {
-            min: Point::new(b[0], b[2]),
-            max: Point::new(b[1], b[3]),
-        };
-        let pts = halton_points(n, bbox);
+    for name in rs_testkit::PAPER_DOMAINS {
+        let meta = rs_testkit::inrs_fixture(name);
+        let expected = meta.inside_count(N).expect("reference count");
+        let domain = meta.domain;
+        let pts = halton_points(N, meta.reference_box.expect("reference box"));
         let classifier = Classifier::new(&domain, ContainOptions::default()).expect("closed");
         group.bench_with_input(BenchmarkId::new("inrs2", name), &pts, |bch, pts| {
             bch.iter(|| {
@@ -72,8 +53,9 @@ fn locator(c: &mut Criterion) {
             })
         });
     }
-    let flower = rs_io::json::domain_from_json_file(format!("{dir}/synthetic/flower500.json"))
-        .expect("fixture");
+    let flower =
+        rs_io::json::domain_from_json_file(rs_testkit::fixture_path("synthetic/flower500.json"))
+            .expect("fixture");
     let field = WindingField::new(&flower, rs_contain::DEFAULT_RELATIVE_TOLERANCE).expect("field");
     let fast = FastWindingField::new(&field);
     let pts = halton_points(10_000, flower.bounding_box());

@@ -25,11 +25,7 @@ fn field(curves: Vec<NurbsCurve>) -> WindingField {
 }
 
 fn fixture(name: &str) -> Domain {
-    rs_io::json::domain_from_json_file(format!(
-        "{}/../../fixtures/inrs-paper/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
+    rs_testkit::inrs_fixture(name).domain
 }
 
 /// Angle subtended at `q` by a dense polyline of the curve, over 2 pi: independent of the
@@ -365,14 +361,7 @@ fn far_queries_cost_one_evaluation_per_curve() {
 
 #[test]
 fn gwn_containment_agrees_with_inrs_on_watertight_fixtures() {
-    for name in [
-        "circle",
-        "l_shape",
-        "leaf_cubic",
-        "s3_m_shape",
-        "s4_disk_ellipse_segment",
-        "s5_lune",
-    ] {
+    for name in rs_testkit::INRS_FIXTURES {
         let d = fixture(name);
         let c = Classifier::new(&d, ContainOptions::default()).unwrap();
         let pts = halton_points(10_000, d.bounding_box());

@@ -10,14 +10,11 @@ use rs_contain::baselines::halton_points;
 use rs_contain::{Classifier, ContainOptions, Location};
 use rs_mesh::{CurvedLocator, CurvedTriangulation, well_spaced_points};
 
-const FIXTURES: [&str; 3] = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune"];
-
 fn mesh(c: &mut Criterion) {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/inrs-paper");
     let mut group = c.benchmark_group("mesh");
     group.sample_size(10);
-    for name in FIXTURES {
-        let d = rs_io::json::domain_from_json_file(format!("{dir}/{name}.json")).unwrap();
+    for name in rs_testkit::PAPER_DOMAINS {
+        let d = rs_testkit::inrs_fixture(name).domain;
         let area = d.signed_area().abs();
         group.bench_function(BenchmarkId::new("sample ny=251", name), |b| {
             b.iter(|| {

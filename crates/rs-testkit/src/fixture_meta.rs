@@ -46,6 +46,17 @@ impl FixtureMeta {
     }
 }
 
+impl FixtureMeta {
+    /// The reference inside count of the first `n` Halton points of [`FixtureMeta::reference_box`],
+    /// if the file records one.
+    pub fn inside_count(&self, n: usize) -> Option<usize> {
+        self.inside_counts
+            .iter()
+            .find(|&&(m, _)| m == n)
+            .map(|&(_, c)| c)
+    }
+}
+
 fn reference_box(meta: &Value) -> Option<BoundingBox> {
     let b: Vec<f64> = meta
         .get("bbox_xmin_xmax_ymin_ymax")?

@@ -64,9 +64,34 @@ pub fn case(name: &str, curves: Vec<NurbsCurve>) -> Case {
     }
 }
 
+/// The three domains of the inRS paper's Fig. 2 and Tables 1-2 (files in
+/// `fixtures/inrs-paper/`).
+pub const PAPER_DOMAINS: [&str; 3] = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune"];
+
+/// Every domain of `fixtures/inrs-paper/`, the paper's three first, in the order of the
+/// benchmark tables.
+pub const INRS_FIXTURES: [&str; 6] = [
+    "s3_m_shape",
+    "s4_disk_ellipse_segment",
+    "s5_lune",
+    "circle",
+    "l_shape",
+    "leaf_cubic",
+];
+
+/// The path of `relative` under the workspace's `fixtures/` directory.
+pub fn fixture_path(relative: &str) -> std::path::PathBuf {
+    std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures")).join(relative)
+}
+
+/// The fixture `fixtures/inrs-paper/{name}.json` with its reference data (panics if missing).
+pub fn inrs_fixture(name: &str) -> FixtureMeta {
+    FixtureMeta::load(&fixture_path(&format!("inrs-paper/{name}.json"))).unwrap()
+}
+
 /// The paper fixtures.
 pub fn fixtures() -> Vec<Case> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/inrs-paper");
+    let dir = fixture_path("inrs-paper");
     let mut v: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())

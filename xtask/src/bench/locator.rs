@@ -1,0 +1,158 @@
+//! The grid point locator: queries alone, at scale (10^5 boxes), and the refinement and
+//! grid-resolution sweeps.
+
+use std::fmt::Write as _;
+
+use inrs::contain::baselines::halton_points;
+use inrs::contain::{Locate, LocatorOptions, PointLocator};
+use inrs::{Classifier, ContainOptions, Domain, Method};
+
+use super::{BenchOptions, median_time};
+
+/// Throughput of the locator's queries alone (index built once), one thread.
+pub(super) fn single_thread(
+    md: &mut String,
+    domains: &[(String, Domain)],
+    o: &BenchOptions,
+) -> Result<(), String> {
+    let n = o.largest_size();
+    let _ = writeln!(
+        md,
+        "\nLocator queries alone (index built once), one thread, N = {n}: million points per \
+         second and ratio to inRS2 in the same run.\n"
+    );
+    let _ = writeln!(md, "| domain | build | queries | Mpts/s | vs inRS2 |");
+    let _ = writeln!(md, "| --- | ---: | ---: | ---: | ---: |");
+    for (name, d) in domains {
+        let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
+        let pts = halton_points(n, d.bounding_box());
+        let t2 = median_time(o.reps, || {
+            std::hint::black_box(c.classify(&pts, Method::InRS2));
+        });
+        let tb = median_time(o.reps, || {
+            std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
+        });
+        let loc = PointLocator::new(&c, LocatorOptions::default());
+        let tq = median_time(o.reps, || {
+            std::hint::black_box(loc.locate_all(&pts));
+        });
+        let _ = writeln!(
+            md,
+            "| {name} | {tb:.1e} s | {tq:.1e} s | {:.0} | {:.1}x |",
+            n as f64 / tq / 1e6,
+            t2 / tq
+        );
+    }
+    Ok(())
+}
+
+/// The locator with about 10^5 boxes (the 500-curve flower, refined).
+pub(super) fn at_scale(md: &mut String, flower: &Domain, o: &BenchOptions) -> Result<(), String> {
+    let one = Classifier::new(flower, ContainOptions::DEFAULT.with_subdivisions(1))
+        .map_err(|e| e.to_string())?;
+    let k = 100_000usize.div_ceil(one.boxes().boxes().len());
+    let c = Classifier::new(flower, ContainOptions::DEFAULT.with_subdivisions(k))
+        .map_err(|e| e.to_string())?;
+    let nboxes = c.boxes().boxes().len();
+    let t_build = median_time(o.reps.min(3), || {
+        std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
+    });
+    let loc = PointLocator::new(&c, LocatorOptions::default());
+    let cells = loc.cells() * loc.cells();
+    let bytes = 4 * loc.incidences() + 4 * (cells + 1) + cells + cells / 4;
+    let n = if o.quick { 100_000 } else { 1_000_000 };
+    let pts = halton_points(n, flower.bounding_box());
+    let t_q = median_time(o.reps.min(3), || {
+        std::hint::black_box(loc.locate_all(&pts));
+    });
+    let _ = writeln!(
+        md,
+        "\nLocator at scale: flower500 with {k} sub-boxes per monotone piece = {nboxes} boxes; \
+         build {t_build:.2e} s, {} (box, cell) incidences, index memory {:.1} MiB, {n} Halton \
+         points in {t_q:.2e} s on one thread ({:.0} Mpts/s), mixed cells {:.2}%.",
+        loc.incidences(),
+        bytes as f64 / (1024.0 * 1024.0),
+        n as f64 / t_q / 1e6,
+        100.0 * loc.mixed_fraction()
+    );
+    Ok(())
+}
+
+/// inRS2 time by sub-boxes per monotone piece (Remark 2.1).
+pub(super) fn refinement_sweep(
+    md: &mut String,
+    domains: &[(String, Domain)],
+    o: &BenchOptions,
+) -> Result<(), String> {
+    let n = o.largest_size();
+    let ks = [1usize, 2, 4, 8, 16, 32, 64, 128];
+    let _ = writeln!(
+        md,
+        "\nBox refinement (Remark 2.1): inRS2 time for N = {n}, by sub-boxes per monotone \
+         piece; ratio to 1 sub-box.\n"
+    );
+    let _ = writeln!(md, "| domain | {} |", ks.map(|k| k.to_string()).join(" | "));
+    let _ = writeln!(md, "| --- |{}", " ---: |".repeat(ks.len()));
+    for (name, d) in domains {
+        let pts = halton_points(n, d.bounding_box());
+        let mut row = format!("| {name} |");
+        let mut base = 0.0;
+        for k in ks {
+            let c = Classifier::new(d, ContainOptions::DEFAULT.with_subdivisions(k))
+                .map_err(|e| e.to_string())?;
+            let t = median_time(o.reps, || {
+                std::hint::black_box(c.classify(&pts, Method::InRS2));
+            });
+            if k == 1 {
+                base = t;
+            }
+            let _ = write!(row, " {t:.2e} s ({:.2}) |", t / base);
+        }
+        let _ = writeln!(md, "{row}");
+    }
+    Ok(())
+}
+
+/// Locator build and query time by grid resolution.
+pub(super) fn grid_sweep(
+    md: &mut String,
+    domains: &[(String, Domain)],
+    o: &BenchOptions,
+) -> Result<(), String> {
+    let n = o.largest_size();
+    let grids = [128usize, 256, 512, 1024, 2048, 4096];
+    let _ = writeln!(
+        md,
+        "\nGrid resolution: locator build + one-thread classification of N = {n} points, \
+         mixed-cell fraction.\n"
+    );
+    let _ = writeln!(
+        md,
+        "| domain | {} |",
+        grids.map(|g| g.to_string()).join(" | ")
+    );
+    let _ = writeln!(md, "| --- |{}", " ---: |".repeat(grids.len()));
+    for (name, d) in domains {
+        let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
+        let pts = halton_points(n, d.bounding_box());
+        let mut row = format!("| {name} |");
+        for g in grids {
+            let tb = median_time(o.reps, || {
+                std::hint::black_box(
+                    PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(g)).cells(),
+                );
+            });
+            let loc = PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(g));
+            let tq = median_time(o.reps, || {
+                std::hint::black_box(loc.locate_all(&pts));
+            });
+            let _ = write!(
+                row,
+                " {tb:.1e} + {tq:.1e} s ({:.2}%) |",
+                100.0 * loc.mixed_fraction()
+            );
+        }
+        let _ = writeln!(md, "{row}");
+    }
+    Ok(())
+}

@@ -1,0 +1,157 @@
+//! `cargo xtask bench`: the papers' comparisons, measured in one process (medians of repeated
+//! runs), printed and written as Markdown and CSV under `target/bench-report/`.
+
+mod gwn;
+mod locator;
+mod paper;
+
+use std::path::Path;
+use std::time::Instant;
+
+use inrs::{Domain, Location};
+use rs_testkit::{INRS_FIXTURES, PAPER_DOMAINS};
+
+/// Options of a run.
+pub(crate) struct BenchOptions {
+    pub(crate) domains: Vec<String>,
+    pub(crate) sizes: Vec<usize>,
+    pub(crate) reps: usize,
+    pub(crate) sweep: bool,
+    pub(crate) quick: bool,
+    /// Time inRS1 and the reference GWN at every size (they stop at 10^5 otherwise).
+    pub(crate) full: bool,
+}
+
+fn names(list: &[&str]) -> Vec<String> {
+    list.iter().map(|s| s.to_string()).collect()
+}
+
+impl BenchOptions {
+    pub(crate) fn parse(args: &[String]) -> Result<Self, String> {
+        let mut o = Self {
+            domains: names(&INRS_FIXTURES),
+            sizes: vec![1_000, 10_000, 100_000, 1_000_000],
+            reps: 11,
+            sweep: false,
+            quick: false,
+            full: false,
+        };
+        let mut it = args.iter();
+        while let Some(a) = it.next() {
+            let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
+            match a.as_str() {
+                "--quick" => {
+                    o.sizes = vec![1_000, 10_000];
+                    o.reps = 3;
+                    o.quick = true;
+                }
+                "--domains" => {
+                    o.domains = match value()?.as_str() {
+                        "all" => names(&INRS_FIXTURES),
+                        "paper" => names(&PAPER_DOMAINS),
+                        v => v.split(',').map(str::to_string).collect(),
+                    }
+                }
+                "--sizes" => {
+                    o.sizes = value()?
+                        .split(',')
+                        .map(|s| s.parse().map_err(|_| format!("bad size {s:?}")))
+                        .collect::<Result<_, _>>()?
+                }
+                "--reps" => o.reps = value()?.parse().map_err(|_| "bad --reps".to_string())?,
+                "--sweep" => o.sweep = true,
+                "--full" => o.full = true,
+                other => return Err(format!("unknown bench option {other:?}")),
+            }
+        }
+        if o.reps == 0 || o.sizes.is_empty() || o.domains.is_empty() {
+            return Err("need at least one repetition, size and domain".into());
+        }
+        Ok(o)
+    }
+
+    /// The largest number of points asked for.
+    fn largest_size(&self) -> usize {
+        self.sizes.iter().copied().max().unwrap_or(1_000_000)
+    }
+}
+
+/// Median wall time in seconds of `reps` runs of `f`.
+fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..reps)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[t.len() / 2]
+}
+
+fn count_inside(v: &[Location]) -> usize {
+    v.iter().filter(|&&l| l == Location::Inside).count()
+}
+
+/// A domain file under `fixtures/`.
+fn load(root: &Path, relative: &str) -> Result<Domain, String> {
+    let path = root.join("fixtures").join(relative);
+    inrs::io::json::domain_from_json_file(&path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
+    let domains = o
+        .domains
+        .iter()
+        .map(|name| {
+            Ok((
+                name.clone(),
+                load(root, &format!("inrs-paper/{name}.json"))?,
+            ))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let names: Vec<&str> = domains.iter().map(|(n, _)| n.as_str()).collect();
+    let timings = paper::measure(&domains, o)?;
+    let mut md = String::new();
+    timings.tables(&mut md, &names, &o.sizes);
+    locator::single_thread(&mut md, &domains, o)?;
+    let flower = load(root, "synthetic/flower500.json")?;
+    gwn::flower(&mut md, &flower, o)?;
+    locator::at_scale(&mut md, &flower, o)?;
+    gwn::paper_figures(&mut md, &load(root, "inrs-paper/leaf_cubic.json")?, o)?;
+    if o.sweep {
+        locator::refinement_sweep(&mut md, &domains, o)?;
+        locator::grid_sweep(&mut md, &domains, o)?;
+    }
+    write_report(root, o, &md, &timings.csv())
+}
+
+/// Prints the report and writes it with the CSV under `target/bench-report/`.
+fn write_report(root: &Path, o: &BenchOptions, md: &str, csv: &str) -> Result<(), String> {
+    let report = format!(
+        "Machine: {}\n\nMedian of {} runs, single thread unless stated.\n\n{md}",
+        machine_line(),
+        o.reps
+    );
+    println!("{report}");
+    let dir = root.join("target/bench-report");
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    std::fs::write(dir.join("bench.md"), &report).map_err(|e| e.to_string())?;
+    std::fs::write(dir.join("bench.csv"), csv).map_err(|e| e.to_string())?;
+    println!("written: target/bench-report/bench.md, target/bench-report/bench.csv");
+    Ok(())
+}
+
+fn machine_line() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    format!("{cpu}, {cores} cores")
+}
