@@ -79,14 +79,9 @@ impl Default for LocatorOptions {
 /// independent of the number of points. Queries read only the 2-bit states (256 KiB at 1024).
 /// Each box is registered only in the cells near its curve (its piece is halved until each part
 /// spans a couple of cells), so incidences grow with the boundary's length in cells, not with the
-/// boxes' areas. Measured (`cargo xtask bench`, AMD EPYC, one thread): with `10^5` boxes (the
-/// 500-curve flower fixture refined 69 times) the build takes 27 ms for 124,756 incidences and
-/// 5.7 MiB in all, and `10^6` Halton points are then located at 41 million per second; on the
-/// paper's domains (about 600 boxes) the build takes 5 ms and location runs at 90-108 million
-/// points per second, 14-17 times inRS2. For `10^5` boxes the number of
-/// incidences grows with the boxes' total size in cells, not their count (see the README's
-/// measurements). Worst case per query: a mixed cell in a column that is mixed all the way down,
-/// `O(N)` for `N` boxes in that column; fine grids and refined boxes keep `k` small.
+/// boxes' areas (timings: `cargo xtask bench`, reported in the README). Worst case per query: a
+/// mixed cell in a column that is mixed all the way down, `O(N)` for `N` boxes in that column;
+/// fine grids and refined boxes keep `k` small.
 ///
 /// # Examples
 ///
