@@ -12,7 +12,9 @@ const SNAP_RELATIVE: f64 = 1e-12;
 /// Builds closed loops from pen commands, the way an SVG/font renderer fills a path: every
 /// subpath is closed (explicitly by `close` or implicitly at the next `move_to` / the end) with
 /// a straight segment, zero-length pieces are dropped, and subpaths without area (all control
-/// points on one line) are dropped, since they enclose nothing.
+/// points on one line) are dropped, since they enclose nothing. With
+/// [`OpenSubpaths::Keep`] only `close` closes a subpath, and every other one is kept as drawn,
+/// open, area or not (curve collections for generalized winding numbers).
 ///
 /// Curves are mapped by the current transform as they are added, so loops stay watertight:
 /// shared end points map to bit-identical images.
@@ -26,11 +28,25 @@ pub(crate) struct LoopBuilder {
     /// The first curve a transform could not map (say, past the coordinate limit): reported by
     /// [`LoopBuilder::take_error`] instead of dropping the loop silently.
     error: Option<SplineError>,
+    open: OpenSubpaths,
+}
+
+/// How a reader treats a subpath that does not end with a close command.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OpenSubpaths {
+    /// Closed by a straight segment back to its start, as a renderer fills it (the default:
+    /// the result bounds a domain).
+    #[default]
+    Close,
+    /// Kept open, as drawn (a curve collection for generalized winding numbers; the crossing
+    /// methods refuse it).
+    Keep,
 }
 
 impl LoopBuilder {
-    pub(crate) fn new() -> Self {
+    pub(crate) fn new(open: OpenSubpaths) -> Self {
         Self {
+            open,
             done: Vec::new(),
             current: Vec::new(),
             start: Point::new(0.0, 0.0),
@@ -61,7 +77,7 @@ impl LoopBuilder {
         self.pen
     }
 
-    /// Starts a new subpath at `p`, closing the current one.
+    /// Starts a new subpath at `p`, finishing the current one.
     pub(crate) fn move_to(&mut self, p: Point) {
         self.finish();
         self.start = p;
@@ -102,7 +118,7 @@ impl LoopBuilder {
 
     /// Closes the current subpath; the pen returns to its start.
     pub(crate) fn close(&mut self) {
-        self.finish();
+        self.finish_subpath(true);
         self.pen = self.start;
     }
 
@@ -119,14 +135,24 @@ impl LoopBuilder {
         }
     }
 
+    /// Finishes the current subpath where no close command ends it.
     fn finish(&mut self) {
+        self.finish_subpath(false);
+    }
+
+    /// Finishes the current subpath: closed if `explicit_close` or in [`OpenSubpaths::Close`]
+    /// mode, then mapped by the transform.
+    fn finish_subpath(&mut self, explicit_close: bool) {
         if self.current.is_empty() {
             return;
         }
         let mut curves = std::mem::take(&mut self.current);
         let size = loop_size(&curves);
         let gap = self.pen.distance(self.start);
-        if gap > SNAP_RELATIVE * size {
+        let keep_open = self.open == OpenSubpaths::Keep && !explicit_close;
+        if keep_open {
+            // As drawn.
+        } else if gap > SNAP_RELATIVE * size {
             if let Ok(s) = segment(self.pen, self.start) {
                 curves.push(s);
             }
@@ -142,7 +168,7 @@ impl LoopBuilder {
             .map(|c| self.transform.apply_to_curve(c))
             .collect();
         match mapped {
-            Ok(mapped) if encloses_area(&mapped) => self.done.extend(mapped),
+            Ok(mapped) if keep_open || encloses_area(&mapped) => self.done.extend(mapped),
             Ok(_) => {}
             Err(e) => {
                 self.error.get_or_insert(e);
@@ -223,7 +249,7 @@ mod tests {
 
     #[test]
     fn open_subpaths_are_closed_and_lines_without_area_dropped() {
-        let mut b = LoopBuilder::new();
+        let mut b = LoopBuilder::new(OpenSubpaths::Close);
         b.move_to(p(0.0, 0.0));
         b.line_to(p(1.0, 0.0)).unwrap();
         b.line_to(p(1.0, 1.0)).unwrap();
@@ -241,8 +267,29 @@ mod tests {
     }
 
     #[test]
+    fn open_subpaths_can_be_kept_as_drawn() {
+        let mut b = LoopBuilder::new(OpenSubpaths::Keep);
+        b.move_to(p(0.0, 0.0));
+        b.line_to(p(1.0, 0.0)).unwrap();
+        b.line_to(p(1.0, 1.0)).unwrap();
+        b.move_to(p(5.0, 5.0));
+        b.line_to(p(6.0, 6.0)).unwrap(); // kept: no area, but a curve
+        b.move_to(p(0.0, 3.0));
+        b.line_to(p(1.0, 3.0)).unwrap();
+        b.line_to(p(1.0, 4.0)).unwrap();
+        b.close(); // an explicit close still closes
+        let curves = b.into_curves().unwrap();
+        assert_eq!(curves.len(), 6);
+        assert_eq!(curves[1].end_point(), p(1.0, 1.0));
+        assert_eq!(curves[5].end_point(), p(0.0, 3.0));
+        let d = rs_spline::Domain::new(curves).unwrap();
+        assert_eq!(d.loops().len(), 3);
+        assert!(d.require_closed().is_err());
+    }
+
+    #[test]
     fn rounding_gaps_are_snapped_not_bridged() {
-        let mut b = LoopBuilder::new();
+        let mut b = LoopBuilder::new(OpenSubpaths::Close);
         b.move_to(p(0.0, 0.0));
         b.line_to(p(1.0, 0.0)).unwrap();
         b.line_to(p(1.0, 1.0)).unwrap();
@@ -255,7 +302,7 @@ mod tests {
 
     #[test]
     fn transform_keeps_loops_watertight() {
-        let mut b = LoopBuilder::new();
+        let mut b = LoopBuilder::new(OpenSubpaths::Close);
         b.set_transform(Affine::rotate(0.3).then_apply_to(Affine::scale(1.7, 0.2)));
         b.move_to(p(0.1, 0.2));
         b.bezier_to(&[p(1.0, 3.0), p(2.0, -1.0), p(3.0, 0.7)])

@@ -7,7 +7,7 @@ use std::str::FromStr;
 use rs_spline::{Domain, NurbsCurve, Point, SplineError};
 
 use crate::IoError;
-use crate::builder::LoopBuilder;
+use crate::builder::{LoopBuilder, OpenSubpaths};
 
 /// Which glyph of a font to read.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -87,7 +87,7 @@ pub fn glyph_curves(
     }
     .ok_or_else(|| bad("not in the font".to_string()))?;
     let mut sink = Sink {
-        builder: LoopBuilder::new(),
+        builder: LoopBuilder::new(OpenSubpaths::Close),
         error: None,
     };
     face.outline_glyph(id, &mut sink)

@@ -169,7 +169,9 @@ fn shape(
                     for p in it {
                         builder.line_to(p).map_err(curve_err)?;
                     }
-                    builder.close();
+                    if name == "polygon" {
+                        builder.close();
+                    }
                 }
             }
         }

@@ -18,6 +18,7 @@ use rs_spline::{Domain, NurbsCurve};
 
 use crate::IoError;
 use crate::builder::LoopBuilder;
+pub use crate::builder::OpenSubpaths;
 
 /// The boundary curves of SVG path data, one closed loop per subpath (open subpaths closed
 /// by a straight segment, as for filling). Elliptical arcs become exact rational quadratics;
@@ -34,7 +35,7 @@ use crate::builder::LoopBuilder;
 /// assert_eq!(curves[3].degree(), 1); // the closing segment
 /// ```
 pub fn curves_from_path_data(d: &str) -> Result<Vec<NurbsCurve>, IoError> {
-    let mut b = LoopBuilder::new();
+    let mut b = LoopBuilder::new(OpenSubpaths::Close);
     path_data::read_path_data(d, &mut b)?;
     b.into_curves().map_err(|e| IoError::PathData {
         position: d.len(),
@@ -71,9 +72,29 @@ pub fn domain_from_path_data(d: &str) -> Result<Domain, IoError> {
 /// [`IoError::Xml`] for malformed XML, [`IoError::SvgElement`] naming the element (and its
 /// line) with a bad attribute or path data, [`IoError::Empty`] if nothing encloses area.
 pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
-    let mut b = LoopBuilder::new();
-    document::read_document(text, &mut b)?;
-    domain(b.into_curves().map_err(curve_error)?, "SVG document")
+    domain_from_svg_str_with(text, OpenSubpaths::Close)
+}
+
+/// [`domain_from_svg_str`], with subpaths that no close command ends read as `open` says:
+/// [`OpenSubpaths::Keep`] gives the curves as drawn (`polyline`s and unclosed paths stay open),
+/// a curve collection for generalized winding numbers.
+///
+/// # Errors
+/// As [`domain_from_svg_str`].
+///
+/// # Examples
+///
+/// ```
+/// use rs_io::svg::{OpenSubpaths, domain_from_svg_str_with};
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0 C1 1 2 1 3 0"/></svg>"#;
+/// let open = domain_from_svg_str_with(svg, OpenSubpaths::Keep).unwrap();
+/// assert_eq!(open.curves().len(), 1);
+/// assert!(open.require_closed().is_err());
+/// let filled = domain_from_svg_str_with(svg, OpenSubpaths::Close).unwrap();
+/// assert_eq!(filled.curves().len(), 2); // with its closing segment
+/// ```
+pub fn domain_from_svg_str_with(text: &str, open: OpenSubpaths) -> Result<Domain, IoError> {
+    read_svg(text, open, "SVG document")
 }
 
 /// [`domain_from_svg_str`] on a file (named in the domain).
@@ -81,15 +102,31 @@ pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
 /// # Errors
 /// [`IoError::Read`], then as [`domain_from_svg_str`].
 pub fn domain_from_svg_file(path: impl AsRef<Path>) -> Result<Domain, IoError> {
+    domain_from_svg_file_with(path, OpenSubpaths::Close)
+}
+
+/// [`domain_from_svg_str_with`] on a file (named in the domain).
+///
+/// # Errors
+/// [`IoError::Read`], then as [`domain_from_svg_str`].
+pub fn domain_from_svg_file_with(
+    path: impl AsRef<Path>,
+    open: OpenSubpaths,
+) -> Result<Domain, IoError> {
     let path = path.as_ref();
     let text = rs_spline::limits::read_text_file(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;
-    let mut b = LoopBuilder::new();
-    document::read_document(&text, &mut b)?;
     let name = path.display().to_string();
-    Ok(domain(b.into_curves().map_err(curve_error)?, "SVG file")?.with_name(name))
+    Ok(read_svg(&text, open, "SVG file")?.with_name(name))
+}
+
+/// The domain of an SVG document; `what` names the input in errors.
+fn read_svg(text: &str, open: OpenSubpaths, what: &str) -> Result<Domain, IoError> {
+    let mut b = LoopBuilder::new(open);
+    document::read_document(text, &mut b)?;
+    domain(b.into_curves().map_err(curve_error)?, what)
 }
 
 /// A curve of the document its transform could not map (the reader reports these per
