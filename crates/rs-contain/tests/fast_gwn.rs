@@ -84,3 +84,45 @@ fn far_queries_take_one_angle_per_chain() {
     fast.winding_number_counted(q * (1.0 - 1e-3), &mut near);
     assert_eq!(near.subdivisions, 0, "{near:?}");
 }
+
+/// The GWN paper's five shapes (three closed, two open curve collections): the fast field
+/// equals the per-curve field to 1e-12, and both equal a dense polyline's angle sum (one
+/// `atan2` per edge, an independent reference) away from the curves.
+#[test]
+fn axom_shapes_match_dense_angle_sums() {
+    use rs_io::svg::{OpenSubpaths, domain_from_svg_file_with};
+    use rs_testkit::{DensePolygon, NearBoundary};
+    for name in ["butterfly", "rose", "fish", "bubble", "twirl"] {
+        let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
+        let d = domain_from_svg_file_with(&path, OpenSubpaths::Keep).unwrap();
+        let field = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
+        let fast = FastWindingField::new(&field);
+        let size = d.bounding_box().diagonal();
+        let dense = DensePolygon::open_curves(&d, 1e-7 * size);
+        let near = NearBoundary::new(&dense, 1e-4 * size);
+        let mut pts = halton_points(400, d.bounding_box().grown_by(0.05 * size));
+        // Points just off the curves, on both sides, and on them.
+        for b in field.pieces().iter().step_by(5) {
+            let d1 = b.derivatives(0.41);
+            let n = d1.first.perp() / d1.first.length();
+            pts.extend([
+                d1.point + n * 1e-7 * size,
+                d1.point - n * 1e-7 * size,
+                d1.point,
+            ]);
+            pts.push(b.start_point());
+        }
+        let (mut compared, mut max_ref_diff) = (0, 0.0f64);
+        for q in pts {
+            let (w, f) = (field.winding_number(q), fast.winding_number(q));
+            assert!((w - f).abs() < 1e-12, "{name} at {q:?}: {w} vs {f}");
+            if !near.is_near(q) {
+                let r = dense.winding_number(q);
+                max_ref_diff = max_ref_diff.max((w - r).abs());
+                compared += 1;
+            }
+        }
+        assert!(compared > 300, "{name}: {compared}");
+        assert!(max_ref_diff < 1e-9, "{name}: {max_ref_diff}");
+    }
+}

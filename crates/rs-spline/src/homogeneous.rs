@@ -5,17 +5,22 @@ use std::ops::{Add, Mul, Sub};
 
 use crate::Point;
 
-/// A point in homogeneous coordinates `(w x, w y, w)`.
+/// A point in homogeneous coordinates `(w x, w y, w)`: where a rational curve is polynomial, so
+/// de Casteljau's algorithm ([`rs_roots::de_casteljau_split`]) subdivides it exactly as it does
+/// a polynomial one.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub(crate) struct Hpoint {
-    pub(crate) x: f64,
-    pub(crate) y: f64,
-    pub(crate) w: f64,
+pub struct Hpoint {
+    /// `w x`.
+    pub x: f64,
+    /// `w y`.
+    pub y: f64,
+    /// The weight `w`.
+    pub w: f64,
 }
 
 impl Hpoint {
     /// `(w p.x, w p.y, w)`.
-    pub(crate) fn weighted(p: Point, w: f64) -> Self {
+    pub fn weighted(p: Point, w: f64) -> Self {
         Self {
             x: w * p.x,
             y: w * p.y,
@@ -38,7 +43,7 @@ impl Hpoint {
     }
 
     /// The Cartesian point `(x / w, y / w)`.
-    pub(crate) fn project(self) -> Point {
+    pub fn project(self) -> Point {
         Point::new(self.x / self.w, self.y / self.w)
     }
 

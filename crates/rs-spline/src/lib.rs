@@ -66,7 +66,7 @@ pub use curve::{
 };
 pub use domain::{BoundaryLoop, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};
-pub use homogeneous::CurveDerivatives;
+pub use homogeneous::{CurveDerivatives, Hpoint};
 pub use knots::KnotVector;
 pub use line::{polyline, segment};
 pub use nurbs::NurbsCurve;

@@ -255,19 +255,37 @@ impl DensePolygon {
         for l in d.loops() {
             let mut pts: Vec<Point> = Vec::new();
             for ci in l.curves() {
-                for b in d.curves()[ci].to_bezier() {
-                    let f = |t: f64| b.point_at(t);
-                    let mut local = vec![f(0.0)];
-                    for j in 0..8 {
-                        refine(&f, j as f64 / 8.0, (j + 1) as f64 / 8.0, eps, 0, &mut local);
-                    }
-                    pts.extend(local);
-                }
+                pts.extend(flatten_curve(&d.curves()[ci], eps));
             }
             pts.push(pts[0]);
             edges.extend(pts.windows(2).map(|w| (w[0], w[1])));
         }
         Self { edges }
+    }
+
+    /// Every curve of `d` flattened on its own within about `eps`, nothing closed: the
+    /// polylines of a curve collection (open chains, gaps), for winding numbers.
+    pub fn open_curves(d: &Domain, eps: f64) -> Self {
+        let mut edges = Vec::new();
+        for c in d.curves() {
+            let pts = flatten_curve(c, eps);
+            edges.extend(pts.windows(2).map(|w| (w[0], w[1])));
+        }
+        Self { edges }
+    }
+
+    /// The winding number at `p`: the angles the edges subtend, added one `atan2` at a time,
+    /// over `2 pi` (the curves' own value wherever `p` is farther from them than the
+    /// flattening error).
+    pub fn winding_number(&self, p: Point) -> f64 {
+        self.edges
+            .iter()
+            .map(|&(a, b)| {
+                let (u, v) = (a - p, b - p);
+                u.cross(v).atan2(u.dot(v))
+            })
+            .sum::<f64>()
+            / (2.0 * PI)
     }
 
     /// Even-odd containment.
@@ -375,6 +393,22 @@ pub fn segment_distance(p: Point, (a, b): (Point, Point)) -> f64 {
         0.0
     };
     p.distance(a + ab * t)
+}
+
+/// The polyline of a curve within about `eps`: its first point, then at least 8 chords per
+/// Bezier piece, halved until the mid and quarter points are within `eps`.
+fn flatten_curve(c: &NurbsCurve, eps: f64) -> Vec<Point> {
+    let mut pts: Vec<Point> = Vec::new();
+    for b in c.to_bezier() {
+        let f = |t: f64| b.point_at(t);
+        let mut local = vec![f(0.0)];
+        for j in 0..8 {
+            refine(&f, j as f64 / 8.0, (j + 1) as f64 / 8.0, eps, 0, &mut local);
+        }
+        let skip = usize::from(!pts.is_empty());
+        pts.extend(local.into_iter().skip(skip));
+    }
+    pts
 }
 
 fn refine(f: &impl Fn(f64) -> Point, t0: f64, t1: f64, eps: f64, depth: u32, out: &mut Vec<Point>) {

@@ -4,6 +4,7 @@
 mod gwn;
 mod locator;
 mod paper;
+mod peers;
 
 use std::path::Path;
 use std::time::Instant;
@@ -20,7 +21,12 @@ pub(crate) struct BenchOptions {
     pub(crate) quick: bool,
     /// Time inRS1 and the reference GWN at every size (they stop at 10^5 otherwise).
     pub(crate) full: bool,
+    /// The sections to run (all when empty).
+    pub(crate) only: Vec<String>,
 }
+
+/// The report's sections, in order.
+const SECTIONS: [&str; 4] = ["paper", "locator", "gwn", "shapes"];
 
 fn names(list: &[&str]) -> Vec<String> {
     list.iter().map(|s| s.to_string()).collect()
@@ -35,6 +41,7 @@ impl BenchOptions {
             sweep: false,
             quick: false,
             full: false,
+            only: Vec::new(),
         };
         let mut it = args.iter();
         while let Some(a) = it.next() {
@@ -61,6 +68,12 @@ impl BenchOptions {
                 "--reps" => o.reps = value()?.parse().map_err(|_| "bad --reps".to_string())?,
                 "--sweep" => o.sweep = true,
                 "--full" => o.full = true,
+                "--only" => {
+                    o.only = value()?.split(',').map(str::to_string).collect();
+                    if let Some(bad) = o.only.iter().find(|s| !SECTIONS.contains(&s.as_str())) {
+                        return Err(format!("unknown section {bad:?} (one of {SECTIONS:?})"));
+                    }
+                }
                 other => return Err(format!("unknown bench option {other:?}")),
             }
         }
@@ -68,6 +81,11 @@ impl BenchOptions {
             return Err("need at least one repetition, size and domain".into());
         }
         Ok(o)
+    }
+
+    /// Whether section `name` runs.
+    fn runs(&self, name: &str) -> bool {
+        self.only.is_empty() || self.only.iter().any(|s| s == name)
     }
 
     /// The largest number of points asked for.
@@ -111,19 +129,30 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
         })
         .collect::<Result<Vec<_>, String>>()?;
     let names: Vec<&str> = domains.iter().map(|(n, _)| n.as_str()).collect();
-    let timings = paper::measure(&domains, o)?;
     let mut md = String::new();
-    timings.tables(&mut md, &names, &o.sizes);
-    locator::single_thread(&mut md, &domains, o)?;
-    let flower = load(root, "synthetic/flower500.json")?;
-    gwn::flower(&mut md, &flower, o)?;
-    locator::at_scale(&mut md, &flower, o)?;
-    gwn::paper_figures(&mut md, &load(root, "inrs-paper/leaf_cubic.json")?, o)?;
-    if o.sweep {
-        locator::refinement_sweep(&mut md, &domains, o)?;
-        locator::grid_sweep(&mut md, &domains, o)?;
+    let mut csv = String::new();
+    if o.runs("paper") {
+        let timings = paper::measure(&domains, o)?;
+        timings.tables(&mut md, &names, &o.sizes);
+        csv = timings.csv();
     }
-    write_report(root, o, &md, &timings.csv())
+    let flower = load(root, "synthetic/flower500.json")?;
+    if o.runs("locator") {
+        locator::single_thread(&mut md, &domains, o)?;
+        locator::at_scale(&mut md, &flower, o)?;
+        if o.sweep {
+            locator::refinement_sweep(&mut md, &domains, o)?;
+            locator::grid_sweep(&mut md, &domains, o)?;
+        }
+    }
+    if o.runs("gwn") {
+        gwn::flower(&mut md, &flower, o)?;
+        gwn::paper_figures(&mut md, &load(root, "inrs-paper/leaf_cubic.json")?, o)?;
+    }
+    if o.runs("shapes") {
+        peers::shapes(&mut md, root, o)?;
+    }
+    write_report(root, o, &md, &csv)
 }
 
 /// Prints the report and writes it with the CSV under `target/bench-report/`.

@@ -1,31 +1,18 @@
 //! Generalized winding number of one rational Bezier curve (Spainhour, Gunderman and Weiss
 //! 2024, Algorithms 1-5).
 
-use rs_spline::prelude::*;
 use std::f64::consts::TAU;
 
-use rs_spline::{Point, RationalBezier};
+use rs_roots::de_casteljau_split;
+use rs_spline::{Hpoint, Point, RationalBezier};
+use smallvec::SmallVec;
 
 use super::QueryStats;
+use super::sum::{AngleSum, ChordSink, cut_crossing, signed_angle};
 
 /// Bisection depth cap: a subcurve on a parameter interval of `2^-64` is below `f64`
 /// resolution; a query still inside its control polygon there is coincident with the curve.
 pub(crate) const MAX_DEPTH: u32 = 64;
-
-/// Signed angle from `a` to `b` in `(-pi, pi]`.
-fn signed_angle(a: Point, b: Point) -> f64 {
-    a.cross(b).atan2(a.dot(b))
-}
-
-/// Angle subtended at `q` by the chord from `a` to `b`, with the coincidence convention: a
-/// query on the open chord (angle +-pi, the average of the two sides being 0) contributes 0.
-pub(crate) fn chord_angle(q: Point, a: Point, b: Point) -> f64 {
-    let (u, v) = (a - q, b - q);
-    if u.cross(v) == 0.0 && u.dot(v) <= 0.0 {
-        return 0.0;
-    }
-    signed_angle(u, v)
-}
 
 /// Algorithm 4 (after Ma and Hewitt 2003): is the control polygon simple and convex?
 ///
@@ -43,7 +30,7 @@ pub(crate) fn is_simple_convex(p: &[Point]) -> bool {
             return false;
         }
     }
-    let edges: Vec<Point> = (0..=n)
+    let edges: SmallVec<[Point; 8]> = (0..=n)
         .map(|i| p[(i + 1) % (n + 1)] - p[i])
         .filter(|e| *e != Point::default())
         .collect();
@@ -51,15 +38,20 @@ pub(crate) fn is_simple_convex(p: &[Point]) -> bool {
     if m < 3 {
         return true; // degenerate (collinear or a point): handled as straight by the caller
     }
-    let (mut pos, mut neg, mut turning) = (false, false, 0.0);
+    // Every turn of one sign, and one revolution in all: the edge directions wind once
+    // around the origin, counted by crossings of the cut (no angles needed).
+    let (mut pos, mut neg, mut wraps) = (false, false, 0i32);
     for i in 0..m {
         let (e, f) = (edges[i], edges[(i + 1) % m]);
         let c = e.cross(f);
+        if c == 0.0 && e.dot(f) < 0.0 {
+            return false; // the polygon folds back on itself
+        }
         pos |= c > 0.0;
         neg |= c < 0.0;
-        turning += c.atan2(e.dot(f));
+        wraps += cut_crossing(e, f, c);
     }
-    !(pos && neg) && turning.abs() < 3.0 * std::f64::consts::PI
+    !(pos && neg) && wraps.abs() <= 1
 }
 
 /// Algorithm 3 with tolerance 0: every control point lies exactly on the chord's line (the
@@ -84,7 +76,7 @@ fn outside_convex(p: &[Point], q: Point) -> bool {
     })
 }
 
-fn outside_box(p: &[Point], q: Point) -> bool {
+pub(crate) fn outside_box(p: &[Point], q: Point) -> bool {
     let (mut lo, mut hi) = (p[0], p[0]);
     for &x in p {
         lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
@@ -115,8 +107,77 @@ pub(crate) fn convex_endpoint_winding(p: &[Point], q: Point) -> f64 {
     }
 }
 
-/// Where the adaptive algorithm gets its sub-curves: computed on the fly, or from a
-/// precomputed hierarchy (see [`super::fast::CurveHierarchy`]).
+/// A sub-curve of the adaptive algorithm, on the stack for degree <= 3: its control points
+/// and, for a rational piece, its homogeneous control points (subdivided exactly there).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SubCurve {
+    pts: SmallVec<[Point; 4]>,
+    /// Homogeneous control points; empty when all weights are equal (a polynomial piece).
+    h: SmallVec<[Hpoint; 4]>,
+}
+
+impl SubCurve {
+    /// The sub-curve holding all of `b`.
+    pub(crate) fn of(b: &RationalBezier) -> Self {
+        let (pts, w) = (b.control_points(), b.weights());
+        let h = if w.iter().all(|&x| x == w[0]) {
+            SmallVec::new()
+        } else {
+            pts.iter()
+                .zip(w)
+                .map(|(&p, &w)| Hpoint::weighted(p, w))
+                .collect()
+        };
+        Self {
+            pts: pts.iter().copied().collect(),
+            h,
+        }
+    }
+
+    /// Its control points.
+    pub(crate) fn points(&self) -> &[Point] {
+        &self.pts
+    }
+
+    /// Its halves by de Casteljau at `1/2` (in homogeneous coordinates for a rational piece);
+    /// the shared point is the same value in both.
+    pub(crate) fn halves(&self) -> (Self, Self) {
+        let n = self.pts.len();
+        if self.h.is_empty() {
+            let (mut l, mut r) = (
+                SmallVec::from_elem(Point::default(), n),
+                SmallVec::from_elem(Point::default(), n),
+            );
+            de_casteljau_split(&self.pts, 0.5, &mut l, &mut r);
+            (
+                Self {
+                    pts: l,
+                    h: SmallVec::new(),
+                },
+                Self {
+                    pts: r,
+                    h: SmallVec::new(),
+                },
+            )
+        } else {
+            let (mut l, mut r) = (
+                SmallVec::from_elem(Hpoint::default(), n),
+                SmallVec::from_elem(Hpoint::default(), n),
+            );
+            de_casteljau_split(&self.h, 0.5, &mut l, &mut r);
+            let project = |h: SmallVec<[Hpoint; 4]>| Self {
+                pts: h.iter().map(|h| h.project()).collect(),
+                h,
+            };
+            let (left, mut right) = (project(l), project(r));
+            right.pts[0] = left.pts[n - 1];
+            (left, right)
+        }
+    }
+}
+
+/// Where the adaptive algorithm gets its sub-curves and their tests: computed on the fly, or
+/// from a precomputed hierarchy (see [`super::fast::CurveHierarchy`]).
 pub(crate) trait SubCurves {
     /// A handle to one sub-curve.
     type Node;
@@ -126,21 +187,29 @@ pub(crate) trait SubCurves {
     fn convex(&self, node: &Self::Node, parent_convex: bool) -> bool;
     /// Its two halves (de Casteljau at 1/2); `true` if they had to be computed.
     fn halves(&self, node: &Self::Node) -> (Self::Node, Self::Node, bool);
+    /// Is it exactly straight ([`is_linear`])?
+    fn linear(&self, node: &Self::Node) -> bool {
+        is_linear(self.points(node))
+    }
+    /// Is `q` outside its control bounding box?
+    fn outside_box(&self, node: &Self::Node, q: Point) -> bool {
+        outside_box(self.points(node), q)
+    }
 }
 
 /// Sub-curves computed on demand.
 pub(crate) struct OnTheFly;
 
 impl SubCurves for OnTheFly {
-    type Node = RationalBezier;
-    fn points<'s>(&'s self, node: &'s RationalBezier) -> &'s [Point] {
-        node.control_points()
+    type Node = SubCurve;
+    fn points<'s>(&'s self, node: &'s SubCurve) -> &'s [Point] {
+        node.points()
     }
-    fn convex(&self, node: &RationalBezier, parent_convex: bool) -> bool {
-        parent_convex || is_simple_convex(node.control_points())
+    fn convex(&self, node: &SubCurve, parent_convex: bool) -> bool {
+        parent_convex || is_simple_convex(node.points())
     }
-    fn halves(&self, node: &RationalBezier) -> (RationalBezier, RationalBezier, bool) {
-        let (l, r) = node.subdivide();
+    fn halves(&self, node: &SubCurve) -> (SubCurve, SubCurve, bool) {
+        let (l, r) = node.halves();
         (l, r, true)
     }
 }
@@ -159,46 +228,52 @@ impl SubCurves for OnTheFly {
 /// straight piece, the tangent formula at end points, and 0 for a piece still holding `q` at
 /// the depth cap (a point within rounding of the curve's interior).
 pub fn curve_winding_number(curve: &RationalBezier, q: Point, stats: &mut QueryStats) -> f64 {
-    adaptive_winding(&OnTheFly, curve.clone(), q, stats)
+    let mut sum = AngleSum::new(q);
+    refine(&OnTheFly, SubCurve::of(curve), q, &mut sum, stats);
+    sum.turns
 }
 
-/// The adaptive algorithm over any source of sub-curves.
-pub(crate) fn adaptive_winding<S: SubCurves>(
+/// The adaptive algorithm over any source of sub-curves: sends `sink` the chords (and the
+/// coincident pieces) whose angles at `q` add up to the curve's winding number.
+pub(crate) fn refine<S: SubCurves, K: ChordSink>(
     source: &S,
     root: S::Node,
     q: Point,
+    sink: &mut K,
     stats: &mut QueryStats,
-) -> f64 {
+) {
     stats.curve_evaluations += 1;
-    {
+    if source.outside_box(&root, q) {
         let pts = source.points(&root);
-        if outside_box(pts, q) {
-            return chord_angle(q, pts[0], pts[pts.len() - 1]) / TAU;
-        }
+        sink.chord(pts[0], pts[pts.len() - 1]);
+        return;
     }
-    let mut total = 0.0;
-    let mut stack: Vec<(S::Node, u32, bool)> = vec![(root, 0, false)];
+    // Depth-first: at most one pending right half per level, on the stack for any query not
+    // within 2^-32 of the piece's size from it.
+    let mut stack: SmallVec<[(S::Node, u32, bool); 32]> = SmallVec::new();
+    stack.push((root, 0, false));
     while let Some((c, depth, parent_convex)) = stack.pop() {
         if depth > 0 {
             stats.curve_evaluations += 1;
         }
-        let convex = source.convex(&c, parent_convex);
         let p = source.points(&c);
         let (a, b) = (p[0], p[p.len() - 1]);
-        if is_linear(p) {
-            total += chord_angle(q, a, b) / TAU;
+        if source.linear(&c) {
+            sink.chord(a, b);
             continue;
         }
+        let convex = source.convex(&c, parent_convex);
         if convex && (q == a || q == b) {
-            total += convex_endpoint_winding(p, q);
+            sink.special(convex_endpoint_winding(p, q), a, b);
             continue;
         }
-        if outside_box(p, q) || (convex && outside_convex(p, q)) {
-            total += chord_angle(q, a, b) / TAU;
+        if source.outside_box(&c, q) || (convex && outside_convex(p, q)) {
+            sink.chord(a, b);
             continue;
         }
         if depth >= MAX_DEPTH {
             // q is within rounding of this tiny piece: coincident, average 0 over the piece.
+            sink.special(0.0, a, b);
             continue;
         }
         let (l, r, computed) = source.halves(&c);
@@ -209,5 +284,4 @@ pub(crate) fn adaptive_winding<S: SubCurves>(
         stack.push((r, depth + 1, convex));
         stack.push((l, depth + 1, convex));
     }
-    total
 }

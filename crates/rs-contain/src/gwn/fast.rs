@@ -1,30 +1,56 @@
-//! Accelerated generalized winding numbers: a bounding-volume hierarchy over the pieces with
-//! exact chain shortcuts, and a precomputed subdivision hierarchy per piece.
+//! Accelerated generalized winding numbers: a bounding-volume hierarchy over the pieces that
+//! skips every node the query's cut cannot reach, and a subdivision hierarchy per piece built
+//! on first use.
+
+use std::sync::OnceLock;
 
 use rs_spline::prelude::*;
-use std::f64::consts::TAU;
-
 use rs_spline::{Point, RationalBezier};
+use smallvec::SmallVec;
 
-use super::curve::{SubCurves, adaptive_winding, chord_angle, is_simple_convex};
+use super::curve::{SubCurve, SubCurves, is_linear, is_simple_convex, refine};
+use super::sum::WindingSum;
 use super::{QueryStats, WindingField};
 use crate::{Locate, Location};
 
 /// Levels of each piece's precomputed subdivision hierarchy (`2^(d+1) - 1` sub-curves).
 pub const HIERARCHY_DEPTH: u32 = 6;
 
-/// One sub-curve of a [`CurveHierarchy`].
+/// One sub-curve of a [`CurveHierarchy`], with the tests the adaptive algorithm asks of it.
 #[derive(Clone, Debug)]
 struct SubNode {
-    curve: RationalBezier,
+    curve: SubCurve,
+    lo: Point,
+    hi: Point,
     /// Simple and convex, with the parent's flag inherited as the adaptive algorithm does.
     convex: bool,
-    children: Option<(usize, usize)>,
+    linear: bool,
+    children: Option<(u32, u32)>,
+}
+
+impl SubNode {
+    fn new(curve: SubCurve, parent_convex: bool) -> Self {
+        let p = curve.points();
+        let (mut lo, mut hi) = (p[0], p[0]);
+        for &x in p {
+            lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
+            hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
+        }
+        Self {
+            convex: parent_convex || is_simple_convex(p),
+            linear: is_linear(p),
+            lo,
+            hi,
+            curve,
+            children: None,
+        }
+    }
 }
 
 /// The subdivision hierarchy of one piece, computed once and shared, immutable, by all queries:
-/// the first [`HIERARCHY_DEPTH`] levels of halving; deeper levels (queries within `2^-6` of the
-/// piece's size from it) are computed on the fly.
+/// the first [`HIERARCHY_DEPTH`] levels of halving, each sub-curve with its control box,
+/// convexity and straightness; deeper levels (queries within `2^-6` of the piece's size from
+/// it) are computed on the fly.
 #[derive(Clone, Debug)]
 pub struct CurveHierarchy {
     nodes: Vec<SubNode>,
@@ -33,27 +59,19 @@ pub struct CurveHierarchy {
 impl CurveHierarchy {
     /// Precomputes the hierarchy of `curve`.
     pub fn new(curve: &RationalBezier) -> Self {
-        let mut nodes = vec![SubNode {
-            convex: is_simple_convex(curve.control_points()),
-            curve: curve.clone(),
-            children: None,
-        }];
+        let mut nodes = Vec::with_capacity((2 << HIERARCHY_DEPTH) - 1);
+        nodes.push(SubNode::new(SubCurve::of(curve), false));
         let mut frontier = vec![(0usize, 0u32)];
         while let Some((i, depth)) = frontier.pop() {
             if depth >= HIERARCHY_DEPTH {
                 continue;
             }
-            let (l, r) = nodes[i].curve.subdivide();
+            let (l, r) = nodes[i].curve.halves();
             let parent_convex = nodes[i].convex;
             let li = nodes.len();
-            for half in [l, r] {
-                nodes.push(SubNode {
-                    convex: parent_convex || is_simple_convex(half.control_points()),
-                    curve: half,
-                    children: None,
-                });
-            }
-            nodes[i].children = Some((li, li + 1));
+            nodes.push(SubNode::new(l, parent_convex));
+            nodes.push(SubNode::new(r, parent_convex));
+            nodes[i].children = Some((li as u32, li as u32 + 1));
             frontier.push((li, depth + 1));
             frontier.push((li + 1, depth + 1));
         }
@@ -63,37 +81,53 @@ impl CurveHierarchy {
 
 /// A node of the adaptive algorithm: a cached sub-curve, or one computed past the cache.
 pub(crate) enum Node {
-    Cached(usize),
-    Owned(RationalBezier),
+    Cached(u32),
+    Owned(SubCurve),
 }
 
 impl SubCurves for CurveHierarchy {
     type Node = Node;
     fn points<'s>(&'s self, node: &'s Node) -> &'s [Point] {
         match node {
-            Node::Cached(i) => self.nodes[*i].curve.control_points(),
-            Node::Owned(c) => c.control_points(),
+            Node::Cached(i) => self.nodes[*i as usize].curve.points(),
+            Node::Owned(c) => c.points(),
         }
     }
     fn convex(&self, node: &Node, parent_convex: bool) -> bool {
         match node {
-            Node::Cached(i) => self.nodes[*i].convex,
-            Node::Owned(c) => parent_convex || is_simple_convex(c.control_points()),
+            Node::Cached(i) => self.nodes[*i as usize].convex,
+            Node::Owned(c) => parent_convex || is_simple_convex(c.points()),
         }
     }
     fn halves(&self, node: &Node) -> (Node, Node, bool) {
+        let owned = |c: &SubCurve| {
+            let (l, r) = c.halves();
+            (Node::Owned(l), Node::Owned(r), true)
+        };
         match node {
-            Node::Cached(i) => match self.nodes[*i].children {
-                Some((l, r)) => (Node::Cached(l), Node::Cached(r), false),
-                None => {
-                    let (l, r) = self.nodes[*i].curve.subdivide();
-                    (Node::Owned(l), Node::Owned(r), true)
+            Node::Cached(i) => {
+                let n = &self.nodes[*i as usize];
+                match n.children {
+                    Some((l, r)) => (Node::Cached(l), Node::Cached(r), false),
+                    None => owned(&n.curve),
                 }
-            },
-            Node::Owned(c) => {
-                let (l, r) = c.subdivide();
-                (Node::Owned(l), Node::Owned(r), true)
             }
+            Node::Owned(c) => owned(c),
+        }
+    }
+    fn linear(&self, node: &Node) -> bool {
+        match node {
+            Node::Cached(i) => self.nodes[*i as usize].linear,
+            Node::Owned(c) => is_linear(c.points()),
+        }
+    }
+    fn outside_box(&self, node: &Node, q: Point) -> bool {
+        match node {
+            Node::Cached(i) => {
+                let n = &self.nodes[*i as usize];
+                q.x < n.lo.x || q.x > n.hi.x || q.y < n.lo.y || q.y > n.hi.y
+            }
+            Node::Owned(c) => super::curve::outside_box(c.points(), q),
         }
     }
 }
@@ -111,25 +145,24 @@ struct BvhNode {
     kind: Kind,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 enum Kind {
-    Leaf(usize),
-    Inner(usize, usize),
+    Leaf(u32),
+    Inner(u32, u32),
 }
 
 /// Accelerated generalized winding numbers, equal to [`WindingField`]'s up to rounding.
 ///
 /// # Design
-/// - A bounding-volume hierarchy over the pieces in boundary order: each node covers a
-///   contiguous run of pieces with the bounding box of their control points. A query outside a
-///   node's box whose pieces form one chain from `A` to `B` (each piece ends exactly where the
-///   next begins) takes the single angle of the chord `A -> B`: the chain closed by `B -> A`
-///   lies in the box, so the query is outside it and has winding number 0 about it, which makes
-///   the chain's winding number exactly minus that of the closing chord (the paper's far-field
-///   argument applied to a whole subtree). Other nodes are opened; a leaf runs the adaptive
-///   algorithm. A query far from a closed boundary therefore costs `O(log N)` angles.
-/// - Each piece's first [`HIERARCHY_DEPTH`] levels of bisection are precomputed once
-///   ([`CurveHierarchy`]), so queries near the boundary reuse them instead of subdividing.
+/// The winding number is counted as in [`WindingField`]: signed crossings of the horizontal
+/// ray from `q` towards `-x` by the chords of the adaptive algorithm, plus the angle between
+/// the ends of each open chain. A node whose box lies above, below or right of `q` holds no
+/// crossing and is skipped; a node wholly left of `q` whose pieces form one chain from `A` to
+/// `B` crosses the ray as its chord `A -> B` does (decided by two comparisons); other nodes
+/// are opened, and a leaf whose box holds `q` runs the adaptive algorithm on its piece's
+/// subdivision hierarchy ([`CurveHierarchy`], built the first time a query needs it and kept).
+/// A query far from the boundary costs a few node tests; one near it visits the nodes along
+/// its ray.
 ///
 /// # Examples
 ///
@@ -146,14 +179,14 @@ enum Kind {
 pub struct FastWindingField<'a> {
     field: &'a WindingField,
     nodes: Vec<BvhNode>,
-    hierarchies: Vec<CurveHierarchy>,
+    hierarchies: Vec<OnceLock<CurveHierarchy>>,
 }
 
 impl<'a> FastWindingField<'a> {
-    /// Builds the hierarchy over `field`'s pieces.
+    /// Builds the hierarchy over `field`'s pieces (`O(n log n)` box merges; the pieces'
+    /// subdivision hierarchies are built later, as queries reach them).
     pub fn new(field: &'a WindingField) -> Self {
         let pieces = field.pieces();
-        let hierarchies = pieces.iter().map(CurveHierarchy::new).collect();
         let mut nodes = Vec::with_capacity(2 * pieces.len());
         if !pieces.is_empty() {
             build(pieces, 0, pieces.len(), &mut nodes);
@@ -161,7 +194,7 @@ impl<'a> FastWindingField<'a> {
         Self {
             field,
             nodes,
-            hierarchies,
+            hierarchies: pieces.iter().map(|_| OnceLock::new()).collect(),
         }
     }
 
@@ -170,27 +203,28 @@ impl<'a> FastWindingField<'a> {
         self.winding_number_counted(q, &mut QueryStats::default())
     }
 
-    /// The generalized winding number at `q`, adding the work done to `stats` (a shortcut
-    /// angle counts as one curve evaluation).
+    /// The generalized winding number at `q`, adding the work done to `stats` (a node decided
+    /// by its chord counts as one curve evaluation).
     pub fn winding_number_counted(&self, q: Point, stats: &mut QueryStats) -> f64 {
-        if self.nodes.is_empty() {
-            return 0.0;
+        let mut sum = WindingSum::new(q);
+        let mut stack: SmallVec<[u32; 64]> = SmallVec::new();
+        if !self.nodes.is_empty() {
+            stack.push(self.nodes.len() as u32 - 1);
         }
-        let mut total = 0.0;
-        let mut stack: Vec<usize> = Vec::with_capacity(64);
-        stack.push(self.nodes.len() - 1);
         while let Some(i) = stack.pop() {
-            let n = &self.nodes[i];
-            let outside = q.x < n.lo.x || q.x > n.hi.x || q.y < n.lo.y || q.y > n.hi.y;
-            if outside && n.chain {
+            let n = &self.nodes[i as usize];
+            if q.y < n.lo.y || q.y > n.hi.y || q.x < n.lo.x {
+                continue;
+            }
+            if q.x > n.hi.x && n.chain {
                 stats.curve_evaluations += 1;
-                total += chord_angle(q, n.a, n.b) / TAU;
+                sum.left_crossing(n.a, n.b);
                 continue;
             }
             match n.kind {
                 Kind::Leaf(p) => {
-                    let h = &self.hierarchies[p];
-                    total += adaptive_winding(h, Node::Cached(0), q, stats);
+                    let h = self.hierarchy(p as usize);
+                    refine(h, Node::Cached(0), q, &mut sum, stats);
                 }
                 Kind::Inner(l, r) => {
                     stack.push(r);
@@ -198,7 +232,13 @@ impl<'a> FastWindingField<'a> {
                 }
             }
         }
-        total
+        self.field.add_open_chain_ends(&mut sum);
+        sum.value()
+    }
+
+    /// The subdivision hierarchy of piece `p`, built on first use.
+    fn hierarchy(&self, p: usize) -> &CurveHierarchy {
+        self.hierarchies[p].get_or_init(|| CurveHierarchy::new(&self.field.pieces()[p]))
     }
 
     /// Winding numbers of many points, in input order, on the current thread.
@@ -237,20 +277,25 @@ impl Locate for FastWindingField<'_> {
 }
 
 /// Builds the subtree over pieces `[i, j)`; returns its index (children before parents).
-fn build(pieces: &[RationalBezier], i: usize, j: usize, nodes: &mut Vec<BvhNode>) -> usize {
+fn build(pieces: &[RationalBezier], i: usize, j: usize, nodes: &mut Vec<BvhNode>) -> u32 {
     let (a, b) = (pieces[i].start_point(), pieces[j - 1].end_point());
-    let chain = (i + 1..j).all(|k| pieces[k - 1].end_point() == pieces[k].start_point());
-    let kind = if j - i == 1 {
-        Kind::Leaf(i)
+    let (kind, lo, hi, chain) = if j - i == 1 {
+        let p = pieces[i].control_points();
+        let (mut lo, mut hi) = (p[0], p[0]);
+        for &x in p {
+            lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
+            hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
+        }
+        (Kind::Leaf(i as u32), lo, hi, true)
     } else {
         let m = (i + j) / 2;
-        Kind::Inner(build(pieces, i, m, nodes), build(pieces, m, j, nodes))
+        let (l, r) = (build(pieces, i, m, nodes), build(pieces, m, j, nodes));
+        let (ln, rn) = (&nodes[l as usize], &nodes[r as usize]);
+        let chain = ln.chain && rn.chain && ln.b == rn.a;
+        let lo = Point::new(ln.lo.x.min(rn.lo.x), ln.lo.y.min(rn.lo.y));
+        let hi = Point::new(ln.hi.x.max(rn.hi.x), ln.hi.y.max(rn.hi.y));
+        (Kind::Inner(l, r), lo, hi, chain)
     };
-    let (mut lo, mut hi) = (a, a);
-    for p in pieces[i..j].iter().flat_map(|c| c.control_points()) {
-        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
     nodes.push(BvhNode {
         lo,
         hi,
@@ -259,5 +304,5 @@ fn build(pieces: &[RationalBezier], i: usize, j: usize, nodes: &mut Vec<BvhNode>
         chain,
         kind,
     });
-    nodes.len() - 1
+    nodes.len() as u32 - 1
 }

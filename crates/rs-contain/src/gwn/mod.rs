@@ -4,13 +4,17 @@
 mod curve;
 mod fast;
 mod raycast;
+mod sum;
 
 use rs_boxes::{BoxGrid, BoxOptions, MonotoneBoxes};
 use std::sync::Arc;
 
+use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
 use crate::{ContainError, Locate, Location};
+use curve::{OnTheFly, SubCurve, refine};
+use sum::WindingSum;
 
 pub use curve::curve_winding_number;
 pub use fast::{CurveHierarchy, FastWindingField, HIERARCHY_DEPTH};
@@ -56,6 +60,12 @@ pub enum FillRule {
 ///   inside a counter-clockwise loop, 2 inside a doubly wound one), a real number near a gap.
 /// - Exact up to floating point at any distance (see [`curve_winding_number`]); no tolerance
 ///   ever treats a curved piece as straight.
+/// - Evaluation: each piece is replaced by the chords of the adaptive algorithm (its own chord
+///   when `q` is outside its control box, which takes two comparisons when the box does not
+///   reach the horizontal ray from `q` towards `-x`). The angles are not added one `atan2` at
+///   a time: the chords' signed crossings of that ray are counted (exact integers), and each
+///   open chain of pieces adds the angle between its two ends, once; a closed chain adds
+///   nothing. So a query costs no `atan2` at all on a closed boundary.
 /// - At points on a curve, the average across the jump (the paper's section 6).
 /// - Containment: points within the boundary tolerance (the same band as the crossing-number
 ///   methods, relative `1e-12` of the bounding-box diagonal by default) are
@@ -77,6 +87,12 @@ pub enum FillRule {
 #[derive(Clone, Debug)]
 pub struct WindingField {
     pieces: Vec<RationalBezier>,
+    /// Per piece: its control box and chord, for the far-field test.
+    frames: Vec<PieceFrame>,
+    /// Per piece: its whole curve as the adaptive algorithm's first sub-curve.
+    roots: Vec<SubCurve>,
+    /// Start and end of every open chain of pieces (see [`chains`]).
+    open_chains: Vec<(Point, Point)>,
     boxes: Arc<MonotoneBoxes>,
     grid: BoxGrid,
     tol: f64,
@@ -109,9 +125,17 @@ impl WindingField {
         relative_tolerance: f64,
     ) -> Self {
         let tol = relative_tolerance * boxes.bounding_box().diagonal();
-        let pieces = domain.bezier_pieces().into_iter().map(|(_, b)| b).collect();
+        let pieces: Vec<RationalBezier> =
+            domain.bezier_pieces().into_iter().map(|(_, b)| b).collect();
         let grid = BoxGrid::new(boxes.boxes(), tol);
         Self {
+            frames: pieces.iter().map(PieceFrame::of).collect(),
+            roots: pieces.iter().map(SubCurve::of).collect(),
+            open_chains: chains(&pieces)
+                .into_iter()
+                .map(|r| (pieces[r.start].start_point(), pieces[r.end - 1].end_point()))
+                .filter(|(s, e)| s != e)
+                .collect(),
             pieces,
             boxes,
             grid,
@@ -143,7 +167,34 @@ impl WindingField {
 
     /// The generalized winding number at `q` (adaptive algorithm).
     pub fn winding_number(&self, q: Point) -> f64 {
-        self.winding_number_with(q, WindingAlgorithm::Adaptive, &mut QueryStats::default())
+        self.adaptive_winding_number(q, &mut QueryStats::default())
+    }
+
+    /// Every piece by the adaptive algorithm, the far ones by their box alone, added as
+    /// crossings and chain ends (see the type's Semantics). No allocation for pieces of
+    /// degree <= 3.
+    fn adaptive_winding_number(&self, q: Point, stats: &mut QueryStats) -> f64 {
+        let mut sum = WindingSum::new(q);
+        for (f, root) in self.frames.iter().zip(&self.roots) {
+            if q.y < f.lo.y || q.y > f.hi.y || q.x < f.lo.x {
+                // Above, below or right of the cut: no crossing, and q is not on the chord.
+                stats.curve_evaluations += 1;
+            } else if q.x > f.hi.x {
+                stats.curve_evaluations += 1;
+                sum.left_crossing(f.start, f.end);
+            } else {
+                refine(&OnTheFly, root.clone(), q, &mut sum, stats);
+            }
+        }
+        self.add_open_chain_ends(&mut sum);
+        sum.value()
+    }
+
+    /// The turns between the ends of every open chain.
+    pub(crate) fn add_open_chain_ends(&self, sum: &mut WindingSum) {
+        if !self.open_chains.is_empty() {
+            sum.add_chain_ends(&self.open_chains);
+        }
     }
 
     /// The generalized winding number at `q` with a chosen algorithm, adding its work to
@@ -154,6 +205,9 @@ impl WindingField {
         algorithm: WindingAlgorithm,
         stats: &mut QueryStats,
     ) -> f64 {
+        if algorithm == WindingAlgorithm::Adaptive {
+            return self.adaptive_winding_number(q, stats);
+        }
         self.pieces
             .iter()
             .map(|c| match algorithm {
@@ -200,4 +254,43 @@ impl Locate for WindingField {
         }
         self.location_from_winding(self.winding_number(q), self.rule)
     }
+}
+
+/// What the far-field test needs of a piece: its control box and its chord.
+#[derive(Clone, Copy, Debug)]
+struct PieceFrame {
+    lo: Point,
+    hi: Point,
+    start: Point,
+    end: Point,
+}
+
+impl PieceFrame {
+    fn of(b: &RationalBezier) -> Self {
+        let p = b.control_points();
+        let (mut lo, mut hi) = (p[0], p[0]);
+        for &x in p {
+            lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
+            hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
+        }
+        Self {
+            lo,
+            hi,
+            start: p[0],
+            end: p[p.len() - 1],
+        }
+    }
+}
+
+/// The maximal runs of pieces in which each piece starts exactly (bit for bit) where the
+/// previous one ends, as index ranges.
+pub(crate) fn chains(pieces: &[RationalBezier]) -> Vec<std::ops::Range<usize>> {
+    let mut out: Vec<std::ops::Range<usize>> = Vec::new();
+    for (i, b) in pieces.iter().enumerate() {
+        match out.last_mut() {
+            Some(r) if pieces[r.end - 1].end_point() == b.start_point() => r.end = i + 1,
+            _ => out.push(i..i + 1),
+        }
+    }
+    out
 }

@@ -1,0 +1,295 @@
+//! Adding up the angles that chords subtend at a query point, without one `atan2` per chord.
+//!
+//! With `theta(p)` the polar angle of `p - q` in `(-pi, pi]` (the cut along the ray from `q`
+//! towards `-x`), the signed angle a chord `a -> b` subtends at `q` is
+//! `theta(b) - theta(a) + 2 pi k`, where `k` is `+1` if the chord crosses the cut downwards,
+//! `-1` upwards, `0` otherwise. Over a chain of chords the `theta` terms telescope, so the
+//! winding number of a chain from `s` to `e` is the signed crossing count `sum k` (exact
+//! integers) plus `(theta(e) - theta(s)) / 2 pi`, which vanishes for a closed chain. Deciding
+//! `k` takes two comparisons for most chords and one cross product for the rest.
+//!
+//! A chord through `q` (the query on the curve) has no defined angle; the paper's convention
+//! gives it its own value (0 on an open chord, the tangent formula at an end point). Such a
+//! *special* chord contributes its value and takes back its `theta` terms, so the telescoping
+//! still holds.
+
+use std::f64::consts::TAU;
+
+use rs_spline::Point;
+
+/// Where the adaptive algorithm sends the chords it replaces a curve by.
+pub(crate) trait ChordSink {
+    /// A chord `a -> b` whose angle at the query is the curve's (the query is not on it, or
+    /// is and then the chord's angle convention applies).
+    fn chord(&mut self, a: Point, b: Point);
+    /// A piece `a -> b` through the query whose contribution is `value` (turns), by a
+    /// coincidence convention.
+    fn special(&mut self, value: f64, a: Point, b: Point);
+}
+
+/// Below this, `u . v` and `u x v` of a chain's ends may have lost digits to underflow.
+const TINY_PRODUCT: f64 = 1e-280;
+
+/// `2^-k` for the `k` with `2^k <= x < 2^(k+1)`, for a normal `x < 2^1023` (the callers' are
+/// below `1e301`): multiplying by it is exact.
+#[inline]
+fn inverse_power_of_two(x: f64) -> f64 {
+    let exponent = (x.to_bits() >> 52) & 0x7ff;
+    f64::from_bits((2046 - exponent) << 52)
+}
+
+/// `theta(p - q)`, with `theta(0) = 0`.
+fn theta(q: Point, p: Point) -> f64 {
+    (p.y - q.y).atan2(p.x - q.x)
+}
+
+/// Signed angle from `a` to `b` in `(-pi, pi]`.
+pub(crate) fn signed_angle(a: Point, b: Point) -> f64 {
+    a.cross(b).atan2(a.dot(b))
+}
+
+/// Angle subtended at `q` by the chord from `a` to `b`, with the coincidence convention: a
+/// query on the closed chord (angle +-pi, the average of the two sides being 0) contributes 0.
+pub(crate) fn chord_angle(q: Point, a: Point, b: Point) -> f64 {
+    let (u, v) = (a - q, b - q);
+    if u.cross(v) == 0.0 && u.dot(v) <= 0.0 {
+        return 0.0;
+    }
+    signed_angle(u, v)
+}
+
+/// The winding number at one query point as signed crossings of the cut plus a fractional
+/// part (see the module documentation).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WindingSum {
+    q: Point,
+    crossings: i64,
+    turns: f64,
+}
+
+impl WindingSum {
+    /// Nothing added yet.
+    pub(crate) fn new(q: Point) -> Self {
+        Self {
+            q,
+            crossings: 0,
+            turns: 0.0,
+        }
+    }
+
+    /// `+1` or `-1` for a chord lying wholly left of the query (`max(a.x, b.x) < q.x`) that
+    /// crosses the query's height downwards or upwards, else `0`: a comparison per end.
+    #[inline]
+    pub(crate) fn left_crossing(&mut self, a: Point, b: Point) {
+        let (up_a, up_b) = (a.y >= self.q.y, b.y >= self.q.y);
+        self.crossings += i64::from(up_a) - i64::from(up_b);
+    }
+
+    /// Adds the turns of every chain from `s` to `e` in `ends`: `(theta(e) - theta(s)) / 2 pi`
+    /// each, with one `atan2` for all of them. Each term is `angle(s -> e) - 2 pi k(s -> e)`;
+    /// the angles are added as the argument of the product of the complex numbers
+    /// `(u . v, u x v)` (`u = s - q`, `v = e - q`), counting the turns the product's argument
+    /// wraps past `pi`, so no angle is lost to the branch cut. A chain with `q` on the segment
+    /// `s e` or an end within `1e-140` of `q` takes its two `atan2`s instead.
+    pub(crate) fn add_chain_ends(&mut self, ends: &[(Point, Point)]) {
+        let (mut re, mut im, mut wraps) = (1.0f64, 0.0f64, 0i64);
+        for (i, &(s, e)) in ends.iter().enumerate() {
+            let (u, v) = (s - self.q, e - self.q);
+            let (d, c) = (u.dot(v), u.cross(v));
+            let size = d.abs().max(c.abs());
+            if (c == 0.0 && d <= 0.0) || !(size > TINY_PRODUCT && size.is_finite()) {
+                self.turns += (theta(self.q, e) - theta(self.q, s)) / TAU;
+                continue;
+            }
+            // Branch-free from here: the signs below are as good as random.
+            let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
+            wraps -= i64::from(up_u & !up_v & (c > 0.0)) - i64::from(!up_u & up_v & (c < 0.0));
+            // Scale by a power of two (exact) to keep the product in range.
+            let scale = inverse_power_of_two(size);
+            let (d, c) = (d * scale, c * scale);
+            let (nre, nim) = (re * d - im * c, re * c + im * d);
+            wraps += i64::from((c > 0.0) & (im >= 0.0) & (nim < 0.0))
+                - i64::from((c < 0.0) & (im < 0.0) & (nim >= 0.0));
+            (re, im) = (nre, nim);
+            if i % 64 == 63 {
+                let scale = inverse_power_of_two(re.abs().max(im.abs()));
+                (re, im) = (re * scale, im * scale);
+            }
+        }
+        // The argument in (-pi, pi], pi on the negative real axis whatever the zero's sign.
+        let arg = if im == 0.0 && re < 0.0 {
+            std::f64::consts::PI
+        } else {
+            im.atan2(re)
+        };
+        self.crossings += wraps;
+        self.turns += arg / TAU;
+    }
+
+    /// The winding number.
+    pub(crate) fn value(&self) -> f64 {
+        self.crossings as f64 + self.turns
+    }
+}
+
+/// `k` of a chord whose ends are `u`, `v` relative to the query, with `c = u x v` (the chord
+/// must not pass through the query): `+1` across the cut downwards, `-1` upwards.
+#[inline]
+pub(crate) fn cut_crossing(u: Point, v: Point, c: f64) -> i32 {
+    let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
+    if up_u && !up_v && c > 0.0 {
+        1
+    } else if !up_u && up_v && c < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+impl ChordSink for WindingSum {
+    #[inline]
+    fn chord(&mut self, a: Point, b: Point) {
+        let (u, v) = (a - self.q, b - self.q);
+        let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
+        if up_u == up_v && u.y != 0.0 && v.y != 0.0 {
+            return; // both strictly on one side: no crossing, q not on the chord
+        }
+        let c = u.cross(v);
+        if c == 0.0 && u.dot(v) <= 0.0 {
+            // q on the closed chord: the convention gives 0.
+            self.special(0.0, a, b);
+            return;
+        }
+        self.crossings += i64::from(cut_crossing(u, v, c));
+    }
+
+    fn special(&mut self, value: f64, a: Point, b: Point) {
+        self.turns += value - (theta(self.q, b) - theta(self.q, a)) / TAU;
+    }
+}
+
+/// The angles themselves, one `atan2` per chord: the paper's direct sum, for one curve on its
+/// own (no chain to telescope over).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AngleSum {
+    q: Point,
+    /// The sum, in turns.
+    pub(crate) turns: f64,
+}
+
+impl AngleSum {
+    /// Nothing added yet.
+    pub(crate) fn new(q: Point) -> Self {
+        Self { q, turns: 0.0 }
+    }
+}
+
+impl ChordSink for AngleSum {
+    fn chord(&mut self, a: Point, b: Point) {
+        self.turns += chord_angle(self.q, a, b) / TAU;
+    }
+
+    fn special(&mut self, value: f64, _a: Point, _b: Point) {
+        self.turns += value;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The crossing sum of a chain equals the sum of its chords' angles.
+    #[test]
+    fn crossings_and_ends_equal_the_angle_sum() {
+        let chain = [
+            Point::new(2.0, -1.0),
+            Point::new(-1.0, 3.0),
+            Point::new(-2.0, -2.0),
+            Point::new(1.0, -3.0),
+            Point::new(3.0, 2.0),
+            Point::new(0.5, 0.0),
+            Point::new(-4.0, 0.0),
+        ];
+        let queries = [
+            Point::new(0.0, 0.0),
+            Point::new(0.1, -0.3),
+            Point::new(-1.5, 0.0),
+            Point::new(5.0, 0.0),
+            Point::new(0.0, 3.0),
+            Point::new(-1.0, 3.0), // a vertex
+            Point::new(-2.5, 0.0), // on the last chord
+        ];
+        for q in queries {
+            let (mut w, mut a) = (WindingSum::new(q), AngleSum::new(q));
+            for c in chain.windows(2) {
+                w.chord(c[0], c[1]);
+                a.chord(c[0], c[1]);
+            }
+            w.add_chain_ends(&[(chain[0], chain[chain.len() - 1])]);
+            assert!(
+                (w.value() - a.turns).abs() < 1e-15,
+                "{q:?}: {} vs {}",
+                w.value(),
+                a.turns
+            );
+        }
+    }
+
+    /// Many chains at once, against the sum of their ends' angles: the product's argument
+    /// wraps many times.
+    #[test]
+    fn chain_ends_add_up_through_the_product() {
+        let q = Point::new(0.3, -0.1);
+        let mut ends = Vec::new();
+        for i in 0..200 {
+            let t = i as f64 * 0.37;
+            let r = 1e-3 * (1.0 + i as f64);
+            ends.push((
+                Point::new(r * t.cos(), r * t.sin() + 1e-9 * i as f64) + q,
+                Point::new(-r * (2.0 * t).sin(), 3e5 * r * t.cos()) + q,
+            ));
+        }
+        ends.push((q + Point::new(1.0, 0.0), q + Point::new(-2.0, 0.0))); // q on the segment
+        ends.push((q, q + Point::new(0.0, 1.0))); // an end at q
+        let mut w = WindingSum::new(q);
+        w.add_chain_ends(&ends);
+        let exact: f64 = ends
+            .iter()
+            .map(|&(s, e)| (theta(q, e) - theta(q, s)) / TAU)
+            .sum();
+        assert!(
+            (w.value() - exact).abs() < 1e-12,
+            "{} vs {exact}",
+            w.value()
+        );
+    }
+
+    #[test]
+    fn powers_of_two_scale_exactly() {
+        for x in [1.0, 3.0, 0.7, 1e-300, 2.5e300, f64::MIN_POSITIVE] {
+            let s = inverse_power_of_two(x);
+            assert!((1.0..2.0).contains(&(x * s)), "{x}: {}", x * s);
+        }
+    }
+
+    #[test]
+    fn a_closed_chain_needs_no_angle() {
+        let square = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+            Point::new(0.0, 0.0),
+        ];
+        let mut w = WindingSum::new(Point::new(0.5, 0.5));
+        for c in square.windows(2) {
+            w.chord(c[0], c[1]);
+        }
+        assert_eq!(w.value(), 1.0);
+        let mut w = WindingSum::new(Point::new(1.5, 0.0));
+        for c in square.windows(2) {
+            w.chord(c[0], c[1]);
+        }
+        assert_eq!(w.value(), 0.0);
+    }
+}
