@@ -3,10 +3,8 @@
 
 use std::borrow::Cow;
 
-use rs_spline::Point;
 use rs_spline::grid::{CellIndex, GridFrame};
-
-use smallvec::SmallVec;
+use rs_spline::{BoundingBox, Point};
 
 use crate::{Classifier, Locate, Location, Method};
 
@@ -17,8 +15,15 @@ const INSIDE: u8 = 1;
 /// Cell state: the cell meets a box (grown by the tolerance); decide point by point.
 const MIXED: u8 = 2;
 
-/// Locations of the uniform states, indexed by state.
-const UNIFORM: [Location; 2] = [Location::Outside, Location::Inside];
+/// The location a coarse state or a uniform fine entry stands for: [`Location::Boundary`]
+/// marks a refined block, whose points are decided one by one (a real boundary point only ever
+/// comes from that decision).
+const STATE_LOCATION: [Location; 4] = [
+    Location::Outside,
+    Location::Inside,
+    Location::Boundary,
+    Location::Boundary,
+];
 
 /// Default grid resolution: cells per side of the bounding box. Chosen by measurement
 /// (`cargo xtask bench`, README): on the paper's domains, 1024 x 1024 cells leave well under 1% of
@@ -57,31 +62,40 @@ impl Default for LocatorOptions {
 ///
 /// # Design
 /// A uniform `n x n` grid covers the bounding box grown by the tolerance. Each monotone box,
-/// grown by the boundary tolerance, is registered in every cell it meets (compressed sparse
-/// rows). A cell that meets no box contains no boundary point, so all of its points share one
-/// location: for each column, the first cell of every run of such cells is classified exactly by
-/// inRS2 (one batch for the whole grid) and the run inherits it. A query then costs:
-/// - outside the grown bounding box, or in a uniform cell: one cell lookup, `O(1)`;
-/// - in a *mixed* cell: the boundary test against the boxes of its cell, then the crossing
-///   parity from the nearest uniform cell below in the same column (its known location) plus
-///   the crossings of the vertical ray with the distinct boxes registered between the two, one
-///   bracketed solve at most per box, `O(k)` for `k` boxes in that stretch of the column. Points
-///   on a critical abscissa take inRS2's fallback (horizontal ray, winding number).
+/// grown by the boundary tolerance, is registered in every cell near its curve. A cell that
+/// meets no box contains no boundary point, so all of its points share one location: for each
+/// column, the first cell of every run of such cells is classified exactly by inRS2 (one batch
+/// for the whole grid) and the run inherits it. The others are *mixed*.
+///
+/// The grid is stored in two levels, so that the table a query reads first stays in the
+/// processor's first-level cache: a coarse grid of `8 x 8` blocks of cells, two bits per block
+/// (all outside, all inside, or refined: 4 KiB for the default 1024 x 1024 cells), and, for the
+/// refined blocks only, one entry per cell (outside, inside, or the index of a mixed-cell
+/// record). A mixed-cell record holds what its points need, precomputed: the parity of the
+/// nearest uniform cell below in the same column, the boxes registered in the cell, and the
+/// distinct non-vertical boxes registered between that uniform cell and this one.
+///
+/// A query then costs:
+/// - outside the grown bounding box, or in a uniform block: one lookup, without a branch;
+/// - in a refined block: a second lookup;
+/// - in a mixed cell: the boundary test against the cell's boxes, then the parity below plus
+///   the crossings of the vertical ray with the record's column boxes, one bracketed solve at
+///   most per box. Points on a critical abscissa take inRS2's fallback (horizontal ray,
+///   winding number).
 ///
 /// Results are identical to [`Method::InRS2`]: uniform cells are classified by inRS2 itself and
 /// no box below the reference cell can reach it, so the crossings counted above it are exactly
 /// those inRS2 counts there, with the same per-box test.
 ///
 /// # Cost
-/// Build: `O(n^2 + (cells met by boxes))` memory and time plus one inRS2 batch over the run
-/// starts; memory is 5.25 bytes per cell (a byte and two bits of state, a 4-byte offset) plus
-/// 4 bytes per (box, cell) incidence: about 5.5 MiB for the default 1024 x 1024 grid,
-/// independent of the number of points. Queries read only the 2-bit states (256 KiB at 1024).
-/// Each box is registered only in the cells near its curve (its piece is halved until each part
-/// spans a couple of cells), so incidences grow with the boundary's length in cells, not with the
-/// boxes' areas (timings: `cargo xtask bench`, reported in the README). Worst case per query: a
-/// mixed cell in a column that is mixed all the way down, `O(N)` for `N` boxes in that column;
-/// fine grids and refined boxes keep `k` small.
+/// Build: `O(n^2)` time for the column walk plus the boxes' registrations (each box only in the
+/// cells near its curve: its piece is halved until each part spans a couple of cells) and one
+/// inRS2 batch over the run starts. Memory: the two-bit coarse table, 256 bytes per refined
+/// block, and the mixed-cell records with their box lists, which grow with the boundary's
+/// length in cells; the registrations themselves are dropped after the build (timings:
+/// `cargo xtask bench`, reported in the README). Worst case per query: a mixed cell in a
+/// column that is mixed all the way down, `O(N)` for `N` boxes in that column; fine grids and
+/// refined boxes keep it small.
 ///
 /// # Examples
 ///
@@ -93,7 +107,7 @@ impl Default for LocatorOptions {
 /// let loc = PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(64));
 /// let pts = [Point::new(0.0, 0.0), Point::new(0.9, 0.0), Point::new(1.0, 0.0)];
 /// assert_eq!(loc.locate_all(&pts), c.classify(&pts, Method::InRS2));
-/// assert_eq!(loc.locate(Point::new(3.0, 0.0)), Location::Outside);
+/// assert_eq!(loc.locate_all(&pts), vec![Location::Inside, Location::Inside, Location::Boundary]);
 /// ```
 #[derive(Clone, Debug)]
 pub struct PointLocator<'a> {
@@ -101,30 +115,119 @@ pub struct PointLocator<'a> {
     ix: Cow<'a, LocatorIndex>,
 }
 
+/// Side of a block of the coarse level, in cells (a power of two).
+const BLOCK: usize = 8;
+/// `log2(BLOCK)`.
+const BLOCK_SHIFT: u32 = 3;
+
+/// Coarse state: the block holds mixed cells, or cells of both locations; read its cells.
+const REFINED: u8 = 2;
+
+/// A fine entry below this is a uniform state; from it on, `entry - FIRST_RECORD` indexes the
+/// mixed-cell records.
+const FIRST_RECORD: u32 = 2;
+
+/// What the points of one mixed cell need.
+#[derive(Clone, Copy, Debug)]
+struct MixedCell {
+    /// Parity of the nearest uniform cell below in the column (false below the grid).
+    inside_below: bool,
+    /// The boxes registered in the cell (`near_items[near.0..near.1]`, vertical ones flagged).
+    near: (u32, u32),
+    /// The distinct non-vertical boxes registered from that uniform cell up to this one
+    /// (`column_items[column.0..column.1]`).
+    column: (u32, u32),
+}
+
 /// The grid of a [`PointLocator`], without the classifier it indexes (so that a
 /// [`Classifier`] can build it once and lend it; see [`Classifier::locator`]).
 #[derive(Clone, Debug)]
 pub struct LocatorIndex {
-    /// The boxes registered in the cells near their curves (vertical ones flagged).
-    cells: CellIndex<u32>,
+    /// Cells per side of the fine grid.
     n: usize,
-    state: Vec<u8>,
-    /// `state` packed two bits per cell (32 cells per word) for cache-friendly queries.
-    packed: Vec<u64>,
+    /// Blocks per side of the coarse grid.
+    blocks: usize,
+    /// Coarse states, a byte per block.
+    coarse: Vec<u8>,
+    /// For each block, the first of its `BLOCK^2` fine entries in `fine` (refined blocks only).
+    block_start: Vec<u32>,
+    /// Fine entries of the refined blocks, column-major within a block.
+    fine: Vec<u32>,
+    records: Vec<MixedCell>,
+    near_items: Vec<u32>,
+    column_items: Vec<u32>,
+    /// Number of mixed cells and of (box, cell) registrations, for reports.
+    mixed_cells: usize,
+    incidences: usize,
+    lookup: Lookup,
+}
+
+/// What a query needs to find its cell: the grid's box and the cells per unit length.
+#[derive(Clone, Copy, Debug)]
+struct Lookup {
+    min: Point,
+    inv_w: f64,
+    inv_h: f64,
+    /// `n - 1`, the last column and row.
+    last: f64,
+    blocks: usize,
+}
+
+impl Lookup {
+    fn new(frame: &GridFrame, blocks: usize) -> Self {
+        let b = frame.bounding_box();
+        // The frame's own scales: a point's cell here is the one `GridFrame::col` and `row`
+        // give, the cell its boxes were registered by.
+        let (inv_w, inv_h) = frame.scales();
+        Self {
+            min: b.min,
+            inv_w,
+            inv_h,
+            last: (frame.n() - 1) as f64,
+            blocks,
+        }
+    }
+
+    /// The column and row of `p`'s cell, clamped into the grid: a point off the grid's box
+    /// (or NaN) falls in the ring of cells along its border, which lie outside the domain's
+    /// box and are all outside.
+    #[inline]
+    fn cell(&self, p: Point) -> (usize, usize) {
+        let c = self.index((p.x - self.min.x) * self.inv_w);
+        let r = self.index((p.y - self.min.y) * self.inv_h);
+        (c, r)
+    }
+
+    /// The coarse state of `p`'s block, without a branch.
+    #[inline]
+    fn coarse_state(&self, coarse: &[u8], p: Point) -> usize {
+        let (c, r) = self.cell(p);
+        usize::from(coarse[(c >> BLOCK_SHIFT) * self.blocks + (r >> BLOCK_SHIFT)])
+    }
+
+    /// `floor(f)` clamped to `0..=last` (0 for NaN), as `GridFrame::col` computes it, in a
+    /// few branch-free instructions: each `if` is one `max`/`min` instruction, and adding
+    /// `2^52` rounds to an integer held in the low bits (no saturating conversion).
+    #[inline]
+    fn index(&self, f: f64) -> usize {
+        const TWO_52: f64 = 4_503_599_627_370_496.0;
+        let f = if f > 0.0 { f } else { 0.0 };
+        let f = if f < self.last { f } else { self.last };
+        let t = f + TWO_52;
+        let rounded = t - TWO_52;
+        (t.to_bits() as u32 as usize) - usize::from(rounded > f)
+    }
 }
 
 impl LocatorIndex {
-    /// Registers every box in the cells near its curve, then classifies the box-free cells.
+    /// Registers every box in the cells near its curve, classifies the box-free cells, and
+    /// stores the two levels and the mixed-cell records.
     fn build(classifier: &Classifier, cells: usize) -> Self {
         let tol = classifier.abs_tol();
-        let frame = GridFrame::new(
-            classifier.outer(),
-            GridFrame::cells_for_tolerance(classifier.outer(), tol, cells),
-        );
+        let frame = framed_grid(classifier.outer(), tol, cells);
         let n = frame.n();
-        let all = classifier.boxes().boxes();
         let mut pairs: Vec<(usize, u32)> = Vec::new();
-        for (bi, b) in all.iter().enumerate() {
+        for (bi, b) in classifier.boxes().boxes().iter().enumerate() {
             // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance
             // to their right): flag them so the walk down a column skips them.
             let id = if b.x_dir == rs_boxes::Monotonicity::Constant {
@@ -134,69 +237,176 @@ impl LocatorIndex {
             };
             b.for_cells_near(&frame, tol, |c| pairs.push((c, id)));
         }
+        let registered = CellIndex::new(frame, pairs);
+        let state = uniform_states(&registered, classifier);
+        let blocks = n.div_ceil(BLOCK);
         let mut ix = Self {
-            cells: CellIndex::new(frame, pairs),
             n,
-            state: vec![OUTSIDE; n * n],
-            packed: Vec::new(),
+            blocks,
+            coarse: vec![OUTSIDE; blocks * blocks],
+            block_start: vec![0; blocks * blocks],
+            fine: Vec::new(),
+            records: Vec::new(),
+            near_items: Vec::new(),
+            column_items: Vec::new(),
+            mixed_cells: state.iter().filter(|&&s| s == MIXED).count(),
+            incidences: registered.len(),
+            lookup: Lookup::new(&frame, blocks),
         };
-        ix.classify_uniform_cells(classifier);
-        ix.packed = vec![0u64; (n * n).div_ceil(32)];
-        for (i, &st) in ix.state.iter().enumerate() {
-            ix.packed[i >> 5] |= u64::from(st) << ((i & 31) * 2);
-        }
+        let record_of = ix.mixed_records(&registered, &state);
+        ix.two_levels(&state, &record_of);
         ix
     }
 
-    /// Marks the cells that meet a box mixed, and classifies each run of box-free cells in a
-    /// column by its first cell (one inRS2 batch for the whole grid).
-    fn classify_uniform_cells(&mut self, classifier: &Classifier) {
+    /// One record per mixed cell, walking each column upwards; returns each cell's record
+    /// index (unused for uniform cells).
+    fn mixed_records(&mut self, registered: &CellIndex<u32>, state: &[u8]) -> Vec<u32> {
         let n = self.n;
-        let frame = *self.cells.frame();
-        let (cw, ch) = frame.cell_size();
-        let origin = frame.bounding_box().min;
-        let mut starts: Vec<usize> = Vec::new();
+        let mut record_of = vec![0u32; n * n];
+        let mut since_uniform: Vec<u32> = Vec::new();
         for c in 0..n {
-            let mut prev_mixed = true;
+            let mut inside_below = false;
+            since_uniform.clear();
             for r in 0..n {
                 let cell = c * n + r;
-                let mixed = self.cells.is_occupied(cell);
-                if mixed {
-                    self.state[cell] = MIXED;
-                } else if prev_mixed {
-                    starts.push(cell);
+                if state[cell] != MIXED {
+                    inside_below = state[cell] == INSIDE;
+                    since_uniform.clear();
+                    continue;
                 }
-                prev_mixed = mixed;
+                let boxes = registered.cell(cell);
+                since_uniform.extend(boxes.iter().filter(|&&b| b & VERTICAL_FLAG == 0));
+                since_uniform.sort_unstable();
+                since_uniform.dedup();
+                let near = push_items(&mut self.near_items, boxes);
+                let column = push_items(&mut self.column_items, &since_uniform);
+                record_of[cell] = self.records.len() as u32;
+                self.records.push(MixedCell {
+                    inside_below,
+                    near,
+                    column,
+                });
             }
         }
-        let centers: Vec<Point> = starts
-            .iter()
-            .map(|&cell| {
-                let (c, r) = (cell / n, cell % n);
-                Point::new(
-                    origin.x + (c as f64 + 0.5) * cw,
-                    origin.y + (r as f64 + 0.5) * ch,
-                )
-            })
-            .collect();
-        let located = classifier.classify(&centers, Method::InRS2);
-        for (&cell, &l) in starts.iter().zip(&located) {
-            let s = match l {
-                Location::Inside => INSIDE,
-                Location::Outside => OUTSIDE,
-                // Cannot happen for a box-free cell; deciding point by point is always right.
-                Location::Boundary => MIXED,
-            };
-            let (c, r0) = (cell / n, cell % n);
-            for r in r0..n {
-                let i = c * n + r;
-                if self.cells.is_occupied(i) {
-                    break;
-                }
-                self.state[i] = s;
+        record_of
+    }
+
+    /// The coarse states and the fine entries of the refined blocks.
+    fn two_levels(&mut self, state: &[u8], record_of: &[u32]) {
+        let (n, blocks) = (self.n, self.blocks);
+        for bc in 0..blocks {
+            for br in 0..blocks {
+                let block = bc * blocks + br;
+                let cols = (bc * BLOCK)..((bc + 1) * BLOCK).min(n);
+                let rows = (br * BLOCK)..((br + 1) * BLOCK).min(n);
+                let first = state[cols.start * n + rows.start];
+                let uniform = first != MIXED
+                    && cols
+                        .clone()
+                        .all(|c| rows.clone().all(|r| state[c * n + r] == first));
+                let coarse = if uniform {
+                    first
+                } else {
+                    self.block_start[block] = self.fine.len() as u32;
+                    let start = self.fine.len();
+                    self.fine.resize(start + BLOCK * BLOCK, u32::from(OUTSIDE));
+                    for c in cols.clone() {
+                        for r in rows.clone() {
+                            let cell = c * n + r;
+                            let entry = match state[cell] {
+                                MIXED => FIRST_RECORD + record_of[cell],
+                                s => u32::from(s),
+                            };
+                            self.fine[start + (c - cols.start) * BLOCK + (r - rows.start)] = entry;
+                        }
+                    }
+                    REFINED
+                };
+                self.coarse[block] = coarse;
             }
         }
     }
+
+    /// The fine entry of `p`'s cell, in a refined block.
+    fn fine_entry(&self, p: Point) -> u32 {
+        let (c, r) = self.lookup.cell(p);
+        let block = (c >> BLOCK_SHIFT) * self.blocks + (r >> BLOCK_SHIFT);
+        let within = (c & (BLOCK - 1)) * BLOCK + (r & (BLOCK - 1));
+        self.fine[self.block_start[block] as usize + within]
+    }
+}
+
+/// The grid over `outer` with about `cells` cells per side (fewer when the tolerance is wider
+/// than a cell), plus one cell on every side: that ring lies outside `outer`, so no box is
+/// registered there and every point off the grid can be clamped into it.
+fn framed_grid(outer: BoundingBox, abs_tol: f64, cells: usize) -> GridFrame {
+    let n =
+        GridFrame::cells_for_tolerance(outer, abs_tol, cells).clamp(1, GridFrame::MAX_CELLS - 2);
+    let (cw, ch) = (outer.width() / n as f64, outer.height() / n as f64);
+    let ring = BoundingBox {
+        min: Point::new(outer.min.x - cw, outer.min.y - ch),
+        max: Point::new(outer.max.x + cw, outer.max.y + ch),
+    };
+    GridFrame::new(ring, n + 2)
+}
+
+/// Appends `items` to `all` and returns their range.
+fn push_items(all: &mut Vec<u32>, items: &[u32]) -> (u32, u32) {
+    let start = all.len() as u32;
+    all.extend_from_slice(items);
+    (start, all.len() as u32)
+}
+
+/// Each cell's state: [`MIXED`] where a box is registered, otherwise the location of the
+/// first cell of its run in the column (one inRS2 batch for all run starts).
+fn uniform_states(registered: &CellIndex<u32>, classifier: &Classifier) -> Vec<u8> {
+    let frame = *registered.frame();
+    let n = frame.n();
+    let (cw, ch) = frame.cell_size();
+    let origin = frame.bounding_box().min;
+    let mut state = vec![OUTSIDE; n * n];
+    let mut starts: Vec<usize> = Vec::new();
+    for c in 0..n {
+        let mut prev_mixed = true;
+        for r in 0..n {
+            let cell = c * n + r;
+            let mixed = registered.is_occupied(cell);
+            if mixed {
+                state[cell] = MIXED;
+            } else if prev_mixed {
+                starts.push(cell);
+            }
+            prev_mixed = mixed;
+        }
+    }
+    let centers: Vec<Point> = starts
+        .iter()
+        .map(|&cell| {
+            let (c, r) = (cell / n, cell % n);
+            Point::new(
+                origin.x + (c as f64 + 0.5) * cw,
+                origin.y + (r as f64 + 0.5) * ch,
+            )
+        })
+        .collect();
+    let located = classifier.classify(&centers, Method::InRS2);
+    for (&cell, &l) in starts.iter().zip(&located) {
+        let s = match l {
+            Location::Inside => INSIDE,
+            Location::Outside => OUTSIDE,
+            // Cannot happen for a box-free cell; deciding point by point is always right.
+            Location::Boundary => MIXED,
+        };
+        let (c, r0) = (cell / n, cell % n);
+        for r in r0..n {
+            let i = c * n + r;
+            if registered.is_occupied(i) {
+                break;
+            }
+            state[i] = s;
+        }
+    }
+    state
 }
 
 impl<'a> PointLocator<'a> {
@@ -228,74 +438,58 @@ impl<'a> PointLocator<'a> {
 
     /// Fraction of cells that are mixed (meet a box).
     pub fn mixed_fraction(&self) -> f64 {
-        self.ix.state.iter().filter(|&&s| s == MIXED).count() as f64 / self.ix.state.len() as f64
+        self.ix.mixed_cells as f64 / (self.ix.n * self.ix.n) as f64
     }
 
-    /// Number of (box, cell) incidences stored.
+    /// Number of (box, cell) incidences registered while building.
     pub fn incidences(&self) -> usize {
-        self.ix.cells.len()
+        self.ix.incidences
+    }
+
+    /// Bytes held by the index (tables, records and box lists).
+    pub fn memory_bytes(&self) -> usize {
+        let ix = &self.ix;
+        ix.coarse.len()
+            + 4 * (ix.block_start.len() + ix.fine.len())
+            + std::mem::size_of::<MixedCell>() * ix.records.len()
+            + 4 * (ix.near_items.len() + ix.column_items.len())
     }
 
     /// The location of one point (same as [`Method::InRS2`]).
     fn locate_point(&self, p: Point) -> Location {
-        if !self.classifier.outer().contains(p) {
-            return Location::Outside;
-        }
-        let frame = self.ix.cells.frame();
-        let (c, r) = (frame.col(p.x), frame.row(p.y));
-        let cell = c * self.ix.n + r;
-        let state = ((self.ix.packed[cell >> 5] >> ((cell & 31) * 2)) & 3) as usize;
-        // Inside and outside cells come in no predictable order: look the answer up instead of
-        // branching on it; only mixed cells (rare) branch.
-        if state == MIXED as usize {
-            self.locate_mixed(p, c, r)
-        } else {
-            UNIFORM[state]
+        match STATE_LOCATION[self.ix.lookup.coarse_state(&self.ix.coarse, p)] {
+            Location::Boundary => self.locate_refined(p),
+            uniform => uniform,
         }
     }
 
-    fn cell_boxes(&self, cell: usize) -> &[u32] {
-        self.ix.cells.cell(cell)
-    }
-
-    fn locate_mixed(&self, p: Point, c: usize, r: usize) -> Location {
+    /// A point of a refined block: its cell's entry, then the mixed-cell record if any.
+    fn locate_refined(&self, p: Point) -> Location {
+        let entry = self.ix.fine_entry(p);
+        if entry < FIRST_RECORD {
+            return STATE_LOCATION[entry as usize];
+        }
+        let rec = &self.ix.records[(entry - FIRST_RECORD) as usize];
         let cls = self.classifier;
         let tol = cls.abs_tol();
         let all = cls.boxes().boxes();
         if cls.boxes().is_critical_x(p.x, tol) {
             return cls.fallback(p).0;
         }
-        let n = self.ix.n;
-        if self
-            .cell_boxes(c * n + r)
+        let near = &self.ix.near_items[rec.near.0 as usize..rec.near.1 as usize];
+        if near
             .iter()
             .any(|&b| all[(b & !VERTICAL_FLAG) as usize].is_near(p, tol))
         {
             return Location::Boundary;
         }
-        // Nearest uniform cell below in this column; below the grid everything is outside.
-        let mut odd = false;
-        let mut first = 0;
-        for k in (0..r).rev() {
-            let s = self.ix.state[c * n + k];
-            if s != MIXED {
-                odd = s == INSIDE;
-                first = k + 1;
-                break;
-            }
-        }
-        let mut seen: SmallVec<[u32; 32]> = (first..=r)
-            .flat_map(|row| self.cell_boxes(c * n + row).iter().copied())
-            .filter(|&b| b & VERTICAL_FLAG == 0)
-            .collect();
-        seen.sort_unstable();
-        seen.dedup();
         // No box is near p (checked above), so inRS2's per-box test reduces to the crossing.
-        let crossings = seen
+        let column = &self.ix.column_items[rec.column.0 as usize..rec.column.1 as usize];
+        let crossings = column
             .iter()
             .filter(|&&b| all[b as usize].crosses_below(p))
             .count();
-        if odd ^ (crossings % 2 == 1) {
+        if rec.inside_below ^ (crossings % 2 == 1) {
             Location::Inside
         } else {
             Location::Outside
@@ -316,6 +510,58 @@ impl Locate for PointLocator<'_> {
     /// The location of one point (same as [`Method::InRS2`]).
     fn locate(&self, p: Point) -> Location {
         self.locate_point(p)
+    }
+
+    /// See [`PointLocator::locate_into`].
+    fn locate_all(&self, points: &[Point]) -> Vec<Location> {
+        let mut out = vec![Location::Outside; points.len()];
+        self.locate_into(points, &mut out);
+        out
+    }
+
+    /// [`PointLocator::locate_into`] on chunks of 65536 points spread over rayon's pool (with
+    /// the `parallel` feature; otherwise on the current thread), writing in place.
+    fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
+        let mut out = vec![Location::Outside; points.len()];
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            const TASK: usize = 1 << 16;
+            out.par_chunks_mut(TASK)
+                .zip(points.par_chunks(TASK))
+                .for_each(|(o, p)| self.locate_into(p, o));
+        }
+        #[cfg(not(feature = "parallel"))]
+        self.locate_into(points, &mut out);
+        out
+    }
+}
+
+impl PointLocator<'_> {
+    /// The locations of `points` written to `out` (the same length), in chunks: every point's
+    /// block state by a branch-free lookup in the coarse table (the positions of points in
+    /// refined blocks noted without a branch too), then those points one by one while the
+    /// chunk is still in cache.
+    ///
+    /// # Panics
+    /// If `out` is not as long as `points`.
+    pub fn locate_into(&self, points: &[Point], out: &mut [Location]) {
+        const CHUNK: usize = 2048;
+        assert_eq!(points.len(), out.len(), "one location per point");
+        let (lookup, coarse) = (&self.ix.lookup, &self.ix.coarse[..]);
+        let mut refined = [0u16; CHUNK];
+        for (out, points) in out.chunks_mut(CHUNK).zip(points.chunks(CHUNK)) {
+            let mut k = 0;
+            for (i, (o, &p)) in out.iter_mut().zip(points).enumerate() {
+                let state = lookup.coarse_state(coarse, p);
+                *o = STATE_LOCATION[state];
+                refined[k] = i as u16;
+                k += usize::from(state == REFINED as usize);
+            }
+            for &i in &refined[..k] {
+                out[i as usize] = self.locate_refined(points[i as usize]);
+            }
+        }
     }
 }
 

@@ -370,3 +370,60 @@ fn orientation_does_not_matter() {
         );
     }
 }
+
+/// Points off the grid and at its edges: far away, on the edges of the bounding box grown by
+/// the tolerance, just inside and outside them, non-finite. Every fast path agrees with inRS2
+/// (non-finite points are outside).
+#[test]
+fn points_off_and_at_the_edges_of_the_grid() {
+    for case in all_cases() {
+        let c = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
+        let b = case.domain.bounding_box();
+        let t = c.abs_tol();
+        let mut pts = Vec::new();
+        for x in [
+            b.min.x - t,
+            b.min.x,
+            b.max.x,
+            b.max.x + t,
+            0.5 * (b.min.x + b.max.x),
+        ] {
+            for y in [
+                b.min.y - t,
+                b.min.y,
+                b.max.y,
+                b.max.y + t,
+                0.5 * (b.min.y + b.max.y),
+            ] {
+                for (dx, dy) in [
+                    (0.0, 0.0),
+                    (-1e-3, 0.0),
+                    (1e-3, 0.0),
+                    (0.0, -1e-3),
+                    (0.0, 1e-3),
+                ] {
+                    let s = size(&case);
+                    pts.push(Point::new(x + dx * s, y + dy * s));
+                    pts.push(Point::new(x.next_up(), y.next_down()));
+                }
+            }
+        }
+        pts.extend([
+            Point::new(1e300, 0.0),
+            Point::new(-1e300, -1e300),
+            Point::new(b.min.x - 1e9 * size(&case), b.max.y),
+        ]);
+        classify_all(&case, &pts);
+        let loc = c.locator();
+        for q in [
+            Point::new(f64::NAN, b.min.y),
+            Point::new(b.min.x, f64::NAN),
+            Point::new(f64::INFINITY, 0.0),
+            Point::new(0.0, f64::NEG_INFINITY),
+        ] {
+            assert_eq!(loc.locate(q), Location::Outside, "{}: {q:?}", case.name);
+            assert_eq!(c.locate(q), Location::Outside, "{}: {q:?}", case.name);
+            assert_eq!(loc.locate_all(&[q; 3]), vec![Location::Outside; 3]);
+        }
+    }
+}

@@ -69,6 +69,12 @@ impl GridFrame {
         self.bbox
     }
 
+    /// Cells per unit length along x and y (`n / width`, `n / height`; 0 for a side of zero
+    /// width): the factors [`GridFrame::col`] and [`GridFrame::row`] multiply by.
+    pub fn scales(&self) -> (f64, f64) {
+        (self.inv_w, self.inv_h)
+    }
+
     /// The width and height of a cell.
     pub fn cell_size(&self) -> (f64, f64) {
         let n = self.n as f64;

@@ -9,24 +9,35 @@ use inrs::{Classifier, ContainOptions, Domain, Method};
 
 use super::{BenchOptions, median_time};
 
-/// Throughput of the locator's queries alone (index built once), one thread.
+/// Throughput of the locator's queries alone (index built once), on one thread and on all,
+/// with inRS2 and a pass that only reads the points (counts `x < y`: the memory-bandwidth
+/// ceiling) measured in the same run.
 pub(super) fn single_thread(
     md: &mut String,
     domains: &[(String, Domain)],
     o: &BenchOptions,
 ) -> Result<(), String> {
     let n = o.largest_size();
+    let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
     let _ = writeln!(
         md,
-        "\nLocator queries alone (index built once), one thread, N = {n}: million points per \
-         second and ratio to inRS2 in the same run.\n"
+        "\nLocator queries alone (index built once), N = {n} Halton points: million points per \
+         second on one thread and on {threads} threads, the ratio to inRS2, and the fraction of \
+         a pass that only reads the points (counts x < y: the memory-bandwidth ceiling), all in \
+         the same run.\n"
     );
-    let _ = writeln!(md, "| domain | build | queries | Mpts/s | vs inRS2 |");
-    let _ = writeln!(md, "| --- | ---: | ---: | ---: | ---: |");
+    let _ = writeln!(
+        md,
+        "| domain | build | index | 1 thread Mpts/s | {threads} threads Mpts/s | scaling | vs inRS2 | of read-only pass |"
+    );
+    let _ = writeln!(
+        md,
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    );
     for (name, d) in domains {
         let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
         let pts = halton_points(n, d.bounding_box());
-        let t2 = median_time(o.reps, || {
+        let t2 = median_time(o.reps.min(3), || {
             std::hint::black_box(c.classify(&pts, Method::InRS2));
         });
         let tb = median_time(o.reps, || {
@@ -36,11 +47,22 @@ pub(super) fn single_thread(
         let tq = median_time(o.reps, || {
             std::hint::black_box(loc.locate_all(&pts));
         });
+        let tp = median_time(o.reps, || {
+            std::hint::black_box(loc.locate_all_parallel(&pts));
+        });
+        let ts = median_time(o.reps, || {
+            std::hint::black_box(pts.iter().filter(|p| p.x < p.y).count());
+        });
+        let mpts = |t: f64| n as f64 / t / 1e6;
         let _ = writeln!(
             md,
-            "| {name} | {tb:.1e} s | {tq:.1e} s | {:.0} | {:.1}x |",
-            n as f64 / tq / 1e6,
-            t2 / tq
+            "| {name} | {tb:.1e} s | {:.0} KiB | {:.0} | {:.0} | {:.2}x | {:.1}x | {:.2} |",
+            loc.memory_bytes() as f64 / 1024.0,
+            mpts(tq),
+            mpts(tp),
+            tq / tp,
+            t2 / tq,
+            ts / tq
         );
     }
     Ok(())
@@ -58,8 +80,7 @@ pub(super) fn at_scale(md: &mut String, flower: &Domain, o: &BenchOptions) -> Re
         std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
     });
     let loc = PointLocator::new(&c, LocatorOptions::default());
-    let cells = loc.cells() * loc.cells();
-    let bytes = 4 * loc.incidences() + 4 * (cells + 1) + cells + cells / 4;
+    let bytes = loc.memory_bytes();
     let n = if o.quick { 100_000 } else { 1_000_000 };
     let pts = halton_points(n, flower.bounding_box());
     let t_q = median_time(o.reps.min(3), || {
