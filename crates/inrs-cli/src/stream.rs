@@ -1,49 +1,374 @@
-//! Streaming a points file through a batch function.
+//! Streaming points through a computation: CSV or `.npy` in, CSV or `.npy` out, in bounded
+//! batches that are parsed, computed and formatted on all threads and written in input order.
+//! Memory depends on the batch size, not on the number of points.
 
 use std::path::Path;
+use std::time::{Duration, Instant};
 
-use inrs::{Point, PointRecord, PointsError};
+use inrs::{CsvBlock, CsvBlocks, NpyPoints, NpyType, ParsedBlock, Point, PointsError};
+use rayon::prelude::*;
 
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
 
-/// Points per batch when streaming a points file: large enough for the parallel locator,
-/// small enough that memory does not depend on the file's length.
-const BATCH: usize = 1 << 16;
+/// Bytes per CSV block (one parallel task).
+const CSV_BLOCK_BYTES: usize = 1 << 20;
+/// Points per parallel task for `.npy` input.
+const NPY_TASK_POINTS: usize = 1 << 16;
+/// Progress is shown (on a terminal) once a run has taken this long.
+const PROGRESS_AFTER: Duration = Duration::from_secs(2);
 
-/// Streams the points file through `values` in batches and writes `x,y,value` rows (the
-/// coordinates echoed as written) under `header`.
-pub(crate) fn stream_points<T: std::fmt::Display>(
-    points: &Path,
-    output: Option<&Path>,
-    header: &str,
-    mut values: impl FnMut(&[Point]) -> Vec<T>,
-) -> Result<(), CliError> {
-    let in_file = |e: PointsError| match e {
-        PointsError::Io { .. } => CliError::Message(e.to_string()),
-        other => CliError::Message(format!("{}: {other}", points.display())),
-    };
-    let mut reader = inrs::open_points(points).map_err(in_file)?;
-    let mut out = Output::create(output)?;
-    writeln!(out, "{header}")?;
-    let mut records: Vec<PointRecord> = Vec::with_capacity(BATCH);
-    let mut pts = Vec::with_capacity(BATCH);
-    loop {
-        records.clear();
-        for r in reader.by_ref().take(BATCH) {
-            records.push(r.map_err(in_file)?);
-        }
-        if records.is_empty() {
-            break;
-        }
-        pts.clear();
-        pts.extend(records.iter().map(|r| r.point));
-        for (r, v) in records.iter().zip(values(&pts)) {
-            writeln!(out, "{},{},{}", r.x_text, r.y_text, v)?;
-        }
-        if records.len() < BATCH {
-            break;
+/// An output column: its CSV header and how one value is written as CSV text and in `.npy`.
+pub(crate) struct Column<T> {
+    /// The CSV header line (`x,y,location`).
+    pub(crate) header: &'static str,
+    /// A value to fill buffers with before they are computed.
+    pub(crate) initial: T,
+    /// Appends a value as CSV text.
+    pub(crate) csv: fn(T, &mut Vec<u8>),
+    /// The `.npy` element type, and how a value's bytes are appended.
+    pub(crate) npy: (NpyType, fn(T, &mut Vec<u8>)),
+}
+
+/// A points file: CSV (any other name) or `.npy` (float64 or float32, shape `(N, 2)`).
+pub(crate) struct PointsInput {
+    source: Source,
+    path: String,
+    total_bytes: u64,
+}
+
+enum Source {
+    Csv(CsvBlocks<std::fs::File>),
+    Npy(NpyPoints<std::io::BufReader<std::fs::File>>),
+}
+
+impl PointsInput {
+    /// Opens `path`, by its extension.
+    pub(crate) fn open(path: &Path) -> Result<Self, CliError> {
+        let is_npy = has_extension(path, "npy");
+        let source = if is_npy {
+            Source::Npy(inrs::open_npy_points(path).map_err(|e| input_error(path, e))?)
+        } else {
+            Source::Csv(
+                inrs::open_points_blocks(path, CSV_BLOCK_BYTES)
+                    .map_err(|e| input_error(path, e))?,
+            )
+        };
+        Ok(Self {
+            source,
+            path: path.display().to_string(),
+            total_bytes: std::fs::metadata(path).map_or(0, |m| m.len()),
+        })
+    }
+
+    /// The number of points, exact for `.npy`, estimated from the size for CSV (at least 16
+    /// bytes a line).
+    pub(crate) fn estimated_points(&self) -> usize {
+        match &self.source {
+            Source::Npy(r) => r.len(),
+            Source::Csv(_) => (self.total_bytes / 16) as usize,
         }
     }
+
+    fn bytes_read(&self) -> u64 {
+        match &self.source {
+            Source::Npy(r) => r.bytes_read(),
+            Source::Csv(r) => r.bytes_read(),
+        }
+    }
+}
+
+fn has_extension(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// The message for a points-file error, naming the file once.
+fn input_error(path: &Path, e: PointsError) -> CliError {
+    match e {
+        PointsError::Io { .. } | PointsError::Npy { .. } => CliError::Message(e.to_string()),
+        other => CliError::Message(format!("{}: {other}", path.display())),
+    }
+}
+
+/// Streams `input` through `compute` (one value per point, in order) and writes `x,y,value`
+/// CSV rows (the coordinates echoed as written), or, when `output` ends in `.npy`, the values
+/// as a 1-D `.npy` array.
+///
+/// Three stages overlap: a thread reads blocks, the calling thread parses, computes and
+/// formats groups of them on rayon's pool, and a thread writes the results in input order.
+/// The channels between them are bounded, so memory does not grow with the input.
+pub(crate) fn stream_points<T: Copy + Send + Sync>(
+    input: PointsInput,
+    output: Option<&Path>,
+    column: &Column<T>,
+    compute: &(dyn Fn(&[Point], &mut [T]) + Sync),
+) -> Result<(), CliError> {
+    let format = if output.is_some_and(|p| has_extension(p, "npy")) {
+        Format::Npy
+    } else {
+        Format::Csv
+    };
+    let group = 2 * rayon::current_num_threads().max(1);
+    let path = Path::new(&input.path).to_path_buf();
+    let total = input.total_bytes;
+    let read = std::sync::atomic::AtomicU64::new(0);
+    std::thread::scope(|scope| {
+        let (chunks_tx, chunks) =
+            std::sync::mpsc::sync_channel::<Result<Chunk, PointsError>>(group);
+        let read = &read;
+        scope.spawn(move || read_chunks(input, &chunks_tx, read));
+        let (groups_tx, groups) = std::sync::mpsc::sync_channel::<Written>(2);
+        let writer = scope.spawn(move || write_groups(output, format, column, groups));
+        let mut progress = Progress::new(total);
+        let mut failure = None;
+        'outer: loop {
+            // A group: the next chunk (waiting for it), then as many more as are ready.
+            let mut next: Vec<Chunk> = Vec::with_capacity(group);
+            for received in chunks.iter() {
+                match received {
+                    Ok(c) => next.push(c),
+                    Err(e) => {
+                        failure = Some(e);
+                        break;
+                    }
+                }
+                if next.len() >= group {
+                    break;
+                }
+            }
+            if next.is_empty() {
+                break;
+            }
+            let parts: Vec<Result<(Vec<u8>, usize), PointsError>> = next
+                .par_iter()
+                .map(|c| match c {
+                    Chunk::Csv(b) => csv_block(b, format, column, compute),
+                    Chunk::Points(p) => Ok(npy_points(p, format, column, compute)),
+                })
+                .collect();
+            let mut done = Vec::with_capacity(parts.len());
+            for part in parts {
+                match part {
+                    Ok(p) => done.push(p),
+                    Err(e) => {
+                        failure = Some(e);
+                        break;
+                    }
+                }
+            }
+            if groups_tx.send(Written::Group(done)).is_err() {
+                break 'outer; // the writer failed: its error is reported below
+            }
+            progress.update(read.load(std::sync::atomic::Ordering::Relaxed));
+            if failure.is_some() {
+                break;
+            }
+        }
+        if failure.is_none() {
+            // Everything read was written: the output may be committed.
+            let _ = groups_tx.send(Written::End);
+        }
+        drop(groups_tx);
+        drop(chunks);
+        progress.finish();
+        let written = writer
+            .join()
+            .unwrap_or_else(|_| Err(CliError::Message("the writer thread failed".into())));
+        match failure {
+            // The input's error comes first: the writer only saw what came before it.
+            Some(e) => Err(input_error(&path, e)),
+            None => written,
+        }
+    })
+}
+
+/// What the writing stage receives: a group of formatted chunks (bytes and point count), or
+/// the end of a complete run. A channel closed without [`Written::End`] means the run failed:
+/// the output is dropped (a file output is removed).
+enum Written {
+    Group(Vec<(Vec<u8>, usize)>),
+    End,
+}
+
+/// One unit of parallel work: a block of CSV lines, or points read from `.npy`.
+enum Chunk {
+    Csv(CsvBlock),
+    Points(Vec<Point>),
+}
+
+/// The reading stage: sends the input's chunks (or its first error) until the input ends or
+/// the receiver hangs up; counts the bytes read in `read`.
+fn read_chunks(
+    mut input: PointsInput,
+    tx: &std::sync::mpsc::SyncSender<Result<Chunk, PointsError>>,
+    read: &std::sync::atomic::AtomicU64,
+) {
+    loop {
+        let next = match &mut input.source {
+            Source::Csv(blocks) => blocks.next_block().map(|b| b.map(Chunk::Csv)),
+            Source::Npy(reader) => {
+                let mut pts = Vec::new();
+                reader
+                    .read_block(NPY_TASK_POINTS, &mut pts)
+                    .map(|n| (n > 0).then_some(Chunk::Points(pts)))
+            }
+        };
+        read.store(input.bytes_read(), std::sync::atomic::Ordering::Relaxed);
+        let stop = !matches!(next, Ok(Some(_)));
+        let message = match next {
+            Ok(Some(c)) => Ok(c),
+            Ok(None) => return,
+            Err(e) => Err(e),
+        };
+        if tx.send(message).is_err() || stop {
+            return;
+        }
+    }
+}
+
+/// The writing stage: opens the output, writes the header and every group in order, and on
+/// [`Written::End`] the final `.npy` header with the count, then commits the output.
+fn write_groups<T>(
+    output: Option<&Path>,
+    format: Format,
+    column: &Column<T>,
+    groups: std::sync::mpsc::Receiver<Written>,
+) -> Result<(), CliError> {
+    let mut out = Output::create(output)?;
+    if format == Format::Npy {
+        out.write_bytes(&inrs::npy_header(column.npy.0, &[0]))?;
+    } else {
+        out.write_str(column.header)?;
+        out.write_str("\n")?;
+    }
+    let mut written = 0usize;
+    loop {
+        match groups.recv() {
+            Ok(Written::Group(group)) => {
+                for (bytes, n) in group {
+                    out.write_bytes(&bytes)?;
+                    written += n;
+                }
+            }
+            Ok(Written::End) => break,
+            // The run failed: its error is reported by the caller; the output is dropped.
+            Err(_) => return Ok(()),
+        }
+    }
+    if format == Format::Npy {
+        out.rewrite_start(&inrs::npy_header(column.npy.0, &[written]))?;
+    }
     out.finish()
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Csv,
+    Npy,
+}
+
+/// Parses, computes and formats one CSV block; returns its bytes and number of points.
+fn csv_block<T: Copy>(
+    block: &CsvBlock,
+    format: Format,
+    column: &Column<T>,
+    compute: &(dyn Fn(&[Point], &mut [T]) + Sync),
+) -> Result<(Vec<u8>, usize), PointsError> {
+    let mut parsed = ParsedBlock::default();
+    block.parse_into(&mut parsed)?;
+    let mut values = vec![column.initial; parsed.points.len()];
+    compute(&parsed.points, &mut values);
+    let mut bytes = Vec::with_capacity(block.text.len() + 16 * values.len());
+    for (f, &v) in parsed.fields.iter().zip(&values) {
+        if format == Format::Npy {
+            (column.npy.1)(v, &mut bytes);
+        } else {
+            bytes.extend_from_slice(block.field(f[0], f[1]));
+            bytes.push(b',');
+            bytes.extend_from_slice(block.field(f[2], f[3]));
+            bytes.push(b',');
+            (column.csv)(v, &mut bytes);
+            bytes.push(b'\n');
+        }
+    }
+    Ok((bytes, values.len()))
+}
+
+/// Computes and formats points read from `.npy` (coordinates written in shortest round-trip
+/// form for CSV).
+fn npy_points<T: Copy>(
+    points: &[Point],
+    format: Format,
+    column: &Column<T>,
+    compute: &(dyn Fn(&[Point], &mut [T]) + Sync),
+) -> (Vec<u8>, usize) {
+    let mut values = vec![column.initial; points.len()];
+    compute(points, &mut values);
+    let mut bytes = Vec::with_capacity(points.len() * if format == Format::Npy { 8 } else { 48 });
+    let mut digits = ryu::Buffer::new();
+    for (p, &v) in points.iter().zip(&values) {
+        if format == Format::Npy {
+            (column.npy.1)(v, &mut bytes);
+        } else {
+            bytes.extend_from_slice(digits.format_finite(p.x).as_bytes());
+            bytes.push(b',');
+            bytes.extend_from_slice(digits.format_finite(p.y).as_bytes());
+            bytes.push(b',');
+            (column.csv)(v, &mut bytes);
+            bytes.push(b'\n');
+        }
+    }
+    (bytes, values.len())
+}
+
+/// Appends `v` in shortest round-trip form (`ryu`).
+pub(crate) fn write_f64(v: f64, out: &mut Vec<u8>) {
+    let mut digits = ryu::Buffer::new();
+    out.extend_from_slice(digits.format(v).as_bytes());
+}
+
+/// A progress bar on standard error, shown only on a terminal and only once the run has
+/// lasted [`PROGRESS_AFTER`].
+struct Progress {
+    start: Instant,
+    total: u64,
+    bar: Option<indicatif::ProgressBar>,
+    enabled: bool,
+}
+
+impl Progress {
+    fn new(total: u64) -> Self {
+        use std::io::IsTerminal;
+        Self {
+            start: Instant::now(),
+            total,
+            bar: None,
+            enabled: total > 0 && std::io::stderr().is_terminal(),
+        }
+    }
+
+    fn update(&mut self, done: u64) {
+        if !self.enabled {
+            return;
+        }
+        if self.bar.is_none() && self.start.elapsed() >= PROGRESS_AFTER {
+            let bar = indicatif::ProgressBar::new(self.total);
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:40}] {bytes}/{total_bytes} ({bytes_per_sec}, {eta} left)",
+            ) {
+                bar.set_style(style.progress_chars("=> "));
+            }
+            self.bar = Some(bar);
+        }
+        if let Some(bar) = &self.bar {
+            bar.set_position(done.min(self.total));
+        }
+    }
+
+    fn finish(&mut self) {
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+        }
+    }
 }

@@ -617,3 +617,135 @@ fn svg_overlaps_follow_even_odd_by_default_and_nonzero_through_gwn() {
         .collect();
     assert_eq!(got, ["inside", "inside", "inside", "outside"]);
 }
+
+/// A `.npy` file of points, as NumPy writes one (version 1.0 header, C order).
+fn npy_points(name: &str, points: &[(f64, f64)]) -> String {
+    let mut bytes = inrs::npy_header(inrs::NpyType::F64, &[points.len(), 2]);
+    for &(x, y) in points {
+        bytes.extend_from_slice(&x.to_le_bytes());
+        bytes.extend_from_slice(&y.to_le_bytes());
+    }
+    let path = std::path::Path::new(&temp_file(name, "")).to_path_buf();
+    std::fs::write(&path, bytes).unwrap();
+    path.display().to_string()
+}
+
+/// The data of a 1-D `.npy` output, after checking its header names `descr` and `n` values.
+fn npy_data(path: &str, descr: &str, n: usize) -> Vec<u8> {
+    let bytes = std::fs::read(path).unwrap();
+    let header = String::from_utf8_lossy(&bytes[..inrs::NPY_HEADER_BYTES]).into_owned();
+    assert!(header.starts_with("\u{fffd}NUMPY"), "{header}");
+    assert!(header.contains(&format!("'descr': '{descr}'")), "{header}");
+    assert!(header.contains(&format!("'shape': ({n},)")), "{header}");
+    bytes[inrs::NPY_HEADER_BYTES..].to_vec()
+}
+
+/// `.npy` in and out: the same answers as CSV, int8 codes for classify, float64 for winding,
+/// whatever the method, with the count written into the header once known (CSV in, `.npy`
+/// out).
+#[test]
+fn npy_points_and_results_match_csv() {
+    let domain = fixture("inrs-paper/s5_lune.json");
+    let pts: Vec<(f64, f64)> = (0..70_000)
+        .map(|i| {
+            let t = i as f64 * 0.618_033_988_749_895;
+            (2.0 * t.fract() - 1.0, 2.0 * (t * 1.7).fract() - 1.0)
+        })
+        .chain([(1.0, 0.0), (0.0, 0.0), (5.0, 5.0)])
+        .collect();
+    let csv_text: String = pts.iter().map(|(x, y)| format!("{x},{y}\n")).collect();
+    let csv = temp_file("pts.csv", &csv_text);
+    let npy = npy_points("pts.npy", &pts);
+    let codes = |l: &str| match l {
+        "outside" => 0u8,
+        "inside" => 1,
+        "boundary" => 2,
+        other => panic!("{other}"),
+    };
+    for method in ["fast", "inrs2", "gwn"] {
+        let expected: Vec<u8> = classify_locations(&domain, &csv)
+            .iter()
+            .map(|l| codes(l))
+            .collect();
+        assert!(expected.contains(&2) && expected.contains(&1) && expected.contains(&0));
+        for input in [&npy, &csv] {
+            let out = temp_file(&format!("out-{method}.npy"), "");
+            inrs_ok(&[
+                "classify", "--domain", &domain, "--points", input, "--method", method, "--output",
+                &out,
+            ]);
+            assert_eq!(
+                npy_data(&out, "|i1", pts.len()),
+                expected,
+                "{method} {input}"
+            );
+        }
+        // .npy in, CSV out: the coordinates in shortest round-trip form.
+        let text = inrs_ok(&[
+            "classify", "--domain", &domain, "--points", &npy, "--method", method,
+        ]);
+        let rows: Vec<&str> = text.lines().skip(1).collect();
+        assert_eq!(rows.len(), pts.len());
+        for (row, (&(x, y), &e)) in rows.iter().zip(pts.iter().zip(&expected)) {
+            let f: Vec<&str> = row.split(',').collect();
+            assert_eq!(
+                (f[0].parse::<f64>().unwrap(), f[1].parse::<f64>().unwrap()),
+                (x, y)
+            );
+            assert_eq!(codes(f[2]), e);
+        }
+    }
+    let out = temp_file("w.npy", "");
+    inrs_ok(&[
+        "winding", "--domain", &domain, "--points", &npy, "--output", &out,
+    ]);
+    let w: Vec<f64> = npy_data(&out, "<f8", pts.len())
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    let text = inrs_ok(&["winding", "--domain", &domain, "--points", &csv]);
+    for (row, v) in text.lines().skip(1).zip(&w) {
+        assert_eq!(row.rsplit(',').next().unwrap().parse::<f64>().unwrap(), *v);
+    }
+}
+
+/// An output that is a pipe (or a device) is written in place, never replaced by a file.
+#[cfg(unix)]
+#[test]
+fn outputs_to_pipes_are_written_in_place() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = std::path::Path::new(&temp_file("placeholder", "")).with_file_name("fifo-test");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("out.csv");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success(),
+        "mkfifo"
+    );
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
+    };
+    let points = temp_file("fifo-points.csv", "0,0\n5,5\n");
+    inrs_ok(&[
+        "classify",
+        "--domain",
+        &fixture("inrs-paper/circle.json"),
+        "--points",
+        &points,
+        "--output",
+        &fifo.display().to_string(),
+    ]);
+    // Checked before waiting for the reader: were the pipe replaced, the reader would wait on
+    // it for ever.
+    assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+    assert_eq!(
+        reader.join().unwrap(),
+        "x,y,location\n0,0,inside\n5,5,outside\n"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -485,6 +485,53 @@ fn points_files_stream_and_bad_lines_fail_cleanly() {
             20,
         );
     }
+    // Bad .npy points files: each refused with the reason, whatever it announces.
+    let npy = |shape: &str, data: &[f64]| {
+        let dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
+        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+        let text = format!("{dict:<117}\n");
+        bytes.extend_from_slice(&(text.len() as u16).to_le_bytes());
+        bytes.extend_from_slice(text.as_bytes());
+        for v in data {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        bytes
+    };
+    let bad_npy: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "short.npy",
+            npy("(1000000, 2)", &[0.5; 6]),
+            "the data end before",
+        ),
+        (
+            "huge.npy",
+            npy("(100000000000000, 2)", &[0.5; 6]),
+            "the data end before",
+        ),
+        (
+            "too_huge.npy",
+            npy("(1000000000000000, 2)", &[]),
+            "more than the limit",
+        ),
+        ("flat.npy", npy("(6,)", &[0.5; 6]), "shape (N, 2)"),
+        (
+            "nan.npy",
+            npy("(2, 2)", &[0.0, 0.0, f64::NAN, 1.0]),
+            "point 1 is not finite",
+        ),
+        ("text.npy", b"x,y\n1,2\n".to_vec(), "not a .npy file"),
+    ];
+    for (name, content, needle) in &bad_npy {
+        let p = write(&d, name, content);
+        for cmd in ["classify", "winding"] {
+            check(
+                &d,
+                &[cmd, "--domain", &domain, "--points", &p, "--output", &out],
+                Expect::Error(needle),
+                20,
+            );
+        }
+    }
     // A tolerance far wider than a grid cell: the fast method's grid (built for batches of
     // 50000 points and more) coarsens instead of registering every box part in millions of
     // cells; every point is then within the boundary band of a circle of radius 1.

@@ -56,12 +56,15 @@ pub use rs_contain::{Classifier, ContainError, ContainOptions, Location, Method}
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 
 mod classify;
+mod npy;
 mod points_csv;
 mod summary;
 
 pub use classify::Classify;
+pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyPoints, NpyType, npy_header, open_npy_points};
 pub use points_csv::{
-    MAX_LINE_BYTES, PointReader, PointRecord, PointsError, open_points, parse_points, read_points,
+    CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, PointReader, PointRecord, PointsError,
+    open_points, open_points_blocks, parse_points, read_points,
 };
 pub use summary::{DomainSummary, LoopSummary};
 

@@ -32,6 +32,14 @@ pub enum PointsError {
         /// The underlying error.
         source: std::io::Error,
     },
+    /// A `.npy` points file is not an array of shape `(N, 2)` of floats, or is cut short.
+    #[error("{path}: {message}")]
+    Npy {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A line is not a point.
     #[error("line {line}: {message}")]
     Line {
@@ -118,50 +126,180 @@ impl<R: BufRead> PointReader<R> {
     }
 
     fn parse_line(&mut self) -> Result<Option<PointRecord>, PointsError> {
-        let line_no = self.line;
-        let err = |message: String| PointsError::Line {
-            line: line_no,
-            message,
+        let bytes = if self.line == 1 {
+            strip_bom(&self.buf)
+        } else {
+            &self.buf[..]
         };
-        let mut text = std::str::from_utf8(&self.buf)
-            .map_err(|e| err(format!("not UTF-8 text (byte {})", e.valid_up_to() + 1)))?;
-        if line_no == 1 {
-            text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        }
-        let line = text.trim();
-        if line.is_empty() || line.starts_with('#') {
-            return Ok(None);
-        }
-        let (fields, count) = first_two_fields(line);
-        if !self.seen_data
-            && count >= 2
-            && fields[0].eq_ignore_ascii_case("x")
-            && fields[1].eq_ignore_ascii_case("y")
-        {
-            self.seen_data = true;
-            return Ok(None);
-        }
-        self.seen_data = true;
-        if count < 2 {
-            return Err(err(format!(
-                "expected at least two numbers \"x,y\", got {:?}",
-                shorten(line)
-            )));
-        }
-        let num = |s: &str| -> Result<f64, PointsError> {
-            match s.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                Ok(_) => Err(err(format!("{:?} is not a finite number", shorten(s)))),
-                Err(_) => Err(err(format!("{:?} is not a number", shorten(s)))),
+        match parse_line(bytes, self.line)? {
+            Line::Blank => Ok(None),
+            Line::Header if !self.seen_data => {
+                self.seen_data = true;
+                Ok(None)
             }
-        };
-        let (x, y) = (num(fields[0])?, num(fields[1])?);
-        Ok(Some(PointRecord {
-            point: Point::new(x, y),
-            x_text: fields[0].to_string(),
-            y_text: fields[1].to_string(),
-        }))
+            Line::Header => Err(header_as_data(bytes, self.line)),
+            Line::Point { point, x, y } => {
+                self.seen_data = true;
+                Ok(Some(PointRecord {
+                    point,
+                    x_text: text_of(bytes, x),
+                    y_text: text_of(bytes, y),
+                }))
+            }
+        }
     }
+}
+
+/// What one line of a points file holds.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Line {
+    /// Blank, or a `#` comment.
+    Blank,
+    /// First two fields `x` and `y` (a header, if no data came before).
+    Header,
+    /// A point, with the byte ranges of its two fields in the line.
+    Point {
+        point: Point,
+        x: std::ops::Range<usize>,
+        y: std::ops::Range<usize>,
+    },
+}
+
+/// The line without a UTF-8 byte-order mark at its start.
+fn strip_bom(line: &[u8]) -> &[u8] {
+    line.strip_prefix(b"\xef\xbb\xbf").unwrap_or(line)
+}
+
+/// A field as text (it was validated as UTF-8 with its line).
+fn text_of(line: &[u8], r: std::ops::Range<usize>) -> String {
+    String::from_utf8_lossy(&line[r]).into_owned()
+}
+
+/// The error for a header line after data: its first field is not a number.
+fn header_as_data(line: &[u8], line_no: usize) -> PointsError {
+    let text = String::from_utf8_lossy(line);
+    let (fields, _) = first_two_fields(text.trim());
+    PointsError::Line {
+        line: line_no,
+        message: format!("{:?} is not a number", shorten(fields[0])),
+    }
+}
+
+/// Parses one line (without its end) of a points file: the one grammar of the format, used by
+/// [`PointReader`] and by [`CsvBlock::parse_into`]. `line_no` names the line in errors.
+pub(crate) fn parse_line(bytes: &[u8], line_no: usize) -> Result<Line, PointsError> {
+    match parse_plain_line(bytes) {
+        Some(line) => Ok(line),
+        None => parse_any_line(bytes, line_no),
+    }
+}
+
+/// Is `b` white space as `char::is_whitespace` has it, for an ASCII byte?
+fn is_space(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | b'\n' | 0x0b | 0x0c | b'\r')
+}
+
+/// The common case, on bytes, in one pass: a line whose first two fields are finite numbers
+/// (separated by a comma, or by white space when the line has no comma), or a blank or comment
+/// line in ASCII. `None` for anything else (then [`parse_any_line`] decides, with the error
+/// message): the same grammar, so the two agree wherever this one answers.
+fn parse_plain_line(bytes: &[u8]) -> Option<Line> {
+    let n = bytes.len();
+    let skip_space = |mut i: usize| {
+        while i < n && is_space(bytes[i]) {
+            i += 1;
+        }
+        i
+    };
+    let i = skip_space(0);
+    if i == n {
+        return Some(Line::Blank);
+    }
+    if bytes[i] == b'#' {
+        return bytes.is_ascii().then_some(Line::Blank);
+    }
+    let number = |at: usize| {
+        fast_float2::parse_partial::<f64, _>(&bytes[at..])
+            .ok()
+            .filter(|&(v, used)| used > 0 && v.is_finite())
+    };
+    let (x, used) = number(i)?;
+    let x_range = i..i + used;
+    let after_x = skip_space(x_range.end);
+    // Comma-separated if the first field ends at a comma; white-space separated otherwise.
+    let comma = after_x < n && bytes[after_x] == b',';
+    let j = if comma {
+        skip_space(after_x + 1)
+    } else if after_x > x_range.end {
+        after_x
+    } else {
+        return None;
+    };
+    let (y, used) = number(j)?;
+    let y_range = j..j + used;
+    let after_y = skip_space(y_range.end);
+    let tail = &bytes[after_y..];
+    let ends_field = if comma {
+        tail.is_empty() || tail[0] == b','
+    } else {
+        // The second field ends at white space, and no comma anywhere makes the line
+        // comma-separated after all.
+        (tail.is_empty() || after_y > y_range.end) && memchr::memchr(b',', tail).is_none()
+    };
+    (ends_field && tail.is_ascii()).then_some(Line::Point {
+        point: Point::new(x, y),
+        x: x_range,
+        y: y_range,
+    })
+}
+
+/// The general case, on text: any line, with an error naming what is wrong.
+fn parse_any_line(bytes: &[u8], line_no: usize) -> Result<Line, PointsError> {
+    let err = |message: String| PointsError::Line {
+        line: line_no,
+        message,
+    };
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| err(format!("not UTF-8 text (byte {})", e.valid_up_to() + 1)))?;
+    let line = text.trim();
+    if line.is_empty() || line.starts_with('#') {
+        return Ok(Line::Blank);
+    }
+    let (fields, count) = first_two_fields(line);
+    if count >= 2 && fields[0].eq_ignore_ascii_case("x") && fields[1].eq_ignore_ascii_case("y") {
+        return Ok(Line::Header);
+    }
+    if count < 2 {
+        return Err(err(format!(
+            "expected at least two numbers \"x,y\", got {:?}",
+            shorten(line)
+        )));
+    }
+    let num = |s: &str| -> Result<f64, PointsError> {
+        match parse_number(s) {
+            Some(v) if v.is_finite() => Ok(v),
+            Some(_) => Err(err(format!("{:?} is not a finite number", shorten(s)))),
+            None => Err(err(format!("{:?} is not a number", shorten(s)))),
+        }
+    };
+    let (x, y) = (num(fields[0])?, num(fields[1])?);
+    let range = |f: &str| {
+        let start = f.as_ptr() as usize - text.as_ptr() as usize;
+        start..start + f.len()
+    };
+    Ok(Line::Point {
+        point: Point::new(x, y),
+        x: range(fields[0]),
+        y: range(fields[1]),
+    })
+}
+
+/// A decimal number as Rust's `f64` parser reads it (sign, digits, optional fraction and
+/// exponent, `inf`, `nan`), correctly rounded, by the `fast-float2` algorithm.
+fn parse_number(s: &str) -> Option<f64> {
+    // fast-float2 accepts the same grammar as `str::parse::<f64>` except a leading `+` on
+    // "inf"/"nan" spellings, which both reject as non-finite anyway.
+    fast_float2::parse::<f64, _>(s).ok()
 }
 
 /// The first two fields of a line (comma-separated if it has a comma, else white-space
@@ -216,6 +354,276 @@ impl<R: BufRead> Iterator for PointReader<R> {
             }
         }
     }
+}
+
+/// A run of whole lines of a points file, cut by [`CsvBlocks`], ready to be parsed on any
+/// thread with [`CsvBlock::parse_into`].
+#[derive(Clone, Debug, Default)]
+pub struct CsvBlock {
+    /// The lines, each with its `\n` (the file's last line may lack it).
+    pub text: Vec<u8>,
+    /// The 1-based number of the first line.
+    pub first_line: usize,
+    /// Bytes before this offset hold no data: blank lines, comments and the header.
+    data_from: usize,
+    /// The number of lines.
+    lines: usize,
+}
+
+/// The points of a [`CsvBlock`], with where their fields stand in its text.
+#[derive(Clone, Debug, Default)]
+pub struct ParsedBlock {
+    /// The points, in order.
+    pub points: Vec<Point>,
+    /// Per point, the byte ranges `[x_start, x_end, y_start, y_end]` of its two fields in the
+    /// block's text (echo them to reproduce the numbers exactly as written).
+    pub fields: Vec<[u32; 4]>,
+}
+
+impl CsvBlock {
+    /// Parses the block's points into `out` (cleared first).
+    ///
+    /// # Errors
+    /// [`PointsError::Line`] for the first bad line, with its number in the file.
+    pub fn parse_into(&self, out: &mut ParsedBlock) -> Result<(), PointsError> {
+        out.points.clear();
+        out.fields.clear();
+        out.points.reserve(self.lines);
+        out.fields.reserve(self.lines);
+        let mut line_no = self.first_line + count_lines(&self.text[..self.data_from]);
+        let mut start = self.data_from;
+        let mut ends = memchr::memchr_iter(b'\n', &self.text[self.data_from..]);
+        while start < self.text.len() {
+            let end = ends.next().map_or(self.text.len(), |i| self.data_from + i);
+            let mut line = &self.text[start..end];
+            if line.len() > MAX_LINE_BYTES {
+                return Err(PointsError::Line {
+                    line: line_no,
+                    message: format!("line longer than {MAX_LINE_BYTES} bytes"),
+                });
+            }
+            if line.last() == Some(&b'\r') {
+                line = &line[..line.len() - 1];
+            }
+            match parse_line(line, line_no)? {
+                Line::Blank => {}
+                Line::Header => return Err(header_as_data(line, line_no)),
+                Line::Point { point, x, y } => {
+                    out.points.push(point);
+                    let at = |i: usize| (start + i) as u32;
+                    out.fields
+                        .push([at(x.start), at(x.end), at(y.start), at(y.end)]);
+                }
+            }
+            start = end + 1;
+            line_no += 1;
+        }
+        Ok(())
+    }
+
+    /// The bytes of a field range of [`ParsedBlock::fields`].
+    pub fn field(&self, start: u32, end: u32) -> &[u8] {
+        &self.text[start as usize..end as usize]
+    }
+}
+
+/// The position of the first `\n`.
+fn memchr_newline(bytes: &[u8]) -> Option<usize> {
+    memchr::memchr(b'\n', bytes)
+}
+
+/// The number of `\n` in `bytes`.
+fn count_lines(bytes: &[u8]) -> usize {
+    memchr::memchr_iter(b'\n', bytes).count()
+}
+
+/// A points file cut into [`CsvBlock`]s of whole lines (about `block_bytes` each), for
+/// parsing in parallel: the format of [`PointReader`], the byte-order mark and the header
+/// handled here, memory bounded by the block size whatever the file's length.
+///
+/// # Examples
+///
+/// ```
+/// let text = "x,y\n1,2\n# note\n3 4\n5,6";
+/// let mut blocks = inrs::CsvBlocks::new(text.as_bytes(), "input", 4);
+/// let mut parsed = inrs::ParsedBlock::default();
+/// let mut xs = Vec::new();
+/// while let Some(b) = blocks.next_block().unwrap() {
+///     b.parse_into(&mut parsed).unwrap();
+///     for (p, f) in parsed.points.iter().zip(&parsed.fields) {
+///         xs.push((p.x, String::from_utf8_lossy(b.field(f[0], f[1])).into_owned()));
+///     }
+/// }
+/// assert_eq!(xs, [(1.0, "1".into()), (3.0, "3".into()), (5.0, "5".into())]);
+/// ```
+#[derive(Debug)]
+pub struct CsvBlocks<R> {
+    input: R,
+    path: String,
+    block_bytes: usize,
+    /// Bytes read but not yet handed out (a partial last line).
+    pending: Vec<u8>,
+    /// Lines handed out so far.
+    lines: usize,
+    at_start: bool,
+    seen_data: bool,
+    eof: bool,
+    /// Bytes read from the input so far.
+    consumed: u64,
+}
+
+impl<R: std::io::Read> CsvBlocks<R> {
+    /// Blocks of about `block_bytes` (at least one line) from `input`, naming it `path` in I/O
+    /// errors.
+    pub fn new(input: R, path: impl Into<String>, block_bytes: usize) -> Self {
+        Self {
+            input,
+            path: path.into(),
+            block_bytes: block_bytes.max(1),
+            pending: Vec::new(),
+            lines: 0,
+            at_start: true,
+            seen_data: false,
+            eof: false,
+            consumed: 0,
+        }
+    }
+
+    /// Bytes read from the input so far (for progress reports).
+    pub fn bytes_read(&self) -> u64 {
+        self.consumed
+    }
+
+    /// The next block, `None` at the end.
+    ///
+    /// # Errors
+    /// [`PointsError::Io`]; [`PointsError::Line`] for a line longer than [`MAX_LINE_BYTES`].
+    pub fn next_block(&mut self) -> Result<Option<CsvBlock>, PointsError> {
+        self.fill()?;
+        if self.at_start {
+            self.at_start = false;
+            if self.pending.starts_with(b"\xef\xbb\xbf") {
+                self.pending.drain(..3);
+            }
+        }
+        if self.pending.is_empty() {
+            return Ok(None);
+        }
+        // Whole lines only, unless the input has ended.
+        let cut = if self.eof {
+            self.pending.len()
+        } else {
+            match memchr::memrchr(b'\n', &self.pending) {
+                Some(i) => i + 1,
+                None => {
+                    return Err(PointsError::Line {
+                        line: self.lines + 1,
+                        message: format!("line longer than {MAX_LINE_BYTES} bytes"),
+                    });
+                }
+            }
+        };
+        let rest = self.pending.split_off(cut);
+        let text = std::mem::replace(&mut self.pending, rest);
+        let first_line = self.lines + 1;
+        let lines = count_lines(&text) + usize::from(self.eof && !text.ends_with(b"\n"));
+        self.lines += lines;
+        let data_from = if self.seen_data {
+            0
+        } else {
+            self.skip_to_data(&text, first_line)
+        };
+        Ok(Some(CsvBlock {
+            text,
+            first_line,
+            data_from,
+            lines,
+        }))
+    }
+
+    /// Reads until `pending` holds a block's worth of bytes and a line end after it, or the
+    /// input ends, straight into `pending` (no intermediate copy).
+    fn fill(&mut self) -> Result<(), PointsError> {
+        // Where to look for a line end: only the bytes read since the last look.
+        let mut searched = 0;
+        while !self.eof {
+            let last_newline =
+                memchr::memrchr(b'\n', &self.pending[searched..]).map(|i| searched + i);
+            searched = self.pending.len();
+            let tail = last_newline.map_or(self.pending.len(), |i| self.pending.len() - i - 1);
+            if self.pending.len() >= self.block_bytes && last_newline.is_some() {
+                break;
+            }
+            if tail > MAX_LINE_BYTES {
+                break; // a line too long: reported by next_block
+            }
+            let want = (self.block_bytes.saturating_sub(self.pending.len())).max(1 << 16);
+            self.pending.reserve(want);
+            let before = self.pending.len();
+            let read = std::io::Read::read_to_end(
+                &mut std::io::Read::take(&mut self.input, want as u64),
+                &mut self.pending,
+            )
+            .map_err(|source| PointsError::Io {
+                path: self.path.clone(),
+                source,
+            })?;
+            debug_assert_eq!(read, self.pending.len() - before);
+            if read == 0 {
+                self.eof = true;
+            }
+            self.consumed += read as u64;
+        }
+        Ok(())
+    }
+
+    /// Where data starts in the first block(s): blank lines and comments skipped, and a first
+    /// line `x,y` taken as a header. Errors are left for [`CsvBlock::parse_into`].
+    fn skip_to_data(&mut self, text: &[u8], first_line: usize) -> usize {
+        let mut start = 0;
+        let mut line_no = first_line;
+        while start < text.len() {
+            let end = memchr_newline(&text[start..]).map_or(text.len(), |i| start + i);
+            let mut line = &text[start..end];
+            if line.last() == Some(&b'\r') {
+                line = &line[..line.len() - 1];
+            }
+            match parse_line(line, line_no) {
+                Ok(Line::Blank) => {}
+                Ok(Line::Header) => {
+                    self.seen_data = true;
+                    return (end + 1).min(text.len());
+                }
+                _ => {
+                    self.seen_data = true;
+                    return start;
+                }
+            }
+            start = end + 1;
+            line_no += 1;
+        }
+        text.len()
+    }
+}
+
+/// Opens a points file for block-wise parsing (see [`CsvBlocks`]).
+///
+/// # Errors
+/// [`PointsError::Io`] if it cannot be opened.
+pub fn open_points_blocks(
+    path: impl AsRef<Path>,
+    block_bytes: usize,
+) -> Result<CsvBlocks<std::fs::File>, PointsError> {
+    let path = path.as_ref();
+    let file = std::fs::File::open(path).map_err(|source| PointsError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    Ok(CsvBlocks::new(
+        file,
+        path.display().to_string(),
+        block_bytes,
+    ))
 }
 
 /// Parses a whole points text (see [`PointReader`] for the format).
@@ -305,6 +713,150 @@ mod tests {
         let long = "1".repeat(MAX_LINE_BYTES * 3);
         let e = parse_points(&long).unwrap_err().to_string();
         assert!(e.contains("longer than"), "{e}");
+    }
+
+    /// The block reader gives what the line reader gives, whatever the block size, and the
+    /// same first error.
+    #[test]
+    fn blocks_agree_with_the_line_reader() {
+        let texts: [&[u8]; 7] = [
+            b"\xef\xbb\xbfx,y,kind\n# c\n\n0.5, 1, b\r\n2 3e-1\n-0,+5\n1e-300\t7",
+            b"\n\n# only comments\n",
+            b"1,2\nx,y\n",
+            b"# c\nX , Y\n1,2\n3,4\n",
+            b"1,2\n3,4\nbad\n5,6\n",
+            b"1,2\n\xff\n",
+            b"",
+        ];
+        for text in texts {
+            let lines: Result<Vec<PointRecord>, _> = PointReader::new(text).collect();
+            for block_bytes in [1, 3, 7, 64, 1 << 20] {
+                let mut blocks = CsvBlocks::new(text, "t", block_bytes);
+                let mut parsed = ParsedBlock::default();
+                let mut got = Vec::new();
+                let result = loop {
+                    match blocks.next_block() {
+                        Ok(Some(b)) => {
+                            if let Err(e) = b.parse_into(&mut parsed) {
+                                break Err(e);
+                            }
+                            for (p, f) in parsed.points.iter().zip(&parsed.fields) {
+                                got.push(PointRecord {
+                                    point: *p,
+                                    x_text: String::from_utf8_lossy(b.field(f[0], f[1])).into(),
+                                    y_text: String::from_utf8_lossy(b.field(f[2], f[3])).into(),
+                                });
+                            }
+                        }
+                        Ok(None) => break Ok(got),
+                        Err(e) => break Err(e),
+                    }
+                };
+                match (&lines, &result) {
+                    (Ok(a), Ok(b)) => assert_eq!(a, b, "{text:?} in blocks of {block_bytes}"),
+                    (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{text:?}"),
+                    _ => panic!("{text:?} in blocks of {block_bytes}: {lines:?} vs {result:?}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn blocks_bound_a_file_without_line_breaks() {
+        let long = "1".repeat(MAX_LINE_BYTES * 3);
+        let mut blocks = CsvBlocks::new(long.as_bytes(), "t", 1024);
+        let e = blocks.next_block().unwrap_err().to_string();
+        assert!(e.contains("longer than"), "{e}");
+    }
+
+    /// The byte-level fast path answers as the general parser does wherever it answers.
+    #[test]
+    fn the_plain_path_agrees_with_the_general_one() {
+        let tokens = [
+            "1", "-2.5", "3e-7", "+.5", "x", "Y", "#", ",", ",", " ", "  ", "\t", "\u{b}", "\u{c}",
+            "nan", "inf", "1e999", "abc", "", "0", "1_0", "\u{a0}", "é", ".",
+        ];
+        let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut next = |k: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % k as u64) as usize
+        };
+        let mut points = 0;
+        for i in 0..40000 {
+            let n = next(7);
+            let mut line: String = (0..n).map(|_| tokens[next(tokens.len())]).collect();
+            if i % 2 == 0 {
+                // Mostly well-formed: number, separator, number, then anything.
+                let sep = [",", " ", "\t", " , ", ",\u{b}"][next(5)];
+                line = format!("{}{sep}{}{line}", next(1000) as f64 * 0.37, tokens[next(4)]);
+            }
+            if let Some(fast) = parse_plain_line(line.as_bytes()) {
+                let general = parse_any_line(line.as_bytes(), 1).unwrap();
+                points += usize::from(matches!(fast, Line::Point { .. }));
+                assert_eq!(fast, general, "{line:?}");
+            }
+        }
+        assert!(points > 5000, "{points}");
+    }
+
+    /// The fast parser reads every number as `str::parse` does.
+    #[test]
+    fn numbers_parse_as_the_standard_library_does() {
+        let mut cases: Vec<String> = [
+            "1",
+            "+1",
+            "-1",
+            "1.",
+            ".5",
+            "+.5",
+            ".",
+            "+",
+            "",
+            "1e5",
+            "1E+5",
+            "1e-5",
+            "1e",
+            "e5",
+            "inf",
+            "-inf",
+            "infinity",
+            "NaN",
+            "1_000",
+            "0x10",
+            " 1",
+            "1.2.3",
+            "1e400",
+            "1e-400",
+            "5e-324",
+            "2.2250738585072011e-308",
+            "1,5",
+            "1.e5",
+            ".e5",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        for _ in 0..2000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = f64::from_bits(x);
+            cases.push(format!("{v}"));
+            cases.push(format!("{v:e}"));
+            cases.push(format!("{:.17}", (x >> 11) as f64 / 1e3));
+        }
+        for c in &cases {
+            let std = c.parse::<f64>().ok();
+            let fast = parse_number(c);
+            assert!(
+                std.map(f64::to_bits) == fast.map(f64::to_bits)
+                    || std.is_some_and(f64::is_nan) && fast.is_some_and(f64::is_nan),
+                "{c:?}: {std:?} vs {fast:?}"
+            );
+        }
     }
 
     #[test]

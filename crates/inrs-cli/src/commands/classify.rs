@@ -4,13 +4,13 @@ use std::path::PathBuf;
 
 use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
-use inrs::contain::{Locate, WindingField};
-use inrs::{Classifier, ContainOptions, Method};
+use inrs::contain::{FAST_METHOD_MIN_POINTS, FastWindingField, Locate, WindingField};
+use inrs::{Classifier, ContainOptions, Location, Method, NpyType};
 
 use crate::args::{DomainArg, FillRuleArg, MethodArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
-use crate::stream::stream_points;
+use crate::stream::{Column, PointsInput, stream_points};
 
 /// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order.
 #[derive(Args, Debug)]
@@ -19,7 +19,7 @@ pub(crate) struct ClassifyArgs {
     #[command(flatten)]
     domain: DomainArg,
     /// The points file: CSV `x,y` per line (extra columns ignored; optional header; `#`
-    /// comments), streamed: any number of points.
+    /// comments), or `.npy` (float64 or float32, shape (N, 2)); streamed: any number of points.
     #[arg(long)]
     points: PathBuf,
     /// The algorithm; all agree on closed domains.
@@ -28,7 +28,8 @@ pub(crate) struct ClassifyArgs {
     /// Fill rule of --method gwn.
     #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
     fill_rule: FillRuleArg,
-    /// Write the CSV here instead of standard output.
+    /// Write here instead of standard output: CSV, or `.npy` (int8: 0 outside, 1 inside,
+    /// 2 boundary) when the name ends in `.npy`.
     #[arg(long)]
     output: Option<PathBuf>,
     /// Boundary tolerance relative to the bounding-box diagonal (>= 0, see below).
@@ -40,18 +41,40 @@ pub(crate) struct ClassifyArgs {
     subdivisions: usize,
 }
 
+/// The `location` column: CSV labels, `.npy` int8 codes (0 outside, 1 inside, 2 boundary,
+/// as the Python package returns them).
+const LOCATION: Column<Location> = Column {
+    header: "x,y,location",
+    initial: Location::Outside,
+    csv: |l, out| out.extend_from_slice(l.as_str().as_bytes()),
+    npy: (NpyType::I8, |l, out| out.push(location_code(l))),
+};
+
+/// The int8 code of a location in `.npy` outputs.
+fn location_code(l: Location) -> u8 {
+    match l {
+        Location::Outside => 0,
+        Location::Inside => 1,
+        Location::Boundary => 2,
+    }
+}
+
 impl ClassifyArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let d = self.domain.load()?;
         let output = self.output.as_deref();
+        let input = PointsInput::open(&self.points)?;
         let method = Method::from(self.method);
         if method == Method::Gwn {
             // Open boundaries are fine here: no closed-domain classifier is built.
             let field = WindingField::new(&d, self.tol)
                 .map_err(|e| self.domain.error(e))?
                 .with_fill_rule(self.fill_rule.into());
-            return stream_points(&self.points, output, "x,y,location", |pts| {
-                field.locate_all(pts)
+            let fast = FastWindingField::new(&field);
+            return stream_points(input, output, &LOCATION, &|pts, out| {
+                for (o, &p) in out.iter_mut().zip(pts) {
+                    *o = fast.locate(p);
+                }
             });
         }
         let options = ContainOptions::DEFAULT
@@ -59,10 +82,21 @@ impl ClassifyArgs {
             .with_subdivisions(self.subdivisions)
             .with_method(method);
         let classifier = Classifier::new(&d, options).map_err(|e| self.domain.error(e))?;
-        // The fast method builds its grid once, on the first batch large enough to pay for it,
-        // and the classifier keeps it for every later batch.
-        stream_points(&self.points, output, "x,y,location", |pts| {
-            classifier.locate_all(pts)
+        // The fast method takes the grid for inputs large enough to pay for it (built once,
+        // kept by the classifier), inRS2 for small ones: the answers are the same.
+        if method == Method::Fast && input.estimated_points() >= FAST_METHOD_MIN_POINTS {
+            let locator = classifier.locator();
+            return stream_points(input, output, &LOCATION, &|pts, out| {
+                locator.locate_into(pts, out)
+            });
+        }
+        let method = if method == Method::Fast {
+            Method::InRS2
+        } else {
+            method
+        };
+        stream_points(input, output, &LOCATION, &|pts, out| {
+            out.copy_from_slice(&classifier.classify(pts, method));
         })
     }
 }

@@ -3,11 +3,13 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, QueryStats, WindingField};
+use inrs::NpyType;
+use inrs::contain::baselines::WindingAlgorithm;
+use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, FastWindingField, QueryStats, WindingField};
 
 use crate::args::{AlgorithmArg, DomainArg};
 use crate::cli::error::CliError;
-use crate::stream::stream_points;
+use crate::stream::{Column, PointsInput, stream_points, write_f64};
 
 /// Generalized winding number of every point; writes CSV `x,y,winding`.
 ///
@@ -17,10 +19,11 @@ pub(crate) struct WindingArgs {
     #[command(flatten)]
     domain: DomainArg,
     /// The points file: CSV `x,y` per line (extra columns ignored; optional header; `#`
-    /// comments), streamed: any number of points.
+    /// comments), or `.npy` (float64 or float32, shape (N, 2)); streamed: any number of points.
     #[arg(long)]
     points: PathBuf,
-    /// Write the CSV here instead of standard output.
+    /// Write here instead of standard output: CSV, or `.npy` (float64) when the name ends in
+    /// `.npy`.
     #[arg(long)]
     output: Option<PathBuf>,
     /// Per-curve algorithm.
@@ -28,17 +31,37 @@ pub(crate) struct WindingArgs {
     algorithm: AlgorithmArg,
 }
 
+/// The `winding` column: shortest round-trip decimal in CSV, float64 in `.npy`.
+const WINDING: Column<f64> = Column {
+    header: "x,y,winding",
+    initial: 0.0,
+    csv: write_f64,
+    npy: (NpyType::F64, |v, out| {
+        out.extend_from_slice(&v.to_le_bytes())
+    }),
+};
+
 impl WindingArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let d = self.domain.load()?;
+        let input = PointsInput::open(&self.points)?;
         let field =
             WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).map_err(|e| self.domain.error(e))?;
-        let algorithm = self.algorithm.into();
-        let mut stats = QueryStats::default();
-        stream_points(&self.points, self.output.as_deref(), "x,y,winding", |pts| {
-            pts.iter()
-                .map(|&q| field.winding_number_with(q, algorithm, &mut stats))
-                .collect()
+        let algorithm: WindingAlgorithm = self.algorithm.into();
+        let output = self.output.as_deref();
+        if algorithm == WindingAlgorithm::Adaptive {
+            let fast = FastWindingField::new(&field);
+            return stream_points(input, output, &WINDING, &|pts, out| {
+                for (o, &q) in out.iter_mut().zip(pts) {
+                    *o = fast.winding_number(q);
+                }
+            });
+        }
+        stream_points(input, output, &WINDING, &|pts, out| {
+            let mut stats = QueryStats::default();
+            for (o, &q) in out.iter_mut().zip(pts) {
+                *o = field.winding_number_with(q, algorithm, &mut stats);
+            }
         })
     }
 }

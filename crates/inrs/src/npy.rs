@@ -1,0 +1,371 @@
+//! `NumPy` `.npy` files: points in as a float64 array of shape `(N, 2)`, results out as a 1-D
+//! array, both streamed.
+//!
+//! The format (`NumPy`'s `numpy.lib.format`, versions 1.0 to 3.0): the magic `\x93NUMPY`, two
+//! version bytes, the header length (2 bytes little-endian in version 1, 4 in versions 2 and
+//! 3), then a Python dict literal `{'descr': '<f8', 'fortran_order': False, 'shape': (N, 2), }`
+//! padded with spaces to a multiple of 64 bytes and ended by a newline, then the data.
+
+use std::io::{BufReader, Read};
+use std::path::Path;
+
+use rs_spline::Point;
+
+use crate::PointsError;
+
+/// The most points a `.npy` header may announce: larger shapes are refused before anything
+/// is read (the data are streamed, so this only guards the arithmetic).
+pub const MAX_NPY_POINTS: u64 = 1 << 48;
+
+/// The length of the headers [`npy_header`] writes: 128 bytes, room for any shape up to
+/// [`MAX_NPY_POINTS`], so a header written before the count is known can be rewritten in place.
+pub const NPY_HEADER_BYTES: usize = 128;
+
+/// The element types read and written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NpyType {
+    /// `<f8`: little-endian float64.
+    F64,
+    /// `<f4`: little-endian float32 (read only; converted exactly to float64).
+    F32,
+    /// `|i1`: int8.
+    I8,
+}
+
+impl NpyType {
+    /// The `descr` string.
+    pub fn descr(self) -> &'static str {
+        match self {
+            NpyType::F64 => "<f8",
+            NpyType::F32 => "<f4",
+            NpyType::I8 => "|i1",
+        }
+    }
+
+    /// Bytes per element.
+    pub fn size(self) -> usize {
+        match self {
+            NpyType::F64 => 8,
+            NpyType::F32 => 4,
+            NpyType::I8 => 1,
+        }
+    }
+}
+
+/// A `.npy` header of exactly [`NPY_HEADER_BYTES`] bytes (version 1.0) for a C-order array of
+/// `ty` with `shape`.
+///
+/// # Examples
+///
+/// ```
+/// let h = inrs::npy_header(inrs::NpyType::I8, &[3]);
+/// assert_eq!(h.len(), inrs::NPY_HEADER_BYTES);
+/// assert!(h.starts_with(b"\x93NUMPY\x01\x00"));
+/// assert!(String::from_utf8_lossy(&h).contains("'shape': (3,)"));
+/// ```
+pub fn npy_header(ty: NpyType, shape: &[usize]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    let shape = if dims.len() == 1 {
+        format!("({},)", dims[0])
+    } else {
+        format!("({})", dims.join(", "))
+    };
+    let dict = format!(
+        "{{'descr': '{}', 'fortran_order': False, 'shape': {shape}, }}",
+        ty.descr()
+    );
+    let mut h = b"\x93NUMPY\x01\x00".to_vec();
+    let text_len = NPY_HEADER_BYTES - 10;
+    h.extend_from_slice(&(text_len as u16).to_le_bytes());
+    h.extend_from_slice(dict.as_bytes());
+    h.resize(NPY_HEADER_BYTES - 1, b' ');
+    h.push(b'\n');
+    h
+}
+
+/// A stream of points from a `.npy` file holding a C-order float64 (or float32) array of shape
+/// `(N, 2)`.
+///
+/// # Examples
+///
+/// ```
+/// let mut bytes = inrs::npy_header(inrs::NpyType::F64, &[2, 2]);
+/// for v in [0.5f64, 1.0, -2.0, 3.25] {
+///     bytes.extend_from_slice(&v.to_le_bytes());
+/// }
+/// let mut r = inrs::NpyPoints::new(&bytes[..], "mem").unwrap();
+/// assert_eq!(r.len(), 2);
+/// let mut pts = Vec::new();
+/// r.read_block(10, &mut pts).unwrap();
+/// assert_eq!(pts, [inrs::Point::new(0.5, 1.0), inrs::Point::new(-2.0, 3.25)]);
+/// ```
+#[derive(Debug)]
+pub struct NpyPoints<R> {
+    input: R,
+    path: String,
+    ty: NpyType,
+    len: usize,
+    remaining: usize,
+    consumed: u64,
+    buf: Vec<u8>,
+}
+
+impl<R: Read> NpyPoints<R> {
+    /// Reads the header of `input` (named `path` in errors).
+    ///
+    /// # Errors
+    /// [`PointsError::Npy`] for a file that is not a `.npy` array of shape `(N, 2)` of
+    /// float64 or float32 in C order; [`PointsError::Io`].
+    pub fn new(mut input: R, path: impl Into<String>) -> Result<Self, PointsError> {
+        let path = path.into();
+        let fail = |message: String| PointsError::Npy {
+            path: path.clone(),
+            message,
+        };
+        let io = |source: std::io::Error| PointsError::Io {
+            path: path.clone(),
+            source,
+        };
+        let mut magic = [0u8; 8];
+        input
+            .read_exact(&mut magic)
+            .map_err(|_| fail("not a .npy file (too short)".into()))?;
+        if &magic[..6] != b"\x93NUMPY" {
+            return Err(fail("not a .npy file (no \\x93NUMPY magic)".into()));
+        }
+        let header_len = match magic[6] {
+            1 => {
+                let mut b = [0u8; 2];
+                input.read_exact(&mut b).map_err(io)?;
+                usize::from(u16::from_le_bytes(b))
+            }
+            2 | 3 => {
+                let mut b = [0u8; 4];
+                input.read_exact(&mut b).map_err(io)?;
+                u32::from_le_bytes(b) as usize
+            }
+            v => return Err(fail(format!("unsupported .npy version {v}"))),
+        };
+        if header_len > 1 << 20 {
+            return Err(fail(format!("header of {header_len} bytes")));
+        }
+        let mut text = vec![0u8; header_len];
+        input
+            .read_exact(&mut text)
+            .map_err(|_| fail("header cut short".into()))?;
+        let text = String::from_utf8_lossy(&text);
+        let (ty, len) = parse_points_header(&text).map_err(fail)?;
+        Ok(Self {
+            input,
+            path,
+            ty,
+            len,
+            remaining: len,
+            consumed: (8 + if magic[6] == 1 { 2 } else { 4 } + header_len) as u64,
+            buf: Vec::new(),
+        })
+    }
+
+    /// The number of points the header announces.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True if the array has no points.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Bytes read so far (for progress reports).
+    pub fn bytes_read(&self) -> u64 {
+        self.consumed
+    }
+
+    /// Appends up to `max` more points to `out`; returns how many (0 at the end).
+    ///
+    /// # Errors
+    /// [`PointsError::Npy`] if the file ends early or holds a non-finite coordinate (naming
+    /// the point's index); [`PointsError::Io`].
+    pub fn read_block(&mut self, max: usize, out: &mut Vec<Point>) -> Result<usize, PointsError> {
+        let n = max.min(self.remaining);
+        if n == 0 {
+            return Ok(0);
+        }
+        let size = self.ty.size();
+        self.buf.resize(2 * n * size, 0);
+        self.input
+            .read_exact(&mut self.buf)
+            .map_err(|e| PointsError::Npy {
+                path: self.path.clone(),
+                message: format!(
+                    "the data end before the {} points the header announces ({e})",
+                    self.len
+                ),
+            })?;
+        self.consumed += self.buf.len() as u64;
+        let first = self.len - self.remaining;
+        let start = out.len();
+        match self.ty {
+            NpyType::F32 => out.extend(self.buf.chunks_exact(8).map(|c| {
+                let v = |b: &[u8]| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+                Point::new(v(&c[..4]), v(&c[4..]))
+            })),
+            _ => out.extend(self.buf.chunks_exact(16).map(|c| {
+                let v =
+                    |b: &[u8]| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]);
+                Point::new(v(&c[..8]), v(&c[8..]))
+            })),
+        }
+        if let Some(i) = out[start..]
+            .iter()
+            .position(|p| !(p.x.is_finite() && p.y.is_finite()))
+        {
+            return Err(PointsError::Npy {
+                path: self.path.clone(),
+                message: format!("point {} is not finite: {:?}", first + i, out[start + i]),
+            });
+        }
+        self.remaining -= n;
+        Ok(n)
+    }
+}
+
+/// Opens a `.npy` points file (see [`NpyPoints`]).
+///
+/// # Errors
+/// As [`NpyPoints::new`], and [`PointsError::Io`] if it cannot be opened.
+pub fn open_npy_points(
+    path: impl AsRef<Path>,
+) -> Result<NpyPoints<BufReader<std::fs::File>>, PointsError> {
+    let path = path.as_ref();
+    let file = std::fs::File::open(path).map_err(|source| PointsError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    NpyPoints::new(
+        BufReader::with_capacity(1 << 20, file),
+        path.display().to_string(),
+    )
+}
+
+/// The element type and the number of points of a header dict for an `(N, 2)` array.
+fn parse_points_header(text: &str) -> Result<(NpyType, usize), String> {
+    let value = |key: &str| -> Result<&str, String> {
+        let k = format!("'{key}':");
+        let at = text
+            .find(&k)
+            .ok_or_else(|| format!("header without '{key}'"))?;
+        Ok(text[at + k.len()..].trim_start())
+    };
+    let descr = value("descr")?;
+    let descr = descr
+        .strip_prefix('\'')
+        .and_then(|d| d.split('\'').next())
+        .ok_or("header 'descr' is not a string")?;
+    let ty = match descr {
+        "<f8" | "=f8" | "f8" => NpyType::F64,
+        "<f4" | "=f4" | "f4" => NpyType::F32,
+        other => {
+            return Err(format!(
+                "element type {other:?}: points must be float64 ('<f8') or float32 ('<f4'), little-endian"
+            ));
+        }
+    };
+    if value("fortran_order")?.starts_with("True") {
+        return Err(
+            "Fortran-order array: write points in C order (numpy.ascontiguousarray)".into(),
+        );
+    }
+    let shape = value("shape")?;
+    let inner = shape
+        .strip_prefix('(')
+        .and_then(|s| s.split(')').next())
+        .ok_or("header 'shape' is not a tuple")?;
+    let dims: Vec<u64> = inner
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.parse::<u64>()
+                .map_err(|_| format!("shape ({inner}) is not a tuple of sizes"))
+        })
+        .collect::<Result<_, _>>()?;
+    match dims[..] {
+        [n, 2] if n <= MAX_NPY_POINTS => Ok((ty, n as usize)),
+        [n, 2] => Err(format!("{n} points: more than the limit {MAX_NPY_POINTS}")),
+        _ => Err(format!(
+            "shape ({inner}): points must be an array of shape (N, 2)"
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn file(ty: NpyType, shape: &[usize], values: &[f64]) -> Vec<u8> {
+        let mut bytes = npy_header(ty, shape);
+        for &v in values {
+            match ty {
+                NpyType::F32 => bytes.extend_from_slice(&(v as f32).to_le_bytes()),
+                _ => bytes.extend_from_slice(&v.to_le_bytes()),
+            }
+        }
+        bytes
+    }
+
+    #[test]
+    fn points_stream_in_blocks() {
+        let values: Vec<f64> = (0..14).map(|i| i as f64 * 0.25).collect();
+        for ty in [NpyType::F64, NpyType::F32] {
+            let bytes = file(ty, &[7, 2], &values);
+            let mut r = NpyPoints::new(&bytes[..], "t").unwrap();
+            let mut pts = Vec::new();
+            while r.read_block(3, &mut pts).unwrap() > 0 {}
+            assert_eq!(pts.len(), 7);
+            assert_eq!(pts[6], Point::new(3.0, 3.25));
+            assert_eq!(r.bytes_read(), bytes.len() as u64);
+        }
+    }
+
+    #[test]
+    fn bad_files_are_errors() {
+        let cases: Vec<(Vec<u8>, &str)> = vec![
+            (b"garbage".to_vec(), "not a .npy file"),
+            (file(NpyType::F64, &[3], &[1.0, 2.0, 3.0]), "shape (N, 2)"),
+            (file(NpyType::F64, &[2, 3], &[0.0; 6]), "shape (N, 2)"),
+            (file(NpyType::I8, &[1, 2], &[]), "element type"),
+            (file(NpyType::F64, &[4, 2], &[1.0; 6]), "the data end"),
+            (
+                file(NpyType::F64, &[1, 2], &[1.0, f64::NAN]),
+                "point 0 is not finite",
+            ),
+            (
+                {
+                    let mut b = file(NpyType::F64, &[1, 2], &[1.0, 2.0]);
+                    let at = b.windows(5).position(|w| w == b"False").unwrap();
+                    b[at..at + 5].copy_from_slice(b"True ");
+                    b
+                },
+                "Fortran-order",
+            ),
+        ];
+        for (bytes, expected) in cases {
+            let e = NpyPoints::new(&bytes[..], "t").and_then(|mut r| {
+                let mut pts = Vec::new();
+                r.read_block(100, &mut pts).map(|_| ())
+            });
+            let e = e.unwrap_err().to_string();
+            assert!(e.contains(expected), "{e} (expected {expected:?})");
+        }
+    }
+
+    #[test]
+    fn headers_have_a_fixed_length() {
+        for shape in [[0usize].as_slice(), &[12345678901], &[5, 2]] {
+            let h = npy_header(NpyType::F64, shape);
+            assert_eq!(h.len(), NPY_HEADER_BYTES);
+            assert_eq!(h.len() % 64, 0);
+        }
+    }
+}
