@@ -618,7 +618,7 @@ fn svg_overlaps_follow_even_odd_by_default_and_nonzero_through_gwn() {
     assert_eq!(got, ["inside", "inside", "inside", "outside"]);
 }
 
-/// A `.npy` file of points, as NumPy writes one (version 1.0 header, C order).
+/// A `.npy` file of points, as `NumPy` writes one (version 1.0 header, C order).
 fn npy_points(name: &str, points: &[(f64, f64)]) -> String {
     let mut bytes = inrs::npy_header(inrs::NpyType::F64, &[points.len(), 2]);
     for &(x, y) in points {
