@@ -33,7 +33,7 @@ Commands:
       --reps R            repetitions per timing (default 11)
       --sweep             also the box-refinement and grid-resolution sweeps
       --full              time inRS1 and the reference GWN at every size (default: up to 10^5)
-      --only A,B          only these sections: paper, locator, gwn, shapes
+      --only A,B          only these sections: paper, locator, gwn, shapes, cli
   help                    Show this help.
 ";
 

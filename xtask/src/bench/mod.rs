@@ -1,6 +1,7 @@
 //! `cargo xtask bench`: the papers' comparisons, measured in one process (medians of repeated
 //! runs), printed and written as Markdown and CSV under `target/bench-report/`.
 
+mod cli;
 mod gwn;
 mod locator;
 mod paper;
@@ -26,7 +27,7 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 4] = ["paper", "locator", "gwn", "shapes"];
+const SECTIONS: [&str; 5] = ["paper", "locator", "gwn", "shapes", "cli"];
 
 fn names(list: &[&str]) -> Vec<String> {
     list.iter().map(|s| s.to_string()).collect()
@@ -151,6 +152,9 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("shapes") {
         peers::shapes(&mut md, root, o)?;
+    }
+    if o.runs("cli") {
+        cli::end_to_end(&mut md, root, o)?;
     }
     write_report(root, o, &md, &csv)
 }

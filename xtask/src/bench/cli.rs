@@ -1,0 +1,137 @@
+//! The command-line tool end to end: `inrs classify` file to file on CSV and `.npy` points,
+//! wall time and peak memory (the release binary, run as a user runs it).
+
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use inrs::contain::baselines::halton_points;
+
+use super::BenchOptions;
+
+/// Builds the release binary and returns its path.
+fn release_binary(root: &Path) -> Result<PathBuf, String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let status = Command::new(cargo)
+        .args(["build", "--release", "--quiet", "-p", "inrs-cli"])
+        .current_dir(root)
+        .status()
+        .map_err(|e| format!("cargo build: {e}"))?;
+    if !status.success() {
+        return Err("cargo build --release -p inrs-cli failed".into());
+    }
+    Ok(root.join("target/release/inrs"))
+}
+
+/// Writes `n` Halton points of the box `[-1, 1]^2` as CSV and as `.npy`.
+fn write_points(dir: &Path, n: usize) -> Result<(PathBuf, PathBuf), String> {
+    let b = inrs::BoundingBox {
+        min: inrs::Point::new(-1.0, -1.0),
+        max: inrs::Point::new(1.0, 1.0),
+    };
+    let csv = dir.join(format!("points-{n}.csv"));
+    let npy = dir.join(format!("points-{n}.npy"));
+    if csv.exists() && npy.exists() {
+        return Ok((csv, npy));
+    }
+    let io = |e: std::io::Error| e.to_string();
+    let mut c = std::io::BufWriter::new(std::fs::File::create(&csv).map_err(io)?);
+    let mut p = std::io::BufWriter::new(std::fs::File::create(&npy).map_err(io)?);
+    p.write_all(&inrs::npy_header(inrs::NpyType::F64, &[n, 2]))
+        .map_err(io)?;
+    writeln!(c, "x,y").map_err(io)?;
+    const CHUNK: usize = 1 << 20;
+    for start in (0..n).step_by(CHUNK) {
+        let pts = halton_points((start + CHUNK).min(n), b);
+        for q in &pts[start..] {
+            writeln!(c, "{},{}", q.x, q.y).map_err(io)?;
+            p.write_all(&q.x.to_le_bytes()).map_err(io)?;
+            p.write_all(&q.y.to_le_bytes()).map_err(io)?;
+        }
+    }
+    c.flush().map_err(io)?;
+    p.flush().map_err(io)?;
+    Ok((csv, npy))
+}
+
+/// One run: wall seconds and peak resident memory in MiB (from `/usr/bin/time`, if there).
+fn run(bin: &Path, domain: &Path, points: &Path, out: &Path) -> Result<(f64, Option<f64>), String> {
+    let _ = std::fs::remove_file(out);
+    let time = Path::new("/usr/bin/time");
+    let mut cmd = if time.exists() {
+        let mut c = Command::new(time);
+        c.args(["-f", "%M"]).arg(bin);
+        c
+    } else {
+        Command::new(bin)
+    };
+    cmd.arg("classify")
+        .arg("--domain")
+        .arg(domain)
+        .arg("--points")
+        .arg(points)
+        .arg("--output")
+        .arg(out);
+    let start = Instant::now();
+    let result = cmd.output().map_err(|e| format!("{}: {e}", bin.display()))?;
+    let seconds = start.elapsed().as_secs_f64();
+    if !result.status.success() {
+        return Err(format!(
+            "inrs classify failed: {}",
+            String::from_utf8_lossy(&result.stderr)
+        ));
+    }
+    let peak = String::from_utf8_lossy(&result.stderr)
+        .lines()
+        .last()
+        .and_then(|l| l.trim().parse::<f64>().ok())
+        .map(|kb| kb / 1024.0);
+    let _ = std::fs::remove_file(out);
+    Ok((seconds, peak))
+}
+
+/// The CLI table.
+pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), String> {
+    let bin = release_binary(root)?;
+    let dir = root.join("target/bench-cli");
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    let domain = root.join("fixtures/inrs-paper/s5_lune.json");
+    let sizes: &[usize] = if o.quick {
+        &[100_000, 1_000_000]
+    } else {
+        &[1_000_000, 10_000_000]
+    };
+    let reps = o.reps.min(3);
+    let _ = writeln!(
+        md,
+        "\n### The command-line tool end to end\n\n`inrs classify --domain s5_lune.json` (default \
+         method), file to file, Halton points of `[-1, 1]^2`: wall time including start-up \
+         (loading the domain, building the index), million points per second, and peak \
+         resident memory (`/usr/bin/time`); median of {reps} runs.\n"
+    );
+    let _ = writeln!(md, "| points in | results out | N | seconds | Mpts/s | peak MiB |");
+    let _ = writeln!(md, "| --- | --- | ---: | ---: | ---: | ---: |");
+    for &n in sizes {
+        let (csv, npy) = write_points(&dir, n)?;
+        for (input, kind) in [(&csv, "CSV"), (&npy, ".npy")] {
+            for (ext, out_kind) in [("csv", "CSV"), ("npy", ".npy")] {
+                let out = dir.join(format!("out.{ext}"));
+                let mut runs = Vec::new();
+                for _ in 0..reps {
+                    runs.push(run(&bin, &domain, input, &out)?);
+                }
+                runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let (t, peak) = runs[runs.len() / 2];
+                let _ = writeln!(
+                    md,
+                    "| {kind} | {out_kind} | {n} | {t:.2} | {:.1} | {} |",
+                    n as f64 / t / 1e6,
+                    peak.map_or("-".into(), |m| format!("{m:.0}"))
+                );
+            }
+        }
+    }
+    Ok(())
+}
