@@ -12,6 +12,7 @@ use rs_testkit::FixtureMeta;
 
 mod bench;
 mod figures;
+mod splines;
 
 const HELP: &str = "\
 cargo xtask <command>
@@ -34,6 +35,9 @@ Commands:
       --sweep             also the box-refinement and grid-resolution sweeps
       --full              time inRS1 and the reference GWN at every size (default: up to 10^5)
       --only A,B          only these sections: paper, locator, gwn, shapes, cli
+  splines [--quick]       The curved-triangulation paper's convergence experiments: the
+                          quasi-interpolant of sin(10x) + sin(10y) in S_d^0 (d = 5, 6) on
+                          three domains, ny = 5..65; writes target/bench-report/splines.{md,csv}.
   help                    Show this help.
 ";
 
@@ -141,7 +145,7 @@ fn check_fixture(
 }
 
 /// The disc with an off-centre elliptic hole of the curved-triangulation figure.
-fn disc_with_hole() -> Result<Domain, String> {
+pub(crate) fn disc_with_hole() -> Result<Domain, String> {
     Domain::new(vec![
         inrs::spline::circle(Point::new(0.0, 0.0), 1.0).map_err(|e| e.to_string())?,
         inrs::spline::ellipse(Point::new(0.2, 0.1), 0.45, 0.25, 0.4)
@@ -242,6 +246,7 @@ fn main() -> ExitCode {
             };
             demo(&dir)
         }
+        Some("splines") => splines::run(&workspace_root(), args.iter().any(|a| a == "--quick")),
         Some("bench") => {
             bench::BenchOptions::parse(&args[1..]).and_then(|o| bench::run(&workspace_root(), &o))
         }

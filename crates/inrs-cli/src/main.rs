@@ -4,6 +4,7 @@
 mod args;
 mod cli;
 mod commands;
+mod function;
 mod stream;
 
 use std::io::Write;
@@ -12,7 +13,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use cli::error::CliError;
-use commands::{classify, convert, convex_domain, info, mesh, sample, winding};
+use commands::{classify, convert, convex_domain, eval, fit, info, mesh, sample, winding};
 
 /// Exact point containment for planar domains bounded by NURBS curves.
 #[derive(Parser)]
@@ -34,6 +35,8 @@ enum Command {
     Convert(convert::ConvertArgs),
     Sample(sample::SampleArgs),
     Mesh(mesh::MeshArgs),
+    Fit(fit::FitArgs),
+    Eval(eval::EvalArgs),
     ConvexDomain(convex_domain::ConvexDomainArgs),
     Info(info::InfoArgs),
 }
@@ -46,6 +49,8 @@ impl Command {
             Command::Convert(a) => a.run(),
             Command::Sample(a) => a.run(),
             Command::Mesh(a) => a.run(),
+            Command::Fit(a) => a.run(),
+            Command::Eval(a) => a.run(),
             Command::ConvexDomain(a) => a.run(),
             Command::Info(a) => a.run(),
         }

@@ -322,10 +322,17 @@ fn npy_points<T: Copy>(
     (bytes, values.len())
 }
 
-/// Appends `v` in shortest round-trip form (`ryu`).
+/// Appends `v` in shortest round-trip form (`ryu`); `nan`, `inf` and `-inf` for the
+/// non-finite values.
 pub(crate) fn write_f64(v: f64, out: &mut Vec<u8>) {
-    let mut digits = ryu::Buffer::new();
-    out.extend_from_slice(digits.format(v).as_bytes());
+    if v.is_nan() {
+        out.extend_from_slice(b"nan");
+    } else if v.is_infinite() {
+        out.extend_from_slice(if v > 0.0 { b"inf" } else { b"-inf" });
+    } else {
+        let mut digits = ryu::Buffer::new();
+        out.extend_from_slice(digits.format_finite(v).as_bytes());
+    }
 }
 
 /// A progress bar on standard error, shown only on a terminal and only once the run has

@@ -13,8 +13,11 @@
 //! - [`spline`] (`rs-spline`): NURBS algebra, the curve traits, primitives, domains.
 //! - [`boxes`] (`rs-boxes`): monotone boxes and critical points.
 //! - [`contain`] (`rs-contain`): the inRS classifier (inRS1, inRS2, fallbacks, boundary).
-//! - [`mesh`] (`rs-mesh`): well-spaced points, curved triangulations and point location in
-//!   them.
+//! - [`mesh`] (`rs-mesh`): well-spaced points, curved triangulations (and their
+//!   Clough–Tocher and Powell–Sabin refinements) and point location in them.
+//! - [`trispline`] (`rs-trispline`): polynomial splines on curved triangulations:
+//!   Bernstein–Bézier polynomials, `S_d^0`, evaluation anywhere in the domain,
+//!   quasi-interpolation, the spline file.
 //! - [`convex`] (`rs-convex`): convex domains of a free control point keeping the sign of
 //!   curvature or torsion.
 //! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
@@ -51,6 +54,7 @@ pub use rs_io as io;
 pub use rs_mesh as mesh;
 pub use rs_roots as roots;
 pub use rs_spline as spline;
+pub use rs_trispline as trispline;
 
 pub use rs_contain::{Classifier, ContainError, ContainOptions, Location, Method};
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};

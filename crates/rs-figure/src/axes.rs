@@ -33,7 +33,7 @@ pub fn nice_ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
 }
 
 /// A tick label: the shortest decimal that shows the value at the tick step's precision.
-fn label(v: f64, step: f64) -> String {
+pub(crate) fn label(v: f64, step: f64) -> String {
     let decimals = (-step.log10().floor()).max(0.0) as usize;
     if (1e-4..1e6).contains(&v.abs()) || v == 0.0 {
         format!("{v:.decimals$}")

@@ -20,6 +20,7 @@
 //! ```
 
 mod axes;
+mod raster;
 mod style;
 
 use std::fmt::Write;
@@ -27,6 +28,7 @@ use std::fmt::Write;
 use rs_spline::{BoundingBox, Flatten, Point};
 
 pub use axes::nice_ticks;
+pub use raster::{FieldImage, viridis};
 pub use style::{Marker, Style};
 
 /// Pixels between the plot area and the figure's edge on the left and bottom (room for tick
@@ -51,6 +53,8 @@ pub struct Figure {
     legend: Vec<Style>,
     caption: String,
     axes: bool,
+    /// The range and label of the colour map of a [`Figure::field`], shown as a colour bar.
+    colour_bar: Option<(f64, f64, String)>,
 }
 
 impl Figure {
@@ -82,6 +86,7 @@ impl Figure {
             legend: Vec::new(),
             caption: String::new(),
             axes: true,
+            colour_bar: None,
         }
     }
 
@@ -259,7 +264,10 @@ impl Figure {
             .filter_map(|s| s.label())
             .map(|l| l.chars().count() as f64 * FONT * CHAR_WIDTH + 34.0)
             .fold(0.0, f64::max);
-        let legend_room = if self.legend.is_empty() {
+        // The colour bar goes in the legend's column, under the legend if there is one.
+        let bar_width = if self.colour_bar.is_some() { 86.0 } else { 0.0 };
+        let legend_width = legend_width.max(bar_width);
+        let legend_room = if self.legend.is_empty() && self.colour_bar.is_none() {
             0.0
         } else {
             legend_width + 2.0 * EDGE
@@ -268,8 +276,19 @@ impl Figure {
         let plot_bottom = EDGE + self.plot_height;
         let captions = self.caption_lines(width);
         let axis_band = if self.axes { 30.0 } else { 0.0 };
-        let legend_height = self.legend.len() as f64 * 18.0 + 12.0;
-        let body_bottom = (plot_bottom + axis_band).max(EDGE + legend_height);
+        let legend_height = if self.legend.is_empty() {
+            0.0
+        } else {
+            self.legend.len() as f64 * 18.0 + 12.0
+        };
+        let bar_top = EDGE + legend_height + if self.legend.is_empty() { 0.0 } else { 14.0 };
+        let bar_height = (0.6 * self.plot_height).clamp(80.0, 240.0);
+        let bar_bottom = if self.colour_bar.is_some() {
+            bar_top + bar_height + 24.0
+        } else {
+            EDGE + legend_height
+        };
+        let body_bottom = (plot_bottom + axis_band).max(bar_bottom);
         let height = body_bottom + captions.len() as f64 * (FONT + 4.0) + EDGE;
         let mut out = String::new();
         let _ = writeln!(
@@ -302,6 +321,11 @@ impl Figure {
             }
             out.push_str("</g>\n");
         }
+        out.push_str(&self.colour_bar_svg(
+            AXIS_ROOM + self.plot_width + EDGE + 8.0,
+            bar_top,
+            bar_height,
+        ));
         if !captions.is_empty() {
             let _ = writeln!(out, r##"<g class="caption">"##);
             for (i, line) in captions.iter().enumerate() {

@@ -55,4 +55,8 @@ pub enum MeshError {
     /// The domain is invalid.
     #[error(transparent)]
     Domain(#[from] DomainError),
+    /// A triangulation read from a file is not one (an index out of range, an inverted
+    /// triangle, an arc off its curve or not on its triangle's edge).
+    #[error("invalid triangulation: {0}")]
+    Invalid(String),
 }

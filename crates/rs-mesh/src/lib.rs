@@ -9,6 +9,8 @@
 //!   excluded by crossing parity), the convertibility check of Definition 4.2 with automatic
 //!   insertion of boundary points, and Algorithm 4.1 (boundary edges become boundary arcs);
 //!   exact curved-triangle areas by Green's theorem.
+//! - [`Refinement`]: Clough–Tocher and Powell–Sabin refinements of a curved triangulation
+//!   (Section 8), built with [`CurvedTriangulation::new_refined`], convertibility re-checked.
 //! - [`CurvedLocator`]: which curved triangle holds a point, exact between an arc and its
 //!   chord, `None` outside the domain.
 //! - [`mesh_svg`]: a figure of a curved triangulation.
@@ -32,14 +34,16 @@ mod boundary;
 mod error;
 mod json;
 mod locate;
+mod refine;
 mod sample;
 mod svg;
 mod triangulation;
 
 pub use boundary::BoundaryPoint;
 pub use error::MeshError;
-pub use json::mesh_json;
+pub use json::{mesh_from_json, mesh_json, mesh_value};
 pub use locate::CurvedLocator;
+pub use refine::Refinement;
 pub use sample::{
     MAX_HALTON_TRIES_PER_POINT, MAX_LINES, MAX_SAMPLE_POINTS, WellSpacedPoints, halton_points_in,
     well_spaced_points,

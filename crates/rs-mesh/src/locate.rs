@@ -2,9 +2,9 @@
 
 use rs_contain::Locate;
 use rs_contain::{Classifier, ContainOptions, Location};
+use rs_spline::grid::{CellIndex, GridFrame};
 use rs_spline::prelude::*;
 use rs_spline::{BoundingBox, Domain, Point, segment};
-use spade::{PositionInTriangulation, Triangulation as _};
 
 use crate::{CurvedTriangulation, MeshError};
 
@@ -12,20 +12,28 @@ use crate::{CurvedTriangulation, MeshError};
 /// room for a point between arc and chord.
 const EMPTY_LENS: f64 = 1e-14;
 
+/// A point is in a companion triangle when its barycentric coordinates are all at least this
+/// (so points on a shared edge find a triangle whatever the rounding).
+const ON_EDGE: f64 = -1e-12;
+
 /// Answers "which curved triangle holds this point?" exactly: the domain's containment test
-/// (inRS) first, then the companion triangle by `spade`'s walk, and for points between a
-/// boundary arc and its chord (outside every companion triangle) an exact containment test
-/// against that lens (arc + chord), which is what the paper's extended triangulation
-/// approximates with a ring of straight triangles.
+/// (inRS, through its grid locator) first, then the companion triangle, found through a
+/// uniform grid of the triangles, and for points between a boundary arc and its chord (outside
+/// every companion triangle) an exact containment test against that lens (arc + chord), which
+/// is what the paper's extended triangulation approximates with a ring of straight triangles.
+/// Works on any curved triangulation, refined ones included.
 #[derive(Debug)]
 pub struct CurvedLocator<'a> {
     mesh: &'a CurvedTriangulation,
     domain: Classifier,
+    triangles: CellIndex<u32>,
     lenses: Vec<(BoundingBox, usize, Classifier)>,
+    lens_index: CellIndex<u32>,
 }
 
 impl<'a> CurvedLocator<'a> {
-    /// Prepares the containment tests of the domain and of every lens with area.
+    /// Prepares the containment tests of the domain and of every lens with area, and the grids
+    /// of triangles and lenses.
     ///
     /// # Errors
     /// Containment errors (never for a triangulation built by this crate).
@@ -46,45 +54,50 @@ impl<'a> CurvedLocator<'a> {
             let classifier = Classifier::new(&lens, ContainOptions::default())?;
             lenses.push((bbox, i, classifier));
         }
+        let frame = GridFrame::new(
+            mesh.domain().bounding_box(),
+            ((mesh.triangles().len() as f64).sqrt().ceil() as usize).clamp(1, 1024),
+        );
+        let mut pairs = Vec::new();
+        for (t, tri) in mesh.triangles().iter().enumerate() {
+            let b = BoundingBox::from_points(tri.iter().map(|&v| mesh.vertices()[v]));
+            if let Some(b) = b {
+                frame.for_cells_in(b, |c| pairs.push((c, t as u32)));
+            }
+        }
+        let mut lens_pairs = Vec::new();
+        for (l, (b, _, _)) in lenses.iter().enumerate() {
+            frame.for_cells_in(*b, |c| lens_pairs.push((c, l as u32)));
+        }
         Ok(Self {
             mesh,
             domain,
+            triangles: CellIndex::new(frame, pairs),
             lenses,
+            lens_index: CellIndex::new(frame, lens_pairs),
         })
     }
 
     /// The curved triangle holding `p` (closed triangles: points on shared edges get one of
     /// the neighbours), or `None` outside the domain.
     pub fn triangle_at(&self, p: Point) -> Option<usize> {
-        if !p.is_finite() || self.domain.locate(p) == Location::Outside {
+        if !p.is_finite() || self.domain.locator().locate(p) == Location::Outside {
             return None;
         }
         let m = self.mesh;
-        let kept = |f: usize| m.face_triangle.get(&f).copied();
-        match m.cdt.locate(spade::Point2::new(p.x, p.y)) {
-            PositionInTriangulation::OnFace(f) => {
-                if let Some(t) = kept(f.index()) {
-                    return Some(t);
-                }
-            }
-            PositionInTriangulation::OnEdge(e) => {
-                let e = m.cdt.directed_edge(e);
-                for f in [e.face(), e.rev().face()] {
-                    if let Some(t) = f.as_inner().and_then(|f| kept(f.fix().index())) {
-                        return Some(t);
-                    }
-                }
-            }
-            PositionInTriangulation::OnVertex(v) => {
-                for e in m.cdt.vertex(v).out_edges() {
-                    if let Some(t) = e.face().as_inner().and_then(|f| kept(f.fix().index())) {
-                        return Some(t);
-                    }
-                }
-            }
-            _ => {}
+        // The companion triangle holding p best (largest smallest barycentric coordinate).
+        let inside = self
+            .triangles
+            .at(p)
+            .iter()
+            .map(|&t| (t as usize, smallest_coordinate(m, t as usize, p)))
+            .filter(|&(_, b)| b >= ON_EDGE)
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((t, _)) = inside {
+            return Some(t);
         }
-        for (bbox, i, lens) in &self.lenses {
+        for &l in self.lens_index.at(p) {
+            let (bbox, i, lens) = &self.lenses[l as usize];
             if bbox.contains(p) && lens.locate(p) != Location::Outside {
                 return Some(m.arcs()[*i].triangle);
             }
@@ -95,6 +108,26 @@ impl<'a> CurvedLocator<'a> {
             distance_to_triangle(m, s, p).total_cmp(&distance_to_triangle(m, t, p))
         })
     }
+
+    /// [`CurvedLocator::triangle_at`] of every point, in order, on all threads (with the
+    /// `parallel` feature of rs-contain, as its locators).
+    pub fn triangles_at(&self, points: &[Point]) -> Vec<Option<usize>> {
+        use rayon::prelude::*;
+        points
+            .par_iter()
+            .with_min_len(1024)
+            .map(|&p| self.triangle_at(p))
+            .collect()
+    }
+}
+
+/// The smallest barycentric coordinate of `p` in the companion triangle `t`.
+fn smallest_coordinate(m: &CurvedTriangulation, t: usize, p: Point) -> f64 {
+    let [a, b, c] = m.triangles()[t].map(|i| m.vertices()[i]);
+    let area = (b - a).cross(c - a);
+    let b1 = (b - p).cross(c - p) / area;
+    let b2 = (c - p).cross(a - p) / area;
+    b1.min(b2).min(1.0 - b1 - b2)
 }
 
 fn distance_to_triangle(m: &CurvedTriangulation, t: usize, p: Point) -> f64 {

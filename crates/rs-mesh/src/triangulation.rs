@@ -13,6 +13,7 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
 
 use crate::MeshError;
 use crate::boundary::BoundaryPoint;
+use crate::refine::{Refinement, refine};
 use crate::sample::WellSpacedPoints;
 
 /// Rounds of boundary point insertion tried before giving up.
@@ -48,8 +49,9 @@ pub struct BoundaryArc {
 
 /// A curved triangulation of a domain (Definition 3.2) with straight interior edges: an
 /// inscribed constrained Delaunay triangulation whose boundary edges are replaced by the
-/// boundary arcs they cut off (Algorithm 4.1).
-#[derive(Debug)]
+/// boundary arcs they cut off (Algorithm 4.1), or a Clough–Tocher or Powell–Sabin refinement
+/// of one ([`CurvedTriangulation::new_refined`]).
+#[derive(Clone, Debug)]
 pub struct CurvedTriangulation {
     pub(crate) domain: Domain,
     pub(crate) vertices: Vec<Point>,
@@ -57,9 +59,12 @@ pub struct CurvedTriangulation {
     pub(crate) triangles: Vec<[usize; 3]>,
     pub(crate) edges: Vec<[EdgeKind; 3]>,
     pub(crate) arcs: Vec<BoundaryArc>,
-    pub(crate) cdt: ConstrainedDelaunayTriangulation<Point2<f64>>,
-    /// spade face index -> triangle index.
-    pub(crate) face_triangle: HashMap<usize, usize>,
+    /// Number of boundary vertices of each loop (arc `i` joins the `k`-th and `(k+1)`-th
+    /// vertices of its loop, arcs listed loop by loop in that order).
+    pub(crate) loop_lengths: Vec<usize>,
+    /// For a refinement: how, and the triangle of the unrefined triangulation each triangle
+    /// lies in.
+    pub(crate) refinement: Option<(Refinement, Vec<usize>)>,
     pub(crate) inserted_boundary_points: usize,
     pub(crate) dropped_interior_points: usize,
 }
@@ -78,6 +83,33 @@ impl CurvedTriangulation {
     /// [`MeshError::NotConvertible`] if 16 rounds of insertion do not suffice,
     /// [`MeshError::Triangulation`] if spade rejects a point.
     pub fn new(domain: &Domain, points: &WellSpacedPoints) -> Result<Self, MeshError> {
+        Self::build_until(domain, points, Ok)
+    }
+
+    /// The Clough–Tocher or Powell–Sabin refinement of the curved triangulation of `domain`
+    /// from `points` (paper Section 8, Fig. 7; see [`Refinement`]): built as
+    /// [`CurvedTriangulation::new`] builds the unrefined one, then split; if a boundary arc of
+    /// the refinement meets one of its new edges (Definition 4.2 again) or a sub-triangle comes
+    /// out inverted, the unrefined arc gets a boundary point at its parameter midpoint and both
+    /// are rebuilt.
+    ///
+    /// # Errors
+    /// As [`CurvedTriangulation::new`].
+    pub fn new_refined(
+        domain: &Domain,
+        points: &WellSpacedPoints,
+        how: Refinement,
+    ) -> Result<Self, MeshError> {
+        Self::build_until(domain, points, |t| refine(&t, how))
+    }
+
+    /// The rounds of [`CurvedTriangulation::new`]: build, then `finish` the triangulation (or
+    /// name the arcs, by their place in their loop, to split before the next round).
+    fn build_until(
+        domain: &Domain,
+        points: &WellSpacedPoints,
+        finish: impl Fn(Self) -> Result<Self, Vec<(usize, usize)>>,
+    ) -> Result<Self, MeshError> {
         let vertices = points.interior.len() + points.boundary.iter().map(Vec::len).sum::<usize>();
         if vertices > MAX_MESH_VERTICES {
             return Err(MeshError::TooManyPoints {
@@ -92,6 +124,13 @@ impl CurvedTriangulation {
         let size = domain.bounding_box().diagonal();
         for round in 0..MAX_ROUNDS {
             let attempt = build(domain, &boundary, &interior, size)?;
+            let attempt = match attempt {
+                Attempt::Done(t) => match finish(*t) {
+                    Ok(t) => Attempt::Done(Box::new(t)),
+                    Err(failing) => Attempt::Refine(failing),
+                },
+                other => other,
+            };
             match attempt {
                 Attempt::Done(mut t) => {
                     t.inserted_boundary_points = inserted;
@@ -126,6 +165,103 @@ impl CurvedTriangulation {
         })
     }
 
+    /// A curved triangulation from its parts, as a mesh or spline file holds them
+    /// ([`crate::mesh_from_json`]), checked: vertex indices in range, triangles
+    /// counter-clockwise and not flat, every arc on an existing curve and loop with
+    /// `u0 < u1` in the curve's parameter range, its end points on its vertices (within
+    /// `1e-9` of the domain's size) and joining two consecutive vertices of its triangle.
+    ///
+    /// # Errors
+    /// [`MeshError::Invalid`] naming the first problem.
+    pub fn from_parts(
+        domain: Domain,
+        vertices: Vec<Point>,
+        triangles: Vec<[usize; 3]>,
+        arcs: Vec<BoundaryArc>,
+    ) -> Result<Self, MeshError> {
+        let invalid = |m: String| MeshError::Invalid(m);
+        if vertices.len() > MAX_MESH_VERTICES {
+            return Err(invalid(format!(
+                "{} vertices exceed the limit {MAX_MESH_VERTICES}",
+                vertices.len()
+            )));
+        }
+        if let Some(i) = vertices.iter().position(|p| !p.is_finite()) {
+            return Err(invalid(format!("vertex {i} is not finite")));
+        }
+        for (t, tri) in triangles.iter().enumerate() {
+            if let Some(&v) = tri.iter().find(|&&v| v >= vertices.len()) {
+                return Err(invalid(format!(
+                    "triangle {t} names vertex {v} of {}",
+                    vertices.len()
+                )));
+            }
+            let [a, b, c] = tri.map(|v| vertices[v]);
+            if (b - a).cross(c - a) <= 0.0 {
+                return Err(invalid(format!(
+                    "triangle {t} is not counter-clockwise (or is flat)"
+                )));
+            }
+        }
+        let size = domain.bounding_box().diagonal();
+        let mut edges = vec![[EdgeKind::Straight; 3]; triangles.len()];
+        let mut boundary_vertex = vec![None; vertices.len()];
+        let mut loop_lengths = vec![0usize; domain.loops().len()];
+        for (i, a) in arcs.iter().enumerate() {
+            let bad = |m: &str| invalid(format!("curved edge {i}: {m}"));
+            let curve = domain
+                .curves()
+                .get(a.curve)
+                .ok_or_else(|| bad("no such curve"))?;
+            if a.loop_index >= domain.loops().len() {
+                return Err(bad("no such loop"));
+            }
+            let (lo, hi) = curve.param_range();
+            if !(lo <= a.u0 && a.u0 < a.u1 && a.u1 <= hi) {
+                return Err(bad(
+                    "parameters outside the curve's range or not increasing",
+                ));
+            }
+            let tri = triangles
+                .get(a.triangle)
+                .ok_or_else(|| bad("no such triangle"))?;
+            let k = (0..3)
+                .find(|&k| {
+                    let (p, q) = (tri[k], tri[(k + 1) % 3]);
+                    (p, q) == (a.from, a.to) || (q, p) == (a.from, a.to)
+                })
+                .ok_or_else(|| bad("its end vertices are not an edge of its triangle"))?;
+            for (u, v) in [(a.u0, a.from), (a.u1, a.to)] {
+                if curve.point_at(u).distance(vertices[v]) > 1e-9 * size {
+                    return Err(bad("an end of the arc is not at its vertex"));
+                }
+            }
+            if edges[a.triangle][k] != EdgeKind::Straight {
+                return Err(bad("a second arc on the same edge"));
+            }
+            edges[a.triangle][k] = EdgeKind::Curved(i);
+            boundary_vertex[a.from] = Some(BoundaryPoint {
+                loop_index: a.loop_index,
+                curve: a.curve,
+                u: a.u0,
+                point: vertices[a.from],
+            });
+            loop_lengths[a.loop_index] += 1;
+        }
+        Ok(Self {
+            domain,
+            vertices,
+            boundary_vertex,
+            triangles,
+            edges,
+            arcs,
+            loop_lengths,
+            refinement: None,
+            inserted_boundary_points: 0,
+            dropped_interior_points: 0,
+        })
+    }
+
     /// The domain.
     pub fn domain(&self) -> &Domain {
         &self.domain
@@ -154,6 +290,30 @@ impl CurvedTriangulation {
     /// The boundary arcs (one per boundary edge of the inscribed triangulation).
     pub fn arcs(&self) -> &[BoundaryArc] {
         &self.arcs
+    }
+
+    /// For a refinement: how it was refined.
+    pub fn refinement(&self) -> Option<Refinement> {
+        self.refinement.as_ref().map(|r| r.0)
+    }
+
+    /// For a refinement: the triangle of the unrefined triangulation that triangle `t` lies in
+    /// (the sub-triangles of one are consecutive: 3 for Clough–Tocher, 6 for Powell–Sabin).
+    pub fn parent_triangle(&self, t: usize) -> Option<usize> {
+        self.refinement.as_ref().map(|r| r.1[t])
+    }
+
+    /// The place `(loop, k)` of arc `i` in its loop: it joins the `k`-th and `(k+1)`-th
+    /// boundary vertices of that loop.
+    pub(crate) fn arc_position(&self, i: usize) -> (usize, usize) {
+        let mut k = i;
+        for (j, &n) in self.loop_lengths.iter().enumerate() {
+            if k < n {
+                return (j, k);
+            }
+            k -= n;
+        }
+        (self.loop_lengths.len().saturating_sub(1), k)
     }
 
     /// Boundary points inserted to make the triangulation convertible.
@@ -316,10 +476,8 @@ fn build(
         .collect::<Result<Vec<_>, _>>()?;
     let inside = faces_inside(&cdt);
     let mut triangles = Vec::new();
-    let mut face_triangle = HashMap::new();
     for f in cdt.inner_faces() {
         if inside.get(&f.fix().index()).copied().unwrap_or(false) {
-            face_triangle.insert(f.fix().index(), triangles.len());
             triangles.push(f.vertices().map(|h| v.index[&h.fix()]));
         }
     }
@@ -338,8 +496,8 @@ fn build(
         triangles,
         edges,
         arcs,
-        cdt,
-        face_triangle,
+        loop_lengths: loop_vertices.iter().map(Vec::len).collect(),
+        refinement: None,
         inserted_boundary_points: 0,
         dropped_interior_points: 0,
     })))
@@ -543,7 +701,7 @@ const ON_LINE: f64 = 1e-14;
 
 /// True if the arc meets no edge of the triangulation other than its own chord `(a, b)`,
 /// except at that edge's end points.
-fn arc_is_clear(
+pub(crate) fn arc_is_clear(
     arc: &NurbsCurve,
     chord: (usize, usize),
     vertices: &[Point],
@@ -608,13 +766,13 @@ fn crosses_inside_segment(piece: &RationalBezier, p: Point, q: Point, size: f64)
 }
 
 /// Edges registered in the cells their bounding boxes meet.
-struct EdgeGrid {
+pub(crate) struct EdgeGrid {
     index: CellIndex<(usize, usize)>,
 }
 
 impl EdgeGrid {
     /// About one edge per cell, at most 256 cells per side.
-    fn new(vertices: &[Point], edges: &[(usize, usize)]) -> Self {
+    pub(crate) fn new(vertices: &[Point], edges: &[(usize, usize)]) -> Self {
         let bb = BoundingBox::from_points(vertices.iter().copied())
             .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)));
         let n = ((edges.len() as f64).sqrt().ceil() as usize).clamp(1, 256);

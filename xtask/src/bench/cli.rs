@@ -75,7 +75,9 @@ fn run(bin: &Path, domain: &Path, points: &Path, out: &Path) -> Result<(f64, Opt
         .arg("--output")
         .arg(out);
     let start = Instant::now();
-    let result = cmd.output().map_err(|e| format!("{}: {e}", bin.display()))?;
+    let result = cmd
+        .output()
+        .map_err(|e| format!("{}: {e}", bin.display()))?;
     let seconds = start.elapsed().as_secs_f64();
     if !result.status.success() {
         return Err(format!(
@@ -111,7 +113,10 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
          (loading the domain, building the index), million points per second, and peak \
          resident memory (`/usr/bin/time`); median of {reps} runs.\n"
     );
-    let _ = writeln!(md, "| points in | results out | N | seconds | Mpts/s | peak MiB |");
+    let _ = writeln!(
+        md,
+        "| points in | results out | N | seconds | Mpts/s | peak MiB |"
+    );
     let _ = writeln!(md, "| --- | --- | ---: | ---: | ---: | ---: |");
     for &n in sizes {
         let (csv, npy) = write_points(&dir, n)?;

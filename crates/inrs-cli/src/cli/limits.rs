@@ -20,6 +20,7 @@ Limits (inputs beyond them are errors, never a crash or a hang):
                                                 131072 boxes (520 bytes a box)
   sample --count / points from sample           10^7
   mesh vertices                                 2 x 10^6
+  fit --degree / formula length                 12 / 4096 bytes; spline files 1 GiB
   convex-domain --box coordinates / --max-level 1e100 / 20";
 
 /// The default `--tol` of classify as shown by `--help` (the value is
@@ -55,6 +56,11 @@ pub(crate) fn parse_tolerance(s: &str) -> Result<f64, String> {
 /// `--subdivisions`: 1 to [`inrs::boxes::MAX_SUBDIVISIONS`].
 pub(crate) fn parse_subdivisions(s: &str) -> Result<usize, String> {
     in_range(s, 1, inrs::boxes::MAX_SUBDIVISIONS as u64).map(|v| v as usize)
+}
+
+/// `--degree`: 1 to [`inrs::trispline::bb::MAX_DEGREE`].
+pub(crate) fn parse_degree(s: &str) -> Result<usize, String> {
+    in_range(s, 1, inrs::trispline::bb::MAX_DEGREE as u64).map(|v| v as usize)
 }
 
 /// `--ny`: 2 to [`inrs::mesh::MAX_LINES`].

@@ -3,6 +3,8 @@
 pub(crate) mod classify;
 pub(crate) mod convert;
 pub(crate) mod convex_domain;
+pub(crate) mod eval;
+pub(crate) mod fit;
 pub(crate) mod info;
 pub(crate) mod mesh;
 pub(crate) mod sample;

@@ -1,0 +1,165 @@
+//! A spline on a curved triangulation: per triangle, the Bernstein–Bézier coefficients of the
+//! polynomial on its companion triangle; evaluated anywhere in the domain (Section 5.2).
+
+use rs_mesh::{CurvedLocator, CurvedTriangulation};
+use rs_spline::Point;
+
+use crate::bb::{Jet, Order, Triangle, coefficient_count, evaluate};
+use crate::{SplineError, SplineSpace};
+
+/// The space a spline was built in (written to the spline file as `space`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpaceKind {
+    /// `S_d^0`: continuous, on the triangulation as it is (`"s0"`).
+    Continuous,
+}
+
+impl SpaceKind {
+    /// The name in the spline file.
+    pub fn name(self) -> &'static str {
+        match self {
+            SpaceKind::Continuous => "s0",
+        }
+    }
+
+    /// The kind with that file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "s0" => Some(SpaceKind::Continuous),
+            _ => None,
+        }
+    }
+}
+
+/// A polynomial spline of degree `d` on a curved triangulation: on each curved triangle the
+/// polynomial whose Bernstein–Bézier coefficients (relative to its companion triangle) are
+/// stored, `C(d + 2, 2)` per triangle in coefficient order (see [`crate::bb`]).
+#[derive(Clone, Debug)]
+pub struct Spline {
+    mesh: CurvedTriangulation,
+    degree: usize,
+    kind: SpaceKind,
+    coefficients: Vec<f64>,
+}
+
+impl Spline {
+    /// The spline with `coefficients` (`C(d + 2, 2)` per triangle, triangle by triangle).
+    ///
+    /// # Errors
+    /// [`SplineError::Degree`]; [`SplineError::File`] if the number of coefficients is wrong.
+    pub fn new(
+        mesh: CurvedTriangulation,
+        degree: usize,
+        kind: SpaceKind,
+        coefficients: Vec<f64>,
+    ) -> Result<Self, SplineError> {
+        if !(1..=crate::bb::MAX_DEGREE).contains(&degree) {
+            return Err(SplineError::Degree(degree));
+        }
+        let expected = mesh.triangles().len() * coefficient_count(degree);
+        if coefficients.len() != expected {
+            return Err(SplineError::File(format!(
+                "{} coefficients for {} triangles of degree {degree} (expected {expected})",
+                coefficients.len(),
+                mesh.triangles().len()
+            )));
+        }
+        Ok(Self {
+            mesh,
+            degree,
+            kind,
+            coefficients,
+        })
+    }
+
+    /// The curved triangulation.
+    pub fn mesh(&self) -> &CurvedTriangulation {
+        &self.mesh
+    }
+
+    /// The degree.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The space it was built in.
+    pub fn kind(&self) -> SpaceKind {
+        self.kind
+    }
+
+    /// The coefficients of triangle `t`, in coefficient order.
+    pub fn triangle_coefficients(&self, t: usize) -> &[f64] {
+        let n = coefficient_count(self.degree);
+        &self.coefficients[t * n..(t + 1) * n]
+    }
+
+    /// All coefficients, triangle by triangle.
+    pub fn coefficients(&self) -> &[f64] {
+        &self.coefficients
+    }
+
+    /// The number of distinct coefficients of the space (`S_d^0`'s dimension).
+    pub fn dimension(&self) -> usize {
+        SplineSpace::new(&self.mesh, self.degree).dimension()
+    }
+
+    /// The companion triangle of curved triangle `t`.
+    pub fn companion(&self, t: usize) -> Triangle {
+        let v = self.mesh.triangles()[t].map(|i| self.mesh.vertices()[i]);
+        Triangle::new(v[0], v[1], v[2])
+    }
+
+    /// The polynomial of triangle `t` at `p` (any point of the plane), up to `order`.
+    pub fn evaluate_on(&self, t: usize, p: Point, order: Order) -> Jet {
+        evaluate(
+            &self.companion(t),
+            self.degree,
+            self.triangle_coefficients(t),
+            p,
+            order,
+        )
+    }
+
+    /// An evaluator: the spline anywhere in the domain.
+    ///
+    /// # Errors
+    /// Containment errors (never for a triangulation built by rs-mesh).
+    pub fn evaluator(&self) -> Result<SplineEvaluator<'_>, SplineError> {
+        Ok(SplineEvaluator {
+            spline: self,
+            locator: CurvedLocator::new(&self.mesh)?,
+        })
+    }
+}
+
+/// Evaluates a [`Spline`] at points of its domain: the curved triangle holding the point
+/// (exactly, slivers between a boundary arc and its chord included), then its polynomial.
+#[derive(Debug)]
+pub struct SplineEvaluator<'a> {
+    spline: &'a Spline,
+    locator: CurvedLocator<'a>,
+}
+
+impl SplineEvaluator<'_> {
+    /// The spline's value and derivatives up to `order` at `p`, `None` outside the domain.
+    pub fn evaluate(&self, p: Point, order: Order) -> Option<Jet> {
+        self.locator
+            .triangle_at(p)
+            .map(|t| self.spline.evaluate_on(t, p, order))
+    }
+
+    /// [`SplineEvaluator::evaluate`] at every point, in order, on all threads.
+    pub fn evaluate_all(&self, points: &[Point], order: Order) -> Vec<Option<Jet>> {
+        use rayon::prelude::*;
+        points
+            .par_iter()
+            .with_min_len(1024)
+            .map(|&p| self.evaluate(p, order))
+            .collect()
+    }
+
+    /// The curved triangle holding `p`.
+    pub fn triangle_at(&self, p: Point) -> Option<usize> {
+        self.locator.triangle_at(p)
+    }
+}
