@@ -132,10 +132,13 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     let names: Vec<&str> = domains.iter().map(|(n, _)| n.as_str()).collect();
     let mut md = String::new();
     let mut csv = String::new();
+    // The report is rewritten after every section, so that a run stopped part way keeps what
+    // it measured.
     if o.runs("paper") {
         let timings = paper::measure(&domains, o)?;
         timings.tables(&mut md, &names, &o.sizes);
         csv = timings.csv();
+        write_report(root, o, &md, &csv, false)?;
     }
     let flower = load(root, "synthetic/flower500.json")?;
     if o.runs("locator") {
@@ -145,33 +148,46 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
             locator::refinement_sweep(&mut md, &domains, o)?;
             locator::grid_sweep(&mut md, &domains, o)?;
         }
+        write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("gwn") {
         gwn::flower(&mut md, &flower, o)?;
         gwn::paper_figures(&mut md, &load(root, "inrs-paper/leaf_cubic.json")?, o)?;
+        write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("shapes") {
         peers::shapes(&mut md, root, o)?;
+        write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("cli") {
         cli::end_to_end(&mut md, root, o)?;
     }
-    write_report(root, o, &md, &csv)
+    write_report(root, o, &md, &csv, true)
 }
 
 /// Prints the report and writes it with the CSV under `target/bench-report/`.
-fn write_report(root: &Path, o: &BenchOptions, md: &str, csv: &str) -> Result<(), String> {
+fn write_report(
+    root: &Path,
+    o: &BenchOptions,
+    md: &str,
+    csv: &str,
+    last: bool,
+) -> Result<(), String> {
     let report = format!(
         "Machine: {}\n\nMedian of {} runs, single thread unless stated.\n\n{md}",
         machine_line(),
         o.reps
     );
-    println!("{report}");
+    if last {
+        println!("{report}");
+    }
     let dir = root.join("target/bench-report");
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
     std::fs::write(dir.join("bench.md"), &report).map_err(|e| e.to_string())?;
     std::fs::write(dir.join("bench.csv"), csv).map_err(|e| e.to_string())?;
-    println!("written: target/bench-report/bench.md, target/bench-report/bench.csv");
+    if last {
+        println!("written: target/bench-report/bench.md, target/bench-report/bench.csv");
+    }
     Ok(())
 }
 
