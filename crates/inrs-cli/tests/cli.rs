@@ -749,3 +749,88 @@ fn outputs_to_pipes_are_written_in_place() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `inrs fit` then `inrs eval`: a polynomial of the spline's degree is reproduced exactly,
+/// anywhere in the domain, with its gradient; points outside get `nan` and are counted; the
+/// figures are SVG with their caption.
+#[test]
+fn fit_and_eval_reproduce_polynomials() {
+    let domain = fixture("inrs-paper/s4_disk_ellipse_segment.json");
+    let spline = temp_file("fit.json", "");
+    let svg = temp_file("fit.svg", "");
+    let err_svg = temp_file("fit-error.svg", "");
+    for refine in ["none", "ct", "ps"] {
+        let out = inrs(&[
+            "fit",
+            "--domain",
+            &domain,
+            "--ny",
+            "5",
+            "--degree",
+            "3",
+            "--refine",
+            refine,
+            "--function",
+            "1 + 2*x - y^2 + x^2*y - 3*x*y",
+            "--output",
+            &spline,
+            "--svg",
+            &svg,
+            "--error-svg",
+            &err_svg,
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{err}");
+        assert!(err.contains("degree 3") && err.contains("curved triangles"), "{err}");
+        let points = temp_file("fit-points.csv", "x,y\n0.1,0.2\n-0.4,0.05\n0.99,0.001\n5,5\n");
+        let out = inrs(&["eval", "--spline", &spline, "--points", &points, "--derivatives"]);
+        assert!(out.status.success());
+        assert!(String::from_utf8_lossy(&out.stderr).contains("1 points outside"));
+        let text = String::from_utf8(out.stdout).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("x,y,value,dx,dy"));
+        for line in lines {
+            let f: Vec<&str> = line.split(',').collect();
+            let (x, y): (f64, f64) = (f[0].parse().unwrap(), f[1].parse().unwrap());
+            if x == 5.0 {
+                assert_eq!(&f[2..], ["nan", "nan", "nan"]);
+                continue;
+            }
+            let v: Vec<f64> = f[2..].iter().map(|s| s.parse().unwrap()).collect();
+            let want = [
+                1.0 + 2.0 * x - y * y + x * x * y - 3.0 * x * y,
+                2.0 + 2.0 * x * y - 3.0 * y,
+                -2.0 * y + x * x - 3.0 * x,
+            ];
+            for (a, b) in v.iter().zip(want) {
+                assert!((a - b).abs() < 1e-10, "{refine}: {line} vs {want:?}");
+            }
+        }
+    }
+    for figure in [&svg, &err_svg] {
+        let text = std::fs::read_to_string(figure).unwrap();
+        assert!(text.starts_with("<svg") && text.contains("data:image/png;base64,"));
+        assert!(text.contains("class=\"caption\"") && text.contains("class=\"axes\""));
+        assert!(text.contains("colour-bar"));
+    }
+    // Bad formulas and spline files are one-line errors.
+    for (args, needle) in [
+        (
+            vec!["fit", "--domain", &domain, "--function", "sin(z)"],
+            "unknown name \"z\"",
+        ),
+        (
+            vec!["fit", "--domain", &domain, "--function", "1/(x-x)"],
+            "not finite",
+        ),
+        (
+            vec!["eval", "--spline", &domain, "--points", &domain],
+            "spline file",
+        ),
+    ] {
+        let out = inrs(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains(needle) && err.lines().count() == 1, "{args:?}: {err}");
+    }
+}
