@@ -781,9 +781,22 @@ fn fit_and_eval_reproduce_polynomials() {
         ]);
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(out.status.success(), "{err}");
-        assert!(err.contains("degree 3") && err.contains("curved triangles"), "{err}");
-        let points = temp_file("fit-points.csv", "x,y\n0.1,0.2\n-0.4,0.05\n0.99,0.001\n5,5\n");
-        let out = inrs(&["eval", "--spline", &spline, "--points", &points, "--derivatives"]);
+        assert!(
+            err.contains("degree 3") && err.contains("curved triangles"),
+            "{err}"
+        );
+        let points = temp_file(
+            "fit-points.csv",
+            "x,y\n0.1,0.2\n-0.4,0.05\n0.99,0.001\n5,5\n",
+        );
+        let out = inrs(&[
+            "eval",
+            "--spline",
+            &spline,
+            "--points",
+            &points,
+            "--derivatives",
+        ]);
         assert!(out.status.success());
         assert!(String::from_utf8_lossy(&out.stderr).contains("1 points outside"));
         let text = String::from_utf8(out.stdout).unwrap();
@@ -831,6 +844,9 @@ fn fit_and_eval_reproduce_polynomials() {
         let out = inrs(&args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
-        assert!(err.contains(needle) && err.lines().count() == 1, "{args:?}: {err}");
+        assert!(
+            err.contains(needle) && err.lines().count() == 1,
+            "{args:?}: {err}"
+        );
     }
 }

@@ -15,6 +15,16 @@ pub enum Location {
 }
 
 impl Location {
+    /// The integer code of `.npy` outputs and the Python package: 0 outside, 1 inside,
+    /// 2 boundary.
+    pub fn code(self) -> i8 {
+        match self {
+            Self::Outside => 0,
+            Self::Inside => 1,
+            Self::Boundary => 2,
+        }
+    }
+
     /// The CSV word: `inside`, `outside` or `boundary`.
     pub fn as_str(self) -> &'static str {
         match self {

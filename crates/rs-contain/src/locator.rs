@@ -26,9 +26,10 @@ const STATE_LOCATION: [Location; 4] = [
 ];
 
 /// Default grid resolution: cells per side of the bounding box. Chosen by measurement
-/// (`cargo xtask bench`, README): on the paper's domains, 1024 x 1024 cells leave well under 1% of
-/// uniformly spread points in boundary cells, and finer grids only add build time and memory.
-pub const DEFAULT_GRID_CELLS: usize = 1024;
+/// (`cargo xtask bench --sweep`, docs/BENCHMARKS.md): on the paper's domains 512 x 512 cells
+/// leave about 1% of uniformly spread points in boundary cells and locate 10^6 points as fast
+/// as 1024 x 1024 (the two-level tables stay in cache), with a build four times cheaper.
+pub const DEFAULT_GRID_CELLS: usize = 512;
 
 /// Options of a [`PointLocator`]: [`LocatorOptions::DEFAULT`] and `with_*` setters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,9 +69,9 @@ impl Default for LocatorOptions {
 /// for the whole grid) and the run inherits it. The others are *mixed*.
 ///
 /// The grid is stored in two levels, so that the table a query reads first stays in the
-/// processor's first-level cache: a coarse grid of `8 x 8` blocks of cells, two bits per block
-/// (all outside, all inside, or refined: 4 KiB for the default 1024 x 1024 cells), and, for the
-/// refined blocks only, one entry per cell (outside, inside, or the index of a mixed-cell
+/// processor's first-level cache: a coarse grid of `8 x 8` blocks of cells, a byte per block
+/// (all outside, all inside, or refined: about 4 KiB for the default 512 x 512 cells, plus a
+/// ring of outside cells round the grid), and, for the refined blocks only, one entry per cell (outside, inside, or the index of a mixed-cell
 /// record). A mixed-cell record holds what its points need, precomputed: the parity of the
 /// nearest uniform cell below in the same column, the boxes registered in the cell, and the
 /// distinct non-vertical boxes registered between that uniform cell and this one.
@@ -519,49 +520,66 @@ impl Locate for PointLocator<'_> {
         out
     }
 
-    /// [`PointLocator::locate_into`] on chunks of 65536 points spread over rayon's pool (with
-    /// the `parallel` feature; otherwise on the current thread), writing in place.
+    /// [`PointLocator::locate_indexed_parallel_into`], writing in place.
     fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
         let mut out = vec![Location::Outside; points.len()];
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            const TASK: usize = 1 << 16;
-            out.par_chunks_mut(TASK)
-                .zip(points.par_chunks(TASK))
-                .for_each(|(o, p)| self.locate_into(p, o));
-        }
-        #[cfg(not(feature = "parallel"))]
-        self.locate_into(points, &mut out);
+        self.locate_indexed_parallel_into(|i| points[i], &mut out);
         out
     }
 }
 
 impl PointLocator<'_> {
-    /// The locations of `points` written to `out` (the same length), in chunks: every point's
-    /// block state by a branch-free lookup in the coarse table (the positions of points in
-    /// refined blocks noted without a branch too), then those points one by one while the
-    /// chunk is still in cache.
+    /// The locations of `points` written to `out` (the same length); see
+    /// [`PointLocator::locate_indexed_into`].
     ///
     /// # Panics
     /// If `out` is not as long as `points`.
     pub fn locate_into(&self, points: &[Point], out: &mut [Location]) {
-        const CHUNK: usize = 2048;
         assert_eq!(points.len(), out.len(), "one location per point");
+        self.locate_indexed_into(|i| points[i], out);
+    }
+
+    /// The locations of the points `point(0), point(1), ...` written to `out`, for points held
+    /// in any layout (interleaved `x, y` pairs, separate `x` and `y` arrays) without copying
+    /// them. In chunks: every point's block state by a branch-free lookup in the coarse table
+    /// (the positions of points in refined blocks noted without a branch too), then those
+    /// points one by one while the chunk is still in cache.
+    pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
+        const CHUNK: usize = 2048;
         let (lookup, coarse) = (&self.ix.lookup, &self.ix.coarse[..]);
         let mut refined = [0u16; CHUNK];
-        for (out, points) in out.chunks_mut(CHUNK).zip(points.chunks(CHUNK)) {
+        for (c, out) in out.chunks_mut(CHUNK).enumerate() {
+            let first = c * CHUNK;
             let mut k = 0;
-            for (i, (o, &p)) in out.iter_mut().zip(points).enumerate() {
-                let state = lookup.coarse_state(coarse, p);
+            for (i, o) in out.iter_mut().enumerate() {
+                let state = lookup.coarse_state(coarse, point(first + i));
                 *o = STATE_LOCATION[state];
                 refined[k] = i as u16;
                 k += usize::from(state == REFINED as usize);
             }
             for &i in &refined[..k] {
-                out[i as usize] = self.locate_refined(points[i as usize]);
+                out[i as usize] = self.locate_refined(point(first + i as usize));
             }
         }
+    }
+
+    /// [`PointLocator::locate_indexed_into`] on chunks of 65536 points spread over rayon's
+    /// pool (with the `parallel` feature; otherwise on the current thread).
+    pub fn locate_indexed_parallel_into(
+        &self,
+        point: impl Fn(usize) -> Point + Sync,
+        out: &mut [Location],
+    ) {
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            const TASK: usize = 1 << 16;
+            out.par_chunks_mut(TASK)
+                .enumerate()
+                .for_each(|(c, o)| self.locate_indexed_into(|i| point(c * TASK + i), o));
+        }
+        #[cfg(not(feature = "parallel"))]
+        self.locate_indexed_into(point, out);
     }
 }
 

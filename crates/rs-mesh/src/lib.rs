@@ -13,6 +13,8 @@
 //!   (Section 8), built with [`CurvedTriangulation::new_refined`], convertibility re-checked.
 //! - [`CurvedLocator`]: which curved triangle holds a point, exact between an arc and its
 //!   chord, `None` outside the domain.
+//! - [`ExtendedRing`]: the ring of straight triangles of Algorithm 5.1 round the companion
+//!   triangles ([`CurvedTriangulation::extended_ring`]), for drawing.
 //! - [`mesh_svg`]: a figure of a curved triangulation.
 //!
 //! # Examples
@@ -32,6 +34,7 @@
 
 mod boundary;
 mod error;
+mod extended;
 mod json;
 mod locate;
 mod refine;
@@ -41,6 +44,7 @@ mod triangulation;
 
 pub use boundary::BoundaryPoint;
 pub use error::MeshError;
+pub use extended::ExtendedRing;
 pub use json::{mesh_from_json, mesh_json, mesh_value};
 pub use locate::CurvedLocator;
 pub use refine::Refinement;

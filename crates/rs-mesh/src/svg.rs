@@ -47,6 +47,14 @@ pub fn mesh_svg(mesh: &CurvedTriangulation, width: f64) -> String {
         }
         fig.polygon(&outline, &cell);
     }
+    if let Ok(ring) = mesh.extended_ring() {
+        let ring_style = Style::stroke("#7a9a50", 0.5)
+            .dashed("1 2")
+            .labelled("extended ring (Algorithm 5.1)");
+        for t in &ring.triangles {
+            fig.polygon(t, &ring_style);
+        }
+    }
     for c in &chords {
         fig.polyline(c, &chord);
     }

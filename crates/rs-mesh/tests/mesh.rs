@@ -334,3 +334,52 @@ fn user_points_without_boundary_points_still_give_a_curved_triangulation() {
     let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
     assert!((total - region_area(d)).abs() <= 1e-9 * total);
 }
+
+/// The ring of Algorithm 5.1 covers every sliver: points between each boundary arc and its
+/// chord (outside every companion triangle) lie in a ring triangle whose neighbour is the
+/// arc's triangle, and the ring has `2 n_b` triangles.
+#[test]
+fn the_extended_ring_covers_the_slivers() {
+    use rs_spline::prelude::*;
+    for case in rs_testkit::all_cases().into_iter().take(8) {
+        let m = mesh(&case.domain, 6);
+        let ring = m.extended_ring().unwrap();
+        assert_eq!(ring.triangles.len(), 2 * m.arcs().len(), "{}", case.name);
+        let inside = |tri: &[Point; 3], p: Point| {
+            let area = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+            (0..3).all(|k| (tri[(k + 1) % 3] - tri[k]).cross(p - tri[k]) >= -1e-12 * area.abs())
+        };
+        let companions: Vec<[Point; 3]> = m
+            .triangles()
+            .iter()
+            .map(|t| t.map(|i| m.vertices()[i]))
+            .collect();
+        let mut checked = 0;
+        for a in m.arcs() {
+            let c = m.arc_curve(a).unwrap();
+            let (u0, u1) = c.param_range();
+            for s in [0.2, 0.5, 0.8] {
+                let on = c.point_at(u0 + s * (u1 - u0));
+                let chord = m.vertices()[a.from] * (1.0 - s) + m.vertices()[a.to] * s;
+                let p = on * 0.98 + chord * 0.02;
+                if companions.iter().any(|t| inside(t, p)) {
+                    continue; // the arc bulges inwards here: no outer sliver
+                }
+                checked += 1;
+                let hit = ring
+                    .triangles
+                    .iter()
+                    .zip(&ring.neighbour)
+                    .find(|(t, _)| inside(t, p));
+                let (_, &n) = hit.unwrap_or_else(|| panic!("{}: {p:?} not in the ring", case.name));
+                assert_eq!(n, a.triangle, "{}", case.name);
+            }
+        }
+        assert!(
+            checked > 0
+                || m.arcs()
+                    .iter()
+                    .all(|a| m.arc_curve(a).unwrap().degree() == 1)
+        );
+    }
+}

@@ -49,7 +49,10 @@ fn splines(c: &mut Criterion) {
     group.bench_function("baseline: grid locator containment 1e6 points", |b| {
         b.iter(|| {
             let l = classifier.locator().locate_all_parallel(black_box(&pts));
-            assert_eq!(l.iter().filter(|&&l| l != Location::Outside).count(), inside);
+            assert_eq!(
+                l.iter().filter(|&&l| l != Location::Outside).count(),
+                inside
+            );
             l
         })
     });

@@ -185,6 +185,15 @@ pub fn evaluate(tri: &Triangle, d: usize, c: &[f64], p: Point, order: Order) -> 
     jet
 }
 
+/// The polynomial's values at the domain points of `tri`, in coefficient order (the inverse
+/// of [`DomainPointInterpolation::coefficients`]).
+pub fn values_at_domain_points(tri: &Triangle, d: usize, c: &[f64]) -> Vec<f64> {
+    tri.domain_points(d)
+        .into_iter()
+        .map(|p| evaluate(tri, d, c, p, Order::Value).value)
+        .collect()
+}
+
 /// The coefficients of the same polynomial written with degree `d + 1`:
 /// `c'_ijk = (i c_(i-1)jk + j c_i(j-1)k + k c_ij(k-1)) / (d + 1)`.
 pub fn raise_degree(d: usize, c: &[f64]) -> Vec<f64> {
@@ -344,6 +353,22 @@ mod tests {
                 }
                 let value = evaluate(&t, d, &c, p, Order::Value).value;
                 assert!(close(value, want.value, 0));
+            }
+        }
+    }
+
+    #[test]
+    fn values_and_coefficients_convert_both_ways() {
+        let t = tri();
+        for d in 1..=8 {
+            let interp = DomainPointInterpolation::new(d);
+            let values: Vec<f64> = (0..coefficient_count(d))
+                .map(|i| (i as f64).sin())
+                .collect();
+            let c = interp.coefficients(&values);
+            let back = values_at_domain_points(&t, d, &c);
+            for (a, b) in values.iter().zip(&back) {
+                assert!((a - b).abs() < 1e-11, "d {d}: {a} {b}");
             }
         }
     }

@@ -44,6 +44,6 @@ mod spline;
 pub use error::SplineError;
 pub use figure::{error_svg, spline_svg};
 pub use file::{MAX_SPLINE_FILE_BYTES, load_spline, save_spline, spline_from_json, spline_to_json};
-pub use quasi::{inner_triangle, quasi_interpolate};
+pub use quasi::{QuasiInterpolation, inner_triangle, quasi_interpolate};
 pub use space::SplineSpace;
 pub use spline::{SpaceKind, Spline, SplineEvaluator};

@@ -20,7 +20,8 @@ use crate::{SpaceKind, Spline, SplineError};
 /// 4. the polynomial interpolating these values.
 ///
 /// Neighbours interpolate the same values along their shared edge, so the result is
-/// continuous; for `f` a polynomial of degree `<= d` every step is exact, so `Q f = f`.
+/// continuous; for `f` a polynomial of degree `<= d` every step is exact, so `Q f = f`. This
+/// is [`QuasiInterpolation`] with `f` sampled in parallel.
 ///
 /// # Errors
 /// [`SplineError::Degree`] outside `1..=`[`MAX_DEGREE`]; [`SplineError::NotFinite`] if `f` is not
@@ -30,71 +31,151 @@ pub fn quasi_interpolate(
     d: usize,
     f: &(dyn Fn(Point) -> f64 + Sync),
 ) -> Result<Spline, SplineError> {
-    if !(1..=MAX_DEGREE).contains(&d) {
-        return Err(SplineError::Degree(d));
-    }
     use rayon::prelude::*;
-    let interp = DomainPointInterpolation::new(d);
-    let per_triangle: Vec<Vec<f64>> = (0..mesh.triangles().len())
-        .into_par_iter()
-        .map(|t| triangle_coefficients(&mesh, t, d, &interp, f))
-        .collect::<Result<_, _>>()?;
-    let coefficients = per_triangle.concat();
-    Spline::new(mesh, d, SpaceKind::Continuous, coefficients)
+    let plan = QuasiInterpolation::new(mesh, d)?;
+    let values: Vec<f64> = plan.points().par_iter().map(|&p| f(p)).collect();
+    plan.finish(&values)
 }
 
-/// Steps 1-4 for triangle `t`.
-fn triangle_coefficients(
+/// Algorithm 6.1 in two steps, for a function known only by its values (sampled by the
+/// caller, all at once: a vectorised function, measurements): [`QuasiInterpolation::points`]
+/// lists where the function is needed, [`QuasiInterpolation::finish`] builds `Q f` from the
+/// values there.
+#[derive(Clone, Debug)]
+pub struct QuasiInterpolation {
+    mesh: CurvedTriangulation,
+    d: usize,
+    inner: Vec<Triangle>,
+    /// Per triangle, where its values start in `points`.
+    offsets: Vec<usize>,
+    points: Vec<Point>,
+}
+
+impl QuasiInterpolation {
+    /// The plan for degree `d` on `mesh`: for each triangle the domain points of its inner
+    /// triangle and, where that is not the companion, the companion's domain points on
+    /// interior edges.
+    ///
+    /// # Errors
+    /// [`SplineError::Degree`], [`SplineError::ThinTriangle`].
+    pub fn new(mesh: CurvedTriangulation, d: usize) -> Result<Self, SplineError> {
+        if !(1..=MAX_DEGREE).contains(&d) {
+            return Err(SplineError::Degree(d));
+        }
+        let mut inner = Vec::with_capacity(mesh.triangles().len());
+        let mut offsets = Vec::with_capacity(mesh.triangles().len() + 1);
+        let mut points = Vec::new();
+        for t in 0..mesh.triangles().len() {
+            let companion = companion(&mesh, t);
+            let hat = inner_triangle(&mesh, t)?;
+            offsets.push(points.len());
+            points.extend(hat.domain_points(d));
+            if hat != companion {
+                points.extend(interior_edge_points(&mesh, t, d).map(|(_, p)| p));
+            }
+            inner.push(hat);
+        }
+        offsets.push(points.len());
+        Ok(Self {
+            mesh,
+            d,
+            inner,
+            offsets,
+            points,
+        })
+    }
+
+    /// Where the function is needed, in the order [`QuasiInterpolation::finish`] takes its
+    /// values.
+    pub fn points(&self) -> &[Point] {
+        &self.points
+    }
+
+    /// `Q f` from the values of `f` at [`QuasiInterpolation::points`].
+    ///
+    /// # Errors
+    /// [`SplineError::NotFinite`] for a value that is not finite, [`SplineError::File`] if
+    /// the number of values is wrong.
+    pub fn finish(self, values: &[f64]) -> Result<Spline, SplineError> {
+        use rayon::prelude::*;
+        if values.len() != self.points.len() {
+            return Err(SplineError::File(format!(
+                "{} values for {} points",
+                values.len(),
+                self.points.len()
+            )));
+        }
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(SplineError::NotFinite {
+                x: self.points[i].x,
+                y: self.points[i].y,
+                value: values[i],
+            });
+        }
+        let interp = DomainPointInterpolation::new(self.d);
+        let per_triangle: Vec<Vec<f64>> = (0..self.inner.len())
+            .into_par_iter()
+            .map(|t| self.triangle_coefficients(t, &interp, values))
+            .collect();
+        Spline::new(
+            self.mesh,
+            self.d,
+            SpaceKind::Continuous,
+            per_triangle.concat(),
+        )
+    }
+
+    /// Steps 2-4 for triangle `t`.
+    fn triangle_coefficients(
+        &self,
+        t: usize,
+        interp: &DomainPointInterpolation,
+        values: &[f64],
+    ) -> Vec<f64> {
+        let d = self.d;
+        let n = crate::bb::coefficient_count(d);
+        let own = &values[self.offsets[t]..self.offsets[t + 1]];
+        let companion = companion(&self.mesh, t);
+        let hat = &self.inner[t];
+        if *hat == companion {
+            return interp.coefficients(&own[..n]);
+        }
+        let p = interp.coefficients(&own[..n]);
+        let mut at_companion: Vec<f64> = companion
+            .domain_points(d)
+            .into_iter()
+            .map(|x| evaluate(hat, d, &p, x, Order::Value).value)
+            .collect();
+        // Step 3: f itself at the domain points of interior (straight) edges.
+        for ((index, _), &v) in interior_edge_points(&self.mesh, t, d).zip(&own[n..]) {
+            at_companion[index] = v;
+        }
+        interp.coefficients(&at_companion)
+    }
+}
+
+fn companion(mesh: &CurvedTriangulation, t: usize) -> Triangle {
+    let v = mesh.triangles()[t].map(|i| mesh.vertices()[i]);
+    Triangle::new(v[0], v[1], v[2])
+}
+
+/// The companion triangle's domain points of degree `d` on its interior (straight) edges,
+/// vertices included, with their positions in coefficient order.
+fn interior_edge_points(
     mesh: &CurvedTriangulation,
     t: usize,
     d: usize,
-    interp: &DomainPointInterpolation,
-    f: &(dyn Fn(Point) -> f64 + Sync),
-) -> Result<Vec<f64>, SplineError> {
-    let v = mesh.triangles()[t].map(|i| mesh.vertices()[i]);
-    let companion = Triangle::new(v[0], v[1], v[2]);
-    let sample = |p: Point| {
-        let value = f(p);
-        if value.is_finite() {
-            Ok(value)
-        } else {
-            Err(SplineError::NotFinite {
-                x: p.x,
-                y: p.y,
-                value,
-            })
-        }
-    };
-    let inner = inner_triangle(mesh, t)?;
-    let mut values: Vec<f64> = if inner == companion {
-        companion
-            .domain_points(d)
-            .into_iter()
-            .map(sample)
-            .collect::<Result<_, _>>()?
-    } else {
-        let at_inner: Vec<f64> = inner
-            .domain_points(d)
-            .into_iter()
-            .map(sample)
-            .collect::<Result<_, _>>()?;
-        let p = interp.coefficients(&at_inner);
-        companion
-            .domain_points(d)
-            .into_iter()
-            .map(|x| evaluate(&inner, d, &p, x, Order::Value).value)
-            .collect()
-    };
-    // Step 3: f itself at the domain points of interior (straight) edges.
+) -> impl Iterator<Item = (usize, Point)> {
     let edges = mesh.edge_kinds(t);
+    let tri = companion(mesh, t);
     let df = d as f64;
-    for (n, (i, j, k)) in multi_indices(d).enumerate() {
-        let on_edge = [k == 0, i == 0, j == 0];
-        if (0..3).any(|e| on_edge[e] && edges[e] == EdgeKind::Straight) {
-            values[n] = sample(companion.point([i as f64 / df, j as f64 / df, k as f64 / df]))?;
-        }
-    }
-    Ok(interp.coefficients(&values))
+    multi_indices(d)
+        .enumerate()
+        .filter(move |&(_, (i, j, k))| {
+            let on_edge = [k == 0, i == 0, j == 0];
+            (0..3).any(|e| on_edge[e] && edges[e] == EdgeKind::Straight)
+        })
+        .map(move |(n, (i, j, k))| (n, tri.point([i as f64 / df, j as f64 / df, k as f64 / df])))
 }
 
 /// An ordinary triangle inside curved triangle `t`, as large as its arcs allow: with

@@ -47,17 +47,8 @@ const LOCATION: Column<Location> = Column {
     header: "x,y,location",
     initial: Location::Outside,
     csv: |l, out| out.extend_from_slice(l.as_str().as_bytes()),
-    npy: (NpyType::I8, |l, out| out.push(location_code(l))),
+    npy: (NpyType::I8, |l, out| out.push(l.code() as u8)),
 };
-
-/// The int8 code of a location in `.npy` outputs.
-fn location_code(l: Location) -> u8 {
-    match l {
-        Location::Outside => 0,
-        Location::Inside => 1,
-        Location::Boundary => 2,
-    }
-}
 
 impl ClassifyArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {

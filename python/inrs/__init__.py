@@ -1,0 +1,317 @@
+"""Exact point containment for planar domains bounded by NURBS and rational Bezier curves.
+
+Points are classified exactly as inside, outside or on the boundary (within a tolerance relative
+to the domain's size) by the inRS algorithm, on NumPy arrays, with the GIL released and all cores
+at work. Winding numbers, well-spaced sampling, curved triangulations and splines on them come
+with it.
+
+>>> import numpy as np, inrs
+>>> d = inrs.Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
+>>> d.classify(np.array([[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]])).tolist()
+[1, 0, 2]
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import threading
+from typing import Any, Callable, Optional, Tuple, Union
+
+import numpy as np
+
+from . import _inrs
+
+__all__ = [
+    "Domain",
+    "Spline",
+    "OUTSIDE",
+    "INSIDE",
+    "BOUNDARY",
+    "DEFAULT_TOLERANCE",
+    "sample",
+    "mesh",
+    "fit",
+    "__version__",
+]
+
+#: Code of a point outside the domain.
+OUTSIDE: int = _inrs.OUTSIDE
+#: Code of a point inside the domain.
+INSIDE: int = _inrs.INSIDE
+#: Code of a point on the boundary (within the tolerance).
+BOUNDARY: int = _inrs.BOUNDARY
+#: Default boundary tolerance, relative to the diagonal of the domain's bounding box.
+DEFAULT_TOLERANCE: float = _inrs.DEFAULT_TOLERANCE
+__version__: str = _inrs.__version__
+
+_METHODS = ("fast", "inrs1", "inrs2", "gwn")
+
+ArrayLike = Any
+
+
+def _columns(x: ArrayLike, y: Optional[ArrayLike]) -> Tuple[np.ndarray, np.ndarray, tuple]:
+    """Contiguous float64 columns from `(N, 2)` points or from two arrays of one shape."""
+    if y is None:
+        xy = np.asarray(x)
+        if xy.ndim != 2 or xy.shape[1] != 2:
+            raise ValueError(f"points must have shape (N, 2), got {xy.shape}")
+        return (
+            np.ascontiguousarray(xy[:, 0], dtype=np.float64),
+            np.ascontiguousarray(xy[:, 1], dtype=np.float64),
+            (xy.shape[0],),
+        )
+    xa, ya = np.asarray(x), np.asarray(y)
+    if xa.shape != ya.shape:
+        raise ValueError(f"x and y must have the same shape, got {xa.shape} and {ya.shape}")
+    return (
+        np.ascontiguousarray(xa, dtype=np.float64).reshape(-1),
+        np.ascontiguousarray(ya, dtype=np.float64).reshape(-1),
+        xa.shape,
+    )
+
+
+def _threads(threads: Optional[int]) -> int:
+    if threads is None:
+        return 0
+    if threads < 1:
+        raise ValueError(f"threads must be at least 1, got {threads}")
+    return int(threads)
+
+
+# Domains rebuilt from pickles are shared within a process, so that the tasks of a Dask or
+# multiprocessing worker build each domain's index once.
+_CACHE: "dict[str, _inrs.NativeDomain]" = {}
+_CACHE_LOCK = threading.Lock()
+
+
+def _from_json_shared(text: str) -> "Domain":
+    key = hashlib.sha256(text.encode()).hexdigest()
+    with _CACHE_LOCK:
+        native = _CACHE.get(key)
+        if native is None:
+            native = _inrs.NativeDomain.from_json(text)
+            if len(_CACHE) > 64:
+                _CACHE.clear()
+            _CACHE[key] = native
+    return Domain(native)
+
+
+class Domain:
+    """A planar domain bounded by NURBS curves: one or more loops (holes, several parts).
+
+    Build it with :meth:`Domain.load` or :meth:`Domain.from_json`. Its indexes (monotone boxes,
+    the point-location grid, the winding-number field) are built on first use and kept; a
+    domain pickles by its JSON form (the indexes are rebuilt where it is unpickled).
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: "_inrs.NativeDomain") -> None:
+        if not isinstance(native, _inrs.NativeDomain):
+            raise TypeError("use Domain.load(path) or Domain.from_json(text)")
+        self._native = native
+
+    @classmethod
+    def load(cls, path: Union[str, os.PathLike]) -> "Domain":
+        """Reads a domain file: JSON, SVG, DXF, or a font glyph such as ``"font.ttf#B"``.
+
+        Raises ``OSError`` if the file cannot be read and ``ValueError`` if it is not a domain.
+        """
+        return cls(_inrs.NativeDomain.load(os.fspath(path)))
+
+    @classmethod
+    def from_json(cls, text: str) -> "Domain":
+        """A domain from the text of a JSON domain file. Raises ``ValueError`` on bad input."""
+        return cls(_inrs.NativeDomain.from_json(text))
+
+    def to_json(self) -> str:
+        """The JSON domain file; ``Domain.from_json(d.to_json())`` gives the same curves."""
+        return self._native.to_json()
+
+    @property
+    def name(self) -> Optional[str]:
+        """The domain's name, if its file gives one."""
+        return self._native.name
+
+    @property
+    def area(self) -> float:
+        """The area filled by the even-odd rule (holes subtracted)."""
+        filled = self._native.summary()[2]
+        return float(filled) if filled is not None else abs(self._native.summary()[3])
+
+    @property
+    def bounds(self) -> Tuple[float, float, float, float]:
+        """``(xmin, ymin, xmax, ymax)`` of the curves, as shapely orders it."""
+        return self._native.summary()[4]
+
+    @property
+    def loops(self) -> list:
+        """The boundary loops: dicts with ``curves`` (first, last), ``closed``, ``signed_area``."""
+        return [
+            {"curves": (a, b), "closed": closed, "signed_area": area}
+            for a, b, closed, area in self._native.summary()[5]
+        ]
+
+    def __repr__(self) -> str:
+        curves, loops, _, _, bounds, _ = self._native.summary()
+        name = f"{self.name!r}, " if self.name else ""
+        return (
+            f"Domain({name}curves={curves}, loops={loops}, area={self.area:.6g}, "
+            f"bounds=({bounds[0]:.6g}, {bounds[1]:.6g}, {bounds[2]:.6g}, {bounds[3]:.6g}))"
+        )
+
+    def __reduce__(self):
+        return (_from_json_shared, (self.to_json(),))
+
+    def classify(
+        self,
+        x: ArrayLike,
+        y: Optional[ArrayLike] = None,
+        *,
+        method: str = "fast",
+        tol: float = DEFAULT_TOLERANCE,
+        fill_rule: str = "even-odd",
+        threads: Optional[int] = None,
+    ) -> np.ndarray:
+        """Locations of points: an int8 array of :data:`OUTSIDE`, :data:`INSIDE`, :data:`BOUNDARY`.
+
+        ``classify(xy)`` with ``xy`` of shape ``(N, 2)``, or ``classify(x, y)`` with two arrays
+        of one shape (the result has that shape); any float type and memory layout. A point is
+        on the boundary when it is within ``tol`` times the bounding-box diagonal of the curves
+        (measured vertically or horizontally); all methods (``fast``, ``inrs1``, ``inrs2``,
+        ``gwn``) agree elsewhere. ``gwn`` rounds the generalized winding number and accepts open
+        boundaries; ``fill_rule`` (``even-odd`` or ``nonzero``) applies to it. ``threads``
+        limits the cores used (default all).
+        """
+        if method not in _METHODS:
+            raise ValueError(f"unknown method {method!r} (one of {', '.join(_METHODS)})")
+        xs, ys, shape = _columns(x, y)
+        codes = self._native.classify_columns(
+            xs, ys, method, float(tol), fill_rule, _threads(threads)
+        )
+        return codes.reshape(shape)
+
+    def contains_xy(self, x: ArrayLike, y: Optional[ArrayLike] = None, **kwargs) -> np.ndarray:
+        """True strictly inside, boundary excluded (as ``shapely.contains_xy``)."""
+        return self.classify(x, y, **kwargs) == INSIDE
+
+    def covers_xy(self, x: ArrayLike, y: Optional[ArrayLike] = None, **kwargs) -> np.ndarray:
+        """True inside or on the boundary (as ``shapely.covers``)."""
+        return self.classify(x, y, **kwargs) != OUTSIDE
+
+    def winding(
+        self, x: ArrayLike, y: Optional[ArrayLike] = None, *, threads: Optional[int] = None
+    ) -> np.ndarray:
+        """Generalized winding numbers (float64): 1 inside a counter-clockwise loop, 0 outside,
+        fractional near gaps of open boundaries, the average across a curve on it."""
+        xs, ys, shape = _columns(x, y)
+        return self._native.winding_columns(xs, ys, _threads(threads)).reshape(shape)
+
+    def flatten(self, accuracy: float) -> list:
+        """The boundary as closed polylines within ``accuracy`` (absolute): one ``(M, 2)`` array
+        per loop (for comparisons with polygon tools)."""
+        return self._native.flatten(float(accuracy))
+
+    def _kernel_seconds(self, xy: np.ndarray, threads: Optional[int] = None) -> float:
+        """Seconds the Rust kernel takes on ``xy`` (benchmarks: the Python call's overhead)."""
+        return self._native.kernel_seconds(
+            np.ascontiguousarray(xy, dtype=np.float64), _threads(threads)
+        )
+
+
+class Spline:
+    """A polynomial spline on a curved triangulation (see :func:`fit`)."""
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: "_inrs.NativeSpline") -> None:
+        self._native = native
+
+    @classmethod
+    def from_json(cls, text: str) -> "Spline":
+        """A spline from the text of a spline file (as ``inrs fit`` writes it)."""
+        return cls(_inrs.NativeSpline.from_json(text))
+
+    @classmethod
+    def load(cls, path: Union[str, os.PathLike]) -> "Spline":
+        """Reads a spline file."""
+        with open(path, encoding="utf-8") as f:
+            return cls.from_json(f.read())
+
+    def to_json(self) -> str:
+        """The spline file's text."""
+        return self._native.to_json()
+
+    def save(self, path: Union[str, os.PathLike]) -> None:
+        """Writes the spline file."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.to_json())
+
+    @property
+    def degree(self) -> int:
+        return self._native.summary()[0]
+
+    @property
+    def triangles(self) -> int:
+        """Number of curved triangles."""
+        return self._native.summary()[1]
+
+    @property
+    def dimension(self) -> int:
+        """Number of coefficients of its space."""
+        return self._native.summary()[2]
+
+    def __repr__(self) -> str:
+        return f"Spline(degree={self.degree}, triangles={self.triangles}, coefficients={self.dimension})"
+
+    def __reduce__(self):
+        return (Spline.from_json, (self.to_json(),))
+
+    def __call__(self, x: ArrayLike, y: Optional[ArrayLike] = None) -> np.ndarray:
+        return self.evaluate(x, y)
+
+    def evaluate(
+        self,
+        x: ArrayLike,
+        y: Optional[ArrayLike] = None,
+        *,
+        derivatives: bool = False,
+        threads: Optional[int] = None,
+    ) -> np.ndarray:
+        """Values anywhere in the domain (NaN outside); with ``derivatives``, an array of shape
+        ``(..., 3)``: value, d/dx, d/dy."""
+        xs, ys, shape = _columns(x, y)
+        out = self._native.evaluate_columns(xs, ys, bool(derivatives), _threads(threads))
+        return out.reshape(shape + ((3,) if derivatives else ()))
+
+
+def sample(domain: Domain, ny: int) -> Tuple[np.ndarray, np.ndarray]:
+    """Well-spaced points (Algorithm 11.1 of Schumaker and Yu): ``(points (N, 2), on_boundary
+    (N,) bool)``; about ``ny`` rows of points over the domain's height."""
+    return _inrs.sample(domain._native, int(ny))
+
+
+def mesh(domain: Domain, ny: int, refine: str = "none") -> dict:
+    """The curved triangulation of :func:`sample`'s points, optionally refined (``"ct"``
+    Clough-Tocher, ``"ps"`` Powell-Sabin): a dict of arrays ``vertices`` (N, 2), ``triangles``
+    (T, 3) and ``curved_edges`` (a dict of arrays ``triangle, edge, curve, loop, u0, u1, start,
+    end``)."""
+    return _inrs.mesh(domain._native, int(ny), refine)
+
+
+def fit(
+    domain: Domain,
+    f: Callable[[np.ndarray, np.ndarray], ArrayLike],
+    *,
+    ny: int = 9,
+    degree: int = 5,
+    refine: str = "none",
+) -> Spline:
+    """The quasi-interpolating spline of degree ``degree`` of ``f`` on the curved triangulation
+    of ``mesh(domain, ny, refine)`` (continuous, exact for polynomials of that degree). ``f``
+    is called once, with the arrays ``x``, ``y`` of every point it is needed at."""
+    plan = _inrs.FitPlan(domain._native, int(ny), int(degree), refine)
+    xy = plan.points()
+    values = np.ascontiguousarray(np.broadcast_to(f(xy[:, 0], xy[:, 1]), (len(xy),)), dtype=np.float64)
+    return Spline(plan.finish(values))

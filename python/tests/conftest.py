@@ -1,0 +1,47 @@
+"""Shared helpers: the repository's fixtures, Halton points as the inRS paper defines them,
+and the command-line tool (built with cargo) for comparisons."""
+
+import json
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+FIXTURES = ROOT / "fixtures"
+PAPER = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune", "circle", "l_shape", "leaf_cubic"]
+
+
+def radical_inverse(i: np.ndarray, base: int) -> np.ndarray:
+    """The radical inverse, with the same floating-point steps as the Rust one."""
+    i = i.astype(np.uint64).copy()
+    inv = 1.0 / base
+    factor = np.full(i.shape, inv)
+    value = np.zeros(i.shape)
+    while np.any(i > 0):
+        value += (i % base).astype(np.float64) * factor
+        i //= base
+        factor *= inv
+    return value
+
+
+def halton(n: int, box) -> np.ndarray:
+    """The first ``n`` Halton points (bases 2, 3, starting at (0, 0)) of ``(xmin, xmax, ymin,
+    ymax)``."""
+    xmin, xmax, ymin, ymax = box
+    i = np.arange(n, dtype=np.uint64)
+    return np.column_stack(
+        [xmin + radical_inverse(i, 2) * (xmax - xmin), ymin + radical_inverse(i, 3) * (ymax - ymin)]
+    )
+
+
+def fixture_meta(name: str) -> dict:
+    return json.loads((FIXTURES / "inrs-paper" / f"{name}.json").read_text())
+
+
+@pytest.fixture(scope="session")
+def cli() -> pathlib.Path:
+    """The ``inrs`` binary, built by cargo (quick when it is up to date)."""
+    subprocess.run(["cargo", "build", "--quiet", "-p", "inrs-cli"], cwd=ROOT, check=True)
+    return ROOT / "target" / "debug" / "inrs"

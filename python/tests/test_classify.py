@@ -1,0 +1,133 @@
+"""Classification on NumPy arrays against the command-line tool, the inRS paper's reference
+counts, and independent truth; array handling; errors; pickling."""
+
+import io
+import pickle
+import subprocess
+
+import numpy as np
+import pytest
+
+import inrs
+from conftest import FIXTURES, PAPER, fixture_meta, halton
+
+METHODS = ["fast", "inrs1", "inrs2", "gwn"]
+CODES = {"outside": inrs.OUTSIDE, "inside": inrs.INSIDE, "boundary": inrs.BOUNDARY}
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_every_method_equals_the_cli(name, cli, tmp_path):
+    path = FIXTURES / "inrs-paper" / f"{name}.json"
+    d = inrs.Domain.load(path)
+    b = d.bounds
+    pts = halton(60_000, (b[0], b[2], b[1], b[3]))
+    # Points on the boundary and near it too: the curves' sample points nudged.
+    csv = tmp_path / "p.csv"
+    np.savetxt(csv, pts, delimiter=",", fmt="%.17g")
+    for method in METHODS:
+        out = subprocess.run(
+            [cli, "classify", "--domain", path, "--points", csv, "--method", method],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
+        want = np.array([CODES[l.rsplit(",", 1)[1]] for l in out.splitlines()[1:]], dtype=np.int8)
+        got = d.classify(pts, method=method)
+        assert got.dtype == np.int8
+        assert np.array_equal(got, want), f"{name} {method}: {np.sum(got != want)} differ"
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_reference_inside_counts(name):
+    meta = fixture_meta(name)
+    d = inrs.Domain.load(FIXTURES / "inrs-paper" / f"{name}.json")
+    refs = meta["reference_inside_counts_halton"]
+    checked = 0
+    for n, r in refs.get("paper_protocol", {}).items():
+        pts = halton(int(n), meta["bbox_xmin_xmax_ymin_ymax"])
+        for method in ["fast", "inrs2"]:
+            assert np.sum(d.classify(pts, method=method) == inrs.INSIDE) == r["inRS_nbox200_safe1_in"]
+        checked += 1
+    assert checked >= 2
+
+
+def test_contains_covers_and_winding_on_a_circle():
+    d = inrs.Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
+    x = np.array([0.0, 0.5, 1.0, 1.5, -0.999999])
+    y = np.zeros_like(x)
+    assert d.classify(x, y).tolist() == [1, 1, 2, 0, 1]
+    assert d.contains_xy(x, y).tolist() == [True, True, False, False, True]
+    assert d.covers_xy(x, y).tolist() == [True, True, True, False, True]
+    w = d.winding(x, y)
+    assert w.dtype == np.float64
+    assert np.allclose(w, [1, 1, 0.5, 0, 1], atol=1e-12)
+    # Independent truth: inside the unit disc exactly when x^2 + y^2 < 1, away from the circle.
+    rng = np.random.default_rng(7)
+    pts = rng.uniform(-1.5, 1.5, size=(200_000, 2))
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    far = np.abs(r - 1) > 1e-9
+    assert np.array_equal(d.contains_xy(pts)[far], (r < 1)[far])
+
+
+def test_any_layout_and_float32():
+    d = inrs.Domain.load(FIXTURES / "inrs-paper" / "s4_disk_ellipse_segment.json")
+    pts = halton(5000, (-0.5, 1.0, -1.0, 1.0))
+    want = d.classify(pts)
+    fortran = np.asfortranarray(pts)
+    strided = np.column_stack([pts, pts])[:, ::2]
+    assert np.array_equal(d.classify(fortran), want)
+    assert np.array_equal(d.classify(strided), want)
+    assert np.array_equal(d.classify(pts[:, 0], pts[:, 1]), want)
+    assert np.array_equal(d.classify(pts[:, 0].tolist(), pts[:, 1].tolist()), want)
+    # float32: converted exactly, so it equals float64 classification of the rounded points.
+    p32 = pts.astype(np.float32)
+    assert np.array_equal(d.classify(p32), d.classify(p32.astype(np.float64)))
+    # Two arrays of any shape give that shape.
+    grid_x, grid_y = np.meshgrid(np.linspace(-0.5, 1, 7), np.linspace(-1, 1, 5))
+    assert d.classify(grid_x, grid_y).shape == (5, 7)
+    assert np.array_equal(d.classify(pts, threads=1), want)
+    assert d.classify(np.empty((0, 2))).shape == (0,)
+
+
+def test_bad_input_raises_with_the_rust_message():
+    with pytest.raises(OSError, match="nonexistent"):
+        inrs.Domain.load("/nonexistent/domain.json")
+    with pytest.raises(ValueError, match="invalid JSON"):
+        inrs.Domain.from_json("{not json")
+    with pytest.raises(ValueError, match="curve 0"):
+        inrs.Domain.from_json('{"curves": [{"degree": 2, "control_points": [[0, 0]]}]}')
+    d = inrs.Domain.load(FIXTURES / "inrs-paper" / "circle.json")
+    with pytest.raises(ValueError, match=r"shape \(N, 2\)"):
+        d.classify(np.zeros((4, 3)))
+    with pytest.raises(ValueError, match="same shape"):
+        d.classify(np.zeros(3), np.zeros(4))
+    with pytest.raises(ValueError, match="unknown method"):
+        d.classify(np.zeros((1, 2)), method="magic")
+    with pytest.raises(ValueError, match="tolerance"):
+        d.classify(np.zeros((1, 2)), tol=-1.0)
+    with pytest.raises(ValueError, match="fill rule"):
+        d.classify(np.zeros((1, 2)), method="gwn", fill_rule="sideways")
+    with pytest.raises(ValueError, match="threads"):
+        d.classify(np.zeros((1, 2)), threads=0)
+    # An open boundary: the crossing methods refuse it, gwn accepts it.
+    arc = inrs.Domain.from_json(
+        '{"curves": [{"arc": {"center": [0, 0], "radius": 1, "start_angle": 0, "sweep": 5.5}}]}'
+    )
+    with pytest.raises(ValueError, match="open boundary"):
+        arc.classify(np.zeros((1, 2)))
+    assert arc.classify(np.zeros((1, 2)), method="gwn").tolist() == [inrs.INSIDE]
+
+
+def test_pickle_round_trip():
+    d = inrs.Domain.load(FIXTURES / "inrs-paper" / "leaf_cubic.json")
+    back = pickle.loads(pickle.dumps(d))
+    assert back.to_json() == d.to_json()
+    pts = halton(20_000, (d.bounds[0], d.bounds[2], d.bounds[1], d.bounds[3]))
+    assert np.array_equal(back.classify(pts), d.classify(pts))
+    assert "Domain(" in repr(d) and d.area > 0 and len(d.loops) == 1
+
+
+def test_other_formats_load():
+    d = inrs.Domain.load(FIXTURES / "io" / "gear.svg")
+    assert d.area > 0
+    assert inrs.Domain.load(FIXTURES / "io" / "plate.dxf").area > 0
