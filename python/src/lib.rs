@@ -7,7 +7,10 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -103,7 +106,10 @@ fn columns<'a>(
     x: &'a PyReadonlyArray1<'_, f64>,
     y: &'a PyReadonlyArray1<'_, f64>,
 ) -> PyResult<Points<'a>> {
-    let (x, y) = (x.as_slice().map_err(value_error)?, y.as_slice().map_err(value_error)?);
+    let (x, y) = (
+        x.as_slice().map_err(value_error)?,
+        y.as_slice().map_err(value_error)?,
+    );
     if x.len() != y.len() {
         return Err(value_error(format!(
             "x and y differ in length: {} and {}",
@@ -113,6 +119,19 @@ fn columns<'a>(
     }
     Ok(Points::Columns(x, y))
 }
+
+/// `(curves, loops, filled area, signed area, bounds, loops' (first, last, closed, area))`.
+type Summary = (
+    usize,
+    usize,
+    Option<f64>,
+    f64,
+    (f64, f64, f64, f64),
+    Vec<(usize, usize, bool, f64)>,
+);
+
+/// Points `(N, 2)` and a boundary mask `(N,)`.
+type Sampled<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<bool>>);
 
 /// A planar domain bounded by NURBS curves (the native object behind `inrs.Domain`).
 #[pyclass(module = "inrs._inrs", name = "NativeDomain", frozen)]
@@ -290,7 +309,7 @@ impl NativeDomain {
 
     /// A summary: `(curves, loops, filled area (even-odd) or None, signed area, (xmin, ymin,
     /// xmax, ymax), [(first curve, last curve, closed, signed area) per loop])`.
-    fn summary(&self) -> (usize, usize, Option<f64>, f64, (f64, f64, f64, f64), Vec<(usize, usize, bool, f64)>) {
+    fn summary(&self) -> Summary {
         let s = DomainSummary::of(&self.domain);
         let b = s.bounding_box;
         let loops = s
@@ -356,7 +375,12 @@ impl NativeDomain {
 
     /// Seconds the Rust kernel of the default method takes on these points, copied first (for
     /// measuring the Python call's overhead).
-    fn kernel_seconds(&self, py: Python<'_>, xy: PyReadonlyArray2<'_, f64>, threads: usize) -> PyResult<f64> {
+    fn kernel_seconds(
+        &self,
+        py: Python<'_>,
+        xy: PyReadonlyArray2<'_, f64>,
+        threads: usize,
+    ) -> PyResult<f64> {
         let pts = pairs(&xy)?.to_vec();
         let classifier = self.classifier(DEFAULT_RELATIVE_TOLERANCE)?;
         py.detach(|| {
@@ -373,7 +397,11 @@ impl NativeDomain {
 
     /// The boundary flattened: per loop, an `(M, 2)` array of a closed polyline within
     /// `accuracy` of the curves.
-    fn flatten<'py>(&self, py: Python<'py>, accuracy: f64) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
+    fn flatten<'py>(
+        &self,
+        py: Python<'py>,
+        accuracy: f64,
+    ) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
         if !(accuracy.is_finite() && accuracy > 0.0) {
             return Err(value_error("accuracy must be finite and > 0"));
         }
@@ -401,11 +429,7 @@ impl NativeDomain {
 
 /// Well-spaced points of Algorithm 11.1: `(points (N, 2), boundary mask (N,))`.
 #[pyfunction]
-fn sample<'py>(
-    py: Python<'py>,
-    domain: &NativeDomain,
-    ny: usize,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<bool>>)> {
+fn sample<'py>(py: Python<'py>, domain: &NativeDomain, ny: usize) -> PyResult<Sampled<'py>> {
     let pts = py
         .detach(|| well_spaced_points(&domain.domain, ny))
         .map_err(value_error)?;
@@ -449,12 +473,26 @@ fn mesh<'py>(
     let m = py.detach(|| triangulation(&domain.domain, ny, refine))?;
     let out = PyDict::new(py);
     let v: Vec<f64> = m.vertices().iter().flat_map(|p| [p.x, p.y]).collect();
-    out.set_item("vertices", v.into_pyarray(py).reshape([m.vertices().len(), 2])?)?;
+    out.set_item(
+        "vertices",
+        v.into_pyarray(py).reshape([m.vertices().len(), 2])?,
+    )?;
     let t: Vec<i64> = m.triangles().iter().flatten().map(|&i| i as i64).collect();
-    out.set_item("triangles", t.into_pyarray(py).reshape([m.triangles().len(), 3])?)?;
+    out.set_item(
+        "triangles",
+        t.into_pyarray(py).reshape([m.triangles().len(), 3])?,
+    )?;
     let edges = PyDict::new(py);
-    let (mut tri, mut edge, mut curve, mut lp, mut u0, mut u1, mut from, mut to) =
-        (vec![], vec![], vec![], vec![], vec![], vec![], vec![], vec![]);
+    let (mut tri, mut edge, mut curve, mut lp, mut u0, mut u1, mut from, mut to) = (
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+    );
     for t in 0..m.triangles().len() {
         for (k, kind) in m.edge_kinds(t).iter().enumerate() {
             if let EdgeKind::Curved(i) = kind {
@@ -493,7 +531,13 @@ struct FitPlan {
 impl FitPlan {
     #[new]
     #[pyo3(signature = (domain, ny, degree, refine = "none"))]
-    fn new(py: Python<'_>, domain: &NativeDomain, ny: usize, degree: usize, refine: &str) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        domain: &NativeDomain,
+        ny: usize,
+        degree: usize,
+        refine: &str,
+    ) -> PyResult<Self> {
         let plan = py.detach(|| {
             let m = triangulation(&domain.domain, ny, refine)?;
             QuasiInterpolation::new(m, degree).map_err(value_error)
@@ -503,14 +547,24 @@ impl FitPlan {
 
     /// Where the function is needed: an `(N, 2)` array.
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let plan = self.plan.as_ref().ok_or_else(|| value_error("plan already used"))?;
+        let plan = self
+            .plan
+            .as_ref()
+            .ok_or_else(|| value_error("plan already used"))?;
         let v: Vec<f64> = plan.points().iter().flat_map(|p| [p.x, p.y]).collect();
-        Ok(v.into_pyarray(py).reshape([plan.points().len(), 2])?)
+        v.into_pyarray(py).reshape([plan.points().len(), 2])
     }
 
     /// The spline from the values at [`FitPlan::points`].
-    fn finish(&mut self, py: Python<'_>, values: PyReadonlyArray1<'_, f64>) -> PyResult<NativeSpline> {
-        let plan = self.plan.take().ok_or_else(|| value_error("plan already used"))?;
+    fn finish(
+        &mut self,
+        py: Python<'_>,
+        values: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<NativeSpline> {
+        let plan = self
+            .plan
+            .take()
+            .ok_or_else(|| value_error("plan already used"))?;
         let values = values.as_slice().map_err(value_error)?.to_vec();
         let spline = py.detach(|| plan.finish(&values)).map_err(value_error)?;
         Ok(NativeSpline { spline })
@@ -558,7 +612,11 @@ impl NativeSpline {
         threads: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
         let pts = columns(&x, &y)?;
-        let order = if derivatives { Order::Gradient } else { Order::Value };
+        let order = if derivatives {
+            Order::Gradient
+        } else {
+            Order::Value
+        };
         let jets = py.detach(|| {
             with_threads(threads, || {
                 let eval = self.spline.evaluator().map_err(value_error)?;
@@ -576,7 +634,10 @@ impl NativeSpline {
                 .collect();
             Ok(v.into_pyarray(py).reshape([jets.len(), 3])?.into_any())
         } else {
-            let v: Vec<f64> = jets.iter().map(|j| j.map_or(f64::NAN, |j| j.value)).collect();
+            let v: Vec<f64> = jets
+                .iter()
+                .map(|j| j.map_or(f64::NAN, |j| j.value))
+                .collect();
             Ok(v.into_pyarray(py).into_any())
         }
     }
