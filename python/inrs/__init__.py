@@ -50,25 +50,19 @@ _METHODS = ("fast", "inrs1", "inrs2", "gwn")
 ArrayLike = Any
 
 
-def _columns(x: ArrayLike, y: Optional[ArrayLike]) -> Tuple[np.ndarray, np.ndarray, tuple]:
-    """Contiguous float64 columns from `(N, 2)` points or from two arrays of one shape."""
+def _points(x: ArrayLike, y: Optional[ArrayLike]) -> Tuple[Optional[np.ndarray], np.ndarray, np.ndarray, tuple]:
+    """Float64 views of the points: ``(xy, None, None, shape)`` for ``(N, 2)`` points or
+    ``(None, x, y, shape)`` for two arrays of one shape. Float64 input of any memory layout is
+    passed as it is (the native code reads strides); other types are converted."""
     if y is None:
-        xy = np.asarray(x)
+        xy = np.asarray(x, dtype=np.float64)
         if xy.ndim != 2 or xy.shape[1] != 2:
             raise ValueError(f"points must have shape (N, 2), got {xy.shape}")
-        return (
-            np.ascontiguousarray(xy[:, 0], dtype=np.float64),
-            np.ascontiguousarray(xy[:, 1], dtype=np.float64),
-            (xy.shape[0],),
-        )
-    xa, ya = np.asarray(x), np.asarray(y)
+        return xy, None, None, (xy.shape[0],)
+    xa, ya = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
     if xa.shape != ya.shape:
         raise ValueError(f"x and y must have the same shape, got {xa.shape} and {ya.shape}")
-    return (
-        np.ascontiguousarray(xa, dtype=np.float64).reshape(-1),
-        np.ascontiguousarray(ya, dtype=np.float64).reshape(-1),
-        xa.shape,
-    )
+    return None, xa.reshape(-1), ya.reshape(-1), xa.shape
 
 
 def _threads(threads: Optional[int]) -> int:
@@ -186,11 +180,11 @@ class Domain:
         """
         if method not in _METHODS:
             raise ValueError(f"unknown method {method!r} (one of {', '.join(_METHODS)})")
-        xs, ys, shape = _columns(x, y)
-        codes = self._native.classify_columns(
-            xs, ys, method, float(tol), fill_rule, _threads(threads)
-        )
-        return codes.reshape(shape)
+        xy, xs, ys, shape = _points(x, y)
+        args = (method, float(tol), fill_rule, _threads(threads))
+        if xy is not None:
+            return self._native.classify_pairs(xy, *args)
+        return self._native.classify_columns(xs, ys, *args).reshape(shape)
 
     def contains_xy(self, x: ArrayLike, y: Optional[ArrayLike] = None, **kwargs) -> np.ndarray:
         """True strictly inside, boundary excluded (as ``shapely.contains_xy``)."""
@@ -205,7 +199,9 @@ class Domain:
     ) -> np.ndarray:
         """Generalized winding numbers (float64): 1 inside a counter-clockwise loop, 0 outside,
         fractional near gaps of open boundaries, the average across a curve on it."""
-        xs, ys, shape = _columns(x, y)
+        xy, xs, ys, shape = _points(x, y)
+        if xy is not None:
+            xs, ys = xy[:, 0], xy[:, 1]
         return self._native.winding_columns(xs, ys, _threads(threads)).reshape(shape)
 
     def flatten(self, accuracy: float) -> list:
@@ -281,7 +277,9 @@ class Spline:
     ) -> np.ndarray:
         """Values anywhere in the domain (NaN outside); with ``derivatives``, an array of shape
         ``(..., 3)``: value, d/dx, d/dy."""
-        xs, ys, shape = _columns(x, y)
+        xy, xs, ys, shape = _points(x, y)
+        if xy is not None:
+            xs, ys = xy[:, 0], xy[:, 1]
         out = self._native.evaluate_columns(xs, ys, bool(derivatives), _threads(threads))
         return out.reshape(shape + ((3,) if derivatives else ()))
 

@@ -1,12 +1,14 @@
 //! The native part of the `inrs` Python package: domains, classification and winding numbers on
 //! NumPy arrays (the GIL released while Rust works, all cores by default), sampling, meshing and
-//! splines. The Python layer (`inrs/__init__.py`) turns any array-like into the contiguous
-//! float64 arrays these functions take.
+//! splines. The Python layer (`inrs/__init__.py`) turns any array-like into the float64 arrays
+//! these functions take (a copy only when the input is not float64); any memory layout is read
+//! in place.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
+use numpy::ndarray::{ArrayView1, ArrayView2};
 use numpy::{
     IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
     PyUntypedArrayMethods,
@@ -65,30 +67,57 @@ fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> PyResu
     Ok(pool.install(f))
 }
 
-/// The points of an `(N, 2)` C-contiguous float64 array, or of two 1-D ones.
+/// The points of an `(N, 2)` float64 array, or of two 1-D ones, in any memory layout (read in
+/// place, never copied).
 #[derive(Clone, Copy)]
 enum Points<'a> {
-    Pairs(&'a [f64]),
-    Columns(&'a [f64], &'a [f64]),
+    Pairs(ArrayView2<'a, f64>),
+    Columns(ArrayView1<'a, f64>, ArrayView1<'a, f64>),
 }
 
 impl Points<'_> {
     fn len(&self) -> usize {
         match self {
-            Points::Pairs(v) => v.len() / 2,
+            Points::Pairs(v) => v.nrows(),
             Points::Columns(x, _) => x.len(),
         }
     }
+}
 
-    fn at(&self, i: usize) -> Point {
-        match self {
-            Points::Pairs(v) => Point::new(v[2 * i], v[2 * i + 1]),
-            Points::Columns(x, y) => Point::new(x[i], y[i]),
+/// Runs `$body` with `$at: Fn(usize) -> Point` reading the points' memory directly: one
+/// specialised accessor per layout (contiguous slices or strided views), so the hot loops in
+/// `$body` are compiled for each and never branch on the layout per point.
+macro_rules! with_point_accessor {
+    ($pts:expr, |$at:ident| $body:expr) => {
+        match $pts {
+            Points::Pairs(v) => match v.as_slice() {
+                Some(s) => {
+                    let $at = |i: usize| Point::new(s[2 * i], s[2 * i + 1]);
+                    $body
+                }
+                None => {
+                    let $at = |i: usize| Point::new(v[[i, 0]], v[[i, 1]]);
+                    $body
+                }
+            },
+            Points::Columns(x, y) => match (x.as_slice(), y.as_slice()) {
+                (Some(x), Some(y)) => {
+                    let $at = |i: usize| Point::new(x[i], y[i]);
+                    $body
+                }
+                _ => {
+                    let $at = |i: usize| Point::new(x[i], y[i]);
+                    $body
+                }
+            },
         }
-    }
+    };
+}
 
+impl Points<'_> {
+    /// A copy as points, for the kernels that take a slice.
     fn to_vec(self) -> Vec<Point> {
-        (0..self.len()).map(|i| self.at(i)).collect()
+        with_point_accessor!(self, |at| (0..self.len()).map(at).collect())
     }
 }
 
@@ -99,17 +128,13 @@ fn pairs<'a>(xy: &'a PyReadonlyArray2<'_, f64>) -> PyResult<Points<'a>> {
             xy.shape()
         )));
     }
-    Ok(Points::Pairs(xy.as_slice().map_err(value_error)?))
+    Ok(Points::Pairs(xy.as_array()))
 }
 
 fn columns<'a>(
     x: &'a PyReadonlyArray1<'_, f64>,
     y: &'a PyReadonlyArray1<'_, f64>,
 ) -> PyResult<Points<'a>> {
-    let (x, y) = (
-        x.as_slice().map_err(value_error)?,
-        y.as_slice().map_err(value_error)?,
-    );
     if x.len() != y.len() {
         return Err(value_error(format!(
             "x and y differ in length: {} and {}",
@@ -117,7 +142,28 @@ fn columns<'a>(
             y.len()
         )));
     }
-    Ok(Points::Columns(x, y))
+    Ok(Points::Columns(x.as_array(), y.as_array()))
+}
+
+/// Codes (0 outside, 1 inside, 2 boundary) of `n` points, in parallel chunks: `fill(first,
+/// locations)` locates the points `first..first + locations.len()`, and each chunk's codes go
+/// straight into the result (no array of locations the size of the input).
+fn codes_in_chunks(n: usize, fill: impl Fn(usize, &mut [Location]) + Sync) -> Vec<i8> {
+    use rayon::prelude::*;
+    const TASK: usize = 1 << 16;
+    let mut codes = vec![0i8; n];
+    codes
+        .par_chunks_mut(TASK)
+        .enumerate()
+        .for_each(|(c, codes)| {
+            let mut buffer = [Location::Outside; TASK];
+            let locations = &mut buffer[..codes.len()];
+            fill(c * TASK, locations);
+            for (code, location) in codes.iter_mut().zip(locations.iter()) {
+                *code = location.code();
+            }
+        });
+    codes
 }
 
 /// `(curves, loops, filled area, signed area, bounds, loops' (first, last, closed, area))`.
@@ -208,43 +254,37 @@ impl NativeDomain {
                     )));
                 }
             };
-            let field = self.field(tol)?;
+            let field = (*self.field(tol)?).clone().with_fill_rule(rule);
             return py.detach(|| {
                 with_threads(threads, || {
-                    use rayon::prelude::*;
-                    let field = (*field).clone().with_fill_rule(rule);
                     let fast = FastWindingField::new(&field);
-                    (0..n)
-                        .into_par_iter()
-                        .with_min_len(1024)
-                        .map(|i| fast.locate(pts.at(i)).code())
-                        .collect()
+                    with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
+                        for (k, o) in out.iter_mut().enumerate() {
+                            *o = fast.locate(at(first + k));
+                        }
+                    }))
                 })
             });
         }
         let classifier = self.classifier(tol)?;
         py.detach(|| {
             with_threads(threads, || {
-                use rayon::prelude::*;
-                let mut out = vec![Location::Outside; n];
                 if method == Method::Fast && n >= FAST_METHOD_MIN_POINTS {
-                    classifier
-                        .locator()
-                        .locate_indexed_parallel_into(|i| pts.at(i), &mut out);
+                    let locator = classifier.locator();
+                    with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
+                        locator.locate_indexed_into(|i| at(first + i), out)
+                    }))
                 } else {
                     let method = if method == Method::Fast {
                         Method::InRS2
                     } else {
                         method
                     };
-                    const TASK: usize = 1 << 14;
-                    out.par_chunks_mut(TASK).enumerate().for_each(|(c, o)| {
-                        let chunk: Vec<Point> =
-                            (c * TASK..c * TASK + o.len()).map(|i| pts.at(i)).collect();
-                        o.copy_from_slice(&classifier.classify(&chunk, method));
-                    });
+                    with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
+                        let chunk: Vec<Point> = (first..first + out.len()).map(at).collect();
+                        out.copy_from_slice(&classifier.classify(&chunk, method));
+                    }))
                 }
-                out.into_iter().map(Location::code).collect()
             })
         })
     }
@@ -260,11 +300,11 @@ impl NativeDomain {
             with_threads(threads, || {
                 use rayon::prelude::*;
                 let fast = FastWindingField::new(&field);
-                (0..pts.len())
+                with_point_accessor!(pts, |at| (0..pts.len())
                     .into_par_iter()
                     .with_min_len(1024)
-                    .map(|i| fast.winding_number(pts.at(i)))
-                    .collect()
+                    .map(|i| fast.winding_number(at(i)))
+                    .collect())
             })
         })
     }
@@ -327,7 +367,7 @@ impl NativeDomain {
         )
     }
 
-    /// Codes for an `(N, 2)` contiguous float64 array.
+    /// Codes for an `(N, 2)` float64 array (any layout).
     fn classify_pairs<'py>(
         &self,
         py: Python<'py>,
@@ -343,7 +383,7 @@ impl NativeDomain {
             .into_pyarray(py))
     }
 
-    /// Codes for two contiguous 1-D float64 arrays.
+    /// Codes for two 1-D float64 arrays (any layout).
     #[allow(clippy::too_many_arguments)]
     fn classify_columns<'py>(
         &self,
@@ -361,7 +401,7 @@ impl NativeDomain {
             .into_pyarray(py))
     }
 
-    /// Generalized winding numbers for two contiguous 1-D float64 arrays.
+    /// Generalized winding numbers for two 1-D float64 arrays (any layout).
     fn winding_columns<'py>(
         &self,
         py: Python<'py>,
@@ -381,7 +421,7 @@ impl NativeDomain {
         xy: PyReadonlyArray2<'_, f64>,
         threads: usize,
     ) -> PyResult<f64> {
-        let pts = pairs(&xy)?.to_vec();
+        let pts: Vec<Point> = pairs(&xy)?.to_vec();
         let classifier = self.classifier(DEFAULT_RELATIVE_TOLERANCE)?;
         py.detach(|| {
             with_threads(threads, || {
@@ -620,7 +660,7 @@ impl NativeSpline {
         let jets = py.detach(|| {
             with_threads(threads, || {
                 let eval = self.spline.evaluator().map_err(value_error)?;
-                let pts = pts.to_vec();
+                let pts: Vec<Point> = pts.to_vec();
                 Ok::<_, PyErr>(eval.evaluate_all(&pts, order))
             })
         })??;

@@ -81,6 +81,15 @@ def test_any_layout_and_float32():
     assert not strided.flags.c_contiguous
     assert np.array_equal(d.classify(fortran), want)
     assert np.array_equal(d.classify(strided), want)
+    assert np.array_equal(d.classify(pts[::-1]), want[::-1])  # negative strides
+    assert np.array_equal(d.classify(fortran[:, 0], fortran[:, 1]), want)  # column views
+    assert np.array_equal(d.classify(strided[::3, 0], strided[::3, 1]), want[::3])
+    big = halton(120_000, (-0.5, 1.0, -1.0, 1.0))  # the grid locator's path
+    want_big = d.classify(big)
+    assert np.array_equal(d.classify(np.asfortranarray(big)), want_big)
+    assert np.array_equal(d.classify(big[::-1]), want_big[::-1])
+    assert np.array_equal(d.classify(big[:, 0], big[:, 1], method="inrs2"), want_big)
+    assert np.array_equal(d.classify(np.asfortranarray(big), method="gwn"), want_big)
     assert np.array_equal(d.classify(pts[:, 0], pts[:, 1]), want)
     assert np.array_equal(d.classify(pts[:, 0].tolist(), pts[:, 1].tolist()), want)
     # float32: converted exactly, so it equals float64 classification of the rounded points.
