@@ -145,7 +145,9 @@ pub(crate) fn run(root: &Path, quick: bool) -> Result<(), String> {
                     && row.rms >= ROUNDING
                     && rms_rate < required_rate(degree)
                 {
-                    short.push(format!("{name} d = {degree} ny = {ny}: RMS rate {rms_rate:.2}"));
+                    short.push(format!(
+                        "{name} d = {degree} ny = {ny}: RMS rate {rms_rate:.2}"
+                    ));
                 }
                 let fmt_rate = |r: Option<f64>| r.map_or("".into(), |r| format!("{r:.2}"));
                 let _ = writeln!(
@@ -197,9 +199,8 @@ fn csv(rows: &[Row]) -> String {
     for (i, r) in rows.iter().enumerate() {
         let prev = (i > 0 && rows[i - 1].domain == r.domain && rows[i - 1].degree == r.degree)
             .then(|| &rows[i - 1]);
-        let rate_of = |rate: RateFn, e: Measure| {
-            prev.map_or(String::new(), |p| format!("{}", rate(p, r, e)))
-        };
+        let rate_of =
+            |rate: RateFn, e: Measure| prev.map_or(String::new(), |p| format!("{}", rate(p, r, e)));
         let _ = writeln!(
             csv,
             "{},{},{},\"{}\",{},{},{},{},{},{},{},{},{}",

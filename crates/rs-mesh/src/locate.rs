@@ -16,6 +16,44 @@ const EMPTY_LENS: f64 = 1e-14;
 /// (so points on a shared edge find a triangle whatever the rounding).
 const ON_EDGE: f64 = -1e-12;
 
+/// A point whose barycentric coordinates in a companion triangle are all above this is inside
+/// it by far more than rounding, so no other (non-overlapping) triangle can hold it: the
+/// search stops there.
+const CLEARLY_INSIDE: f64 = 1e-9;
+
+/// The barycentric coordinates of a companion triangle `a b c` as affine functions of the
+/// point, relative to `a` (so that translation does not cost digits):
+/// `b_1 = 1 + g[0] (x - a_x) + g[1] (y - a_y)`, `b_2 = g[2] (x - a_x) + g[3] (y - a_y)`,
+/// `b_3 = 1 - b_1 - b_2`. Two products and no division per coordinate.
+#[derive(Clone, Copy, Debug)]
+struct BarycentricMap {
+    a: Point,
+    g: [f64; 4],
+}
+
+impl BarycentricMap {
+    fn new([a, b, c]: [Point; 3]) -> Self {
+        let area = (b - a).cross(c - a);
+        Self {
+            a,
+            g: [
+                (b.y - c.y) / area,
+                (c.x - b.x) / area,
+                (c.y - a.y) / area,
+                (a.x - c.x) / area,
+            ],
+        }
+    }
+
+    /// The smallest barycentric coordinate of `p`.
+    fn smallest(&self, p: Point) -> f64 {
+        let (dx, dy) = (p.x - self.a.x, p.y - self.a.y);
+        let b1 = 1.0 + self.g[0] * dx + self.g[1] * dy;
+        let b2 = self.g[2] * dx + self.g[3] * dy;
+        b1.min(b2).min(1.0 - b1 - b2)
+    }
+}
+
 /// Answers "which curved triangle holds this point?" exactly: the domain's containment test
 /// (inRS, through its grid locator) first, then the companion triangle, found through a
 /// uniform grid of the triangles, and for points between a boundary arc and its chord (outside
@@ -27,6 +65,8 @@ pub struct CurvedLocator<'a> {
     mesh: &'a CurvedTriangulation,
     domain: Classifier,
     triangles: CellIndex<u32>,
+    /// Per triangle, its barycentric coordinates as affine maps.
+    barycentric: Vec<BarycentricMap>,
     lenses: Vec<(BoundingBox, usize, Classifier)>,
     lens_index: CellIndex<u32>,
 }
@@ -54,10 +94,18 @@ impl<'a> CurvedLocator<'a> {
             let classifier = Classifier::new(&lens, ContainOptions::default())?;
             lenses.push((bbox, i, classifier));
         }
+        // About two cells per triangle diameter: a few candidates per cell.
         let frame = GridFrame::new(
             mesh.domain().bounding_box(),
-            ((mesh.triangles().len() as f64).sqrt().ceil() as usize).clamp(1, 1024),
+            (2.0 * (mesh.triangles().len() as f64).sqrt())
+                .ceil()
+                .clamp(1.0, 1024.0) as usize,
         );
+        let barycentric = mesh
+            .triangles()
+            .iter()
+            .map(|t| BarycentricMap::new(t.map(|i| mesh.vertices()[i])))
+            .collect();
         let mut pairs = Vec::new();
         for (t, tri) in mesh.triangles().iter().enumerate() {
             let b = BoundingBox::from_points(tri.iter().map(|&v| mesh.vertices()[v]));
@@ -73,6 +121,7 @@ impl<'a> CurvedLocator<'a> {
             mesh,
             domain,
             triangles: CellIndex::new(frame, pairs),
+            barycentric,
             lenses,
             lens_index: CellIndex::new(frame, lens_pairs),
         })
@@ -85,16 +134,20 @@ impl<'a> CurvedLocator<'a> {
             return None;
         }
         let m = self.mesh;
-        // The companion triangle holding p best (largest smallest barycentric coordinate).
-        let inside = self
-            .triangles
-            .at(p)
-            .iter()
-            .map(|&t| (t as usize, smallest_coordinate(m, t as usize, p)))
-            .filter(|&(_, b)| b >= ON_EDGE)
-            .max_by(|a, b| a.1.total_cmp(&b.1));
-        if let Some((t, _)) = inside {
-            return Some(t);
+        // The companion triangle holding p: the first one it is clearly inside, else the one
+        // holding it best (largest smallest barycentric coordinate) within the edge tolerance.
+        let mut best = (usize::MAX, ON_EDGE);
+        for &t in self.triangles.at(p) {
+            let b = self.barycentric[t as usize].smallest(p);
+            if b > CLEARLY_INSIDE {
+                return Some(t as usize);
+            }
+            if b >= best.1 {
+                best = (t as usize, b);
+            }
+        }
+        if best.0 != usize::MAX {
+            return Some(best.0);
         }
         for &l in self.lens_index.at(p) {
             let (bbox, i, lens) = &self.lenses[l as usize];
@@ -119,15 +172,6 @@ impl<'a> CurvedLocator<'a> {
             .map(|&p| self.triangle_at(p))
             .collect()
     }
-}
-
-/// The smallest barycentric coordinate of `p` in the companion triangle `t`.
-fn smallest_coordinate(m: &CurvedTriangulation, t: usize, p: Point) -> f64 {
-    let [a, b, c] = m.triangles()[t].map(|i| m.vertices()[i]);
-    let area = (b - a).cross(c - a);
-    let b1 = (b - p).cross(c - p) / area;
-    let b2 = (c - p).cross(a - p) / area;
-    b1.min(b2).min(1.0 - b1 - b2)
 }
 
 fn distance_to_triangle(m: &CurvedTriangulation, t: usize, p: Point) -> f64 {
