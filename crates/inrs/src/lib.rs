@@ -47,6 +47,11 @@
 //! - A. I. Ginnis, E. I. Karousos, P. D. Kaklis, *A discrete methodology for controlling the
 //!   sign of curvature and torsion for NURBS* (Springer, 2009).
 
+// The README's Rust example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
+
 pub use rs_boxes as boxes;
 pub use rs_contain as contain;
 pub use rs_convex as convex;
