@@ -4,9 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use inrs::boxes::{BoxOptions, MonotoneBoxes};
-use inrs::contain::WindingField;
+use inrs::contain::{FastWindingField, WindingField};
 use inrs::{BoundingBox, Domain, Location, Point};
-use rs_figure::{Figure, Marker, Style};
+use rs_figure::{FieldImage, Figure, Marker, Style};
 
 /// Pixel width of a figure's plot area.
 const SIZE: f64 = 560.0;
@@ -67,59 +67,20 @@ fn points_figure(d: &Domain, pts: &[Point], loc: &[Location], caption: &str) -> 
     fig
 }
 
-/// The colour of winding number `w`: white (0) to blue (1), then towards orange (2).
-fn winding_color(w: f64) -> String {
-    if w <= 1.0 {
-        let t = w.max(0.0);
-        format!(
-            "rgb({},{},255)",
-            (255.0 - 215.0 * t) as u8,
-            (255.0 - 160.0 * t) as u8
-        )
-    } else {
-        let u = (w - 1.0).min(1.0);
-        format!(
-            "rgb({},{},{})",
-            (40.0 + 215.0 * u) as u8,
-            (95.0 + 55.0 * u) as u8,
-            (255.0 - 215.0 * u) as u8
-        )
-    }
-}
-
-/// The generalized winding number on a raster of `n x n` cells, with the curves on top.
-fn winding_figure(d: &Domain, n: usize, caption: &str) -> Result<Figure, String> {
+/// The generalized winding number as a colour map (an embedded PNG `width` pixels wide, one
+/// sample per pixel, viridis from 0 to 1 with a colour bar), the curves on top.
+fn winding_figure(d: &Domain, width: usize, caption: &str) -> Result<Figure, String> {
     let field = WindingField::new(d, inrs::contain::DEFAULT_RELATIVE_TOLERANCE)
         .map_err(|e| e.to_string())?;
+    let fast = FastWindingField::new(&field);
     let mut bb = d.bounding_box();
     let pad = 0.1 * bb.diagonal();
     bb.min = bb.min - Point::new(pad, pad);
     bb.max = bb.max + Point::new(pad, pad);
     let mut fig = Figure::new(bb, SIZE);
-    let (cw, ch) = (bb.width() / n as f64, bb.height() / n as f64);
-    for i in 0..n {
-        for j in 0..n {
-            let lo = Point::new(bb.min.x + i as f64 * cw, bb.min.y + j as f64 * ch);
-            let q = lo + Point::new(0.5 * cw, 0.5 * ch);
-            let color = winding_color(field.winding_number(q));
-            // Cells overlap by 0.6 pixel so that no seams show.
-            let grow = 0.6 / fig.scale();
-            let cell = BoundingBox::from_point(lo).including(lo + Point::new(cw + grow, ch + grow));
-            fig.rect(cell, &Style::fill(&color));
-        }
-    }
-    for (w, label) in [
-        (0.0, "winding number 0"),
-        (0.5, "winding number 0.5"),
-        (1.0, "winding number 1"),
-        (2.0, "winding number 2"),
-    ] {
-        fig.legend_entry(
-            &Style::stroke("#888888", 0.5)
-                .with_fill(&winding_color(w), 1.0)
-                .labelled(label),
-        );
-    }
+    let image = FieldImage::sample(&fig, width, |q| Some(fast.winding_number(q)));
+    let hi = image.range().map_or(1.0, |(_, hi)| hi.max(1.0));
+    fig.field(&image, 0.0, hi, "generalized winding number");
     draw_boundary(&mut fig, d);
     fig.caption(caption);
     Ok(fig)
@@ -199,7 +160,7 @@ pub(crate) fn gap_figure(
     let open = Domain::new(curves).map_err(|e| e.to_string())?;
     let fig = winding_figure(
         &open,
-        120,
+        280,
         "Generalized winding number of a boundary with a gap: 1 deep inside, 0 far outside, \
          varying smoothly across the gap, so a rounded value still classifies the points.",
     )?;
@@ -230,5 +191,31 @@ mod tests {
         assert_eq!(svg.matches(r##"fill="#2ca02c""##).count(), 1 + 1);
         assert_eq!(svg.matches(r##"fill="#d62728""##).count(), 1 + 1);
         assert!(svg.contains(">inside<") && svg.contains(">outside<"));
+    }
+
+    #[test]
+    fn every_demo_figure_explains_itself() {
+        let d = rs_testkit::inrs_fixture("s4_disk_ellipse_segment").domain;
+        let dir = std::env::temp_dir().join(format!("xtask-figures-{}", std::process::id()));
+        let pts = inrs::contain::baselines::halton_points(200, d.bounding_box());
+        let loc = vec![Location::Inside; pts.len()];
+        let mut written = domain_figures(&dir, "s4", &d, &pts, &loc).unwrap();
+        written.push(gap_figure(&dir, &d, 1, Point::new(0.2, -0.15)).unwrap());
+        let captions = [
+            "monotone boxes and critical points",
+            "boxes refined 4 times",
+            "200 Halton points",
+            "Generalized winding number of a boundary with a gap",
+        ];
+        for (path, caption) in written.iter().zip(captions) {
+            let svg = std::fs::read_to_string(path).unwrap();
+            rs_testkit::assert_figure(&svg, caption, &path.display().to_string());
+        }
+        // The winding field is one embedded image of a few hundred kB at most, with a bar.
+        let field = std::fs::read_to_string(&written[3]).unwrap();
+        assert_eq!(field.matches("<image").count(), 1);
+        assert!(field.len() < 400_000, "{} bytes", field.len());
+        assert!(field.contains("generalized winding number"));
+        std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -55,11 +55,22 @@ fn info_prints_a_summary() {
         "{text}"
     );
     assert!(
-        text.contains("curves: 3  bezier pieces: 4  max degree: 2  rational"),
+        text.contains("curves: 3  Bezier pieces: 4  max degree: 2  rational"),
         "{text}"
     );
     assert!(
-        text.contains("loop 0: curves 0..=2  closed  CounterClockwise  signed area 2.07079632679"),
+        text.contains(
+            "loop 0: curves 0..=2  closed  counter-clockwise  signed area 2.07079632679\n"
+        ),
+        "{text}"
+    );
+    // Twelve significant digits: pi - 1 + (area of the segment) rounded, no digits of noise.
+    assert!(
+        text.contains("filled area (even-odd): 2.07079632679\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("bounding box: [-0.5, 1] x [-1, 1]\n"),
         "{text}"
     );
 }

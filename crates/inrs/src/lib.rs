@@ -75,7 +75,7 @@ pub use points_csv::{
     CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, PointReader, PointRecord, PointsError,
     open_points, open_points_blocks, parse_points, read_points,
 };
-pub use summary::{DomainSummary, LoopSummary};
+pub use summary::{DomainSummary, LoopSummary, significant};
 
 /// The traits most code wants in scope: the curve vocabulary of `rs-spline` and [`Classify`].
 pub mod prelude {

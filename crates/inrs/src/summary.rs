@@ -88,21 +88,57 @@ impl DomainSummary {
     }
 }
 
+/// `x` with the 12 significant digits a computed area or coordinate carries (the quadrature
+/// and the curve arithmetic are accurate to about 1e-13 relative), in plain decimal notation
+/// for moderate magnitudes, trailing zeros dropped: `5759.58333333`, `10`, `1.5e-7`.
+pub fn significant(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let scientific = format!("{x:.11e}");
+    let rounded: f64 = scientific.parse().unwrap_or(x);
+    let exponent = rounded.abs().log10().floor() as i32;
+    let trim = |t: String| -> String {
+        if t.contains('.') {
+            t.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            t
+        }
+    };
+    if (-4..15).contains(&exponent) {
+        trim(format!("{:.*}", (11 - exponent).max(0) as usize, rounded))
+    } else {
+        let (mantissa, exp) = scientific.split_once('e').unwrap_or((&scientific, "0"));
+        format!("{}e{exp}", trim(mantissa.to_string()))
+    }
+}
+
 impl fmt::Display for DomainSummary {
+    /// The name, the even-odd filled area, the box, the curves, then each loop; numbers with
+    /// the digits that mean something ([`significant`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let b = &self.bounding_box;
+        let name = if self.name.is_empty() {
+            "(unnamed domain)"
+        } else {
+            &self.name
+        };
+        writeln!(f, "{name}")?;
+        match self.filled_area {
+            Some(a) => writeln!(f, "  filled area (even-odd): {}", significant(a))?,
+            None => writeln!(f, "  filled area (even-odd): - (open or coincident loops)")?,
+        }
         writeln!(
             f,
-            "{}",
-            if self.name.is_empty() {
-                "(unnamed domain)"
-            } else {
-                &self.name
-            }
+            "  bounding box: [{}, {}] x [{}, {}]",
+            significant(b.min.x),
+            significant(b.max.x),
+            significant(b.min.y),
+            significant(b.max.y)
         )?;
         writeln!(
             f,
-            "  curves: {}  bezier pieces: {}  max degree: {}  {}",
+            "  curves: {}  Bezier pieces: {}  max degree: {}  {}  closure tolerance: {}",
             self.curves,
             self.bezier_pieces,
             self.max_degree,
@@ -110,38 +146,62 @@ impl fmt::Display for DomainSummary {
                 "rational"
             } else {
                 "polynomial"
-            }
-        )?;
-        match self.filled_area {
-            Some(a) => writeln!(f, "  filled area (even-odd): {a:.15}")?,
-            None => writeln!(f, "  filled area (even-odd): - (open or coincident loops)")?,
-        }
-        writeln!(
-            f,
-            "  bounding box: [{}, {}] x [{}, {}]  closure tolerance: {:e}",
-            b.min.x, b.max.x, b.min.y, b.max.y, self.closure_abs_tol
+            },
+            significant(self.closure_abs_tol)
         )?;
         for (i, l) in self.loops.iter().enumerate() {
             writeln!(
                 f,
-                "  loop {i}: curves {}..={}  {}  {:?}  signed area {:.15}  gap {:e}",
+                "  loop {i}: curves {}..={}  {}  {}  signed area {}{}",
                 l.curves.0,
                 l.curves.1,
                 if l.closed { "closed" } else { "OPEN" },
-                l.orientation,
-                l.signed_area,
-                l.gap
+                match l.orientation {
+                    Orientation::CounterClockwise => "counter-clockwise",
+                    Orientation::Clockwise => "clockwise",
+                    Orientation::Degenerate => "degenerate",
+                },
+                significant(l.signed_area),
+                if l.gap > 0.0 {
+                    format!("  gap {}", significant(l.gap))
+                } else {
+                    String::new()
+                }
             )?;
         }
         write!(
             f,
-            "  sum of signed loop areas: {:.15}{}",
-            self.signed_area,
+            "  sum of signed loop areas: {}{}",
+            significant(self.signed_area),
             if self.areas_converged {
                 ""
             } else {
                 "  (quadrature stopped at its work limit: estimates)"
             }
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn significant_keeps_twelve_digits_and_drops_noise() {
+        assert_eq!(significant(9.999999999999996), "10");
+        assert_eq!(significant(5_759.583_333_333_335), "5759.58333333");
+        assert_eq!(significant(-201.061_929_829_736_33), "-201.06192983");
+        assert_eq!(significant(1.1661903789690602e-7), "1.16619037897e-7");
+        assert_eq!(significant(0.25), "0.25");
+        assert_eq!(significant(0.0), "0");
+        assert_eq!(significant(3.0e20), "3e20");
+        for x in [std::f64::consts::PI, 1e-3 / 3.0, 123456.789, -7.5e-12] {
+            let back: f64 = significant(x).parse().unwrap();
+            assert!(
+                (back - x).abs() <= 1e-11 * x.abs(),
+                "{x}: {}",
+                significant(x)
+            );
+        }
     }
 }

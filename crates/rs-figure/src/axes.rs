@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use rs_spline::Point;
 
-use crate::{FONT, Figure};
+use crate::{Axis, FONT, Figure, escape};
 
 /// About `target` tick values covering `[lo, hi]` at a step of 1, 2 or 5 times a power of ten
 /// (Heckbert's nice numbers), ascending and inside the interval; empty for an interval that
@@ -54,8 +54,13 @@ pub(crate) fn axes_svg(fig: &Figure) -> String {
         x1 - x0,
         y0 - y1
     );
-    let xt = nice_ticks(b.min.x, b.max.x, 5);
-    let yt = nice_ticks(b.min.y, b.max.y, 5);
+    let linear = Axis::linear("");
+    let (ax, ay) = match &fig.chart_axes {
+        Some((x, y)) => (x, y),
+        None => (&linear, &linear),
+    };
+    let xt = ax.ticks(b.min.x, b.max.x);
+    let yt = ay.ticks(b.min.y, b.max.y);
     let step = |t: &[f64]| if t.len() > 1 { t[1] - t[0] } else { 1.0 };
     let (sx, sy) = (step(&xt), step(&yt));
     for &x in &xt {
@@ -66,7 +71,7 @@ pub(crate) fn axes_svg(fig: &Figure) -> String {
             y0 + 4.0,
             y0 + 16.0,
             FONT - 2.0,
-            label(x, sx)
+            ax.label(x, sx)
         );
     }
     for &y in &yt {
@@ -78,7 +83,22 @@ pub(crate) fn axes_svg(fig: &Figure) -> String {
             x0 - 6.0,
             py + 3.5,
             FONT - 2.0,
-            label(y, sy)
+            ay.label(y, sy)
+        );
+    }
+    if let Some((x, y)) = &fig.chart_axes {
+        let _ = write!(
+            out,
+            r##"<text class="axis-title" x="{:.2}" y="{:.2}" font-size="{FONT}" text-anchor="middle" stroke="none" fill="#222222">{}</text>"##,
+            0.5 * (x0 + x1),
+            y0 + 34.0,
+            escape(&x.title)
+        );
+        let (cx, cy) = (14.0, 0.5 * (y0 + y1));
+        let _ = write!(
+            out,
+            r##"<text class="axis-title" x="{cx:.2}" y="{cy:.2}" font-size="{FONT}" text-anchor="middle" stroke="none" fill="#222222" transform="rotate(-90 {cx:.2} {cy:.2})">{}</text>"##,
+            escape(&y.title)
         );
     }
     out.push_str("</g>\n");

@@ -20,6 +20,7 @@
 //! ```
 
 mod axes;
+mod chart;
 mod raster;
 mod style;
 
@@ -28,6 +29,7 @@ use std::fmt::Write;
 use rs_spline::{BoundingBox, Flatten, Point};
 
 pub use axes::nice_ticks;
+pub use chart::{Axis, AxisScale};
 pub use raster::{FieldImage, viridis};
 pub use style::{Marker, Style};
 
@@ -47,6 +49,12 @@ const CURVE_TOLERANCE_PX: f64 = 0.25;
 pub struct Figure {
     data: BoundingBox,
     scale: f64,
+    /// Pixels per data unit vertically: `scale` for geometry, its own for a chart.
+    scale_y: f64,
+    /// Pixels left of the plot area (tick labels, and a chart's axis title).
+    left: f64,
+    /// A chart's axes (titles and scales); `None` for geometry.
+    chart_axes: Option<(Axis, Axis)>,
     plot_width: f64,
     plot_height: f64,
     body: String,
@@ -80,6 +88,9 @@ impl Figure {
         Self {
             data,
             scale,
+            scale_y: scale,
+            left: AXIS_ROOM,
+            chart_axes: None,
             plot_width: data.width() * scale,
             plot_height: data.height() * scale,
             body: String::new(),
@@ -101,7 +112,7 @@ impl Figure {
         self.data
     }
 
-    /// Pixels per data unit.
+    /// Pixels per data unit (horizontally; vertically too, except in a chart).
     pub fn scale(&self) -> f64 {
         self.scale
     }
@@ -109,8 +120,8 @@ impl Figure {
     /// The pixel position of a data point.
     pub fn to_pixels(&self, p: Point) -> (f64, f64) {
         (
-            AXIS_ROOM + (p.x - self.data.min.x) * self.scale,
-            EDGE + (self.data.max.y - p.y) * self.scale,
+            self.left + (p.x - self.data.min.x) * self.scale,
+            EDGE + (self.data.max.y - p.y) * self.scale_y,
         )
     }
 
@@ -187,7 +198,7 @@ impl Figure {
 
     /// A quarter pixel in data units.
     fn flattening_accuracy(&self) -> f64 {
-        CURVE_TOLERANCE_PX / self.scale
+        CURVE_TOLERANCE_PX / self.scale.max(self.scale_y)
     }
 
     fn flattened(&self, curve: &dyn Flatten) -> Vec<Point> {
@@ -202,7 +213,7 @@ impl Figure {
         self.remember(style);
         let (x, y) = self.to_pixels(Point::new(b.min.x, b.max.y));
         let w = (b.width() * self.scale).max(0.8);
-        let h = (b.height() * self.scale).max(0.8);
+        let h = (b.height() * self.scale_y).max(0.8);
         let _ = writeln!(
             self.body,
             r##"<rect x="{x:.2}" y="{y:.2}" width="{w:.2}" height="{h:.2}"{}/>"##,
@@ -265,17 +276,27 @@ impl Figure {
             .map(|l| l.chars().count() as f64 * FONT * CHAR_WIDTH + 34.0)
             .fold(0.0, f64::max);
         // The colour bar goes in the legend's column, under the legend if there is one.
-        let bar_width = if self.colour_bar.is_some() { 86.0 } else { 0.0 };
+        let bar_width = match &self.colour_bar {
+            // Wide enough for the ticks and for the label written under the bar.
+            Some((_, _, label)) => {
+                (label.chars().count() as f64 * FONT * CHAR_WIDTH + 8.0).max(86.0)
+            }
+            None => 0.0,
+        };
         let legend_width = legend_width.max(bar_width);
         let legend_room = if self.legend.is_empty() && self.colour_bar.is_none() {
             0.0
         } else {
             legend_width + 2.0 * EDGE
         };
-        let width = AXIS_ROOM + self.plot_width + EDGE + legend_room;
+        let width = self.left + self.plot_width + EDGE + legend_room;
         let plot_bottom = EDGE + self.plot_height;
         let captions = self.caption_lines(width);
-        let axis_band = if self.axes { 30.0 } else { 0.0 };
+        let axis_band = match (self.axes, &self.chart_axes) {
+            (false, _) => 0.0,
+            (true, None) => 30.0,
+            (true, Some(_)) => 46.0,
+        };
         let legend_height = if self.legend.is_empty() {
             0.0
         } else {
@@ -304,7 +325,7 @@ impl Figure {
             out.push_str(&axes::axes_svg(self));
         }
         if !self.legend.is_empty() {
-            let x0 = AXIS_ROOM + self.plot_width + EDGE;
+            let x0 = self.left + self.plot_width + EDGE;
             let _ = writeln!(
                 out,
                 r##"<g class="legend"><rect x="{x0:.1}" y="{EDGE:.1}" width="{legend_width:.1}" height="{legend_height:.1}" fill="#ffffff" stroke="#888888" stroke-width="0.8"/>"##
@@ -322,7 +343,7 @@ impl Figure {
             out.push_str("</g>\n");
         }
         out.push_str(&self.colour_bar_svg(
-            AXIS_ROOM + self.plot_width + EDGE + 8.0,
+            self.left + self.plot_width + EDGE + 8.0,
             bar_top,
             bar_height,
         ));

@@ -199,6 +199,7 @@ fn base64(bytes: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rs_spline::BoundingBox;
 
     #[test]
     fn base64_matches_the_standard() {
@@ -226,5 +227,38 @@ mod tests {
         assert_eq!(img.range(), Some((0.0, 1.0)));
         let png = img.png(0.0, 1.0);
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
+    }
+
+    #[test]
+    fn the_colour_bar_label_fits_in_the_figure() {
+        let data = BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1.0, 1.0));
+        let mut fig = Figure::new(data, 200.0);
+        let img = FieldImage {
+            width: 2,
+            height: 2,
+            values: vec![Some(0.0), Some(1.0), Some(0.5), None],
+        };
+        let label = "a rather long colour bar label";
+        fig.field(&img, 0.0, 1.0, label);
+        let svg = fig.to_svg();
+        let width: f64 = svg
+            .split("width=\"")
+            .nth(1)
+            .and_then(|rest| rest.split('"').next())
+            .and_then(|w| w.parse().ok())
+            .expect("the svg element has a width");
+        let at = svg.find(label).expect("the label is drawn");
+        let x: f64 = svg[..at]
+            .rsplit("<text x=\"")
+            .next()
+            .and_then(|rest| rest.split('"').next())
+            .and_then(|x| x.parse().ok())
+            .expect("the label has an x");
+        // 11 px text is at most about 0.6 em per character.
+        let needed = x + label.chars().count() as f64 * 11.0 * 0.6;
+        assert!(
+            needed <= width,
+            "label ends at {needed}, figure is {width} wide"
+        );
     }
 }

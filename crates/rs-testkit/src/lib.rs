@@ -5,7 +5,10 @@
 //! Test-only code: it panics on bad input instead of returning errors.
 #![allow(clippy::unwrap_used)]
 
+mod figure_check;
 mod fixture_meta;
+
+pub use figure_check::assert_figure;
 
 pub use fixture_meta::FixtureMeta;
 

@@ -6,6 +6,7 @@ mod gwn;
 mod locator;
 mod paper;
 mod peers;
+mod plots;
 
 use std::path::Path;
 use std::time::Instant;
@@ -134,10 +135,22 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     let mut csv = String::new();
     // The report is rewritten after every section, so that a run stopped part way keeps what
     // it measured.
+    let dir = root.join("target/bench-report");
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
     if o.runs("paper") {
         let timings = paper::measure(&domains, o)?;
         timings.tables(&mut md, &names, &o.sizes);
         csv = timings.csv();
+        let mut plots = Vec::new();
+        for name in &names {
+            if let Some(fig) = plots::times_figure(&timings, name) {
+                plots.push(plots::save(&dir, &format!("times_{name}.svg"), &fig)?);
+            }
+        }
+        if let Some(fig) = plots::paper_speedups_figure(&timings, &names, o.largest_size()) {
+            plots.push(plots::save(&dir, "speedups_paper.svg", &fig)?);
+        }
+        list_plots(&mut md, &plots);
         write_report(root, o, &md, &csv, false)?;
     }
     let flower = load(root, "synthetic/flower500.json")?;
@@ -156,13 +169,29 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
         write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("shapes") {
-        peers::shapes(&mut md, root, o)?;
+        let ratios = peers::shapes(&mut md, root, o)?;
+        if let Some(fig) = plots::shapes_speedups_figure(&ratios) {
+            list_plots(&mut md, &[plots::save(&dir, "speedups_shapes.svg", &fig)?]);
+        }
         write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("cli") {
         cli::end_to_end(&mut md, root, o)?;
     }
     write_report(root, o, &md, &csv, true)
+}
+
+/// Names the plots written beside the report.
+fn list_plots(md: &mut String, plots: &[std::path::PathBuf]) {
+    use std::fmt::Write as _;
+    let names: Vec<String> = plots
+        .iter()
+        .filter_map(|p| p.file_name().and_then(|n| n.to_str()))
+        .map(|n| format!("`{n}`"))
+        .collect();
+    if !names.is_empty() {
+        let _ = writeln!(md, "\nPlots beside this report: {}.\n", names.join(", "));
+    }
 }
 
 /// Prints the report and writes it with the CSV under `target/bench-report/`.

@@ -89,6 +89,15 @@ pub(super) fn measure(
 }
 
 impl PaperTimings {
+    /// Timings from rows alone (for tests of what is drawn from them).
+    #[cfg(test)]
+    pub(super) fn from_rows(rows: BTreeMap<(String, usize, &'static str), Row>) -> Self {
+        Self {
+            rows,
+            sides: BTreeMap::new(),
+        }
+    }
+
     /// The rows as CSV (`domain,n,method,seconds,inside`).
     pub(super) fn csv(&self) -> String {
         let mut csv = String::from("domain,n,method,seconds,inside\n");

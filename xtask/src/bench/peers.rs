@@ -148,8 +148,14 @@ fn disagreements(ours: &[f64], peer: &[f64]) -> usize {
         .count()
 }
 
-/// The five-shape table.
-pub(super) fn shapes(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), String> {
+/// The five-shape table; returns, per closed shape, kurbo's time over our per-curve field's
+/// and over our fast field's.
+pub(super) fn shapes(
+    md: &mut String,
+    root: &Path,
+    o: &BenchOptions,
+) -> Result<Vec<(String, f64, f64)>, String> {
+    let mut ratios = Vec::new();
     let k = if o.quick { 100 } else { 500 };
     let reps = o.reps.min(5);
     let _ = writeln!(
@@ -218,6 +224,11 @@ pub(super) fn shapes(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(
                     ) as f64
                 },
             );
+            ratios.push((
+                name.to_string(),
+                kurbo.per_query_us / per_curve.per_query_us,
+                kurbo.per_query_us / fast.per_query_us,
+            ));
             let _ = write!(
                 row,
                 " {:.3} | {:.3} ({:.2}) | {:.2} | {:.1} | {:.1} | {:.1} | {max_diff:.1e} | kurbo {}, lyon {} |",
@@ -240,5 +251,5 @@ pub(super) fn shapes(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(
         }
         let _ = writeln!(md, "{row}");
     }
-    Ok(())
+    Ok(ratios)
 }

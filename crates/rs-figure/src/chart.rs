@@ -1,0 +1,175 @@
+//! Charts: figures whose two axes have their own scales (times against sizes, speed-ups by
+//! case), with axis titles and optionally logarithmic axes.
+
+use rs_spline::BoundingBox;
+
+use crate::{AXIS_ROOM, Figure, axes};
+
+/// How an axis maps data to labels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisScale {
+    /// Data as they are, ticks at "nice" values.
+    Linear,
+    /// The data are `log10` of the quantity: ticks at the integers, labelled `10^k`.
+    Log10,
+    /// Named categories: category `i` spans `[i, i + 1]`, labelled at its middle.
+    Categories,
+}
+
+/// One axis of a chart: its title and scale.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// The title, written along the axis.
+    pub title: String,
+    /// Linear, logarithmic or categories.
+    pub scale: AxisScale,
+    /// The categories' names (for [`AxisScale::Categories`]).
+    pub categories: Vec<String>,
+}
+
+impl Axis {
+    /// A linear axis titled `title`.
+    pub fn linear(title: &str) -> Self {
+        Self {
+            title: title.to_string(),
+            scale: AxisScale::Linear,
+            categories: Vec::new(),
+        }
+    }
+
+    /// A logarithmic axis titled `title` (plot `log10` of the values).
+    pub fn log10(title: &str) -> Self {
+        Self {
+            title: title.to_string(),
+            scale: AxisScale::Log10,
+            categories: Vec::new(),
+        }
+    }
+
+    /// An axis of named categories (place category `i` over `[i, i + 1]`).
+    pub fn categories(title: &str, names: &[&str]) -> Self {
+        Self {
+            title: title.to_string(),
+            scale: AxisScale::Categories,
+            categories: names.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+
+    /// The tick values of this axis over `[lo, hi]`.
+    pub(crate) fn ticks(&self, lo: f64, hi: f64) -> Vec<f64> {
+        match self.scale {
+            AxisScale::Linear => axes::nice_ticks(lo, hi, 5),
+            AxisScale::Log10 => {
+                if !(lo.is_finite() && hi.is_finite() && hi > lo) {
+                    return Vec::new();
+                }
+                let (first, last) = (lo.ceil() as i64, hi.floor() as i64);
+                // Every power of ten, or every other one on a long axis.
+                let every = if last - first > 8 { 2 } else { 1 };
+                (first..=last.min(first + 40))
+                    .filter(|k| k % every == 0)
+                    .map(|k| k as f64)
+                    .collect()
+            }
+            AxisScale::Categories => (0..self.categories.len())
+                .map(|i| i as f64 + 0.5)
+                .filter(|&c| c >= lo && c <= hi)
+                .collect(),
+        }
+    }
+
+    /// The SVG text content of the label of tick `v` (`step` apart from its neighbours).
+    pub(crate) fn label(&self, v: f64, step: f64) -> String {
+        match self.scale {
+            AxisScale::Linear => axes::label(v, step),
+            AxisScale::Log10 => format!(
+                r#"10<tspan dy="-5" font-size="8">{}</tspan>"#,
+                v.round() as i64
+            ),
+            AxisScale::Categories => {
+                let i = v.floor().max(0.0) as usize;
+                crate::escape(self.categories.get(i).map_or("", String::as_str))
+            }
+        }
+    }
+}
+
+/// Pixels left of a chart's plot area: tick labels and the vertical axis title.
+const CHART_LEFT: f64 = AXIS_ROOM + 18.0;
+
+impl Figure {
+    /// A chart: `data` shown on a plot area `width x height` pixels, each axis at its own scale,
+    /// with the axes' titles and tick labels (logarithmic axes take `log10` of the data).
+    pub fn chart(data: BoundingBox, width: f64, height: f64, x: Axis, y: Axis) -> Self {
+        let mut fig = Figure::new(data, width);
+        let data = fig.data_box();
+        let size = |v: f64| if v.is_finite() { v.max(50.0) } else { 400.0 };
+        let (width, height) = (size(width), size(height));
+        fig.scale = width / data.width();
+        fig.scale_y = height / data.height();
+        fig.plot_width = width;
+        fig.plot_height = height;
+        fig.left = CHART_LEFT;
+        fig.chart_axes = Some((x, y));
+        fig
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Style;
+    use rs_spline::Point;
+
+    #[test]
+    fn a_log_log_chart_has_power_ticks_titles_and_its_own_scales() {
+        let data = BoundingBox::from_point(Point::new(3.0, -6.0)).including(Point::new(6.0, 0.0));
+        let mut fig = Figure::chart(
+            data,
+            300.0,
+            200.0,
+            Axis::log10("points N"),
+            Axis::log10("seconds"),
+        );
+        // x spans 3 decades over 300 px, y 6 decades over 200 px.
+        let (a, b) = (
+            fig.to_pixels(Point::new(3.0, -6.0)),
+            fig.to_pixels(Point::new(6.0, 0.0)),
+        );
+        assert!((b.0 - a.0 - 300.0).abs() < 1e-9 && (a.1 - b.1 - 200.0).abs() < 1e-9);
+        fig.polyline(
+            &[Point::new(3.0, -5.0), Point::new(6.0, -2.0)],
+            &Style::stroke("#1f77b4", 1.5).labelled("method"),
+        );
+        fig.caption("Times.");
+        let svg = fig.to_svg();
+        let doc = roxmltree::Document::parse(&svg).expect("well-formed SVG");
+        let titles: Vec<&str> = doc
+            .descendants()
+            .filter(|n| n.attribute("class") == Some("axis-title"))
+            .filter_map(|n| n.text())
+            .collect();
+        assert_eq!(titles, ["points N", "seconds"]);
+        // Ticks 10^3 .. 10^6 on x, 10^-6 .. 10^0 on y: the exponents as superscripts.
+        let exponents: Vec<&str> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("tspan"))
+            .filter_map(|n| n.text())
+            .collect();
+        for e in ["3", "4", "5", "6", "-6", "-3", "0"] {
+            assert!(exponents.contains(&e), "{e} in {exponents:?}");
+        }
+        assert!(svg.contains(">method</text>") && svg.contains("Times."));
+    }
+
+    #[test]
+    fn log_ticks_thin_out_on_long_axes_and_refuse_bad_ranges() {
+        let a = Axis::log10("");
+        assert_eq!(a.ticks(-0.5, 2.5), [0.0, 1.0, 2.0]);
+        assert_eq!(a.ticks(0.0, 20.0).len(), 11);
+        assert!(a.ticks(1.0, 1.0).is_empty() && a.ticks(f64::NAN, 2.0).is_empty());
+        let c = Axis::categories("", &["a", "b<"]);
+        assert_eq!(c.ticks(0.0, 2.0), [0.5, 1.5]);
+        assert_eq!(c.label(1.5, 1.0), "b&lt;");
+    }
+}
