@@ -2,6 +2,7 @@
 and the command-line tool (built with cargo) for comparisons."""
 
 import json
+import os
 import pathlib
 import subprocess
 
@@ -42,6 +43,12 @@ def fixture_meta(name: str) -> dict:
 
 @pytest.fixture(scope="session")
 def cli() -> pathlib.Path:
-    """The ``inrs`` binary, built by cargo (quick when it is up to date)."""
+    """The ``inrs`` binary: ``$INRS_CLI`` if set, else built by cargo (quick when up to date)."""
+    given = os.environ.get("INRS_CLI")
+    if given:
+        path = pathlib.Path(given)
+        if not path.is_file():
+            raise FileNotFoundError(f"INRS_CLI={given} is not a file")
+        return path
     subprocess.run(["cargo", "build", "--quiet", "-p", "inrs-cli"], cwd=ROOT, check=True)
     return ROOT / "target" / "debug" / "inrs"
