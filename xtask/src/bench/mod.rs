@@ -181,16 +181,18 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     write_report(root, o, &md, &csv, true)
 }
 
-/// Names the plots written beside the report.
+/// Shows the plots written beside the report (Markdown images with relative links).
 fn list_plots(md: &mut String, plots: &[std::path::PathBuf]) {
     use std::fmt::Write as _;
-    let names: Vec<String> = plots
+    for name in plots
         .iter()
         .filter_map(|p| p.file_name().and_then(|n| n.to_str()))
-        .map(|n| format!("`{n}`"))
-        .collect();
-    if !names.is_empty() {
-        let _ = writeln!(md, "\nPlots beside this report: {}.\n", names.join(", "));
+    {
+        let stem = name.trim_end_matches(".svg").replace('_', " ");
+        let _ = writeln!(md, "\n![{stem}]({name})");
+    }
+    if !plots.is_empty() {
+        md.push('\n');
     }
 }
 
