@@ -3,7 +3,8 @@
 //! `cargo run --release -p inrs-cli --` standing for the binary under test. The lines that
 //! build or test the whole workspace (`cargo xtask`, `cargo test`) or need Python (`pip`,
 //! `python`) are run by `.ci/run` itself. Examples that read a system font skip with a message
-//! when it is missing, and fail instead under `INRS_REQUIRE_SYSTEM_FILES=1`.
+//! when it is missing, and fail instead under `INRS_REQUIRE_SYSTEM_FILES=1`. And every relative
+//! link of README.md, python/README.md and docs/*.md points at a file that exists.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -141,4 +142,51 @@ fn the_readme_classifies_its_points_as_it_says() {
     let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
     assert!(readme.contains(r"printf 'x,y\n0,0\n0.5,0.5\n0.99,0\n2,0\n' > points.csv"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Relative links `[text](target)` and images `![alt](target)` of a Markdown text (no
+/// `http(s):`, `mailto:` or in-page `#` links), without their `#anchor`.
+fn relative_links(markdown: &str) -> Vec<String> {
+    let mut links = Vec::new();
+    for part in markdown.split("](").skip(1) {
+        let Some(end) = part.find(')') else { continue };
+        let target = part[..end].split('#').next().unwrap_or("").trim();
+        if target.is_empty() || target.contains("://") || target.starts_with("mailto:") {
+            continue;
+        }
+        links.push(target.to_string());
+    }
+    links
+}
+
+#[test]
+fn every_relative_link_in_the_docs_resolves() {
+    let mut files = vec![repo().join("README.md"), repo().join("python/README.md")];
+    let docs = std::fs::read_dir(repo().join("docs")).expect("docs/ exists");
+    files.extend(
+        docs.filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|e| e == "md")),
+    );
+    let mut checked = 0;
+    for file in &files {
+        let text = std::fs::read_to_string(file).expect("readable Markdown");
+        let dir = file.parent().expect("a file has a directory");
+        for link in relative_links(&text) {
+            assert!(
+                dir.join(&link).exists(),
+                "{} links to {link}, which does not exist",
+                file.display()
+            );
+            checked += 1;
+        }
+    }
+    // README alone links docs/CLI.md, FORMATS.md, SEMANTICS.md, BENCHMARKS.md and more.
+    assert!(checked >= 10, "only {checked} links found");
+}
+
+#[test]
+fn links_are_found_and_external_ones_skipped() {
+    let md = "see [a](docs/A.md#x), ![p](img/p.svg), [w](https://x.org) and [m](mailto:a@b)";
+    assert_eq!(relative_links(md), ["docs/A.md", "img/p.svg"]);
 }
