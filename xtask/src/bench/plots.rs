@@ -30,15 +30,6 @@ const METHODS: [(&str, &str, &str); 6] = [
     ("gwn", "#ff7f0e", "rounded generalized winding number"),
 ];
 
-/// A box around `points`, grown by `pad` on every side.
-fn padded(points: impl Iterator<Item = Point>, pad: f64) -> Option<BoundingBox> {
-    let b = BoundingBox::from_points(points)?;
-    Some(
-        BoundingBox::from_point(b.min - Point::new(pad, pad))
-            .including(b.max + Point::new(pad, pad)),
-    )
-}
-
 /// Time against N for every method on `domain`, log-log.
 pub(super) fn times_figure(t: &PaperTimings, domain: &str) -> Option<Figure> {
     let series: Vec<(&str, &str, &str, Vec<Point>)> = METHODS
@@ -53,7 +44,8 @@ pub(super) fn times_figure(t: &PaperTimings, domain: &str) -> Option<Figure> {
             (path, colour, name, pts)
         })
         .collect();
-    let data = padded(series.iter().flat_map(|s| s.3.iter().copied()), 0.15)?;
+    let data =
+        BoundingBox::from_points(series.iter().flat_map(|s| s.3.iter().copied()))?.grown_by(0.15);
     let mut fig = Figure::chart(
         data,
         360.0,
