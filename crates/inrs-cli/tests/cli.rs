@@ -1,4 +1,5 @@
-//! The `inrs` binary: output on good input, one-line errors and non-zero exit on bad input.
+//! The `inrs` binary: output on good input, one-line errors and non-zero exit on bad input, and
+//! figures (`mesh`, `fit`, `convex-domain` `--svg`) with axes, a legend and their caption.
 
 use std::process::Command;
 
@@ -475,6 +476,12 @@ fn convex_domain_prints_the_papers_table_columns_and_an_svg() {
     assert!(text.contains("outcome: Converged"), "{text}");
     let figure = std::fs::read_to_string(&svg).unwrap();
     assert!(figure.starts_with("<svg") && figure.contains("level 5"));
+    rs_testkit::assert_figure(&figure, "free control point", "convex-domain --svg");
+    // The nested inner polygons and the outer bound are told apart in the legend.
+    assert!(
+        figure.contains("outer bound"),
+        "no outer bound in the legend"
+    );
 
     let text = inrs_ok(&[
         "convex-domain",
@@ -576,7 +583,9 @@ fn sample_and_mesh_write_points_and_curved_triangulations() {
     );
     let curved = m["curved_edges"].as_array().unwrap();
     assert!(!curved.is_empty() && curved.iter().all(|c| c["u0"].as_f64() < c["u1"].as_f64()));
-    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    let figure = std::fs::read_to_string(&svg).unwrap();
+    assert!(figure.starts_with("<svg"));
+    rs_testkit::assert_figure(&figure, "Curved triangulation:", "mesh --svg");
 
     for (args, want) in [
         (
@@ -831,11 +840,15 @@ fn fit_and_eval_reproduce_polynomials() {
             }
         }
     }
-    for figure in [&svg, &err_svg] {
+    for (figure, caption, what) in [
+        (&svg, "degree 3", "fit --svg"),
+        (&err_svg, "error", "fit --error-svg"),
+    ] {
         let text = std::fs::read_to_string(figure).unwrap();
         assert!(text.starts_with("<svg") && text.contains("data:image/png;base64,"));
         assert!(text.contains("class=\"caption\"") && text.contains("class=\"axes\""));
         assert!(text.contains("colour-bar"));
+        rs_testkit::assert_figure(&text, caption, what);
     }
     // Bad formulas and spline files are one-line errors.
     for (args, needle) in [
