@@ -199,37 +199,19 @@ impl NativeDomain {
     }
 
     fn classifier(&self, tol: f64) -> PyResult<Arc<Classifier>> {
-        check_tolerance(tol)?;
-        let mut cache = self
-            .classifiers
-            .lock()
-            .map_err(|_| value_error("classifier cache poisoned"))?;
-        if let Some(c) = cache.get(&tol.to_bits()) {
-            return Ok(Arc::clone(c));
-        }
-        let c = Arc::new(
+        cached(&self.classifiers, tol, "classifier", || {
             Classifier::new(
                 &self.domain,
                 ContainOptions::DEFAULT.with_relative_tolerance(tol),
             )
-            .map_err(value_error)?,
-        );
-        cache.insert(tol.to_bits(), Arc::clone(&c));
-        Ok(c)
+            .map_err(value_error)
+        })
     }
 
     fn field(&self, tol: f64) -> PyResult<Arc<WindingField>> {
-        check_tolerance(tol)?;
-        let mut cache = self
-            .fields
-            .lock()
-            .map_err(|_| value_error("winding-field cache poisoned"))?;
-        if let Some(f) = cache.get(&tol.to_bits()) {
-            return Ok(Arc::clone(f));
-        }
-        let f = Arc::new(WindingField::new(&self.domain, tol).map_err(value_error)?);
-        cache.insert(tol.to_bits(), Arc::clone(&f));
-        Ok(f)
+        cached(&self.fields, tol, "winding-field", || {
+            WindingField::new(&self.domain, tol).map_err(value_error)
+        })
     }
 
     /// Classification codes of `pts` (0 outside, 1 inside, 2 boundary).
@@ -308,6 +290,26 @@ impl NativeDomain {
             })
         })
     }
+}
+
+/// The value cached in `cache` for tolerance `tol` (checked first), built by `build` and kept
+/// on first use.
+fn cached<T>(
+    cache: &Mutex<HashMap<u64, Arc<T>>>,
+    tol: f64,
+    what: &str,
+    build: impl FnOnce() -> PyResult<T>,
+) -> PyResult<Arc<T>> {
+    check_tolerance(tol)?;
+    let mut cache = cache
+        .lock()
+        .map_err(|_| value_error(format!("{what} cache poisoned")))?;
+    if let Some(v) = cache.get(&tol.to_bits()) {
+        return Ok(Arc::clone(v));
+    }
+    let v = Arc::new(build()?);
+    cache.insert(tol.to_bits(), Arc::clone(&v));
+    Ok(v)
 }
 
 fn check_tolerance(tol: f64) -> PyResult<()> {
