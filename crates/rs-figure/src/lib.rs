@@ -41,6 +41,12 @@ const EDGE: f64 = 12.0;
 /// it (sans-serif average), used to wrap the caption and size the legend box.
 const FONT: f64 = 12.0;
 const CHAR_WIDTH: f64 = 0.56;
+
+/// The estimated width in pixels of `text` in the caption and legend font (12 px sans-serif,
+/// about 0.56 em a character): enough room for it, whatever the viewer's font.
+pub fn text_width(text: &str) -> f64 {
+    text.chars().count() as f64 * FONT * CHAR_WIDTH
+}
 /// Flattening tolerance of curves, in pixels.
 const CURVE_TOLERANCE_PX: f64 = 0.25;
 
@@ -273,14 +279,12 @@ impl Figure {
             .legend
             .iter()
             .filter_map(|s| s.label())
-            .map(|l| l.chars().count() as f64 * FONT * CHAR_WIDTH + 34.0)
+            .map(|l| text_width(l) + 34.0)
             .fold(0.0, f64::max);
         // The colour bar goes in the legend's column, under the legend if there is one.
         let bar_width = match &self.colour_bar {
             // Wide enough for the ticks and for the label written under the bar.
-            Some((_, _, label)) => {
-                (label.chars().count() as f64 * FONT * CHAR_WIDTH + 8.0).max(86.0)
-            }
+            Some((_, _, label)) => (text_width(label) + 8.0).max(86.0),
             None => 0.0,
         };
         let legend_width = legend_width.max(bar_width);

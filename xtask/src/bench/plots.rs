@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use inrs::{BoundingBox, Point};
-use rs_figure::{Axis, Figure, Marker, Style};
+use rs_figure::{Axis, Figure, Marker, Style, text_width};
 
 use super::paper::PaperTimings;
 
@@ -101,13 +101,9 @@ fn bars_figure(
         categories.len() as f64,
         top.ceil().max(top + 0.3),
     ));
-    // Each group is wide enough for its label (about 6.2 px per character at 11 px).
-    let longest = categories
-        .iter()
-        .map(|c| c.chars().count())
-        .max()
-        .unwrap_or(0);
-    let per_group = (6.2 * longest as f64 + 16.0).max(90.0);
+    // Each group is wide enough for its label.
+    let longest = categories.iter().map(|c| text_width(c)).fold(0.0, f64::max);
+    let per_group = (longest + 16.0).max(90.0);
     let mut fig = Figure::chart(
         data,
         (per_group * categories.len() as f64).max(240.0),
