@@ -31,6 +31,51 @@ pub enum SplineError {
         /// The triangle.
         triangle: usize,
     },
+    /// Scattered data that cannot be interpolated as given.
+    #[error("data: {0}")]
+    Data(String),
+    /// A data point that cannot be used (`index` counts from 0).
+    #[error("data point {} at ({x}, {y}) {reason}", index + 1)]
+    DataPoint {
+        /// Its place in the data, from 0.
+        index: usize,
+        /// Abscissa.
+        x: f64,
+        /// Ordinate.
+        y: f64,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// No neighbourhood of a point determines the first stage's local polynomial fit.
+    #[error(
+        "the data near ({x}, {y}) do not determine a local polynomial fit of degree {degree}: too few points, or nearly on a line or conic"
+    )]
+    IllPosedFit {
+        /// Abscissa of the fit's centre.
+        x: f64,
+        /// Ordinate.
+        y: f64,
+        /// The fit's degree.
+        degree: usize,
+    },
+    /// A triangulation that is not the refinement a space needs.
+    #[error("{space} needs {needs}")]
+    WrongTriangulation {
+        /// The space.
+        space: &'static str,
+        /// What it needs.
+        needs: &'static str,
+    },
+    /// The minimal-energy system was not solved to its tolerance.
+    #[error(
+        "the minimal-energy system did not converge: relative residual {residual:e} after {iterations} iterations"
+    )]
+    NotConverged {
+        /// The last relative residual.
+        residual: f64,
+        /// Iterations taken.
+        iterations: usize,
+    },
     /// A spline file that is not one.
     #[error("spline file: {0}")]
     File(String),

@@ -11,6 +11,10 @@
 //! - [`Spline`], [`SplineEvaluator`]: a spline and its evaluation anywhere in the domain,
 //!   slivers between a boundary arc and its chord included (Section 5.2).
 //! - [`quasi_interpolate`]: the quasi-interpolation operator `Q` of Algorithm 6.1.
+//! - [`interpolate_scattered`]: scattered-data interpolation with `C^1` splines (Problem 9.1):
+//!   the two-stage methods in `S_5^{1,2}`, `S_3^1` (Clough–Tocher) and `S_2^1` (Powell–Sabin)
+//!   ([`hermite`], first stage in [`LocalFits`]) and minimal-energy interpolation in `S_2^1`
+//!   ([`minimal_energy`], Section 10).
 //! - [`spline_to_json`], [`spline_from_json`]: the spline file; [`spline_svg`],
 //!   [`error_svg`]: colour-map figures.
 //!
@@ -34,16 +38,28 @@
 //! ```
 
 pub mod bb;
+mod energy;
 mod error;
 mod figure;
 mod file;
+pub mod hermite;
+mod local_fit;
+mod nearest;
 mod quasi;
+mod scattered;
 mod space;
 mod spline;
 
+pub use energy::{ENERGY_TOLERANCE, energy, max_energy_iterations, minimal_energy};
 pub use error::SplineError;
 pub use figure::{error_svg, spline_svg};
 pub use file::{MAX_SPLINE_FILE_BYTES, load_spline, save_spline, spline_from_json, spline_to_json};
+pub use hermite::{C1Space, ExactJets, HermiteData, hermite_interpolate};
+pub use local_fit::{FIT_GROWTH_ROUNDS, LocalFits, LocalPolynomial, MAX_FIT_CONDITION};
 pub use quasi::{QuasiInterpolation, inner_triangle, quasi_interpolate};
+pub use scattered::{
+    BOUNDARY_TOLERANCE, MAX_DATA_POINTS, ScatteredData, ScatteredFit, interpolate_on,
+    interpolate_scattered,
+};
 pub use space::SplineSpace;
 pub use spline::{SpaceKind, Spline, SplineEvaluator};

@@ -8,26 +8,43 @@ use crate::bb::{Jet, Order, Triangle, coefficient_count, evaluate};
 use crate::{SplineError, SplineSpace};
 
 /// The space a spline was built in (written to the spline file as `space`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SpaceKind {
     /// `S_d^0`: continuous, on the triangulation as it is (`"s0"`).
     Continuous,
+    /// `S_5^{1,2}`: `C^1` quintic super-splines, `C^2` at the vertices (`"s512"`).
+    SuperSpline,
+    /// `S_3^1` on the Clough–Tocher refinement (`"ct"`).
+    CloughTocher,
+    /// `S_2^1` on the Powell–Sabin refinement, two-stage (`"ps"`).
+    PowellSabin,
+    /// `S_2^1` on the Powell–Sabin refinement, minimal energy (`"min-energy"`).
+    MinimalEnergy,
 }
 
 impl SpaceKind {
+    const ALL: [SpaceKind; 5] = [
+        SpaceKind::Continuous,
+        SpaceKind::SuperSpline,
+        SpaceKind::CloughTocher,
+        SpaceKind::PowellSabin,
+        SpaceKind::MinimalEnergy,
+    ];
+
     /// The name in the spline file.
     pub fn name(self) -> &'static str {
         match self {
             SpaceKind::Continuous => "s0",
+            SpaceKind::SuperSpline => "s512",
+            SpaceKind::CloughTocher => "ct",
+            SpaceKind::PowellSabin => "ps",
+            SpaceKind::MinimalEnergy => "min-energy",
         }
     }
 
     /// The kind with that file name.
     pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "s0" => Some(SpaceKind::Continuous),
-            _ => None,
-        }
+        Self::ALL.into_iter().find(|k| k.name() == name)
     }
 }
 
