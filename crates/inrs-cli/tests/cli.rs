@@ -874,3 +874,83 @@ fn fit_and_eval_reproduce_polynomials() {
         );
     }
 }
+
+#[test]
+fn fit_data_interpolates_scattered_points_in_every_c1_space() {
+    let domain = fixture("inrs-paper/s4_disk_ellipse_segment.json");
+    // `inrs sample` output with a z column appended (a cubic: every space with cubic fits
+    // reproduces it; all interpolate it at the points).
+    let sample = inrs_ok(&["sample", "--domain", &domain, "--ny", "9"]);
+    let f = |x: f64, y: f64| 1.0 + x - 2.0 * y * y + x * x * y;
+    let mut data = String::new();
+    let mut points = String::from("x,y\n");
+    for (i, line) in sample.lines().enumerate() {
+        if i == 0 {
+            data.push_str(&format!("{line},z\n"));
+            continue;
+        }
+        let v: Vec<&str> = line.split(',').collect();
+        let (x, y): (f64, f64) = (v[0].parse().unwrap(), v[1].parse().unwrap());
+        data.push_str(&format!("{line},{:?}\n", f(x, y)));
+        points.push_str(&format!("{},{}\n", v[0], v[1]));
+    }
+    let data = temp_file("fit-data.csv", &data);
+    let points = temp_file("fit-data-points.csv", &points);
+    let spline = temp_file("fit-data.json", "");
+    let svg = temp_file("fit-data.svg", "");
+    for space in ["s512", "ct", "ps", "min-energy"] {
+        let out = inrs(&[
+            "fit", "--domain", &domain, "--data", &data, "--space", space, "--output", &spline,
+            "--svg", &svg,
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{space}: {err}");
+        assert!(
+            err.contains(space) && err.contains("vertices added"),
+            "{err}"
+        );
+        let file = std::fs::read_to_string(&spline).unwrap();
+        assert!(file.contains(&format!("\"space\":\"{space}\"")), "{space}");
+        let text = inrs_ok(&["eval", "--spline", &spline, "--points", &points]);
+        let mut n = 0;
+        for line in text.lines().skip(1) {
+            let v: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+            let want = f(v[0], v[1]);
+            assert!(
+                (v[2] - want).abs() < 1e-10 * want.abs().max(1.0),
+                "{space}: {line}"
+            );
+            n += 1;
+        }
+        assert!(n > 50);
+        let figure = std::fs::read_to_string(&svg).unwrap();
+        rs_testkit::assert_figure(&figure, "C1 interpolating spline", "fit --data --svg");
+    }
+    // Bad data: errors naming the file's line.
+    for (text, needle) in [
+        (
+            "x,y,z\n0,0,1\n5,5,2\n",
+            ":3: the point (5, 5) lies outside the domain",
+        ),
+        (
+            "0,0,1\n0.1,0.1,2\n0,0,3\n",
+            ":3: the point (0, 0) repeats an earlier point",
+        ),
+        ("0,0,1\n0.1,oops,2\n", ":2: expected numbers x, y, z"),
+        (
+            "a,b,c\n0,0,1\n",
+            ":1: a header must name the columns x, y and z",
+        ),
+        ("# nothing\n", "no data rows"),
+    ] {
+        let bad = temp_file("fit-bad.csv", text);
+        let out = inrs(&["fit", "--domain", &domain, "--data", &bad, "--space", "ps"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{text:?}: {err}");
+        assert!(err.contains(needle), "{text:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+    // --space needs --data, and --data needs --space.
+    let out = inrs(&["fit", "--domain", &domain, "--data", &data]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -76,7 +76,9 @@ fn run_examples(file: &str) -> usize {
                 continue;
             }
             assert!(
-                line.starts_with(CARGO_RUN) || line.starts_with("printf "),
+                line.starts_with(CARGO_RUN)
+                    || line.starts_with("printf ")
+                    || line.starts_with("awk "),
                 "{file}: an example this test does not know how to run: {line}"
             );
             let command = line.replace(CARGO_RUN, bin);

@@ -125,12 +125,12 @@ pub fn minimal_energy(
             let v = ids[l / 3];
             (l % 3 != 0).then(|| 2 * slot[&v] + l % 3 - 1)
         };
-        for r in 0..9 {
+        for (r, row) in k.iter().enumerate() {
             let Some(gr) = global(r) else { continue };
-            for c in 0..9 {
+            for (c, &kc) in row.iter().enumerate() {
                 match global(c) {
-                    Some(gc) => entries.push((gr, gc, k[r][c])),
-                    None => rhs[gr] -= k[r][c] * values[ids[c / 3]],
+                    Some(gc) => entries.push((gr, gc, kc)),
+                    None => rhs[gr] -= kc * values[ids[c / 3]],
                 }
             }
         }
@@ -292,7 +292,7 @@ impl Csr {
             }
             self.multiply(&p, &mut ap);
             let pap = dot(&p, &ap);
-            if !(pap > 0.0) {
+            if pap.is_nan() || pap <= 0.0 {
                 return Err(SplineError::NotConverged {
                     residual,
                     iterations: iteration,

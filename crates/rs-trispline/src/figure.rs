@@ -13,12 +13,12 @@ use crate::{Spline, SplineError};
 /// Pixels per row of the colour map (the figure scales it to its plot area).
 const RASTER_WIDTH: usize = 360;
 
-/// The spline as a colour map over its curved triangulation; `formula` names the function
-/// it approximates, in the caption.
+/// The spline as a colour map over its curved triangulation; `source` names what it
+/// approximates or interpolates, in the caption (`f = sin(x)`, `the data of z.csv`).
 ///
 /// # Errors
 /// As [`Spline::evaluator`].
-pub fn spline_svg(s: &Spline, formula: &str, width: f64) -> Result<String, SplineError> {
+pub fn spline_svg(s: &Spline, source: &str, width: f64) -> Result<String, SplineError> {
     let eval = s.evaluator()?;
     let mut fig = Figure::new(s.mesh().domain().bounding_box(), width);
     let image = FieldImage::sample(&fig, RASTER_WIDTH, |p| {
@@ -28,11 +28,9 @@ pub fn spline_svg(s: &Spline, formula: &str, width: f64) -> Result<String, Splin
     fig.field(&image, lo, hi, "s(x, y)");
     draw_triangulation(&mut fig, s)?;
     fig.caption(&format!(
-        "The quasi-interpolating spline s of degree {} (space S^0_{}) of f = {formula} on {} \
-         curved triangles, {} coefficients: colour shows s, the grey lines its curved \
-         triangulation.",
-        s.degree(),
-        s.degree(),
+        "The {} of {source} on {} curved triangles, {} coefficients: colour shows s, the grey \
+         lines its curved triangulation.",
+        s.kind().description(s.degree()),
         s.mesh().triangles().len(),
         s.dimension()
     ));

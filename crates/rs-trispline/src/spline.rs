@@ -42,6 +42,28 @@ impl SpaceKind {
         }
     }
 
+    /// What a spline of this kind and degree is, for captions: "quasi-interpolating spline s
+    /// of degree 3 (space `S^0_3`)", "C1 interpolating spline s in `S_2^1` on the Powell-Sabin
+    /// refinement".
+    pub fn description(self, degree: usize) -> String {
+        match self {
+            SpaceKind::Continuous => {
+                format!("quasi-interpolating spline s of degree {degree} (space S^0_{degree})")
+            }
+            SpaceKind::SuperSpline => "C1 interpolating spline s in S_5^{1,2}".into(),
+            SpaceKind::CloughTocher => {
+                "C1 interpolating spline s in S_3^1 on the Clough-Tocher refinement".into()
+            }
+            SpaceKind::PowellSabin => {
+                "C1 interpolating spline s in S_2^1 on the Powell-Sabin refinement".into()
+            }
+            SpaceKind::MinimalEnergy => {
+                "minimal-energy C1 interpolating spline s in S_2^1 on the Powell-Sabin refinement"
+                    .into()
+            }
+        }
+    }
+
     /// The kind with that file name.
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|k| k.name() == name)
