@@ -269,11 +269,12 @@ pub(crate) fn run(root: &Path, quick: bool) -> Result<(), String> {
             C1Space::PowellSabin,
             C1Space::MinimalEnergy,
         ] {
-            let nys: &[usize] = match (space == C1Space::MinimalEnergy, quick) {
-                (false, false) => &[9, 17, 33, 65],
-                (true, false) => &[5, 9, 17, 33],
-                (false, true) => &[9, 17, 33],
-                (true, true) => &[5, 9, 17],
+            // The paper's rows even with --quick: the rates are checked in the last one, and
+            // all of them take about a second.
+            let nys: &[usize] = if space == C1Space::MinimalEnergy {
+                &[5, 9, 17, 33]
+            } else {
+                &[9, 17, 33, 65]
             };
             let _ = writeln!(
                 md,
