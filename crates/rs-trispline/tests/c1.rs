@@ -5,11 +5,13 @@
 //! at the vertices for `S_5^{1,2}`), minimal energy reproduces linear functions and has less
 //! energy than the two-stage Powell–Sabin spline, and bad data are clear errors.
 
+mod common;
+use common::test_points;
+
 use std::collections::HashMap;
 
 use rs_contain::{Classifier, ContainOptions, Locate, Location};
 use rs_mesh::{CurvedTriangulation, EdgeKind, well_spaced_points};
-use rs_spline::prelude::*;
 use rs_spline::{Domain, Point};
 use rs_trispline::bb::{Jet, Order};
 use rs_trispline::{
@@ -62,19 +64,6 @@ fn polynomial(deg: usize) -> impl Fn(Point) -> Jet + Sync {
         }
         j
     }
-}
-
-/// Points of the domain: well-spaced ones and points between every arc and its chord.
-fn test_points(m: &CurvedTriangulation) -> Vec<Point> {
-    let mut pts = well_spaced_points(m.domain(), 23).unwrap().all_points();
-    for a in m.arcs() {
-        let c = m.arc_curve(a).unwrap();
-        let (u0, u1) = c.param_range();
-        let on = c.point_at(0.5 * (u0 + u1));
-        let chord_mid = (m.vertices()[a.from] + m.vertices()[a.to]) * 0.5;
-        pts.push(on * 0.9 + chord_mid * 0.1);
-    }
-    pts
 }
 
 fn max_error(s: &Spline, f: &dyn Fn(Point) -> f64) -> f64 {

@@ -4,6 +4,9 @@
 //! slivers, Clough–Tocher and Powell–Sabin refinements that tile the domain, and the spline
 //! file's round trip.
 
+mod common;
+use common::test_points;
+
 use std::collections::{HashMap, HashSet};
 
 use rs_mesh::{CurvedTriangulation, EdgeKind, Refinement, well_spaced_points};
@@ -38,20 +41,6 @@ fn polynomial(deg: usize) -> impl Fn(Point) -> f64 + Sync {
         }
         v
     }
-}
-
-/// Points of the domain: well-spaced ones (interior and boundary) and points between every
-/// curved boundary arc and its chord.
-fn test_points(m: &CurvedTriangulation) -> Vec<Point> {
-    let mut pts = well_spaced_points(m.domain(), 23).unwrap().all_points();
-    for a in m.arcs() {
-        let c = m.arc_curve(a).unwrap();
-        let (u0, u1) = c.param_range();
-        let on = c.point_at(0.5 * (u0 + u1));
-        let chord_mid = (m.vertices()[a.from] + m.vertices()[a.to]) * 0.5;
-        pts.push(on * 0.9 + chord_mid * 0.1);
-    }
-    pts
 }
 
 #[test]
