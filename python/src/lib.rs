@@ -241,9 +241,7 @@ impl NativeDomain {
                 with_threads(threads, || {
                     let fast = FastWindingField::new(&field);
                     with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
-                        for (k, o) in out.iter_mut().enumerate() {
-                            *o = fast.locate(at(first + k));
-                        }
+                        fast.locate_indexed_into(|i| at(first + i), out)
                     }))
                 })
             });
@@ -280,13 +278,11 @@ impl NativeDomain {
         let field = self.field(DEFAULT_RELATIVE_TOLERANCE)?;
         py.detach(|| {
             with_threads(threads, || {
-                use rayon::prelude::*;
                 let fast = FastWindingField::new(&field);
-                with_point_accessor!(pts, |at| (0..pts.len())
-                    .into_par_iter()
-                    .with_min_len(1024)
-                    .map(|i| fast.winding_number(at(i)))
-                    .collect())
+                let mut out = vec![0.0; pts.len()];
+                with_point_accessor!(pts, |at| fast
+                    .winding_numbers_indexed_parallel_into(at, &mut out));
+                out
             })
         })
     }

@@ -134,6 +134,29 @@ fn time_method<T>(
     )
 }
 
+/// Build time and microseconds per query of the fast field's batch query over all the points.
+fn time_batch<'a>(
+    reps: usize,
+    pts: &[Point],
+    build: impl Fn() -> FastWindingField<'a>,
+) -> (Timing, Vec<f64>) {
+    let t_build = median_time(reps, || {
+        std::hint::black_box(build());
+    });
+    let built = build();
+    let mut values = Vec::new();
+    let t = median_time(reps, || {
+        values = built.winding_numbers(pts);
+    });
+    (
+        Timing {
+            build: t_build,
+            per_query_us: t / pts.len() as f64 * 1e6,
+        },
+        values,
+    )
+}
+
 /// Integer winding numbers of a peer that disagree with ours, after fixing the peer's sign
 /// convention (y-down paths) from the first non-zero pair.
 fn disagreements(ours: &[f64], peer: &[f64]) -> usize {
@@ -164,16 +187,19 @@ pub(super) fn shapes(
          {k} x {k} grid over each shape's box grown by 5%; microseconds per query on one thread \
          (build times in ms), median of {reps} runs. kurbo: `BezPath::winding` (f64); lyon: \
          `path_winding_number_at_position` (f32, flattened within {LYON_RELATIVE_TOLERANCE:e} of \
-         the diagonal); both only on closed shapes. Ratios are peer time / inrs time.\n"
+         the diagonal); both only on closed shapes. Fast field: `winding_numbers` over all the \
+         points (open chains' ends added for eight points at once); one at a time: \
+         `winding_number` per point (the same values, bit for bit). Ratios are peer time / inrs \
+         time.\n"
     );
     let _ = writeln!(
         md,
-        "| shape | pieces | per-curve | fast field (build ms) | kurbo | lyon (build ms) | \
-         kurbo / per-curve | kurbo / fast | lyon / fast | per-curve / fast | max \\|fast - per-curve\\| | peer disagreements |"
+        "| shape | pieces | per-curve | fast field (build ms) | fast, one at a time | kurbo | \
+         lyon (build ms) | kurbo / per-curve | kurbo / fast | lyon / fast | per-curve / fast | max \\|fast - per-curve\\| | peer disagreements |"
     );
     let _ = writeln!(
         md,
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     );
     for (name, closed) in SHAPES {
         let d = load_shape(root, name)?;
@@ -186,23 +212,25 @@ pub(super) fn shapes(
         );
         let field = WindingField::new(&d, inrs::contain::DEFAULT_RELATIVE_TOLERANCE)
             .map_err(|e| e.to_string())?;
-        let (fast, w_fast) = time_method(
+        let (fast_single, _) = time_method(
             reps,
             &pts,
             || FastWindingField::new(&field),
             |f, q| f.winding_number(q),
         );
+        let (fast, w_fast) = time_batch(reps, &pts, || FastWindingField::new(&field));
         let max_diff = w_ref
             .iter()
             .zip(&w_fast)
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         let mut row = format!(
-            "| {name} | {} | {:.3} | {:.3} ({:.2}) |",
+            "| {name} | {} | {:.3} | {:.3} ({:.2}) | {:.3} |",
             field.pieces().len(),
             per_curve.per_query_us,
             fast.per_query_us,
-            fast.build * 1e3
+            fast.build * 1e3,
+            fast_single.per_query_us,
         );
         if closed {
             let (kurbo, w_kurbo) = time_method(

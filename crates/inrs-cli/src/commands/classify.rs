@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
-use inrs::contain::{FAST_METHOD_MIN_POINTS, FastWindingField, Locate, WindingField};
+use inrs::contain::{FAST_METHOD_MIN_POINTS, FastWindingField, WindingField};
 use inrs::{Classifier, ContainOptions, Location, Method, NpyType};
 
 use crate::args::{DomainArg, FillRuleArg, MethodArg};
@@ -63,9 +63,7 @@ impl ClassifyArgs {
                 .with_fill_rule(self.fill_rule.into());
             let fast = FastWindingField::new(&field);
             return stream_points(input, output, &LOCATION, &|pts, out| {
-                for (o, &p) in out.iter_mut().zip(pts) {
-                    *o = fast.locate(p);
-                }
+                fast.locate_indexed_into(|i| pts[i], out);
             });
         }
         let options = ContainOptions::DEFAULT

@@ -52,9 +52,7 @@ impl WindingArgs {
         if algorithm == WindingAlgorithm::Adaptive {
             let fast = FastWindingField::new(&field);
             return stream_points(input, output, &WINDING, &|pts, out| {
-                for (o, &q) in out.iter_mut().zip(pts) {
-                    *o = fast.winding_number(q);
-                }
+                fast.winding_numbers_indexed_into(|i| pts[i], out);
             });
         }
         stream_points(input, output, &WINDING, &|pts, out| {

@@ -6,10 +6,9 @@ use std::sync::OnceLock;
 
 use rs_spline::prelude::*;
 use rs_spline::{Point, RationalBezier};
-use smallvec::SmallVec;
 
 use super::curve::{SubCurve, SubCurves, is_linear, is_simple_convex, refine};
-use super::sum::WindingSum;
+use super::sum::{BATCH, WindingSum};
 use super::{QueryStats, WindingField};
 use crate::{Locate, Location};
 
@@ -206,13 +205,26 @@ impl<'a> FastWindingField<'a> {
     /// The generalized winding number at `q`, adding the work done to `stats` (a node decided
     /// by its chord counts as one curve evaluation).
     pub fn winding_number_counted(&self, q: Point, stats: &mut QueryStats) -> f64 {
+        let mut sum = self.crossing_sum(q, stats);
+        self.field
+            .add_open_chain_ends(std::slice::from_mut(&mut sum));
+        sum.value()
+    }
+
+    /// The crossings and coincident pieces at `q`, without the open chains' ends.
+    fn crossing_sum(&self, q: Point, stats: &mut QueryStats) -> WindingSum {
         let mut sum = WindingSum::new(q);
-        let mut stack: SmallVec<[u32; 64]> = SmallVec::new();
+        // Depth-first, left child first: at most one pending right child per level, and the
+        // tree is balanced (depth at most log2(pieces) + 1 < 64).
+        let mut stack = [0u32; 64];
+        let mut len = 0;
         if !self.nodes.is_empty() {
-            stack.push(self.nodes.len() as u32 - 1);
+            stack[0] = self.nodes.len() as u32 - 1;
+            len = 1;
         }
-        while let Some(i) = stack.pop() {
-            let n = &self.nodes[i as usize];
+        while len > 0 {
+            len -= 1;
+            let n = &self.nodes[stack[len] as usize];
             if q.y < n.lo.y || q.y > n.hi.y || q.x < n.lo.x {
                 continue;
             }
@@ -227,13 +239,13 @@ impl<'a> FastWindingField<'a> {
                     refine(h, Node::Cached(0), q, &mut sum, stats);
                 }
                 Kind::Inner(l, r) => {
-                    stack.push(r);
-                    stack.push(l);
+                    stack[len] = r;
+                    stack[len + 1] = l;
+                    len += 2;
                 }
             }
         }
-        self.field.add_open_chain_ends(&mut sum);
-        sum.value()
+        sum
     }
 
     /// The subdivision hierarchy of piece `p`, built on first use.
@@ -241,38 +253,101 @@ impl<'a> FastWindingField<'a> {
         self.hierarchies[p].get_or_init(|| CurveHierarchy::new(&self.field.pieces()[p]))
     }
 
-    /// Winding numbers of many points, in input order, on the current thread.
+    /// Winding numbers of many points, in input order, on the current thread: each equal to
+    /// [`FastWindingField::winding_number`]'s (see
+    /// [`FastWindingField::winding_numbers_indexed_into`]).
     pub fn winding_numbers(&self, points: &[Point]) -> Vec<f64> {
-        points.iter().map(|&q| self.winding_number(q)).collect()
+        let mut out = vec![0.0; points.len()];
+        self.winding_numbers_indexed_into(|i| points[i], &mut out);
+        out
+    }
+
+    /// The winding numbers of the points `point(0), point(1), ...` written to `out`, for points
+    /// held in any layout, without copying them: each equal to
+    /// [`FastWindingField::winding_number`]'s. The open chains' ends are added for
+    /// eight points at a time (one pass over the chains, each step done for the eight at
+    /// once), which on shapes of many open curves takes about half the time of one point at a
+    /// time.
+    pub fn winding_numbers_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [f64]) {
+        let mut stats = QueryStats::default();
+        let mut sums = [WindingSum::new(Point::default()); BATCH];
+        for (g, group) in out.chunks_mut(BATCH).enumerate() {
+            let sums = &mut sums[..group.len()];
+            for (k, sum) in sums.iter_mut().enumerate() {
+                *sum = self.crossing_sum(point(g * BATCH + k), &mut stats);
+            }
+            self.field.add_open_chain_ends(sums);
+            for (o, sum) in group.iter_mut().zip(sums.iter()) {
+                *o = sum.value();
+            }
+        }
     }
 
     /// Winding numbers of many points, split over rayon's thread pool (with the `parallel`
     /// feature, on by default; otherwise on the current thread).
     pub fn winding_numbers_parallel(&self, points: &[Point]) -> Vec<f64> {
+        let mut out = vec![0.0; points.len()];
+        self.winding_numbers_indexed_parallel_into(|i| points[i], &mut out);
+        out
+    }
+
+    /// [`FastWindingField::winding_numbers_indexed_into`] on chunks of 4096 points spread over
+    /// rayon's pool (with the `parallel` feature; otherwise on the current thread).
+    pub fn winding_numbers_indexed_parallel_into(
+        &self,
+        point: impl Fn(usize) -> Point + Sync,
+        out: &mut [f64],
+    ) {
         #[cfg(feature = "parallel")]
         {
             use rayon::prelude::*;
-            points
-                .par_iter()
-                .with_min_len(1024)
-                .map(|&q| self.winding_number(q))
-                .collect()
+            const TASK: usize = 4096;
+            out.par_chunks_mut(TASK)
+                .enumerate()
+                .for_each(|(c, o)| self.winding_numbers_indexed_into(|i| point(c * TASK + i), o));
         }
         #[cfg(not(feature = "parallel"))]
-        {
-            self.winding_numbers(points)
-        }
+        self.winding_numbers_indexed_into(point, out);
     }
 }
 
 impl Locate for FastWindingField<'_> {
     /// As the [`WindingField`]'s [`Locate`], with its fill rule, from the fast winding number.
     fn locate(&self, q: Point) -> Location {
+        self.location(q, || self.winding_number(q))
+    }
+
+    /// See [`FastWindingField::locate_indexed_into`].
+    fn locate_all(&self, points: &[Point]) -> Vec<Location> {
+        let mut out = vec![Location::Outside; points.len()];
+        self.locate_indexed_into(|i| points[i], &mut out);
+        out
+    }
+}
+
+impl FastWindingField<'_> {
+    /// The locations of the points `point(0), point(1), ...` written to `out`, each as
+    /// [`Locate::locate`] gives it, the winding numbers computed together
+    /// ([`FastWindingField::winding_numbers_indexed_into`]).
+    pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
+        const CHUNK: usize = 256;
+        let mut w = [0.0; CHUNK];
+        for (c, out) in out.chunks_mut(CHUNK).enumerate() {
+            let w = &mut w[..out.len()];
+            self.winding_numbers_indexed_into(|i| point(c * CHUNK + i), w);
+            for (i, (o, &w)) in out.iter_mut().zip(w.iter()).enumerate() {
+                *o = self.location(point(c * CHUNK + i), || w);
+            }
+        }
+    }
+
+    /// The location of `q`, from its winding number `w()` unless `q` is on the boundary.
+    fn location(&self, q: Point, w: impl FnOnce() -> f64) -> Location {
         if self.field.is_on_boundary(q) {
             return Location::Boundary;
         }
         self.field
-            .location_from_winding(self.winding_number(q), self.field.fill_rule())
+            .location_from_winding(w(), self.field.fill_rule())
     }
 }
 

@@ -14,7 +14,7 @@ use rs_spline::{Domain, Point, RationalBezier};
 
 use crate::{ContainError, Locate, Location};
 use curve::{OnTheFly, SubCurve, refine};
-use sum::WindingSum;
+use sum::{ChainEnds, WindingSum};
 
 pub use curve::curve_winding_number;
 pub use fast::{CurveHierarchy, FastWindingField, HIERARCHY_DEPTH};
@@ -92,7 +92,7 @@ pub struct WindingField {
     /// Per piece: its whole curve as the adaptive algorithm's first sub-curve.
     roots: Vec<SubCurve>,
     /// Start and end of every open chain of pieces (see [`chains`]).
-    open_chains: Vec<(Point, Point)>,
+    open_chains: ChainEnds,
     boxes: Arc<MonotoneBoxes>,
     grid: BoxGrid,
     tol: f64,
@@ -131,11 +131,13 @@ impl WindingField {
         Self {
             frames: pieces.iter().map(PieceFrame::of).collect(),
             roots: pieces.iter().map(SubCurve::of).collect(),
-            open_chains: chains(&pieces)
-                .into_iter()
-                .map(|r| (pieces[r.start].start_point(), pieces[r.end - 1].end_point()))
-                .filter(|(s, e)| s != e)
-                .collect(),
+            open_chains: ChainEnds::new(
+                chains(&pieces)
+                    .into_iter()
+                    .map(|r| (pieces[r.start].start_point(), pieces[r.end - 1].end_point()))
+                    .filter(|(s, e)| s != e)
+                    .collect(),
+            ),
             pieces,
             boxes,
             grid,
@@ -186,14 +188,14 @@ impl WindingField {
                 refine(&OnTheFly, root.clone(), q, &mut sum, stats);
             }
         }
-        self.add_open_chain_ends(&mut sum);
+        self.add_open_chain_ends(std::slice::from_mut(&mut sum));
         sum.value()
     }
 
-    /// The turns between the ends of every open chain.
-    pub(crate) fn add_open_chain_ends(&self, sum: &mut WindingSum) {
+    /// The turns between the ends of every open chain, added to each of `sums`.
+    pub(crate) fn add_open_chain_ends(&self, sums: &mut [WindingSum]) {
         if !self.open_chains.is_empty() {
-            sum.add_chain_ends(&self.open_chains);
+            self.open_chains.add_to(sums);
         }
     }
 

@@ -30,12 +30,163 @@ pub(crate) trait ChordSink {
 /// Below this, `u . v` and `u x v` of a chain's ends may have lost digits to underflow.
 const TINY_PRODUCT: f64 = 1e-280;
 
+/// [`ChainEnds::add_to`] takes queries at a distance in `[MIN_REACH, MAX_REACH]` from
+/// the ends' box (the products `u . v`, `u x v` then neither overflow nor lose digits).
+const MIN_REACH: f64 = 1e-120;
+/// See [`MIN_REACH`].
+const MAX_REACH: f64 = 1e120;
+/// A scaled factor below this (an end within about `1e-15` of the reach from the query) takes
+/// its own `atan2`s; [`RENORMALISE`] factors above it keep the product a normal number.
+const MIN_FACTOR: f64 = 1e-30;
+/// Factors between renormalisations of the running product.
+const RENORMALISE: usize = 8;
+/// Queries whose chain ends [`ChainEnds::add_to`] adds side by side.
+pub(crate) const BATCH: usize = 8;
+
+/// The two ends of every open chain of a curve collection, with the box of all of them.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ChainEnds {
+    ends: Vec<(Point, Point)>,
+    lo: Point,
+    hi: Point,
+}
+
+impl ChainEnds {
+    /// The chains from `s` to `e` of `ends`.
+    pub(crate) fn new(ends: Vec<(Point, Point)>) -> Self {
+        let mut all = ends.iter().flat_map(|&(s, e)| [s, e]);
+        let first = all.next().unwrap_or_default();
+        let (lo, hi) = all.fold((first, first), |(lo, hi), p| {
+            (
+                Point::new(lo.x.min(p.x), lo.y.min(p.y)),
+                Point::new(hi.x.max(p.x), hi.y.max(p.y)),
+            )
+        });
+        Self { ends, lo, hi }
+    }
+
+    /// No open chain.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.ends.is_empty()
+    }
+
+    /// Adds to each of `sums` the turns of every chain: `(theta(e) - theta(s)) / 2 pi` for each
+    /// chain from `s` to `e`, with one `atan2` for all of them. Each term is
+    /// `angle(s -> e) - 2 pi k(s -> e)`; the angles are added as the argument of the product of
+    /// the complex numbers `(u . v, u x v)` (`u = s - q`, `v = e - q`), counting the turns the
+    /// product's argument wraps past `pi`, so no angle is lost to the branch cut.
+    ///
+    /// The factors are scaled by one power of two per query (from the distance between `q` and
+    /// the ends' box) so that each is smaller than 1, and the product is renormalised every
+    /// [`RENORMALISE`] factors; the loop holds no call and no data-dependent branch. A chain
+    /// with `q` on the segment `s e`, or with an end so close to `q` that its factor is below
+    /// [`MIN_FACTOR`], takes its two `atan2`s after the loop; a query whose distance to the
+    /// ends' box is outside `[MIN_REACH, MAX_REACH]` (or not a number) takes
+    /// [`WindingSum::add_chain_ends_one_by_one`].
+    ///
+    /// Full groups of [`BATCH`] sums run side by side: one pass over the chains, each step done
+    /// for all of them at once (which the compiler turns into vector instructions). Each sum
+    /// gets exactly what it would get on its own.
+    pub(crate) fn add_to(&self, sums: &mut [WindingSum]) {
+        let mut groups = sums.chunks_exact_mut(BATCH);
+        for group in groups.by_ref() {
+            self.add_to_group::<BATCH>(group);
+        }
+        for sum in groups.into_remainder() {
+            self.add_to_group::<1>(std::slice::from_mut(sum));
+        }
+    }
+
+    /// [`ChainEnds::add_to`] for at most `L` sums, in `L` lanes.
+    fn add_to_group<const L: usize>(&self, sums: &mut [WindingSum]) {
+        let n = sums.len().min(L);
+        // A lane out of reach keeps scale 0: its factors are NaN or 0, taken as 1.
+        let (mut qx, mut qy, mut scale, mut in_reach) =
+            ([0.0f64; L], [0.0f64; L], [0.0f64; L], [false; L]);
+        for (k, sum) in sums.iter().take(n).enumerate() {
+            let reach = self.reach(sum.q);
+            (qx[k], qy[k]) = (sum.q.x, sum.q.y);
+            in_reach[k] = reach > MIN_REACH && reach < MAX_REACH;
+            if in_reach[k] {
+                // |u|, |v| <= sqrt(2) reach < sqrt(2) 2^(k+1): every factor's size is below 1.
+                let s = inverse_power_of_two(reach);
+                scale[k] = 0.125 * s * s;
+            }
+        }
+        // Lanes past `n` and queries out of reach run along harmlessly and are dropped.
+        let (mut re, mut im) = ([1.0f64; L], [0.0f64; L]);
+        let (mut wraps, mut special) = ([0.0f64; L], [0.0f64; L]);
+        for (i, &(a, b)) in self.ends.iter().enumerate() {
+            for k in 0..L {
+                let (ux, uy) = (a.x - qx[k], a.y - qy[k]);
+                let (vx, vy) = (b.x - qx[k], b.y - qy[k]);
+                let d = (ux * vx + uy * vy) * scale[k];
+                let c = (ux * vy - uy * vx) * scale[k];
+                let usable = !((c == 0.0) & (d <= 0.0)) & (d.abs().max(c.abs()) > MIN_FACTOR);
+                special[k] += if usable { 0.0 } else { 1.0 };
+                // An unusable factor becomes 1 (its flags below are then all false).
+                let (d, c) = if usable { (d, c) } else { (1.0, 0.0) };
+                let (up_u, up_v) = (uy >= 0.0, vy >= 0.0);
+                let chord = if up_u & !up_v & (c > 0.0) { 1.0 } else { 0.0 }
+                    - if !up_u & up_v & (c < 0.0) { 1.0 } else { 0.0 };
+                let (nre, nim) = (re[k] * d - im[k] * c, re[k] * c + im[k] * d);
+                let wrap = if (c > 0.0) & (im[k] >= 0.0) & (nim < 0.0) {
+                    1.0
+                } else {
+                    0.0
+                } - if (c < 0.0) & (im[k] < 0.0) & (nim >= 0.0) {
+                    1.0
+                } else {
+                    0.0
+                };
+                wraps[k] += wrap - chord;
+                (re[k], im[k]) = (nre, nim);
+            }
+            if i % RENORMALISE == RENORMALISE - 1 {
+                for k in 0..L {
+                    let s = inverse_power_of_two(re[k].abs().max(im[k].abs()));
+                    (re[k], im[k]) = (re[k] * s, im[k] * s);
+                }
+            }
+        }
+        for (k, sum) in sums.iter_mut().take(n).enumerate() {
+            if !in_reach[k] {
+                sum.add_chain_ends_one_by_one(&self.ends);
+                continue;
+            }
+            if special[k] > 0.0 {
+                let q = sum.q;
+                for &(a, b) in &self.ends {
+                    let (u, v) = (a - q, b - q);
+                    let (d, c) = (u.dot(v) * scale[k], u.cross(v) * scale[k]);
+                    let usable = !((c == 0.0) & (d <= 0.0)) & (d.abs().max(c.abs()) > MIN_FACTOR);
+                    if !usable {
+                        sum.turns += (theta(q, b) - theta(q, a)) / TAU;
+                    }
+                }
+            }
+            // Counts of at most one per chain: exact in f64.
+            sum.add_product(re[k], im[k], wraps[k] as i64);
+        }
+    }
+
+    /// The largest coordinate difference between `q` and a point of the ends' box: at least
+    /// every `|u.x|`, `|u.y|` of an end `u` relative to `q`.
+    fn reach(&self, q: Point) -> f64 {
+        (q.x - self.lo.x)
+            .abs()
+            .max((q.x - self.hi.x).abs())
+            .max((q.y - self.lo.y).abs())
+            .max((q.y - self.hi.y).abs())
+    }
+}
+
 /// `2^-k` for the `k` with `2^k <= x < 2^(k+1)`, for a normal `x < 2^1023` (the callers' are
-/// below `1e301`): multiplying by it is exact.
+/// below `1e301`): multiplying by it is exact. (0 for an infinite or NaN `x`.)
 #[inline]
 fn inverse_power_of_two(x: f64) -> f64 {
     let exponent = (x.to_bits() >> 52) & 0x7ff;
-    f64::from_bits((2046 - exponent) << 52)
+    f64::from_bits(2046u64.saturating_sub(exponent) << 52)
 }
 
 /// `theta(p - q)`, with `theta(0) = 0`.
@@ -85,13 +236,10 @@ impl WindingSum {
         self.crossings += i64::from(up_a) - i64::from(up_b);
     }
 
-    /// Adds the turns of every chain from `s` to `e` in `ends`: `(theta(e) - theta(s)) / 2 pi`
-    /// each, with one `atan2` for all of them. Each term is `angle(s -> e) - 2 pi k(s -> e)`;
-    /// the angles are added as the argument of the product of the complex numbers
-    /// `(u . v, u x v)` (`u = s - q`, `v = e - q`), counting the turns the product's argument
-    /// wraps past `pi`, so no angle is lost to the branch cut. A chain with `q` on the segment
-    /// `s e` or an end within `1e-140` of `q` takes its two `atan2`s instead.
-    pub(crate) fn add_chain_ends(&mut self, ends: &[(Point, Point)]) {
+    /// [`ChainEnds::add_to`] scaling each factor by its own power of two: any finite
+    /// coordinates. A chain with `q` on the segment `s e` or an end within `1e-140` of `q`
+    /// takes its two `atan2`s.
+    pub(crate) fn add_chain_ends_one_by_one(&mut self, ends: &[(Point, Point)]) {
         let (mut re, mut im, mut wraps) = (1.0f64, 0.0f64, 0i64);
         for (i, &(s, e)) in ends.iter().enumerate() {
             let (u, v) = (s - self.q, e - self.q);
@@ -101,7 +249,6 @@ impl WindingSum {
                 self.turns += (theta(self.q, e) - theta(self.q, s)) / TAU;
                 continue;
             }
-            // Branch-free from here: the signs below are as good as random.
             let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
             wraps -= i64::from(up_u & !up_v & (c > 0.0)) - i64::from(!up_u & up_v & (c < 0.0));
             // Scale by a power of two (exact) to keep the product in range.
@@ -116,7 +263,12 @@ impl WindingSum {
                 (re, im) = (re * scale, im * scale);
             }
         }
-        // The argument in (-pi, pi], pi on the negative real axis whatever the zero's sign.
+        self.add_product(re, im, wraps);
+    }
+
+    /// Adds a product's argument (in `(-pi, pi]`, `pi` on the negative real axis whatever the
+    /// zero's sign) and the turns it wrapped.
+    fn add_product(&mut self, re: f64, im: f64, wraps: i64) {
         let arg = if im == 0.0 && re < 0.0 {
             std::f64::consts::PI
         } else {
@@ -225,7 +377,8 @@ mod tests {
                 w.chord(c[0], c[1]);
                 a.chord(c[0], c[1]);
             }
-            w.add_chain_ends(&[(chain[0], chain[chain.len() - 1])]);
+            ChainEnds::new(vec![(chain[0], chain[chain.len() - 1])])
+                .add_to(std::slice::from_mut(&mut w));
             assert!(
                 (w.value() - a.turns).abs() < 1e-15,
                 "{q:?}: {} vs {}",
@@ -252,7 +405,7 @@ mod tests {
         ends.push((q + Point::new(1.0, 0.0), q + Point::new(-2.0, 0.0))); // q on the segment
         ends.push((q, q + Point::new(0.0, 1.0))); // an end at q
         let mut w = WindingSum::new(q);
-        w.add_chain_ends(&ends);
+        ChainEnds::new(ends.clone()).add_to(std::slice::from_mut(&mut w));
         let exact: f64 = ends
             .iter()
             .map(|&(s, e)| (theta(q, e) - theta(q, s)) / TAU)
@@ -262,6 +415,51 @@ mod tests {
             "{} vs {exact}",
             w.value()
         );
+    }
+
+    /// Queries side by side (two full groups and a remainder, some out of reach, some at an
+    /// end, on a segment or within 1e-20 of an end) get the sum of their ends' angles.
+    #[test]
+    fn batched_queries_add_their_own_turns() {
+        let ends: Vec<(Point, Point)> = (0..13)
+            .map(|i| {
+                let t = i as f64 * 0.71;
+                (
+                    Point::new(t.cos(), 0.5 * t.sin()),
+                    Point::new(2.0 * (1.3 * t).sin(), t.cos() - 0.2),
+                )
+            })
+            .collect();
+        let chains = ChainEnds::new(ends.clone());
+        let (s0, e0) = ends[0];
+        let mut queries: Vec<Point> = (0..19)
+            .map(|i| Point::new(-3.0 + 0.31 * i as f64, 1.7 - 0.23 * i as f64))
+            .collect();
+        queries.extend([
+            s0,                             // at an end
+            (s0 + e0) * 0.5,                // on a chain's segment (up to rounding)
+            e0 + Point::new(1e-20, -1e-20), // a factor below MIN_FACTOR
+            Point::new(1e130, 0.2),         // out of reach
+            Point::new(0.3, -2e-125),       // in reach
+            Point::new(-5.0, e0.y),         // level with an end
+        ]);
+        let mut sums: Vec<WindingSum> = queries.iter().map(|&q| WindingSum::new(q)).collect();
+        chains.add_to(&mut sums);
+        for (q, sum) in queries.iter().zip(&sums) {
+            let exact: f64 = ends
+                .iter()
+                .map(|&(s, e)| (theta(*q, e) - theta(*q, s)) / TAU)
+                .sum();
+            assert!(
+                (sum.value() - exact).abs() < 1e-12,
+                "{q:?}: {} vs {exact}",
+                sum.value()
+            );
+            // One at a time gives the same bits.
+            let mut one = WindingSum::new(*q);
+            chains.add_to(std::slice::from_mut(&mut one));
+            assert_eq!(one.value().to_bits(), sum.value().to_bits(), "{q:?}");
+        }
     }
 
     #[test]
