@@ -520,10 +520,21 @@ impl Locate for PointLocator<'_> {
         out
     }
 
-    /// [`PointLocator::locate_indexed_parallel_into`], writing in place.
+    /// [`PointLocator::locate_into`] on chunks of 65536 points spread over rayon's pool (with
+    /// the `parallel` feature; otherwise on the current thread), writing in place.
     fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
         let mut out = vec![Location::Outside; points.len()];
-        self.locate_indexed_parallel_into(|i| points[i], &mut out);
+        // Slices of the points rather than `locate_indexed_parallel_into`'s index closure:
+        // measured on two cores, 1.85-1.9x one thread's speed against 1.6x.
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            out.par_chunks_mut(PARALLEL_TASK)
+                .zip(points.par_chunks(PARALLEL_TASK))
+                .for_each(|(o, p)| self.locate_into(p, o));
+        }
+        #[cfg(not(feature = "parallel"))]
+        self.locate_into(points, &mut out);
         out
     }
 }
@@ -573,15 +584,18 @@ impl PointLocator<'_> {
         #[cfg(feature = "parallel")]
         {
             use rayon::prelude::*;
-            const TASK: usize = 1 << 16;
-            out.par_chunks_mut(TASK)
+            out.par_chunks_mut(PARALLEL_TASK)
                 .enumerate()
-                .for_each(|(c, o)| self.locate_indexed_into(|i| point(c * TASK + i), o));
+                .for_each(|(c, o)| self.locate_indexed_into(|i| point(c * PARALLEL_TASK + i), o));
         }
         #[cfg(not(feature = "parallel"))]
         self.locate_indexed_into(point, out);
     }
 }
+
+/// Points per parallel task.
+#[cfg(feature = "parallel")]
+const PARALLEL_TASK: usize = 1 << 16;
 
 /// High bit of a registered box index: the box is vertical (constant x).
 const VERTICAL_FLAG: u32 = 1 << 31;
