@@ -47,7 +47,9 @@ const LOCATION: Column<Location> = Column {
     header: "x,y,location",
     initial: Location::Outside,
     csv: |l, out| out.extend_from_slice(l.as_str().as_bytes()),
-    npy: (NpyType::I8, |l, out| out.push(l.code() as u8)),
+    npy: (NpyType::I8, |ls, out| {
+        out.extend(ls.iter().map(|l| l.code() as u8))
+    }),
 };
 
 impl ClassifyArgs {

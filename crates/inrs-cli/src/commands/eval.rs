@@ -14,8 +14,11 @@ const VALUE: Column<Option<Jet>> = Column {
     header: "x,y,value",
     initial: None,
     csv: |j, out| write_f64(j.map_or(f64::NAN, |j| j.value), out),
-    npy: (inrs::NpyType::F64, |j, out| {
-        out.extend_from_slice(&j.map_or(f64::NAN, |j| j.value).to_le_bytes())
+    npy: (inrs::NpyType::F64, |js, out| {
+        out.extend(
+            js.iter()
+                .flat_map(|j| j.map_or(f64::NAN, |j| j.value).to_le_bytes()),
+        )
     }),
 };
 
@@ -35,8 +38,11 @@ const DERIVATIVES: Column<Option<Jet>> = Column {
         out.push(b',');
         write_f64(j.gradient[1], out);
     },
-    npy: (inrs::NpyType::F64, |j, out| {
-        out.extend_from_slice(&j.map_or(f64::NAN, |j| j.value).to_le_bytes())
+    npy: (inrs::NpyType::F64, |js, out| {
+        out.extend(
+            js.iter()
+                .flat_map(|j| j.map_or(f64::NAN, |j| j.value).to_le_bytes()),
+        )
     }),
 };
 

@@ -36,8 +36,8 @@ const WINDING: Column<f64> = Column {
     header: "x,y,winding",
     initial: 0.0,
     csv: write_f64,
-    npy: (NpyType::F64, |v, out| {
-        out.extend_from_slice(&v.to_le_bytes())
+    npy: (NpyType::F64, |vs, out| {
+        out.extend(vs.iter().flat_map(|v| v.to_le_bytes()))
     }),
 };
 
