@@ -118,15 +118,13 @@ impl ChainEnds {
         let (mut wraps, mut special) = ([0.0f64; L], [0.0f64; L]);
         for (i, &(a, b)) in self.ends.iter().enumerate() {
             for k in 0..L {
-                let (ux, uy) = (a.x - qx[k], a.y - qy[k]);
-                let (vx, vy) = (b.x - qx[k], b.y - qy[k]);
-                let d = (ux * vx + uy * vy) * scale[k];
-                let c = (ux * vy - uy * vx) * scale[k];
-                let usable = !((c == 0.0) & (d <= 0.0)) & (d.abs().max(c.abs()) > MIN_FACTOR);
+                let q = Point::new(qx[k], qy[k]);
+                let (u, v) = (a - q, b - q);
+                let (d, c, usable) = scaled_factor(u, v, scale[k]);
                 special[k] += if usable { 0.0 } else { 1.0 };
                 // An unusable factor becomes 1 (its flags below are then all false).
                 let (d, c) = if usable { (d, c) } else { (1.0, 0.0) };
-                let (up_u, up_v) = (uy >= 0.0, vy >= 0.0);
+                let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
                 let chord = if up_u & !up_v & (c > 0.0) { 1.0 } else { 0.0 }
                     - if !up_u & up_v & (c < 0.0) { 1.0 } else { 0.0 };
                 let (nre, nim) = (re[k] * d - im[k] * c, re[k] * c + im[k] * d);
@@ -157,10 +155,7 @@ impl ChainEnds {
             if special[k] > 0.0 {
                 let q = sum.q;
                 for &(a, b) in &self.ends {
-                    let (u, v) = (a - q, b - q);
-                    let (d, c) = (u.dot(v) * scale[k], u.cross(v) * scale[k]);
-                    let usable = !((c == 0.0) & (d <= 0.0)) & (d.abs().max(c.abs()) > MIN_FACTOR);
-                    if !usable {
+                    if !scaled_factor(a - q, b - q, scale[k]).2 {
                         sum.turns += (theta(q, b) - theta(q, a)) / TAU;
                     }
                 }
@@ -179,6 +174,16 @@ impl ChainEnds {
             .max((q.y - self.lo.y).abs())
             .max((q.y - self.hi.y).abs())
     }
+}
+
+/// The factor `(u . v, u x v) * scale` of a chain whose ends are `u`, `v` relative to the
+/// query, and whether the product may take it: not on the negative real axis (the query on
+/// the segment between the ends) and not below [`MIN_FACTOR`] (nor NaN).
+#[inline(always)]
+fn scaled_factor(u: Point, v: Point, scale: f64) -> (f64, f64, bool) {
+    let (d, c) = (u.dot(v) * scale, u.cross(v) * scale);
+    let usable = !((c == 0.0) & (d <= 0.0)) & (d.abs().max(c.abs()) > MIN_FACTOR);
+    (d, c, usable)
 }
 
 /// `2^-k` for the `k` with `2^k <= x < 2^(k+1)`, for a normal `x < 2^1023` (the callers' are
