@@ -17,16 +17,6 @@ import inrs
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
-def halton(n, base):
-    i = np.arange(n, dtype=np.uint64)
-    inv, factor, value = 1.0 / base, np.full(n, 1.0 / base), np.zeros(n)
-    while np.any(i > 0):
-        value += (i % base) * factor
-        i //= base
-        factor *= inv
-    return value
-
-
 def median_seconds(reps, f):
     times = []
     for _ in range(reps):
@@ -57,7 +47,7 @@ def main():
     print("| N | Python classify | Rust kernel | overhead | Mpts/s | shapely.contains_xy (polygon within 1e-10) | inrs vs shapely |")
     print("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for n in [int(s) for s in args.sizes.split(",")]:
-        xy = np.column_stack([xmin + halton(n, 2) * (xmax - xmin), ymin + halton(n, 3) * (ymax - ymin)])
+        xy = inrs.halton_points(n, (xmin, ymin, xmax, ymax))
         d.classify(xy[:1000])  # build the index
         t_py = median_seconds(args.reps, lambda: d.classify(xy))
         t_rs = statistics.median(d._kernel_seconds(xy) for _ in range(args.reps))

@@ -19,16 +19,6 @@ import inrs.dask
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
-def halton_block(start, n, base):
-    i = np.arange(start, start + n, dtype=np.uint64)
-    inv, factor, value = 1.0 / base, np.full(n, 1.0 / base), np.zeros(n)
-    while np.any(i > 0):
-        value += (i % base) * factor
-        i //= base
-        factor *= inv
-    return value
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--points", type=int, default=100_000_000)
@@ -46,9 +36,7 @@ def main():
     def block(block_info=None):
         (start, stop), _ = block_info[None]["array-location"]
         n = stop - start
-        return np.column_stack(
-            [xmin + halton_block(start, n, 2) * (xmax - xmin), ymin + halton_block(start, n, 3) * (ymax - ymin)]
-        )
+        return inrs.halton_points(n, (xmin, ymin, xmax, ymax), start=start)
 
     with LocalCluster(n_workers=args.workers, threads_per_worker=1, dashboard_address=None) as cluster, Client(
         cluster

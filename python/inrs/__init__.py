@@ -31,6 +31,7 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "sample",
     "mesh",
+    "halton_points",
     "fit",
     "__version__",
 ]
@@ -288,6 +289,16 @@ def sample(domain: Domain, ny: int) -> Tuple[np.ndarray, np.ndarray]:
     """Well-spaced points (Algorithm 11.1 of Schumaker and Yu): ``(points (N, 2), on_boundary
     (N,) bool)``; about ``ny`` rows of points over the domain's height."""
     return _inrs.sample(domain._native, int(ny))
+
+
+def halton_points(n: int, bounds: Tuple[float, float, float, float], start: int = 0) -> np.ndarray:
+    """Halton points ``start .. start + n`` in bases 2 and 3, starting with the box's corner
+    ``(xmin, ymin)`` at index 0, mapped to ``bounds = (xmin, ymin, xmax, ymax)`` (the order of
+    :attr:`Domain.bounds`): the quasi-random test clouds of the papers, as an ``(n, 2)`` array.
+    Blocks of one long sequence can be made apart (on Dask workers) with ``start``."""
+    if n < 0 or start < 0:
+        raise ValueError(f"n and start must be non-negative, got n={n}, start={start}")
+    return _inrs.halton_points(int(n), tuple(float(v) for v in bounds), int(start))
 
 
 def mesh(domain: Domain, ny: int, refine: str = "none") -> dict:

@@ -76,11 +76,11 @@ pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator
 /// - [`WindingAlgorithm`](baselines::WindingAlgorithm): the GWN paper's two ray-casting
 ///   variants besides the adaptive algorithm, for
 ///   [`WindingField::winding_number_with`].
-/// - [`halton_points`](baselines::halton_points) and
-///   [`radical_inverse`](baselines::radical_inverse): the quasi-random test points of the
+/// - [`halton_points`](baselines::halton_points), [`halton_points_from`](baselines::halton_points_from)
+///   and [`radical_inverse`](baselines::radical_inverse): the quasi-random test points of the
 ///   papers' experiments.
 pub mod baselines {
     pub use crate::gwn::WindingAlgorithm;
-    pub use crate::halton::{halton_points, radical_inverse};
+    pub use crate::halton::{halton_points, halton_points_from, radical_inverse};
     pub use crate::polygon::FlattenedPolygon;
 }
