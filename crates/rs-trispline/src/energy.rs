@@ -18,7 +18,7 @@ use rs_mesh::CurvedTriangulation;
 use rs_spline::quadrature::gauss_legendre;
 
 use crate::bb::{Jet, Order, Triangle, coefficient_count, evaluate};
-use crate::hermite::{C1Space, macro_triangles, powell_sabin_element};
+use crate::hermite::{C1Space, macro_triangles, powell_sabin_element, sub_triangles};
 use crate::{Spline, SplineError};
 
 /// The relative residual `|K g + b| / |b|` the conjugate gradients stop at.
@@ -83,6 +83,7 @@ pub fn minimal_energy(
 ) -> Result<Spline, SplineError> {
     let space = C1Space::MinimalEnergy;
     let macros = macro_triangles(&mesh, space)?;
+    let per = space.pieces();
     let nv = mesh.vertices().len();
     if values.len() < nv || start.is_some_and(|s| s.len() < nv) {
         return Err(SplineError::Data(format!(
@@ -107,19 +108,11 @@ pub fn minimal_energy(
             value: values[v],
         });
     }
-    let subs = |t: usize| -> Vec<Triangle> {
-        (6 * t..6 * t + 6)
-            .map(|s| {
-                let v = mesh.triangles()[s].map(|i| mesh.vertices()[i]);
-                Triangle::new(v[0], v[1], v[2])
-            })
-            .collect()
-    };
     let n = 2 * order.len();
     let mut entries: Vec<(usize, usize, f64)> = Vec::with_capacity(macros.len() * 36);
     let mut rhs = vec![0.0; n];
     for (t, ids) in macros.iter().enumerate() {
-        let k = element_energy(&subs(t));
+        let k = element_energy(&sub_triangles(&mesh, per, t));
         // Local data order: (z, gx, gy) per vertex; gradients are unknowns, values given.
         let global = |l: usize| -> Option<usize> {
             let v = ids[l / 3];
@@ -155,7 +148,7 @@ pub fn minimal_energy(
     let coefficients: Vec<f64> = macros
         .iter()
         .enumerate()
-        .flat_map(|(t, ids)| powell_sabin_element(&subs(t), ids.map(jet)))
+        .flat_map(|(t, ids)| powell_sabin_element(&sub_triangles(&mesh, per, t), ids.map(jet)))
         .collect();
     Spline::new(mesh, space.degree(), space.kind(), coefficients)
 }

@@ -104,7 +104,7 @@ impl C1Space {
     }
 
     /// Sub-triangles per triangle of the unrefined triangulation.
-    fn pieces(self) -> usize {
+    pub(crate) fn pieces(self) -> usize {
         self.refinement().map_or(1, Refinement::factor)
     }
 
@@ -212,20 +212,12 @@ pub fn hermite_interpolate(
     let macros = macro_triangles(&mesh, space)?;
     let per = space.pieces();
     let vertices = mesh.vertices();
-    let subs = |t: usize| -> Vec<Triangle> {
-        (per * t..per * (t + 1))
-            .map(|s| {
-                let v = mesh.triangles()[s].map(|i| vertices[i]);
-                Triangle::new(v[0], v[1], v[2])
-            })
-            .collect()
-    };
     let chunks: Vec<Vec<f64>> = macros
         .par_iter()
         .enumerate()
         .map(|(t, ids)| {
             let jets = ids.map(|v| data.vertex(v));
-            let subs = subs(t);
+            let subs = sub_triangles(&mesh, per, t);
             match space {
                 C1Space::SuperSpline => super_spline_element(&subs[0], *ids, jets, data).to_vec(),
                 C1Space::CloughTocher => {
@@ -246,6 +238,19 @@ pub fn hermite_interpolate(
         });
     }
     Spline::new(mesh, space.degree(), space.kind(), coefficients)
+}
+
+/// The straight (companion) triangles of macro triangle `t` of `mesh`, a refinement with `per`
+/// sub-triangles per macro triangle, stored consecutively (as [`macro_triangles`] reads them).
+pub(crate) fn sub_triangles(mesh: &CurvedTriangulation, per: usize, t: usize) -> Vec<Triangle> {
+    let vertices = mesh.vertices();
+    mesh.triangles()[per * t..per * (t + 1)]
+        .iter()
+        .map(|tri| {
+            let v = tri.map(|i| vertices[i]);
+            Triangle::new(v[0], v[1], v[2])
+        })
+        .collect()
 }
 
 /// The coefficient `c_alpha` (degree `d`) of the Taylor polynomial of degree 2 at vertex `at`
