@@ -3,7 +3,6 @@
 //! Memory depends on the batch size, not on the number of points.
 
 use std::path::Path;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use inrs::{CsvBlock, CsvBlocks, NpyType, ParsedBlock, Point, PointsError};
@@ -50,13 +49,13 @@ pub(crate) struct PointsInput {
 
 enum Source {
     Csv(CsvBlocks<std::fs::File>),
-    #[cfg(not(unix))]
+    /// Read in order by the reading stage (a pipe, or not Unix).
     Npy(inrs::NpyPoints<std::io::BufReader<std::fs::File>>),
-    /// Read by position on the workers (see [`inrs::NpyPointsFile`]); `next` is the first
-    /// point not yet handed out.
+    /// A regular file, read by position on the workers (see [`inrs::NpyPointsFile`]); `next`
+    /// is the first point not yet handed out.
     #[cfg(unix)]
     NpyFile {
-        file: Arc<inrs::NpyPointsFile>,
+        file: std::sync::Arc<inrs::NpyPointsFile>,
         next: usize,
     },
 }
@@ -66,16 +65,7 @@ impl PointsInput {
     pub(crate) fn open(path: &Path) -> Result<Self, CliError> {
         let is_npy = has_extension(path, "npy");
         let source = if is_npy {
-            #[cfg(unix)]
-            {
-                let file = inrs::NpyPointsFile::open(path).map_err(|e| input_error(path, e))?;
-                Source::NpyFile {
-                    file: Arc::new(file),
-                    next: 0,
-                }
-            }
-            #[cfg(not(unix))]
-            Source::Npy(inrs::open_npy_points(path).map_err(|e| input_error(path, e))?)
+            open_npy(path)?
         } else {
             Source::Csv(
                 inrs::open_points_blocks(path, CSV_BLOCK_BYTES)
@@ -93,7 +83,6 @@ impl PointsInput {
     /// bytes a line).
     pub(crate) fn estimated_points(&self) -> usize {
         match &self.source {
-            #[cfg(not(unix))]
             Source::Npy(r) => r.len(),
             #[cfg(unix)]
             Source::NpyFile { file, .. } => file.len(),
@@ -103,13 +92,28 @@ impl PointsInput {
 
     fn bytes_read(&self) -> u64 {
         match &self.source {
-            #[cfg(not(unix))]
             Source::Npy(r) => r.bytes_read(),
             #[cfg(unix)]
             Source::NpyFile { file, next } => file.offset_of(*next),
             Source::Csv(r) => r.bytes_read(),
         }
     }
+}
+
+/// A `.npy` points file: read by position on the workers if it is a regular file (Unix), else in
+/// order (a named pipe cannot be read by position).
+fn open_npy(path: &Path) -> Result<Source, CliError> {
+    #[cfg(unix)]
+    if std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        let file = inrs::NpyPointsFile::open(path).map_err(|e| input_error(path, e))?;
+        return Ok(Source::NpyFile {
+            file: std::sync::Arc::new(file),
+            next: 0,
+        });
+    }
+    Ok(Source::Npy(
+        inrs::open_npy_points(path).map_err(|e| input_error(path, e))?,
+    ))
 }
 
 fn has_extension(path: &Path, ext: &str) -> bool {
@@ -178,7 +182,6 @@ pub(crate) fn stream_points<T: Copy + Send + Sync>(
                 .par_iter()
                 .map(|c| match c {
                     Chunk::Csv(b) => csv_block(b, format, column, compute),
-                    #[cfg(not(unix))]
                     Chunk::Points(p) => Ok(npy_points(p, format, column, compute)),
                     #[cfg(unix)]
                     Chunk::Range { file, first, n } => {
@@ -237,12 +240,11 @@ enum Written {
 /// One unit of parallel work: a block of CSV lines, or points read from `.npy`.
 enum Chunk {
     Csv(CsvBlock),
-    #[cfg(not(unix))]
     Points(Vec<Point>),
     /// Points `first..first + n` of a `.npy` file, read by the worker.
     #[cfg(unix)]
     Range {
-        file: Arc<inrs::NpyPointsFile>,
+        file: std::sync::Arc<inrs::NpyPointsFile>,
         first: usize,
         n: usize,
     },
@@ -258,7 +260,6 @@ fn read_chunks(
     loop {
         let next = match &mut input.source {
             Source::Csv(blocks) => blocks.next_block().map(|b| b.map(Chunk::Csv)),
-            #[cfg(not(unix))]
             Source::Npy(reader) => {
                 let mut pts = Vec::new();
                 reader
@@ -270,7 +271,7 @@ fn read_chunks(
                 let (first, n) = (*next, NPY_TASK_POINTS.min(file.len() - *next));
                 *next += n;
                 Ok((n > 0).then(|| Chunk::Range {
-                    file: Arc::clone(file),
+                    file: std::sync::Arc::clone(file),
                     first,
                     n,
                 }))

@@ -770,6 +770,59 @@ fn outputs_to_pipes_are_written_in_place() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `.npy` points from a named pipe (which cannot be read by position) are read in order, with
+/// the same answers as from a regular file.
+#[cfg(unix)]
+#[test]
+fn npy_points_from_a_pipe_are_read_in_order() {
+    let dir = std::path::Path::new(&temp_file("placeholder", "")).with_file_name("fifo-npy-test");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let pts: Vec<(f64, f64)> = (0..200_000)
+        .map(|i| {
+            let t = i as f64 * 0.754_877_666_246_692_7;
+            (2.0 * t.fract() - 1.0, 2.0 * (t * 1.3).fract() - 1.0)
+        })
+        .collect();
+    let file = npy_points("fifo-source.npy", &pts);
+    let fifo = dir.join("points.npy");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success(),
+        "mkfifo"
+    );
+    let writer = {
+        let (fifo, bytes) = (fifo.clone(), std::fs::read(&file).unwrap());
+        std::thread::spawn(move || std::fs::write(fifo, bytes).unwrap())
+    };
+    let domain = fixture("inrs-paper/s5_lune.json");
+    let (from_pipe, from_file) = (dir.join("pipe.npy"), dir.join("file.npy"));
+    let run = |points: &str, out: &std::path::Path| {
+        inrs_ok(&[
+            "classify",
+            "--domain",
+            &domain,
+            "--points",
+            points,
+            "--output",
+            &out.display().to_string(),
+        ])
+    };
+    run(&fifo.display().to_string(), &from_pipe);
+    writer.join().unwrap();
+    run(&file, &from_file);
+    let (a, b) = (
+        npy_data(&from_pipe.display().to_string(), "|i1", pts.len()),
+        npy_data(&from_file.display().to_string(), "|i1", pts.len()),
+    );
+    assert!(a.contains(&0) && a.contains(&1));
+    assert_eq!(a, b);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// `inrs fit` then `inrs eval`: a polynomial of the spline's degree is reproduced exactly,
 /// anywhere in the domain, with its gradient; points outside get `nan` and are counted; the
 /// figures are SVG with their caption.
