@@ -108,7 +108,8 @@ impl ChainEnds {
             (qx[k], qy[k]) = (sum.q.x, sum.q.y);
             in_reach[k] = reach > MIN_REACH && reach < MAX_REACH;
             if in_reach[k] {
-                // |u|, |v| <= sqrt(2) reach < sqrt(2) 2^(k+1): every factor's size is below 1.
+                // With 2^e <= reach < 2^(e+1): |u|, |v| <= sqrt(2) reach, so every factor's
+                // size |u| |v| < 8 4^e is below 1 once scaled by 4^-e / 8.
                 let s = inverse_power_of_two(reach);
                 scale[k] = 0.125 * s * s;
             }
@@ -124,26 +125,11 @@ impl ChainEnds {
                 special[k] += if usable { 0.0 } else { 1.0 };
                 // An unusable factor becomes 1 (its flags below are then all false).
                 let (d, c) = if usable { (d, c) } else { (1.0, 0.0) };
-                let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
-                let chord = if up_u & !up_v & (c > 0.0) { 1.0 } else { 0.0 }
-                    - if !up_u & up_v & (c < 0.0) { 1.0 } else { 0.0 };
-                let (nre, nim) = (re[k] * d - im[k] * c, re[k] * c + im[k] * d);
-                let wrap = if (c > 0.0) & (im[k] >= 0.0) & (nim < 0.0) {
-                    1.0
-                } else {
-                    0.0
-                } - if (c < 0.0) & (im[k] < 0.0) & (nim >= 0.0) {
-                    1.0
-                } else {
-                    0.0
-                };
-                wraps[k] += wrap - chord;
-                (re[k], im[k]) = (nre, nim);
+                wraps[k] += multiply_chain(&mut re[k], &mut im[k], u, v, d, c);
             }
             if i % RENORMALISE == RENORMALISE - 1 {
                 for k in 0..L {
-                    let s = inverse_power_of_two(re[k].abs().max(im[k].abs()));
-                    (re[k], im[k]) = (re[k] * s, im[k] * s);
+                    (re[k], im[k]) = renormalised(re[k], im[k]);
                 }
             }
         }
@@ -189,6 +175,31 @@ fn scaled_factor(u: Point, v: Point, scale: f64) -> (f64, f64, bool) {
     let (d, c) = (u.dot(v) * scale, u.cross(v) * scale);
     let usable = !((c == 0.0) & (d <= 0.0)) & (d.abs().max(c.abs()) > MIN_FACTOR);
     (d, c, usable)
+}
+
+/// One chain's step of the product of [`ChainEnds::add_to`]: multiplies `re + i im` by the
+/// chain's factor `d + i c` (a positive multiple of `(u . v, u x v)`, not on the negative real
+/// axis; `(1, 0)` for none) and returns the whole turns this adds: the wrap of the product's
+/// argument past `pi` (`+1` when two arguments in `[0, pi]` and `(0, pi)` land below the real
+/// axis, `-1` the other way), less the chord's crossing `k(s -> e)` of the cut. Branch-free:
+/// the signs are as good as random.
+#[inline(always)]
+fn multiply_chain(re: &mut f64, im: &mut f64, u: Point, v: Point, d: f64, c: f64) -> f64 {
+    let one = |b: bool| if b { 1.0 } else { 0.0 };
+    let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
+    let chord = one(up_u & !up_v & (c > 0.0)) - one(!up_u & up_v & (c < 0.0));
+    let (nre, nim) = (*re * d - *im * c, *re * c + *im * d);
+    let wrap =
+        one((c > 0.0) & (*im >= 0.0) & (nim < 0.0)) - one((c < 0.0) & (*im < 0.0) & (nim >= 0.0));
+    (*re, *im) = (nre, nim);
+    wrap - chord
+}
+
+/// `re + i im` scaled by a power of two (exact) so that its larger part lies in `[1, 2)`.
+#[inline(always)]
+fn renormalised(re: f64, im: f64) -> (f64, f64) {
+    let s = inverse_power_of_two(re.abs().max(im.abs()));
+    (re * s, im * s)
 }
 
 /// `atan(j / 16)` for `j = 0, ..., 16`, correctly rounded (checked against `f64::atan` in the
@@ -309,18 +320,12 @@ impl WindingSum {
                 self.turns += (theta(self.q, e) - theta(self.q, s)) / TAU;
                 continue;
             }
-            let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
-            wraps -= i64::from(up_u & !up_v & (c > 0.0)) - i64::from(!up_u & up_v & (c < 0.0));
             // Scale by a power of two (exact) to keep the product in range.
             let scale = inverse_power_of_two(size);
-            let (d, c) = (d * scale, c * scale);
-            let (nre, nim) = (re * d - im * c, re * c + im * d);
-            wraps += i64::from((c > 0.0) & (im >= 0.0) & (nim < 0.0))
-                - i64::from((c < 0.0) & (im < 0.0) & (nim >= 0.0));
-            (re, im) = (nre, nim);
+            // At most two turns per chain: exact in f64.
+            wraps += multiply_chain(&mut re, &mut im, u, v, d * scale, c * scale) as i64;
             if i % 64 == 63 {
-                let scale = inverse_power_of_two(re.abs().max(im.abs()));
-                (re, im) = (re * scale, im * scale);
+                (re, im) = renormalised(re, im);
             }
         }
         self.add_product(re, im, wraps);
