@@ -117,28 +117,17 @@ fn time_method<T>(
     build: impl Fn() -> T,
     query: impl Fn(&T, Point) -> f64,
 ) -> (Timing, Vec<f64>) {
-    let t_build = median_time(reps, || {
-        std::hint::black_box(build());
-    });
-    let built = build();
-    let mut values = Vec::new();
-    let t = median_time(reps, || {
-        values = pts.iter().map(|&q| query(&built, q)).collect();
-    });
-    (
-        Timing {
-            build: t_build,
-            per_query_us: t / pts.len() as f64 * 1e6,
-        },
-        values,
-    )
+    time_all(reps, pts, build, |built, pts| {
+        pts.iter().map(|&q| query(built, q)).collect()
+    })
 }
 
-/// Build time and microseconds per query of the fast field's batch query over all the points.
-fn time_batch<'a>(
+/// Build time and microseconds per query of a method answering all the points in one call.
+fn time_all<T>(
     reps: usize,
     pts: &[Point],
-    build: impl Fn() -> FastWindingField<'a>,
+    build: impl Fn() -> T,
+    all: impl Fn(&T, &[Point]) -> Vec<f64>,
 ) -> (Timing, Vec<f64>) {
     let t_build = median_time(reps, || {
         std::hint::black_box(build());
@@ -146,7 +135,7 @@ fn time_batch<'a>(
     let built = build();
     let mut values = Vec::new();
     let t = median_time(reps, || {
-        values = built.winding_numbers(pts);
+        values = all(&built, pts);
     });
     (
         Timing {
@@ -218,7 +207,12 @@ pub(super) fn shapes(
             || FastWindingField::new(&field),
             |f, q| f.winding_number(q),
         );
-        let (fast, w_fast) = time_batch(reps, &pts, || FastWindingField::new(&field));
+        let (fast, w_fast) = time_all(
+            reps,
+            &pts,
+            || FastWindingField::new(&field),
+            |f, pts| f.winding_numbers(pts),
+        );
         let max_diff = w_ref
             .iter()
             .zip(&w_fast)
