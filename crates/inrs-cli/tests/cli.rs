@@ -729,15 +729,14 @@ fn npy_points_and_results_match_csv() {
     }
 }
 
-/// An output that is a pipe (or a device) is written in place, never replaced by a file.
+/// A new empty directory `dir_name` beside the temporary files, holding a named pipe `name`:
+/// `(directory, pipe)`.
 #[cfg(unix)]
-#[test]
-fn outputs_to_pipes_are_written_in_place() {
-    use std::os::unix::fs::FileTypeExt;
-    let dir = std::path::Path::new(&temp_file("placeholder", "")).with_file_name("fifo-test");
+fn fresh_fifo(dir_name: &str, name: &str) -> (std::path::PathBuf, std::path::PathBuf) {
+    let dir = std::path::Path::new(&temp_file("placeholder", "")).with_file_name(dir_name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let fifo = dir.join("out.csv");
+    let fifo = dir.join(name);
     assert!(
         Command::new("mkfifo")
             .arg(&fifo)
@@ -746,6 +745,15 @@ fn outputs_to_pipes_are_written_in_place() {
             .success(),
         "mkfifo"
     );
+    (dir, fifo)
+}
+
+/// An output that is a pipe (or a device) is written in place, never replaced by a file.
+#[cfg(unix)]
+#[test]
+fn outputs_to_pipes_are_written_in_place() {
+    use std::os::unix::fs::FileTypeExt;
+    let (dir, fifo) = fresh_fifo("fifo-test", "out.csv");
     let reader = {
         let fifo = fifo.clone();
         std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
@@ -775,9 +783,7 @@ fn outputs_to_pipes_are_written_in_place() {
 #[cfg(unix)]
 #[test]
 fn npy_points_from_a_pipe_are_read_in_order() {
-    let dir = std::path::Path::new(&temp_file("placeholder", "")).with_file_name("fifo-npy-test");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let (dir, fifo) = fresh_fifo("fifo-npy-test", "points.npy");
     let pts: Vec<(f64, f64)> = (0..200_000)
         .map(|i| {
             let t = i as f64 * 0.754_877_666_246_692_7;
@@ -785,15 +791,6 @@ fn npy_points_from_a_pipe_are_read_in_order() {
         })
         .collect();
     let file = npy_points("fifo-source.npy", &pts);
-    let fifo = dir.join("points.npy");
-    assert!(
-        Command::new("mkfifo")
-            .arg(&fifo)
-            .status()
-            .unwrap()
-            .success(),
-        "mkfifo"
-    );
     let writer = {
         let (fifo, bytes) = (fifo.clone(), std::fs::read(&file).unwrap());
         std::thread::spawn(move || std::fs::write(fifo, bytes).unwrap())
