@@ -179,15 +179,8 @@ impl PointGrid {
             1
         };
         let frame = GridFrame::new(bb, n);
-        let pairs = points
-            .iter()
-            .enumerate()
-            .filter_map(|(i, &p)| frame.cell_of(p).map(|c| (c, i as u32)))
-            .collect();
-        Self {
-            points,
-            index: CellIndex::new(frame, pairs),
-        }
+        let index = CellIndex::of_points(frame, &points);
+        Self { points, index }
     }
 
     /// Is some registered point closer than `r` to `p`? (Every cell meeting the square of

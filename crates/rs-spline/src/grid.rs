@@ -176,6 +176,31 @@ impl<T: Copy + Ord> CellIndex<T> {
     }
 }
 
+impl CellIndex<u32> {
+    /// The index of `points` by position: each point's index (as `u32`; at most `u32::MAX`
+    /// points) in the cell holding it; points outside the frame are left out.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_spline::grid::{CellIndex, GridFrame};
+    /// use rs_spline::{BoundingBox, Point};
+    /// let frame = GridFrame::new(BoundingBox::from_point(Point::new(0.0, 0.0)).grown_by(1.0), 4);
+    /// let pts = [Point::new(0.9, 0.9), Point::new(-0.9, -0.9), Point::new(5.0, 0.0)];
+    /// let index = CellIndex::of_points(frame, &pts);
+    /// assert_eq!(index.at(Point::new(0.95, 0.8)), &[0]);
+    /// assert_eq!(index.at(Point::new(-0.8, -0.95)), &[1]);
+    /// ```
+    pub fn of_points(frame: GridFrame, points: &[Point]) -> Self {
+        let pairs = points
+            .iter()
+            .enumerate()
+            .filter_map(|(i, &p)| frame.cell_of(p).map(|c| (c, i as u32)))
+            .collect();
+        Self::new(frame, pairs)
+    }
+}
+
 impl<T> CellIndex<T> {
     /// The frame.
     pub fn frame(&self) -> &GridFrame {

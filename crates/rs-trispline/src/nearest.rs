@@ -26,14 +26,9 @@ impl<'a> NearestSites<'a> {
             .ceil()
             .max(1.0) as usize;
         let frame = GridFrame::new(bbox, n);
-        let pairs = sites
-            .iter()
-            .enumerate()
-            .filter_map(|(i, &p)| frame.cell_of(p).map(|c| (c, i as u32)))
-            .collect();
         Self {
             sites,
-            index: CellIndex::new(frame, pairs),
+            index: CellIndex::of_points(frame, sites),
         }
     }
 
