@@ -291,10 +291,7 @@ impl NpyPointsFile {
     /// As [`open_npy_points`].
     pub fn open(path: impl AsRef<Path>) -> Result<Self, PointsError> {
         let path = path.as_ref();
-        let file = std::fs::File::open(path).map_err(|source| PointsError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
+        let file = crate::points_csv::open_file(path)?;
         // The header by a few small reads (no read-ahead: the data are read by position).
         let header = NpyPoints::new(file, path.display().to_string())?;
         Ok(Self {
@@ -352,10 +349,7 @@ pub fn open_npy_points(
     path: impl AsRef<Path>,
 ) -> Result<NpyPoints<BufReader<std::fs::File>>, PointsError> {
     let path = path.as_ref();
-    let file = std::fs::File::open(path).map_err(|source| PointsError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
+    let file = crate::points_csv::open_file(path)?;
     NpyPoints::new(
         BufReader::with_capacity(1 << 20, file),
         path.display().to_string(),

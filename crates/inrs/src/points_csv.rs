@@ -615,10 +615,7 @@ pub fn open_points_blocks(
     block_bytes: usize,
 ) -> Result<CsvBlocks<std::fs::File>, PointsError> {
     let path = path.as_ref();
-    let file = std::fs::File::open(path).map_err(|source| PointsError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
+    let file = open_file(path)?;
     Ok(CsvBlocks::new(
         file,
         path.display().to_string(),
@@ -644,6 +641,14 @@ pub fn parse_points(text: &str) -> Result<Vec<PointRecord>, PointsError> {
     PointReader::new(text.as_bytes()).collect()
 }
 
+/// Opens the points file `path` ([`PointsError::Io`] naming it if it cannot be opened).
+pub(crate) fn open_file(path: &Path) -> Result<std::fs::File, PointsError> {
+    std::fs::File::open(path).map_err(|source| PointsError::Io {
+        path: path.display().to_string(),
+        source,
+    })
+}
+
 /// Opens a points file for streaming.
 ///
 /// # Errors
@@ -652,10 +657,7 @@ pub fn open_points(
     path: impl AsRef<Path>,
 ) -> Result<PointReader<std::io::BufReader<std::fs::File>>, PointsError> {
     let path = path.as_ref();
-    let file = std::fs::File::open(path).map_err(|source| PointsError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
+    let file = open_file(path)?;
     Ok(PointReader::named(
         std::io::BufReader::with_capacity(1 << 16, file),
         path.display().to_string(),
