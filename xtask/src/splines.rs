@@ -31,6 +31,35 @@ struct Row {
     mesh_seconds: f64,
 }
 
+impl Row {
+    /// The row of spline `s` (its table and space given) on the triangulation with `ny`
+    /// lines: its size, its max and RMS errors against `f` at `check`, and `(seconds,
+    /// mesh_seconds)`; the domain is named by the caller.
+    fn measured(
+        (table, space): (&'static str, &'static str),
+        s: &Spline,
+        ny: usize,
+        f: &dyn Fn(Point) -> f64,
+        check: &[Point],
+        (seconds, mesh_seconds): (f64, f64),
+    ) -> Result<Row, String> {
+        let (emax, rms) = errors(s, f, check)?;
+        Ok(Row {
+            table,
+            space,
+            degree: s.degree(),
+            domain: String::new(),
+            ny,
+            nt: s.mesh().triangles().len(),
+            nc: s.dimension(),
+            emax,
+            rms,
+            seconds,
+            mesh_seconds,
+        })
+    }
+}
+
 /// An error measure of a row (max or RMS).
 type Measure = fn(&Row) -> f64;
 
@@ -52,20 +81,7 @@ fn measure(d: &Domain, degree: usize, ny: usize, check: &[Point]) -> Result<Row,
     let mesh = CurvedTriangulation::new(d, &pts).map_err(|e| e.to_string())?;
     let s = quasi_interpolate(mesh, degree, &f).map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();
-    let (emax, rms) = errors(&s, &f, check)?;
-    Ok(Row {
-        table: "6",
-        space: "s0",
-        degree,
-        domain: String::new(),
-        ny,
-        nt: s.mesh().triangles().len(),
-        nc: s.dimension(),
-        emax,
-        rms,
-        seconds,
-        mesh_seconds: 0.0,
-    })
+    Row::measured(("6", "s0"), &s, ny, &f, check, (seconds, 0.0))
 }
 
 /// Max and RMS error of `s` against `f` at the `check` points in its domain.
@@ -112,25 +128,19 @@ fn measure_c1(d: &Domain, space: C1Space, ny: usize, check: &[Point]) -> Result<
         .install(|| interpolate_on(mesh, space, &sites, &values))
         .map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();
-    let s = fit.spline;
-    let (emax, rms) = errors(&s, &wave, check)?;
-    Ok(Row {
-        table: if space == C1Space::MinimalEnergy {
-            "10"
-        } else {
-            "9"
-        },
-        space: space.name(),
-        degree: space.degree(),
-        domain: String::new(),
+    let table = if space == C1Space::MinimalEnergy {
+        "10"
+    } else {
+        "9"
+    };
+    Row::measured(
+        (table, space.name()),
+        &fit.spline,
         ny,
-        nt: s.mesh().triangles().len(),
-        nc: s.dimension(),
-        emax,
-        rms,
-        seconds,
-        mesh_seconds,
-    })
+        &wave,
+        check,
+        (seconds, mesh_seconds),
+    )
 }
 
 /// The RMS rate the issue asks of the last row of each `C^1` table.
