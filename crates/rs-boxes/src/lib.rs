@@ -9,9 +9,12 @@
 //! - [`MonotoneBoxes`]: construction, global bounding box, critical abscissas/ordinates.
 //! - [`MonotoneBox`]: one box, with its piece (private storage of a rational Bezier piece as
 //!   homogeneous Bernstein coefficients), directions, ray crossings and a boundary-distance test.
+//! - [`ChordBand`]: the band round a piece's chord (or a part of it) that decides most
+//!   containment queries without a solve.
 //! - [`BoxGrid`]: a uniform grid finding the boxes that can be near a point.
 
 mod boxes;
+mod chord_band;
 mod error;
 mod grid;
 mod monotone_box;
@@ -21,6 +24,7 @@ pub use boxes::{
     BOX_BUDGET, BYTES_PER_BOX, BoxOptions, CriticalKind, CriticalPoint, DEFAULT_SUBDIVISIONS,
     MAX_SUBDIVISIONS, MonotoneBoxes,
 };
+pub use chord_band::ChordBand;
 pub use error::{BoxError, PieceError};
 pub use grid::BoxGrid;
 pub use monotone_box::{MonotoneBox, Monotonicity};

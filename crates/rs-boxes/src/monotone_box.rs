@@ -5,10 +5,7 @@ use rs_spline::{Axis, BoundingBox, Point};
 use smallvec::SmallVec;
 
 use crate::BezierPiece;
-
-/// Relative rounding margin added to [`MonotoneBox::vertical_slack`], far above the error of
-/// the crossing solve and far below any boundary tolerance in use.
-const SLACK_MARGIN: f64 = 1e-13;
+use crate::chord_band::{ChordBand, halving_margin};
 
 /// How a coordinate varies along a piece, from its start to its end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -83,27 +80,58 @@ const MAX_REGISTER_DEPTH: u32 = 24;
 
 impl MonotoneBox {
     /// Calls `f` with every cell of `frame` that holds a point within `abs_tol` of the box's curve
-    /// (some cells twice): the piece is halved until each part's end-point rectangle spans at
-    /// most two cells each way (or 24 halvings), and each part registers the cells of its
-    /// rectangle grown by `abs_tol`. A monotone part lies in the
-    /// rectangle of its end points, so the cells cover the curve's `abs_tol`-neighbourhood while
-    /// following the curve, not the box: the number of cells grows with the curve's length
-    /// in cells, not with the box's area.
+    /// (some cells twice): those of each of [`MonotoneBox::for_grid_parts`]'s parts'
+    /// [`ChordBand::rectangle_near`]. The cells follow the curve, not the box: their number
+    /// grows with the curve's length in cells, not with the box's area.
     pub fn for_cells_near(&self, frame: &GridFrame, abs_tol: f64, mut f: impl FnMut(usize)) {
+        self.for_grid_parts(frame, |part, _| {
+            frame.for_cells_in(part.rectangle_near(abs_tol), &mut f)
+        });
+    }
+
+    /// Calls `f` with the chord band of each part of the piece, in order from its start, halved
+    /// until each part's end-point rectangle spans at most two cells of `frame` each way (or 24
+    /// halvings), and whether that part is the whole piece. A monotone part lies in the
+    /// rectangle of its end points, and the parts share out the box's abscissas `[xmin, xmax)`
+    /// exactly (consecutive parts share their end point bit for bit). A part's band carries a
+    /// margin covering the halving's rounding, so what it decides holds for this box's curve.
+    pub fn for_grid_parts(&self, frame: &GridFrame, mut f: impl FnMut(ChordBand, bool)) {
+        let vertical = self.x_dir == Monotonicity::Constant;
+        let margin = halving_margin(&self.piece);
         let mut stack: SmallVec<[(BezierPiece, u32); 16]> = SmallVec::new();
         stack.push((self.piece.clone(), 0));
         while let Some((piece, depth)) = stack.pop() {
             let part = BoundingBox::from_point(piece.start()).including(piece.end());
-            // The stopping test is on the part itself, not grown by the tolerance: a
-            // tolerance wider than a cell must not make the halving run to its cap.
+            // The stopping test is on the part itself, not grown by a tolerance: a tolerance
+            // wider than a cell must not make the halving run to its cap.
             let (c0, c1, r0, r1) = frame.cell_range(part);
-            if (c1 - c0 <= 1 && r1 - r0 <= 1) || depth >= MAX_REGISTER_DEPTH {
-                frame.for_cells_in(part.grown_by(abs_tol), &mut f);
+            if depth == 0 && c1 - c0 <= 1 && r1 - r0 <= 1 {
+                f(self.chord_band(), true);
+            } else if (c1 - c0 <= 1 && r1 - r0 <= 1) || depth >= MAX_REGISTER_DEPTH {
+                f(ChordBand::of_piece(&piece, vertical, margin), false);
             } else {
                 let (left, right) = piece.split(0.5);
                 stack.push((right, depth + 1));
                 stack.push((left, depth + 1));
             }
+        }
+    }
+
+    /// The band round the piece's chord, which decides most containment queries without a
+    /// solve ([`MonotoneBox::is_near`], [`MonotoneBox::crosses_below`]).
+    #[inline]
+    pub fn chord_band(&self) -> ChordBand {
+        ChordBand {
+            start: self.start,
+            end: self.end,
+            xmin: self.xmin,
+            xmax: self.xmax,
+            ymin: self.ymin,
+            ymax: self.ymax,
+            vertical: self.x_dir == Monotonicity::Constant,
+            flatness: self.flatness,
+            vertical_slack: self.vertical_slack,
+            margin: 0.0,
         }
     }
 
@@ -126,31 +154,7 @@ impl MonotoneBox {
         } else {
             Monotonicity::of(start.y, end.y)
         };
-        let chord = end - start;
-        let len = chord.length();
-        let n = piece.degree();
-        let controls = (0..=n).map(|i| piece.control_point(i));
-        let flatness = if len > 0.0 {
-            controls
-                .clone()
-                .map(|q| chord.cross(q - start).abs() / len)
-                .fold(0.0, f64::max)
-        } else {
-            controls
-                .clone()
-                .map(|q| q.distance(start))
-                .fold(0.0, f64::max)
-        };
-        let vertical_slack = if x_dir != Monotonicity::Constant {
-            let slope = chord.y / chord.x;
-            let scale = start.x.abs().max(end.x.abs()) + start.y.abs().max(end.y.abs());
-            controls
-                .map(|q| (q.y - (start.y + (q.x - start.x) * slope)).abs())
-                .fold(0.0, f64::max)
-                + SLACK_MARGIN * (scale + len)
-        } else {
-            f64::INFINITY
-        };
+        let band = ChordBand::of_piece(&piece, x_dir == Monotonicity::Constant, 0.0);
         Self {
             piece,
             curve,
@@ -164,8 +168,8 @@ impl MonotoneBox {
             ymax: start.y.max(end.y),
             x_dir,
             y_dir,
-            flatness,
-            vertical_slack,
+            flatness: band.flatness,
+            vertical_slack: band.vertical_slack,
         }
     }
 
@@ -196,24 +200,9 @@ impl MonotoneBox {
     /// pieces are never crossed. Decided without a solve when `p` is above or below the piece by
     /// more than its vertical slack; otherwise by one bracketed solve of `x(t) = p.x`.
     pub fn crosses_below(&self, p: Point) -> bool {
-        if self.x_dir == Monotonicity::Constant
-            || !(self.xmin <= p.x && p.x < self.xmax)
-            || p.y < self.ymin
-        {
-            return false;
-        }
-        if p.y > self.ymax {
-            return true;
-        }
-        let line = self.start.y
-            + (p.x - self.start.x) * ((self.end.y - self.start.y) / (self.end.x - self.start.x));
-        if p.y > line + self.vertical_slack {
-            return true;
-        }
-        if p.y < line - self.vertical_slack {
-            return false;
-        }
-        self.at_x(p.x).is_some_and(|(_, y)| y < p.y)
+        self.chord_band()
+            .crossing_below(p)
+            .unwrap_or_else(|| self.at_x(p.x).is_some_and(|(_, y)| y < p.y))
     }
 
     /// True if `p` lies in the box grown by `abs_tol` on every side.
@@ -228,20 +217,10 @@ impl MonotoneBox {
     /// (or from an end point). For a monotone piece this catches every point at Euclidean
     /// distance `<= abs_tol / sqrt(2)` and none farther than `abs_tol`.
     pub fn is_near(&self, p: Point, abs_tol: f64) -> bool {
-        if !self.contains_with(p, abs_tol) {
-            return false;
-        }
-        // The piece lies within `flatness` of its chord: farther than that plus `abs_tol` from the
+        // Outside the box grown by `abs_tol`, or farther than `flatness + abs_tol` from the
         // chord segment, p is not near (decides most points without a solve).
-        let chord = self.end - self.start;
-        let len2 = chord.dot(chord);
-        if len2 > 0.0 {
-            let t = ((p - self.start).dot(chord) / len2).clamp(0.0, 1.0);
-            let d = p - (self.start + chord * t);
-            let reach = self.flatness + abs_tol;
-            if d.dot(d) > reach * reach * (1.0 + 1e-9) {
-                return false;
-            }
+        if !self.chord_band().may_be_near(p, abs_tol) {
+            return false;
         }
         let tol2 = abs_tol * abs_tol;
         let (ds, de) = (p - self.start, p - self.end);

@@ -62,8 +62,11 @@ impl Default for LocatorOptions {
 /// A point-location index over a [`Classifier`]'s monotone boxes.
 ///
 /// # Design
-/// A uniform `n x n` grid covers the bounding box grown by the tolerance. Each monotone box,
-/// grown by the boundary tolerance, is registered in every cell near its curve. A cell that
+/// A uniform `n x n` grid covers the bounding box grown by the tolerance. Each monotone box
+/// is registered in every cell near its curve (within the boundary tolerance): a box that
+/// spans a couple of cells as itself, a longer one as the parts it is halved into until each
+/// spans a couple of cells, each with its own chord band ([`rs_boxes::ChordBand`]), narrow
+/// where the box's is wide. A cell that
 /// meets no box contains no boundary point, so all of its points share one location: for each
 /// column, the first cell of every run of such cells is classified exactly by inRS2 (one batch
 /// for the whole grid) and the run inherits it. The others are *mixed*.
@@ -73,20 +76,25 @@ impl Default for LocatorOptions {
 /// (all outside, all inside, or refined: about 4 KiB for the default 512 x 512 cells, plus a
 /// ring of outside cells round the grid), and, for the refined blocks only, one entry per cell (outside, inside, or the index of a mixed-cell
 /// record). A mixed-cell record holds what its points need, precomputed: the parity of the
-/// nearest uniform cell below in the same column, the boxes registered in the cell, and the
-/// distinct non-vertical boxes registered between that uniform cell and this one.
+/// nearest uniform cell below in the same column, the boxes and parts registered in the cell,
+/// and the distinct non-vertical boxes and parts registered between that uniform cell and this
+/// one.
 ///
 /// A query then costs:
 /// - outside the grown bounding box, or in a uniform block: one lookup, without a branch;
 /// - in a refined block: a second lookup;
-/// - in a mixed cell: the boundary test against the cell's boxes, then the parity below plus
-///   the crossings of the vertical ray with the record's column boxes, one bracketed solve at
-///   most per box. Points on a critical abscissa take inRS2's fallback (horizontal ray,
-///   winding number).
+/// - in a mixed cell: the boundary test against the cell's boxes and parts, then the parity
+///   below plus the crossings of the vertical ray with the record's column items. A part's
+///   band decides almost every point without a solve; the few within a band are decided by
+///   the box's own test (one bracketed solve at most). Points on a critical abscissa take
+///   inRS2's fallback (horizontal ray, winding number).
 ///
 /// Results are identical to [`Method::InRS2`]: uniform cells are classified by inRS2 itself and
 /// no box below the reference cell can reach it, so the crossings counted above it are exactly
-/// those inRS2 counts there, with the same per-box test.
+/// those inRS2 counts there. A box near a point has a part registered in the point's cell whose
+/// band may be near it, and then the box's own test decides; of a box's parts exactly one spans
+/// the point's abscissa (they share out the box's half-open range), and its band answers only
+/// where it is beyond the rounding of the halving from the point, else the box's own test does.
 ///
 /// # Cost
 /// Build: `O(n^2)` time for the column walk plus the boxes' registrations (each box only in the
@@ -133,9 +141,10 @@ const FIRST_RECORD: u32 = 2;
 struct MixedCell {
     /// Parity of the nearest uniform cell below in the column (false below the grid).
     inside_below: bool,
-    /// The boxes registered in the cell (`near_items[near.0..near.1]`, vertical ones flagged).
+    /// The items (boxes and parts, see [`Parts`]) registered in the cell
+    /// (`near_items[near.0..near.1]`, vertical ones flagged).
     near: (u32, u32),
-    /// The distinct non-vertical boxes registered from that uniform cell up to this one
+    /// The distinct non-vertical items registered from that uniform cell up to this one
     /// (`column_items[column.0..column.1]`).
     column: (u32, u32),
 }
@@ -161,6 +170,34 @@ pub struct LocatorIndex {
     mixed_cells: usize,
     incidences: usize,
     lookup: Lookup,
+    parts: Parts,
+}
+
+/// The parts of the boxes that span more than a couple of cells, halved until each fits
+/// ([`rs_boxes::MonotoneBox::for_grid_parts`]): a box's chord band is wide when its piece
+/// is curved across many cells, a part's is narrow, so a part decides by its band most of
+/// the points its box would decide by a solve.
+///
+/// The cells register *items*: an item below `first_part` is a whole box (its own band),
+/// `first_part + i` is part `i`.
+#[derive(Clone, Debug)]
+struct Parts {
+    /// The number of boxes: the first part's item.
+    first_part: u32,
+    bands: Vec<rs_boxes::ChordBand>,
+    /// The box each part was cut from.
+    owner: Vec<u32>,
+}
+
+impl Parts {
+    /// The chord band of an item and the box it belongs to.
+    #[inline]
+    fn band(&self, boxes: &[rs_boxes::MonotoneBox], item: u32) -> (rs_boxes::ChordBand, usize) {
+        match item.checked_sub(self.first_part) {
+            None => (boxes[item as usize].chord_band(), item as usize),
+            Some(i) => (self.bands[i as usize], self.owner[i as usize] as usize),
+        }
+    }
 }
 
 /// What a query needs to find its cell: the grid's box and the cells per unit length.
@@ -228,15 +265,30 @@ impl LocatorIndex {
         let frame = framed_grid(classifier.outer(), tol, cells);
         let n = frame.n();
         let mut pairs: Vec<(usize, u32)> = Vec::new();
-        for (bi, b) in classifier.boxes().boxes().iter().enumerate() {
+        let all = classifier.boxes().boxes();
+        let mut parts = Parts {
+            first_part: all.len() as u32,
+            bands: Vec::new(),
+            owner: Vec::new(),
+        };
+        for (bi, b) in all.iter().enumerate() {
             // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance
             // to their right): flag them so the walk down a column skips them.
-            let id = if b.x_dir == rs_boxes::Monotonicity::Constant {
-                bi as u32 | VERTICAL_FLAG
+            let flag = if b.x_dir == rs_boxes::Monotonicity::Constant {
+                VERTICAL_FLAG
             } else {
-                bi as u32
+                0
             };
-            b.for_cells_near(&frame, tol, |c| pairs.push((c, id)));
+            b.for_grid_parts(&frame, |band, whole| {
+                let id = if whole {
+                    bi as u32
+                } else {
+                    parts.bands.push(band);
+                    parts.owner.push(bi as u32);
+                    parts.first_part + parts.bands.len() as u32 - 1
+                };
+                frame.for_cells_in(band.rectangle_near(tol), |c| pairs.push((c, id | flag)));
+            });
         }
         let registered = CellIndex::new(frame, pairs);
         let state = uniform_states(&registered, classifier);
@@ -253,6 +305,7 @@ impl LocatorIndex {
             mixed_cells: state.iter().filter(|&&s| s == MIXED).count(),
             incidences: registered.len(),
             lookup: Lookup::new(&frame, blocks),
+            parts,
         };
         let record_of = ix.mixed_records(&registered, &state);
         ix.two_levels(&state, &record_of);
@@ -454,6 +507,7 @@ impl<'a> PointLocator<'a> {
             + 4 * (ix.block_start.len() + ix.fine.len())
             + std::mem::size_of::<MixedCell>() * ix.records.len()
             + 4 * (ix.near_items.len() + ix.column_items.len())
+            + (std::mem::size_of::<rs_boxes::ChordBand>() + 4) * ix.parts.bands.len()
     }
 
     /// The location of one point (same as [`Method::InRS2`]).
@@ -477,18 +531,27 @@ impl<'a> PointLocator<'a> {
         if cls.boxes().is_critical_x(p.x, tol) {
             return cls.fallback(p).0;
         }
+        let parts = &self.ix.parts;
+        // A box near p has a part (or is an item itself) whose band may be near p, registered
+        // in p's cell: the bands screen, the box's own test decides.
         let near = &self.ix.near_items[rec.near.0 as usize..rec.near.1 as usize];
-        if near
-            .iter()
-            .any(|&b| all[(b & !VERTICAL_FLAG) as usize].is_near(p, tol))
-        {
+        if near.iter().any(|&item| {
+            let (band, b) = parts.band(all, item & !VERTICAL_FLAG);
+            band.may_be_near(p, tol) && all[b].is_near(p, tol)
+        }) {
             return Location::Boundary;
         }
-        // No box is near p (checked above), so inRS2's per-box test reduces to the crossing.
+        // No box is near p (checked above), so inRS2's per-box test reduces to the crossing,
+        // which the one part of the box over p.x decides (the parts share out its abscissas),
+        // by its band or else by the box's own test.
         let column = &self.ix.column_items[rec.column.0 as usize..rec.column.1 as usize];
         let crossings = column
             .iter()
-            .filter(|&&b| all[b as usize].crosses_below(p))
+            .filter(|&&item| {
+                let (band, b) = parts.band(all, item);
+                band.crossing_below(p)
+                    .unwrap_or_else(|| all[b].crosses_below(p))
+            })
             .count();
         if rec.inside_below ^ (crossings % 2 == 1) {
             Location::Inside

@@ -427,3 +427,50 @@ fn points_off_and_at_the_edges_of_the_grid() {
         }
     }
 }
+
+/// Points off the curves along the normal at multiples of the boundary tolerance (below it,
+/// just inside and outside it, beyond it), with the default tolerance and with none: the
+/// locator, whose cells hold short parts of the long curved pieces, agrees with inRS2 on
+/// every one.
+#[test]
+fn offsets_at_the_tolerance_agree_with_inrs2() {
+    for case in all_cases() {
+        for rel in [1e-12, 0.0] {
+            let c = Classifier::new(
+                &case.domain,
+                ContainOptions::DEFAULT.with_relative_tolerance(rel),
+            )
+            .unwrap();
+            let tol = rel * size(&case);
+            let mut pts = Vec::new();
+            for curve in case.domain.curves() {
+                let (a, b) = curve.param_range();
+                for k in 0..=60 {
+                    let d = curve.derivatives(a + (b - a) * k as f64 / 60.0);
+                    let speed = d.first.length();
+                    if speed == 0.0 {
+                        continue;
+                    }
+                    let n = d.first.perp() / speed;
+                    for f in [0.0, 0.5, 0.99, 1.01, 2.0, 10.0, 1e3] {
+                        pts.push(d.point + n * (f * tol));
+                        pts.push(d.point - n * (f * tol));
+                    }
+                    pts.push(d.point + n * (1e-14 * size(&case)));
+                    pts.push(d.point - n * (1e-14 * size(&case)));
+                }
+            }
+            let expected = c.classify(&pts, Method::InRS2);
+            for cells in [64, 512] {
+                let loc = PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(cells));
+                for (i, (g, e)) in loc.locate_all(&pts).iter().zip(&expected).enumerate() {
+                    assert_eq!(
+                        g, e,
+                        "{}: tolerance {rel}, {cells} cells, at {:?}",
+                        case.name, pts[i]
+                    );
+                }
+            }
+        }
+    }
+}
