@@ -524,6 +524,12 @@ impl<'a> PointLocator<'a> {
         if entry < FIRST_RECORD {
             return STATE_LOCATION[entry as usize];
         }
+        self.locate_mixed(p, entry)
+    }
+
+    /// A point of a mixed cell, whose fine entry is `entry`: the boundary test against the
+    /// cell's items, then the parity below plus the crossings of the record's column items.
+    fn locate_mixed(&self, p: Point, entry: u32) -> Location {
         let rec = &self.ix.records[(entry - FIRST_RECORD) as usize];
         let cls = self.classifier;
         let tol = cls.abs_tol();
@@ -615,13 +621,16 @@ impl PointLocator<'_> {
 
     /// The locations of the points `point(0), point(1), ...` written to `out`, for points held
     /// in any layout (interleaved `x, y` pairs, separate `x` and `y` arrays) without copying
-    /// them. In chunks: every point's block state by a branch-free lookup in the coarse table
-    /// (the positions of points in refined blocks noted without a branch too), then those
-    /// points one by one while the chunk is still in cache.
+    /// them. In chunks, while the chunk is in cache: every point's block state by a
+    /// branch-free lookup in the coarse table (the positions of points in refined blocks noted
+    /// without a branch too), then those points' cell entries the same way (noting the points
+    /// in mixed cells), then the points in mixed cells one by one.
     pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
         const CHUNK: usize = 2048;
         let (lookup, coarse) = (&self.ix.lookup, &self.ix.coarse[..]);
         let mut refined = [0u16; CHUNK];
+        let mut entries = [0u32; CHUNK];
+        let mut mixed = [0u16; CHUNK];
         for (c, out) in out.chunks_mut(CHUNK).enumerate() {
             let first = c * CHUNK;
             let mut k = 0;
@@ -631,8 +640,20 @@ impl PointLocator<'_> {
                 refined[k] = i as u16;
                 k += usize::from(state == REFINED as usize);
             }
-            for &i in &refined[..k] {
-                out[i as usize] = self.locate_refined(point(first + i as usize));
+            // The refined blocks' points: their fine entries without a branch, noting those
+            // in mixed cells, then those one by one.
+            let mut m = 0;
+            for j in 0..k {
+                let i = usize::from(refined[j]);
+                let entry = self.ix.fine_entry(point(first + i));
+                entries[j] = entry;
+                out[i] = STATE_LOCATION[entry.min(FIRST_RECORD) as usize];
+                mixed[m] = j as u16;
+                m += usize::from(entry >= FIRST_RECORD);
+            }
+            for &j in &mixed[..m] {
+                let i = usize::from(refined[usize::from(j)]);
+                out[i] = self.locate_mixed(point(first + i), entries[usize::from(j)]);
             }
         }
     }
