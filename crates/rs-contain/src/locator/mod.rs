@@ -3,17 +3,17 @@
 
 use std::borrow::Cow;
 
-use rs_spline::grid::{CellIndex, GridFrame};
-use rs_spline::{BoundingBox, Point};
+use rs_spline::Point;
+use rs_spline::grid::GridFrame;
 
-use crate::{Classifier, Locate, Location, Method};
+use crate::{Classifier, Locate, Location};
 
-/// Cell state: every point of the cell is outside.
+mod build;
+
+/// Coarse state and fine entry: every point of the block or cell is outside.
 const OUTSIDE: u8 = 0;
-/// Cell state: every point of the cell is inside.
+/// Coarse state and fine entry: every point of the block or cell is inside.
 const INSIDE: u8 = 1;
-/// Cell state: the cell meets a box (grown by the tolerance); decide point by point.
-const MIXED: u8 = 2;
 
 /// The location a coarse state or a uniform fine entry stands for: [`Location::Boundary`]
 /// marks a refined block, whose points are decided one by one (a real boundary point only ever
@@ -97,14 +97,16 @@ impl Default for LocatorOptions {
 /// where it is beyond the rounding of the halving from the point, else the box's own test does.
 ///
 /// # Cost
-/// Build: `O(n^2)` time for the column walk plus the boxes' registrations (each box only in the
-/// cells near its curve: its piece is halved until each part spans a couple of cells) and one
-/// inRS2 batch over the run starts. Memory: the two-bit coarse table, 256 bytes per refined
-/// block, and the mixed-cell records with their box lists, which grow with the boundary's
-/// length in cells; the registrations themselves are dropped after the build (timings:
-/// `cargo xtask bench`, reported in the README). Worst case per query: a mixed cell in a
-/// column that is mixed all the way down, `O(N)` for `N` boxes in that column; fine grids and
-/// refined boxes keep it small.
+/// Build: the boxes' registrations (each box only in the cells near its curve: its piece is
+/// halved until each part spans a couple of cells), one inRS2 batch over the first cells of
+/// the runs between occupied cells, and a walk over the `(n / 8)^2` blocks; no table of all
+/// `n^2` cells is made, so the work grows with the boundary's length in cells and the number
+/// of blocks. Memory: a byte per block of the coarse table, 256 bytes per refined block, the
+/// mixed-cell records with their item lists, and the parts' chord bands, which grow with the
+/// boundary's length in cells; the registrations themselves are dropped after the build
+/// (timings: `cargo xtask bench`, reported in the README). Worst case per query: a mixed cell
+/// in a column that is mixed all the way down, `O(N)` for `N` items in that column; fine grids
+/// and refined boxes keep it small.
 ///
 /// # Examples
 ///
@@ -147,6 +149,10 @@ struct MixedCell {
     /// The distinct non-vertical items registered from that uniform cell up to this one
     /// (`column_items[column.0..column.1]`).
     column: (u32, u32),
+    /// The cell's points are decided by inRS2 itself: the parity below is unknown (a cell
+    /// that meets no box was found on the boundary: rounding of the registration against
+    /// the boundary test).
+    by_inrs2: bool,
 }
 
 /// The grid of a [`PointLocator`], without the classifier it indexes (so that a
@@ -258,129 +264,6 @@ impl Lookup {
 }
 
 impl LocatorIndex {
-    /// Registers every box in the cells near its curve, classifies the box-free cells, and
-    /// stores the two levels and the mixed-cell records.
-    fn build(classifier: &Classifier, cells: usize) -> Self {
-        let tol = classifier.abs_tol();
-        let frame = framed_grid(classifier.outer(), tol, cells);
-        let n = frame.n();
-        let mut pairs: Vec<(usize, u32)> = Vec::new();
-        let all = classifier.boxes().boxes();
-        let mut parts = Parts {
-            first_part: all.len() as u32,
-            bands: Vec::new(),
-            owner: Vec::new(),
-        };
-        for (bi, b) in all.iter().enumerate() {
-            // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance
-            // to their right): flag them so the walk down a column skips them.
-            let flag = if b.x_dir == rs_boxes::Monotonicity::Constant {
-                VERTICAL_FLAG
-            } else {
-                0
-            };
-            b.for_grid_parts(&frame, |band, whole| {
-                let id = if whole {
-                    bi as u32
-                } else {
-                    parts.bands.push(band);
-                    parts.owner.push(bi as u32);
-                    parts.first_part + parts.bands.len() as u32 - 1
-                };
-                frame.for_cells_in(band.rectangle_near(tol), |c| pairs.push((c, id | flag)));
-            });
-        }
-        let registered = CellIndex::new(frame, pairs);
-        let state = uniform_states(&registered, classifier);
-        let blocks = n.div_ceil(BLOCK);
-        let mut ix = Self {
-            n,
-            blocks,
-            coarse: vec![OUTSIDE; blocks * blocks],
-            block_start: vec![0; blocks * blocks],
-            fine: Vec::new(),
-            records: Vec::new(),
-            near_items: Vec::new(),
-            column_items: Vec::new(),
-            mixed_cells: state.iter().filter(|&&s| s == MIXED).count(),
-            incidences: registered.len(),
-            lookup: Lookup::new(&frame, blocks),
-            parts,
-        };
-        let record_of = ix.mixed_records(&registered, &state);
-        ix.two_levels(&state, &record_of);
-        ix
-    }
-
-    /// One record per mixed cell, walking each column upwards; returns each cell's record
-    /// index (unused for uniform cells).
-    fn mixed_records(&mut self, registered: &CellIndex<u32>, state: &[u8]) -> Vec<u32> {
-        let n = self.n;
-        let mut record_of = vec![0u32; n * n];
-        let mut since_uniform: Vec<u32> = Vec::new();
-        for c in 0..n {
-            let mut inside_below = false;
-            since_uniform.clear();
-            for r in 0..n {
-                let cell = c * n + r;
-                if state[cell] != MIXED {
-                    inside_below = state[cell] == INSIDE;
-                    since_uniform.clear();
-                    continue;
-                }
-                let boxes = registered.cell(cell);
-                since_uniform.extend(boxes.iter().filter(|&&b| b & VERTICAL_FLAG == 0));
-                since_uniform.sort_unstable();
-                since_uniform.dedup();
-                let near = push_items(&mut self.near_items, boxes);
-                let column = push_items(&mut self.column_items, &since_uniform);
-                record_of[cell] = self.records.len() as u32;
-                self.records.push(MixedCell {
-                    inside_below,
-                    near,
-                    column,
-                });
-            }
-        }
-        record_of
-    }
-
-    /// The coarse states and the fine entries of the refined blocks.
-    fn two_levels(&mut self, state: &[u8], record_of: &[u32]) {
-        let (n, blocks) = (self.n, self.blocks);
-        for bc in 0..blocks {
-            for br in 0..blocks {
-                let block = bc * blocks + br;
-                let cols = (bc * BLOCK)..((bc + 1) * BLOCK).min(n);
-                let rows = (br * BLOCK)..((br + 1) * BLOCK).min(n);
-                let first = state[cols.start * n + rows.start];
-                let uniform = first != MIXED
-                    && cols
-                        .clone()
-                        .all(|c| rows.clone().all(|r| state[c * n + r] == first));
-                let coarse = if uniform {
-                    first
-                } else {
-                    self.block_start[block] = self.fine.len() as u32;
-                    let start = self.fine.len();
-                    self.fine.resize(start + BLOCK * BLOCK, u32::from(OUTSIDE));
-                    for c in cols.clone() {
-                        for r in rows.clone() {
-                            let cell = c * n + r;
-                            let entry = match state[cell] {
-                                MIXED => FIRST_RECORD + record_of[cell],
-                                s => u32::from(s),
-                            };
-                            self.fine[start + (c - cols.start) * BLOCK + (r - rows.start)] = entry;
-                        }
-                    }
-                    REFINED
-                };
-                self.coarse[block] = coarse;
-            }
-        }
-    }
-
     /// The fine entry of `p`'s cell, in a refined block.
     fn fine_entry(&self, p: Point) -> u32 {
         let (c, r) = self.lookup.cell(p);
@@ -388,79 +271,6 @@ impl LocatorIndex {
         let within = (c & (BLOCK - 1)) * BLOCK + (r & (BLOCK - 1));
         self.fine[self.block_start[block] as usize + within]
     }
-}
-
-/// The grid over `outer` with about `cells` cells per side (fewer when the tolerance is wider
-/// than a cell), plus one cell on every side: that ring lies outside `outer`, so no box is
-/// registered there and every point off the grid can be clamped into it.
-fn framed_grid(outer: BoundingBox, abs_tol: f64, cells: usize) -> GridFrame {
-    let n =
-        GridFrame::cells_for_tolerance(outer, abs_tol, cells).clamp(1, GridFrame::MAX_CELLS - 2);
-    let (cw, ch) = (outer.width() / n as f64, outer.height() / n as f64);
-    let ring = BoundingBox {
-        min: Point::new(outer.min.x - cw, outer.min.y - ch),
-        max: Point::new(outer.max.x + cw, outer.max.y + ch),
-    };
-    GridFrame::new(ring, n + 2)
-}
-
-/// Appends `items` to `all` and returns their range.
-fn push_items(all: &mut Vec<u32>, items: &[u32]) -> (u32, u32) {
-    let start = all.len() as u32;
-    all.extend_from_slice(items);
-    (start, all.len() as u32)
-}
-
-/// Each cell's state: [`MIXED`] where a box is registered, otherwise the location of the
-/// first cell of its run in the column (one inRS2 batch for all run starts).
-fn uniform_states(registered: &CellIndex<u32>, classifier: &Classifier) -> Vec<u8> {
-    let frame = *registered.frame();
-    let n = frame.n();
-    let (cw, ch) = frame.cell_size();
-    let origin = frame.bounding_box().min;
-    let mut state = vec![OUTSIDE; n * n];
-    let mut starts: Vec<usize> = Vec::new();
-    for c in 0..n {
-        let mut prev_mixed = true;
-        for r in 0..n {
-            let cell = c * n + r;
-            let mixed = registered.is_occupied(cell);
-            if mixed {
-                state[cell] = MIXED;
-            } else if prev_mixed {
-                starts.push(cell);
-            }
-            prev_mixed = mixed;
-        }
-    }
-    let centers: Vec<Point> = starts
-        .iter()
-        .map(|&cell| {
-            let (c, r) = (cell / n, cell % n);
-            Point::new(
-                origin.x + (c as f64 + 0.5) * cw,
-                origin.y + (r as f64 + 0.5) * ch,
-            )
-        })
-        .collect();
-    let located = classifier.classify(&centers, Method::InRS2);
-    for (&cell, &l) in starts.iter().zip(&located) {
-        let s = match l {
-            Location::Inside => INSIDE,
-            Location::Outside => OUTSIDE,
-            // Cannot happen for a box-free cell; deciding point by point is always right.
-            Location::Boundary => MIXED,
-        };
-        let (c, r0) = (cell / n, cell % n);
-        for r in r0..n {
-            let i = c * n + r;
-            if registered.is_occupied(i) {
-                break;
-            }
-            state[i] = s;
-        }
-    }
-    state
 }
 
 impl<'a> PointLocator<'a> {
@@ -532,6 +342,9 @@ impl<'a> PointLocator<'a> {
     fn locate_mixed(&self, p: Point, entry: u32) -> Location {
         let rec = &self.ix.records[(entry - FIRST_RECORD) as usize];
         let cls = self.classifier;
+        if rec.by_inrs2 {
+            return cls.classify_point_with_decision(p).0;
+        }
         let tol = cls.abs_tol();
         let all = cls.boxes().boxes();
         if cls.boxes().is_critical_x(p.x, tol) {

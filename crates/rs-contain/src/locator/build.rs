@@ -1,0 +1,395 @@
+//! Building a [`LocatorIndex`]: the boxes' registrations, the uniform runs of each column,
+//! the mixed-cell records and the two levels. The work follows the boundary (its cells, the
+//! runs between them, the blocks), not the grid's area: no table of `n x n` cells is built.
+
+use rs_spline::grid::GridFrame;
+use rs_spline::{BoundingBox, Point};
+
+use super::{
+    BLOCK, FIRST_RECORD, INSIDE, LocatorIndex, Lookup, MixedCell, OUTSIDE, Parts, REFINED,
+    VERTICAL_FLAG,
+};
+use crate::{Classifier, Location, Method};
+
+/// Run state: inRS2 found the run's first cell centre on the boundary, which a cell that
+/// meets no box cannot hold (the rounding of the registration against the boundary test): its
+/// points are decided by inRS2 itself.
+const BY_INRS2: u8 = 2;
+
+impl LocatorIndex {
+    /// Registers every box (or its parts) in the cells near its curve, classifies the uniform
+    /// runs between them, and stores the two levels and the mixed-cell records.
+    pub(super) fn build(classifier: &Classifier, cells: usize) -> Self {
+        let tol = classifier.abs_tol();
+        let frame = framed_grid(classifier.outer(), tol, cells);
+        let n = frame.n();
+        let (parts, pairs) = register(classifier, &frame);
+        let incidences = pairs.len();
+        let columns = Columns::new(n, pairs, classifier, &frame);
+        let blocks = n.div_ceil(BLOCK);
+        let mut ix = Self {
+            n,
+            blocks,
+            coarse: vec![OUTSIDE; blocks * blocks],
+            block_start: vec![0; blocks * blocks],
+            fine: Vec::new(),
+            records: Vec::new(),
+            near_items: Vec::new(),
+            column_items: Vec::new(),
+            mixed_cells: columns.rows.len(),
+            incidences,
+            lookup: Lookup::new(&frame, blocks),
+            parts,
+        };
+        let by_inrs2 = ix.mixed_records(&columns);
+        ix.two_levels(&columns, by_inrs2);
+        ix
+    }
+
+    /// One record per occupied cell, in the columns' order (the `k`-th occupied cell's record
+    /// is record `k`), walking each column upwards; then one record for the cells of
+    /// [`BY_INRS2`] runs, whose index is returned.
+    fn mixed_records(&mut self, columns: &Columns) -> u32 {
+        let mut since_uniform: Vec<u32> = Vec::new();
+        for c in 0..columns.n {
+            let (mut inside_below, mut unknown_below) = (false, false);
+            since_uniform.clear();
+            for k in columns.start[c]..columns.start[c + 1] {
+                let (below, state) = columns.run_below(c, k);
+                if !below.is_empty() {
+                    inside_below = state == INSIDE;
+                    // Above a run of unknown parity, inRS2 decides too.
+                    unknown_below = state == BY_INRS2;
+                    since_uniform.clear();
+                }
+                let items = columns.items_of(k);
+                since_uniform.extend(items.iter().filter(|&&b| b & VERTICAL_FLAG == 0));
+                since_uniform.sort_unstable();
+                since_uniform.dedup();
+                self.records.push(MixedCell {
+                    inside_below,
+                    near: push_items(&mut self.near_items, items),
+                    column: push_items(&mut self.column_items, &since_uniform),
+                    by_inrs2: unknown_below,
+                });
+            }
+        }
+        self.records.push(MixedCell {
+            inside_below: false,
+            near: (0, 0),
+            column: (0, 0),
+            by_inrs2: true,
+        });
+        (self.records.len() - 1) as u32
+    }
+
+    /// The coarse states, and the fine entries of the refined blocks: a block is uniform if
+    /// it holds no occupied cell and its columns' runs there share one location.
+    fn two_levels(&mut self, columns: &Columns, by_inrs2: u32) {
+        let (n, blocks) = (self.n, self.blocks);
+        for bc in 0..blocks {
+            let cols = (bc * BLOCK)..((bc + 1) * BLOCK).min(n);
+            for br in 0..blocks {
+                let block = bc * blocks + br;
+                let rows = (br * BLOCK)..((br + 1) * BLOCK).min(n);
+                let mut shared = None;
+                let uniform = cols.clone().all(|c| match columns.state_of_rows(c, &rows) {
+                    Some(s) if s != BY_INRS2 => *shared.get_or_insert(s) == s,
+                    _ => false,
+                });
+                if uniform {
+                    self.coarse[block] = shared.unwrap_or(OUTSIDE);
+                    continue;
+                }
+                self.coarse[block] = REFINED;
+                self.block_start[block] = self.fine.len() as u32;
+                let start = self.fine.len();
+                self.fine.resize(start + BLOCK * BLOCK, u32::from(OUTSIDE));
+                for c in cols.clone() {
+                    for r in rows.clone() {
+                        let entry = match columns.cell(c, r) {
+                            Cell::Occupied(k) => FIRST_RECORD + k as u32,
+                            Cell::Run(BY_INRS2) => FIRST_RECORD + by_inrs2,
+                            Cell::Run(s) => u32::from(s),
+                        };
+                        self.fine[start + (c - cols.start) * BLOCK + (r - rows.start)] = entry;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Registers every box in the cells near its curve: a box that spans a couple of cells as
+/// itself, a longer one as its parts (see [`Parts`]). Returns the parts and the sorted,
+/// distinct `(cell, item)` pairs, vertical items flagged.
+fn register(classifier: &Classifier, frame: &GridFrame) -> (Parts, Vec<(usize, u32)>) {
+    let tol = classifier.abs_tol();
+    let all = classifier.boxes().boxes();
+    let cells = frame.cell_count();
+    let mut pairs: Vec<(usize, u32)> = Vec::new();
+    let mut parts = Parts {
+        first_part: all.len() as u32,
+        bands: Vec::new(),
+        owner: Vec::new(),
+    };
+    for (bi, b) in all.iter().enumerate() {
+        // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance
+        // to their right): flag them so the walk down a column skips them.
+        let flag = if b.x_dir == rs_boxes::Monotonicity::Constant {
+            VERTICAL_FLAG
+        } else {
+            0
+        };
+        b.for_grid_parts(frame, |band, whole| {
+            let id = if whole {
+                bi as u32
+            } else {
+                parts.bands.push(band);
+                parts.owner.push(bi as u32);
+                parts.first_part + parts.bands.len() as u32 - 1
+            };
+            frame.for_cells_in(band.rectangle_near(tol), |c| pairs.push((c, id | flag)));
+        });
+    }
+    pairs.retain(|&(c, _)| c < cells);
+    pairs.sort_unstable();
+    pairs.dedup();
+    (parts, pairs)
+}
+
+/// What a cell of the grid is: occupied (the `k`-th occupied cell in column order), or in a
+/// run of cells that meet no box, with the run's state.
+enum Cell {
+    Occupied(usize),
+    Run(u8),
+}
+
+/// The grid column by column: its occupied cells (those where an item is registered), their
+/// items, and the state of each run of unoccupied cells between them.
+struct Columns {
+    n: usize,
+    /// Column `c`'s occupied cells are `start[c]..start[c + 1]`.
+    start: Vec<usize>,
+    /// The row of each occupied cell (ascending within a column).
+    rows: Vec<u32>,
+    /// The items of occupied cell `k` are `items[item_start[k]..item_start[k + 1]]`.
+    item_start: Vec<u32>,
+    items: Vec<u32>,
+    /// Column `c` has `start[c + 1] - start[c] + 1` runs (some empty): the one below each
+    /// occupied cell and the one at the top; run `j` of column `c` is `runs[start[c] + c + j]`,
+    /// the location of its first cell's centre by inRS2 ([`OUTSIDE`], [`INSIDE`] or
+    /// [`BY_INRS2`]).
+    runs: Vec<u8>,
+}
+
+impl Columns {
+    /// The columns of the grid `frame` (`n` cells per side) from the sorted, distinct
+    /// `(cell, item)` pairs; the runs' first cells are classified in one inRS2 batch.
+    fn new(n: usize, pairs: Vec<(usize, u32)>, classifier: &Classifier, frame: &GridFrame) -> Self {
+        let mut start = vec![0usize; n + 1];
+        let mut rows: Vec<u32> = Vec::new();
+        let mut item_start: Vec<u32> = Vec::new();
+        let mut items: Vec<u32> = Vec::with_capacity(pairs.len());
+        let mut last = usize::MAX;
+        for (cell, item) in pairs {
+            if cell != last {
+                let (c, r) = (cell / n, cell % n);
+                start[c + 1] += 1;
+                rows.push(r as u32);
+                item_start.push(items.len() as u32);
+                last = cell;
+            }
+            items.push(item);
+        }
+        item_start.push(items.len() as u32);
+        for c in 0..n {
+            start[c + 1] += start[c];
+        }
+        let mut columns = Self {
+            n,
+            start,
+            rows,
+            item_start,
+            items,
+            runs: Vec::new(),
+        };
+        columns.classify_runs(classifier, frame);
+        columns
+    }
+
+    /// Each run's state: its first cell's centre by inRS2 (empty runs are left outside).
+    fn classify_runs(&mut self, classifier: &Classifier, frame: &GridFrame) {
+        let (cw, ch) = frame.cell_size();
+        let origin = frame.bounding_box().min;
+        let mut centers = Vec::new();
+        let mut slots = Vec::new();
+        for c in 0..self.n {
+            for j in 0..=(self.start[c + 1] - self.start[c]) {
+                let run = self.run(c, j);
+                if !run.is_empty() {
+                    centers.push(Point::new(
+                        origin.x + (c as f64 + 0.5) * cw,
+                        origin.y + (run.start as f64 + 0.5) * ch,
+                    ));
+                    slots.push(self.start[c] + c + j);
+                }
+            }
+        }
+        self.runs = vec![OUTSIDE; self.rows.len() + self.n];
+        for (slot, l) in slots
+            .into_iter()
+            .zip(classifier.classify(&centers, Method::InRS2))
+        {
+            self.runs[slot] = match l {
+                Location::Inside => INSIDE,
+                Location::Outside => OUTSIDE,
+                Location::Boundary => BY_INRS2,
+            };
+        }
+    }
+
+    /// The rows of run `j` of column `c` (below its `j`-th occupied cell, or at the top).
+    fn run(&self, c: usize, j: usize) -> std::ops::Range<usize> {
+        let occupied = &self.rows[self.start[c]..self.start[c + 1]];
+        let first = if j == 0 {
+            0
+        } else {
+            occupied[j - 1] as usize + 1
+        };
+        let end = occupied.get(j).map_or(self.n, |&r| r as usize);
+        first..end.max(first)
+    }
+
+    /// The run just below occupied cell `k` of column `c`, and its state.
+    fn run_below(&self, c: usize, k: usize) -> (std::ops::Range<usize>, u8) {
+        let j = k - self.start[c];
+        (self.run(c, j), self.runs[self.start[c] + c + j])
+    }
+
+    /// The items registered in occupied cell `k`.
+    fn items_of(&self, k: usize) -> &[u32] {
+        &self.items[self.item_start[k] as usize..self.item_start[k + 1] as usize]
+    }
+
+    /// The cell at column `c`, row `r`.
+    fn cell(&self, c: usize, r: usize) -> Cell {
+        let occupied = &self.rows[self.start[c]..self.start[c + 1]];
+        let j = occupied.partition_point(|&x| (x as usize) < r);
+        if occupied.get(j).is_some_and(|&x| x as usize == r) {
+            Cell::Occupied(self.start[c] + j)
+        } else {
+            Cell::Run(self.runs[self.start[c] + c + j])
+        }
+    }
+
+    /// The state shared by the cells `rows` of column `c`, if none is occupied (they then lie
+    /// in one run).
+    fn state_of_rows(&self, c: usize, rows: &std::ops::Range<usize>) -> Option<u8> {
+        let occupied = &self.rows[self.start[c]..self.start[c + 1]];
+        let j = occupied.partition_point(|&x| (x as usize) < rows.start);
+        match occupied.get(j) {
+            Some(&x) if (x as usize) < rows.end => None,
+            _ => Some(self.runs[self.start[c] + c + j]),
+        }
+    }
+}
+
+/// The grid over `outer` with about `cells` cells per side (fewer when the tolerance is wider
+/// than a cell), plus one cell on every side: that ring lies outside `outer`, so no box is
+/// registered there and every point off the grid can be clamped into it.
+fn framed_grid(outer: BoundingBox, abs_tol: f64, cells: usize) -> GridFrame {
+    let n =
+        GridFrame::cells_for_tolerance(outer, abs_tol, cells).clamp(1, GridFrame::MAX_CELLS - 2);
+    let (cw, ch) = (outer.width() / n as f64, outer.height() / n as f64);
+    let ring = BoundingBox {
+        min: Point::new(outer.min.x - cw, outer.min.y - ch),
+        max: Point::new(outer.max.x + cw, outer.max.y + ch),
+    };
+    GridFrame::new(ring, n + 2)
+}
+
+/// Appends `items` to `all` and returns their range.
+fn push_items(all: &mut Vec<u32>, items: &[u32]) -> (u32, u32) {
+    let start = all.len() as u32;
+    all.extend_from_slice(items);
+    (start, all.len() as u32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ContainOptions;
+    use rs_spline::{Domain, circle};
+
+    /// The sparse columns against the dense grid they stand for: every cell is occupied
+    /// exactly where an item is registered, every other cell carries the inRS2 location of
+    /// its run's first cell, which is its own centre's location too, and a block's rows share
+    /// a state exactly when none of them is occupied.
+    #[test]
+    fn columns_match_the_dense_grid() {
+        let d = Domain::new(vec![
+            circle(Point::new(0.0, 0.0), 1.0).unwrap(),
+            circle(Point::new(0.2, 0.1), 0.4).unwrap(),
+        ])
+        .unwrap();
+        let c = Classifier::new(&d, ContainOptions::default()).unwrap();
+        for cells in [5, 40] {
+            let frame = framed_grid(c.outer(), c.abs_tol(), cells);
+            let n = frame.n();
+            let (_, pairs) = register(&c, &frame);
+            let occupied: std::collections::BTreeSet<usize> =
+                pairs.iter().map(|&(cell, _)| cell).collect();
+            let columns = Columns::new(n, pairs.clone(), &c, &frame);
+            let (cw, ch) = frame.cell_size();
+            let origin = frame.bounding_box().min;
+            let mut k_expected = 0;
+            for col in 0..n {
+                for r in 0..n {
+                    match columns.cell(col, r) {
+                        Cell::Occupied(k) => {
+                            assert!(occupied.contains(&(col * n + r)));
+                            assert_eq!(k, k_expected, "occupied cells in column order");
+                            k_expected += 1;
+                            let items: Vec<u32> = pairs
+                                .iter()
+                                .filter(|&&(cell, _)| cell == col * n + r)
+                                .map(|&(_, i)| i)
+                                .collect();
+                            assert_eq!(columns.items_of(k), &items[..]);
+                        }
+                        Cell::Run(s) => {
+                            assert!(!occupied.contains(&(col * n + r)));
+                            let centre = Point::new(
+                                origin.x + (col as f64 + 0.5) * cw,
+                                origin.y + (r as f64 + 0.5) * ch,
+                            );
+                            let expected = match c.classify(&[centre], Method::InRS2)[0] {
+                                Location::Inside => INSIDE,
+                                _ => OUTSIDE,
+                            };
+                            assert_eq!(s, expected, "cells {cells}: cell ({col}, {r})");
+                        }
+                    }
+                }
+                for r0 in (0..n).step_by(3) {
+                    let rows = r0..(r0 + 3).min(n);
+                    let any = rows.clone().any(|r| occupied.contains(&(col * n + r)));
+                    match columns.state_of_rows(col, &rows) {
+                        None => assert!(any),
+                        Some(s) => {
+                            assert!(!any);
+                            assert!(
+                                rows.clone().all(
+                                    |r| matches!(columns.cell(col, r), Cell::Run(t) if t == s)
+                                )
+                            );
+                        }
+                    }
+                }
+            }
+            assert_eq!(k_expected, columns.rows.len());
+            assert!(k_expected > 0 && k_expected < n * n);
+        }
+    }
+}
