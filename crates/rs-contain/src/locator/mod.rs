@@ -89,7 +89,7 @@ impl Default for LocatorOptions {
 ///   the box's own test (one bracketed solve at most). Points on a critical abscissa take
 ///   inRS2's fallback (horizontal ray, winding number).
 ///
-/// Results are identical to [`Method::InRS2`]: uniform cells are classified by inRS2 itself and
+/// Results are identical to [`Method::InRS2`](crate::Method::InRS2): uniform cells are classified by inRS2 itself and
 /// no box below the reference cell can reach it, so the crossings counted above it are exactly
 /// those inRS2 counts there. A box near a point has a part registered in the point's cell whose
 /// band may be near it, and then the box's own test decides; of a box's parts exactly one spans
@@ -305,12 +305,13 @@ impl<'a> PointLocator<'a> {
         self.ix.mixed_cells as f64 / (self.ix.n * self.ix.n) as f64
     }
 
-    /// Number of (box, cell) incidences registered while building.
+    /// Number of (item, cell) incidences registered while building (an item is a box or a
+    /// part of one).
     pub fn incidences(&self) -> usize {
         self.ix.incidences
     }
 
-    /// Bytes held by the index (tables, records and box lists).
+    /// Bytes held by the index (tables, records, item lists and the parts' chord bands).
     pub fn memory_bytes(&self) -> usize {
         let ix = &self.ix;
         ix.coarse.len()
@@ -320,7 +321,7 @@ impl<'a> PointLocator<'a> {
             + (std::mem::size_of::<rs_boxes::ChordBand>() + 4) * ix.parts.bands.len()
     }
 
-    /// The location of one point (same as [`Method::InRS2`]).
+    /// The location of one point (same as [`Method::InRS2`](crate::Method::InRS2)).
     fn locate_point(&self, p: Point) -> Location {
         match STATE_LOCATION[self.ix.lookup.coarse_state(&self.ix.coarse, p)] {
             Location::Boundary => self.locate_refined(p),
@@ -390,7 +391,7 @@ impl<'a> PointLocator<'a> {
 }
 
 impl Locate for PointLocator<'_> {
-    /// The location of one point (same as [`Method::InRS2`]).
+    /// The location of one point (same as [`Method::InRS2`](crate::Method::InRS2)).
     fn locate(&self, p: Point) -> Location {
         self.locate_point(p)
     }
