@@ -17,8 +17,9 @@ const CSV_BLOCK_BYTES: usize = 1 << 20;
 const NPY_TASK_POINTS: usize = 1 << 16;
 #[cfg(unix)]
 thread_local! {
-    /// Each worker's buffers for the `.npy` ranges it reads, kept from task to task (fresh
-    /// ones cost a page fault per 4 KiB and zero-filling).
+    /// Each worker's buffers for the `.npy` ranges it reads (the bytes, and the points for a
+    /// computation that reads them from a slice), kept from task to task (fresh ones cost a
+    /// page fault per 4 KiB and zero-filling).
     static NPY_SCRATCH: std::cell::RefCell<(Vec<u8>, Vec<Point>)> = Default::default();
 }
 /// Progress is shown (on a terminal) once a run has taken this long.
@@ -39,6 +40,32 @@ pub(crate) struct Column<T> {
 
 /// Appends the bytes of a run of values.
 pub(crate) type AppendValues<T> = fn(&[T], &mut Vec<u8>);
+
+/// What a streamed command computes: one value per point. Any `Fn(&[Point], &mut [T])` is
+/// one; a computation that can read its points one at a time (a locator's indexed query)
+/// also takes them straight from a `.npy` file's bytes, without copying them into points.
+pub(crate) trait PointsKernel<T>: Sync {
+    /// Writes to `out[i]` the value of `points[i]`.
+    fn compute(&self, points: &[Point], out: &mut [T]);
+
+    /// Writes to `out[i]` the value of `points.point(i)`; by default through `scratch`.
+    fn compute_encoded(
+        &self,
+        points: inrs::EncodedPoints<'_>,
+        scratch: &mut Vec<Point>,
+        out: &mut [T],
+    ) {
+        scratch.clear();
+        points.append_to(scratch);
+        self.compute(scratch, out);
+    }
+}
+
+impl<T, F: Fn(&[Point], &mut [T]) + Sync> PointsKernel<T> for F {
+    fn compute(&self, points: &[Point], out: &mut [T]) {
+        self(points, out);
+    }
+}
 
 /// A points file: CSV (any other name) or `.npy` (float64 or float32, shape `(N, 2)`).
 pub(crate) struct PointsInput {
@@ -136,11 +163,11 @@ fn input_error(path: &Path, e: PointsError) -> CliError {
 /// Three stages overlap: a thread reads blocks, the calling thread parses, computes and
 /// formats groups of them on rayon's pool, and a thread writes the results in input order.
 /// The channels between them are bounded, so memory does not grow with the input.
-pub(crate) fn stream_points<T: Copy + Send + Sync>(
+pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     input: PointsInput,
     output: Option<&Path>,
     column: &Column<T>,
-    compute: &(dyn Fn(&[Point], &mut [T]) + Sync),
+    kernel: &K,
 ) -> Result<(), CliError> {
     let format = if output.is_some_and(|p| has_extension(p, "npy")) {
         Format::Npy
@@ -181,14 +208,15 @@ pub(crate) fn stream_points<T: Copy + Send + Sync>(
             let parts: Vec<Result<(Vec<u8>, usize), PointsError>> = next
                 .par_iter()
                 .map(|c| match c {
-                    Chunk::Csv(b) => csv_block(b, format, column, compute),
-                    Chunk::Points(p) => Ok(npy_points(p, format, column, compute)),
+                    Chunk::Csv(b) => csv_block(b, format, column, kernel),
+                    Chunk::Points(p) => Ok(npy_points(p, format, column, kernel)),
                     #[cfg(unix)]
                     Chunk::Range { file, first, n } => {
                         NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
-                            points.clear();
-                            file.read_points(*first, *n, bytes, points)?;
-                            Ok(npy_points(points, format, column, compute))
+                            let encoded = file.read_encoded(*first, *n, bytes)?;
+                            let mut values = vec![column.initial; encoded.len()];
+                            kernel.compute_encoded(encoded, points, &mut values);
+                            Ok(format_values(&values, format, column, |i| encoded.point(i)))
                         })
                     }
                 })
@@ -336,12 +364,12 @@ fn csv_block<T: Copy>(
     block: &CsvBlock,
     format: Format,
     column: &Column<T>,
-    compute: &(dyn Fn(&[Point], &mut [T]) + Sync),
+    kernel: &impl PointsKernel<T>,
 ) -> Result<(Vec<u8>, usize), PointsError> {
     let mut parsed = ParsedBlock::default();
     block.parse_into(&mut parsed)?;
     let mut values = vec![column.initial; parsed.points.len()];
-    compute(&parsed.points, &mut values);
+    kernel.compute(&parsed.points, &mut values);
     if format == Format::Npy {
         let mut bytes = Vec::with_capacity(values.len() * column.npy.0.size());
         (column.npy.1)(&values, &mut bytes);
@@ -359,24 +387,35 @@ fn csv_block<T: Copy>(
     Ok((bytes, values.len()))
 }
 
-/// Computes and formats points read from `.npy` (coordinates written in shortest round-trip
-/// form for CSV).
+/// Computes and formats points read from `.npy`.
 fn npy_points<T: Copy>(
     points: &[Point],
     format: Format,
     column: &Column<T>,
-    compute: &(dyn Fn(&[Point], &mut [T]) + Sync),
+    kernel: &impl PointsKernel<T>,
 ) -> (Vec<u8>, usize) {
     let mut values = vec![column.initial; points.len()];
-    compute(points, &mut values);
+    kernel.compute(points, &mut values);
+    format_values(&values, format, column, |i| points[i])
+}
+
+/// The bytes of the values of points read from `.npy`, and their count: the values as `.npy`
+/// data, or CSV rows `x,y,value` with the coordinates `point(i)` in shortest round-trip form.
+fn format_values<T: Copy>(
+    values: &[T],
+    format: Format,
+    column: &Column<T>,
+    point: impl Fn(usize) -> Point,
+) -> (Vec<u8>, usize) {
     if format == Format::Npy {
         let mut bytes = Vec::with_capacity(values.len() * column.npy.0.size());
-        (column.npy.1)(&values, &mut bytes);
+        (column.npy.1)(values, &mut bytes);
         return (bytes, values.len());
     }
-    let mut bytes = Vec::with_capacity(points.len() * 48);
+    let mut bytes = Vec::with_capacity(values.len() * 48);
     let mut digits = ryu::Buffer::new();
-    for (p, &v) in points.iter().zip(&values) {
+    for (i, &v) in values.iter().enumerate() {
+        let p = point(i);
         bytes.extend_from_slice(digits.format_finite(p.x).as_bytes());
         bytes.push(b',');
         bytes.extend_from_slice(digits.format_finite(p.y).as_bytes());

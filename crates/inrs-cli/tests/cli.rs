@@ -778,6 +778,43 @@ fn outputs_to_pipes_are_written_in_place() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A float32 `.npy` points file (large enough for the grid locator, which reads the points
+/// straight from the file's bytes) classifies as the same points written as CSV.
+#[test]
+fn float32_npy_points_match_csv() {
+    let domain = fixture("inrs-paper/s5_lune.json");
+    let pts: Vec<(f32, f32)> = (0..60_000)
+        .map(|i| {
+            let t = i as f64 * 0.618_033_988_749_895;
+            (
+                (2.0 * t.fract() - 1.0) as f32,
+                (2.0 * (t * 1.7).fract() - 1.0) as f32,
+            )
+        })
+        .collect();
+    let mut bytes = inrs::npy_header(inrs::NpyType::F32, &[pts.len(), 2]);
+    for &(x, y) in &pts {
+        bytes.extend_from_slice(&x.to_le_bytes());
+        bytes.extend_from_slice(&y.to_le_bytes());
+    }
+    let npy = temp_file("pts32.npy", "");
+    std::fs::write(&npy, bytes).unwrap();
+    let csv_text: String = pts
+        .iter()
+        .map(|&(x, y)| format!("{},{}\n", f64::from(x), f64::from(y)))
+        .collect();
+    let csv = temp_file("pts32.csv", &csv_text);
+    let expected = classify_locations(&domain, &csv);
+    assert!(expected.iter().any(|l| l == "inside") && expected.iter().any(|l| l == "outside"));
+    let text = inrs_ok(&["classify", "--domain", &domain, "--points", &npy]);
+    let got: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(got, expected);
+}
+
 /// `.npy` points from a named pipe (which cannot be read by position) are read in order, with
 /// the same answers as from a regular file.
 #[cfg(unix)]

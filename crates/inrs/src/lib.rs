@@ -72,7 +72,10 @@ mod summary;
 pub use classify::Classify;
 #[cfg(unix)]
 pub use npy::NpyPointsFile;
-pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyPoints, NpyType, npy_header, open_npy_points};
+pub use npy::{
+    EncodedPoints, MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyPoints, NpyType, npy_header,
+    open_npy_points,
+};
 pub use points_csv::{
     CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, PointReader, PointRecord, PointsError,
     open_points, open_points_blocks, parse_points, read_points,

@@ -197,13 +197,8 @@ impl<R: Read> NpyPoints<R> {
             .read_exact(&mut self.buf)
             .map_err(|e| data_cut_short(&self.path, self.len, &e))?;
         self.consumed += self.buf.len() as u64;
-        decode_points(
-            self.ty,
-            &self.buf,
-            self.len - self.remaining,
-            &self.path,
-            out,
-        )?;
+        EncodedPoints::checked(self.ty, &self.buf, self.len - self.remaining, &self.path)?
+            .append_to(out);
         self.remaining -= n;
         Ok(n)
     }
@@ -217,36 +212,87 @@ fn data_cut_short(path: &str, len: usize, e: &std::io::Error) -> PointsError {
     }
 }
 
-/// Appends the points encoded in `bytes` (pairs of `ty`, little-endian) to `out`, the first
-/// being point `first` of the file `path` (for the error naming a non-finite coordinate).
-fn decode_points(
+/// Points as a `.npy` array stores them: pairs of `f64` or `f32`, little-endian, every
+/// coordinate checked finite. Read one at a time by [`EncodedPoints::point`] (for instance by a
+/// locator's indexed query), so that they need not be copied into a `Vec<Point>` first.
+///
+/// # Examples
+///
+/// ```
+/// # #[cfg(unix)] {
+/// let path = std::env::temp_dir().join("inrs-doc-encoded-points.npy");
+/// let mut bytes = inrs::npy_header(inrs::NpyType::F32, &[2, 2]);
+/// for v in [0.5f32, 1.0, -2.0, 3.25] {
+///     bytes.extend_from_slice(&v.to_le_bytes());
+/// }
+/// std::fs::write(&path, &bytes).unwrap();
+/// let f = inrs::NpyPointsFile::open(&path).unwrap();
+/// let mut scratch = Vec::new();
+/// let pts = f.read_encoded(0, 2, &mut scratch).unwrap();
+/// assert_eq!(pts.len(), 2);
+/// assert_eq!(pts.point(1), inrs::Point::new(-2.0, 3.25));
+/// # std::fs::remove_file(&path).unwrap();
+/// # }
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct EncodedPoints<'a> {
     ty: NpyType,
-    bytes: &[u8],
-    first: usize,
-    path: &str,
-    out: &mut Vec<Point>,
-) -> Result<(), PointsError> {
-    let start = out.len();
-    match ty {
-        NpyType::F32 => out.extend(bytes.chunks_exact(8).map(|c| {
+    bytes: &'a [u8],
+}
+
+impl<'a> EncodedPoints<'a> {
+    /// The points encoded in `bytes` (pairs of `ty`, a whole number of them), the first being
+    /// point `first` of the file `path` (for the error naming a non-finite coordinate).
+    fn checked(
+        ty: NpyType,
+        bytes: &'a [u8],
+        first: usize,
+        path: &str,
+    ) -> Result<Self, PointsError> {
+        let points = Self { ty, bytes };
+        if let Some(i) = (0..points.len()).find(|&i| {
+            let p = points.point(i);
+            !(p.x.is_finite() && p.y.is_finite())
+        }) {
+            return Err(PointsError::Npy {
+                path: path.to_string(),
+                message: format!("point {} is not finite: {:?}", first + i, points.point(i)),
+            });
+        }
+        Ok(points)
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.bytes.len() / (2 * self.ty.size())
+    }
+
+    /// True if there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Point `i` (`float32` coordinates converted exactly).
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    #[inline]
+    pub fn point(&self, i: usize) -> Point {
+        if self.ty == NpyType::F32 {
+            let c = &self.bytes[8 * i..8 * i + 8];
             let v = |b: &[u8]| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]));
             Point::new(v(&c[..4]), v(&c[4..]))
-        })),
-        _ => out.extend(bytes.chunks_exact(16).map(|c| {
+        } else {
+            let c = &self.bytes[16 * i..16 * i + 16];
             let v = |b: &[u8]| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]);
             Point::new(v(&c[..8]), v(&c[8..]))
-        })),
+        }
     }
-    if let Some(i) = out[start..]
-        .iter()
-        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
-    {
-        return Err(PointsError::Npy {
-            path: path.to_string(),
-            message: format!("point {} is not finite: {:?}", first + i, out[start + i]),
-        });
+
+    /// Appends the points to `out`.
+    pub fn append_to(&self, out: &mut Vec<Point>) {
+        out.extend((0..self.len()).map(|i| self.point(i)));
     }
-    Ok(())
 }
 
 /// A `.npy` points file (as [`NpyPoints`] reads it) whose blocks are read by position, from
@@ -330,14 +376,29 @@ impl NpyPointsFile {
         scratch: &mut Vec<u8>,
         out: &mut Vec<Point>,
     ) -> Result<usize, PointsError> {
+        let points = self.read_encoded(first, n, scratch)?;
+        points.append_to(out);
+        Ok(points.len())
+    }
+
+    /// Points `first..first + n` (cut at the end of the array) as stored, read into `scratch`
+    /// and checked finite: [`NpyPointsFile::read_points`] without the copy into points.
+    ///
+    /// # Errors
+    /// As [`NpyPoints::read_block`].
+    pub fn read_encoded<'s>(
+        &self,
+        first: usize,
+        n: usize,
+        scratch: &'s mut Vec<u8>,
+    ) -> Result<EncodedPoints<'s>, PointsError> {
         use std::os::unix::fs::FileExt;
         let n = n.min(self.len.saturating_sub(first));
         scratch.resize(2 * self.ty.size() * n, 0);
         self.file
             .read_exact_at(scratch, self.offset_of(first))
             .map_err(|e| data_cut_short(&self.path, self.len, &e))?;
-        decode_points(self.ty, scratch, first, &self.path, out)?;
-        Ok(n)
+        EncodedPoints::checked(self.ty, scratch, first, &self.path)
     }
 }
 

@@ -4,13 +4,13 @@ use std::path::PathBuf;
 
 use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
-use inrs::contain::{FAST_METHOD_MIN_POINTS, FastWindingField, WindingField};
-use inrs::{Classifier, ContainOptions, Location, Method, NpyType};
+use inrs::contain::{FAST_METHOD_MIN_POINTS, FastWindingField, PointLocator, WindingField};
+use inrs::{Classifier, ContainOptions, EncodedPoints, Location, Method, NpyType, Point};
 
 use crate::args::{DomainArg, FillRuleArg, MethodArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
-use crate::stream::{Column, PointsInput, stream_points};
+use crate::stream::{Column, PointsInput, PointsKernel, stream_points};
 
 /// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order.
 #[derive(Args, Debug)]
@@ -64,9 +64,7 @@ impl ClassifyArgs {
                 .map_err(|e| self.domain.error(e))?
                 .with_fill_rule(self.fill_rule.into());
             let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &LOCATION, &|pts, out| {
-                fast.locate_indexed_into(|i| pts[i], out);
-            });
+            return stream_points(input, output, &LOCATION, &ByWindingField(fast));
         }
         let options = ContainOptions::DEFAULT
             .with_relative_tolerance(self.tol)
@@ -76,18 +74,47 @@ impl ClassifyArgs {
         // The fast method takes the grid for inputs large enough to pay for it (built once,
         // kept by the classifier), inRS2 for small ones: the answers are the same.
         if method == Method::Fast && input.estimated_points() >= FAST_METHOD_MIN_POINTS {
-            let locator = classifier.locator();
-            return stream_points(input, output, &LOCATION, &|pts, out| {
-                locator.locate_into(pts, out)
-            });
+            return stream_points(input, output, &LOCATION, &ByLocator(classifier.locator()));
         }
         let method = if method == Method::Fast {
             Method::InRS2
         } else {
             method
         };
-        stream_points(input, output, &LOCATION, &|pts, out| {
-            out.copy_from_slice(&classifier.classify(pts, method));
-        })
+        stream_points(
+            input,
+            output,
+            &LOCATION,
+            &|pts: &[Point], out: &mut [Location]| {
+                out.copy_from_slice(&classifier.classify(pts, method));
+            },
+        )
+    }
+}
+
+/// The grid locator as a streamed computation, reading `.npy` points one at a time from their
+/// bytes.
+struct ByLocator<'a>(PointLocator<'a>);
+
+impl PointsKernel<Location> for ByLocator<'_> {
+    fn compute(&self, points: &[Point], out: &mut [Location]) {
+        self.0.locate_into(points, out);
+    }
+
+    fn compute_encoded(&self, points: EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [Location]) {
+        self.0.locate_indexed_into(|i| points.point(i), out);
+    }
+}
+
+/// The accelerated winding field's locations (`--method gwn`) as a streamed computation.
+struct ByWindingField<'a>(FastWindingField<'a>);
+
+impl PointsKernel<Location> for ByWindingField<'_> {
+    fn compute(&self, points: &[Point], out: &mut [Location]) {
+        self.0.locate_indexed_into(|i| points[i], out);
+    }
+
+    fn compute_encoded(&self, points: EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [Location]) {
+        self.0.locate_indexed_into(|i| points.point(i), out);
     }
 }

@@ -80,14 +80,19 @@ impl EvalArgs {
             (&VALUE, Order::Value)
         };
         let outside = std::sync::atomic::AtomicUsize::new(0);
-        stream_points(input, self.output.as_deref(), column, &|pts, out| {
-            let mut missed = 0;
-            for (o, &p) in out.iter_mut().zip(pts) {
-                *o = eval.evaluate(p, order);
-                missed += usize::from(o.is_none());
-            }
-            outside.fetch_add(missed, std::sync::atomic::Ordering::Relaxed);
-        })?;
+        stream_points(
+            input,
+            self.output.as_deref(),
+            column,
+            &|pts: &[inrs::Point], out: &mut [Option<Jet>]| {
+                let mut missed = 0;
+                for (o, &p) in out.iter_mut().zip(pts) {
+                    *o = eval.evaluate(p, order);
+                    missed += usize::from(o.is_none());
+                }
+                outside.fetch_add(missed, std::sync::atomic::Ordering::Relaxed);
+            },
+        )?;
         let outside = outside.into_inner();
         if outside > 0 {
             eprintln!("{outside} points outside the domain: their values are nan");

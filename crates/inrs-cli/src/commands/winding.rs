@@ -3,13 +3,13 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use inrs::NpyType;
 use inrs::contain::baselines::WindingAlgorithm;
 use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, FastWindingField, QueryStats, WindingField};
+use inrs::{EncodedPoints, NpyType, Point};
 
 use crate::args::{AlgorithmArg, DomainArg};
 use crate::cli::error::CliError;
-use crate::stream::{Column, PointsInput, stream_points, write_f64};
+use crate::stream::{Column, PointsInput, PointsKernel, stream_points, write_f64};
 
 /// Generalized winding number of every point; writes CSV `x,y,winding`.
 ///
@@ -51,15 +51,33 @@ impl WindingArgs {
         let output = self.output.as_deref();
         if algorithm == WindingAlgorithm::Adaptive {
             let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &WINDING, &|pts, out| {
-                fast.winding_numbers_indexed_into(|i| pts[i], out);
-            });
+            return stream_points(input, output, &WINDING, &FastWinding(fast));
         }
-        stream_points(input, output, &WINDING, &|pts, out| {
-            let mut stats = QueryStats::default();
-            for (o, &q) in out.iter_mut().zip(pts) {
-                *o = field.winding_number_with(q, algorithm, &mut stats);
-            }
-        })
+        stream_points(
+            input,
+            output,
+            &WINDING,
+            &|pts: &[Point], out: &mut [f64]| {
+                let mut stats = QueryStats::default();
+                for (o, &q) in out.iter_mut().zip(pts) {
+                    *o = field.winding_number_with(q, algorithm, &mut stats);
+                }
+            },
+        )
+    }
+}
+
+/// The accelerated field's winding numbers as a streamed computation, reading `.npy` points
+/// one at a time from their bytes.
+struct FastWinding<'a>(FastWindingField<'a>);
+
+impl PointsKernel<f64> for FastWinding<'_> {
+    fn compute(&self, points: &[Point], out: &mut [f64]) {
+        self.0.winding_numbers_indexed_into(|i| points[i], out);
+    }
+
+    fn compute_encoded(&self, points: EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [f64]) {
+        self.0
+            .winding_numbers_indexed_into(|i| points.point(i), out);
     }
 }
