@@ -371,9 +371,7 @@ fn csv_block<T: Copy>(
     let mut values = vec![column.initial; parsed.points.len()];
     kernel.compute(&parsed.points, &mut values);
     if format == Format::Npy {
-        let mut bytes = Vec::with_capacity(values.len() * column.npy.0.size());
-        (column.npy.1)(&values, &mut bytes);
-        return Ok((bytes, values.len()));
+        return Ok(npy_values(&values, column));
     }
     let mut bytes = Vec::with_capacity(block.text.len() + 16 * values.len());
     for (f, &v) in parsed.fields.iter().zip(&values) {
@@ -408,9 +406,7 @@ fn format_values<T: Copy>(
     point: impl Fn(usize) -> Point,
 ) -> (Vec<u8>, usize) {
     if format == Format::Npy {
-        let mut bytes = Vec::with_capacity(values.len() * column.npy.0.size());
-        (column.npy.1)(values, &mut bytes);
-        return (bytes, values.len());
+        return npy_values(values, column);
     }
     let mut bytes = Vec::with_capacity(values.len() * 48);
     let mut digits = ryu::Buffer::new();
@@ -423,6 +419,13 @@ fn format_values<T: Copy>(
         (column.csv)(v, &mut bytes);
         bytes.push(b'\n');
     }
+    (bytes, values.len())
+}
+
+/// The values as `.npy` data, and their count.
+fn npy_values<T: Copy>(values: &[T], column: &Column<T>) -> (Vec<u8>, usize) {
+    let mut bytes = Vec::with_capacity(values.len() * column.npy.0.size());
+    (column.npy.1)(values, &mut bytes);
     (bytes, values.len())
 }
 
