@@ -26,6 +26,12 @@ impl LocatorIndex {
         let (parts, pairs) = register(classifier, &frame);
         let incidences = pairs.len();
         let columns = Columns::new(n, pairs, classifier, &frame);
+        Self::from_columns(&frame, parts, &columns, incidences)
+    }
+
+    /// The index of the grid `frame` from its columns.
+    fn from_columns(frame: &GridFrame, parts: Parts, columns: &Columns, incidences: usize) -> Self {
+        let n = frame.n();
         let blocks = n.div_ceil(BLOCK);
         let mut ix = Self {
             n,
@@ -38,11 +44,11 @@ impl LocatorIndex {
             column_items: Vec::new(),
             mixed_cells: columns.rows.len(),
             incidences,
-            lookup: Lookup::new(&frame, blocks),
+            lookup: Lookup::new(frame, blocks),
             parts,
         };
-        let by_inrs2 = ix.mixed_records(&columns);
-        ix.two_levels(&columns, by_inrs2);
+        let by_inrs2 = ix.mixed_records(columns);
+        ix.two_levels(columns, by_inrs2);
         ix
     }
 
@@ -391,5 +397,62 @@ mod tests {
             assert_eq!(k_expected, columns.rows.len());
             assert!(k_expected > 0 && k_expected < n * n);
         }
+    }
+
+    /// A run whose first cell's centre inRS2 puts on the boundary (which a cell meeting no box
+    /// cannot hold; forced here) is decided by inRS2 itself, and so are the occupied cells
+    /// above it up to the next run: the parity below them is unknown.
+    #[test]
+    fn runs_of_unknown_parity_are_decided_by_inrs2() {
+        use crate::locator::PointLocator;
+        let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+        let c = Classifier::new(&d, ContainOptions::default()).unwrap();
+        let frame = framed_grid(c.outer(), c.abs_tol(), 16);
+        let n = frame.n();
+        let (parts, pairs) = register(&c, &frame);
+        let incidences = pairs.len();
+        let mut columns = Columns::new(n, pairs, &c, &frame);
+        // The middle column's run inside the circle (between its two boundary crossings),
+        // marked of unknown parity; its state was inside.
+        let col = n / 2;
+        let j = (1..=columns.start[col + 1] - columns.start[col])
+            .find(|&j| {
+                !columns.run(col, j).is_empty()
+                    && columns.runs[columns.start[col] + col + j] == INSIDE
+            })
+            .unwrap();
+        let slot = columns.start[col] + col + j;
+        columns.runs[slot] = BY_INRS2;
+        let run = columns.run(col, j);
+        let ix = LocatorIndex::from_columns(&frame, parts, &columns, incidences);
+        // The occupied cells right above the run take inRS2 too.
+        let above = columns.start[col] + j;
+        assert!(ix.records[above].by_inrs2);
+        assert!(
+            !ix.records[columns.start[col]].by_inrs2,
+            "below the run: parity known"
+        );
+        // Points across the run's cells and the cell above it: inRS2's answers.
+        let loc = PointLocator::with_index(&c, &ix);
+        let (cw, ch) = frame.cell_size();
+        let origin = frame.bounding_box().min;
+        let pts: Vec<Point> = (run.start..=run.end)
+            .flat_map(|r| {
+                (0..5).map(move |k| {
+                    Point::new(
+                        origin.x + (col as f64 + 0.1 + 0.2 * k as f64) * cw,
+                        origin.y + (r as f64 + 0.3) * ch,
+                    )
+                })
+            })
+            .collect();
+        let by_inrs2 = FIRST_RECORD + (ix.records.len() - 1) as u32;
+        assert!(ix.records[(by_inrs2 - FIRST_RECORD) as usize].by_inrs2);
+        for p in &pts[..5 * run.len()] {
+            assert_eq!(ix.fine_entry(*p), by_inrs2, "a cell of the run at {p:?}");
+        }
+        let expected = c.classify(&pts, Method::InRS2);
+        assert!(expected.contains(&Location::Inside));
+        assert_eq!(crate::Locate::locate_all(&loc, &pts), expected);
     }
 }
