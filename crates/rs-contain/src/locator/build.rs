@@ -238,7 +238,7 @@ impl Columns {
                         origin.x + (c as f64 + 0.5) * cw,
                         origin.y + (run.start as f64 + 0.5) * ch,
                     ));
-                    slots.push(self.start[c] + c + j);
+                    slots.push(self.run_slot(c, j));
                 }
             }
         }
@@ -255,9 +255,19 @@ impl Columns {
         }
     }
 
+    /// The rows of column `c`'s occupied cells.
+    fn occupied_rows(&self, c: usize) -> &[u32] {
+        &self.rows[self.start[c]..self.start[c + 1]]
+    }
+
+    /// Where run `j` of column `c` keeps its state in `runs`.
+    fn run_slot(&self, c: usize, j: usize) -> usize {
+        self.start[c] + c + j
+    }
+
     /// The rows of run `j` of column `c` (below its `j`-th occupied cell, or at the top).
     fn run(&self, c: usize, j: usize) -> std::ops::Range<usize> {
-        let occupied = &self.rows[self.start[c]..self.start[c + 1]];
+        let occupied = self.occupied_rows(c);
         let first = if j == 0 {
             0
         } else {
@@ -270,7 +280,7 @@ impl Columns {
     /// The run just below occupied cell `k` of column `c`, and its state.
     fn run_below(&self, c: usize, k: usize) -> (std::ops::Range<usize>, u8) {
         let j = k - self.start[c];
-        (self.run(c, j), self.runs[self.start[c] + c + j])
+        (self.run(c, j), self.runs[self.run_slot(c, j)])
     }
 
     /// The items registered in occupied cell `k`.
@@ -280,23 +290,23 @@ impl Columns {
 
     /// The cell at column `c`, row `r`.
     fn cell(&self, c: usize, r: usize) -> Cell {
-        let occupied = &self.rows[self.start[c]..self.start[c + 1]];
+        let occupied = self.occupied_rows(c);
         let j = occupied.partition_point(|&x| (x as usize) < r);
         if occupied.get(j).is_some_and(|&x| x as usize == r) {
             Cell::Occupied(self.start[c] + j)
         } else {
-            Cell::Run(self.runs[self.start[c] + c + j])
+            Cell::Run(self.runs[self.run_slot(c, j)])
         }
     }
 
     /// The state shared by the cells `rows` of column `c`, if none is occupied (they then lie
     /// in one run).
     fn state_of_rows(&self, c: usize, rows: &std::ops::Range<usize>) -> Option<u8> {
-        let occupied = &self.rows[self.start[c]..self.start[c + 1]];
+        let occupied = self.occupied_rows(c);
         let j = occupied.partition_point(|&x| (x as usize) < rows.start);
         match occupied.get(j) {
             Some(&x) if (x as usize) < rows.end => None,
-            _ => Some(self.runs[self.start[c] + c + j]),
+            _ => Some(self.runs[self.run_slot(c, j)]),
         }
     }
 }
@@ -417,11 +427,10 @@ mod tests {
         let col = n / 2;
         let j = (1..=columns.start[col + 1] - columns.start[col])
             .find(|&j| {
-                !columns.run(col, j).is_empty()
-                    && columns.runs[columns.start[col] + col + j] == INSIDE
+                !columns.run(col, j).is_empty() && columns.runs[columns.run_slot(col, j)] == INSIDE
             })
             .unwrap();
-        let slot = columns.start[col] + col + j;
+        let slot = columns.run_slot(col, j);
         columns.runs[slot] = BY_INRS2;
         let run = columns.run(col, j);
         let ix = LocatorIndex::from_columns(&frame, parts, &columns, incidences);
