@@ -640,14 +640,35 @@ fn svg_overlaps_follow_even_odd_by_default_and_nonzero_through_gwn() {
 
 /// A `.npy` file of points, as `NumPy` writes one (version 1.0 header, C order).
 fn npy_points(name: &str, points: &[(f64, f64)]) -> String {
-    let mut bytes = inrs::npy_header(inrs::NpyType::F64, &[points.len(), 2]);
+    npy_points_of(name, inrs::NpyType::F64, points)
+}
+
+/// A `.npy` file of points with elements of type `ty` (float64, or float32 for points that
+/// are float32 values).
+fn npy_points_of(name: &str, ty: inrs::NpyType, points: &[(f64, f64)]) -> String {
+    let mut bytes = inrs::npy_header(ty, &[points.len(), 2]);
     for &(x, y) in points {
-        bytes.extend_from_slice(&x.to_le_bytes());
-        bytes.extend_from_slice(&y.to_le_bytes());
+        for v in [x, y] {
+            if ty == inrs::NpyType::F32 {
+                bytes.extend_from_slice(&(v as f32).to_le_bytes());
+            } else {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+        }
     }
     let path = std::path::Path::new(&temp_file(name, "")).to_path_buf();
     std::fs::write(&path, bytes).unwrap();
     path.display().to_string()
+}
+
+/// `n` points spread over `[-1, 1]^2` (golden-ratio steps).
+fn spread_points(n: usize) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let t = i as f64 * 0.618_033_988_749_895;
+            (2.0 * t.fract() - 1.0, 2.0 * (t * 1.7).fract() - 1.0)
+        })
+        .collect()
 }
 
 /// The data of a 1-D `.npy` output, after checking its header names `descr` and `n` values.
@@ -666,11 +687,8 @@ fn npy_data(path: &str, descr: &str, n: usize) -> Vec<u8> {
 #[test]
 fn npy_points_and_results_match_csv() {
     let domain = fixture("inrs-paper/s5_lune.json");
-    let pts: Vec<(f64, f64)> = (0..70_000)
-        .map(|i| {
-            let t = i as f64 * 0.618_033_988_749_895;
-            (2.0 * t.fract() - 1.0, 2.0 * (t * 1.7).fract() - 1.0)
-        })
+    let pts: Vec<(f64, f64)> = spread_points(70_000)
+        .into_iter()
         .chain([(1.0, 0.0), (0.0, 0.0), (5.0, 5.0)])
         .collect();
     let csv_text: String = pts.iter().map(|(x, y)| format!("{x},{y}\n")).collect();
@@ -783,26 +801,13 @@ fn outputs_to_pipes_are_written_in_place() {
 #[test]
 fn float32_npy_points_match_csv() {
     let domain = fixture("inrs-paper/s5_lune.json");
-    let pts: Vec<(f32, f32)> = (0..60_000)
-        .map(|i| {
-            let t = i as f64 * 0.618_033_988_749_895;
-            (
-                (2.0 * t.fract() - 1.0) as f32,
-                (2.0 * (t * 1.7).fract() - 1.0) as f32,
-            )
-        })
+    // Float32 values, held exactly as float64.
+    let pts: Vec<(f64, f64)> = spread_points(60_000)
+        .into_iter()
+        .map(|(x, y)| (f64::from(x as f32), f64::from(y as f32)))
         .collect();
-    let mut bytes = inrs::npy_header(inrs::NpyType::F32, &[pts.len(), 2]);
-    for &(x, y) in &pts {
-        bytes.extend_from_slice(&x.to_le_bytes());
-        bytes.extend_from_slice(&y.to_le_bytes());
-    }
-    let npy = temp_file("pts32.npy", "");
-    std::fs::write(&npy, bytes).unwrap();
-    let csv_text: String = pts
-        .iter()
-        .map(|&(x, y)| format!("{},{}\n", f64::from(x), f64::from(y)))
-        .collect();
+    let npy = npy_points_of("pts32.npy", inrs::NpyType::F32, &pts);
+    let csv_text: String = pts.iter().map(|(x, y)| format!("{x},{y}\n")).collect();
     let csv = temp_file("pts32.csv", &csv_text);
     let expected = classify_locations(&domain, &csv);
     assert!(expected.iter().any(|l| l == "inside") && expected.iter().any(|l| l == "outside"));
