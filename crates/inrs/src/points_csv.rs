@@ -463,6 +463,8 @@ pub struct CsvBlocks<R> {
     block_bytes: usize,
     /// Bytes read but not yet handed out (a partial last line).
     pending: Vec<u8>,
+    /// A buffer given back by [`CsvBlocks::recycle`], for the bytes after the next block.
+    spare: Vec<u8>,
     /// Lines handed out so far.
     lines: usize,
     at_start: bool,
@@ -481,6 +483,7 @@ impl<R: std::io::Read> CsvBlocks<R> {
             path: path.into(),
             block_bytes: block_bytes.max(1),
             pending: Vec::new(),
+            spare: Vec::new(),
             lines: 0,
             at_start: true,
             seen_data: false,
@@ -492,6 +495,15 @@ impl<R: std::io::Read> CsvBlocks<R> {
     /// Bytes read from the input so far (for progress reports).
     pub fn bytes_read(&self) -> u64 {
         self.consumed
+    }
+
+    /// Gives back a block's text (or any buffer) for reading the following blocks into, so
+    /// that a long run reuses a few buffers instead of allocating (and page-faulting) a fresh
+    /// one per block. Its contents are discarded; one buffer is kept, the larger.
+    pub fn recycle(&mut self, buffer: Vec<u8>) {
+        if buffer.capacity() > self.spare.capacity() {
+            self.spare = buffer;
+        }
     }
 
     /// The next block, `None` at the end.
@@ -523,7 +535,11 @@ impl<R: std::io::Read> CsvBlocks<R> {
                 }
             }
         };
-        let rest = self.pending.split_off(cut);
+        // The bytes after the cut move to the spare buffer, which becomes `pending`.
+        let mut rest = std::mem::take(&mut self.spare);
+        rest.clear();
+        rest.extend_from_slice(&self.pending[cut..]);
+        self.pending.truncate(cut);
         let text = std::mem::replace(&mut self.pending, rest);
         let first_line = self.lines + 1;
         let lines = count_lines(&text) + usize::from(self.eof && !text.ends_with(b"\n"));
@@ -558,7 +574,11 @@ impl<R: std::io::Read> CsvBlocks<R> {
                 break; // a line too long: reported by next_block
             }
             let want = (self.block_bytes.saturating_sub(self.pending.len())).max(1 << 16);
-            self.pending.reserve(want);
+            // Room for a whole block and one more read at once: every block then fits a
+            // buffer of that size (see `recycle`) without growing it.
+            self.pending.reserve(
+                (self.block_bytes + (2 << 16)).max(self.pending.len() + want) - self.pending.len(),
+            );
             let before = self.pending.len();
             let read = std::io::Read::read_to_end(
                 &mut std::io::Read::take(&mut self.input, want as u64),
@@ -718,7 +738,8 @@ mod tests {
     }
 
     /// The block reader gives what the line reader gives, whatever the block size, and the
-    /// same first error.
+    /// same first error; also when each block's text is given back (with stale bytes in it)
+    /// for reading the next ones.
     #[test]
     fn blocks_agree_with_the_line_reader() {
         let texts: [&[u8]; 7] = [
@@ -732,7 +753,10 @@ mod tests {
         ];
         for text in texts {
             let lines: Result<Vec<PointRecord>, _> = PointReader::new(text).collect();
-            for block_bytes in [1, 3, 7, 64, 1 << 20] {
+            for (block_bytes, recycle) in [1, 3, 7, 64, 1 << 20]
+                .into_iter()
+                .flat_map(|b| [(b, false), (b, true)])
+            {
                 let mut blocks = CsvBlocks::new(text, "t", block_bytes);
                 let mut parsed = ParsedBlock::default();
                 let mut got = Vec::new();
@@ -748,6 +772,11 @@ mod tests {
                                     x_text: String::from_utf8_lossy(b.field(f[0], f[1])).into(),
                                     y_text: String::from_utf8_lossy(b.field(f[2], f[3])).into(),
                                 });
+                            }
+                            if recycle {
+                                let mut stale = b.text;
+                                stale.extend_from_slice(b"9,9\nbad\n");
+                                blocks.recycle(stale);
                             }
                         }
                         Ok(None) => break Ok(got),

@@ -11,8 +11,11 @@ use rayon::prelude::*;
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
 
+mod spares;
+use spares::Spares;
+
 /// Bytes per CSV block (one parallel task).
-const CSV_BLOCK_BYTES: usize = 1 << 20;
+const CSV_BLOCK_BYTES: usize = 1 << 18;
 /// Points per parallel task for `.npy` input.
 const NPY_TASK_POINTS: usize = 1 << 16;
 #[cfg(unix)]
@@ -21,6 +24,10 @@ thread_local! {
     /// computation that reads them from a slice), kept from task to task (fresh ones cost a
     /// page fault per 4 KiB and zero-filling).
     static NPY_SCRATCH: std::cell::RefCell<(Vec<u8>, Vec<Point>)> = Default::default();
+}
+thread_local! {
+    /// Each worker's parsed CSV block (points and field positions), kept from task to task.
+    static CSV_SCRATCH: std::cell::RefCell<ParsedBlock> = Default::default();
 }
 /// Progress is shown (on a terminal) once a run has taken this long.
 const PROGRESS_AFTER: Duration = Duration::from_secs(2);
@@ -162,7 +169,8 @@ fn input_error(path: &Path, e: PointsError) -> CliError {
 ///
 /// Three stages overlap: a thread reads blocks, the calling thread parses, computes and
 /// formats groups of them on rayon's pool, and a thread writes the results in input order.
-/// The channels between them are bounded, so memory does not grow with the input.
+/// The channels between them are bounded, so memory does not grow with the input; the byte
+/// buffers (blocks read, results formatted) go back to a bounded pool once used.
 pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     input: PointsInput,
     output: Option<&Path>,
@@ -178,13 +186,18 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     let path = Path::new(&input.path).to_path_buf();
     let total = input.total_bytes;
     let read = std::sync::atomic::AtomicU64::new(0);
+    // Two pools, so that each converges to its buffers' size: the blocks read (a group being
+    // read, one computed) and the results formatted (one group computed, two queued, one
+    // being written).
+    let (texts, results) = (Spares::new(2 * group), Spares::new(4 * group));
+    let (texts, spares) = (&texts, &results);
     std::thread::scope(|scope| {
         let (chunks_tx, chunks) =
             std::sync::mpsc::sync_channel::<Result<Chunk, PointsError>>(group);
         let read = &read;
-        scope.spawn(move || read_chunks(input, &chunks_tx, read));
+        scope.spawn(move || read_chunks(input, &chunks_tx, read, texts));
         let (groups_tx, groups) = std::sync::mpsc::sync_channel::<Written>(2);
-        let writer = scope.spawn(move || write_groups(output, format, column, groups));
+        let writer = scope.spawn(move || write_groups(output, format, column, groups, spares));
         let mut progress = Progress::new(total);
         let mut failure = None;
         'outer: loop {
@@ -208,19 +221,25 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
             let parts: Vec<Result<(Vec<u8>, usize), PointsError>> = next
                 .par_iter()
                 .map(|c| match c {
-                    Chunk::Csv(b) => csv_block(b, format, column, kernel),
-                    Chunk::Points(p) => Ok(npy_points(p, format, column, kernel)),
+                    Chunk::Csv(b) => csv_block(b, format, column, kernel, spares.take()),
+                    Chunk::Points(p) => Ok(npy_points(p, format, column, kernel, spares.take())),
                     #[cfg(unix)]
                     Chunk::Range { file, first, n } => {
                         NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
                             let encoded = file.read_encoded(*first, *n, bytes)?;
                             let mut values = vec![column.initial; encoded.len()];
                             kernel.compute_encoded(encoded, points, &mut values);
-                            Ok(format_values(&values, format, column, |i| encoded.point(i)))
+                            let point = |i| encoded.point(i);
+                            Ok(format_values(&values, format, column, point, spares.take()))
                         })
                     }
                 })
                 .collect();
+            for chunk in next {
+                if let Chunk::Csv(block) = chunk {
+                    texts.give(block.text);
+                }
+            }
             let mut done = Vec::with_capacity(parts.len());
             for part in parts {
                 match part {
@@ -279,15 +298,20 @@ enum Chunk {
 }
 
 /// The reading stage: sends the input's chunks (or its first error) until the input ends or
-/// the receiver hangs up; counts the bytes read in `read`.
+/// the receiver hangs up; counts the bytes read in `read`; reads CSV into buffers from
+/// `spares`.
 fn read_chunks(
     mut input: PointsInput,
     tx: &std::sync::mpsc::SyncSender<Result<Chunk, PointsError>>,
     read: &std::sync::atomic::AtomicU64,
+    spares: &Spares,
 ) {
     loop {
         let next = match &mut input.source {
-            Source::Csv(blocks) => blocks.next_block().map(|b| b.map(Chunk::Csv)),
+            Source::Csv(blocks) => {
+                blocks.recycle(spares.take());
+                blocks.next_block().map(|b| b.map(Chunk::Csv))
+            }
             Source::Npy(reader) => {
                 let mut pts = Vec::new();
                 reader
@@ -318,13 +342,15 @@ fn read_chunks(
     }
 }
 
-/// The writing stage: opens the output, writes the header and every group in order, and on
-/// [`Written::End`] the final `.npy` header with the count, then commits the output.
+/// The writing stage: opens the output, writes the header and every group in order (giving
+/// the buffers back to `spares`), and on [`Written::End`] the final `.npy` header with the
+/// count, then commits the output.
 fn write_groups<T>(
     output: Option<&Path>,
     format: Format,
     column: &Column<T>,
     groups: std::sync::mpsc::Receiver<Written>,
+    spares: &Spares,
 ) -> Result<(), CliError> {
     let mut out = Output::create(output)?;
     if format == Format::Npy {
@@ -340,6 +366,7 @@ fn write_groups<T>(
                 for (bytes, n) in group {
                     out.write_bytes(&bytes)?;
                     written += n;
+                    spares.give(bytes);
                 }
             }
             Ok(Written::End) => break,
@@ -359,56 +386,62 @@ enum Format {
     Npy,
 }
 
-/// Parses, computes and formats one CSV block; returns its bytes and number of points.
+/// Parses, computes and formats one CSV block into `bytes` (empty); returns them and the
+/// number of points.
 fn csv_block<T: Copy>(
     block: &CsvBlock,
     format: Format,
     column: &Column<T>,
     kernel: &impl PointsKernel<T>,
+    mut bytes: Vec<u8>,
 ) -> Result<(Vec<u8>, usize), PointsError> {
-    let mut parsed = ParsedBlock::default();
-    block.parse_into(&mut parsed)?;
-    let mut values = vec![column.initial; parsed.points.len()];
-    kernel.compute(&parsed.points, &mut values);
-    if format == Format::Npy {
-        return Ok(npy_values(&values, column));
-    }
-    let mut bytes = Vec::with_capacity(block.text.len() + 16 * values.len());
-    for (f, &v) in parsed.fields.iter().zip(&values) {
-        bytes.extend_from_slice(block.field(f[0], f[1]));
-        bytes.push(b',');
-        bytes.extend_from_slice(block.field(f[2], f[3]));
-        bytes.push(b',');
-        (column.csv)(v, &mut bytes);
-        bytes.push(b'\n');
-    }
-    Ok((bytes, values.len()))
+    CSV_SCRATCH.with_borrow_mut(|parsed| {
+        block.parse_into(parsed)?;
+        let mut values = vec![column.initial; parsed.points.len()];
+        kernel.compute(&parsed.points, &mut values);
+        if format == Format::Npy {
+            return Ok(npy_values(&values, column, bytes));
+        }
+        bytes.reserve(block.text.len() + 16 * values.len());
+        for (f, &v) in parsed.fields.iter().zip(&values) {
+            bytes.extend_from_slice(block.field(f[0], f[1]));
+            bytes.push(b',');
+            bytes.extend_from_slice(block.field(f[2], f[3]));
+            bytes.push(b',');
+            (column.csv)(v, &mut bytes);
+            bytes.push(b'\n');
+        }
+        Ok((bytes, values.len()))
+    })
 }
 
-/// Computes and formats points read from `.npy`.
+/// Computes and formats points read from `.npy` into `bytes` (empty).
 fn npy_points<T: Copy>(
     points: &[Point],
     format: Format,
     column: &Column<T>,
     kernel: &impl PointsKernel<T>,
+    bytes: Vec<u8>,
 ) -> (Vec<u8>, usize) {
     let mut values = vec![column.initial; points.len()];
     kernel.compute(points, &mut values);
-    format_values(&values, format, column, |i| points[i])
+    format_values(&values, format, column, |i| points[i], bytes)
 }
 
-/// The bytes of the values of points read from `.npy`, and their count: the values as `.npy`
-/// data, or CSV rows `x,y,value` with the coordinates `point(i)` in shortest round-trip form.
+/// The bytes of the values of points read from `.npy`, appended to `bytes` (empty), and their
+/// count: the values as `.npy` data, or CSV rows `x,y,value` with the coordinates `point(i)`
+/// in shortest round-trip form.
 fn format_values<T: Copy>(
     values: &[T],
     format: Format,
     column: &Column<T>,
     point: impl Fn(usize) -> Point,
+    mut bytes: Vec<u8>,
 ) -> (Vec<u8>, usize) {
     if format == Format::Npy {
-        return npy_values(values, column);
+        return npy_values(values, column, bytes);
     }
-    let mut bytes = Vec::with_capacity(values.len() * 48);
+    bytes.reserve(values.len() * 48);
     let mut digits = ryu::Buffer::new();
     for (i, &v) in values.iter().enumerate() {
         let p = point(i);
@@ -422,9 +455,9 @@ fn format_values<T: Copy>(
     (bytes, values.len())
 }
 
-/// The values as `.npy` data, and their count.
-fn npy_values<T: Copy>(values: &[T], column: &Column<T>) -> (Vec<u8>, usize) {
-    let mut bytes = Vec::with_capacity(values.len() * column.npy.0.size());
+/// The values as `.npy` data, appended to `bytes` (empty), and their count.
+fn npy_values<T: Copy>(values: &[T], column: &Column<T>, mut bytes: Vec<u8>) -> (Vec<u8>, usize) {
+    bytes.reserve(values.len() * column.npy.0.size());
     (column.npy.1)(values, &mut bytes);
     (bytes, values.len())
 }
