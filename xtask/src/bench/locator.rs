@@ -7,7 +7,7 @@ use inrs::contain::baselines::halton_points;
 use inrs::contain::{Locate, LocatorOptions, PointLocator};
 use inrs::{Classifier, ContainOptions, Domain, Location, Method};
 
-use super::{BenchOptions, median_time};
+use super::{BenchOptions, interleaved_medians, median_time};
 
 /// Throughput of the locator's queries alone (index built once), on one thread and on all,
 /// with inRS2 and a pass that only reads the points (counts `x < y`: the memory-bandwidth
@@ -26,7 +26,8 @@ pub(super) fn single_thread(
          streams), on one thread and on {threads} threads into a new vector (`locate_all`, \
          `locate_all_parallel`), the scaling between those two, the ratio to inRS2, and the \
          fraction of a pass that only reads the points (counts x < y: the memory-bandwidth \
-         ceiling), all in the same run.\n"
+         ceiling), all in the same run; the last four timed in rounds (one run of each per round) so \
+         that a noisy spell slows them alike; medians.\n"
     );
     let _ = writeln!(
         md,
@@ -47,19 +48,25 @@ pub(super) fn single_thread(
         });
         let loc = PointLocator::new(&c, LocatorOptions::default());
         let mut kept = vec![Location::Outside; n];
-        let tk = median_time(o.reps, || {
-            loc.locate_into(&pts, &mut kept);
-            std::hint::black_box(&kept);
-        });
-        let tq = median_time(o.reps, || {
-            std::hint::black_box(loc.locate_all(&pts));
-        });
-        let tp = median_time(o.reps, || {
-            std::hint::black_box(loc.locate_all_parallel(&pts));
-        });
-        let ts = median_time(o.reps, || {
-            std::hint::black_box(pts.iter().filter(|p| p.x < p.y).count());
-        });
+        let t = interleaved_medians(
+            o.reps,
+            &mut [
+                &mut || {
+                    loc.locate_into(&pts, &mut kept);
+                    std::hint::black_box(&kept);
+                },
+                &mut || {
+                    std::hint::black_box(loc.locate_all(&pts));
+                },
+                &mut || {
+                    std::hint::black_box(loc.locate_all_parallel(&pts));
+                },
+                &mut || {
+                    std::hint::black_box(pts.iter().filter(|p| p.x < p.y).count());
+                },
+            ],
+        );
+        let (tk, tq, tp, ts) = (t[0], t[1], t[2], t[3]);
         let mpts = |t: f64| n as f64 / t / 1e6;
         let _ = writeln!(
             md,

@@ -123,6 +123,38 @@ fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
     t[t.len() / 2]
 }
 
+/// The median seconds of each of `runs`, timed in rounds (one run of each per round, `reps`
+/// rounds, after each has warmed up as in [`median_time`]): a noisy spell on the machine then
+/// slows every one of them alike, so the ratios between them hold better than between runs
+/// timed one after the other.
+fn interleaved_medians(reps: usize, runs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
+    let timed = |f: &mut dyn FnMut()| {
+        let start = Instant::now();
+        f();
+        start.elapsed().as_secs_f64()
+    };
+    for f in runs.iter_mut() {
+        if timed(&mut **f) < SLOW_RUN {
+            let warm = Instant::now();
+            while warm.elapsed().as_secs_f64() < WARM_UP {
+                f();
+            }
+        }
+    }
+    let mut t = vec![Vec::with_capacity(reps.max(1)); runs.len()];
+    for _ in 0..reps.max(1) {
+        for (f, t) in runs.iter_mut().zip(t.iter_mut()) {
+            t.push(timed(&mut **f));
+        }
+    }
+    t.into_iter()
+        .map(|mut t| {
+            t.sort_by(f64::total_cmp);
+            t[t.len() / 2]
+        })
+        .collect()
+}
+
 /// A run at least this long (seconds) needs no warm-up.
 const SLOW_RUN: f64 = 0.1;
 /// Seconds of untimed runs before timing faster ones.
