@@ -27,8 +27,8 @@ fn boxes_figure(d: &Domain, subdivisions: usize, caption: &str) -> Result<Figure
         .with_fill("#dbe8ff", 0.5)
         .labelled("monotone box");
     for b in boxes.boxes() {
-        let r = BoundingBox::from_point(Point::new(b.xmin, b.ymin))
-            .including(Point::new(b.xmax, b.ymax));
+        let r = BoundingBox::from_point(Point::new(b.band.xmin, b.band.ymin))
+            .including(Point::new(b.band.xmax, b.band.ymax));
         fig.rect(r, &style);
     }
     draw_boundary(&mut fig, d);

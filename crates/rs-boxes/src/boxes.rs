@@ -162,8 +162,8 @@ impl MonotoneBoxes {
         let bbox = boxes
             .iter()
             .map(|b| BoundingBox {
-                min: Point::new(b.xmin, b.ymin),
-                max: Point::new(b.xmax, b.ymax),
+                min: Point::new(b.band.xmin, b.band.ymin),
+                max: Point::new(b.band.xmax, b.band.ymax),
             })
             .reduce(BoundingBox::union)
             .unwrap_or_else(|| domain.bounding_box());
@@ -444,13 +444,13 @@ fn collect_critical(
     for (i, b) in boxes.iter().enumerate() {
         if b.x_dir == Monotonicity::Constant {
             out.push(CriticalPoint {
-                point: b.start,
+                point: b.band.start,
                 kind: CriticalKind::VerticalPiece,
             });
         }
         if b.y_dir == Monotonicity::Constant {
             out.push(CriticalPoint {
-                point: b.start,
+                point: b.band.start,
                 kind: CriticalKind::HorizontalPiece,
             });
         }
@@ -472,7 +472,7 @@ fn collect_critical(
         };
         if vt || x_turn {
             out.push(CriticalPoint {
-                point: b.start,
+                point: b.band.start,
                 kind: if vt {
                     CriticalKind::VerticalTangent
                 } else {
@@ -482,7 +482,7 @@ fn collect_critical(
         }
         if ht || y_turn {
             out.push(CriticalPoint {
-                point: b.start,
+                point: b.band.start,
                 kind: if ht {
                     CriticalKind::HorizontalTangent
                 } else {
@@ -492,7 +492,10 @@ fn collect_critical(
         }
         if !closed && i + 1 == n {
             for kind in [CriticalKind::XTurningVertex, CriticalKind::YTurningVertex] {
-                out.push(CriticalPoint { point: b.end, kind });
+                out.push(CriticalPoint {
+                    point: b.band.end,
+                    kind,
+                });
             }
         }
     }

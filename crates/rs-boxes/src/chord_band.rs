@@ -14,7 +14,7 @@ pub(crate) const SLACK_MARGIN: f64 = 1e-13;
 /// A band answers the two questions of the containment tests, *may `p` be near the piece?* and
 /// *does the downward ray from `p` cross it?*, without a solve for every point outside the band,
 /// and says when a solve is needed. It stands either for a [`MonotoneBox`](crate::MonotoneBox)'s
-/// own piece ([`MonotoneBox::chord_band`](crate::MonotoneBox::chord_band)), or for a part of it
+/// own piece ([`MonotoneBox::band`](crate::MonotoneBox::band)), or for a part of it
 /// cut by halving ([`MonotoneBox::for_grid_parts`](crate::MonotoneBox::for_grid_parts)); a part's
 /// control points carry the halving's rounding, which [`ChordBand::margin`] covers, so that
 /// every answer a part's band gives is the box's own answer.

@@ -37,7 +37,7 @@ impl BoxGrid {
     pub fn new(boxes: &[MonotoneBox], abs_tol: f64) -> Self {
         let bbox = boxes
             .iter()
-            .map(|b| BoundingBox::from_point(b.start).including(b.end))
+            .map(|b| BoundingBox::from_point(b.band.start).including(b.band.end))
             .reduce(BoundingBox::union)
             .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)))
             .grown_by(abs_tol);

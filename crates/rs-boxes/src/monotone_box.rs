@@ -50,29 +50,14 @@ pub struct MonotoneBox {
     pub boundary_loop: usize,
     /// Its parameter interval in the NURBS parameter of that curve.
     pub param_range: (f64, f64),
-    /// `C` at the start of the piece.
-    pub start: Point,
-    /// `C` at the end of the piece.
-    pub end: Point,
-    /// `min(start.x, end.x)`.
-    pub xmin: f64,
-    /// `max(start.x, end.x)`.
-    pub xmax: f64,
-    /// `min(start.y, end.y)`.
-    pub ymin: f64,
-    /// `max(start.y, end.y)`.
-    pub ymax: f64,
+    /// The piece's end points `C(u0)`, `C(u1)`, their rectangle `[xmin, xmax] x [ymin, ymax]`
+    /// (the box), and the band round its chord that decides most containment queries without a
+    /// solve ([`MonotoneBox::is_near`], [`MonotoneBox::crosses_below`]).
+    pub band: ChordBand,
     /// Direction of `x(t)`.
     pub x_dir: Monotonicity,
     /// Direction of `y(t)`.
     pub y_dir: Monotonicity,
-    /// Largest distance of a control point from the chord `start -> end`: the piece lies
-    /// within this distance of its chord (convex hull property).
-    pub flatness: f64,
-    /// For a piece that is not vertical: the largest vertical distance of a control point from
-    /// the chord's line, plus a rounding margin. At any abscissa of the box the piece lies within
-    /// this vertical distance of the chord's line.
-    pub vertical_slack: f64,
 }
 
 /// Halving depth cap of [`MonotoneBox::for_cells_near`].
@@ -106,7 +91,7 @@ impl MonotoneBox {
             // wider than a cell must not make the halving run to its cap.
             let (c0, c1, r0, r1) = frame.cell_range(part);
             if depth == 0 && c1 - c0 <= 1 && r1 - r0 <= 1 {
-                f(self.chord_band(), true);
+                f(self.band, true);
             } else if (c1 - c0 <= 1 && r1 - r0 <= 1) || depth >= MAX_REGISTER_DEPTH {
                 f(ChordBand::of_piece(&piece, vertical, margin), false);
             } else {
@@ -114,24 +99,6 @@ impl MonotoneBox {
                 stack.push((right, depth + 1));
                 stack.push((left, depth + 1));
             }
-        }
-    }
-
-    /// The band round the piece's chord, which decides most containment queries without a
-    /// solve ([`MonotoneBox::is_near`], [`MonotoneBox::crosses_below`]).
-    #[inline]
-    pub fn chord_band(&self) -> ChordBand {
-        ChordBand {
-            start: self.start,
-            end: self.end,
-            xmin: self.xmin,
-            xmax: self.xmax,
-            ymin: self.ymin,
-            ymax: self.ymax,
-            vertical: self.x_dir == Monotonicity::Constant,
-            flatness: self.flatness,
-            vertical_slack: self.vertical_slack,
-            margin: 0.0,
         }
     }
 
@@ -160,21 +127,14 @@ impl MonotoneBox {
             curve,
             boundary_loop,
             param_range,
-            start,
-            end,
-            xmin: start.x.min(end.x),
-            xmax: start.x.max(end.x),
-            ymin: start.y.min(end.y),
-            ymax: start.y.max(end.y),
+            band,
             x_dir,
             y_dir,
-            flatness: band.flatness,
-            vertical_slack: band.vertical_slack,
         }
     }
 
-    /// The piece's point at local parameter `t` in `[0, 1]` (exactly [`MonotoneBox::start`] and
-    /// [`MonotoneBox::end`] at `t = 0` and `t = 1`). The curve parameter is
+    /// The piece's point at local parameter `t` in `[0, 1]` (exactly the band's `start` and
+    /// `end` at `t = 0` and `t = 1`). The curve parameter is
     /// `u0 + t (u1 - u0)` with `(u0, u1) = param_range`.
     pub fn point_at(&self, t: f64) -> Point {
         self.piece.point_at(t)
@@ -200,17 +160,17 @@ impl MonotoneBox {
     /// pieces are never crossed. Decided without a solve when `p` is above or below the piece by
     /// more than its vertical slack; otherwise by one bracketed solve of `x(t) = p.x`.
     pub fn crosses_below(&self, p: Point) -> bool {
-        self.chord_band()
+        self.band
             .crossing_below(p)
             .unwrap_or_else(|| self.at_x(p.x).is_some_and(|(_, y)| y < p.y))
     }
 
     /// True if `p` lies in the box grown by `abs_tol` on every side.
     pub fn contains_with(&self, p: Point, abs_tol: f64) -> bool {
-        p.x >= self.xmin - abs_tol
-            && p.x <= self.xmax + abs_tol
-            && p.y >= self.ymin - abs_tol
-            && p.y <= self.ymax + abs_tol
+        p.x >= self.band.xmin - abs_tol
+            && p.x <= self.band.xmax + abs_tol
+            && p.y >= self.band.ymin - abs_tol
+            && p.y <= self.band.ymax + abs_tol
     }
 
     /// True if `p` is within `abs_tol` of the piece, measured along a vertical or a horizontal line
@@ -219,24 +179,24 @@ impl MonotoneBox {
     pub fn is_near(&self, p: Point, abs_tol: f64) -> bool {
         // Outside the box grown by `abs_tol`, or farther than `flatness + abs_tol` from the
         // chord segment, p is not near (decides most points without a solve).
-        if !self.chord_band().may_be_near(p, abs_tol) {
+        if !self.band.may_be_near(p, abs_tol) {
             return false;
         }
         let tol2 = abs_tol * abs_tol;
-        let (ds, de) = (p - self.start, p - self.end);
+        let (ds, de) = (p - self.band.start, p - self.band.end);
         if ds.dot(ds) <= tol2 || de.dot(de) <= tol2 {
             return true;
         }
         // Vertical distance (a vertical piece is covered by the horizontal distance and the
         // end points, and vice versa).
-        if self.x_dir != Monotonicity::Constant && p.x >= self.xmin && p.x <= self.xmax {
+        if self.x_dir != Monotonicity::Constant && p.x >= self.band.xmin && p.x <= self.band.xmax {
             if let Some((_, y)) = self.at_x(p.x) {
                 if (y - p.y).abs() <= abs_tol {
                     return true;
                 }
             }
         }
-        if self.y_dir != Monotonicity::Constant && p.y >= self.ymin && p.y <= self.ymax {
+        if self.y_dir != Monotonicity::Constant && p.y >= self.band.ymin && p.y <= self.band.ymax {
             if let Some((_, x)) = self.at_y(p.y) {
                 if (x - p.x).abs() <= abs_tol {
                     return true;

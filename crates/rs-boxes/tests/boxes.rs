@@ -21,16 +21,16 @@ fn line_crossings_lie_on_the_piece_of_a_circle() {
     let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(3)).unwrap();
     for b in mb.boxes() {
         for s in [0.0, 0.3, 0.77] {
-            let x = b.xmin + s * (b.xmax - b.xmin);
+            let x = b.band.xmin + s * (b.band.xmax - b.band.xmin);
             let (t, y) = b.at_x(x).unwrap();
             assert!((b.point_at(t) - Point::new(x, y)).length() < 1e-14);
             assert!(((x - 1.0).hypot(y + 1.0) - r).abs() < 1e-13, "{x} {y}");
-            let y = b.ymin + s * (b.ymax - b.ymin);
+            let y = b.band.ymin + s * (b.band.ymax - b.band.ymin);
             let (t, x) = b.at_y(y).unwrap();
             assert!((b.point_at(t) - Point::new(x, y)).length() < 1e-14);
             assert!(((x - 1.0).hypot(y + 1.0) - r).abs() < 1e-13, "{x} {y}");
         }
-        assert!(b.at_x(b.xmax + 0.1).is_none() && b.at_y(b.ymin - 0.1).is_none());
+        assert!(b.at_x(b.band.xmax + 0.1).is_none() && b.at_y(b.band.ymin - 0.1).is_none());
     }
 }
 
@@ -98,7 +98,7 @@ fn boxes_cover_the_boundary_and_are_watertight() {
             let lb: Vec<_> = boxes.iter().filter(|b| b.boundary_loop == l).collect();
             for i in 0..lb.len() {
                 let next = lb[(i + 1) % lb.len()];
-                assert_eq!(lb[i].end, next.start, "{name}: loop {l} box {i}");
+                assert_eq!(lb[i].band.end, next.band.start, "{name}: loop {l} box {i}");
             }
         }
         let bb = mb.bounding_box();
@@ -195,7 +195,7 @@ fn tiny_gaps_are_closed_exactly() {
     let mb = MonotoneBoxes::new(&d, BoxOptions::default()).unwrap();
     let b = mb.boxes();
     for i in 0..b.len() {
-        assert_eq!(b[i].end, b[(i + 1) % b.len()].start);
+        assert_eq!(b[i].band.end, b[(i + 1) % b.len()].band.start);
     }
 }
 

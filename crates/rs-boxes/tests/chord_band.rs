@@ -31,13 +31,13 @@ fn parts_share_out_the_box_exactly() {
             let p = parts(&d, b, 256);
             assert!(!p.is_empty());
             if p.len() == 1 {
-                assert_eq!(p[0], (b.chord_band(), true), "{name}");
+                assert_eq!(p[0], (b.band, true), "{name}");
                 continue;
             }
             halved += 1;
             assert!(p.iter().all(|&(_, whole)| !whole), "{name}");
-            assert_eq!(p[0].0.start, b.start, "{name}");
-            assert_eq!(p[p.len() - 1].0.end, b.end, "{name}");
+            assert_eq!(p[0].0.start, b.band.start, "{name}");
+            assert_eq!(p[p.len() - 1].0.end, b.band.end, "{name}");
             for w in p.windows(2) {
                 assert_eq!(
                     w[0].0.end, w[1].0.start,
@@ -46,14 +46,14 @@ fn parts_share_out_the_box_exactly() {
             }
             // Every abscissa of the box's half-open range lies in exactly one part's.
             for k in 0..200 {
-                let x = b.xmin + (b.xmax - b.xmin) * k as f64 / 200.0;
-                let x = if k == 0 { b.xmin } else { x };
+                let x = b.band.xmin + (b.band.xmax - b.band.xmin) * k as f64 / 200.0;
+                let x = if k == 0 { b.band.xmin } else { x };
                 let owners = p
                     .iter()
                     .filter(|(band, _)| band.xmin <= x && x < band.xmax)
                     .count();
-                let expected = usize::from(b.xmin <= x && x < b.xmax && !b.chord_band().vertical);
-                if !b.chord_band().vertical {
+                let expected = usize::from(b.band.xmin <= x && x < b.band.xmax && !b.band.vertical);
+                if !b.band.vertical {
                     assert_eq!(owners, expected, "{name}: x = {x}");
                 }
             }
@@ -68,12 +68,12 @@ const LATTICE: usize = 25 * 25;
 
 fn probes(b: &MonotoneBox, tol: f64) -> Vec<Point> {
     let mut v = Vec::new();
-    let (w, h) = (b.xmax - b.xmin, b.ymax - b.ymin);
+    let (w, h) = (b.band.xmax - b.band.xmin, b.band.ymax - b.band.ymin);
     for i in 0..=24 {
         for j in 0..=24 {
             v.push(Point::new(
-                b.xmin - 0.1 * w + 1.2 * w * i as f64 / 24.0,
-                b.ymin - 0.1 * h + 1.2 * h * j as f64 / 24.0,
+                b.band.xmin - 0.1 * w + 1.2 * w * i as f64 / 24.0,
+                b.band.ymin - 0.1 * h + 1.2 * h * j as f64 / 24.0,
             ));
         }
     }

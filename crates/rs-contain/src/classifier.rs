@@ -274,11 +274,11 @@ impl Classifier {
         let mut on_boundary = vec![false; order.len()];
         let tol = self.tol;
         for b in self.boxes().boxes() {
-            let lo = xs.partition_point(|&x| x < b.xmin - tol);
-            let hi = xs.partition_point(|&x| x <= b.xmax + tol);
+            let lo = xs.partition_point(|&x| x < b.band.xmin - tol);
+            let hi = xs.partition_point(|&x| x <= b.band.xmax + tol);
             for j in lo..hi {
                 let p = points[order[j]];
-                if on_boundary[j] || p.y < b.ymin - tol {
+                if on_boundary[j] || p.y < b.band.ymin - tol {
                     continue;
                 }
                 match vertical(b, p, tol) {

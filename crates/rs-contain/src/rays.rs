@@ -32,10 +32,13 @@ pub(crate) fn horizontal(b: &MonotoneBox, p: Point, tol: f64) -> Hit {
     if b.is_near(p, tol) {
         return Hit::Boundary;
     }
-    if b.y_dir == Monotonicity::Constant || !(b.ymin <= p.y && p.y < b.ymax) || p.x < b.xmin {
+    if b.y_dir == Monotonicity::Constant
+        || !(b.band.ymin <= p.y && p.y < b.band.ymax)
+        || p.x < b.band.xmin
+    {
         return Hit::Miss;
     }
-    if p.x > b.xmax {
+    if p.x > b.band.xmax {
         return Hit::Cross;
     }
     match b.at_y(p.y).map(|(_, x)| x) {

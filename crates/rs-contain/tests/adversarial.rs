@@ -225,8 +225,8 @@ fn critical_lines_force_both_fallbacks() {
         let mut xs: Vec<f64> = boxes.critical_abscissas().to_vec();
         let mut ys: Vec<f64> = boxes.critical_ordinates().to_vec();
         for b in boxes.boxes() {
-            xs.push(b.start.x);
-            ys.push(b.start.y);
+            xs.push(b.band.start.x);
+            ys.push(b.band.start.y);
         }
         for v in [&mut xs, &mut ys] {
             v.sort_by(f64::total_cmp);

@@ -200,7 +200,7 @@ impl Parts {
     #[inline]
     fn band(&self, boxes: &[rs_boxes::MonotoneBox], item: u32) -> (rs_boxes::ChordBand, usize) {
         match item.checked_sub(self.first_part) {
-            None => (boxes[item as usize].chord_band(), item as usize),
+            None => (boxes[item as usize].band, item as usize),
             Some(i) => (self.bands[i as usize], self.owner[i as usize] as usize),
         }
     }
