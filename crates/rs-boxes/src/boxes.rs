@@ -19,7 +19,7 @@ pub const MAX_SUBDIVISIONS: usize = 4096;
 
 /// The number of boxes the refinement aims at for a whole domain: a boundary with many monotone
 /// pieces gets fewer sub-boxes each (at least one), so that the boxes take at most about
-/// `BOX_BUDGET * BYTES_PER_BOX` = 65 MiB (520 bytes a box on 64-bit targets). The paper's domains (10-100 monotone pieces) keep the
+/// `BOX_BUDGET * BYTES_PER_BOX` = 67 MiB (536 bytes a box on 64-bit targets). The paper's domains (10-100 monotone pieces) keep the
 /// default 32.
 pub const BOX_BUDGET: usize = 1 << 17;
 
