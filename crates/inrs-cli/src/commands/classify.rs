@@ -5,12 +5,12 @@ use std::path::PathBuf;
 use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
 use inrs::contain::{FAST_METHOD_MIN_POINTS, FastWindingField, PointLocator, WindingField};
-use inrs::{Classifier, ContainOptions, EncodedPoints, Location, Method, NpyType, Point};
+use inrs::{Classifier, ContainOptions, Location, Method, NpyType, Point};
 
 use crate::args::{DomainArg, FillRuleArg, MethodArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
-use crate::stream::{Column, PointsInput, PointsKernel, stream_points};
+use crate::stream::{ByIndex, Column, IndexedQuery, PointsInput, stream_points};
 
 /// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order.
 #[derive(Args, Debug)]
@@ -64,7 +64,7 @@ impl ClassifyArgs {
                 .map_err(|e| self.domain.error(e))?
                 .with_fill_rule(self.fill_rule.into());
             let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &LOCATION, &ByWindingField(fast));
+            return stream_points(input, output, &LOCATION, &ByIndex(fast));
         }
         let options = ContainOptions::DEFAULT
             .with_relative_tolerance(self.tol)
@@ -74,7 +74,7 @@ impl ClassifyArgs {
         // The fast method takes the grid for inputs large enough to pay for it (built once,
         // kept by the classifier), inRS2 for small ones: the answers are the same.
         if method == Method::Fast && input.estimated_points() >= FAST_METHOD_MIN_POINTS {
-            return stream_points(input, output, &LOCATION, &ByLocator(classifier.locator()));
+            return stream_points(input, output, &LOCATION, &ByIndex(classifier.locator()));
         }
         let method = if method == Method::Fast {
             Method::InRS2
@@ -92,29 +92,16 @@ impl ClassifyArgs {
     }
 }
 
-/// The grid locator as a streamed computation, reading `.npy` points one at a time from their
-/// bytes.
-struct ByLocator<'a>(PointLocator<'a>);
-
-impl PointsKernel<Location> for ByLocator<'_> {
-    fn compute(&self, points: &[Point], out: &mut [Location]) {
-        self.0.locate_into(points, out);
-    }
-
-    fn compute_encoded(&self, points: EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [Location]) {
-        self.0.locate_indexed_into(|i| points.point(i), out);
+/// The grid locator reads its points by index.
+impl IndexedQuery<Location> for PointLocator<'_> {
+    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
+        self.locate_indexed_into(point, out);
     }
 }
 
-/// The accelerated winding field's locations (`--method gwn`) as a streamed computation.
-struct ByWindingField<'a>(FastWindingField<'a>);
-
-impl PointsKernel<Location> for ByWindingField<'_> {
-    fn compute(&self, points: &[Point], out: &mut [Location]) {
-        self.0.locate_indexed_into(|i| points[i], out);
-    }
-
-    fn compute_encoded(&self, points: EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [Location]) {
-        self.0.locate_indexed_into(|i| points.point(i), out);
+/// The accelerated winding field's locations (`--method gwn`), by index.
+impl IndexedQuery<Location> for FastWindingField<'_> {
+    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
+        self.locate_indexed_into(point, out);
     }
 }

@@ -5,11 +5,11 @@ use std::path::PathBuf;
 use clap::Args;
 use inrs::contain::baselines::WindingAlgorithm;
 use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, FastWindingField, QueryStats, WindingField};
-use inrs::{EncodedPoints, NpyType, Point};
+use inrs::{NpyType, Point};
 
 use crate::args::{AlgorithmArg, DomainArg};
 use crate::cli::error::CliError;
-use crate::stream::{Column, PointsInput, PointsKernel, stream_points, write_f64};
+use crate::stream::{ByIndex, Column, IndexedQuery, PointsInput, stream_points, write_f64};
 
 /// Generalized winding number of every point; writes CSV `x,y,winding`.
 ///
@@ -51,7 +51,7 @@ impl WindingArgs {
         let output = self.output.as_deref();
         if algorithm == WindingAlgorithm::Adaptive {
             let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &WINDING, &FastWinding(fast));
+            return stream_points(input, output, &WINDING, &ByIndex(fast));
         }
         stream_points(
             input,
@@ -67,17 +67,9 @@ impl WindingArgs {
     }
 }
 
-/// The accelerated field's winding numbers as a streamed computation, reading `.npy` points
-/// one at a time from their bytes.
-struct FastWinding<'a>(FastWindingField<'a>);
-
-impl PointsKernel<f64> for FastWinding<'_> {
-    fn compute(&self, points: &[Point], out: &mut [f64]) {
-        self.0.winding_numbers_indexed_into(|i| points[i], out);
-    }
-
-    fn compute_encoded(&self, points: EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [f64]) {
-        self.0
-            .winding_numbers_indexed_into(|i| points.point(i), out);
+/// The accelerated field's winding numbers, by index.
+impl IndexedQuery<f64> for FastWindingField<'_> {
+    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [f64]) {
+        self.winding_numbers_indexed_into(point, out);
     }
 }

@@ -79,6 +79,27 @@ impl<T, F: Fn(&[Point], &mut [T]) + Sync> PointsKernel<T> for F {
     }
 }
 
+/// A computation that reads its points one at a time by index (the library's
+/// `*_indexed_into` queries), so that it runs on a slice of points and straight on a `.npy`
+/// file's bytes alike: as a [`PointsKernel`] through [`ByIndex`].
+pub(crate) trait IndexedQuery<T>: Sync {
+    /// Writes to `out[i]` the value of `point(i)`.
+    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [T]);
+}
+
+/// An [`IndexedQuery`] as a streamed computation.
+pub(crate) struct ByIndex<Q>(pub(crate) Q);
+
+impl<T, Q: IndexedQuery<T>> PointsKernel<T> for ByIndex<Q> {
+    fn compute(&self, points: &[Point], out: &mut [T]) {
+        self.0.query_into(|i| points[i], out);
+    }
+
+    fn compute_encoded(&self, points: inrs::EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [T]) {
+        self.0.query_into(|i| points.point(i), out);
+    }
+}
+
 /// A points file: CSV (any other name) or `.npy` (float64 or float32, shape `(N, 2)`).
 pub(crate) struct PointsInput {
     source: Source,
