@@ -131,6 +131,10 @@ impl SubCurves for CurveHierarchy {
     }
 }
 
+/// Depth bound of the walk's stack: the hierarchy is balanced, so its depth is at most
+/// `log2(pieces) + 1`.
+const STACK: usize = 64;
+
 /// A node of the bounding-volume hierarchy: a contiguous run of pieces in boundary order.
 #[derive(Clone, Debug)]
 struct BvhNode {
@@ -205,18 +209,24 @@ impl<'a> FastWindingField<'a> {
     /// The generalized winding number at `q`, adding the work done to `stats` (a node decided
     /// by its chord counts as one curve evaluation).
     pub fn winding_number_counted(&self, q: Point, stats: &mut QueryStats) -> f64 {
-        let mut sum = self.crossing_sum(q, stats);
+        let mut sum = self.crossing_sum(q, &mut [0; STACK], stats);
         self.field
             .add_open_chain_ends(std::slice::from_mut(&mut sum));
         sum.value()
     }
 
-    /// The crossings and coincident pieces at `q`, without the open chains' ends.
-    fn crossing_sum(&self, q: Point, stats: &mut QueryStats) -> WindingSum {
+    /// The crossings and coincident pieces at `q`, without the open chains' ends; `stack` is
+    /// scratch for the walk (a caller answering many points passes the same one: zeroing it
+    /// per point was 3% of a query on small shapes).
+    fn crossing_sum(
+        &self,
+        q: Point,
+        stack: &mut [u32; STACK],
+        stats: &mut QueryStats,
+    ) -> WindingSum {
         let mut sum = WindingSum::new(q);
         // Depth-first, left child first: at most one pending right child per level, and the
-        // tree is balanced (depth at most log2(pieces) + 1 < 64).
-        let mut stack = [0u32; 64];
+        // tree is balanced (depth at most log2(pieces) + 1 < STACK).
         let mut len = 0;
         if !self.nodes.is_empty() {
             stack[0] = self.nodes.len() as u32 - 1;
@@ -271,10 +281,11 @@ impl<'a> FastWindingField<'a> {
     pub fn winding_numbers_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [f64]) {
         let mut stats = QueryStats::default();
         let mut sums = [WindingSum::new(Point::default()); BATCH];
+        let mut stack = [0; STACK];
         for (g, group) in out.chunks_mut(BATCH).enumerate() {
             let sums = &mut sums[..group.len()];
             for (k, sum) in sums.iter_mut().enumerate() {
-                *sum = self.crossing_sum(point(g * BATCH + k), &mut stats);
+                *sum = self.crossing_sum(point(g * BATCH + k), &mut stack, &mut stats);
             }
             self.field.add_open_chain_ends(sums);
             for (o, sum) in group.iter_mut().zip(sums.iter()) {
