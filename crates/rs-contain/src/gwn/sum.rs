@@ -183,14 +183,17 @@ fn scaled_factor(u: Point, v: Point, scale: f64) -> (f64, f64, bool) {
 /// argument past `pi` (`+1` when two arguments in `[0, pi]` and `(0, pi)` land below the real
 /// axis, `-1` the other way), less the chord's crossing `k(s -> e)` of the cut. Branch-free:
 /// the signs are as good as random.
+///
+/// Both counts have one form: a step `t` in `{-1, 0, 1}` between two "upper half" flags (the
+/// chord's ends for `k`, the product before and after for the wrap) that counts only when it
+/// turns the way `c` does (`t c > 0`): `+1` needs `c > 0`, `-1` needs `c < 0`.
 #[inline(always)]
 fn multiply_chain(re: &mut f64, im: &mut f64, u: Point, v: Point, d: f64, c: f64) -> f64 {
     let one = |b: bool| if b { 1.0 } else { 0.0 };
-    let (up_u, up_v) = (u.y >= 0.0, v.y >= 0.0);
-    let chord = one(up_u & !up_v & (c > 0.0)) - one(!up_u & up_v & (c < 0.0));
+    let turning = |t: f64| if t * c > 0.0 { t } else { 0.0 };
+    let chord = turning(one(u.y >= 0.0) - one(v.y >= 0.0));
     let (nre, nim) = (*re * d - *im * c, *re * c + *im * d);
-    let wrap =
-        one((c > 0.0) & (*im >= 0.0) & (nim < 0.0)) - one((c < 0.0) & (*im < 0.0) & (nim >= 0.0));
+    let wrap = turning(one(*im >= 0.0) - one(nim >= 0.0));
     (*re, *im) = (nre, nim);
     wrap - chord
 }
