@@ -182,8 +182,15 @@ enum Kind {
 pub struct FastWindingField<'a> {
     field: &'a WindingField,
     nodes: Vec<BvhNode>,
+    /// The leaves in boundary order when there are at most [`SCAN_PIECES`] of them (then a
+    /// query scans them instead of walking the tree); empty otherwise.
+    scan: Vec<u32>,
     hierarchies: Vec<OnceLock<CurveHierarchy>>,
 }
+
+/// Up to this many pieces a query tests every leaf in turn: the inner nodes of so small a tree
+/// hold nearly every query, so the walk only adds their tests and the stack's traffic.
+const SCAN_PIECES: usize = 8;
 
 impl<'a> FastWindingField<'a> {
     /// Builds the hierarchy over `field`'s pieces (`O(n log n)` box merges; the pieces'
@@ -194,9 +201,17 @@ impl<'a> FastWindingField<'a> {
         if !pieces.is_empty() {
             build(pieces, 0, pieces.len(), &mut nodes);
         }
+        let scan = if pieces.len() <= SCAN_PIECES {
+            (0..nodes.len() as u32)
+                .filter(|&i| matches!(nodes[i as usize].kind, Kind::Leaf(_)))
+                .collect()
+        } else {
+            Vec::new()
+        };
         Self {
             field,
             nodes,
+            scan,
             hierarchies: pieces.iter().map(|_| OnceLock::new()).collect(),
         }
     }
@@ -225,37 +240,56 @@ impl<'a> FastWindingField<'a> {
         stats: &mut QueryStats,
     ) -> WindingSum {
         let mut sum = WindingSum::new(q);
+        for &i in &self.scan {
+            self.visit(i, q, &mut sum, stats);
+        }
         // Depth-first, left child first: at most one pending right child per level, and the
         // tree is balanced (depth at most log2(pieces) + 1 < STACK).
         let mut len = 0;
-        if !self.nodes.is_empty() {
+        if self.scan.is_empty() && !self.nodes.is_empty() {
             stack[0] = self.nodes.len() as u32 - 1;
             len = 1;
         }
         while len > 0 {
             len -= 1;
-            let n = &self.nodes[stack[len] as usize];
-            if q.y < n.lo.y || q.y > n.hi.y || q.x < n.lo.x {
-                continue;
-            }
-            if q.x > n.hi.x && n.chain {
-                stats.curve_evaluations += 1;
-                sum.left_crossing(n.a, n.b);
-                continue;
-            }
-            match n.kind {
-                Kind::Leaf(p) => {
-                    let h = self.hierarchy(p as usize);
-                    refine(h, Node::Cached(0), q, &mut sum, stats);
-                }
-                Kind::Inner(l, r) => {
-                    stack[len] = r;
-                    stack[len + 1] = l;
-                    len += 2;
-                }
+            if let Some((l, r)) = self.visit(stack[len], q, &mut sum, stats) {
+                stack[len] = r;
+                stack[len + 1] = l;
+                len += 2;
             }
         }
         sum
+    }
+
+    /// Adds to `sum` what node `i` holds for `q` when that takes no look inside it (nothing if
+    /// its box lies above, below or right of `q`; its chord's crossing if it is one chain left
+    /// of `q`), or runs the adaptive algorithm on a leaf; returns an inner node's children
+    /// otherwise.
+    #[inline(always)]
+    fn visit(
+        &self,
+        i: u32,
+        q: Point,
+        sum: &mut WindingSum,
+        stats: &mut QueryStats,
+    ) -> Option<(u32, u32)> {
+        let n = &self.nodes[i as usize];
+        if q.y < n.lo.y || q.y > n.hi.y || q.x < n.lo.x {
+            return None;
+        }
+        if q.x > n.hi.x && n.chain {
+            stats.curve_evaluations += 1;
+            sum.left_crossing(n.a, n.b);
+            return None;
+        }
+        match n.kind {
+            Kind::Leaf(p) => {
+                let h = self.hierarchy(p as usize);
+                refine(h, Node::Cached(0), q, sum, stats);
+                None
+            }
+            Kind::Inner(l, r) => Some((l, r)),
+        }
     }
 
     /// The subdivision hierarchy of piece `p`, built on first use.
