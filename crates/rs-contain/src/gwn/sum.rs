@@ -242,9 +242,13 @@ fn argument(re: f64, im: f64) -> f64 {
     let steep = ay > ax;
     let (num, den) = if steep { (ax, ay) } else { (ay, ax) };
     let t = if den == 0.0 { 0.0 } else { num / den };
-    // t in [0, 1] (NaN gives j = 0 and a NaN result).
-    let j = ((t * 16.0 + 0.5) as usize).min(16);
-    let c = j as f64 / 16.0;
+    // t in [0, 1]: adding 1.5 * 2^52 rounds 16 t to the nearest integer, which the low bits
+    // then hold (no float-to-integer conversion, which costs a call's worth per lane); NaN
+    // gives some j <= 16 and a NaN result.
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let m = t * 16.0 + ROUND;
+    let j = ((m.to_bits() & 0x1f) as usize).min(16);
+    let c = (m - ROUND) * 0.0625;
     let r = (t - c) / (1.0 + t * c);
     let r2 = r * r;
     let series =
