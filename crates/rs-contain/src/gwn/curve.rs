@@ -176,8 +176,8 @@ impl SubCurve {
     }
 }
 
-/// Where the adaptive algorithm gets its sub-curves and their tests: computed on the fly, or
-/// from a precomputed hierarchy (see [`super::fast::CurveHierarchy`]).
+/// Where the adaptive algorithm gets its sub-curves' tests: computed on the fly, or from a
+/// precomputed hierarchy (see [`super::fast::CurveHierarchy`]).
 pub(crate) trait SubCurves {
     /// A handle to one sub-curve.
     type Node;
@@ -185,8 +185,6 @@ pub(crate) trait SubCurves {
     fn points<'s>(&'s self, node: &'s Self::Node) -> &'s [Point];
     /// Its simple-convex flag, given whether its parent was simple and convex.
     fn convex(&self, node: &Self::Node, parent_convex: bool) -> bool;
-    /// Its two halves (de Casteljau at 1/2); `true` if they had to be computed.
-    fn halves(&self, node: &Self::Node) -> (Self::Node, Self::Node, bool);
     /// Is it exactly straight ([`is_linear`])?
     fn linear(&self, node: &Self::Node) -> bool {
         is_linear(self.points(node))
@@ -197,7 +195,7 @@ pub(crate) trait SubCurves {
     }
 }
 
-/// Sub-curves computed on demand.
+/// Sub-curves computed on demand, halves included.
 pub(crate) struct OnTheFly;
 
 impl SubCurves for OnTheFly {
@@ -207,10 +205,6 @@ impl SubCurves for OnTheFly {
     }
     fn convex(&self, node: &SubCurve, parent_convex: bool) -> bool {
         parent_convex || is_simple_convex(node.points())
-    }
-    fn halves(&self, node: &SubCurve) -> (SubCurve, SubCurve, bool) {
-        let (l, r) = node.halves();
-        (l, r, true)
     }
 }
 
@@ -229,59 +223,82 @@ impl SubCurves for OnTheFly {
 /// the depth cap (a point within rounding of the curve's interior).
 pub fn curve_winding_number(curve: &RationalBezier, q: Point, stats: &mut QueryStats) -> f64 {
     let mut sum = AngleSum::new(q);
-    refine(&OnTheFly, SubCurve::of(curve), q, &mut sum, stats);
+    refine(SubCurve::of(curve), q, &mut sum, stats);
     sum.turns
 }
 
-/// The adaptive algorithm over any source of sub-curves: sends `sink` the chords (and the
+/// The adaptive algorithm on `root` computed on the fly: sends `sink` the chords (and the
 /// coincident pieces) whose angles at `q` add up to the curve's winding number.
-pub(crate) fn refine<S: SubCurves, K: ChordSink>(
-    source: &S,
-    root: S::Node,
+pub(crate) fn refine<K: ChordSink>(root: SubCurve, q: Point, sink: &mut K, stats: &mut QueryStats) {
+    stats.curve_evaluations += 1;
+    if outside_box(root.points(), q) {
+        let pts = root.points();
+        sink.chord(pts[0], pts[pts.len() - 1]);
+        return;
+    }
+    refine_below(root, 0, false, q, sink, stats);
+}
+
+/// The adaptive algorithm from sub-curve `c` (at `depth`, its parent simple and convex or
+/// not) down, its halves computed as needed.
+pub(crate) fn refine_below<K: ChordSink>(
+    c: SubCurve,
+    depth: u32,
+    parent_convex: bool,
     q: Point,
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
-    stats.curve_evaluations += 1;
-    if source.outside_box(&root, q) {
-        let pts = source.points(&root);
-        sink.chord(pts[0], pts[pts.len() - 1]);
-        return;
-    }
     // Depth-first: at most one pending right half per level, on the stack for any query not
     // within 2^-32 of the piece's size from it.
-    let mut stack: SmallVec<[(S::Node, u32, bool); 32]> = SmallVec::new();
-    stack.push((root, 0, false));
+    let mut stack: SmallVec<[(SubCurve, u32, bool); 32]> = SmallVec::new();
+    stack.push((c, depth, parent_convex));
     while let Some((c, depth, parent_convex)) = stack.pop() {
         if depth > 0 {
             stats.curve_evaluations += 1;
         }
-        let p = source.points(&c);
-        let (a, b) = (p[0], p[p.len() - 1]);
-        if source.linear(&c) {
-            sink.chord(a, b);
-            continue;
-        }
-        let convex = source.convex(&c, parent_convex);
-        if convex && (q == a || q == b) {
-            sink.special(convex_endpoint_winding(p, q), a, b);
-            continue;
-        }
-        if source.outside_box(&c, q) || (convex && outside_convex(p, q)) {
-            sink.chord(a, b);
-            continue;
-        }
-        if depth >= MAX_DEPTH {
-            // q is within rounding of this tiny piece: coincident, average 0 over the piece.
-            sink.special(0.0, a, b);
-            continue;
-        }
-        let (l, r, computed) = source.halves(&c);
-        if computed {
+        if let Some(convex) = settle(&OnTheFly, &c, q, depth, parent_convex, sink) {
+            let (l, r) = c.halves();
             stats.subdivisions += 1;
+            // Sub-curves of a simple convex curve are simple and convex (paper, section 5).
+            stack.push((r, depth + 1, convex));
+            stack.push((l, depth + 1, convex));
         }
-        // Sub-curves of a simple convex curve are simple and convex (paper, section 5).
-        stack.push((r, depth + 1, convex));
-        stack.push((l, depth + 1, convex));
     }
+}
+
+/// One step of the adaptive algorithm on sub-curve `c` of `source` at `depth`: sends `sink`
+/// its contribution and returns `None` when it is settled (straight; `q` at an end of a
+/// simple convex piece; `q` outside its box or its simple convex control polygon; the depth
+/// cap), or returns whether it is simple and convex when it must be halved.
+#[inline(always)]
+pub(crate) fn settle<S: SubCurves, K: ChordSink>(
+    source: &S,
+    c: &S::Node,
+    q: Point,
+    depth: u32,
+    parent_convex: bool,
+    sink: &mut K,
+) -> Option<bool> {
+    let p = source.points(c);
+    let (a, b) = (p[0], p[p.len() - 1]);
+    if source.linear(c) {
+        sink.chord(a, b);
+        return None;
+    }
+    let convex = source.convex(c, parent_convex);
+    if convex && (q == a || q == b) {
+        sink.special(convex_endpoint_winding(p, q), a, b);
+        return None;
+    }
+    if source.outside_box(c, q) || (convex && outside_convex(p, q)) {
+        sink.chord(a, b);
+        return None;
+    }
+    if depth >= MAX_DEPTH {
+        // q is within rounding of this tiny piece: coincident, average 0 over the piece.
+        sink.special(0.0, a, b);
+        return None;
+    }
+    Some(convex)
 }

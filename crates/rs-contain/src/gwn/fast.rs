@@ -7,7 +7,10 @@ use std::sync::OnceLock;
 use rs_spline::prelude::*;
 use rs_spline::{Point, RationalBezier};
 
-use super::curve::{SubCurve, SubCurves, is_linear, is_simple_convex, refine};
+use smallvec::SmallVec;
+
+use super::curve::{SubCurve, SubCurves, is_linear, is_simple_convex, refine_below, settle};
+use super::sum::ChordSink;
 use super::sum::{BATCH, WindingSum};
 use super::{QueryStats, WindingField};
 use crate::{Locate, Location};
@@ -78,55 +81,55 @@ impl CurveHierarchy {
     }
 }
 
-/// A node of the adaptive algorithm: a cached sub-curve, or one computed past the cache.
-pub(crate) enum Node {
-    Cached(u32),
-    Owned(SubCurve),
+/// The cached sub-curves, by index in the hierarchy.
+impl SubCurves for CurveHierarchy {
+    type Node = u32;
+    fn points<'s>(&'s self, i: &'s u32) -> &'s [Point] {
+        self.nodes[*i as usize].curve.points()
+    }
+    fn convex(&self, i: &u32, _parent_convex: bool) -> bool {
+        self.nodes[*i as usize].convex
+    }
+    fn linear(&self, i: &u32) -> bool {
+        self.nodes[*i as usize].linear
+    }
+    fn outside_box(&self, i: &u32, q: Point) -> bool {
+        let n = &self.nodes[*i as usize];
+        q.x < n.lo.x || q.x > n.hi.x || q.y < n.lo.y || q.y > n.hi.y
+    }
 }
 
-impl SubCurves for CurveHierarchy {
-    type Node = Node;
-    fn points<'s>(&'s self, node: &'s Node) -> &'s [Point] {
-        match node {
-            Node::Cached(i) => self.nodes[*i as usize].curve.points(),
-            Node::Owned(c) => c.points(),
+impl CurveHierarchy {
+    /// The adaptive algorithm on the piece, through the cached sub-curves (handles of four
+    /// bytes on the walk's stack) and on the fly past them, in the same order and with the
+    /// same tests as `curve::refine` on the piece itself.
+    fn refine<K: ChordSink>(&self, q: Point, sink: &mut K, stats: &mut QueryStats) {
+        stats.curve_evaluations += 1;
+        if self.outside_box(&0, q) {
+            let p = self.points(&0);
+            sink.chord(p[0], p[p.len() - 1]);
+            return;
         }
-    }
-    fn convex(&self, node: &Node, parent_convex: bool) -> bool {
-        match node {
-            Node::Cached(i) => self.nodes[*i as usize].convex,
-            Node::Owned(c) => parent_convex || is_simple_convex(c.points()),
-        }
-    }
-    fn halves(&self, node: &Node) -> (Node, Node, bool) {
-        let owned = |c: &SubCurve| {
-            let (l, r) = c.halves();
-            (Node::Owned(l), Node::Owned(r), true)
-        };
-        match node {
-            Node::Cached(i) => {
-                let n = &self.nodes[*i as usize];
-                match n.children {
-                    Some((l, r)) => (Node::Cached(l), Node::Cached(r), false),
-                    None => owned(&n.curve),
-                }
+        // At most one pending right half per cached level.
+        let mut stack: SmallVec<[(u32, u32, bool); 16]> = SmallVec::new();
+        stack.push((0, 0, false));
+        while let Some((i, depth, parent_convex)) = stack.pop() {
+            if depth > 0 {
+                stats.curve_evaluations += 1;
             }
-            Node::Owned(c) => owned(c),
-        }
-    }
-    fn linear(&self, node: &Node) -> bool {
-        match node {
-            Node::Cached(i) => self.nodes[*i as usize].linear,
-            Node::Owned(c) => is_linear(c.points()),
-        }
-    }
-    fn outside_box(&self, node: &Node, q: Point) -> bool {
-        match node {
-            Node::Cached(i) => {
-                let n = &self.nodes[*i as usize];
-                q.x < n.lo.x || q.x > n.hi.x || q.y < n.lo.y || q.y > n.hi.y
+            let Some(convex) = settle(self, &i, q, depth, parent_convex, sink) else {
+                continue;
+            };
+            let node = &self.nodes[i as usize];
+            if let Some((l, r)) = node.children {
+                stack.push((r, depth + 1, convex));
+                stack.push((l, depth + 1, convex));
+            } else {
+                let (l, r) = node.curve.halves();
+                stats.subdivisions += 1;
+                refine_below(l, depth + 1, convex, q, sink, stats);
+                refine_below(r, depth + 1, convex, q, sink, stats);
             }
-            Node::Owned(c) => super::curve::outside_box(c.points(), q),
         }
     }
 }
@@ -285,7 +288,7 @@ impl<'a> FastWindingField<'a> {
         match n.kind {
             Kind::Leaf(p) => {
                 let h = self.hierarchy(p as usize);
-                refine(h, Node::Cached(0), q, sum, stats);
+                h.refine(q, sum, stats);
                 None
             }
             Kind::Inner(l, r) => Some((l, r)),

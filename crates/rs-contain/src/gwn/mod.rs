@@ -13,7 +13,7 @@ use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
 use crate::{ContainError, Locate, Location};
-use curve::{OnTheFly, SubCurve, refine};
+use curve::{SubCurve, refine};
 use sum::{ChainEnds, WindingSum};
 
 pub use curve::curve_winding_number;
@@ -185,7 +185,7 @@ impl WindingField {
                 stats.curve_evaluations += 1;
                 sum.left_crossing(f.start, f.end);
             } else {
-                refine(&OnTheFly, root.clone(), q, &mut sum, stats);
+                refine(root.clone(), q, &mut sum, stats);
             }
         }
         self.add_open_chain_ends(std::slice::from_mut(&mut sum));
