@@ -158,12 +158,14 @@ impl ChainEnds {
 
     /// The largest coordinate difference between `q` and a point of the ends' box: at least
     /// every `|u.x|`, `|u.y|` of an end `u` relative to `q`.
+    ///
+    /// `max(|q.x - lo.x|, |q.x - hi.x|)` is `max(q.x - lo.x, hi.x - q.x)` (the two add up to
+    /// `hi.x - lo.x >= 0`), so no absolute value is taken.
     fn reach(&self, q: Point) -> f64 {
         (q.x - self.lo.x)
-            .abs()
-            .max((q.x - self.hi.x).abs())
-            .max((q.y - self.lo.y).abs())
-            .max((q.y - self.hi.y).abs())
+            .max(self.hi.x - q.x)
+            .max(q.y - self.lo.y)
+            .max(self.hi.y - q.y)
     }
 }
 
@@ -173,7 +175,8 @@ impl ChainEnds {
 #[inline(always)]
 fn scaled_factor(u: Point, v: Point, scale: f64) -> (f64, f64, bool) {
     let (d, c) = (u.dot(v) * scale, u.cross(v) * scale);
-    let usable = !((c == 0.0) & (d <= 0.0)) & (d.abs().max(c.abs()) > MIN_FACTOR);
+    // `|d| > m or |c| > m` is `max(|d|, |c|) > m` (also when one is NaN), without the max.
+    let usable = !((c == 0.0) & (d <= 0.0)) & ((d.abs() > MIN_FACTOR) | (c.abs() > MIN_FACTOR));
     (d, c, usable)
 }
 
