@@ -88,6 +88,14 @@ impl ChainEnds {
     /// for all of them at once (which the compiler turns into vector instructions). Each sum
     /// gets exactly what it would get on its own.
     pub(crate) fn add_to(&self, sums: &mut [WindingSum]) {
+        // Compiled a second time for AVX2 (and FMA, which the compiler does not fuse into
+        // plain Rust multiplications and additions: the same values), chosen at run time.
+        pulp::Arch::new().dispatch(AddTo { ends: self, sums });
+    }
+
+    /// [`ChainEnds::add_to`], inlined into each instruction set's copy.
+    #[inline(always)]
+    fn add_to_all(&self, sums: &mut [WindingSum]) {
         let mut groups = sums.chunks_exact_mut(BATCH);
         for group in groups.by_ref() {
             self.add_to_group::<BATCH>(group);
@@ -98,6 +106,7 @@ impl ChainEnds {
     }
 
     /// [`ChainEnds::add_to`] for at most `L` sums, in `L` lanes.
+    #[inline(always)]
     fn add_to_group<const L: usize>(&self, sums: &mut [WindingSum]) {
         let n = sums.len().min(L);
         // A lane out of reach keeps scale 0: its factors are NaN or 0, taken as 1.
@@ -161,11 +170,26 @@ impl ChainEnds {
     ///
     /// `max(|q.x - lo.x|, |q.x - hi.x|)` is `max(q.x - lo.x, hi.x - q.x)` (the two add up to
     /// `hi.x - lo.x >= 0`), so no absolute value is taken.
+    #[inline(always)]
     fn reach(&self, q: Point) -> f64 {
         (q.x - self.lo.x)
             .max(self.hi.x - q.x)
             .max(q.y - self.lo.y)
             .max(self.hi.y - q.y)
+    }
+}
+
+/// [`ChainEnds::add_to`] as an operation `pulp` runs with the best instruction set at hand.
+struct AddTo<'a> {
+    ends: &'a ChainEnds,
+    sums: &'a mut [WindingSum],
+}
+
+impl pulp::WithSimd for AddTo<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        self.ends.add_to_all(self.sums);
     }
 }
 
@@ -264,7 +288,7 @@ fn argument(re: f64, im: f64) -> f64 {
 
 /// `2^-k` for the `k` with `2^k <= x < 2^(k+1)`, for a normal `x < 2^1023` (the callers' are
 /// below `1e301`): multiplying by it is exact. (0 for an infinite or NaN `x`.)
-#[inline]
+#[inline(always)]
 fn inverse_power_of_two(x: f64) -> f64 {
     let exponent = (x.to_bits() >> 52) & 0x7ff;
     f64::from_bits(2046u64.saturating_sub(exponent) << 52)
@@ -533,6 +557,34 @@ mod tests {
             let mut one = WindingSum::new(*q);
             chains.add_to(std::slice::from_mut(&mut one));
             assert_eq!(one.value().to_bits(), sum.value().to_bits(), "{q:?}");
+        }
+    }
+
+    /// The copy `add_to` runs (compiled for the widest instruction set the CPU has, AVX2 on
+    /// most x86-64) gives the same bits as the copy built for the baseline target.
+    #[test]
+    fn the_dispatched_product_equals_the_baseline_one() {
+        let ends: Vec<(Point, Point)> = (0..37)
+            .map(|i| {
+                let t = i as f64 * 0.61;
+                (
+                    Point::new(3.0 * t.cos(), 1.7 * (1.9 * t).sin()),
+                    Point::new(2.2 * (0.7 * t).sin(), t.cos() - 0.4 * t),
+                )
+            })
+            .collect();
+        let chains = ChainEnds::new(ends);
+        let queries: Vec<WindingSum> = (0..203)
+            .map(|i| {
+                let s = i as f64 * 0.173;
+                WindingSum::new(Point::new(4.0 * s.sin(), 3.0 * (1.3 * s).cos() - 0.01 * s))
+            })
+            .collect();
+        let (mut dispatched, mut baseline) = (queries.clone(), queries);
+        chains.add_to(&mut dispatched);
+        chains.add_to_all(&mut baseline);
+        for (a, b) in dispatched.iter().zip(&baseline) {
+            assert_eq!(a.value().to_bits(), b.value().to_bits(), "{:?}", a.q);
         }
     }
 
