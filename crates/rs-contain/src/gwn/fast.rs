@@ -142,11 +142,10 @@ const STACK: usize = 64;
 struct BvhNode {
     lo: Point,
     hi: Point,
-    /// Start of the first piece and end of the last.
-    a: Point,
-    b: Point,
-    /// Every piece ends exactly where the next starts.
-    chain: bool,
+    /// The chords of the maximal chains its pieces form (runs of pieces each ending exactly
+    /// where the next starts), `first..last` in [`FastWindingField::chords`]; an empty range
+    /// if there are more than [`LEFT_CHAINS`].
+    chords: (u32, u32),
     kind: Kind,
 }
 
@@ -163,7 +162,8 @@ enum Kind {
 /// ray from `q` towards `-x` by the chords of the adaptive algorithm, plus the angle between
 /// the ends of each open chain. A node whose box lies above, below or right of `q` holds no
 /// crossing and is skipped; a node wholly left of `q` whose pieces form one chain from `A` to
-/// `B` crosses the ray as its chord `A -> B` does (decided by two comparisons); other nodes
+/// `B` crosses the ray as its chord `A -> B` does (decided by two comparisons), and one whose
+/// pieces form several chains as their chords do, without opening the node; other nodes
 /// are opened, and a leaf whose box holds `q` runs the adaptive algorithm on its piece's
 /// subdivision hierarchy ([`CurveHierarchy`], built the first time a query needs it and kept).
 /// A query far from the boundary costs a few node tests; one near it visits the nodes along
@@ -184,11 +184,18 @@ enum Kind {
 pub struct FastWindingField<'a> {
     field: &'a WindingField,
     nodes: Vec<BvhNode>,
+    /// The nodes' chain chords (see [`BvhNode::chords`]).
+    chords: Vec<(Point, Point)>,
     /// The leaves in boundary order when there are at most [`SCAN_PIECES`] of them (then a
     /// query scans them instead of walking the tree); empty otherwise.
     scan: Vec<u32>,
     hierarchies: Vec<OnceLock<CurveHierarchy>>,
 }
+
+/// A node wholly left of the query made of at most this many chains adds their chords'
+/// crossings without being opened (more are opened: their children's boxes may lie above or
+/// below the query); this also bounds the chords stored to this many per node.
+const LEFT_CHAINS: usize = 8;
 
 /// Up to this many pieces a query tests every leaf in turn: the inner nodes of so small a tree
 /// hold nearly every query, so the walk only adds their tests and the stack's traffic.
@@ -200,8 +207,9 @@ impl<'a> FastWindingField<'a> {
     pub fn new(field: &'a WindingField) -> Self {
         let pieces = field.pieces();
         let mut nodes = Vec::with_capacity(2 * pieces.len());
+        let mut chords = Vec::new();
         if !pieces.is_empty() {
-            build(pieces, 0, pieces.len(), &mut nodes);
+            build(pieces, 0, pieces.len(), &mut nodes, &mut chords);
         }
         let scan = if pieces.len() <= SCAN_PIECES {
             (0..nodes.len() as u32)
@@ -213,6 +221,7 @@ impl<'a> FastWindingField<'a> {
         Self {
             field,
             nodes,
+            chords,
             scan,
             hierarchies: pieces.iter().map(|_| OnceLock::new()).collect(),
         }
@@ -279,9 +288,13 @@ impl<'a> FastWindingField<'a> {
         if q.y < n.lo.y || q.y > n.hi.y || q.x < n.lo.x {
             return None;
         }
-        if q.x > n.hi.x && n.chain {
+        if q.x > n.hi.x && n.chords.0 < n.chords.1 {
+            // Wholly left of q: each chain crosses the ray as its chord does (one above or
+            // below q adds 0), without opening the node.
             stats.curve_evaluations += 1;
-            sum.left_crossing(n.a, n.b);
+            for &(a, b) in &self.chords[n.chords.0 as usize..n.chords.1 as usize] {
+                sum.left_crossing(a, b);
+            }
             return None;
         }
         match n.kind {
@@ -398,33 +411,130 @@ impl FastWindingField<'_> {
     }
 }
 
-/// Builds the subtree over pieces `[i, j)`; returns its index (children before parents).
-fn build(pieces: &[RationalBezier], i: usize, j: usize, nodes: &mut Vec<BvhNode>) -> u32 {
-    let (a, b) = (pieces[i].start_point(), pieces[j - 1].end_point());
-    let (kind, lo, hi, chain) = if j - i == 1 {
+/// Builds the subtree over pieces `[i, j)`; returns its index (children before parents). Its
+/// chain chords go to the end of `chords`.
+fn build(
+    pieces: &[RationalBezier],
+    i: usize,
+    j: usize,
+    nodes: &mut Vec<BvhNode>,
+    chords: &mut Vec<(Point, Point)>,
+) -> u32 {
+    let (kind, lo, hi, own) = if j - i == 1 {
         let p = pieces[i].control_points();
         let (mut lo, mut hi) = (p[0], p[0]);
         for &x in p {
             lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
             hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
         }
-        (Kind::Leaf(i as u32), lo, hi, true)
+        let one: SmallVec<[(Point, Point); LEFT_CHAINS]> =
+            SmallVec::from_elem((pieces[i].start_point(), pieces[i].end_point()), 1);
+        (Kind::Leaf(i as u32), lo, hi, Some(one))
     } else {
         let m = (i + j) / 2;
-        let (l, r) = (build(pieces, i, m, nodes), build(pieces, m, j, nodes));
+        let (l, r) = (
+            build(pieces, i, m, nodes, chords),
+            build(pieces, m, j, nodes, chords),
+        );
         let (ln, rn) = (&nodes[l as usize], &nodes[r as usize]);
-        let chain = ln.chain && rn.chain && ln.b == rn.a;
         let lo = Point::new(ln.lo.x.min(rn.lo.x), ln.lo.y.min(rn.lo.y));
         let hi = Point::new(ln.hi.x.max(rn.hi.x), ln.hi.y.max(rn.hi.y));
-        (Kind::Inner(l, r), lo, hi, chain)
+        // The children's chains, the left's last joined to the right's first if it ends
+        // exactly where that starts; none if either child has too many.
+        let (lc, rc) = (ln.chords, rn.chords);
+        let own = (lc.0 < lc.1 && rc.0 < rc.1)
+            .then(|| {
+                let mut own: SmallVec<[(Point, Point); LEFT_CHAINS]> =
+                    SmallVec::from_slice(&chords[lc.0 as usize..lc.1 as usize]);
+                let mut right = &chords[rc.0 as usize..rc.1 as usize];
+                if let (Some(last), Some(&(a, b))) = (own.last_mut(), right.first()) {
+                    if last.1 == a {
+                        last.1 = b;
+                        right = &right[1..];
+                    }
+                }
+                own.extend_from_slice(right);
+                own
+            })
+            .filter(|own| own.len() <= LEFT_CHAINS);
+        (Kind::Inner(l, r), lo, hi, own)
     };
+    let start = chords.len() as u32;
+    if let Some(own) = own {
+        chords.extend_from_slice(&own);
+    }
     nodes.push(BvhNode {
         lo,
         hi,
-        a,
-        b,
-        chain,
+        chords: (start, chords.len() as u32),
         kind,
     });
     nodes.len() as u32 - 1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rs_spline::{Domain, circular_arc, segment};
+
+    /// The maximal chains of `pieces`, each as its first start and last end.
+    fn chains_of(pieces: &[RationalBezier]) -> Vec<(Point, Point)> {
+        let mut out: Vec<(Point, Point)> = Vec::new();
+        for (k, p) in pieces.iter().enumerate() {
+            match out.last_mut() {
+                Some(last) if k > 0 && pieces[k - 1].end_point() == p.start_point() => {
+                    last.1 = p.end_point();
+                }
+                _ => out.push((p.start_point(), p.end_point())),
+            }
+        }
+        out
+    }
+
+    /// Walks the tree with each node's piece range (the build halves `[i, j)` at its middle).
+    fn check(fast: &FastWindingField, node: u32, i: usize, j: usize, seen: &mut usize) {
+        let n = &fast.nodes[node as usize];
+        let want = chains_of(&fast.field.pieces()[i..j]);
+        let got = &fast.chords[n.chords.0 as usize..n.chords.1 as usize];
+        if want.len() <= LEFT_CHAINS {
+            assert_eq!(got, &want[..], "pieces {i}..{j}");
+        } else {
+            assert!(
+                got.is_empty(),
+                "pieces {i}..{j}: {} chains kept",
+                want.len()
+            );
+        }
+        *seen += 1;
+        if let Kind::Inner(l, r) = n.kind {
+            let m = (i + j) / 2;
+            check(fast, l, i, m, seen);
+            check(fast, r, m, j, seen);
+        }
+    }
+
+    /// Every node keeps the chords of the maximal chains its pieces form (pieces joined end to
+    /// start exactly), or none when they are more than `LEFT_CHAINS`: on open arcs with gaps,
+    /// closed loops and a long run of separate segments.
+    #[test]
+    fn nodes_keep_their_chains_chords() {
+        let mut curves = vec![
+            circular_arc(Point::new(0.0, 0.0), 1.0, 0.0, 4.0).unwrap(),
+            segment(Point::new(-0.7, -0.7), Point::new(0.9, -0.2)).unwrap(),
+            circular_arc(Point::new(0.2, 0.1), 0.5, 1.0, 7.0).unwrap(),
+        ];
+        curves.push(rs_spline::circle(Point::new(3.0, 0.0), 0.5).unwrap());
+        for k in 0..20 {
+            let x = k as f64 * 0.1;
+            curves.push(segment(Point::new(x, 2.0), Point::new(x + 0.05, 2.1)).unwrap());
+        }
+        let d = Domain::new(curves).unwrap();
+        let field = WindingField::new(&d, crate::DEFAULT_RELATIVE_TOLERANCE).unwrap();
+        let fast = FastWindingField::new(&field);
+        let pieces = field.pieces().len();
+        assert!(chains_of(field.pieces()).len() > 2 * LEFT_CHAINS);
+        let mut seen = 0;
+        check(&fast, fast.nodes.len() as u32 - 1, 0, pieces, &mut seen);
+        assert_eq!(seen, fast.nodes.len());
+    }
 }
