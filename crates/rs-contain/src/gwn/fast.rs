@@ -9,7 +9,9 @@ use rs_spline::{Point, RationalBezier};
 
 use smallvec::SmallVec;
 
-use super::curve::{SubCurve, SubCurves, is_linear, is_simple_convex, refine_below, settle};
+use super::curve::{
+    SubCurve, SubCurves, control_box, is_linear, is_simple_convex, refine_below, settle,
+};
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
 use crate::{Locate, Location};
@@ -32,11 +34,7 @@ struct SubNode {
 impl SubNode {
     fn new(curve: SubCurve, parent_convex: bool) -> Self {
         let p = curve.points();
-        let (mut lo, mut hi) = (p[0], p[0]);
-        for &x in p {
-            lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
-            hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
-        }
+        let (lo, hi) = control_box(p);
         Self {
             convex: parent_convex || is_simple_convex(p),
             linear: is_linear(p),
@@ -422,11 +420,7 @@ fn build(
 ) -> u32 {
     let (kind, lo, hi, own) = if j - i == 1 {
         let p = pieces[i].control_points();
-        let (mut lo, mut hi) = (p[0], p[0]);
-        for &x in p {
-            lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
-            hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
-        }
+        let (lo, hi) = control_box(p);
         let one: SmallVec<[(Point, Point); LEFT_CHAINS]> =
             SmallVec::from_elem((pieces[i].start_point(), pieces[i].end_point()), 1);
         (Kind::Leaf(i as u32), lo, hi, Some(one))

@@ -13,7 +13,7 @@ use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
 use crate::{ContainError, Locate, Location};
-use curve::{SubCurve, refine};
+use curve::{SubCurve, control_box, refine};
 use sum::{ChainEnds, WindingSum};
 
 pub use curve::curve_winding_number;
@@ -270,11 +270,7 @@ struct PieceFrame {
 impl PieceFrame {
     fn of(b: &RationalBezier) -> Self {
         let p = b.control_points();
-        let (mut lo, mut hi) = (p[0], p[0]);
-        for &x in p {
-            lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
-            hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
-        }
+        let (lo, hi) = control_box(p);
         Self {
             lo,
             hi,
