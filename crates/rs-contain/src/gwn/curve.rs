@@ -4,7 +4,7 @@
 use std::f64::consts::TAU;
 
 use rs_roots::de_casteljau_split;
-use rs_spline::{BoundingBox, Hpoint, Point, RationalBezier};
+use rs_spline::{Hpoint, Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::QueryStats;
@@ -77,11 +77,15 @@ fn outside_convex(p: &[Point], q: Point) -> bool {
 }
 
 /// The lower and upper corners of the bounding box of control points `p` (at least one).
+/// (A plain loop: folding `BoundingBox::including` compiled to 1.4% more instructions over a
+/// pass of butterfly's grid, in building the sub-curve hierarchies.)
 pub(crate) fn control_box(p: &[Point]) -> (Point, Point) {
-    let b = p
-        .iter()
-        .fold(BoundingBox::from_point(p[0]), |b, &x| b.including(x));
-    (b.min, b.max)
+    let (mut lo, mut hi) = (p[0], p[0]);
+    for &x in p {
+        lo = Point::new(lo.x.min(x.x), lo.y.min(x.y));
+        hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
+    }
+    (lo, hi)
 }
 
 /// Is `q` outside the bounding box of control points `p`?
