@@ -98,15 +98,12 @@ impl SubCurves for CurveHierarchy {
 
 impl CurveHierarchy {
     /// The adaptive algorithm on the piece, through the cached sub-curves (handles of four
-    /// bytes on the walk's stack) and on the fly past them, in the same order and with the
-    /// same tests as `curve::refine` on the piece itself.
+    /// bytes on the walk's stack) and on the fly past them, with the same tests as
+    /// `curve::refine` on the piece itself. Its caller has found `q` in the piece's box (the
+    /// leaf's), so there is no far-field shortcut to take first; the whole piece's tests
+    /// ([`settle`]) give its chord for a `q` outside it anyway.
     fn refine<K: ChordSink>(&self, q: Point, sink: &mut K, stats: &mut QueryStats) {
         stats.curve_evaluations += 1;
-        if self.outside_box(&0, q) {
-            let p = self.points(&0);
-            sink.chord(p[0], p[p.len() - 1]);
-            return;
-        }
         // At most one pending right half per cached level.
         let mut stack: SmallVec<[(u32, u32, bool); 16]> = SmallVec::new();
         stack.push((0, 0, false));
