@@ -101,26 +101,11 @@ impl BenchOptions {
 /// parallel runs after a quiet spell wait for the idle cores to wake: 2-3x slower for the first
 /// few runs of a 2 ms task), a slower first run counts as one of the `reps`.
 fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
-    let timed = |f: &mut dyn FnMut()| {
-        let start = Instant::now();
-        f();
-        start.elapsed().as_secs_f64()
-    };
-    let mut t = Vec::with_capacity(reps.max(1));
-    let first = timed(&mut f);
-    if first >= SLOW_RUN {
-        t.push(first);
-    } else {
-        let warm = Instant::now();
-        while warm.elapsed().as_secs_f64() < WARM_UP {
-            f();
-        }
-    }
+    let mut t: Vec<f64> = warm_up(&mut f).into_iter().collect();
     while t.len() < reps.max(1) {
         t.push(timed(&mut f));
     }
-    t.sort_by(f64::total_cmp);
-    t[t.len() / 2]
+    median(t)
 }
 
 /// The median seconds of each of `runs`, timed in rounds (one run of each per round, `reps`
@@ -128,18 +113,8 @@ fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
 /// slows every one of them alike, so the ratios between them hold better than between runs
 /// timed one after the other.
 fn interleaved_medians(reps: usize, runs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
-    let timed = |f: &mut dyn FnMut()| {
-        let start = Instant::now();
-        f();
-        start.elapsed().as_secs_f64()
-    };
     for f in runs.iter_mut() {
-        if timed(&mut **f) < SLOW_RUN {
-            let warm = Instant::now();
-            while warm.elapsed().as_secs_f64() < WARM_UP {
-                f();
-            }
-        }
+        warm_up(&mut **f);
     }
     let mut t = vec![Vec::with_capacity(reps.max(1)); runs.len()];
     for _ in 0..reps.max(1) {
@@ -147,12 +122,34 @@ fn interleaved_medians(reps: usize, runs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
             t.push(timed(&mut **f));
         }
     }
-    t.into_iter()
-        .map(|mut t| {
-            t.sort_by(f64::total_cmp);
-            t[t.len() / 2]
-        })
-        .collect()
+    t.into_iter().map(median).collect()
+}
+
+/// Seconds one run of `f` takes.
+fn timed(f: &mut dyn FnMut()) -> f64 {
+    let start = Instant::now();
+    f();
+    start.elapsed().as_secs_f64()
+}
+
+/// Runs `f` once, timed; if that took under [`SLOW_RUN`], runs it untimed for [`WARM_UP`] and
+/// returns `None`, else returns the time (a slow run needs no warm-up and may count).
+fn warm_up(f: &mut dyn FnMut()) -> Option<f64> {
+    let first = timed(f);
+    if first >= SLOW_RUN {
+        return Some(first);
+    }
+    let warm = Instant::now();
+    while warm.elapsed().as_secs_f64() < WARM_UP {
+        f();
+    }
+    None
+}
+
+/// The median of some times (the upper one of an even count).
+fn median(mut t: Vec<f64>) -> f64 {
+    t.sort_by(f64::total_cmp);
+    t[t.len() / 2]
 }
 
 /// A run at least this long (seconds) needs no warm-up.
