@@ -196,7 +196,7 @@ fn input_error(path: &Path, e: PointsError) -> CliError {
 /// Three stages overlap: a thread reads blocks, the calling thread parses, computes and
 /// formats groups of them on rayon's pool, and a thread writes the results in input order.
 /// The channels between them are bounded, so memory does not grow with the input; the byte
-/// buffers (blocks read, results formatted) go back to a bounded pool once used.
+/// buffers (blocks read, results formatted) go back to two bounded pools once used.
 pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     input: PointsInput,
     output: Option<&Path>,
@@ -216,14 +216,14 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     // read, one computed) and the results formatted (one group computed, two queued, one
     // being written).
     let (texts, results) = (Spares::new(2 * group), Spares::new(4 * group));
-    let (texts, spares) = (&texts, &results);
+    let (texts, results) = (&texts, &results);
     std::thread::scope(|scope| {
         let (chunks_tx, chunks) =
             std::sync::mpsc::sync_channel::<Result<Chunk, PointsError>>(group);
         let read = &read;
         scope.spawn(move || read_chunks(input, &chunks_tx, read, texts));
         let (groups_tx, groups) = std::sync::mpsc::sync_channel::<Written>(2);
-        let writer = scope.spawn(move || write_groups(output, format, column, groups, spares));
+        let writer = scope.spawn(move || write_groups(output, format, column, groups, results));
         let mut progress = Progress::new(total);
         let mut failure = None;
         'outer: loop {
@@ -247,13 +247,13 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
             let parts: Vec<Result<(Vec<u8>, usize), PointsError>> = next
                 .par_iter()
                 .map(|c| match c {
-                    Chunk::Csv(b) => csv_block(b, format, column, kernel, spares.take()),
-                    Chunk::Points(p) => Ok(npy_points(p, format, column, kernel, spares.take())),
+                    Chunk::Csv(b) => csv_block(b, format, column, kernel, results.take()),
+                    Chunk::Points(p) => Ok(npy_points(p, format, column, kernel, results.take())),
                     #[cfg(unix)]
                     Chunk::Range { file, first, n } => {
                         NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
                             let mut values = vec![column.initial; *n];
-                            let mut out = spares.take();
+                            let mut out = results.take();
                             for (k, values) in values.chunks_mut(NPY_READ_POINTS).enumerate() {
                                 let at = first + k * NPY_READ_POINTS;
                                 let encoded = file.read_encoded(at, values.len(), bytes)?;
