@@ -458,7 +458,11 @@ mod tests {
         let by_inrs2 = FIRST_RECORD + (ix.records.len() - 1) as u32;
         assert!(ix.records[(by_inrs2 - FIRST_RECORD) as usize].by_inrs2);
         for p in &pts[..5 * run.len()] {
-            assert_eq!(ix.fine_entry(*p), by_inrs2, "a cell of the run at {p:?}");
+            assert_eq!(
+                ix.tables().fine_entry(*p),
+                by_inrs2,
+                "a cell of the run at {p:?}"
+            );
         }
         let expected = c.classify(&pts, Method::InRS2);
         assert!(expected.contains(&Location::Inside));

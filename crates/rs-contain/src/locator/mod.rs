@@ -198,10 +198,14 @@ struct Parts {
 impl Parts {
     /// The chord band of an item and the box it belongs to.
     #[inline]
-    fn band(&self, boxes: &[rs_boxes::MonotoneBox], item: u32) -> (rs_boxes::ChordBand, usize) {
+    fn band<'b>(
+        &'b self,
+        boxes: &'b [rs_boxes::MonotoneBox],
+        item: u32,
+    ) -> (&'b rs_boxes::ChordBand, usize) {
         match item.checked_sub(self.first_part) {
-            None => (boxes[item as usize].band, item as usize),
-            Some(i) => (self.bands[i as usize], self.owner[i as usize] as usize),
+            None => (&boxes[item as usize].band, item as usize),
+            Some(i) => (&self.bands[i as usize], self.owner[i as usize] as usize),
         }
     }
 }
@@ -242,13 +246,6 @@ impl Lookup {
         (c, r)
     }
 
-    /// The coarse state of `p`'s block, without a branch.
-    #[inline]
-    fn coarse_state(&self, coarse: &[u8], p: Point) -> usize {
-        let (c, r) = self.cell(p);
-        usize::from(coarse[(c >> BLOCK_SHIFT) * self.blocks + (r >> BLOCK_SHIFT)])
-    }
-
     /// `floor(f)` clamped to `0..=last` (0 for NaN), as `GridFrame::col` computes it, in a
     /// few branch-free instructions: each `if` is one `max`/`min` instruction, and adding
     /// `2^52` rounds to an integer held in the low bits (no saturating conversion).
@@ -263,13 +260,44 @@ impl Lookup {
     }
 }
 
-impl LocatorIndex {
+/// The two tables a query reads and what it needs to find its cell in them, copied out of the
+/// index into locals: the loops over many points then keep them in registers instead of
+/// reloading each through the index on every point.
+#[derive(Clone, Copy)]
+struct Tables<'a> {
+    lookup: Lookup,
+    coarse: &'a [u8],
+    block_start: &'a [u32],
+    fine: &'a [u32],
+}
+
+impl Tables<'_> {
+    /// The coarse state of `p`'s block (`OUTSIDE`, `INSIDE` or `REFINED`), without a branch.
+    #[inline]
+    fn coarse_state(&self, p: Point) -> usize {
+        let (c, r) = self.lookup.cell(p);
+        usize::from(self.coarse[(c >> BLOCK_SHIFT) * self.lookup.blocks + (r >> BLOCK_SHIFT)])
+    }
+
     /// The fine entry of `p`'s cell, in a refined block.
+    #[inline]
     fn fine_entry(&self, p: Point) -> u32 {
         let (c, r) = self.lookup.cell(p);
-        let block = (c >> BLOCK_SHIFT) * self.blocks + (r >> BLOCK_SHIFT);
+        let block = (c >> BLOCK_SHIFT) * self.lookup.blocks + (r >> BLOCK_SHIFT);
         let within = (c & (BLOCK - 1)) * BLOCK + (r & (BLOCK - 1));
         self.fine[self.block_start[block] as usize + within]
+    }
+}
+
+impl LocatorIndex {
+    /// The tables queries read.
+    fn tables(&self) -> Tables<'_> {
+        Tables {
+            lookup: self.lookup,
+            coarse: &self.coarse,
+            block_start: &self.block_start,
+            fine: &self.fine,
+        }
     }
 }
 
@@ -323,7 +351,7 @@ impl<'a> PointLocator<'a> {
 
     /// The location of one point (same as [`Method::InRS2`](crate::Method::InRS2)).
     fn locate_point(&self, p: Point) -> Location {
-        match STATE_LOCATION[self.ix.lookup.coarse_state(&self.ix.coarse, p)] {
+        match STATE_LOCATION[self.ix.tables().coarse_state(p)] {
             Location::Boundary => self.locate_refined(p),
             uniform => uniform,
         }
@@ -331,7 +359,7 @@ impl<'a> PointLocator<'a> {
 
     /// A point of a refined block: its cell's entry, then the mixed-cell record if any.
     fn locate_refined(&self, p: Point) -> Location {
-        let entry = self.ix.fine_entry(p);
+        let entry = self.ix.tables().fine_entry(p);
         if entry < FIRST_RECORD {
             return STATE_LOCATION[entry as usize];
         }
@@ -441,7 +469,7 @@ impl PointLocator<'_> {
     /// in mixed cells), then the points in mixed cells one by one.
     pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
         const CHUNK: usize = 2048;
-        let (lookup, coarse) = (&self.ix.lookup, &self.ix.coarse[..]);
+        let tables = self.ix.tables();
         let mut refined = [0u16; CHUNK];
         let mut entries = [0u32; CHUNK];
         let mut mixed = [0u16; CHUNK];
@@ -449,9 +477,11 @@ impl PointLocator<'_> {
             let first = c * CHUNK;
             let mut k = 0;
             for (i, o) in out.iter_mut().enumerate() {
-                let state = lookup.coarse_state(coarse, point(first + i));
+                // `& 3` and `& (CHUNK - 1)` change nothing (a state is below 4, `k <= i`); they
+                // spare the bounds checks the compiler cannot drop.
+                let state = tables.coarse_state(point(first + i)) & 3;
                 *o = STATE_LOCATION[state];
-                refined[k] = i as u16;
+                refined[k & (CHUNK - 1)] = i as u16;
                 k += usize::from(state == REFINED as usize);
             }
             // The refined blocks' points: their fine entries without a branch, noting those
@@ -459,10 +489,10 @@ impl PointLocator<'_> {
             let mut m = 0;
             for j in 0..k {
                 let i = usize::from(refined[j]);
-                let entry = self.ix.fine_entry(point(first + i));
+                let entry = tables.fine_entry(point(first + i));
                 entries[j] = entry;
                 out[i] = STATE_LOCATION[entry.min(FIRST_RECORD) as usize];
-                mixed[m] = j as u16;
+                mixed[m & (CHUNK - 1)] = j as u16;
                 m += usize::from(entry >= FIRST_RECORD);
             }
             for &j in &mixed[..m] {
