@@ -77,6 +77,7 @@ impl LocatorIndex {
                     near: push_items(&mut self.near_items, items),
                     column: push_items(&mut self.column_items, &since_uniform),
                     by_inrs2: unknown_below,
+                    near_critical: columns.near_critical[c],
                 });
             }
         }
@@ -85,6 +86,7 @@ impl LocatorIndex {
             near: (0, 0),
             column: (0, 0),
             by_inrs2: true,
+            near_critical: true,
         });
         (self.records.len() - 1) as u32
     }
@@ -187,6 +189,9 @@ struct Columns {
     /// the location of its first cell's centre by inRS2 ([`OUTSIDE`], [`INSIDE`] or
     /// [`BY_INRS2`]).
     runs: Vec<u8>,
+    /// Whether a point of column `c` may lie within the tolerance of a critical abscissa
+    /// (see [`near_critical_columns`]).
+    near_critical: Vec<bool>,
 }
 
 impl Columns {
@@ -219,6 +224,11 @@ impl Columns {
             item_start,
             items,
             runs: Vec::new(),
+            near_critical: near_critical_columns(
+                frame,
+                classifier.boxes().critical_abscissas(),
+                classifier.abs_tol(),
+            ),
         };
         columns.classify_runs(classifier, frame);
         columns
@@ -323,6 +333,23 @@ fn framed_grid(outer: BoundingBox, abs_tol: f64, cells: usize) -> GridFrame {
         max: Point::new(outer.max.x + cw, outer.max.y + ch),
     };
     GridFrame::new(ring, n + 2)
+}
+
+/// For each column of `frame`, whether a point in it may be within `abs_tol` of one of the
+/// critical `abscissas` ([`rs_boxes::MonotoneBoxes::is_critical_x`]): the columns of
+/// `xc - abs_tol` to `xc + abs_tol` for each, grown by a few units in the last place (the test
+/// rounds `x - abs_tol` and `x + abs_tol`) and by a column on each side. A column is a function
+/// of `x` that never decreases, so a point whose abscissa is that near lies in one of them.
+fn near_critical_columns(frame: &GridFrame, abscissas: &[f64], abs_tol: f64) -> Vec<bool> {
+    let n = frame.n();
+    let mut near = vec![false; n];
+    for &xc in abscissas {
+        let reach = abs_tol + 4.0 * f64::EPSILON * (xc.abs() + abs_tol);
+        let first = frame.col(xc - reach).saturating_sub(1);
+        let last = (frame.col(xc + reach) + 1).min(n - 1);
+        near[first..=last].fill(true);
+    }
+    near
 }
 
 /// Appends `items` to `all` and returns their range.
@@ -467,5 +494,39 @@ mod tests {
         let expected = c.classify(&pts, Method::InRS2);
         assert!(expected.contains(&Location::Inside));
         assert_eq!(crate::Locate::locate_all(&loc, &pts), expected);
+    }
+
+    /// Every abscissa the critical-abscissa test flags falls in a flagged column, also far
+    /// from the origin (where a cell is a few thousand units in the last place wide) and with
+    /// a tolerance wider than a cell; and most columns are not flagged.
+    #[test]
+    fn near_critical_columns_hold_every_flagged_abscissa() {
+        for (centre, radius, cells) in [(0.0, 1.0, 512), (1.0e6, 1.0e-3, 512), (3.0, 2.0, 8)] {
+            let d =
+                Domain::new(vec![circle(Point::new(centre, -centre), radius).unwrap()]).unwrap();
+            let c = Classifier::new(&d, ContainOptions::default()).unwrap();
+            let tol = c.abs_tol();
+            let frame = framed_grid(c.outer(), tol, cells);
+            let critical = c.boxes().critical_abscissas();
+            assert!(!critical.is_empty());
+            let near = near_critical_columns(&frame, critical, tol);
+            let mut flagged_points = 0;
+            for &xc in critical {
+                for k in -40..=40 {
+                    let x = xc + tol * f64::from(k) / 32.0;
+                    for x in [x.next_down(), x, x.next_up()] {
+                        if c.boxes().is_critical_x(x, tol) {
+                            flagged_points += 1;
+                            assert!(near[frame.col(x)], "x = {x:e} near {xc:e}");
+                        }
+                    }
+                }
+            }
+            assert!(flagged_points > 0);
+            if cells > 8 {
+                let flagged_columns = near.iter().filter(|&&f| f).count();
+                assert!(flagged_columns < frame.n() / 8, "{flagged_columns} columns");
+            }
+        }
     }
 }

@@ -153,6 +153,9 @@ struct MixedCell {
     /// that meets no box was found on the boundary: rounding of the registration against
     /// the boundary test).
     by_inrs2: bool,
+    /// A point of the cell may lie within the tolerance of a critical abscissa (then each
+    /// point's abscissa is checked; elsewhere that search is skipped).
+    near_critical: bool,
 }
 
 /// The grid of a [`PointLocator`], without the classifier it indexes (so that a
@@ -376,7 +379,7 @@ impl<'a> PointLocator<'a> {
         }
         let tol = cls.abs_tol();
         let all = cls.boxes().boxes();
-        if cls.boxes().is_critical_x(p.x, tol) {
+        if rec.near_critical && cls.boxes().is_critical_x(p.x, tol) {
             return cls.fallback(p).0;
         }
         let parts = &self.ix.parts;
