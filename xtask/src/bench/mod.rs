@@ -108,11 +108,13 @@ fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
     median(t)
 }
 
-/// The median seconds of each of `runs`, timed in rounds (one run of each per round, `reps`
-/// rounds, after each has warmed up as in [`median_time`]): a noisy spell on the machine then
-/// slows every one of them alike, so the ratios between them hold better than between runs
-/// timed one after the other.
-fn interleaved_medians(reps: usize, runs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
+/// The median and the fastest seconds of each of `runs`, timed in rounds (one run of each per
+/// round, `reps` rounds, after each has warmed up as in [`median_time`]): a noisy spell on the
+/// machine then slows every one of them alike, so the ratios between them hold better than
+/// between runs timed one after the other. The fastest run is what the code does when the
+/// machine lends it its cores undisturbed (a virtual machine's neighbours only ever slow a
+/// run down).
+fn interleaved_times(reps: usize, runs: &mut [&mut dyn FnMut()]) -> Vec<Times> {
     for f in runs.iter_mut() {
         warm_up(&mut **f);
     }
@@ -122,7 +124,19 @@ fn interleaved_medians(reps: usize, runs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
             t.push(timed(&mut **f));
         }
     }
-    t.into_iter().map(median).collect()
+    t.into_iter()
+        .map(|t| Times {
+            best: t.iter().copied().fold(f64::INFINITY, f64::min),
+            median: median(t),
+        })
+        .collect()
+}
+
+/// The median and the fastest of some timed runs, in seconds.
+#[derive(Clone, Copy, Debug)]
+struct Times {
+    median: f64,
+    best: f64,
 }
 
 /// Seconds one run of `f` takes.
