@@ -135,7 +135,9 @@ fn register(classifier: &Classifier, frame: &GridFrame) -> (Parts, Vec<(usize, u
     let tol = classifier.abs_tol();
     let all = classifier.boxes().boxes();
     let cells = frame.cell_count();
-    let mut pairs: Vec<(usize, u32)> = Vec::new();
+    // Each pair as one integer, `cell << 32 | item`, so that sorting compares one word (a
+    // grid has at most 8192^2 < 2^32 cells).
+    let mut pairs: Vec<u64> = Vec::new();
     let mut parts = Parts {
         first_part: all.len() as u32,
         bands: Vec::new(),
@@ -157,12 +159,18 @@ fn register(classifier: &Classifier, frame: &GridFrame) -> (Parts, Vec<(usize, u
                 parts.owner.push(bi as u32);
                 parts.first_part + parts.bands.len() as u32 - 1
             };
-            frame.for_cells_in(band.rectangle_near(tol), |c| pairs.push((c, id | flag)));
+            frame.for_cells_in(band.rectangle_near(tol), |c| {
+                pairs.push((c as u64) << 32 | u64::from(id | flag));
+            });
         });
     }
-    pairs.retain(|&(c, _)| c < cells);
+    pairs.retain(|&p| ((p >> 32) as usize) < cells);
     pairs.sort_unstable();
     pairs.dedup();
+    let pairs = pairs
+        .into_iter()
+        .map(|p| ((p >> 32) as usize, p as u32))
+        .collect();
     (parts, pairs)
 }
 
