@@ -26,8 +26,8 @@ pub(super) fn single_thread(
          streams), on one thread and on {threads} threads into a new vector (`locate_all`, \
          `locate_all_parallel`), the scaling between those two, the ratio to inRS2, and the \
          fraction of a pass that only reads the points (counts x < y: the memory-bandwidth \
-         ceiling), all in the same run; the last four timed in rounds (one run of each per round) so \
-         that a noisy spell slows them alike; medians, and the fastest of the {} rounds (what the \
+         ceiling), all in the same run; the last four timed in rounds (one run of each, on every \
+         domain, per round) so that a noisy spell slows them alike; medians, and the fastest of the {} rounds (what the \
          code does when the machine leaves it undisturbed: a shared machine only ever slows a run \
          down) under *best*.\n",
         o.reps
@@ -40,7 +40,12 @@ pub(super) fn single_thread(
         md,
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     );
-    for (name, d) in domains {
+    // Every domain's index and points first, then the query timings of all domains in the
+    // same rounds: a noisy spell on the machine (a busy neighbour halves the speed for
+    // seconds) then slows every domain alike instead of the one being timed.
+    let mut classifiers = Vec::with_capacity(domains.len());
+    let mut builds = Vec::with_capacity(domains.len());
+    for (_, d) in domains {
         let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
         let pts = halton_points(n, d.bounding_box());
         let t2 = median_time(o.reps.min(3), || {
@@ -49,26 +54,46 @@ pub(super) fn single_thread(
         let tb = median_time(o.reps, || {
             std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
         });
-        let loc = PointLocator::new(&c, LocatorOptions::default());
-        let mut kept = vec![Location::Outside; n];
-        let t = interleaved_times(
-            o.reps,
-            &mut [
-                &mut || {
-                    loc.locate_into(&pts, &mut kept);
-                    std::hint::black_box(&kept);
-                },
-                &mut || {
-                    std::hint::black_box(loc.locate_all(&pts));
-                },
-                &mut || {
-                    std::hint::black_box(loc.locate_all_parallel(&pts));
-                },
-                &mut || {
-                    std::hint::black_box(pts.iter().filter(|p| p.x < p.y).count());
-                },
-            ],
-        );
+        classifiers.push(c);
+        builds.push((pts, t2, tb));
+    }
+    let locators: Vec<PointLocator<'_>> = classifiers
+        .iter()
+        .map(|c| PointLocator::new(c, LocatorOptions::default()))
+        .collect();
+    let mut kept = vec![vec![Location::Outside; n]; domains.len()];
+    let mut runs: Vec<Box<dyn FnMut() + '_>> = Vec::new();
+    for ((loc, (pts, _, _)), kept) in locators.iter().zip(&builds).zip(kept.iter_mut()) {
+        // First a run whose time is dropped: it brings this domain's index back into the
+        // caches after the other domains' runs, as a program querying one domain has it.
+        runs.push(Box::new(move || {
+            std::hint::black_box(loc.locate_all(pts));
+        }));
+        runs.push(Box::new(move || {
+            loc.locate_into(pts, kept);
+            std::hint::black_box(&*kept);
+        }));
+        runs.push(Box::new(move || {
+            std::hint::black_box(loc.locate_all(pts));
+        }));
+        runs.push(Box::new(move || {
+            std::hint::black_box(loc.locate_all_parallel(pts));
+        }));
+        runs.push(Box::new(move || {
+            std::hint::black_box(pts.iter().filter(|p| p.x < p.y).count());
+        }));
+    }
+    let mut refs: Vec<&mut dyn FnMut()> = runs
+        .iter_mut()
+        .map(|f| &mut **f as &mut dyn FnMut())
+        .collect();
+    let times = interleaved_times(o.reps, &mut refs);
+    for (((name, _), (loc, (_, t2, tb))), t) in domains
+        .iter()
+        .zip(locators.iter().zip(&builds))
+        .zip(times.chunks_exact(5))
+    {
+        let t = &t[1..];
         let (tk, tq, tp, ts) = (t[0].median, t[1].median, t[2].median, t[3].median);
         let mpts = |t: f64| n as f64 / t / 1e6;
         let _ = writeln!(
