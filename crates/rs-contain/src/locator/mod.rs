@@ -77,8 +77,9 @@ impl Default for LocatorOptions {
 /// ring of outside cells round the grid), and, for the refined blocks only, one entry per cell (outside, inside, or the index of a mixed-cell
 /// record). A mixed-cell record holds what its points need, precomputed: the parity of the
 /// nearest uniform cell below in the same column, the boxes and parts registered in the cell,
-/// and the distinct non-vertical boxes and parts registered between that uniform cell and this
-/// one.
+/// the distinct non-vertical boxes and parts registered between that uniform cell and this
+/// one, and whether the cell's column lies within the tolerance of a critical abscissa (only
+/// then is a point's own abscissa searched for among them).
 ///
 /// A query then costs:
 /// - outside the grown bounding box, or in a uniform block: one lookup, without a branch;
