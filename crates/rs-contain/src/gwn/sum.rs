@@ -78,11 +78,11 @@ impl ChainEnds {
     ///
     /// The factors are scaled by one power of two per query (from the distance between `q` and
     /// the ends' box) so that each is smaller than 1, and the product is renormalised every
-    /// [`RENORMALISE`] factors; the loop holds no call and no data-dependent branch. A chain
-    /// with `q` on the segment `s e`, or with an end so close to `q` that its factor is below
-    /// [`MIN_FACTOR`], takes its two `atan2`s after the loop; a query whose distance to the
-    /// ends' box is outside `[MIN_REACH, MAX_REACH]` (or not a number) takes
-    /// [`WindingSum::add_chain_ends_one_by_one`].
+    /// [`RENORMALISE`] factors; the loop holds no call and no data-dependent branch. A query
+    /// with a chain it cannot multiply in (`q` on the segment `s e`, or an end so close to `q`
+    /// that the factor is below [`MIN_FACTOR`]: that factor turns the product into NaN), and a
+    /// query whose distance to the ends' box is outside `[MIN_REACH, MAX_REACH]` (or not a
+    /// number), take [`WindingSum::add_chain_ends_one_by_one`] instead.
     ///
     /// Full groups of [`BATCH`] sums run side by side: one pass over the chains, each step done
     /// for all of them at once (which the compiler turns into vector instructions). Each sum
@@ -125,15 +125,15 @@ impl ChainEnds {
         }
         // Lanes past `n` and queries out of reach run along harmlessly and are dropped.
         let (mut re, mut im) = ([1.0f64; L], [0.0f64; L]);
-        let (mut wraps, mut special) = ([0.0f64; L], [0.0f64; L]);
+        let mut wraps = [0.0f64; L];
         for (i, &(a, b)) in self.ends.iter().enumerate() {
             for k in 0..L {
                 let q = Point::new(qx[k], qy[k]);
                 let (u, v) = (a - q, b - q);
                 let (d, c, usable) = scaled_factor(u, v, scale[k]);
-                special[k] += if usable { 0.0 } else { 1.0 };
-                // An unusable factor becomes 1 (its flags below are then all false).
-                let (d, c) = if usable { (d, c) } else { (1.0, 0.0) };
+                // An unusable factor makes the lane's product NaN (which marks the lane for
+                // the one-by-one sum below); its flags are then all false.
+                let (d, c) = if usable { (d, c) } else { (f64::NAN, f64::NAN) };
                 wraps[k] += multiply_chain(&mut re[k], &mut im[k], u, v, d, c);
             }
             if i % RENORMALISE == RENORMALISE - 1 {
@@ -148,17 +148,11 @@ impl ChainEnds {
             args[k] = argument(re[k], im[k]);
         }
         for (k, sum) in sums.iter_mut().take(n).enumerate() {
-            if !in_reach[k] {
+            // A usable factor keeps the product a finite number (the scale and the
+            // renormalisation see to it), so a NaN argument means an unusable one.
+            if !in_reach[k] || args[k].is_nan() {
                 sum.add_chain_ends_one_by_one(&self.ends);
                 continue;
-            }
-            if special[k] > 0.0 {
-                let q = sum.q;
-                for &(a, b) in &self.ends {
-                    if !scaled_factor(a - q, b - q, scale[k]).2 {
-                        sum.turns += (theta(q, b) - theta(q, a)) / TAU;
-                    }
-                }
             }
             // Counts of at most one per chain: exact in f64.
             sum.add_turns(args[k], wraps[k] as i64);
