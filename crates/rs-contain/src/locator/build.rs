@@ -139,7 +139,6 @@ fn register(classifier: &Classifier, frame: &GridFrame) -> (Parts, Vec<(usize, u
     // grid has at most 8192^2 < 2^32 cells).
     let mut pairs: Vec<u64> = Vec::new();
     let mut parts = Parts {
-        first_part: all.len() as u32,
         bands: Vec::new(),
         owner: Vec::new(),
     };
@@ -151,14 +150,10 @@ fn register(classifier: &Classifier, frame: &GridFrame) -> (Parts, Vec<(usize, u
         } else {
             0
         };
-        b.for_grid_parts(frame, |band, whole| {
-            let id = if whole {
-                bi as u32
-            } else {
-                parts.bands.push(band);
-                parts.owner.push(bi as u32);
-                parts.first_part + parts.bands.len() as u32 - 1
-            };
+        b.for_grid_parts(frame, |band, _| {
+            let id = parts.bands.len() as u32;
+            parts.bands.push(band);
+            parts.owner.push(bi as u32);
             frame.for_cells_in(band.rectangle_near(tol), |c| {
                 pairs.push((c as u64) << 32 | u64::from(id | flag));
             });

@@ -103,8 +103,9 @@ impl Default for LocatorOptions {
 /// the runs between occupied cells, and a walk over the `(n / 8)^2` blocks; no table of all
 /// `n^2` cells is made, so the work grows with the boundary's length in cells and the number
 /// of blocks. Memory: a byte per block of the coarse table, 256 bytes per refined block, the
-/// mixed-cell records with their item lists, and the parts' chord bands, which grow with the
-/// boundary's length in cells; the registrations themselves are dropped after the build
+/// mixed-cell records with their item lists, and the parts' chord bands (96 bytes each, at
+/// least one part per box), which grow with the number of boxes and the boundary's length in
+/// cells; the registrations themselves are dropped after the build
 /// (timings: `cargo xtask bench`, reported in the README). Worst case per query: a mixed cell
 /// in a column that is mixed all the way down, `O(N)` for `N` items in that column; fine grids
 /// and refined boxes keep it small.
@@ -144,10 +145,10 @@ const FIRST_RECORD: u32 = 2;
 struct MixedCell {
     /// Parity of the nearest uniform cell below in the column (false below the grid).
     inside_below: bool,
-    /// The items (boxes and parts, see [`Parts`]) registered in the cell
+    /// The parts (see [`Parts`]) registered in the cell
     /// (`near_items[near.0..near.1]`, vertical ones flagged).
     near: (u32, u32),
-    /// The distinct non-vertical items registered from that uniform cell up to this one
+    /// The distinct non-vertical parts registered from that uniform cell up to this one
     /// (`column_items[column.0..column.1]`).
     column: (u32, u32),
     /// The cell's points are decided by inRS2 itself: the parity below is unknown (a cell
@@ -183,34 +184,30 @@ pub struct LocatorIndex {
     parts: Parts,
 }
 
-/// The parts of the boxes that span more than a couple of cells, halved until each fits
-/// ([`rs_boxes::MonotoneBox::for_grid_parts`]): a box's chord band is wide when its piece
-/// is curved across many cells, a part's is narrow, so a part decides by its band most of
-/// the points its box would decide by a solve.
+/// The parts the boxes are registered as, each with its chord band
+/// ([`rs_boxes::MonotoneBox::for_grid_parts`]): a box that spans more than a couple of cells is
+/// halved until each part fits (a box's band is wide when its piece is curved across many
+/// cells, a part's is narrow, so a part decides by its band most of the points its box would
+/// decide by a solve); a smaller box is one part, with its own band.
 ///
-/// The cells register *items*: an item below `first_part` is a whole box (its own band),
-/// `first_part + i` is part `i`.
+/// The cells register parts by index. The bands are copied here, also a whole box's, so that
+/// queries read them from one compact array and not from the boxes (536 bytes apart: on
+/// 46 000 boxes nearly every read missed the caches).
 #[derive(Clone, Debug)]
 struct Parts {
-    /// The number of boxes: the first part's item.
-    first_part: u32,
     bands: Vec<rs_boxes::ChordBand>,
     /// The box each part was cut from.
     owner: Vec<u32>,
 }
 
 impl Parts {
-    /// The chord band of an item and the box it belongs to.
+    /// The chord band of part `item` and the box it belongs to.
     #[inline]
-    fn band<'b>(
-        &'b self,
-        boxes: &'b [rs_boxes::MonotoneBox],
-        item: u32,
-    ) -> (&'b rs_boxes::ChordBand, usize) {
-        match item.checked_sub(self.first_part) {
-            None => (&boxes[item as usize].band, item as usize),
-            Some(i) => (&self.bands[i as usize], self.owner[i as usize] as usize),
-        }
+    fn band(&self, item: u32) -> (&rs_boxes::ChordBand, usize) {
+        (
+            &self.bands[item as usize],
+            self.owner[item as usize] as usize,
+        )
     }
 }
 
@@ -388,7 +385,7 @@ impl<'a> PointLocator<'a> {
         // in p's cell: the bands screen, the box's own test decides.
         let near = &self.ix.near_items[rec.near.0 as usize..rec.near.1 as usize];
         if near.iter().any(|&item| {
-            let (band, b) = parts.band(all, item & !VERTICAL_FLAG);
+            let (band, b) = parts.band(item & !VERTICAL_FLAG);
             band.may_be_near(p, tol) && all[b].is_near(p, tol)
         }) {
             return Location::Boundary;
@@ -400,7 +397,7 @@ impl<'a> PointLocator<'a> {
         let crossings = column
             .iter()
             .filter(|&&item| {
-                let (band, b) = parts.band(all, item);
+                let (band, b) = parts.band(item);
                 band.crossing_below(p)
                     .unwrap_or_else(|| all[b].crosses_below(p))
             })
