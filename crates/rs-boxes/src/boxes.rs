@@ -228,6 +228,13 @@ impl MonotoneBoxes {
         near_sorted(&self.critical_x, x, abs_tol)
     }
 
+    /// [`MonotoneBoxes::is_critical_x`] among the critical abscissas `among` (a range of
+    /// [`MonotoneBoxes::critical_abscissas`]' indices): the same answer whenever the range
+    /// holds every critical abscissa within `abs_tol` of `x`.
+    pub fn is_critical_x_among(&self, x: f64, abs_tol: f64, among: std::ops::Range<usize>) -> bool {
+        near_sorted(&self.critical_x[among], x, abs_tol)
+    }
+
     /// True if `y` is within `abs_tol` of a critical ordinate (binary search).
     pub fn is_critical_y(&self, y: f64, abs_tol: f64) -> bool {
         near_sorted(&self.critical_y, y, abs_tol)

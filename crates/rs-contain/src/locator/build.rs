@@ -77,7 +77,7 @@ impl LocatorIndex {
                     near: push_items(&mut self.near_items, items),
                     column: push_items(&mut self.column_items, &since_uniform),
                     by_inrs2: unknown_below,
-                    near_critical: columns.near_critical[c],
+                    critical: columns.critical[c],
                 });
             }
         }
@@ -86,7 +86,7 @@ impl LocatorIndex {
             near: (0, 0),
             column: (0, 0),
             by_inrs2: true,
-            near_critical: true,
+            critical: (0, 0),
         });
         (self.records.len() - 1) as u32
     }
@@ -192,9 +192,10 @@ struct Columns {
     /// the location of its first cell's centre by inRS2 ([`OUTSIDE`], [`INSIDE`] or
     /// [`BY_INRS2`]).
     runs: Vec<u8>,
-    /// Whether a point of column `c` may lie within the tolerance of a critical abscissa
-    /// (see [`near_critical_columns`]).
-    near_critical: Vec<bool>,
+    /// For column `c`, the range of critical abscissas (indices into
+    /// `MonotoneBoxes::critical_abscissas`) that may lie within the tolerance of one of its
+    /// points (see [`critical_ranges`]).
+    critical: Vec<(u32, u32)>,
 }
 
 impl Columns {
@@ -227,7 +228,7 @@ impl Columns {
             item_start,
             items,
             runs: Vec::new(),
-            near_critical: near_critical_columns(
+            critical: critical_ranges(
                 frame,
                 classifier.boxes().critical_abscissas(),
                 classifier.abs_tol(),
@@ -338,21 +339,28 @@ fn framed_grid(outer: BoundingBox, abs_tol: f64, cells: usize) -> GridFrame {
     GridFrame::new(ring, n + 2)
 }
 
-/// For each column of `frame`, whether a point in it may be within `abs_tol` of one of the
-/// critical `abscissas` ([`rs_boxes::MonotoneBoxes::is_critical_x`]): the columns of
-/// `xc - abs_tol` to `xc + abs_tol` for each, grown by a few units in the last place (the test
-/// rounds `x - abs_tol` and `x + abs_tol`) and by a column on each side. A column is a function
-/// of `x` that never decreases, so a point whose abscissa is that near lies in one of them.
-fn near_critical_columns(frame: &GridFrame, abscissas: &[f64], abs_tol: f64) -> Vec<bool> {
+/// For each column of `frame`, the range of the sorted critical `abscissas` that may lie
+/// within `abs_tol` of a point in it ([`rs_boxes::MonotoneBoxes::is_critical_x`]): abscissa
+/// `xc` is in the range of the columns of `xc - abs_tol` to `xc + abs_tol`, grown by a few
+/// units in the last place (the test rounds `x - abs_tol` and `x + abs_tol`) and by a column
+/// on each side. A column is a function of `x` that never decreases, so an abscissa that near
+/// a point lies in the range of the point's column; and since the columns of successive
+/// abscissas never move left, each column's abscissas are consecutive.
+fn critical_ranges(frame: &GridFrame, abscissas: &[f64], abs_tol: f64) -> Vec<(u32, u32)> {
     let n = frame.n();
-    let mut near = vec![false; n];
-    for &xc in abscissas {
+    let mut ranges = vec![(0u32, 0u32); n];
+    for (i, &xc) in abscissas.iter().enumerate() {
         let reach = abs_tol + 4.0 * f64::EPSILON * (xc.abs() + abs_tol);
         let first = frame.col(xc - reach).saturating_sub(1);
         let last = (frame.col(xc + reach) + 1).min(n - 1);
-        near[first..=last].fill(true);
+        for r in &mut ranges[first..=last] {
+            if r.0 == r.1 {
+                r.0 = i as u32;
+            }
+            r.1 = i as u32 + 1;
+        }
     }
-    near
+    ranges
 }
 
 /// Appends `items` to `all` and returns their range.
@@ -499,11 +507,12 @@ mod tests {
         assert_eq!(crate::Locate::locate_all(&loc, &pts), expected);
     }
 
-    /// Every abscissa the critical-abscissa test flags falls in a flagged column, also far
-    /// from the origin (where a cell is a few thousand units in the last place wide) and with
-    /// a tolerance wider than a cell; and most columns are not flagged.
+    /// The critical-abscissa test among a column's range agrees with the test among all of
+    /// them round every critical abscissa, also far from the origin (where a cell is a few
+    /// thousand units in the last place wide) and with a tolerance wider than a cell; and
+    /// most columns have an empty range.
     #[test]
-    fn near_critical_columns_hold_every_flagged_abscissa() {
+    fn critical_ranges_hold_every_flagged_abscissa() {
         for (centre, radius, cells) in [(0.0, 1.0, 512), (1.0e6, 1.0e-3, 512), (3.0, 2.0, 8)] {
             let d =
                 Domain::new(vec![circle(Point::new(centre, -centre), radius).unwrap()]).unwrap();
@@ -512,22 +521,27 @@ mod tests {
             let frame = framed_grid(c.outer(), tol, cells);
             let critical = c.boxes().critical_abscissas();
             assert!(!critical.is_empty());
-            let near = near_critical_columns(&frame, critical, tol);
+            let ranges = critical_ranges(&frame, critical, tol);
             let mut flagged_points = 0;
             for &xc in critical {
                 for k in -40..=40 {
                     let x = xc + tol * f64::from(k) / 32.0;
                     for x in [x.next_down(), x, x.next_up()] {
-                        if c.boxes().is_critical_x(x, tol) {
-                            flagged_points += 1;
-                            assert!(near[frame.col(x)], "x = {x:e} near {xc:e}");
-                        }
+                        let (first, end) = ranges[frame.col(x)];
+                        let among = first as usize..end as usize;
+                        let flagged = c.boxes().is_critical_x(x, tol);
+                        flagged_points += usize::from(flagged);
+                        assert_eq!(
+                            c.boxes().is_critical_x_among(x, tol, among),
+                            flagged,
+                            "x = {x:e} near {xc:e}"
+                        );
                     }
                 }
             }
             assert!(flagged_points > 0);
             if cells > 8 {
-                let flagged_columns = near.iter().filter(|&&f| f).count();
+                let flagged_columns = ranges.iter().filter(|r| r.0 < r.1).count();
                 assert!(flagged_columns < frame.n() / 8, "{flagged_columns} columns");
             }
         }

@@ -78,8 +78,8 @@ impl Default for LocatorOptions {
 /// record). A mixed-cell record holds what its points need, precomputed: the parity of the
 /// nearest uniform cell below in the same column, the boxes and parts registered in the cell,
 /// the distinct non-vertical boxes and parts registered between that uniform cell and this
-/// one, and whether the cell's column lies within the tolerance of a critical abscissa (only
-/// then is a point's own abscissa searched for among them).
+/// one, and the critical abscissas within the tolerance of the cell's column (a point's own
+/// abscissa is searched for among these only).
 ///
 /// A query then costs:
 /// - outside the grown bounding box, or in a uniform block: one lookup, without a branch;
@@ -155,9 +155,10 @@ struct MixedCell {
     /// that meets no box was found on the boundary: rounding of the registration against
     /// the boundary test).
     by_inrs2: bool,
-    /// A point of the cell may lie within the tolerance of a critical abscissa (then each
-    /// point's abscissa is checked; elsewhere that search is skipped).
-    near_critical: bool,
+    /// The critical abscissas that may lie within the tolerance of a point of the cell (a
+    /// range of `MonotoneBoxes::critical_abscissas`, usually empty): a point's abscissa is
+    /// searched for among these only.
+    critical: (u32, u32),
 }
 
 /// The grid of a [`PointLocator`], without the classifier it indexes (so that a
@@ -377,7 +378,8 @@ impl<'a> PointLocator<'a> {
         }
         let tol = cls.abs_tol();
         let all = cls.boxes().boxes();
-        if rec.near_critical && cls.boxes().is_critical_x(p.x, tol) {
+        let critical = rec.critical.0 as usize..rec.critical.1 as usize;
+        if !critical.is_empty() && cls.boxes().is_critical_x_among(p.x, tol, critical) {
             return cls.fallback(p).0;
         }
         let parts = &self.ix.parts;
