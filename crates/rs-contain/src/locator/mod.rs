@@ -202,13 +202,20 @@ struct Parts {
 }
 
 impl Parts {
-    /// The chord band of part `item` and the box it belongs to.
+    /// The chord band of part `item`.
     #[inline]
-    fn band(&self, item: u32) -> (&rs_boxes::ChordBand, usize) {
-        (
-            &self.bands[item as usize],
-            self.owner[item as usize] as usize,
-        )
+    fn band(&self, item: u32) -> &rs_boxes::ChordBand {
+        &self.bands[item as usize]
+    }
+
+    /// The box part `item` was cut from (read only when its band cannot decide).
+    #[inline]
+    fn owner<'b>(
+        &self,
+        boxes: &'b [rs_boxes::MonotoneBox],
+        item: u32,
+    ) -> &'b rs_boxes::MonotoneBox {
+        &boxes[self.owner[item as usize] as usize]
     }
 }
 
@@ -387,8 +394,8 @@ impl<'a> PointLocator<'a> {
         // in p's cell: the bands screen, the box's own test decides.
         let near = &self.ix.near_items[rec.near.0 as usize..rec.near.1 as usize];
         if near.iter().any(|&item| {
-            let (band, b) = parts.band(item & !VERTICAL_FLAG);
-            band.may_be_near(p, tol) && all[b].is_near(p, tol)
+            let item = item & !VERTICAL_FLAG;
+            parts.band(item).may_be_near(p, tol) && parts.owner(all, item).is_near(p, tol)
         }) {
             return Location::Boundary;
         }
@@ -399,9 +406,10 @@ impl<'a> PointLocator<'a> {
         let crossings = column
             .iter()
             .filter(|&&item| {
-                let (band, b) = parts.band(item);
-                band.crossing_below(p)
-                    .unwrap_or_else(|| all[b].crosses_below(p))
+                parts
+                    .band(item)
+                    .crossing_below(p)
+                    .unwrap_or_else(|| parts.owner(all, item).crosses_below(p))
             })
             .count();
         if rec.inside_below ^ (crossings % 2 == 1) {
