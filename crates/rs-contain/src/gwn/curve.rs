@@ -91,6 +91,19 @@ pub(crate) fn control_box(p: &[Point]) -> (Point, Point) {
 /// Is `q` outside the bounding box of control points `p`?
 pub(crate) fn outside_box(p: &[Point], q: Point) -> bool {
     let (lo, hi) = control_box(p);
+    outside(lo, hi, q)
+}
+
+/// Does the box with corners `lo` and `hi` lie above, below or right of `q`? Then nothing in
+/// it crosses the cut (the horizontal ray from `q` towards `-x`) and `q` is not in it.
+#[inline(always)]
+pub(crate) fn misses_cut(lo: Point, hi: Point, q: Point) -> bool {
+    q.y < lo.y || q.y > hi.y || q.x < lo.x
+}
+
+/// Is `q` outside the box with corners `lo` and `hi`?
+#[inline(always)]
+pub(crate) fn outside(lo: Point, hi: Point, q: Point) -> bool {
     q.x < lo.x || q.x > hi.x || q.y < lo.y || q.y > hi.y
 }
 

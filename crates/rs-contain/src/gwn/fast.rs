@@ -10,7 +10,8 @@ use rs_spline::{Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::curve::{
-    SubCurve, SubCurves, control_box, is_linear, is_simple_convex, refine_below, settle,
+    SubCurve, SubCurves, control_box, is_linear, is_simple_convex, misses_cut, outside,
+    refine_below, settle,
 };
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
@@ -92,7 +93,7 @@ impl SubCurves for CurveHierarchy {
     }
     fn outside_box(&self, i: &u32, q: Point) -> bool {
         let n = &self.nodes[*i as usize];
-        q.x < n.lo.x || q.x > n.hi.x || q.y < n.lo.y || q.y > n.hi.y
+        outside(n.lo, n.hi, q)
     }
 }
 
@@ -280,7 +281,7 @@ impl<'a> FastWindingField<'a> {
         stats: &mut QueryStats,
     ) -> Option<(u32, u32)> {
         let n = &self.nodes[i as usize];
-        if q.y < n.lo.y || q.y > n.hi.y || q.x < n.lo.x {
+        if misses_cut(n.lo, n.hi, q) {
             return None;
         }
         if q.x > n.hi.x && n.chords.0 < n.chords.1 {

@@ -13,7 +13,7 @@ use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
 use crate::{ContainError, Locate, Location};
-use curve::{SubCurve, control_box, refine};
+use curve::{SubCurve, control_box, misses_cut, refine};
 use sum::{ChainEnds, WindingSum};
 
 pub use curve::curve_winding_number;
@@ -178,8 +178,8 @@ impl WindingField {
     fn adaptive_winding_number(&self, q: Point, stats: &mut QueryStats) -> f64 {
         let mut sum = WindingSum::new(q);
         for (f, root) in self.frames.iter().zip(&self.roots) {
-            if q.y < f.lo.y || q.y > f.hi.y || q.x < f.lo.x {
-                // Above, below or right of the cut: no crossing, and q is not on the chord.
+            if misses_cut(f.lo, f.hi, q) {
+                // No crossing, and q is not on the chord.
                 stats.curve_evaluations += 1;
             } else if q.x > f.hi.x {
                 stats.curve_evaluations += 1;

@@ -9,7 +9,7 @@ use std::f64::consts::TAU;
 use rs_spline::{Point, RationalBezier};
 
 use super::QueryStats;
-use super::curve::MAX_DEPTH;
+use super::curve::{MAX_DEPTH, control_box, outside};
 
 /// Bezier clipping stops when the root is located to this fraction of the parameter range.
 const CLIP_CONVERGED: f64 = 1e-9;
@@ -80,15 +80,6 @@ impl Ray {
     }
 }
 
-fn bounds(p: &[Point]) -> (Point, Point) {
-    p.iter().fold((p[0], p[0]), |(lo, hi), x| {
-        (
-            Point::new(lo.x.min(x.x), lo.y.min(x.y)),
-            Point::new(hi.x.max(x.x), hi.y.max(x.y)),
-        )
-    })
-}
-
 fn closure_angle(q: Point, curve: &RationalBezier) -> f64 {
     let (u, v) = (curve.end_point() - q, curve.start_point() - q);
     u.cross(v).atan2(u.dot(v)) / TAU
@@ -102,9 +93,9 @@ pub(crate) fn ray_winding_number(
     stats: &mut QueryStats,
 ) -> f64 {
     stats.curve_evaluations += 1;
-    let (lo, hi) = bounds(curve.control_points());
+    let (lo, hi) = control_box(curve.control_points());
     let w_c = closure_angle(q, curve);
-    if q.x < lo.x || q.x > hi.x || q.y < lo.y || q.y > hi.y {
+    if outside(lo, hi, q) {
         return -w_c;
     }
     let ray = Ray::towards_nearest_side(q, lo, hi);
@@ -120,7 +111,7 @@ fn straight_to_machine_precision(p: &[Point]) -> bool {
     let (a, b) = (p[0], p[p.len() - 1]);
     let d = b - a;
     let len2 = d.dot(d);
-    let (lo, hi) = bounds(p);
+    let (lo, hi) = control_box(p);
     let size2 = (hi - lo).dot(hi - lo);
     let eps2 = (f64::EPSILON * f64::EPSILON) * size2.max(f64::MIN_POSITIVE);
     p.iter().all(|&x| {
@@ -139,7 +130,7 @@ fn binary_search(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) -> i
     while let Some((c, depth)) = stack.pop() {
         stats.curve_evaluations += 1;
         let p = c.control_points();
-        let (lo, hi) = bounds(p);
+        let (lo, hi) = control_box(p);
         if !ray.meets_box(lo, hi) {
             continue;
         }
