@@ -269,9 +269,9 @@ impl<'a> FastWindingField<'a> {
     }
 
     /// Adds to `sum` what node `i` holds for `q` when that takes no look inside it (nothing if
-    /// its box lies above, below or right of `q`; its chord's crossing if it is one chain left
-    /// of `q`), or runs the adaptive algorithm on a leaf; returns an inner node's children
-    /// otherwise.
+    /// its box lies above, below or right of `q`; its chains' chord crossings if it lies wholly
+    /// left of `q` and keeps them), or runs the adaptive algorithm on a leaf; returns an inner
+    /// node's children otherwise.
     #[inline(always)]
     fn visit(
         &self,

@@ -109,7 +109,8 @@ impl ChainEnds {
     #[inline(always)]
     fn add_to_group<const L: usize>(&self, sums: &mut [WindingSum]) {
         let n = sums.len().min(L);
-        // A lane out of reach keeps scale 0: its factors are NaN or 0, taken as 1.
+        // A lane out of reach keeps scale 0: its factors are 0 or NaN, unusable, and it takes
+        // the one-by-one sum below.
         let (mut qx, mut qy, mut scale, mut in_reach) =
             ([0.0f64; L], [0.0f64; L], [0.0f64; L], [false; L]);
         for (k, sum) in sums.iter().take(n).enumerate() {

@@ -255,6 +255,12 @@ impl Lookup {
         (c, r)
     }
 
+    /// The index in the coarse table of the block holding cell `(c, r)`.
+    #[inline(always)]
+    fn block(&self, c: usize, r: usize) -> usize {
+        (c >> BLOCK_SHIFT) * self.blocks + (r >> BLOCK_SHIFT)
+    }
+
     /// `floor(f)` clamped to `0..=last` (0 for NaN), as `GridFrame::col` computes it, in a
     /// few branch-free instructions: each `if` is one `max`/`min` instruction, and adding
     /// `2^52` rounds to an integer held in the low bits (no saturating conversion).
@@ -285,14 +291,14 @@ impl Tables<'_> {
     #[inline]
     fn coarse_state(&self, p: Point) -> usize {
         let (c, r) = self.lookup.cell(p);
-        usize::from(self.coarse[(c >> BLOCK_SHIFT) * self.lookup.blocks + (r >> BLOCK_SHIFT)])
+        usize::from(self.coarse[self.lookup.block(c, r)])
     }
 
     /// The fine entry of `p`'s cell, in a refined block.
     #[inline]
     fn fine_entry(&self, p: Point) -> u32 {
         let (c, r) = self.lookup.cell(p);
-        let block = (c >> BLOCK_SHIFT) * self.lookup.blocks + (r >> BLOCK_SHIFT);
+        let block = self.lookup.block(c, r);
         let within = (c & (BLOCK - 1)) * BLOCK + (r & (BLOCK - 1));
         self.fine[self.block_start[block] as usize + within]
     }
