@@ -391,11 +391,20 @@ impl CsvBlock {
         out.points.reserve(self.lines);
         out.fields.reserve(self.lines);
         let mut line_no = self.first_line + count_lines(&self.text[..self.data_from]);
+        let text = &self.text[..];
         let mut start = self.data_from;
-        let mut ends = memchr::memchr_iter(b'\n', &self.text[self.data_from..]);
-        while start < self.text.len() {
-            let end = ends.next().map_or(self.text.len(), |i| self.data_from + i);
-            let mut line = &self.text[start..end];
+        while start < text.len() {
+            let at = |i: usize| i as u32;
+            if let Some(r) = plain_record(text, start) {
+                out.points.push(r.point);
+                out.fields
+                    .push([at(start), at(r.x_end), at(r.x_end + 1), at(r.y_end)]);
+                start = r.next;
+                line_no += 1;
+                continue;
+            }
+            let end = memchr_newline(&text[start..]).map_or(text.len(), |i| start + i);
+            let mut line = &text[start..end];
             if line.len() > MAX_LINE_BYTES {
                 return Err(PointsError::Line {
                     line: line_no,
@@ -410,9 +419,12 @@ impl CsvBlock {
                 Line::Header => return Err(header_as_data(line, line_no)),
                 Line::Point { point, x, y } => {
                     out.points.push(point);
-                    let at = |i: usize| (start + i) as u32;
-                    out.fields
-                        .push([at(x.start), at(x.end), at(y.start), at(y.end)]);
+                    out.fields.push([
+                        at(start + x.start),
+                        at(start + x.end),
+                        at(start + y.start),
+                        at(start + y.end),
+                    ]);
                 }
             }
             start = end + 1;
@@ -422,9 +434,49 @@ impl CsvBlock {
     }
 
     /// The bytes of a field range of [`ParsedBlock::fields`].
+    #[inline]
     pub fn field(&self, start: u32, end: u32) -> &[u8] {
         &self.text[start as usize..end as usize]
     }
+}
+
+/// A record in the form nearly every points file has, `x,y` then `\n`, `\r\n` or the end of
+/// the text, with both numbers finite and no white space: read in one pass, without first
+/// finding the line's end. Anything else (`None`) goes to [`parse_line`], which reads such a
+/// record the same way.
+struct PlainRecord {
+    point: Point,
+    /// Where `x` ends (at the comma; `y` starts after it).
+    x_end: usize,
+    /// Where `y` ends.
+    y_end: usize,
+    /// Where the next line starts.
+    next: usize,
+}
+
+/// The [`PlainRecord`] starting at `text[start]`, if the line is one.
+fn plain_record(text: &[u8], start: usize) -> Option<PlainRecord> {
+    let number = |from: usize| {
+        let (v, used) = fast_float2::parse_partial::<f64, _>(text.get(from..)?).ok()?;
+        (used > 0 && v.is_finite()).then_some((v, from + used))
+    };
+    let (x, x_end) = number(start)?;
+    if text.get(x_end) != Some(&b',') {
+        return None;
+    }
+    let (y, y_end) = number(x_end + 1)?;
+    let next = match text.get(y_end) {
+        None => y_end,
+        Some(b'\n') => y_end + 1,
+        Some(b'\r') if text.get(y_end + 1) == Some(&b'\n') => y_end + 2,
+        Some(_) => return None,
+    };
+    (y_end - start <= MAX_LINE_BYTES).then_some(PlainRecord {
+        point: Point::new(x, y),
+        x_end,
+        y_end,
+        next,
+    })
 }
 
 /// The position of the first `\n`.
@@ -742,13 +794,15 @@ mod tests {
     /// for reading the next ones.
     #[test]
     fn blocks_agree_with_the_line_reader() {
-        let texts: [&[u8]; 7] = [
+        let texts: [&[u8]; 9] = [
             b"\xef\xbb\xbfx,y,kind\n# c\n\n0.5, 1, b\r\n2 3e-1\n-0,+5\n1e-300\t7",
             b"\n\n# only comments\n",
             b"1,2\nx,y\n",
             b"# c\nX , Y\n1,2\n3,4\n",
             b"1,2\n3,4\nbad\n5,6\n",
             b"1,2\n\xff\n",
+            b"1,2\r\n-3,4e1\r\n5,6\r",
+            b"1,2\r\n3,4,5\n6, 7\n8,9",
             b"",
         ];
         for text in texts {
@@ -830,6 +884,60 @@ mod tests {
             }
         }
         assert!(points > 5000, "{points}");
+    }
+
+    /// The one-pass record reader answers as the line parser does wherever it answers, and
+    /// finds where the next line starts.
+    #[test]
+    fn plain_records_agree_with_the_line_parser() {
+        let tokens = [
+            "1", "-2.5", "3e-7", "+.5", "x", ",", " ", "\t", "nan", "inf", "1e999", "", "0", ".",
+            "\r", "é", "1e", "-",
+        ];
+        let endings = ["\n", "\r\n", "", "\r", "\r\r\n", "\n1,2\n"];
+        let mut state: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut next = |k: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % k as u64) as usize
+        };
+        let (mut records, mut lines) = (0, 0);
+        for i in 0..40000 {
+            let n = next(4);
+            let mut line: String = (0..n).map(|_| tokens[next(tokens.len())]).collect();
+            if i % 4 != 0 {
+                let sep = [",", ",", ", ", " "][next(4)];
+                let x = (next(2000) as f64 - 1000.0) * 0.37;
+                line = format!("{x}{sep}{}{line}", tokens[next(4)]);
+            }
+            let text = format!("9,9\n{line}{}", endings[next(endings.len())]);
+            let text = text.as_bytes();
+            let Some(r) = plain_record(text, 4) else {
+                continue;
+            };
+            records += 1;
+            let end = memchr_newline(&text[4..]).map_or(text.len(), |k| 4 + k);
+            let mut whole = &text[4..end];
+            if whole.last() == Some(&b'\r') {
+                whole = &whole[..whole.len() - 1];
+            }
+            assert_eq!(r.next, (end + 1).min(text.len()), "{line:?}");
+            match parse_line(whole, 1) {
+                Ok(Line::Point { point, x, y }) => {
+                    lines += 1;
+                    assert_eq!(point, r.point, "{line:?}");
+                    assert_eq!(
+                        (x, y),
+                        (0..r.x_end - 4, r.x_end - 3..r.y_end - 4),
+                        "{line:?}"
+                    );
+                }
+                other => panic!("{line:?}: {other:?} but a plain record"),
+            }
+        }
+        assert!(records > 2000, "{records}");
+        assert_eq!(records, lines);
     }
 
     /// The fast parser reads every number as `str::parse` does.
