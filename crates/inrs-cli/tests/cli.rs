@@ -747,6 +747,68 @@ fn npy_points_and_results_match_csv() {
     }
 }
 
+/// Many chunks (a 6 MB CSV file of some 24 blocks, a `.npy` file of 5 ranges) come out in
+/// input order whatever the number of workers, every point echoed and located as the unit
+/// circle's analytic answer says (the points stay 1e-3 away from it); lines in other forms
+/// (spaces, `\r\n`, comments) are mixed in.
+#[test]
+fn many_chunks_come_out_in_input_order_on_any_number_of_workers() {
+    let n = 300_000;
+    let pts: Vec<(f64, f64)> = (0..n)
+        .map(|i| {
+            let t = i as f64 * 0.618_033_988_749_895;
+            let r = 0.3 + 1.2 * (t.fract() * 7.0).fract();
+            let r = if (r - 1.0).abs() < 1e-3 { r + 2e-3 } else { r };
+            let a = t * 0.001;
+            (r * a.cos(), r * a.sin())
+        })
+        .collect();
+    let mut text = String::from("x,y\n");
+    for (i, (x, y)) in pts.iter().enumerate() {
+        match i % 1000 {
+            7 => text.push_str(&format!("{x} , {y}\n")),
+            8 => text.push_str(&format!("{x},{y}\r\n# note\n")),
+            _ => text.push_str(&format!("{x},{y}\n")),
+        }
+    }
+    let csv = temp_file("ordered.csv", &text);
+    let npy = npy_points("ordered.npy", &pts);
+    let circle = fixture("inrs-paper/circle.json");
+    let truth: Vec<&str> = pts
+        .iter()
+        .map(|&(x, y)| {
+            if x.hypot(y) < 1.0 {
+                "inside"
+            } else {
+                "outside"
+            }
+        })
+        .collect();
+    for workers in ["1", "3", "8"] {
+        for input in [&csv, &npy] {
+            let out = Command::new(env!("CARGO_BIN_EXE_inrs"))
+                .args(["classify", "--domain", &circle, "--points", input])
+                .env("RAYON_NUM_THREADS", workers)
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let text = String::from_utf8(out.stdout).unwrap();
+            let rows: Vec<&str> = text.lines().skip(1).collect();
+            assert_eq!(rows.len(), n, "{workers} workers, {input}");
+            for (i, (row, (&(x, y), want))) in rows.iter().zip(pts.iter().zip(&truth)).enumerate() {
+                let f: Vec<&str> = row.split(',').collect();
+                let echoed = (f[0].parse::<f64>().unwrap(), f[1].parse::<f64>().unwrap());
+                assert_eq!(echoed, (x, y), "row {i}, {workers} workers, {input}");
+                assert_eq!(f[2], *want, "row {i}, {workers} workers, {input}");
+            }
+        }
+    }
+}
+
 /// A new empty directory `dir_name` beside the temporary files, holding a named pipe `name`:
 /// `(directory, pipe)`.
 #[cfg(unix)]

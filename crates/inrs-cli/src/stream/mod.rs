@@ -3,10 +3,12 @@
 //! Memory depends on the batch size, not on the number of points.
 
 use std::path::Path;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, Sender, SyncSender, sync_channel};
 use std::time::{Duration, Instant};
 
 use inrs::{CsvBlock, CsvBlocks, NpyType, ParsedBlock, Point, PointsError};
-use rayon::prelude::*;
 
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
@@ -193,10 +195,13 @@ fn input_error(path: &Path, e: PointsError) -> CliError {
 /// CSV rows (the coordinates echoed as written), or, when `output` ends in `.npy`, the values
 /// as a 1-D `.npy` array.
 ///
-/// Three stages overlap: a thread reads blocks, the calling thread parses, computes and
-/// formats groups of them on rayon's pool, and a thread writes the results in input order.
-/// The channels between them are bounded, so memory does not grow with the input; the byte
-/// buffers (blocks read, results formatted) go back to two bounded pools once used.
+/// Three stages overlap: a thread reads chunks and numbers them, workers (as many as rayon's
+/// pool has threads) each take the next chunk read, parse, compute and format it, and the
+/// calling thread writes the results in input order. No stage waits for a whole group of
+/// chunks: a worker that finishes takes the next chunk at once. Memory is bounded by
+/// permits: a chunk is read only when one of [`chunks_in_flight`] permits is free, and its
+/// permit comes back when its result is written. The byte buffers (chunks read, results
+/// formatted) go back to two bounded pools once used.
 pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     input: PointsInput,
     output: Option<&Path>,
@@ -208,111 +213,198 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     } else {
         Format::Csv
     };
-    let group = 2 * rayon::current_num_threads().max(1);
+    let workers = rayon::current_num_threads().max(1);
+    let in_flight = chunks_in_flight(workers);
     let path = Path::new(&input.path).to_path_buf();
     let total = input.total_bytes;
-    let read = std::sync::atomic::AtomicU64::new(0);
-    // Two pools, so that each converges to its buffers' size: the blocks read (a group being
-    // read, one computed) and the results formatted (one group computed, two queued, one
-    // being written).
-    let (texts, results) = (Spares::new(2 * group), Spares::new(4 * group));
-    let (texts, results) = (&texts, &results);
+    let read = AtomicU64::new(0);
+    let stop = AtomicBool::new(false);
+    let (texts, results) = (Spares::new(in_flight), Spares::new(in_flight));
+    let (chunks_tx, chunks_rx) = sync_channel::<Numbered<Chunk>>(in_flight);
+    let chunks_rx = Mutex::new(chunks_rx);
+    let (permits_tx, permits_rx) = sync_channel::<()>(in_flight);
+    for _ in 0..in_flight {
+        // The channel holds them all: this never blocks.
+        let _ = permits_tx.send(());
+    }
+    let stage = Stage {
+        format,
+        column,
+        kernel,
+        texts: &texts,
+        results: &results,
+    };
     std::thread::scope(|scope| {
-        let (chunks_tx, chunks) =
-            std::sync::mpsc::sync_channel::<Result<Chunk, PointsError>>(group);
-        let read = &read;
-        scope.spawn(move || read_chunks(input, &chunks_tx, read, texts));
-        let (groups_tx, groups) = std::sync::mpsc::sync_channel::<Written>(2);
-        let writer = scope.spawn(move || write_groups(output, format, column, groups, results));
+        let (read, stop, texts) = (&read, &stop, &texts);
+        let reader =
+            scope.spawn(move || read_chunks(input, &chunks_tx, &permits_rx, read, stop, texts));
+        let (done_tx, done_rx) = std::sync::mpsc::channel::<Numbered<Formatted>>();
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                let done_tx = done_tx.clone();
+                let (chunks_rx, stage) = (&chunks_rx, &stage);
+                scope.spawn(move || work(chunks_rx, &done_tx, stage))
+            })
+            .collect();
+        drop(done_tx);
         let mut progress = Progress::new(total);
-        let mut failure = None;
-        'outer: loop {
-            // A group: the next chunk (waiting for it), then as many more as are ready.
-            let mut next: Vec<Chunk> = Vec::with_capacity(group);
-            for received in chunks.iter() {
-                match received {
-                    Ok(c) => next.push(c),
-                    Err(e) => {
-                        failure = Some(e);
-                        break;
-                    }
-                }
-                if next.len() >= group {
-                    break;
-                }
-            }
-            if next.is_empty() {
-                break;
-            }
-            let parts: Vec<Result<(Vec<u8>, usize), PointsError>> = next
-                .par_iter()
-                .map(|c| match c {
-                    Chunk::Csv(b) => csv_block(b, format, column, kernel, results.take()),
-                    Chunk::Points(p) => Ok(npy_points(p, format, column, kernel, results.take())),
-                    #[cfg(unix)]
-                    Chunk::Range { file, first, n } => {
-                        NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
-                            let mut values = vec![column.initial; *n];
-                            let mut out = results.take();
-                            for (k, values) in values.chunks_mut(NPY_READ_POINTS).enumerate() {
-                                let at = first + k * NPY_READ_POINTS;
-                                let encoded = file.read_encoded(at, values.len(), bytes)?;
-                                kernel.compute_encoded(encoded, points, values);
-                                let point = |i| encoded.point(i);
-                                format_values(values, format, column, point, &mut out);
-                            }
-                            Ok((out, *n))
-                        })
-                    }
-                })
-                .collect();
-            for chunk in next {
-                if let Chunk::Csv(block) = chunk {
-                    texts.give(block.text);
-                }
-            }
-            let mut done = Vec::with_capacity(parts.len());
-            for part in parts {
-                match part {
-                    Ok(p) => done.push(p),
-                    Err(e) => {
-                        failure = Some(e);
-                        break;
-                    }
-                }
-            }
-            if groups_tx.send(Written::Group(done)).is_err() {
-                break 'outer; // the writer failed: its error is reported below
-            }
-            progress.update(read.load(std::sync::atomic::Ordering::Relaxed));
-            if failure.is_some() {
-                break;
-            }
-        }
-        if failure.is_none() {
-            // Everything read was written: the output may be committed.
-            let _ = groups_tx.send(Written::End);
-        }
-        drop(groups_tx);
-        drop(chunks);
+        let written = write_in_order(output, &stage, &done_rx, &permits_tx, || {
+            progress.update(read.load(Ordering::Relaxed));
+        });
         progress.finish();
-        let written = writer
-            .join()
-            .unwrap_or_else(|_| Err(CliError::Message("the writer thread failed".into())));
-        match failure {
-            // The input's error comes first: the writer only saw what came before it.
-            Some(e) => Err(input_error(&path, e)),
-            None => written,
+        // Whatever happened, the other stages stop: the reader at its next permit, the
+        // workers when the chunks run out or their results cannot be sent.
+        stop.store(true, Ordering::Relaxed);
+        drop((permits_tx, done_rx));
+        let workers_ok = handles.into_iter().all(|h| h.join().is_ok());
+        let sent = reader.join();
+        let (written, count) = match written {
+            Ok(w) => w,
+            Err(WriteFailure::Input(e)) => return Err(input_error(&path, e)),
+            Err(WriteFailure::Output(e)) => return Err(e),
+        };
+        match sent {
+            Ok(sent) if workers_ok && sent == count => written.finish(),
+            // A chunk never arrived: a stage failed; the output is dropped (removed).
+            _ => Err(CliError::Message("a streaming thread failed".into())),
         }
     })
 }
 
-/// What the writing stage receives: a group of formatted chunks (bytes and point count), or
-/// the end of a complete run. A channel closed without [`Written::End`] means the run failed:
-/// the output is dropped (a file output is removed).
-enum Written {
-    Group(Vec<(Vec<u8>, usize)>),
-    End,
+/// How many chunks may be read and not yet written: enough for every worker to have one in
+/// hand, one queued and two results waiting for an earlier one to be written.
+fn chunks_in_flight(workers: usize) -> usize {
+    4 * workers
+}
+
+/// A chunk's place in the input, and the chunk (or the error reading or computing it).
+type Numbered<C> = (usize, Result<C, PointsError>);
+
+/// A chunk's results, formatted, and how many points it held.
+type Formatted = (Vec<u8>, usize);
+
+/// What a worker needs to turn a chunk into formatted results.
+struct Stage<'a, T, K> {
+    format: Format,
+    column: &'a Column<T>,
+    kernel: &'a K,
+    /// Where CSV text buffers go back to once parsed.
+    texts: &'a Spares,
+    /// Where result buffers come from.
+    results: &'a Spares,
+}
+
+/// A worker: takes the next chunk read, computes and formats it, and sends the result,
+/// until the chunks run out or the writer has gone.
+fn work<T: Copy, K: PointsKernel<T>>(
+    chunks: &Mutex<Receiver<Numbered<Chunk>>>,
+    done: &Sender<Numbered<Formatted>>,
+    stage: &Stage<'_, T, K>,
+) {
+    loop {
+        // The lock is held only while waiting for the next chunk.
+        let next = match chunks.lock() {
+            Ok(rx) => rx.recv(),
+            Err(_) => return,
+        };
+        let Ok((seq, chunk)) = next else {
+            return; // the reader has finished and every chunk is taken
+        };
+        let result = chunk.and_then(|c| compute_chunk(c, stage));
+        if done.send((seq, result)).is_err() {
+            return;
+        }
+    }
+}
+
+/// Parses (CSV), computes and formats one chunk.
+fn compute_chunk<T: Copy, K: PointsKernel<T>>(
+    chunk: Chunk,
+    stage: &Stage<'_, T, K>,
+) -> Result<Formatted, PointsError> {
+    let Stage {
+        format,
+        column,
+        kernel,
+        texts,
+        results,
+    } = *stage;
+    match chunk {
+        Chunk::Csv(block) => {
+            let result = csv_block(&block, format, column, kernel, results.take());
+            texts.give(block.text);
+            result
+        }
+        Chunk::Points(p) => Ok(npy_points(&p, format, column, kernel, results.take())),
+        #[cfg(unix)]
+        Chunk::Range { file, first, n } => NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
+            let mut values = vec![column.initial; n];
+            let mut out = results.take();
+            for (k, values) in values.chunks_mut(NPY_READ_POINTS).enumerate() {
+                let at = first + k * NPY_READ_POINTS;
+                let encoded = file.read_encoded(at, values.len(), bytes)?;
+                kernel.compute_encoded(encoded, points, values);
+                let point = |i| encoded.point(i);
+                format_values(values, format, column, point, &mut out);
+            }
+            Ok((out, n))
+        }),
+    }
+}
+
+/// Why the writing stage stopped early: a chunk's input was bad (reported with the input's
+/// name), or the output failed.
+enum WriteFailure {
+    Input(PointsError),
+    Output(CliError),
+}
+
+impl From<CliError> for WriteFailure {
+    fn from(e: CliError) -> Self {
+        Self::Output(e)
+    }
+}
+
+/// The writing stage: opens the output, writes the header and the chunks' results in input
+/// order as they arrive (giving each chunk's permit back, and its buffer to the pool), and
+/// once every worker has finished, the final `.npy` header with the count. Returns the output
+/// (to be committed once the run is known complete) and the number of chunks written; stops
+/// at the first chunk, in input order, that failed.
+fn write_in_order<T, K>(
+    output: Option<&Path>,
+    stage: &Stage<'_, T, K>,
+    done: &Receiver<Numbered<Formatted>>,
+    permits: &SyncSender<()>,
+    mut on_write: impl FnMut(),
+) -> Result<(Output, usize), WriteFailure> {
+    let column = stage.column;
+    let mut out = Output::create(output)?;
+    if stage.format == Format::Npy {
+        out.write_bytes(&inrs::npy_header(column.npy.0, &[0]))?;
+    } else {
+        out.write_str(column.header)?;
+        out.write_str("\n")?;
+    }
+    // Results that came before an earlier chunk's: at most the chunks in flight.
+    let mut waiting = std::collections::BTreeMap::new();
+    let (mut next, mut points) = (0usize, 0usize);
+    for (seq, result) in done.iter() {
+        waiting.insert(seq, result);
+        while let Some(result) = waiting.remove(&next) {
+            let (bytes, n) = result.map_err(WriteFailure::Input)?;
+            out.write_bytes(&bytes)?;
+            stage.results.give(bytes);
+            points += n;
+            next += 1;
+            // The reader may have stopped already: a permit nobody takes is harmless.
+            let _ = permits.try_send(());
+        }
+        on_write();
+    }
+    if stage.format == Format::Npy {
+        out.rewrite_start(&inrs::npy_header(column.npy.0, &[points]))?;
+    }
+    Ok((out, next))
 }
 
 /// One unit of parallel work: a block of CSV lines, or points read from `.npy`.
@@ -328,16 +420,23 @@ enum Chunk {
     },
 }
 
-/// The reading stage: sends the input's chunks (or its first error) until the input ends or
-/// the receiver hangs up; counts the bytes read in `read`; reads CSV into buffers from
-/// `spares`.
+/// The reading stage: numbers and sends the input's chunks (or its first error, as the last
+/// chunk), each once a permit is free, until the input ends, `stop` is set or the permits
+/// are gone; counts the bytes read in `read`; reads CSV into buffers from `spares`. Returns
+/// how many chunks it sent.
 fn read_chunks(
     mut input: PointsInput,
-    tx: &std::sync::mpsc::SyncSender<Result<Chunk, PointsError>>,
-    read: &std::sync::atomic::AtomicU64,
+    tx: &SyncSender<Numbered<Chunk>>,
+    permits: &Receiver<()>,
+    read: &AtomicU64,
+    stop: &AtomicBool,
     spares: &Spares,
-) {
+) -> usize {
+    let mut sent = 0;
     loop {
+        if permits.recv().is_err() || stop.load(Ordering::Relaxed) {
+            return sent;
+        }
         let next = match &mut input.source {
             Source::Csv(blocks) => {
                 blocks.recycle(spares.take());
@@ -360,55 +459,20 @@ fn read_chunks(
                 }))
             }
         };
-        read.store(input.bytes_read(), std::sync::atomic::Ordering::Relaxed);
-        let stop = !matches!(next, Ok(Some(_)));
-        let message = match next {
-            Ok(Some(c)) => Ok(c),
-            Ok(None) => return,
-            Err(e) => Err(e),
+        read.store(input.bytes_read(), Ordering::Relaxed);
+        let (message, last) = match next {
+            Ok(Some(c)) => (Ok(c), false),
+            Ok(None) => return sent,
+            Err(e) => (Err(e), true),
         };
-        if tx.send(message).is_err() || stop {
-            return;
+        if tx.send((sent, message)).is_err() {
+            return sent;
+        }
+        sent += 1;
+        if last {
+            return sent;
         }
     }
-}
-
-/// The writing stage: opens the output, writes the header and every group in order (giving
-/// the buffers back to `spares`), and on [`Written::End`] the final `.npy` header with the
-/// count, then commits the output.
-fn write_groups<T>(
-    output: Option<&Path>,
-    format: Format,
-    column: &Column<T>,
-    groups: std::sync::mpsc::Receiver<Written>,
-    spares: &Spares,
-) -> Result<(), CliError> {
-    let mut out = Output::create(output)?;
-    if format == Format::Npy {
-        out.write_bytes(&inrs::npy_header(column.npy.0, &[0]))?;
-    } else {
-        out.write_str(column.header)?;
-        out.write_str("\n")?;
-    }
-    let mut written = 0usize;
-    loop {
-        match groups.recv() {
-            Ok(Written::Group(group)) => {
-                for (bytes, n) in group {
-                    out.write_bytes(&bytes)?;
-                    written += n;
-                    spares.give(bytes);
-                }
-            }
-            Ok(Written::End) => break,
-            // The run failed: its error is reported by the caller; the output is dropped.
-            Err(_) => return Ok(()),
-        }
-    }
-    if format == Format::Npy {
-        out.rewrite_start(&inrs::npy_header(column.npy.0, &[written]))?;
-    }
-    out.finish()
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -436,9 +500,14 @@ fn csv_block<T: Copy>(
         }
         bytes.reserve(block.text.len() + 16 * values.len());
         for (f, &v) in parsed.fields.iter().zip(&values) {
-            bytes.extend_from_slice(block.field(f[0], f[1]));
-            bytes.push(b',');
-            bytes.extend_from_slice(block.field(f[2], f[3]));
+            if block.field(f[1], f[2]) == b"," {
+                // `x,y` as written, in one copy.
+                bytes.extend_from_slice(block.field(f[0], f[3]));
+            } else {
+                bytes.extend_from_slice(block.field(f[0], f[1]));
+                bytes.push(b',');
+                bytes.extend_from_slice(block.field(f[2], f[3]));
+            }
             bytes.push(b',');
             (column.csv)(v, &mut bytes);
             bytes.push(b'\n');
