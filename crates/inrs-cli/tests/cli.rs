@@ -747,6 +747,48 @@ fn npy_points_and_results_match_csv() {
     }
 }
 
+/// Coordinates read from `.npy` are echoed in shortest round-trip form at every magnitude
+/// (plain, or with an exponent `e-7` / `e+16`), each reading back to the same `f64`.
+#[test]
+fn npy_coordinates_are_echoed_in_round_trip_form() {
+    let pts = [
+        (1e300, -5e-324),
+        (1.5e16, 0.1),
+        (-1e-7, 123_456.789),
+        (2.0_f64.sqrt(), -0.0),
+        (f64::MAX, f64::MIN_POSITIVE),
+    ];
+    let npy = npy_points("extremes.npy", &pts);
+    let text = inrs_ok(&[
+        "classify",
+        "--domain",
+        &fixture("inrs-paper/circle.json"),
+        "--points",
+        &npy,
+    ]);
+    let rows: Vec<&str> = text.lines().skip(1).collect();
+    assert_eq!(
+        rows.iter()
+            .map(|r| r.rsplitn(2, ',').nth(1).unwrap())
+            .collect::<Vec<_>>(),
+        [
+            "1e+300,-5e-324",
+            "1.5e+16,0.1",
+            "-1e-7,123456.789",
+            "1.4142135623730951,-0.0",
+            "1.7976931348623157e+308,2.2250738585072014e-308",
+        ]
+    );
+    for (row, (x, y)) in rows.iter().zip(pts) {
+        let f: Vec<&str> = row.split(',').collect();
+        let back = (f[0].parse::<f64>().unwrap(), f[1].parse::<f64>().unwrap());
+        assert_eq!(
+            (back.0.to_bits(), back.1.to_bits()),
+            (x.to_bits(), y.to_bits())
+        );
+    }
+}
+
 /// Many chunks (a 6 MB CSV file of some 24 blocks, a `.npy` file of 5 ranges) come out in
 /// input order whatever the number of workers, every point echoed and located as the unit
 /// circle's analytic answer says (the points stay 1e-3 away from it); lines in other forms

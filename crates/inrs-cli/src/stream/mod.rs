@@ -544,7 +544,7 @@ fn format_values<T: Copy>(
         return npy_values(values, column, bytes);
     }
     bytes.reserve(values.len() * 48);
-    let mut digits = ryu::Buffer::new();
+    let mut digits = zmij::Buffer::new();
     for (i, &v) in values.iter().enumerate() {
         let p = point(i);
         bytes.extend_from_slice(digits.format_finite(p.x).as_bytes());
@@ -562,7 +562,7 @@ fn npy_values<T: Copy>(values: &[T], column: &Column<T>, bytes: &mut Vec<u8>) {
     (column.npy.1)(values, bytes);
 }
 
-/// Appends `v` in shortest round-trip form (`ryu`); `nan`, `inf` and `-inf` for the
+/// Appends `v` in shortest round-trip form (`zmij`); `nan`, `inf` and `-inf` for the
 /// non-finite values.
 pub(crate) fn write_f64(v: f64, out: &mut Vec<u8>) {
     if v.is_nan() {
@@ -570,7 +570,7 @@ pub(crate) fn write_f64(v: f64, out: &mut Vec<u8>) {
     } else if v.is_infinite() {
         out.extend_from_slice(if v > 0.0 { b"inf" } else { b"-inf" });
     } else {
-        let mut digits = ryu::Buffer::new();
+        let mut digits = zmij::Buffer::new();
         out.extend_from_slice(digits.format_finite(v).as_bytes());
     }
 }
