@@ -769,7 +769,7 @@ fn npy_coordinates_are_echoed_in_round_trip_form() {
     let rows: Vec<&str> = text.lines().skip(1).collect();
     assert_eq!(
         rows.iter()
-            .map(|r| r.rsplitn(2, ',').nth(1).unwrap())
+            .map(|r| r.rsplit_once(',').unwrap().0)
             .collect::<Vec<_>>(),
         [
             "1e+300,-5e-324",
