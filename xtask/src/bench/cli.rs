@@ -56,8 +56,14 @@ fn write_points(dir: &Path, n: usize) -> Result<(PathBuf, PathBuf), String> {
     Ok((csv, npy))
 }
 
-/// One run: wall seconds and peak resident memory in MiB (from `/usr/bin/time`, if there).
-fn run(bin: &Path, domain: &Path, points: &Path, out: &Path) -> Result<(f64, Option<f64>), String> {
+/// One run: wall seconds, peak resident memory in MiB (from `/usr/bin/time`, if there) and
+/// the size of the output in bytes.
+fn run(
+    bin: &Path,
+    domain: &Path,
+    points: &Path,
+    out: &Path,
+) -> Result<(f64, Option<f64>, u64), String> {
     let _ = std::fs::remove_file(out);
     let time = Path::new("/usr/bin/time");
     let mut cmd = if time.exists() {
@@ -90,8 +96,40 @@ fn run(bin: &Path, domain: &Path, points: &Path, out: &Path) -> Result<(f64, Opt
         .last()
         .and_then(|l| l.trim().parse::<f64>().ok())
         .map(|kb| kb / 1024.0);
+    let size = std::fs::metadata(out).map_or(0, |m| m.len());
     let _ = std::fs::remove_file(out);
-    Ok((seconds, peak))
+    Ok((seconds, peak, size))
+}
+
+/// The input/output floor of a run, in seconds: reading `input` and writing `size` bytes to a
+/// new file `out` (the input's bytes again), in blocks of 256 KiB, in this process (no
+/// start-up): what the operating system's caches cost a tool that does nothing else.
+fn io_floor(input: &Path, out: &Path, size: u64) -> Result<f64, String> {
+    use std::io::Read;
+    let io = |e: std::io::Error| format!("{}: {e}", out.display());
+    let _ = std::fs::remove_file(out);
+    let start = Instant::now();
+    let mut r = std::fs::File::open(input).map_err(io)?;
+    let mut w = std::fs::File::create(out).map_err(io)?;
+    let mut block = vec![0u8; 1 << 18];
+    let mut last = 0;
+    loop {
+        let n = r.read(&mut block).map_err(io)?;
+        if n == 0 {
+            break;
+        }
+        last = n;
+    }
+    let mut left = size;
+    while left > 0 {
+        let n = left.min(last.max(1) as u64) as usize;
+        w.write_all(&block[..n]).map_err(io)?;
+        left -= n as u64;
+    }
+    drop(w);
+    let seconds = start.elapsed().as_secs_f64();
+    let _ = std::fs::remove_file(out);
+    Ok(seconds)
 }
 
 /// The CLI table: for each size, the four combinations of input and output timed in rounds
@@ -122,17 +160,20 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
          (loading the domain, building the index), million points per second, and peak \
          resident memory (`/usr/bin/time`). The four combinations of a size are timed in \
          rounds (one run of each per round: {} rounds at 10^6 points and fewer, {} above); \
-         medians, and under *best* the fastest round.\n",
+         medians, and under *best* the fastest round. *I/O floor*: reading the input file and \
+         writing a file of the output's size, in blocks of 256 KiB, in the same rounds (no \
+         process start-up): what the operating system's file caches alone cost; *x floor* is \
+         the tool's median over the floor's.\n",
         rounds(1),
         rounds(usize::MAX)
     );
     let _ = writeln!(
         md,
-        "| points in | results out | N | seconds | Mpts/s | best seconds | best Mpts/s | peak MiB |"
+        "| points in | results out | N | seconds | Mpts/s | best seconds | best Mpts/s | I/O floor s | x floor | peak MiB |"
     );
     let _ = writeln!(
         md,
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     );
     for &n in sizes {
         let (csv, npy) = write_points(&dir, n)?;
@@ -143,14 +184,23 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
             (&npy, ".npy", "npy", ".npy"),
         ];
         let mut runs = vec![Vec::new(); cases.len()];
+        let mut floors = vec![Vec::new(); cases.len()];
         for _ in 0..rounds(n) {
-            for ((input, _, ext, _), runs) in cases.iter().zip(runs.iter_mut()) {
+            for (((input, _, ext, _), runs), floors) in
+                cases.iter().zip(runs.iter_mut()).zip(floors.iter_mut())
+            {
                 let out = dir.join(format!("out.{ext}"));
-                runs.push(run(&bin, &domain, input, &out)?);
+                let r = run(&bin, &domain, input, &out)?;
+                floors.push(io_floor(input, &out, r.2)?);
+                runs.push((r.0, r.1));
             }
         }
-        for ((_, kind, _, out_kind), mut runs) in cases.into_iter().zip(runs) {
+        for (((_, kind, _, out_kind), mut runs), mut floors) in
+            cases.into_iter().zip(runs).zip(floors)
+        {
             runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+            floors.sort_by(f64::total_cmp);
+            let floor = floors[floors.len() / 2];
             let (t, peak) = runs[runs.len() / 2];
             let best = runs[0].0;
             let peak = runs
@@ -159,9 +209,10 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
                 .fold(peak, |m, p| Some(m.map_or(p, |m: f64| m.max(p))));
             let _ = writeln!(
                 md,
-                "| {kind} | {out_kind} | {n} | {t:.3} | {:.1} | {best:.3} | {:.1} | {} |",
+                "| {kind} | {out_kind} | {n} | {t:.3} | {:.1} | {best:.3} | {:.1} | {floor:.3} | {:.1} | {} |",
                 n as f64 / t / 1e6,
                 n as f64 / best / 1e6,
+                t / floor,
                 peak.map_or("-".into(), |m| format!("{m:.0}"))
             );
         }
