@@ -195,8 +195,8 @@ fn input_error(path: &Path, e: PointsError) -> CliError {
 /// CSV rows (the coordinates echoed as written), or, when `output` ends in `.npy`, the values
 /// as a 1-D `.npy` array.
 ///
-/// Three stages overlap: a thread reads chunks and numbers them, workers (as many as rayon's
-/// pool has threads) each take the next chunk read, parse, compute and format it, and the
+/// Three stages overlap: a thread reads chunks and numbers them, workers ([`worker_count`])
+/// each take the next chunk read, parse, compute and format it, and the
 /// calling thread writes the results in input order. No stage waits for a whole group of
 /// chunks: a worker that finishes takes the next chunk at once. Memory is bounded by
 /// permits: a chunk is read only when one of [`chunks_in_flight`] permits is free, and its
@@ -213,7 +213,7 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
     } else {
         Format::Csv
     };
-    let workers = rayon::current_num_threads().max(1);
+    let workers = worker_count();
     let in_flight = chunks_in_flight(workers);
     let path = Path::new(&input.path).to_path_buf();
     let total = input.total_bytes;
@@ -269,6 +269,23 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, K: PointsKernel<T>>(
             _ => Err(CliError::Message("a streaming thread failed".into())),
         }
     })
+}
+
+/// How many workers a stream runs: `RAYON_NUM_THREADS` if it is set to a positive number (the
+/// variable the library's parallel parts read), else one per core. (Asking rayon's pool would
+/// start it: two more threads that spin for nothing beside the workers.)
+fn worker_count() -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    workers_for(std::env::var("RAYON_NUM_THREADS").ok().as_deref(), cores)
+}
+
+/// [`worker_count`] for the variable's value `setting` on a machine of `cores` cores.
+fn workers_for(setting: Option<&str>, cores: usize) -> usize {
+    setting
+        .and_then(|s| s.trim().parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or(cores)
+        .max(1)
 }
 
 /// How many chunks may be read and not yet written: enough for every worker to have one in
@@ -692,6 +709,16 @@ mod tests {
         );
         long.finish();
         assert!(long.bar.is_none());
+    }
+
+    #[test]
+    fn workers_follow_rayon_num_threads_else_the_cores() {
+        assert_eq!(workers_for(Some("3"), 2), 3);
+        assert_eq!(workers_for(Some(" 8 "), 2), 8);
+        for ignored in [Some("0"), Some("many"), Some("-1"), Some(""), None] {
+            assert_eq!(workers_for(ignored, 2), 2, "{ignored:?}");
+        }
+        assert_eq!(workers_for(None, 0), 1);
     }
 
     #[test]
