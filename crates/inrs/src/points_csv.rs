@@ -6,8 +6,8 @@ use std::path::Path;
 use rs_spline::Point;
 use thiserror::Error;
 
-/// The longest line a points file may have, in bytes (a file without line breaks is an error,
-/// not an unbounded allocation).
+/// The longest line a points file may have, in bytes, without its end (`\n` or `\r\n`): a
+/// file without line breaks is an error, not an unbounded allocation.
 pub const MAX_LINE_BYTES: usize = 64 * 1024;
 
 /// A parsed point with the text it was written as (echoed unchanged in outputs).
@@ -96,7 +96,8 @@ impl<R: BufRead> PointReader<R> {
         }
     }
 
-    /// Reads the next line into `buf` (without its end), at most [`MAX_LINE_BYTES`] bytes.
+    /// Reads the next line into `buf` (without its end, `\n` or `\r\n`), at most
+    /// [`MAX_LINE_BYTES`] bytes.
     /// `Ok(false)` at the end of the input.
     fn next_line(&mut self) -> Result<bool, PointsError> {
         self.buf.clear();
@@ -113,14 +114,13 @@ impl<R: BufRead> PointReader<R> {
         self.line += 1;
         if self.buf.last() == Some(&b'\n') {
             self.buf.pop();
-        } else if n as u64 == limit {
-            return Err(PointsError::Line {
-                line: self.line,
-                message: format!("line longer than {MAX_LINE_BYTES} bytes"),
-            });
         }
         if self.buf.last() == Some(&b'\r') {
             self.buf.pop();
+        }
+        // Cut at the limit, or whole but longer (the limit leaves room for "\r\n").
+        if self.buf.len() > MAX_LINE_BYTES {
+            return Err(too_long(self.line));
         }
         Ok(true)
     }
@@ -405,14 +405,11 @@ impl CsvBlock {
             }
             let end = memchr_newline(&text[start..]).map_or(text.len(), |i| start + i);
             let mut line = &text[start..end];
-            if line.len() > MAX_LINE_BYTES {
-                return Err(PointsError::Line {
-                    line: line_no,
-                    message: format!("line longer than {MAX_LINE_BYTES} bytes"),
-                });
-            }
             if line.last() == Some(&b'\r') {
                 line = &line[..line.len() - 1];
+            }
+            if line.len() > MAX_LINE_BYTES {
+                return Err(too_long(line_no));
             }
             match parse_line(line, line_no)? {
                 Line::Blank => {}
@@ -471,12 +468,21 @@ fn plain_record(text: &[u8], start: usize) -> Option<PlainRecord> {
         Some(b'\r') if text.get(y_end + 1) == Some(&b'\n') => y_end + 2,
         Some(_) => return None,
     };
+    // The line without its end is `x,y`.
     (y_end - start <= MAX_LINE_BYTES).then_some(PlainRecord {
         point: Point::new(x, y),
         x_end,
         y_end,
         next,
     })
+}
+
+/// The error for line `line`, longer than [`MAX_LINE_BYTES`] without its end.
+fn too_long(line: usize) -> PointsError {
+    PointsError::Line {
+        line,
+        message: format!("line longer than {MAX_LINE_BYTES} bytes"),
+    }
 }
 
 /// The position of the first `\n`.
@@ -579,12 +585,7 @@ impl<R: std::io::Read> CsvBlocks<R> {
         } else {
             match memchr::memrchr(b'\n', &self.pending) {
                 Some(i) => i + 1,
-                None => {
-                    return Err(PointsError::Line {
-                        line: self.lines + 1,
-                        message: format!("line longer than {MAX_LINE_BYTES} bytes"),
-                    });
-                }
+                None => return Err(too_long(self.lines + 1)),
             }
         };
         // The bytes after the cut move to the spare buffer, which becomes `pending`.
@@ -622,8 +623,8 @@ impl<R: std::io::Read> CsvBlocks<R> {
             if self.pending.len() >= self.block_bytes && last_newline.is_some() {
                 break;
             }
-            if tail > MAX_LINE_BYTES {
-                break; // a line too long: reported by next_block
+            if tail > MAX_LINE_BYTES + 1 {
+                break; // a line too long even without a '\r' at its end: next_block says so
             }
             let want = (self.block_bytes.saturating_sub(self.pending.len())).max(1 << 16);
             // Room for a whole block and one more read at once: every block then fits a
@@ -842,6 +843,43 @@ mod tests {
                     (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{text:?}"),
                     _ => panic!("{text:?} in blocks of {block_bytes}: {lines:?} vs {result:?}"),
                 }
+            }
+        }
+    }
+
+    /// Lines about [`MAX_LINE_BYTES`] long (one long number), ended by `\n`, `\r\n` or the
+    /// end: the block reader accepts and refuses the same ones as the line reader.
+    #[test]
+    fn lines_near_the_length_limit_are_measured_alike() {
+        for len in [MAX_LINE_BYTES - 1, MAX_LINE_BYTES, MAX_LINE_BYTES + 1] {
+            for ending in ["\n", "\r\n", ""] {
+                // "1,0.000...01", len bytes long without its end.
+                let line = format!("1,0.{}1", "0".repeat(len - 5));
+                let text = format!("x,y\n2,3\n{line}{ending}");
+                let lines: Result<Vec<Point>, String> = PointReader::new(text.as_bytes())
+                    .map(|r| r.map(|r| r.point).map_err(|e| e.to_string()))
+                    .collect();
+                for block_bytes in [1024, 1 << 20] {
+                    let mut blocks = CsvBlocks::new(text.as_bytes(), "t", block_bytes);
+                    let mut parsed = ParsedBlock::default();
+                    let mut got = Vec::new();
+                    let blocks_result: Result<Vec<Point>, String> = loop {
+                        match blocks.next_block() {
+                            Ok(Some(b)) => match b.parse_into(&mut parsed) {
+                                Ok(()) => got.extend_from_slice(&parsed.points),
+                                Err(e) => break Err(e.to_string()),
+                            },
+                            Ok(None) => break Ok(got),
+                            Err(e) => break Err(e.to_string()),
+                        }
+                    };
+                    assert_eq!(
+                        lines, blocks_result,
+                        "{len} bytes, {ending:?}, {block_bytes}"
+                    );
+                }
+                let accepted = lines.is_ok();
+                assert_eq!(accepted, len <= MAX_LINE_BYTES, "{len} bytes, {ending:?}");
             }
         }
     }
