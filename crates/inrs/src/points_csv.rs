@@ -851,35 +851,41 @@ mod tests {
     /// end: the block reader accepts and refuses the same ones as the line reader.
     #[test]
     fn lines_near_the_length_limit_are_measured_alike() {
-        for len in [MAX_LINE_BYTES - 1, MAX_LINE_BYTES, MAX_LINE_BYTES + 1] {
-            for ending in ["\n", "\r\n", ""] {
-                // "1,0.000...01", len bytes long without its end.
-                let line = format!("1,0.{}1", "0".repeat(len - 5));
-                let text = format!("x,y\n2,3\n{line}{ending}");
-                let lines: Result<Vec<Point>, String> = PointReader::new(text.as_bytes())
-                    .map(|r| r.map(|r| r.point).map_err(|e| e.to_string()))
-                    .collect();
-                for block_bytes in [1024, 1 << 20] {
-                    let mut blocks = CsvBlocks::new(text.as_bytes(), "t", block_bytes);
-                    let mut parsed = ParsedBlock::default();
-                    let mut got = Vec::new();
-                    let blocks_result: Result<Vec<Point>, String> = loop {
-                        match blocks.next_block() {
-                            Ok(Some(b)) => match b.parse_into(&mut parsed) {
-                                Ok(()) => got.extend_from_slice(&parsed.points),
+        // Short lines before the long one: a few, or 65 535 bytes of them, so that the block
+        // cutter's second read of 64 KiB ends between a long line's '\r' and its '\n'.
+        let aligned = format!("x,y\n{}2,3333\n", "2,3\n".repeat(16381));
+        assert_eq!(aligned.len(), 65535);
+        for prefix in ["x,y\n2,3\n", &aligned] {
+            for len in [MAX_LINE_BYTES - 1, MAX_LINE_BYTES, MAX_LINE_BYTES + 1] {
+                for ending in ["\n", "\r\n", ""] {
+                    // "1,0.000...01", len bytes long without its end.
+                    let line = format!("1,0.{}1", "0".repeat(len - 5));
+                    let text = format!("{prefix}{line}{ending}");
+                    let lines: Result<Vec<Point>, String> = PointReader::new(text.as_bytes())
+                        .map(|r| r.map(|r| r.point).map_err(|e| e.to_string()))
+                        .collect();
+                    for block_bytes in [1024, 1 << 20] {
+                        let mut blocks = CsvBlocks::new(text.as_bytes(), "t", block_bytes);
+                        let mut parsed = ParsedBlock::default();
+                        let mut got = Vec::new();
+                        let blocks_result: Result<Vec<Point>, String> = loop {
+                            match blocks.next_block() {
+                                Ok(Some(b)) => match b.parse_into(&mut parsed) {
+                                    Ok(()) => got.extend_from_slice(&parsed.points),
+                                    Err(e) => break Err(e.to_string()),
+                                },
+                                Ok(None) => break Ok(got),
                                 Err(e) => break Err(e.to_string()),
-                            },
-                            Ok(None) => break Ok(got),
-                            Err(e) => break Err(e.to_string()),
-                        }
-                    };
-                    assert_eq!(
-                        lines, blocks_result,
-                        "{len} bytes, {ending:?}, {block_bytes}"
-                    );
+                            }
+                        };
+                        assert_eq!(
+                            lines, blocks_result,
+                            "{len} bytes, {ending:?}, {block_bytes}"
+                        );
+                    }
+                    let accepted = lines.is_ok();
+                    assert_eq!(accepted, len <= MAX_LINE_BYTES, "{len} bytes, {ending:?}");
                 }
-                let accepted = lines.is_ok();
-                assert_eq!(accepted, len <= MAX_LINE_BYTES, "{len} bytes, {ending:?}");
             }
         }
     }
