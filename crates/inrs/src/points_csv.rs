@@ -878,9 +878,16 @@ mod tests {
                                 Err(e) => break Err(e.to_string()),
                             }
                         };
-                        assert_eq!(
-                            lines, blocks_result,
-                            "{len} bytes, {ending:?}, {block_bytes}"
+                        // (Summaries in the message: the points number 16 000.)
+                        let summary = |r: &Result<Vec<Point>, String>| match r {
+                            Ok(v) => format!("{} points, the last {:?}", v.len(), v.last()),
+                            Err(e) => e.clone(),
+                        };
+                        assert!(
+                            lines == blocks_result,
+                            "{len} bytes, {ending:?}, blocks of {block_bytes}: {} vs {}",
+                            summary(&lines),
+                            summary(&blocks_result)
                         );
                     }
                     let accepted = lines.is_ok();
