@@ -43,14 +43,26 @@ pub(crate) struct ClassifyArgs {
 
 /// The `location` column: CSV labels, `.npy` int8 codes (0 outside, 1 inside, 2 boundary,
 /// as the Python package returns them).
-const LOCATION: Column<Location> = Column {
-    header: "x,y,location",
-    initial: Location::Outside,
-    csv: |l, out| out.extend_from_slice(l.as_str().as_bytes()),
-    npy: (NpyType::I8, |ls, out| {
-        out.extend(ls.iter().map(|l| l.code() as u8))
-    }),
-};
+pub(crate) struct Locations;
+
+impl Column<Location> for Locations {
+    fn header(&self) -> &'static str {
+        "x,y,location"
+    }
+    fn initial(&self) -> Location {
+        Location::Outside
+    }
+    #[inline]
+    fn csv(&self, value: Location, out: &mut Vec<u8>) {
+        out.extend_from_slice(value.as_str().as_bytes());
+    }
+    fn npy_type(&self) -> NpyType {
+        NpyType::I8
+    }
+    fn npy(&self, values: &[Location], out: &mut Vec<u8>) {
+        out.extend(values.iter().map(|l| l.code() as u8));
+    }
+}
 
 impl ClassifyArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
@@ -64,7 +76,7 @@ impl ClassifyArgs {
                 .map_err(|e| self.domain.error(e))?
                 .with_fill_rule(self.fill_rule.into());
             let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &LOCATION, &ByIndex(fast));
+            return stream_points(input, output, &Locations, &ByIndex(fast));
         }
         let options = ContainOptions::DEFAULT
             .with_relative_tolerance(self.tol)
@@ -74,7 +86,7 @@ impl ClassifyArgs {
         // The fast method takes the grid for inputs large enough to pay for it (built once,
         // kept by the classifier), inRS2 for small ones: the answers are the same.
         if method == Method::Fast && input.estimated_points() >= FAST_METHOD_MIN_POINTS {
-            return stream_points(input, output, &LOCATION, &ByIndex(classifier.locator()));
+            return stream_points(input, output, &Locations, &ByIndex(classifier.locator()));
         }
         let method = if method == Method::Fast {
             Method::InRS2
@@ -84,7 +96,7 @@ impl ClassifyArgs {
         stream_points(
             input,
             output,
-            &LOCATION,
+            &Locations,
             &|pts: &[Point], out: &mut [Location]| {
                 out.copy_from_slice(&classifier.classify(pts, method));
             },

@@ -32,14 +32,26 @@ pub(crate) struct WindingArgs {
 }
 
 /// The `winding` column: shortest round-trip decimal in CSV, float64 in `.npy`.
-const WINDING: Column<f64> = Column {
-    header: "x,y,winding",
-    initial: 0.0,
-    csv: write_f64,
-    npy: (NpyType::F64, |vs, out| {
-        out.extend(vs.iter().flat_map(|v| v.to_le_bytes()))
-    }),
-};
+pub(crate) struct Windings;
+
+impl Column<f64> for Windings {
+    fn header(&self) -> &'static str {
+        "x,y,winding"
+    }
+    fn initial(&self) -> f64 {
+        0.0
+    }
+    #[inline]
+    fn csv(&self, value: f64, out: &mut Vec<u8>) {
+        write_f64(value, out);
+    }
+    fn npy_type(&self) -> NpyType {
+        NpyType::F64
+    }
+    fn npy(&self, values: &[f64], out: &mut Vec<u8>) {
+        out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+    }
+}
 
 impl WindingArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
@@ -51,12 +63,12 @@ impl WindingArgs {
         let output = self.output.as_deref();
         if algorithm == WindingAlgorithm::Adaptive {
             let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &WINDING, &ByIndex(fast));
+            return stream_points(input, output, &Windings, &ByIndex(fast));
         }
         stream_points(
             input,
             output,
-            &WINDING,
+            &Windings,
             &|pts: &[Point], out: &mut [f64]| {
                 let mut stats = QueryStats::default();
                 for (o, &q) in out.iter_mut().zip(pts) {
