@@ -790,6 +790,45 @@ mod tests {
         assert!(e.contains("longer than"), "{e}");
     }
 
+    /// Every record of `text` read through [`CsvBlocks`] of `block_bytes`, or the first error;
+    /// with `recycle`, each block's text is given back (with stale bytes in it) for reading
+    /// the next ones.
+    fn read_in_blocks(
+        text: &[u8],
+        block_bytes: usize,
+        recycle: bool,
+    ) -> Result<Vec<PointRecord>, PointsError> {
+        let mut blocks = CsvBlocks::new(text, "t", block_bytes);
+        let mut parsed = ParsedBlock::default();
+        let mut got = Vec::new();
+        while let Some(b) = blocks.next_block()? {
+            b.parse_into(&mut parsed)?;
+            for (p, f) in parsed.points.iter().zip(&parsed.fields) {
+                got.push(PointRecord {
+                    point: *p,
+                    x_text: String::from_utf8_lossy(b.field(f[0], f[1])).into(),
+                    y_text: String::from_utf8_lossy(b.field(f[2], f[3])).into(),
+                });
+            }
+            if recycle {
+                let mut stale = b.text;
+                stale.extend_from_slice(b"9,9\nbad\n");
+                blocks.recycle(stale);
+            }
+        }
+        Ok(got)
+    }
+
+    /// A xorshift generator of indices below `k`, for random lines from `seed`.
+    fn xorshift(mut state: u64) -> impl FnMut(usize) -> usize {
+        move |k| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % k as u64) as usize
+        }
+    }
+
     /// The block reader gives what the line reader gives, whatever the block size, and the
     /// same first error; also when each block's text is given back (with stale bytes in it)
     /// for reading the next ones.
@@ -812,32 +851,7 @@ mod tests {
                 .into_iter()
                 .flat_map(|b| [(b, false), (b, true)])
             {
-                let mut blocks = CsvBlocks::new(text, "t", block_bytes);
-                let mut parsed = ParsedBlock::default();
-                let mut got = Vec::new();
-                let result = loop {
-                    match blocks.next_block() {
-                        Ok(Some(b)) => {
-                            if let Err(e) = b.parse_into(&mut parsed) {
-                                break Err(e);
-                            }
-                            for (p, f) in parsed.points.iter().zip(&parsed.fields) {
-                                got.push(PointRecord {
-                                    point: *p,
-                                    x_text: String::from_utf8_lossy(b.field(f[0], f[1])).into(),
-                                    y_text: String::from_utf8_lossy(b.field(f[2], f[3])).into(),
-                                });
-                            }
-                            if recycle {
-                                let mut stale = b.text;
-                                stale.extend_from_slice(b"9,9\nbad\n");
-                                blocks.recycle(stale);
-                            }
-                        }
-                        Ok(None) => break Ok(got),
-                        Err(e) => break Err(e),
-                    }
-                };
+                let result = read_in_blocks(text, block_bytes, recycle);
                 match (&lines, &result) {
                     (Ok(a), Ok(b)) => assert_eq!(a, b, "{text:?} in blocks of {block_bytes}"),
                     (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{text:?}"),
@@ -865,19 +879,10 @@ mod tests {
                         .map(|r| r.map(|r| r.point).map_err(|e| e.to_string()))
                         .collect();
                     for block_bytes in [1024, 1 << 20] {
-                        let mut blocks = CsvBlocks::new(text.as_bytes(), "t", block_bytes);
-                        let mut parsed = ParsedBlock::default();
-                        let mut got = Vec::new();
-                        let blocks_result: Result<Vec<Point>, String> = loop {
-                            match blocks.next_block() {
-                                Ok(Some(b)) => match b.parse_into(&mut parsed) {
-                                    Ok(()) => got.extend_from_slice(&parsed.points),
-                                    Err(e) => break Err(e.to_string()),
-                                },
-                                Ok(None) => break Ok(got),
-                                Err(e) => break Err(e.to_string()),
-                            }
-                        };
+                        let blocks_result: Result<Vec<Point>, String> =
+                            read_in_blocks(text.as_bytes(), block_bytes, false)
+                                .map(|v| v.iter().map(|r| r.point).collect())
+                                .map_err(|e| e.to_string());
                         // (Summaries in the message: the points number 16 000.)
                         let summary = |r: &Result<Vec<Point>, String>| match r {
                             Ok(v) => format!("{} points, the last {:?}", v.len(), v.last()),
@@ -912,13 +917,7 @@ mod tests {
             "1", "-2.5", "3e-7", "+.5", "x", "Y", "#", ",", ",", " ", "  ", "\t", "\u{b}", "\u{c}",
             "nan", "inf", "1e999", "abc", "", "0", "1_0", "\u{a0}", "é", ".",
         ];
-        let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-        let mut next = |k: usize| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % k as u64) as usize
-        };
+        let mut next = xorshift(0x9E37_79B9_7F4A_7C15);
         let mut points = 0;
         for i in 0..40000 {
             let n = next(7);
@@ -946,13 +945,7 @@ mod tests {
             "\r", "é", "1e", "-",
         ];
         let endings = ["\n", "\r\n", "", "\r", "\r\r\n", "\n1,2\n"];
-        let mut state: u64 = 0x2545_F491_4F6C_DD1D;
-        let mut next = |k: usize| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % k as u64) as usize
-        };
+        let mut next = xorshift(0x2545_F491_4F6C_DD1D);
         let (mut records, mut lines) = (0, 0);
         for i in 0..40000 {
             let n = next(4);
