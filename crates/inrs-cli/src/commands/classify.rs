@@ -43,7 +43,7 @@ pub(crate) struct ClassifyArgs {
 
 /// The `location` column: CSV labels, `.npy` int8 codes (0 outside, 1 inside, 2 boundary,
 /// as the Python package returns them).
-pub(crate) struct Locations;
+struct Locations;
 
 impl Column<Location> for Locations {
     fn header(&self) -> &'static str {

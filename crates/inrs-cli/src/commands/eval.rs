@@ -10,11 +10,11 @@ use inrs::trispline::load_spline;
 use crate::cli::error::CliError;
 use crate::stream::{Column, PointsInput, stream_points, write_f64};
 
-/// The value column, NaN outside the domain.
-pub(crate) struct Values;
-
-/// Value and gradient columns.
-pub(crate) struct Derivatives;
+/// The spline's columns: the value, and with `gradient` also `dx,dy` (CSV only: `.npy` holds
+/// the value); NaN outside the domain.
+struct Jets {
+    gradient: bool,
+}
 
 /// A jet with NaN everywhere: the value of a point outside the domain.
 const OUTSIDE: Jet = Jet {
@@ -23,35 +23,13 @@ const OUTSIDE: Jet = Jet {
     hessian: [f64::NAN; 3],
 };
 
-/// The values of a run of jets as float64 `.npy` bytes (both columns write the value only).
-fn npy_values(jets: &[Option<Jet>], out: &mut Vec<u8>) {
-    out.extend(
-        jets.iter()
-            .flat_map(|j| j.unwrap_or(OUTSIDE).value.to_le_bytes()),
-    );
-}
-
-impl Column<Option<Jet>> for Values {
+impl Column<Option<Jet>> for Jets {
     fn header(&self) -> &'static str {
-        "x,y,value"
-    }
-    fn initial(&self) -> Option<Jet> {
-        None
-    }
-    fn csv(&self, value: Option<Jet>, out: &mut Vec<u8>) {
-        write_f64(value.unwrap_or(OUTSIDE).value, out);
-    }
-    fn npy_type(&self) -> NpyType {
-        NpyType::F64
-    }
-    fn npy(&self, values: &[Option<Jet>], out: &mut Vec<u8>) {
-        npy_values(values, out);
-    }
-}
-
-impl Column<Option<Jet>> for Derivatives {
-    fn header(&self) -> &'static str {
-        "x,y,value,dx,dy"
+        if self.gradient {
+            "x,y,value,dx,dy"
+        } else {
+            "x,y,value"
+        }
     }
     fn initial(&self) -> Option<Jet> {
         None
@@ -59,16 +37,22 @@ impl Column<Option<Jet>> for Derivatives {
     fn csv(&self, value: Option<Jet>, out: &mut Vec<u8>) {
         let j = value.unwrap_or(OUTSIDE);
         write_f64(j.value, out);
-        out.push(b',');
-        write_f64(j.gradient[0], out);
-        out.push(b',');
-        write_f64(j.gradient[1], out);
+        if self.gradient {
+            out.push(b',');
+            write_f64(j.gradient[0], out);
+            out.push(b',');
+            write_f64(j.gradient[1], out);
+        }
     }
     fn npy_type(&self) -> NpyType {
         NpyType::F64
     }
     fn npy(&self, values: &[Option<Jet>], out: &mut Vec<u8>) {
-        npy_values(values, out);
+        out.extend(
+            values
+                .iter()
+                .flat_map(|j| j.unwrap_or(OUTSIDE).value.to_le_bytes()),
+        );
     }
 }
 
@@ -100,25 +84,27 @@ impl EvalArgs {
             .evaluator()
             .map_err(|e| CliError::Message(format!("{}: {e}", self.spline.display())))?;
         let input = PointsInput::open(&self.points)?;
+        let order = if self.derivatives {
+            Order::Gradient
+        } else {
+            Order::Value
+        };
         let outside = std::sync::atomic::AtomicUsize::new(0);
-        let output = self.output.as_deref();
-        // The evaluator at every point, counting those outside the domain.
-        let at_points = |order: Order| {
-            let (eval, outside) = (&eval, &outside);
-            move |pts: &[inrs::Point], out: &mut [Option<Jet>]| {
+        stream_points(
+            input,
+            self.output.as_deref(),
+            &Jets {
+                gradient: self.derivatives,
+            },
+            &|pts: &[inrs::Point], out: &mut [Option<Jet>]| {
                 let mut missed = 0;
                 for (o, &p) in out.iter_mut().zip(pts) {
                     *o = eval.evaluate(p, order);
                     missed += usize::from(o.is_none());
                 }
                 outside.fetch_add(missed, std::sync::atomic::Ordering::Relaxed);
-            }
-        };
-        if self.derivatives {
-            stream_points(input, output, &Derivatives, &at_points(Order::Gradient))?;
-        } else {
-            stream_points(input, output, &Values, &at_points(Order::Value))?;
-        }
+            },
+        )?;
         let outside = outside.into_inner();
         if outside > 0 {
             eprintln!("{outside} points outside the domain: their values are nan");

@@ -32,7 +32,7 @@ pub(crate) struct WindingArgs {
 }
 
 /// The `winding` column: shortest round-trip decimal in CSV, float64 in `.npy`.
-pub(crate) struct Windings;
+struct Windings;
 
 impl Column<f64> for Windings {
     fn header(&self) -> &'static str {
