@@ -24,7 +24,11 @@ fn temp_file(name: &str, text: &str) -> String {
 
 /// Runs `inrs`, asserts success and returns standard output.
 fn inrs_ok(args: &[&str]) -> String {
-    let out = inrs(args);
+    stdout_of_success(inrs(args))
+}
+
+/// The standard output of a run that must have succeeded (its standard error otherwise).
+fn stdout_of_success(out: std::process::Output) -> String {
     assert!(
         out.status.success(),
         "{}",
@@ -828,17 +832,13 @@ fn many_chunks_come_out_in_input_order_on_any_number_of_workers() {
         .collect();
     for workers in ["1", "3", "8"] {
         for input in [&csv, &npy] {
-            let out = Command::new(env!("CARGO_BIN_EXE_inrs"))
-                .args(["classify", "--domain", &circle, "--points", input])
-                .env("RAYON_NUM_THREADS", workers)
-                .output()
-                .unwrap();
-            assert!(
-                out.status.success(),
-                "{}",
-                String::from_utf8_lossy(&out.stderr)
+            let text = stdout_of_success(
+                Command::new(env!("CARGO_BIN_EXE_inrs"))
+                    .args(["classify", "--domain", &circle, "--points", input])
+                    .env("RAYON_NUM_THREADS", workers)
+                    .output()
+                    .unwrap(),
             );
-            let text = String::from_utf8(out.stdout).unwrap();
             let rows: Vec<&str> = text.lines().skip(1).collect();
             assert_eq!(rows.len(), n, "{workers} workers, {input}");
             for (i, (row, (&(x, y), want))) in rows.iter().zip(pts.iter().zip(&truth)).enumerate() {
