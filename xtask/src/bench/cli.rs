@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use inrs::contain::baselines::halton_points;
 
-use super::BenchOptions;
+use super::{BenchOptions, median};
 
 /// Builds the release binary and returns its path.
 fn release_binary(root: &Path) -> Result<PathBuf, String> {
@@ -102,7 +102,7 @@ fn run(
 }
 
 /// The input/output floor of a run, in seconds: reading `input` and writing `size` bytes to a
-/// new file `out` (the input's bytes again), in blocks of 256 KiB, in this process (no
+/// new file `out` (bytes of the input), in blocks of 256 KiB, in this process (no
 /// start-up): what the operating system's caches cost a tool that does nothing else.
 fn io_floor(input: &Path, out: &Path, size: u64) -> Result<f64, String> {
     use std::io::Read;
@@ -112,17 +112,10 @@ fn io_floor(input: &Path, out: &Path, size: u64) -> Result<f64, String> {
     let mut r = std::fs::File::open(input).map_err(io)?;
     let mut w = std::fs::File::create(out).map_err(io)?;
     let mut block = vec![0u8; 1 << 18];
-    let mut last = 0;
-    loop {
-        let n = r.read(&mut block).map_err(io)?;
-        if n == 0 {
-            break;
-        }
-        last = n;
-    }
+    while r.read(&mut block).map_err(io)? > 0 {}
     let mut left = size;
     while left > 0 {
-        let n = left.min(last.max(1) as u64) as usize;
+        let n = left.min(block.len() as u64) as usize;
         w.write_all(&block[..n]).map_err(io)?;
         left -= n as u64;
     }
@@ -195,18 +188,12 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
                 runs.push((r.0, r.1));
             }
         }
-        for (((_, kind, _, out_kind), mut runs), mut floors) in
-            cases.into_iter().zip(runs).zip(floors)
-        {
-            runs.sort_by(|a, b| a.0.total_cmp(&b.0));
-            floors.sort_by(f64::total_cmp);
-            let floor = floors[floors.len() / 2];
-            let (t, peak) = runs[runs.len() / 2];
-            let best = runs[0].0;
-            let peak = runs
-                .iter()
-                .filter_map(|r| r.1)
-                .fold(peak, |m, p| Some(m.map_or(p, |m: f64| m.max(p))));
+        for (((_, kind, _, out_kind), runs), floors) in cases.into_iter().zip(runs).zip(floors) {
+            let floor = median(floors);
+            let peak = runs.iter().filter_map(|r| r.1).reduce(f64::max);
+            let times: Vec<f64> = runs.iter().map(|r| r.0).collect();
+            let best = times.iter().copied().fold(f64::INFINITY, f64::min);
+            let t = median(times);
             let _ = writeln!(
                 md,
                 "| {kind} | {out_kind} | {n} | {t:.3} | {:.1} | {best:.3} | {:.1} | {floor:.3} | {:.1} | {} |",
