@@ -56,17 +56,20 @@ fn write_points(dir: &Path, n: usize) -> Result<(PathBuf, PathBuf), String> {
     Ok((csv, npy))
 }
 
-/// One run: wall seconds, peak resident memory in MiB (from `/usr/bin/time`, if there) and
-/// the size of the output in bytes.
+/// One run of `inrs classify`: wall seconds and the size of the output in bytes; with
+/// `peak_memory`, run under `/usr/bin/time` (if there) and also its peak resident memory in
+/// MiB. Timed runs go without it: its own start (an exec and a fork, about 1.3 ms on the
+/// 2-core machine of BENCHMARKS.md) would be counted as the tool's.
 fn run(
     bin: &Path,
     domain: &Path,
     points: &Path,
     out: &Path,
+    peak_memory: bool,
 ) -> Result<(f64, Option<f64>, u64), String> {
     let _ = std::fs::remove_file(out);
     let time = Path::new("/usr/bin/time");
-    let mut cmd = if time.exists() {
+    let mut cmd = if peak_memory && time.exists() {
         let mut c = Command::new(time);
         c.args(["-f", "%M"]).arg(bin);
         c
@@ -91,11 +94,15 @@ fn run(
             String::from_utf8_lossy(&result.stderr)
         ));
     }
-    let peak = String::from_utf8_lossy(&result.stderr)
-        .lines()
-        .last()
-        .and_then(|l| l.trim().parse::<f64>().ok())
-        .map(|kb| kb / 1024.0);
+    let peak = peak_memory
+        .then(|| {
+            String::from_utf8_lossy(&result.stderr)
+                .lines()
+                .last()
+                .and_then(|l| l.trim().parse::<f64>().ok())
+                .map(|kb| kb / 1024.0)
+        })
+        .flatten();
     let size = std::fs::metadata(out).map_or(0, |m| m.len());
     let _ = std::fs::remove_file(out);
     Ok((seconds, peak, size))
@@ -151,7 +158,7 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
         "\n### The command-line tool end to end\n\n`inrs classify --domain s5_lune.json` (default \
          method), file to file, Halton points of `[-1, 1]^2`: wall time including start-up \
          (loading the domain, building the index), million points per second, and peak \
-         resident memory (`/usr/bin/time`). The four combinations of a size are timed in \
+         resident memory (`/usr/bin/time`, in one more run: timed runs go without it). The four combinations of a size are timed in \
          rounds (one run of each per round: {} rounds at 10^6 points and fewer, {} above); \
          medians, and under *best* the fastest round. *I/O floor*: reading the input file and \
          writing a file of the output's size, in blocks of 256 KiB, in the same rounds (no \
@@ -183,20 +190,22 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
                 cases.iter().zip(runs.iter_mut()).zip(floors.iter_mut())
             {
                 let out = dir.join(format!("out.{ext}"));
-                let r = run(&bin, &domain, input, &out)?;
-                floors.push(io_floor(input, &out, r.2)?);
-                runs.push((r.0, r.1));
+                let (seconds, _, size) = run(&bin, &domain, input, &out, false)?;
+                floors.push(io_floor(input, &out, size)?);
+                runs.push(seconds);
             }
         }
-        for (((_, kind, _, out_kind), runs), floors) in cases.into_iter().zip(runs).zip(floors) {
+        for (((input, kind, ext, out_kind), times), floors) in
+            cases.into_iter().zip(runs).zip(floors)
+        {
             let floor = median(floors);
-            let peak = runs.iter().filter_map(|r| r.1).reduce(f64::max);
-            let times: Vec<f64> = runs.iter().map(|r| r.0).collect();
+            // Peak memory from one more run, under `/usr/bin/time`.
+            let peak = run(&bin, &domain, input, &dir.join(format!("out.{ext}")), true)?.1;
             let best = times.iter().copied().fold(f64::INFINITY, f64::min);
             let t = median(times);
             let _ = writeln!(
                 md,
-                "| {kind} | {out_kind} | {n} | {t:.3} | {:.1} | {best:.3} | {:.1} | {floor:.3} | {:.1} | {} |",
+                "| {kind} | {out_kind} | {n} | {t:.4} | {:.1} | {best:.4} | {:.1} | {floor:.4} | {:.1} | {} |",
                 n as f64 / t / 1e6,
                 n as f64 / best / 1e6,
                 t / floor,
