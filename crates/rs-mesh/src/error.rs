@@ -31,13 +31,40 @@ pub enum MeshError {
     NoArea,
     /// The boundary could not be made convertible by inserting boundary points.
     #[error(
-        "the inscribed triangulation is still not convertible after {rounds} rounds of boundary point insertion ({failing} boundary arcs still cross edges)"
+        "the inscribed triangulation is still not convertible after {rounds} rounds of boundary point insertion ({})",
+        match near {
+            Some(p) => format!(
+                "{failing} boundary arcs still cross edges, one near ({}, {}): the boundary probably crosses or overlaps itself there",
+                p.x, p.y
+            ),
+            None => "the last round's interior points fell outside it".to_string(),
+        }
     )]
     NotConvertible {
         /// Rounds tried.
         rounds: usize,
         /// Arcs still failing.
         failing: usize,
+        /// A point of one of them (none if the last round dropped interior points instead).
+        near: Option<rs_spline::Point>,
+    },
+    /// Boundary point insertion was stopped at its budget with arcs still crossing edges:
+    /// the boundary overlaps or crosses itself (or comes closer to itself than the
+    /// refinement can separate) near `near`.
+    #[error(
+        "boundary point insertion stopped at {inserted} points (limit {limit}) with {failing} boundary arcs still crossing edges, one near ({x}, {y}): the boundary probably crosses or overlaps itself there",
+        x = near.x,
+        y = near.y
+    )]
+    InsertionLimit {
+        /// Boundary points inserted so far.
+        inserted: usize,
+        /// The budget: see [`crate::CurvedTriangulation::new`].
+        limit: usize,
+        /// Arcs still failing.
+        failing: usize,
+        /// A point of one of them.
+        near: rs_spline::Point,
     },
     /// A boundary chord could not be inserted even after refinement (the boundary touches
     /// itself or loops cross).

@@ -53,4 +53,7 @@ pub use sample::{
     well_spaced_points,
 };
 pub use svg::mesh_svg;
-pub use triangulation::{BoundaryArc, CurvedTriangulation, EdgeKind, MAX_MESH_VERTICES};
+pub use triangulation::{
+    BoundaryArc, CurvedTriangulation, EdgeKind, MAX_INSERTED_EXTRA, MAX_INSERTED_PER_POINT,
+    MAX_MESH_VERTICES,
+};

@@ -9,7 +9,10 @@ use rs_roots::{Bernstein, bernstein_roots};
 use rs_spline::grid::{CellIndex, GridFrame};
 use rs_spline::{BoundingBox, Domain, NurbsCurve, Point, RationalBezier};
 use spade::handles::FixedVertexHandle;
-use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
+use spade::{
+    ConstrainedDelaunayTriangulation, Intersection, LineIntersectionIterator, Point2,
+    Triangulation as _,
+};
 
 use crate::MeshError;
 use crate::boundary::BoundaryPoint;
@@ -18,6 +21,11 @@ use crate::sample::WellSpacedPoints;
 
 /// Rounds of boundary point insertion tried before giving up.
 const MAX_ROUNDS: usize = 16;
+/// Boundary points that insertion may add per initial boundary point (see
+/// [`CurvedTriangulation::new`]); the domains of the tests need at most 4.
+pub const MAX_INSERTED_PER_POINT: usize = 16;
+/// Boundary points that insertion may add beyond [`MAX_INSERTED_PER_POINT`] per initial one.
+pub const MAX_INSERTED_EXTRA: usize = 4096;
 
 /// Which kind of edge a triangle edge is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -79,8 +87,15 @@ impl CurvedTriangulation {
     /// and the triangulation is rebuilt, until it is convertible. Interior points that end up
     /// between a boundary arc and its chord are dropped.
     ///
+    /// Insertion is bounded: at most [`MAX_INSERTED_PER_POINT`] times the initial boundary
+    /// points plus [`MAX_INSERTED_EXTRA`], and at most [`MAX_MESH_VERTICES`] vertices in all.
+    /// A boundary that overlaps or crosses itself never becomes convertible (the arcs along
+    /// the overlap keep failing, and their number doubles with every round), so it ends in
+    /// [`MeshError::InsertionLimit`], naming a point near the trouble.
+    ///
     /// # Errors
     /// [`MeshError::NotConvertible`] if 16 rounds of insertion do not suffice,
+    /// [`MeshError::InsertionLimit`] if the insertion budget does not,
     /// [`MeshError::Triangulation`] if spade rejects a point.
     pub fn new(domain: &Domain, points: &WellSpacedPoints) -> Result<Self, MeshError> {
         Self::build_until(domain, points, Ok)
@@ -118,6 +133,9 @@ impl CurvedTriangulation {
             });
         }
         let mut boundary = normalized_loops(domain, &points.boundary);
+        let initial: usize = boundary.iter().map(Vec::len).sum();
+        let budget = (MAX_INSERTED_PER_POINT * initial + MAX_INSERTED_EXTRA)
+            .min(MAX_MESH_VERTICES.saturating_sub(points.interior.len() + initial));
         let mut interior = points.interior.clone();
         let mut inserted = 0;
         let mut dropped = 0;
@@ -148,20 +166,32 @@ impl CurvedTriangulation {
                         .collect();
                 }
                 Attempt::Refine(failing) => {
+                    let near = failing.first().map(|&(j, k)| boundary[j][k].point);
                     if round + 1 == MAX_ROUNDS {
                         return Err(MeshError::NotConvertible {
                             rounds: MAX_ROUNDS,
                             failing: failing.len(),
+                            near,
                         });
                     }
-                    inserted += failing.len();
-                    boundary = refine_loops(domain, &boundary, &failing);
+                    let (refined, added) = refine_loops(domain, &boundary, &failing);
+                    if inserted + added > budget {
+                        return Err(MeshError::InsertionLimit {
+                            inserted,
+                            limit: budget,
+                            failing: added,
+                            near: near.unwrap_or_default(),
+                        });
+                    }
+                    inserted += added;
+                    boundary = refined;
                 }
             }
         }
         Err(MeshError::NotConvertible {
             rounds: MAX_ROUNDS,
             failing: 0,
+            near: None,
         })
     }
 
@@ -504,25 +534,67 @@ fn build(
 }
 
 /// Adds every boundary chord as a constraint; returns the chords (loop, index in the loop)
-/// that cannot be added and those already added that they cross: all of them must be split.
+/// that cannot be added, those already added that they cross, and chords that share an edge
+/// (each once): all of them must be split. The crossed chords are found from the constraint
+/// edges the triangulation reports between the chord's ends (a walk along the chord), each
+/// edge mapped to the chord it belongs to, so the work follows the chords' lengths, not
+/// their number.
 fn constrain_chords(cdt: &mut Cdt, v: &Vertices, loops: &[Vec<usize>]) -> Vec<(usize, usize)> {
     let handle: HashMap<usize, FixedVertexHandle> = v.index.iter().map(|(h, i)| (*i, *h)).collect();
+    // The chord each constraint edge belongs to (by its end vertices): the whole chord, or a
+    // piece of it when the triangulation split it at a vertex lying on it.
+    let mut owner: HashMap<(FixedVertexHandle, FixedVertexHandle), (usize, usize)> = HashMap::new();
+    let key = |a: FixedVertexHandle, b: FixedVertexHandle| (a.min(b), a.max(b));
     let mut failing = Vec::new();
-    let mut chords: Vec<((usize, usize), (usize, usize))> = Vec::new();
+    let mut seen = HashSet::new();
+    let mut fail = |chord: (usize, usize), failing: &mut Vec<(usize, usize)>| {
+        if seen.insert(chord) {
+            failing.push(chord);
+        }
+    };
     for (j, ids) in loops.iter().enumerate() {
         for k in 0..ids.len() {
             let (a, b) = (ids[k], ids[(k + 1) % ids.len()]);
             let (ha, hb) = (handle[&a], handle[&b]);
-            if a == b || !cdt.can_add_constraint(ha, hb) {
-                failing.push((j, k));
-                for &((j2, k2), (c, d)) in &chords {
-                    if chords_meet(v.points[a], v.points[b], v.points[c], v.points[d]) {
-                        failing.push((j2, k2));
+            if a == b {
+                fail((j, k), &mut failing);
+                continue;
+            }
+            let crossed: Vec<_> = cdt
+                .get_conflicting_edges_between_vertices(ha, hb)
+                .map(|e| {
+                    let [p, q] = e.vertices();
+                    key(p.fix(), q.fix())
+                })
+                .collect();
+            if !crossed.is_empty() {
+                fail((j, k), &mut failing);
+                for e in crossed {
+                    if let Some(&chord) = owner.get(&e) {
+                        fail(chord, &mut failing);
                     }
                 }
-            } else {
-                cdt.add_constraint(ha, hb);
-                chords.push(((j, k), (a, b)));
+                continue;
+            }
+            let before = cdt.num_constraints();
+            cdt.add_constraint(ha, hb);
+            if cdt.num_constraints() == before + 1 && cdt.exists_constraint(ha, hb) {
+                owner.insert(key(ha, hb), (j, k));
+                continue;
+            }
+            // Split at vertices lying on the chord, or along an edge constrained already: its
+            // pieces are the constraint edges along it. A piece that another chord holds too
+            // (the two arcs of a loop of two points share their chord; loops that overlap)
+            // would count twice in the faces' crossing parity: both chords are split.
+            for piece in LineIntersectionIterator::new_from_handles(cdt, ha, hb) {
+                if let Intersection::EdgeOverlap(e) = piece {
+                    let [p, q] = e.vertices();
+                    let held = *owner.entry(key(p.fix(), q.fix())).or_insert((j, k));
+                    if held != (j, k) {
+                        fail(held, &mut failing);
+                        fail((j, k), &mut failing);
+                    }
+                }
             }
         }
     }
@@ -640,52 +712,53 @@ fn attach_arcs(
     Ok((arcs, edges, failing))
 }
 
-/// True if segments `ab` and `cd` share a point other than a common end point.
-fn chords_meet(a: Point, b: Point, c: Point, d: Point) -> bool {
-    if a == c || a == d || b == c || b == d {
-        return false;
-    }
-    let o = |p: Point, q: Point, r: Point| (q - p).cross(r - p);
-    let (d1, d2, d3, d4) = (o(c, d, a), o(c, d, b), o(a, b, c), o(a, b, d));
-    (d1 * d2 <= 0.0) && (d3 * d4 <= 0.0)
-}
-
-/// New boundary points: every failing arc gets the point at its parameter midpoint.
+/// New boundary points: every failing arc gets the point at its parameter midpoint. Returns
+/// the refined loops and the number of points added (one per distinct failing arc), in one
+/// pass over each loop.
 fn refine_loops(
     domain: &Domain,
     boundary: &[Vec<BoundaryPoint>],
     failing: &[(usize, usize)],
-) -> Vec<Vec<BoundaryPoint>> {
-    let mut out = boundary.to_vec();
-    let mut by_loop: HashMap<usize, Vec<usize>> = HashMap::new();
+) -> (Vec<Vec<BoundaryPoint>>, usize) {
+    let mut split: Vec<Vec<usize>> = vec![Vec::new(); boundary.len()];
     for &(j, k) in failing {
-        by_loop.entry(j).or_default().push(k);
+        split[j].push(k);
     }
-    for (j, mut ks) in by_loop {
-        ks.sort_unstable();
-        ks.dedup();
-        let l = &boundary[j];
-        for &k in ks.iter().rev() {
-            let (pa, pb) = (l[k], l[(k + 1) % l.len()]);
-            let c = &domain.curves()[pa.curve];
-            let u1 = if pb.curve == pa.curve && pb.u > pa.u {
-                pb.u
-            } else {
-                c.param_range().1
-            };
-            let u = 0.5 * (pa.u + u1);
-            out[j].insert(
-                k + 1,
-                BoundaryPoint {
+    let mut added = 0;
+    let out = boundary
+        .iter()
+        .zip(split)
+        .enumerate()
+        .map(|(j, (l, mut ks))| {
+            ks.sort_unstable();
+            ks.dedup();
+            added += ks.len();
+            let mut out = Vec::with_capacity(l.len() + ks.len());
+            let mut ks = ks.into_iter().peekable();
+            for (k, &pa) in l.iter().enumerate() {
+                out.push(pa);
+                if ks.next_if_eq(&k).is_none() {
+                    continue;
+                }
+                let pb = l[(k + 1) % l.len()];
+                let c = &domain.curves()[pa.curve];
+                let u1 = if pb.curve == pa.curve && pb.u > pa.u {
+                    pb.u
+                } else {
+                    c.param_range().1
+                };
+                let u = 0.5 * (pa.u + u1);
+                out.push(BoundaryPoint {
                     loop_index: j,
                     curve: pa.curve,
                     u,
                     point: c.point_at(u),
-                },
-            );
-        }
-    }
-    out
+                });
+            }
+            out
+        })
+        .collect();
+    (out, added)
 }
 
 /// An arc whose control points lie within this (relative to its chord length and the domain

@@ -383,3 +383,116 @@ fn the_extended_ring_covers_the_slivers() {
         );
     }
 }
+
+/// A closed polygon as segments.
+fn polygon(points: &[(f64, f64)]) -> Vec<rs_spline::NurbsCurve> {
+    (0..points.len())
+        .map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % points.len()]);
+            rs_spline::segment(Point::new(a.0, a.1), Point::new(b.0, b.1)).unwrap()
+        })
+        .collect()
+}
+
+/// Two rectangles that share stretches of their bottom and top edges (`[1, 2]` at `y = 0`
+/// and `y = 1`): the chords along the overlap coincide however often they are split, and
+/// their number doubled with every round of insertion (ny = 5: 6.4 s and 1.1 GB of memory,
+/// 2^16 times the overlap's chords, before the round limit ended it). The insertion budget
+/// ends it, naming a point of the overlap; so does a shared curve.
+#[test]
+fn overlapping_loops_end_at_the_insertion_budget_near_the_overlap() {
+    let mut curves = polygon(&[(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)]);
+    curves.extend(polygon(&[(1.0, 0.0), (3.0, 0.0), (3.0, 1.0), (1.0, 1.0)]));
+    let d = Domain::new(curves).unwrap();
+    for ny in [2, 5, 40] {
+        let points = well_spaced_points(&d, ny).unwrap();
+        let initial: usize = points.boundary.iter().map(Vec::len).sum();
+        match CurvedTriangulation::new(&d, &points) {
+            Err(rs_mesh::MeshError::InsertionLimit {
+                inserted,
+                limit,
+                near,
+                ..
+            }) => {
+                assert!(inserted <= limit, "ny={ny}: {inserted} > {limit}");
+                assert!(
+                    limit
+                        <= rs_mesh::MAX_INSERTED_PER_POINT * (initial + d.curves().len())
+                            + rs_mesh::MAX_INSERTED_EXTRA,
+                    "ny={ny}: limit {limit}"
+                );
+                let on_overlap = (near.y == 0.0 || near.y == 1.0) && (1.0..=2.0).contains(&near.x);
+                assert!(on_overlap, "ny={ny}: near {near:?}");
+            }
+            other => panic!("ny={ny}: {:?}", other.map(|t| t.triangles().len())),
+        }
+    }
+    // A loop and a second loop that runs back along the same cubic.
+    let arc = |a: Point, b: Point| {
+        rs_spline::NurbsCurve::bezier(vec![a, Point::new(1.0, 1.0), Point::new(2.0, 1.0), b], None)
+            .unwrap()
+    };
+    let (o, e) = (Point::new(0.0, 0.0), Point::new(3.0, 0.0));
+    let mut curves = vec![arc(o, e), rs_spline::segment(e, o).unwrap()];
+    curves.push(arc(o, e));
+    let corners = [e, Point::new(3.0, -1.0), Point::new(0.0, -1.0), o];
+    curves.extend(
+        corners
+            .windows(2)
+            .map(|w| rs_spline::segment(w[0], w[1]).unwrap()),
+    );
+    let d = Domain::new(curves).unwrap();
+    let err = CurvedTriangulation::new(&d, &well_spaced_points(&d, 5).unwrap()).unwrap_err();
+    assert!(
+        matches!(err, rs_mesh::MeshError::InsertionLimit { near, .. } if near.y >= 0.0 && near.y <= 0.75),
+        "{err}"
+    );
+}
+
+/// Two circles that cross: the chords at each crossing keep crossing however often they
+/// are split, so the rounds run out; the error names a point within the last round's
+/// refinement (a 2^-16 fraction of a quarter circle) of a crossing.
+#[test]
+fn crossing_loops_are_not_convertible_and_the_error_names_a_crossing() {
+    let d = Domain::new(vec![
+        rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
+        rs_spline::circle(Point::new(0.8, 0.0), 1.0).unwrap(),
+    ])
+    .unwrap();
+    let crossing_y = (1.0f64 - 0.16).sqrt();
+    for ny in [2, 20] {
+        let err = CurvedTriangulation::new(&d, &well_spaced_points(&d, ny).unwrap()).unwrap_err();
+        let rs_mesh::MeshError::NotConvertible {
+            near: Some(near), ..
+        } = err
+        else {
+            panic!("ny={ny}: {err}");
+        };
+        let to_crossing = near.distance(Point::new(0.4, crossing_y.copysign(near.y)));
+        assert!(to_crossing < 1e-3, "ny={ny}: {near:?} {to_crossing}");
+        assert!(
+            err.to_string().contains("crosses or overlaps itself"),
+            "{err}"
+        );
+    }
+}
+
+/// A hole sampled at two points has two arcs on one chord: both are split (the chord is
+/// not an overlap of the boundary), and the mesh covers the domain.
+#[test]
+fn two_arcs_on_one_chord_are_split_not_refused() {
+    let d = Domain::new(vec![
+        rs_spline::circle(Point::new(0.0, 0.0), 4.0).unwrap(),
+        rs_spline::circle(Point::new(1.0, 0.5), 0.3).unwrap(),
+    ])
+    .unwrap();
+    let mut points = well_spaced_points(&d, 2).unwrap();
+    // The hole's boundary points: its curve's start only, and one opposite.
+    let hole = &mut points.boundary[1];
+    hole.truncate(1);
+    let m = CurvedTriangulation::new(&d, &points).unwrap();
+    assert!(m.inserted_boundary_points() > 0);
+    let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+    let exact = std::f64::consts::PI * (16.0 - 0.09);
+    assert!((total - exact).abs() < 1e-9 * exact, "{total} vs {exact}");
+}
