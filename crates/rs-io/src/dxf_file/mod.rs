@@ -13,6 +13,8 @@ use crate::IoError;
 use crate::builder::with_end_points;
 use rs_spline::Affine;
 
+mod load;
+
 /// Heights that differ by less than this (relative to `1 + |z|`) are one plane.
 const SAME_HEIGHT: f64 = 1e-12;
 /// An extrusion direction whose x and y components are below this is the z axis.
@@ -72,8 +74,7 @@ pub fn domain_from_dxf_file(
         path: path.to_path_buf(),
         source,
     })?;
-    let drawing =
-        dxf::Drawing::load(&mut data.as_slice()).map_err(|e| IoError::Dxf(e.to_string()))?;
+    let drawing = load::load_drawing(&data)?;
     Ok(domain_from_drawing(&drawing, options)?.with_name(path.display().to_string()))
 }
 
@@ -82,8 +83,7 @@ pub fn domain_from_dxf_file(
 /// # Errors
 /// As [`domain_from_dxf_file`].
 pub fn domain_from_dxf_str(text: &str, options: &DxfOptions) -> Result<Domain, IoError> {
-    let drawing =
-        dxf::Drawing::load(&mut text.as_bytes()).map_err(|e| IoError::Dxf(e.to_string()))?;
+    let drawing = load::load_drawing(text.as_bytes())?;
     domain_from_drawing(&drawing, options)
 }
 
