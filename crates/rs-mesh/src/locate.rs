@@ -94,12 +94,10 @@ impl<'a> CurvedLocator<'a> {
             let classifier = Classifier::new(&lens, ContainOptions::default())?;
             lenses.push((bbox, i, classifier));
         }
-        // About two cells per triangle diameter: a few candidates per cell.
-        let frame = GridFrame::new(
+        // About four cells per triangle, near square (at most 2^20): a few candidates per cell.
+        let frame = GridFrame::near_square(
             mesh.domain().bounding_box(),
-            (2.0 * (mesh.triangles().len() as f64).sqrt())
-                .ceil()
-                .clamp(1.0, 1024.0) as usize,
+            (4 * mesh.triangles().len()).clamp(1, 1 << 20),
         );
         let barycentric = mesh
             .triangles()

@@ -172,13 +172,15 @@ impl PointGrid {
         let points: Vec<Point> = points.collect();
         let bb = BoundingBox::from_points(points.iter().copied())
             .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)));
-        let span = bb.width().max(bb.height());
-        let n = if cell > 0.0 && span.is_finite() {
-            ((span / cell).floor() as usize).clamp(1, 1024)
-        } else {
-            1
+        // Cells of side `cell` (at most 1024 per side).
+        let count = |span: f64| {
+            if cell > 0.0 && span.is_finite() {
+                ((span / cell).floor() as usize).clamp(1, 1024)
+            } else {
+                1
+            }
         };
-        let frame = GridFrame::new(bb, n);
+        let frame = GridFrame::with_counts(bb, count(bb.width()), count(bb.height()));
         let index = CellIndex::of_points(frame, &points);
         Self { points, index }
     }

@@ -10,7 +10,7 @@ use rs_mesh::{
     well_spaced_points,
 };
 use rs_spline::prelude::*;
-use rs_spline::{Domain, Point};
+use rs_spline::{BoundingBox, Domain, Point};
 use rs_testkit::{Case, all_cases};
 
 fn cases() -> Vec<Case> {
@@ -518,4 +518,20 @@ fn a_long_thin_rectangle_is_meshed_exactly() {
     let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
     assert!((total - 2000.0).abs() < 1e-9 * 2000.0, "{total}");
     assert!((0..m.triangles().len()).all(|t| m.triangle_area(t) > 0.0));
+    // Point location on it (its grid's cells near square, not 2000 times wider than high).
+    let loc = CurvedLocator::new(&m).unwrap();
+    let bb = BoundingBox::from_point(Point::new(-1.0, -0.5)).including(Point::new(2001.0, 1.5));
+    for p in halton_points(5000, bb) {
+        let inside = (0.0..=2000.0).contains(&p.x) && (0.0..=1.0).contains(&p.y);
+        match loc.triangle_at(p) {
+            Some(t) => {
+                let v = m.triangles()[t].map(|i| m.vertices()[i]);
+                assert!(
+                    inside && distance_to_polygon(&v, p) < 1e-9 || polygon_contains(&v, p),
+                    "{p:?}"
+                );
+            }
+            None => assert!(!inside, "{p:?}"),
+        }
+    }
 }

@@ -1,20 +1,21 @@
-//! One uniform-grid index for the workspace: a [`GridFrame`] maps points to the cells of an
-//! `n x n` grid over a box, and a [`CellIndex`] stores, in compressed sparse rows, the items
+//! One uniform-grid index for the workspace: a [`GridFrame`] maps points to the cells of a
+//! grid over a box (`n x n`, or as many columns and rows as keep the cells near square), and a [`CellIndex`] stores, in compressed sparse rows, the items
 //! registered in each cell. The monotone-box grid, the point locator, the mesh's edge index
 //! and its point-spacing test are all one of these.
 
 use crate::{BoundingBox, Point};
 
-/// An `n x n` grid of equal cells over a box. Cell `(c, r)` (column, row) has index
-/// `c * n + r`. The column of `x` is `floor((x - x0) n / width)` clamped to `0..n`: a monotone
-/// function of `x`, so every point of a rectangle falls in the cells of
-/// [`GridFrame::cell_range`] of that rectangle.
+/// A grid of `columns x rows` equal cells over a box. Cell `(c, r)` (column, row) has index
+/// `c * rows + r`. The column of `x` is `floor((x - x0) columns / width)` clamped to
+/// `0..columns`: a monotone function of `x`, so every point of a rectangle falls in the cells
+/// of [`GridFrame::cell_range`] of that rectangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GridFrame {
     bbox: BoundingBox,
     inv_w: f64,
     inv_h: f64,
-    n: usize,
+    columns: usize,
+    rows: usize,
 }
 
 impl GridFrame {
@@ -25,8 +26,17 @@ impl GridFrame {
     /// `n` cells per side (clamped to `1..=MAX_CELLS`) over `bbox`; a side of zero (or
     /// non-finite) width is one column (row) wide.
     pub fn new(bbox: BoundingBox, n: usize) -> Self {
-        let n = n.clamp(1, Self::MAX_CELLS);
-        let inv = |span: f64| {
+        Self::with_counts(bbox, n, n)
+    }
+
+    /// `columns x rows` cells (each clamped to `1..=MAX_CELLS`) over `bbox`; a side of zero
+    /// (or non-finite) width is one column (row) wide.
+    pub fn with_counts(bbox: BoundingBox, columns: usize, rows: usize) -> Self {
+        let (columns, rows) = (
+            columns.clamp(1, Self::MAX_CELLS),
+            rows.clamp(1, Self::MAX_CELLS),
+        );
+        let inv = |n: usize, span: f64| {
             if span > 0.0 && span.is_finite() {
                 n as f64 / span
             } else {
@@ -35,10 +45,44 @@ impl GridFrame {
         };
         Self {
             bbox,
-            inv_w: inv(bbox.width()),
-            inv_h: inv(bbox.height()),
-            n,
+            inv_w: inv(columns, bbox.width()),
+            inv_h: inv(rows, bbox.height()),
+            columns,
+            rows,
         }
+    }
+
+    /// About `cells` cells over `bbox`, as near square as [`GridFrame::MAX_CELLS`] per side
+    /// allows: `sqrt(cells w / h)` columns and `sqrt(cells / (w / h))` rows for a box of
+    /// width `w` and height `h` (all in one column or row for a side of zero width). An
+    /// `n x n` grid over a box 10 000 times wider than high has cells 10 000 times wider than
+    /// high, and a shape of the box's height is registered in all `n` rows.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_spline::grid::GridFrame;
+    /// use rs_spline::{BoundingBox, Point};
+    /// let thin = BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(400.0, 1.0));
+    /// let f = GridFrame::near_square(thin, 1600);
+    /// assert_eq!((f.columns(), f.rows()), (800, 2));
+    /// assert_eq!(f.cell_size(), (0.5, 0.5));
+    /// ```
+    pub fn near_square(bbox: BoundingBox, cells: usize) -> Self {
+        let (w, h) = (bbox.width(), bbox.height());
+        let usable = |s: f64| s > 0.0 && s.is_finite();
+        let cells = cells.max(1) as f64;
+        let (columns, rows) = match (usable(w), usable(h)) {
+            (true, true) => {
+                let aspect = w / h;
+                ((cells * aspect).sqrt(), (cells / aspect).sqrt())
+            }
+            (true, false) => (cells, 1.0),
+            (false, true) => (1.0, cells),
+            (false, false) => (1.0, 1.0),
+        };
+        // `as` saturates: a huge count becomes usize::MAX, then MAX_CELLS.
+        Self::with_counts(bbox, columns.round() as usize, rows.round() as usize)
     }
 
     /// The resolution for registering shapes grown by `abs_tol` over `bbox`: at most `cells` per
@@ -54,14 +98,25 @@ impl GridFrame {
         }
     }
 
-    /// Cells per side.
+    /// Cells per side of a square grid ([`GridFrame::new`]); the columns of another.
     pub fn n(&self) -> usize {
-        self.n
+        debug_assert_eq!(self.columns, self.rows, "n() of a grid that is not square");
+        self.columns
     }
 
-    /// Number of cells, `n^2`.
+    /// Columns of cells (along x).
+    pub fn columns(&self) -> usize {
+        self.columns
+    }
+
+    /// Rows of cells (along y).
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Number of cells, `columns x rows`.
     pub fn cell_count(&self) -> usize {
-        self.n * self.n
+        self.columns * self.rows
     }
 
     /// The box covered.
@@ -69,33 +124,35 @@ impl GridFrame {
         self.bbox
     }
 
-    /// Cells per unit length along x and y (`n / width`, `n / height`; 0 for a side of zero
-    /// width): the factors [`GridFrame::col`] and [`GridFrame::row`] multiply by.
+    /// Cells per unit length along x and y (`columns / width`, `rows / height`; 0 for a side
+    /// of zero width): the factors [`GridFrame::col`] and [`GridFrame::row`] multiply by.
     pub fn scales(&self) -> (f64, f64) {
         (self.inv_w, self.inv_h)
     }
 
     /// The width and height of a cell.
     pub fn cell_size(&self) -> (f64, f64) {
-        let n = self.n as f64;
-        (self.bbox.width() / n, self.bbox.height() / n)
+        (
+            self.bbox.width() / self.columns as f64,
+            self.bbox.height() / self.rows as f64,
+        )
     }
 
     /// The column of abscissa `x` (clamped into the grid).
     pub fn col(&self, x: f64) -> usize {
-        (((x - self.bbox.min.x) * self.inv_w).max(0.0) as usize).min(self.n - 1)
+        (((x - self.bbox.min.x) * self.inv_w).max(0.0) as usize).min(self.columns - 1)
     }
 
     /// The row of ordinate `y` (clamped into the grid).
     pub fn row(&self, y: f64) -> usize {
-        (((y - self.bbox.min.y) * self.inv_h).max(0.0) as usize).min(self.n - 1)
+        (((y - self.bbox.min.y) * self.inv_h).max(0.0) as usize).min(self.rows - 1)
     }
 
     /// The index of the cell holding `p`, or `None` outside the box.
     pub fn cell_of(&self, p: Point) -> Option<usize> {
         self.bbox
             .contains(p)
-            .then(|| self.col(p.x) * self.n + self.row(p.y))
+            .then(|| self.col(p.x) * self.rows + self.row(p.y))
     }
 
     /// Columns `c0..=c1` and rows `r0..=r1` of the cells meeting the rectangle `r` (clamped).
@@ -113,7 +170,7 @@ impl GridFrame {
         let (c0, c1, r0, r1) = self.cell_range(r);
         for c in c0..=c1 {
             for row in r0..=r1 {
-                f(c * self.n + row);
+                f(c * self.rows + row);
             }
         }
     }
@@ -266,6 +323,25 @@ mod tests {
                 assert!(cells.contains(&f.cell_of(p).unwrap()));
             }
         }
+    }
+
+    #[test]
+    fn rectangular_frames_index_column_by_column() {
+        let f = GridFrame::with_counts(unit(), 3, 5);
+        assert_eq!(f.cell_count(), 15);
+        assert_eq!(f.cell_size(), (1.0 / 3.0, 0.4));
+        assert_eq!(f.cell_of(Point::new(0.5, 1.9)), Some(5 + 4));
+        let mut cells = Vec::new();
+        f.for_cells_in(unit(), |c| cells.push(c));
+        assert_eq!(cells, (0..15).collect::<Vec<_>>());
+        // Near square: 10^4 x 1 at 10^4 cells is 10^4 columns (capped) of one row.
+        let thin = BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1e4, 1.0));
+        let f = GridFrame::near_square(thin, 10_000);
+        assert_eq!((f.columns(), f.rows()), (GridFrame::MAX_CELLS, 1));
+        let flat = BoundingBox::from_point(Point::new(0.0, 3.0)).including(Point::new(2.0, 3.0));
+        assert_eq!(GridFrame::near_square(flat, 50).columns(), 50);
+        let f = GridFrame::near_square(unit(), 200); // 1 x 2: 10 x 20 cells of 0.1
+        assert_eq!((f.columns(), f.rows()), (10, 20));
     }
 
     #[test]
