@@ -91,9 +91,17 @@ pub trait ParamCurveArclen: ParamCurveDeriv {
             .filter_map(|(a, b)| {
                 let (lo, hi) = (u0.max(a), u1.min(b));
                 (lo < hi).then(|| {
+                    // The speed's rounding magnitude: the derivative is a sum of coordinates
+                    // (of about the size of the point's) times basis derivatives, which add up
+                    // to at most 2 degree / (b - a) in size (degree at most `MAX_DEGREE`). With
+                    // `|v|` alone, a short curve far from the origin (control points at 1e8,
+                    // length 40) could never meet the tolerance: every panel took the whole
+                    // interval budget, 7 s per curve.
+                    let per_parameter = 2.0 * crate::limits::MAX_DEGREE as f64 / (b - a);
                     let speed = |u: f64| {
-                        let v = self.derivatives(u).first.length();
-                        (v, v)
+                        let d = self.derivatives(u);
+                        let v = d.first.length();
+                        (v, v + per_parameter * d.point.length())
                     };
                     integrate_adaptive(speed, lo, hi, share.max(f64::MIN_POSITIVE))
                 })
@@ -253,6 +261,34 @@ mod tests {
     use super::*;
     use crate::{NurbsCurve, circle, segment};
     use std::f64::consts::PI;
+
+    /// A short cubic far from the origin (a mutated drawing's: control points at -1.4e8,
+    /// length 44): the speed's rounding there is about 1e-8 of it, far above 256 eps of the
+    /// speed, so with that as the noise floor no panel met the tolerance and each used the
+    /// whole interval budget (7.5 s per curve for the table). Now the integrals converge, to
+    /// the length of the same cubic at the origin within the rounding of its coordinates.
+    #[test]
+    fn a_short_curve_far_from_the_origin_converges() {
+        let at = |dy: f64| {
+            let pts = [
+                (954.2, -80.5),
+                (934.1, -85.1),
+                (930.9, -86.0),
+                (912.5, -93.1),
+            ];
+            let pts = pts.map(|(x, y)| Point::new(x, y + dy)).to_vec();
+            NurbsCurve::bezier(pts, None).unwrap()
+        };
+        let (near, far) = (at(0.0), at(-138_699_700.0));
+        let exact = near.arclen_on(0.0, 1.0, 1e-13);
+        assert!(exact.converged);
+        let got = far.arclen_on(0.0, 1.0, 1e-14 * 43.0);
+        assert!(got.converged, "{got:?}");
+        // Coordinates near 1.4e8 are rounded to 3e-8: the curve itself moved by that much.
+        assert!((got.value - exact.value).abs() < 1e-6, "{got:?} {exact:?}");
+        let table = ArcLengthTable::new(&far, 32);
+        assert!((table.length() - exact.value).abs() < 1e-6);
+    }
 
     #[test]
     fn circle_length_and_its_inverse() {
