@@ -55,6 +55,7 @@ fn cleared_text(bytes: &[u8]) -> Option<Vec<u8>> {
     let mut pairs = lines.chunks(2);
     while let Some(pair) = pairs.next() {
         let &[code_line, value_line] = pair else {
+            out.extend(opening.take().into_iter().flatten().copied().flatten());
             out.extend_from_slice(pair[0]);
             break;
         };
