@@ -559,6 +559,10 @@ fn sample_and_mesh_write_points_and_curved_triangulations() {
     ]);
     assert!(out.status.success());
     assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 78);
+    // --count alone asks for Halton points (it was ignored: the default lines came out).
+    let halton = inrs_ok(&["sample", "--domain", &domain, "--count", "77"]);
+    assert_eq!(halton.lines().count(), 78);
+    assert!(halton.lines().skip(1).all(|l| l.ends_with(",interior")));
 
     let json = std::env::temp_dir().join(format!("inrs-cli-{}-mesh.json", std::process::id()));
     let svg = std::env::temp_dir().join(format!("inrs-cli-{}-mesh.svg", std::process::id()));
@@ -599,6 +603,22 @@ fn sample_and_mesh_write_points_and_curved_triangulations() {
         (
             vec!["sample", "--domain", &domain, "--method", "grid"],
             "--method",
+        ),
+        (
+            vec![
+                "sample", "--domain", &domain, "--method", "lines", "--count", "5",
+            ],
+            "--count is for --method halton",
+        ),
+        (
+            vec![
+                "sample", "--domain", &domain, "--method", "halton", "--ny", "5",
+            ],
+            "--ny is for --method lines",
+        ),
+        (
+            vec!["sample", "--domain", &domain, "--ny", "5", "--count", "5"],
+            "cannot be used with",
         ),
         (
             vec!["mesh", "--domain", &domain, "--ny", "0"],

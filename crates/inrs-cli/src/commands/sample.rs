@@ -18,30 +18,63 @@ use crate::cli::output::Output;
 pub(crate) struct SampleArgs {
     #[command(flatten)]
     domain: DomainArg,
-    /// How to sample.
-    #[arg(long, value_enum, default_value_t = SampleMethod::Lines)]
-    method: SampleMethod,
+    /// How to sample: lines (the default), or halton when --count is given.
+    #[arg(long, value_enum)]
+    method: Option<SampleMethod>,
     /// Number of horizontal bands for --method lines: h = height / ny (2 to 100000; at most
-    /// 10^7 points).
-    #[arg(long, default_value_t = 20, value_parser = parse_ny, allow_negative_numbers = true)]
-    ny: usize,
-    /// Number of points for --method halton (1 to 10^7).
-    #[arg(long, default_value_t = 1000, value_parser = parse_count, allow_negative_numbers = true)]
-    count: usize,
+    /// 10^7 points) [default: 20].
+    #[arg(long, value_parser = parse_ny, allow_negative_numbers = true, conflicts_with = "count")]
+    ny: Option<usize>,
+    /// Number of points for --method halton (1 to 10^7) [default: 1000].
+    #[arg(long, value_parser = parse_count, allow_negative_numbers = true)]
+    count: Option<usize>,
     /// Write the CSV here instead of standard output.
     #[arg(long)]
     output: Option<PathBuf>,
 }
 
+/// What `inrs sample` was asked for once its options are put together.
+#[derive(Debug, PartialEq)]
+enum Sampling {
+    Lines { ny: usize },
+    Halton { count: usize },
+}
+
 impl SampleArgs {
+    /// The sampling the options ask for: --count alone means Halton points; an option of the
+    /// other method is an error (it used to be ignored: `--count 50` wrote 460 000
+    /// well-spaced points).
+    fn sampling(&self) -> Result<Sampling, CliError> {
+        let method = self.method.unwrap_or(if self.count.is_some() {
+            SampleMethod::Halton
+        } else {
+            SampleMethod::Lines
+        });
+        match (method, self.ny, self.count) {
+            (SampleMethod::Lines, _, Some(_)) => Err(CliError::Message(
+                "--count is for --method halton; --method lines takes --ny".into(),
+            )),
+            (SampleMethod::Halton, Some(_), _) => Err(CliError::Message(
+                "--ny is for --method lines; --method halton takes --count".into(),
+            )),
+            (SampleMethod::Lines, ny, None) => Ok(Sampling::Lines {
+                ny: ny.unwrap_or(20),
+            }),
+            (SampleMethod::Halton, None, count) => Ok(Sampling::Halton {
+                count: count.unwrap_or(1000),
+            }),
+        }
+    }
+
     pub(crate) fn run(self) -> Result<(), CliError> {
+        let sampling = self.sampling()?;
         let d = self.domain.load()?;
         let in_domain = |e: inrs::mesh::MeshError| self.domain.error(e);
         let mut out = Output::create(self.output.as_deref())?;
         writeln!(out, "x,y,kind")?;
-        match self.method {
-            SampleMethod::Lines => {
-                let pts = inrs::mesh::well_spaced_points(&d, self.ny).map_err(in_domain)?;
+        match sampling {
+            Sampling::Lines { ny } => {
+                let pts = inrs::mesh::well_spaced_points(&d, ny).map_err(in_domain)?;
                 for b in pts.boundary.iter().flatten() {
                     writeln!(out, "{:?},{:?},boundary", b.point.x, b.point.y)?;
                 }
@@ -49,8 +82,8 @@ impl SampleArgs {
                     writeln!(out, "{:?},{:?},interior", p.x, p.y)?;
                 }
             }
-            SampleMethod::Halton => {
-                for p in inrs::mesh::halton_points_in(&d, self.count).map_err(in_domain)? {
+            Sampling::Halton { count } => {
+                for p in inrs::mesh::halton_points_in(&d, count).map_err(in_domain)? {
                     writeln!(out, "{:?},{:?},interior", p.x, p.y)?;
                 }
             }
