@@ -1169,4 +1169,23 @@ fn fit_data_interpolates_scattered_points_in_every_c1_space() {
     // --space needs --data, and --data needs --space.
     let out = inrs(&["fit", "--domain", &domain, "--data", &data]);
     assert_eq!(out.status.code(), Some(2));
+    // The options of the other kind of fit are usage errors (they were silently ignored).
+    for (extra, with) in [
+        (["--degree", "3"], "--data"),
+        (["--ny", "7"], "--data"),
+        (["--refine", "ct"], "--data"),
+        (["--space", "ct"], "--function"),
+    ] {
+        let mut args = vec!["fit", "--domain", &domain];
+        if with == "--data" {
+            args.extend(["--data", &data, "--space", "ps"]);
+        } else {
+            args.extend(["--function", "x"]);
+        }
+        args.extend(extra);
+        let out = inrs(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(err.contains("cannot be used with"), "{extra:?}: {err}");
+    }
 }

@@ -67,11 +67,12 @@ const MAX_DATA_BYTES: u64 = 1 << 30;
 pub(crate) struct FitArgs {
     #[command(flatten)]
     domain: DomainArg,
-    /// Number of horizontal bands for the triangulation's points (2 to 100000).
-    #[arg(long, default_value_t = 9, value_parser = parse_ny, allow_negative_numbers = true)]
+    /// Number of horizontal bands for the triangulation's points (2 to 100000; --function
+    /// only: with --data the data points are the vertices).
+    #[arg(long, default_value_t = 9, value_parser = parse_ny, allow_negative_numbers = true, conflicts_with = "data")]
     ny: usize,
-    /// The polynomial degree d (1 to 12).
-    #[arg(long, default_value_t = 5, value_parser = parse_degree, allow_negative_numbers = true)]
+    /// The polynomial degree d (1 to 12; --function only: --space sets the degree with --data).
+    #[arg(long, default_value_t = 5, value_parser = parse_degree, allow_negative_numbers = true, conflicts_with = "data")]
     degree: usize,
     /// The function: a formula in x and y with + - * / ^, parentheses, pi, e, and sin cos tan
     /// exp log sqrt abs.
@@ -84,10 +85,11 @@ pub(crate) struct FitArgs {
     #[arg(long, requires = "space")]
     data: Option<PathBuf>,
     /// The C1 space for --data.
-    #[arg(long, value_enum, requires = "data")]
+    #[arg(long, value_enum, requires = "data", conflicts_with = "function")]
     space: Option<SpaceArg>,
-    /// Refine the triangulation first.
-    #[arg(long, value_enum, default_value_t = RefineArg::None)]
+    /// Refine the triangulation first (--function only: the C1 spaces of --data choose
+    /// their own refinement).
+    #[arg(long, value_enum, default_value_t = RefineArg::None, conflicts_with = "data")]
     refine: RefineArg,
     /// Write the spline file here instead of standard output.
     #[arg(long)]
