@@ -445,8 +445,8 @@ struct Vertices {
 
 impl Vertices {
     /// The triangulation of the boundary points (`boundary`'s loops in order) and the
-    /// vertex index of each point by loop, in loop order, a repeated position keeping its
-    /// first index. The points go in in a shuffled order (a fixed seed: the same mesh every
+    /// vertex index of each point by loop, numbered in loop order as [`Vertices::register`]
+    /// numbers them. The points go in in a shuffled order (a fixed seed: the same mesh every
     /// run), each located from its nearest loop neighbour inserted before it: randomised
     /// insertion changes the triangulation by `O(n)` edges in all, whatever the shape, where
     /// loop order cost a flip of every edge back to the loop's start per point on a long, thin
@@ -456,34 +456,16 @@ impl Vertices {
     fn load_boundary(
         boundary: &[Vec<BoundaryPoint>],
     ) -> Result<(Cdt, Self, Vec<Vec<usize>>), MeshError> {
-        let mut v = Self::default();
-        let mut at: HashMap<(u64, u64), usize> = HashMap::new();
-        // Positions compared as numbers (`-0.0` is `0.0`), as the triangulation compares them.
-        let key = |p: Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-        let loops = boundary
-            .iter()
-            .map(|l| {
-                l.iter()
-                    .map(|bp| {
-                        *at.entry(key(bp.point)).or_insert_with(|| {
-                            v.points.push(bp.point);
-                            v.boundary.push(Some(*bp));
-                            v.points.len() - 1
-                        })
-                    })
-                    .collect()
-            })
-            .collect();
-        let n = v.points.len();
+        let points: Vec<Point> = boundary.iter().flatten().map(|bp| bp.point).collect();
         let mut cdt = Cdt::default();
-        let mut handles: Vec<Option<FixedVertexHandle>> = vec![None; n];
-        for i in shuffled(n) {
+        let mut handles: Vec<Option<FixedVertexHandle>> = vec![None; points.len()];
+        for i in shuffled(points.len()) {
             let hint = handles[..i]
                 .iter()
                 .rev()
                 .chain(handles[i..].iter())
                 .find_map(|h| *h);
-            let p = p2(v.points[i]);
+            let p = p2(points[i]);
             let h = match hint {
                 Some(hint) => cdt.insert_with_hint(p, hint),
                 None => cdt.insert(p),
@@ -491,17 +473,17 @@ impl Vertices {
             .map_err(insertion_error)?;
             handles[i] = Some(h);
         }
-        v.index = handles
+        let mut v = Self::default();
+        let mut handles = handles.into_iter().flatten();
+        let loops = boundary
             .iter()
-            .enumerate()
-            .filter_map(|(i, h)| h.map(|h| (h, i)))
+            .map(|l| {
+                l.iter()
+                    .zip(&mut handles)
+                    .map(|(bp, h)| v.register(h, bp.point, Some(*bp)))
+                    .collect()
+            })
             .collect();
-        if v.index.len() != n {
-            return Err(MeshError::Triangulation(format!(
-                "{n} distinct boundary points became {} vertices",
-                v.index.len()
-            )));
-        }
         Ok((cdt, v, loops))
     }
 
@@ -513,11 +495,22 @@ impl Vertices {
         boundary: Option<BoundaryPoint>,
     ) -> Result<usize, MeshError> {
         let h = cdt.insert(p2(p)).map_err(insertion_error)?;
-        Ok(*self.index.entry(h).or_insert_with(|| {
+        Ok(self.register(h, p, boundary))
+    }
+
+    /// The index of the vertex of handle `h` at `p`: the next index the first time, the first
+    /// one's after (the triangulation gives a repeated position the handle it gave it first).
+    fn register(
+        &mut self,
+        h: FixedVertexHandle,
+        p: Point,
+        boundary: Option<BoundaryPoint>,
+    ) -> usize {
+        *self.index.entry(h).or_insert_with(|| {
             self.points.push(p);
             self.boundary.push(boundary);
             self.points.len() - 1
-        }))
+        })
     }
 }
 

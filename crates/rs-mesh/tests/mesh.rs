@@ -477,8 +477,9 @@ fn crossing_loops_are_not_convertible_and_the_error_names_a_crossing() {
     }
 }
 
-/// A hole sampled at two points has two arcs on one chord: both are split (the chord is
-/// not an overlap of the boundary), and the mesh covers the domain.
+/// A hole sampled at one point (its curve's start): its one arc is split, and the two arcs
+/// it then has share one chord; both are split again (the chord is not an overlap of the
+/// boundary), and the mesh covers the domain.
 #[test]
 fn two_arcs_on_one_chord_are_split_not_refused() {
     let d = Domain::new(vec![
@@ -487,7 +488,7 @@ fn two_arcs_on_one_chord_are_split_not_refused() {
     ])
     .unwrap();
     let mut points = well_spaced_points(&d, 2).unwrap();
-    // The hole's boundary points: its curve's start only, and one opposite.
+    // The hole's boundary points: its curve's start only.
     let hole = &mut points.boundary[1];
     hole.truncate(1);
     let m = CurvedTriangulation::new(&d, &points).unwrap();
