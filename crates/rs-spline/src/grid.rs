@@ -37,7 +37,7 @@ impl GridFrame {
             rows.clamp(1, Self::MAX_CELLS),
         );
         let inv = |n: usize, span: f64| {
-            if span > 0.0 && span.is_finite() {
+            if spans_cells(span) {
                 n as f64 / span
             } else {
                 0.0
@@ -70,9 +70,8 @@ impl GridFrame {
     /// ```
     pub fn near_square(bbox: BoundingBox, cells: usize) -> Self {
         let (w, h) = (bbox.width(), bbox.height());
-        let usable = |s: f64| s > 0.0 && s.is_finite();
         let cells = cells.max(1) as f64;
-        let (columns, rows) = match (usable(w), usable(h)) {
+        let (columns, rows) = match (spans_cells(w), spans_cells(h)) {
             (true, true) => {
                 let aspect = w / h;
                 ((cells * aspect).sqrt(), (cells / aspect).sqrt())
@@ -174,6 +173,11 @@ impl GridFrame {
             }
         }
     }
+}
+
+/// Can a side of this length be cut into cells? (Zero or non-finite sides are one cell.)
+fn spans_cells(side: f64) -> bool {
+    side > 0.0 && side.is_finite()
 }
 
 /// Items registered per cell of a [`GridFrame`], in compressed sparse rows: `offsets[cell]` to
