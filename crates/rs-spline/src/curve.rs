@@ -58,6 +58,13 @@ pub trait ParamCurve: Sized {
 pub trait ParamCurveDeriv: ParamCurve {
     /// `C(u)`, `C'(u)`, `C''(u)`.
     fn derivatives(&self, u: f64) -> CurveDerivatives;
+
+    /// `C(u)` and `C'(u)`, the same values as [`ParamCurveDeriv::derivatives`] gives, without
+    /// the second derivative (what arc lengths and areas integrate).
+    fn point_and_tangent(&self, u: f64) -> (Point, Point) {
+        let d = self.derivatives(u);
+        (d.point, d.first)
+    }
 }
 
 /// The signed area contribution of a curve (Green's theorem).
@@ -73,6 +80,26 @@ pub trait ParamCurveArea: ParamCurve {
         let (a, b) = self.param_range();
         self.area_integral_on(a, b)
     }
+}
+
+/// How large the basis derivatives of a degree-`degree` span `[a, b]` add up to at most,
+/// `2 degree / (b - a)`: a computed `C'(u)` combines coordinates with weights of that size.
+pub(crate) fn basis_derivative_size(degree: usize, a: f64, b: f64) -> f64 {
+    2.0 * degree as f64 / (b - a)
+}
+
+/// The size of the terms a computed `C'(u)` (`tangent`, at `point`) is a sum of:
+/// `|C'(u)| + per_parameter |C(u)|` (in the 1-norm: a size, not a length), with
+/// `per_parameter` from [`basis_derivative_size`]. A quadrature of an integrand built from
+/// `C'` takes it as the rounding floor: a short curve far from the origin has a derivative
+/// whose rounding (coordinates of `|C(u)|`'s size, differenced) is far above `eps |C'(u)|`.
+pub(crate) fn derivative_rounding_size(point: Point, tangent: Point, per_parameter: f64) -> f64 {
+    one_norm(tangent) + per_parameter * one_norm(point)
+}
+
+/// `|x| + |y|`: at least the length and at most 1.42 times it, without a square root.
+pub(crate) fn one_norm(p: Point) -> f64 {
+    p.x.abs() + p.y.abs()
 }
 
 /// Arc length `s(u) = integral_a^u |C'(v)| dv` and its inverse.
@@ -91,17 +118,14 @@ pub trait ParamCurveArclen: ParamCurveDeriv {
             .filter_map(|(a, b)| {
                 let (lo, hi) = (u0.max(a), u1.min(b));
                 (lo < hi).then(|| {
-                    // The speed's rounding magnitude: the derivative is a sum of coordinates
-                    // (of about the size of the point's) times basis derivatives, which add up
-                    // to at most 2 degree / (b - a) in size (degree at most `MAX_DEGREE`). With
-                    // `|v|` alone, a short curve far from the origin (control points at 1e8,
-                    // length 40) could never meet the tolerance: every panel took the whole
-                    // interval budget, 7 s per curve.
-                    let per_parameter = 2.0 * crate::limits::MAX_DEGREE as f64 / (b - a);
+                    // With `|v|` alone as the speed's rounding magnitude, a short curve far
+                    // from the origin (control points at 1e8, length 40) could never meet the
+                    // tolerance: every panel took the whole interval budget, 7 s per curve.
+                    let per_parameter = basis_derivative_size(crate::limits::MAX_DEGREE, a, b);
                     let speed = |u: f64| {
-                        let d = self.derivatives(u);
-                        let v = d.first.length();
-                        (v, v + per_parameter * d.point.length())
+                        let (point, tangent) = self.point_and_tangent(u);
+                        let size = derivative_rounding_size(point, tangent, per_parameter);
+                        (tangent.length(), size)
                     };
                     integrate_adaptive(speed, lo, hi, share.max(f64::MIN_POSITIVE))
                 })
@@ -132,8 +156,8 @@ pub trait ParamCurveArclen: ParamCurveDeriv {
         let xtol = f64::EPSILON * (b - a).abs().max(a.abs().max(b.abs()));
         newton_bracketed(
             |u| {
-                let d = self.derivatives(u).first.length();
-                (self.arclen_on(a, u, accuracy).value - s, d)
+                let speed = self.point_and_tangent(u).1.length();
+                (self.arclen_on(a, u, accuracy).value - s, speed)
             },
             a,
             b,
@@ -288,6 +312,26 @@ mod tests {
         assert!((got.value - exact.value).abs() < 1e-6, "{got:?} {exact:?}");
         let table = ArcLengthTable::new(&far, 32);
         assert!((table.length() - exact.value).abs() < 1e-6);
+    }
+
+    /// The point and tangent are `derivatives`' first two, bit for bit, on a rational NURBS of
+    /// several spans and on its rational Bezier pieces.
+    #[test]
+    fn point_and_tangent_are_the_first_two_derivatives() {
+        let c = circle(Point::new(1.0, 2.0), 3.0).unwrap();
+        let (a, b) = c.param_range();
+        for i in 0..=40 {
+            let u = a + (b - a) * i as f64 / 40.0;
+            let d = c.derivatives(u);
+            assert_eq!(c.point_and_tangent(u), (d.point, d.first), "u = {u}");
+        }
+        for piece in c.to_bezier() {
+            for i in 0..=10 {
+                let t = i as f64 / 10.0;
+                let d = piece.derivatives(t);
+                assert_eq!(piece.point_and_tangent(t), (d.point, d.first), "t = {t}");
+            }
+        }
     }
 
     #[test]

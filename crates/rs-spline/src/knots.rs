@@ -3,6 +3,10 @@
 use crate::SplineError;
 use crate::limits::MAX_DEGREE;
 
+/// The numbers [`KnotVector::with_basis_derivatives`] keeps on the stack: enough for degree 7
+/// with derivatives up to order 2.
+const SMALL_BASIS: usize = 120;
+
 /// The runs of equal knots of a non-decreasing `knots` whose value lies strictly inside
 /// `(start, end)`: (index of the first copy, value, multiplicity), ascending.
 fn interior_runs(
@@ -223,58 +227,97 @@ impl KnotVector {
     ///
     /// `out[d][j]` is the `d`-th derivative of `N_{k-p+j, p}(u)`.
     pub fn basis_derivatives(&self, k: usize, u: f64, nd: usize) -> Vec<Vec<f64>> {
+        let w = self.degree + 1;
+        self.with_basis_derivatives(k, u, nd, |table| {
+            table.chunks_exact(w).map(<[f64]>::to_vec).collect()
+        })
+    }
+
+    /// Calls `f` with [`KnotVector::basis_derivatives`] as one flat table (row `d` at
+    /// `d (p + 1)`), worked out in storage on the stack up to degree 7 and degree-2 derivatives
+    /// (a table of vectors cost a dozen allocations per curve evaluation: most of the time of
+    /// an arc-length table).
+    pub(crate) fn with_basis_derivatives<R>(
+        &self,
+        k: usize,
+        u: f64,
+        nd: usize,
+        f: impl FnOnce(&[f64]) -> R,
+    ) -> R {
+        let w = self.degree + 1;
+        let need = (w + 4) * w + (nd + 1) * w;
+        if need <= SMALL_BASIS {
+            let mut store = [0.0; SMALL_BASIS];
+            f(self.basis_derivatives_in(k, u, nd, &mut store[..need]))
+        } else {
+            let mut store = vec![0.0; need];
+            f(self.basis_derivatives_in(k, u, nd, &mut store))
+        }
+    }
+
+    /// Algorithm A2.3 in `store` (zeros, `(p + 5) (p + 1) + (nd + 1) (p + 1)` numbers); returns
+    /// the part that holds the table.
+    fn basis_derivatives_in<'s>(
+        &self,
+        k: usize,
+        u: f64,
+        nd: usize,
+        store: &'s mut [f64],
+    ) -> &'s [f64] {
         let p = self.degree;
+        let w = p + 1;
         let u_k = &self.knots;
-        let mut ndu = vec![vec![0.0; p + 1]; p + 1];
-        let mut left = vec![0.0; p + 1];
-        let mut right = vec![0.0; p + 1];
-        ndu[0][0] = 1.0;
+        // ndu[j][r] at j * w + r: basis values (upper triangle) and knot differences (lower);
+        // the two alternating rows of coefficients a[s][j] at s * w + j.
+        let (ndu, rest) = store.split_at_mut(w * w);
+        let (left, rest) = rest.split_at_mut(w);
+        let (right, rest) = rest.split_at_mut(w);
+        let (a, ders) = rest.split_at_mut(2 * w);
+        ndu[0] = 1.0;
         for j in 1..=p {
             left[j] = u - u_k[k + 1 - j];
             right[j] = u_k[k + j] - u;
             let mut saved = 0.0;
             for r in 0..j {
-                ndu[j][r] = right[r + 1] + left[j - r];
-                let temp = ndu[r][j - 1] / ndu[j][r];
-                ndu[r][j] = saved + right[r + 1] * temp;
+                ndu[j * w + r] = right[r + 1] + left[j - r];
+                let temp = ndu[r * w + j - 1] / ndu[j * w + r];
+                ndu[r * w + j] = saved + right[r + 1] * temp;
                 saved = left[j - r] * temp;
             }
-            ndu[j][j] = saved;
+            ndu[j * w + j] = saved;
         }
-        let mut ders = vec![vec![0.0; p + 1]; nd + 1];
         for j in 0..=p {
-            ders[0][j] = ndu[j][p];
+            ders[j] = ndu[j * w + p];
         }
-        let mut a = vec![vec![0.0; p + 1]; 2];
         for r in 0..=p as isize {
-            let (mut s1, mut s2) = (0usize, 1usize);
-            a[0][0] = 1.0;
+            let (mut s1, mut s2) = (0usize, w);
+            a[0] = 1.0;
             for kk in 1..=nd.min(p) as isize {
                 let mut d = 0.0;
                 let rk = r - kk;
                 let pk = p as isize - kk;
+                let below = (pk + 1) as usize * w;
                 if r >= kk {
-                    a[s2][0] = a[s1][0] / ndu[(pk + 1) as usize][rk as usize];
-                    d = a[s2][0] * ndu[rk as usize][pk as usize];
+                    a[s2] = a[s1] / ndu[below + rk as usize];
+                    d = a[s2] * ndu[rk as usize * w + pk as usize];
                 }
                 let j1 = if rk >= -1 { 1 } else { -rk };
                 let j2 = if r - 1 <= pk { kk - 1 } else { p as isize - r };
                 for j in j1..=j2 {
                     let (ju, rkj) = (j as usize, (rk + j) as usize);
-                    a[s2][ju] = (a[s1][ju] - a[s1][ju - 1]) / ndu[(pk + 1) as usize][rkj];
-                    d += a[s2][ju] * ndu[rkj][pk as usize];
+                    a[s2 + ju] = (a[s1 + ju] - a[s1 + ju - 1]) / ndu[below + rkj];
+                    d += a[s2 + ju] * ndu[rkj * w + pk as usize];
                 }
                 if r <= pk {
-                    a[s2][kk as usize] =
-                        -a[s1][(kk - 1) as usize] / ndu[(pk + 1) as usize][r as usize];
-                    d += a[s2][kk as usize] * ndu[r as usize][pk as usize];
+                    a[s2 + kk as usize] = -a[s1 + (kk - 1) as usize] / ndu[below + r as usize];
+                    d += a[s2 + kk as usize] * ndu[r as usize * w + pk as usize];
                 }
-                ders[kk as usize][r as usize] = d;
+                ders[kk as usize * w + r as usize] = d;
                 std::mem::swap(&mut s1, &mut s2);
             }
         }
         let mut factor = p as f64;
-        for (kk, row) in ders.iter_mut().enumerate().skip(1) {
+        for (kk, row) in ders.chunks_exact_mut(w).enumerate().skip(1) {
             if kk > p {
                 row.iter_mut().for_each(|v| *v = 0.0);
                 continue;
@@ -359,6 +402,35 @@ mod tests {
             assert!(d[0].iter().all(|&v| v >= -1e-15));
             assert!(d[1].iter().sum::<f64>().abs() < 1e-11);
             assert!(d[2].iter().sum::<f64>().abs() < 1e-9);
+        }
+    }
+
+    /// The table worked out on the stack (degree up to 7) and on the heap (above) alike: a
+    /// partition of unity whose first derivatives match central differences of the values.
+    #[test]
+    fn basis_derivatives_of_every_degree_match_differences_of_the_values() {
+        for p in [1, 2, 3, 7, 8, 12] {
+            let k = KnotVector::uniform_clamped(p, p + 4).unwrap();
+            let (a, b) = k.domain();
+            for i in 1..20 {
+                let u = a + (b - a) * (i as f64 + 0.3) / 20.0;
+                let span = k.span(u);
+                let d = k.basis_derivatives(span, u, 2);
+                assert_eq!((d.len(), d[0].len()), (3, p + 1));
+                assert_relative_eq!(d[0].iter().sum::<f64>(), 1.0, epsilon = 1e-13);
+                let h = 1e-6;
+                let (lo, hi) = (
+                    k.basis_derivatives(span, u - h, 0),
+                    k.basis_derivatives(span, u + h, 0),
+                );
+                for j in 0..=p {
+                    let diff = (hi[0][j] - lo[0][j]) / (2.0 * h);
+                    assert!(
+                        (d[1][j] - diff).abs() < 1e-6 * (1.0 + d[1][j].abs()),
+                        "p {p} u {u} j {j}"
+                    );
+                }
+            }
         }
     }
 

@@ -161,15 +161,16 @@ impl NurbsCurve {
         let u = u.clamp(a, b);
         let p = self.degree();
         let k = self.knots.span(u);
-        let basis = self.knots.basis_derivatives(k, u, nd);
-        let mut out = [Hpoint::default(); 3];
-        for (d, row) in basis.iter().enumerate().take(3) {
-            for (j, &n) in row.iter().enumerate() {
-                let i = k - p + j;
-                out[d] = out[d] + Hpoint::weighted(self.points[i], self.weights[i]) * n;
+        self.knots.with_basis_derivatives(k, u, nd, |basis| {
+            let mut out = [Hpoint::default(); 3];
+            for (slot, row) in out.iter_mut().zip(basis.chunks_exact(p + 1)) {
+                for (j, &n) in row.iter().enumerate() {
+                    let i = k - p + j;
+                    *slot = *slot + Hpoint::weighted(self.points[i], self.weights[i]) * n;
+                }
             }
-        }
-        out
+            out
+        })
     }
 
     fn check_in_domain(&self, u: f64) -> Result<(), SplineError> {
@@ -437,6 +438,11 @@ impl ParamCurveDeriv for NurbsCurve {
     /// at the domain end).
     fn derivatives(&self, u: f64) -> CurveDerivatives {
         rational_derivatives(self.homogeneous_derivatives(u, 2))
+    }
+
+    fn point_and_tangent(&self, u: f64) -> (Point, Point) {
+        let d = rational_derivatives(self.homogeneous_derivatives(u, 1));
+        (d.point, d.first)
     }
 }
 
