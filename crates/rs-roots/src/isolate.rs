@@ -42,8 +42,11 @@ pub fn bernstein_roots(b: &Bernstein) -> Result<Vec<f64>, RootsError> {
     }
     let n = b.degree();
     let noise = 4.0 * (n as f64 + 1.0) * f64::EPSILON * b.magnitude();
-    let mut roots = Vec::new();
     let c = b.coeffs();
+    if let Some(ends) = only_end_roots(c, noise) {
+        return Ok(ends);
+    }
+    let mut roots = Vec::new();
     if c[0].abs() <= noise {
         roots.push(0.0);
     }
@@ -106,6 +109,32 @@ fn merge_clusters(sorted: Vec<f64>, f: impl Fn(f64) -> f64, noise: f64) -> Vec<f
         out.push(x);
     }
     out
+}
+
+/// The roots when the coefficients tell them without a search: every coefficient of one sign
+/// and above `noise`, except exact zeros at the ends. A positive combination of the Bernstein
+/// basis vanishes nowhere in `(0, 1)`, so the zero ends (`t = 0` for `c_0 = 0`, `t = 1` for
+/// `c_n = 0`) are the only roots. The common case of a curve tested against a segment through
+/// its own end point, and of no root at all, without the subdivision's allocations.
+fn only_end_roots(c: &[f64], noise: f64) -> Option<Vec<f64>> {
+    let n = c.len() - 1;
+    let (start, end) = (c[0] == 0.0, c[n] == 0.0);
+    let inner = &c[usize::from(start)..c.len() - usize::from(end)];
+    let positive = inner.first().is_some_and(|&x| x > 0.0);
+    let one_sign = !inner.is_empty()
+        && inner
+            .iter()
+            .all(|&x| x.abs() > noise && (x > 0.0) == positive);
+    one_sign.then(|| {
+        let mut ends = Vec::new();
+        if start {
+            ends.push(0.0);
+        }
+        if end {
+            ends.push(1.0);
+        }
+        ends
+    })
 }
 
 /// All real roots of `p` in `[a, b]` by Bernstein isolation of `p(a + (b - a) s)`.
@@ -201,6 +230,37 @@ fn polish_in_t(p: &Polynomial, mut x: f64, a: f64, b: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Coefficients of one sign but for exact zeros at the ends: the ends are the only roots
+    /// (the polynomial keeps one sign inside); anything else goes to the subdivision.
+    #[test]
+    fn zero_ends_with_one_sign_inside_are_the_only_roots() {
+        let cases: [(&[f64], &[f64]); 5] = [
+            (&[0.0, 1.0, 2.0, 0.5], &[0.0]),
+            (&[-3.0, -1.0, -2.0, 0.0], &[1.0]),
+            (&[0.0, 4.0, 1e-3, 0.0], &[0.0, 1.0]),
+            (&[2.0, 1.0, 3.0], &[]),
+            (&[0.0, -1.0], &[0.0]),
+        ];
+        for (c, want) in cases {
+            let got = bernstein_roots(&Bernstein::new(c.to_vec())).unwrap();
+            assert_eq!(got, want, "{c:?}");
+            // Independently: no sign change at 999 points inside.
+            let b = Bernstein::new(c.to_vec());
+            let signs: Vec<bool> = (1..1000).map(|i| b.eval(i as f64 / 1000.0) > 0.0).collect();
+            assert!(signs.iter().all(|&s| s == signs[0]), "{c:?}");
+        }
+        // A coefficient within rounding of zero, or a sign change, is left to the subdivision.
+        assert!(only_end_roots(&[0.0, 1e-300, 1.0], 1e-20).is_none());
+        assert!(only_end_roots(&[0.0, 1.0, -1.0, 2.0], 1e-20).is_none());
+        assert!(only_end_roots(&[0.0, 0.0], 1e-20).is_none());
+        let p = Polynomial::from_roots(&[0.0, 0.4, 3.0]);
+        let c = Bernstein::from_power(&p, 3);
+        assert!(only_end_roots(c.coeffs(), 1e-20).is_none());
+        let got = bernstein_roots(&c).unwrap();
+        assert_eq!(got.len(), 2);
+        assert!(got[0] == 0.0 && (got[1] - 0.4).abs() < 1e-14, "{got:?}");
+    }
 
     #[test]
     fn finds_simple_and_end_roots() {
