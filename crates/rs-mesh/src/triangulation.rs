@@ -852,13 +852,20 @@ pub(crate) fn arc_is_clear(
         return true;
     }
     let bbox = arc.control_bounding_box();
+    let boxes: Vec<BoundingBox> = pieces.iter().map(|b| b.control_bounding_box()).collect();
     for (a, b) in grid.candidates(bbox) {
         if (a, b) == chord || (b, a) == chord {
             continue;
         }
         let (p, q) = (vertices[a], vertices[b]);
-        for piece in &pieces {
-            if crosses_inside_segment(piece, p, q, size) {
+        // Where a piece can meet the segment: within its control box (the piece lies in its
+        // control polygon's hull) and within the segment's box grown by what `within` accepts
+        // beyond its ends (`ON_SEGMENT`) and by the rounding of the points tested (far below
+        // `AT_VERTEX` of the domain). Disjoint boxes skip the root search.
+        let reach = ON_SEGMENT * p.distance(q) + AT_VERTEX * size;
+        let segment = BoundingBox::from_point(p).including(q).grown_by(reach);
+        for (piece, piece_box) in pieces.iter().zip(&boxes) {
+            if piece_box.overlaps(&segment) && crosses_inside_segment(piece, p, q, size) {
                 return false;
             }
         }

@@ -194,4 +194,21 @@ impl BoundingBox {
     pub fn contains(&self, p: Point) -> bool {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
     }
+
+    /// Do the closed boxes share a point?
+    ///
+    /// ```
+    /// use rs_spline::{BoundingBox, Point};
+    /// let unit = BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1.0, 1.0));
+    /// let corner = BoundingBox::from_point(Point::new(1.0, 1.0)).including(Point::new(2.0, 3.0));
+    /// let beside = BoundingBox::from_point(Point::new(1.5, 0.0)).including(Point::new(2.0, 1.0));
+    /// assert!(unit.overlaps(&corner) && corner.overlaps(&unit));
+    /// assert!(!unit.overlaps(&beside) && !beside.overlaps(&unit));
+    /// ```
+    pub fn overlaps(&self, other: &BoundingBox) -> bool {
+        self.min.x <= other.max.x
+            && other.min.x <= self.max.x
+            && self.min.y <= other.max.y
+            && other.min.y <= self.max.y
+    }
 }
