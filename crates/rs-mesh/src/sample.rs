@@ -3,7 +3,7 @@
 use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::Locate;
 use rs_contain::baselines::radical_inverse;
-use rs_contain::{Classifier, ContainOptions, Location};
+use rs_contain::{Classifier, ContainOptions, Location, Method};
 use rs_spline::grid::{CellIndex, GridFrame};
 use rs_spline::{BoundingBox, Domain, Point};
 
@@ -120,7 +120,12 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
         domain,
         ContainOptions::DEFAULT.with_relative_tolerance(0.25 * h / diag),
     )?;
-    interior.retain(|&p| !near.any_within(p, 0.5 * h) && band.locate(p) == Location::Inside);
+    interior.retain(|&p| !near.any_within(p, 0.5 * h));
+    // All at once, by the library's fastest method for the count: a point at a time scanned
+    // every monotone box (4 s of a 5 s mesh of the butterfly at ny = 300).
+    let located = band.classify(&interior, Method::Fast);
+    let mut at = located.iter();
+    interior.retain(|_| at.next() == Some(&Location::Inside));
     Ok(WellSpacedPoints {
         h,
         interior,
