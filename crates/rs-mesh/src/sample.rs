@@ -1,7 +1,6 @@
 //! Point sampling in a curved domain: the paper's Algorithm 11.1 and quasi-Monte Carlo.
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
-use rs_contain::Locate;
 use rs_contain::baselines::radical_inverse;
 use rs_contain::{Classifier, ContainOptions, Location, Method};
 use rs_spline::grid::{CellIndex, GridFrame};
@@ -133,9 +132,13 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
     })
 }
 
+/// The most Halton candidates [`halton_points_in`] classifies at once (1 MB of points).
+const HALTON_BATCH: u64 = 1 << 16;
+
 /// The first `count` Halton points (bases 2 and 3, over the bounding box) that lie inside the
-/// domain: a deterministic quasi-Monte Carlo sample. Candidates are drawn one at a time, so
-/// memory is the output only.
+/// domain: a deterministic quasi-Monte Carlo sample. Candidates are drawn and classified in
+/// batches (by [`Method::Fast`]) sized from the share inside so far, at most [`HALTON_BATCH`],
+/// so memory is the output and one batch.
 ///
 /// # Errors
 /// [`MeshError::InvalidCount`] for `count = 0` or above [`MAX_SAMPLE_POINTS`], or when
@@ -147,17 +150,37 @@ pub fn halton_points_in(domain: &Domain, count: usize) -> Result<Vec<Point>, Mes
     }
     let classifier = Classifier::new(domain, ContainOptions::default())?;
     let bb = domain.bounding_box();
-    let tries = (count as u64).saturating_mul(MAX_HALTON_TRIES_PER_POINT as u64);
-    let mut inside = Vec::with_capacity(count);
-    for i in 0..tries {
-        let p = Point::new(
+    let candidate = |i: u64| {
+        Point::new(
             bb.min.x + radical_inverse(i, 2) * bb.width(),
             bb.min.y + radical_inverse(i, 3) * bb.height(),
-        );
-        if classifier.locate(p) == Location::Inside {
-            inside.push(p);
-            if inside.len() == count {
-                return Ok(inside);
+        )
+    };
+    let tries = (count as u64).saturating_mul(MAX_HALTON_TRIES_PER_POINT as u64);
+    let mut inside = Vec::with_capacity(count);
+    let (mut next, mut batch) = (0u64, Vec::new());
+    while next < tries {
+        // Enough candidates for the points still wanted at the share inside seen so far (a
+        // tenth more), no fewer than 64 and no more than a batch.
+        let share = if next == 0 {
+            1.0
+        } else {
+            (inside.len() as f64 / next as f64).max(1.0 / MAX_HALTON_TRIES_PER_POINT as f64)
+        };
+        let wanted = (count - inside.len()) as f64 / share;
+        let n = ((1.1 * wanted) as u64)
+            .clamp(64, HALTON_BATCH)
+            .min(tries - next);
+        batch.clear();
+        batch.extend((next..next + n).map(candidate));
+        next += n;
+        let located = classifier.classify(&batch, Method::Fast);
+        for (&p, location) in batch.iter().zip(located) {
+            if location == Location::Inside {
+                inside.push(p);
+                if inside.len() == count {
+                    return Ok(inside);
+                }
             }
         }
     }

@@ -116,8 +116,37 @@ fn halton_sampling_gives_the_requested_count_inside() {
         assert!(pts.iter().all(|p| c.locate(*p) == Location::Inside));
         assert_eq!(pts, halton_points_in(d, 500).unwrap(), "deterministic");
     }
+    // Exactly the first inside candidates, one at a time, whatever the batches (the first
+    // sized for the count, the next from the share inside, at most 65 536, by the locator
+    // from 50 000 on).
     let d = &rs_testkit::annulus().domain;
+    let c = Classifier::new(d, ContainOptions::default()).unwrap();
+    let candidates = halton_points(300_000, d.bounding_box());
+    let one_at_a_time: Vec<Point> = candidates
+        .into_iter()
+        .filter(|&p| c.locate(p) == Location::Inside)
+        .collect();
+    for count in [1, 63, 64, 65, 500, 70_000, 150_000] {
+        let got = halton_points_in(d, count).unwrap();
+        assert!(got == one_at_a_time[..count], "count {count}");
+    }
     assert!(halton_points_in(d, 0).is_err());
+    // A thin strip along its box is sampled; along the box's diagonal it fills 1e-6 of the
+    // box, the candidates run out (1000 per point asked for) after batches of every size, and
+    // that is an error, not a short answer.
+    let along = Domain::new(polygon(&[(0.0, 0.0), (1.0, 0.0), (1.0, 2e-4), (0.0, 1e-4)])).unwrap();
+    assert_eq!(halton_points_in(&along, 100).unwrap().len(), 100);
+    let diagonal = Domain::new(polygon(&[
+        (0.0, 0.0),
+        (1.0, 1.0 - 1e-6),
+        (1.0, 1.0),
+        (0.0, 1e-6),
+    ]))
+    .unwrap();
+    assert!(matches!(
+        halton_points_in(&diagonal, 100),
+        Err(rs_mesh::MeshError::InvalidCount(100))
+    ));
     assert!(well_spaced_points(d, 1).is_err());
     assert!(well_spaced_points(d, rs_mesh::MAX_LINES + 1).is_err());
 }
