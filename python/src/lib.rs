@@ -19,7 +19,7 @@ use pyo3::types::PyDict;
 
 use inrs::contain::{
     DEFAULT_RELATIVE_TOLERANCE, FAST_METHOD_MIN_POINTS, FastWindingField, FillRule, Locate,
-    WindingField,
+    WindingField, fast_uses_locator,
 };
 use inrs::mesh::{CurvedTriangulation, EdgeKind, Refinement, well_spaced_points};
 use inrs::spline::Flatten;
@@ -249,7 +249,7 @@ impl NativeDomain {
         let classifier = self.classifier(tol)?;
         py.detach(|| {
             with_threads(threads, || {
-                if method == Method::Fast && n >= FAST_METHOD_MIN_POINTS {
+                if method == Method::Fast && fast_uses_locator(n) {
                     let locator = classifier.locator();
                     with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
                         locator.locate_indexed_into(|i| at(first + i), out)

@@ -9,8 +9,8 @@ use std::sync::{Arc, OnceLock};
 use crate::locate::in_parallel_chunks;
 use crate::locator::LocatorIndex;
 use crate::{
-    ContainError, Decision, FAST_METHOD_MIN_POINTS, Locate, Location, LocatorOptions, Method,
-    PointLocator, WindingField,
+    ContainError, Decision, Locate, Location, LocatorOptions, Method, PointLocator, WindingField,
+    fast_uses_locator,
 };
 
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
@@ -234,8 +234,10 @@ impl Classifier {
         match method {
             Method::InRS1 => points.iter().map(|&p| self.locate(p)).collect(),
             Method::InRS2 => self.classify_sorted(points),
-            Method::Fast if points.len() < FAST_METHOD_MIN_POINTS => self.classify_sorted(points),
-            Method::Fast => self.locator().locate_all_parallel(points),
+            Method::Fast if fast_uses_locator(points.len()) => {
+                self.locator().locate_all_parallel(points)
+            }
+            Method::Fast => self.classify_sorted(points),
             Method::Gwn => {
                 let field = self.winding_field();
                 points
@@ -313,7 +315,7 @@ impl Locate for Classifier {
     fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
         match self.method {
             // Already parallel.
-            Method::Fast if points.len() >= FAST_METHOD_MIN_POINTS => self.locate_all(points),
+            Method::Fast if fast_uses_locator(points.len()) => self.locate_all(points),
             _ => in_parallel_chunks(self, points),
         }
     }

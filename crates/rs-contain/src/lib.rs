@@ -65,7 +65,7 @@ pub use gwn::{
     curve_winding_number,
 };
 pub use locate::Locate;
-pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method};
+pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method, fast_uses_locator};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
 
 /// What the papers compare against, and the points they compare on: kept out of the core API

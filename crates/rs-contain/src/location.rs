@@ -65,7 +65,8 @@ pub enum Method {
     Gwn,
     /// The fastest exact path for the batch size: inRS2 below
     /// [`FAST_METHOD_MIN_POINTS`] points, otherwise the grid [`crate::PointLocator`] run on all
-    /// threads. Same results as inRS2. The default, in the library as on the command line.
+    /// threads ([`fast_uses_locator`]). Same results as inRS2. The default, in the library as
+    /// on the command line.
     #[default]
     Fast,
 }
@@ -73,6 +74,13 @@ pub enum Method {
 /// Batch size from which [`Method::Fast`] builds a [`crate::PointLocator`] (its build, a few
 /// milliseconds, pays for itself from there on; measured with `cargo xtask bench`).
 pub const FAST_METHOD_MIN_POINTS: usize = 50_000;
+
+/// Whether [`Method::Fast`] answers a batch of `points` points with the grid locator (from
+/// [`FAST_METHOD_MIN_POINTS`] on) rather than inRS2: the one place that decides, for the
+/// library, the command line and the Python package alike.
+pub fn fast_uses_locator(points: usize) -> bool {
+    points >= FAST_METHOD_MIN_POINTS
+}
 
 impl Method {
     /// The name used on the command line.
@@ -101,5 +109,18 @@ impl FromStr for Method {
                 "unknown method {other:?} (expected fast, inrs1, inrs2 or gwn)"
             )),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fast_method_builds_the_locator_from_its_threshold_on() {
+        assert!(!fast_uses_locator(0));
+        assert!(!fast_uses_locator(FAST_METHOD_MIN_POINTS - 1));
+        assert!(fast_uses_locator(FAST_METHOD_MIN_POINTS));
+        assert!(fast_uses_locator(usize::MAX));
     }
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
-use inrs::contain::{FAST_METHOD_MIN_POINTS, FastWindingField, PointLocator, WindingField};
+use inrs::contain::{FastWindingField, PointLocator, WindingField, fast_uses_locator};
 use inrs::{Classifier, ContainOptions, Location, Method, NpyType, Point};
 
 use crate::args::{DomainArg, FillRuleArg, MethodArg};
@@ -85,7 +85,7 @@ impl ClassifyArgs {
         let classifier = Classifier::new(&d, options).map_err(|e| self.domain.error(e))?;
         // The fast method takes the grid for inputs large enough to pay for it (built once,
         // kept by the classifier), inRS2 for small ones: the answers are the same.
-        if method == Method::Fast && input.estimated_points() >= FAST_METHOD_MIN_POINTS {
+        if method == Method::Fast && fast_uses_locator(input.estimated_points()) {
             return stream_points(input, output, &Locations, &ByIndex(classifier.locator()));
         }
         let method = if method == Method::Fast {
