@@ -187,6 +187,9 @@ pub fn halton_points_in(domain: &Domain, count: usize) -> Result<Vec<Point>, Mes
     Err(MeshError::InvalidCount(count))
 }
 
+/// The most cells of a [`PointGrid`]: those of a 1024 x 1024 grid.
+const MAX_POINT_GRID_CELLS: usize = 1 << 20;
+
 /// Points registered by cell, to ask whether any lies within `r` of a query point.
 pub(crate) struct PointGrid {
     points: Vec<Point>,
@@ -194,21 +197,27 @@ pub(crate) struct PointGrid {
 }
 
 impl PointGrid {
-    /// Cells about `cell` wide (at most 1024 per side): a query with `r` near `cell` looks at
-    /// a few cells around the point.
+    /// Cells about `cell` wide, at most [`MAX_POINT_GRID_CELLS`] of them (then larger, near
+    /// square): a query with `r` near `cell` looks at a few cells around the point.
     pub(crate) fn new(points: impl Iterator<Item = Point>, cell: f64) -> Self {
         let points: Vec<Point> = points.collect();
         let bb = BoundingBox::from_points(points.iter().copied())
             .unwrap_or(BoundingBox::from_point(Point::new(0.0, 0.0)));
-        // Cells of side `cell` (at most 1024 per side).
         let count = |span: f64| {
             if cell > 0.0 && span.is_finite() {
-                ((span / cell).floor() as usize).clamp(1, 1024)
+                (span / cell).floor().max(1.0)
             } else {
-                1
+                1.0
             }
         };
-        let frame = GridFrame::with_counts(bb, count(bb.width()), count(bb.height()));
+        let (columns, rows) = (count(bb.width()), count(bb.height()));
+        // A cap on each side instead (1024) left cells 10^6 wide on a drawing 10^9 long, each
+        // holding thousands of boundary points that every query compared: 30 s.
+        let frame = if columns * rows <= MAX_POINT_GRID_CELLS as f64 {
+            GridFrame::with_counts(bb, columns as usize, rows as usize)
+        } else {
+            GridFrame::near_square(bb, MAX_POINT_GRID_CELLS)
+        };
         let index = CellIndex::of_points(frame, &points);
         Self { points, index }
     }

@@ -23,19 +23,32 @@ impl GridFrame {
     /// offsets.
     pub const MAX_CELLS: usize = 8192;
 
+    /// The most cells of any frame, those of the largest square one: `MAX_CELLS^2`.
+    pub const MAX_TOTAL_CELLS: usize = Self::MAX_CELLS * Self::MAX_CELLS;
+
     /// `n` cells per side (clamped to `1..=MAX_CELLS`) over `bbox`; a side of zero (or
     /// non-finite) width is one column (row) wide.
     pub fn new(bbox: BoundingBox, n: usize) -> Self {
+        let n = n.clamp(1, Self::MAX_CELLS);
         Self::with_counts(bbox, n, n)
     }
 
-    /// `columns x rows` cells (each clamped to `1..=MAX_CELLS`) over `bbox`; a side of zero
-    /// (or non-finite) width is one column (row) wide.
+    /// `columns x rows` cells over `bbox`, at least one each and at most
+    /// [`GridFrame::MAX_TOTAL_CELLS`] in all (the longer side gives way); a side of zero (or
+    /// non-finite) width is one column (row) wide. A side may have more than `MAX_CELLS`: a
+    /// box 10^5 times wider than high wants its cells in few rows of many columns (capped at
+    /// `MAX_CELLS` per side, a mesh's spacing grid over a drawing 10^9 long held thousands of
+    /// points per cell).
     pub fn with_counts(bbox: BoundingBox, columns: usize, rows: usize) -> Self {
-        let (columns, rows) = (
-            columns.clamp(1, Self::MAX_CELLS),
-            rows.clamp(1, Self::MAX_CELLS),
-        );
+        let most = Self::MAX_TOTAL_CELLS;
+        let (mut columns, mut rows) = (columns.clamp(1, most), rows.clamp(1, most));
+        if columns.saturating_mul(rows) > most {
+            if columns >= rows {
+                columns = most / rows;
+            } else {
+                rows = most / columns;
+            }
+        }
         let inv = |n: usize, span: f64| {
             if spans_cells(span) {
                 n as f64 / span
@@ -52,8 +65,7 @@ impl GridFrame {
         }
     }
 
-    /// About `cells` cells over `bbox`, as near square as [`GridFrame::MAX_CELLS`] per side
-    /// allows: `sqrt(cells w / h)` columns and `sqrt(cells / (w / h))` rows for a box of
+    /// About `cells` cells (at most [`GridFrame::MAX_TOTAL_CELLS`]) over `bbox`, near square: `sqrt(cells w / h)` columns and `sqrt(cells / (w / h))` rows for a box of
     /// width `w` and height `h` (all in one column or row for a side of zero width). An
     /// `n x n` grid over a box 10 000 times wider than high has cells 10 000 times wider than
     /// high, and a shape of the box's height is registered in all `n` rows.
@@ -80,7 +92,7 @@ impl GridFrame {
             (false, true) => (1.0, cells),
             (false, false) => (1.0, 1.0),
         };
-        // `as` saturates: a huge count becomes usize::MAX, then MAX_CELLS.
+        // `as` saturates: a huge count becomes usize::MAX, then MAX_TOTAL_CELLS.
         Self::with_counts(bbox, columns.round() as usize, rows.round() as usize)
     }
 
@@ -338,10 +350,23 @@ mod tests {
         let mut cells = Vec::new();
         f.for_cells_in(unit(), |c| cells.push(c));
         assert_eq!(cells, (0..15).collect::<Vec<_>>());
-        // Near square: 10^4 x 1 at 10^4 cells is 10^4 columns (capped) of one row.
+        // Near square: 10^4 x 1 at 10^4 cells is 10^4 columns of one row, beyond `MAX_CELLS`
+        // per side; 10^9 x 10^4 at 2^20 cells, 3 rows of 323 817 columns.
         let thin = BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1e4, 1.0));
         let f = GridFrame::near_square(thin, 10_000);
-        assert_eq!((f.columns(), f.rows()), (GridFrame::MAX_CELLS, 1));
+        assert_eq!((f.columns(), f.rows()), (10_000, 1));
+        let long = BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1e9, 1e4));
+        let f = GridFrame::near_square(long, 1 << 20);
+        assert_eq!((f.columns(), f.rows()), (323_817, 3));
+        // At most MAX_TOTAL_CELLS in all, the longer side giving way, whatever is asked.
+        let f = GridFrame::with_counts(unit(), usize::MAX, 2);
+        assert_eq!((f.columns(), f.rows()), (GridFrame::MAX_TOTAL_CELLS / 2, 2));
+        let f = GridFrame::with_counts(unit(), 3, usize::MAX);
+        assert_eq!((f.columns(), f.rows()), (3, GridFrame::MAX_TOTAL_CELLS / 3));
+        assert_eq!(
+            GridFrame::new(unit(), usize::MAX).columns(),
+            GridFrame::MAX_CELLS
+        );
         let flat = BoundingBox::from_point(Point::new(0.0, 3.0)).including(Point::new(2.0, 3.0));
         assert_eq!(GridFrame::near_square(flat, 50).columns(), 50);
         let f = GridFrame::near_square(unit(), 200); // 1 x 2: 10 x 20 cells of 0.1
