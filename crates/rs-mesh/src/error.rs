@@ -66,6 +66,17 @@ pub enum MeshError {
         /// A point of one of them.
         near: rs_spline::Point,
     },
+    /// Two boundary curves certainly meet at a point other than a shared end (the boundary
+    /// crosses itself, or two loops cross): no triangulation has both as edges.
+    #[error(
+        "the boundary crosses itself near ({x}, {y}): two of its curves meet there, and a curved triangulation needs loops that neither cross nor touch",
+        x = near.x,
+        y = near.y
+    )]
+    BoundaryCrosses {
+        /// A point within the two curves' crossing region.
+        near: rs_spline::Point,
+    },
     /// A boundary chord could not be inserted even after refinement (the boundary touches
     /// itself or loops cross).
     #[error("the constrained Delaunay triangulation failed: {0}")]

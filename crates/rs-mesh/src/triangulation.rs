@@ -7,7 +7,7 @@ use std::collections::{HashMap, HashSet, VecDeque};
 
 use rs_roots::{Bernstein, bernstein_roots};
 use rs_spline::grid::{CellIndex, GridFrame};
-use rs_spline::{BoundingBox, Domain, NurbsCurve, Point, RationalBezier};
+use rs_spline::{BoundingBox, Domain, NurbsCurve, Point, RationalBezier, SplineError};
 use spade::handles::FixedVertexHandle;
 use spade::{
     ConstrainedDelaunayTriangulation, Intersection, LineIntersectionIterator, Point2,
@@ -165,6 +165,7 @@ impl CurvedTriangulation {
                         .map(|(_, p)| p)
                         .collect();
                 }
+                Attempt::Crosses(near) => return Err(MeshError::BoundaryCrosses { near }),
                 Attempt::Refine(failing) => {
                     let near = failing.first().map(|&(j, k)| boundary[j][k].point);
                     if round + 1 == MAX_ROUNDS {
@@ -420,12 +421,17 @@ fn normalized_loops(domain: &Domain, given: &[Vec<BoundaryPoint>]) -> Vec<Vec<Bo
 /// The most vertices a curved triangulation is built with (about 1 GB of triangulation data).
 pub const MAX_MESH_VERTICES: usize = 2_000_000;
 
+/// A boundary chord (arc): its loop and the index of its first point in the loop.
+type Chord = (usize, usize);
+
 enum Attempt {
     Done(Box<CurvedTriangulation>),
     /// Interior points (indices) lying outside every kept triangle.
     DropInterior(Vec<usize>),
     /// Arcs (loop, index of the arc's first point in the loop) to split.
     Refine(Vec<(usize, usize)>),
+    /// Two boundary arcs certainly cross near this point.
+    Crosses(Point),
 }
 
 fn p2(p: Point) -> Point2<f64> {
@@ -555,8 +561,17 @@ fn build(
     size: f64,
 ) -> Result<Attempt, MeshError> {
     let (mut cdt, mut v, loop_vertices) = Vertices::load_boundary(boundary)?;
-    let failing = constrain_chords(&mut cdt, &v, &loop_vertices);
+    let (failing, crossing) = constrain_chords(&mut cdt, &v, &loop_vertices);
     if !failing.is_empty() {
+        for (c, d) in crossing {
+            let arc = |(j, k): (usize, usize)| {
+                let l = &boundary[j];
+                chord_arc(domain, &l[k], &l[(k + 1) % l.len()])
+            };
+            if let Some(x) = where_arcs_meet(arc(c)?, arc(d)?, size)? {
+                return Ok(Attempt::Crosses(x));
+            }
+        }
         return Ok(Attempt::Refine(failing));
     }
     let interior_vertex = interior
@@ -594,17 +609,22 @@ fn build(
 
 /// Adds every boundary chord as a constraint; returns the chords (loop, index in the loop)
 /// that cannot be added, those already added that they cross, and chords that share an edge
-/// (each once): all of them must be split. The crossed chords are found from the constraint
+/// (each once): all of them must be split; and the pairs of chords found crossing. The crossed chords are found from the constraint
 /// edges the triangulation reports between the chord's ends (a walk along the chord), each
 /// edge mapped to the chord it belongs to, so the work follows the chords' lengths, not
 /// their number.
-fn constrain_chords(cdt: &mut Cdt, v: &Vertices, loops: &[Vec<usize>]) -> Vec<(usize, usize)> {
+fn constrain_chords(
+    cdt: &mut Cdt,
+    v: &Vertices,
+    loops: &[Vec<usize>],
+) -> (Vec<Chord>, Vec<(Chord, Chord)>) {
     let handle: HashMap<usize, FixedVertexHandle> = v.index.iter().map(|(h, i)| (*i, *h)).collect();
     // The chord each constraint edge belongs to (by its end vertices): the whole chord, or a
     // piece of it when the triangulation split it at a vertex lying on it.
     let mut owner: HashMap<(FixedVertexHandle, FixedVertexHandle), (usize, usize)> = HashMap::new();
     let key = |a: FixedVertexHandle, b: FixedVertexHandle| (a.min(b), a.max(b));
     let mut failing = Vec::new();
+    let mut crossing = Vec::new();
     let mut seen = HashSet::new();
     let mut fail = |chord: (usize, usize), failing: &mut Vec<(usize, usize)>| {
         if seen.insert(chord) {
@@ -631,6 +651,7 @@ fn constrain_chords(cdt: &mut Cdt, v: &Vertices, loops: &[Vec<usize>]) -> Vec<(u
                 for e in crossed {
                     if let Some(&chord) = owner.get(&e) {
                         fail(chord, &mut failing);
+                        crossing.push(((j, k), chord));
                     }
                 }
                 continue;
@@ -657,7 +678,7 @@ fn constrain_chords(cdt: &mut Cdt, v: &Vertices, loops: &[Vec<usize>]) -> Vec<(u
             }
         }
     }
-    failing
+    (failing, crossing)
 }
 
 /// Crossing parity of the constraint loops for every inner face, by flood fill from the
@@ -740,18 +761,13 @@ fn attach_arcs(
                 failing.push((j, k));
                 continue;
             };
-            let curve = &domain.curves()[pa.curve];
-            let u1 = if pb.curve == pa.curve && pb.u > pa.u {
-                pb.u
-            } else {
-                curve.param_range().1
-            };
             let owner = edge_of.get(&(a, b)).or_else(|| edge_of.get(&(b, a)));
             let Some(&(t, e)) = owner else {
                 failing.push((j, k));
                 continue;
             };
-            let arc_curve = curve.subsegment((pa.u, u1))?;
+            let u1 = arc_end(domain, &pa, &pb);
+            let arc_curve = chord_arc(domain, &pa, &pb)?;
             if !arc_is_clear(&arc_curve, (a, b), &v.points, &grid, size) {
                 failing.push((j, k));
                 continue;
@@ -769,6 +785,95 @@ fn attach_arcs(
         }
     }
     Ok((arcs, edges, failing))
+}
+
+/// Where the boundary arc from `pa` to the next boundary point `pb` ends on `pa`'s curve: at
+/// `pb` on the same curve, else at the curve's end.
+fn arc_end(domain: &Domain, pa: &BoundaryPoint, pb: &BoundaryPoint) -> f64 {
+    if pb.curve == pa.curve && pb.u > pa.u {
+        pb.u
+    } else {
+        domain.curves()[pa.curve].param_range().1
+    }
+}
+
+/// The boundary arc from `pa` to the next boundary point `pb` (see [`arc_end`]).
+fn chord_arc(
+    domain: &Domain,
+    pa: &BoundaryPoint,
+    pb: &BoundaryPoint,
+) -> Result<NurbsCurve, SplineError> {
+    domain.curves()[pa.curve].subsegment((pa.u, arc_end(domain, pa, pb)))
+}
+
+/// A point where two curves certainly meet, if their control polygons show it: each curve
+/// lies in the slab of its control points round its chord (the convex hull property), each
+/// one's ends lie outside the other's slab on opposite sides (by `1e-9 size`, above any
+/// rounding here), so within the parallelogram where the slabs overlap one curve joins two
+/// opposite sides and the other the two others, and two such paths meet. The point
+/// returned, where the chords cross, lies in that parallelogram. Curves that share an end
+/// are never certified (the end lies in both slabs).
+fn arcs_certainly_meet(p: &NurbsCurve, q: &NurbsCurve, size: f64) -> Option<Point> {
+    let margin = 1e-9 * size;
+    // The unit normal of a chord, its slab's half-width, and its ends.
+    let slab = |c: &NurbsCurve| {
+        let pts = c.control_points();
+        let (a, b) = (pts[0], pts[pts.len() - 1]);
+        let len = a.distance(b);
+        if len.is_nan() || len <= 0.0 {
+            return None;
+        }
+        let n = (b - a).perp() / len;
+        let half = pts.iter().fold(0.0f64, |m, &x| m.max(n.dot(x - a).abs()));
+        Some((n, half + margin, a, b))
+    };
+    let (n1, w1, a, b) = slab(p)?;
+    let (n2, w2, c, d) = slab(q)?;
+    let across = |n: Point, w: f64, o: Point, x: Point, y: Point| {
+        let (sx, sy) = (n.dot(x - o), n.dot(y - o));
+        (sx > w && sy < -w) || (sx < -w && sy > w)
+    };
+    if !(across(n2, w2, c, a, b) && across(n1, w1, a, c, d)) {
+        return None;
+    }
+    // The chords cross (their ends are on opposite sides of each other's line): where.
+    let (r, s) = (b - a, d - c);
+    let t = (c - a).cross(s) / r.cross(s);
+    Some(a + r * t)
+}
+
+/// Halvings of two certainly meeting arcs ([`where_arcs_meet`]) to close in on where.
+const MEETING_HALVINGS: usize = 40;
+
+/// A point where two arcs certainly meet ([`arcs_certainly_meet`]), closed in on by halving
+/// both and keeping a pair of halves that still certainly meets, up to
+/// [`MEETING_HALVINGS`] times (until no pair is certain: the meeting point is then near a
+/// half's end).
+fn where_arcs_meet(p: NurbsCurve, q: NurbsCurve, size: f64) -> Result<Option<Point>, SplineError> {
+    let Some(mut near) = arcs_certainly_meet(&p, &q, size) else {
+        return Ok(None);
+    };
+    let halves = |c: &NurbsCurve| -> Result<[NurbsCurve; 2], SplineError> {
+        let (a, b) = c.param_range();
+        let m = 0.5 * (a + b);
+        Ok([c.subsegment((a, m))?, c.subsegment((m, b))?])
+    };
+    let (mut p, mut q) = (p, q);
+    for _ in 0..MEETING_HALVINGS {
+        let (ps, qs) = (halves(&p)?, halves(&q)?);
+        let Some((x, i, j)) = (0..4).find_map(|k| {
+            let (i, j) = (k / 2, k % 2);
+            arcs_certainly_meet(&ps[i], &qs[j], size).map(|x| (x, i, j))
+        }) else {
+            break;
+        };
+        near = x;
+        let [p0, p1] = ps;
+        let [q0, q1] = qs;
+        p = if i == 0 { p0 } else { p1 };
+        q = if j == 0 { q0 } else { q1 };
+    }
+    Ok(Some(near))
 }
 
 /// New boundary points: every failing arc gets the point at its parameter midpoint. Returns
@@ -942,6 +1047,55 @@ impl EdgeGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Segments and arcs that cross are certified, with the crossing found by halving;
+    /// ends touching the other curve, shared ends, parallel and missing pairs are not.
+    #[test]
+    fn arcs_certainly_meet_only_when_their_polygons_show_it() {
+        let seg = |a: (f64, f64), b: (f64, f64)| {
+            rs_spline::segment(Point::new(a.0, a.1), Point::new(b.0, b.1)).unwrap()
+        };
+        let x = arcs_certainly_meet(
+            &seg((0.0, 0.0), (2.0, 2.0)),
+            &seg((0.0, 2.0), (2.0, 0.0)),
+            2.0,
+        );
+        assert_eq!(x, Some(Point::new(1.0, 1.0)));
+        // An arc of the unit circle across y = 1/2: they meet at (cos 30°, sin 30°).
+        let arc = rs_spline::circle(Point::new(0.0, 0.0), 1.0)
+            .unwrap()
+            .subsegment((0.05, 0.11))
+            .unwrap();
+        assert!(arc.start_point().y < 0.5 && arc.end_point().y > 0.5);
+        let line = seg((0.0, 0.5), (2.0, 0.5));
+        let coarse = arcs_certainly_meet(&arc, &line, 2.0);
+        let fine = where_arcs_meet(arc.clone(), line.clone(), 2.0)
+            .unwrap()
+            .unwrap();
+        let exact = Point::new(0.75f64.sqrt(), 0.5);
+        assert!(
+            coarse.is_some() && fine.distance(exact) < 1e-12,
+            "{coarse:?} {fine:?}"
+        );
+        for (p, q) in [
+            (seg((0.0, 0.0), (2.0, 2.0)), seg((2.0, 2.0), (4.0, 0.0))), // a shared end
+            (seg((0.0, 0.0), (2.0, 0.0)), seg((1.0, 0.0), (1.0, 1.0))), // an end on the other
+            (seg((0.0, 0.0), (2.0, 0.0)), seg((0.0, 1.0), (2.0, 1.0))), // parallel
+            (seg((0.0, 0.0), (1.0, 1.0)), seg((2.0, 0.0), (3.0, -1.0))), // apart
+        ] {
+            assert_eq!(arcs_certainly_meet(&p, &q, 4.0), None);
+            assert_eq!(where_arcs_meet(p, q, 4.0).unwrap(), None);
+        }
+        // An arc whose bulge reaches past the other's end: not certain, though it may meet.
+        let bulge = rs_spline::circle(Point::new(0.0, 0.0), 1.0)
+            .unwrap()
+            .subsegment((0.0, 0.5))
+            .unwrap();
+        assert_eq!(
+            arcs_certainly_meet(&bulge, &seg((0.0, 0.5), (0.0, 2.0)), 2.0),
+            None
+        );
+    }
 
     #[test]
     fn shuffled_is_a_fixed_permutation() {

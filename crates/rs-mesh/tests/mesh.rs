@@ -478,11 +478,11 @@ fn overlapping_loops_end_at_the_insertion_budget_near_the_overlap() {
     );
 }
 
-/// Two circles that cross: the chords at each crossing keep crossing however often they
-/// are split, so the rounds run out; the error names a point within the last round's
-/// refinement (a 2^-16 fraction of a quarter circle) of a crossing.
+/// Two circles that cross: the chords at each crossing cross, and once the arcs there are
+/// flat enough for their control polygons to show it the two curves certainly meet; the
+/// error names the crossing (closed in on by halving the two arcs).
 #[test]
-fn crossing_loops_are_not_convertible_and_the_error_names_a_crossing() {
+fn crossing_loops_are_refused_naming_the_crossing() {
     let d = Domain::new(vec![
         rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
         rs_spline::circle(Point::new(0.8, 0.0), 1.0).unwrap(),
@@ -491,19 +491,39 @@ fn crossing_loops_are_not_convertible_and_the_error_names_a_crossing() {
     let crossing_y = (1.0f64 - 0.16).sqrt();
     for ny in [2, 20] {
         let err = CurvedTriangulation::new(&d, &well_spaced_points(&d, ny).unwrap()).unwrap_err();
-        let rs_mesh::MeshError::NotConvertible {
-            near: Some(near), ..
-        } = err
-        else {
+        let rs_mesh::MeshError::BoundaryCrosses { near } = err else {
             panic!("ny={ny}: {err}");
         };
         let to_crossing = near.distance(Point::new(0.4, crossing_y.copysign(near.y)));
-        assert!(to_crossing < 1e-3, "ny={ny}: {near:?} {to_crossing}");
-        assert!(
-            err.to_string().contains("crosses or overlaps itself"),
-            "{err}"
-        );
+        assert!(to_crossing < 1e-9, "ny={ny}: {near:?} {to_crossing}");
+        assert!(err.to_string().contains("crosses itself"), "{err}");
     }
+}
+
+/// Loops that touch without crossing, and a loop near another without meeting it: never
+/// refused as crossing (the certificate needs each arc's ends on both sides of the other).
+#[test]
+fn touching_or_close_loops_are_not_called_crossing() {
+    let touching = Domain::new(vec![
+        rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
+        rs_spline::circle(Point::new(2.0, 0.0), 1.0).unwrap(),
+    ])
+    .unwrap();
+    let err = CurvedTriangulation::new(&touching, &well_spaced_points(&touching, 5).unwrap());
+    assert!(
+        !matches!(err, Err(rs_mesh::MeshError::BoundaryCrosses { .. })),
+        "{err:?}"
+    );
+    let close = Domain::new(vec![
+        rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
+        rs_spline::circle(Point::new(2.0 + 1e-6, 0.0), 1.0).unwrap(),
+    ])
+    .unwrap();
+    let m = CurvedTriangulation::new(&close, &well_spaced_points(&close, 5).unwrap());
+    assert!(
+        !matches!(m, Err(rs_mesh::MeshError::BoundaryCrosses { .. })),
+        "{m:?}"
+    );
 }
 
 /// A hole sampled at one point (its curve's start): its one arc is split, and the two arcs
