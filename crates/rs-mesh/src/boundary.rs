@@ -3,6 +3,8 @@
 use rs_spline::prelude::*;
 use rs_spline::{ArcLengthTable, Domain, Point};
 
+use crate::{MAX_SAMPLE_POINTS, MeshError};
+
 /// A point on the boundary: which loop and curve, and the curve's NURBS parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BoundaryPoint {
@@ -26,17 +28,34 @@ const PANELS: usize = 32;
 /// least `h / 3` (by arc length) from the points kept before them and from the curve's end;
 /// the gaps in between are filled with equally spaced points. Returns the points of each loop
 /// in loop order.
+///
+/// # Errors
+/// [`MeshError::TooManyPoints`] when the boundary's length is more than
+/// [`MAX_SAMPLE_POINTS`] spacings (or not finite: the arc length of a curve far smaller than
+/// the rounding of its coordinates is noise), before any point is placed.
 pub(crate) fn place_boundary_points(
     domain: &Domain,
     h: f64,
     extra: &[(usize, f64)],
-) -> Vec<Vec<BoundaryPoint>> {
+) -> Result<Vec<Vec<BoundaryPoint>>, MeshError> {
+    let tables: Vec<ArcLengthTable> = domain
+        .curves()
+        .iter()
+        .map(|c| ArcLengthTable::new(c, PANELS))
+        .collect();
+    let estimate: f64 = tables.iter().map(|t| t.length() / h + 1.0).sum();
+    if estimate.is_nan() || estimate > MAX_SAMPLE_POINTS as f64 {
+        return Err(MeshError::TooManyPoints {
+            estimate,
+            limit: MAX_SAMPLE_POINTS,
+        });
+    }
     let mut out = Vec::new();
     for (j, l) in domain.loops().iter().enumerate() {
         let mut pts = Vec::new();
         for ci in l.curves() {
             let c = &domain.curves()[ci];
-            let table = ArcLengthTable::new(c, PANELS);
+            let table = &tables[ci];
             let len = table.length();
             let (u_start, u_end) = c.param_range();
             let mut wanted: Vec<f64> = extra
@@ -76,5 +95,5 @@ pub(crate) fn place_boundary_points(
         }
         out.push(pts);
     }
-    out
+    Ok(out)
 }

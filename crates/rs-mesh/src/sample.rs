@@ -96,23 +96,27 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
             continue; // cannot happen for a closed boundary; never pair wrongly
         }
         hits.sort_by(|p, q| p.0.total_cmp(&q.0));
-        if interior.len() > MAX_SAMPLE_POINTS {
-            return Err(MeshError::TooManyPoints {
-                estimate: interior.len() as f64,
-                limit: MAX_SAMPLE_POINTS,
-            });
-        }
         for pair in hits.chunks_exact(2) {
             let (x0, x1) = (pair[0].0, pair[1].0);
             extra.push((pair[0].1, pair[0].2));
             extra.push((pair[1].1, pair[1].2));
-            let n = ((x1 - x0) / h).round() as usize;
+            // Checked before the points are made: a segment's length can be far more than
+            // the domain's width in spacings (the crossings of a curve smaller than the
+            // rounding of its coordinates are noise: 10^12 points for one segment).
+            let parts = ((x1 - x0) / h).round();
+            if parts.is_nan() || parts >= (MAX_SAMPLE_POINTS - interior.len()) as f64 {
+                return Err(MeshError::TooManyPoints {
+                    estimate: interior.len() as f64 + parts,
+                    limit: MAX_SAMPLE_POINTS,
+                });
+            }
+            let n = parts as usize;
             for k in 1..n {
                 interior.push(Point::new(x0 + (x1 - x0) * k as f64 / n as f64, y));
             }
         }
     }
-    let boundary = place_boundary_points(domain, h, &extra);
+    let boundary = place_boundary_points(domain, h, &extra)?;
     let near = PointGrid::new(boundary.iter().flatten().map(|p| p.point), h);
     let diag = bb.diagonal();
     let band = Classifier::new(

@@ -478,6 +478,22 @@ fn overlapping_loops_end_at_the_insertion_budget_near_the_overlap() {
     );
 }
 
+/// A circle of radius 1e-12 at x = 1e15, where coordinates are rounded to 0.125: the lines'
+/// crossings are rounding noise 10^12 spacings apart. The points are counted before they
+/// are made (this ran out of memory at 24 GB): an error at once.
+#[test]
+fn a_curve_below_the_rounding_of_its_coordinates_is_refused_before_sampling() {
+    let d = Domain::new(vec![
+        rs_spline::circle(Point::new(1e15, 0.0), 1e-12).unwrap(),
+    ])
+    .unwrap();
+    let err = well_spaced_points(&d, 20).unwrap_err();
+    assert!(
+        matches!(err, rs_mesh::MeshError::TooManyPoints { limit, .. } if limit == rs_mesh::MAX_SAMPLE_POINTS),
+        "{err}"
+    );
+}
+
 /// Two circles that cross: the chords at each crossing cross, and once the arcs there are
 /// flat enough for their control polygons to show it the two curves certainly meet; the
 /// error names the crossing (closed in on by halving the two arcs).
