@@ -58,8 +58,10 @@ impl WellSpacedPoints {
 /// that). Coverage: every point of the domain is within about `h` of a sample.
 ///
 /// # Errors
-/// [`MeshError::TooFewLines`] for `ny < 2` or `ny >` [`MAX_LINES`], [`MeshError::NoArea`] for a flat domain,
-/// containment errors for an open boundary.
+/// [`MeshError::TooFewLines`] for `ny < 2` or `ny >` [`MAX_LINES`], [`MeshError::NoArea`] for a
+/// flat domain, [`MeshError::TooManyPoints`] when the lines or the boundary would hold more
+/// than [`MAX_SAMPLE_POINTS`] points (counted before they are made), containment errors for an
+/// open boundary.
 pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints, MeshError> {
     if !(2..=MAX_LINES).contains(&ny) {
         return Err(MeshError::TooFewLines(ny));

@@ -609,10 +609,10 @@ fn build(
 
 /// Adds every boundary chord as a constraint; returns the chords (loop, index in the loop)
 /// that cannot be added, those already added that they cross, and chords that share an edge
-/// (each once): all of them must be split; and the pairs of chords found crossing. The crossed chords are found from the constraint
-/// edges the triangulation reports between the chord's ends (a walk along the chord), each
-/// edge mapped to the chord it belongs to, so the work follows the chords' lengths, not
-/// their number.
+/// (each once): all of them must be split; and the pairs of chords found crossing. The
+/// crossed chords are found from the constraint edges the triangulation reports between the
+/// chord's ends (a walk along the chord), each edge mapped to the chord it belongs to, so the
+/// work follows the chords' lengths, not their number.
 fn constrain_chords(
     cdt: &mut Cdt,
     v: &Vertices,
