@@ -85,8 +85,11 @@ impl GridFrame {
         let cells = cells.max(1) as f64;
         let (columns, rows) = match (spans_cells(w), spans_cells(h)) {
             (true, true) => {
-                let aspect = w / h;
-                ((cells * aspect).sqrt(), (cells / aspect).sqrt())
+                // The columns first, between 1 and all of the cells; the rows share out the
+                // rest (each side from its own square root gave a box 10^14 times higher
+                // than wide one column and 10^8 rows for 40 cells asked).
+                let columns = (cells * (w / h)).sqrt().round().clamp(1.0, cells);
+                (columns, (cells / columns).round().max(1.0))
             }
             (true, false) => (cells, 1.0),
             (false, true) => (1.0, cells),
@@ -358,6 +361,18 @@ mod tests {
         let long = BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1e9, 1e4));
         let f = GridFrame::near_square(long, 1 << 20);
         assert_eq!((f.columns(), f.rows()), (323_817, 3));
+        // About the cells asked for, however thin the box (one column of 40 rows, not 10^8).
+        let tall = BoundingBox::from_point(Point::new(-1.0, 0.0)).including(Point::new(1.0, 5e14));
+        let f = GridFrame::near_square(tall, 40);
+        assert_eq!((f.columns(), f.rows()), (1, 40));
+        for aspect in [1e-300, 1e-20, 1e-3, 0.37, 1.0, 8.0, 1e9, 1e300] {
+            let b =
+                BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(aspect, 1.0));
+            for cells in [1, 2, 7, 1000, 1 << 20] {
+                let n = GridFrame::near_square(b, cells).cell_count();
+                assert!(n >= cells / 2 && n <= 2 * cells, "{aspect} {cells}: {n}");
+            }
+        }
         // At most MAX_TOTAL_CELLS in all, the longer side giving way, whatever is asked.
         let f = GridFrame::with_counts(unit(), usize::MAX, 2);
         assert_eq!((f.columns(), f.rows()), (GridFrame::MAX_TOTAL_CELLS / 2, 2));
