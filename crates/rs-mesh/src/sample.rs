@@ -143,7 +143,7 @@ const HALTON_BATCH: u64 = 1 << 16;
 
 /// The first `count` Halton points (bases 2 and 3, over the bounding box) that lie inside the
 /// domain: a deterministic quasi-Monte Carlo sample. Candidates are drawn and classified in
-/// batches (by [`Method::Fast`]) sized from the share inside so far, at most [`HALTON_BATCH`],
+/// batches (by [`Method::Fast`]) sized from the share inside so far, at most 65 536,
 /// so memory is the output and one batch.
 ///
 /// # Errors
