@@ -155,9 +155,43 @@ impl<'a> CurvedLocator<'a> {
         }
         // Only points within the boundary tolerance of the domain get here: the triangle
         // whose companion is nearest.
-        (0..m.triangles().len()).min_by(|&s, &t| {
-            distance_to_triangle(m, s, p).total_cmp(&distance_to_triangle(m, t, p))
-        })
+        self.nearest_triangle(p)
+    }
+
+    /// The triangle whose companion (straight-sided) is nearest to `p`, the lowest index among
+    /// equally near ones: from the cells round `p` in squares of doubling half-side `r`, until
+    /// the nearest found is within `r` (a nearer one's box meets the square, so its cells were
+    /// searched) or the square covers the grid. A scan of every triangle took 7 ms per point
+    /// on 93 000 triangles (34 s for 5000 points just outside a disc, within its tolerance).
+    fn nearest_triangle(&self, p: Point) -> Option<usize> {
+        let m = self.mesh;
+        let frame = self.triangles.frame();
+        let grid = frame.bbox();
+        let (cw, ch) = frame.cell_size();
+        let beyond = (grid.min.x - p.x)
+            .max(p.x - grid.max.x)
+            .max(grid.min.y - p.y)
+            .max(p.y - grid.max.y)
+            .max(0.0);
+        // Every triangle's box lies in the grid: a square this large meets them all.
+        let everything = 2.0 * (grid.diagonal() + beyond);
+        let mut r = cw.max(ch).max(everything / 1024.0);
+        loop {
+            let mut best: Option<(f64, usize)> = None;
+            frame.for_cells_in(BoundingBox::from_point(p).grown_by(r), |c| {
+                for &t in self.triangles.cell(c) {
+                    let d = (distance_to_triangle(m, t as usize, p), t as usize);
+                    if best.is_none_or(|b| d.0.total_cmp(&b.0).then(d.1.cmp(&b.1)).is_lt()) {
+                        best = Some(d);
+                    }
+                }
+            });
+            match best {
+                Some((d, t)) if d <= r => return Some(t),
+                _ if r >= everything || !r.is_finite() => return best.map(|b| b.1),
+                _ => r *= 2.0,
+            }
+        }
     }
 
     /// [`CurvedLocator::triangle_at`] of every point, in order, on all threads (with the
@@ -189,5 +223,44 @@ impl Locate for CurvedLocator<'_> {
     /// the domain's own exact test, boundary band included.
     fn locate(&self, p: Point) -> Location {
         self.domain.locate(p)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::well_spaced_points;
+
+    /// The grid search gives the triangle a scan of all of them gives (the lowest index of the
+    /// nearest), for points just outside the boundary (where `triangle_at` uses it), inside,
+    /// and far outside the grid.
+    #[test]
+    fn the_nearest_triangle_is_the_one_a_full_scan_finds() {
+        let d = Domain::new(vec![
+            rs_spline::circle(Point::new(0.3, -0.2), 1.0).unwrap(),
+            rs_spline::circle(Point::new(0.3, -0.2), 0.4).unwrap(),
+        ])
+        .unwrap();
+        let mesh = CurvedTriangulation::new(&d, &well_spaced_points(&d, 12).unwrap()).unwrap();
+        let loc = CurvedLocator::new(&mesh).unwrap();
+        let scan = |p: Point| {
+            (0..mesh.triangles().len()).min_by(|&s, &t| {
+                distance_to_triangle(&mesh, s, p).total_cmp(&distance_to_triangle(&mesh, t, p))
+            })
+        };
+        let mut points = Vec::new();
+        for i in 0..400 {
+            let a = std::f64::consts::TAU * i as f64 / 400.0;
+            let (c, s) = (a.cos(), a.sin());
+            for r in [1.0 + 1e-13, 1.0 + 1e-3, 0.4 - 1e-13, 0.7, 3.0, 1e6] {
+                points.push(Point::new(0.3 + r * c, -0.2 + r * s));
+            }
+        }
+        for p in points {
+            assert_eq!(loc.nearest_triangle(p), scan(p), "{p:?}");
+        }
+        // Just outside, within the boundary tolerance: located, not lost.
+        let p = Point::new(0.3 + 1.0 + 1e-13, -0.2);
+        assert_eq!(loc.triangle_at(p), scan(p));
     }
 }

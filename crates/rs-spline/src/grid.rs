@@ -65,8 +65,9 @@ impl GridFrame {
         }
     }
 
-    /// About `cells` cells (at most [`GridFrame::MAX_TOTAL_CELLS`]) over `bbox`, near square: `sqrt(cells w / h)` columns and `sqrt(cells / (w / h))` rows for a box of
-    /// width `w` and height `h` (all in one column or row for a side of zero width). An
+    /// About `cells` cells (at most [`GridFrame::MAX_TOTAL_CELLS`]) over `bbox`, near square:
+    /// `sqrt(cells w / h)` columns (at least 1, at most `cells`) and `cells / columns` rows for
+    /// a box of width `w` and height `h` (all in one column or row for a side of zero width). An
     /// `n x n` grid over a box 10 000 times wider than high has cells 10 000 times wider than
     /// high, and a shape of the box's height is registered in all `n` rows.
     ///
@@ -142,6 +143,11 @@ impl GridFrame {
     /// of zero width): the factors [`GridFrame::col`] and [`GridFrame::row`] multiply by.
     pub fn scales(&self) -> (f64, f64) {
         (self.inv_w, self.inv_h)
+    }
+
+    /// The box the cells cover.
+    pub fn bbox(&self) -> BoundingBox {
+        self.bbox
     }
 
     /// The width and height of a cell.
