@@ -30,15 +30,15 @@ pub trait Locate: Sync {
     }
 }
 
-/// [`Locate::locate_all`] on chunks of the points, the chunks spread over rayon's pool.
+/// [`Locate::locate_all`] on chunks of the points, on the calling thread and rayon's pool
+/// ([`on_caller_and_pool`]).
 pub(crate) fn in_parallel_chunks<L: Locate + ?Sized>(l: &L, points: &[Point]) -> Vec<Location> {
     #[cfg(feature = "parallel")]
     {
-        use rayon::prelude::*;
         let mut out = vec![Location::Outside; points.len()];
-        out.par_chunks_mut(PARALLEL_CHUNK)
-            .zip(points.par_chunks(PARALLEL_CHUNK))
-            .for_each(|(o, p)| o.copy_from_slice(&l.locate_all(p)));
+        on_caller_and_pool(&mut out, PARALLEL_CHUNK, |first, o| {
+            o.copy_from_slice(&l.locate_all(&points[first..first + o.len()]));
+        });
         out
     }
     #[cfg(not(feature = "parallel"))]
