@@ -8,7 +8,7 @@ use rs_roots::{
 use crate::curve::prelude::*;
 use crate::curve::{basis_derivative_size, derivative_rounding_size, one_norm};
 use crate::error::check_control_points;
-use crate::homogeneous::{Hpoint, rational_derivatives};
+use crate::homogeneous::{Hpoint, rational_derivatives, rational_point_and_tangent};
 use crate::quadrature::{Integral, integrate_adaptive};
 use crate::{BoundingBox, CurveDerivatives, Point, SplineError};
 
@@ -246,8 +246,7 @@ impl ParamCurveDeriv for RationalBezier {
 
     fn point_and_tangent(&self, t: f64) -> (Point, Point) {
         let (value, first) = de_casteljau_with_derivative(&self.homogeneous(), t);
-        let d = rational_derivatives([value, first, Hpoint::default()]);
-        (d.point, d.first)
+        rational_point_and_tangent([value, first])
     }
 }
 

@@ -100,14 +100,20 @@ pub struct CurveDerivatives {
 /// Quotient rule for `C = A / w` from homogeneous derivatives `h = [A, A', A'']` (with the
 /// weight in `.w`): `C' = (A' - w' C) / w`, `C'' = (A'' - 2 w' C' - w'' C) / w`.
 pub(crate) fn rational_derivatives(h: [Hpoint; 3]) -> CurveDerivatives {
+    let (point, first) = rational_point_and_tangent([h[0], h[1]]);
     let w = h[0].w;
-    let a = |hp: Hpoint| Point::new(hp.x, hp.y);
-    let point = a(h[0]) / w;
-    let first = (a(h[1]) - point * h[1].w) / w;
-    let second = (a(h[2]) - first * (2.0 * h[1].w) - point * h[2].w) / w;
+    let second = (Point::new(h[2].x, h[2].y) - first * (2.0 * h[1].w) - point * h[2].w) / w;
     CurveDerivatives {
         point,
         first,
         second,
     }
+}
+
+/// The quotient rule's first two: `C = A / w` and `C' = (A' - w' C) / w` from `h = [A, A']`.
+pub(crate) fn rational_point_and_tangent(h: [Hpoint; 2]) -> (Point, Point) {
+    let w = h[0].w;
+    let point = Point::new(h[0].x, h[0].y) / w;
+    let first = (Point::new(h[1].x, h[1].y) - point * h[1].w) / w;
+    (point, first)
 }

@@ -4,7 +4,7 @@ use rs_roots::RootsError;
 
 use crate::curve::prelude::*;
 use crate::error::{check_control_points, normalized_weights};
-use crate::homogeneous::{Hpoint, rational_derivatives};
+use crate::homogeneous::{Hpoint, rational_derivatives, rational_point_and_tangent};
 use crate::quadrature::Integral;
 use crate::{BoundingBox, CurveDerivatives, KnotVector, Point, RationalBezier, SplineError};
 
@@ -441,8 +441,8 @@ impl ParamCurveDeriv for NurbsCurve {
     }
 
     fn point_and_tangent(&self, u: f64) -> (Point, Point) {
-        let d = rational_derivatives(self.homogeneous_derivatives(u, 1));
-        (d.point, d.first)
+        let [value, first, _] = self.homogeneous_derivatives(u, 1);
+        rational_point_and_tangent([value, first])
     }
 }
 
