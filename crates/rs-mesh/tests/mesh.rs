@@ -499,11 +499,7 @@ fn a_curve_below_the_rounding_of_its_coordinates_is_refused_before_sampling() {
 /// error names the crossing (closed in on by halving the two arcs).
 #[test]
 fn crossing_loops_are_refused_naming_the_crossing() {
-    let d = Domain::new(vec![
-        rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
-        rs_spline::circle(Point::new(0.8, 0.0), 1.0).unwrap(),
-    ])
-    .unwrap();
+    let d = two_unit_circles(0.8);
     let crossing_y = (1.0f64 - 0.16).sqrt();
     for ny in [2, 20] {
         let err = CurvedTriangulation::new(&d, &well_spaced_points(&d, ny).unwrap()).unwrap_err();
@@ -520,26 +516,23 @@ fn crossing_loops_are_refused_naming_the_crossing() {
 /// refused as crossing (the certificate needs each arc's ends on both sides of the other).
 #[test]
 fn touching_or_close_loops_are_not_called_crossing() {
-    let touching = Domain::new(vec![
+    for apart in [2.0, 2.0 + 1e-6] {
+        let d = two_unit_circles(apart);
+        let m = CurvedTriangulation::new(&d, &well_spaced_points(&d, 5).unwrap());
+        assert!(
+            !matches!(m, Err(rs_mesh::MeshError::BoundaryCrosses { .. })),
+            "{apart}: {m:?}"
+        );
+    }
+}
+
+/// Unit circles centred at the origin and at `(apart, 0)`, as two loops.
+fn two_unit_circles(apart: f64) -> Domain {
+    Domain::new(vec![
         rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
-        rs_spline::circle(Point::new(2.0, 0.0), 1.0).unwrap(),
+        rs_spline::circle(Point::new(apart, 0.0), 1.0).unwrap(),
     ])
-    .unwrap();
-    let err = CurvedTriangulation::new(&touching, &well_spaced_points(&touching, 5).unwrap());
-    assert!(
-        !matches!(err, Err(rs_mesh::MeshError::BoundaryCrosses { .. })),
-        "{err:?}"
-    );
-    let close = Domain::new(vec![
-        rs_spline::circle(Point::new(0.0, 0.0), 1.0).unwrap(),
-        rs_spline::circle(Point::new(2.0 + 1e-6, 0.0), 1.0).unwrap(),
-    ])
-    .unwrap();
-    let m = CurvedTriangulation::new(&close, &well_spaced_points(&close, 5).unwrap());
-    assert!(
-        !matches!(m, Err(rs_mesh::MeshError::BoundaryCrosses { .. })),
-        "{m:?}"
-    );
+    .unwrap()
 }
 
 /// A hole sampled at one point (its curve's start): its one arc is split, and the two arcs
