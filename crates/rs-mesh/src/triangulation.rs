@@ -568,7 +568,7 @@ fn build(
                 let l = &boundary[j];
                 chord_arc(domain, &l[k], &l[(k + 1) % l.len()])
             };
-            if let Some(x) = where_arcs_meet(arc(c)?, arc(d)?, size)? {
+            if let Some(x) = where_arcs_meet(arc(c)?, arc(d)?, size) {
                 return Ok(Attempt::Crosses(x));
             }
         }
@@ -849,18 +849,12 @@ const MEETING_HALVINGS: usize = 40;
 /// both and keeping a pair of halves that still certainly meets, up to
 /// [`MEETING_HALVINGS`] times (until no pair is certain: the meeting point is then near a
 /// half's end).
-fn where_arcs_meet(p: NurbsCurve, q: NurbsCurve, size: f64) -> Result<Option<Point>, SplineError> {
-    let Some(mut near) = arcs_certainly_meet(&p, &q, size) else {
-        return Ok(None);
-    };
-    let halves = |c: &NurbsCurve| -> Result<[NurbsCurve; 2], SplineError> {
-        let (a, b) = c.param_range();
-        let m = 0.5 * (a + b);
-        Ok([c.subsegment((a, m))?, c.subsegment((m, b))?])
-    };
+fn where_arcs_meet(p: NurbsCurve, q: NurbsCurve, size: f64) -> Option<Point> {
+    let mut near = arcs_certainly_meet(&p, &q, size)?;
     let (mut p, mut q) = (p, q);
     for _ in 0..MEETING_HALVINGS {
-        let (ps, qs) = (halves(&p)?, halves(&q)?);
+        let (ps, qs) = (p.subdivide(), q.subdivide());
+        let (ps, qs) = ([ps.0, ps.1], [qs.0, qs.1]);
         let Some((x, i, j)) = (0..4).find_map(|k| {
             let (i, j) = (k / 2, k % 2);
             arcs_certainly_meet(&ps[i], &qs[j], size).map(|x| (x, i, j))
@@ -873,7 +867,7 @@ fn where_arcs_meet(p: NurbsCurve, q: NurbsCurve, size: f64) -> Result<Option<Poi
         p = if i == 0 { p0 } else { p1 };
         q = if j == 0 { q0 } else { q1 };
     }
-    Ok(Some(near))
+    Some(near)
 }
 
 /// New boundary points: every failing arc gets the point at its parameter midpoint. Returns
@@ -1069,9 +1063,7 @@ mod tests {
         assert!(arc.start_point().y < 0.5 && arc.end_point().y > 0.5);
         let line = seg((0.0, 0.5), (2.0, 0.5));
         let coarse = arcs_certainly_meet(&arc, &line, 2.0);
-        let fine = where_arcs_meet(arc.clone(), line.clone(), 2.0)
-            .unwrap()
-            .unwrap();
+        let fine = where_arcs_meet(arc.clone(), line.clone(), 2.0).unwrap();
         let exact = Point::new(0.75f64.sqrt(), 0.5);
         assert!(
             coarse.is_some() && fine.distance(exact) < 1e-12,
@@ -1084,7 +1076,7 @@ mod tests {
             (seg((0.0, 0.0), (1.0, 1.0)), seg((2.0, 0.0), (3.0, -1.0))), // apart
         ] {
             assert_eq!(arcs_certainly_meet(&p, &q, 4.0), None);
-            assert_eq!(where_arcs_meet(p, q, 4.0).unwrap(), None);
+            assert_eq!(where_arcs_meet(p, q, 4.0), None);
         }
         // An arc whose bulge reaches past the other's end: not certain, though it may meet.
         let bulge = rs_spline::circle(Point::new(0.0, 0.0), 1.0)
