@@ -435,6 +435,75 @@ fn hostile_svg_dxf_and_font_files_fail_cleanly() {
     assert!(r.stdout.contains("0.5,0.5,inside"));
 }
 
+/// Many chunks (a quarter megabyte each) written in input order by the workers: every row
+/// echoes its input line, whatever the output; a bad line deep in the file fails the run with
+/// its number, and leaves no output file.
+#[test]
+fn long_streams_keep_their_order_and_fail_at_the_right_line() {
+    let d = scratch("order");
+    let domain = fixture("inrs-paper/circle.json");
+    let n = 120_000;
+    let line = |i: usize| {
+        let t = i as f64 * 0.618_033_988_749_895;
+        format!("{},{}", 1.5 * t.sin(), 1.5 * (t * 1.7).cos())
+    };
+    let mut text = String::from("x,y\n");
+    for i in 0..n {
+        text.push_str(&line(i));
+        text.push('\n');
+    }
+    let p = write(&d, "many.csv", &text);
+    let out = d.join("o.csv").display().to_string();
+    let to_stdout = check(
+        &d,
+        &["classify", "--domain", &domain, "--points", &p],
+        Expect::Success,
+        60,
+    );
+    check(
+        &d,
+        &[
+            "classify", "--domain", &domain, "--points", &p, "--output", &out,
+        ],
+        Expect::Success,
+        60,
+    );
+    let to_file = std::fs::read_to_string(&out).expect("output written");
+    assert_eq!(to_file, to_stdout.stdout);
+    let rows: Vec<&str> = to_file.lines().collect();
+    assert_eq!(rows.len(), n + 1);
+    for (i, row) in rows[1..].iter().enumerate() {
+        let (xy, location) = row.rsplit_once(',').expect("three fields");
+        assert_eq!(xy, line(i), "row {i}");
+        let (x, y): (f64, f64) = {
+            let (x, y) = xy.split_once(',').expect("x,y");
+            (x.parse().expect("x"), y.parse().expect("y"))
+        };
+        let r = x.hypot(y);
+        if (r - 1.0).abs() > 1e-9 {
+            assert_eq!(
+                location,
+                if r < 1.0 { "inside" } else { "outside" },
+                "row {i}"
+            );
+        }
+    }
+    // The same file with line 100 001 (point 100 000) spoiled.
+    let spoiled = text.replacen(&format!("\n{}\n", line(99_999)), "\n0.5,oops\n", 1);
+    assert_ne!(spoiled, text);
+    let bad = write(&d, "bad.csv", &spoiled);
+    let _ = std::fs::remove_file(&out);
+    check(
+        &d,
+        &[
+            "classify", "--domain", &domain, "--points", &bad, "--output", &out,
+        ],
+        Expect::Error("line 100001: \"oops\" is not a number"),
+        60,
+    );
+    assert!(!Path::new(&out).exists(), "a failed run left an output");
+}
+
 #[test]
 fn points_files_stream_and_bad_lines_fail_cleanly() {
     let d = scratch("csv");

@@ -19,7 +19,7 @@ pub(crate) struct Output {
 
 /// Where the bytes go.
 enum Sink {
-    Stdout(BufWriter<std::io::StdoutLock<'static>>),
+    Stdout(BufWriter<std::io::Stdout>),
     File(BufWriter<File>),
     /// After `finish` closed the file.
     Closed,
@@ -56,7 +56,7 @@ impl Output {
     pub(crate) fn create(path: Option<&Path>) -> Result<Self, CliError> {
         match path {
             None => Ok(Self {
-                sink: Sink::Stdout(BufWriter::with_capacity(1 << 16, std::io::stdout().lock())),
+                sink: Sink::Stdout(BufWriter::with_capacity(1 << 16, std::io::stdout())),
                 file: None,
                 name: None,
             }),

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, Sender, SyncSender, sync_channel};
+use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::time::{Duration, Instant};
 
 use inrs::{CsvBlock, CsvBlocks, NpyType, ParsedBlock, Point, PointsError};
@@ -196,10 +196,12 @@ fn input_error(path: &Path, e: PointsError) -> CliError {
 /// CSV rows (the coordinates echoed as written), or, when `output` ends in `.npy`, the values
 /// as a 1-D `.npy` array.
 ///
-/// Three stages overlap: a thread reads chunks and numbers them, workers ([`worker_count`])
-/// each take the next chunk read, parse, compute and format it, and the
-/// calling thread writes the results in input order. No stage waits for a whole group of
-/// chunks: a worker that finishes takes the next chunk at once. Memory is bounded by
+/// Two stages overlap: a thread reads chunks and numbers them, and workers ([`worker_count`])
+/// each take the next chunk read, parse, compute and format it, and write the results in
+/// input order ([`InOrder`]: a chunk's results wait only if an earlier chunk's are not yet
+/// written, and the worker that writes that one writes them too). The calling thread only
+/// updates the progress bar. No stage waits for a whole group of chunks: a worker that
+/// finishes takes the next chunk at once. Memory is bounded by
 /// permits: a chunk is read only when one of [`chunks_in_flight`] permits is free, and its
 /// permit comes back when its result is written. The byte buffers (chunks read, results
 /// formatted) go back to two bounded pools once used.
@@ -235,41 +237,50 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointsKernel
         texts: &texts,
         results: &results,
     };
-    std::thread::scope(|scope| {
+    let in_order = InOrder::start(output, &stage)?;
+    let (workers_ok, sent) = std::thread::scope(|scope| {
         let (read, stop, texts) = (&read, &stop, &texts);
         let reader =
             scope.spawn(move || read_chunks(input, &chunks_tx, &permits_rx, read, stop, texts));
-        let (done_tx, done_rx) = std::sync::mpsc::channel::<Numbered<Formatted>>();
+        // Each worker holds a sender; the channel closes when the last one has finished.
+        let (alive_tx, alive_rx) = std::sync::mpsc::channel::<()>();
         let handles: Vec<_> = (0..workers)
             .map(|_| {
-                let done_tx = done_tx.clone();
-                let (chunks_rx, stage) = (&chunks_rx, &stage);
-                scope.spawn(move || work(chunks_rx, &done_tx, stage))
+                let alive = alive_tx.clone();
+                let (chunks_rx, stage, in_order) = (&chunks_rx, &stage, &in_order);
+                let permits = permits_tx.clone();
+                scope.spawn(move || {
+                    // A worker that panics stops the reader, so that the others finish.
+                    let _stopping = StopOnPanic(stop, &permits);
+                    work(chunks_rx, stage, in_order, &permits, stop);
+                    drop(alive);
+                })
             })
             .collect();
-        drop(done_tx);
+        drop(alive_tx);
         let mut progress = Progress::new(total);
-        let written = write_in_order(output, &stage, &done_rx, &permits_tx, || {
+        while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
+            alive_rx.recv_timeout(Duration::from_millis(100))
+        {
             progress.update(read.load(Ordering::Relaxed));
-        });
-        progress.finish();
-        // Whatever happened, the other stages stop: the reader at its next permit, the
-        // workers when the chunks run out or their results cannot be sent.
-        stop.store(true, Ordering::Relaxed);
-        drop((permits_tx, done_rx));
-        let workers_ok = handles.into_iter().all(|h| h.join().is_ok());
-        let sent = reader.join();
-        let (written, count) = match written {
-            Ok(w) => w,
-            Err(WriteFailure::Input(e)) => return Err(input_error(&path, e)),
-            Err(WriteFailure::Output(e)) => return Err(e),
-        };
-        match sent {
-            Ok(sent) if workers_ok && sent == count => written.finish(),
-            // A chunk never arrived: a stage failed; the output is dropped (removed).
-            _ => Err(CliError::Message("a streaming thread failed".into())),
         }
-    })
+        progress.finish();
+        // Whatever happened, the reader stops at its next permit.
+        stop.store(true, Ordering::Relaxed);
+        drop(permits_tx);
+        let workers_ok = handles.into_iter().all(|h| h.join().is_ok());
+        (workers_ok, reader.join())
+    });
+    let (written, count) = match in_order.finish(&stage) {
+        Ok(w) => w,
+        Err(WriteFailure::Input(e)) => return Err(input_error(&path, e)),
+        Err(WriteFailure::Output(e)) => return Err(e),
+    };
+    match sent {
+        Ok(sent) if workers_ok && sent == count => written.finish(),
+        // A chunk never arrived: a stage failed; the output is dropped (removed).
+        _ => Err(CliError::Message("a streaming thread failed".into())),
+    }
 }
 
 /// How many workers a stream runs: `RAYON_NUM_THREADS` if it is set to a positive number (the
@@ -312,12 +323,15 @@ struct Stage<'a, C, K> {
     results: &'a Spares,
 }
 
-/// A worker: takes the next chunk read, computes and formats it, and sends the result,
-/// until the chunks run out or the writer has gone.
+/// A worker: takes the next chunk read, computes and formats it, and hands the result to the
+/// ordered writing (writing it, and any that came before it and waited, if it is next), until
+/// the chunks run out or a chunk failed.
 fn work<T: Copy, C: Column<T>, K: PointsKernel<T>>(
     chunks: &Mutex<Receiver<Numbered<Chunk>>>,
-    done: &Sender<Numbered<Formatted>>,
     stage: &Stage<'_, C, K>,
+    in_order: &InOrder,
+    permits: &SyncSender<()>,
+    stop: &AtomicBool,
 ) {
     loop {
         // The lock is held only while waiting for the next chunk.
@@ -329,7 +343,10 @@ fn work<T: Copy, C: Column<T>, K: PointsKernel<T>>(
             return; // the reader has finished and every chunk is taken
         };
         let result = chunk.and_then(|c| compute_chunk(c, stage));
-        if done.send((seq, result)).is_err() {
+        if !in_order.hand_in(seq, result, stage, permits) {
+            // Stop the reader (waiting for a permit, perhaps) and the other workers.
+            stop.store(true, Ordering::Relaxed);
+            let _ = permits.try_send(());
             return;
         }
     }
@@ -383,46 +400,134 @@ impl From<CliError> for WriteFailure {
     }
 }
 
-/// The writing stage: opens the output, writes the header and the chunks' results in input
-/// order as they arrive (giving each chunk's permit back, and its buffer to the pool), and
-/// once every worker has finished, the final `.npy` header with the count. Returns the output
-/// (to be committed once the run is known complete) and the number of chunks written; stops
-/// at the first chunk, in input order, that failed.
-fn write_in_order<T, C: Column<T>, K>(
-    output: Option<&Path>,
-    stage: &Stage<'_, C, K>,
-    done: &Receiver<Numbered<Formatted>>,
-    permits: &SyncSender<()>,
-    mut on_write: impl FnMut(),
-) -> Result<(Output, usize), WriteFailure> {
-    let column = stage.column;
-    let mut out = Output::create(output)?;
-    if stage.format == Format::Npy {
-        out.write_bytes(&inrs::npy_header(column.npy_type(), &[0]))?;
-    } else {
-        out.write_str(column.header())?;
-        out.write_str("\n")?;
-    }
-    // Results that came before an earlier chunk's: at most the chunks in flight.
-    let mut waiting = std::collections::BTreeMap::new();
-    let (mut next, mut points) = (0usize, 0usize);
-    for (seq, result) in done.iter() {
-        waiting.insert(seq, result);
-        while let Some(result) = waiting.remove(&next) {
-            let (bytes, n) = result.map_err(WriteFailure::Input)?;
-            out.write_bytes(&bytes)?;
-            stage.results.give(bytes);
-            points += n;
-            next += 1;
-            // The reader may have stopped already: a permit nobody takes is harmless.
-            let _ = permits.try_send(());
+/// Stops the reading stage if dropped while its thread panics (see [`work`]'s own stop).
+struct StopOnPanic<'a>(&'a AtomicBool, &'a SyncSender<()>);
+
+impl Drop for StopOnPanic<'_> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.store(true, Ordering::Relaxed);
+            let _ = self.1.try_send(());
         }
-        on_write();
     }
-    if stage.format == Format::Npy {
-        out.rewrite_start(&inrs::npy_header(column.npy_type(), &[points]))?;
+}
+
+/// The ordered writing stage, run by the workers: a chunk's results are written by the worker
+/// that computed them if every earlier chunk's are written, else they wait for the worker that
+/// writes the chunk before them (which then writes them too). The bytes are mostly written
+/// from the cache of the core that formatted them, and no thread waits to write.
+struct InOrder {
+    state: Mutex<InOrderState>,
+    /// The output, used by the one worker that is writing (see [`InOrderState::writing`]).
+    out: Mutex<Output>,
+}
+
+struct InOrderState {
+    /// Results that came before an earlier chunk's: at most the chunks in flight.
+    waiting: std::collections::BTreeMap<usize, Result<Formatted, PointsError>>,
+    /// The next chunk to write.
+    next: usize,
+    /// Points written.
+    points: usize,
+    /// Whether a worker is writing (it writes every waiting result that comes next).
+    writing: bool,
+    /// The first failure, in input order: nothing is written after it.
+    failure: Option<WriteFailure>,
+}
+
+impl InOrder {
+    /// Opens the output and writes the header (for `.npy`, one without the count yet).
+    fn start<T, C: Column<T>, K>(
+        output: Option<&Path>,
+        stage: &Stage<'_, C, K>,
+    ) -> Result<Self, CliError> {
+        let column = stage.column;
+        let mut out = Output::create(output)?;
+        if stage.format == Format::Npy {
+            out.write_bytes(&inrs::npy_header(column.npy_type(), &[0]))?;
+        } else {
+            out.write_str(column.header())?;
+            out.write_str("\n")?;
+        }
+        Ok(Self {
+            state: Mutex::new(InOrderState {
+                waiting: std::collections::BTreeMap::new(),
+                next: 0,
+                points: 0,
+                writing: false,
+                failure: None,
+            }),
+            out: Mutex::new(out),
+        })
     }
-    Ok((out, next))
+
+    /// Hands in chunk `seq`'s results; writes them and the waiting ones after them if they
+    /// come next and no other worker is writing. Gives each written chunk's permit back, and
+    /// its buffer to the pool. False once a chunk (this or an earlier one) has failed.
+    fn hand_in<C, K>(
+        &self,
+        seq: usize,
+        result: Result<Formatted, PointsError>,
+        stage: &Stage<'_, C, K>,
+        permits: &SyncSender<()>,
+    ) -> bool {
+        let lock = || self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let mut state = lock();
+        if state.failure.is_some() {
+            return false;
+        }
+        state.waiting.insert(seq, result);
+        if state.writing {
+            return true; // the writing worker takes it when its turn comes
+        }
+        state.writing = true;
+        loop {
+            let next = state.next;
+            let Some(result) = state.waiting.remove(&next) else {
+                state.writing = false;
+                return true;
+            };
+            drop(state);
+            let written = result.map_err(WriteFailure::Input).and_then(|(bytes, n)| {
+                let mut out = self.out.lock().unwrap_or_else(|e| e.into_inner());
+                out.write_bytes(&bytes)?;
+                stage.results.give(bytes);
+                Ok(n)
+            });
+            state = lock();
+            match written {
+                Ok(n) => {
+                    state.points += n;
+                    state.next += 1;
+                    // The reader may have stopped already: a permit nobody takes is harmless.
+                    let _ = permits.try_send(());
+                }
+                Err(failure) => {
+                    state.failure = Some(failure);
+                    state.writing = false;
+                    return false;
+                }
+            }
+        }
+    }
+
+    /// Once every worker has finished: the output (for `.npy`, with the final header), to be
+    /// committed once the run is known complete, and the number of chunks written; or the
+    /// first failure.
+    fn finish<T, C: Column<T>, K>(
+        self,
+        stage: &Stage<'_, C, K>,
+    ) -> Result<(Output, usize), WriteFailure> {
+        let state = self.state.into_inner().unwrap_or_else(|e| e.into_inner());
+        if let Some(failure) = state.failure {
+            return Err(failure);
+        }
+        let mut out = self.out.into_inner().unwrap_or_else(|e| e.into_inner());
+        if stage.format == Format::Npy {
+            out.rewrite_start(&inrs::npy_header(stage.column.npy_type(), &[state.points]))?;
+        }
+        Ok((out, state.next))
+    }
 }
 
 /// One unit of parallel work: a block of CSV lines, or points read from `.npy`.
