@@ -65,11 +65,15 @@ pub use rs_contain::{Classifier, ContainError, ContainOptions, Location, Method}
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 
 mod classify;
+#[cfg(unix)]
+mod csv_file;
 mod npy;
 mod points_csv;
 mod summary;
 
 pub use classify::Classify;
+#[cfg(unix)]
+pub use csv_file::CsvPointsFile;
 #[cfg(unix)]
 pub use npy::NpyPointsFile;
 pub use npy::{

@@ -435,6 +435,21 @@ impl CsvBlock {
     pub fn field(&self, start: u32, end: u32) -> &[u8] {
         &self.text[start as usize..end as usize]
     }
+
+    /// Where the data start in the text.
+    pub(crate) fn data_from(&self) -> usize {
+        self.data_from
+    }
+
+    /// Marks the text as read by position (see [`crate::CsvPointsFile`]): the data start at
+    /// `data_from`, lines are numbered from 1 at the text's start, and their count is not
+    /// known.
+    #[cfg(unix)]
+    pub(crate) fn set_positional(&mut self, data_from: usize) {
+        self.data_from = data_from;
+        self.first_line = 1;
+        self.lines = 0;
+    }
 }
 
 /// A record in the form nearly every points file has, `x,y` then `\n`, `\r\n` or the end of
@@ -553,6 +568,12 @@ impl<R: std::io::Read> CsvBlocks<R> {
     /// Bytes read from the input so far (for progress reports).
     pub fn bytes_read(&self) -> u64 {
         self.consumed
+    }
+
+    /// Whether a data line (or the header) has been found in the blocks handed out so far.
+    #[cfg(unix)]
+    pub(crate) fn seen_data(&self) -> bool {
+        self.seen_data
     }
 
     /// Gives back a block's text (or any buffer) for reading the following blocks into, so

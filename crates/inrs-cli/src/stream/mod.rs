@@ -36,6 +36,11 @@ thread_local! {
     /// Each worker's parsed CSV block (points and field positions), kept from task to task.
     static CSV_SCRATCH: std::cell::RefCell<ParsedBlock> = Default::default();
 }
+#[cfg(unix)]
+thread_local! {
+    /// Each worker's CSV block read by position, its buffer kept from task to task.
+    static CSV_BLOCK: std::cell::RefCell<CsvBlock> = Default::default();
+}
 /// Progress is shown (on a terminal) once a run has taken this long.
 const PROGRESS_AFTER: Duration = Duration::from_secs(2);
 
@@ -111,7 +116,16 @@ pub(crate) struct PointsInput {
 }
 
 enum Source {
+    /// Read in order by the reading stage (a pipe, a file that opens with a block of comments,
+    /// or not Unix).
     Csv(CsvBlocks<std::fs::File>),
+    /// A regular file, read by position on the workers (see [`inrs::CsvPointsFile`]); `next`
+    /// is the first block not yet handed out.
+    #[cfg(unix)]
+    CsvFile {
+        file: std::sync::Arc<inrs::CsvPointsFile>,
+        next: usize,
+    },
     /// Read in order by the reading stage (a pipe, or not Unix).
     Npy(inrs::NpyPoints<std::io::BufReader<std::fs::File>>),
     /// A regular file, read by position on the workers (see [`inrs::NpyPointsFile`]); `next`
@@ -130,10 +144,7 @@ impl PointsInput {
         let source = if is_npy {
             open_npy(path)?
         } else {
-            Source::Csv(
-                inrs::open_points_blocks(path, CSV_BLOCK_BYTES)
-                    .map_err(|e| input_error(path, e))?,
-            )
+            open_csv(path)?
         };
         Ok(Self {
             source,
@@ -150,6 +161,8 @@ impl PointsInput {
             #[cfg(unix)]
             Source::NpyFile { file, .. } => file.len(),
             Source::Csv(_) => (self.total_bytes / 16) as usize,
+            #[cfg(unix)]
+            Source::CsvFile { .. } => (self.total_bytes / 16) as usize,
         }
     }
 
@@ -159,8 +172,27 @@ impl PointsInput {
             #[cfg(unix)]
             Source::NpyFile { file, next } => file.offset_of(*next),
             Source::Csv(r) => r.bytes_read(),
+            #[cfg(unix)]
+            Source::CsvFile { file, next } => file.offset_of_block(*next),
         }
     }
+}
+
+/// A CSV points file: read by position on the workers if it is a regular file with data in its
+/// first block (Unix), else in order.
+fn open_csv(path: &Path) -> Result<Source, CliError> {
+    #[cfg(unix)]
+    if let Some(file) =
+        inrs::CsvPointsFile::open(path, CSV_BLOCK_BYTES).map_err(|e| input_error(path, e))?
+    {
+        return Ok(Source::CsvFile {
+            file: std::sync::Arc::new(file),
+            next: 0,
+        });
+    }
+    Ok(Source::Csv(
+        inrs::open_points_blocks(path, CSV_BLOCK_BYTES).map_err(|e| input_error(path, e))?,
+    ))
 }
 
 /// A `.npy` points file: read by position on the workers if it is a regular file (Unix), else in
@@ -366,10 +398,17 @@ fn compute_chunk<T: Copy, C: Column<T>, K: PointsKernel<T>>(
     } = *stage;
     match chunk {
         Chunk::Csv(block) => {
-            let result = csv_block(&block, format, column, kernel, results.take());
+            let parse = |parsed: &mut ParsedBlock| block.parse_into(parsed);
+            let result = csv_block(&block, parse, format, column, kernel, results.take());
             texts.give(block.text);
             result
         }
+        #[cfg(unix)]
+        Chunk::CsvAt { file, block: k } => CSV_BLOCK.with_borrow_mut(|block| {
+            file.read_block(k, block)?;
+            let parse = |parsed: &mut ParsedBlock| file.parse_block(k, block, parsed);
+            csv_block(block, parse, format, column, kernel, results.take())
+        }),
         Chunk::Points(p) => Ok(npy_points(&p, format, column, kernel, results.take())),
         #[cfg(unix)]
         Chunk::Range { file, first, n } => NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
@@ -533,6 +572,12 @@ impl InOrder {
 /// One unit of parallel work: a block of CSV lines, or points read from `.npy`.
 enum Chunk {
     Csv(CsvBlock),
+    /// Block `block` of a CSV file, read by the worker.
+    #[cfg(unix)]
+    CsvAt {
+        file: std::sync::Arc<inrs::CsvPointsFile>,
+        block: usize,
+    },
     Points(Vec<Point>),
     /// Points `first..first + n` of a `.npy` file, read by the worker.
     #[cfg(unix)]
@@ -564,6 +609,15 @@ fn read_chunks(
             Source::Csv(blocks) => {
                 blocks.recycle(spares.take());
                 blocks.next_block().map(|b| b.map(Chunk::Csv))
+            }
+            #[cfg(unix)]
+            Source::CsvFile { file, next } => {
+                let block = *next;
+                *next += 1;
+                Ok((block < file.blocks()).then(|| Chunk::CsvAt {
+                    file: std::sync::Arc::clone(file),
+                    block,
+                }))
             }
             Source::Npy(reader) => {
                 let mut pts = Vec::new();
@@ -604,17 +658,18 @@ enum Format {
     Npy,
 }
 
-/// Parses, computes and formats one CSV block into `bytes` (empty); returns them and the
-/// number of points.
+/// Parses (with `parse`), computes and formats one CSV block into `bytes` (empty); returns
+/// them and the number of points.
 fn csv_block<T: Copy, C: Column<T>>(
     block: &CsvBlock,
+    parse: impl FnOnce(&mut ParsedBlock) -> Result<(), PointsError>,
     format: Format,
     column: &C,
     kernel: &impl PointsKernel<T>,
     mut bytes: Vec<u8>,
 ) -> Result<(Vec<u8>, usize), PointsError> {
     CSV_SCRATCH.with_borrow_mut(|parsed| {
-        block.parse_into(parsed)?;
+        parse(parsed)?;
         let mut values = vec![column.initial(); parsed.points.len()];
         kernel.compute(&parsed.points, &mut values);
         if format == Format::Npy {
