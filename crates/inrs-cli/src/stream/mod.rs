@@ -4,22 +4,24 @@
 
 use std::path::Path;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::mpsc::{Receiver, Sender};
 use std::time::{Duration, Instant};
 
-use inrs::{CsvBlock, CsvBlocks, NpyType, ParsedBlock, Point, PointsError};
+use inrs::{CsvBlock, NpyType, ParsedBlock, Point, PointsError};
 
 use crate::cli::error::CliError;
-use crate::cli::output::Output;
 
+mod in_order;
+mod source;
 mod spares;
+use in_order::{InOrder, WriteFailure};
+pub(crate) use source::PointsInput;
+#[cfg(unix)]
+use source::Positional;
+use source::{Chunk, Sequential, Source, has_extension, input_error};
 use spares::Spares;
 
-/// Bytes per CSV block (one parallel task).
-const CSV_BLOCK_BYTES: usize = 1 << 18;
-/// Points per parallel task for `.npy` input.
-const NPY_TASK_POINTS: usize = 1 << 16;
 /// Points a worker reads from a `.npy` file at a time: 64 KiB of float64 pairs, which stay in
 /// its cache from the read to the computation (a task's megabyte at once cost the first
 /// task of each worker 0.5-0.9 ms of page faults and every task another pass through memory).
@@ -108,135 +110,19 @@ impl<T, Q: IndexedQuery<T>> PointsKernel<T> for ByIndex<Q> {
     }
 }
 
-/// A points file: CSV (any other name) or `.npy` (float64 or float32, shape `(N, 2)`).
-pub(crate) struct PointsInput {
-    source: Source,
-    path: String,
-    total_bytes: u64,
-}
-
-enum Source {
-    /// Read in order by the reading stage (a pipe, a file that opens with a block of comments,
-    /// or not Unix).
-    Csv(CsvBlocks<std::fs::File>),
-    /// A regular file, read by position on the workers (see [`inrs::CsvPointsFile`]); `next`
-    /// is the first block not yet handed out.
-    #[cfg(unix)]
-    CsvFile {
-        file: std::sync::Arc<inrs::CsvPointsFile>,
-        next: usize,
-    },
-    /// Read in order by the reading stage (a pipe, or not Unix).
-    Npy(inrs::NpyPoints<std::io::BufReader<std::fs::File>>),
-    /// A regular file, read by position on the workers (see [`inrs::NpyPointsFile`]); `next`
-    /// is the first point not yet handed out.
-    #[cfg(unix)]
-    NpyFile {
-        file: std::sync::Arc<inrs::NpyPointsFile>,
-        next: usize,
-    },
-}
-
-impl PointsInput {
-    /// Opens `path`, by its extension.
-    pub(crate) fn open(path: &Path) -> Result<Self, CliError> {
-        let is_npy = has_extension(path, "npy");
-        let source = if is_npy {
-            open_npy(path)?
-        } else {
-            open_csv(path)?
-        };
-        Ok(Self {
-            source,
-            path: path.display().to_string(),
-            total_bytes: std::fs::metadata(path).map_or(0, |m| m.len()),
-        })
-    }
-
-    /// The number of points, exact for `.npy`, estimated from the size for CSV (at least 16
-    /// bytes a line).
-    pub(crate) fn estimated_points(&self) -> usize {
-        match &self.source {
-            Source::Npy(r) => r.len(),
-            #[cfg(unix)]
-            Source::NpyFile { file, .. } => file.len(),
-            Source::Csv(_) => (self.total_bytes / 16) as usize,
-            #[cfg(unix)]
-            Source::CsvFile { .. } => (self.total_bytes / 16) as usize,
-        }
-    }
-
-    fn bytes_read(&self) -> u64 {
-        match &self.source {
-            Source::Npy(r) => r.bytes_read(),
-            #[cfg(unix)]
-            Source::NpyFile { file, next } => file.offset_of(*next),
-            Source::Csv(r) => r.bytes_read(),
-            #[cfg(unix)]
-            Source::CsvFile { file, next } => file.offset_of_block(*next),
-        }
-    }
-}
-
-/// A CSV points file: read by position on the workers if it is a regular file with data in its
-/// first block (Unix), else in order.
-fn open_csv(path: &Path) -> Result<Source, CliError> {
-    #[cfg(unix)]
-    if let Some(file) =
-        inrs::CsvPointsFile::open(path, CSV_BLOCK_BYTES).map_err(|e| input_error(path, e))?
-    {
-        return Ok(Source::CsvFile {
-            file: std::sync::Arc::new(file),
-            next: 0,
-        });
-    }
-    Ok(Source::Csv(
-        inrs::open_points_blocks(path, CSV_BLOCK_BYTES).map_err(|e| input_error(path, e))?,
-    ))
-}
-
-/// A `.npy` points file: read by position on the workers if it is a regular file (Unix), else in
-/// order (a named pipe cannot be read by position).
-fn open_npy(path: &Path) -> Result<Source, CliError> {
-    #[cfg(unix)]
-    if std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
-        let file = inrs::NpyPointsFile::open(path).map_err(|e| input_error(path, e))?;
-        return Ok(Source::NpyFile {
-            file: std::sync::Arc::new(file),
-            next: 0,
-        });
-    }
-    Ok(Source::Npy(
-        inrs::open_npy_points(path).map_err(|e| input_error(path, e))?,
-    ))
-}
-
-fn has_extension(path: &Path, ext: &str) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
-}
-
-/// The message for a points-file error, naming the file once.
-fn input_error(path: &Path, e: PointsError) -> CliError {
-    match e {
-        PointsError::Io { .. } | PointsError::Npy { .. } => CliError::Message(e.to_string()),
-        other => CliError::Message(format!("{}: {other}", path.display())),
-    }
-}
-
 /// Streams `input` through `compute` (one value per point, in order) and writes `x,y,value`
 /// CSV rows (the coordinates echoed as written), or, when `output` ends in `.npy`, the values
 /// as a 1-D `.npy` array.
 ///
-/// Two stages overlap: a thread reads chunks and numbers them, and workers ([`worker_count`])
-/// each take the next chunk read, parse, compute and format it, and write the results in
-/// input order ([`InOrder`]: a chunk's results wait only if an earlier chunk's are not yet
-/// written, and the worker that writes that one writes them too). The calling thread only
-/// updates the progress bar. No stage waits for a whole group of chunks: a worker that
-/// finishes takes the next chunk at once. Memory is bounded by
-/// permits: a chunk is read only when one of [`chunks_in_flight`] permits is free, and its
-/// permit comes back when its result is written. The byte buffers (chunks read, results
-/// formatted) go back to two bounded pools once used.
+/// The workers ([`worker_count`]) each take the next chunk, parse it (CSV), compute and format
+/// it, and write the results in input order ([`InOrder`]: a chunk's results wait only if an
+/// earlier chunk's are not yet written, and the worker that writes that one writes them too).
+/// A regular file is cut by position and each worker reads the chunks it takes; other inputs
+/// are read in order by a reading thread. The calling thread only updates the progress bar.
+/// No stage waits for a whole group of chunks: a worker that finishes takes the next chunk at
+/// once. Memory is bounded: a chunk is taken only while fewer than [`chunks_in_flight`]
+/// chunks before it are unwritten. The byte buffers (chunks read, results formatted) go back to
+/// two bounded pools once used.
 pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointsKernel<T>>(
     input: PointsInput,
     output: Option<&Path>,
@@ -250,18 +136,14 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointsKernel
     };
     let workers = worker_count();
     let in_flight = chunks_in_flight(workers);
-    let path = Path::new(&input.path).to_path_buf();
-    let total = input.total_bytes;
+    let PointsInput {
+        source,
+        path,
+        total_bytes,
+    } = input;
+    let path = Path::new(&path).to_path_buf();
     let read = AtomicU64::new(0);
-    let stop = AtomicBool::new(false);
     let (texts, results) = (Spares::new(in_flight), Spares::new(in_flight));
-    let (chunks_tx, chunks_rx) = sync_channel::<Numbered<Chunk>>(in_flight);
-    let chunks_rx = Mutex::new(chunks_rx);
-    let (permits_tx, permits_rx) = sync_channel::<()>(in_flight);
-    for _ in 0..in_flight {
-        // The channel holds them all: this never blocks.
-        let _ = permits_tx.send(());
-    }
     let stage = Stage {
         format,
         column,
@@ -269,39 +151,55 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointsKernel
         texts: &texts,
         results: &results,
     };
-    let in_order = InOrder::start(output, &stage)?;
+    let in_order = InOrder::start(output, &stage, in_flight)?;
+    let (sequential, tasks, chunk_count) = match source {
+        Source::InOrder(sequential) => {
+            let (tx, rx) = std::sync::mpsc::channel();
+            (Some((sequential, tx)), Tasks::Sent(Mutex::new(rx)), None)
+        }
+        #[cfg(unix)]
+        Source::ByPosition(positional) => {
+            let count = positional.chunks();
+            let tasks = Tasks::Claimed {
+                next: AtomicUsize::new(0),
+                positional,
+            };
+            (None, tasks, Some(count))
+        }
+    };
     let (workers_ok, sent) = std::thread::scope(|scope| {
-        let (read, stop, texts) = (&read, &stop, &texts);
-        let reader =
-            scope.spawn(move || read_chunks(input, &chunks_tx, &permits_rx, read, stop, texts));
+        let (read, stage, in_order, tasks) = (&read, &stage, &in_order, &tasks);
+        let reader = sequential.map(|(sequential, tx)| {
+            scope.spawn(move || read_in_order(sequential, &tx, in_order, read, stage.texts))
+        });
         // Each worker holds a sender; the channel closes when the last one has finished.
         let (alive_tx, alive_rx) = std::sync::mpsc::channel::<()>();
         let handles: Vec<_> = (0..workers)
             .map(|_| {
                 let alive = alive_tx.clone();
-                let (chunks_rx, stage, in_order) = (&chunks_rx, &stage, &in_order);
-                let permits = permits_tx.clone();
                 scope.spawn(move || {
-                    // A worker that panics stops the reader, so that the others finish.
-                    let _stopping = StopOnPanic(stop, &permits);
-                    work(chunks_rx, stage, in_order, &permits, stop);
+                    // A worker that panics fails the run, so that the others finish.
+                    let _failing = FailOnPanic(in_order);
+                    work(tasks, stage, in_order, read);
                     drop(alive);
                 })
             })
             .collect();
         drop(alive_tx);
-        let mut progress = Progress::new(total);
+        let mut progress = Progress::new(total_bytes);
         while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
             alive_rx.recv_timeout(Duration::from_millis(100))
         {
             progress.update(read.load(Ordering::Relaxed));
         }
         progress.finish();
-        // Whatever happened, the reader stops at its next permit.
-        stop.store(true, Ordering::Relaxed);
-        drop(permits_tx);
         let workers_ok = handles.into_iter().all(|h| h.join().is_ok());
-        (workers_ok, reader.join())
+        // The reader has stopped: the workers took every chunk, or the run failed.
+        let sent = match reader {
+            Some(reader) => reader.join().ok(),
+            None => chunk_count,
+        };
+        (workers_ok, sent)
     });
     let (written, count) = match in_order.finish(&stage) {
         Ok(w) => w,
@@ -309,10 +207,22 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointsKernel
         Err(WriteFailure::Output(e)) => return Err(e),
     };
     match sent {
-        Ok(sent) if workers_ok && sent == count => written.finish(),
+        Some(sent) if workers_ok && sent == count => written.finish(),
         // A chunk never arrived: a stage failed; the output is dropped (removed).
         _ => Err(CliError::Message("a streaming thread failed".into())),
     }
+}
+
+/// Where the workers take their chunks from.
+enum Tasks {
+    /// Sent by the reading thread, numbered.
+    Sent(Mutex<Receiver<Numbered<Chunk>>>),
+    /// Claimed by number, each read by position by the worker that claims it.
+    #[cfg(unix)]
+    Claimed {
+        next: AtomicUsize,
+        positional: Positional,
+    },
 }
 
 /// How many workers a stream runs: `RAYON_NUM_THREADS` if it is set to a positive number (the
@@ -355,37 +265,60 @@ struct Stage<'a, C, K> {
     results: &'a Spares,
 }
 
-/// A worker: takes the next chunk read, computes and formats it, and hands the result to the
+/// A worker: takes the next chunk, computes and formats it, and hands the result to the
 /// ordered writing (writing it, and any that came before it and waited, if it is next), until
-/// the chunks run out or a chunk failed.
+/// the chunks run out or the run fails. Claimed chunks count as read, for the progress.
 fn work<T: Copy, C: Column<T>, K: PointsKernel<T>>(
-    chunks: &Mutex<Receiver<Numbered<Chunk>>>,
+    tasks: &Tasks,
     stage: &Stage<'_, C, K>,
     in_order: &InOrder,
-    permits: &SyncSender<()>,
-    stop: &AtomicBool,
+    read: &AtomicU64,
 ) {
     loop {
-        // The lock is held only while waiting for the next chunk.
-        let next = match chunks.lock() {
-            Ok(rx) => rx.recv(),
-            Err(_) => return,
+        let (seq, result) = match tasks {
+            Tasks::Sent(rx) => {
+                // The lock is held only while waiting for the next chunk.
+                let next = match rx.lock() {
+                    Ok(rx) => rx.recv(),
+                    Err(_) => return,
+                };
+                match next {
+                    Ok((seq, chunk)) => (seq, chunk.and_then(|c| compute_sent(c, stage))),
+                    Err(_) => return, // the reader has stopped and every chunk is taken
+                }
+            }
+            #[cfg(unix)]
+            Tasks::Claimed { next, positional } => {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                if k >= positional.chunks() || !in_order.wait_for_room(k) {
+                    return;
+                }
+                read.fetch_max(positional.offset_of(k + 1), Ordering::Relaxed);
+                (k, compute_claimed(positional, k, stage))
+            }
         };
-        let Ok((seq, chunk)) = next else {
-            return; // the reader has finished and every chunk is taken
-        };
-        let result = chunk.and_then(|c| compute_chunk(c, stage));
-        if !in_order.hand_in(seq, result, stage, permits) {
-            // Stop the reader (waiting for a permit, perhaps) and the other workers.
-            stop.store(true, Ordering::Relaxed);
-            let _ = permits.try_send(());
+        if !in_order.hand_in(seq, result, stage) {
             return;
         }
     }
 }
 
-/// Parses (CSV), computes and formats one chunk.
-fn compute_chunk<T: Copy, C: Column<T>, K: PointsKernel<T>>(
+/// Fails the run if dropped while its thread panics: the other threads then stop taking
+/// chunks.
+struct FailOnPanic<'a>(&'a InOrder);
+
+impl Drop for FailOnPanic<'_> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.fail(WriteFailure::Output(CliError::Message(
+                "a streaming thread failed".into(),
+            )));
+        }
+    }
+}
+
+/// Parses (CSV), computes and formats a chunk read in order.
+fn compute_sent<T: Copy, C: Column<T>, K: PointsKernel<T>>(
     chunk: Chunk,
     stage: &Stage<'_, C, K>,
 ) -> Result<Formatted, PointsError> {
@@ -403,19 +336,36 @@ fn compute_chunk<T: Copy, C: Column<T>, K: PointsKernel<T>>(
             texts.give(block.text);
             result
         }
-        #[cfg(unix)]
-        Chunk::CsvAt { file, block: k } => CSV_BLOCK.with_borrow_mut(|block| {
+        Chunk::Points(p) => Ok(npy_points(&p, format, column, kernel, results.take())),
+    }
+}
+
+/// Reads chunk `k` of a file by position, parses (CSV), computes and formats it.
+#[cfg(unix)]
+fn compute_claimed<T: Copy, C: Column<T>, K: PointsKernel<T>>(
+    positional: &Positional,
+    k: usize,
+    stage: &Stage<'_, C, K>,
+) -> Result<Formatted, PointsError> {
+    let Stage {
+        format,
+        column,
+        kernel,
+        results,
+        ..
+    } = *stage;
+    match positional {
+        Positional::Csv(file) => CSV_BLOCK.with_borrow_mut(|block| {
             file.read_block(k, block)?;
             let parse = |parsed: &mut ParsedBlock| file.parse_block(k, block, parsed);
             csv_block(block, parse, format, column, kernel, results.take())
         }),
-        Chunk::Points(p) => Ok(npy_points(&p, format, column, kernel, results.take())),
-        #[cfg(unix)]
-        Chunk::Range { file, first, n } => NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
+        Positional::Npy(file) => NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
+            let (first, n) = Positional::npy_range(file, k);
             let mut values = vec![column.initial(); n];
             let mut out = results.take();
-            for (k, values) in values.chunks_mut(NPY_READ_POINTS).enumerate() {
-                let at = first + k * NPY_READ_POINTS;
+            for (j, values) in values.chunks_mut(NPY_READ_POINTS).enumerate() {
+                let at = first + j * NPY_READ_POINTS;
                 let encoded = file.read_encoded(at, values.len(), bytes)?;
                 kernel.compute_encoded(encoded, points, values);
                 let point = |i| encoded.point(i);
@@ -426,216 +376,23 @@ fn compute_chunk<T: Copy, C: Column<T>, K: PointsKernel<T>>(
     }
 }
 
-/// Why the writing stage stopped early: a chunk's input was bad (reported with the input's
-/// name), or the output failed.
-enum WriteFailure {
-    Input(PointsError),
-    Output(CliError),
-}
-
-impl From<CliError> for WriteFailure {
-    fn from(e: CliError) -> Self {
-        Self::Output(e)
-    }
-}
-
-/// Stops the reading stage if dropped while its thread panics (see [`work`]'s own stop).
-struct StopOnPanic<'a>(&'a AtomicBool, &'a SyncSender<()>);
-
-impl Drop for StopOnPanic<'_> {
-    fn drop(&mut self) {
-        if std::thread::panicking() {
-            self.0.store(true, Ordering::Relaxed);
-            let _ = self.1.try_send(());
-        }
-    }
-}
-
-/// The ordered writing stage, run by the workers: a chunk's results are written by the worker
-/// that computed them if every earlier chunk's are written, else they wait for the worker that
-/// writes the chunk before them (which then writes them too). The bytes are mostly written
-/// from the cache of the core that formatted them, and no thread waits to write.
-struct InOrder {
-    state: Mutex<InOrderState>,
-    /// The output, used by the one worker that is writing (see [`InOrderState::writing`]).
-    out: Mutex<Output>,
-}
-
-struct InOrderState {
-    /// Results that came before an earlier chunk's: at most the chunks in flight.
-    waiting: std::collections::BTreeMap<usize, Result<Formatted, PointsError>>,
-    /// The next chunk to write.
-    next: usize,
-    /// Points written.
-    points: usize,
-    /// Whether a worker is writing (it writes every waiting result that comes next).
-    writing: bool,
-    /// The first failure, in input order: nothing is written after it.
-    failure: Option<WriteFailure>,
-}
-
-impl InOrder {
-    /// Opens the output and writes the header (for `.npy`, one without the count yet).
-    fn start<T, C: Column<T>, K>(
-        output: Option<&Path>,
-        stage: &Stage<'_, C, K>,
-    ) -> Result<Self, CliError> {
-        let column = stage.column;
-        let mut out = Output::create(output)?;
-        if stage.format == Format::Npy {
-            out.write_bytes(&inrs::npy_header(column.npy_type(), &[0]))?;
-        } else {
-            out.write_str(column.header())?;
-            out.write_str("\n")?;
-        }
-        Ok(Self {
-            state: Mutex::new(InOrderState {
-                waiting: std::collections::BTreeMap::new(),
-                next: 0,
-                points: 0,
-                writing: false,
-                failure: None,
-            }),
-            out: Mutex::new(out),
-        })
-    }
-
-    /// Hands in chunk `seq`'s results; writes them and the waiting ones after them if they
-    /// come next and no other worker is writing. Gives each written chunk's permit back, and
-    /// its buffer to the pool. False once a chunk (this or an earlier one) has failed.
-    fn hand_in<C, K>(
-        &self,
-        seq: usize,
-        result: Result<Formatted, PointsError>,
-        stage: &Stage<'_, C, K>,
-        permits: &SyncSender<()>,
-    ) -> bool {
-        let lock = || self.state.lock().unwrap_or_else(|e| e.into_inner());
-        let mut state = lock();
-        if state.failure.is_some() {
-            return false;
-        }
-        state.waiting.insert(seq, result);
-        if state.writing {
-            return true; // the writing worker takes it when its turn comes
-        }
-        state.writing = true;
-        loop {
-            let next = state.next;
-            let Some(result) = state.waiting.remove(&next) else {
-                state.writing = false;
-                return true;
-            };
-            drop(state);
-            let written = result.map_err(WriteFailure::Input).and_then(|(bytes, n)| {
-                let mut out = self.out.lock().unwrap_or_else(|e| e.into_inner());
-                out.write_bytes(&bytes)?;
-                stage.results.give(bytes);
-                Ok(n)
-            });
-            state = lock();
-            match written {
-                Ok(n) => {
-                    state.points += n;
-                    state.next += 1;
-                    // The reader may have stopped already: a permit nobody takes is harmless.
-                    let _ = permits.try_send(());
-                }
-                Err(failure) => {
-                    state.failure = Some(failure);
-                    state.writing = false;
-                    return false;
-                }
-            }
-        }
-    }
-
-    /// Once every worker has finished: the output (for `.npy`, with the final header), to be
-    /// committed once the run is known complete, and the number of chunks written; or the
-    /// first failure.
-    fn finish<T, C: Column<T>, K>(
-        self,
-        stage: &Stage<'_, C, K>,
-    ) -> Result<(Output, usize), WriteFailure> {
-        let state = self.state.into_inner().unwrap_or_else(|e| e.into_inner());
-        if let Some(failure) = state.failure {
-            return Err(failure);
-        }
-        let mut out = self.out.into_inner().unwrap_or_else(|e| e.into_inner());
-        if stage.format == Format::Npy {
-            out.rewrite_start(&inrs::npy_header(stage.column.npy_type(), &[state.points]))?;
-        }
-        Ok((out, state.next))
-    }
-}
-
-/// One unit of parallel work: a block of CSV lines, or points read from `.npy`.
-enum Chunk {
-    Csv(CsvBlock),
-    /// Block `block` of a CSV file, read by the worker.
-    #[cfg(unix)]
-    CsvAt {
-        file: std::sync::Arc<inrs::CsvPointsFile>,
-        block: usize,
-    },
-    Points(Vec<Point>),
-    /// Points `first..first + n` of a `.npy` file, read by the worker.
-    #[cfg(unix)]
-    Range {
-        file: std::sync::Arc<inrs::NpyPointsFile>,
-        first: usize,
-        n: usize,
-    },
-}
-
-/// The reading stage: numbers and sends the input's chunks (or its first error, as the last
-/// chunk), each once a permit is free, until the input ends, `stop` is set or the permits
-/// are gone; counts the bytes read in `read`; reads CSV into buffers from `spares`. Returns
-/// how many chunks it sent.
-fn read_chunks(
-    mut input: PointsInput,
-    tx: &SyncSender<Numbered<Chunk>>,
-    permits: &Receiver<()>,
+/// The reading thread for an input read in order: numbers and sends its chunks (or its
+/// first error, as the last chunk), each once there is room for it, until the input ends or
+/// the run fails; counts the bytes read in `read`; reads CSV into buffers from `spares`.
+/// Returns how many chunks it sent.
+fn read_in_order(
+    mut input: Sequential,
+    tx: &Sender<Numbered<Chunk>>,
+    in_order: &InOrder,
     read: &AtomicU64,
-    stop: &AtomicBool,
     spares: &Spares,
 ) -> usize {
     let mut sent = 0;
     loop {
-        if permits.recv().is_err() || stop.load(Ordering::Relaxed) {
+        if !in_order.wait_for_room(sent) {
             return sent;
         }
-        let next = match &mut input.source {
-            Source::Csv(blocks) => {
-                blocks.recycle(spares.take());
-                blocks.next_block().map(|b| b.map(Chunk::Csv))
-            }
-            #[cfg(unix)]
-            Source::CsvFile { file, next } => {
-                let block = *next;
-                *next += 1;
-                Ok((block < file.blocks()).then(|| Chunk::CsvAt {
-                    file: std::sync::Arc::clone(file),
-                    block,
-                }))
-            }
-            Source::Npy(reader) => {
-                let mut pts = Vec::new();
-                reader
-                    .read_block(NPY_TASK_POINTS, &mut pts)
-                    .map(|n| (n > 0).then_some(Chunk::Points(pts)))
-            }
-            #[cfg(unix)]
-            Source::NpyFile { file, next } => {
-                let (first, n) = (*next, NPY_TASK_POINTS.min(file.len() - *next));
-                *next += n;
-                Ok((n > 0).then(|| Chunk::Range {
-                    file: std::sync::Arc::clone(file),
-                    first,
-                    n,
-                }))
-            }
-        };
+        let next = input.next_chunk(spares);
         read.store(input.bytes_read(), Ordering::Relaxed);
         let (message, last) = match next {
             Ok(Some(c)) => (Ok(c), false),

@@ -1,0 +1,177 @@
+//! The ordered writing stage, run by the workers, and the bound it puts on the chunks in flight.
+
+use std::path::Path;
+use std::sync::{Condvar, Mutex, MutexGuard};
+
+use inrs::PointsError;
+
+use super::{Column, Format, Formatted, Stage};
+use crate::cli::error::CliError;
+use crate::cli::output::Output;
+
+/// Why the writing stopped early: a chunk's input was bad (reported with the input's name), or
+/// the output failed, or a worker panicked.
+pub(super) enum WriteFailure {
+    Input(PointsError),
+    Output(CliError),
+}
+
+impl From<CliError> for WriteFailure {
+    fn from(e: CliError) -> Self {
+        Self::Output(e)
+    }
+}
+
+/// The ordered writing: a chunk's results are written by the worker that computed them if
+/// every earlier chunk's are written, else they wait for the worker that writes the chunk
+/// before them (which then writes them too). The bytes are mostly written from the cache of
+/// the core that formatted them, and no thread waits to write. Memory is bounded here too: a
+/// chunk is taken (read, or claimed by position) only while fewer than `in_flight` chunks
+/// before it are unwritten ([`InOrder::wait_for_room`]).
+pub(super) struct InOrder {
+    state: Mutex<State>,
+    /// Signalled when a chunk is written or the run fails.
+    room: Condvar,
+    /// The output, used by the one worker that is writing (see [`State::writing`]).
+    out: Mutex<Output>,
+    in_flight: usize,
+}
+
+struct State {
+    /// Results that came before an earlier chunk's: fewer than the chunks in flight.
+    waiting: std::collections::BTreeMap<usize, Result<Formatted, PointsError>>,
+    /// The next chunk to write.
+    next: usize,
+    /// Points written.
+    points: usize,
+    /// Whether a worker is writing (it writes every waiting result that comes next).
+    writing: bool,
+    /// Threads waiting for room.
+    waiters: usize,
+    /// The first failure, in input order: nothing is written after it.
+    failure: Option<WriteFailure>,
+}
+
+impl InOrder {
+    /// Opens the output and writes the header (for `.npy`, one without the count yet); at
+    /// most `in_flight` chunks will be taken and not yet written.
+    pub(super) fn start<T, C: Column<T>, K>(
+        output: Option<&Path>,
+        stage: &Stage<'_, C, K>,
+        in_flight: usize,
+    ) -> Result<Self, CliError> {
+        let column = stage.column;
+        let mut out = Output::create(output)?;
+        if stage.format == Format::Npy {
+            out.write_bytes(&inrs::npy_header(column.npy_type(), &[0]))?;
+        } else {
+            out.write_str(column.header())?;
+            out.write_str("\n")?;
+        }
+        Ok(Self {
+            state: Mutex::new(State {
+                waiting: std::collections::BTreeMap::new(),
+                next: 0,
+                points: 0,
+                writing: false,
+                waiters: 0,
+                failure: None,
+            }),
+            room: Condvar::new(),
+            out: Mutex::new(out),
+            in_flight: in_flight.max(1),
+        })
+    }
+
+    fn lock(&self) -> MutexGuard<'_, State> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Waits until chunk `seq` may be taken: fewer than the chunks in flight before it are
+    /// unwritten. False if the run has failed (take nothing more). The chunk that is written
+    /// next never waits, so neither does the run as a whole.
+    pub(super) fn wait_for_room(&self, seq: usize) -> bool {
+        let mut state = self.lock();
+        while state.failure.is_none() && seq >= state.next + self.in_flight {
+            state.waiters += 1;
+            state = self.room.wait(state).unwrap_or_else(|e| e.into_inner());
+            state.waiters -= 1;
+        }
+        state.failure.is_none()
+    }
+
+    /// Hands in chunk `seq`'s results; writes them and the waiting ones after them if they
+    /// come next and no other worker is writing, giving each buffer written to the pool.
+    /// False once a chunk (this or an earlier one) has failed.
+    pub(super) fn hand_in<C, K>(
+        &self,
+        seq: usize,
+        result: Result<Formatted, PointsError>,
+        stage: &Stage<'_, C, K>,
+    ) -> bool {
+        let mut state = self.lock();
+        if state.failure.is_some() {
+            return false;
+        }
+        state.waiting.insert(seq, result);
+        if state.writing {
+            return true; // the writing worker takes it when its turn comes
+        }
+        state.writing = true;
+        loop {
+            let next = state.next;
+            let Some(result) = state.waiting.remove(&next) else {
+                state.writing = false;
+                return true;
+            };
+            drop(state);
+            let written = result.map_err(WriteFailure::Input).and_then(|(bytes, n)| {
+                let mut out = self.out.lock().unwrap_or_else(|e| e.into_inner());
+                out.write_bytes(&bytes)?;
+                stage.results.give(bytes);
+                Ok(n)
+            });
+            state = self.lock();
+            match written {
+                Ok(n) => {
+                    state.points += n;
+                    state.next += 1;
+                    if state.waiters > 0 {
+                        self.room.notify_all();
+                    }
+                }
+                Err(failure) => {
+                    state.writing = false;
+                    drop(state);
+                    self.fail(failure);
+                    return false;
+                }
+            }
+        }
+    }
+
+    /// Fails the run (unless it failed before): nothing more is taken or written.
+    pub(super) fn fail(&self, failure: WriteFailure) {
+        let mut state = self.lock();
+        state.failure.get_or_insert(failure);
+        self.room.notify_all();
+    }
+
+    /// Once every worker has finished: the output (for `.npy`, with the final header), to be
+    /// committed once the run is known complete, and the number of chunks written; or the
+    /// first failure.
+    pub(super) fn finish<T, C: Column<T>, K>(
+        self,
+        stage: &Stage<'_, C, K>,
+    ) -> Result<(Output, usize), WriteFailure> {
+        let state = self.state.into_inner().unwrap_or_else(|e| e.into_inner());
+        if let Some(failure) = state.failure {
+            return Err(failure);
+        }
+        let mut out = self.out.into_inner().unwrap_or_else(|e| e.into_inner());
+        if stage.format == Format::Npy {
+            out.rewrite_start(&inrs::npy_header(stage.column.npy_type(), &[state.points]))?;
+        }
+        Ok((out, state.next))
+    }
+}
