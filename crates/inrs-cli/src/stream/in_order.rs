@@ -175,3 +175,116 @@ impl InOrder {
         Ok((out, state.next))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stream::spares::Spares;
+
+    /// A column of bytes (only its header is written here).
+    struct Bytes;
+
+    impl Column<u8> for Bytes {
+        fn header(&self) -> &'static str {
+            "x,y,b"
+        }
+        fn initial(&self) -> u8 {
+            0
+        }
+        fn csv(&self, value: u8, out: &mut Vec<u8>) {
+            out.push(value);
+        }
+        fn npy_type(&self) -> inrs::NpyType {
+            inrs::NpyType::I8
+        }
+        fn npy(&self, values: &[u8], out: &mut Vec<u8>) {
+            out.extend_from_slice(values);
+        }
+    }
+
+    fn with_stage(test: impl FnOnce(&Stage<'_, Bytes, ()>, &Path)) {
+        let dir = std::env::temp_dir().join(format!(
+            "inrs-in-order-{}-{:?}",
+            std::process::id(),
+            std::thread::current().id()
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (texts, results) = (Spares::new(4), Spares::new(4));
+        let stage = Stage {
+            format: Format::Csv,
+            column: &Bytes,
+            kernel: &(),
+            texts: &texts,
+            results: &results,
+        };
+        test(&stage, &dir.join("out.csv"));
+        std::fs::remove_dir_all(&dir).unwrap_or_default();
+    }
+
+    fn chunk(text: &str) -> Result<Formatted, PointsError> {
+        Ok((text.as_bytes().to_vec(), 1))
+    }
+
+    #[test]
+    fn results_handed_in_out_of_order_are_written_in_order() {
+        with_stage(|stage, path| {
+            let w = InOrder::start(Some(path), stage, 4).unwrap();
+            for seq in [2, 0, 3, 1] {
+                assert!(w.hand_in(seq, chunk(&format!("{seq}\n")), stage));
+            }
+            let (out, count) = w.finish(stage).ok().unwrap();
+            out.finish().unwrap();
+            assert_eq!(count, 4);
+            assert_eq!(
+                std::fs::read_to_string(path).unwrap(),
+                "x,y,b\n0\n1\n2\n3\n"
+            );
+        });
+    }
+
+    #[test]
+    fn a_chunk_waits_for_room_until_an_earlier_one_is_written() {
+        with_stage(|stage, path| {
+            let w = InOrder::start(Some(path), stage, 2).unwrap();
+            assert!(w.wait_for_room(0) && w.wait_for_room(1), "within the bound");
+            std::thread::scope(|s| {
+                let (tx, rx) = std::sync::mpsc::channel();
+                let w = &w;
+                s.spawn(move || tx.send(w.wait_for_room(2)).unwrap());
+                // Chunk 1 written first changes nothing: chunk 0 is still unwritten.
+                assert!(w.hand_in(1, chunk("1\n"), stage));
+                let short = std::time::Duration::from_millis(50);
+                assert!(rx.recv_timeout(short).is_err(), "chunk 2 was let in early");
+                assert!(w.hand_in(0, chunk("0\n"), stage));
+                let long = std::time::Duration::from_secs(10);
+                assert_eq!(rx.recv_timeout(long), Ok(true));
+            });
+        });
+    }
+
+    #[test]
+    fn a_bad_chunk_stops_the_run_and_wakes_the_waiting() {
+        with_stage(|stage, path| {
+            let w = InOrder::start(Some(path), stage, 1).unwrap();
+            std::thread::scope(|s| {
+                let (tx, rx) = std::sync::mpsc::channel();
+                let w = &w;
+                s.spawn(move || tx.send(w.wait_for_room(5)).unwrap());
+                let bad = PointsError::Line {
+                    line: 7,
+                    message: "bad".into(),
+                };
+                assert!(w.hand_in(1, chunk("1\n"), stage), "waits for chunk 0");
+                assert!(!w.hand_in(0, Err(bad), stage));
+                let long = std::time::Duration::from_secs(10);
+                assert_eq!(rx.recv_timeout(long), Ok(false));
+            });
+            assert!(!w.wait_for_room(0));
+            assert!(!w.hand_in(2, chunk("2\n"), stage));
+            match w.finish(stage) {
+                Err(WriteFailure::Input(PointsError::Line { line: 7, .. })) => {}
+                _ => panic!("the bad line is the failure"),
+            }
+        });
+    }
+}
