@@ -361,7 +361,7 @@ fn compute_claimed<T: Copy, C: Column<T>, K: PointsKernel<T>>(
             csv_block(block, parse, format, column, kernel, results.take())
         }),
         Positional::Npy(file) => NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
-            let (first, n) = Positional::npy_range(file, k);
+            let (first, n) = source::npy_chunk(file, k);
             let mut values = vec![column.initial(); n];
             let mut out = results.take();
             for (j, values) in values.chunks_mut(NPY_READ_POINTS).enumerate() {

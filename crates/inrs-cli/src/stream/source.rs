@@ -118,12 +118,13 @@ impl Positional {
             Self::Npy(f) => f.offset_of(k.saturating_mul(NPY_TASK_POINTS).min(f.len())),
         }
     }
+}
 
-    /// Chunk `k` of a `.npy` file: its first point and how many.
-    pub(super) fn npy_range(file: &inrs::NpyPointsFile, k: usize) -> (usize, usize) {
-        let first = k * NPY_TASK_POINTS;
-        (first, NPY_TASK_POINTS.min(file.len() - first))
-    }
+/// Chunk `k` of a `.npy` file read by position: its first point and how many.
+#[cfg(unix)]
+pub(super) fn npy_chunk(file: &inrs::NpyPointsFile, k: usize) -> (usize, usize) {
+    let first = k * NPY_TASK_POINTS;
+    (first, NPY_TASK_POINTS.min(file.len().saturating_sub(first)))
 }
 
 /// A CSV points file: read by position if it is a regular file with data in its first block
