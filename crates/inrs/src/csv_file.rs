@@ -10,7 +10,8 @@ use crate::points_csv::{CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, Points
 /// in its cache when it parses them). Block `k` holds the lines that *start* in its byte
 /// range: its first bytes, up to a line end, belong to the line before, and its last line runs
 /// on to its end. The format is that of [`crate::PointReader`]; the byte-order mark, comments
-/// before the data and the header are found once, when the file is opened.
+/// before the data and the header are found once, when the file is opened, and the blocks
+/// cover the file's length at that time (lines appended later are not read).
 ///
 /// # Examples
 ///
