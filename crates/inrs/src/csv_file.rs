@@ -72,14 +72,13 @@ impl CsvPointsFile {
         if !blocks.seen_data() {
             return Ok(None);
         }
-        let mut mark = [0u8; 3];
-        let bom = file.read_at(&mut mark, 0).map_err(io)? == 3 && mark == *b"\xef\xbb\xbf";
+        let data_from = (blocks.dropped_at_start() + first.data_from()) as u64;
         Ok(Some(Self {
             file,
             path: name,
             len: meta.len(),
             block_bytes: block_bytes.max(1) as u64,
-            data_from: 3 * u64::from(bom) + first.data_from() as u64,
+            data_from,
         }))
     }
 

@@ -541,6 +541,8 @@ pub struct CsvBlocks<R> {
     /// Lines handed out so far.
     lines: usize,
     at_start: bool,
+    /// Bytes dropped before the first block's text: the byte-order mark's 3, or none.
+    dropped_at_start: usize,
     seen_data: bool,
     eof: bool,
     /// Bytes read from the input so far.
@@ -559,6 +561,7 @@ impl<R: std::io::Read> CsvBlocks<R> {
             spare: Vec::new(),
             lines: 0,
             at_start: true,
+            dropped_at_start: 0,
             seen_data: false,
             eof: false,
             consumed: 0,
@@ -574,6 +577,12 @@ impl<R: std::io::Read> CsvBlocks<R> {
     #[cfg(unix)]
     pub(crate) fn seen_data(&self) -> bool {
         self.seen_data
+    }
+
+    /// Bytes of the input before the first block's text (the byte-order mark, if any).
+    #[cfg(unix)]
+    pub(crate) fn dropped_at_start(&self) -> usize {
+        self.dropped_at_start
     }
 
     /// Gives back a block's text (or any buffer) for reading the following blocks into, so
@@ -595,6 +604,7 @@ impl<R: std::io::Read> CsvBlocks<R> {
             self.at_start = false;
             if self.pending.starts_with(b"\xef\xbb\xbf") {
                 self.pending.drain(..3);
+                self.dropped_at_start = 3;
             }
         }
         if self.pending.is_empty() {
