@@ -243,6 +243,14 @@ mod tests {
         Ok(all)
     }
 
+    /// A directory of its own for a test, and the points file's name in it.
+    fn scratch(test: &str) -> (std::path::PathBuf, std::path::PathBuf) {
+        let dir = std::env::temp_dir().join(format!("inrs-csvfile-{test}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("points.csv");
+        (dir, path)
+    }
+
     fn collect(b: &CsvBlock, parsed: &ParsedBlock, all: &mut Vec<(f64, f64, Vec<u8>, Vec<u8>)>) {
         for (p, f) in parsed.points.iter().zip(&parsed.fields) {
             all.push((
@@ -256,9 +264,7 @@ mod tests {
 
     #[test]
     fn blocks_read_by_position_hold_the_lines_read_in_order() {
-        let dir = std::env::temp_dir().join(format!("inrs-csvfile-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("points.csv");
+        let (dir, path) = scratch("blocks");
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
         let mut next = |n: u64| {
             state ^= state << 13;
@@ -327,9 +333,7 @@ mod tests {
 
     #[test]
     fn a_line_too_long_is_reported_at_its_number() {
-        let dir = std::env::temp_dir().join(format!("inrs-csvfile-long-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("points.csv");
+        let (dir, path) = scratch("long");
         let mut text = b"1,2\n3,4\n".to_vec();
         text.extend(std::iter::repeat_n(b'5', MAX_LINE_BYTES + 10));
         text.extend_from_slice(b",1\n6,7\n");
@@ -345,9 +349,7 @@ mod tests {
 
     #[test]
     fn files_without_data_in_the_first_block_are_left_to_the_sequential_reader() {
-        let dir = std::env::temp_dir().join(format!("inrs-csvfile-none-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("points.csv");
+        let (dir, path) = scratch("none");
         // 190 KB of comments (a first block reads at least 64 KiB), then one point.
         let mut text = "# a comment of twenty bytes\n".repeat(7000);
         text.push_str("\n1,2\n");
