@@ -131,11 +131,10 @@ proptest! {
 
     #[test]
     fn svg_path_data_never_panics(d in path_data()) {
-        if let Ok(curves) = inrs::io::svg::curves_from_path_data(&d) {
-            if let Ok(domain) = Domain::new(curves) {
+        if let Ok(curves) = inrs::io::svg::curves_from_path_data(&d)
+            && let Ok(domain) = Domain::new(curves) {
                 exercise(&domain);
             }
-        }
         let doc = format!(
             "<svg xmlns=\"http://www.w3.org/2000/svg\"><g transform=\"rotate(30) scale(2)\"><path d=\"{d}\"/></g></svg>"
         );

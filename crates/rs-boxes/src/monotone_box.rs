@@ -189,19 +189,21 @@ impl MonotoneBox {
         }
         // Vertical distance (a vertical piece is covered by the horizontal distance and the
         // end points, and vice versa).
-        if self.x_dir != Monotonicity::Constant && p.x >= self.band.xmin && p.x <= self.band.xmax {
-            if let Some((_, y)) = self.at_x(p.x) {
-                if (y - p.y).abs() <= abs_tol {
-                    return true;
-                }
-            }
+        if self.x_dir != Monotonicity::Constant
+            && p.x >= self.band.xmin
+            && p.x <= self.band.xmax
+            && let Some((_, y)) = self.at_x(p.x)
+            && (y - p.y).abs() <= abs_tol
+        {
+            return true;
         }
-        if self.y_dir != Monotonicity::Constant && p.y >= self.band.ymin && p.y <= self.band.ymax {
-            if let Some((_, x)) = self.at_y(p.y) {
-                if (x - p.x).abs() <= abs_tol {
-                    return true;
-                }
-            }
+        if self.y_dir != Monotonicity::Constant
+            && p.y >= self.band.ymin
+            && p.y <= self.band.ymax
+            && let Some((_, x)) = self.at_y(p.y)
+            && (x - p.x).abs() <= abs_tol
+        {
+            return true;
         }
         false
     }

@@ -156,10 +156,10 @@ impl LoopBuilder {
             if let Ok(s) = segment(self.pen, self.start) {
                 curves.push(s);
             }
-        } else if gap > 0.0 {
-            if let Some(last) = curves.pop() {
-                curves.push(with_end_point(&last, self.start).unwrap_or(last));
-            }
+        } else if gap > 0.0
+            && let Some(last) = curves.pop()
+        {
+            curves.push(with_end_point(&last, self.start).unwrap_or(last));
         }
         self.pen = self.start;
         // Map first: a singular transform (scale(0), say) flattens the loop to no area.

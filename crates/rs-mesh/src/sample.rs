@@ -87,11 +87,12 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
         let y = a + i as f64 * h;
         let mut hits: Vec<(f64, usize, f64)> = Vec::new();
         for bx in boxes.boxes() {
-            if bx.band.ymin <= y && y < bx.band.ymax {
-                if let Some((t, x)) = bx.at_y(y) {
-                    let (u0, u1) = bx.param_range;
-                    hits.push((x, bx.curve, u0 + t * (u1 - u0)));
-                }
+            if bx.band.ymin <= y
+                && y < bx.band.ymax
+                && let Some((t, x)) = bx.at_y(y)
+            {
+                let (u0, u1) = bx.param_range;
+                hits.push((x, bx.curve, u0 + t * (u1 - u0)));
             }
         }
         if hits.len() % 2 == 1 {

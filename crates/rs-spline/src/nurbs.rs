@@ -306,11 +306,11 @@ impl NurbsCurve {
             .clamped();
             // Where the curve is continuous (multiplicity <= p) both pieces have C(u_k) as an
             // end; share it bit for bit instead of two roundings of the same point.
-            if let Some(prev) = pieces.last() {
-                if knots[k - p..=k].iter().filter(|&&x| x == knots[k]).count() <= p {
-                    local.points[0] = prev.end_point();
-                    local.weights[0] = prev.weights()[p];
-                }
+            if let Some(prev) = pieces.last()
+                && knots[k - p..=k].iter().filter(|&&x| x == knots[k]).count() <= p
+            {
+                local.points[0] = prev.end_point();
+                local.weights[0] = prev.weights()[p];
             }
             pieces.push(RationalBezier::from_valid_parts(
                 local.points,

@@ -199,7 +199,7 @@ pub fn spiral(turns: usize) -> Case {
     let (r0, h, w) = (1.0, 0.5, 0.15);
     let k = 2 * turns;
     let arc = |i: usize, off: f64| {
-        let (c, r, start) = if i % 2 == 0 {
+        let (c, r, start) = if i.is_multiple_of(2) {
             (Point::new(0.0, 0.0), r0 + i as f64 * h + off, 0.0)
         } else {
             (Point::new(h, 0.0), r0 + i as f64 * h + off, PI)

@@ -116,7 +116,7 @@ pub fn minimal_energy(
         // Local data order: (z, gx, gy) per vertex; gradients are unknowns, values given.
         let global = |l: usize| -> Option<usize> {
             let v = ids[l / 3];
-            (l % 3 != 0).then(|| 2 * slot[&v] + l % 3 - 1)
+            (!l.is_multiple_of(3)).then(|| 2 * slot[&v] + l % 3 - 1)
         };
         for (r, row) in k.iter().enumerate() {
             let Some(gr) = global(r) else { continue };

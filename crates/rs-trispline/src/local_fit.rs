@@ -181,20 +181,21 @@ impl<'a> LocalFits<'a> {
                         .fold((f64::INFINITY, 0.0f64), |(lo, hi), &s| {
                             (lo.min(s), hi.max(s))
                         });
-                    if lo > 0.0 && hi / lo <= MAX_FIT_CONDITION {
-                        if let Ok(x) = svd.solve(&b, 0.0) {
-                            let mut coefficients = [0.0; 10];
-                            coefficients[0] = anchored.unwrap_or(0.0);
-                            for (c, &xc) in x.iter().enumerate() {
-                                coefficients[c + first] = xc;
-                            }
-                            return Ok(LocalPolynomial {
-                                centre,
-                                scale,
-                                degree: self.degree,
-                                coefficients,
-                            });
+                    if lo > 0.0
+                        && hi / lo <= MAX_FIT_CONDITION
+                        && let Ok(x) = svd.solve(&b, 0.0)
+                    {
+                        let mut coefficients = [0.0; 10];
+                        coefficients[0] = anchored.unwrap_or(0.0);
+                        for (c, &xc) in x.iter().enumerate() {
+                            coefficients[c + first] = xc;
                         }
+                        return Ok(LocalPolynomial {
+                            centre,
+                            scale,
+                            degree: self.degree,
+                            coefficients,
+                        });
                     }
                 }
             }

@@ -33,10 +33,10 @@ impl Spares {
     /// Hands `buffer` back (emptied) for a later [`Spares::take`].
     pub(crate) fn give(&self, mut buffer: Vec<u8>) {
         buffer.clear();
-        if let Ok(mut free) = self.free.lock() {
-            if free.len() < self.keep {
-                free.push(buffer);
-            }
+        if let Ok(mut free) = self.free.lock()
+            && free.len() < self.keep
+        {
+            free.push(buffer);
         }
     }
 }

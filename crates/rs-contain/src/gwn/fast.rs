@@ -439,11 +439,11 @@ fn build(
                 let mut own: SmallVec<[(Point, Point); LEFT_CHAINS]> =
                     SmallVec::from_slice(&chords[lc.0 as usize..lc.1 as usize]);
                 let mut right = &chords[rc.0 as usize..rc.1 as usize];
-                if let (Some(last), Some(&(a, b))) = (own.last_mut(), right.first()) {
-                    if last.1 == a {
-                        last.1 = b;
-                        right = &right[1..];
-                    }
+                if let (Some(last), Some(&(a, b))) = (own.last_mut(), right.first())
+                    && last.1 == a
+                {
+                    last.1 = b;
+                    right = &right[1..];
                 }
                 own.extend_from_slice(right);
                 own

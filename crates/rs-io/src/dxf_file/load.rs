@@ -108,10 +108,11 @@ fn cleared_text(bytes: &[u8]) -> Option<Vec<u8>> {
 /// Skips pairs up to and including the `0 ENDSEC` pair.
 fn skip_to_end_of_section<'a>(pairs: &mut impl Iterator<Item = &'a [&'a [u8]]>) {
     for pair in pairs {
-        if let &[code, value] = pair {
-            if code.trim_ascii() == b"0" && value.trim_ascii() == b"ENDSEC" {
-                return;
-            }
+        if let &[code, value] = pair
+            && code.trim_ascii() == b"0"
+            && value.trim_ascii() == b"ENDSEC"
+        {
+            return;
         }
     }
 }
