@@ -555,8 +555,9 @@ mod tests {
         }
     }
 
-    /// The copy `add_to` runs (compiled for the widest instruction set the CPU has, AVX2 on
-    /// most x86-64) gives the same bits as the copy built for the baseline target.
+    /// The copy `add_to` runs (compiled for the widest instruction set the CPU has: AVX-512
+    /// or AVX2 on most x86-64), and on x86-64 each of the AVX2 and AVX-512 copies the CPU can
+    /// run, give the same bits as the copy built for the baseline target.
     #[test]
     fn the_dispatched_product_equals_the_baseline_one() {
         let ends: Vec<(Point, Point)> = (0..37)
@@ -575,12 +576,45 @@ mod tests {
                 WindingSum::new(Point::new(4.0 * s.sin(), 3.0 * (1.3 * s).cos() - 0.01 * s))
             })
             .collect();
-        let (mut dispatched, mut baseline) = (queries.clone(), queries);
-        chains.add_to(&mut dispatched);
+        let mut baseline = queries.clone();
         chains.add_to_all(&mut baseline);
-        for (a, b) in dispatched.iter().zip(&baseline) {
-            assert_eq!(a.value().to_bits(), b.value().to_bits(), "{:?}", a.q);
+        let mut copies = vec![("dispatched", queries.clone())];
+        chains.add_to(&mut copies[0].1);
+        #[cfg(target_arch = "x86_64")]
+        {
+            use pulp::Simd;
+            if let Some(simd) = pulp::x86::V3::try_new() {
+                let mut sums = queries.clone();
+                Simd::vectorize(
+                    simd,
+                    AddTo {
+                        ends: &chains,
+                        sums: &mut sums,
+                    },
+                );
+                copies.push(("AVX2", sums));
+            }
+            if let Some(simd) = pulp::x86::V4::try_new() {
+                let mut sums = queries.clone();
+                Simd::vectorize(
+                    simd,
+                    AddTo {
+                        ends: &chains,
+                        sums: &mut sums,
+                    },
+                );
+                copies.push(("AVX-512", sums));
+            }
         }
+        for (name, sums) in &copies {
+            for (a, b) in sums.iter().zip(&baseline) {
+                assert_eq!(a.value().to_bits(), b.value().to_bits(), "{name} {:?}", a.q);
+            }
+        }
+        eprintln!(
+            "compared with the baseline: {:?}",
+            copies.iter().map(|c| c.0).collect::<Vec<_>>()
+        );
     }
 
     /// The vectorisable argument against `f64::atan2` all round the circle, on the axes and at
