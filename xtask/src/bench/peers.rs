@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use inrs::contain::{FastWindingField, WindingField};
+use inrs::contain::{FastWindingField, QueryStats, WindingField, curve_winding_number};
 use inrs::io::svg::{OpenSubpaths, domain_from_svg_file_with};
 use inrs::prelude::*;
 use inrs::{Domain, Point, RationalBezier};
@@ -105,6 +105,10 @@ fn lyon_path(d: &Domain) -> LyonPath {
     builder.build()
 }
 
+/// The paper's direct algorithm is timed on every this-many-th grid point (on the large shapes
+/// it takes about as long as kurbo per query).
+const DIRECT_STRIDE: usize = 10;
+
 /// Build time and microseconds per query of one method.
 struct Timing {
     build: f64,
@@ -178,17 +182,20 @@ pub(super) fn shapes(
          `path_winding_number_at_position` (f32, flattened within {LYON_RELATIVE_TOLERANCE:e} of \
          the diagonal); both only on closed shapes. Fast field: `winding_numbers` over all the \
          points (open chains' ends added for eight points at once); one at a time: \
-         `winding_number` per point (the same values, bit for bit). Ratios are peer time / inrs \
-         time.\n"
+         `winding_number` per point (the same values, bit for bit). Paper direct: the GWN \
+         paper's algorithm curve by curve (`curve_winding_number` summed over the pieces: one \
+         `atan2` per chord, the open chains' ends not shared), as the per-curve field computed \
+         before it shared the fast field's chain-ends sum; timed on every {DIRECT_STRIDE}th \
+         point of the grid. Ratios are peer time / inrs time.\n"
     );
     let _ = writeln!(
         md,
-        "| shape | pieces | per-curve | fast field (build ms) | fast, one at a time | kurbo | \
-         lyon (build ms) | kurbo / per-curve | kurbo / fast | lyon / fast | per-curve / fast | max \\|fast - per-curve\\| | peer disagreements |"
+        "| shape | pieces | per-curve | fast field (build ms) | fast, one at a time | paper direct | kurbo | \
+         lyon (build ms) | kurbo / per-curve | kurbo / fast | lyon / fast | per-curve / fast | paper direct / fast | max \\|w - per-curve\\| (fast, paper direct) | peer disagreements |"
     );
     let _ = writeln!(
         md,
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     );
     for (name, closed) in SHAPES {
         let d = load_shape(root, name)?;
@@ -213,18 +220,41 @@ pub(super) fn shapes(
             || FastWindingField::new(&field),
             |f, pts| f.winding_numbers(pts),
         );
+        let sparse: Vec<Point> = pts.iter().step_by(DIRECT_STRIDE).copied().collect();
+        let (direct, w_direct) = time_method(
+            reps,
+            &sparse,
+            || (),
+            |_, q| {
+                let mut stats = QueryStats::default();
+                field
+                    .pieces()
+                    .iter()
+                    .map(|c| curve_winding_number(c, q, &mut stats))
+                    .sum()
+            },
+        );
         let max_diff = w_ref
             .iter()
             .zip(&w_fast)
             .map(|(a, b)| (a - b).abs())
+            .chain(
+                w_ref
+                    .iter()
+                    .step_by(DIRECT_STRIDE)
+                    .zip(&w_direct)
+                    .map(|(a, b)| (a - b).abs()),
+            )
             .fold(0.0, f64::max);
+        let direct_ratio = direct.per_query_us / fast.per_query_us;
         let mut row = format!(
-            "| {name} | {} | {:.3} | {:.3} ({:.2}) | {:.3} |",
+            "| {name} | {} | {:.3} | {:.3} ({:.2}) | {:.3} | {:.3} |",
             field.pieces().len(),
             per_curve.per_query_us,
             fast.per_query_us,
             fast.build * 1e3,
             fast_single.per_query_us,
+            direct.per_query_us,
         );
         if closed {
             let (kurbo, w_kurbo) = time_method(
@@ -253,7 +283,7 @@ pub(super) fn shapes(
             ));
             let _ = write!(
                 row,
-                " {:.3} | {:.3} ({:.2}) | {:.2} | {:.1} | {:.1} | {:.1} | {max_diff:.1e} | kurbo {}, lyon {} |",
+                " {:.3} | {:.3} ({:.2}) | {:.2} | {:.1} | {:.1} | {:.1} | {direct_ratio:.1} | {max_diff:.1e} | kurbo {}, lyon {} |",
                 kurbo.per_query_us,
                 lyon.per_query_us,
                 lyon.build * 1e3,
@@ -267,7 +297,7 @@ pub(super) fn shapes(
         } else {
             let _ = write!(
                 row,
-                " - | - | - | - | - | {:.1} | {max_diff:.1e} | - |",
+                " - | - | - | - | - | {:.1} | {direct_ratio:.1} | {max_diff:.1e} | - |",
                 per_curve.per_query_us / fast.per_query_us
             );
         }
