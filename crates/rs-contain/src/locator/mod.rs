@@ -533,6 +533,9 @@ impl PointLocator<'_> {
                 }
                 tables.lookup.blocks(&xs, &ys, &mut blocks);
                 for (l, o) in group.iter_mut().enumerate() {
+                    // `& 3` and `& (CHUNK - 1)` change nothing (a state is below 4, `k <= i`);
+                    // they spare the bounds checks the compiler cannot drop. (Lanes past the
+                    // group's end hold the blocks of stale coordinates and are not read.)
                     let state = usize::from(tables.coarse[blocks[l] as usize]) & 3;
                     *o = STATE_LOCATION[state];
                     refined[k & (CHUNK - 1)] = (base + l) as u16;
