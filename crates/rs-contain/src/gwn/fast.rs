@@ -347,21 +347,18 @@ impl<'a> FastWindingField<'a> {
         out
     }
 
-    /// [`FastWindingField::winding_numbers_indexed_into`] on chunks of 4096 points spread over
-    /// rayon's pool (with the `parallel` feature; otherwise on the current thread).
+    /// [`FastWindingField::winding_numbers_indexed_into`] on chunks of 4096 points, on the
+    /// calling thread and rayon's pool together (with the `parallel` feature; otherwise on the
+    /// current thread).
     pub fn winding_numbers_indexed_parallel_into(
         &self,
         point: impl Fn(usize) -> Point + Sync,
         out: &mut [f64],
     ) {
         #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            const TASK: usize = 4096;
-            out.par_chunks_mut(TASK)
-                .enumerate()
-                .for_each(|(c, o)| self.winding_numbers_indexed_into(|i| point(c * TASK + i), o));
-        }
+        crate::locate::on_caller_and_pool(out, 4096, |first, o| {
+            self.winding_numbers_indexed_into(|i| point(first + i), o)
+        });
         #[cfg(not(feature = "parallel"))]
         self.winding_numbers_indexed_into(point, out);
     }
