@@ -182,9 +182,9 @@ pub struct FastWindingField<'a> {
     nodes: Vec<BvhNode>,
     /// The nodes' chain chords (see [`BvhNode::chords`]).
     chords: Vec<(Point, Point)>,
-    /// The leaves in boundary order when there are at most [`SCAN_PIECES`] of them (then a
-    /// query scans them instead of walking the tree); empty otherwise.
-    scan: Vec<u32>,
+    /// With at most [`ROW_PIECES`] pieces, the leaves by rows of the pieces' height (then a
+    /// query visits its row's leaves instead of walking the tree).
+    rows: Option<LeafRows>,
     hierarchies: Vec<OnceLock<CurveHierarchy>>,
 }
 
@@ -193,9 +193,105 @@ pub struct FastWindingField<'a> {
 /// below the query); this also bounds the chords stored to this many per node.
 const LEFT_CHAINS: usize = 8;
 
-/// Up to this many pieces a query tests every leaf in turn: the inner nodes of so small a tree
-/// hold nearly every query, so the walk only adds their tests and the stack's traffic.
-const SCAN_PIECES: usize = 8;
+/// Up to this many pieces a query visits the leaves of its row ([`LeafRows`]) instead of
+/// walking the tree: the inner nodes of so small a tree hold nearly every query, so the walk
+/// mostly adds their tests and the stack's traffic.
+const ROW_PIECES: usize = 32;
+
+/// Rows per piece of a [`LeafRows`].
+const ROWS_PER_PIECE: usize = 4;
+
+/// Up to this many pieces a [`LeafRows`] has one row: finding a query's row costs more than
+/// the few leaves it would skip.
+const ONE_ROW_PIECES: usize = 8;
+
+/// The leaves of a small tree by horizontal rows: row `r` of `ROWS_PER_PIECE * pieces` equal
+/// rows over the pieces' height (one row up to [`ONE_ROW_PIECES`] pieces) lists, in boundary
+/// order, every leaf whose box meets it. The
+/// row of `q` holds every leaf whose box spans `q.y` (the row of a height is monotone in it,
+/// rounding included), and a leaf not listed lies above or below `q`, where the tree walk
+/// would skip it too.
+#[derive(Clone, Debug)]
+struct LeafRows {
+    /// The lowest and highest ordinate of the pieces' boxes.
+    y0: f64,
+    y1: f64,
+    /// Rows per unit height.
+    scale: f64,
+    /// Row `r`'s leaves are `leaves[start[r]..start[r + 1]]`.
+    start: Vec<u32>,
+    leaves: Vec<u32>,
+}
+
+impl LeafRows {
+    /// The rows of `nodes`' leaves.
+    fn new(nodes: &[BvhNode]) -> Self {
+        let leaves: Vec<u32> = (0..nodes.len() as u32)
+            .filter(|&i| matches!(nodes[i as usize].kind, Kind::Leaf(_)))
+            .collect();
+        let y0 = leaves
+            .iter()
+            .map(|&i| nodes[i as usize].lo.y)
+            .fold(f64::INFINITY, f64::min);
+        let y1 = leaves
+            .iter()
+            .map(|&i| nodes[i as usize].hi.y)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let count = if leaves.len() <= ONE_ROW_PIECES {
+            1
+        } else {
+            ROWS_PER_PIECE * leaves.len()
+        };
+        let scale = if y1 > y0 {
+            count as f64 / (y1 - y0)
+        } else {
+            0.0
+        };
+        let mut rows = Self {
+            y0,
+            y1,
+            scale: if scale.is_finite() { scale } else { 0.0 },
+            start: vec![0; count + 1],
+            leaves: Vec::new(),
+        };
+        let mut lists = vec![Vec::new(); count];
+        for &leaf in &leaves {
+            let n = &nodes[leaf as usize];
+            for list in &mut lists[rows.row(n.lo.y)..=rows.row(n.hi.y)] {
+                list.push(leaf);
+            }
+        }
+        for (r, list) in lists.iter().enumerate() {
+            rows.leaves.extend_from_slice(list);
+            rows.start[r + 1] = rows.leaves.len() as u32;
+        }
+        rows
+    }
+
+    /// The row of ordinate `y` (clamped to the rows; `y` not NaN).
+    #[inline]
+    fn row(&self, y: f64) -> usize {
+        let last = self.start.len() - 2;
+        (((y - self.y0) * self.scale).max(0.0) as usize).min(last)
+    }
+
+    /// The leaves `q`'s tree walk could not skip are among these: its row's, or none for a
+    /// `q` above or below all the pieces; `None` for a NaN ordinate (then the tree decides).
+    #[inline]
+    fn leaves_near(&self, q: Point) -> Option<&[u32]> {
+        if q.y >= self.y0 && q.y <= self.y1 {
+            if self.start.len() == 2 {
+                return Some(&self.leaves);
+            }
+            let r = self.row(q.y);
+            Some(&self.leaves[self.start[r] as usize..self.start[r + 1] as usize])
+        } else if q.y.is_nan() {
+            None
+        } else {
+            Some(&[])
+        }
+    }
+}
 
 impl<'a> FastWindingField<'a> {
     /// Builds the hierarchy over `field`'s pieces (`O(n log n)` box merges; the pieces'
@@ -207,18 +303,13 @@ impl<'a> FastWindingField<'a> {
         if !pieces.is_empty() {
             build(pieces, 0, pieces.len(), &mut nodes, &mut chords);
         }
-        let scan = if pieces.len() <= SCAN_PIECES {
-            (0..nodes.len() as u32)
-                .filter(|&i| matches!(nodes[i as usize].kind, Kind::Leaf(_)))
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let rows =
+            (!pieces.is_empty() && pieces.len() <= ROW_PIECES).then(|| LeafRows::new(&nodes));
         Self {
             field,
             nodes,
             chords,
-            scan,
+            rows,
             hierarchies: pieces.iter().map(|_| OnceLock::new()).collect(),
         }
     }
@@ -247,13 +338,16 @@ impl<'a> FastWindingField<'a> {
         stats: &mut QueryStats,
     ) -> WindingSum {
         let mut sum = WindingSum::new(q);
-        for &i in &self.scan {
-            self.visit(i, q, &mut sum, stats);
+        if let Some(leaves) = self.rows.as_ref().and_then(|rows| rows.leaves_near(q)) {
+            for &i in leaves {
+                self.visit(i, q, &mut sum, stats);
+            }
+            return sum;
         }
         // Depth-first, left child first: at most one pending right child per level, and the
         // tree is balanced (depth at most log2(pieces) + 1 < STACK).
         let mut len = 0;
-        if self.scan.is_empty() && !self.nodes.is_empty() {
+        if !self.nodes.is_empty() {
             stack[0] = self.nodes.len() as u32 - 1;
             len = 1;
         }
@@ -478,6 +572,59 @@ mod tests {
             }
         }
         out
+    }
+
+    /// A small field's rows list every leaf whose box spans a query's ordinate, in boundary
+    /// order, and the fast field's values equal the per-curve field's on a grid through the
+    /// pieces' corners, above and below them.
+    #[test]
+    fn rows_hold_every_leaf_a_query_cannot_skip() {
+        let mut curves = vec![circular_arc(Point::new(0.0, 0.0), 1.0, 0.3, 5.0).unwrap()];
+        for k in 0..9 {
+            let x = k as f64 * 0.37 - 1.5;
+            curves.push(
+                segment(
+                    Point::new(x, -2.0 + 0.1 * k as f64),
+                    Point::new(x + 0.2, 1.7),
+                )
+                .unwrap(),
+            );
+        }
+        let d = Domain::new(curves).unwrap();
+        let field = WindingField::new(&d, crate::DEFAULT_RELATIVE_TOLERANCE).unwrap();
+        let fast = FastWindingField::new(&field);
+        let rows = fast.rows.as_ref().expect("a small field has rows");
+        let leaves: Vec<u32> = (0..fast.nodes.len() as u32)
+            .filter(|&i| matches!(fast.nodes[i as usize].kind, Kind::Leaf(_)))
+            .collect();
+        let mut ys: Vec<f64> = leaves
+            .iter()
+            .flat_map(|&i| [fast.nodes[i as usize].lo.y, fast.nodes[i as usize].hi.y])
+            .collect();
+        ys.extend((0..400).map(|k| -2.5 + k as f64 * 0.0113));
+        for &y in &ys {
+            let q = Point::new(0.05, y);
+            let near = rows.leaves_near(q).unwrap();
+            let want: Vec<u32> = leaves
+                .iter()
+                .copied()
+                .filter(|&i| !(y < fast.nodes[i as usize].lo.y || y > fast.nodes[i as usize].hi.y))
+                .collect();
+            assert!(
+                want.iter().all(|i| near.contains(i)),
+                "y {y}: {near:?} lacks some of {want:?}"
+            );
+            assert!(near.windows(2).all(|w| w[0] < w[1]), "boundary order");
+            for x in [-3.0, -0.9, 0.05, 0.6, 3.0] {
+                let q = Point::new(x, y);
+                assert!(
+                    (fast.winding_number(q) - field.winding_number(q)).abs() < 1e-12,
+                    "{q:?}"
+                );
+            }
+        }
+        assert!(rows.leaves_near(Point::new(0.0, f64::NAN)).is_none());
+        assert_eq!(rows.leaves_near(Point::new(0.0, 99.0)), Some(&[][..]));
     }
 
     /// Walks the tree with each node's piece range (the build halves `[i, j)` at its middle).
