@@ -6,6 +6,7 @@ use rs_spline::{BoundingBox, Domain, Point};
 use crate::rays::{Hit, horizontal, parity, vertical};
 use std::sync::{Arc, OnceLock};
 
+use crate::box_rows::BoxRows;
 use crate::locate::in_parallel_chunks;
 use crate::locator::LocatorIndex;
 use crate::{
@@ -105,6 +106,8 @@ pub struct Classifier {
     field: OnceLock<WindingField>,
     /// Built on first use: the grid of [`Method::Fast`] with the default options.
     grid: OnceLock<LocatorIndex>,
+    /// Built on first use: the boxes by rows, for the fallback's horizontal ray.
+    rows: OnceLock<BoxRows>,
 }
 
 impl Clone for Classifier {
@@ -119,6 +122,7 @@ impl Clone for Classifier {
             method: self.method,
             field: OnceLock::new(),
             grid: OnceLock::new(),
+            rows: OnceLock::new(),
         }
     }
 }
@@ -153,6 +157,7 @@ impl Classifier {
             method: options.method,
             field: OnceLock::new(),
             grid: OnceLock::new(),
+            rows: OnceLock::new(),
         })
     }
 
@@ -209,12 +214,20 @@ impl Classifier {
     }
 
     /// Paper steps (vii)-(viii): the horizontal ray, then the winding number.
+    ///
+    /// Both steps look only at the boxes whose reach holds `p.y` ([`BoxRows`]): the others are
+    /// neither near `p` nor crossed by its horizontal ray, so the answer is the one a scan of
+    /// every box gives (a domain whose tolerance is wider than the domain made every point
+    /// take this path through tens of thousands of boxes).
     pub(crate) fn fallback(&self, p: Point) -> (Location, Decision) {
+        let all = self.boxes().boxes();
+        let rows = self.rows.get_or_init(|| BoxRows::new(all, self.tol));
+        let near = || rows.near(p.y).iter().map(|&i| &all[i as usize]);
         if !self.boxes().is_critical_y(p.y, self.tol) {
-            let odd = parity(self.boxes().boxes(), |b| horizontal(b, p, self.tol));
+            let odd = parity(near(), |b| horizontal(b, p, self.tol));
             return (location(odd), Decision::HorizontalRay);
         }
-        if self.boxes().boxes().iter().any(|b| b.is_near(p, self.tol)) {
+        if near().any(|b| b.is_near(p, self.tol)) {
             return (Location::Boundary, Decision::WindingNumber);
         }
         // The generalized winding number (the one winding routine of the crate), exact up to

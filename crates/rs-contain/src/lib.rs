@@ -46,6 +46,7 @@
 //! assert_eq!(c.locate(Point::new(0.0, -1.0)), Location::Boundary);
 //! ```
 
+mod box_rows;
 mod classifier;
 mod error;
 mod filled_area;
