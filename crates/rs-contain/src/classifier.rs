@@ -6,9 +6,9 @@ use rs_spline::{BoundingBox, Domain, Point};
 use crate::rays::{Hit, horizontal, parity, vertical};
 use std::sync::{Arc, OnceLock};
 
-use crate::box_rows::BoxRows;
 use crate::locate::in_parallel_chunks;
 use crate::locator::LocatorIndex;
+use crate::rows::{Rows, box_rows};
 use crate::{
     ContainError, Decision, Locate, Location, LocatorOptions, Method, PointLocator, WindingField,
     fast_uses_locator,
@@ -107,7 +107,7 @@ pub struct Classifier {
     /// Built on first use: the grid of [`Method::Fast`] with the default options.
     grid: OnceLock<LocatorIndex>,
     /// Built on first use: the boxes by rows, for the fallback's horizontal ray.
-    rows: OnceLock<BoxRows>,
+    rows: OnceLock<Rows>,
 }
 
 impl Clone for Classifier {
@@ -215,13 +215,13 @@ impl Classifier {
 
     /// Paper steps (vii)-(viii): the horizontal ray, then the winding number.
     ///
-    /// Both steps look only at the boxes whose reach holds `p.y` ([`BoxRows`]): the others are
+    /// Both steps look only at the boxes whose reach holds `p.y` (rows built on first use): the others are
     /// neither near `p` nor crossed by its horizontal ray, so the answer is the one a scan of
     /// every box gives (a domain whose tolerance is wider than the domain made every point
     /// take this path through tens of thousands of boxes).
     pub(crate) fn fallback(&self, p: Point) -> (Location, Decision) {
         let all = self.boxes().boxes();
-        let rows = self.rows.get_or_init(|| BoxRows::new(all, self.tol));
+        let rows = self.rows.get_or_init(|| box_rows(all, self.tol));
         let near = || rows.near(p.y).iter().map(|&i| &all[i as usize]);
         if !self.boxes().is_critical_y(p.y, self.tol) {
             let odd = parity(near(), |b| horizontal(b, p, self.tol));

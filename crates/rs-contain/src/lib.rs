@@ -46,7 +46,6 @@
 //! assert_eq!(c.locate(Point::new(0.0, -1.0)), Location::Boundary);
 //! ```
 
-mod box_rows;
 mod classifier;
 mod error;
 mod filled_area;
@@ -57,6 +56,7 @@ mod location;
 mod locator;
 mod polygon;
 mod rays;
+mod rows;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
 pub use error::ContainError;

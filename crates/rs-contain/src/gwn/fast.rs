@@ -15,6 +15,7 @@ use super::curve::{
 };
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
+use crate::rows::Rows;
 use crate::{Locate, Location};
 
 /// Levels of each piece's precomputed subdivision hierarchy (`2^(d+1) - 1` sub-curves).
@@ -182,9 +183,9 @@ pub struct FastWindingField<'a> {
     nodes: Vec<BvhNode>,
     /// The nodes' chain chords (see [`BvhNode::chords`]).
     chords: Vec<(Point, Point)>,
-    /// With at most [`ROW_PIECES`] pieces, the leaves by rows of the pieces' height (then a
-    /// query visits its row's leaves instead of walking the tree).
-    rows: Option<LeafRows>,
+    /// With at most [`ROW_PIECES`] pieces, the leaves by rows of the pieces' height
+    /// ([`leaf_rows`]; then a query visits its row's leaves instead of walking the tree).
+    rows: Option<Rows>,
     hierarchies: Vec<OnceLock<CurveHierarchy>>,
 }
 
@@ -193,104 +194,31 @@ pub struct FastWindingField<'a> {
 /// below the query); this also bounds the chords stored to this many per node.
 const LEFT_CHAINS: usize = 8;
 
-/// Up to this many pieces a query visits the leaves of its row ([`LeafRows`]) instead of
+/// Up to this many pieces a query visits the leaves of its row ([`leaf_rows`]) instead of
 /// walking the tree: the inner nodes of so small a tree hold nearly every query, so the walk
 /// mostly adds their tests and the stack's traffic.
 const ROW_PIECES: usize = 32;
 
-/// Rows per piece of a [`LeafRows`].
+/// Rows per piece of a small field's [`Rows`].
 const ROWS_PER_PIECE: usize = 4;
 
-/// Up to this many pieces a [`LeafRows`] has one row: finding a query's row costs more than
-/// the few leaves it would skip.
+/// Up to this many pieces a small field's [`Rows`] is one row: finding a query's row costs more
+/// than the few leaves it would skip.
 const ONE_ROW_PIECES: usize = 8;
 
-/// The leaves of a small tree by horizontal rows: row `r` of `ROWS_PER_PIECE * pieces` equal
-/// rows over the pieces' height (one row up to [`ONE_ROW_PIECES`] pieces) lists, in boundary
-/// order, every leaf whose box meets it. The
-/// row of `q` holds every leaf whose box spans `q.y` (the row of a height is monotone in it,
-/// rounding included), and a leaf not listed lies above or below `q`, where the tree walk
-/// would skip it too.
-#[derive(Clone, Debug)]
-struct LeafRows {
-    /// The lowest and highest ordinate of the pieces' boxes.
-    y0: f64,
-    y1: f64,
-    /// Rows per unit height.
-    scale: f64,
-    /// Row `r`'s leaves are `leaves[start[r]..start[r + 1]]`.
-    start: Vec<u32>,
-    leaves: Vec<u32>,
-}
-
-impl LeafRows {
-    /// The rows of `nodes`' leaves.
-    fn new(nodes: &[BvhNode]) -> Self {
-        let leaves: Vec<u32> = (0..nodes.len() as u32)
-            .filter(|&i| matches!(nodes[i as usize].kind, Kind::Leaf(_)))
-            .collect();
-        let y0 = leaves
-            .iter()
-            .map(|&i| nodes[i as usize].lo.y)
-            .fold(f64::INFINITY, f64::min);
-        let y1 = leaves
-            .iter()
-            .map(|&i| nodes[i as usize].hi.y)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let count = if leaves.len() <= ONE_ROW_PIECES {
-            1
-        } else {
-            ROWS_PER_PIECE * leaves.len()
-        };
-        let scale = if y1 > y0 {
-            count as f64 / (y1 - y0)
-        } else {
-            0.0
-        };
-        let mut rows = Self {
-            y0,
-            y1,
-            scale: if scale.is_finite() { scale } else { 0.0 },
-            start: vec![0; count + 1],
-            leaves: Vec::new(),
-        };
-        let mut lists = vec![Vec::new(); count];
-        for &leaf in &leaves {
-            let n = &nodes[leaf as usize];
-            for list in &mut lists[rows.row(n.lo.y)..=rows.row(n.hi.y)] {
-                list.push(leaf);
-            }
-        }
-        for (r, list) in lists.iter().enumerate() {
-            rows.leaves.extend_from_slice(list);
-            rows.start[r + 1] = rows.leaves.len() as u32;
-        }
-        rows
-    }
-
-    /// The row of ordinate `y` (clamped to the rows; `y` not NaN).
-    #[inline]
-    fn row(&self, y: f64) -> usize {
-        let last = self.start.len() - 2;
-        (((y - self.y0) * self.scale).max(0.0) as usize).min(last)
-    }
-
-    /// The leaves `q`'s tree walk could not skip are among these: its row's, or none for a
-    /// `q` above or below all the pieces; `None` for a NaN ordinate (then the tree decides).
-    #[inline]
-    fn leaves_near(&self, q: Point) -> Option<&[u32]> {
-        if q.y >= self.y0 && q.y <= self.y1 {
-            if self.start.len() == 2 {
-                return Some(&self.leaves);
-            }
-            let r = self.row(q.y);
-            Some(&self.leaves[self.start[r] as usize..self.start[r + 1] as usize])
-        } else if q.y.is_nan() {
-            None
-        } else {
-            Some(&[])
-        }
-    }
+/// The leaves of a small tree by rows of the pieces' height, in boundary order: a leaf off a
+/// query's row lies above or below the query, where the tree walk would skip it too.
+fn leaf_rows(nodes: &[BvhNode]) -> Rows {
+    let leaves: Vec<(u32, f64, f64)> = (0..nodes.len() as u32)
+        .filter(|&i| matches!(nodes[i as usize].kind, Kind::Leaf(_)))
+        .map(|i| (i, nodes[i as usize].lo.y, nodes[i as usize].hi.y))
+        .collect();
+    let rows = if leaves.len() <= ONE_ROW_PIECES {
+        1
+    } else {
+        ROWS_PER_PIECE * leaves.len()
+    };
+    Rows::new(&leaves, rows, usize::MAX)
 }
 
 impl<'a> FastWindingField<'a> {
@@ -303,8 +231,7 @@ impl<'a> FastWindingField<'a> {
         if !pieces.is_empty() {
             build(pieces, 0, pieces.len(), &mut nodes, &mut chords);
         }
-        let rows =
-            (!pieces.is_empty() && pieces.len() <= ROW_PIECES).then(|| LeafRows::new(&nodes));
+        let rows = (!pieces.is_empty() && pieces.len() <= ROW_PIECES).then(|| leaf_rows(&nodes));
         Self {
             field,
             nodes,
@@ -338,9 +265,12 @@ impl<'a> FastWindingField<'a> {
         stats: &mut QueryStats,
     ) -> WindingSum {
         let mut sum = WindingSum::new(q);
-        if let Some(leaves) = self.rows.as_ref().and_then(|rows| rows.leaves_near(q)) {
-            for &i in leaves {
-                self.visit(i, q, &mut sum, stats);
+        // A NaN ordinate takes the walk (no row is its).
+        if let Some(rows) = self.rows.as_ref().filter(|_| !q.y.is_nan()) {
+            if rows.spans(q.y) {
+                for &i in rows.near(q.y) {
+                    self.visit(i, q, &mut sum, stats);
+                }
             }
             return sum;
         }
@@ -594,6 +524,7 @@ mod tests {
         let field = WindingField::new(&d, crate::DEFAULT_RELATIVE_TOLERANCE).unwrap();
         let fast = FastWindingField::new(&field);
         let rows = fast.rows.as_ref().expect("a small field has rows");
+        assert!(rows.rows() > 1);
         let leaves: Vec<u32> = (0..fast.nodes.len() as u32)
             .filter(|&i| matches!(fast.nodes[i as usize].kind, Kind::Leaf(_)))
             .collect();
@@ -603,13 +534,13 @@ mod tests {
             .collect();
         ys.extend((0..400).map(|k| -2.5 + k as f64 * 0.0113));
         for &y in &ys {
-            let q = Point::new(0.05, y);
-            let near = rows.leaves_near(q).unwrap();
+            let near = rows.near(y);
             let want: Vec<u32> = leaves
                 .iter()
                 .copied()
                 .filter(|&i| !(y < fast.nodes[i as usize].lo.y || y > fast.nodes[i as usize].hi.y))
                 .collect();
+            assert!(want.is_empty() || rows.spans(y), "y {y} off the span");
             assert!(
                 want.iter().all(|i| near.contains(i)),
                 "y {y}: {near:?} lacks some of {want:?}"
@@ -623,8 +554,8 @@ mod tests {
                 );
             }
         }
-        assert!(rows.leaves_near(Point::new(0.0, f64::NAN)).is_none());
-        assert_eq!(rows.leaves_near(Point::new(0.0, 99.0)), Some(&[][..]));
+        assert!(!rows.spans(f64::NAN));
+        assert!(!rows.spans(99.0));
     }
 
     /// Walks the tree with each node's piece range (the build halves `[i, j)` at its middle).

@@ -1,56 +1,44 @@
-//! The monotone boxes by horizontal rows: the boxes a horizontal ray or a boundary test at one
-//! height must look at, without scanning them all.
+//! Items by horizontal rows: which of many y-intervals may hold a height, without scanning
+//! them all (the monotone boxes for inRS's fallback, the leaves of a small winding-number
+//! field).
 
-use rs_boxes::MonotoneBox;
-
-/// Most rows of a [`BoxRows`].
-const MAX_ROWS: usize = 4096;
-
-/// Registrations allowed per box on average before the rows are coarsened (tall boxes span
-/// many rows): memory stays linear in the boxes.
-const ENTRIES_PER_BOX: usize = 8;
-
-/// The boxes by rows of equal height: row `r` lists every box whose *reach* meets it, the box's
-/// y-range grown by the tolerance and its band's margin, as [`rs_boxes::ChordBand::may_be_near`]
-/// grows it. A box whose reach does not hold `y` is neither near a point at height `y` nor
-/// crossed by the horizontal ray from it, so the row of `y` holds every box that can change a
-/// horizontal ray's parity or a boundary test there (the row of a height is monotone in it,
-/// rounding included).
+/// Items (`u32` ids) by rows of equal height over the span of their y-intervals: row `r` lists,
+/// in the order the items were given, every item whose closed interval meets it. The row of a
+/// height is monotone in it, rounding included, so the row of `y` holds every item whose
+/// interval holds `y`; an item left out lies wholly above or below `y`.
 #[derive(Clone, Debug)]
-pub(crate) struct BoxRows {
+pub(crate) struct Rows {
+    /// The span of the intervals.
     y0: f64,
+    y1: f64,
     /// Rows per unit height (0 for a single row).
     scale: f64,
-    /// Row `r`'s boxes are `boxes[start[r]..start[r + 1]]`.
+    /// Row `r`'s items are `items[start[r]..start[r + 1]]`.
     start: Vec<u32>,
-    boxes: Vec<u32>,
+    items: Vec<u32>,
 }
 
-impl BoxRows {
-    /// The rows of `boxes` for the boundary tolerance `tol`.
-    pub(crate) fn new(boxes: &[MonotoneBox], tol: f64) -> Self {
-        let reach = |b: &MonotoneBox| {
-            let r = tol + b.band.margin;
-            (b.band.ymin - r, b.band.ymax + r)
-        };
-        let (y0, y1) = boxes
-            .iter()
-            .map(reach)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, b)| {
-                (lo.min(a), hi.max(b))
-            });
-        let mut rows = boxes.len().clamp(1, MAX_ROWS);
+impl Rows {
+    /// At most `rows` rows (at least one) over the intervals `(id, lo, hi)` (`lo <= hi`), halved
+    /// until the registrations are at most `per_item` per item plus the rows (intervals that
+    /// span many rows would otherwise take memory growing with their number times the rows).
+    pub(crate) fn new(intervals: &[(u32, f64, f64)], rows: usize, per_item: usize) -> Self {
+        let (y0, y1) = intervals.iter().fold(
+            (f64::INFINITY, f64::NEG_INFINITY),
+            |(a, b), &(_, lo, hi)| (a.min(lo), b.max(hi)),
+        );
+        let mut rows = rows.max(1);
         loop {
-            let scaled = Self::empty(y0, y1, rows);
-            let entries: usize = boxes
+            let empty = Self::empty(y0, y1, rows);
+            let entries: usize = intervals
                 .iter()
-                .map(|b| {
-                    let (lo, hi) = reach(b);
-                    scaled.row(hi) - scaled.row(lo) + 1
-                })
+                .map(|&(_, lo, hi)| empty.row(hi) - empty.row(lo) + 1)
                 .sum();
-            if rows == 1 || entries <= ENTRIES_PER_BOX * boxes.len() + rows {
-                return scaled.filled(boxes, reach);
+            let bound = per_item
+                .saturating_mul(intervals.len())
+                .saturating_add(rows);
+            if rows == 1 || entries <= bound {
+                return empty.filled(intervals);
             }
             rows /= 2;
         }
@@ -61,43 +49,99 @@ impl BoxRows {
         let scale = rows as f64 / (y1 - y0);
         Self {
             y0,
+            y1,
             scale: if rows > 1 && scale.is_finite() && scale > 0.0 {
                 scale
             } else {
                 0.0
             },
             start: vec![0; rows + 1],
-            boxes: Vec::new(),
+            items: Vec::new(),
         }
     }
 
-    /// The rows with every box registered in those its reach meets.
-    fn filled(mut self, boxes: &[MonotoneBox], reach: impl Fn(&MonotoneBox) -> (f64, f64)) -> Self {
+    /// The rows with every item registered in those its interval meets.
+    fn filled(mut self, intervals: &[(u32, f64, f64)]) -> Self {
         let mut lists = vec![Vec::new(); self.start.len() - 1];
-        for (i, b) in boxes.iter().enumerate() {
-            let (lo, hi) = reach(b);
+        for &(id, lo, hi) in intervals {
             for list in &mut lists[self.row(lo)..=self.row(hi)] {
-                list.push(i as u32);
+                list.push(id);
             }
         }
         for (r, list) in lists.iter().enumerate() {
-            self.boxes.extend_from_slice(list);
-            self.start[r + 1] = self.boxes.len() as u32;
+            self.items.extend_from_slice(list);
+            self.start[r + 1] = self.items.len() as u32;
         }
         self
     }
 
     /// The row of height `y`, clamped to the rows (row 0 for NaN).
+    #[inline]
     fn row(&self, y: f64) -> usize {
         let last = self.start.len() - 2;
+        if last == 0 {
+            return 0;
+        }
         (((y - self.y0) * self.scale).max(0.0) as usize).min(last)
     }
 
-    /// The indices of the boxes whose reach may hold height `y`: every one whose reach does.
+    /// Whether `y` lies in the span of the intervals (false for NaN): off it, no interval
+    /// holds `y`.
+    #[inline]
+    pub(crate) fn spans(&self, y: f64) -> bool {
+        y >= self.y0 && y <= self.y1
+    }
+
+    /// The items of `y`'s row: every item whose interval holds `y`, and perhaps others.
+    #[inline]
     pub(crate) fn near(&self, y: f64) -> &[u32] {
         let r = self.row(y);
-        &self.boxes[self.start[r] as usize..self.start[r + 1] as usize]
+        &self.items[self.start[r] as usize..self.start[r + 1] as usize]
     }
+
+    /// The number of registrations (items counted once per row they are in).
+    #[cfg(test)]
+    pub(crate) fn registrations(&self) -> usize {
+        self.items.len()
+    }
+
+    /// The number of rows.
+    #[cfg(test)]
+    pub(crate) fn rows(&self) -> usize {
+        self.start.len() - 1
+    }
+}
+
+/// Most rows of [`box_rows`].
+const MAX_BOX_ROWS: usize = 4096;
+
+/// Registrations allowed per box on average before [`box_rows`] coarsens its rows.
+const REGISTRATIONS_PER_BOX: usize = 8;
+
+/// The monotone boxes by their *reach*, the y-range grown by the tolerance `tol` and the band's
+/// margin as [`rs_boxes::ChordBand::may_be_near`] grows it: a box whose reach does not hold `y`
+/// is neither near a point at height `y` nor crossed by the horizontal ray from it, so the row
+/// of `y` holds every box that can change a horizontal ray's parity or a boundary test there.
+pub(crate) fn box_rows(boxes: &[rs_boxes::MonotoneBox], tol: f64) -> Rows {
+    let intervals: Vec<(u32, f64, f64)> = boxes
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let (lo, hi) = box_reach(b, tol);
+            (i as u32, lo, hi)
+        })
+        .collect();
+    Rows::new(
+        &intervals,
+        boxes.len().clamp(1, MAX_BOX_ROWS),
+        REGISTRATIONS_PER_BOX,
+    )
+}
+
+/// The reach of box `b` (see [`box_rows`]).
+fn box_reach(b: &rs_boxes::MonotoneBox, tol: f64) -> (f64, f64) {
+    let r = tol + b.band.margin;
+    (b.band.ymin - r, b.band.ymax + r)
 }
 
 #[cfg(test)]
@@ -134,11 +178,8 @@ mod tests {
         for (name, d) in domains() {
             let c = Classifier::new(&d, ContainOptions::default()).unwrap();
             let (boxes, tol) = (c.boxes().boxes(), c.abs_tol());
-            let rows = BoxRows::new(boxes, tol);
-            let reach = |b: &MonotoneBox| {
-                let r = tol + b.band.margin;
-                (b.band.ymin - r, b.band.ymax + r)
-            };
+            let rows = box_rows(boxes, tol);
+            let reach = |b| box_reach(b, tol);
             let mut heights: Vec<f64> = boxes
                 .iter()
                 .flat_map(|b| {
@@ -158,9 +199,9 @@ mod tests {
                 }
             }
             assert!(
-                rows.boxes.len() <= ENTRIES_PER_BOX * boxes.len() + rows.start.len(),
+                rows.registrations() <= REGISTRATIONS_PER_BOX * boxes.len() + rows.rows(),
                 "{name}: {} registrations of {} boxes",
-                rows.boxes.len(),
+                rows.registrations(),
                 boxes.len()
             );
         }
