@@ -215,10 +215,10 @@ impl Classifier {
 
     /// Paper steps (vii)-(viii): the horizontal ray, then the winding number.
     ///
-    /// Both steps look only at the boxes whose reach holds `p.y` (rows built on first use): the others are
-    /// neither near `p` nor crossed by its horizontal ray, so the answer is the one a scan of
-    /// every box gives (a domain whose tolerance is wider than the domain made every point
-    /// take this path through tens of thousands of boxes).
+    /// The ray and the boundary test look only at the boxes whose reach holds `p.y` (rows
+    /// built on first use): the others are neither near `p` nor crossed by its horizontal ray,
+    /// so the answer is the one a scan of every box gives (a domain whose tolerance is wider
+    /// than the domain made every point take this path through tens of thousands of boxes).
     pub(crate) fn fallback(&self, p: Point) -> (Location, Decision) {
         let all = self.boxes().boxes();
         let rows = self.rows.get_or_init(|| box_rows(all, self.tol));
