@@ -582,28 +582,24 @@ mod tests {
         chains.add_to(&mut copies[0].1);
         #[cfg(target_arch = "x86_64")]
         {
-            use pulp::Simd;
+            // The copy compiled for `simd`'s instruction set, on the queries.
+            fn with<S: pulp::Simd>(
+                simd: S,
+                chains: &ChainEnds,
+                queries: &[WindingSum],
+            ) -> Vec<WindingSum> {
+                let mut sums = queries.to_vec();
+                simd.vectorize(AddTo {
+                    ends: chains,
+                    sums: &mut sums,
+                });
+                sums
+            }
             if let Some(simd) = pulp::x86::V3::try_new() {
-                let mut sums = queries.clone();
-                Simd::vectorize(
-                    simd,
-                    AddTo {
-                        ends: &chains,
-                        sums: &mut sums,
-                    },
-                );
-                copies.push(("AVX2", sums));
+                copies.push(("AVX2", with(simd, &chains, &queries)));
             }
             if let Some(simd) = pulp::x86::V4::try_new() {
-                let mut sums = queries.clone();
-                Simd::vectorize(
-                    simd,
-                    AddTo {
-                        ends: &chains,
-                        sums: &mut sums,
-                    },
-                );
-                copies.push(("AVX-512", sums));
+                copies.push(("AVX-512", with(simd, &chains, &queries)));
             }
         }
         for (name, sums) in &copies {
