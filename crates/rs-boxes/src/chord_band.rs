@@ -98,17 +98,23 @@ impl ChordBand {
         .grown_by(abs_tol + self.margin)
     }
 
+    /// The heights a point within `abs_tol` of the curve can have, `[ymin, ymax]` grown by
+    /// `abs_tol` plus the margin: [`ChordBand::may_be_near`] is false at any other height (an
+    /// index of bands by height must use these very bounds).
+    #[inline]
+    pub fn heights_near(&self, abs_tol: f64) -> (f64, f64) {
+        let reach = abs_tol + self.margin;
+        (self.ymin - reach, self.ymax + reach)
+    }
+
     /// False only if every point of the curve is farther than `abs_tol` from `p`: `p` is
     /// outside [`ChordBand::rectangle_near`] or farther than `flatness + abs_tol + margin` from
     /// the chord segment. True means a solve must decide.
     #[inline]
     pub fn may_be_near(&self, p: Point, abs_tol: f64) -> bool {
         let reach = abs_tol + self.margin;
-        if !(p.x >= self.xmin - reach
-            && p.x <= self.xmax + reach
-            && p.y >= self.ymin - reach
-            && p.y <= self.ymax + reach)
-        {
+        let (ylo, yhi) = self.heights_near(abs_tol);
+        if !(p.x >= self.xmin - reach && p.x <= self.xmax + reach && p.y >= ylo && p.y <= yhi) {
             return false;
         }
         let chord = self.end - self.start;

@@ -119,15 +119,16 @@ const MAX_BOX_ROWS: usize = 4096;
 const REGISTRATIONS_PER_BOX: usize = 8;
 
 /// The monotone boxes by their *reach*, the y-range grown by the tolerance `tol` and the band's
-/// margin as [`rs_boxes::ChordBand::may_be_near`] grows it: a box whose reach does not hold `y`
-/// is neither near a point at height `y` nor crossed by the horizontal ray from it, so the row
-/// of `y` holds every box that can change a horizontal ray's parity or a boundary test there.
+/// margin ([`rs_boxes::ChordBand::heights_near`], the bounds `may_be_near` tests): a box whose
+/// reach does not hold `y` is neither near a point at height `y` nor crossed by the horizontal
+/// ray from it, so the row of `y` holds every box that can change a horizontal ray's parity or
+/// a boundary test there.
 pub(crate) fn box_rows(boxes: &[rs_boxes::MonotoneBox], tol: f64) -> Rows {
     let intervals: Vec<(u32, f64, f64)> = boxes
         .iter()
         .enumerate()
         .map(|(i, b)| {
-            let (lo, hi) = box_reach(b, tol);
+            let (lo, hi) = b.band.heights_near(tol);
             (i as u32, lo, hi)
         })
         .collect();
@@ -138,17 +139,12 @@ pub(crate) fn box_rows(boxes: &[rs_boxes::MonotoneBox], tol: f64) -> Rows {
     )
 }
 
-/// The reach of box `b` (see [`box_rows`]).
-fn box_reach(b: &rs_boxes::MonotoneBox, tol: f64) -> (f64, f64) {
-    let r = tol + b.band.margin;
-    (b.band.ymin - r, b.band.ymax + r)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::rays::{horizontal, parity};
     use crate::{Classifier, ContainOptions, Decision, Location};
+    use rs_boxes::MonotoneBox;
     use rs_spline::{Domain, Point, circle, polyline};
 
     /// The paper's fixtures, and a domain whose tolerance is wider than the domain (a strip 10
@@ -179,7 +175,7 @@ mod tests {
             let c = Classifier::new(&d, ContainOptions::default()).unwrap();
             let (boxes, tol) = (c.boxes().boxes(), c.abs_tol());
             let rows = box_rows(boxes, tol);
-            let reach = |b| box_reach(b, tol);
+            let reach = |b: &MonotoneBox| b.band.heights_near(tol);
             let mut heights: Vec<f64> = boxes
                 .iter()
                 .flat_map(|b| {
