@@ -196,14 +196,24 @@ class Domain:
         return self.classify(x, y, **kwargs) != OUTSIDE
 
     def winding(
-        self, x: ArrayLike, y: Optional[ArrayLike] = None, *, threads: Optional[int] = None
+        self,
+        x: ArrayLike,
+        y: Optional[ArrayLike] = None,
+        *,
+        tol: float = DEFAULT_TOLERANCE,
+        threads: Optional[int] = None,
     ) -> np.ndarray:
         """Generalized winding numbers (float64): 1 inside a counter-clockwise loop, 0 outside,
-        fractional near gaps of open boundaries, the average across a curve on it."""
+        fractional near gaps of open boundaries. A point within ``tol`` times the bounding-box
+        diagonal of a curve (the points :meth:`classify` calls boundary) gets the average
+        across the jump: 0 inside a straight piece, 1/2 on a smooth closed curve, the interior
+        angle over 2 pi at a corner."""
         xy, xs, ys, shape = _points(x, y)
         if xy is not None:
             xs, ys = xy[:, 0], xy[:, 1]
-        return self._native.winding_columns(xs, ys, _threads(threads)).reshape(shape)
+        return self._native.winding_columns(xs, ys, float(tol), _threads(threads)).reshape(
+            shape
+        )
 
     def flatten(self, accuracy: float) -> list:
         """The boundary as closed polylines within ``accuracy`` (absolute): one ``(M, 2)`` array

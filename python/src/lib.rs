@@ -273,9 +273,10 @@ impl NativeDomain {
         &self,
         py: Python<'_>,
         pts: Points<'_>,
+        tol: f64,
         threads: usize,
     ) -> PyResult<Vec<f64>> {
-        let field = self.field(DEFAULT_RELATIVE_TOLERANCE)?;
+        let field = self.field(tol)?;
         py.detach(|| {
             with_threads(threads, || {
                 let fast = FastWindingField::new(&field);
@@ -399,16 +400,18 @@ impl NativeDomain {
             .into_pyarray(py))
     }
 
-    /// Generalized winding numbers for two 1-D float64 arrays (any layout).
+    /// Generalized winding numbers for two 1-D float64 arrays (any layout); points within
+    /// `tol` (relative) of a curve get the average across the jump.
     fn winding_columns<'py>(
         &self,
         py: Python<'py>,
         x: PyReadonlyArray1<'py, f64>,
         y: PyReadonlyArray1<'py, f64>,
+        tol: f64,
         threads: usize,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let pts = columns(&x, &y)?;
-        Ok(self.winding_points(py, pts, threads)?.into_pyarray(py))
+        Ok(self.winding_points(py, pts, tol, threads)?.into_pyarray(py))
     }
 
     /// Seconds the Rust kernel of the default method takes on these points, copied first (for

@@ -176,35 +176,47 @@ impl MonotoneBox {
     /// True if `p` is within `abs_tol` of the piece, measured along a vertical or a horizontal line
     /// (or from an end point). For a monotone piece this catches every point at Euclidean
     /// distance `<= abs_tol / sqrt(2)` and none farther than `abs_tol`.
+    #[inline]
     pub fn is_near(&self, p: Point, abs_tol: f64) -> bool {
+        self.near_parameter(p, abs_tol).is_some()
+    }
+
+    /// Where the piece comes within `abs_tol` of `p` in the sense of [`MonotoneBox::is_near`]:
+    /// the local parameter (see [`MonotoneBox::point_at`]) of the nearer end point if one is
+    /// within `abs_tol`, else of the point straight below or above `p`, else of the point
+    /// straight left or right of it; `None` if `p` is not near. A monotone piece passes near
+    /// `p` at most once (its points between two near ones lie in their rectangle), so the
+    /// parameter names that one passage.
+    pub fn near_parameter(&self, p: Point, abs_tol: f64) -> Option<f64> {
         // Outside the box grown by `abs_tol`, or farther than `flatness + abs_tol` from the
         // chord segment, p is not near (decides most points without a solve).
         if !self.band.may_be_near(p, abs_tol) {
-            return false;
+            return None;
         }
         let tol2 = abs_tol * abs_tol;
         let (ds, de) = (p - self.band.start, p - self.band.end);
-        if ds.dot(ds) <= tol2 || de.dot(de) <= tol2 {
-            return true;
+        let (ds, de) = (ds.dot(ds), de.dot(de));
+        if ds <= tol2 || de <= tol2 {
+            return Some(if ds <= de { 0.0 } else { 1.0 });
         }
         // Vertical distance (a vertical piece is covered by the horizontal distance and the
         // end points, and vice versa).
         if self.x_dir != Monotonicity::Constant
             && p.x >= self.band.xmin
             && p.x <= self.band.xmax
-            && let Some((_, y)) = self.at_x(p.x)
+            && let Some((t, y)) = self.at_x(p.x)
             && (y - p.y).abs() <= abs_tol
         {
-            return true;
+            return Some(t);
         }
         if self.y_dir != Monotonicity::Constant
             && p.y >= self.band.ymin
             && p.y <= self.band.ymax
-            && let Some((_, x)) = self.at_y(p.y)
+            && let Some((t, x)) = self.at_y(p.y)
             && (x - p.x).abs() <= abs_tol
         {
-            return true;
+            return Some(t);
         }
-        false
+        None
     }
 }

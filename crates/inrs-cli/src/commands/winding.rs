@@ -4,17 +4,22 @@ use std::path::PathBuf;
 
 use clap::Args;
 use inrs::contain::baselines::WindingAlgorithm;
-use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, FastWindingField, QueryStats, WindingField};
+use inrs::contain::{FastWindingField, QueryStats, WindingField};
 use inrs::{NpyType, Point};
 
 use crate::args::{AlgorithmArg, DomainArg};
 use crate::cli::error::CliError;
+use crate::cli::limits::{self, parse_tolerance};
 use crate::stream::{ByIndex, Column, IndexedQuery, PointsInput, stream_points, write_f64};
 
 /// Generalized winding number of every point; writes CSV `x,y,winding`.
 ///
-/// Any collection of curves is fine: open chains, gaps and overlaps.
+/// Any collection of curves is fine: open chains, gaps and overlaps. A point within the
+/// boundary tolerance of a curve (`--tol`; the points `classify` calls `boundary`) gets the
+/// average across the jump: 0 inside a straight piece, 1/2 on a smooth closed curve, the
+/// interior angle over 2 pi at a corner, from every algorithm.
 #[derive(Args, Debug)]
+#[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct WindingArgs {
     #[command(flatten)]
     domain: DomainArg,
@@ -29,6 +34,10 @@ pub(crate) struct WindingArgs {
     /// Per-curve algorithm.
     #[arg(long, value_enum, default_value_t = AlgorithmArg::Adaptive)]
     algorithm: AlgorithmArg,
+    /// Boundary tolerance relative to the bounding-box diagonal (>= 0, see below): points this
+    /// close to a curve get the average across the jump.
+    #[arg(long, default_value = limits::DEFAULT_TOL, value_parser = parse_tolerance, allow_negative_numbers = true)]
+    tol: f64,
 }
 
 /// The `winding` column: shortest round-trip decimal in CSV, float64 in `.npy`.
@@ -57,8 +66,7 @@ impl WindingArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let d = self.domain.load()?;
         let input = PointsInput::open(&self.points)?;
-        let field =
-            WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).map_err(|e| self.domain.error(e))?;
+        let field = WindingField::new(&d, self.tol).map_err(|e| self.domain.error(e))?;
         let algorithm: WindingAlgorithm = self.algorithm.into();
         let output = self.output.as_deref();
         if algorithm == WindingAlgorithm::Adaptive {

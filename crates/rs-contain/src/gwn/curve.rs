@@ -1,14 +1,14 @@
 //! Generalized winding number of one rational Bezier curve (Spainhour, Gunderman and Weiss
 //! 2024, Algorithms 1-5).
 
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 use rs_roots::de_casteljau_split;
 use rs_spline::{Hpoint, Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::QueryStats;
-use super::sum::{AngleSum, ChordSink, cut_crossing, signed_angle};
+use super::sum::{AngleSum, ChordSink, cut_crossing};
 
 /// Bisection depth cap: a subcurve on a parameter interval of `2^-64` is below `f64`
 /// resolution; a query still inside its control polygon there is coincident with the curve.
@@ -55,10 +55,14 @@ pub(crate) fn is_simple_convex(p: &[Point]) -> bool {
 }
 
 /// Algorithm 3 with tolerance 0: every control point lies exactly on the chord's line (the
-/// curve is a straight segment, possibly traversed non-uniformly).
+/// curve is a straight segment, possibly traversed non-uniformly). A curve whose ends meet has
+/// no chord line: it is straight only if every control point is that one point.
 pub(crate) fn is_linear(p: &[Point]) -> bool {
     let (a, b) = (p[0], p[p.len() - 1]);
     let d = b - a;
+    if d == Point::default() {
+        return p.iter().all(|&x| x == a);
+    }
     p.iter().all(|&x| d.cross(x - a) == 0.0)
 }
 
@@ -109,24 +113,52 @@ pub(crate) fn outside(lo: Point, hi: Point, q: Point) -> bool {
 
 /// Algorithm 5: the winding-number contribution of a curve with a simple convex control
 /// polygon when `q` is one of its end points: the angle from the tangent at the coincident end
-/// to the other end (or from the other end to the reversed tangent), over `2 pi`.
+/// to the other end (or from the other end to the reversed tangent), over `2 pi`. The curve
+/// turns the way its polygon does, so when the two directions are opposite the angle is `+pi`
+/// for a counter-clockwise polygon and `-pi` for a clockwise one.
+///
+/// A closed piece with both ends at `q` subtends the angle from its start tangent to its
+/// reversed end tangent, turning the way the polygon turns (`1/2` at a smooth point, the
+/// interior angle over `2 pi` at a corner).
 pub(crate) fn convex_endpoint_winding(p: &[Point], q: Point) -> f64 {
     let n = p.len() - 1;
-    if q == p[0] {
-        // Tangent direction at the start: the first control point different from P0.
-        let t = p
-            .iter()
-            .find(|&&x| x != q)
-            .map_or(Point::default(), |&x| x - q);
-        signed_angle(t, p[n] - q) / TAU
+    let area: f64 = (0..=n).map(|i| p[i].cross(p[(i + 1) % (n + 1)])).sum();
+    // Directions from q: to the first control point past q (the start tangent), to the last
+    // one before q (the reversed end tangent).
+    let first = p.iter().find(|&&x| x != q).map(|&x| x - q);
+    let last = p.iter().rev().find(|&&x| x != q).map(|&x| x - q);
+    let (Some(first), Some(last)) = (first, last) else {
+        return 0.0; // every control point at q: a point, no angle
+    };
+    let (from, to) = if q == p[0] && q == p[n] {
+        (first, last)
+    } else if q == p[0] {
+        (first, p[n] - q)
     } else {
-        let t = p
-            .iter()
-            .rev()
-            .find(|&&x| x != q)
-            .map_or(Point::default(), |&x| q - x);
-        signed_angle(p[0] - q, -t) / TAU
-    }
+        (p[0] - q, last)
+    };
+    let (c, d) = (from.cross(to), from.dot(to));
+    let angle = if c == 0.0 && d < 0.0 {
+        // Opposite directions: half a turn, the polygon's way.
+        if area > 0.0 {
+            PI
+        } else if area < 0.0 {
+            -PI
+        } else {
+            0.0
+        }
+    } else {
+        c.atan2(d)
+    };
+    let closed = q == p[0] && q == p[n];
+    let angle = if closed && area > 0.0 && angle <= 0.0 {
+        angle + TAU
+    } else if closed && area < 0.0 && angle >= 0.0 {
+        angle - TAU
+    } else {
+        angle
+    };
+    angle / TAU
 }
 
 /// A sub-curve of the adaptive algorithm, on the stack for degree <= 3: its control points
@@ -161,16 +193,38 @@ impl SubCurve {
         &self.pts
     }
 
-    /// Its halves by de Casteljau at `1/2` (in homogeneous coordinates for a rational piece);
-    /// the shared point is the same value in both.
+    /// The same sub-curve with its first (last) control point moved to `start` (`end`) where
+    /// given, weights kept.
+    pub(crate) fn with_ends(mut self, start: Option<Point>, end: Option<Point>) -> Self {
+        let n = self.pts.len() - 1;
+        for (i, p) in [(0, start), (n, end)] {
+            if let Some(p) = p {
+                self.pts[i] = p;
+                if let Some(h) = self.h.get_mut(i) {
+                    *h = Hpoint::weighted(p, h.w);
+                }
+            }
+        }
+        self
+    }
+
+    /// Its halves by de Casteljau at `1/2` (see [`SubCurve::split`]).
     pub(crate) fn halves(&self) -> (Self, Self) {
+        self.split(0.5)
+    }
+
+    /// Its parts on `[0, t]` and `[t, 1]` by de Casteljau (in homogeneous coordinates for a
+    /// rational piece), for `t` in `(0, 1)`. The parts keep the curve's end points bit for bit
+    /// (projecting `w p` back can move them by a rounding) and share their middle one, so a
+    /// query at an end stays at an end of the part holding it.
+    pub(crate) fn split(&self, t: f64) -> (Self, Self) {
         let n = self.pts.len();
         if self.h.is_empty() {
             let (mut l, mut r) = (
                 SmallVec::from_elem(Point::default(), n),
                 SmallVec::from_elem(Point::default(), n),
             );
-            de_casteljau_split(&self.pts, 0.5, &mut l, &mut r);
+            de_casteljau_split(&self.pts, t, &mut l, &mut r);
             (
                 Self {
                     pts: l,
@@ -186,15 +240,33 @@ impl SubCurve {
                 SmallVec::from_elem(Hpoint::default(), n),
                 SmallVec::from_elem(Hpoint::default(), n),
             );
-            de_casteljau_split(&self.h, 0.5, &mut l, &mut r);
+            de_casteljau_split(&self.h, t, &mut l, &mut r);
             let project = |h: SmallVec<[Hpoint; 4]>| Self {
                 pts: h.iter().map(|h| h.project()).collect(),
                 h,
             };
-            let (left, mut right) = (project(l), project(r));
+            let (mut left, mut right) = (project(l), project(r));
+            left.pts[0] = self.pts[0];
+            right.pts[n - 1] = self.pts[n - 1];
             right.pts[0] = left.pts[n - 1];
             (left, right)
         }
+    }
+
+    /// Its part on `[s0, s1]` (`0 <= s0 < s1 <= 1`), keeping the end points it shares with
+    /// the curve bit for bit; `None` when the parameters are too close for the part to be cut
+    /// off (the inner parameter rounds to 1).
+    pub(crate) fn part(&self, s0: f64, s1: f64) -> Option<Self> {
+        let right = if s0 > 0.0 {
+            self.split(s0).1
+        } else {
+            self.clone()
+        };
+        if s1 >= 1.0 {
+            return Some(right);
+        }
+        let t = (s1 - s0) / (1.0 - s0);
+        (t > 0.0 && t < 1.0).then(|| right.split(t).0)
     }
 }
 

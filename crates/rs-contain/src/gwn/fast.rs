@@ -229,7 +229,8 @@ impl<'a> FastWindingField<'a> {
         let mut nodes = Vec::with_capacity(2 * pieces.len());
         let mut chords = Vec::new();
         if !pieces.is_empty() {
-            build(pieces, 0, pieces.len(), &mut nodes, &mut chords);
+            let near = field.near_boxes();
+            build(pieces, &near, 0, pieces.len(), &mut nodes, &mut chords);
         }
         let rows = (!pieces.is_empty() && pieces.len() <= ROW_PIECES).then(|| leaf_rows(&nodes));
         Self {
@@ -249,30 +250,63 @@ impl<'a> FastWindingField<'a> {
     /// The generalized winding number at `q`, adding the work done to `stats` (a node decided
     /// by its chord counts as one curve evaluation).
     pub fn winding_number_counted(&self, q: Point, stats: &mut QueryStats) -> f64 {
-        let mut sum = self.crossing_sum(q, &mut [0; STACK], stats);
+        let mut stack = [0; STACK];
+        let (mut sum, near) = self.crossing_sum(q, &[], &mut stack, stats);
+        if near && let Some(w) = self.band_winding_number(q, &mut stack, stats) {
+            return w;
+        }
         self.field
             .add_open_chain_ends(std::slice::from_mut(&mut sum));
         sum.value()
     }
 
-    /// The crossings and coincident pieces at `q`, without the open chains' ends; `stack` is
-    /// scratch for the walk (a caller answering many points passes the same one: zeroing it
-    /// per point was 3% of a query on small shapes).
-    fn crossing_sum(
+    /// The winding number at a `q` in the band (see [`WindingField`]'s Semantics), `None` if
+    /// `q` is not in the band: the walk without the pieces `q` passes near, and those pieces
+    /// cut at the passages.
+    fn band_winding_number(
         &self,
         q: Point,
         stack: &mut [u32; STACK],
         stats: &mut QueryStats,
-    ) -> WindingSum {
+    ) -> Option<f64> {
+        let passages = self.field.passages(q);
+        if passages.is_empty() {
+            return None;
+        }
+        let skip = super::passage_pieces(&passages);
+        let (mut sum, _) = self.crossing_sum(q, &skip, stack, stats);
+        self.field.add_passages(q, &passages, &mut sum, stats);
+        self.field
+            .add_open_chain_ends(std::slice::from_mut(&mut sum));
+        Some(sum.value())
+    }
+
+    /// The crossings and coincident pieces at `q` of every piece but those in `skip`, without
+    /// the open chains' ends, and whether `q` lies in a leaf's box (only then may it be in the
+    /// band: a leaf's box holds every point near its piece); `stack` is scratch for the walk
+    /// (a caller answering many points passes the same one: zeroing it per point was 3% of a
+    /// query on small shapes).
+    ///
+    /// A leaf whose box holds `q` is always visited: the boxes of its ancestors hold `q` too,
+    /// so none is skipped, nor decided by its chords (which needs `q` right of its box). So
+    /// leaving out the pieces of `skip` there leaves them out of the sum.
+    fn crossing_sum(
+        &self,
+        q: Point,
+        skip: &[u32],
+        stack: &mut [u32; STACK],
+        stats: &mut QueryStats,
+    ) -> (WindingSum, bool) {
         let mut sum = WindingSum::new(q);
+        let mut near = false;
         // A NaN ordinate takes the walk (no row is its).
         if let Some(rows) = self.rows.as_ref().filter(|_| !q.y.is_nan()) {
             if rows.spans(q.y) {
                 for &i in rows.near(q.y) {
-                    self.visit(i, q, &mut sum, stats);
+                    self.visit(i, q, skip, &mut sum, &mut near, stats);
                 }
             }
-            return sum;
+            return (sum, near);
         }
         // Depth-first, left child first: at most one pending right child per level, and the
         // tree is balanced (depth at most log2(pieces) + 1 < STACK).
@@ -283,25 +317,27 @@ impl<'a> FastWindingField<'a> {
         }
         while len > 0 {
             len -= 1;
-            if let Some((l, r)) = self.visit(stack[len], q, &mut sum, stats) {
+            if let Some((l, r)) = self.visit(stack[len], q, skip, &mut sum, &mut near, stats) {
                 stack[len] = r;
                 stack[len + 1] = l;
                 len += 2;
             }
         }
-        sum
+        (sum, near)
     }
 
     /// Adds to `sum` what node `i` holds for `q` when that takes no look inside it (nothing if
     /// its box lies above, below or right of `q`; its chains' chord crossings if it lies wholly
-    /// left of `q` and keeps them), or runs the adaptive algorithm on a leaf; returns an inner
-    /// node's children otherwise.
+    /// left of `q` and keeps them), or runs the adaptive algorithm on a leaf (unless its piece
+    /// is in `skip`) and sets `near`; returns an inner node's children otherwise.
     #[inline(always)]
     fn visit(
         &self,
         i: u32,
         q: Point,
+        skip: &[u32],
         sum: &mut WindingSum,
+        near: &mut bool,
         stats: &mut QueryStats,
     ) -> Option<(u32, u32)> {
         let n = &self.nodes[i as usize];
@@ -319,8 +355,12 @@ impl<'a> FastWindingField<'a> {
         }
         match n.kind {
             Kind::Leaf(p) => {
-                let h = self.hierarchy(p as usize);
-                h.refine(q, sum, stats);
+                // A leaf keeps its piece's chord, so q is in its box here.
+                *near = true;
+                if !skip.contains(&p) {
+                    let h = self.hierarchy(p as usize);
+                    h.refine(q, sum, stats);
+                }
                 None
             }
             Kind::Inner(l, r) => Some((l, r)),
@@ -348,17 +388,36 @@ impl<'a> FastWindingField<'a> {
     /// once), which on shapes of many open curves takes about half the time of one point at a
     /// time.
     pub fn winding_numbers_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [f64]) {
+        self.sums_into(point, out, |q, sum, near, stack, stats| {
+            if near && let Some(w) = self.band_winding_number(q, stack, stats) {
+                return w;
+            }
+            sum.value()
+        });
+    }
+
+    /// For each group of [`BATCH`] points: their crossing sums, the open chains' ends added to
+    /// all at once, then `finish(q, sum, near, stack, stats)` per point writes its output.
+    #[inline(always)]
+    fn sums_into<T>(
+        &self,
+        point: impl Fn(usize) -> Point,
+        out: &mut [T],
+        finish: impl Fn(Point, &WindingSum, bool, &mut [u32; STACK], &mut QueryStats) -> T,
+    ) {
         let mut stats = QueryStats::default();
         let mut sums = [WindingSum::new(Point::default()); BATCH];
+        let mut near = [false; BATCH];
         let mut stack = [0; STACK];
         for (g, group) in out.chunks_mut(BATCH).enumerate() {
             let sums = &mut sums[..group.len()];
             for (k, sum) in sums.iter_mut().enumerate() {
-                *sum = self.crossing_sum(point(g * BATCH + k), &mut stack, &mut stats);
+                (*sum, near[k]) =
+                    self.crossing_sum(point(g * BATCH + k), &[], &mut stack, &mut stats);
             }
             self.field.add_open_chain_ends(sums);
-            for (o, sum) in group.iter_mut().zip(sums.iter()) {
-                *o = sum.value();
+            for (k, (o, sum)) in group.iter_mut().zip(sums.iter()).enumerate() {
+                *o = finish(sum.q(), sum, near[k], &mut stack, &mut stats);
             }
         }
     }
@@ -407,15 +466,14 @@ impl FastWindingField<'_> {
     /// [`Locate::locate`] gives it, the winding numbers computed together
     /// ([`FastWindingField::winding_numbers_indexed_into`]).
     pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
-        const CHUNK: usize = 256;
-        let mut w = [0.0; CHUNK];
-        for (c, out) in out.chunks_mut(CHUNK).enumerate() {
-            let w = &mut w[..out.len()];
-            self.winding_numbers_indexed_into(|i| point(c * CHUNK + i), w);
-            for (i, (o, &w)) in out.iter_mut().zip(w.iter()).enumerate() {
-                *o = self.location(point(c * CHUNK + i), || w);
+        let rule = self.field.fill_rule();
+        self.sums_into(point, out, |q, sum, near, _, _| {
+            // Only a query in a leaf's box may be in the band.
+            if near && self.field.is_on_boundary(q) {
+                return Location::Boundary;
             }
-        }
+            self.field.location_from_winding(sum.value(), rule)
+        });
     }
 
     /// The location of `q`, from its winding number `w()` unless `q` is on the boundary.
@@ -432,22 +490,22 @@ impl FastWindingField<'_> {
 /// chain chords go to the end of `chords`.
 fn build(
     pieces: &[RationalBezier],
+    near: &[(Point, Point)],
     i: usize,
     j: usize,
     nodes: &mut Vec<BvhNode>,
     chords: &mut Vec<(Point, Point)>,
 ) -> u32 {
     let (kind, lo, hi, own) = if j - i == 1 {
-        let p = pieces[i].control_points();
-        let (lo, hi) = control_box(p);
+        let (lo, hi) = near[i];
         let one: SmallVec<[(Point, Point); LEFT_CHAINS]> =
             SmallVec::from_elem((pieces[i].start_point(), pieces[i].end_point()), 1);
         (Kind::Leaf(i as u32), lo, hi, Some(one))
     } else {
         let m = (i + j) / 2;
         let (l, r) = (
-            build(pieces, i, m, nodes, chords),
-            build(pieces, m, j, nodes, chords),
+            build(pieces, near, i, m, nodes, chords),
+            build(pieces, near, m, j, nodes, chords),
         );
         let (ln, rn) = (&nodes[l as usize], &nodes[r as usize]);
         let lo = Point::new(ln.lo.x.min(rn.lo.x), ln.lo.y.min(rn.lo.y));

@@ -3,10 +3,12 @@
 
 mod curve;
 mod fast;
+mod on_boundary;
 mod raycast;
 mod sum;
 
 use rs_boxes::{BoxGrid, BoxOptions, MonotoneBoxes};
+use smallvec::SmallVec;
 use std::sync::Arc;
 
 use rs_spline::prelude::*;
@@ -66,7 +68,12 @@ pub enum FillRule {
 ///   a time: the chords' signed crossings of that ray are counted (exact integers), and each
 ///   open chain of pieces adds the angle between its two ends, once; a closed chain adds
 ///   nothing. So a query costs no `atan2` at all on a closed boundary.
-/// - At points on a curve, the average across the jump (the paper's section 6).
+/// - At points on a curve, and at every point within the boundary tolerance of one (the band
+///   [`WindingField::is_on_boundary`] tests, relative `1e-12` of the bounding-box diagonal by
+///   default), the average across the jump (the paper's section 6): `0` inside a straight
+///   piece, `1/2` on a smooth closed curve, the interior angle over `2 pi` at a corner, the
+///   angle from the tangent to the far end at an end of an open chain; every algorithm gives
+///   it. Outside the band the value is exact.
 /// - Containment: points within the boundary tolerance (the same band as the crossing-number
 ///   methods, relative `1e-12` of the bounding-box diagonal by default) are
 ///   [`Location::Boundary`]; otherwise the winding number is rounded to the nearest integer and
@@ -87,8 +94,12 @@ pub enum FillRule {
 #[derive(Clone, Debug)]
 pub struct WindingField {
     pieces: Vec<RationalBezier>,
-    /// Per piece: its control box and chord, for the far-field test.
+    /// Per piece: the box where a query may be near it, and its chord, for the far-field test.
     frames: Vec<PieceFrame>,
+    /// Per monotone box: the piece it lies on.
+    box_pieces: Vec<u32>,
+    /// A bound on the rounding of coordinates near the boundary (a few ulps of the largest).
+    rounding: f64,
     /// Per piece: its whole curve as the adaptive algorithm's first sub-curve.
     roots: Vec<SubCurve>,
     /// Start and end of every open chain of pieces (see [`chains`]).
@@ -124,12 +135,25 @@ impl WindingField {
         boxes: Arc<MonotoneBoxes>,
         relative_tolerance: f64,
     ) -> Self {
-        let tol = relative_tolerance * boxes.bounding_box().diagonal();
-        let pieces: Vec<RationalBezier> =
-            domain.bezier_pieces().into_iter().map(|(_, b)| b).collect();
+        let bbox = boxes.bounding_box();
+        let tol = relative_tolerance * bbox.diagonal();
+        let rounding = 16.0
+            * f64::EPSILON
+            * [bbox.min.x, bbox.min.y, bbox.max.x, bbox.max.y]
+                .iter()
+                .fold(bbox.diagonal(), |m, v| m.max(v.abs()));
+        let numbered = domain.bezier_pieces();
+        let box_pieces = pieces_of_boxes(&numbered, &boxes);
+        let pieces: Vec<RationalBezier> = numbered.into_iter().map(|(_, b)| b).collect();
         let grid = BoxGrid::new(boxes.boxes(), tol);
+        let mut frames: Vec<PieceFrame> = pieces.iter().map(PieceFrame::of).collect();
+        for (b, &p) in boxes.boxes().iter().zip(&box_pieces) {
+            frames[p as usize].include(b.band.rectangle_near(tol), rounding);
+        }
         Self {
-            frames: pieces.iter().map(PieceFrame::of).collect(),
+            frames,
+            box_pieces,
+            rounding,
             roots: pieces.iter().map(SubCurve::of).collect(),
             open_chains: ChainEnds::new(
                 chains(&pieces)
@@ -162,6 +186,12 @@ impl WindingField {
         &self.boxes
     }
 
+    /// Per piece, the corners of the box outside which no query is near it (the far-field
+    /// test's box).
+    pub(crate) fn near_boxes(&self) -> Vec<(Point, Point)> {
+        self.frames.iter().map(|f| (f.lo, f.hi)).collect()
+    }
+
     /// The rational Bezier pieces of the collection.
     pub fn pieces(&self) -> &[RationalBezier] {
         &self.pieces
@@ -173,11 +203,30 @@ impl WindingField {
     }
 
     /// Every piece by the adaptive algorithm, the far ones by their box alone, added as
-    /// crossings and chain ends (see the type's Semantics). No allocation for pieces of
-    /// degree <= 3.
+    /// crossings and chain ends (see the type's Semantics); a query in the band takes
+    /// [`WindingField::band_winding_number`]. No allocation for pieces of degree <= 3.
     fn adaptive_winding_number(&self, q: Point, stats: &mut QueryStats) -> f64 {
         let mut sum = WindingSum::new(q);
-        for (f, root) in self.frames.iter().zip(&self.roots) {
+        if self.add_pieces(q, &[], &mut sum, stats)
+            && let Some(w) = self.band_winding_number(q, stats)
+        {
+            return w;
+        }
+        self.add_open_chain_ends(std::slice::from_mut(&mut sum));
+        sum.value()
+    }
+
+    /// Adds every piece but those in `skip` to `sum` by the adaptive algorithm; returns whether
+    /// `q` lies in some piece's near box (only then may it be in the band).
+    fn add_pieces(
+        &self,
+        q: Point,
+        skip: &[u32],
+        sum: &mut WindingSum,
+        stats: &mut QueryStats,
+    ) -> bool {
+        let mut near = false;
+        for (i, (f, root)) in self.frames.iter().zip(&self.roots).enumerate() {
             if misses_cut(f.lo, f.hi, q) {
                 // No crossing, and q is not on the chord.
                 stats.curve_evaluations += 1;
@@ -185,11 +234,28 @@ impl WindingField {
                 stats.curve_evaluations += 1;
                 sum.left_crossing(f.start, f.end);
             } else {
-                refine(root.clone(), q, &mut sum, stats);
+                near = true;
+                if !skip.contains(&(i as u32)) {
+                    refine(root.clone(), q, sum, stats);
+                }
             }
         }
+        near
+    }
+
+    /// The winding number at a `q` in the band, the average across the jump (see
+    /// `on_boundary`); `None` if `q` is not in the band.
+    fn band_winding_number(&self, q: Point, stats: &mut QueryStats) -> Option<f64> {
+        let passages = self.passages(q);
+        if passages.is_empty() {
+            return None;
+        }
+        let skip = passage_pieces(&passages);
+        let mut sum = WindingSum::new(q);
+        self.add_pieces(q, &skip, &mut sum, stats);
+        self.add_passages(q, &passages, &mut sum, stats);
         self.add_open_chain_ends(std::slice::from_mut(&mut sum));
-        sum.value()
+        Some(sum.value())
     }
 
     /// The turns between the ends of every open chain, added to each of `sums`.
@@ -209,6 +275,11 @@ impl WindingField {
     ) -> f64 {
         if algorithm == WindingAlgorithm::Adaptive {
             return self.adaptive_winding_number(q, stats);
+        }
+        // The ray-casting baselines need the query off the curves: in the band, the average
+        // across the jump as above.
+        if let Some(w) = self.band_winding_number(q, stats) {
+            return w;
         }
         self.pieces
             .iter()
@@ -258,7 +329,16 @@ impl Locate for WindingField {
     }
 }
 
-/// What the far-field test needs of a piece: its control box and its chord.
+/// The pieces of `passages`, once each.
+pub(crate) fn passage_pieces(passages: &on_boundary::Passages) -> SmallVec<[u32; 4]> {
+    let mut pieces: SmallVec<[u32; 4]> = passages.iter().map(|p| p.0).collect();
+    pieces.dedup();
+    pieces
+}
+
+/// What the far-field test needs of a piece: the box where a query may be near it (its
+/// control box, and its monotone boxes' rectangles where a query may be within the tolerance,
+/// grown by the rounding margin), and its chord.
 #[derive(Clone, Copy, Debug)]
 struct PieceFrame {
     lo: Point,
@@ -278,6 +358,36 @@ impl PieceFrame {
             end: p[p.len() - 1],
         }
     }
+
+    /// Grows the near box to hold `r` grown by `margin`.
+    fn include(&mut self, r: rs_spline::BoundingBox, margin: f64) {
+        self.lo = Point::new(
+            self.lo.x.min(r.min.x - margin),
+            self.lo.y.min(r.min.y - margin),
+        );
+        self.hi = Point::new(
+            self.hi.x.max(r.max.x + margin),
+            self.hi.y.max(r.max.y + margin),
+        );
+    }
+}
+
+/// The index in `pieces` (`(curve, piece)` in curve order, as [`Domain::bezier_pieces`] lists
+/// them) of the piece each monotone box lies on: the piece of the box's curve whose knot span
+/// holds the middle of the box's parameter range.
+fn pieces_of_boxes(pieces: &[(usize, RationalBezier)], boxes: &MonotoneBoxes) -> Vec<u32> {
+    boxes
+        .boxes()
+        .iter()
+        .map(|b| {
+            let first = pieces.partition_point(|(c, _)| *c < b.curve);
+            let count = pieces[first..].partition_point(|(c, _)| *c == b.curve);
+            let mid = 0.5 * (b.param_range.0 + b.param_range.1);
+            let within =
+                pieces[first..first + count].partition_point(|(_, p)| p.knot_span().1 <= mid);
+            (first + within.min(count.saturating_sub(1))) as u32
+        })
+        .collect()
 }
 
 /// The maximal runs of pieces in which each piece starts exactly (bit for bit) where the

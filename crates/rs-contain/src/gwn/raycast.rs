@@ -1,7 +1,9 @@
 //! The two ray-casting baselines of the GWN paper (section 7.2), used inside the same closure
 //! framework: the integer winding number of `curve + closure` from signed ray crossings, minus
-//! the closure's angle. They need the query in general position (not on the curve or on the
-//! closure line) and serve as comparisons; the adaptive algorithm is the reference.
+//! the closure's angle. They need the query off the curve and off the closure segment (the
+//! field answers queries within the boundary tolerance of a curve by the average across the
+//! jump, and a query on the closure takes the adaptive algorithm) and serve as comparisons;
+//! the adaptive algorithm is the reference.
 
 use rs_spline::prelude::*;
 use std::f64::consts::TAU;
@@ -92,6 +94,12 @@ pub(crate) fn ray_winding_number(
     method: RayCaster,
     stats: &mut QueryStats,
 ) -> f64 {
+    let (u, v) = (curve.end_point() - q, curve.start_point() - q);
+    if u.cross(v) == 0.0 && u.dot(v) <= 0.0 {
+        // q on the closure: its angle is +-pi, a half turn either way, so the integer count
+        // cannot be corrected by it. The adaptive algorithm has no closure.
+        return super::curve_winding_number(curve, q, stats);
+    }
     stats.curve_evaluations += 1;
     let (lo, hi) = control_box(curve.control_points());
     let w_c = closure_angle(q, curve);

@@ -371,6 +371,11 @@ impl WindingSum {
         self.turns += arg / TAU;
     }
 
+    /// The query point.
+    pub(crate) fn q(&self) -> Point {
+        self.q
+    }
+
     /// The winding number.
     pub(crate) fn value(&self) -> f64 {
         self.crossings as f64 + self.turns
