@@ -1189,3 +1189,68 @@ fn fit_data_interpolates_scattered_points_in_every_c1_space() {
         assert!(err.contains("cannot be used with"), "{extra:?}: {err}");
     }
 }
+
+/// The last column of a CSV output, as numbers.
+fn last_column(text: &str) -> Vec<String> {
+    text.lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap().to_string())
+        .collect()
+}
+
+/// Points on curves up to rounding (the issue's cubic at t = 0.1, 0.4, 0.7, evaluated in f64)
+/// get the average across the jump from every `--algorithm` (Axom's values on the open cubic,
+/// 1/2 once it is closed by a segment); `classify` and `classify --method gwn` call them
+/// boundary; `--tol 0` keeps the exact values off the curve.
+#[test]
+fn winding_on_curves_is_the_average_from_every_algorithm() {
+    let cubic = r#"{"degree": 3, "control_points": [[0, 0], [0, 1], [-1, 1], [-1, 0]]}"#;
+    let open = temp_file("open-cubic.json", &format!(r#"{{"curves": [{cubic}]}}"#));
+    let closed = temp_file(
+        "closed-cubic.json",
+        &format!(r#"{{"curves": [{cubic}, {{"segment": {{"from": [-1, 0], "to": [0, 0]}}}}]}}"#),
+    );
+    let points = temp_file(
+        "on-cubic.csv",
+        "x,y\n-0.028000000000000008,0.2700000000000001\n\
+         -0.35200000000000004,0.7200000000000001\n-0.7839999999999999,0.63\n",
+    );
+    let axom = [0.276676361896, 0.310998033871, 0.305165888012];
+    for alg in ["adaptive", "binary-search", "bezier-clipping"] {
+        for (domain, want) in [(&open, axom), (&closed, [0.5; 3])] {
+            let text = inrs_ok(&[
+                "winding",
+                "--domain",
+                domain,
+                "--points",
+                &points,
+                "--algorithm",
+                alg,
+            ]);
+            for (got, w) in last_column(&text).iter().zip(want) {
+                let got: f64 = got.parse().unwrap();
+                assert!((got - w).abs() < 1e-9, "{alg} on {domain}: {text}");
+            }
+        }
+    }
+    for method in ["fast", "inrs1", "inrs2", "gwn"] {
+        let text = inrs_ok(&[
+            "classify", "--domain", &closed, "--points", &points, "--method", method,
+        ]);
+        assert_eq!(last_column(&text), ["boundary"; 3], "{method}: {text}");
+    }
+    // 1e-13 above the closing segment: in the default band (1e-12 of the diagonal), inside
+    // the curve at `--tol 0`.
+    let near = temp_file("near-segment.csv", "-0.5,1e-13\n");
+    for (tol, want) in [("1e-12", 0.5), ("0", 1.0)] {
+        let text = inrs_ok(&[
+            "winding", "--domain", &closed, "--points", &near, "--tol", tol,
+        ]);
+        let got: f64 = last_column(&text)[0].parse().unwrap();
+        assert!((got - want).abs() < 1e-12, "--tol {tol}: {text}");
+    }
+    let out = inrs(&[
+        "winding", "--domain", &closed, "--points", &points, "--tol", "-1",
+    ]);
+    assert!(!out.status.success());
+}

@@ -107,10 +107,15 @@ pub(crate) fn ray_winding_number(
         return -w_c;
     }
     let ray = Ray::towards_nearest_side(q, lo, hi);
-    let closed = match method {
-        RayCaster::BinarySearch => binary_search(curve, &ray, stats),
+    let crossings = match method {
+        RayCaster::BinarySearch => Some(binary_search(curve, &ray, stats)),
         RayCaster::BezierClipping => bezier_clipping(curve, &ray, stats),
-    } + ray.segment_crossing(curve.end_point(), curve.start_point());
+    };
+    let Some(crossings) = crossings else {
+        // A crossing too close to q for clipping to tell whether it lies ahead of q.
+        return super::curve_winding_number(curve, q, stats);
+    };
+    let closed = crossings + ray.segment_crossing(curve.end_point(), curve.start_point());
     f64::from(closed) - w_c
 }
 
@@ -175,7 +180,9 @@ fn hull_axis_interval(f: &[f64]) -> Option<(f64, f64)> {
     (tmin <= tmax).then_some((tmin.max(0.0), tmax.min(1.0)))
 }
 
-fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) -> i32 {
+/// The signed crossings of the ray by `curve`, or `None` when a crossing converged on (to
+/// [`CLIP_CONVERGED`]) may lie on either side of the query along the ray.
+fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) -> Option<i32> {
     let mut crossings = 0;
     let mut stack = vec![(curve.clone(), 0u32)];
     while let Some((c, depth)) = stack.pop() {
@@ -210,6 +217,15 @@ fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) ->
         // lets rounding flip the sign of a coefficient next to the root and lose it.
         let converged = (t1 - t0) * (b - a) <= CLIP_CONVERGED * (ub - ua);
         if on_line || converged || depth >= MAX_DEPTH {
+            // The converged piece must lie wholly ahead of the query or wholly behind it.
+            let sliver = c.subsegment((t0, t1)).unwrap_or_else(|_| c.clone());
+            let along = sliver.control_points().iter().map(|&x| ray.along(x));
+            let (lo, hi) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                (l.min(v), h.max(v))
+            });
+            if lo <= 0.0 && hi >= 0.0 {
+                return None;
+            }
             // Evaluate on the original curve: a converged sliver may have collapsed to a point.
             let u = a + 0.5 * (t0 + t1) * (b - a);
             let d = curve.derivatives(((u - ua) / (ub - ua)).clamp(0.0, 1.0));
@@ -237,5 +253,5 @@ fn bezier_clipping(curve: &RationalBezier, ray: &Ray, stats: &mut QueryStats) ->
             }
         }
     }
-    crossings
+    Some(crossings)
 }
