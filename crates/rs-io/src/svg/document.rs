@@ -106,7 +106,9 @@ fn visit(
     } else {
         shape(node, name, builder).map_err(fail)?;
     }
-    builder.end_subpath();
+    // The element's last subpath is finished under its own transform, and nothing of its
+    // pen state reaches the next element.
+    builder.end_path();
     if let Some(e) = builder.take_error() {
         return Err(fail(e.to_string()));
     }

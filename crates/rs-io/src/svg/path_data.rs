@@ -8,7 +8,12 @@ use crate::IoError;
 use crate::builder::LoopBuilder;
 
 /// Reads path data into `builder` (subpaths become loops).
+///
+/// Path data is read on its own, whatever `builder` drew before: the pen starts at the origin
+/// (so a leading relative `m` is absolute, as the SVG specification says), `S` and `T` have no
+/// previous control point to reflect, and `z` returns to a subpath this data opened.
 pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), IoError> {
+    builder.end_path();
     let mut reader = PathReader {
         lexer: Lexer {
             bytes: d.as_bytes(),
