@@ -354,3 +354,52 @@ fn nested_group_transforms_compose_and_end_with_their_group() {
         );
     }
 }
+
+#[test]
+fn numbers_follow_one_grammar_in_every_attribute() {
+    // Transforms with the separators the number grammar makes optional, as editors write
+    // them; points and lengths with exponents and bare fractions.
+    let doc = svg(concat!(
+        r#"<g transform="translate(0-1036.36)"><g transform="matrix(1 0 0 1 0-5)">"#,
+        r#"<g transform="scale(1-1)"><path d="M0-1040h1v1z"/></g></g></g>"#,
+        r#"<polygon points="1e1,0 2E+1-0 .2e2.5"/>"#,
+        r#"<rect x=".5" y="1e-3" width="1E+1" height="2px"/>"#,
+        r#"<path d="M 0 0 h 1 v 1 z" transform="rotate(90 .5.5)translate(30)"/>"#,
+    ));
+    let d = domain_from_svg_str(&doc).unwrap();
+    assert_eq!(d.loops().len(), 4);
+    let first = d.curves()[0].start_point();
+    // (0, -1040) -> scale(1, -1) -> (0, 1040) -> -5 -> -1036.36.
+    assert!(
+        first.distance(Point::new(0.0, 1040.0 - 5.0 - 1036.36)) < 1e-9,
+        "{first:?}"
+    );
+    assert_eq!(d.curves()[3].start_point(), Point::new(10.0, 0.0));
+    assert_eq!(d.curves()[4].end_point(), Point::new(20.0, 0.5));
+    assert_eq!(d.curves()[6].start_point(), Point::new(0.5, 1e-3));
+    // rotate(90 .5 .5) after translate(30): (0, 0) -> (30, 0) -> (1, 30).
+    let q = d.curves()[10].start_point();
+    assert!(q.distance(Point::new(1.0, 30.0)) < 1e-12, "{q:?}");
+    // Garbage is refused with a one-line message naming the element and the token.
+    for (body, want) in [
+        (
+            r#"<g transform="translate(1 2px)"><path d="M0 0h1v1z"/></g>"#,
+            r#"translate: "2px" is not a number"#,
+        ),
+        (
+            r#"<polygon points="1 2 3 4 5 x"/>"#,
+            r#"points: "x" is not a number"#,
+        ),
+        (
+            r#"<polygon points="1 2 3 4 5 6,"/>"#,
+            "points: a comma with no number",
+        ),
+        (
+            r#"<rect width="1 2" height="1"/>"#,
+            "width=\"1 2\" is not a length",
+        ),
+    ] {
+        let e = domain_from_svg_str(&svg(body)).unwrap_err().to_string();
+        assert!(e.contains(want) && !e.contains('\n'), "{body}: {e}");
+    }
+}

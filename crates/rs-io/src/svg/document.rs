@@ -267,18 +267,16 @@ fn optional_length(node: roxmltree::Node<'_, '_>, attr: &str) -> Result<Option<f
     let Some(text) = node.attribute(attr) else {
         return Ok(None);
     };
-    let t = text.trim();
-    let t = t.strip_suffix("px").unwrap_or(t);
-    match t.parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(Some(v)),
-        _ => Err(format!(
+    match super::number::user_length(text) {
+        Some(v) => Ok(Some(v)),
+        None => Err(format!(
             "attribute {attr}={text:?} is not a length in user units"
         )),
     }
 }
 
 fn numbers(text: &str) -> Result<Vec<f64>, String> {
-    let values = super::transform::number_list(text, "points")?;
+    let values = super::number::number_list(text, "points")?;
     if values.len() % 2 == 1 {
         return Err(format!(
             "points: odd number of coordinates ({})",
