@@ -61,9 +61,13 @@ impl LoopBuilder {
         self.error.take()
     }
 
-    /// Finishes the current subpath now (as a new subpath or the end would).
-    pub(crate) fn end_subpath(&mut self) {
+    /// Ends a path: finishes the current subpath (as a new subpath or the end would) and puts
+    /// the pen and the subpath start back at the origin, so the next path (an SVG element,
+    /// path data) starts as if nothing had been drawn before it.
+    pub(crate) fn end_path(&mut self) {
         self.finish();
+        self.start = Point::new(0.0, 0.0);
+        self.pen = self.start;
     }
 
     /// Sets the map applied to the curves of the next subpaths (finishes the current one).

@@ -211,3 +211,195 @@ fn bad_documents_name_the_element_and_the_problem() {
     let e = domain_from_svg_str(doc).unwrap_err().to_string();
     assert!(e.contains("circle") && e.contains("negative"), "{e}");
 }
+
+fn svg(body: &str) -> String {
+    format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{body}</svg>"#)
+}
+
+/// The curves of a document, open subpaths kept as drawn (so every state a subpath leaves
+/// behind shows).
+fn document_curves(body: &str) -> Vec<NurbsCurve> {
+    rs_io::svg::domain_from_svg_str_with(&svg(body), rs_io::svg::OpenSubpaths::Keep)
+        .unwrap_or_else(|e| panic!("{body}: {e}"))
+        .curves()
+        .to_vec()
+}
+
+/// Same degree, knots, weights and control points, bit for bit.
+fn same_bits(a: &[NurbsCurve], b: &[NurbsCurve], what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}");
+    for (x, y) in a.iter().zip(b) {
+        assert_eq!(x.degree(), y.degree(), "{what}");
+        assert_eq!(x.knots().knots(), y.knots().knots(), "{what}");
+        assert_eq!(x.weights(), y.weights(), "{what}");
+        assert_eq!(x.control_points(), y.control_points(), "{what}");
+    }
+}
+
+#[test]
+fn a_leading_relative_moveto_is_absolute_in_every_path() {
+    // The issue's document: each path starts at the origin, not where the previous one ended.
+    let doc = svg(r#"<path d="m 10 10 h 5 v 5 h -5 z"/><path d="m 100 100 h 5 v 5 h -5 z"/>"#);
+    let d = domain_from_svg_str(&doc).unwrap();
+    let b = d.bounding_box();
+    assert_eq!(
+        (b.min, b.max),
+        (Point::new(10.0, 10.0), Point::new(105.0, 105.0))
+    );
+    assert_eq!(d.loops().len(), 2);
+    // Also after a subpath left open, and after other shapes.
+    for before in [
+        r#"<path d="M 1 1 h 3 v 3"/>"#,
+        r#"<rect x="1" y="1" width="3" height="3"/>"#,
+        r#"<polygon points="1 1 4 1 4 4"/>"#,
+        r#"<circle cx="2" cy="2" r="1"/>"#,
+    ] {
+        let d = domain_from_svg_str(&svg(&format!(r#"{before}<path d="m 100 100 h 5 v 5 z"/>"#)))
+            .unwrap();
+        let b = d.bounding_box();
+        assert_eq!(b.max, Point::new(105.0, 105.0), "{before}");
+    }
+}
+
+/// Every element draws the same curves alone as after any other element, inside a group or
+/// not: no pen position, subpath start, control point to reflect or transform carries over.
+#[test]
+fn elements_draw_the_same_curves_whatever_precedes_them() {
+    // Elements that leave every kind of state behind: a cubic (S would reflect it), a
+    // quadratic (T), an open subpath, a closed one with a later lone moveto, a transform.
+    let before = [
+        r#"<path d="M 3 3 C 10 0 20 0 30 30"/>"#,
+        r#"<path d="M 3 3 Q 10 0 30 30"/>"#,
+        r#"<path d="M 3 3 h 7 v 7"/>"#,
+        r#"<path d="M 3 3 h 7 v 7 z m 50 50"/>"#,
+        r#"<path d="M 3 3 h 7 v 7 z" transform="translate(7 9) scale(3)"/>"#,
+        r#"<g transform="rotate(30)"><path d="M 3 3 s 5 0 7 7 t 4 4"/></g>"#,
+        r#"<polyline points="3 3 10 3 10 10"/>"#,
+        r#"<rect x="3" y="3" width="7" height="7" rx="2"/>"#,
+        r#"<ellipse cx="3" cy="3" rx="2" ry="1"/>"#,
+    ];
+    // Elements whose curves depend on that state if it leaks: a relative moveto first, S and
+    // T first after the moveto, a close then a relative moveto (relative to this path's
+    // subpath start), an open subpath (closed only under OpenSubpaths::Close), an implicit
+    // lineto after a relative moveto.
+    let after = [
+        r#"<path d="m 40 40 h 5 v 5 h -5 z"/>"#,
+        r#"<path d="m 40 40 s 10 -5 10 5 c 0 5 -5 5 -10 0"/>"#,
+        r#"<path d="M 40 40 S 50 35 50 45 Z"/>"#,
+        r#"<path d="m 40 40 t 10 5 q 0 5 -10 0"/>"#,
+        r#"<path d="M 40 40 T 50 45 L 40 50 z"/>"#,
+        r#"<path d="m 40 40 h 5 v 5 z m 10 0 h 5 v 5 z l 3 -4 z"/>"#,
+        r#"<path d="m 40 40 5 0 0 5"/>"#,
+        r#"<polygon points="40 40 45 40 45 45"/>"#,
+    ];
+    for b in before {
+        for a in after {
+            let alone_b = document_curves(b);
+            let alone_a = document_curves(a);
+            let expected: Vec<NurbsCurve> = alone_b.iter().chain(&alone_a).cloned().collect();
+            same_bits(
+                &document_curves(&format!("{b}{a}")),
+                &expected,
+                &format!("{b}{a}"),
+            );
+            // In a group after the element, and in a sibling group.
+            let grouped = format!("<g>{b}<g>{a}</g></g>");
+            same_bits(&document_curves(&grouped), &expected, &grouped);
+            let siblings = format!("<g>{b}</g><g>{a}</g>");
+            same_bits(&document_curves(&siblings), &expected, &siblings);
+        }
+    }
+}
+
+#[test]
+fn nested_group_transforms_compose_and_end_with_their_group() {
+    let doc = svg(concat!(
+        r#"<g transform="translate(100 0)">"#,
+        r#"<g transform="scale(2)"><path d="m 1 1 h 1 v 1 h -1 z"/></g>"#,
+        r#"<path d="m 1 1 h 1 v 1 h -1 z"/>"#,
+        r#"<g transform="rotate(90)"><g transform="translate(0 -3)">"#,
+        r#"<path d="m 1 1 h 1 v 1 h -1 z" transform="scale(1 2)"/></g></g>"#,
+        r#"<path d="m 1 1 h 1 v 1 h -1 z"/>"#,
+        r#"</g>"#,
+        r#"<path d="m 1 1 h 1 v 1 h -1 z"/>"#,
+    ));
+    let d = domain_from_svg_str(&doc).unwrap();
+    let boxes: Vec<(Point, Point)> = d
+        .loops()
+        .iter()
+        .map(|l| {
+            let b = d.curves()[l.curves()]
+                .iter()
+                .map(NurbsCurve::bounding_box)
+                .reduce(rs_spline::BoundingBox::union)
+                .unwrap();
+            (b.min, b.max)
+        })
+        .collect();
+    let p = Point::new;
+    // rotate(90) maps (x, y) to (-y, x); translate(0 -3) then scale(1 2) maps the square
+    // [1, 2] x [1, 2] to [1, 2] x [-1, 1], rotated to [-1, 1] x [1, 2], then moved by 100.
+    let want = [
+        (p(102.0, 2.0), p(104.0, 4.0)),
+        (p(101.0, 1.0), p(102.0, 2.0)),
+        (p(99.0, 1.0), p(101.0, 2.0)),
+        (p(101.0, 1.0), p(102.0, 2.0)),
+        (p(1.0, 1.0), p(2.0, 2.0)),
+    ];
+    assert_eq!(boxes.len(), want.len());
+    for (i, ((lo, hi), (wlo, whi))) in boxes.iter().zip(want).enumerate() {
+        assert!(
+            lo.distance(wlo) < 1e-12 && hi.distance(whi) < 1e-12,
+            "loop {i}: {lo:?} {hi:?}"
+        );
+    }
+}
+
+#[test]
+fn numbers_follow_one_grammar_in_every_attribute() {
+    // Transforms with the separators the number grammar makes optional, as editors write
+    // them; points and lengths with exponents and bare fractions.
+    let doc = svg(concat!(
+        r#"<g transform="translate(0-1036.36)"><g transform="matrix(1 0 0 1 0-5)">"#,
+        r#"<g transform="scale(1-1)"><path d="M0-1040h1v1z"/></g></g></g>"#,
+        r#"<polygon points="1e1,0 2E+1-0 .2e2.5"/>"#,
+        r#"<rect x=".5" y="1e-3" width="1E+1" height="2px"/>"#,
+        r#"<path d="M 0 0 h 1 v 1 z" transform="rotate(90 .5.5)translate(30)"/>"#,
+    ));
+    let d = domain_from_svg_str(&doc).unwrap();
+    assert_eq!(d.loops().len(), 4);
+    let first = d.curves()[0].start_point();
+    // (0, -1040) -> scale(1, -1) -> (0, 1040) -> -5 -> -1036.36.
+    assert!(
+        first.distance(Point::new(0.0, 1040.0 - 5.0 - 1036.36)) < 1e-9,
+        "{first:?}"
+    );
+    assert_eq!(d.curves()[3].start_point(), Point::new(10.0, 0.0));
+    assert_eq!(d.curves()[4].end_point(), Point::new(20.0, 0.5));
+    assert_eq!(d.curves()[6].start_point(), Point::new(0.5, 1e-3));
+    // rotate(90 .5 .5) after translate(30): (0, 0) -> (30, 0) -> (1, 30).
+    let q = d.curves()[10].start_point();
+    assert!(q.distance(Point::new(1.0, 30.0)) < 1e-12, "{q:?}");
+    // Garbage is refused with a one-line message naming the element and the token.
+    for (body, want) in [
+        (
+            r#"<g transform="translate(1 2px)"><path d="M0 0h1v1z"/></g>"#,
+            r#"translate: "2px" is not a number"#,
+        ),
+        (
+            r#"<polygon points="1 2 3 4 5 x"/>"#,
+            r#"points: "x" is not a number"#,
+        ),
+        (
+            r#"<polygon points="1 2 3 4 5 6,"/>"#,
+            "points: a comma with no number",
+        ),
+        (
+            r#"<rect width="1 2" height="1"/>"#,
+            "width=\"1 2\" is not a length",
+        ),
+    ] {
+        let e = domain_from_svg_str(&svg(body)).unwrap_err().to_string();
+        assert!(e.contains(want) && !e.contains('\n'), "{body}: {e}");
+    }
+}

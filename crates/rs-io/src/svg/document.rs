@@ -106,7 +106,9 @@ fn visit(
     } else {
         shape(node, name, builder).map_err(fail)?;
     }
-    builder.end_subpath();
+    // The element's last subpath is finished under its own transform, and nothing of its
+    // pen state reaches the next element.
+    builder.end_path();
     if let Some(e) = builder.take_error() {
         return Err(fail(e.to_string()));
     }
@@ -265,18 +267,16 @@ fn optional_length(node: roxmltree::Node<'_, '_>, attr: &str) -> Result<Option<f
     let Some(text) = node.attribute(attr) else {
         return Ok(None);
     };
-    let t = text.trim();
-    let t = t.strip_suffix("px").unwrap_or(t);
-    match t.parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(Some(v)),
-        _ => Err(format!(
+    match super::number::user_length(text) {
+        Some(v) => Ok(Some(v)),
+        None => Err(format!(
             "attribute {attr}={text:?} is not a length in user units"
         )),
     }
 }
 
 fn numbers(text: &str) -> Result<Vec<f64>, String> {
-    let values = super::transform::number_list(text, "points")?;
+    let values = super::number::number_list(text, "points")?;
     if values.len() % 2 == 1 {
         return Err(format!(
             "points: odd number of coordinates ({})",

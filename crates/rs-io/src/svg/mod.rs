@@ -7,6 +7,7 @@
 
 mod arc;
 mod document;
+mod number;
 mod path_data;
 mod transform;
 
