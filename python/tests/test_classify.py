@@ -144,3 +144,31 @@ def test_other_formats_load():
     d = inrs.Domain.load(FIXTURES / "io" / "gear.svg")
     assert d.area > 0
     assert inrs.Domain.load(FIXTURES / "io" / "plate.dxf").area > 0
+
+
+def test_winding_on_curves_is_the_average_across_the_jump():
+    # The cubic (0,0), (0,1), (-1,1), (-1,0) evaluated in float64 at non-dyadic parameters: its
+    # points lie on it only up to rounding, inside the boundary band.
+    ctrl = np.array([[0.0, 0.0], [0.0, 1.0], [-1.0, 1.0], [-1.0, 0.0]])
+    t = np.array([0.1, 0.4, 0.7])[:, None]
+    pts = (
+        (1 - t) ** 3 * ctrl[0]
+        + 3 * t * (1 - t) ** 2 * ctrl[1]
+        + 3 * t**2 * (1 - t) * ctrl[2]
+        + t**3 * ctrl[3]
+    )
+    cubic = '{"degree": 3, "control_points": [[0, 0], [0, 1], [-1, 1], [-1, 0]]}'
+    open_cubic = inrs.Domain.from_json('{"curves": [%s]}' % cubic)
+    # LLNL Axom's values for these points (its primal_winding_number tests).
+    axom = [0.276676361896, 0.310998033871, 0.305165888012]
+    assert np.allclose(open_cubic.winding(pts), axom, atol=1e-9)
+    closed = inrs.Domain.from_json(
+        '{"curves": [%s, {"segment": {"from": [-1, 0], "to": [0, 0]}}]}' % cubic
+    )
+    assert np.allclose(closed.winding(pts), 0.5, atol=1e-12)
+    assert closed.classify(pts).tolist() == [inrs.BOUNDARY] * 3
+    assert closed.classify(pts, method="gwn").tolist() == [inrs.BOUNDARY] * 3
+    # 1e-13 above the closing segment: in the default band, inside at tol=0.
+    near = np.array([[-0.5, 1e-13]])
+    assert closed.winding(near).tolist() == [0.5]
+    assert abs(closed.winding(near, tol=0.0)[0] - 1.0) < 1e-12

@@ -314,7 +314,9 @@ impl SubCurves for OnTheFly {
 ///
 /// Coincident points follow the paper's convention (the average across the jump): 0 on a
 /// straight piece, the tangent formula at end points, and 0 for a piece still holding `q` at
-/// the depth cap (a point within rounding of the curve's interior).
+/// the depth cap. There is no tolerance: a point within rounding of the curve's interior but
+/// not on it bit for bit may get either side's value. [`super::WindingField`] gives every
+/// point within its boundary tolerance the average across the jump.
 pub fn curve_winding_number(curve: &RationalBezier, q: Point, stats: &mut QueryStats) -> f64 {
     let mut sum = AngleSum::new(q);
     refine(SubCurve::of(curve), q, &mut sum, stats);

@@ -281,7 +281,7 @@ impl<'a> FastWindingField<'a> {
         Some(sum.value())
     }
 
-    /// The crossings and coincident pieces at `q` of every piece but those in `skip`, without
+    /// The crossings and coincident pieces at `q` of every piece but those in `skip` (sorted), without
     /// the open chains' ends, and whether `q` lies in a leaf's box (only then may it be in the
     /// band: a leaf's box holds every point near its piece); `stack` is scratch for the walk
     /// (a caller answering many points passes the same one: zeroing it per point was 3% of a
@@ -357,7 +357,7 @@ impl<'a> FastWindingField<'a> {
             Kind::Leaf(p) => {
                 // A leaf keeps its piece's chord, so q is in its box here.
                 *near = true;
-                if !skip.contains(&p) {
+                if skip.binary_search(&p).is_err() {
                     let h = self.hierarchy(p as usize);
                     h.refine(q, sum, stats);
                 }

@@ -216,7 +216,7 @@ impl WindingField {
         sum.value()
     }
 
-    /// Adds every piece but those in `skip` to `sum` by the adaptive algorithm; returns whether
+    /// Adds every piece but those in `skip` (sorted) to `sum` by the adaptive algorithm; returns whether
     /// `q` lies in some piece's near box (only then may it be in the band).
     fn add_pieces(
         &self,
@@ -235,7 +235,7 @@ impl WindingField {
                 sum.left_crossing(f.start, f.end);
             } else {
                 near = true;
-                if !skip.contains(&(i as u32)) {
+                if skip.binary_search(&(i as u32)).is_err() {
                     refine(root.clone(), q, sum, stats);
                 }
             }

@@ -29,6 +29,10 @@ pub(crate) type Passages = SmallVec<[(u32, f64); 4]>;
 /// of a point where a passage runs from one to the next each report it.
 const SAME_PASSAGE_TOLERANCES: f64 = 8.0;
 
+/// Up to this many pieces near one query, a passage at a piece's end is joined to one at the
+/// start of any piece; past it, only of the next piece.
+const MAX_JOINT_SEARCH: usize = 64;
+
 impl WindingField {
     /// The passages of `q`: every piece within the boundary tolerance of `q` (in the sense of
     /// [`MonotoneBox::is_near`], the band of [`WindingField::is_on_boundary`]) with the local
@@ -87,30 +91,46 @@ impl WindingField {
             ));
             k += n;
         }
-        let mut to_start: SmallVec<[usize; 4]> = SmallVec::new();
-        let mut to_end: SmallVec<[usize; 4]> = SmallVec::new();
+        let mut to_start: SmallVec<[bool; 4]> = SmallVec::from_elem(false, groups.len());
+        let mut to_end: SmallVec<[bool; 4]> = SmallVec::from_elem(false, groups.len());
+        let mut moved = false;
+        // Any piece may start where another ends (loops close, chains restart); past
+        // MAX_JOINT_SEARCH pieces near one query (many curves through one point) only the next
+        // piece is tried, which keeps the search linear.
+        let everywhere = groups.len() <= MAX_JOINT_SEARCH;
         for (g1, &(k1, _, _, end_near)) in groups.iter().enumerate() {
             if !end_near {
                 continue;
             }
             let end = self.pieces[passages[k1].0 as usize].end_point();
-            for (g2, &(k2, _, start_near, _)) in groups.iter().enumerate() {
+            let candidates = if everywhere {
+                0..groups.len()
+            } else {
+                g1 + 1..(g1 + 2).min(groups.len())
+            };
+            for (g2, &(k2, _, start_near, _)) in groups
+                .iter()
+                .enumerate()
+                .skip(candidates.start)
+                .take(candidates.len())
+            {
                 let start = self.pieces[passages[k2].0 as usize].start_point();
                 let joined = (end.x - start.x).abs() <= reach && (end.y - start.y).abs() <= reach;
                 // (A piece with one passage whose beginning and rest both lie near lies wholly
                 // near `q`: it gets passages at both ends.)
                 if start_near && joined {
-                    to_end.push(g1);
-                    to_start.push(g2);
+                    to_end[g1] = true;
+                    to_start[g2] = true;
+                    moved = true;
                 }
             }
         }
-        if to_start.is_empty() {
+        if !moved {
             return;
         }
         let mut extra: Passages = SmallVec::new();
         for (g, &(k, n, _, _)) in groups.iter().enumerate() {
-            let (at_start, at_end) = (to_start.contains(&g), to_end.contains(&g));
+            let (at_start, at_end) = (to_start[g], to_end[g]);
             if at_start {
                 passages[k].1 = 0.0;
             }
