@@ -40,7 +40,8 @@ impl ScatteredData {
     /// # Errors
     /// [`SplineError::DataPoint`] naming the first bad point (not finite, outside the domain,
     /// or equal to an earlier one); [`SplineError::Data`] for lengths that differ or too many
-    /// points; containment errors for an open boundary.
+    /// points; [`rs_mesh::MeshError::TooManyPieces`] for a boundary the triangulation refuses;
+    /// containment errors for an open boundary.
     pub fn new(domain: &Domain, points: &[Point], values: &[f64]) -> Result<Self, SplineError> {
         if points.len() != values.len() {
             return Err(SplineError::Data(format!(
@@ -61,6 +62,8 @@ impl ScatteredData {
             y: points[index].y,
             reason,
         };
+        // The triangulation would refuse such a boundary; refused before the projections.
+        rs_mesh::check_boundary_pieces(domain)?;
         if let Some(i) = (0..points.len()).find(|&i| !points[i].is_finite()) {
             return Err(bad(i, "is not finite"));
         }
