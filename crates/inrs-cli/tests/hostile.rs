@@ -435,6 +435,70 @@ fn hostile_svg_dxf_and_font_files_fail_cleanly() {
     assert!(r.stdout.contains("0.5,0.5,inside"));
 }
 
+/// A boundary of 10^6 pieces (an SVG path of 10^6 commands: a circle polygon and a zigzag)
+/// is refused at once by everything that meshes or samples by lines, naming the limit
+/// (it used to run for minutes at 1.3 GB).
+#[test]
+fn meshing_a_million_piece_boundary_is_refused_at_once() {
+    let d = scratch("million");
+    let n = 1_000_000;
+    let circle: Vec<String> = (1..n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            format!("L{:.9} {:.9}", t.cos(), t.sin())
+        })
+        .collect();
+    let zigzag: Vec<String> = (1..n - 2)
+        .map(|i| format!("L{} {}", i as f64 / n as f64, (i % 2) as f64 * 1e-3))
+        .collect();
+    let svg =
+        |d: String| format!(r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="{d}"/></svg>"#);
+    let shapes = [
+        ("circle.svg", svg(format!("M1 0 {} Z", circle.join(" ")))),
+        (
+            "zigzag.svg",
+            svg(format!("M0 0 {} L1 1 L0 1 Z", zigzag.join(" "))),
+        ),
+    ];
+    let data = write(&d, "xyz.csv", "x,y,z\n0.5,0.5,1\n0,0.5,2\n");
+    let out = d.join("out.json").display().to_string();
+    for (name, text) in shapes {
+        let f = write(&d, name, text);
+        for args in [
+            vec!["mesh", "--domain", &f, "--output", &out],
+            vec!["sample", "--domain", &f, "--ny", "20", "--output", &out],
+            vec![
+                "fit",
+                "--domain",
+                &f,
+                "--ny",
+                "9",
+                "--degree",
+                "2",
+                "--function",
+                "x",
+                "--output",
+                &out,
+            ],
+            vec![
+                "fit", "--domain", &f, "--data", &data, "--space", "ct", "--output", &out,
+            ],
+        ] {
+            let r = check(
+                &d,
+                &args,
+                Expect::Error("meshing and sampling by lines support at most 10000"),
+                60,
+            );
+            assert!(
+                r.stderr.contains("has 1000000 Bezier pieces"),
+                "{name} {args:?}: {}",
+                r.stderr
+            );
+        }
+    }
+}
+
 /// Many chunks (a quarter megabyte each) written in input order by the workers: every row
 /// echoes its input line, whatever the output; a bad line deep in the file fails the run with
 /// its number, and leaves no output file.

@@ -26,6 +26,16 @@ pub enum MeshError {
         /// The limit.
         limit: usize,
     },
+    /// The boundary has more Bezier pieces than [`crate::MAX_MESH_PIECES`].
+    #[error(
+        "the boundary has {pieces} Bezier pieces; meshing and sampling by lines support at most {limit} (docs/SEMANTICS.md, Limits)"
+    )]
+    TooManyPieces {
+        /// The boundary's Bezier pieces.
+        pieces: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// The domain has no area.
     #[error("the domain has no area (zero height)")]
     NoArea,

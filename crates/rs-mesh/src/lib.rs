@@ -55,5 +55,5 @@ pub use sample::{
 pub use svg::mesh_svg;
 pub use triangulation::{
     BoundaryArc, CurvedTriangulation, EdgeKind, MAX_INSERTED_EXTRA, MAX_INSERTED_PER_POINT,
-    MAX_MESH_VERTICES,
+    MAX_MESH_PIECES, MAX_MESH_VERTICES, check_boundary_pieces,
 };

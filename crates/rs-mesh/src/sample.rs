@@ -58,7 +58,9 @@ impl WellSpacedPoints {
 /// that). Coverage: every point of the domain is within about `h` of a sample.
 ///
 /// # Errors
-/// [`MeshError::TooFewLines`] for `ny < 2` or `ny >` [`MAX_LINES`], [`MeshError::NoArea`] for a
+/// [`MeshError::TooFewLines`] for `ny < 2` or `ny >` [`MAX_LINES`],
+/// [`MeshError::TooManyPieces`] for a boundary of more than [`crate::MAX_MESH_PIECES`] Bezier
+/// pieces (checked first), [`MeshError::NoArea`] for a
 /// flat domain, [`MeshError::TooManyPoints`] when the lines or the boundary would hold more
 /// than [`MAX_SAMPLE_POINTS`] points (counted before they are made), containment errors for an
 /// open boundary.
@@ -66,6 +68,7 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
     if !(2..=MAX_LINES).contains(&ny) {
         return Err(MeshError::TooFewLines(ny));
     }
+    crate::check_boundary_pieces(domain)?;
     domain.require_closed()?;
     let bb = domain.bounding_box();
     let (a, b) = (bb.min.y, bb.max.y);

@@ -94,7 +94,8 @@ impl CurvedTriangulation {
     /// [`MeshError::InsertionLimit`], naming a point near the trouble.
     ///
     /// # Errors
-    /// [`MeshError::NotConvertible`] if 16 rounds of insertion do not suffice,
+    /// [`MeshError::TooManyPieces`] for a boundary of more than [`MAX_MESH_PIECES`] Bezier
+    /// pieces, [`MeshError::NotConvertible`] if 16 rounds of insertion do not suffice,
     /// [`MeshError::InsertionLimit`] if the insertion budget does not,
     /// [`MeshError::Triangulation`] if spade rejects a point.
     pub fn new(domain: &Domain, points: &WellSpacedPoints) -> Result<Self, MeshError> {
@@ -125,6 +126,7 @@ impl CurvedTriangulation {
         points: &WellSpacedPoints,
         finish: impl Fn(Self) -> Result<Self, Vec<(usize, usize)>>,
     ) -> Result<Self, MeshError> {
+        check_boundary_pieces(domain)?;
         let vertices = points.interior.len() + points.boundary.iter().map(Vec::len).sum::<usize>();
         if vertices > MAX_MESH_VERTICES {
             return Err(MeshError::TooManyPoints {
@@ -420,6 +422,30 @@ fn normalized_loops(domain: &Domain, given: &[Vec<BoundaryPoint>]) -> Vec<Vec<Bo
 
 /// The most vertices a curved triangulation is built with (about 1 GB of triangulation data).
 pub const MAX_MESH_VERTICES: usize = 2_000_000;
+
+/// The most Bezier pieces a boundary to be meshed or sampled by lines may have: every piece
+/// gets an arc-length table (about 0.25 ms each) and its start is a vertex, so 10^4 pieces
+/// take a few seconds and a 10^6-command SVG path would take minutes.
+pub const MAX_MESH_PIECES: usize = 10_000;
+
+/// Refuses, before any work, a boundary of more than [`MAX_MESH_PIECES`] Bezier pieces.
+///
+/// # Errors
+/// [`MeshError::TooManyPieces`].
+pub fn check_boundary_pieces(domain: &Domain) -> Result<(), MeshError> {
+    let pieces: usize = domain
+        .curves()
+        .iter()
+        .map(|c| c.knots().interior_breaks().len() + 1)
+        .sum();
+    if pieces > MAX_MESH_PIECES {
+        return Err(MeshError::TooManyPieces {
+            pieces,
+            limit: MAX_MESH_PIECES,
+        });
+    }
+    Ok(())
+}
 
 /// A boundary chord (arc): its loop and the index of its first point in the loop.
 type Chord = (usize, usize);

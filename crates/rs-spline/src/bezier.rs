@@ -1,7 +1,7 @@
 //! Rational Bezier curves on `[0, 1]`.
 
 use rs_roots::{
-    Bernstein, Polynomial, RootsError, de_casteljau, de_casteljau_split,
+    Bernstein, Polynomial, RootsError, bernstein_roots, de_casteljau, de_casteljau_split,
     de_casteljau_with_derivative, real_roots_in,
 };
 
@@ -158,6 +158,59 @@ impl RationalBezier {
         let dx = &(&x.derivative() * &w) - &(&x * &dw);
         let dy = &(&y.derivative() * &w) - &(&y * &dw);
         (dx, dy)
+    }
+
+    /// The local parameter `t` in `[0, 1]` of a point of the piece nearest to `p`, and its
+    /// distance from `p`: the best of the two end points and every stationary point of the
+    /// squared distance, the roots in `[0, 1]` of
+    /// `(X - p_x W)(X' W - X W') + (Y - p_y W)(Y' W - Y W')` (`|C - p|^2`'s derivative times
+    /// `W^3 / 2`, degree `3n - 1`), found by the certified Bernstein isolation
+    /// [`bernstein_roots`]. The whole piece is searched, so the answer is the global minimum
+    /// whatever the parametrisation's speed (up to the root finder's full precision); ties
+    /// keep the smaller `t`. Coordinates are taken relative to `p` and scaled by the largest
+    /// offset of a control point, and weights by the largest weight, so the product cannot
+    /// overflow. A piece whose points are all equally far from `p` (an arc about `p`) answers
+    /// `t = 0`.
+    pub fn nearest_to(&self, p: Point) -> (f64, f64) {
+        let at = |t: f64| (t, self.point_at(t).distance(p));
+        let offset = self
+            .points
+            .iter()
+            .map(|q| (q.x - p.x).abs().max((q.y - p.y).abs()))
+            .fold(0.0, f64::max);
+        let heaviest = self.weights.iter().copied().fold(0.0, f64::max);
+        let (mut best, end) = (at(0.0), at(1.0));
+        if end.1 < best.1 {
+            best = end;
+        }
+        if !(offset > 0.0 && offset.is_finite() && heaviest > 0.0 && heaviest.is_finite()) {
+            // Every control point is p: the piece is the point p.
+            return best;
+        }
+        let w: Vec<f64> = self.weights.iter().map(|w| w / heaviest).collect();
+        let wb = Bernstein::new(w.clone());
+        let dw = wb.derivative();
+        let term = |coord: fn(Point) -> f64| {
+            let a = Bernstein::new(
+                self.points
+                    .iter()
+                    .zip(&w)
+                    .map(|(&q, &wi)| wi * (coord(q) - coord(p)) / offset)
+                    .collect::<Vec<_>>(),
+            );
+            let tangent = a.derivative().mul(&wb).add(&a.mul(&dw).scale(-1.0));
+            a.mul(&tangent)
+        };
+        let slope = term(|q| q.x).add(&term(|q| q.y));
+        // `ZeroPolynomial`: the distance is constant, so an end point is a nearest point;
+        // the coefficients are finite by the scaling, so no other error arises.
+        for t in bernstein_roots(&slope).unwrap_or_default() {
+            let c = at(t.clamp(0.0, 1.0));
+            if c.1 < best.1 {
+                best = c;
+            }
+        }
+        best
     }
 }
 

@@ -15,7 +15,8 @@
 //! - The curve traits ([`prelude`]): [`ParamCurve`], [`ParamCurveDeriv`], [`ParamCurveArea`]
 //!   (Green's theorem), [`ParamCurveArclen`], [`ParamCurveExtrema`], [`Flatten`], implemented by
 //!   both curve types; [`Affine`] maps; the uniform [`grid`] index.
-//! - [`Domain`]: curves grouped into boundary loops, orientation, signed area, bounding box.
+//! - [`Domain`]: curves grouped into boundary loops, orientation, signed area, bounding box;
+//!   [`NearestBoundary`]: the nearest boundary point of a point, exactly.
 //!   (The JSON domain file is read and written by `rs-io`.)
 //!
 //! Polynomial coefficients follow `rs-roots`: ascending power basis.
@@ -53,6 +54,7 @@ mod homogeneous;
 mod knots;
 pub mod limits;
 mod line;
+mod nearest;
 mod nurbs;
 mod point;
 pub mod quadrature;
@@ -69,5 +71,6 @@ pub use error::{DomainError, SplineError};
 pub use homogeneous::{CurveDerivatives, Hpoint};
 pub use knots::KnotVector;
 pub use line::{polyline, segment};
+pub use nearest::{NearestBoundary, NearestPoint};
 pub use nurbs::NurbsCurve;
 pub use point::{Axis, BoundingBox, Point};

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use rs_contain::{Classifier, ContainOptions, Locate, Location};
 use rs_mesh::{BoundaryPoint, CurvedTriangulation, WellSpacedPoints};
 use rs_spline::prelude::*;
-use rs_spline::{Domain, Point};
+use rs_spline::{Domain, NearestBoundary, Point};
 
 use crate::bb::Jet;
 use crate::hermite::{C1Space, HermiteData, hermite_interpolate, macro_triangles};
@@ -40,7 +40,8 @@ impl ScatteredData {
     /// # Errors
     /// [`SplineError::DataPoint`] naming the first bad point (not finite, outside the domain,
     /// or equal to an earlier one); [`SplineError::Data`] for lengths that differ or too many
-    /// points; containment errors for an open boundary.
+    /// points; [`rs_mesh::MeshError::TooManyPieces`] for a boundary the triangulation refuses;
+    /// containment errors for an open boundary.
     pub fn new(domain: &Domain, points: &[Point], values: &[f64]) -> Result<Self, SplineError> {
         if points.len() != values.len() {
             return Err(SplineError::Data(format!(
@@ -61,6 +62,8 @@ impl ScatteredData {
             y: points[index].y,
             reason,
         };
+        // The triangulation would refuse such a boundary; refused before the projections.
+        rs_mesh::check_boundary_pieces(domain)?;
         if let Some(i) = (0..points.len()).find(|&i| !points[i].is_finite()) {
             return Err(bad(i, "is not finite"));
         }
@@ -79,16 +82,26 @@ impl ScatteredData {
         )
         .map_err(rs_mesh::MeshError::from)?;
         let located = classifier.locate_all_parallel(points);
+        let near = NearestBoundary::new(domain);
+        let projected: Vec<Option<BoundaryPoint>> = {
+            use rayon::prelude::*;
+            points
+                .par_iter()
+                .zip(&located)
+                .map(|(&p, loc)| {
+                    (*loc == Location::Boundary).then(|| nearest_boundary_point(domain, &near, p))
+                })
+                .collect()
+        };
         let mut sites = points.to_vec();
         let mut interior = Vec::new();
         let mut boundary: Vec<Vec<BoundaryPoint>> = vec![Vec::new(); domain.loops().len()];
         let mut on_curve: HashMap<(u64, u64), usize> = HashMap::new();
-        for (i, (&p, loc)) in points.iter().zip(&located).enumerate() {
-            match loc {
-                Location::Inside => interior.push(p),
-                Location::Outside => return Err(bad(i, "lies outside the domain")),
-                Location::Boundary => {
-                    let bp = nearest_boundary_point(domain, p);
+        for (i, ((&p, loc), projected)) in points.iter().zip(&located).zip(projected).enumerate() {
+            match (loc, projected) {
+                (Location::Outside, _) => return Err(bad(i, "lies outside the domain")),
+                (_, None) => interior.push(p),
+                (_, Some(bp)) => {
                     sites[i] = bp.point;
                     if let Some(&j) = on_curve.get(&key(bp.point)) {
                         // Two points that project to one (a corner given twice, say) are one
@@ -296,68 +309,45 @@ fn key(p: Point) -> (u64, u64) {
     ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
 }
 
-/// Samples per control point of a curve when searching for the nearest boundary point.
-const NEAREST_SAMPLES: usize = 64;
+/// A boundary point within this distance, relative to the domain's bounding-box diagonal, of
+/// a curve's end is that end: distinct vertices so close would make triangles of rounding
+/// size. (Far below [`BOUNDARY_TOLERANCE`]; a distance, so it does not depend on how fast the
+/// curve is parametrised there.)
+const END_SNAP: f64 = 1e-12;
 
-/// Golden-section steps refining the nearest boundary point (the bracket shrinks by `0.618`
-/// each step: `2^-60` of a sample spacing after 87).
-const NEAREST_STEPS: usize = 90;
-
-/// The point of the boundary nearest to `p`: every curve sampled, then golden-section search
-/// around the best sample. A point at a curve's end is given as the next curve's start (so it
-/// matches the start point the triangulation always keeps).
-fn nearest_boundary_point(domain: &Domain, p: Point) -> BoundaryPoint {
-    let mut best = (f64::INFINITY, 0usize, 0.0f64, 0.0f64, 0.0f64);
-    for (ci, c) in domain.curves().iter().enumerate() {
-        let (a, b) = c.param_range();
-        let n = NEAREST_SAMPLES * c.control_points().len();
-        let step = (b - a) / n as f64;
-        for k in 0..=n {
-            let u = a + step * k as f64;
-            let dist = c.point_at(u).distance(p);
-            if dist < best.0 {
-                best = (dist, ci, u, (u - step).max(a), (u + step).min(b));
-            }
-        }
-    }
-    let (_, ci, _, mut lo, mut hi) = best;
+/// The boundary point at the point of the boundary nearest to `p` ([`NearestBoundary`]), with
+/// a point at (or within [`END_SNAP`] of) a curve's end given as the next curve's start in its
+/// loop, so it matches the start point the triangulation always keeps: the seam of a closed
+/// curve is one parameter, its start.
+fn nearest_boundary_point(domain: &Domain, near: &NearestBoundary, p: Point) -> BoundaryPoint {
+    let found = near.nearest(p);
+    let ci = found.curve;
     let c = &domain.curves()[ci];
-    let dist = |u: f64| c.point_at(u).distance(p);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..NEAREST_STEPS {
-        let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if dist(x1) <= dist(x2) {
-            hi = x2;
-        } else {
-            lo = x1;
-        }
-    }
-    let mut u = 0.5 * (lo + hi);
     let (start, end) = c.param_range();
     let loop_index = domain
         .loops()
         .iter()
         .position(|l| l.curves().contains(&ci))
         .unwrap_or(0);
-    let snap = 1e-12 * (end - start);
-    let mut curve = ci;
-    if u - start <= snap {
-        u = start;
-    } else if end - u <= snap {
-        // The next curve of the loop starts here.
+    let snap = END_SNAP * domain.bounding_box().diagonal();
+    let point = c.point_at(found.u);
+    let (curve, u) = if found.u <= start || point.distance(c.start_point()) <= snap {
+        (ci, start)
+    } else if found.u >= end || point.distance(c.end_point()) <= snap {
         let l = &domain.loops()[loop_index];
-        curve = if ci == *l.curves().end() {
+        let next = if ci == *l.curves().end() {
             *l.curves().start()
         } else {
             ci + 1
         };
-        u = domain.curves()[curve].param_range().0;
-    }
-    let c = &domain.curves()[curve];
+        (next, domain.curves()[next].param_range().0)
+    } else {
+        (ci, found.u)
+    };
     BoundaryPoint {
         loop_index,
         curve,
         u,
-        point: c.point_at(u),
+        point: domain.curves()[curve].point_at(u),
     }
 }

@@ -21,6 +21,7 @@ Limits (inputs beyond them are errors, never a crash or a hang):
   sample --count / points from sample           10^7
   mesh vertices                                 2 x 10^6 (memory about 1 KB a vertex;
                                                 fit: 1.8 KB at degree 2, 3.8 KB at degree 5)
+  boundary pieces for mesh, fit, sample --ny    10^4 Bezier pieces (a piece costs about 0.25 ms)
   fit --degree / formula length                 12 / 4096 bytes; spline files 1 GiB
   convex-domain --box coordinates / --max-level 1e100 / 20";
 
@@ -141,5 +142,6 @@ mod tests {
         assert_eq!(inrs::io::svg::MAX_SVG_NODES, 10_000_000);
         assert_eq!(inrs::mesh::MAX_SAMPLE_POINTS, 10_000_000);
         assert_eq!(inrs::mesh::MAX_MESH_VERTICES, 2_000_000);
+        assert_eq!(inrs::mesh::MAX_MESH_PIECES, 10_000);
     }
 }
