@@ -345,3 +345,50 @@ fn off_the_band_values_are_unchanged_across_algorithms() {
         }
     }
 }
+
+/// The fast field decides which queries may be in the band from its walk alone (a query no
+/// settled sub-curve comes within reach of skips the band test): on the paper's domains and
+/// the GWN shapes, at points on the pieces and across them at fractions and multiples of the
+/// tolerance, its batch locations call exactly the band's points boundary, and its winding
+/// numbers there are the per-curve field's.
+#[test]
+fn the_walk_never_misses_the_band() {
+    let mut domains: Vec<(String, Domain)> = rs_testkit::all_cases()
+        .into_iter()
+        .map(|c| (c.name, c.domain))
+        .collect();
+    for name in ["butterfly", "rose", "fish", "bubble", "twirl"] {
+        let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
+        let d =
+            rs_io::svg::domain_from_svg_file_with(&path, rs_io::svg::OpenSubpaths::Keep).unwrap();
+        domains.push((name.to_string(), d));
+    }
+    for (name, d) in domains {
+        let field = WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).unwrap();
+        let fast = FastWindingField::new(&field);
+        let tol = DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().bounding_box().diagonal();
+        let mut queries = Vec::new();
+        for b in field.pieces() {
+            for t in [0.0, 0.123456789, 0.3, 0.5, 0.777] {
+                let d1 = b.derivatives(t);
+                let len = d1.first.length();
+                let n = if len > 0.0 {
+                    d1.first.perp() / len
+                } else {
+                    Point::new(0.0, 1.0)
+                };
+                for s in [0.0, 0.5, -0.5, 0.9, -0.9, 1.2, -1.2, 3.0, -3.0] {
+                    queries.push(d1.point + n * (s * tol));
+                }
+            }
+        }
+        let located = fast.locate_all(&queries);
+        let batch = fast.winding_numbers(&queries);
+        for ((q, l), w) in queries.iter().zip(&located).zip(&batch) {
+            let on = field.is_on_boundary(*q);
+            assert_eq!(*l == Location::Boundary, on, "{name} at {q:?}");
+            let plain = field.winding_number(*q);
+            assert!((w - plain).abs() < 1e-9, "{name} at {q:?}: {w} vs {plain}");
+        }
+    }
+}

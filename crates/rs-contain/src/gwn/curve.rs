@@ -66,6 +66,33 @@ pub(crate) fn is_linear(p: &[Point]) -> bool {
     p.iter().all(|&x| d.cross(x - a) == 0.0)
 }
 
+/// True if an edge of the convex polygon `p` (closed by `p[n] -> p[0]`, simple with non-zero
+/// area) has `q` outside it by more than `reach`: then `q` is farther than `reach` from the
+/// polygon. The orientation comes from coordinates relative to `q` (a thin polygon far from
+/// the origin loses its area's sign to cancellation in absolute ones).
+fn separated_by(p: &[Point], q: Point, reach: f64) -> bool {
+    let n = p.len();
+    let area: f64 = (0..n).map(|i| (p[i] - q).cross(p[(i + 1) % n] - q)).sum();
+    (0..n).any(|i| {
+        let (a, b) = (p[i] - q, p[(i + 1) % n] - q);
+        let (e, c) = (b - a, a.cross(b));
+        area * c < 0.0 && c * c > reach * reach * e.dot(e)
+    })
+}
+
+/// True if `q` may be within `reach` of the straight curve with control points `p` (all on
+/// the line through its ends, which differ): inside their box grown by `reach` (the curve may
+/// run past its ends and back), and within `reach` of the line.
+fn near_line(p: &[Point], q: Point, reach: f64) -> bool {
+    let (lo, hi) = control_box(p);
+    if outside_by(lo, hi, q, reach) {
+        return false;
+    }
+    let (a, b) = (p[0] - q, p[p.len() - 1] - q);
+    let (e, c) = (b - a, a.cross(b));
+    c * c <= reach * reach * e.dot(e)
+}
+
 /// True if `q` is strictly outside the convex polygon `p` (closed by `p[n] -> p[0]`), which must
 /// be simple and convex with non-zero area.
 fn outside_convex(p: &[Point], q: Point) -> bool {
@@ -109,6 +136,12 @@ pub(crate) fn misses_cut(lo: Point, hi: Point, q: Point) -> bool {
 #[inline(always)]
 pub(crate) fn outside(lo: Point, hi: Point, q: Point) -> bool {
     q.x < lo.x || q.x > hi.x || q.y < lo.y || q.y > hi.y
+}
+
+/// Is `q` outside the box with corners `lo` and `hi` grown by `reach`?
+#[inline(always)]
+pub(crate) fn outside_by(lo: Point, hi: Point, q: Point, reach: f64) -> bool {
+    q.x < lo.x - reach || q.x > hi.x + reach || q.y < lo.y - reach || q.y > hi.y + reach
 }
 
 /// Algorithm 5: the winding-number contribution of a curve with a simple convex control
@@ -287,6 +320,11 @@ pub(crate) trait SubCurves {
     fn outside_box(&self, node: &Self::Node, q: Point) -> bool {
         outside_box(self.points(node), q)
     }
+    /// Is `q` outside its control bounding box grown by `reach`?
+    fn outside_box_by(&self, node: &Self::Node, q: Point, reach: f64) -> bool {
+        let (lo, hi) = control_box(self.points(node));
+        outside_by(lo, hi, q, reach)
+    }
 }
 
 /// Sub-curves computed on demand, halves included.
@@ -327,8 +365,12 @@ pub fn curve_winding_number(curve: &RationalBezier, q: Point, stats: &mut QueryS
 /// coincident pieces) whose angles at `q` add up to the curve's winding number.
 pub(crate) fn refine<K: ChordSink>(root: SubCurve, q: Point, sink: &mut K, stats: &mut QueryStats) {
     stats.curve_evaluations += 1;
-    if outside_box(root.points(), q) {
-        let pts = root.points();
+    let pts = root.points();
+    let (lo, hi) = control_box(pts);
+    if outside(lo, hi, q) {
+        if K::TRACKS_NEAR && !outside_by(lo, hi, q, sink.reach()) {
+            sink.mark_near();
+        }
         sink.chord(pts[0], pts[pts.len() - 1]);
         return;
     }
@@ -376,23 +418,40 @@ pub(crate) fn settle<S: SubCurves, K: ChordSink>(
     parent_convex: bool,
     sink: &mut K,
 ) -> Option<bool> {
+    // Every exit but the last tells `sink` whether `q` may be near the sub-curve: only then
+    // may `q` be in a boundary band round the curve.
     let p = source.points(c);
     let (a, b) = (p[0], p[p.len() - 1]);
     if source.linear(c) {
+        if K::TRACKS_NEAR && near_line(p, q, sink.reach()) {
+            sink.mark_near();
+        }
         sink.chord(a, b);
         return None;
     }
     let convex = source.convex(c, parent_convex);
     if convex && (q == a || q == b) {
+        sink.mark_near();
         sink.special(convex_endpoint_winding(p, q), a, b);
         return None;
     }
-    if source.outside_box(c, q) || (convex && outside_convex(p, q)) {
+    if source.outside_box(c, q) {
+        if K::TRACKS_NEAR && !source.outside_box_by(c, q, sink.reach()) {
+            sink.mark_near();
+        }
+        sink.chord(a, b);
+        return None;
+    }
+    if convex && outside_convex(p, q) {
+        if K::TRACKS_NEAR && !separated_by(p, q, sink.reach()) {
+            sink.mark_near();
+        }
         sink.chord(a, b);
         return None;
     }
     if depth >= MAX_DEPTH {
         // q is within rounding of this tiny piece: coincident, average 0 over the piece.
+        sink.mark_near();
         sink.special(0.0, a, b);
         return None;
     }

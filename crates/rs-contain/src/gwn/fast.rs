@@ -10,7 +10,7 @@ use rs_spline::{Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::curve::{
-    SubCurve, SubCurves, control_box, is_linear, is_simple_convex, misses_cut, outside,
+    SubCurve, SubCurves, control_box, is_linear, is_simple_convex, misses_cut, outside, outside_by,
     refine_below, settle,
 };
 use super::sum::{BATCH, ChordSink, WindingSum};
@@ -95,6 +95,10 @@ impl SubCurves for CurveHierarchy {
     fn outside_box(&self, i: &u32, q: Point) -> bool {
         let n = &self.nodes[*i as usize];
         outside(n.lo, n.hi, q)
+    }
+    fn outside_box_by(&self, i: &u32, q: Point, reach: f64) -> bool {
+        let n = &self.nodes[*i as usize];
+        outside_by(n.lo, n.hi, q, reach)
     }
 }
 
@@ -281,9 +285,10 @@ impl<'a> FastWindingField<'a> {
         Some(sum.value())
     }
 
-    /// The crossings and coincident pieces at `q` of every piece but those in `skip` (sorted), without
-    /// the open chains' ends, and whether `q` lies in a leaf's box (only then may it be in the
-    /// band: a leaf's box holds every point near its piece); `stack` is scratch for the walk
+    /// The crossings and coincident pieces at `q` of every piece but those in `skip` (sorted),
+    /// without the open chains' ends, and whether `q` may be near a piece (only then may it be
+    /// in the band: a leaf's box holds every point near its piece, and its refinement tells
+    /// whether `q` comes within the field's reach of a settled sub-curve); `stack` is scratch for the walk
     /// (a caller answering many points passes the same one: zeroing it per point was 3% of a
     /// query on small shapes).
     ///
@@ -297,16 +302,15 @@ impl<'a> FastWindingField<'a> {
         stack: &mut [u32; STACK],
         stats: &mut QueryStats,
     ) -> (WindingSum, bool) {
-        let mut sum = WindingSum::new(q);
-        let mut near = false;
+        let mut sum = WindingSum::tracking(q, self.field.near_reach());
         // A NaN ordinate takes the walk (no row is its).
         if let Some(rows) = self.rows.as_ref().filter(|_| !q.y.is_nan()) {
             if rows.spans(q.y) {
                 for &i in rows.near(q.y) {
-                    self.visit(i, q, skip, &mut sum, &mut near, stats);
+                    self.visit(i, q, skip, &mut sum, stats);
                 }
             }
-            return (sum, near);
+            return (sum, sum.near());
         }
         // Depth-first, left child first: at most one pending right child per level, and the
         // tree is balanced (depth at most log2(pieces) + 1 < STACK).
@@ -317,19 +321,19 @@ impl<'a> FastWindingField<'a> {
         }
         while len > 0 {
             len -= 1;
-            if let Some((l, r)) = self.visit(stack[len], q, skip, &mut sum, &mut near, stats) {
+            if let Some((l, r)) = self.visit(stack[len], q, skip, &mut sum, stats) {
                 stack[len] = r;
                 stack[len + 1] = l;
                 len += 2;
             }
         }
-        (sum, near)
+        (sum, sum.near())
     }
 
     /// Adds to `sum` what node `i` holds for `q` when that takes no look inside it (nothing if
     /// its box lies above, below or right of `q`; its chains' chord crossings if it lies wholly
     /// left of `q` and keeps them), or runs the adaptive algorithm on a leaf (unless its piece
-    /// is in `skip`) and sets `near`; returns an inner node's children otherwise.
+    /// is in `skip`); returns an inner node's children otherwise.
     #[inline(always)]
     fn visit(
         &self,
@@ -337,7 +341,6 @@ impl<'a> FastWindingField<'a> {
         q: Point,
         skip: &[u32],
         sum: &mut WindingSum,
-        near: &mut bool,
         stats: &mut QueryStats,
     ) -> Option<(u32, u32)> {
         let n = &self.nodes[i as usize];
@@ -355,8 +358,6 @@ impl<'a> FastWindingField<'a> {
         }
         match n.kind {
             Kind::Leaf(p) => {
-                // A leaf keeps its piece's chord, so q is in its box here.
-                *near = true;
                 if skip.binary_search(&p).is_err() {
                     let h = self.hierarchy(p as usize);
                     h.refine(q, sum, stats);

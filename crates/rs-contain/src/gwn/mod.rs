@@ -100,6 +100,10 @@ pub struct WindingField {
     box_pieces: Vec<u32>,
     /// A bound on the rounding of coordinates near the boundary (a few ulps of the largest).
     rounding: f64,
+    /// How far a query may be from the pieces and still be in the band: twice the tolerance,
+    /// the rounding, and the widest joint the monotone boxes closed (they meet exactly where
+    /// the pieces meet only within the domain's closure tolerance).
+    reach: f64,
     /// Per piece: its whole curve as the adaptive algorithm's first sub-curve.
     roots: Vec<SubCurve>,
     /// Start and end of every open chain of pieces (see [`chains`]).
@@ -137,13 +141,14 @@ impl WindingField {
     ) -> Self {
         let bbox = boxes.bounding_box();
         let tol = relative_tolerance * bbox.diagonal();
-        let rounding = 16.0
+        let rounding = 256.0
             * f64::EPSILON
             * [bbox.min.x, bbox.min.y, bbox.max.x, bbox.max.y]
                 .iter()
                 .fold(bbox.diagonal(), |m, v| m.max(v.abs()));
         let numbered = domain.bezier_pieces();
         let box_pieces = pieces_of_boxes(&numbered, &boxes);
+        let reach = 2.0 * tol + rounding + widest_joint(domain, &numbered);
         let pieces: Vec<RationalBezier> = numbered.into_iter().map(|(_, b)| b).collect();
         let grid = BoxGrid::new(boxes.boxes(), tol);
         let mut frames: Vec<PieceFrame> = pieces.iter().map(PieceFrame::of).collect();
@@ -154,6 +159,7 @@ impl WindingField {
             frames,
             box_pieces,
             rounding,
+            reach,
             roots: pieces.iter().map(SubCurve::of).collect(),
             open_chains: ChainEnds::new(
                 chains(&pieces)
@@ -206,8 +212,9 @@ impl WindingField {
     /// crossings and chain ends (see the type's Semantics); a query in the band takes
     /// [`WindingField::band_winding_number`]. No allocation for pieces of degree <= 3.
     fn adaptive_winding_number(&self, q: Point, stats: &mut QueryStats) -> f64 {
-        let mut sum = WindingSum::new(q);
-        if self.add_pieces(q, &[], &mut sum, stats)
+        let mut sum = WindingSum::tracking(q, self.reach);
+        self.add_pieces(q, &[], &mut sum, stats);
+        if sum.near()
             && let Some(w) = self.band_winding_number(q, stats)
         {
             return w;
@@ -216,16 +223,14 @@ impl WindingField {
         sum.value()
     }
 
-    /// Adds every piece but those in `skip` (sorted) to `sum` by the adaptive algorithm; returns whether
-    /// `q` lies in some piece's near box (only then may it be in the band).
-    fn add_pieces(
-        &self,
-        q: Point,
-        skip: &[u32],
-        sum: &mut WindingSum,
-        stats: &mut QueryStats,
-    ) -> bool {
-        let mut near = false;
+    /// How far from the pieces a query may be in the band (see [`WindingSum::tracking`]).
+    pub(crate) fn near_reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// Adds every piece but those in `skip` (sorted) to `sum` by the adaptive algorithm. A
+    /// piece whose near box holds `q` is refined, which tells `sum` whether `q` may be near it.
+    fn add_pieces(&self, q: Point, skip: &[u32], sum: &mut WindingSum, stats: &mut QueryStats) {
         for (i, (f, root)) in self.frames.iter().zip(&self.roots).enumerate() {
             if misses_cut(f.lo, f.hi, q) {
                 // No crossing, and q is not on the chord.
@@ -233,14 +238,10 @@ impl WindingField {
             } else if q.x > f.hi.x {
                 stats.curve_evaluations += 1;
                 sum.left_crossing(f.start, f.end);
-            } else {
-                near = true;
-                if skip.binary_search(&(i as u32)).is_err() {
-                    refine(root.clone(), q, sum, stats);
-                }
+            } else if skip.binary_search(&(i as u32)).is_err() {
+                refine(root.clone(), q, sum, stats);
             }
         }
-        near
     }
 
     /// The winding number at a `q` in the band, the average across the jump (see
@@ -327,6 +328,28 @@ impl Locate for WindingField {
         }
         self.location_from_winding(self.winding_number(q), self.rule)
     }
+}
+
+/// The widest gap between consecutive pieces of one loop of `domain` (`pieces` as
+/// [`Domain::bezier_pieces`] lists them), closing joints included: how far the monotone boxes,
+/// which close every joint, may lie from the pieces.
+fn widest_joint(domain: &Domain, pieces: &[(usize, RationalBezier)]) -> f64 {
+    let mut widest = 0.0f64;
+    for l in domain.loops() {
+        let curves = l.curves();
+        let first = pieces.partition_point(|(c, _)| c < curves.start());
+        let end = pieces.partition_point(|(c, _)| c <= curves.end());
+        let of_loop: Vec<&RationalBezier> = pieces[first..end].iter().map(|(_, b)| b).collect();
+        for w in of_loop.windows(2) {
+            widest = widest.max(w[0].end_point().distance(w[1].start_point()));
+        }
+        if l.is_closed()
+            && let (Some(first), Some(last)) = (of_loop.first(), of_loop.last())
+        {
+            widest = widest.max(last.end_point().distance(first.start_point()));
+        }
+    }
+    widest
 }
 
 /// The pieces of `passages`, once each.

@@ -25,6 +25,16 @@ pub(crate) trait ChordSink {
     /// A piece `a -> b` through the query whose contribution is `value` (turns), by a
     /// coincidence convention.
     fn special(&mut self, value: f64, a: Point, b: Point);
+    /// Whether the sink records that the query may be near the curve
+    /// ([`ChordSink::mark_near`]); the tests for it are compiled out of sinks that do not.
+    const TRACKS_NEAR: bool = false;
+    /// How far from every settled sub-curve's control polygon (or box) the query must be for
+    /// it not to be near the curve.
+    fn reach(&self) -> f64 {
+        0.0
+    }
+    /// The query may be within [`ChordSink::reach`] of the curve.
+    fn mark_near(&mut self) {}
 }
 
 /// Below this, `u . v` and `u x v` of a chain's ends may have lost digits to underflow.
@@ -316,16 +326,33 @@ pub(crate) struct WindingSum {
     q: Point,
     crossings: i64,
     turns: f64,
+    /// See [`ChordSink::reach`].
+    reach: f64,
+    /// Some settled sub-curve may lie within `reach` of `q`.
+    near: bool,
 }
 
 impl WindingSum {
     /// Nothing added yet.
     pub(crate) fn new(q: Point) -> Self {
+        Self::tracking(q, 0.0)
+    }
+
+    /// Nothing added yet; records whether a settled sub-curve may lie within `reach` of `q`.
+    pub(crate) fn tracking(q: Point, reach: f64) -> Self {
         Self {
             q,
             crossings: 0,
             turns: 0.0,
+            reach,
+            near: false,
         }
+    }
+
+    /// May some curve added lie within the reach of the query (see
+    /// [`WindingSum::tracking`])? False means every one is farther.
+    pub(crate) fn near(&self) -> bool {
+        self.near
     }
 
     /// `+1` or `-1` for a chord lying wholly left of the query (`max(a.x, b.x) < q.x`) that
@@ -415,6 +442,18 @@ impl ChordSink for WindingSum {
 
     fn special(&mut self, value: f64, a: Point, b: Point) {
         self.turns += value - (theta(self.q, b) - theta(self.q, a)) / TAU;
+    }
+
+    const TRACKS_NEAR: bool = true;
+
+    #[inline]
+    fn reach(&self) -> f64 {
+        self.reach
+    }
+
+    #[inline]
+    fn mark_near(&mut self) {
+        self.near = true;
     }
 }
 
