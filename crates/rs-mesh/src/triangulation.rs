@@ -83,7 +83,9 @@ impl CurvedTriangulation {
     /// boundary chord as a constraint, triangles kept by crossing parity of the constraint
     /// loops (holes excluded), then checked for convertibility (Definition 4.2: no boundary arc
     /// meets an edge of the triangulation except at that edge's end points, every chord an
-    /// edge). Arcs that fail get their parameter midpoint inserted as a new boundary point,
+    /// edge). Arcs that fail get a new boundary point, at a corner of the curve inside the
+    /// arc if there is one (a joint of Bezier pieces where the tangent turns: no split
+    /// elsewhere straightens an arc across a corner), else at the arc's parameter midpoint,
     /// and the triangulation is rebuilt, until it is convertible. Interior points that end up
     /// between a boundary arc and its chord are dropped.
     ///
@@ -106,8 +108,8 @@ impl CurvedTriangulation {
     /// from `points` (paper Section 8, Fig. 7; see [`Refinement`]): built as
     /// [`CurvedTriangulation::new`] builds the unrefined one, then split; if a boundary arc of
     /// the refinement meets one of its new edges (Definition 4.2 again) or a sub-triangle comes
-    /// out inverted, the unrefined arc gets a boundary point at its parameter midpoint and both
-    /// are rebuilt.
+    /// out inverted, the unrefined arc gets a boundary point (at a corner inside it, else at
+    /// its parameter midpoint, as in [`CurvedTriangulation::new`]) and both are rebuilt.
     ///
     /// # Errors
     /// As [`CurvedTriangulation::new`].
@@ -142,6 +144,7 @@ impl CurvedTriangulation {
         let mut inserted = 0;
         let mut dropped = 0;
         let size = domain.bounding_box().diagonal();
+        let corners = curve_corners(domain);
         for round in 0..MAX_ROUNDS {
             let attempt = build(domain, &boundary, &interior, size)?;
             let attempt = match attempt {
@@ -177,7 +180,7 @@ impl CurvedTriangulation {
                             near,
                         });
                     }
-                    let (refined, added) = refine_loops(domain, &boundary, &failing);
+                    let (refined, added) = refine_loops(domain, &corners, &boundary, &failing);
                     if inserted + added > budget {
                         return Err(MeshError::InsertionLimit {
                             inserted,
@@ -896,11 +899,72 @@ fn where_arcs_meet(p: NurbsCurve, q: NurbsCurve, size: f64) -> Option<Point> {
     Some(near)
 }
 
-/// New boundary points: every failing arc gets the point at its parameter midpoint. Returns
-/// the refined loops and the number of points added (one per distinct failing arc), in one
-/// pass over each loop.
+/// Two tangent directions whose angle has a sine above this (or that point apart) make a
+/// corner: far above the rounding of a joint that is smooth in exact arithmetic, and only
+/// ever used to choose where a failing arc is split, so a false corner costs one point.
+const CORNER_SINE: f64 = 1e-9;
+
+/// The parameters, ascending, of each curve's corners: the joints of consecutive Bezier
+/// pieces where the tangent directions of the two pieces differ (a break point of a polygon
+/// written as one curve, a knot of full multiplicity, repeated control points). A corner is
+/// scale-invariant: every arc across it, however short, turns by the corner's angle, so
+/// splitting such an arc at its parameter midpoint never straightens it; only a vertex at
+/// the corner does.
+fn curve_corners(domain: &Domain) -> Vec<Vec<f64>> {
+    domain
+        .curves()
+        .iter()
+        .map(|c| {
+            let pieces = c.to_bezier();
+            pieces
+                .windows(2)
+                .filter_map(|w| {
+                    let (p, q) = (w[0].control_points(), w[1].control_points());
+                    let (last, before) = p.split_last()?;
+                    let (first, after) = q.split_first()?;
+                    // Both directions pointing along the curve.
+                    let d1 = -away(*last, before.iter().rev())?;
+                    let d2 = away(*first, after.iter())?;
+                    let scale = d1.length() * d2.length();
+                    let corner = d1.dot(d2) <= 0.0 || d1.cross(d2).abs() > CORNER_SINE * scale;
+                    corner.then_some(w[1].knot_span().0)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// From an end point of a piece towards the first of its other control points (listed from
+/// that end) that differs from it: the tangent direction there, up to sign (the lower
+/// derivatives vanish where control points repeat; positive weights keep the direction).
+fn away<'a>(end: Point, mut others: impl Iterator<Item = &'a Point>) -> Option<Point> {
+    others.find(|&&q| q != end).map(|&q| q - end)
+}
+
+/// Where to split the failing arc `(u0, u1)` of a curve with `corners` (ascending): at the
+/// corner strictly inside it nearest its parameter midpoint, else at that midpoint.
+fn split_parameter(corners: &[f64], u0: f64, u1: f64) -> f64 {
+    let mid = 0.5 * (u0 + u1);
+    let (i, j) = (
+        corners.partition_point(|&c| c <= u0),
+        corners.partition_point(|&c| c < u1),
+    );
+    corners
+        .get(i..j)
+        .unwrap_or_default()
+        .iter()
+        .copied()
+        .min_by(|a, b| (a - mid).abs().total_cmp(&(b - mid).abs()))
+        .unwrap_or(mid)
+}
+
+/// New boundary points: every failing arc gets one, at a corner of the curve inside it if
+/// there is one ([`curve_corners`], [`split_parameter`]), else at its parameter midpoint
+/// (away from corners an arc turns less, relative to its chord, the shorter it is). Returns the refined loops and the
+/// number of points added (one per distinct failing arc), in one pass over each loop.
 fn refine_loops(
     domain: &Domain,
+    corners: &[Vec<f64>],
     boundary: &[Vec<BoundaryPoint>],
     failing: &[(usize, usize)],
 ) -> (Vec<Vec<BoundaryPoint>>, usize) {
@@ -931,7 +995,7 @@ fn refine_loops(
                 } else {
                     c.param_range().1
                 };
-                let u = 0.5 * (pa.u + u1);
+                let u = split_parameter(&corners[pa.curve], pa.u, u1);
                 out.push(BoundaryPoint {
                     loop_index: j,
                     curve: pa.curve,
@@ -1113,6 +1177,53 @@ mod tests {
             arcs_certainly_meet(&bulge, &seg((0.0, 0.5), (0.0, 2.0)), 2.0),
             None
         );
+    }
+
+    /// Corners: the joints where a curve turns (a polyline's vertices, a square written as
+    /// one quadratic with repeated knots and control points), not the smooth joints of a
+    /// rational circle; a failing arc is split at the corner inside it nearest its midpoint,
+    /// never at one of its ends, else at its midpoint.
+    #[test]
+    fn failing_arcs_are_split_at_their_corners() {
+        let q = Point::new;
+        let square = [
+            q(0.0, 0.0),
+            q(1.0, 0.0),
+            q(1.0, 1.0),
+            q(0.0, 1.0),
+            q(0.0, 0.0),
+        ];
+        let polyline = rs_spline::polyline(&square).unwrap();
+        // Each side a quadratic with its midpoint as middle control point, corners repeated.
+        let mut points = Vec::new();
+        for w in square.windows(2) {
+            points.extend([w[0], (w[0] + w[1]) * 0.5, w[1]]);
+        }
+        let mut knots = vec![0.0; 3];
+        for k in 1..4 {
+            knots.extend([f64::from(k); 3]);
+        }
+        knots.extend([4.0; 3]);
+        let quadratic = NurbsCurve::new(2, knots, points, None).unwrap();
+        // A smooth joint between two straight pieces: not a corner.
+        let straight = rs_spline::polyline(&[q(0.0, 0.0), q(1.0, 1.0), q(3.0, 3.0)]).unwrap();
+        let circle = rs_spline::circle(q(0.0, 0.0), 1.0).unwrap();
+        let domain = Domain::new(vec![polyline, quadratic, circle]).unwrap();
+        assert_eq!(
+            curve_corners(&domain),
+            vec![vec![1.0, 2.0, 3.0], vec![1.0, 2.0, 3.0], vec![]]
+        );
+        let line = Domain::new(vec![
+            straight,
+            rs_spline::polyline(&[q(3.0, 3.0), q(3.0, 0.0), q(0.0, 0.0)]).unwrap(),
+        ]);
+        assert_eq!(curve_corners(&line.unwrap())[0], Vec::<f64>::new());
+        let corners = [1.0, 2.0, 3.0];
+        assert_eq!(split_parameter(&corners, 0.0, 4.0), 2.0);
+        assert_eq!(split_parameter(&corners, 0.5, 2.9), 2.0);
+        assert_eq!(split_parameter(&corners, 1.0, 2.0), 1.5);
+        assert_eq!(split_parameter(&corners, 2.5, 2.75), 2.625);
+        assert_eq!(split_parameter(&[], 0.0, 1.0), 0.5);
     }
 
     #[test]

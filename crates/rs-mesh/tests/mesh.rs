@@ -6,7 +6,7 @@ use rs_contain::Locate;
 use rs_contain::baselines::halton_points;
 use rs_contain::{Classifier, ContainOptions, Location};
 use rs_mesh::{
-    CurvedLocator, CurvedTriangulation, EdgeKind, WellSpacedPoints, halton_points_in,
+    CurvedLocator, CurvedTriangulation, EdgeKind, Refinement, WellSpacedPoints, halton_points_in,
     well_spaced_points,
 };
 use rs_spline::prelude::*;
@@ -592,5 +592,90 @@ fn a_long_thin_rectangle_is_meshed_exactly() {
             }
             None => assert!(!inside, "{p:?}"),
         }
+    }
+}
+
+/// The three builders on `d` from `points`: each convertible, its curved triangles positive
+/// and adding up to the domain. Returns the Powell–Sabin one.
+fn every_refinement_is_exact(
+    d: &Domain,
+    points: &WellSpacedPoints,
+    what: &str,
+) -> CurvedTriangulation {
+    let exact = region_area(d);
+    let mut last = None;
+    for how in [
+        None,
+        Some(Refinement::CloughTocher),
+        Some(Refinement::PowellSabin),
+    ] {
+        let m = match how {
+            None => CurvedTriangulation::new(d, points),
+            Some(how) => CurvedTriangulation::new_refined(d, points, how),
+        }
+        .unwrap_or_else(|e| panic!("{what} {how:?}: {e}"));
+        let total: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
+        assert!(
+            (total - exact).abs() <= 1e-9 * exact,
+            "{what} {how:?}: {total} vs {exact}"
+        );
+        assert!(
+            (0..m.triangles().len()).all(|t| m.triangle_area(t) > 0.0),
+            "{what} {how:?}"
+        );
+        last = Some(m);
+    }
+    last.unwrap_or_else(|| unreachable!())
+}
+
+/// A reflex corner of a polygon written as one degree-1 curve (knots 0, 1, ..., 5), at
+/// parameter 3: every arc across it turns by the corner's angle however short it is, into
+/// its triangle, and parameter midpoints of `[0, 5]` never land on 3, so splitting the
+/// failing arc at its midpoint ended after 16 rounds (`NotConvertible`, unrefined and refined
+/// alike) with the arc 2^-16 of the loop long. The corner must become a vertex.
+#[test]
+fn a_corner_off_every_parameter_midpoint_becomes_a_vertex() {
+    let q = Point::new;
+    let outline = [
+        q(0.0, 0.0),
+        q(3.0, 0.0),
+        q(3.0, 3.0),
+        q(1.5, 1.0),
+        q(0.0, 3.0),
+        q(0.0, 0.0),
+    ];
+    let d = Domain::new(vec![rs_spline::polyline(&outline).unwrap()]).unwrap();
+    for n in [0, 3, 10, 40] {
+        let interior = if n == 0 {
+            Vec::new()
+        } else {
+            halton_points_in(&d, n).unwrap()
+        };
+        let points = WellSpacedPoints {
+            h: 0.5,
+            interior,
+            boundary: Vec::new(),
+        };
+        let m = every_refinement_is_exact(&d, &points, &format!("{n} interior points"));
+        assert!(m.inserted_boundary_points() > 0);
+        assert!(
+            m.vertices().contains(&q(1.5, 1.0)),
+            "{n}: the reflex corner is no vertex"
+        );
+    }
+}
+
+/// The heptagon written as one quadratic curve with break points of full multiplicity at
+/// parameters k/7: at ny = 17 an arc across its reflex corner (0.9, 1.4) passed the
+/// unrefined check but crossed an edge of its Powell–Sabin split, and its halvings never
+/// reached the corner (`inrs fit --refine ps --ny 17` ended in `NotConvertible`). Every ny of
+/// the sample -> fit tests, every refinement.
+#[test]
+fn heptagon_breaks_is_convertible_in_every_refinement_at_every_fit_ny() {
+    let path = rs_testkit::fixture_path("breaks/heptagon_breaks.json");
+    let d = rs_io::json::domain_from_json_file(&path).unwrap();
+    for ny in [9, 17, 33, 65] {
+        let points = well_spaced_points(&d, ny).unwrap();
+        every_refinement_is_exact(&d, &points, &format!("ny {ny}"));
     }
 }
