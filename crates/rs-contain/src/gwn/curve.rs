@@ -66,20 +66,6 @@ pub(crate) fn is_linear(p: &[Point]) -> bool {
     p.iter().all(|&x| d.cross(x - a) == 0.0)
 }
 
-/// True if an edge of the convex polygon `p` (closed by `p[n] -> p[0]`, simple with non-zero
-/// area) has `q` outside it by more than `reach`: then `q` is farther than `reach` from the
-/// polygon. The orientation comes from coordinates relative to `q` (a thin polygon far from
-/// the origin loses its area's sign to cancellation in absolute ones).
-fn separated_by(p: &[Point], q: Point, reach: f64) -> bool {
-    let n = p.len();
-    let area: f64 = (0..n).map(|i| (p[i] - q).cross(p[(i + 1) % n] - q)).sum();
-    (0..n).any(|i| {
-        let (a, b) = (p[i] - q, p[(i + 1) % n] - q);
-        let (e, c) = (b - a, a.cross(b));
-        area * c < 0.0 && c * c > reach * reach * e.dot(e)
-    })
-}
-
 /// True if `q` may be within `reach` of the straight curve with control points `p` (all on
 /// the line through its ends, which differ): inside their box grown by `reach` (the curve may
 /// run past its ends and back), and within `reach` of the line.
@@ -93,18 +79,53 @@ fn near_line(p: &[Point], q: Point, reach: f64) -> bool {
     c * c <= reach * reach * e.dot(e)
 }
 
-/// True if `q` is strictly outside the convex polygon `p` (closed by `p[n] -> p[0]`), which must
-/// be simple and convex with non-zero area.
-fn outside_convex(p: &[Point], q: Point) -> bool {
+/// Where a query lies against a sub-curve's box or convex control polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Outside {
+    /// Inside (or on) it.
+    No,
+    /// Outside it, but perhaps within the reach asked of it.
+    Near,
+    /// Outside it by more than the reach asked of it.
+    Far,
+}
+
+/// Where `q` lies against the convex polygon `p` (closed by `p[n] -> p[0]`, simple and convex
+/// with non-zero area): strictly outside an edge's line, and by more than `reach` (then `q` is
+/// farther than `reach` from the polygon). Computed in coordinates relative to `q`: a thin
+/// polygon far from the origin loses its area's sign to cancellation in absolute ones.
+fn outside_convex(p: &[Point], q: Point, reach: f64) -> Outside {
     let n = p.len();
-    let area: f64 = (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum();
+    let area: f64 = (0..n).map(|i| (p[i] - q).cross(p[(i + 1) % n] - q)).sum();
     if area == 0.0 {
-        return false;
+        return Outside::No;
     }
-    (0..n).any(|i| {
-        let (a, b) = (p[i], p[(i + 1) % n]);
-        area * (b - a).cross(q - a) < 0.0
-    })
+    let mut seen = Outside::No;
+    for i in 0..n {
+        let (a, b) = (p[i] - q, p[(i + 1) % n] - q);
+        // (b - a) x (q - a) with q at the origin.
+        let c = a.cross(b);
+        if area * c < 0.0 {
+            let e = b - a;
+            if c * c > reach * reach * e.dot(e) {
+                return Outside::Far;
+            }
+            seen = Outside::Near;
+        }
+    }
+    seen
+}
+
+/// Where `q` lies against the box with corners `lo` and `hi` (see [`Outside`]).
+#[inline(always)]
+pub(crate) fn outside_box_reach(lo: Point, hi: Point, q: Point, reach: f64) -> Outside {
+    if !outside(lo, hi, q) {
+        Outside::No
+    } else if outside_by(lo, hi, q, reach) {
+        Outside::Far
+    } else {
+        Outside::Near
+    }
 }
 
 /// The lower and upper corners of the bounding box of control points `p` (at least one).
@@ -117,12 +138,6 @@ pub(crate) fn control_box(p: &[Point]) -> (Point, Point) {
         hi = Point::new(hi.x.max(x.x), hi.y.max(x.y));
     }
     (lo, hi)
-}
-
-/// Is `q` outside the bounding box of control points `p`?
-pub(crate) fn outside_box(p: &[Point], q: Point) -> bool {
-    let (lo, hi) = control_box(p);
-    outside(lo, hi, q)
 }
 
 /// Does the box with corners `lo` and `hi` lie above, below or right of `q`? Then nothing in
@@ -250,6 +265,7 @@ impl SubCurve {
     /// rational piece), for `t` in `(0, 1)`. The parts keep the curve's end points bit for bit
     /// (projecting `w p` back can move them by a rounding) and share their middle one, so a
     /// query at an end stays at an end of the part holding it.
+    #[inline(always)]
     pub(crate) fn split(&self, t: f64) -> (Self, Self) {
         let n = self.pts.len();
         if self.h.is_empty() {
@@ -316,14 +332,10 @@ pub(crate) trait SubCurves {
     fn linear(&self, node: &Self::Node) -> bool {
         is_linear(self.points(node))
     }
-    /// Is `q` outside its control bounding box?
-    fn outside_box(&self, node: &Self::Node, q: Point) -> bool {
-        outside_box(self.points(node), q)
-    }
-    /// Is `q` outside its control bounding box grown by `reach`?
-    fn outside_box_by(&self, node: &Self::Node, q: Point, reach: f64) -> bool {
+    /// Where `q` lies against its control bounding box, with `reach` (see [`Outside`]).
+    fn outside_box(&self, node: &Self::Node, q: Point, reach: f64) -> Outside {
         let (lo, hi) = control_box(self.points(node));
-        outside_by(lo, hi, q, reach)
+        outside_box_reach(lo, hi, q, reach)
     }
 }
 
@@ -367,8 +379,9 @@ pub(crate) fn refine<K: ChordSink>(root: SubCurve, q: Point, sink: &mut K, stats
     stats.curve_evaluations += 1;
     let pts = root.points();
     let (lo, hi) = control_box(pts);
-    if outside(lo, hi, q) {
-        if K::TRACKS_NEAR && !outside_by(lo, hi, q, sink.reach()) {
+    let outside = outside_box_reach(lo, hi, q, sink.reach());
+    if outside != Outside::No {
+        if K::TRACKS_NEAR && outside == Outside::Near {
             sink.mark_near();
         }
         sink.chord(pts[0], pts[pts.len() - 1]);
@@ -435,15 +448,12 @@ pub(crate) fn settle<S: SubCurves, K: ChordSink>(
         sink.special(convex_endpoint_winding(p, q), a, b);
         return None;
     }
-    if source.outside_box(c, q) {
-        if K::TRACKS_NEAR && !source.outside_box_by(c, q, sink.reach()) {
-            sink.mark_near();
-        }
-        sink.chord(a, b);
-        return None;
+    let mut outside = source.outside_box(c, q, sink.reach());
+    if outside == Outside::No && convex {
+        outside = outside_convex(p, q, sink.reach());
     }
-    if convex && outside_convex(p, q) {
-        if K::TRACKS_NEAR && !separated_by(p, q, sink.reach()) {
+    if outside != Outside::No {
+        if K::TRACKS_NEAR && outside == Outside::Near {
             sink.mark_near();
         }
         sink.chord(a, b);

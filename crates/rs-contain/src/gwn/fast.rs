@@ -10,8 +10,8 @@ use rs_spline::{Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::curve::{
-    SubCurve, SubCurves, control_box, is_linear, is_simple_convex, misses_cut, outside, outside_by,
-    refine_below, settle,
+    Outside, SubCurve, SubCurves, control_box, is_linear, is_simple_convex, misses_cut,
+    outside_box_reach, refine_below, settle,
 };
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
@@ -92,13 +92,9 @@ impl SubCurves for CurveHierarchy {
     fn linear(&self, i: &u32) -> bool {
         self.nodes[*i as usize].linear
     }
-    fn outside_box(&self, i: &u32, q: Point) -> bool {
+    fn outside_box(&self, i: &u32, q: Point, reach: f64) -> Outside {
         let n = &self.nodes[*i as usize];
-        outside(n.lo, n.hi, q)
-    }
-    fn outside_box_by(&self, i: &u32, q: Point, reach: f64) -> bool {
-        let n = &self.nodes[*i as usize];
-        outside_by(n.lo, n.hi, q, reach)
+        outside_box_reach(n.lo, n.hi, q, reach)
     }
 }
 
