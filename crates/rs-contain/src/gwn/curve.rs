@@ -90,23 +90,31 @@ pub(crate) enum Outside {
     Far,
 }
 
-/// Where `q` lies against the convex polygon `p` (closed by `p[n] -> p[0]`, simple and convex
-/// with non-zero area): strictly outside an edge's line, and by more than `reach` (then `q` is
-/// farther than `reach` from the polygon). Computed in coordinates relative to `q`: a thin
-/// polygon far from the origin loses its area's sign to cancellation in absolute ones.
-fn outside_convex(p: &[Point], q: Point, reach: f64) -> Outside {
-    let n = p.len();
-    let area: f64 = (0..n).map(|i| (p[i] - q).cross(p[(i + 1) % n] - q)).sum();
+/// Twice the signed area of the polygon `p` (closed by `p[n] -> p[0]`), in coordinates
+/// relative to `p[0]`: a thin polygon far from the origin would lose its sign to cancellation
+/// in absolute ones.
+pub(crate) fn polygon_area(p: &[Point]) -> f64 {
+    let o = p[0];
+    p.windows(2)
+        .skip(1)
+        .map(|w| (w[0] - o).cross(w[1] - o))
+        .sum()
+}
+
+/// Where `q` lies against the convex polygon `p` (closed by `p[n] -> p[0]`, simple and convex,
+/// twice its signed area `area`, see [`polygon_area`]): strictly outside an edge's line, and by
+/// more than `reach` (then `q` is farther than `reach` from the polygon).
+fn outside_convex(p: &[Point], area: f64, q: Point, reach: f64) -> Outside {
     if area == 0.0 {
         return Outside::No;
     }
+    let n = p.len();
     let mut seen = Outside::No;
     for i in 0..n {
-        let (a, b) = (p[i] - q, p[(i + 1) % n] - q);
-        // (b - a) x (q - a) with q at the origin.
-        let c = a.cross(b);
+        let (a, b) = (p[i], p[if i + 1 == n { 0 } else { i + 1 }]);
+        let e = b - a;
+        let c = e.cross(q - a);
         if area * c < 0.0 {
-            let e = b - a;
             if c * c > reach * reach * e.dot(e) {
                 return Outside::Far;
             }
@@ -332,6 +340,10 @@ pub(crate) trait SubCurves {
     fn linear(&self, node: &Self::Node) -> bool {
         is_linear(self.points(node))
     }
+    /// Twice the signed area of its control polygon ([`polygon_area`]).
+    fn area(&self, node: &Self::Node) -> f64 {
+        polygon_area(self.points(node))
+    }
     /// Where `q` lies against its control bounding box, with `reach` (see [`Outside`]).
     fn outside_box(&self, node: &Self::Node, q: Point, reach: f64) -> Outside {
         let (lo, hi) = control_box(self.points(node));
@@ -450,7 +462,7 @@ pub(crate) fn settle<S: SubCurves, K: ChordSink>(
     }
     let mut outside = source.outside_box(c, q, sink.reach());
     if outside == Outside::No && convex {
-        outside = outside_convex(p, q, sink.reach());
+        outside = outside_convex(p, source.area(c), q, sink.reach());
     }
     if outside != Outside::No {
         if K::TRACKS_NEAR && outside == Outside::Near {

@@ -11,7 +11,7 @@ use smallvec::SmallVec;
 
 use super::curve::{
     Outside, SubCurve, SubCurves, control_box, is_linear, is_simple_convex, misses_cut,
-    outside_box_reach, refine_below, settle,
+    outside_box_reach, polygon_area, refine_below, settle,
 };
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
@@ -29,6 +29,8 @@ struct SubNode {
     hi: Point,
     /// Simple and convex, with the parent's flag inherited as the adaptive algorithm does.
     convex: bool,
+    /// Twice its control polygon's signed area ([`polygon_area`]).
+    area: f64,
     linear: bool,
     children: Option<(u32, u32)>,
 }
@@ -39,6 +41,7 @@ impl SubNode {
         let (lo, hi) = control_box(p);
         Self {
             convex: parent_convex || is_simple_convex(p),
+            area: polygon_area(p),
             linear: is_linear(p),
             lo,
             hi,
@@ -91,6 +94,9 @@ impl SubCurves for CurveHierarchy {
     }
     fn linear(&self, i: &u32) -> bool {
         self.nodes[*i as usize].linear
+    }
+    fn area(&self, i: &u32) -> f64 {
+        self.nodes[*i as usize].area
     }
     fn outside_box(&self, i: &u32, q: Point, reach: f64) -> Outside {
         let n = &self.nodes[*i as usize];
