@@ -5,8 +5,6 @@
 //! are absent, and fail instead where `INRS_REQUIRE_SYSTEM_FILES=1` (`.ci/run` installs
 //! `fonts-dejavu-core`, `fonts-freefont-otf` and `adwaita-icon-theme` and sets it).
 
-use std::path::{Path, PathBuf};
-
 use rs_contain::Locate;
 use rs_contain::{
     Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
@@ -17,7 +15,6 @@ use rs_testkit::{DensePolygon, NearBoundary};
 
 const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 const FREESANS: &str = "/usr/share/fonts/opentype/freefont/FreeSans.otf";
-const ADWAITA: &str = "/usr/share/icons/Adwaita";
 
 /// Classifies an `n x n` grid over the grown bounding box with every method; asserts they
 /// agree with each other and with the dense polygon away from the boundary. Returns the number
@@ -155,32 +152,12 @@ fn a_space_has_no_outline() {
     assert!(e.to_string().contains("not in the font"), "{e}");
 }
 
-fn svg_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let p = e.path();
-        if p.is_dir() {
-            svg_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "svg") {
-            out.push(p);
-        }
-    }
-}
-
 #[test]
 fn adwaita_icons_classify_like_the_dense_polygon() {
-    let mut files = Vec::new();
-    svg_files(Path::new(ADWAITA), &mut files);
+    let files = rs_testkit::adwaita_icons();
     if files.is_empty() {
-        rs_testkit::missing_system_files(
-            &format!("SVG icons under {ADWAITA}"),
-            "adwaita-icon-theme",
-        );
         return;
     }
-    files.sort();
     let (mut icons, mut empty, mut checked) = (0, 0, 0);
     for f in &files {
         match rs_io::svg::domain_from_svg_file(f) {

@@ -13,14 +13,12 @@
 //! as for filling) must equal our winding number, and their crossing parity our even-odd
 //! classification.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rs_contain::{Classifier, ContainOptions, FastWindingField, Location, Method};
 use rs_spline::{BoundingBox, Domain, Point};
 use rs_testkit::{DensePolygon, NearBoundary};
 use usvg::tiny_skia_path::{self, PathSegment};
-
-const ADWAITA: &str = "/usr/share/icons/Adwaita";
 
 /// Points per side of the grid classified in each icon.
 const GRID: usize = 64;
@@ -39,20 +37,6 @@ const PIECES: usize = 64;
 /// Icons our reader reads differently from `usvg` on purpose, with the reason (the file
 /// name). Each must still disagree or be refused, so that the list stays true.
 const EXCLUDED: &[(&str, &str)] = &[];
-
-fn svg_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let p = e.path();
-        if p.is_dir() {
-            svg_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "svg") {
-            out.push(p);
-        }
-    }
-}
 
 /// A 2-D affine map in `f64`: `(x, y) -> (a x + c y + e, b x + d y + f)`.
 #[derive(Clone, Copy, Debug)]
@@ -374,16 +358,10 @@ fn compare(file: &Path) -> Outcome {
 
 #[test]
 fn adwaita_icons_read_like_usvg_reads_them() {
-    let mut files = Vec::new();
-    svg_files(Path::new(ADWAITA), &mut files);
+    let files = rs_testkit::adwaita_icons();
     if files.is_empty() {
-        rs_testkit::missing_system_files(
-            &format!("SVG icons under {ADWAITA}"),
-            "adwaita-icon-theme",
-        );
         return;
     }
-    files.sort();
     let (mut agreed, mut empty, mut points) = (0, 0, 0);
     let mut failures = Vec::new();
     let mut excluded = Vec::new();

@@ -59,6 +59,37 @@ pub fn missing_system_files(what: &str, package: &str) {
     eprintln!("SKIPPED: {what} is missing; install {package}");
 }
 
+/// Where the Adwaita icon theme installs its SVG icons (Debian package `adwaita-icon-theme`).
+pub const ADWAITA_ICONS: &str = "/usr/share/icons/Adwaita";
+
+/// Every `.svg` file under [`ADWAITA_ICONS`], sorted; empty (after
+/// [`missing_system_files`], which fails under [`REQUIRE_SYSTEM_FILES`]) when none is installed.
+pub fn adwaita_icons() -> Vec<std::path::PathBuf> {
+    fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|x| x == "svg") {
+                out.push(p);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    walk(std::path::Path::new(ADWAITA_ICONS), &mut files);
+    if files.is_empty() {
+        missing_system_files(
+            &format!("SVG icons under {ADWAITA_ICONS}"),
+            "adwaita-icon-theme",
+        );
+    }
+    files.sort();
+    files
+}
+
 /// A [`Case`] from curves (panics if they do not form a domain).
 pub fn case(name: &str, curves: Vec<NurbsCurve>) -> Case {
     Case {
