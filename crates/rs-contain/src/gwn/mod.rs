@@ -100,9 +100,11 @@ pub struct WindingField {
     box_pieces: Vec<u32>,
     /// A bound on the rounding of coordinates near the boundary (a few ulps of the largest).
     rounding: f64,
+    /// The widest gap between consecutive pieces of a loop: the monotone boxes close every
+    /// joint, so they lie this far from the pieces at most.
+    joint_gap: f64,
     /// How far a query may be from the pieces and still be in the band: twice the tolerance,
-    /// the rounding, and the widest joint the monotone boxes closed (they meet exactly where
-    /// the pieces meet only within the domain's closure tolerance).
+    /// the rounding and the joint gap.
     reach: f64,
     /// Per piece: its whole curve as the adaptive algorithm's first sub-curve.
     roots: Vec<SubCurve>,
@@ -148,7 +150,8 @@ impl WindingField {
                 .fold(bbox.diagonal(), |m, v| m.max(v.abs()));
         let numbered = domain.bezier_pieces();
         let box_pieces = pieces_of_boxes(&numbered, &boxes);
-        let reach = 2.0 * tol + rounding + widest_joint(domain, &numbered);
+        let joint_gap = widest_joint(domain, &numbered);
+        let reach = 2.0 * tol + rounding + joint_gap;
         let pieces: Vec<RationalBezier> = numbered.into_iter().map(|(_, b)| b).collect();
         let grid = BoxGrid::new(boxes.boxes(), tol);
         let mut frames: Vec<PieceFrame> = pieces.iter().map(PieceFrame::of).collect();
@@ -159,6 +162,7 @@ impl WindingField {
             frames,
             box_pieces,
             rounding,
+            joint_gap,
             reach,
             roots: pieces.iter().map(SubCurve::of).collect(),
             open_chains: ChainEnds::new(

@@ -75,7 +75,8 @@ impl WindingField {
     /// `q` goes to its end, the first passage of a piece whose beginning lies near `q` and
     /// that starts there goes to its start. A piece lying wholly near `q` gets both.
     fn join_at_joints(&self, passages: &mut Passages, q: Point) {
-        let reach = self.passage_reach();
+        // Pieces of a loop meet within the joint gap.
+        let reach = self.passage_reach() + self.joint_gap;
         // Per piece: its range in `passages`, and whether its rest and its beginning lie near.
         let mut groups: SmallVec<[(usize, usize, bool, bool); 4]> = SmallVec::new();
         let mut k = 0;
