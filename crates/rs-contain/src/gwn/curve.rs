@@ -178,7 +178,7 @@ pub(crate) fn outside_by(lo: Point, hi: Point, q: Point, reach: f64) -> bool {
 /// interior angle over `2 pi` at a corner).
 pub(crate) fn convex_endpoint_winding(p: &[Point], q: Point) -> f64 {
     let n = p.len() - 1;
-    let area: f64 = (0..=n).map(|i| p[i].cross(p[(i + 1) % (n + 1)])).sum();
+    let area = polygon_area(p);
     // Directions from q: to the first control point past q (the start tangent), to the last
     // one before q (the reversed end tangent).
     let first = p.iter().find(|&&x| x != q).map(|&x| x - q);

@@ -257,8 +257,10 @@ impl<'a> FastWindingField<'a> {
     /// by its chord counts as one curve evaluation).
     pub fn winding_number_counted(&self, q: Point, stats: &mut QueryStats) -> f64 {
         let mut stack = [0; STACK];
-        let (mut sum, near) = self.crossing_sum(q, &[], &mut stack, stats);
-        if near && let Some(w) = self.band_winding_number(q, &mut stack, stats) {
+        let mut sum = self.crossing_sum(q, &[], &mut stack, stats);
+        if sum.near()
+            && let Some(w) = self.band_winding_number(q, &mut stack, stats)
+        {
             return w;
         }
         self.field
@@ -280,7 +282,7 @@ impl<'a> FastWindingField<'a> {
             return None;
         }
         let skip = super::passage_pieces(&passages);
-        let (mut sum, _) = self.crossing_sum(q, &skip, stack, stats);
+        let mut sum = self.crossing_sum(q, &skip, stack, stats);
         self.field.add_passages(q, &passages, &mut sum, stats);
         self.field
             .add_open_chain_ends(std::slice::from_mut(&mut sum));
@@ -288,9 +290,10 @@ impl<'a> FastWindingField<'a> {
     }
 
     /// The crossings and coincident pieces at `q` of every piece but those in `skip` (sorted),
-    /// without the open chains' ends, and whether `q` may be near a piece (only then may it be
-    /// in the band: a leaf's box holds every point near its piece, and its refinement tells
-    /// whether `q` comes within the field's reach of a settled sub-curve); `stack` is scratch for the walk
+    /// without the open chains' ends; the sum records whether `q` may be near a piece
+    /// ([`WindingSum::near`]: only then may it be in the band, as a leaf's box holds every point
+    /// near its piece and its refinement tells whether `q` comes within the field's reach of a
+    /// settled sub-curve); `stack` is scratch for the walk
     /// (a caller answering many points passes the same one: zeroing it per point was 3% of a
     /// query on small shapes).
     ///
@@ -303,7 +306,7 @@ impl<'a> FastWindingField<'a> {
         skip: &[u32],
         stack: &mut [u32; STACK],
         stats: &mut QueryStats,
-    ) -> (WindingSum, bool) {
+    ) -> WindingSum {
         let mut sum = WindingSum::tracking(q, self.field.near_reach());
         // A NaN ordinate takes the walk (no row is its).
         if let Some(rows) = self.rows.as_ref().filter(|_| !q.y.is_nan()) {
@@ -312,7 +315,7 @@ impl<'a> FastWindingField<'a> {
                     self.visit(i, q, skip, &mut sum, stats);
                 }
             }
-            return (sum, sum.near());
+            return sum;
         }
         // Depth-first, left child first: at most one pending right child per level, and the
         // tree is balanced (depth at most log2(pieces) + 1 < STACK).
@@ -329,7 +332,7 @@ impl<'a> FastWindingField<'a> {
                 len += 2;
             }
         }
-        (sum, sum.near())
+        sum
     }
 
     /// Adds to `sum` what node `i` holds for `q` when that takes no look inside it (nothing if
@@ -391,8 +394,10 @@ impl<'a> FastWindingField<'a> {
     /// once), which on shapes of many open curves takes about half the time of one point at a
     /// time.
     pub fn winding_numbers_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [f64]) {
-        self.sums_into(point, out, |q, sum, near, stack, stats| {
-            if near && let Some(w) = self.band_winding_number(q, stack, stats) {
+        self.sums_into(point, out, |q, sum, stack, stats| {
+            if sum.near()
+                && let Some(w) = self.band_winding_number(q, stack, stats)
+            {
                 return w;
             }
             sum.value()
@@ -400,27 +405,25 @@ impl<'a> FastWindingField<'a> {
     }
 
     /// For each group of [`BATCH`] points: their crossing sums, the open chains' ends added to
-    /// all at once, then `finish(q, sum, near, stack, stats)` per point writes its output.
+    /// all at once, then `finish(q, sum, stack, stats)` per point writes its output.
     #[inline(always)]
     fn sums_into<T>(
         &self,
         point: impl Fn(usize) -> Point,
         out: &mut [T],
-        finish: impl Fn(Point, &WindingSum, bool, &mut [u32; STACK], &mut QueryStats) -> T,
+        finish: impl Fn(Point, &WindingSum, &mut [u32; STACK], &mut QueryStats) -> T,
     ) {
         let mut stats = QueryStats::default();
         let mut sums = [WindingSum::new(Point::default()); BATCH];
-        let mut near = [false; BATCH];
         let mut stack = [0; STACK];
         for (g, group) in out.chunks_mut(BATCH).enumerate() {
             let sums = &mut sums[..group.len()];
             for (k, sum) in sums.iter_mut().enumerate() {
-                (*sum, near[k]) =
-                    self.crossing_sum(point(g * BATCH + k), &[], &mut stack, &mut stats);
+                *sum = self.crossing_sum(point(g * BATCH + k), &[], &mut stack, &mut stats);
             }
             self.field.add_open_chain_ends(sums);
-            for (k, (o, sum)) in group.iter_mut().zip(sums.iter()).enumerate() {
-                *o = finish(sum.q(), sum, near[k], &mut stack, &mut stats);
+            for (o, sum) in group.iter_mut().zip(sums.iter()) {
+                *o = finish(sum.q(), sum, &mut stack, &mut stats);
             }
         }
     }
@@ -470,9 +473,9 @@ impl FastWindingField<'_> {
     /// ([`FastWindingField::winding_numbers_indexed_into`]).
     pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
         let rule = self.field.fill_rule();
-        self.sums_into(point, out, |q, sum, near, _, _| {
-            // Only a query in a leaf's box may be in the band.
-            if near && self.field.is_on_boundary(q) {
+        self.sums_into(point, out, |q, sum, _, _| {
+            // Only a query the walk brought within reach of a piece may be in the band.
+            if sum.near() && self.field.is_on_boundary(q) {
                 return Location::Boundary;
             }
             self.field.location_from_winding(sum.value(), rule)
