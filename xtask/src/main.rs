@@ -115,7 +115,7 @@ fn check_fixture(
     for (n, expected) in counts {
         let pts = halton_points(n, bbox);
         let start = Instant::now();
-        let loc = classifier.classify(&pts, Method::InRS2);
+        let loc = classifier.locate_all_with(Method::InRS2, &pts);
         let elapsed = start.elapsed();
         let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
         let boundary = loc.iter().filter(|&&l| l == Location::Boundary).count();
@@ -188,7 +188,7 @@ fn demo(dir: &Path) -> Result<(), String> {
             .map_err(|e| format!("{}: {e}", path.display()))?;
         summaries.push(check_fixture(&stem, &meta, &classifier, &mut failures));
         let fig_pts = halton_points(1000, d.bounding_box());
-        let fig_loc = classifier.classify(&fig_pts, Method::Fast);
+        let fig_loc = classifier.locate_all_with(Method::Fast, &fig_pts);
         figures_written.extend(figures::domain_figures(
             &figures_dir,
             &stem,

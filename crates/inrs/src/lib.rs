@@ -23,8 +23,9 @@
 //! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
 //!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings.
 //!
-//! Plus [`Classify`] (containment methods on [`Domain`]), the points file reader
-//! [`parse_points`] and the domain summary printed by `inrs info`.
+//! Plus the points file readers ([`parse_points`]) and the domain summary printed by
+//! `inrs info`. Containment: build a [`Classifier`] and ask it through [`Locate`] (or
+//! [`Containment`] for every method and fill rule, as the command line does).
 //!
 //! # Examples
 //!
@@ -61,17 +62,17 @@ pub use rs_roots as roots;
 pub use rs_spline as spline;
 pub use rs_trispline as trispline;
 
-pub use rs_contain::{Classifier, ContainError, ContainOptions, Location, Method};
+pub use rs_contain::{
+    Classifier, ContainError, ContainOptions, Containment, Locate, Location, Method, PointQuery,
+};
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 
-mod classify;
 #[cfg(unix)]
 mod csv_file;
 mod npy;
 mod points_csv;
 mod summary;
 
-pub use classify::Classify;
 #[cfg(unix)]
 pub use csv_file::CsvPointsFile;
 #[cfg(unix)]
@@ -86,8 +87,9 @@ pub use points_csv::{
 };
 pub use summary::{DomainSummary, LoopSummary, significant};
 
-/// The traits most code wants in scope: the curve vocabulary of `rs-spline` and [`Classify`].
+/// The traits most code wants in scope: the curve vocabulary of `rs-spline` and the queries
+/// ([`Locate`], [`PointQuery`]).
 pub mod prelude {
-    pub use crate::Classify;
+    pub use rs_contain::{Locate, PointQuery};
     pub use rs_spline::prelude::*;
 }

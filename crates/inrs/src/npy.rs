@@ -322,6 +322,18 @@ impl<'a> EncodedPoints<'a> {
     }
 }
 
+/// Queries read the points by index straight from the bytes.
+impl rs_contain::PointSource for EncodedPoints<'_> {
+    #[inline]
+    fn len(&self) -> usize {
+        EncodedPoints::len(self)
+    }
+    #[inline]
+    fn point(&self, i: usize) -> Point {
+        EncodedPoints::point(self, i)
+    }
+}
+
 /// A `.npy` points file (as [`NpyPoints`] reads it) whose blocks are read by position, from
 /// any number of threads at once (`pread`): the copies of the file's data out of the
 /// operating system's cache, which dominate a fast computation on many points, then run on

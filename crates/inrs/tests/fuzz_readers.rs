@@ -104,8 +104,8 @@ fn exercise(d: &Domain) {
         Point::new(1e6, -1e6),
     ];
     if let Ok(c) = Classifier::new(d, ContainOptions::default()) {
-        let a = c.classify(&pts, Method::InRS2);
-        let b = c.classify(&pts, Method::InRS1);
+        let a = c.locate_all_with(Method::InRS2, &pts);
+        let b = c.locate_all_with(Method::InRS1, &pts);
         assert_eq!(a, b);
     }
     if let Ok(f) = WindingField::new(d, 1e-12) {

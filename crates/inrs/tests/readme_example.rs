@@ -13,7 +13,7 @@ fn readme_library_example() -> Result<(), Box<dyn std::error::Error>> {
     let classifier = Classifier::new(&domain, ContainOptions::default())?;
     let points = vec![inrs::Point::new(0.1, 0.2)];
     let a = classifier.locate_all(&points);
-    let b = classifier.classify(&points, Method::InRS2);
+    let b = classifier.locate_all_with(Method::InRS2, &points);
     let locator = classifier.locator();
     let c = locator.locate_all_parallel(&points);
     let d: Vec<Location> = locator.locate_iter(points.iter().copied()).collect();

@@ -23,7 +23,7 @@ fn bench(c: &mut Criterion) {
         for method in Method::ALL {
             group.bench_with_input(BenchmarkId::new(method.name(), name), &pts, |bch, pts| {
                 bch.iter(|| {
-                    let loc = classifier.classify(black_box(pts), method);
+                    let loc = classifier.locate_all_with(method, black_box(pts));
                     let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
                     assert_eq!(inside, expected);
                     inside

@@ -31,7 +31,7 @@ fn locator(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("inrs2", name), &pts, |bch, pts| {
             bch.iter(|| {
                 assert_eq!(
-                    inside(&classifier.classify(black_box(pts), Method::InRS2)),
+                    inside(&classifier.locate_all_with(Method::InRS2, black_box(pts))),
                     expected
                 )
             })

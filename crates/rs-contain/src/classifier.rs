@@ -6,12 +6,11 @@ use rs_spline::{BoundingBox, Domain, Point};
 use crate::rays::{Hit, horizontal, parity, vertical};
 use std::sync::{Arc, OnceLock};
 
-use crate::locate::in_parallel_chunks;
 use crate::locator::LocatorIndex;
 use crate::rows::{Rows, box_rows};
 use crate::{
-    ContainError, Decision, Locate, Location, LocatorOptions, Method, PointLocator, WindingField,
-    fast_uses_locator,
+    ContainError, Decision, Engine, FillRule, Locate, Location, LocatorOptions, Method,
+    PointLocator, PointQuery, PointSource, WindingField,
 };
 
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
@@ -35,15 +34,19 @@ pub struct ContainOptions {
     /// The method [`Locate::locate_all`] uses (all give the same answers; they differ in
     /// speed). Default [`Method::Fast`], as on the command line.
     pub method: Method,
+    /// The fill rule of [`Method::Gwn`] through [`Containment`](crate::Containment) (a
+    /// [`Classifier`] is even-odd). Default [`FillRule::EvenOdd`].
+    pub fill_rule: FillRule,
 }
 
 impl ContainOptions {
     /// Relative tolerance [`DEFAULT_RELATIVE_TOLERANCE`], one box per monotone piece,
-    /// [`Method::Fast`].
+    /// [`Method::Fast`], [`FillRule::EvenOdd`].
     pub const DEFAULT: ContainOptions = ContainOptions {
         relative_tolerance: DEFAULT_RELATIVE_TOLERANCE,
         subdivisions: DEFAULT_SUBDIVISIONS,
         method: Method::Fast,
+        fill_rule: FillRule::EvenOdd,
     };
 
     /// With another relative boundary tolerance.
@@ -63,6 +66,12 @@ impl ContainOptions {
         self.method = method;
         self
     }
+
+    /// With another fill rule for [`Method::Gwn`].
+    pub const fn with_fill_rule(mut self, fill_rule: FillRule) -> Self {
+        self.fill_rule = fill_rule;
+        self
+    }
 }
 
 impl Default for ContainOptions {
@@ -75,7 +84,8 @@ impl Default for ContainOptions {
 ///
 /// Build it once (monotone boxes, critical points, bounding box) and locate any number of
 /// points through [`Locate`] (one point, or a batch with the method of its options), or with
-/// [`Classifier::classify`] and a method of your choice (every method gives the same answers).
+/// [`Classifier::locate_all_with`] and a method of your choice (every method gives the same
+/// answers; [`Classifier::engine`] says which algorithm answers a batch).
 /// The winding-number field and the grid of [`Method::Fast`] are built on first use and kept.
 /// See the crate documentation for the exact semantics.
 ///
@@ -88,7 +98,7 @@ impl Default for ContainOptions {
 /// let c = Classifier::new(&d, ContainOptions::default()).unwrap();
 /// let pts = [Point::new(0.0, 0.0), Point::new(2.0, 0.0), Point::new(0.6, 0.8)];
 /// assert_eq!(
-///     c.classify(&pts, Method::InRS2),
+///     c.locate_all_with(Method::InRS2, &pts),
 ///     vec![Location::Inside, Location::Outside, Location::Boundary]
 /// );
 /// ```
@@ -241,50 +251,48 @@ impl Classifier {
         (loc, Decision::WindingNumber)
     }
 
-    /// Classifies `points` with the chosen method (rather than the one in the options); the
-    /// result is in input order and the same for every method.
-    pub fn classify(&self, points: &[Point], method: Method) -> Vec<Location> {
-        match method {
-            Method::InRS1 => points.iter().map(|&p| self.locate(p)).collect(),
-            Method::InRS2 => self.classify_sorted(points),
-            Method::Fast if fast_uses_locator(points.len()) => {
-                self.locator().locate_all_parallel(points)
-            }
-            Method::Fast => self.classify_sorted(points),
-            Method::Gwn => {
-                let field = self.winding_field();
-                points
-                    .iter()
-                    .map(|&p| {
-                        if self.outer.contains(p) {
-                            field.locate(p)
-                        } else {
-                            Location::Outside
-                        }
-                    })
-                    .collect()
-            }
+    /// The locations of `points` with `method` (rather than the one in the options), in input
+    /// order; the same for every method.
+    pub fn locate_all_with(&self, method: Method, points: &[Point]) -> Vec<Location> {
+        let mut out = vec![Location::Outside; points.len()];
+        match self.engine(method, points.len()) {
+            // A batch large enough for the grid is large enough to split over the threads.
+            Engine::Grid(l) => l.par_values_into(points, &mut out),
+            e => e.values_into(points, &mut out),
+        }
+        out
+    }
+
+    /// [`Method::Gwn`]'s location of one point: outside the grown bounding box, else from the
+    /// winding-number field (even-odd).
+    pub(crate) fn winding_location(&self, p: Point) -> Location {
+        if self.outer.contains(p) {
+            self.winding_field().locate(p)
+        } else {
+            Location::Outside
         }
     }
 
     /// inRS2: the points that need the vertical ray are sorted by abscissa; each box finds the
     /// points in its x-range (grown by the tolerance) by binary search and updates their
     /// parities. Points on critical abscissas take the fallbacks one by one.
-    fn classify_sorted(&self, points: &[Point]) -> Vec<Location> {
-        let mut out = vec![Location::Outside; points.len()];
+    pub(crate) fn sorted_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        assert_eq!(points.len(), out.len(), "one value per point");
+        out.fill(Location::Outside);
         let mut order: Vec<usize> = Vec::with_capacity(points.len());
-        for (i, &p) in points.iter().enumerate() {
+        for (i, o) in out.iter_mut().enumerate() {
+            let p = points.point(i);
             if !self.outer.contains(p) {
                 continue;
             }
             if self.boxes().is_critical_x(p.x, self.tol) {
-                out[i] = self.fallback(p).0;
+                *o = self.fallback(p).0;
             } else {
                 order.push(i);
             }
         }
-        order.sort_by(|&a, &b| points[a].x.total_cmp(&points[b].x));
-        let xs: Vec<f64> = order.iter().map(|&i| points[i].x).collect();
+        order.sort_by(|&a, &b| points.point(a).x.total_cmp(&points.point(b).x));
+        let xs: Vec<f64> = order.iter().map(|&i| points.point(i).x).collect();
         let mut odd = vec![false; order.len()];
         let mut on_boundary = vec![false; order.len()];
         let tol = self.tol;
@@ -292,7 +300,7 @@ impl Classifier {
             let lo = xs.partition_point(|&x| x < b.band.xmin - tol);
             let hi = xs.partition_point(|&x| x <= b.band.xmax + tol);
             for j in lo..hi {
-                let p = points[order[j]];
+                let p = points.point(order[j]);
                 if on_boundary[j] || p.y < b.band.ymin - tol {
                     continue;
                 }
@@ -310,27 +318,25 @@ impl Classifier {
                 location(Some(odd[j]))
             };
         }
-        out
     }
 }
 
-impl Locate for Classifier {
+impl PointQuery<Location> for Classifier {
     /// The inRS1 path for one point.
-    fn locate(&self, p: Point) -> Location {
+    fn value(&self, p: Point) -> Location {
         self.classify_point_with_decision(p).0
     }
 
-    /// With the method of the options.
-    fn locate_all(&self, points: &[Point]) -> Vec<Location> {
-        self.classify(points, self.method)
+    /// With the method of the options ([`Classifier::engine`]); a batch large enough for the
+    /// grid runs on all threads.
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        self.engine(self.method, points.len())
+            .values_into(points, out);
     }
 
-    fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
-        match self.method {
-            // Already parallel.
-            Method::Fast if fast_uses_locator(points.len()) => self.locate_all(points),
-            _ => in_parallel_chunks(self, points),
-        }
+    fn par_values_into<P: PointSource + Sync + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        self.engine(self.method, points.len())
+            .par_values_into(points, out);
     }
 }
 

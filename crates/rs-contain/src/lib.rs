@@ -47,27 +47,29 @@
 //! ```
 
 mod classifier;
+mod engine;
 mod error;
 mod filled_area;
 mod gwn;
 mod halton;
-mod locate;
 mod location;
 mod locator;
 mod polygon;
+mod query;
 mod rays;
 mod rows;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
+pub use engine::{Containment, Engine};
 pub use error::ContainError;
 pub use filled_area::{MAX_NESTED_LOOPS, even_odd_area};
 pub use gwn::{
     CurveHierarchy, FastWindingField, FillRule, HIERARCHY_DEPTH, QueryStats, WindingField,
-    curve_winding_number,
+    WindingNumbers, curve_winding_number,
 };
-pub use locate::Locate;
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method, fast_uses_locator};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
+pub use query::{Locate, PointQuery, PointSource, PointsFn, points_from_fn};
 
 /// What the papers compare against, and the points they compare on: kept out of the core API
 /// because no one should classify with them, but needed to reproduce the papers' tables.

@@ -16,7 +16,7 @@ use rs_testkit::{Case, DensePolygon, all_cases};
 /// and returns the common answer.
 fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
     let reference = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
-    let expected = reference.classify(pts, Method::InRS2);
+    let expected = reference.locate_all_with(Method::InRS2, pts);
     let fast_gwn = FastWindingField::new(reference.winding_field());
     for (i, e) in expected.iter().enumerate() {
         assert_eq!(
@@ -51,7 +51,7 @@ fn classify_all(case: &Case, pts: &[Point]) -> Vec<Location> {
         )
         .unwrap();
         for method in Method::ALL {
-            let got = c.classify(pts, method);
+            let got = c.locate_all_with(method, pts);
             for (i, (g, e)) in got.iter().zip(&expected).enumerate() {
                 assert_eq!(
                     g, e,
@@ -460,7 +460,7 @@ fn offsets_at_the_tolerance_agree_with_inrs2() {
                     pts.push(d.point - n * (1e-14 * size(&case)));
                 }
             }
-            let expected = c.classify(&pts, Method::InRS2);
+            let expected = c.locate_all_with(Method::InRS2, &pts);
             for cells in [64, 512] {
                 let loc = PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(cells));
                 for (i, (g, e)) in loc.locate_all(&pts).iter().zip(&expected).enumerate() {

@@ -365,8 +365,8 @@ fn gwn_containment_agrees_with_inrs_on_watertight_fixtures() {
         let d = fixture(name);
         let c = Classifier::new(&d, ContainOptions::default()).unwrap();
         let pts = halton_points(10_000, d.bounding_box());
-        let gwn = c.classify(&pts, Method::Gwn);
-        assert_eq!(gwn, c.classify(&pts, Method::InRS2), "{name}");
+        let gwn = c.locate_all_with(Method::Gwn, &pts);
+        assert_eq!(gwn, c.locate_all_with(Method::InRS2, &pts), "{name}");
         // Non-zero and even-odd agree on these simple closed shapes.
         let f = c.winding_field().clone().with_fill_rule(FillRule::NonZero);
         assert_eq!(f.locate_all(&pts), gwn, "{name}");

@@ -303,7 +303,7 @@ fn classify_and_gwn_agree_on_the_band() {
         let fast_field = FastWindingField::new(&gwn);
         let fast = fast_field.locate_all(&queries);
         for method in Method::ALL {
-            let by_method = classifier.classify(&queries, method);
+            let by_method = classifier.locate_all_with(method, &queries);
             for ((q, a), b) in queries.iter().zip(&by_method).zip(&fast) {
                 let on = field.is_on_boundary(*q);
                 assert_eq!(*a == Location::Boundary, on, "{method:?} at {q:?}");

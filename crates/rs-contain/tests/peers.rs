@@ -245,7 +245,7 @@ fn run_case(case: &Value, report: &mut Report) {
         let located: Vec<&Query> = queries.iter().filter(|q| q.location.is_some()).collect();
         let pts: Vec<Point> = located.iter().map(|q| q.point).collect();
         for method in Method::ALL {
-            let got = c.classify(&pts, method);
+            let got = c.locate_all_with(method, &pts);
             for (q, g) in located.iter().zip(got) {
                 let want = q.location.unwrap();
                 report.check(

@@ -54,7 +54,7 @@ fn inside_counts_match_the_reference_exactly() {
                     if method == Method::InRS1 && n > 10_000 {
                         continue; // O(MN): covered at the smaller sizes
                     }
-                    let loc = c.classify(&pts, method);
+                    let loc = c.locate_all_with(method, &pts);
                     let inside = loc.iter().filter(|&&l| l == Location::Inside).count();
                     let boundary = loc.iter().filter(|&&l| l == Location::Boundary).count();
                     assert_eq!(

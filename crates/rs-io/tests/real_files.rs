@@ -39,10 +39,10 @@ fn check_domain(name: &str, d: &Domain, n: usize) -> usize {
         .collect();
     let classifier =
         Classifier::new(d, ContainOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let expected = classifier.classify(&pts, Method::InRS2);
+    let expected = classifier.locate_all_with(Method::InRS2, &pts);
     for method in Method::ALL {
         assert_eq!(
-            classifier.classify(&pts, method),
+            classifier.locate_all_with(method, &pts),
             expected,
             "{name}: {method:?}"
         );

@@ -324,7 +324,7 @@ fn compare(file: &Path) -> Outcome {
         .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
     let field = FastWindingField::new(classifier.winding_field());
     let points: Vec<Point> = rows.iter().flatten().copied().collect();
-    let even_odd = classifier.classify(&points, Method::InRS2);
+    let even_odd = classifier.locate_all_with(Method::InRS2, &points);
     let mut compared = 0;
     let mut wrong = Vec::new();
     for ((p, w_usvg), loc) in points.iter().zip(expected.iter().flatten()).zip(&even_odd) {

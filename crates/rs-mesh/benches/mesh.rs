@@ -37,7 +37,7 @@ fn mesh(c: &mut Criterion) {
         let classifier = Classifier::new(&d, ContainOptions::default()).unwrap();
         let queries = halton_points(10_000, d.bounding_box());
         let inside = classifier
-            .classify(&queries, rs_contain::Method::InRS2)
+            .locate_all_with(rs_contain::Method::InRS2, &queries)
             .iter()
             .filter(|&&l| l != Location::Outside)
             .count();

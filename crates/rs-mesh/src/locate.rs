@@ -1,7 +1,6 @@
 //! Point location in a curved triangulation.
 
-use rs_contain::Locate;
-use rs_contain::{Classifier, ContainOptions, Location};
+use rs_contain::{Classifier, ContainOptions, Locate, Location, PointQuery};
 use rs_spline::grid::{CellIndex, GridFrame};
 use rs_spline::prelude::*;
 use rs_spline::{BoundingBox, Domain, Point, segment};
@@ -218,10 +217,10 @@ fn distance_to_triangle(m: &CurvedTriangulation, t: usize, p: Point) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-impl Locate for CurvedLocator<'_> {
+impl PointQuery<Location> for CurvedLocator<'_> {
     /// Containment in the curved triangulation's domain (the union of its curved triangles):
     /// the domain's own exact test, boundary band included.
-    fn locate(&self, p: Point) -> Location {
+    fn value(&self, p: Point) -> Location {
         self.domain.locate(p)
     }
 }

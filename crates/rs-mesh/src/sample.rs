@@ -132,7 +132,7 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
     interior.retain(|&p| !near.any_within(p, 0.5 * h));
     // All at once, by the library's fastest method for the count: a point at a time scanned
     // every monotone box (4 s of a 5 s mesh of the butterfly at ny = 300).
-    let located = band.classify(&interior, Method::Fast);
+    let located = band.locate_all_with(Method::Fast, &interior);
     let mut at = located.iter();
     interior.retain(|_| at.next() == Some(&Location::Inside));
     Ok(WellSpacedPoints {
@@ -184,7 +184,7 @@ pub fn halton_points_in(domain: &Domain, count: usize) -> Result<Vec<Point>, Mes
         batch.clear();
         batch.extend((next..next + n).map(candidate));
         next += n;
-        let located = classifier.classify(&batch, Method::Fast);
+        let located = classifier.locate_all_with(Method::Fast, &batch);
         for (&p, location) in batch.iter().zip(located) {
             if location == Location::Inside {
                 inside.push(p);

@@ -178,7 +178,7 @@ fn evaluations_per_query(md: &mut String, d: &Domain, pts: &[Point]) -> Result<(
 /// Fig. 14: every piece replaced by k equal-parameter chords, against the exact containment.
 fn fixed_linearisations(md: &mut String, d: &Domain, pts: &[Point]) -> Result<(), String> {
     let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
-    let exact = c.classify(pts, Method::Fast);
+    let exact = c.locate_all_with(Method::Fast, pts);
     let _ = writeln!(
         md,
         "\n### Misclassifications of fixed linearisations (GWN paper Fig. 14)\n\n`leaf_cubic`, \

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use inrs::contain::baselines::halton_points;
-use inrs::contain::{Locate, LocatorOptions, PointLocator};
+use inrs::contain::{Locate, LocatorOptions, PointLocator, PointQuery};
 use inrs::{Classifier, ContainOptions, Domain, Location, Method};
 
 use super::{BenchOptions, interleaved_times, median_time};
@@ -49,7 +49,7 @@ pub(super) fn single_thread(
         let c = Classifier::new(d, ContainOptions::default()).map_err(|e| e.to_string())?;
         let pts = halton_points(n, d.bounding_box());
         let t2 = median_time(o.reps.min(3), || {
-            std::hint::black_box(c.classify(&pts, Method::InRS2));
+            std::hint::black_box(c.locate_all_with(Method::InRS2, &pts));
         });
         let tb = median_time(o.reps, || {
             std::hint::black_box(PointLocator::new(&c, LocatorOptions::default()).cells());
@@ -70,7 +70,7 @@ pub(super) fn single_thread(
             std::hint::black_box(loc.locate_all(pts));
         }));
         runs.push(Box::new(move || {
-            loc.locate_into(pts, kept);
+            loc.values_into(&pts[..], kept);
             std::hint::black_box(&*kept);
         }));
         runs.push(Box::new(move || {
@@ -167,7 +167,7 @@ pub(super) fn refinement_sweep(
             let c = Classifier::new(d, ContainOptions::DEFAULT.with_subdivisions(k))
                 .map_err(|e| e.to_string())?;
             let t = median_time(o.reps, || {
-                std::hint::black_box(c.classify(&pts, Method::InRS2));
+                std::hint::black_box(c.locate_all_with(Method::InRS2, &pts));
             });
             if k == 1 {
                 base = t;

@@ -57,8 +57,8 @@ pub(super) fn measure(
                 let mut inside = 0;
                 let seconds = median_time(o.reps, || {
                     inside = match path {
-                        "inrs1" => count_inside(&c.classify(&pts, Method::InRS1)),
-                        "inrs2" => count_inside(&c.classify(&pts, Method::InRS2)),
+                        "inrs1" => count_inside(&c.locate_all_with(Method::InRS1, &pts)),
+                        "inrs2" => count_inside(&c.locate_all_with(Method::InRS2, &pts)),
                         "polygon" => poly.classify(&pts).iter().filter(|&&b| b).count(),
                         "locator" => count_inside(
                             &PointLocator::new(&c, LocatorOptions::default()).locate_all(&pts),
@@ -67,7 +67,7 @@ pub(super) fn measure(
                             &PointLocator::new(&c, LocatorOptions::default())
                                 .locate_all_parallel(&pts),
                         ),
-                        _ => count_inside(&c.classify(&pts, Method::Gwn)),
+                        _ => count_inside(&c.locate_all_with(Method::Gwn, &pts)),
                     }
                 });
                 rows.insert((name.clone(), n, path), Row { seconds, inside });

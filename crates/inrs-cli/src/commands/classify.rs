@@ -4,13 +4,12 @@ use std::path::PathBuf;
 
 use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
-use inrs::contain::{FastWindingField, PointLocator, WindingField, fast_uses_locator};
-use inrs::{Classifier, ContainOptions, Location, Method, NpyType, Point};
+use inrs::{ContainOptions, Containment, Location, NpyType};
 
 use crate::args::{DomainArg, FillRuleArg, MethodArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
-use crate::stream::{ByIndex, Column, IndexedQuery, PointsInput, stream_points};
+use crate::stream::{Column, PointsInput, stream_points};
 
 /// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order.
 #[derive(Args, Debug)]
@@ -67,53 +66,15 @@ impl Column<Location> for Locations {
 impl ClassifyArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let d = self.domain.load()?;
-        let output = self.output.as_deref();
         let input = PointsInput::open(&self.points)?;
-        let method = Method::from(self.method);
-        if method == Method::Gwn {
-            // Open boundaries are fine here: no closed-domain classifier is built.
-            let field = WindingField::new(&d, self.tol)
-                .map_err(|e| self.domain.error(e))?
-                .with_fill_rule(self.fill_rule.into());
-            let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &Locations, &ByIndex(fast));
-        }
         let options = ContainOptions::DEFAULT
             .with_relative_tolerance(self.tol)
             .with_subdivisions(self.subdivisions)
-            .with_method(method);
-        let classifier = Classifier::new(&d, options).map_err(|e| self.domain.error(e))?;
-        // The fast method takes the grid for inputs large enough to pay for it (built once,
-        // kept by the classifier), inRS2 for small ones: the answers are the same.
-        if method == Method::Fast && fast_uses_locator(input.estimated_points()) {
-            return stream_points(input, output, &Locations, &ByIndex(classifier.locator()));
-        }
-        let method = if method == Method::Fast {
-            Method::InRS2
-        } else {
-            method
-        };
-        stream_points(
-            input,
-            output,
-            &Locations,
-            &|pts: &[Point], out: &mut [Location]| {
-                out.copy_from_slice(&classifier.classify(pts, method));
-            },
-        )
-    }
-}
-
-/// The grid locator reads its points by index.
-impl IndexedQuery<Location> for PointLocator<'_> {
-    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
-        self.locate_indexed_into(point, out);
-    }
-}
-
-/// The accelerated winding field's locations (`--method gwn`), by index.
-impl IndexedQuery<Location> for FastWindingField<'_> {
-    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
-        self.locate_indexed_into(point, out);
+            .with_method(self.method.into())
+            .with_fill_rule(self.fill_rule.into());
+        let containment = Containment::new(&d, options).map_err(|e| self.domain.error(e))?;
+        // The library picks the algorithm for the whole stream's size.
+        let engine = containment.engine(input.estimated_points());
+        stream_points(input, self.output.as_deref(), &Locations, &engine)
     }
 }

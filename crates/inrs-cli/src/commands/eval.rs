@@ -2,10 +2,13 @@
 
 use std::path::PathBuf;
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use clap::Args;
-use inrs::NpyType;
+use inrs::contain::PointSource;
 use inrs::trispline::bb::{Jet, Order};
-use inrs::trispline::load_spline;
+use inrs::trispline::{SplineEvaluator, load_spline};
+use inrs::{NpyType, Point, PointQuery};
 
 use crate::cli::error::CliError;
 use crate::stream::{Column, PointsInput, stream_points, write_f64};
@@ -89,26 +92,48 @@ impl EvalArgs {
         } else {
             Order::Value
         };
-        let outside = std::sync::atomic::AtomicUsize::new(0);
+        let values = Values {
+            eval: &eval,
+            order,
+            outside: AtomicUsize::new(0),
+        };
         stream_points(
             input,
             self.output.as_deref(),
             &Jets {
                 gradient: self.derivatives,
             },
-            &|pts: &[inrs::Point], out: &mut [Option<Jet>]| {
-                let mut missed = 0;
-                for (o, &p) in out.iter_mut().zip(pts) {
-                    *o = eval.evaluate(p, order);
-                    missed += usize::from(o.is_none());
-                }
-                outside.fetch_add(missed, std::sync::atomic::Ordering::Relaxed);
-            },
+            &values,
         )?;
-        let outside = outside.into_inner();
+        let outside = values.outside.into_inner();
         if outside > 0 {
             eprintln!("{outside} points outside the domain: their values are nan");
         }
         Ok(())
+    }
+}
+
+/// The spline's value (and gradient) at each point, counting the points outside the domain.
+struct Values<'a> {
+    eval: &'a SplineEvaluator<'a>,
+    order: Order,
+    outside: AtomicUsize,
+}
+
+impl PointQuery<Option<Jet>> for Values<'_> {
+    fn value(&self, p: Point) -> Option<Jet> {
+        let v = self.eval.evaluate(p, self.order);
+        self.outside
+            .fetch_add(usize::from(v.is_none()), Ordering::Relaxed);
+        v
+    }
+
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Option<Jet>]) {
+        let mut missed = 0;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.eval.evaluate(points.point(i), self.order);
+            missed += usize::from(o.is_none());
+        }
+        self.outside.fetch_add(missed, Ordering::Relaxed);
     }
 }

@@ -3,14 +3,13 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use inrs::contain::baselines::WindingAlgorithm;
-use inrs::contain::{FastWindingField, QueryStats, WindingField};
-use inrs::{NpyType, Point};
+use inrs::NpyType;
+use inrs::contain::WindingField;
 
 use crate::args::{AlgorithmArg, DomainArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_tolerance};
-use crate::stream::{ByIndex, Column, IndexedQuery, PointsInput, stream_points, write_f64};
+use crate::stream::{Column, PointsInput, stream_points, write_f64};
 
 /// Generalized winding number of every point; writes CSV `x,y,winding`.
 ///
@@ -67,29 +66,7 @@ impl WindingArgs {
         let d = self.domain.load()?;
         let input = PointsInput::open(&self.points)?;
         let field = WindingField::new(&d, self.tol).map_err(|e| self.domain.error(e))?;
-        let algorithm: WindingAlgorithm = self.algorithm.into();
-        let output = self.output.as_deref();
-        if algorithm == WindingAlgorithm::Adaptive {
-            let fast = FastWindingField::new(&field);
-            return stream_points(input, output, &Windings, &ByIndex(fast));
-        }
-        stream_points(
-            input,
-            output,
-            &Windings,
-            &|pts: &[Point], out: &mut [f64]| {
-                let mut stats = QueryStats::default();
-                for (o, &q) in out.iter_mut().zip(pts) {
-                    *o = field.winding_number_with(q, algorithm, &mut stats);
-                }
-            },
-        )
-    }
-}
-
-/// The accelerated field's winding numbers, by index.
-impl IndexedQuery<f64> for FastWindingField<'_> {
-    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [f64]) {
-        self.winding_numbers_indexed_into(point, out);
+        let numbers = field.winding_numbers_by(self.algorithm.into());
+        stream_points(input, self.output.as_deref(), &Windings, &numbers)
     }
 }

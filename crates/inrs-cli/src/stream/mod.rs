@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{Receiver, Sender};
 use std::time::{Duration, Instant};
 
-use inrs::{CsvBlock, NpyType, ParsedBlock, Point, PointsError};
+use inrs::{CsvBlock, NpyType, ParsedBlock, Point, PointQuery, PointsError};
 
 use crate::cli::error::CliError;
 
@@ -29,10 +29,9 @@ use spares::Spares;
 const NPY_READ_POINTS: usize = 1 << 12;
 #[cfg(unix)]
 thread_local! {
-    /// Each worker's buffers for the `.npy` ranges it reads (the bytes, and the points for a
-    /// computation that reads them from a slice), kept from task to task (fresh ones cost a
-    /// page fault per 4 KiB and zero-filling).
-    static NPY_SCRATCH: std::cell::RefCell<(Vec<u8>, Vec<Point>)> = Default::default();
+    /// Each worker's buffer for the bytes of the `.npy` ranges it reads, kept from task to
+    /// task (a fresh one costs a page fault per 4 KiB and zero-filling).
+    static NPY_SCRATCH: std::cell::RefCell<Vec<u8>> = Default::default();
 }
 thread_local! {
     /// Each worker's parsed CSV block (points and field positions), kept from task to task.
@@ -63,53 +62,6 @@ pub(crate) trait Column<T>: Sync {
     fn npy(&self, values: &[T], out: &mut Vec<u8>);
 }
 
-/// What a streamed command computes: one value per point. Any `Fn(&[Point], &mut [T])` is
-/// one; a computation that can read its points one at a time (a locator's indexed query)
-/// also takes them straight from a `.npy` file's bytes, without copying them into points.
-pub(crate) trait PointsKernel<T>: Sync {
-    /// Writes to `out[i]` the value of `points[i]`.
-    fn compute(&self, points: &[Point], out: &mut [T]);
-
-    /// Writes to `out[i]` the value of `points.point(i)`; by default through `scratch`.
-    fn compute_encoded(
-        &self,
-        points: inrs::EncodedPoints<'_>,
-        scratch: &mut Vec<Point>,
-        out: &mut [T],
-    ) {
-        scratch.clear();
-        points.append_to(scratch);
-        self.compute(scratch, out);
-    }
-}
-
-impl<T, F: Fn(&[Point], &mut [T]) + Sync> PointsKernel<T> for F {
-    fn compute(&self, points: &[Point], out: &mut [T]) {
-        self(points, out);
-    }
-}
-
-/// A computation that reads its points one at a time by index (the library's
-/// `*_indexed_into` queries), so that it runs on a slice of points and straight on a `.npy`
-/// file's bytes alike: as a [`PointsKernel`] through [`ByIndex`].
-pub(crate) trait IndexedQuery<T>: Sync {
-    /// Writes to `out[i]` the value of `point(i)`.
-    fn query_into(&self, point: impl Fn(usize) -> Point, out: &mut [T]);
-}
-
-/// An [`IndexedQuery`] as a streamed computation.
-pub(crate) struct ByIndex<Q>(pub(crate) Q);
-
-impl<T, Q: IndexedQuery<T>> PointsKernel<T> for ByIndex<Q> {
-    fn compute(&self, points: &[Point], out: &mut [T]) {
-        self.0.query_into(|i| points[i], out);
-    }
-
-    fn compute_encoded(&self, points: inrs::EncodedPoints<'_>, _: &mut Vec<Point>, out: &mut [T]) {
-        self.0.query_into(|i| points.point(i), out);
-    }
-}
-
 /// Streams `input` through `compute` (one value per point, in order) and writes `x,y,value`
 /// CSV rows (the coordinates echoed as written), or, when `output` ends in `.npy`, the values
 /// as a 1-D `.npy` array.
@@ -123,7 +75,7 @@ impl<T, Q: IndexedQuery<T>> PointsKernel<T> for ByIndex<Q> {
 /// once. Memory is bounded: a chunk is taken only while fewer than [`chunks_in_flight`]
 /// chunks before it are unwritten. The byte buffers (chunks read, results formatted) go back to
 /// two bounded pools once used.
-pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointsKernel<T>>(
+pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointQuery<T>>(
     input: PointsInput,
     output: Option<&Path>,
     column: &C,
@@ -268,7 +220,7 @@ struct Stage<'a, C, K> {
 /// A worker: takes the next chunk, computes and formats it, and hands the result to the
 /// ordered writing (writing it, and any that came before it and waited, if it is next), until
 /// the chunks run out or the run fails. Claimed chunks count as read, for the progress.
-fn work<T: Copy, C: Column<T>, K: PointsKernel<T>>(
+fn work<T: Copy, C: Column<T>, K: PointQuery<T>>(
     tasks: &Tasks,
     stage: &Stage<'_, C, K>,
     in_order: &InOrder,
@@ -318,7 +270,7 @@ impl Drop for FailOnPanic<'_> {
 }
 
 /// Parses (CSV), computes and formats a chunk read in order.
-fn compute_sent<T: Copy, C: Column<T>, K: PointsKernel<T>>(
+fn compute_sent<T: Copy, C: Column<T>, K: PointQuery<T>>(
     chunk: Chunk,
     stage: &Stage<'_, C, K>,
 ) -> Result<Formatted, PointsError> {
@@ -342,7 +294,7 @@ fn compute_sent<T: Copy, C: Column<T>, K: PointsKernel<T>>(
 
 /// Reads chunk `k` of a file by position, parses (CSV), computes and formats it.
 #[cfg(unix)]
-fn compute_claimed<T: Copy, C: Column<T>, K: PointsKernel<T>>(
+fn compute_claimed<T: Copy, C: Column<T>, K: PointQuery<T>>(
     positional: &Positional,
     k: usize,
     stage: &Stage<'_, C, K>,
@@ -360,14 +312,15 @@ fn compute_claimed<T: Copy, C: Column<T>, K: PointsKernel<T>>(
             let parse = |parsed: &mut ParsedBlock| file.parse_block(k, block, parsed);
             csv_block(block, parse, format, column, kernel, results.take())
         }),
-        Positional::Npy(file) => NPY_SCRATCH.with_borrow_mut(|(bytes, points)| {
+        Positional::Npy(file) => NPY_SCRATCH.with_borrow_mut(|bytes| {
             let (first, n) = source::npy_chunk(file, k);
             let mut values = vec![column.initial(); n];
             let mut out = results.take();
             for (j, values) in values.chunks_mut(NPY_READ_POINTS).enumerate() {
                 let at = first + j * NPY_READ_POINTS;
                 let encoded = file.read_encoded(at, values.len(), bytes)?;
-                kernel.compute_encoded(encoded, points, values);
+                // Read by index from the bytes: never copied into points.
+                kernel.values_into(&encoded, values);
                 let point = |i| encoded.point(i);
                 format_values(values, format, column, point, &mut out);
             }
@@ -422,13 +375,13 @@ fn csv_block<T: Copy, C: Column<T>>(
     parse: impl FnOnce(&mut ParsedBlock) -> Result<(), PointsError>,
     format: Format,
     column: &C,
-    kernel: &impl PointsKernel<T>,
+    kernel: &impl PointQuery<T>,
     mut bytes: Vec<u8>,
 ) -> Result<(Vec<u8>, usize), PointsError> {
     CSV_SCRATCH.with_borrow_mut(|parsed| {
         parse(parsed)?;
         let mut values = vec![column.initial(); parsed.points.len()];
-        kernel.compute(&parsed.points, &mut values);
+        kernel.values_into(&parsed.points, &mut values);
         if format == Format::Npy {
             npy_values(&values, column, &mut bytes);
             return Ok((bytes, values.len()));
@@ -457,11 +410,11 @@ fn npy_points<T: Copy, C: Column<T>>(
     points: &[Point],
     format: Format,
     column: &C,
-    kernel: &impl PointsKernel<T>,
+    kernel: &impl PointQuery<T>,
     mut bytes: Vec<u8>,
 ) -> (Vec<u8>, usize) {
     let mut values = vec![column.initial(); points.len()];
-    kernel.compute(points, &mut values);
+    kernel.values_into(points, &mut values);
     format_values(&values, format, column, |i| points[i], &mut bytes);
     (bytes, points.len())
 }

@@ -16,7 +16,7 @@ use super::curve::{
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
 use crate::rows::Rows;
-use crate::{Locate, Location};
+use crate::{Location, PointQuery, PointSource};
 
 /// Levels of each piece's precomputed subdivision hierarchy (`2^(d+1) - 1` sub-curves).
 pub const HIERARCHY_DEPTH: u32 = 6;
@@ -379,29 +379,19 @@ impl<'a> FastWindingField<'a> {
     }
 
     /// Winding numbers of many points, in input order, on the current thread: each equal to
-    /// [`FastWindingField::winding_number`]'s (see
-    /// [`FastWindingField::winding_numbers_indexed_into`]).
+    /// [`FastWindingField::winding_number`]'s (the batch of [`PointQuery`]`<f64>`).
     pub fn winding_numbers(&self, points: &[Point]) -> Vec<f64> {
         let mut out = vec![0.0; points.len()];
-        self.winding_numbers_indexed_into(|i| points[i], &mut out);
+        self.values_into(points, &mut out);
         out
     }
 
-    /// The winding numbers of the points `point(0), point(1), ...` written to `out`, for points
-    /// held in any layout, without copying them: each equal to
-    /// [`FastWindingField::winding_number`]'s. The open chains' ends are added for
-    /// eight points at a time (one pass over the chains, each step done for the eight at
-    /// once), which on shapes of many open curves takes about half the time of one point at a
-    /// time.
-    pub fn winding_numbers_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [f64]) {
-        self.sums_into(point, out, |q, sum, stack, stats| {
-            if sum.near()
-                && let Some(w) = self.band_winding_number(q, stack, stats)
-            {
-                return w;
-            }
-            sum.value()
-        });
+    /// Winding numbers of many points on the calling thread and rayon's pool (with the
+    /// `parallel` feature, on by default; otherwise on the current thread).
+    pub fn winding_numbers_parallel(&self, points: &[Point]) -> Vec<f64> {
+        let mut out = vec![0.0; points.len()];
+        self.par_values_into(points, &mut out);
+        out
     }
 
     /// For each group of [`BATCH`] points: their crossing sums, the open chains' ends added to
@@ -428,52 +418,41 @@ impl<'a> FastWindingField<'a> {
         }
     }
 
-    /// Winding numbers of many points, split over rayon's thread pool (with the `parallel`
-    /// feature, on by default; otherwise on the current thread).
-    pub fn winding_numbers_parallel(&self, points: &[Point]) -> Vec<f64> {
-        let mut out = vec![0.0; points.len()];
-        self.winding_numbers_indexed_parallel_into(|i| points[i], &mut out);
-        out
+}
+
+impl PointQuery<f64> for FastWindingField<'_> {
+    /// [`FastWindingField::winding_number`].
+    fn value(&self, q: Point) -> f64 {
+        self.winding_number(q)
     }
 
-    /// [`FastWindingField::winding_numbers_indexed_into`] on chunks of 4096 points, on the
-    /// calling thread and rayon's pool together (with the `parallel` feature; otherwise on the
-    /// current thread).
-    pub fn winding_numbers_indexed_parallel_into(
-        &self,
-        point: impl Fn(usize) -> Point + Sync,
-        out: &mut [f64],
-    ) {
-        #[cfg(feature = "parallel")]
-        crate::locate::on_caller_and_pool(out, 4096, |first, o| {
-            self.winding_numbers_indexed_into(|i| point(first + i), o)
+    /// The open chains' ends are added for eight points at a time (one pass over the chains,
+    /// each step done for the eight at once), which on shapes of many open curves takes about
+    /// half the time of one point at a time.
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [f64]) {
+        assert_eq!(points.len(), out.len(), "one value per point");
+        self.sums_into(|i| points.point(i), out, |q, sum, stack, stats| {
+            if sum.near()
+                && let Some(w) = self.band_winding_number(q, stack, stats)
+            {
+                return w;
+            }
+            sum.value()
         });
-        #[cfg(not(feature = "parallel"))]
-        self.winding_numbers_indexed_into(point, out);
     }
 }
 
-impl Locate for FastWindingField<'_> {
-    /// As the [`WindingField`]'s [`Locate`], with its fill rule, from the fast winding number.
-    fn locate(&self, q: Point) -> Location {
+impl PointQuery<Location> for FastWindingField<'_> {
+    /// As the [`WindingField`]'s [`Locate`](crate::Locate), with its fill rule, from the fast winding number.
+    fn value(&self, q: Point) -> Location {
         self.location(q, || self.winding_number(q))
     }
 
-    /// See [`FastWindingField::locate_indexed_into`].
-    fn locate_all(&self, points: &[Point]) -> Vec<Location> {
-        let mut out = vec![Location::Outside; points.len()];
-        self.locate_indexed_into(|i| points[i], &mut out);
-        out
-    }
-}
-
-impl FastWindingField<'_> {
-    /// The locations of the points `point(0), point(1), ...` written to `out`, each as
-    /// [`Locate::locate`] gives it, the winding numbers computed together
-    /// ([`FastWindingField::winding_numbers_indexed_into`]).
-    pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
+    /// The winding numbers computed together, as for [`PointQuery`]`<f64>`.
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        assert_eq!(points.len(), out.len(), "one value per point");
         let rule = self.field.fill_rule();
-        self.sums_into(point, out, |q, sum, _, _| {
+        self.sums_into(|i| points.point(i), out, |q, sum, _, _| {
             // Only a query the walk brought within reach of a piece may be in the band.
             if sum.near() && self.field.is_on_boundary(q) {
                 return Location::Boundary;
@@ -481,7 +460,9 @@ impl FastWindingField<'_> {
             self.field.location_from_winding(sum.value(), rule)
         });
     }
+}
 
+impl FastWindingField<'_> {
     /// The location of `q`, from its winding number `w()` unless `q` is on the boundary.
     fn location(&self, q: Point, w: impl FnOnce() -> f64) -> Location {
         if self.field.is_on_boundary(q) {

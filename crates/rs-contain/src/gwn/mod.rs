@@ -14,7 +14,7 @@ use std::sync::Arc;
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
-use crate::{ContainError, Locate, Location};
+use crate::{ContainError, Location, PointQuery, PointSource};
 use curve::{SubCurve, control_box, misses_cut, refine};
 use sum::{ChainEnds, WindingSum};
 
@@ -324,13 +324,58 @@ impl WindingField {
     }
 }
 
-impl Locate for WindingField {
+impl PointQuery<Location> for WindingField {
     /// Boundary within the tolerance, otherwise the rounded winding number and the fill rule.
-    fn locate(&self, q: Point) -> Location {
+    fn value(&self, q: Point) -> Location {
         if self.is_on_boundary(q) {
             return Location::Boundary;
         }
         self.location_from_winding(self.winding_number(q), self.rule)
+    }
+}
+
+impl WindingField {
+    /// What answers winding-number queries with `algorithm`: the accelerated field
+    /// ([`FastWindingField`]) for [`WindingAlgorithm::Adaptive`], the field itself for the
+    /// ray-casting baselines.
+    pub fn winding_numbers_by(&self, algorithm: WindingAlgorithm) -> WindingNumbers<'_> {
+        match algorithm {
+            WindingAlgorithm::Adaptive => WindingNumbers::Fast(FastWindingField::new(self)),
+            other => WindingNumbers::Baseline(self, other),
+        }
+    }
+}
+
+/// Winding numbers with a chosen algorithm, as a [`PointQuery`]`<f64>`: see
+/// [`WindingField::winding_numbers_by`].
+pub enum WindingNumbers<'a> {
+    /// The accelerated adaptive algorithm.
+    Fast(FastWindingField<'a>),
+    /// A ray-casting baseline of the field.
+    Baseline(&'a WindingField, WindingAlgorithm),
+}
+
+impl PointQuery<f64> for WindingNumbers<'_> {
+    fn value(&self, q: Point) -> f64 {
+        match self {
+            WindingNumbers::Fast(f) => f.winding_number(q),
+            WindingNumbers::Baseline(field, a) => {
+                field.winding_number_with(q, *a, &mut QueryStats::default())
+            }
+        }
+    }
+
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [f64]) {
+        match self {
+            WindingNumbers::Fast(f) => f.values_into(points, out),
+            WindingNumbers::Baseline(field, a) => {
+                assert_eq!(points.len(), out.len(), "one value per point");
+                let mut stats = QueryStats::default();
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = field.winding_number_with(points.point(i), *a, &mut stats);
+                }
+            }
+        }
     }
 }
 

@@ -259,7 +259,7 @@ impl Columns {
         self.runs = vec![OUTSIDE; self.rows.len() + self.n];
         for (slot, l) in slots
             .into_iter()
-            .zip(classifier.classify(&centers, Method::InRS2))
+            .zip(classifier.locate_all_with(Method::InRS2, &centers))
         {
             self.runs[slot] = match l {
                 Location::Inside => INSIDE,
@@ -418,7 +418,7 @@ mod tests {
                                 origin.x + (col as f64 + 0.5) * cw,
                                 origin.y + (r as f64 + 0.5) * ch,
                             );
-                            let expected = match c.classify(&[centre], Method::InRS2)[0] {
+                            let expected = match c.locate_all_with(Method::InRS2, &[centre])[0] {
                                 Location::Inside => INSIDE,
                                 _ => OUTSIDE,
                             };
@@ -502,7 +502,7 @@ mod tests {
                 "a cell of the run at {p:?}"
             );
         }
-        let expected = c.classify(&pts, Method::InRS2);
+        let expected = c.locate_all_with(Method::InRS2, &pts);
         assert!(expected.contains(&Location::Inside));
         assert_eq!(crate::Locate::locate_all(&loc, &pts), expected);
     }

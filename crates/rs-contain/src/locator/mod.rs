@@ -6,7 +6,7 @@ use std::borrow::Cow;
 use rs_spline::Point;
 use rs_spline::grid::GridFrame;
 
-use crate::{Classifier, Locate, Location};
+use crate::{Classifier, Location, PointQuery, PointSource};
 
 mod build;
 
@@ -119,7 +119,7 @@ impl Default for LocatorOptions {
 /// let c = Classifier::new(&d, ContainOptions::default()).unwrap();
 /// let loc = PointLocator::new(&c, LocatorOptions::DEFAULT.with_cells(64));
 /// let pts = [Point::new(0.0, 0.0), Point::new(0.9, 0.0), Point::new(1.0, 0.0)];
-/// assert_eq!(loc.locate_all(&pts), c.classify(&pts, Method::InRS2));
+/// assert_eq!(loc.locate_all(&pts), c.locate_all_with(Method::InRS2, &pts));
 /// assert_eq!(loc.locate_all(&pts), vec![Location::Inside, Location::Inside, Location::Boundary]);
 /// ```
 #[derive(Clone, Debug)]
@@ -456,63 +456,35 @@ impl<'a> PointLocator<'a> {
     }
 }
 
-impl Locate for PointLocator<'_> {
+impl PointQuery<Location> for PointLocator<'_> {
     /// The location of one point (same as [`Method::InRS2`](crate::Method::InRS2)).
-    fn locate(&self, p: Point) -> Location {
+    fn value(&self, p: Point) -> Location {
         self.locate_point(p)
     }
 
-    /// See [`PointLocator::locate_into`].
-    fn locate_all(&self, points: &[Point]) -> Vec<Location> {
-        let mut out = vec![Location::Outside; points.len()];
-        self.locate_into(points, &mut out);
-        out
-    }
-
-    /// [`PointLocator::locate_into`] on chunks of 65536 points spread over rayon's pool (with
-    /// the `parallel` feature; otherwise on the current thread), writing in place.
-    fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
-        let mut out = vec![Location::Outside; points.len()];
-        // Slices of the points rather than `locate_indexed_parallel_into`'s index closure:
-        // measured on two cores, 1.85-1.9x one thread's speed against 1.6x.
-        #[cfg(feature = "parallel")]
-        crate::locate::on_caller_and_pool(&mut out, PARALLEL_TASK, |first, o| {
-            self.locate_into(&points[first..first + o.len()], o)
-        });
-        #[cfg(not(feature = "parallel"))]
-        self.locate_into(points, &mut out);
-        out
-    }
-}
-
-impl PointLocator<'_> {
-    /// The locations of `points` written to `out` (the same length); see
-    /// [`PointLocator::locate_indexed_into`].
-    ///
-    /// # Panics
-    /// If `out` is not as long as `points`.
-    pub fn locate_into(&self, points: &[Point], out: &mut [Location]) {
-        assert_eq!(points.len(), out.len(), "one location per point");
-        self.locate_indexed_into(|i| points[i], out);
-    }
-
-    /// The locations of the points `point(0), point(1), ...` written to `out`, for points held
-    /// in any layout (interleaved `x, y` pairs, separate `x` and `y` arrays) without copying
-    /// them. In chunks, while the chunk is in cache: the blocks of 256 points side by side (in
+    /// In chunks, while the chunk is in cache: the blocks of 256 points side by side (in
     /// floating point, which the compiler turns into vector instructions: copies for AVX-512
     /// and AVX2 beside the baseline one, picked at run time), then every point's block state
     /// by a branch-free lookup in the coarse table (the positions of points in refined blocks
     /// noted without a branch too), then those points' cell entries the same way (noting the
     /// points in mixed cells), then the points in mixed cells one by one.
-    pub fn locate_indexed_into(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        assert_eq!(points.len(), out.len(), "one location per point");
         pulp::Arch::new().dispatch(LocateChunks {
             locator: self,
-            point,
+            point: |i| points.point(i),
             out,
         });
     }
 
-    /// [`PointLocator::locate_indexed_into`], inlined into each instruction set's copy.
+    /// Large tasks: the grid answers a point in a few nanoseconds.
+    fn parallel_chunk(&self) -> usize {
+        PARALLEL_TASK
+    }
+}
+
+impl PointLocator<'_> {
+    /// [`PointQuery::values_into`], inlined into each instruction set's copy.
     #[inline(always)]
     fn locate_chunks(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
         const CHUNK: usize = 2048;
@@ -560,31 +532,16 @@ impl PointLocator<'_> {
         }
     }
 
-    /// [`PointLocator::locate_indexed_into`] on chunks of 65536 points spread over rayon's
-    /// pool (with the `parallel` feature; otherwise on the current thread).
-    pub fn locate_indexed_parallel_into(
-        &self,
-        point: impl Fn(usize) -> Point + Sync,
-        out: &mut [Location],
-    ) {
-        #[cfg(feature = "parallel")]
-        crate::locate::on_caller_and_pool(out, PARALLEL_TASK, |first, o| {
-            self.locate_indexed_into(|i| point(first + i), o)
-        });
-        #[cfg(not(feature = "parallel"))]
-        self.locate_indexed_into(point, out);
-    }
 }
 
 /// Points per parallel task.
-#[cfg(feature = "parallel")]
 const PARALLEL_TASK: usize = 1 << 16;
 
 /// Points whose blocks are found side by side ([`Lookup::blocks`]): their coordinates and
 /// indices take 6 KiB of the first-level cache.
 const LANES: usize = 256;
 
-/// [`PointLocator::locate_indexed_into`] as an operation `pulp` runs with the best instruction
+/// [`PointQuery::values_into`] as an operation `pulp` runs with the best instruction
 /// set at hand.
 struct LocateChunks<'l, 'a, F> {
     locator: &'l PointLocator<'a>,

@@ -1,0 +1,140 @@
+//! Which algorithm answers a batch: decided here, once, for the library and every front end.
+
+use rs_spline::{Domain, Point};
+
+use crate::query::PARALLEL_CHUNK;
+use crate::{
+    Classifier, ContainError, ContainOptions, FastWindingField, Locate, Location, Method,
+    PointLocator, PointQuery, PointSource, WindingField, fast_uses_locator,
+};
+
+/// A domain prepared for containment queries with given options: what the command line and
+/// the Python package build from a domain and its options before they read any point.
+///
+/// [`Method::Gwn`] builds only the [`WindingField`] with the options' fill rule (so open
+/// boundaries are allowed); every other method builds a [`Classifier`] (closed loops only).
+/// [`Containment::engine`] then hands back what answers a batch of `n` points.
+///
+/// ```
+/// use rs_contain::{Containment, ContainOptions, Locate, Location, PointQuery};
+/// use rs_spline::{circle, Domain, Point};
+/// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+/// let c = Containment::new(&d, ContainOptions::DEFAULT).unwrap();
+/// let pts = [Point::new(0.5, 0.0), Point::new(2.0, 0.0)];
+/// let mut out = [Location::Outside; 2];
+/// c.engine(pts.len()).values_into(&pts[..], &mut out);
+/// assert_eq!(out, [Location::Inside, Location::Outside]);
+/// ```
+#[derive(Clone)]
+pub struct Containment(Prepared);
+
+#[derive(Clone)]
+// One value per domain, held for the whole run: its size does not matter.
+#[allow(clippy::large_enum_variant)]
+enum Prepared {
+    Classifier(Classifier),
+    Winding(WindingField),
+}
+
+impl Containment {
+    /// Prepares `domain` for the method, tolerance, box subdivisions and fill rule of
+    /// `options`.
+    ///
+    /// # Errors
+    /// As [`Classifier::new`] (an open boundary, a bad tolerance, too many boxes), or for
+    /// [`Method::Gwn`] as [`WindingField::new`].
+    pub fn new(domain: &Domain, options: ContainOptions) -> Result<Self, ContainError> {
+        Ok(Self(if options.method == Method::Gwn {
+            Prepared::Winding(
+                WindingField::new(domain, options.relative_tolerance)?
+                    .with_fill_rule(options.fill_rule),
+            )
+        } else {
+            Prepared::Classifier(Classifier::new(domain, options)?)
+        }))
+    }
+
+    /// What answers a batch of `n` points (for a stream, its expected total).
+    pub fn engine(&self, n: usize) -> Engine<'_> {
+        match &self.0 {
+            Prepared::Classifier(c) => c.engine(c.method(), n),
+            Prepared::Winding(f) => Engine::Winding(FastWindingField::new(f)),
+        }
+    }
+
+    /// The classifier, unless the method is [`Method::Gwn`].
+    pub fn classifier(&self) -> Option<&Classifier> {
+        match &self.0 {
+            Prepared::Classifier(c) => Some(c),
+            Prepared::Winding(_) => None,
+        }
+    }
+}
+
+/// The algorithm that answers a batch of points, as [`Classifier::engine`] and
+/// [`Containment::engine`] choose it. Every engine gives every point the same location; they
+/// differ in speed.
+pub enum Engine<'a> {
+    /// inRS1: each point against each candidate box.
+    OneByOne(&'a Classifier),
+    /// inRS2: the points sorted by abscissa, each box finding its points by binary search.
+    Sorted(&'a Classifier),
+    /// The grid locator ([`Method::Fast`] on a batch large enough to pay for its grid).
+    Grid(PointLocator<'a>),
+    /// The classifier's winding-number field (even-odd), after its bounding-box test.
+    ClassifierWinding(&'a Classifier),
+    /// The accelerated winding-number field with its own fill rule.
+    Winding(FastWindingField<'a>),
+}
+
+impl Classifier {
+    /// What answers a batch of `n` points with `method`: [`Method::Fast`] takes the grid
+    /// locator (built on first use, kept) when [`fast_uses_locator`]`(n)`, inRS2 otherwise.
+    pub fn engine(&self, method: Method, n: usize) -> Engine<'_> {
+        match method {
+            Method::InRS1 => Engine::OneByOne(self),
+            Method::Fast if fast_uses_locator(n) => Engine::Grid(self.locator()),
+            Method::InRS2 | Method::Fast => Engine::Sorted(self),
+            Method::Gwn => Engine::ClassifierWinding(self),
+        }
+    }
+}
+
+impl PointQuery<Location> for Engine<'_> {
+    fn value(&self, p: Point) -> Location {
+        match self {
+            Engine::OneByOne(c) | Engine::Sorted(c) => c.classify_point_with_decision(p).0,
+            Engine::Grid(l) => l.locate(p),
+            Engine::ClassifierWinding(c) => c.winding_location(p),
+            Engine::Winding(f) => f.locate(p),
+        }
+    }
+
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        match self {
+            Engine::OneByOne(c) => {
+                assert_eq!(points.len(), out.len(), "one value per point");
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = c.classify_point_with_decision(points.point(i)).0;
+                }
+            }
+            Engine::Sorted(c) => c.sorted_into(points, out),
+            Engine::Grid(l) => l.values_into(points, out),
+            Engine::ClassifierWinding(c) => {
+                assert_eq!(points.len(), out.len(), "one value per point");
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = c.winding_location(points.point(i));
+                }
+            }
+            Engine::Winding(f) => f.values_into(points, out),
+        }
+    }
+
+    fn parallel_chunk(&self) -> usize {
+        match self {
+            Engine::Grid(l) => PointQuery::<Location>::parallel_chunk(l),
+            Engine::Winding(f) => PointQuery::<Location>::parallel_chunk(f),
+            _ => PARALLEL_CHUNK,
+        }
+    }
+}
