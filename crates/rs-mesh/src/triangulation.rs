@@ -61,20 +61,20 @@ pub struct BoundaryArc {
 /// of one ([`CurvedTriangulation::new_refined`]).
 #[derive(Clone, Debug)]
 pub struct CurvedTriangulation {
-    pub(crate) domain: Domain,
-    pub(crate) vertices: Vec<Point>,
-    pub(crate) boundary_vertex: Vec<Option<BoundaryPoint>>,
-    pub(crate) triangles: Vec<[usize; 3]>,
-    pub(crate) edges: Vec<[EdgeKind; 3]>,
-    pub(crate) arcs: Vec<BoundaryArc>,
+    domain: Domain,
+    vertices: Vec<Point>,
+    boundary_vertex: Vec<Option<BoundaryPoint>>,
+    triangles: Vec<[usize; 3]>,
+    edges: Vec<[EdgeKind; 3]>,
+    arcs: Vec<BoundaryArc>,
     /// Number of boundary vertices of each loop (arc `i` joins the `k`-th and `(k+1)`-th
     /// vertices of its loop, arcs listed loop by loop in that order).
-    pub(crate) loop_lengths: Vec<usize>,
+    loop_lengths: Vec<usize>,
     /// For a refinement: how, and the triangle of the unrefined triangulation each triangle
     /// lies in.
-    pub(crate) refinement: Option<(Refinement, Vec<usize>)>,
-    pub(crate) inserted_boundary_points: usize,
-    pub(crate) dropped_interior_points: usize,
+    refinement: Option<(Refinement, Vec<usize>)>,
+    inserted_boundary_points: usize,
+    dropped_interior_points: usize,
 }
 
 impl CurvedTriangulation {
@@ -155,11 +155,7 @@ impl CurvedTriangulation {
                 other => other,
             };
             match attempt {
-                Attempt::Done(mut t) => {
-                    t.inserted_boundary_points = inserted;
-                    t.dropped_interior_points = dropped;
-                    return Ok(*t);
-                }
+                Attempt::Done(t) => return Ok(t.with_counts(inserted, dropped)),
                 Attempt::DropInterior(stray) => {
                     dropped += stray.len();
                     let stray: HashSet<usize> = stray.into_iter().collect();
@@ -284,7 +280,36 @@ impl CurvedTriangulation {
             });
             loop_lengths[a.loop_index] += 1;
         }
-        Ok(Self {
+        Ok(Self::assemble(
+            domain,
+            vertices,
+            boundary_vertex,
+            triangles,
+            edges,
+            arcs,
+            loop_lengths,
+        ))
+    }
+
+    /// A curved triangulation from parts that fit together, unchecked: every constructor of
+    /// the crate ends here (the checked one for parts read from a file is
+    /// [`CurvedTriangulation::from_parts`]). The callers keep its invariants: triangles
+    /// counter-clockwise with vertex indices in range, `boundary_vertex` one entry per vertex,
+    /// `edges` one entry per triangle, edge `k` of triangle `t` is `Curved(i)` exactly when arc
+    /// `i` joins that edge's vertices and names `t`, and `loop_lengths` counts the arcs of each
+    /// loop, listed loop by loop in loop order. Not a refinement, no boundary point inserted,
+    /// no interior point dropped (see [`CurvedTriangulation::into_refinement`] and
+    /// [`CurvedTriangulation::with_counts`]).
+    pub(crate) fn assemble(
+        domain: Domain,
+        vertices: Vec<Point>,
+        boundary_vertex: Vec<Option<BoundaryPoint>>,
+        triangles: Vec<[usize; 3]>,
+        edges: Vec<[EdgeKind; 3]>,
+        arcs: Vec<BoundaryArc>,
+        loop_lengths: Vec<usize>,
+    ) -> Self {
+        Self {
             domain,
             vertices,
             boundary_vertex,
@@ -295,7 +320,22 @@ impl CurvedTriangulation {
             refinement: None,
             inserted_boundary_points: 0,
             dropped_interior_points: 0,
-        })
+        }
+    }
+
+    /// This triangulation marked as the refinement `how` of another, `parent[t]` the triangle
+    /// of the unrefined triangulation that triangle `t` lies in.
+    pub(crate) fn into_refinement(mut self, how: Refinement, parent: Vec<usize>) -> Self {
+        self.refinement = Some((how, parent));
+        self
+    }
+
+    /// This triangulation with the counts of boundary points inserted and interior points
+    /// dropped while building it.
+    pub(crate) fn with_counts(mut self, inserted: usize, dropped: usize) -> Self {
+        self.inserted_boundary_points = inserted;
+        self.dropped_interior_points = dropped;
+        self
     }
 
     /// The domain.
@@ -326,6 +366,17 @@ impl CurvedTriangulation {
     /// The boundary arcs (one per boundary edge of the inscribed triangulation).
     pub fn arcs(&self) -> &[BoundaryArc] {
         &self.arcs
+    }
+
+    /// For each vertex: where it lies on the boundary, or `None` for an interior vertex.
+    pub(crate) fn boundary_vertices(&self) -> &[Option<BoundaryPoint>] {
+        &self.boundary_vertex
+    }
+
+    /// Number of boundary vertices of each loop, in loop order (see
+    /// [`CurvedTriangulation::arc_position`]).
+    pub(crate) fn loop_lengths(&self) -> &[usize] {
+        &self.loop_lengths
     }
 
     /// For a refinement: how it was refined.
@@ -622,18 +673,15 @@ fn build(
     if !failing.is_empty() {
         return Ok(Attempt::Refine(failing));
     }
-    Ok(Attempt::Done(Box::new(CurvedTriangulation {
-        domain: domain.clone(),
-        vertices: v.points,
-        boundary_vertex: v.boundary,
+    Ok(Attempt::Done(Box::new(CurvedTriangulation::assemble(
+        domain.clone(),
+        v.points,
+        v.boundary,
         triangles,
         edges,
         arcs,
-        loop_lengths: loop_vertices.iter().map(Vec::len).collect(),
-        refinement: None,
-        inserted_boundary_points: 0,
-        dropped_interior_points: 0,
-    })))
+        loop_vertices.iter().map(Vec::len).collect(),
+    ))))
 }
 
 /// Adds every boundary chord as a constraint; returns the chords (loop, index in the loop)
