@@ -37,7 +37,6 @@ mod error;
 mod extended;
 mod json;
 mod locate;
-mod refine;
 mod sample;
 mod svg;
 mod triangulation;
@@ -47,7 +46,6 @@ pub use error::MeshError;
 pub use extended::ExtendedRing;
 pub use json::{mesh_from_json, mesh_json, mesh_value};
 pub use locate::CurvedLocator;
-pub use refine::Refinement;
 pub use sample::{
     MAX_HALTON_TRIES_PER_POINT, MAX_LINES, MAX_SAMPLE_POINTS, WellSpacedPoints, halton_points_in,
     well_spaced_points,
@@ -55,5 +53,5 @@ pub use sample::{
 pub use svg::mesh_svg;
 pub use triangulation::{
     BoundaryArc, CurvedTriangulation, EdgeKind, MAX_INSERTED_EXTRA, MAX_INSERTED_PER_POINT,
-    MAX_MESH_PIECES, MAX_MESH_VERTICES, check_boundary_pieces,
+    MAX_MESH_PIECES, MAX_MESH_VERTICES, Refinement, check_boundary_pieces,
 };

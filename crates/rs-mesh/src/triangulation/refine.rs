@@ -7,37 +7,12 @@ use std::collections::HashMap;
 use rs_spline::Point;
 use rs_spline::prelude::*;
 
+use super::{BoundaryArc, CurvedTriangulation, EdgeGrid, EdgeKind, Refinement, arc_is_clear};
 use crate::boundary::BoundaryPoint;
-use crate::triangulation::{EdgeGrid, arc_is_clear};
-use crate::{BoundaryArc, CurvedTriangulation, EdgeKind};
-
-/// How a refinement splits each triangle `v0 v1 v2` (counter-clockwise).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Refinement {
-    /// At the barycentre `c`: sub-triangles `v_k v_(k+1) c` for `k = 0, 1, 2` (numbered
-    /// `3 t + k`); edge `k` of the triangle is edge 0 of sub-triangle `k`.
-    CloughTocher,
-    /// At the incentre `c` and one point `m_k` per edge: sub-triangles `v_k m_k c` and
-    /// `m_k v_(k+1) c` (numbered `6 t + 2 k` and `6 t + 2 k + 1`). On an interior edge `m_k` is
-    /// where the segment joining the incentres of the two triangles sharing it crosses it (the
-    /// Powell–Sabin choice); on a boundary edge it is the point of the boundary arc at the
-    /// arc's parameter midpoint, a new boundary vertex, and the arc is split there.
-    PowellSabin,
-}
-
-impl Refinement {
-    /// Sub-triangles per triangle.
-    pub fn factor(self) -> usize {
-        match self {
-            Refinement::CloughTocher => 3,
-            Refinement::PowellSabin => 6,
-        }
-    }
-}
 
 /// The refinement of `t` (an unrefined triangulation), or the places `(loop, k)` of the arcs
 /// of `t` whose refined arcs meet another edge or whose sub-triangles come out inverted.
-pub(crate) fn refine(
+pub(super) fn refine(
     t: &CurvedTriangulation,
     how: Refinement,
 ) -> Result<CurvedTriangulation, Vec<(usize, usize)>> {

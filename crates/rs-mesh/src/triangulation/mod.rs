@@ -16,8 +16,11 @@ use spade::{
 
 use crate::MeshError;
 use crate::boundary::BoundaryPoint;
-use crate::refine::{Refinement, refine};
 use crate::sample::WellSpacedPoints;
+
+mod refine;
+
+use refine::refine;
 
 /// Rounds of boundary point insertion tried before giving up.
 const MAX_ROUNDS: usize = 16;
@@ -53,6 +56,30 @@ pub struct BoundaryArc {
     pub to: usize,
     /// The curved triangle it bounds.
     pub triangle: usize,
+}
+
+/// How a refinement splits each triangle `v0 v1 v2` (counter-clockwise).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Refinement {
+    /// At the barycentre `c`: sub-triangles `v_k v_(k+1) c` for `k = 0, 1, 2` (numbered
+    /// `3 t + k`); edge `k` of the triangle is edge 0 of sub-triangle `k`.
+    CloughTocher,
+    /// At the incentre `c` and one point `m_k` per edge: sub-triangles `v_k m_k c` and
+    /// `m_k v_(k+1) c` (numbered `6 t + 2 k` and `6 t + 2 k + 1`). On an interior edge `m_k` is
+    /// where the segment joining the incentres of the two triangles sharing it crosses it (the
+    /// Powell–Sabin choice); on a boundary edge it is the point of the boundary arc at the
+    /// arc's parameter midpoint, a new boundary vertex, and the arc is split there.
+    PowellSabin,
+}
+
+impl Refinement {
+    /// Sub-triangles per triangle.
+    pub fn factor(self) -> usize {
+        match self {
+            Refinement::CloughTocher => 3,
+            Refinement::PowellSabin => 6,
+        }
+    }
 }
 
 /// A curved triangulation of a domain (Definition 3.2) with straight interior edges: an
