@@ -7,7 +7,8 @@ use std::collections::HashMap;
 use rs_spline::Point;
 use rs_spline::prelude::*;
 
-use super::{BoundaryArc, CurvedTriangulation, EdgeGrid, EdgeKind, Refinement, arc_is_clear};
+use super::convertible::{EdgeGrid, arc_is_clear};
+use super::{BoundaryArc, CurvedTriangulation, EdgeKind, Refinement};
 use crate::boundary::BoundaryPoint;
 
 /// The refinement of `t` (an unrefined triangulation), or the places `(loop, k)` of the arcs
