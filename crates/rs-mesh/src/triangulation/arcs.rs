@@ -8,7 +8,7 @@ use rs_spline::{Domain, NurbsCurve, SplineError};
 
 use super::cdt::Vertices;
 use super::convertible::{EdgeGrid, arc_is_clear};
-use super::{BoundaryArc, EdgeKind};
+use super::curved::{BoundaryArc, EdgeKind};
 use crate::MeshError;
 use crate::boundary::BoundaryPoint;
 

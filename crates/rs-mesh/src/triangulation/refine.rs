@@ -8,7 +8,7 @@ use rs_spline::Point;
 use rs_spline::prelude::*;
 
 use super::convertible::{EdgeGrid, arc_is_clear};
-use super::{BoundaryArc, CurvedTriangulation, EdgeKind, Refinement};
+use super::curved::{BoundaryArc, CurvedTriangulation, EdgeKind, Refinement};
 use crate::boundary::BoundaryPoint;
 
 /// The refinement of `t` (an unrefined triangulation), or the places `(loop, k)` of the arcs
