@@ -15,10 +15,10 @@ use super::cdt::{Vertices, constrain_chords, faces_inside, stray_interior};
 use super::crossing::where_arcs_meet;
 use super::curved::{CurvedTriangulation, Refinement};
 use super::insertion::{curve_corners, refine_loops};
-use super::limits::{MAX_MESH_VERTICES, check_boundary_pieces};
 use super::refine::refine;
 use crate::MeshError;
-use crate::boundary::BoundaryPoint;
+use crate::boundary::{BoundaryPoint, check_boundary_pieces};
+use crate::limits::MAX_MESH_VERTICES;
 use crate::sample::WellSpacedPoints;
 
 /// Rounds of boundary point insertion tried before giving up.

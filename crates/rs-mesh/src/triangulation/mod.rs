@@ -8,7 +8,6 @@
 //! - `curved`: [`CurvedTriangulation`], its edge kinds and boundary arcs, the
 //!   [`Refinement`] kinds, accessors, exact areas.
 //! - `parts`: [`CurvedTriangulation::from_parts`], parts read from a file, checked.
-//! - `limits`: the sizes meshing refuses beyond.
 //! - `build`: [`CurvedTriangulation::new`] and [`CurvedTriangulation::new_refined`]: rounds
 //!   of attempts, boundary points inserted until the triangulation is convertible.
 //! - `cdt`: the constrained Delaunay triangulation of the chords, faces inside kept.
@@ -25,10 +24,8 @@ mod convertible;
 mod crossing;
 mod curved;
 mod insertion;
-mod limits;
 mod parts;
 mod refine;
 
 pub use build::{MAX_INSERTED_EXTRA, MAX_INSERTED_PER_POINT};
 pub use curved::{BoundaryArc, CurvedTriangulation, EdgeKind, Refinement};
-pub use limits::{MAX_MESH_PIECES, MAX_MESH_VERTICES, check_boundary_pieces};

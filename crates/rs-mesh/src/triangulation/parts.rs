@@ -5,9 +5,9 @@ use rs_spline::prelude::*;
 use rs_spline::{Domain, Point};
 
 use super::curved::{BoundaryArc, CurvedTriangulation, EdgeKind};
-use super::limits::MAX_MESH_VERTICES;
 use crate::MeshError;
 use crate::boundary::BoundaryPoint;
+use crate::limits::MAX_MESH_VERTICES;
 
 impl CurvedTriangulation {
     /// A curved triangulation from its parts, as a mesh or spline file holds them
