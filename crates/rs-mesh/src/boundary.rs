@@ -1,9 +1,11 @@
-//! Boundary points placed by arc length on every loop.
+//! Boundary points placed by arc length on every loop, and the refusal of a boundary of too
+//! many Bezier pieces to place them on (every piece gets an arc-length table).
 
 use rs_spline::prelude::*;
 use rs_spline::{ArcLengthTable, Domain, Point};
 
-use crate::{MAX_SAMPLE_POINTS, MeshError};
+use crate::MeshError;
+use crate::limits::{MAX_MESH_PIECES, MAX_SAMPLE_POINTS};
 
 /// A point on the boundary: which loop and curve, and the curve's NURBS parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,4 +98,23 @@ pub(crate) fn place_boundary_points(
         out.push(pts);
     }
     Ok(out)
+}
+
+/// Refuses, before any work, a boundary of more than [`MAX_MESH_PIECES`] Bezier pieces.
+///
+/// # Errors
+/// [`MeshError::TooManyPieces`].
+pub fn check_boundary_pieces(domain: &Domain) -> Result<(), MeshError> {
+    let pieces: usize = domain
+        .curves()
+        .iter()
+        .map(|c| c.knots().interior_breaks().len() + 1)
+        .sum();
+    if pieces > MAX_MESH_PIECES {
+        return Err(MeshError::TooManyPieces {
+            pieces,
+            limit: MAX_MESH_PIECES,
+        });
+    }
+    Ok(())
 }

@@ -29,13 +29,13 @@ impl CurvedTriangulation {
     /// # Errors
     /// [`MeshError::Spline`] if an arc cannot be cut from its curve.
     pub fn extended_ring(&self) -> Result<ExtendedRing, MeshError> {
-        let v = &self.vertices;
+        let v = self.vertices();
         // Outward unit normal of each arc's chord: away from its triangle's third vertex.
-        let mut chord_normal = Vec::with_capacity(self.arcs.len());
+        let mut chord_normal = Vec::with_capacity(self.arcs().len());
         let mut bulge = 0.0f64;
-        for arc in &self.arcs {
+        for arc in self.arcs() {
             let (a, b) = (v[arc.from], v[arc.to]);
-            let tri = self.triangles[arc.triangle];
+            let tri = self.triangles()[arc.triangle];
             let third = tri
                 .iter()
                 .copied()
@@ -55,11 +55,11 @@ impl CurvedTriangulation {
             bulge = bulge.max(out.bounding_box().max.x);
             chord_normal.push(n);
         }
-        let size = self.domain.bounding_box().diagonal();
+        let size = self.domain().bounding_box().diagonal();
         let offset = 1.5 * bulge + 1e-3 * size;
         // Vertex normals: the mean of the normals of the (one or two) chords at the vertex.
         let mut vertex_normal = vec![Point::new(0.0, 0.0); v.len()];
-        for (arc, n) in self.arcs.iter().zip(&chord_normal) {
+        for (arc, n) in self.arcs().iter().zip(&chord_normal) {
             vertex_normal[arc.from] = vertex_normal[arc.from] + *n;
             vertex_normal[arc.to] = vertex_normal[arc.to] + *n;
         }
@@ -72,9 +72,9 @@ impl CurvedTriangulation {
                 v[i]
             }
         };
-        let mut triangles = Vec::with_capacity(2 * self.arcs.len());
-        let mut neighbour = Vec::with_capacity(2 * self.arcs.len());
-        for arc in &self.arcs {
+        let mut triangles = Vec::with_capacity(2 * self.arcs().len());
+        let mut neighbour = Vec::with_capacity(2 * self.arcs().len());
+        for arc in self.arcs() {
             let (a, b) = (v[arc.from], v[arc.to]);
             let (a2, b2) = (moved(arc.from), moved(arc.to));
             for tri in [[a, b, b2], [a, b2, a2]] {

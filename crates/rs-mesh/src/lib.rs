@@ -36,24 +36,23 @@ mod boundary;
 mod error;
 mod extended;
 mod json;
+mod limits;
 mod locate;
-mod refine;
 mod sample;
 mod svg;
 mod triangulation;
 
-pub use boundary::BoundaryPoint;
+pub use boundary::{BoundaryPoint, check_boundary_pieces};
 pub use error::MeshError;
 pub use extended::ExtendedRing;
 pub use json::{mesh_from_json, mesh_json, mesh_value};
-pub use locate::CurvedLocator;
-pub use refine::Refinement;
-pub use sample::{
-    MAX_HALTON_TRIES_PER_POINT, MAX_LINES, MAX_SAMPLE_POINTS, WellSpacedPoints, halton_points_in,
-    well_spaced_points,
+pub use limits::{
+    MAX_HALTON_TRIES_PER_POINT, MAX_LINES, MAX_MESH_PIECES, MAX_MESH_VERTICES, MAX_SAMPLE_POINTS,
 };
+pub use locate::CurvedLocator;
+pub use sample::{WellSpacedPoints, halton_points_in, well_spaced_points};
 pub use svg::mesh_svg;
 pub use triangulation::{
     BoundaryArc, CurvedTriangulation, EdgeKind, MAX_INSERTED_EXTRA, MAX_INSERTED_PER_POINT,
-    MAX_MESH_PIECES, MAX_MESH_VERTICES, check_boundary_pieces,
+    Refinement,
 };

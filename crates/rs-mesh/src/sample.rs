@@ -7,19 +7,8 @@ use rs_spline::grid::{CellIndex, GridFrame};
 use rs_spline::{BoundingBox, Domain, Point};
 
 use crate::MeshError;
-use crate::boundary::{BoundaryPoint, place_boundary_points};
-
-/// The largest `ny` accepted by [`well_spaced_points`].
-pub const MAX_LINES: usize = 100_000;
-
-/// The most points [`well_spaced_points`] and [`halton_points_in`] produce: `10^7` (160 MB of
-/// coordinates). `well_spaced_points` refuses an `ny` whose grid over the bounding box,
-/// `ny^2 * width / height` positions, exceeds four times this.
-pub const MAX_SAMPLE_POINTS: usize = 10_000_000;
-
-/// The most Halton candidates [`halton_points_in`] draws per point asked for (the domain must
-/// fill at least `1 / 1000` of its bounding box).
-pub const MAX_HALTON_TRIES_PER_POINT: usize = 1000;
+use crate::boundary::{BoundaryPoint, check_boundary_pieces, place_boundary_points};
+use crate::limits::{MAX_HALTON_TRIES_PER_POINT, MAX_LINES, MAX_SAMPLE_POINTS};
 
 /// Points from [`well_spaced_points`].
 #[derive(Clone, Debug)]
@@ -68,7 +57,7 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
     if !(2..=MAX_LINES).contains(&ny) {
         return Err(MeshError::TooFewLines(ny));
     }
-    crate::check_boundary_pieces(domain)?;
+    check_boundary_pieces(domain)?;
     domain.require_closed()?;
     let bb = domain.bounding_box();
     let (a, b) = (bb.min.y, bb.max.y);

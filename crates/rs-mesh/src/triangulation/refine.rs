@@ -7,42 +7,18 @@ use std::collections::HashMap;
 use rs_spline::Point;
 use rs_spline::prelude::*;
 
+use super::convertible::{EdgeGrid, arc_is_clear};
+use super::curved::{BoundaryArc, CurvedTriangulation, EdgeKind, Refinement};
 use crate::boundary::BoundaryPoint;
-use crate::triangulation::{EdgeGrid, arc_is_clear};
-use crate::{BoundaryArc, CurvedTriangulation, EdgeKind};
-
-/// How a refinement splits each triangle `v0 v1 v2` (counter-clockwise).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Refinement {
-    /// At the barycentre `c`: sub-triangles `v_k v_(k+1) c` for `k = 0, 1, 2` (numbered
-    /// `3 t + k`); edge `k` of the triangle is edge 0 of sub-triangle `k`.
-    CloughTocher,
-    /// At the incentre `c` and one point `m_k` per edge: sub-triangles `v_k m_k c` and
-    /// `m_k v_(k+1) c` (numbered `6 t + 2 k` and `6 t + 2 k + 1`). On an interior edge `m_k` is
-    /// where the segment joining the incentres of the two triangles sharing it crosses it (the
-    /// Powell–Sabin choice); on a boundary edge it is the point of the boundary arc at the
-    /// arc's parameter midpoint, a new boundary vertex, and the arc is split there.
-    PowellSabin,
-}
-
-impl Refinement {
-    /// Sub-triangles per triangle.
-    pub fn factor(self) -> usize {
-        match self {
-            Refinement::CloughTocher => 3,
-            Refinement::PowellSabin => 6,
-        }
-    }
-}
 
 /// The refinement of `t` (an unrefined triangulation), or the places `(loop, k)` of the arcs
 /// of `t` whose refined arcs meet another edge or whose sub-triangles come out inverted.
-pub(crate) fn refine(
+pub(super) fn refine(
     t: &CurvedTriangulation,
     how: Refinement,
 ) -> Result<CurvedTriangulation, Vec<(usize, usize)>> {
     let mut r = Refined::start(t, how);
-    for tri in 0..t.triangles.len() {
+    for tri in 0..t.triangles().len() {
         match how {
             Refinement::CloughTocher => r.clough_tocher(t, tri),
             Refinement::PowellSabin => r.powell_sabin(t, tri),
@@ -52,18 +28,17 @@ pub(crate) fn refine(
     if !failing.is_empty() {
         return Err(failing);
     }
-    Ok(CurvedTriangulation {
-        domain: t.domain.clone(),
-        vertices: r.vertices,
-        boundary_vertex: r.boundary_vertex,
-        triangles: r.triangles,
-        edges: r.edges,
-        arcs: r.arcs,
-        loop_lengths: t.loop_lengths.clone(),
-        refinement: Some((how, r.parent)),
-        inserted_boundary_points: t.inserted_boundary_points,
-        dropped_interior_points: t.dropped_interior_points,
-    })
+    Ok(CurvedTriangulation::assemble(
+        t.domain().clone(),
+        r.vertices,
+        r.boundary_vertex,
+        r.triangles,
+        r.edges,
+        r.arcs,
+        t.loop_lengths().to_vec(),
+    )
+    .into_refinement(how, r.parent)
+    .with_counts(t.inserted_boundary_points(), t.dropped_interior_points()))
 }
 
 /// The refinement under construction.
@@ -86,31 +61,31 @@ struct Refined {
 
 impl Refined {
     fn start(t: &CurvedTriangulation, how: Refinement) -> Self {
-        let n = t.triangles.len() * how.factor();
+        let n = t.triangles().len() * how.factor();
         let (incentre, edge_triangles) = match how {
             Refinement::PowellSabin => {
                 let mut edges: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
-                for (s, v) in t.triangles.iter().enumerate() {
+                for (s, v) in t.triangles().iter().enumerate() {
                     for k in 0..3 {
                         let (a, b) = (v[k], v[(k + 1) % 3]);
                         edges.entry((a.min(b), a.max(b))).or_default().push(s);
                     }
                 }
                 let centres = t
-                    .triangles
+                    .triangles()
                     .iter()
-                    .map(|tri| incentre(tri.map(|v| t.vertices[v])))
+                    .map(|tri| incentre(tri.map(|v| t.vertices()[v])))
                     .collect();
                 (centres, edges)
             }
             Refinement::CloughTocher => (Vec::new(), HashMap::new()),
         };
         Self {
-            vertices: t.vertices.clone(),
-            boundary_vertex: t.boundary_vertex.clone(),
+            vertices: t.vertices().to_vec(),
+            boundary_vertex: t.boundary_vertices().to_vec(),
             triangles: Vec::with_capacity(n),
             edges: Vec::with_capacity(n),
-            arcs: Vec::with_capacity(2 * t.arcs.len()),
+            arcs: Vec::with_capacity(2 * t.arcs().len()),
             parent: Vec::with_capacity(n),
             arc_parent: Vec::new(),
             edge_point: HashMap::new(),
@@ -142,12 +117,12 @@ impl Refined {
     }
 
     fn clough_tocher(&mut self, t: &CurvedTriangulation, tri: usize) {
-        let v = t.triangles[tri];
-        let p = v.map(|i| t.vertices[i]);
+        let v = t.triangles()[tri];
+        let p = v.map(|i| t.vertices()[i]);
         let c = self.vertex((p[0] + p[1] + p[2]) * (1.0 / 3.0), None);
         for k in 0..3 {
-            let arc = match t.edges[tri][k] {
-                EdgeKind::Curved(i) => Some((t.arcs[i].clone(), i)),
+            let arc = match t.edge_kinds(tri)[k] {
+                EdgeKind::Curved(i) => Some((t.arcs()[i].clone(), i)),
                 EdgeKind::Straight => None,
             };
             self.triangle([v[k], v[(k + 1) % 3], c], tri, arc);
@@ -155,14 +130,14 @@ impl Refined {
     }
 
     fn powell_sabin(&mut self, t: &CurvedTriangulation, tri: usize) {
-        let v = t.triangles[tri];
+        let v = t.triangles()[tri];
         let c = self.vertex(self.incentre[tri], None);
         for k in 0..3 {
             let (a, b) = (v[k], v[(k + 1) % 3]);
-            match t.edges[tri][k] {
+            match t.edge_kinds(tri)[k] {
                 EdgeKind::Curved(i) => {
-                    let arc = &t.arcs[i];
-                    let curve = &t.domain.curves()[arc.curve];
+                    let arc = &t.arcs()[i];
+                    let curve = &t.domain().curves()[arc.curve];
                     let um = 0.5 * (arc.u0 + arc.u1);
                     let m = self.vertex(
                         curve.point_at(um),
@@ -214,7 +189,7 @@ impl Refined {
         if let Some(&m) = self.edge_point.get(&key) {
             return m;
         }
-        let (pa, pb) = (t.vertices[a], t.vertices[b]);
+        let (pa, pb) = (t.vertices()[a], t.vertices()[b]);
         let other = self
             .edge_triangles
             .get(&key)
@@ -230,7 +205,7 @@ impl Refined {
     /// The unrefined arcs (by place in their loop) whose refined arcs meet another edge, or
     /// whose sub-triangles are inverted or flat.
     fn check(&self, t: &CurvedTriangulation) -> Vec<(usize, usize)> {
-        let size = t.domain.bounding_box().diagonal();
+        let size = t.domain().bounding_box().diagonal();
         let mut bad: Vec<usize> = Vec::new();
         for (s, tri) in self.triangles.iter().enumerate() {
             let [a, b, c] = tri.map(|v| self.vertices[v]);
@@ -238,7 +213,7 @@ impl Refined {
                 // Only a sub-triangle on a boundary arc can turn over (its split point is
                 // on the curve); blame the arc of its parent.
                 let parent = self.parent[s];
-                bad.extend(t.edges[parent].iter().filter_map(|e| match e {
+                bad.extend(t.edge_kinds(parent).iter().filter_map(|e| match e {
                     EdgeKind::Curved(i) => Some(*i),
                     EdgeKind::Straight => None,
                 }));
@@ -253,7 +228,7 @@ impl Refined {
         all_edges.dedup();
         let grid = EdgeGrid::new(&self.vertices, &all_edges);
         for (i, arc) in self.arcs.iter().enumerate() {
-            let curve = &t.domain.curves()[arc.curve];
+            let curve = &t.domain().curves()[arc.curve];
             let clear = curve
                 .subsegment((arc.u0, arc.u1))
                 .is_ok_and(|c| arc_is_clear(&c, (arc.from, arc.to), &self.vertices, &grid, size));
