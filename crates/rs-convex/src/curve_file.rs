@@ -4,7 +4,7 @@ use std::path::Path;
 
 use rs_spline::NurbsCurve;
 
-use crate::{Point3, SignNumerator, SpaceCurve};
+use crate::{Point3, Sign, SignNumerator, SpaceCurve};
 use serde_json::Value;
 
 use crate::ConvexError;
@@ -55,6 +55,18 @@ impl FreeCurve {
             FreeCurve::Planar(c) => SignNumerator::curvature(c, free)?,
             FreeCurve::Space(c) => SignNumerator::torsion(c, free)?,
         })
+    }
+
+    /// The sign the given curve has, for keeping it: the sign of `h` (its numerator with
+    /// control point `free` moving) at the middle of the first piece, evaluated at the control
+    /// point where it is ([`Sign::Positive`] at zero).
+    pub fn own_sign(&self, free: usize, h: &SignNumerator) -> Sign {
+        let d = self.control_point(free).unwrap_or_default();
+        if h.at(0, 0.5).eval(d) >= 0.0 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        }
     }
 }
 

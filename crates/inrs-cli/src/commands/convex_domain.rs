@@ -78,14 +78,7 @@ impl ConvexDomainArgs {
         match self.sign {
             SignArg::Positive => Sign::Positive,
             SignArg::Negative => Sign::Negative,
-            SignArg::Auto => {
-                let d = curve.control_point(self.free_index).unwrap_or_default();
-                if h.at(0, 0.5).eval(d) >= 0.0 {
-                    Sign::Positive
-                } else {
-                    Sign::Negative
-                }
-            }
+            SignArg::Auto => curve.own_sign(self.free_index, h),
         }
     }
 
