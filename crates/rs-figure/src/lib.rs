@@ -29,7 +29,7 @@ use std::fmt::Write;
 use rs_spline::{BoundingBox, Flatten, Point, flatten_chain};
 
 pub use axes::nice_ticks;
-pub use chart::{Axis, AxisScale};
+pub use chart::{AxisScale, ChartAxis};
 pub use raster::{FieldImage, viridis};
 pub use style::{Marker, Style};
 
@@ -60,7 +60,7 @@ pub struct Figure {
     /// Pixels left of the plot area (tick labels, and a chart's axis title).
     left: f64,
     /// A chart's axes (titles and scales); `None` for geometry.
-    chart_axes: Option<(Axis, Axis)>,
+    chart_axes: Option<(ChartAxis, ChartAxis)>,
     plot_width: f64,
     plot_height: f64,
     body: String,

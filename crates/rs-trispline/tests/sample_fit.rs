@@ -21,7 +21,7 @@ use rs_mesh::well_spaced_points;
 use rs_spline::{Domain, NurbsCurve, Point};
 use rs_testkit::XorShift64;
 use rs_trispline::bb::Order;
-use rs_trispline::{C1Space, SplineError, interpolate_scattered};
+use rs_trispline::{C1Space, TriSplineError, interpolate_scattered};
 
 const SPACES: [C1Space; 4] = [
     C1Space::SuperSpline,
@@ -154,7 +154,7 @@ fn fit_reproduces(
     let values: Vec<f64> = sampled.points.iter().map(|&p| f(p)).collect();
     let fit = match interpolate_scattered(d, &sampled.points, &values, space) {
         Ok(fit) => fit,
-        Err(e @ SplineError::Mesh(_)) => return Err(e.to_string()),
+        Err(e @ TriSplineError::Mesh(_)) => return Err(e.to_string()),
         Err(e) => panic!("{name} ny {ny} {space:?}: {e}"),
     };
     let eval = fit.spline.evaluator().unwrap();
