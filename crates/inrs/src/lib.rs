@@ -24,7 +24,8 @@
 //!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings.
 //!
 //! Plus [`Classify`] (containment methods on [`Domain`]), the points file reader
-//! [`parse_points`] and the domain summary printed by `inrs info`.
+//! [`parse_points`] and, from `rs-contain`, the domain summary printed by `inrs info`
+//! ([`DomainSummary`]).
 //!
 //! # Examples
 //!
@@ -69,7 +70,6 @@ mod classify;
 mod csv_file;
 mod npy;
 mod points_csv;
-mod summary;
 
 pub use classify::Classify;
 #[cfg(unix)]
@@ -84,7 +84,7 @@ pub use points_csv::{
     CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, PointReader, PointRecord, PointsError,
     open_points, open_points_blocks, parse_points, read_points,
 };
-pub use summary::{DomainSummary, LoopSummary, significant};
+pub use rs_contain::{DomainSummary, LoopSummary, significant};
 
 /// The traits most code wants in scope: the curve vocabulary of `rs-spline` and [`Classify`].
 pub mod prelude {

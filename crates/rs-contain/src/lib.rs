@@ -57,6 +57,7 @@ mod locator;
 mod polygon;
 mod rays;
 mod rows;
+mod summary;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
 pub use error::ContainError;
@@ -68,6 +69,7 @@ pub use gwn::{
 pub use locate::Locate;
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method, fast_uses_locator};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
+pub use summary::{DomainSummary, LoopSummary, significant};
 
 /// What the papers compare against, and the points they compare on: kept out of the core API
 /// because no one should classify with them, but needed to reproduce the papers' tables.
