@@ -23,9 +23,10 @@
 //! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
 //!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings.
 //!
-//! Plus the points file readers ([`parse_points`]) and the domain summary printed by
-//! `inrs info`. Containment: build a [`Classifier`] and ask it through [`Locate`] (or
-//! [`Containment`] for every method and fill rule, as the command line does).
+//! Plus the points file readers ([`parse_points`]) and, from `rs-contain`, the domain summary
+//! printed by `inrs info` ([`DomainSummary`]). Containment: build a [`Classifier`] and ask it
+//! through [`Locate`] (or [`Containment`] for every method and fill rule, as the command line
+//! does).
 //!
 //! # Examples
 //!
@@ -71,7 +72,6 @@ pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, Rationa
 mod csv_file;
 mod npy;
 mod points_csv;
-mod summary;
 
 #[cfg(unix)]
 pub use csv_file::CsvPointsFile;
@@ -85,7 +85,7 @@ pub use points_csv::{
     CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, PointReader, PointRecord, PointsError,
     open_points, open_points_blocks, parse_points, read_points,
 };
-pub use summary::{DomainSummary, LoopSummary, significant};
+pub use rs_contain::{DomainSummary, LoopSummary, significant};
 
 /// The traits most code wants in scope: the curve vocabulary of `rs-spline` and the queries
 /// ([`Locate`], [`PointQuery`]).

@@ -58,6 +58,7 @@ mod polygon;
 mod query;
 mod rays;
 mod rows;
+mod summary;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
 pub use engine::{Containment, Engine};
@@ -70,6 +71,7 @@ pub use gwn::{
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method, fast_uses_locator};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
 pub use query::{Locate, PointQuery, PointSource, PointsFn, points_from_fn};
+pub use summary::{DomainSummary, LoopSummary, significant};
 
 /// What the papers compare against, and the points they compare on: kept out of the core API
 /// because no one should classify with them, but needed to reproduce the papers' tables.

@@ -2,7 +2,7 @@
 //! classified by a sorted-points crossing algorithm in the manner of INPOLY2.
 
 use rs_spline::prelude::*;
-use rs_spline::{Domain, Point, RationalBezier};
+use rs_spline::{Domain, Point};
 
 /// The boundary of a domain flattened to closed polylines, for comparisons.
 ///
@@ -21,11 +21,11 @@ pub struct FlattenedPolygon {
 
 impl FlattenedPolygon {
     /// Flattens every loop of `domain` to within `accuracy` (an absolute distance, see
-    /// [`Flatten::flatten`](rs_spline::Flatten::flatten)); each loop is closed by an edge back
-    /// to its start.
+    /// [`Flatten::flatten`](rs_spline::Flatten::flatten)) with
+    /// [`Domain::flatten_loop`]; each loop is closed by an edge back to its start.
     pub fn new(domain: &Domain, accuracy: f64) -> Self {
-        Self::from_pieces(domain, |b, pts| {
-            b.flatten_after_start(accuracy, &mut |p| pts.push(p));
+        Self::from_loops(domain, |i, pts| {
+            domain.flatten_loop(i, accuracy, &mut |p| pts.push(p));
         })
     }
 
@@ -33,27 +33,27 @@ impl FlattenedPolygon {
     /// length, whatever its shape (the approximation the GWN paper's Fig. 14 warns about).
     pub fn uniform(domain: &Domain, segments: usize) -> Self {
         let k = segments.max(1);
-        Self::from_pieces(domain, |b, pts| {
-            pts.extend((1..=k).map(|j| b.point_at(j as f64 / k as f64)));
-        })
-    }
-
-    /// Closed polylines, one per loop: each piece appends its points after its start point.
-    fn from_pieces(
-        domain: &Domain,
-        mut append: impl FnMut(&RationalBezier, &mut Vec<Point>),
-    ) -> Self {
-        let mut edges = Vec::new();
-        for l in domain.loops() {
-            let mut pts: Vec<Point> = Vec::new();
-            for ci in l.curves() {
+        Self::from_loops(domain, |i, pts| {
+            for ci in domain.loops()[i].curves() {
                 for b in domain.curves()[ci].to_bezier() {
+                    // Each piece starts where the previous one ends: its start only once.
                     if pts.is_empty() {
                         pts.push(b.start_point());
                     }
-                    append(&b, &mut pts);
+                    pts.extend((1..=k).map(|j| b.point_at(j as f64 / k as f64)));
                 }
             }
+        })
+    }
+
+    /// Closed polylines, one per loop: `polyline(i, pts)` appends loop `i`'s open polyline to
+    /// the empty `pts`, and an edge back to its first point closes it unless it ends there.
+    fn from_loops(domain: &Domain, mut polyline: impl FnMut(usize, &mut Vec<Point>)) -> Self {
+        let mut edges = Vec::new();
+        let mut pts: Vec<Point> = Vec::new();
+        for i in 0..domain.loops().len() {
+            pts.clear();
+            polyline(i, &mut pts);
             if let (Some(&first), Some(&last)) = (pts.first(), pts.last())
                 && first != last
             {

@@ -399,18 +399,12 @@ fn torsion_volumes_bracket_a_monte_carlo_estimate_when_a_constraint_is_a_box_fac
     // xorshift sequence, so the test is deterministic; 3 sigma is about 4% of the volume).
     let n = 100_000;
     let mut hits = 0usize;
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut uniform = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = rs_testkit::XorShift64::new(0x9e37_79b9_7f4a_7c15);
     for _ in 0..n {
         let d = [
-            r[0] + (r[1] - r[0]) * uniform(),
-            r[2] + (r[3] - r[2]) * uniform(),
-            r[4] + (r[5] - r[4]) * uniform(),
+            rng.uniform(r[0], r[1]),
+            rng.uniform(r[2], r[3]),
+            rng.uniform(r[4], r[5]),
         ];
         let mut q = pts;
         q[2] = d;

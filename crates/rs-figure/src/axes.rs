@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use rs_spline::Point;
 
-use crate::{Axis, FONT, Figure, escape};
+use crate::{ChartAxis, FONT, Figure, escape};
 
 /// About `target` tick values covering `[lo, hi]` at a step of 1, 2 or 5 times a power of ten
 /// (Heckbert's nice numbers), ascending and inside the interval; empty for an interval that
@@ -54,7 +54,7 @@ pub(crate) fn axes_svg(fig: &Figure) -> String {
         x1 - x0,
         y0 - y1
     );
-    let linear = Axis::linear("");
+    let linear = ChartAxis::linear("");
     let (ax, ay) = match &fig.chart_axes {
         Some((x, y)) => (x, y),
         None => (&linear, &linear),

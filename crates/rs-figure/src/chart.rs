@@ -16,9 +16,10 @@ pub enum AxisScale {
     Categories,
 }
 
-/// One axis of a chart: its title and scale.
+/// One axis of a chart: its title and scale (a coordinate axis of the plane is
+/// [`rs_spline::Axis`]).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Axis {
+pub struct ChartAxis {
     /// The title, written along the axis.
     pub title: String,
     /// Linear, logarithmic or categories.
@@ -27,7 +28,7 @@ pub struct Axis {
     pub categories: Vec<String>,
 }
 
-impl Axis {
+impl ChartAxis {
     /// A linear axis titled `title`.
     pub fn linear(title: &str) -> Self {
         Self {
@@ -100,7 +101,7 @@ const CHART_LEFT: f64 = AXIS_ROOM + 18.0;
 impl Figure {
     /// A chart: `data` shown on a plot area `width x height` pixels, each axis at its own scale,
     /// with the axes' titles and tick labels (logarithmic axes take `log10` of the data).
-    pub fn chart(data: BoundingBox, width: f64, height: f64, x: Axis, y: Axis) -> Self {
+    pub fn chart(data: BoundingBox, width: f64, height: f64, x: ChartAxis, y: ChartAxis) -> Self {
         let mut fig = Figure::new(data, width);
         let data = fig.data_box();
         let size = |v: f64| if v.is_finite() { v.max(50.0) } else { 400.0 };
@@ -128,8 +129,8 @@ mod tests {
             data,
             300.0,
             200.0,
-            Axis::log10("points N"),
-            Axis::log10("seconds"),
+            ChartAxis::log10("points N"),
+            ChartAxis::log10("seconds"),
         );
         // x spans 3 decades over 300 px, y 6 decades over 200 px.
         let (a, b) = (
@@ -164,11 +165,11 @@ mod tests {
 
     #[test]
     fn log_ticks_thin_out_on_long_axes_and_refuse_bad_ranges() {
-        let a = Axis::log10("");
+        let a = ChartAxis::log10("");
         assert_eq!(a.ticks(-0.5, 2.5), [0.0, 1.0, 2.0]);
         assert_eq!(a.ticks(0.0, 20.0).len(), 11);
         assert!(a.ticks(1.0, 1.0).is_empty() && a.ticks(f64::NAN, 2.0).is_empty());
-        let c = Axis::categories("", &["a", "b<"]);
+        let c = ChartAxis::categories("", &["a", "b<"]);
         assert_eq!(c.ticks(0.0, 2.0), [0.5, 1.5]);
         assert_eq!(c.label(1.5, 1.0), "b&lt;");
     }

@@ -26,10 +26,10 @@ mod style;
 
 use std::fmt::Write;
 
-use rs_spline::{BoundingBox, Flatten, Point};
+use rs_spline::{BoundingBox, Flatten, Point, flatten_chain};
 
 pub use axes::nice_ticks;
-pub use chart::{Axis, AxisScale};
+pub use chart::{AxisScale, ChartAxis};
 pub use raster::{FieldImage, viridis};
 pub use style::{Marker, Style};
 
@@ -60,7 +60,7 @@ pub struct Figure {
     /// Pixels left of the plot area (tick labels, and a chart's axis title).
     left: f64,
     /// A chart's axes (titles and scales); `None` for geometry.
-    chart_axes: Option<(Axis, Axis)>,
+    chart_axes: Option<(ChartAxis, ChartAxis)>,
     plot_width: f64,
     plot_height: f64,
     body: String,
@@ -173,22 +173,16 @@ impl Figure {
         self.polyline(&self.flattened(curve), style);
     }
 
-    /// Closed regions bounded by the given curves, each loop a list of curves in order, filled
-    /// with the even-odd rule (so holes stay empty).
+    /// Closed regions bounded by the given curves, each loop a list of curves in order (each
+    /// starting where the previous one ends, flattened as one polyline by [`flatten_chain`]),
+    /// filled with the even-odd rule (so holes stay empty).
     pub fn region(&mut self, loops: &[Vec<&dyn Flatten>], style: &Style) {
         self.remember(style);
         let mut d = String::new();
+        let accuracy = self.flattening_accuracy();
         for l in loops {
             let mut pts: Vec<Point> = Vec::new();
-            let accuracy = self.flattening_accuracy();
-            for (i, c) in l.iter().enumerate() {
-                // Each curve starts where the previous one ends: keep that point once.
-                if i == 0 {
-                    c.flatten(accuracy, &mut |p| pts.push(p));
-                } else {
-                    c.flatten_after_start(accuracy, &mut |p| pts.push(p));
-                }
-            }
+            flatten_chain(l.iter().copied(), accuracy, &mut |p| pts.push(p));
             for (i, &p) in pts.iter().enumerate() {
                 let (x, y) = self.to_pixels(p);
                 let _ = write!(d, "{}{x:.2},{y:.2} ", if i == 0 { "M" } else { "L" });

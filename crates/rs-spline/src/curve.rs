@@ -273,6 +273,37 @@ pub trait Flatten {
     }
 }
 
+/// Calls `emit` with the points of one polyline through `curves` taken in order, each curve
+/// starting where the previous one ends: all of the first curve's [`Flatten::flatten`], then
+/// each later curve's [`Flatten::flatten_after_start`], so every shared end point is emitted
+/// once (the later curve's start is dropped, not the earlier curve's end). Nothing is added to
+/// close the chain: for a loop, the last point is the last curve's end, which may differ from
+/// the first point by the loop's gap. No points for no curves.
+///
+/// # Examples
+///
+/// ```
+/// use rs_spline::{Flatten, Point, flatten_chain, segment};
+/// let (a, b, c) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0));
+/// let (ab, bc) = (segment(a, b).unwrap(), segment(b, c).unwrap());
+/// let mut pts = Vec::new();
+/// flatten_chain([&ab as &dyn Flatten, &bc], 1e-3, &mut |p| pts.push(p));
+/// assert_eq!(pts, [a, b, c]);
+/// ```
+pub fn flatten_chain<'a>(
+    curves: impl IntoIterator<Item = &'a dyn Flatten>,
+    accuracy: f64,
+    emit: &mut dyn FnMut(Point),
+) {
+    for (i, c) in curves.into_iter().enumerate() {
+        if i == 0 {
+            c.flatten(accuracy, emit);
+        } else {
+            c.flatten_after_start(accuracy, emit);
+        }
+    }
+}
+
 /// The traits, for `use rs_spline::prelude::*`.
 pub mod prelude {
     pub use super::{

@@ -238,6 +238,34 @@ impl Domain {
         }
     }
 
+    /// Calls `emit` with the points of loop `i` as one polyline within `accuracy` (an absolute
+    /// distance, see [`Flatten::flatten`]) of its curves: the first curve's start point, then
+    /// every vertex up to the last curve's end, each point where two curves (or two Bezier
+    /// pieces) meet emitted once ([`flatten_chain`](crate::flatten_chain)). The polyline is
+    /// not closed: its last point is the last curve's end, which is the loop's
+    /// [`gap`](BoundaryLoop::gap) away from the first (within the closure tolerance for a closed
+    /// loop, and not necessarily equal to it); a caller that needs a closed ring adds the first
+    /// point again when they differ.
+    ///
+    /// # Panics
+    /// If `i` is not a loop index.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_spline::{circle, Domain, Point};
+    /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+    /// let mut ring = Vec::new();
+    /// d.flatten_loop(0, 1e-3, &mut |p| ring.push(p));
+    /// assert_eq!(ring.first(), ring.last());
+    /// assert!(ring.iter().all(|p| (p.length() - 1.0).abs() < 1e-12));
+    /// ```
+    pub fn flatten_loop(&self, i: usize, accuracy: f64, emit: &mut dyn FnMut(Point)) {
+        let l = &self.loops[i];
+        let curves = self.curves[l.first..=l.last].iter();
+        crate::flatten_chain(curves.map(|c| c as &dyn Flatten), accuracy, emit);
+    }
+
     /// Every curve's Bezier pieces, in boundary order, with the index of their curve.
     pub fn bezier_pieces(&self) -> Vec<(usize, RationalBezier)> {
         self.curves

@@ -64,7 +64,7 @@ pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
 pub use bezier::RationalBezier;
 pub use curve::{
     ArcLengthTable, Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv,
-    ParamCurveExtrema, prelude,
+    ParamCurveExtrema, flatten_chain, prelude,
 };
 pub use domain::{BoundaryLoop, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};

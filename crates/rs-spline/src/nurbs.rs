@@ -505,13 +505,8 @@ impl Flatten for NurbsCurve {
     /// The Bezier pieces flattened in order; each piece's start (the previous piece's end)
     /// is emitted once.
     fn flatten(&self, accuracy: f64, emit: &mut dyn FnMut(Point)) {
-        for (i, b) in self.to_bezier().iter().enumerate() {
-            if i == 0 {
-                b.flatten(accuracy, emit);
-            } else {
-                b.flatten_after_start(accuracy, emit);
-            }
-        }
+        let pieces = self.to_bezier();
+        crate::flatten_chain(pieces.iter().map(|b| b as &dyn Flatten), accuracy, emit);
     }
 }
 

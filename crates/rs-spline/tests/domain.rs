@@ -36,3 +36,30 @@ fn holes_and_components() {
     assert_eq!(d.bezier_pieces().len(), 12);
     assert!((d.bounding_box().max.x - 10.5).abs() < 1e-12);
 }
+
+/// A loop is flattened as one open polyline: from its first curve's start to its last curve's
+/// end (the gap left open), every joint once; each loop on its own.
+#[test]
+fn flatten_loop_chains_the_loop_curves_and_leaves_the_gap() {
+    let (a, b, c) = (
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(0.0, 1.0),
+    );
+    let gap_end = Point::new(1e-12, 0.0);
+    let curves = vec![
+        segment(a, b).unwrap(),
+        segment(b, c).unwrap(),
+        segment(c, gap_end).unwrap(),
+        circle(Point::new(5.0, 5.0), 1.0).unwrap(),
+    ];
+    let d = Domain::new(curves).unwrap();
+    assert_eq!(d.loops().len(), 2);
+    let mut pts = Vec::new();
+    d.flatten_loop(0, 1e-3, &mut |p| pts.push(p));
+    assert_eq!(pts, [a, b, c, gap_end]);
+    let (mut ring, mut alone) = (Vec::new(), Vec::new());
+    d.flatten_loop(1, 1e-3, &mut |p| ring.push(p));
+    d.curves()[3].flatten(1e-3, &mut |p| alone.push(p));
+    assert_eq!(ring, alone);
+}

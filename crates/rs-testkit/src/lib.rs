@@ -1,16 +1,19 @@
 //! Test support shared by the workspace's integration tests: named test domains (the paper
-//! fixtures and adversarial synthetic shapes) and [`DensePolygon`], an independent reference
-//! that flattens the boundary adaptively and answers by even-odd parity.
+//! fixtures and adversarial synthetic shapes), [`DensePolygon`], an independent reference
+//! that flattens the boundary adaptively and answers by even-odd parity, and [`XorShift64`],
+//! the seeded generator of the tests' random inputs.
 //!
 //! Test-only code: it panics on bad input instead of returning errors.
 #![allow(clippy::unwrap_used)]
 
 mod figure_check;
 mod fixture_meta;
+mod rng;
 
 pub use figure_check::assert_figure;
 
 pub use fixture_meta::FixtureMeta;
+pub use rng::XorShift64;
 
 use rs_spline::prelude::*;
 use std::f64::consts::PI;

@@ -19,7 +19,7 @@ use rs_spline::quadrature::gauss_legendre;
 
 use crate::bb::{Jet, Order, Triangle, coefficient_count, evaluate};
 use crate::hermite::{C1Space, macro_triangles, powell_sabin_element, sub_triangles};
-use crate::{Spline, SplineError};
+use crate::{Spline, TriSplineError};
 
 /// The relative residual `|K g + b| / |b|` the conjugate gradients stop at.
 pub const ENERGY_TOLERANCE: f64 = 1e-12;
@@ -73,20 +73,20 @@ pub fn energy(s: &Spline) -> f64 {
 /// zeros otherwise).
 ///
 /// # Errors
-/// [`SplineError::WrongTriangulation`] unless `mesh` is a Powell–Sabin refinement;
-/// [`SplineError::Data`] if `values` or `start` is shorter than the vertex list or a value is
-/// not finite; [`SplineError::NotConverged`].
+/// [`TriSplineError::WrongTriangulation`] unless `mesh` is a Powell–Sabin refinement;
+/// [`TriSplineError::Data`] if `values` or `start` is shorter than the vertex list or a value is
+/// not finite; [`TriSplineError::NotConverged`].
 pub fn minimal_energy(
     mesh: CurvedTriangulation,
     values: &[f64],
     start: Option<&[[f64; 2]]>,
-) -> Result<Spline, SplineError> {
+) -> Result<Spline, TriSplineError> {
     let space = C1Space::MinimalEnergy;
     let macros = macro_triangles(&mesh, space)?;
     let per = space.pieces();
     let nv = mesh.vertices().len();
     if values.len() < nv || start.is_some_and(|s| s.len() < nv) {
-        return Err(SplineError::Data(format!(
+        return Err(TriSplineError::Data(format!(
             "{} values for {nv} vertices",
             values.len()
         )));
@@ -102,7 +102,7 @@ pub fn minimal_energy(
     }
     if let Some(&v) = order.iter().find(|&&v| !values[v].is_finite()) {
         let p = mesh.vertices()[v];
-        return Err(SplineError::NotFinite {
+        return Err(TriSplineError::NotFinite {
             x: p.x,
             y: p.y,
             value: values[v],
@@ -257,7 +257,7 @@ impl Csr {
 
     /// Solves `A x = b` (A symmetric positive definite) by preconditioned conjugate gradients
     /// from the given `x`.
-    fn conjugate_gradients(&self, b: &[f64], x: &mut [f64]) -> Result<(), SplineError> {
+    fn conjugate_gradients(&self, b: &[f64], x: &mut [f64]) -> Result<(), TriSplineError> {
         let n = b.len();
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
         let norm_b = dot(b, b).sqrt();
@@ -286,7 +286,7 @@ impl Csr {
             self.multiply(&p, &mut ap);
             let pap = dot(&p, &ap);
             if pap.is_nan() || pap <= 0.0 {
-                return Err(SplineError::NotConverged {
+                return Err(TriSplineError::NotConverged {
                     residual,
                     iterations: iteration,
                 });
@@ -310,7 +310,7 @@ impl Csr {
         if residual <= ENERGY_TOLERANCE {
             return Ok(());
         }
-        Err(SplineError::NotConverged {
+        Err(TriSplineError::NotConverged {
             residual,
             iterations: limit,
         })

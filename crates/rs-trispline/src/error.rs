@@ -2,10 +2,11 @@
 
 use thiserror::Error;
 
-/// Why a spline could not be built, read or evaluated.
+/// Why a spline on a curved triangulation could not be built, read or evaluated (the errors
+/// of the boundary curves themselves are [`rs_spline::SplineError`]).
 #[derive(Debug, Error)]
 #[non_exhaustive]
-pub enum SplineError {
+pub enum TriSplineError {
     /// A degree outside `1..=MAX_DEGREE`.
     #[error("degree {0} is out of range (1 to {max})", max = crate::bb::MAX_DEGREE)]
     Degree(usize),

@@ -8,7 +8,7 @@ use rs_mesh::EdgeKind;
 use rs_spline::Point;
 
 use crate::bb::Order;
-use crate::{Spline, SplineError};
+use crate::{Spline, TriSplineError};
 
 /// Pixels per row of the colour map (the figure scales it to its plot area).
 const RASTER_WIDTH: usize = 360;
@@ -18,7 +18,7 @@ const RASTER_WIDTH: usize = 360;
 ///
 /// # Errors
 /// As [`Spline::evaluator`].
-pub fn spline_svg(s: &Spline, source: &str, width: f64) -> Result<String, SplineError> {
+pub fn spline_svg(s: &Spline, source: &str, width: f64) -> Result<String, TriSplineError> {
     let eval = s.evaluator()?;
     let mut fig = Figure::new(s.mesh().domain().bounding_box(), width);
     let image = FieldImage::sample(&fig, RASTER_WIDTH, |p| {
@@ -47,7 +47,7 @@ pub fn error_svg(
     f: &(dyn Fn(Point) -> f64 + Sync),
     formula: &str,
     width: f64,
-) -> Result<String, SplineError> {
+) -> Result<String, TriSplineError> {
     let eval = s.evaluator()?;
     let mut fig = Figure::new(s.mesh().domain().bounding_box(), width);
     let image = FieldImage::sample(&fig, RASTER_WIDTH, |p| {
@@ -69,7 +69,7 @@ pub fn error_svg(
 }
 
 /// The straight edges (once each) and the boundary arcs.
-fn draw_triangulation(fig: &mut Figure, s: &Spline) -> Result<(), SplineError> {
+fn draw_triangulation(fig: &mut Figure, s: &Spline) -> Result<(), TriSplineError> {
     let m = s.mesh();
     let edge = Style::stroke("#5a5a5a", 0.4).labelled("triangle edge");
     let arc = Style::stroke("#000000", 1.2).labelled("boundary arc");

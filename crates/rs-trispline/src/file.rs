@@ -18,7 +18,7 @@ use std::path::Path;
 use serde_json::{Value, json};
 
 use crate::bb::coefficient_count;
-use crate::{SpaceKind, Spline, SplineError};
+use crate::{SpaceKind, Spline, TriSplineError};
 
 /// The largest spline file read (the domain, the mesh and the coefficients together).
 pub const MAX_SPLINE_FILE_BYTES: u64 = 1 << 30;
@@ -42,10 +42,10 @@ pub fn spline_to_json(s: &Spline) -> String {
 /// The spline of a spline file's JSON text.
 ///
 /// # Errors
-/// [`SplineError::File`] for malformed JSON or fields, [`SplineError::Io`] for a bad
-/// embedded domain, [`SplineError::Mesh`] for a triangulation that is not one.
-pub fn spline_from_json(text: &str) -> Result<Spline, SplineError> {
-    let bad = |m: String| SplineError::File(m);
+/// [`TriSplineError::File`] for malformed JSON or fields, [`TriSplineError::Io`] for a bad
+/// embedded domain, [`TriSplineError::Mesh`] for a triangulation that is not one.
+pub fn spline_from_json(text: &str) -> Result<Spline, TriSplineError> {
+    let bad = |m: String| TriSplineError::File(m);
     let value: Value = serde_json::from_str(text).map_err(|e| bad(e.to_string()))?;
     let space = value
         .get("space")
@@ -57,9 +57,9 @@ pub fn spline_from_json(text: &str) -> Result<Spline, SplineError> {
         .get("degree")
         .and_then(Value::as_u64)
         .ok_or_else(|| bad("no \"degree\"".into()))?;
-    let degree = usize::try_from(degree).map_err(|_| SplineError::Degree(usize::MAX))?;
+    let degree = usize::try_from(degree).map_err(|_| TriSplineError::Degree(usize::MAX))?;
     if !(1..=crate::bb::MAX_DEGREE).contains(&degree) {
-        return Err(SplineError::Degree(degree));
+        return Err(TriSplineError::Degree(degree));
     }
     let domain = value
         .get("domain")
@@ -99,29 +99,29 @@ pub fn spline_from_json(text: &str) -> Result<Spline, SplineError> {
 /// Writes a spline file.
 ///
 /// # Errors
-/// [`SplineError::File`] naming the file.
-pub fn save_spline(s: &Spline, path: impl AsRef<Path>) -> Result<(), SplineError> {
+/// [`TriSplineError::File`] naming the file.
+pub fn save_spline(s: &Spline, path: impl AsRef<Path>) -> Result<(), TriSplineError> {
     let path = path.as_ref();
     std::fs::write(path, spline_to_json(s))
-        .map_err(|e| SplineError::File(format!("{}: {e}", path.display())))
+        .map_err(|e| TriSplineError::File(format!("{}: {e}", path.display())))
 }
 
 /// Reads a spline file (at most [`MAX_SPLINE_FILE_BYTES`]).
 ///
 /// # Errors
-/// As [`spline_from_json`], and [`SplineError::File`] if it cannot be read.
-pub fn load_spline(path: impl AsRef<Path>) -> Result<Spline, SplineError> {
+/// As [`spline_from_json`], and [`TriSplineError::File`] if it cannot be read.
+pub fn load_spline(path: impl AsRef<Path>) -> Result<Spline, TriSplineError> {
     let path = path.as_ref();
     let size = std::fs::metadata(path)
-        .map_err(|e| SplineError::File(format!("{}: {e}", path.display())))?
+        .map_err(|e| TriSplineError::File(format!("{}: {e}", path.display())))?
         .len();
     if size > MAX_SPLINE_FILE_BYTES {
-        return Err(SplineError::File(format!(
+        return Err(TriSplineError::File(format!(
             "{}: {size} bytes exceed the limit {MAX_SPLINE_FILE_BYTES}",
             path.display()
         )));
     }
     let text = std::fs::read_to_string(path)
-        .map_err(|e| SplineError::File(format!("{}: {e}", path.display())))?;
+        .map_err(|e| TriSplineError::File(format!("{}: {e}", path.display())))?;
     spline_from_json(&text)
 }

@@ -29,7 +29,7 @@ use rs_mesh::{CurvedTriangulation, Refinement};
 use rs_spline::Point;
 
 use crate::bb::{Jet, Order, Triangle, coefficient_count, evaluate, index, multi_indices};
-use crate::{SpaceKind, Spline, SplineError};
+use crate::{SpaceKind, Spline, TriSplineError};
 
 /// A space of `C^1` splines on a curved triangulation for scattered-data interpolation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -109,11 +109,11 @@ impl C1Space {
     }
 
     /// Checks that `mesh` is the triangulation the space lives on.
-    pub(crate) fn check_mesh(self, mesh: &CurvedTriangulation) -> Result<(), SplineError> {
+    pub(crate) fn check_mesh(self, mesh: &CurvedTriangulation) -> Result<(), TriSplineError> {
         if mesh.refinement() == self.refinement() {
             return Ok(());
         }
-        Err(SplineError::WrongTriangulation {
+        Err(TriSplineError::WrongTriangulation {
             space: self.name(),
             needs: match self.refinement() {
                 None => "an unrefined curved triangulation",
@@ -166,11 +166,11 @@ impl HermiteData for ExactJets<'_> {
 /// `v_k m_k c` and `m_k v_(k+1) c` for Powell–Sabin).
 ///
 /// # Errors
-/// [`SplineError::WrongTriangulation`].
+/// [`TriSplineError::WrongTriangulation`].
 pub fn macro_triangles(
     mesh: &CurvedTriangulation,
     space: C1Space,
-) -> Result<Vec<[usize; 3]>, SplineError> {
+) -> Result<Vec<[usize; 3]>, TriSplineError> {
     space.check_mesh(mesh)?;
     let per = space.pieces();
     let first = match space.refinement() {
@@ -194,17 +194,17 @@ pub fn macro_triangles(
 /// interpolating the Hermite data `data`, triangle by triangle on all threads.
 ///
 /// # Errors
-/// [`SplineError::WrongTriangulation`]; [`SplineError::NotFinite`] if the data give a
+/// [`TriSplineError::WrongTriangulation`]; [`TriSplineError::NotFinite`] if the data give a
 /// coefficient that is not finite; for [`C1Space::MinimalEnergy`] use
-/// [`crate::minimal_energy`] ([`SplineError::WrongTriangulation`] here).
+/// [`crate::minimal_energy`] ([`TriSplineError::WrongTriangulation`] here).
 pub fn hermite_interpolate(
     mesh: CurvedTriangulation,
     space: C1Space,
     data: &dyn HermiteData,
-) -> Result<Spline, SplineError> {
+) -> Result<Spline, TriSplineError> {
     use rayon::prelude::*;
     if space == C1Space::MinimalEnergy {
-        return Err(SplineError::WrongTriangulation {
+        return Err(TriSplineError::WrongTriangulation {
             space: space.name(),
             needs: "a global solve (minimal_energy), not Hermite data",
         });
@@ -231,7 +231,7 @@ pub fn hermite_interpolate(
     if let Some(i) = coefficients.iter().position(|c| !c.is_finite()) {
         let t = i / coefficient_count(space.degree()) / per;
         let p = vertices[macros[t][0]];
-        return Err(SplineError::NotFinite {
+        return Err(TriSplineError::NotFinite {
             x: p.x,
             y: p.y,
             value: coefficients[i],

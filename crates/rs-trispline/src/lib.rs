@@ -51,7 +51,7 @@ mod space;
 mod spline;
 
 pub use energy::{ENERGY_TOLERANCE, energy, max_energy_iterations, minimal_energy};
-pub use error::SplineError;
+pub use error::TriSplineError;
 pub use figure::{error_svg, spline_svg};
 pub use file::{MAX_SPLINE_FILE_BYTES, load_spline, save_spline, spline_from_json, spline_to_json};
 pub use hermite::{C1Space, ExactJets, HermiteData, hermite_interpolate};

@@ -16,7 +16,7 @@
 use nalgebra::{DMatrix, DVector};
 use rs_spline::Point;
 
-use crate::SplineError;
+use crate::TriSplineError;
 use crate::bb::Jet;
 use crate::nearest::NearestSites;
 
@@ -105,14 +105,18 @@ impl<'a> LocalFits<'a> {
     /// Fits of degree `degree` (1 to 3) to the data.
     ///
     /// # Errors
-    /// [`SplineError::Degree`] for a degree outside 1 to 3; [`SplineError::Data`] if the
+    /// [`TriSplineError::Degree`] for a degree outside 1 to 3; [`TriSplineError::Data`] if the
     /// lengths differ or a site or value is not finite.
-    pub fn new(sites: &'a [Point], values: &'a [f64], degree: usize) -> Result<Self, SplineError> {
+    pub fn new(
+        sites: &'a [Point],
+        values: &'a [f64],
+        degree: usize,
+    ) -> Result<Self, TriSplineError> {
         if !(1..=3).contains(&degree) {
-            return Err(SplineError::Degree(degree));
+            return Err(TriSplineError::Degree(degree));
         }
         if sites.len() != values.len() {
-            return Err(SplineError::Data(format!(
+            return Err(TriSplineError::Data(format!(
                 "{} sites and {} values",
                 sites.len(),
                 values.len()
@@ -120,7 +124,7 @@ impl<'a> LocalFits<'a> {
         }
         if let Some(i) = (0..sites.len()).find(|&i| !sites[i].is_finite() || !values[i].is_finite())
         {
-            return Err(SplineError::Data(format!(
+            return Err(TriSplineError::Data(format!(
                 "data point {} is not finite: ({}, {}) -> {}",
                 i + 1,
                 sites[i].x,
@@ -139,13 +143,13 @@ impl<'a> LocalFits<'a> {
     /// through its value.
     ///
     /// # Errors
-    /// [`SplineError::IllPosedFit`] if no neighbourhood (see the module docs) determines the
+    /// [`TriSplineError::IllPosedFit`] if no neighbourhood (see the module docs) determines the
     /// polynomial.
     pub fn fit_at(
         &self,
         centre: Point,
         site: Option<usize>,
-    ) -> Result<LocalPolynomial, SplineError> {
+    ) -> Result<LocalPolynomial, TriSplineError> {
         let all = crate::bb::coefficient_count(self.degree);
         let anchored = site.map(|i| self.values[i]);
         let first = usize::from(anchored.is_some());
@@ -204,7 +208,7 @@ impl<'a> LocalFits<'a> {
             }
             k += k / 2;
         }
-        Err(SplineError::IllPosedFit {
+        Err(TriSplineError::IllPosedFit {
             x: centre.x,
             y: centre.y,
             degree: self.degree,
@@ -275,7 +279,7 @@ mod tests {
         let fits = LocalFits::new(&sites, &values, 2).unwrap();
         let e = fits.fit_at(sites[3], Some(3)).unwrap_err();
         assert!(
-            matches!(e, SplineError::IllPosedFit { degree: 2, .. }),
+            matches!(e, TriSplineError::IllPosedFit { degree: 2, .. }),
             "{e}"
         );
         assert!(LocalFits::new(&sites, &values[1..], 2).is_err());

@@ -7,7 +7,7 @@ use rs_spline::prelude::*;
 use rs_spline::{Affine, Point};
 
 use crate::bb::{DomainPointInterpolation, MAX_DEGREE, Order, Triangle, evaluate, multi_indices};
-use crate::{SpaceKind, Spline, SplineError};
+use crate::{SpaceKind, Spline, TriSplineError};
 
 /// `Q f` of degree `d` on `mesh` (Algorithm 6.1), triangle by triangle on all threads:
 ///
@@ -24,13 +24,13 @@ use crate::{SpaceKind, Spline, SplineError};
 /// is [`QuasiInterpolation`] with `f` sampled in parallel.
 ///
 /// # Errors
-/// [`SplineError::Degree`] outside `1..=`[`MAX_DEGREE`]; [`SplineError::NotFinite`] if `f` is not
-/// finite at a point it is sampled at; [`SplineError::ThinTriangle`].
+/// [`TriSplineError::Degree`] outside `1..=`[`MAX_DEGREE`]; [`TriSplineError::NotFinite`] if `f` is not
+/// finite at a point it is sampled at; [`TriSplineError::ThinTriangle`].
 pub fn quasi_interpolate(
     mesh: CurvedTriangulation,
     d: usize,
     f: &(dyn Fn(Point) -> f64 + Sync),
-) -> Result<Spline, SplineError> {
+) -> Result<Spline, TriSplineError> {
     use rayon::prelude::*;
     let plan = QuasiInterpolation::new(mesh, d)?;
     let values: Vec<f64> = plan.points().par_iter().map(|&p| f(p)).collect();
@@ -57,10 +57,10 @@ impl QuasiInterpolation {
     /// interior edges.
     ///
     /// # Errors
-    /// [`SplineError::Degree`], [`SplineError::ThinTriangle`].
-    pub fn new(mesh: CurvedTriangulation, d: usize) -> Result<Self, SplineError> {
+    /// [`TriSplineError::Degree`], [`TriSplineError::ThinTriangle`].
+    pub fn new(mesh: CurvedTriangulation, d: usize) -> Result<Self, TriSplineError> {
         if !(1..=MAX_DEGREE).contains(&d) {
-            return Err(SplineError::Degree(d));
+            return Err(TriSplineError::Degree(d));
         }
         let mut inner = Vec::with_capacity(mesh.triangles().len());
         let mut offsets = Vec::with_capacity(mesh.triangles().len() + 1);
@@ -94,19 +94,19 @@ impl QuasiInterpolation {
     /// `Q f` from the values of `f` at [`QuasiInterpolation::points`].
     ///
     /// # Errors
-    /// [`SplineError::NotFinite`] for a value that is not finite, [`SplineError::File`] if
+    /// [`TriSplineError::NotFinite`] for a value that is not finite, [`TriSplineError::File`] if
     /// the number of values is wrong.
-    pub fn finish(self, values: &[f64]) -> Result<Spline, SplineError> {
+    pub fn finish(self, values: &[f64]) -> Result<Spline, TriSplineError> {
         use rayon::prelude::*;
         if values.len() != self.points.len() {
-            return Err(SplineError::File(format!(
+            return Err(TriSplineError::File(format!(
                 "{} values for {} points",
                 values.len(),
                 self.points.len()
             )));
         }
         if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(SplineError::NotFinite {
+            return Err(TriSplineError::NotFinite {
                 x: self.points[i].x,
                 y: self.points[i].y,
                 value: values[i],
@@ -187,9 +187,9 @@ fn interior_edge_points(
 /// itself when every arc bulges outwards.
 ///
 /// # Errors
-/// [`SplineError::ThinTriangle`] if `sum alpha_k >= 1`; [`SplineError::Mesh`] if an arc cannot
+/// [`TriSplineError::ThinTriangle`] if `sum alpha_k >= 1`; [`TriSplineError::Mesh`] if an arc cannot
 /// be cut from its curve.
-pub fn inner_triangle(mesh: &CurvedTriangulation, t: usize) -> Result<Triangle, SplineError> {
+pub fn inner_triangle(mesh: &CurvedTriangulation, t: usize) -> Result<Triangle, TriSplineError> {
     let v = mesh.triangles()[t].map(|i| mesh.vertices()[i]);
     let companion = Triangle::new(v[0], v[1], v[2]);
     let mut alpha = [0.0f64; 3];
@@ -208,7 +208,7 @@ pub fn inner_triangle(mesh: &CurvedTriangulation, t: usize) -> Result<Triangle, 
         .then_apply_to(Affine::translate(-v[e].x, -v[e].y));
         let lambda = map
             .apply_to_curve(&arc)
-            .map_err(|e| SplineError::Mesh(e.into()))?;
+            .map_err(|e| TriSplineError::Mesh(e.into()))?;
         alpha[opposite] = lambda.bounding_box().max.x.max(0.0);
     }
     let total = alpha[0] + alpha[1] + alpha[2];
@@ -216,7 +216,7 @@ pub fn inner_triangle(mesh: &CurvedTriangulation, t: usize) -> Result<Triangle, 
         return Ok(companion);
     }
     if total >= 1.0 {
-        return Err(SplineError::ThinTriangle { triangle: t });
+        return Err(TriSplineError::ThinTriangle { triangle: t });
     }
     let corner = |k: usize| {
         let mut b = alpha;

@@ -14,7 +14,7 @@ use rs_spline::{Domain, NearestBoundary, Point};
 use crate::bb::Jet;
 use crate::hermite::{C1Space, HermiteData, hermite_interpolate, macro_triangles};
 use crate::local_fit::{LocalFits, LocalPolynomial};
-use crate::{Spline, SplineError, minimal_energy};
+use crate::{Spline, TriSplineError, minimal_energy};
 
 /// Data points within this distance, relative to the domain's bounding-box diagonal, of the
 /// boundary count as boundary points (they become boundary vertices, moved onto the curve).
@@ -38,25 +38,25 @@ impl ScatteredData {
     /// boundary points, at the nearest point of the curve.
     ///
     /// # Errors
-    /// [`SplineError::DataPoint`] naming the first bad point (not finite, outside the domain,
-    /// or equal to an earlier one); [`SplineError::Data`] for lengths that differ or too many
+    /// [`TriSplineError::DataPoint`] naming the first bad point (not finite, outside the domain,
+    /// or equal to an earlier one); [`TriSplineError::Data`] for lengths that differ or too many
     /// points; [`rs_mesh::MeshError::TooManyPieces`] for a boundary the triangulation refuses;
     /// containment errors for an open boundary.
-    pub fn new(domain: &Domain, points: &[Point], values: &[f64]) -> Result<Self, SplineError> {
+    pub fn new(domain: &Domain, points: &[Point], values: &[f64]) -> Result<Self, TriSplineError> {
         if points.len() != values.len() {
-            return Err(SplineError::Data(format!(
+            return Err(TriSplineError::Data(format!(
                 "{} points and {} values",
                 points.len(),
                 values.len()
             )));
         }
         if points.len() > MAX_DATA_POINTS {
-            return Err(SplineError::Data(format!(
+            return Err(TriSplineError::Data(format!(
                 "{} points exceed the limit {MAX_DATA_POINTS}",
                 points.len()
             )));
         }
-        let bad = |index: usize, reason: &'static str| SplineError::DataPoint {
+        let bad = |index: usize, reason: &'static str| TriSplineError::DataPoint {
             index,
             x: points[index].x,
             y: points[index].y,
@@ -158,7 +158,7 @@ impl ScatteredData {
         &self,
         domain: &Domain,
         space: C1Space,
-    ) -> Result<CurvedTriangulation, SplineError> {
+    ) -> Result<CurvedTriangulation, TriSplineError> {
         Ok(match space.refinement() {
             None => CurvedTriangulation::new(domain, &self.points)?,
             Some(how) => CurvedTriangulation::new_refined(domain, &self.points, how)?,
@@ -191,7 +191,7 @@ pub fn interpolate_scattered(
     points: &[Point],
     values: &[f64],
     space: C1Space,
-) -> Result<ScatteredFit, SplineError> {
+) -> Result<ScatteredFit, TriSplineError> {
     let data = ScatteredData::new(domain, points, values)?;
     let mesh = data.triangulate(domain, space)?;
     interpolate_on(mesh, space, data.sites(), data.values())
@@ -206,14 +206,14 @@ pub fn interpolate_scattered(
 /// minimal-energy spline with the vertex values.
 ///
 /// # Errors
-/// [`SplineError::WrongTriangulation`], [`SplineError::Data`], [`SplineError::IllPosedFit`],
-/// [`SplineError::NotConverged`].
+/// [`TriSplineError::WrongTriangulation`], [`TriSplineError::Data`], [`TriSplineError::IllPosedFit`],
+/// [`TriSplineError::NotConverged`].
 pub fn interpolate_on(
     mesh: CurvedTriangulation,
     space: C1Space,
     sites: &[Point],
     values: &[f64],
-) -> Result<ScatteredFit, SplineError> {
+) -> Result<ScatteredFit, TriSplineError> {
     use rayon::prelude::*;
     let fits = LocalFits::new(sites, values, space.fit_degree())?;
     let macros = macro_triangles(&mesh, space)?;

@@ -5,7 +5,7 @@ use rs_mesh::{CurvedLocator, CurvedTriangulation};
 use rs_spline::Point;
 
 use crate::bb::{Jet, Order, Triangle, coefficient_count, evaluate};
-use crate::{SplineError, SplineSpace};
+use crate::{SplineSpace, TriSplineError};
 
 /// The space a spline was built in (written to the spline file as `space`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -85,19 +85,19 @@ impl Spline {
     /// The spline with `coefficients` (`C(d + 2, 2)` per triangle, triangle by triangle).
     ///
     /// # Errors
-    /// [`SplineError::Degree`]; [`SplineError::File`] if the number of coefficients is wrong.
+    /// [`TriSplineError::Degree`]; [`TriSplineError::File`] if the number of coefficients is wrong.
     pub fn new(
         mesh: CurvedTriangulation,
         degree: usize,
         kind: SpaceKind,
         coefficients: Vec<f64>,
-    ) -> Result<Self, SplineError> {
+    ) -> Result<Self, TriSplineError> {
         if !(1..=crate::bb::MAX_DEGREE).contains(&degree) {
-            return Err(SplineError::Degree(degree));
+            return Err(TriSplineError::Degree(degree));
         }
         let expected = mesh.triangles().len() * coefficient_count(degree);
         if coefficients.len() != expected {
-            return Err(SplineError::File(format!(
+            return Err(TriSplineError::File(format!(
                 "{} coefficients for {} triangles of degree {degree} (expected {expected})",
                 coefficients.len(),
                 mesh.triangles().len()
@@ -163,7 +163,7 @@ impl Spline {
     ///
     /// # Errors
     /// Containment errors (never for a triangulation built by rs-mesh).
-    pub fn evaluator(&self) -> Result<SplineEvaluator<'_>, SplineError> {
+    pub fn evaluator(&self) -> Result<SplineEvaluator<'_>, TriSplineError> {
         Ok(SplineEvaluator {
             spline: self,
             locator: CurvedLocator::new(&self.mesh)?,

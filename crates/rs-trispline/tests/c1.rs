@@ -15,7 +15,7 @@ use rs_mesh::{CurvedTriangulation, EdgeKind, well_spaced_points};
 use rs_spline::{Domain, Point};
 use rs_trispline::bb::{Jet, Order};
 use rs_trispline::{
-    C1Space, ExactJets, ScatteredFit, Spline, SplineError, energy, hermite_interpolate,
+    C1Space, ExactJets, ScatteredFit, Spline, TriSplineError, energy, hermite_interpolate,
     interpolate_on, interpolate_scattered, spline_from_json, spline_to_json,
 };
 
@@ -317,7 +317,10 @@ fn scattered_points_in_any_order_are_interpolated_and_bad_points_are_named() {
     let mut bad = points.clone();
     bad[4] = Point::new(100.0, 100.0);
     let e = interpolate_scattered(d, &bad, &values, C1Space::PowellSabin).unwrap_err();
-    assert!(matches!(e, SplineError::DataPoint { index: 4, .. }), "{e}");
+    assert!(
+        matches!(e, TriSplineError::DataPoint { index: 4, .. }),
+        "{e}"
+    );
     assert!(e.to_string().contains("data point 5") && e.to_string().contains("outside"));
     let mut bad = points.clone();
     bad[7] = bad[2];
@@ -329,12 +332,15 @@ fn scattered_points_in_any_order_are_interpolated_and_bad_points_are_named() {
     let mut bad_values = values.clone();
     bad_values[3] = f64::NAN;
     let e = interpolate_scattered(d, &points, &bad_values, C1Space::CloughTocher).unwrap_err();
-    assert!(matches!(e, SplineError::DataPoint { index: 3, .. }), "{e}");
+    assert!(
+        matches!(e, TriSplineError::DataPoint { index: 3, .. }),
+        "{e}"
+    );
     // A mesh that is not the space's refinement.
     let m = mesh(d, 7, C1Space::SuperSpline);
     let (sites, vals) = data(&m, &wave);
     assert!(matches!(
         interpolate_on(m, C1Space::PowellSabin, &sites, &vals),
-        Err(SplineError::WrongTriangulation { .. })
+        Err(TriSplineError::WrongTriangulation { .. })
     ));
 }

@@ -59,17 +59,12 @@ pub(super) fn flower(md: &mut String, d: &Domain, o: &BenchOptions) -> Result<()
     Ok(())
 }
 
-/// Uniform pseudo-random points in a box (xorshift64*, fixed seed).
+/// Uniform pseudo-random points in a box (the test kit's seeded generator, fixed seed, so
+/// every run measures the same points).
 pub(super) fn uniform_points(n: usize, b: BoundingBox) -> Vec<Point> {
-    let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = || {
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = rs_testkit::XorShift64::new(0x9E37_79B9_7F4A_7C15);
     (0..n)
-        .map(|_| Point::new(b.min.x + next() * b.width(), b.min.y + next() * b.height()))
+        .map(|_| Point::new(rng.uniform(b.min.x, b.max.x), rng.uniform(b.min.y, b.max.y)))
         .collect()
 }
 

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use inrs::{BoundingBox, Point};
-use rs_figure::{Axis, Figure, Marker, Style, text_width};
+use rs_figure::{ChartAxis, Figure, Marker, Style, text_width};
 
 use super::paper::PaperTimings;
 
@@ -50,8 +50,8 @@ pub(super) fn times_figure(t: &PaperTimings, domain: &str) -> Option<Figure> {
         data,
         360.0,
         260.0,
-        Axis::log10("Halton points N"),
-        Axis::log10("seconds (median)"),
+        ChartAxis::log10("Halton points N"),
+        ChartAxis::log10("seconds (median)"),
     );
     for (_, colour, name, pts) in &series {
         if pts.is_empty() {
@@ -108,8 +108,8 @@ fn bars_figure(
         data,
         (per_group * categories.len() as f64).max(240.0),
         240.0,
-        Axis::categories("", categories),
-        Axis::log10(y_title),
+        ChartAxis::categories("", categories),
+        ChartAxis::log10(y_title),
     );
     let width = 0.8 / series.len().max(1) as f64;
     for (c, row) in values.iter().enumerate() {

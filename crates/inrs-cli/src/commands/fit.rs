@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use inrs::mesh::{CurvedTriangulation, Refinement, well_spaced_points};
-use inrs::trispline::{C1Space, Spline, SplineError, quasi_interpolate, spline_to_json};
+use inrs::trispline::{C1Space, Spline, TriSplineError, quasi_interpolate, spline_to_json};
 
 use crate::args::DomainArg;
 use crate::cli::error::CliError;
@@ -162,8 +162,8 @@ impl FitArgs {
         let d = self.domain.load()?;
         let (points, values, lines) = read_data(path)?;
         let start = Instant::now();
-        let named = |e: SplineError| match e {
-            SplineError::DataPoint {
+        let named = |e: TriSplineError| match e {
+            TriSplineError::DataPoint {
                 index,
                 x,
                 y,

@@ -599,15 +599,9 @@ mod tests {
             points.push(Point::new(v, 1.0));
             points.push(Point::new(0.5, v));
         }
-        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rng = rs_testkit::XorShift64::new(0x2545_f491_4f6c_dd1d);
         for _ in 0..20_000 {
-            let mut next = || {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                (state >> 11) as f64 / (1u64 << 53) as f64
-            };
-            points.push(Point::new(-2.0 + 6.0 * next(), -0.5 + 6.0 * next()));
+            points.push(Point::new(rng.uniform(-2.0, 4.0), rng.uniform(-0.5, 5.5)));
         }
         for group in points.chunks(LANES) {
             let (mut xs, mut ys, mut got) = ([0.0; LANES], [0.0; LANES], [0u64; LANES]);

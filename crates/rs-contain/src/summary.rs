@@ -1,4 +1,5 @@
-//! A printable summary of a domain: curves, pieces, loops, orientation, area, size.
+//! A printable summary of a domain: curves, pieces, loops, orientation, area, size. It lives
+//! here, not in `rs-spline`, for the even-odd filled area ([`crate::even_odd_area`]).
 
 use std::fmt;
 
@@ -38,7 +39,7 @@ pub struct DomainSummary {
     /// holes clockwise).
     pub signed_area: f64,
     /// The area filled under the even-odd rule, the region the crossing methods classify
-    /// ([`rs_contain::even_odd_area`]); `None` for open or coincident loops.
+    /// ([`crate::even_odd_area`]); `None` for open or coincident loops.
     pub filled_area: Option<f64>,
     /// False if some piece's area quadrature stopped at its work limit before meeting its
     /// tolerance (the areas are then estimates).
@@ -74,7 +75,7 @@ impl DomainSummary {
             max_degree: d.curves().iter().map(|c| c.degree()).max().unwrap_or(0),
             rational: d.curves().iter().any(|c| !c.is_polynomial()),
             signed_area: loops.iter().map(|l| l.signed_area).sum(),
-            filled_area: rs_contain::even_odd_area(d),
+            filled_area: crate::even_odd_area(d),
             areas_converged: areas.iter().all(|a| a.converged),
             loops,
             bounding_box: d.bounding_box(),
