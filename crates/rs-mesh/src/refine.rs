@@ -33,6 +33,34 @@ impl Refinement {
             Refinement::PowellSabin => 6,
         }
     }
+
+    /// The refinement named `name`, or `None` for `none` (the triangulation itself): the
+    /// choices of `inrs mesh --refine` and of the Python package's `refine`.
+    ///
+    /// # Errors
+    /// A one-line message naming the choices (`none`, `ct` or `ps`).
+    pub fn parse_optional(name: &str) -> Result<Option<Self>, String> {
+        if name.eq_ignore_ascii_case("none") {
+            return Ok(None);
+        }
+        name.parse()
+            .map(Some)
+            .map_err(|_| format!("unknown refinement {name:?} (expected none, ct or ps)"))
+    }
+}
+
+impl std::str::FromStr for Refinement {
+    type Err = String;
+
+    /// `ct` (or `clough-tocher`) and `ps` (or `powell-sabin`), in any case; see
+    /// [`Refinement::parse_optional`] for `none`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "ct" | "clough-tocher" => Ok(Self::CloughTocher),
+            "ps" | "powell-sabin" => Ok(Self::PowellSabin),
+            _ => Err(format!("unknown refinement {s:?} (expected ct or ps)")),
+        }
+    }
 }
 
 /// The refinement of `t` (an unrefined triangulation), or the places `(loop, k)` of the arcs
@@ -287,4 +315,33 @@ fn line_crossing(p: Point, q: Point, a: Point, b: Point) -> Option<Point> {
     }
     let s = (a - p).cross(d) / denom;
     (s > 0.0 && s < 1.0).then(|| a + e * s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Refinement;
+
+    #[test]
+    fn refinements_parse_from_their_names() {
+        for (name, how) in [
+            ("ct", Refinement::CloughTocher),
+            ("CT", Refinement::CloughTocher),
+            ("clough-tocher", Refinement::CloughTocher),
+            ("ps", Refinement::PowellSabin),
+            ("powell-sabin", Refinement::PowellSabin),
+        ] {
+            assert_eq!(name.parse::<Refinement>(), Ok(how), "{name}");
+            assert_eq!(Refinement::parse_optional(name), Ok(Some(how)), "{name}");
+        }
+        assert_eq!(
+            "none".parse::<Refinement>().unwrap_err(),
+            "unknown refinement \"none\" (expected ct or ps)"
+        );
+        assert_eq!(Refinement::parse_optional("none"), Ok(None));
+        assert_eq!(Refinement::parse_optional("None"), Ok(None));
+        assert_eq!(
+            Refinement::parse_optional("cubic").unwrap_err(),
+            "unknown refinement \"cubic\" (expected none, ct or ps)"
+        );
+    }
 }
