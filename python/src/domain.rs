@@ -1,0 +1,318 @@
+//! `NativeDomain`: a domain with its indexes, classification and winding numbers of NumPy
+//! points.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+
+use inrs::contain::{
+    DEFAULT_RELATIVE_TOLERANCE, FastWindingField, FillRule, Locate, WindingField, fast_uses_locator,
+};
+use inrs::spline::Flatten;
+use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Method, Point};
+
+use crate::errors::{io_error, value_error};
+use crate::points::{Points, codes_in_chunks, columns, pairs, with_point_accessor};
+use crate::threads::with_threads;
+
+/// `(curves, loops, filled area, signed area, bounds, loops' (first, last, closed, area))`.
+type Summary = (
+    usize,
+    usize,
+    Option<f64>,
+    f64,
+    (f64, f64, f64, f64),
+    Vec<(usize, usize, bool, f64)>,
+);
+
+/// A planar domain bounded by NURBS curves (the native object behind `inrs.Domain`).
+#[pyclass(module = "inrs._inrs", name = "NativeDomain", frozen)]
+pub(crate) struct NativeDomain {
+    pub(crate) domain: Domain,
+    /// Classifiers by relative tolerance (its bits), built on first use and kept.
+    classifiers: Mutex<HashMap<u64, Arc<Classifier>>>,
+    /// The winding-number fields by tolerance.
+    fields: Mutex<HashMap<u64, Arc<WindingField>>>,
+}
+
+impl NativeDomain {
+    fn new(domain: Domain) -> Self {
+        Self {
+            domain,
+            classifiers: Mutex::new(HashMap::new()),
+            fields: Mutex::new(HashMap::new()),
+        }
+    }
+
+    fn classifier(&self, tol: f64) -> PyResult<Arc<Classifier>> {
+        cached(&self.classifiers, tol, "classifier", || {
+            Classifier::new(
+                &self.domain,
+                ContainOptions::DEFAULT.with_relative_tolerance(tol),
+            )
+            .map_err(value_error)
+        })
+    }
+
+    fn field(&self, tol: f64) -> PyResult<Arc<WindingField>> {
+        cached(&self.fields, tol, "winding-field", || {
+            WindingField::new(&self.domain, tol).map_err(value_error)
+        })
+    }
+
+    /// Classification codes of `pts` (0 outside, 1 inside, 2 boundary).
+    fn classify_points(
+        &self,
+        py: Python<'_>,
+        pts: Points<'_>,
+        method: &str,
+        tol: f64,
+        fill_rule: &str,
+        threads: usize,
+    ) -> PyResult<Vec<i8>> {
+        let method: Method = method.parse().map_err(value_error)?;
+        let n = pts.len();
+        if method == Method::Gwn {
+            let rule = match fill_rule {
+                "even-odd" | "evenodd" => FillRule::EvenOdd,
+                "nonzero" | "non-zero" => FillRule::NonZero,
+                other => {
+                    return Err(value_error(format!(
+                        "unknown fill rule {other:?} (even-odd or nonzero)"
+                    )));
+                }
+            };
+            let field = (*self.field(tol)?).clone().with_fill_rule(rule);
+            return py.detach(|| {
+                with_threads(threads, || {
+                    let fast = FastWindingField::new(&field);
+                    with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
+                        fast.locate_indexed_into(|i| at(first + i), out)
+                    }))
+                })
+            });
+        }
+        let classifier = self.classifier(tol)?;
+        py.detach(|| {
+            with_threads(threads, || {
+                if method == Method::Fast && fast_uses_locator(n) {
+                    let locator = classifier.locator();
+                    with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
+                        locator.locate_indexed_into(|i| at(first + i), out)
+                    }))
+                } else {
+                    let method = if method == Method::Fast {
+                        Method::InRS2
+                    } else {
+                        method
+                    };
+                    with_point_accessor!(pts, |at| codes_in_chunks(n, |first, out| {
+                        let chunk: Vec<Point> = (first..first + out.len()).map(at).collect();
+                        out.copy_from_slice(&classifier.classify(&chunk, method));
+                    }))
+                }
+            })
+        })
+    }
+
+    fn winding_points(
+        &self,
+        py: Python<'_>,
+        pts: Points<'_>,
+        tol: f64,
+        threads: usize,
+    ) -> PyResult<Vec<f64>> {
+        let field = self.field(tol)?;
+        py.detach(|| {
+            with_threads(threads, || {
+                let fast = FastWindingField::new(&field);
+                let mut out = vec![0.0; pts.len()];
+                with_point_accessor!(pts, |at| fast
+                    .winding_numbers_indexed_parallel_into(at, &mut out));
+                out
+            })
+        })
+    }
+}
+
+/// The value cached in `cache` for tolerance `tol` (checked first), built by `build` and kept
+/// on first use.
+fn cached<T>(
+    cache: &Mutex<HashMap<u64, Arc<T>>>,
+    tol: f64,
+    what: &str,
+    build: impl FnOnce() -> PyResult<T>,
+) -> PyResult<Arc<T>> {
+    check_tolerance(tol)?;
+    let mut cache = cache
+        .lock()
+        .map_err(|_| value_error(format!("{what} cache poisoned")))?;
+    if let Some(v) = cache.get(&tol.to_bits()) {
+        return Ok(Arc::clone(v));
+    }
+    let v = Arc::new(build()?);
+    cache.insert(tol.to_bits(), Arc::clone(&v));
+    Ok(v)
+}
+
+fn check_tolerance(tol: f64) -> PyResult<()> {
+    if tol.is_finite() && tol >= 0.0 {
+        Ok(())
+    } else {
+        Err(value_error(format!(
+            "tolerance {tol} must be finite and >= 0"
+        )))
+    }
+}
+
+#[pymethods]
+impl NativeDomain {
+    /// Reads a domain file: JSON, SVG, DXF, or a font glyph `font.ttf#B`.
+    #[staticmethod]
+    fn load(path: &str) -> PyResult<Self> {
+        Ok(Self::new(inrs::io::load_domain(path).map_err(io_error)?))
+    }
+
+    /// A domain from the text of a JSON domain file.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        Ok(Self::new(
+            inrs::io::json::domain_from_json(text).map_err(io_error)?,
+        ))
+    }
+
+    /// The JSON domain file (round-trips exactly).
+    fn to_json(&self) -> String {
+        inrs::io::json::domain_to_json(&self.domain)
+    }
+
+    /// The name, if any.
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.domain.name().map(str::to_string)
+    }
+
+    /// A summary: `(curves, loops, filled area (even-odd) or None, signed area, (xmin, ymin,
+    /// xmax, ymax), [(first curve, last curve, closed, signed area) per loop])`.
+    fn summary(&self) -> Summary {
+        let s = DomainSummary::of(&self.domain);
+        let b = s.bounding_box;
+        let loops = s
+            .loops
+            .iter()
+            .map(|l| (l.curves.0, l.curves.1, l.closed, l.signed_area))
+            .collect();
+        (
+            s.curves,
+            s.loops.len(),
+            s.filled_area,
+            s.signed_area,
+            (b.min.x, b.min.y, b.max.x, b.max.y),
+            loops,
+        )
+    }
+
+    /// Codes for an `(N, 2)` float64 array (any layout).
+    fn classify_pairs<'py>(
+        &self,
+        py: Python<'py>,
+        xy: PyReadonlyArray2<'py, f64>,
+        method: &str,
+        tol: f64,
+        fill_rule: &str,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyArray1<i8>>> {
+        let pts = pairs(&xy)?;
+        Ok(self
+            .classify_points(py, pts, method, tol, fill_rule, threads)?
+            .into_pyarray(py))
+    }
+
+    /// Codes for two 1-D float64 arrays (any layout).
+    #[allow(clippy::too_many_arguments)]
+    fn classify_columns<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'py, f64>,
+        y: PyReadonlyArray1<'py, f64>,
+        method: &str,
+        tol: f64,
+        fill_rule: &str,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyArray1<i8>>> {
+        let pts = columns(&x, &y)?;
+        Ok(self
+            .classify_points(py, pts, method, tol, fill_rule, threads)?
+            .into_pyarray(py))
+    }
+
+    /// Generalized winding numbers for two 1-D float64 arrays (any layout); points within
+    /// `tol` (relative) of a curve get the average across the jump.
+    fn winding_columns<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'py, f64>,
+        y: PyReadonlyArray1<'py, f64>,
+        tol: f64,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let pts = columns(&x, &y)?;
+        Ok(self.winding_points(py, pts, tol, threads)?.into_pyarray(py))
+    }
+
+    /// Seconds the Rust kernel of the default method takes on these points, copied first (for
+    /// measuring the Python call's overhead).
+    fn kernel_seconds(
+        &self,
+        py: Python<'_>,
+        xy: PyReadonlyArray2<'_, f64>,
+        threads: usize,
+    ) -> PyResult<f64> {
+        let pts: Vec<Point> = pairs(&xy)?.to_vec();
+        let classifier = self.classifier(DEFAULT_RELATIVE_TOLERANCE)?;
+        py.detach(|| {
+            with_threads(threads, || {
+                let locator = classifier.locator();
+                let start = Instant::now();
+                let out = locator.locate_all_parallel(&pts);
+                let t = start.elapsed().as_secs_f64();
+                std::hint::black_box(out);
+                t
+            })
+        })
+    }
+
+    /// The boundary flattened: per loop, an `(M, 2)` array of a closed polyline within
+    /// `accuracy` of the curves.
+    fn flatten<'py>(
+        &self,
+        py: Python<'py>,
+        accuracy: f64,
+    ) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
+        if !(accuracy.is_finite() && accuracy > 0.0) {
+            return Err(value_error("accuracy must be finite and > 0"));
+        }
+        let mut rings = Vec::new();
+        for l in self.domain.loops() {
+            let mut pts: Vec<f64> = Vec::new();
+            for (k, ci) in l.curves().enumerate() {
+                let c = &self.domain.curves()[ci];
+                let mut emit = |p: Point| {
+                    pts.push(p.x);
+                    pts.push(p.y);
+                };
+                if k == 0 {
+                    c.flatten(accuracy, &mut emit);
+                } else {
+                    c.flatten_after_start(accuracy, &mut emit);
+                }
+            }
+            let n = pts.len() / 2;
+            rings.push(pts.into_pyarray(py).reshape([n, 2])?);
+        }
+        Ok(rings)
+    }
+}
