@@ -76,15 +76,7 @@ impl NativeDomain {
         let method: Method = method.parse().map_err(value_error)?;
         let n = pts.len();
         if method == Method::Gwn {
-            let rule = match fill_rule {
-                "even-odd" | "evenodd" => FillRule::EvenOdd,
-                "nonzero" | "non-zero" => FillRule::NonZero,
-                other => {
-                    return Err(value_error(format!(
-                        "unknown fill rule {other:?} (even-odd or nonzero)"
-                    )));
-                }
-            };
+            let rule: FillRule = fill_rule.parse().map_err(value_error)?;
             let field = (*self.field(tol)?).clone().with_fill_rule(rule);
             return py.detach(|| {
                 with_threads(threads, || {

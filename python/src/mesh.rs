@@ -40,16 +40,11 @@ pub(crate) fn triangulation(
     ny: usize,
     refine: &str,
 ) -> PyResult<CurvedTriangulation> {
+    let refinement = Refinement::parse_optional(refine).map_err(value_error)?;
     let pts = well_spaced_points(domain, ny).map_err(value_error)?;
-    match refine {
-        "none" => CurvedTriangulation::new(domain, &pts),
-        "ct" => CurvedTriangulation::new_refined(domain, &pts, Refinement::CloughTocher),
-        "ps" => CurvedTriangulation::new_refined(domain, &pts, Refinement::PowellSabin),
-        other => {
-            return Err(value_error(format!(
-                "unknown refinement {other:?} (none, ct or ps)"
-            )));
-        }
+    match refinement {
+        None => CurvedTriangulation::new(domain, &pts),
+        Some(how) => CurvedTriangulation::new_refined(domain, &pts, how),
     }
     .map_err(value_error)
 }

@@ -118,7 +118,7 @@ def test_bad_input_raises_with_the_rust_message():
         d.classify(np.zeros((1, 2)), method="magic")
     with pytest.raises(ValueError, match="tolerance"):
         d.classify(np.zeros((1, 2)), tol=-1.0)
-    with pytest.raises(ValueError, match="fill rule"):
+    with pytest.raises(ValueError, match=r"fill rule .*\(expected even-odd or nonzero\)"):
         d.classify(np.zeros((1, 2)), method="gwn", fill_rule="sideways")
     with pytest.raises(ValueError, match="threads"):
         d.classify(np.zeros((1, 2)), threads=0)
@@ -144,6 +144,19 @@ def test_other_formats_load():
     d = inrs.Domain.load(FIXTURES / "io" / "gear.svg")
     assert d.area > 0
     assert inrs.Domain.load(FIXTURES / "io" / "plate.dxf").area > 0
+
+
+def test_fill_rules_by_any_of_their_names():
+    # Two counter-clockwise circles, one inside the other: winding number 2 at the centre.
+    d = inrs.Domain.from_json(
+        '{"curves": [{"circle": {"center": [0, 0], "radius": 2}},'
+        ' {"circle": {"center": [0, 0], "radius": 1}}]}'
+    )
+    pts = np.array([[0.0, 0.0], [1.5, 0.0], [3.0, 0.0]])
+    for name in ["even-odd", "evenodd", "EvenOdd"]:
+        assert d.classify(pts, method="gwn", fill_rule=name).tolist() == [0, 1, 0], name
+    for name in ["nonzero", "non-zero", "NonZero"]:
+        assert d.classify(pts, method="gwn", fill_rule=name).tolist() == [1, 1, 0], name
 
 
 def test_winding_on_curves_is_the_average_across_the_jump():

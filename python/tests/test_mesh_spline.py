@@ -23,9 +23,12 @@ def test_sample_and_mesh():
     assert np.all(area > 0)
     e = m["curved_edges"]
     assert len(e["triangle"]) == len(e["u0"]) > 0
-    for how, factor in [("ct", 3), ("ps", 6)]:
+    for how, factor in [("ct", 3), ("ps", 6), ("clough-tocher", 3), ("PS", 6)]:
         r = inrs.mesh(d, 8, refine=how)
         assert len(r["triangles"]) % factor == 0
+    assert len(inrs.mesh(d, 8, refine="none")["triangles"]) == len(t)
+    with pytest.raises(ValueError, match=r'^unknown refinement "cubic" \(expected none, ct or ps\)$'):
+        inrs.mesh(d, 8, refine="cubic")
 
 
 def test_fit_reproduces_polynomials_and_pickles():
