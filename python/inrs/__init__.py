@@ -24,6 +24,8 @@ from . import _inrs
 
 __all__ = [
     "Domain",
+    "DomainSummary",
+    "LoopSummary",
     "Spline",
     "OUTSIDE",
     "INSIDE",
@@ -45,6 +47,15 @@ BOUNDARY: int = _inrs.BOUNDARY
 #: Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 DEFAULT_TOLERANCE: float = _inrs.DEFAULT_TOLERANCE
 __version__: str = _inrs.__version__
+
+#: What :meth:`Domain.summary` returns: read-only attributes ``curves``, ``bezier_pieces``,
+#: ``max_degree``, ``rational``, ``loops`` (a list of :class:`LoopSummary`), ``filled_area``,
+#: ``signed_area``, ``areas_converged``, ``bounds``.
+DomainSummary = _inrs.DomainSummary
+#: One boundary loop of a :class:`DomainSummary`: read-only attributes ``first_curve``,
+#: ``last_curve`` (the loop is the curves ``first_curve..=last_curve``), ``closed``, ``gap``,
+#: ``signed_area`` (positive counter-clockwise).
+LoopSummary = _inrs.LoopSummary
 
 _METHODS = ("fast", "inrs1", "inrs2", "gwn")
 
@@ -100,12 +111,13 @@ class Domain:
     domain pickles by its JSON form (the indexes are rebuilt where it is unpickled).
     """
 
-    __slots__ = ("_native",)
+    __slots__ = ("_native", "_summary")
 
     def __init__(self, native: "_inrs.NativeDomain") -> None:
         if not isinstance(native, _inrs.NativeDomain):
             raise TypeError("use Domain.load(path) or Domain.from_json(text)")
         self._native = native
+        self._summary: Optional[DomainSummary] = None
 
     @classmethod
     def load(cls, path: Union[str, os.PathLike]) -> "Domain":
@@ -129,31 +141,48 @@ class Domain:
         """The domain's name, if its file gives one."""
         return self._native.name
 
+    def summary(self) -> DomainSummary:
+        """Facts about the domain, as ``inrs info`` prints them: a :class:`DomainSummary` with
+        read-only attributes ``curves`` (number of NURBS curves), ``bezier_pieces``,
+        ``max_degree``, ``rational``, ``loops`` (a list of :class:`LoopSummary`: ``first_curve``,
+        ``last_curve``, ``closed``, ``gap``, ``signed_area``), ``filled_area`` (the even-odd
+        area, ``None`` for open or coincident loops), ``signed_area`` (sum over the loops),
+        ``areas_converged`` and ``bounds`` ``(xmin, ymin, xmax, ymax)``. Computed once and
+        kept (the domain never changes).
+
+        >>> s = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}').summary()
+        >>> s.curves, len(s.loops), round(s.filled_area, 12), s.bounds
+        (1, 1, 3.14159265359, (-1.0, -1.0, 1.0, 1.0))
+        """
+        if self._summary is None:
+            self._summary = self._native.summary()
+        return self._summary
+
     @property
     def area(self) -> float:
-        """The area filled by the even-odd rule (holes subtracted)."""
-        filled = self._native.summary()[2]
-        return float(filled) if filled is not None else abs(self._native.summary()[3])
+        """The area filled by the even-odd rule (holes subtracted); for open or coincident
+        loops, the absolute value of the signed area."""
+        s = self.summary()
+        return float(s.filled_area) if s.filled_area is not None else abs(s.signed_area)
 
     @property
     def bounds(self) -> Tuple[float, float, float, float]:
         """``(xmin, ymin, xmax, ymax)`` of the curves, as shapely orders it."""
-        return self._native.summary()[4]
+        return self.summary().bounds
 
     @property
-    def loops(self) -> list:
-        """The boundary loops: dicts with ``curves`` (first, last), ``closed``, ``signed_area``."""
-        return [
-            {"curves": (a, b), "closed": closed, "signed_area": area}
-            for a, b, closed, area in self._native.summary()[5]
-        ]
+    def loops(self) -> "list[LoopSummary]":
+        """The boundary loops: :class:`LoopSummary` objects with ``first_curve``,
+        ``last_curve``, ``closed``, ``gap``, ``signed_area``."""
+        return self.summary().loops
 
     def __repr__(self) -> str:
-        curves, loops, _, _, bounds, _ = self._native.summary()
+        s = self.summary()
         name = f"{self.name!r}, " if self.name else ""
+        b = s.bounds
         return (
-            f"Domain({name}curves={curves}, loops={loops}, area={self.area:.6g}, "
-            f"bounds=({bounds[0]:.6g}, {bounds[1]:.6g}, {bounds[2]:.6g}, {bounds[3]:.6g}))"
+            f"Domain({name}curves={s.curves}, loops={len(s.loops)}, area={self.area:.6g}, "
+            f"bounds=({b[0]:.6g}, {b[1]:.6g}, {b[2]:.6g}, {b[3]:.6g}))"
         )
 
     def __reduce__(self):

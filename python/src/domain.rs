@@ -12,21 +12,12 @@ use inrs::contain::{
     DEFAULT_RELATIVE_TOLERANCE, FastWindingField, FillRule, Locate, WindingField, fast_uses_locator,
 };
 use inrs::spline::Flatten;
-use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Method, Point};
+use inrs::{Classifier, ContainOptions, Domain, Method, Point};
 
 use crate::errors::{io_error, value_error};
 use crate::points::{Points, codes_in_chunks, columns, pairs, with_point_accessor};
+use crate::summary::DomainSummary;
 use crate::threads::with_threads;
-
-/// `(curves, loops, filled area, signed area, bounds, loops' (first, last, closed, area))`.
-type Summary = (
-    usize,
-    usize,
-    Option<f64>,
-    f64,
-    (f64, f64, f64, f64),
-    Vec<(usize, usize, bool, f64)>,
-);
 
 /// A planar domain bounded by NURBS curves (the native object behind `inrs.Domain`).
 #[pyclass(module = "inrs._inrs", name = "NativeDomain", frozen)]
@@ -187,24 +178,9 @@ impl NativeDomain {
         self.domain.name().map(str::to_string)
     }
 
-    /// A summary: `(curves, loops, filled area (even-odd) or None, signed area, (xmin, ymin,
-    /// xmax, ymax), [(first curve, last curve, closed, signed area) per loop])`.
-    fn summary(&self) -> Summary {
-        let s = DomainSummary::of(&self.domain);
-        let b = s.bounding_box;
-        let loops = s
-            .loops
-            .iter()
-            .map(|l| (l.curves.0, l.curves.1, l.closed, l.signed_area))
-            .collect();
-        (
-            s.curves,
-            s.loops.len(),
-            s.filled_area,
-            s.signed_area,
-            (b.min.x, b.min.y, b.max.x, b.max.y),
-            loops,
-        )
+    /// Curves, loops, areas and bounds (see [`DomainSummary`]).
+    fn summary(&self) -> DomainSummary {
+        DomainSummary::of(&self.domain)
     }
 
     /// Codes for an `(N, 2)` float64 array (any layout).

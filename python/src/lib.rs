@@ -5,6 +5,7 @@
 //! in place.
 //!
 //! - [`domain`]: `NativeDomain` (loading, classification, winding numbers, flattening);
+//! - [`summary`]: `DomainSummary`, `LoopSummary`;
 //! - [`points`]: the points' layouts and the per-chunk codes;
 //! - [`mesh`]: `sample`, `mesh`; [`spline`]: `FitPlan`, `NativeSpline`;
 //! - [`halton`]: `halton_points`; [`threads`], [`errors`]: thread pools and exceptions.
@@ -15,6 +16,7 @@ mod halton;
 mod mesh;
 mod points;
 mod spline;
+mod summary;
 mod threads;
 
 use pyo3::prelude::*;
@@ -26,6 +28,8 @@ use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, FAST_METHOD_MIN_POINTS};
 #[pymodule]
 fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<domain::NativeDomain>()?;
+    m.add_class::<summary::DomainSummary>()?;
+    m.add_class::<summary::LoopSummary>()?;
     m.add_class::<spline::NativeSpline>()?;
     m.add_class::<spline::FitPlan>()?;
     m.add_function(wrap_pyfunction!(mesh::sample, m)?)?;

@@ -140,6 +140,40 @@ def test_pickle_round_trip():
     assert "Domain(" in repr(d) and d.area > 0 and len(d.loops) == 1
 
 
+def test_summary_has_named_read_only_attributes():
+    # A disc of radius 2 with a hole of radius 1 (clockwise): two loops of one curve each.
+    d = inrs.Domain.from_json(
+        '{"curves": [{"circle": {"center": [0, 0], "radius": 2}},'
+        ' {"arc": {"center": [0, 0], "radius": 1, "start_angle": 0, "sweep": -6.283185307179586}}]}'
+    )
+    s = d.summary()
+    assert isinstance(s, inrs.DomainSummary)
+    assert s.curves == 2 and s.max_degree == 2 and s.rational and s.bezier_pieces >= 8
+    assert abs(s.filled_area - 3 * np.pi) < 1e-12 and abs(s.signed_area - 3 * np.pi) < 1e-12
+    assert s.areas_converged
+    assert np.allclose(s.bounds, (-2, -2, 2, 2), atol=1e-15)
+    outer, hole = s.loops
+    assert isinstance(outer, inrs.LoopSummary)
+    assert (outer.first_curve, outer.last_curve, outer.closed) == (0, 0, True)
+    assert (hole.first_curve, hole.last_curve, hole.closed) == (1, 1, True)
+    assert abs(outer.signed_area - 4 * np.pi) < 1e-12 and abs(hole.signed_area + np.pi) < 1e-12
+    assert hole.gap < 1e-12
+    assert d.loops[1].signed_area == hole.signed_area and d.bounds == s.bounds
+    assert d.area == s.filled_area and d.summary() is s  # computed once
+    with pytest.raises(AttributeError):
+        s.curves = 3
+    with pytest.raises(AttributeError):
+        hole.closed = False
+    assert repr(s).startswith("DomainSummary(curves=2, loops=2, filled_area=9.42")
+    assert repr(hole).startswith("LoopSummary(first_curve=1, last_curve=1, closed=True")
+    # An open loop: no filled area; the area falls back to the signed area's size.
+    arc = inrs.Domain.from_json(
+        '{"curves": [{"arc": {"center": [0, 0], "radius": 1, "start_angle": 0, "sweep": 3.0}}]}'
+    )
+    assert arc.summary().filled_area is None and not arc.loops[0].closed
+    assert arc.area == abs(arc.summary().signed_area) > 0
+
+
 def test_other_formats_load():
     d = inrs.Domain.load(FIXTURES / "io" / "gear.svg")
     assert d.area > 0
