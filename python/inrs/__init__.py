@@ -249,12 +249,6 @@ class Domain:
         per loop (for comparisons with polygon tools)."""
         return self._native.flatten(float(accuracy))
 
-    def _kernel_seconds(self, xy: np.ndarray, threads: Optional[int] = None) -> float:
-        """Seconds the Rust kernel takes on ``xy`` (benchmarks: the Python call's overhead)."""
-        return self._native.kernel_seconds(
-            np.ascontiguousarray(xy, dtype=np.float64), _threads(threads)
-        )
-
 
 class Spline:
     """A polynomial spline on a curved triangulation (see :func:`fit`)."""

@@ -3,14 +3,11 @@
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
 
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
-use inrs::contain::{
-    DEFAULT_RELATIVE_TOLERANCE, FastWindingField, FillRule, Locate, WindingField, fast_uses_locator,
-};
+use inrs::contain::{FastWindingField, FillRule, WindingField, fast_uses_locator};
 use inrs::spline::Flatten;
 use inrs::{Classifier, ContainOptions, Domain, Method, Point};
 
@@ -229,28 +226,6 @@ impl NativeDomain {
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let pts = columns(&x, &y)?;
         Ok(self.winding_points(py, pts, tol, threads)?.into_pyarray(py))
-    }
-
-    /// Seconds the Rust kernel of the default method takes on these points, copied first (for
-    /// measuring the Python call's overhead).
-    fn kernel_seconds(
-        &self,
-        py: Python<'_>,
-        xy: PyReadonlyArray2<'_, f64>,
-        threads: usize,
-    ) -> PyResult<f64> {
-        let pts: Vec<Point> = pairs(&xy)?.to_vec();
-        let classifier = self.classifier(DEFAULT_RELATIVE_TOLERANCE)?;
-        py.detach(|| {
-            with_threads(threads, || {
-                let locator = classifier.locator();
-                let start = Instant::now();
-                let out = locator.locate_all_parallel(&pts);
-                let t = start.elapsed().as_secs_f64();
-                std::hint::black_box(out);
-                t
-            })
-        })
     }
 
     /// The boundary flattened: per loop, an `(M, 2)` array of a closed polyline within
