@@ -16,6 +16,7 @@ from __future__ import annotations
 import hashlib
 import os
 import threading
+import warnings
 from typing import Any, Callable, Optional, Tuple, Union
 
 import numpy as np
@@ -35,6 +36,7 @@ __all__ = [
     "mesh",
     "halton_points",
     "fit",
+    "interpolate",
     "__version__",
 ]
 
@@ -280,7 +282,15 @@ class Spline:
 
     @property
     def degree(self) -> int:
+        """The polynomial degree."""
         return self._native.summary()[0]
+
+    @property
+    def space(self) -> str:
+        """The spline space, by its name in the spline file: ``"s0"`` (continuous, from
+        :func:`fit`), or the ``C^1`` spaces of :func:`interpolate`: ``"s512"``, ``"ct"``,
+        ``"ps"``, ``"min-energy"``."""
+        return self._native.space
 
     @property
     def triangles(self) -> int:
@@ -293,7 +303,10 @@ class Spline:
         return self._native.summary()[2]
 
     def __repr__(self) -> str:
-        return f"Spline(degree={self.degree}, triangles={self.triangles}, coefficients={self.dimension})"
+        return (
+            f"Spline(space={self.space!r}, degree={self.degree}, triangles={self.triangles}, "
+            f"coefficients={self.dimension})"
+        )
 
     def __reduce__(self):
         return (Spline.from_json, (self.to_json(),))
@@ -357,3 +370,39 @@ def fit(
     xy = plan.points()
     values = np.ascontiguousarray(np.broadcast_to(f(xy[:, 0], xy[:, 1]), (len(xy),)), dtype=np.float64)
     return Spline(plan.finish(values))
+
+
+def interpolate(domain: Domain, xy: ArrayLike, z: ArrayLike, *, space: str = "ct") -> Spline:
+    """The ``C^1`` spline through scattered data: ``s(xy[i]) = z[i]``, as ``inrs fit --data
+    --space`` computes it (Schumaker and Yu's Problem 9.1): the curved triangulation whose
+    vertices are the data points, refined as the space needs, then a two-stage method (local
+    least-squares fits for the derivatives, then Hermite macro-elements) or minimal energy.
+
+    ``xy`` is an ``(N, 2)`` array of distinct points of the closed domain (points within 1e-9
+    of its size of the boundary are moved onto it), ``z`` the ``N`` values. ``space`` sets the
+    spline space and so the degree: ``"ct"`` (cubic ``S_3^1`` on the Clough-Tocher refinement,
+    the default), ``"ps"`` (quadratic ``S_2^1`` on the Powell-Sabin refinement), ``"s512"``
+    (quintic ``S_5^{1,2}``) or ``"min-energy"`` (``S_2^1``, minimal energy). The two-stage
+    spaces reproduce polynomials of their local fits' degree (cubic for ``ct`` and ``s512``,
+    quadratic for ``ps``); minimal energy reproduces linear functions. The space fixes the
+    degree and the data points are the triangulation's vertices, so unlike :func:`fit` there is
+    no ``ny`` or ``degree``. Give points on the boundary too (as :func:`sample` makes them):
+    data points between a boundary arc and its chord cannot be vertices, and are left out with
+    a ``UserWarning`` naming them. Bad input (shapes, points outside the domain or repeated, values that are not
+    finite, an unknown space) raises ``ValueError``.
+    """
+    xy = np.asarray(xy, dtype=np.float64)
+    if xy.ndim != 2 or xy.shape[1] != 2:
+        raise ValueError(f"xy must have shape (N, 2), got {xy.shape}")
+    z = np.asarray(z, dtype=np.float64)
+    if z.ndim != 1:
+        raise ValueError(f"z must have shape (N,), got {z.shape}")
+    native, _added, unused = _inrs.interpolate(domain._native, xy, z, space)
+    if unused:
+        shown = ", ".join(f"xy[{i}]" for i in unused[:5]) + (", ..." if len(unused) > 5 else "")
+        warnings.warn(
+            f"{len(unused)} data points lie between a boundary arc and its chord, are not "
+            f"vertices and are not interpolated ({shown})",
+            stacklevel=2,
+        )
+    return Spline(native)

@@ -7,7 +7,7 @@
 //! - [`domain`]: `NativeDomain` (loading, classification, winding numbers, flattening);
 //! - [`summary`]: `DomainSummary`, `LoopSummary`;
 //! - [`points`]: the points' layouts and the per-chunk codes;
-//! - [`mesh`]: `sample`, `mesh`; [`spline`]: `FitPlan`, `NativeSpline`;
+//! - [`mesh`]: `sample`, `mesh`; [`spline`]: `FitPlan`, `interpolate`, `NativeSpline`;
 //! - [`halton`]: `halton_points`; [`threads`], [`errors`]: thread pools and exceptions.
 
 mod domain;
@@ -34,6 +34,7 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<spline::FitPlan>()?;
     m.add_function(wrap_pyfunction!(mesh::sample, m)?)?;
     m.add_function(wrap_pyfunction!(mesh::mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(spline::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(halton::halton_points, m)?)?;
     m.add("OUTSIDE", Location::Outside.code())?;
     m.add("INSIDE", Location::Inside.code())?;

@@ -1,17 +1,17 @@
-//! Splines on curved triangulations: quasi-interpolation of a function ([`FitPlan`]) and
-//! evaluation ([`NativeSpline`]).
+//! Splines on curved triangulations: quasi-interpolation of a function ([`FitPlan`]),
+//! scattered-data interpolation ([`interpolate`]), and evaluation ([`NativeSpline`]).
 
-use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
 use inrs::Point;
 use inrs::trispline::bb::Order;
-use inrs::trispline::{QuasiInterpolation, Spline};
+use inrs::trispline::{C1Space, QuasiInterpolation, Spline, SplineError};
 
 use crate::domain::NativeDomain;
 use crate::errors::value_error;
 use crate::mesh::triangulation;
-use crate::points::columns;
+use crate::points::{columns, pairs};
 use crate::threads::with_threads;
 
 /// A quasi-interpolation waiting for the function's values (`inrs.fit` fills them in, calling
@@ -66,6 +66,45 @@ impl FitPlan {
     }
 }
 
+/// `(spline, vertices added, indices of the data points not interpolated)`.
+type Interpolated = (NativeSpline, usize, Vec<usize>);
+
+/// The `C^1` spline of `space` (`s512`, `ct`, `ps`, `min-energy`) through the data `z[i]` at
+/// `xy[i]` (an `(N, 2)` array, any layout): the curved triangulation whose vertices are the
+/// data points, as `inrs fit --data --space` builds it
+/// ([`inrs::trispline::interpolate_scattered`]). Returns the spline, the number of vertices
+/// that are not data points, and the indices of the data points that are not vertices (between
+/// a boundary arc and its chord: not interpolated).
+#[pyfunction]
+pub(crate) fn interpolate(
+    py: Python<'_>,
+    domain: &NativeDomain,
+    xy: PyReadonlyArray2<'_, f64>,
+    z: PyReadonlyArray1<'_, f64>,
+    space: &str,
+) -> PyResult<Interpolated> {
+    let space: C1Space = space.parse().map_err(value_error)?;
+    let points = pairs(&xy)?.to_vec();
+    let values = z.as_array().to_vec();
+    let fit = py
+        .detach(|| inrs::trispline::interpolate_scattered(&domain.domain, &points, &values, space))
+        .map_err(|e| match e {
+            // The point by its row, as the command line names it by its line.
+            SplineError::DataPoint {
+                index,
+                x,
+                y,
+                reason,
+            } => value_error(format!("the point xy[{index}] = ({x}, {y}) {reason}")),
+            other => value_error(other),
+        })?;
+    Ok((
+        NativeSpline { spline: fit.spline },
+        fit.added_vertices,
+        fit.unused_points,
+    ))
+}
+
 /// A spline on a curved triangulation (the native object behind `inrs.Spline`).
 #[pyclass(module = "inrs._inrs", name = "NativeSpline", frozen)]
 pub(crate) struct NativeSpline {
@@ -94,6 +133,13 @@ impl NativeSpline {
             self.spline.mesh().triangles().len(),
             self.spline.dimension(),
         )
+    }
+
+    /// The space's name in the spline file: `s0` (continuous, from `inrs.fit`), `s512`, `ct`,
+    /// `ps` or `min-energy`.
+    #[getter]
+    fn space(&self) -> &'static str {
+        self.spline.kind().name()
     }
 
     /// Values (and gradients if `derivatives`) at the points; NaN outside the domain. Returns
