@@ -14,10 +14,11 @@ with it.
 from __future__ import annotations
 
 import hashlib
+import operator
 import os
 import threading
 import warnings
-from typing import Any, Callable, Optional, Tuple, Union
+from typing import Any, Callable, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -105,19 +106,65 @@ def _from_json_shared(text: str) -> "Domain":
     return Domain(native)
 
 
+def _curve_arrays(i: int, curve: Any) -> tuple:
+    """Curve ``i`` of :meth:`Domain.from_curves` as ``(degree, knots, control points (M, 2),
+    weights or None)`` in float64; its shape and types only (the Rust constructor checks the
+    rest)."""
+    if isinstance(curve, Mapping):
+        unknown = set(curve) - {"degree", "knots", "control_points", "weights"}
+        missing = [k for k in ("degree", "knots", "control_points") if k not in curve]
+        if unknown or missing:
+            raise ValueError(
+                f"curve {i}: expected the keys degree, knots, control_points and optionally "
+                f"weights, got {sorted(curve)}"
+            )
+        parts = (curve["degree"], curve["knots"], curve["control_points"], curve.get("weights"))
+    elif isinstance(curve, (tuple, list)) and len(curve) in (3, 4):
+        parts = tuple(curve) + (None,) * (4 - len(curve))
+    else:
+        raise ValueError(
+            f"curve {i}: expected a dict or a tuple (degree, knots, control_points[, weights])"
+        )
+    degree, knots, points, weights = parts
+    try:
+        degree = operator.index(degree)
+    except TypeError:
+        raise ValueError(f"curve {i}: degree must be an integer, got {degree!r}") from None
+    if degree < 0:
+        raise ValueError(f"curve {i}: degree must be an integer >= 0, got {degree}")
+
+    def array(what: str, value: Any, ndim: int) -> np.ndarray:
+        try:
+            a = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"curve {i}: {what} must be numbers ({e})") from None
+        shape = "(M, 2)" if ndim == 2 else "(M,)"
+        if a.ndim != ndim or (ndim == 2 and a.shape[1] != 2):
+            raise ValueError(f"curve {i}: {what} must have shape {shape}, got {a.shape}")
+        return a
+
+    return (
+        degree,
+        array("knots", knots, 1),
+        array("control points", points, 2),
+        None if weights is None else array("weights", weights, 1),
+    )
+
+
 class Domain:
     """A planar domain bounded by NURBS curves: one or more loops (holes, several parts).
 
-    Build it with :meth:`Domain.load` or :meth:`Domain.from_json`. Its indexes (monotone boxes,
-    the point-location grid, the winding-number field) are built on first use and kept; a
-    domain pickles by its JSON form (the indexes are rebuilt where it is unpickled).
+    Build it with :meth:`Domain.load`, :meth:`Domain.from_json` or :meth:`Domain.from_curves`.
+    Its indexes (monotone boxes, the point-location grid, the winding-number field) are built
+    on first use and kept; a domain pickles by its JSON form (the indexes are rebuilt where it
+    is unpickled).
     """
 
     __slots__ = ("_native", "_summary")
 
     def __init__(self, native: "_inrs.NativeDomain") -> None:
         if not isinstance(native, _inrs.NativeDomain):
-            raise TypeError("use Domain.load(path) or Domain.from_json(text)")
+            raise TypeError("use Domain.load(path), Domain.from_json(text) or Domain.from_curves(curves)")
         self._native = native
         self._summary: Optional[DomainSummary] = None
 
@@ -133,6 +180,35 @@ class Domain:
     def from_json(cls, text: str) -> "Domain":
         """A domain from the text of a JSON domain file. Raises ``ValueError`` on bad input."""
         return cls(_inrs.NativeDomain.from_json(text))
+
+    @classmethod
+    def from_curves(cls, curves: Sequence[Any], name: Optional[str] = None) -> "Domain":
+        """A domain from NURBS curves given as arrays, without JSON.
+
+        Each curve is a dict with the keys of the JSON file's NURBS form, ``degree``, ``knots``,
+        ``control_points`` (shape ``(M, 2)``) and optionally ``weights`` (``(M,)``, default all
+        1), or a tuple ``(degree, knots, control_points)`` or ``(degree, knots, control_points,
+        weights)``. The curves are checked as the JSON reader checks them (the same Rust
+        constructor: knot count and order, finite coordinates, positive weights, the limits)
+        and grouped into loops the same way. Bad input raises ``ValueError`` naming the curve
+        by its index (``"curve 1: ..."``).
+
+        >>> import math
+        >>> s = math.sqrt(0.5)
+        >>> circle = {
+        ...     "degree": 2,
+        ...     "knots": [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1],
+        ...     "control_points": [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1], [1, 0]],
+        ...     "weights": [1, s, 1, s, 1, s, 1, s, 1],
+        ... }
+        >>> round(Domain.from_curves([circle]).area, 12)
+        3.14159265359
+        """
+        if isinstance(curves, Mapping) or not isinstance(curves, Sequence):
+            raise ValueError("curves must be a list of curves (dicts or tuples)")
+        return cls(
+            _inrs.NativeDomain.from_curves([_curve_arrays(i, c) for i, c in enumerate(curves)], name)
+        )
 
     def to_json(self) -> str:
         """The JSON domain file; ``Domain.from_json(d.to_json())`` gives the same curves."""

@@ -53,6 +53,18 @@ class NativeDomain:
     def load(path: str) -> "NativeDomain": ...
     @staticmethod
     def from_json(text: str) -> "NativeDomain": ...
+    @staticmethod
+    def from_curves(
+        curves: list[
+            Tuple[
+                int,
+                npt.NDArray[np.float64],
+                npt.NDArray[np.float64],
+                Optional[npt.NDArray[np.float64]],
+            ]
+        ],
+        name: Optional[str] = None,
+    ) -> "NativeDomain": ...
     def to_json(self) -> str: ...
     @property
     def name(self) -> Optional[str]: ...

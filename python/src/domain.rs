@@ -4,17 +4,29 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+    PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 
 use inrs::contain::{FastWindingField, FillRule, WindingField, fast_uses_locator};
 use inrs::spline::Flatten;
-use inrs::{Classifier, ContainOptions, Domain, Method, Point};
+use inrs::{Classifier, ContainOptions, Domain, Method, NurbsCurve, Point};
 
 use crate::errors::{io_error, value_error};
 use crate::points::{Points, codes_in_chunks, columns, pairs, with_point_accessor};
 use crate::summary::DomainSummary;
 use crate::threads::with_threads;
+
+/// One curve of [`NativeDomain::from_curves`]: `(degree, knots, control points (M, 2),
+/// weights (M,) or None)`.
+type CurveArrays<'py> = (
+    usize,
+    PyReadonlyArray1<'py, f64>,
+    PyReadonlyArray2<'py, f64>,
+    Option<PyReadonlyArray1<'py, f64>>,
+);
 
 /// A planar domain bounded by NURBS curves (the native object behind `inrs.Domain`).
 #[pyclass(module = "inrs._inrs", name = "NativeDomain", frozen)]
@@ -162,6 +174,39 @@ impl NativeDomain {
         Ok(Self::new(
             inrs::io::json::domain_from_json(text).map_err(io_error)?,
         ))
+    }
+
+    /// A domain from NURBS curves given as arrays, `(degree, knots, control points (M, 2),
+    /// weights (M,) or None)` each, checked as the JSON reader checks a curve of the NURBS
+    /// form ([`NurbsCurve::new`], then [`Domain::new`]); errors name the curve by its index.
+    #[staticmethod]
+    #[pyo3(signature = (curves, name = None))]
+    fn from_curves(curves: Vec<CurveArrays<'_>>, name: Option<&str>) -> PyResult<Self> {
+        let mut built = Vec::with_capacity(curves.len());
+        for (i, (degree, knots, points, weights)) in curves.iter().enumerate() {
+            let points = pairs(points)
+                .map_err(|_| {
+                    value_error(format!(
+                        "curve {i}: control points must have shape (M, 2), got {:?}",
+                        points.shape()
+                    ))
+                })?
+                .to_vec();
+            let weights = weights.as_ref().map(|w| w.as_array().to_vec());
+            let curve = NurbsCurve::new(*degree, knots.as_array().to_vec(), points, weights)
+                .map_err(|source| {
+                    io_error(inrs::io::IoError::Curve {
+                        origin: format!("curve {i}"),
+                        source,
+                    })
+                })?;
+            built.push(curve);
+        }
+        let domain = Domain::new(built).map_err(|e| io_error(e.into()))?;
+        Ok(Self::new(match name {
+            Some(name) => domain.with_name(name),
+            None => domain,
+        }))
     }
 
     /// The JSON domain file (round-trips exactly).

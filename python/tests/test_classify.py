@@ -220,3 +220,73 @@ def test_winding_on_curves_is_the_average_across_the_jump():
     # (The other pieces' angles are exact at the point itself, 1e-13 off the segment.)
     assert abs(closed.winding(near)[0] - 0.5) < 1e-12
     assert abs(closed.winding(near, tol=0.0)[0] - 1.0) < 1e-12
+
+
+S = np.sqrt(0.5)
+#: The unit circle as the standard rational quadratic NURBS (nine control points).
+CIRCLE = {
+    "degree": 2,
+    "knots": [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1],
+    "control_points": [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1], [1, 0]],
+    "weights": [1, S, 1, S, 1, S, 1, S, 1],
+}
+
+
+def test_a_domain_from_curves_is_the_json_one():
+    d = inrs.Domain.from_curves([CIRCLE], name="unit circle")
+    s = d.summary()
+    assert s.curves == 1 and len(s.loops) == 1 and s.loops[0].closed and s.rational
+    assert abs(s.filled_area - np.pi) < 1e-12 and abs(d.area - np.pi) < 1e-12
+    assert d.name == "unit circle"
+    fixture = inrs.Domain.load(FIXTURES / "inrs-paper" / "circle.json")
+    pts = np.vstack([
+        inrs.halton_points(20_000, (-1.5, -1.5, 1.5, 1.5)),
+        np.column_stack([np.cos(np.linspace(0, 6, 50)), np.sin(np.linspace(0, 6, 50))]),
+    ])
+    for method in METHODS:
+        assert np.array_equal(d.classify(pts, method=method), fixture.classify(pts, method=method))
+    assert (d.classify(pts[-50:]) == inrs.BOUNDARY).all()
+    # Arrays, a tuple, no weights: the same curves; the JSON round trip is exact.
+    arrays = (2, np.array(CIRCLE["knots"], dtype=np.float32), np.array(CIRCLE["control_points"]),
+              np.array(CIRCLE["weights"]))
+    assert inrs.Domain.from_curves([arrays]).to_json() == inrs.Domain.from_curves([CIRCLE]).to_json()
+    back = inrs.Domain.from_json(d.to_json())
+    assert back.to_json() == d.to_json() and back.name == "unit circle"
+    square = [
+        (1, [0, 0, 1, 1], [a, b])
+        for a, b in [((0, 0), (1, 0)), ((1, 0), (1, 1)), ((1, 1), (0, 1)), ((0, 1), (0, 0))]
+    ]
+    q = inrs.Domain.from_curves(square)
+    assert abs(q.area - 1) < 1e-15 and q.bounds == (0.0, 0.0, 1.0, 1.0) and len(q.loops) == 1
+    assert q.classify(np.array([[0.5, 0.5], [1.0, 0.5], [2.0, 0.5]])).tolist() == [1, 2, 0]
+
+
+def test_from_curves_bad_input_names_the_curve():
+    good = (1, [0, 0, 1, 1], [[0, 0], [1, 0]])
+    cases = [
+        ([good, (2, [0, 0, 0, 1, 1], [[0, 0], [1, 0], [1, 1]])], r"^curve 1: .*knot"),
+        ([dict(CIRCLE, weights=[1, S, 1, S, 1, S, 1, S])], r"^curve 0: .*weights"),
+        ([dict(CIRCLE, weights=[1, S, 1, -S, 1, S, 1, S, 1])], r"^curve 0: .*weight"),
+        ([good, dict(CIRCLE, control_points=np.zeros((9, 3)))], r"^curve 1: control points must have shape \(M, 2\), got \(9, 3\)$"),
+        ([good, good, (1, [0, 0, 1, 1], [[0, np.nan], [1, 0]])], r"^curve 2: .*not finite"),
+        ([(1, [[0, 0, 1, 1]], [[0, 0], [1, 0]])], r"^curve 0: knots must have shape \(M,\), got \(1, 4\)$"),
+        ([(1.5, [0, 0, 1, 1], [[0, 0], [1, 0]])], r"^curve 0: degree must be an integer, got 1.5$"),
+        ([(-1, [0, 0, 1, 1], [[0, 0], [1, 0]])], r"^curve 0: degree must be an integer >= 0, got -1$"),
+        ([(0, [0, 1], [[0, 0]])], r"^curve 0: "),
+        ([(40, [0] * 41 + [1] * 41, [[0, 0]] * 41)], r"^curve 0: .*degree"),
+        ([(1, ["a", 0, 1, 1], [[0, 0], [1, 0]])], r"^curve 0: knots must be numbers"),
+        ([good, {"degree": 1, "knots": [0, 0, 1, 1]}], r"^curve 1: expected the keys degree, knots, control_points"),
+        ([good, (1, [0, 0, 1, 1])], r"^curve 1: expected a dict or a tuple"),
+        ([], r"^the domain has no curves$"),
+        (CIRCLE, r"^curves must be a list"),
+    ]
+    for curves, message in cases:
+        with pytest.raises(ValueError, match=message) as e:
+            inrs.Domain.from_curves(curves)
+        assert "\n" not in str(e.value)
+    # The JSON reader says the same of the same curve.
+    with pytest.raises(ValueError) as e:
+        inrs.Domain.from_json('{"curves": [{"degree": 2, "knots": [0, 0, 0, 1, 1], "control_points": [[0, 0], [1, 0], [1, 1]]}]}')
+    with pytest.raises(ValueError) as f:
+        inrs.Domain.from_curves([(2, [0, 0, 0, 1, 1], [[0, 0], [1, 0], [1, 1]])])
+    assert str(e.value) == str(f.value)
