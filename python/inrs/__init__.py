@@ -308,19 +308,25 @@ class Domain:
         y: Optional[ArrayLike] = None,
         *,
         tol: float = DEFAULT_TOLERANCE,
+        algorithm: str = "adaptive",
         threads: Optional[int] = None,
     ) -> np.ndarray:
         """Generalized winding numbers (float64): 1 inside a counter-clockwise loop, 0 outside,
         fractional near gaps of open boundaries. A point within ``tol`` times the bounding-box
         diagonal of a curve (the points :meth:`classify` calls boundary) gets the average
         across the jump: 0 inside a straight piece, 1/2 on a smooth closed curve, the interior
-        angle over 2 pi at a corner."""
+        angle over 2 pi at a corner.
+
+        ``algorithm`` is a name of ``inrs winding --algorithm``: ``"adaptive"`` (the default:
+        the paper's adaptive algorithm, accelerated), or the GWN paper's ray-casting baselines
+        ``"binary-search"`` and ``"bezier-clipping"`` (for comparisons; slower, the same values
+        up to rounding)."""
         xy, xs, ys, shape = _points(x, y)
         if xy is not None:
             xs, ys = xy[:, 0], xy[:, 1]
-        return self._native.winding_columns(xs, ys, float(tol), _threads(threads)).reshape(
-            shape
-        )
+        return self._native.winding_columns(
+            xs, ys, float(tol), _threads(threads), algorithm
+        ).reshape(shape)
 
     def flatten(self, accuracy: float) -> list:
         """The boundary as closed polylines within ``accuracy`` (absolute): one ``(M, 2)`` array

@@ -82,7 +82,12 @@ class NativeDomain:
         threads: int,
     ) -> npt.NDArray[np.int8]: ...
     def winding_columns(
-        self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64], tol: float, threads: int
+        self,
+        x: npt.NDArray[np.float64],
+        y: npt.NDArray[np.float64],
+        tol: float,
+        threads: int,
+        algorithm: str = ...,
     ) -> npt.NDArray[np.float64]: ...
     def flatten(self, accuracy: float) -> list[npt.NDArray[np.float64]]: ...
 

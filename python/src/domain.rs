@@ -10,7 +10,8 @@ use numpy::{
 };
 use pyo3::prelude::*;
 
-use inrs::contain::{FastWindingField, FillRule, WindingField, fast_uses_locator};
+use inrs::contain::baselines::WindingAlgorithm;
+use inrs::contain::{FastWindingField, FillRule, QueryStats, WindingField, fast_uses_locator};
 use inrs::spline::Flatten;
 use inrs::{Classifier, ContainOptions, Domain, Method, NurbsCurve, Point};
 
@@ -124,6 +125,36 @@ impl NativeDomain {
                 let mut out = vec![0.0; pts.len()];
                 with_point_accessor!(pts, |at| fast
                     .winding_numbers_indexed_parallel_into(at, &mut out));
+                out
+            })
+        })
+    }
+
+    /// Winding numbers of `pts` by one of the ray-casting baselines (as `inrs winding
+    /// --algorithm` computes them: [`WindingField::winding_number_with`] point by point), in
+    /// parallel.
+    fn winding_points_with(
+        &self,
+        py: Python<'_>,
+        pts: Points<'_>,
+        tol: f64,
+        algorithm: WindingAlgorithm,
+        threads: usize,
+    ) -> PyResult<Vec<f64>> {
+        use rayon::prelude::*;
+        const TASK: usize = 1 << 12;
+        let field = self.field(tol)?;
+        py.detach(|| {
+            with_threads(threads, || {
+                let mut out = vec![0.0; pts.len()];
+                with_point_accessor!(pts, |at| out.par_chunks_mut(TASK).enumerate().for_each(
+                    |(c, out)| {
+                        let mut stats = QueryStats::default();
+                        for (i, w) in out.iter_mut().enumerate() {
+                            *w = field.winding_number_with(at(c * TASK + i), algorithm, &mut stats);
+                        }
+                    }
+                ));
                 out
             })
         })
@@ -260,7 +291,10 @@ impl NativeDomain {
     }
 
     /// Generalized winding numbers for two 1-D float64 arrays (any layout); points within
-    /// `tol` (relative) of a curve get the average across the jump.
+    /// `tol` (relative) of a curve get the average across the jump. `algorithm` is a name of
+    /// `inrs winding --algorithm`: `adaptive` (the accelerated field), `binary-search` or
+    /// `bezier-clipping` (the GWN paper's ray-casting baselines).
+    #[pyo3(signature = (x, y, tol, threads, algorithm = "adaptive"))]
     fn winding_columns<'py>(
         &self,
         py: Python<'py>,
@@ -268,9 +302,16 @@ impl NativeDomain {
         y: PyReadonlyArray1<'py, f64>,
         tol: f64,
         threads: usize,
+        algorithm: &str,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let algorithm: WindingAlgorithm = algorithm.parse().map_err(value_error)?;
         let pts = columns(&x, &y)?;
-        Ok(self.winding_points(py, pts, tol, threads)?.into_pyarray(py))
+        let w = if algorithm == WindingAlgorithm::Adaptive {
+            self.winding_points(py, pts, tol, threads)?
+        } else {
+            self.winding_points_with(py, pts, tol, algorithm, threads)?
+        };
+        Ok(w.into_pyarray(py))
     }
 
     /// The boundary flattened: per loop, an `(M, 2)` array of a closed polyline within

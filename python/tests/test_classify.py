@@ -290,3 +290,36 @@ def test_from_curves_bad_input_names_the_curve():
     with pytest.raises(ValueError) as f:
         inrs.Domain.from_curves([(2, [0, 0, 0, 1, 1], [[0, 0], [1, 0], [1, 1]])])
     assert str(e.value) == str(f.value)
+
+
+@pytest.mark.parametrize("algorithm", ["adaptive", "binary-search", "bezier-clipping"])
+def test_winding_algorithms_equal_the_cli(algorithm, cli, tmp_path):
+    # A closed rational boundary and an open cubic (fractional winding numbers).
+    open_cubic = tmp_path / "open.json"
+    open_cubic.write_text('{"curves": [{"degree": 3, "control_points": [[0, 0], [0, 1], [-1, 1], [-1, 0]]}]}')
+    for path in [FIXTURES / "inrs-paper" / "leaf_cubic.json", open_cubic]:
+        d = inrs.Domain.load(path)
+        b = d.bounds
+        pts = np.vstack([halton(3000, (b[0] - 0.1, b[2] + 0.1, b[1] - 0.1, b[3] + 0.1)), d.flatten(1e-3)[0][::7]])
+        csv = tmp_path / "p.csv"
+        np.savetxt(csv, pts, delimiter=",", fmt="%.17g")
+        out = subprocess.run(
+            [cli, "winding", "--domain", path, "--points", csv, "--algorithm", algorithm],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
+        want = np.array([float(l.rsplit(",", 1)[1]) for l in out.splitlines()[1:]])
+        got = d.winding(pts, algorithm=algorithm)
+        assert np.array_equal(got, want), f"{path.name} {algorithm}: {np.sum(got != want)} differ"
+        assert np.array_equal(d.winding(pts[:, 0], pts[:, 1], algorithm=algorithm, threads=1), got)
+        # Every algorithm gives the same values up to rounding; the default is the adaptive one.
+        assert np.allclose(got, d.winding(pts), atol=1e-9)
+        if algorithm == "adaptive":
+            assert np.array_equal(got, d.winding(pts))
+
+
+def test_unknown_winding_algorithm():
+    d = inrs.Domain.load(FIXTURES / "inrs-paper" / "circle.json")
+    with pytest.raises(ValueError, match=r'^unknown winding algorithm "raycast" \(expected adaptive, binary-search or bezier-clipping\)$'):
+        d.winding(np.zeros((1, 2)), algorithm="raycast")
