@@ -2,8 +2,8 @@
 
 Points are classified exactly as inside, outside or on the boundary (within a tolerance relative
 to the domain's size) by the inRS algorithm, on NumPy arrays, with the GIL released and all cores
-at work. Winding numbers, well-spaced sampling, curved triangulations and splines on them come
-with it.
+at work. Winding numbers, well-spaced sampling, curved triangulations and splines on them
+(quasi-interpolation of a function, ``C^1`` interpolation of scattered data) come with it.
 
 >>> import numpy as np, inrs
 >>> d = inrs.Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
@@ -335,7 +335,7 @@ class Domain:
 
 
 class Spline:
-    """A polynomial spline on a curved triangulation (see :func:`fit`)."""
+    """A polynomial spline on a curved triangulation (see :func:`fit` and :func:`interpolate`)."""
 
     __slots__ = ("_native",)
 
@@ -394,6 +394,7 @@ class Spline:
         return (Spline.from_json, (self.to_json(),))
 
     def __call__(self, x: ArrayLike, y: Optional[ArrayLike] = None) -> np.ndarray:
+        """Values at the points (NaN outside the domain): :meth:`evaluate` without derivatives."""
         return self.evaluate(x, y)
 
     def evaluate(
