@@ -2,8 +2,8 @@
 
 Points are classified exactly as inside, outside or on the boundary (within a tolerance relative
 to the domain's size) by the inRS algorithm, on NumPy arrays, with the GIL released and all cores
-at work. Winding numbers, well-spaced sampling, curved triangulations and splines on them come
-with it.
+at work. Winding numbers, well-spaced sampling, curved triangulations and splines on them
+(quasi-interpolation of a function, ``C^1`` interpolation of scattered data) come with it.
 
 >>> import numpy as np, inrs
 >>> d = inrs.Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
@@ -14,9 +14,11 @@ with it.
 from __future__ import annotations
 
 import hashlib
+import operator
 import os
 import threading
-from typing import Any, Callable, Optional, Tuple, Union
+import warnings
+from typing import Any, Callable, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -24,6 +26,8 @@ from . import _inrs
 
 __all__ = [
     "Domain",
+    "DomainSummary",
+    "LoopSummary",
     "Spline",
     "OUTSIDE",
     "INSIDE",
@@ -33,6 +37,7 @@ __all__ = [
     "mesh",
     "halton_points",
     "fit",
+    "interpolate",
     "__version__",
 ]
 
@@ -45,6 +50,15 @@ BOUNDARY: int = _inrs.BOUNDARY
 #: Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 DEFAULT_TOLERANCE: float = _inrs.DEFAULT_TOLERANCE
 __version__: str = _inrs.__version__
+
+#: What :meth:`Domain.summary` returns: read-only attributes ``curves``, ``bezier_pieces``,
+#: ``max_degree``, ``rational``, ``loops`` (a list of :class:`LoopSummary`), ``filled_area``,
+#: ``signed_area``, ``areas_converged``, ``bounds``.
+DomainSummary = _inrs.DomainSummary
+#: One boundary loop of a :class:`DomainSummary`: read-only attributes ``first_curve``,
+#: ``last_curve`` (the loop is the curves ``first_curve..=last_curve``), ``closed``, ``gap``,
+#: ``signed_area`` (positive counter-clockwise).
+LoopSummary = _inrs.LoopSummary
 
 _METHODS = ("fast", "inrs1", "inrs2", "gwn")
 
@@ -92,20 +106,67 @@ def _from_json_shared(text: str) -> "Domain":
     return Domain(native)
 
 
+def _curve_arrays(i: int, curve: Any) -> tuple:
+    """Curve ``i`` of :meth:`Domain.from_curves` as ``(degree, knots, control points (M, 2),
+    weights or None)`` in float64; its shape and types only (the Rust constructor checks the
+    rest)."""
+    if isinstance(curve, Mapping):
+        unknown = set(curve) - {"degree", "knots", "control_points", "weights"}
+        missing = [k for k in ("degree", "knots", "control_points") if k not in curve]
+        if unknown or missing:
+            raise ValueError(
+                f"curve {i}: expected the keys degree, knots, control_points and optionally "
+                f"weights, got {sorted(curve)}"
+            )
+        parts = (curve["degree"], curve["knots"], curve["control_points"], curve.get("weights"))
+    elif isinstance(curve, (tuple, list)) and len(curve) in (3, 4):
+        parts = tuple(curve) + (None,) * (4 - len(curve))
+    else:
+        raise ValueError(
+            f"curve {i}: expected a dict or a tuple (degree, knots, control_points[, weights])"
+        )
+    degree, knots, points, weights = parts
+    try:
+        degree = operator.index(degree)
+    except TypeError:
+        raise ValueError(f"curve {i}: degree must be an integer, got {degree!r}") from None
+    if degree < 0:
+        raise ValueError(f"curve {i}: degree must be an integer >= 0, got {degree}")
+
+    def array(what: str, value: Any, ndim: int) -> np.ndarray:
+        try:
+            a = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"curve {i}: {what} must be numbers ({e})") from None
+        shape = "(M, 2)" if ndim == 2 else "(M,)"
+        if a.ndim != ndim or (ndim == 2 and a.shape[1] != 2):
+            raise ValueError(f"curve {i}: {what} must have shape {shape}, got {a.shape}")
+        return a
+
+    return (
+        degree,
+        array("knots", knots, 1),
+        array("control points", points, 2),
+        None if weights is None else array("weights", weights, 1),
+    )
+
+
 class Domain:
     """A planar domain bounded by NURBS curves: one or more loops (holes, several parts).
 
-    Build it with :meth:`Domain.load` or :meth:`Domain.from_json`. Its indexes (monotone boxes,
-    the point-location grid, the winding-number field) are built on first use and kept; a
-    domain pickles by its JSON form (the indexes are rebuilt where it is unpickled).
+    Build it with :meth:`Domain.load`, :meth:`Domain.from_json` or :meth:`Domain.from_curves`.
+    Its indexes (monotone boxes, the point-location grid, the winding-number field) are built
+    on first use and kept; a domain pickles by its JSON form (the indexes are rebuilt where it
+    is unpickled).
     """
 
-    __slots__ = ("_native",)
+    __slots__ = ("_native", "_summary")
 
     def __init__(self, native: "_inrs.NativeDomain") -> None:
         if not isinstance(native, _inrs.NativeDomain):
-            raise TypeError("use Domain.load(path) or Domain.from_json(text)")
+            raise TypeError("use Domain.load(path), Domain.from_json(text) or Domain.from_curves(curves)")
         self._native = native
+        self._summary: Optional[DomainSummary] = None
 
     @classmethod
     def load(cls, path: Union[str, os.PathLike]) -> "Domain":
@@ -120,6 +181,35 @@ class Domain:
         """A domain from the text of a JSON domain file. Raises ``ValueError`` on bad input."""
         return cls(_inrs.NativeDomain.from_json(text))
 
+    @classmethod
+    def from_curves(cls, curves: Sequence[Any], name: Optional[str] = None) -> "Domain":
+        """A domain from NURBS curves given as arrays, without JSON.
+
+        Each curve is a dict with the keys of the JSON file's NURBS form, ``degree``, ``knots``,
+        ``control_points`` (shape ``(M, 2)``) and optionally ``weights`` (``(M,)``, default all
+        1), or a tuple ``(degree, knots, control_points)`` or ``(degree, knots, control_points,
+        weights)``. The curves are checked as the JSON reader checks them (the same Rust
+        constructor: knot count and order, finite coordinates, positive weights, the limits)
+        and grouped into loops the same way. Bad input raises ``ValueError`` naming the curve
+        by its index (``"curve 1: ..."``).
+
+        >>> import math
+        >>> s = math.sqrt(0.5)
+        >>> circle = {
+        ...     "degree": 2,
+        ...     "knots": [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1],
+        ...     "control_points": [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1], [1, 0]],
+        ...     "weights": [1, s, 1, s, 1, s, 1, s, 1],
+        ... }
+        >>> round(Domain.from_curves([circle]).area, 12)
+        3.14159265359
+        """
+        if isinstance(curves, Mapping) or not isinstance(curves, Sequence):
+            raise ValueError("curves must be a list of curves (dicts or tuples)")
+        return cls(
+            _inrs.NativeDomain.from_curves([_curve_arrays(i, c) for i, c in enumerate(curves)], name)
+        )
+
     def to_json(self) -> str:
         """The JSON domain file; ``Domain.from_json(d.to_json())`` gives the same curves."""
         return self._native.to_json()
@@ -129,31 +219,48 @@ class Domain:
         """The domain's name, if its file gives one."""
         return self._native.name
 
+    def summary(self) -> DomainSummary:
+        """Facts about the domain, as ``inrs info`` prints them: a :class:`DomainSummary` with
+        read-only attributes ``curves`` (number of NURBS curves), ``bezier_pieces``,
+        ``max_degree``, ``rational``, ``loops`` (a list of :class:`LoopSummary`: ``first_curve``,
+        ``last_curve``, ``closed``, ``gap``, ``signed_area``), ``filled_area`` (the even-odd
+        area, ``None`` for open or coincident loops), ``signed_area`` (sum over the loops),
+        ``areas_converged`` and ``bounds`` ``(xmin, ymin, xmax, ymax)``. Computed once and
+        kept (the domain never changes).
+
+        >>> s = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}').summary()
+        >>> s.curves, len(s.loops), round(s.filled_area, 12), s.bounds
+        (1, 1, 3.14159265359, (-1.0, -1.0, 1.0, 1.0))
+        """
+        if self._summary is None:
+            self._summary = self._native.summary()
+        return self._summary
+
     @property
     def area(self) -> float:
-        """The area filled by the even-odd rule (holes subtracted)."""
-        filled = self._native.summary()[2]
-        return float(filled) if filled is not None else abs(self._native.summary()[3])
+        """The area filled by the even-odd rule (holes subtracted); for open or coincident
+        loops, the absolute value of the signed area."""
+        s = self.summary()
+        return float(s.filled_area) if s.filled_area is not None else abs(s.signed_area)
 
     @property
     def bounds(self) -> Tuple[float, float, float, float]:
         """``(xmin, ymin, xmax, ymax)`` of the curves, as shapely orders it."""
-        return self._native.summary()[4]
+        return self.summary().bounds
 
     @property
-    def loops(self) -> list:
-        """The boundary loops: dicts with ``curves`` (first, last), ``closed``, ``signed_area``."""
-        return [
-            {"curves": (a, b), "closed": closed, "signed_area": area}
-            for a, b, closed, area in self._native.summary()[5]
-        ]
+    def loops(self) -> "list[LoopSummary]":
+        """The boundary loops: :class:`LoopSummary` objects with ``first_curve``,
+        ``last_curve``, ``closed``, ``gap``, ``signed_area``."""
+        return self.summary().loops
 
     def __repr__(self) -> str:
-        curves, loops, _, _, bounds, _ = self._native.summary()
+        s = self.summary()
         name = f"{self.name!r}, " if self.name else ""
+        b = s.bounds
         return (
-            f"Domain({name}curves={curves}, loops={loops}, area={self.area:.6g}, "
-            f"bounds=({bounds[0]:.6g}, {bounds[1]:.6g}, {bounds[2]:.6g}, {bounds[3]:.6g}))"
+            f"Domain({name}curves={s.curves}, loops={len(s.loops)}, area={self.area:.6g}, "
+            f"bounds=({b[0]:.6g}, {b[1]:.6g}, {b[2]:.6g}, {b[3]:.6g}))"
         )
 
     def __reduce__(self):
@@ -201,34 +308,34 @@ class Domain:
         y: Optional[ArrayLike] = None,
         *,
         tol: float = DEFAULT_TOLERANCE,
+        algorithm: str = "adaptive",
         threads: Optional[int] = None,
     ) -> np.ndarray:
         """Generalized winding numbers (float64): 1 inside a counter-clockwise loop, 0 outside,
         fractional near gaps of open boundaries. A point within ``tol`` times the bounding-box
         diagonal of a curve (the points :meth:`classify` calls boundary) gets the average
         across the jump: 0 inside a straight piece, 1/2 on a smooth closed curve, the interior
-        angle over 2 pi at a corner."""
+        angle over 2 pi at a corner.
+
+        ``algorithm`` is a name of ``inrs winding --algorithm``: ``"adaptive"`` (the default:
+        the paper's adaptive algorithm, accelerated), or the GWN paper's ray-casting baselines
+        ``"binary-search"`` and ``"bezier-clipping"`` (for comparisons; slower, the same values
+        up to rounding)."""
         xy, xs, ys, shape = _points(x, y)
         if xy is not None:
             xs, ys = xy[:, 0], xy[:, 1]
-        return self._native.winding_columns(xs, ys, float(tol), _threads(threads)).reshape(
-            shape
-        )
+        return self._native.winding_columns(
+            xs, ys, float(tol), _threads(threads), algorithm
+        ).reshape(shape)
 
     def flatten(self, accuracy: float) -> list:
         """The boundary as closed polylines within ``accuracy`` (absolute): one ``(M, 2)`` array
         per loop (for comparisons with polygon tools)."""
         return self._native.flatten(float(accuracy))
 
-    def _kernel_seconds(self, xy: np.ndarray, threads: Optional[int] = None) -> float:
-        """Seconds the Rust kernel takes on ``xy`` (benchmarks: the Python call's overhead)."""
-        return self._native.kernel_seconds(
-            np.ascontiguousarray(xy, dtype=np.float64), _threads(threads)
-        )
-
 
 class Spline:
-    """A polynomial spline on a curved triangulation (see :func:`fit`)."""
+    """A polynomial spline on a curved triangulation (see :func:`fit` and :func:`interpolate`)."""
 
     __slots__ = ("_native",)
 
@@ -257,7 +364,15 @@ class Spline:
 
     @property
     def degree(self) -> int:
+        """The polynomial degree."""
         return self._native.summary()[0]
+
+    @property
+    def space(self) -> str:
+        """The spline space, by its name in the spline file: ``"s0"`` (continuous, from
+        :func:`fit`), or the ``C^1`` spaces of :func:`interpolate`: ``"s512"``, ``"ct"``,
+        ``"ps"``, ``"min-energy"``."""
+        return self._native.space
 
     @property
     def triangles(self) -> int:
@@ -270,12 +385,16 @@ class Spline:
         return self._native.summary()[2]
 
     def __repr__(self) -> str:
-        return f"Spline(degree={self.degree}, triangles={self.triangles}, coefficients={self.dimension})"
+        return (
+            f"Spline(space={self.space!r}, degree={self.degree}, triangles={self.triangles}, "
+            f"coefficients={self.dimension})"
+        )
 
     def __reduce__(self):
         return (Spline.from_json, (self.to_json(),))
 
     def __call__(self, x: ArrayLike, y: Optional[ArrayLike] = None) -> np.ndarray:
+        """Values at the points (NaN outside the domain): :meth:`evaluate` without derivatives."""
         return self.evaluate(x, y)
 
     def evaluate(
@@ -334,3 +453,39 @@ def fit(
     xy = plan.points()
     values = np.ascontiguousarray(np.broadcast_to(f(xy[:, 0], xy[:, 1]), (len(xy),)), dtype=np.float64)
     return Spline(plan.finish(values))
+
+
+def interpolate(domain: Domain, xy: ArrayLike, z: ArrayLike, *, space: str = "ct") -> Spline:
+    """The ``C^1`` spline through scattered data: ``s(xy[i]) = z[i]``, as ``inrs fit --data
+    --space`` computes it (Schumaker and Yu's Problem 9.1): the curved triangulation whose
+    vertices are the data points, refined as the space needs, then a two-stage method (local
+    least-squares fits for the derivatives, then Hermite macro-elements) or minimal energy.
+
+    ``xy`` is an ``(N, 2)`` array of distinct points of the closed domain (points within 1e-9
+    of its size of the boundary are moved onto it), ``z`` the ``N`` values. ``space`` sets the
+    spline space and so the degree: ``"ct"`` (cubic ``S_3^1`` on the Clough-Tocher refinement,
+    the default), ``"ps"`` (quadratic ``S_2^1`` on the Powell-Sabin refinement), ``"s512"``
+    (quintic ``S_5^{1,2}``) or ``"min-energy"`` (``S_2^1``, minimal energy). The two-stage
+    spaces reproduce polynomials of their local fits' degree (cubic for ``ct`` and ``s512``,
+    quadratic for ``ps``); minimal energy reproduces linear functions. The space fixes the
+    degree and the data points are the triangulation's vertices, so unlike :func:`fit` there is
+    no ``ny`` or ``degree``. Give points on the boundary too (as :func:`sample` makes them):
+    data points between a boundary arc and its chord cannot be vertices, and are left out with
+    a ``UserWarning`` naming them. Bad input (shapes, points outside the domain or repeated, values that are not
+    finite, an unknown space) raises ``ValueError``.
+    """
+    xy = np.asarray(xy, dtype=np.float64)
+    if xy.ndim != 2 or xy.shape[1] != 2:
+        raise ValueError(f"xy must have shape (N, 2), got {xy.shape}")
+    z = np.asarray(z, dtype=np.float64)
+    if z.ndim != 1:
+        raise ValueError(f"z must have shape (N,), got {z.shape}")
+    native, _added, unused = _inrs.interpolate(domain._native, xy, z, space)
+    if unused:
+        shown = ", ".join(f"xy[{i}]" for i in unused[:5]) + (", ..." if len(unused) > 5 else "")
+        warnings.warn(
+            f"{len(unused)} data points lie between a boundary arc and its chord, are not "
+            f"vertices and are not interpolated ({shown})",
+            stacklevel=2,
+        )
+    return Spline(native)

@@ -1,7 +1,8 @@
 """The Python examples of README.md and python/README.md run as written: each file's
 ``python`` blocks in order, in one namespace, in a scratch directory whose ``fixtures/`` is the
-repository's."""
+repository's; and the ``>>>`` examples of the package's docstrings."""
 
+import doctest
 import os
 import re
 
@@ -30,3 +31,10 @@ def test_readme_python_examples_run(readme, tmp_path, monkeypatch):
         # Uniform points of [-1, 1]^2 against the lune: area / 4, up to sampling noise.
         area = namespace["domain"].area
         assert abs(float(namespace["inside_fraction"]) - area / 4) < 2e-3
+
+
+def test_docstring_examples_run():
+    import inrs
+
+    failed, tried = doctest.testmod(inrs, report=True)
+    assert tried > 0 and failed == 0

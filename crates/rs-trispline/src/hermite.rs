@@ -124,6 +124,17 @@ impl C1Space {
     }
 }
 
+impl std::str::FromStr for C1Space {
+    type Err = String;
+
+    /// The names of the spline file and of `inrs fit --space` ([`C1Space::name`]): `s512`,
+    /// `ct`, `ps`, `min-energy` (any case).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::from_name(&s.to_ascii_lowercase())
+            .ok_or_else(|| format!("unknown space {s:?} (expected s512, ct, ps or min-energy)"))
+    }
+}
+
 /// What the second stage interpolates: at each vertex of the unrefined triangulation the
 /// value and derivatives (up to order 2 for `S_5^{1,2}`, 1 otherwise), and on each edge the
 /// gradient at the midpoint of its chord (only its component across the edge is used).
@@ -455,4 +466,26 @@ pub(crate) fn powell_sabin_element(subs: &[Triangle], jets: [Jet; 3]) -> [f64; 3
         out[6 * s..6 * s + 6].copy_from_slice(cs);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::C1Space;
+
+    #[test]
+    fn spaces_parse_from_their_names() {
+        for space in [
+            C1Space::SuperSpline,
+            C1Space::CloughTocher,
+            C1Space::PowellSabin,
+            C1Space::MinimalEnergy,
+        ] {
+            assert_eq!(space.name().parse::<C1Space>(), Ok(space));
+        }
+        assert_eq!("CT".parse::<C1Space>(), Ok(C1Space::CloughTocher));
+        assert_eq!(
+            "s0".parse::<C1Space>().unwrap_err(),
+            "unknown space \"s0\" (expected s512, ct, ps or min-energy)"
+        );
+    }
 }

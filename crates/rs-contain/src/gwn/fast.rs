@@ -417,7 +417,6 @@ impl<'a> FastWindingField<'a> {
             }
         }
     }
-
 }
 
 impl PointQuery<f64> for FastWindingField<'_> {
@@ -431,14 +430,18 @@ impl PointQuery<f64> for FastWindingField<'_> {
     /// half the time of one point at a time.
     fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [f64]) {
         assert_eq!(points.len(), out.len(), "one value per point");
-        self.sums_into(|i| points.point(i), out, |q, sum, stack, stats| {
-            if sum.near()
-                && let Some(w) = self.band_winding_number(q, stack, stats)
-            {
-                return w;
-            }
-            sum.value()
-        });
+        self.sums_into(
+            |i| points.point(i),
+            out,
+            |q, sum, stack, stats| {
+                if sum.near()
+                    && let Some(w) = self.band_winding_number(q, stack, stats)
+                {
+                    return w;
+                }
+                sum.value()
+            },
+        );
     }
 }
 
@@ -452,13 +455,17 @@ impl PointQuery<Location> for FastWindingField<'_> {
     fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
         assert_eq!(points.len(), out.len(), "one value per point");
         let rule = self.field.fill_rule();
-        self.sums_into(|i| points.point(i), out, |q, sum, _, _| {
-            // Only a query the walk brought within reach of a piece may be in the band.
-            if sum.near() && self.field.is_on_boundary(q) {
-                return Location::Boundary;
-            }
-            self.field.location_from_winding(sum.value(), rule)
-        });
+        self.sums_into(
+            |i| points.point(i),
+            out,
+            |q, sum, _, _| {
+                // Only a query the walk brought within reach of a piece may be in the band.
+                if sum.near() && self.field.is_on_boundary(q) {
+                    return Location::Boundary;
+                }
+                self.field.location_from_winding(sum.value(), rule)
+            },
+        );
     }
 }
 

@@ -42,8 +42,24 @@ pub enum WindingAlgorithm {
     BezierClipping,
 }
 
+impl std::str::FromStr for WindingAlgorithm {
+    type Err = String;
+
+    /// The command line's names: `adaptive`, `binary-search`, `bezier-clipping` (any case).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "adaptive" => Ok(Self::Adaptive),
+            "binary-search" => Ok(Self::BinarySearch),
+            "bezier-clipping" => Ok(Self::BezierClipping),
+            _ => Err(format!(
+                "unknown winding algorithm {s:?} (expected adaptive, binary-search or bezier-clipping)"
+            )),
+        }
+    }
+}
+
 /// Rule turning the winding-number field into containment.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum FillRule {
     /// Inside when the rounded winding number is odd. Agrees with the crossing-number methods
     /// whatever the loops' orientation. The default.
@@ -51,6 +67,21 @@ pub enum FillRule {
     EvenOdd,
     /// Inside when the rounded winding number is not zero.
     NonZero,
+}
+
+impl std::str::FromStr for FillRule {
+    type Err = String;
+
+    /// `even-odd` (or `evenodd`) and `nonzero` (or `non-zero`), in any case.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "even-odd" | "evenodd" => Ok(Self::EvenOdd),
+            "nonzero" | "non-zero" => Ok(Self::NonZero),
+            _ => Err(format!(
+                "unknown fill rule {s:?} (expected even-odd or nonzero)"
+            )),
+        }
+    }
 }
 
 /// The generalized winding-number field of a collection of curves.
@@ -473,4 +504,48 @@ pub(crate) fn chains(pieces: &[RationalBezier]) -> Vec<std::ops::Range<usize>> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{FillRule, WindingAlgorithm};
+
+    #[test]
+    fn fill_rules_parse_from_their_names() {
+        for (name, rule) in [
+            ("even-odd", FillRule::EvenOdd),
+            ("evenodd", FillRule::EvenOdd),
+            ("EvenOdd", FillRule::EvenOdd),
+            ("nonzero", FillRule::NonZero),
+            ("non-zero", FillRule::NonZero),
+            ("NonZero", FillRule::NonZero),
+        ] {
+            assert_eq!(name.parse::<FillRule>(), Ok(rule), "{name}");
+        }
+        let e = "winding".parse::<FillRule>().unwrap_err();
+        assert_eq!(
+            e,
+            "unknown fill rule \"winding\" (expected even-odd or nonzero)"
+        );
+        assert!("".parse::<FillRule>().is_err());
+    }
+
+    #[test]
+    fn winding_algorithms_parse_from_the_command_line_names() {
+        for (name, algorithm) in [
+            ("adaptive", WindingAlgorithm::Adaptive),
+            ("binary-search", WindingAlgorithm::BinarySearch),
+            ("bezier-clipping", WindingAlgorithm::BezierClipping),
+            ("Bezier-Clipping", WindingAlgorithm::BezierClipping),
+        ] {
+            assert_eq!(name.parse::<WindingAlgorithm>(), Ok(algorithm), "{name}");
+        }
+        let e = "binary_search".parse::<WindingAlgorithm>().unwrap_err();
+        assert!(!e.contains('\n'));
+        assert!(
+            e.contains("\"binary_search\"")
+                && e.contains("adaptive, binary-search or bezier-clipping"),
+            "{e}"
+        );
+    }
 }

@@ -531,7 +531,6 @@ impl PointLocator<'_> {
             }
         }
     }
-
 }
 
 /// Points per parallel task.

@@ -59,6 +59,34 @@ impl Refinement {
             Refinement::PowellSabin => 6,
         }
     }
+
+    /// The refinement named `name`, or `None` for `none` (the triangulation itself): the
+    /// choices of `inrs mesh --refine` and of the Python package's `refine`.
+    ///
+    /// # Errors
+    /// A one-line message naming the choices (`none`, `ct` or `ps`).
+    pub fn parse_optional(name: &str) -> Result<Option<Self>, String> {
+        if name.eq_ignore_ascii_case("none") {
+            return Ok(None);
+        }
+        name.parse()
+            .map(Some)
+            .map_err(|_| format!("unknown refinement {name:?} (expected none, ct or ps)"))
+    }
+}
+
+impl std::str::FromStr for Refinement {
+    type Err = String;
+
+    /// `ct` (or `clough-tocher`) and `ps` (or `powell-sabin`), in any case; see
+    /// [`Refinement::parse_optional`] for `none`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "ct" | "clough-tocher" => Ok(Self::CloughTocher),
+            "ps" | "powell-sabin" => Ok(Self::PowellSabin),
+            _ => Err(format!("unknown refinement {s:?} (expected ct or ps)")),
+        }
+    }
 }
 
 /// A curved triangulation of a domain (Definition 3.2) with straight interior edges: an

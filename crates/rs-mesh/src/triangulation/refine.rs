@@ -263,3 +263,32 @@ fn line_crossing(p: Point, q: Point, a: Point, b: Point) -> Option<Point> {
     let s = (a - p).cross(d) / denom;
     (s > 0.0 && s < 1.0).then(|| a + e * s)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Refinement;
+
+    #[test]
+    fn refinements_parse_from_their_names() {
+        for (name, how) in [
+            ("ct", Refinement::CloughTocher),
+            ("CT", Refinement::CloughTocher),
+            ("clough-tocher", Refinement::CloughTocher),
+            ("ps", Refinement::PowellSabin),
+            ("powell-sabin", Refinement::PowellSabin),
+        ] {
+            assert_eq!(name.parse::<Refinement>(), Ok(how), "{name}");
+            assert_eq!(Refinement::parse_optional(name), Ok(Some(how)), "{name}");
+        }
+        assert_eq!(
+            "none".parse::<Refinement>().unwrap_err(),
+            "unknown refinement \"none\" (expected ct or ps)"
+        );
+        assert_eq!(Refinement::parse_optional("none"), Ok(None));
+        assert_eq!(Refinement::parse_optional("None"), Ok(None));
+        assert_eq!(
+            Refinement::parse_optional("cubic").unwrap_err(),
+            "unknown refinement \"cubic\" (expected none, ct or ps)"
+        );
+    }
+}

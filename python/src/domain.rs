@@ -1,0 +1,299 @@
+//! `NativeDomain`: a domain with its indexes, classification and winding numbers of NumPy
+//! points.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+    PyUntypedArrayMethods,
+};
+use pyo3::prelude::*;
+
+use inrs::contain::baselines::WindingAlgorithm;
+use inrs::contain::{FillRule, WindingField};
+use inrs::{ContainOptions, Containment, Domain, Location, Method, NurbsCurve, Point, PointQuery};
+
+use crate::errors::{io_error, value_error};
+use crate::points::{Points, columns, pairs, with_point_source};
+use crate::summary::DomainSummary;
+use crate::threads::with_threads;
+
+/// One curve of [`NativeDomain::from_curves`]: `(degree, knots, control points (M, 2),
+/// weights (M,) or None)`.
+type CurveArrays<'py> = (
+    usize,
+    PyReadonlyArray1<'py, f64>,
+    PyReadonlyArray2<'py, f64>,
+    Option<PyReadonlyArray1<'py, f64>>,
+);
+
+/// A planar domain bounded by NURBS curves (the native object behind `inrs.Domain`).
+#[pyclass(module = "inrs._inrs", name = "NativeDomain", frozen)]
+pub(crate) struct NativeDomain {
+    pub(crate) domain: Domain,
+    /// What classifies, by relative tolerance (its bits), method and fill rule, built on
+    /// first use and kept.
+    containments: Mutex<HashMap<(u64, Method, FillRule), Arc<Containment>>>,
+    /// The winding-number fields by tolerance.
+    fields: Mutex<HashMap<u64, Arc<WindingField>>>,
+}
+
+impl NativeDomain {
+    fn new(domain: Domain) -> Self {
+        Self {
+            domain,
+            containments: Mutex::new(HashMap::new()),
+            fields: Mutex::new(HashMap::new()),
+        }
+    }
+
+    fn containment(
+        &self,
+        tol: f64,
+        method: Method,
+        fill_rule: FillRule,
+    ) -> PyResult<Arc<Containment>> {
+        // The fill rule matters only to the winding-number method.
+        let fill_rule = if method == Method::Gwn {
+            fill_rule
+        } else {
+            FillRule::EvenOdd
+        };
+        let key = (tol.to_bits(), method, fill_rule);
+        cached(&self.containments, tol, key, "classifier", || {
+            let options = ContainOptions::DEFAULT
+                .with_relative_tolerance(tol)
+                .with_method(method)
+                .with_fill_rule(fill_rule);
+            Containment::new(&self.domain, options).map_err(value_error)
+        })
+    }
+
+    fn field(&self, tol: f64) -> PyResult<Arc<WindingField>> {
+        cached(&self.fields, tol, tol.to_bits(), "winding-field", || {
+            WindingField::new(&self.domain, tol).map_err(value_error)
+        })
+    }
+
+    /// Classification codes of `pts` (0 outside, 1 inside, 2 boundary): the library's
+    /// [`Containment`] for the options picks the algorithm for `pts.len()` points.
+    fn classify_points(
+        &self,
+        py: Python<'_>,
+        pts: Points<'_>,
+        method: &str,
+        tol: f64,
+        fill_rule: &str,
+        threads: usize,
+    ) -> PyResult<Vec<i8>> {
+        let method: Method = method.parse().map_err(value_error)?;
+        let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
+        let containment = self.containment(tol, method, fill_rule)?;
+        py.detach(|| {
+            with_threads(threads, || {
+                let engine = containment.engine(pts.len());
+                let mut locations = vec![Location::Outside; pts.len()];
+                with_point_source!(pts, |points| engine
+                    .par_values_into(&points, &mut locations));
+                locations.iter().map(|l| l.code()).collect()
+            })
+        })
+    }
+
+    /// Winding numbers of `pts` with `algorithm`, as `inrs winding --algorithm` computes them
+    /// ([`WindingField::winding_numbers_by`]), on all threads of the pool.
+    fn winding_points(
+        &self,
+        py: Python<'_>,
+        pts: Points<'_>,
+        tol: f64,
+        algorithm: WindingAlgorithm,
+        threads: usize,
+    ) -> PyResult<Vec<f64>> {
+        let field = self.field(tol)?;
+        py.detach(|| {
+            with_threads(threads, || {
+                let numbers = field.winding_numbers_by(algorithm);
+                let mut out = vec![0.0; pts.len()];
+                with_point_source!(pts, |points| numbers.par_values_into(&points, &mut out));
+                out
+            })
+        })
+    }
+}
+
+/// The value cached in `cache` under `key` (for tolerance `tol`, checked first), built by
+/// `build` and kept on first use.
+fn cached<K: std::hash::Hash + Eq, T>(
+    cache: &Mutex<HashMap<K, Arc<T>>>,
+    tol: f64,
+    key: K,
+    what: &str,
+    build: impl FnOnce() -> PyResult<T>,
+) -> PyResult<Arc<T>> {
+    check_tolerance(tol)?;
+    let mut cache = cache
+        .lock()
+        .map_err(|_| value_error(format!("{what} cache poisoned")))?;
+    if let Some(v) = cache.get(&key) {
+        return Ok(Arc::clone(v));
+    }
+    let v = Arc::new(build()?);
+    cache.insert(key, Arc::clone(&v));
+    Ok(v)
+}
+
+fn check_tolerance(tol: f64) -> PyResult<()> {
+    if tol.is_finite() && tol >= 0.0 {
+        Ok(())
+    } else {
+        Err(value_error(format!(
+            "tolerance {tol} must be finite and >= 0"
+        )))
+    }
+}
+
+#[pymethods]
+impl NativeDomain {
+    /// Reads a domain file: JSON, SVG, DXF, or a font glyph `font.ttf#B`.
+    #[staticmethod]
+    fn load(path: &str) -> PyResult<Self> {
+        Ok(Self::new(inrs::io::load_domain(path).map_err(io_error)?))
+    }
+
+    /// A domain from the text of a JSON domain file.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        Ok(Self::new(
+            inrs::io::json::domain_from_json(text).map_err(io_error)?,
+        ))
+    }
+
+    /// A domain from NURBS curves given as arrays, `(degree, knots, control points (M, 2),
+    /// weights (M,) or None)` each, checked as the JSON reader checks a curve of the NURBS
+    /// form ([`NurbsCurve::new`], then [`Domain::new`]); errors name the curve by its index.
+    #[staticmethod]
+    #[pyo3(signature = (curves, name = None))]
+    fn from_curves(curves: Vec<CurveArrays<'_>>, name: Option<&str>) -> PyResult<Self> {
+        let mut built = Vec::with_capacity(curves.len());
+        for (i, (degree, knots, points, weights)) in curves.iter().enumerate() {
+            let points = pairs(points)
+                .map_err(|_| {
+                    value_error(format!(
+                        "curve {i}: control points must have shape (M, 2), got {:?}",
+                        points.shape()
+                    ))
+                })?
+                .to_vec();
+            let weights = weights.as_ref().map(|w| w.as_array().to_vec());
+            let curve = NurbsCurve::new(*degree, knots.as_array().to_vec(), points, weights)
+                .map_err(|source| {
+                    io_error(inrs::io::IoError::Curve {
+                        origin: format!("curve {i}"),
+                        source,
+                    })
+                })?;
+            built.push(curve);
+        }
+        let domain = Domain::new(built).map_err(|e| io_error(e.into()))?;
+        Ok(Self::new(match name {
+            Some(name) => domain.with_name(name),
+            None => domain,
+        }))
+    }
+
+    /// The JSON domain file (round-trips exactly).
+    fn to_json(&self) -> String {
+        inrs::io::json::domain_to_json(&self.domain)
+    }
+
+    /// The name, if any.
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.domain.name().map(str::to_string)
+    }
+
+    /// Curves, loops, areas and bounds (see [`DomainSummary`]).
+    fn summary(&self) -> DomainSummary {
+        DomainSummary::of(&self.domain)
+    }
+
+    /// Codes for an `(N, 2)` float64 array (any layout).
+    fn classify_pairs<'py>(
+        &self,
+        py: Python<'py>,
+        xy: PyReadonlyArray2<'py, f64>,
+        method: &str,
+        tol: f64,
+        fill_rule: &str,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyArray1<i8>>> {
+        let pts = pairs(&xy)?;
+        Ok(self
+            .classify_points(py, pts, method, tol, fill_rule, threads)?
+            .into_pyarray(py))
+    }
+
+    /// Codes for two 1-D float64 arrays (any layout).
+    #[allow(clippy::too_many_arguments)]
+    fn classify_columns<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'py, f64>,
+        y: PyReadonlyArray1<'py, f64>,
+        method: &str,
+        tol: f64,
+        fill_rule: &str,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyArray1<i8>>> {
+        let pts = columns(&x, &y)?;
+        Ok(self
+            .classify_points(py, pts, method, tol, fill_rule, threads)?
+            .into_pyarray(py))
+    }
+
+    /// Generalized winding numbers for two 1-D float64 arrays (any layout); points within
+    /// `tol` (relative) of a curve get the average across the jump. `algorithm` is a name of
+    /// `inrs winding --algorithm`: `adaptive` (the accelerated field), `binary-search` or
+    /// `bezier-clipping` (the GWN paper's ray-casting baselines).
+    #[pyo3(signature = (x, y, tol, threads, algorithm = "adaptive"))]
+    fn winding_columns<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'py, f64>,
+        y: PyReadonlyArray1<'py, f64>,
+        tol: f64,
+        threads: usize,
+        algorithm: &str,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let algorithm: WindingAlgorithm = algorithm.parse().map_err(value_error)?;
+        let pts = columns(&x, &y)?;
+        Ok(self
+            .winding_points(py, pts, tol, algorithm, threads)?
+            .into_pyarray(py))
+    }
+
+    /// The boundary flattened: per loop, an `(M, 2)` array of a closed polyline within
+    /// `accuracy` of the curves.
+    fn flatten<'py>(
+        &self,
+        py: Python<'py>,
+        accuracy: f64,
+    ) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
+        if !(accuracy.is_finite() && accuracy > 0.0) {
+            return Err(value_error("accuracy must be finite and > 0"));
+        }
+        let mut rings = Vec::new();
+        for i in 0..self.domain.loops().len() {
+            let mut pts: Vec<f64> = Vec::new();
+            self.domain.flatten_loop(i, accuracy, &mut |p: Point| {
+                pts.push(p.x);
+                pts.push(p.y);
+            });
+            let n = pts.len() / 2;
+            rings.push(pts.into_pyarray(py).reshape([n, 2])?);
+        }
+        Ok(rings)
+    }
+}
