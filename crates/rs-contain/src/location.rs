@@ -71,8 +71,8 @@ pub enum Method {
     Fast,
 }
 
-/// Batch size from which [`Method::Fast`] builds a [`crate::PointLocator`] (its build, a few
-/// milliseconds, pays for itself from there on; measured with `cargo xtask bench`).
+/// Batch size from which [`Method::Fast`] builds a [`crate::PointLocator`]: below it the grid's
+/// build costs more than it saves (docs/BENCHMARKS.md, `cargo xtask bench --only locator`).
 pub const FAST_METHOD_MIN_POINTS: usize = 50_000;
 
 /// Whether [`Method::Fast`] answers a batch of `points` points with the grid locator (from

@@ -307,8 +307,9 @@ impl ParamCurveArea for RationalBezier {
     fn area_integral_on(&self, t0: f64, t1: f64) -> Integral {
         let scale = self.control_bounding_box().diagonal().powi(2);
         // The rounding magnitude of `x y' - y x'`: `|C|` times that of `C'` (a small piece far
-        // from the origin has a derivative rounded far above `eps |C'|`; with `|x y'| + |y x'|`
-        // alone, an arc of a butterfly's 5-unit cubic at 13 000 never converged: 50 ms each).
+        // from the origin has a derivative rounded far above `eps |C'|`, so a floor of
+        // `eps (|x y'| + |y x'|)` alone lies below the integrand's own rounding and no panel
+        // could meet it).
         let per_parameter = basis_derivative_size(self.degree(), 0.0, 1.0);
         let f = |t: f64| {
             let (p, v) = self.point_and_tangent(t);
@@ -396,8 +397,8 @@ mod tests {
 
     /// A butterfly's 5-unit cubic at (13 246, 7 462): its derivative is rounded at about 1e-12,
     /// which `x y'` carries to 1e-8, far above `eps (|x y'| + |y x'|)`; with that as the
-    /// rounding floor no panel converged (50 ms per arc in a mesh). The integral now converges,
-    /// to the same curve's at the origin moved back by Green's theorem:
+    /// rounding floor no panel would converge. The integral converges to the same curve's at
+    /// the origin moved back by Green's theorem:
     /// `A = A_0 + (x_0 (y(t_1) - y(t_0)) - y_0 (x(t_1) - x(t_0))) / 2`.
     #[test]
     fn a_small_piece_far_from_the_origin_converges_to_the_moved_area() {

@@ -42,8 +42,7 @@ enum Sampling {
 
 impl SampleArgs {
     /// The sampling the options ask for: --count alone means Halton points; an option of the
-    /// other method is an error (it used to be ignored: `--count 50` wrote 460 000
-    /// well-spaced points).
+    /// other method is an error (silently ignoring it would answer another question).
     fn sampling(&self) -> Result<Sampling, CliError> {
         let method = self.method.unwrap_or(if self.count.is_some() {
             SampleMethod::Halton

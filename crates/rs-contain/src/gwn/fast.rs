@@ -294,8 +294,7 @@ impl<'a> FastWindingField<'a> {
     /// ([`WindingSum::near`]: only then may it be in the band, as a leaf's box holds every point
     /// near its piece and its refinement tells whether `q` comes within the field's reach of a
     /// settled sub-curve); `stack` is scratch for the walk
-    /// (a caller answering many points passes the same one: zeroing it per point was 3% of a
-    /// query on small shapes).
+    /// (a caller answering many points passes the same one, so it is not zeroed per point).
     ///
     /// A leaf whose box holds `q` is always visited: the boxes of its ancestors hold `q` too,
     /// so none is skipped, nor decided by its chords (which needs `q` right of its box). So
