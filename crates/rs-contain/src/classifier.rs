@@ -327,8 +327,7 @@ impl PointQuery<Location> for Classifier {
         self.classify_point_with_decision(p).0
     }
 
-    /// With the method of the options ([`Classifier::engine`]); a batch large enough for the
-    /// grid runs on all threads.
+    /// With the method of the options ([`Classifier::engine`]), on the current thread.
     fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
         self.engine(self.method, points.len())
             .values_into(points, out);
