@@ -138,3 +138,99 @@ impl PointQuery<Location> for Engine<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{FAST_METHOD_MIN_POINTS, FillRule, points_from_fn};
+    use rs_spline::circle;
+
+    /// An annulus 1 < r < 2 (two circles of one orientation), and a grid of points over it
+    /// with their analytic locations (points within 1e-6 of a circle left out).
+    fn annulus_and_points(n: usize) -> (Domain, Vec<Point>, Vec<Location>) {
+        let d = Domain::new(vec![
+            circle(Point::new(0.0, 0.0), 2.0).unwrap(),
+            circle(Point::new(0.0, 0.0), 1.0).unwrap(),
+        ])
+        .unwrap();
+        let mut pts = Vec::new();
+        let mut expected = Vec::new();
+        let side = (n as f64).sqrt().ceil() as usize;
+        for i in 0..side {
+            for j in 0..side {
+                let p = Point::new(
+                    -2.5 + 5.0 * i as f64 / side as f64,
+                    -2.5 + 5.0 * j as f64 / side as f64,
+                );
+                let r = p.x.hypot(p.y);
+                if (r - 1.0).abs() < 1e-6 || (r - 2.0).abs() < 1e-6 {
+                    continue;
+                }
+                pts.push(p);
+                expected.push(if r > 1.0 && r < 2.0 {
+                    Location::Inside
+                } else {
+                    Location::Outside
+                });
+            }
+        }
+        (d, pts, expected)
+    }
+
+    /// The engine follows the batch size and the method; every engine, through every batch
+    /// form and point layout, gives the analytic locations.
+    #[test]
+    fn every_engine_gives_the_analytic_locations() {
+        let (d, pts, expected) = annulus_and_points(FAST_METHOD_MIN_POINTS + 5000);
+        let n = pts.len();
+        assert!(n >= FAST_METHOD_MIN_POINTS);
+        let c = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+        assert!(matches!(c.engine(Method::Fast, n), Engine::Grid(_)));
+        assert!(matches!(
+            c.engine(Method::Fast, FAST_METHOD_MIN_POINTS - 1),
+            Engine::Sorted(_)
+        ));
+        assert!(matches!(c.engine(Method::InRS1, n), Engine::OneByOne(_)));
+        assert!(matches!(
+            c.engine(Method::Gwn, n),
+            Engine::ClassifierWinding(_)
+        ));
+        let (xs, ys): (Vec<f64>, Vec<f64>) = pts.iter().map(|p| (p.x, p.y)).unzip();
+        let columns = points_from_fn(n, |i| Point::new(xs[i], ys[i]));
+        for method in [Method::InRS1, Method::InRS2, Method::Fast, Method::Gwn] {
+            let options = ContainOptions::DEFAULT.with_method(method);
+            let containment = Containment::new(&d, options).unwrap();
+            for batch in [n, 100] {
+                let engine = containment.engine(batch);
+                let mut out = vec![Location::Boundary; n];
+                engine.values_into(&pts[..], &mut out);
+                assert_eq!(out, expected, "{method:?} for {batch}, slice");
+                out.fill(Location::Boundary);
+                engine.par_values_into(&columns, &mut out);
+                assert_eq!(out, expected, "{method:?} for {batch}, columns in parallel");
+            }
+            assert_eq!(c.locate_all_with(method, &pts), expected, "{method:?}");
+        }
+    }
+
+    /// `Method::Gwn` takes the fill rule of the options: the annulus's two circles have one
+    /// orientation, so the hole has winding number 2, inside by the nonzero rule.
+    #[test]
+    fn the_winding_method_takes_the_fill_rule() {
+        let (d, _, _) = annulus_and_points(4);
+        let hole = [Point::new(0.5, 0.0)];
+        for (rule, want) in [
+            (FillRule::EvenOdd, Location::Outside),
+            (FillRule::NonZero, Location::Inside),
+        ] {
+            let options = ContainOptions::DEFAULT
+                .with_method(Method::Gwn)
+                .with_fill_rule(rule);
+            let c = Containment::new(&d, options).unwrap();
+            assert!(c.classifier().is_none());
+            let mut out = [Location::Boundary];
+            c.engine(1).values_into(&hole[..], &mut out);
+            assert_eq!(out, [want], "{rule:?}");
+        }
+    }
+}
