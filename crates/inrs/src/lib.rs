@@ -21,10 +21,12 @@
 //! - [`convex`] (`rs-convex`): convex domains of a free control point keeping the sign of
 //!   curvature or torsion.
 //! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
-//!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings.
+//!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings; the points
+//!   files (`io::points`: CSV and `.npy`, streamed), whose readers are re-exported here
+//!   ([`parse_points`], [`PointReader`], [`CsvBlocks`], [`NpyPoints`], ...).
 //!
-//! Plus [`Classify`] (containment methods on [`Domain`]), the points file reader
-//! [`parse_points`] and the domain summary printed by `inrs info`.
+//! Plus [`Classify`] (containment methods on [`Domain`]) and the domain summary printed by
+//! `inrs info`.
 //!
 //! # Examples
 //!
@@ -65,25 +67,18 @@ pub use rs_contain::{Classifier, ContainError, ContainOptions, Location, Method}
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 
 mod classify;
-#[cfg(unix)]
-mod csv_file;
-mod npy;
-mod points_csv;
 mod summary;
 
 pub use classify::Classify;
-#[cfg(unix)]
-pub use csv_file::CsvPointsFile;
-#[cfg(unix)]
-pub use npy::NpyPointsFile;
-pub use npy::{
-    EncodedPoints, MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyPoints, NpyType, npy_header,
-    open_npy_points,
+// The points files, from `rs-io` (`rs_io::points`, also `inrs::io::points`), at the top level
+// where the command line and earlier releases have them.
+pub use rs_io::points::{
+    CsvBlock, CsvBlocks, EncodedPoints, MAX_LINE_BYTES, MAX_NPY_POINTS, NPY_HEADER_BYTES,
+    NpyPoints, NpyType, ParsedBlock, PointReader, PointRecord, PointsError, npy_header,
+    open_npy_points, open_points, open_points_blocks, parse_points, read_points,
 };
-pub use points_csv::{
-    CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, PointReader, PointRecord, PointsError,
-    open_points, open_points_blocks, parse_points, read_points,
-};
+#[cfg(unix)]
+pub use rs_io::points::{CsvPointsFile, NpyPointsFile};
 pub use summary::{DomainSummary, LoopSummary, significant};
 
 /// The traits most code wants in scope: the curve vocabulary of `rs-spline` and [`Classify`].
