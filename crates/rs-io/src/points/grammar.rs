@@ -11,19 +11,58 @@ use super::{MAX_LINE_BYTES, PointsError};
 /// The UTF-8 byte-order mark (Excel's "CSV UTF-8"), skipped at the start of a file.
 const BOM: &[u8] = b"\xef\xbb\xbf";
 
-/// What one line of a points file holds.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum Line {
+/// What a line of a points file is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
     /// Blank, or a `#` comment.
     Blank,
     /// First two fields `x` and `y` (a header, if no data came before).
     Header,
-    /// A point, with the byte ranges of its two fields in the text.
-    Point {
-        point: Point,
-        x: Range<usize>,
-        y: Range<usize>,
-    },
+    /// A point.
+    Point,
+}
+
+/// What one line of a points file holds. (A struct rather than an enum with the point in a
+/// variant: the parser's result then stays in registers in the loop over a block's lines.)
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Line {
+    pub(super) kind: Kind,
+    /// The point (the origin for the other kinds).
+    pub(super) point: Point,
+    /// The byte ranges `[x_start, x_end, y_start, y_end]` of the point's two fields in the
+    /// text (zeros for the other kinds).
+    pub(super) fields: [usize; 4],
+}
+
+impl Line {
+    /// A line of `kind` without a point.
+    fn of(kind: Kind) -> Self {
+        Self {
+            kind,
+            point: Point::new(0.0, 0.0),
+            fields: [0; 4],
+        }
+    }
+
+    /// The point `(x, y)`, its fields at `x` and `y`.
+    fn point(x: f64, y: f64, xs: Range<usize>, ys: Range<usize>) -> Self {
+        Self {
+            kind: Kind::Point,
+            point: Point::new(x, y),
+            fields: [xs.start, xs.end, ys.start, ys.end],
+        }
+    }
+
+    /// The line with its fields' ranges moved by `by`.
+    fn shifted(self, by: usize) -> Self {
+        match self.kind {
+            Kind::Point => Self {
+                fields: self.fields.map(|f| f + by),
+                ..self
+            },
+            _ => self,
+        }
+    }
 }
 
 /// The line splitter: the line starting at `text[start]` ends before the returned end (its
@@ -51,28 +90,34 @@ pub(super) fn line_at(text: &[u8], start: usize) -> (usize, usize) {
 /// # Errors
 /// [`PointsError::Line`]: a line longer than [`MAX_LINE_BYTES`], not UTF-8, with fewer than
 /// two fields, or whose first two fields are not finite numbers (nor a header).
-#[inline]
+#[inline(always)]
 pub(super) fn read_line(
     text: &[u8],
     start: usize,
     line_no: usize,
 ) -> Result<(Line, usize), PointsError> {
-    if let Some(plain) = scan(text, start) {
-        return Ok(plain);
+    match scan(text, start) {
+        Some(plain) => Ok(plain),
+        None => read_text(text, start, line_no),
     }
+}
+
+/// [`read_line`] for the lines [`scan`] leaves: split off and parsed as text.
+///
+/// # Errors
+/// As [`read_line`].
+#[cold]
+#[inline(never)]
+pub(super) fn read_text(
+    text: &[u8],
+    start: usize,
+    line_no: usize,
+) -> Result<(Line, usize), PointsError> {
     let (end, next) = line_at(text, start);
     if end - start > MAX_LINE_BYTES {
         return Err(too_long(line_no));
     }
-    let line = match parse_text(&text[start..end], line_no)? {
-        Line::Point { point, x, y } => Line::Point {
-            point,
-            x: start + x.start..start + x.end,
-            y: start + y.start..start + y.end,
-        },
-        other => other,
-    };
-    Ok((line, next))
+    Ok((parse_text(&text[start..end], line_no)?.shifted(start), next))
 }
 
 /// The data-start finder: where the data start in `text`, a file's first lines (`at_file_start`
@@ -88,9 +133,9 @@ pub(super) fn find_data(text: &[u8], at_file_start: bool) -> Option<usize> {
     };
     while start < text.len() {
         match read_line(text, start, 0) {
-            Ok((Line::Blank, next)) => start = next,
-            Ok((Line::Header, next)) => return Some(next),
-            Ok((Line::Point { .. }, _)) | Err(_) => return Some(start),
+            Ok((line, next)) if line.kind == Kind::Blank => start = next,
+            Ok((line, next)) if line.kind == Kind::Header => return Some(next),
+            Ok(_) | Err(_) => return Some(start),
         }
     }
     None
@@ -117,78 +162,143 @@ pub(super) fn header_as_data(line: &[u8], line_no: usize) -> PointsError {
 
 /// Is `b` white space within a line, as `char::is_whitespace` has it for an ASCII byte (a
 /// `\n` ends the line instead)?
-#[inline]
+#[inline(always)]
 fn is_space(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | 0x0b | 0x0c | b'\r')
+}
+
+/// The first byte at or after `text[i]` that is not white space within a line: one test when
+/// there is none (the common case), the loop out of line.
+#[inline(always)]
+fn skip_space(text: &[u8], i: usize) -> usize {
+    if text.get(i).is_some_and(|&b| is_space(b)) {
+        skip_more_space(text, i + 1)
+    } else {
+        i
+    }
+}
+
+/// [`skip_space`]'s loop.
+#[inline(never)]
+fn skip_more_space(text: &[u8], mut i: usize) -> usize {
+    while text.get(i).is_some_and(|&b| is_space(b)) {
+        i += 1;
+    }
+    i
+}
+
+/// The finite number at the start of `text[at..]` and where it ends, if there is one.
+#[inline(always)]
+fn number_at(text: &[u8], at: usize) -> Option<(f64, usize)> {
+    let (v, used) = fast_float2::parse_partial::<f64, _>(text.get(at..)?).ok()?;
+    (used > 0 && v.is_finite()).then_some((v, at + used))
 }
 
 /// The common lines, on bytes, in one pass from `text[start]` that also finds where the next
 /// line starts: a line whose first two fields are finite numbers (separated by a comma, or by
 /// white space when the line has no comma), or a blank or comment line, in ASCII and at most
 /// [`MAX_LINE_BYTES`] long. `None` for anything else, left to [`parse_text`].
-#[inline]
-fn scan(text: &[u8], start: usize) -> Option<(Line, usize)> {
+///
+/// The commonest line, `x,y` then its end, takes the first branch at every test.
+#[inline(always)]
+pub(super) fn scan(text: &[u8], start: usize) -> Option<(Line, usize)> {
     let n = text.len();
-    let skip_space = |mut i: usize| {
-        while i < n && is_space(text[i]) {
-            i += 1;
+    // The first field, after white space if any; or a blank or comment line.
+    let (i, (x, x_end)) = match number_at(text, start) {
+        Some(x) => (start, x),
+        None => {
+            let i = skip_space(text, start);
+            match text.get(i) {
+                None | Some(b'\n') => {
+                    return Some((Line::of(Kind::Blank), ends_at(text, start, i)?));
+                }
+                Some(b'#') => {
+                    let end = line_end(text, i);
+                    text[i..end].is_ascii().then_some(())?;
+                    return Some((Line::of(Kind::Blank), ends_at(text, start, end)?));
+                }
+                Some(_) if i > start => (i, number_at(text, i)?),
+                Some(_) => return None,
+            }
         }
-        i
     };
-    // The line ends at `at` (its '\n', or the text's end): where the next one starts, if the
-    // line is not too long without its end.
-    let ends_at = |at: usize| {
-        let len = at - start - usize::from(at > start && text[at - 1] == b'\r');
-        (len <= MAX_LINE_BYTES).then_some((at + 1).min(n))
-    };
-    let line_end = |from: usize| memchr::memchr(b'\n', &text[from..]).map_or(n, |i| from + i);
-    let i = skip_space(start);
-    match text.get(i) {
-        None | Some(b'\n') => return Some((Line::Blank, ends_at(i)?)),
-        Some(b'#') => {
-            let end = line_end(i);
-            return text[i..end]
-                .is_ascii()
-                .then_some(())
-                .and_then(|()| Some((Line::Blank, ends_at(end)?)));
-        }
-        Some(_) => {}
-    }
-    let number = |at: usize| {
-        let (v, used) = fast_float2::parse_partial::<f64, _>(&text[at..]).ok()?;
-        (used > 0 && v.is_finite()).then_some((v, at + used))
-    };
-    let (x, x_end) = number(i)?;
-    let after_x = skip_space(x_end);
     // Comma-separated if the first field ends at a comma; white-space separated otherwise.
-    let comma = text.get(after_x) == Some(&b',');
-    let j = if comma {
-        skip_space(after_x + 1)
-    } else if after_x > x_end {
-        after_x
+    let (comma, j) = if text.get(x_end) == Some(&b',') {
+        (true, x_end + 1)
     } else {
-        return None;
+        after_first_field(text, x_end)?
     };
-    let (y, y_end) = number(j)?;
-    let after_y = skip_space(y_end);
-    let point = Line::Point {
-        point: Point::new(x, y),
-        x: i..x_end,
-        y: j..y_end,
+    // The second field, after white space if any.
+    let (j, (y, y_end)) = match number_at(text, j) {
+        Some(y) => (j, y),
+        None => {
+            let k = skip_space(text, j);
+            (k > j).then_some(())?;
+            (k, number_at(text, k)?)
+        }
     };
-    match text.get(after_y) {
-        None | Some(b'\n') => Some((point, ends_at(after_y)?)),
+    let point = Line::point(x, y, i..x_end, j..y_end);
+    // The line ends right after the second field, or goes on.
+    let fits = y_end - start <= MAX_LINE_BYTES;
+    let next = match text.get(y_end) {
+        Some(b'\n') => fits.then_some(y_end + 1),
+        Some(b'\r') if text.get(y_end + 1) == Some(&b'\n') => fits.then_some(y_end + 2),
+        None => fits.then_some(n),
+        Some(_) => after_second_field(text, start, y_end, comma),
+    };
+    Some((point, next?))
+}
+
+/// The end of the line starting at `text[start]` at `at` (its `\n`, or the text's end): where
+/// the next one starts, if the line is not too long without its end (`\r\n` or `\n`).
+#[inline(always)]
+fn ends_at(text: &[u8], start: usize, at: usize) -> Option<usize> {
+    let fits =
+        at - start <= MAX_LINE_BYTES || at - start == MAX_LINE_BYTES + 1 && text[at - 1] == b'\r';
+    fits.then_some(if at < text.len() { at + 1 } else { text.len() })
+}
+
+/// Where the line that goes on at `text[from]` ends: its `\n`, or the text's end.
+#[inline(always)]
+fn line_end(text: &[u8], from: usize) -> usize {
+    memchr::memchr(b'\n', &text[from..]).map_or(text.len(), |i| from + i)
+}
+
+/// [`scan`] after a second field that the line's end does not follow at once: white space,
+/// then the line's end or more fields (after a comma, or after white space in a line with no
+/// comma), in ASCII; where the next line starts, or `None`.
+#[cold]
+#[inline(never)]
+fn after_second_field(text: &[u8], start: usize, y_end: usize, comma: bool) -> Option<usize> {
+    let after_y = skip_space(text, y_end);
+    let end = match text.get(after_y) {
+        None | Some(b'\n') => after_y,
         Some(&b) => {
-            // More fields: after a comma, or after white space in a line with no comma.
             if !(if comma { b == b',' } else { after_y > y_end }) {
                 return None;
             }
-            let end = line_end(after_y);
+            let end = line_end(text, after_y);
             let tail = &text[after_y..end];
             let plain = tail.is_ascii() && (comma || memchr::memchr(b',', tail).is_none());
-            plain.then_some(())?;
-            Some((point, ends_at(end)?))
+            plain.then_some(end)?
         }
+    };
+    ends_at(text, start, end)
+}
+
+/// [`scan`] after a first field that a comma does not follow at once: white space, then a
+/// comma (comma-separated: the second field's white space starts after it) or the second
+/// field (white-space separated); `None` if neither.
+#[cold]
+#[inline(never)]
+fn after_first_field(text: &[u8], x_end: usize) -> Option<(bool, usize)> {
+    let after_x = skip_space(text, x_end);
+    if text.get(after_x) == Some(&b',') {
+        Some((true, after_x + 1))
+    } else if after_x > x_end {
+        Some((false, after_x))
+    } else {
+        None
     }
 }
 
@@ -203,11 +313,11 @@ fn parse_text(bytes: &[u8], line_no: usize) -> Result<Line, PointsError> {
         .map_err(|e| err(format!("not UTF-8 text (byte {})", e.valid_up_to() + 1)))?;
     let line = text.trim();
     if line.is_empty() || line.starts_with('#') {
-        return Ok(Line::Blank);
+        return Ok(Line::of(Kind::Blank));
     }
     let (fields, count) = first_two_fields(line);
     if count >= 2 && fields[0].eq_ignore_ascii_case("x") && fields[1].eq_ignore_ascii_case("y") {
-        return Ok(Line::Header);
+        return Ok(Line::of(Kind::Header));
     }
     if count < 2 {
         return Err(err(format!(
@@ -227,11 +337,7 @@ fn parse_text(bytes: &[u8], line_no: usize) -> Result<Line, PointsError> {
         let start = f.as_ptr() as usize - text.as_ptr() as usize;
         start..start + f.len()
     };
-    Ok(Line::Point {
-        point: Point::new(x, y),
-        x: range(fields[0]),
-        y: range(fields[1]),
-    })
+    Ok(Line::point(x, y, range(fields[0]), range(fields[1])))
 }
 
 /// A decimal number as Rust's `f64` parser reads it (sign, digits, optional fraction and
@@ -292,15 +398,8 @@ mod tests {
         let (end, want_next) = line_at(text, 4);
         assert_eq!(next, want_next, "{shown:?}");
         assert!(end - 4 <= MAX_LINE_BYTES);
-        let general = match parse_text(&text[4..end], 1) {
-            Ok(Line::Point { point, x, y }) => Line::Point {
-                point,
-                x: 4 + x.start..4 + x.end,
-                y: 4 + y.start..4 + y.end,
-            },
-            other => other.unwrap(),
-        };
-        *points += usize::from(matches!(fast, Line::Point { .. }));
+        let general = parse_text(&text[4..end], 1).unwrap().shifted(4);
+        *points += usize::from(fast.kind == Kind::Point);
         assert_eq!(fast, general, "{shown:?}");
         true
     }
@@ -310,24 +409,54 @@ mod tests {
     /// well-formed, with every kind of line end.
     #[test]
     fn the_scan_agrees_with_the_text_parser() {
-        let tokens = [
-            "1", "-2.5", "3e-7", "+.5", "x", "Y", "#", ",", ",", " ", "  ", "\t", "\u{b}", "\u{c}",
-            "nan", "inf", "1e999", "abc", "", "0", "1_0", "\u{a0}", "é", ".", "\r", "1e", "-",
+        let tokens: [&[u8]; 29] = [
+            b"1",
+            b"-2.5",
+            b"3e-7",
+            b"+.5",
+            b"x",
+            b"Y",
+            b"#",
+            b",",
+            b",",
+            b" ",
+            b"  ",
+            b"\t",
+            b"\x0b",
+            b"\x0c",
+            b"nan",
+            b"inf",
+            b"1e999",
+            b"abc",
+            b"",
+            b"0",
+            b"1_0",
+            "\u{a0}".as_bytes(),
+            "\u{e9}".as_bytes(),
+            b".",
+            b"\r",
+            b"1e",
+            b"-",
+            b"\xff",
+            b"\xc3",
         ];
-        let endings = ["\n", "\r\n", "", "\r", "\r\r\n", "\n1,2\n"];
+        let endings: [&[u8]; 6] = [b"\n", b"\r\n", b"", b"\r", b"\r\r\n", b"\n1,2\n"];
         let mut next = xorshift(0x9E37_79B9_7F4A_7C15);
         let (mut answered, mut points) = (0, 0);
         for i in 0..80000 {
-            let n = next(7);
-            let mut line: String = (0..n).map(|_| tokens[next(tokens.len())]).collect();
+            let mut text = b"9,9\n".to_vec();
             if i % 4 != 0 {
                 // Mostly well-formed: number, separator, number, then anything.
                 let sep = [",", " ", "\t", " , ", ",\u{b}", ","][next(6)];
                 let x = (next(2000) as f64 - 1000.0) * 0.37;
-                line = format!("{x}{sep}{}{line}", tokens[next(4)]);
+                text.extend_from_slice(format!("{x}{sep}").as_bytes());
+                text.extend_from_slice(tokens[next(4)]);
             }
-            let text = format!("9,9\n{line}{}", endings[next(endings.len())]);
-            answered += usize::from(scan_agrees(text.as_bytes(), &mut points));
+            for _ in 0..next(7) {
+                text.extend_from_slice(tokens[next(tokens.len())]);
+            }
+            text.extend_from_slice(endings[next(endings.len())]);
+            answered += usize::from(scan_agrees(&text, &mut points));
         }
         assert!(answered > 20000 && points > 15000, "{answered} {points}");
     }
