@@ -21,12 +21,13 @@
 //! - [`convex`] (`rs-convex`): convex domains of a free control point keeping the sign of
 //!   curvature or torsion.
 //! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
-//!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings.
+//!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings; the points
+//!   files (`io::points`: CSV and `.npy`, streamed), whose readers are re-exported here
+//!   ([`parse_points`], [`PointReader`], [`CsvBlocks`], [`NpyPoints`], ...).
 //!
-//! Plus the points file readers ([`parse_points`]) and, from `rs-contain`, the domain summary
-//! printed by `inrs info` ([`DomainSummary`]). Containment: build a [`Classifier`] and ask it
-//! through [`Locate`] (or [`Containment`] for every method and fill rule, as the command line
-//! does).
+//! Plus, from `rs-contain`, the domain summary printed by `inrs info` ([`DomainSummary`]).
+//! Containment: build a [`Classifier`] and ask it through [`Locate`] (or [`Containment`] for
+//! every method and fill rule, as the command line does).
 //!
 //! # Examples
 //!
@@ -68,24 +69,16 @@ pub use rs_contain::{
 };
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 
-#[cfg(unix)]
-mod csv_file;
-mod npy;
-mod points_csv;
-
-#[cfg(unix)]
-pub use csv_file::CsvPointsFile;
-#[cfg(unix)]
-pub use npy::NpyPointsFile;
-pub use npy::{
-    EncodedPoints, MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyPoints, NpyType, npy_header,
-    open_npy_points,
-};
-pub use points_csv::{
-    CsvBlock, CsvBlocks, MAX_LINE_BYTES, ParsedBlock, PointReader, PointRecord, PointsError,
-    open_points, open_points_blocks, parse_points, read_points,
-};
+// The points files, from `rs-io` (`rs_io::points`, also `inrs::io::points`), at the top level
+// where the command line has them.
 pub use rs_contain::{DomainSummary, LoopSummary, significant};
+pub use rs_io::points::{
+    CsvBlock, CsvBlocks, EncodedPoints, MAX_LINE_BYTES, MAX_NPY_POINTS, NPY_HEADER_BYTES,
+    NpyPoints, NpyType, ParsedBlock, PointReader, PointRecord, PointsError, npy_header,
+    open_npy_points, open_points, open_points_blocks, parse_points, read_points,
+};
+#[cfg(unix)]
+pub use rs_io::points::{CsvPointsFile, NpyPointsFile};
 
 /// The traits most code wants in scope: the curve vocabulary of `rs-spline` and the queries
 /// ([`Locate`], [`PointQuery`]).

@@ -70,7 +70,9 @@ pub use gwn::{
 };
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method, fast_uses_locator};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
-pub use query::{Locate, PointQuery, PointSource, PointsFn, points_from_fn};
+pub use query::{Locate, PointQuery};
+/// Points read by index (from `rs-spline`, re-exported beside the queries that read them).
+pub use rs_spline::{PointSource, PointsFn, points_from_fn};
 pub use summary::{DomainSummary, LoopSummary, significant};
 
 /// What the papers compare against, and the points they compare on: kept out of the core API

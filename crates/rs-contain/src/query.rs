@@ -6,93 +6,9 @@
 //! writes the values into a slice the caller owns; the batch and parallel forms are provided
 //! on top. [`Locate`] names the location queries.
 
-use rs_spline::Point;
+use rs_spline::{Point, PointSource};
 
 use crate::Location;
-
-/// Points read by index: `point(0), ..., point(len() - 1)`.
-///
-/// Implemented by slices and vectors of [`Point`] and by [`points_from_fn`] (any layout
-/// through an accessor); `rs-io` implements it for a `.npy` file's bytes. A query
-/// monomorphises over the source, so an accessor inlines into its loop.
-pub trait PointSource {
-    /// The number of points.
-    fn len(&self) -> usize;
-
-    /// Point `i` (`i < len()`; an implementation may panic otherwise).
-    fn point(&self, i: usize) -> Point;
-
-    /// Whether there are no points.
-    fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// The points as a slice, when they are held as one: a parallel query then hands each
-    /// task a sub-slice rather than an offset accessor.
-    fn as_slice(&self) -> Option<&[Point]> {
-        None
-    }
-}
-
-impl PointSource for [Point] {
-    #[inline]
-    fn len(&self) -> usize {
-        <[Point]>::len(self)
-    }
-    #[inline]
-    fn point(&self, i: usize) -> Point {
-        self[i]
-    }
-    fn as_slice(&self) -> Option<&[Point]> {
-        Some(self)
-    }
-}
-
-impl PointSource for Vec<Point> {
-    #[inline]
-    fn len(&self) -> usize {
-        Vec::len(self)
-    }
-    #[inline]
-    fn point(&self, i: usize) -> Point {
-        self[i]
-    }
-    fn as_slice(&self) -> Option<&[Point]> {
-        Some(self)
-    }
-}
-
-/// `len` points given by an accessor `f(i)`: see [`points_from_fn`].
-#[derive(Clone, Copy, Debug)]
-pub struct PointsFn<F> {
-    len: usize,
-    f: F,
-}
-
-/// The points `f(0), ..., f(len - 1)`, for points held in any layout (interleaved `x, y`
-/// pairs, separate `x` and `y` arrays, strided views) without copying them.
-///
-/// ```
-/// use rs_contain::{PointSource, points_from_fn};
-/// use rs_spline::Point;
-/// let (x, y) = ([0.0, 1.0], [2.0, 3.0]);
-/// let pts = points_from_fn(2, |i| Point::new(x[i], y[i]));
-/// assert_eq!(pts.point(1), Point::new(1.0, 3.0));
-/// ```
-pub fn points_from_fn<F: Fn(usize) -> Point>(len: usize, f: F) -> PointsFn<F> {
-    PointsFn { len, f }
-}
-
-impl<F: Fn(usize) -> Point> PointSource for PointsFn<F> {
-    #[inline]
-    fn len(&self) -> usize {
-        self.len
-    }
-    #[inline]
-    fn point(&self, i: usize) -> Point {
-        (self.f)(i)
-    }
-}
 
 /// Points `first .. first + len` of another source (one parallel task's share).
 #[cfg(feature = "parallel")]

@@ -9,6 +9,8 @@
 //!   `LINE`, `ARC`, `CIRCLE`, `ELLIPSE`, chained into loops.
 //! - [`load_domain`]: one entry point choosing the reader from the file name, as the `inrs`
 //!   command line does.
+//! - [`points`]: the points files (CSV `x,y`, `.npy`) the command line streams points from,
+//!   read in bounded memory, in order or by position.
 //!
 //! Every reader produces exact NURBS (no flattening): lines stay degree 1, Bezier commands
 //! keep their degree, arcs are exact conics. Loops are watertight: shared end points are
@@ -32,6 +34,7 @@ pub mod dxf_file;
 mod error;
 pub mod font;
 pub mod json;
+pub mod points;
 pub mod svg;
 
 use std::path::Path;

@@ -57,6 +57,7 @@ mod line;
 mod nearest;
 mod nurbs;
 mod point;
+mod point_source;
 pub mod quadrature;
 
 pub use affine::Affine;
@@ -74,3 +75,4 @@ pub use line::{polyline, segment};
 pub use nearest::{NearestBoundary, NearestPoint};
 pub use nurbs::NurbsCurve;
 pub use point::{Axis, BoundingBox, Point};
+pub use point_source::{PointSource, PointsFn, points_from_fn};

@@ -5,7 +5,8 @@ use std::sync::{Condvar, Mutex, MutexGuard};
 
 use inrs::PointsError;
 
-use super::{Column, Format, Formatted, Stage};
+use super::format::{Column, Format};
+use super::scheduler::{Formatted, Stage};
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
 

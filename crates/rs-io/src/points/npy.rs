@@ -6,12 +6,13 @@
 //! 3), then a Python dict literal `{'descr': '<f8', 'fortran_order': False, 'shape': (N, 2), }`
 //! padded with spaces to a multiple of 64 bytes and ended by a newline, then the data.
 
-use std::io::{BufReader, Read};
+use std::io::Read;
+#[cfg(unix)]
 use std::path::Path;
 
 use rs_spline::Point;
 
-use crate::PointsError;
+use super::PointsError;
 
 /// The most points a `.npy` header may announce: larger shapes are refused before anything
 /// is read (the data are streamed, so this only guards the arithmetic).
@@ -58,8 +59,8 @@ impl NpyType {
 /// # Examples
 ///
 /// ```
-/// let h = inrs::npy_header(inrs::NpyType::I8, &[3]);
-/// assert_eq!(h.len(), inrs::NPY_HEADER_BYTES);
+/// let h = rs_io::points::npy_header(rs_io::points::NpyType::I8, &[3]);
+/// assert_eq!(h.len(), rs_io::points::NPY_HEADER_BYTES);
 /// assert!(h.starts_with(b"\x93NUMPY\x01\x00"));
 /// assert!(String::from_utf8_lossy(&h).contains("'shape': (3,)"));
 /// ```
@@ -89,15 +90,15 @@ pub fn npy_header(ty: NpyType, shape: &[usize]) -> Vec<u8> {
 /// # Examples
 ///
 /// ```
-/// let mut bytes = inrs::npy_header(inrs::NpyType::F64, &[2, 2]);
+/// let mut bytes = rs_io::points::npy_header(rs_io::points::NpyType::F64, &[2, 2]);
 /// for v in [0.5f64, 1.0, -2.0, 3.25] {
 ///     bytes.extend_from_slice(&v.to_le_bytes());
 /// }
-/// let mut r = inrs::NpyPoints::new(&bytes[..], "mem").unwrap();
+/// let mut r = rs_io::points::NpyPoints::new(&bytes[..], "mem").unwrap();
 /// assert_eq!(r.len(), 2);
 /// let mut pts = Vec::new();
 /// r.read_block(10, &mut pts).unwrap();
-/// assert_eq!(pts, [inrs::Point::new(0.5, 1.0), inrs::Point::new(-2.0, 3.25)]);
+/// assert_eq!(pts, [rs_spline::Point::new(0.5, 1.0), rs_spline::Point::new(-2.0, 3.25)]);
 /// ```
 #[derive(Debug)]
 pub struct NpyPoints<R> {
@@ -187,21 +188,61 @@ impl<R: Read> NpyPoints<R> {
     /// [`PointsError::Npy`] if the file ends early or holds a non-finite coordinate (naming
     /// the point's index); [`PointsError::Io`].
     pub fn read_block(&mut self, max: usize, out: &mut Vec<Point>) -> Result<usize, PointsError> {
-        let n = max.min(self.remaining);
-        if n == 0 {
-            return Ok(0);
-        }
-        let size = self.ty.size();
-        self.buf.resize(2 * n * size, 0);
-        self.input
-            .read_exact(&mut self.buf)
-            .map_err(|e| data_cut_short(&self.path, self.len, &e))?;
-        self.consumed += self.buf.len() as u64;
-        EncodedPoints::checked(self.ty, &self.buf, self.len - self.remaining, &self.path)?
-            .append_to(out);
-        self.remaining -= n;
-        Ok(n)
+        let mut buf = std::mem::take(&mut self.buf);
+        let read = self.read_encoded(max, &mut buf).map(|points| {
+            points.append_to(out);
+            points.len()
+        });
+        self.buf = buf;
+        read
     }
+
+    /// The next (up to) `max` points as stored, read into `buf` and checked finite (none at
+    /// the end): [`NpyPoints::read_block`] without the copy into points.
+    ///
+    /// # Errors
+    /// As [`NpyPoints::read_block`].
+    pub fn read_encoded<'b>(
+        &mut self,
+        max: usize,
+        buf: &'b mut Vec<u8>,
+    ) -> Result<EncodedPoints<'b>, PointsError> {
+        let (first, n) = (self.position(), max.min(self.remaining));
+        self.remaining -= n;
+        let (input, consumed) = (&mut self.input, &mut self.consumed);
+        read_run(self.ty, &self.path, self.len, first, n, buf, |bytes| {
+            input.read_exact(bytes)?;
+            *consumed += bytes.len() as u64;
+            Ok(())
+        })
+    }
+
+    /// The number of the next point to be read.
+    fn position(&self) -> usize {
+        self.len - self.remaining
+    }
+
+    /// The element type.
+    pub(super) fn element_type(&self) -> NpyType {
+        self.ty
+    }
+}
+
+/// Reads the bytes of points `first..first + n` of a file of `len` points of `ty` (named
+/// `path` in errors) with `read` into `buf`, resized to them, and checks them finite: how both
+/// readers, in order and by position, take their points.
+fn read_run<'b>(
+    ty: NpyType,
+    path: &str,
+    len: usize,
+    first: usize,
+    n: usize,
+    buf: &'b mut Vec<u8>,
+    read: impl FnOnce(&mut [u8]) -> std::io::Result<()>,
+) -> Result<EncodedPoints<'b>, PointsError> {
+    buf.resize(2 * ty.size() * n, 0);
+    read(buf).map_err(|e| data_cut_short(path, len, &e))?;
+    EncodedPoints::checked(ty, buf, first, path)
 }
 
 /// The error for data that end before the `len` points the header announces.
@@ -220,17 +261,17 @@ fn data_cut_short(path: &str, len: usize, e: &std::io::Error) -> PointsError {
 ///
 /// ```
 /// # #[cfg(unix)] {
-/// let path = std::env::temp_dir().join("inrs-doc-encoded-points.npy");
-/// let mut bytes = inrs::npy_header(inrs::NpyType::F32, &[2, 2]);
+/// let path = std::env::temp_dir().join("rs-io-doc-encoded-points.npy");
+/// let mut bytes = rs_io::points::npy_header(rs_io::points::NpyType::F32, &[2, 2]);
 /// for v in [0.5f32, 1.0, -2.0, 3.25] {
 ///     bytes.extend_from_slice(&v.to_le_bytes());
 /// }
 /// std::fs::write(&path, &bytes).unwrap();
-/// let f = inrs::NpyPointsFile::open(&path).unwrap();
+/// let f = rs_io::points::NpyPointsFile::open(&path).unwrap();
 /// let mut scratch = Vec::new();
 /// let pts = f.read_encoded(0, 2, &mut scratch).unwrap();
 /// assert_eq!(pts.len(), 2);
-/// assert_eq!(pts.point(1), inrs::Point::new(-2.0, 3.25));
+/// assert_eq!(pts.point(1), rs_spline::Point::new(-2.0, 3.25));
 /// # std::fs::remove_file(&path).unwrap();
 /// # }
 /// ```
@@ -289,7 +330,14 @@ impl<'a> EncodedPoints<'a> {
         Ok(points)
     }
 
+    /// The points encoded in `bytes` (pairs of `ty`, a whole number of them), already checked
+    /// finite by [`EncodedPoints::checked`].
+    pub(super) fn from_checked(ty: NpyType, bytes: &'a [u8]) -> Self {
+        Self { ty, bytes }
+    }
+
     /// The number of points.
+    #[inline]
     pub fn len(&self) -> usize {
         self.bytes.len() / (2 * self.ty.size())
     }
@@ -323,7 +371,7 @@ impl<'a> EncodedPoints<'a> {
 }
 
 /// Queries read the points by index straight from the bytes.
-impl rs_contain::PointSource for EncodedPoints<'_> {
+impl rs_spline::PointSource for EncodedPoints<'_> {
     #[inline]
     fn len(&self) -> usize {
         EncodedPoints::len(self)
@@ -343,17 +391,17 @@ impl rs_contain::PointSource for EncodedPoints<'_> {
 ///
 /// ```
 /// # #[cfg(unix)] {
-/// let path = std::env::temp_dir().join("inrs-doc-npy-points-file.npy");
-/// let mut bytes = inrs::npy_header(inrs::NpyType::F64, &[3, 2]);
+/// let path = std::env::temp_dir().join("rs-io-doc-npy-points-file.npy");
+/// let mut bytes = rs_io::points::npy_header(rs_io::points::NpyType::F64, &[3, 2]);
 /// for v in [0.5f64, 1.0, -2.0, 3.25, 4.0, 5.0] {
 ///     bytes.extend_from_slice(&v.to_le_bytes());
 /// }
 /// std::fs::write(&path, &bytes).unwrap();
-/// let f = inrs::NpyPointsFile::open(&path).unwrap();
+/// let f = rs_io::points::NpyPointsFile::open(&path).unwrap();
 /// assert_eq!(f.len(), 3);
 /// let (mut scratch, mut pts) = (Vec::new(), Vec::new());
 /// f.read_points(1, 2, &mut scratch, &mut pts).unwrap();
-/// assert_eq!(pts, [inrs::Point::new(-2.0, 3.25), inrs::Point::new(4.0, 5.0)]);
+/// assert_eq!(pts, [rs_spline::Point::new(-2.0, 3.25), rs_spline::Point::new(4.0, 5.0)]);
 /// # std::fs::remove_file(&path).unwrap();
 /// # }
 /// ```
@@ -373,10 +421,10 @@ impl NpyPointsFile {
     /// Opens `path` and reads its header.
     ///
     /// # Errors
-    /// As [`open_npy_points`].
+    /// As [`super::open_npy_points`].
     pub fn open(path: impl AsRef<Path>) -> Result<Self, PointsError> {
         let path = path.as_ref();
-        let file = crate::points_csv::open_file(path)?;
+        let file = super::open_file(path)?;
         // The header by a few small reads (no read-ahead: the data are read by position).
         let header = NpyPoints::new(file, path.display().to_string())?;
         Ok(Self {
@@ -433,27 +481,11 @@ impl NpyPointsFile {
     ) -> Result<EncodedPoints<'s>, PointsError> {
         use std::os::unix::fs::FileExt;
         let n = n.min(self.len.saturating_sub(first));
-        scratch.resize(2 * self.ty.size() * n, 0);
-        self.file
-            .read_exact_at(scratch, self.offset_of(first))
-            .map_err(|e| data_cut_short(&self.path, self.len, &e))?;
-        EncodedPoints::checked(self.ty, scratch, first, &self.path)
+        let offset = self.offset_of(first);
+        read_run(self.ty, &self.path, self.len, first, n, scratch, |bytes| {
+            self.file.read_exact_at(bytes, offset)
+        })
     }
-}
-
-/// Opens a `.npy` points file (see [`NpyPoints`]).
-///
-/// # Errors
-/// As [`NpyPoints::new`], and [`PointsError::Io`] if it cannot be opened.
-pub fn open_npy_points(
-    path: impl AsRef<Path>,
-) -> Result<NpyPoints<BufReader<std::fs::File>>, PointsError> {
-    let path = path.as_ref();
-    let file = crate::points_csv::open_file(path)?;
-    NpyPoints::new(
-        BufReader::with_capacity(1 << 20, file),
-        path.display().to_string(),
-    )
 }
 
 /// The element type and the number of points of a header dict for an `(N, 2)` array.
