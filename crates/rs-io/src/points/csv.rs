@@ -835,13 +835,8 @@ mod tests {
     #[test]
     fn blocks_read_by_position_hold_the_lines_read_in_order() {
         let (dir, path) = scratch("blocks");
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = |n: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % n
-        };
+        let mut rng = rs_testkit::XorShift64::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |n: u64| rng.below(n);
         let mut files = 0;
         let mut failures = 0;
         for case in 0..400 {

@@ -378,14 +378,10 @@ fn shorten(s: &str) -> String {
 mod tests {
     use super::*;
 
-    /// A xorshift generator of indices below `k`, for random lines from `seed`.
-    fn xorshift(mut state: u64) -> impl FnMut(usize) -> usize {
-        move |k| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % k as u64) as usize
-        }
+    /// Indices below `k`, for random lines from `seed`.
+    fn xorshift(seed: u64) -> impl FnMut(usize) -> usize {
+        let mut rng = rs_testkit::XorShift64::new(seed);
+        move |k| rng.below(k as u64) as usize
     }
 
     /// Checks the one-pass scan of the line after `9,9\n` in `text` against the line split
@@ -545,11 +541,9 @@ mod tests {
         .iter()
         .map(|s| s.to_string())
         .collect();
-        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut rng = rs_testkit::XorShift64::new(0x2545_F491_4F6C_DD1D);
         for _ in 0..2000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = rng.next_u64();
             let v = f64::from_bits(x);
             cases.push(format!("{v}"));
             cases.push(format!("{v:e}"));
