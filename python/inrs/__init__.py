@@ -38,6 +38,8 @@ __all__ = [
     "halton_points",
     "fit",
     "interpolate",
+    "convex_domain",
+    "DEFAULT_CONVEX_TOLERANCE",
     "__version__",
 ]
 
@@ -50,6 +52,8 @@ BOUNDARY: int = _inrs.BOUNDARY
 #: Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 DEFAULT_TOLERANCE: float = _inrs.DEFAULT_TOLERANCE
 __version__: str = _inrs.__version__
+#: Default relative growth tolerance of :func:`convex_domain` (``inrs convex-domain --tol``).
+DEFAULT_CONVEX_TOLERANCE: float = _inrs.DEFAULT_CONVEX_TOLERANCE
 
 #: What :meth:`Domain.summary` returns: read-only attributes ``curves``, ``bezier_pieces``,
 #: ``max_degree``, ``rational``, ``loops`` (a list of :class:`LoopSummary`), ``filled_area``,
@@ -414,10 +418,19 @@ class Spline:
         return out.reshape(shape + ((3,) if derivatives else ()))
 
 
-def sample(domain: Domain, ny: int) -> Tuple[np.ndarray, np.ndarray]:
+def sample(domain: Domain, ny: Optional[int] = None, *, count: Optional[int] = None) -> Tuple[np.ndarray, np.ndarray]:
     """Well-spaced points (Algorithm 11.1 of Schumaker and Yu): ``(points (N, 2), on_boundary
-    (N,) bool)``; about ``ny`` rows of points over the domain's height."""
-    return _inrs.sample(domain._native, int(ny))
+    (N,) bool)``; about ``ny`` rows of points over the domain's height (default 20), as
+    ``inrs sample --ny``. With ``count`` instead: the first ``count`` Halton points inside the
+    domain (``inrs sample --count``; ``on_boundary`` all false)."""
+    if count is not None:
+        if ny is not None:
+            raise ValueError("give ny (well-spaced points) or count (Halton points), not both")
+        if operator.index(count) < 0:
+            raise ValueError(f"count must be positive, got {count}")
+        pts = _inrs.sample_halton(domain._native, operator.index(count))
+        return pts, np.zeros(len(pts), dtype=bool)
+    return _inrs.sample(domain._native, int(20 if ny is None else ny))
 
 
 def halton_points(n: int, bounds: Tuple[float, float, float, float], start: int = 0) -> np.ndarray:
@@ -489,3 +502,51 @@ def interpolate(domain: Domain, xy: ArrayLike, z: ArrayLike, *, space: str = "ct
             stacklevel=2,
         )
     return Spline(native)
+
+
+def convex_domain(
+    curve: Union[str, os.PathLike],
+    free_index: int,
+    box: Sequence[float],
+    *,
+    curve_index: int = 0,
+    sign: str = "auto",
+    tol: float = DEFAULT_CONVEX_TOLERANCE,
+    max_level: int = 10,
+) -> dict:
+    """Where control point ``free_index`` of a curve may move, within ``box``, keeping the sign
+    of the curvature (planar curve) or torsion (space curve), as ``inrs convex-domain``
+    computes it (Ginnis, Karousos and Kaklis 2009).
+
+    ``curve`` is a curve or domain JSON file (curve ``curve_index`` of a domain file), as
+    ``--curve`` takes it, or that JSON text itself (a string starting with ``{``). ``box`` is
+    ``(xmin, xmax, ymin, ymax)`` in the plane or ``(xmin, xmax, ymin, ymax, zmin, zmax)`` in
+    space. ``sign`` is ``"positive"``, ``"negative"`` or ``"auto"`` (the curve's own sign at
+    the middle of its first piece). Refinement stops when the relative growth is at most
+    ``tol`` or at level ``max_level`` (at most 20).
+
+    Returns a dict: ``levels`` (a list of dicts ``level, inequalities, measure, abs_error,
+    rel_error``; the errors are ``None`` after an empty level), ``outer_measure`` (area or
+    volume of the sampled outer bound), ``outcome`` (``"Converged"``, ``"Empty"`` or
+    ``"NotConverged"``), ``sign`` kept (``"Positive"`` or ``"Negative"``), ``dimension`` (2 or
+    3) and ``polygon``, the last inner polygon's vertices as an ``(N, 2)`` array (``None`` in
+    space). An unreadable file raises ``OSError``; a bad curve, box, index, sign, tolerance or
+    level ``ValueError``.
+    """
+    for name, value in (("free_index", free_index), ("curve_index", curve_index), ("max_level", max_level)):
+        if operator.index(value) < 0:
+            raise ValueError(f"{name} must be non-negative, got {value}")
+    if isinstance(curve, str) and curve.lstrip().startswith("{"):
+        path, text = None, curve
+    else:
+        path, text = os.fspath(curve), None
+    return _inrs.convex_domain(
+        path,
+        text,
+        operator.index(curve_index),
+        operator.index(free_index),
+        [float(v) for v in box],
+        sign,
+        float(tol),
+        operator.index(max_level),
+    )

@@ -9,6 +9,7 @@ OUTSIDE: int
 INSIDE: int
 BOUNDARY: int
 DEFAULT_TOLERANCE: float
+DEFAULT_CONVEX_TOLERANCE: float
 FAST_METHOD_MIN_POINTS: int
 __version__: str
 
@@ -108,6 +109,7 @@ class FitPlan:
     def finish(self, values: npt.NDArray[np.float64]) -> NativeSpline: ...
 
 def sample(domain: NativeDomain, ny: int) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.bool_]]: ...
+def sample_halton(domain: NativeDomain, count: int) -> npt.NDArray[np.float64]: ...
 def mesh(domain: NativeDomain, ny: int, refine: str = ...) -> dict: ...
 def interpolate(
     domain: NativeDomain, xy: npt.NDArray[np.float64], z: npt.NDArray[np.float64], space: str
@@ -115,3 +117,13 @@ def interpolate(
 def halton_points(
     n: int, bounds: Tuple[float, float, float, float], start: int
 ) -> npt.NDArray[np.float64]: ...
+def convex_domain(
+    path: Optional[str],
+    text: Optional[str],
+    curve_index: int,
+    free_index: int,
+    bbox: list[float],
+    sign: str,
+    tol: float,
+    max_level: int,
+) -> dict: ...

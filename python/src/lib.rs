@@ -7,9 +7,11 @@
 //! - [`domain`]: `NativeDomain` (loading, classification, winding numbers, flattening);
 //! - [`summary`]: `DomainSummary`, `LoopSummary`;
 //! - [`points`]: the points' layouts and the per-chunk codes;
-//! - [`mesh`]: `sample`, `mesh`; [`spline`]: `FitPlan`, `interpolate`, `NativeSpline`;
-//! - [`halton`]: `halton_points`; [`threads`], [`errors`]: thread pools and exceptions.
+//! - [`mesh`]: `sample`, `sample_halton`, `mesh`; [`spline`]: `FitPlan`, `interpolate`, `NativeSpline`;
+//! - [`convex`]: `convex_domain`; [`halton`]: `halton_points`;
+//! - [`threads`], [`errors`]: thread pools and exceptions.
 
+mod convex;
 mod domain;
 mod errors;
 mod halton;
@@ -23,6 +25,7 @@ use pyo3::prelude::*;
 
 use inrs::Location;
 use inrs::contain::{DEFAULT_RELATIVE_TOLERANCE, FAST_METHOD_MIN_POINTS};
+use inrs::convex::ConvexDomainOptions;
 
 /// The native module `inrs._inrs`.
 #[pymodule]
@@ -33,9 +36,15 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<spline::NativeSpline>()?;
     m.add_class::<spline::FitPlan>()?;
     m.add_function(wrap_pyfunction!(mesh::sample, m)?)?;
+    m.add_function(wrap_pyfunction!(mesh::sample_halton, m)?)?;
     m.add_function(wrap_pyfunction!(mesh::mesh, m)?)?;
     m.add_function(wrap_pyfunction!(spline::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(halton::halton_points, m)?)?;
+    m.add_function(wrap_pyfunction!(convex::convex_domain, m)?)?;
+    m.add(
+        "DEFAULT_CONVEX_TOLERANCE",
+        ConvexDomainOptions::DEFAULT.relative_tolerance,
+    )?;
     m.add("OUTSIDE", Location::Outside.code())?;
     m.add("INSIDE", Location::Inside.code())?;
     m.add("BOUNDARY", Location::Boundary.code())?;

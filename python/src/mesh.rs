@@ -5,7 +5,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use inrs::Domain;
-use inrs::mesh::{CurvedTriangulation, EdgeKind, Refinement, well_spaced_points};
+use inrs::mesh::{CurvedTriangulation, EdgeKind, Refinement, halton_points_in, well_spaced_points};
 
 use crate::domain::NativeDomain;
 use crate::errors::value_error;
@@ -31,6 +31,21 @@ pub(crate) fn sample<'py>(
         flat.into_pyarray(py).reshape([all.len(), 2])?,
         mask.into_pyarray(py),
     ))
+}
+
+/// The first `count` Halton points inside the domain (`inrs sample --method halton --count`),
+/// `(count, 2)`.
+#[pyfunction]
+pub(crate) fn sample_halton<'py>(
+    py: Python<'py>,
+    domain: &NativeDomain,
+    count: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let pts = py
+        .detach(|| halton_points_in(&domain.domain, count))
+        .map_err(value_error)?;
+    let flat: Vec<f64> = pts.iter().flat_map(|p| [p.x, p.y]).collect();
+    flat.into_pyarray(py).reshape([pts.len(), 2])
 }
 
 /// The curved triangulation of the well-spaced points with `ny` bands, refined as `refine`

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use inrs::mesh::{CurvedTriangulation, Refinement, well_spaced_points};
+use inrs::mesh::{CurvedTriangulation, Refinement, WellSpacedPoints, well_spaced_points};
 use inrs::trispline::{C1Space, Spline, TriSplineError, quasi_interpolate, spline_to_json};
 
 use crate::args::DomainArg;
@@ -26,6 +26,22 @@ pub(crate) enum RefineArg {
     Ct,
     /// Its Powell–Sabin refinement (6 sub-triangles each).
     Ps,
+}
+
+impl RefineArg {
+    /// The curved triangulation of `pts`, refined as asked (`inrs fit --refine`, `inrs mesh
+    /// --refine`).
+    pub(crate) fn triangulation(
+        self,
+        d: &inrs::Domain,
+        pts: &WellSpacedPoints,
+    ) -> Result<CurvedTriangulation, inrs::mesh::MeshError> {
+        match self {
+            RefineArg::None => CurvedTriangulation::new(d, pts),
+            RefineArg::Ct => CurvedTriangulation::new_refined(d, pts, Refinement::CloughTocher),
+            RefineArg::Ps => CurvedTriangulation::new_refined(d, pts, Refinement::PowellSabin),
+        }
+    }
 }
 
 /// Which C1 space interpolates scattered data.
@@ -113,12 +129,7 @@ impl FitArgs {
         let start = Instant::now();
         let in_domain = |e: inrs::mesh::MeshError| self.domain.error(e);
         let pts = well_spaced_points(&d, self.ny).map_err(in_domain)?;
-        let mesh = match self.refine {
-            RefineArg::None => CurvedTriangulation::new(&d, &pts),
-            RefineArg::Ct => CurvedTriangulation::new_refined(&d, &pts, Refinement::CloughTocher),
-            RefineArg::Ps => CurvedTriangulation::new_refined(&d, &pts, Refinement::PowellSabin),
-        }
-        .map_err(in_domain)?;
+        let mesh = self.refine.triangulation(&d, &pts).map_err(in_domain)?;
         let s =
             quasi_interpolate(mesh, self.degree, &|p| f.at(p)).map_err(|e| self.domain.error(e))?;
         let seconds = start.elapsed().as_secs_f64();

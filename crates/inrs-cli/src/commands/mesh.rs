@@ -3,12 +3,13 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use inrs::mesh::{CurvedTriangulation, mesh_json, mesh_svg, well_spaced_points};
+use inrs::mesh::{mesh_json, mesh_svg, well_spaced_points};
 
 use crate::args::DomainArg;
 use crate::cli::error::CliError;
 use crate::cli::limits::parse_ny;
 use crate::cli::output::Output;
+use crate::commands::fit::RefineArg;
 
 /// Plot-area width of the `--svg` figure, in pixels.
 const FIGURE_WIDTH: f64 = 800.0;
@@ -16,7 +17,8 @@ const FIGURE_WIDTH: f64 = 800.0;
 /// Curved triangulation of a domain; writes JSON (vertices, triangles, `curved_edges`).
 ///
 /// Well-spaced points (--ny), constrained Delaunay inscribed triangulation, boundary points
-/// inserted until it is convertible, boundary edges replaced by boundary arcs. A summary line
+/// inserted until it is convertible, boundary edges replaced by boundary arcs, optionally
+/// refined (--refine). A summary line
 /// goes to standard error.
 #[derive(Args, Debug)]
 pub(crate) struct MeshArgs {
@@ -26,6 +28,10 @@ pub(crate) struct MeshArgs {
     /// 2 x 10^6 vertices).
     #[arg(long, default_value_t = 20, value_parser = parse_ny, allow_negative_numbers = true)]
     ny: usize,
+    /// Refine the curved triangulation: Clough–Tocher (3 sub-triangles each) or Powell–Sabin
+    /// (6), as `fit --refine` does.
+    #[arg(long, value_enum, default_value_t = RefineArg::None)]
+    refine: RefineArg,
     /// Write the JSON here instead of standard output.
     #[arg(long)]
     output: Option<PathBuf>,
@@ -39,7 +45,7 @@ impl MeshArgs {
         let d = self.domain.load()?;
         let in_domain = |e: inrs::mesh::MeshError| self.domain.error(e);
         let pts = well_spaced_points(&d, self.ny).map_err(in_domain)?;
-        let m = CurvedTriangulation::new(&d, &pts).map_err(in_domain)?;
+        let m = self.refine.triangulation(&d, &pts).map_err(in_domain)?;
         let area: f64 = (0..m.triangles().len()).map(|t| m.triangle_area(t)).sum();
         // Both outputs are written under temporary names and put in place together, so a
         // failure leaves neither.

@@ -1,0 +1,97 @@
+//! The command-line cells of docs/FRONTENDS.md not exercised elsewhere: `classify` by every
+//! `--method` and `--fill-rule` against analytic locations, and `mesh --refine`.
+
+use std::process::Command;
+
+fn inrs_ok(args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_inrs"))
+        .args(args)
+        .output()
+        .expect("run inrs");
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn temp_file(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("inrs-cli-frontends-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+fn fixture(rel: &str) -> String {
+    format!("{}/../../fixtures/{rel}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn last_column(text: &str) -> Vec<String> {
+    text.lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn classify_by_every_method_and_fill_rule() {
+    // Two counter-clockwise circles about the origin, radii 2 and 1: winding number 2 at the
+    // centre, 1 in the ring.
+    let domain = temp_file(
+        "nested.json",
+        r#"{"curves": [{"circle": {"center": [0, 0], "radius": 2}},
+                       {"circle": {"center": [0, 0], "radius": 1}}]}"#,
+    );
+    let points = temp_file("probes.csv", "x,y\n0,0\n1.5,0\n3,0\n0,1\n");
+    let even_odd = ["outside", "inside", "outside", "boundary"];
+    for method in ["fast", "inrs1", "inrs2", "gwn"] {
+        for rule in ["even-odd", "nonzero"] {
+            let text = inrs_ok(&[
+                "classify",
+                "--domain",
+                &domain,
+                "--points",
+                &points,
+                "--method",
+                method,
+                "--fill-rule",
+                rule,
+            ]);
+            // The fill rule matters to the winding-number method only.
+            let want = if method == "gwn" && rule == "nonzero" {
+                ["inside", "inside", "outside", "boundary"]
+            } else {
+                even_odd
+            };
+            assert_eq!(last_column(&text), want, "{method} {rule}");
+        }
+    }
+}
+
+#[test]
+fn mesh_refine_splits_every_triangle() {
+    let domain = fixture("inrs-paper/s4_disk_ellipse_segment.json");
+    let triangles = |refine: &str| -> (usize, usize) {
+        let text = inrs_ok(&["mesh", "--domain", &domain, "--ny", "8", "--refine", refine]);
+        let m: serde_json::Value = serde_json::from_str(&text).unwrap();
+        (
+            m["triangles"].as_array().unwrap().len(),
+            m["vertices"].as_array().unwrap().len(),
+        )
+    };
+    let (t, v) = triangles("none");
+    assert!(t > 10);
+    // Clough–Tocher adds one vertex per triangle and splits it in 3; Powell–Sabin splits it in 6.
+    assert_eq!(triangles("ct"), (3 * t, v + t));
+    assert_eq!(triangles("ps").0, 6 * t);
+    let plain = inrs_ok(&["mesh", "--domain", &domain, "--ny", "8"]);
+    assert_eq!(
+        serde_json::from_str::<serde_json::Value>(&plain).unwrap()["triangles"]
+            .as_array()
+            .unwrap()
+            .len(),
+        t
+    );
+}

@@ -1,0 +1,145 @@
+//! The library cells of docs/FRONTENDS.md not exercised elsewhere, through the facade `inrs`:
+//! classification by every method and fill rule through [`inrs::Containment`], winding numbers
+//! by every algorithm through `WindingField::winding_numbers_by`, the domain summary and the
+//! JSON writer, each against analytic values.
+
+use inrs::contain::baselines::WindingAlgorithm;
+use inrs::contain::{FillRule, WindingField};
+use inrs::io::json::{domain_from_json, domain_to_json};
+use inrs::{ContainOptions, Containment, Domain, Location, Method, Point, PointQuery};
+
+/// Two counter-clockwise circles about the origin, radii 2 and 1: winding number 2 inside the
+/// small one, 1 in the ring, 0 outside.
+const NESTED: &str = r#"{"curves": [{"circle": {"center": [0, 0], "radius": 2}},
+                                    {"circle": {"center": [0, 0], "radius": 1}}]}"#;
+
+fn nested() -> Domain {
+    domain_from_json(NESTED).unwrap()
+}
+
+/// The centre, a point of the ring, a point outside, a point on the inner circle.
+fn probes() -> Vec<Point> {
+    vec![
+        Point::new(0.0, 0.0),
+        Point::new(1.5, 0.0),
+        Point::new(3.0, 0.0),
+        Point::new(0.0, 1.0),
+    ]
+}
+
+fn classify(d: &Domain, method: Method, rule: FillRule, points: &[Point]) -> Vec<Location> {
+    let options = ContainOptions::DEFAULT
+        .with_method(method)
+        .with_fill_rule(rule);
+    let containment = Containment::new(d, options).unwrap();
+    let engine = containment.engine(points.len());
+    let mut out = vec![Location::Outside; points.len()];
+    engine.values_into(points, &mut out);
+    out
+}
+
+#[test]
+fn containment_classifies_by_every_method_and_fill_rule() {
+    use Location::{Boundary, Inside, Outside};
+    let d = nested();
+    let even_odd = [Outside, Inside, Outside, Boundary];
+    for method in [Method::Fast, Method::InRS1, Method::InRS2, Method::Gwn] {
+        assert_eq!(
+            classify(&d, method, FillRule::EvenOdd, &probes()),
+            even_odd,
+            "{method:?}"
+        );
+    }
+    // Non-zero fills the inner disk (winding number 2); it matters to the winding method only.
+    assert_eq!(
+        classify(&d, Method::Gwn, FillRule::NonZero, &probes()),
+        [Inside, Inside, Outside, Boundary]
+    );
+    for method in [Method::Fast, Method::InRS1, Method::InRS2] {
+        assert_eq!(
+            classify(&d, method, FillRule::NonZero, &probes()),
+            even_odd,
+            "{method:?}"
+        );
+    }
+    // Enough points for the fast method's grid locator: the same answers as inRS2.
+    let many: Vec<Point> = (0..3 * inrs::contain::FAST_METHOD_MIN_POINTS)
+        .map(|i| {
+            let t = i as f64 * 0.618_033_988_749_895;
+            Point::new(
+                3.0 * (t.fract() - 0.5) * 2.0,
+                3.0 * ((t * 0.7).fract() - 0.5) * 2.0,
+            )
+        })
+        .collect();
+    assert_eq!(
+        classify(&d, Method::Fast, FillRule::EvenOdd, &many),
+        classify(&d, Method::InRS2, FillRule::EvenOdd, &many)
+    );
+}
+
+#[test]
+fn winding_numbers_by_every_algorithm() {
+    let field = WindingField::new(&nested(), inrs::contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
+    // A quarter of the unit circle, open: it subtends a quarter turn at the centre.
+    let quarter = domain_from_json(
+        r#"{"curves": [{"degree": 2, "control_points": [[1, 0], [1, 1], [0, 1]],
+                        "weights": [1, 0.7071067811865476, 1]}]}"#,
+    )
+    .unwrap();
+    let arc = WindingField::new(&quarter, inrs::contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
+    for algorithm in [
+        WindingAlgorithm::Adaptive,
+        WindingAlgorithm::BinarySearch,
+        WindingAlgorithm::BezierClipping,
+    ] {
+        let numbers = field.winding_numbers_by(algorithm);
+        let got: Vec<f64> = probes()[..3].iter().map(|&p| numbers.value(p)).collect();
+        for (g, want) in got.iter().zip([2.0, 1.0, 0.0]) {
+            assert!((g - want).abs() < 1e-12, "{algorithm:?}: {got:?}");
+        }
+        let w = arc
+            .winding_numbers_by(algorithm)
+            .value(Point::new(0.0, 0.0));
+        assert!((w - 0.25).abs() < 1e-12, "{algorithm:?}: {w}");
+    }
+}
+
+#[test]
+fn domain_summary_of_nested_circles() {
+    let s = inrs::DomainSummary::of(&nested());
+    let pi = std::f64::consts::PI;
+    assert_eq!((s.curves, s.loops.len(), s.max_degree), (2, 2, 2));
+    assert!(s.rational && s.areas_converged);
+    assert!(
+        (s.signed_area - 5.0 * pi).abs() < 1e-12,
+        "{}",
+        s.signed_area
+    );
+    // Even-odd: the ring only.
+    assert!((s.filled_area.unwrap() - 3.0 * pi).abs() < 1e-12);
+    assert!((s.bounding_box.max.x - 2.0).abs() < 1e-12);
+}
+
+#[test]
+fn domain_to_json_round_trips_and_classifies_the_same() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fixtures/inrs-paper/leaf_cubic.json"
+    );
+    let d = inrs::io::load_domain(path).unwrap();
+    let text = domain_to_json(&d);
+    let back = domain_from_json(&text).unwrap();
+    assert_eq!(domain_to_json(&back), text);
+    let bbox = inrs::BoundingBox {
+        min: Point::new(-1.1, -1.1),
+        max: Point::new(1.1, 1.1),
+    };
+    let points = inrs::contain::baselines::halton_points(2000, bbox);
+    assert_eq!(
+        classify(&back, Method::InRS2, FillRule::EvenOdd, &points),
+        classify(&d, Method::InRS2, FillRule::EvenOdd, &points)
+    );
+    let (a, b) = (inrs::DomainSummary::of(&d), inrs::DomainSummary::of(&back));
+    assert_eq!(a.signed_area, b.signed_area);
+}
