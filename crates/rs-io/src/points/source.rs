@@ -69,8 +69,20 @@ impl Default for ChunkData {
     }
 }
 
+impl ChunkData {
+    /// The buffer it holds.
+    fn into_buffer(self) -> Vec<u8> {
+        match self {
+            Self::Spare(buffer)
+            | Self::Csv(CsvBlock { text: buffer, .. })
+            | Self::Npy { bytes: buffer, .. }
+            | Self::NpyRange { buffer, .. } => buffer,
+        }
+    }
+}
+
 impl Chunk {
-    /// A chunk that reads into `buffer` (emptied first): a buffer used before saves the
+    /// A chunk that reads into `buffer` (its contents discarded): a buffer used before saves the
     /// allocation and the page faults of a fresh one.
     pub fn with_buffer(buffer: Vec<u8>) -> Self {
         Self {
@@ -81,8 +93,7 @@ impl Chunk {
 
     /// The chunk's buffer, for reuse.
     pub fn into_buffer(self) -> Vec<u8> {
-        let mut chunk = self;
-        chunk.take_buffer()
+        self.data.into_buffer()
     }
 
     /// The chunk's number in its file (0 before a read).
@@ -92,27 +103,18 @@ impl Chunk {
 
     /// Takes the buffer out, leaving the chunk empty.
     fn take_buffer(&mut self) -> Vec<u8> {
-        match std::mem::take(&mut self.data) {
-            ChunkData::Spare(buffer)
-            | ChunkData::Csv(CsvBlock { text: buffer, .. })
-            | ChunkData::Npy { bytes: buffer, .. }
-            | ChunkData::NpyRange { buffer, .. } => buffer,
-        }
+        std::mem::take(&mut self.data).into_buffer()
     }
 
-    /// The chunk as a CSV block, reusing its buffer.
+    /// The chunk's CSV block, taken out (made of its buffer if it holds none).
     #[cfg(unix)]
-    fn csv_block(&mut self) -> &mut CsvBlock {
-        if !matches!(self.data, ChunkData::Csv(_)) {
-            let text = self.take_buffer();
-            self.data = ChunkData::Csv(CsvBlock {
-                text,
-                ..CsvBlock::default()
-            });
-        }
-        match &mut self.data {
+    fn take_csv_block(&mut self) -> CsvBlock {
+        match std::mem::take(&mut self.data) {
             ChunkData::Csv(block) => block,
-            _ => unreachable!("made a CSV block above"),
+            other => CsvBlock {
+                text: other.into_buffer(),
+                ..CsvBlock::default()
+            },
         }
     }
 }
@@ -204,8 +206,8 @@ pub trait ChunkSource: Sync {
     ) -> Option<(usize, Result<(), PointsError>)>;
 
     /// Hands the points of `chunk`, taken from this source, to `visit`, in file order, in one
-    /// or more runs; CSV is parsed into `scratch`, `.npy` read by position into it. A chunk of
-    /// another source gives none.
+    /// or more runs; CSV is parsed into `scratch`, `.npy` read by position into it. (A chunk
+    /// that holds nothing this source reads gives none.)
     ///
     /// # Errors
     /// [`PointsError::Line`] for a chunk's first bad line, with its number in the file (the
@@ -468,7 +470,12 @@ impl ChunkSource for Positional {
             .fetch_max(self.offset_of(k + 1), Ordering::Relaxed);
         chunk.index = k;
         let read = match &self.file {
-            PositionalFile::Csv(f) => f.read_block(k, chunk.csv_block()),
+            PositionalFile::Csv(f) => {
+                let mut block = chunk.take_csv_block();
+                let read = f.read_block(k, &mut block);
+                chunk.data = ChunkData::Csv(block);
+                read
+            }
             PositionalFile::Npy {
                 file, per_chunk, ..
             } => {
