@@ -98,6 +98,36 @@ impl Classifier {
             Method::Gwn => Engine::ClassifierWinding(self),
         }
     }
+
+    /// The locations of `points` with `method` (rather than the one in the options), in input
+    /// order; the same for every method.
+    pub fn locate_all_with(&self, method: Method, points: &[Point]) -> Vec<Location> {
+        let mut out = vec![Location::Outside; points.len()];
+        match self.engine(method, points.len()) {
+            // A batch large enough for the grid is large enough to split over the threads.
+            Engine::Grid(l) => l.par_values_into(points, &mut out),
+            e => e.values_into(points, &mut out),
+        }
+        out
+    }
+}
+
+impl PointQuery<Location> for Classifier {
+    /// The inRS1 path for one point.
+    fn value(&self, p: Point) -> Location {
+        self.classify_point_with_decision(p).0
+    }
+
+    /// With the method of the options ([`Classifier::engine`]), on the current thread.
+    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        self.engine(self.method(), points.len())
+            .values_into(points, out);
+    }
+
+    fn par_values_into<P: PointSource + Sync + ?Sized>(&self, points: &P, out: &mut [Location]) {
+        self.engine(self.method(), points.len())
+            .par_values_into(points, out);
+    }
 }
 
 impl PointQuery<Location> for Engine<'_> {

@@ -5,10 +5,7 @@
 
 use crate::{AffineForm, Point3, SignNumerator};
 
-use crate::{ConvexError, ConvexPolygon, ConvexPolytope};
-
-/// The deepest refinement level accepted (`2^20` times the original inequalities).
-pub const MAX_LEVEL: u32 = 20;
+use crate::{ConvexError, ConvexPolygon, ConvexPolytope, MAX_LEVEL};
 
 /// The largest absolute box coordinate accepted by [`BoundingBox3::from_ranges`]: areas and
 /// volumes of regions within such a box stay finite, so an empty result is a proof, never an

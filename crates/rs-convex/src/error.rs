@@ -1,5 +1,6 @@
 //! Errors.
 
+use crate::limits::MAX_LEVEL;
 use rs_spline::SplineError;
 use thiserror::Error;
 
@@ -13,7 +14,7 @@ pub enum ConvexError {
     #[error("invalid tolerance {0}: must be finite and non-negative")]
     InvalidTolerance(f64),
     /// The refinement level is too deep.
-    #[error("max level {0} is above {max} (each level doubles the inequalities)", max = crate::MAX_LEVEL)]
+    #[error("max level {0} is above {max} (each level doubles the inequalities)", max = MAX_LEVEL)]
     InvalidLevel(u32),
     /// A planar curve with a 3-D box or the reverse.
     #[error("the curve is {curve}-D but the box is {bbox}-D")]

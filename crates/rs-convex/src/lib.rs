@@ -30,6 +30,7 @@ mod approximation;
 mod clip;
 mod curve_file;
 mod error;
+mod limits;
 mod point3;
 mod polygon;
 mod polytope;
@@ -38,11 +39,12 @@ mod space_curve;
 mod svg;
 
 pub use approximation::{
-    BoundingBox3, ConvexDomain, ConvexDomainOptions, Level, MAX_BOX_COORDINATE, MAX_LEVEL, Outcome,
-    Region, Sign, approximate,
+    BoundingBox3, ConvexDomain, ConvexDomainOptions, Level, MAX_BOX_COORDINATE, Outcome, Region,
+    Sign, approximate,
 };
 pub use curve_file::{FreeCurve, load_curve, parse_curve};
 pub use error::ConvexError;
+pub use limits::MAX_LEVEL;
 pub use point3::Point3;
 pub use polygon::ConvexPolygon;
 pub use polytope::{ConvexPolytope, P3};

@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use rs_spline::Point;
 
-use crate::{ChartAxis, FONT, Figure, escape};
+use crate::{FONT, Figure, escape};
 
 /// About `target` tick values covering `[lo, hi]` at a step of 1, 2 or 5 times a power of ten
 /// (Heckbert's nice numbers), ascending and inside the interval; empty for an interval that
@@ -39,6 +39,96 @@ pub(crate) fn label(v: f64, step: f64) -> String {
         format!("{v:.decimals$}")
     } else {
         format!("{v:.1e}")
+    }
+}
+
+/// How an axis maps data to labels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisScale {
+    /// Data as they are, ticks at "nice" values.
+    Linear,
+    /// The data are `log10` of the quantity: ticks at the integers, labelled `10^k`.
+    Log10,
+    /// Named categories: category `i` spans `[i, i + 1]`, labelled at its middle.
+    Categories,
+}
+
+/// One axis of a chart: its title and scale (a coordinate axis of the plane is
+/// [`rs_spline::Axis`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChartAxis {
+    /// The title, written along the axis.
+    pub title: String,
+    /// Linear, logarithmic or categories.
+    pub scale: AxisScale,
+    /// The categories' names (for [`AxisScale::Categories`]).
+    pub categories: Vec<String>,
+}
+
+impl ChartAxis {
+    /// A linear axis titled `title`.
+    pub fn linear(title: &str) -> Self {
+        Self {
+            title: title.to_string(),
+            scale: AxisScale::Linear,
+            categories: Vec::new(),
+        }
+    }
+
+    /// A logarithmic axis titled `title` (plot `log10` of the values).
+    pub fn log10(title: &str) -> Self {
+        Self {
+            title: title.to_string(),
+            scale: AxisScale::Log10,
+            categories: Vec::new(),
+        }
+    }
+
+    /// An axis of named categories (place category `i` over `[i, i + 1]`).
+    pub fn categories(title: &str, names: &[&str]) -> Self {
+        Self {
+            title: title.to_string(),
+            scale: AxisScale::Categories,
+            categories: names.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+
+    /// The tick values of this axis over `[lo, hi]`.
+    pub(crate) fn ticks(&self, lo: f64, hi: f64) -> Vec<f64> {
+        match self.scale {
+            AxisScale::Linear => nice_ticks(lo, hi, 5),
+            AxisScale::Log10 => {
+                if !(lo.is_finite() && hi.is_finite() && hi > lo) {
+                    return Vec::new();
+                }
+                let (first, last) = (lo.ceil() as i64, hi.floor() as i64);
+                // Every power of ten, or every other one on a long axis.
+                let every = if last - first > 8 { 2 } else { 1 };
+                (first..=last.min(first + 40))
+                    .filter(|k| k % every == 0)
+                    .map(|k| k as f64)
+                    .collect()
+            }
+            AxisScale::Categories => (0..self.categories.len())
+                .map(|i| i as f64 + 0.5)
+                .filter(|&c| c >= lo && c <= hi)
+                .collect(),
+        }
+    }
+
+    /// The SVG text content of the label of tick `v` (`step` apart from its neighbours).
+    pub(crate) fn label(&self, v: f64, step: f64) -> String {
+        match self.scale {
+            AxisScale::Linear => label(v, step),
+            AxisScale::Log10 => format!(
+                r#"10<tspan dy="-5" font-size="8">{}</tspan>"#,
+                v.round() as i64
+            ),
+            AxisScale::Categories => {
+                let i = v.floor().max(0.0) as usize;
+                crate::escape(self.categories.get(i).map_or("", String::as_str))
+            }
+        }
     }
 }
 

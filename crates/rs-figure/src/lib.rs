@@ -29,7 +29,7 @@ use std::fmt::Write;
 use rs_spline::{BoundingBox, Flatten, Point, flatten_chain};
 
 pub use axes::nice_ticks;
-pub use chart::{AxisScale, ChartAxis};
+pub use axes::{AxisScale, ChartAxis};
 pub use raster::{FieldImage, viridis};
 pub use style::{Marker, Style};
 

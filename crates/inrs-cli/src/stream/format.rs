@@ -5,6 +5,8 @@ use std::path::Path;
 
 use inrs::{CsvBlock, NpyType, Point};
 
+use super::spares::Spares;
+
 /// An output column: its CSV header and how its values are written as CSV text and in
 /// `.npy`. Implemented by a unit type per column, so that writing a value compiles into the
 /// streaming loop (a function pointer per value: 2% more instructions in a CSV run).
@@ -120,4 +122,18 @@ pub(crate) fn write_f64(v: f64, out: &mut Vec<u8>) {
 pub(super) fn has_extension(path: &Path, ext: &str) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// A chunk's results, formatted, and how many points it held.
+pub(super) type Formatted = (Vec<u8>, usize);
+
+/// What a worker needs to turn a chunk into formatted results.
+pub(super) struct Stage<'a, C, K> {
+    pub(super) format: Format,
+    pub(super) column: &'a C,
+    pub(super) kernel: &'a K,
+    /// Where the buffers of chunks read in order go back to once computed.
+    pub(super) texts: &'a Spares,
+    /// Where result buffers come from.
+    pub(super) results: &'a Spares,
 }

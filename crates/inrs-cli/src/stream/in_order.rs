@@ -5,8 +5,7 @@ use std::sync::{Condvar, Mutex, MutexGuard};
 
 use inrs::PointsError;
 
-use super::format::{Column, Format};
-use super::scheduler::{Formatted, Stage};
+use super::format::{Column, Format, Formatted, Stage};
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
 

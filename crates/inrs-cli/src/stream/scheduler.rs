@@ -9,7 +9,7 @@ use std::time::Duration;
 use inrs::io::points::{Chunk, ChunkPoints, ChunkScratch, ChunkSource};
 use inrs::{PointQuery, PointsError};
 
-use super::format::{Column, Format, format_csv_values, format_values};
+use super::format::{Column, Format, Formatted, Stage, format_csv_values, format_values};
 use super::in_order::{InOrder, WriteFailure};
 use super::progress::Progress;
 use super::source::{PointsInput, input_error};
@@ -135,20 +135,6 @@ fn chunks_in_flight(workers: usize) -> usize {
 
 /// A chunk read in order: its place in the input, whether it was read, and the chunk.
 type Numbered = (usize, Result<(), PointsError>, Chunk);
-
-/// A chunk's results, formatted, and how many points it held.
-pub(super) type Formatted = (Vec<u8>, usize);
-
-/// What a worker needs to turn a chunk into formatted results.
-pub(super) struct Stage<'a, C, K> {
-    pub(super) format: Format,
-    pub(super) column: &'a C,
-    pub(super) kernel: &'a K,
-    /// Where the buffers of chunks read in order go back to once computed.
-    pub(super) texts: &'a Spares,
-    /// Where result buffers come from.
-    pub(super) results: &'a Spares,
-}
 
 /// A worker's buffers, kept from chunk to chunk (fresh ones cost a page fault per 4 KiB and
 /// zero-filling): the chunk it reads by position, the points parsed or read, and the values.
