@@ -6,11 +6,10 @@ use rs_spline::{BoundingBox, Domain, Point};
 use crate::rays::{Hit, horizontal, parity, vertical};
 use std::sync::{Arc, OnceLock};
 
-use crate::locator::LocatorIndex;
 use crate::rows::{Rows, box_rows};
 use crate::{
-    ContainError, Decision, FillRule, Locate, Location, LocatorOptions, Method, PointLocator,
-    PointSource, WindingField,
+    ContainError, Decision, FillRule, Locate, Location, LocatorIndex, Method, PointSource,
+    WindingField,
 };
 
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
@@ -114,8 +113,9 @@ pub struct Classifier {
     method: Method,
     /// Built on first use: the generalized winding-number field ([`Method::Gwn`]).
     field: OnceLock<WindingField>,
-    /// Built on first use: the grid of [`Method::Fast`] with the default options.
-    grid: OnceLock<LocatorIndex>,
+    /// Built on first use: the grid of [`Method::Fast`] with the default options
+    /// ([`Classifier::locator`]).
+    pub(crate) grid: OnceLock<LocatorIndex>,
     /// Built on first use: the boxes by rows, for the fallback's horizontal ray.
     rows: OnceLock<Rows>,
 }
@@ -179,14 +179,6 @@ impl Classifier {
     /// The method of [`Locate::locate_all`].
     pub fn method(&self) -> Method {
         self.method
-    }
-
-    /// The grid locator with the default options, its index built on the first call and kept.
-    pub fn locator(&self) -> PointLocator<'_> {
-        let index = self
-            .grid
-            .get_or_init(|| PointLocator::new(self, LocatorOptions::default()).into_index());
-        PointLocator::with_index(self, index)
     }
 
     /// The bounding box grown by the tolerance: everything outside is outside.

@@ -4,9 +4,12 @@
 use std::borrow::Cow;
 
 use rs_spline::Point;
-use rs_spline::grid::GridFrame;
 
 use crate::{Classifier, Location, PointQuery, PointSource};
+
+mod index;
+pub use index::LocatorIndex;
+use index::*;
 
 mod build;
 
@@ -128,212 +131,13 @@ pub struct PointLocator<'a> {
     ix: Cow<'a, LocatorIndex>,
 }
 
-/// Side of a block of the coarse level, in cells (a power of two).
-const BLOCK: usize = 8;
-/// `log2(BLOCK)`.
-const BLOCK_SHIFT: u32 = 3;
-
-/// Coarse state: the block holds mixed cells, or cells of both locations; read its cells.
-const REFINED: u8 = 2;
-
-/// A fine entry below this is a uniform state; from it on, `entry - FIRST_RECORD` indexes the
-/// mixed-cell records.
-const FIRST_RECORD: u32 = 2;
-
-/// What the points of one mixed cell need.
-#[derive(Clone, Copy, Debug)]
-struct MixedCell {
-    /// Parity of the nearest uniform cell below in the column (false below the grid).
-    inside_below: bool,
-    /// The parts (see [`Parts`]) registered in the cell
-    /// (`near_items[near.0..near.1]`, vertical ones flagged).
-    near: (u32, u32),
-    /// The distinct non-vertical parts registered from that uniform cell up to this one
-    /// (`column_items[column.0..column.1]`).
-    column: (u32, u32),
-    /// The cell's points are decided by inRS2 itself: the parity below is unknown (a cell
-    /// that meets no box was found on the boundary: rounding of the registration against
-    /// the boundary test).
-    by_inrs2: bool,
-    /// The critical abscissas that may lie within the tolerance of a point of the cell (a
-    /// range of `MonotoneBoxes::critical_abscissas`, usually empty): a point's abscissa is
-    /// searched for among these only.
-    critical: (u32, u32),
-}
-
-/// The grid of a [`PointLocator`], without the classifier it indexes (so that a
-/// [`Classifier`] can build it once and lend it; see [`Classifier::locator`]).
-#[derive(Clone, Debug)]
-pub struct LocatorIndex {
-    /// Cells per side of the fine grid.
-    n: usize,
-    /// Blocks per side of the coarse grid.
-    blocks: usize,
-    /// Coarse states, a byte per block.
-    coarse: Vec<u8>,
-    /// For each block, the first of its `BLOCK^2` fine entries in `fine` (refined blocks only).
-    block_start: Vec<u32>,
-    /// Fine entries of the refined blocks, column-major within a block.
-    fine: Vec<u32>,
-    records: Vec<MixedCell>,
-    near_items: Vec<u32>,
-    column_items: Vec<u32>,
-    /// Number of mixed cells and of (box, cell) registrations, for reports.
-    mixed_cells: usize,
-    incidences: usize,
-    lookup: Lookup,
-    parts: Parts,
-}
-
-/// The parts the boxes are registered as, each with its chord band
-/// ([`rs_boxes::MonotoneBox::for_grid_parts`]): a box that spans more than a couple of cells is
-/// halved until each part fits (a box's band is wide when its piece is curved across many
-/// cells, a part's is narrow, so a part decides by its band most of the points its box would
-/// decide by a solve); a smaller box is one part, with its own band.
-///
-/// The cells register parts by index. The bands are copied here, also a whole box's, so that
-/// queries read them from one compact array and not from the boxes (536 bytes apart: on
-/// 46 000 boxes nearly every read missed the caches).
-#[derive(Clone, Debug)]
-struct Parts {
-    bands: Vec<rs_boxes::ChordBand>,
-    /// The box each part was cut from.
-    owner: Vec<u32>,
-}
-
-impl Parts {
-    /// The chord band of part `item`.
-    #[inline]
-    fn band(&self, item: u32) -> &rs_boxes::ChordBand {
-        &self.bands[item as usize]
-    }
-
-    /// The box part `item` was cut from (read only when its band cannot decide).
-    #[inline]
-    fn owner<'b>(
-        &self,
-        boxes: &'b [rs_boxes::MonotoneBox],
-        item: u32,
-    ) -> &'b rs_boxes::MonotoneBox {
-        &boxes[self.owner[item as usize] as usize]
-    }
-}
-
-/// What a query needs to find its cell: the grid's box and the cells per unit length.
-#[derive(Clone, Copy, Debug)]
-struct Lookup {
-    min: Point,
-    inv_w: f64,
-    inv_h: f64,
-    /// `n - 1`, the last column and row.
-    last: f64,
-    blocks: usize,
-}
-
-impl Lookup {
-    fn new(frame: &GridFrame, blocks: usize) -> Self {
-        let b = frame.bounding_box();
-        // The frame's own scales: a point's cell here is the one `GridFrame::col` and `row`
-        // give, the cell its boxes were registered by.
-        let (inv_w, inv_h) = frame.scales();
-        Self {
-            min: b.min,
-            inv_w,
-            inv_h,
-            last: (frame.n() - 1) as f64,
-            blocks,
-        }
-    }
-
-    /// The column and row of `p`'s cell, clamped into the grid: a point off the grid's box
-    /// (or NaN) falls in the ring of cells along its border, which lie outside the domain's
-    /// box and are all outside.
-    #[inline]
-    fn cell(&self, p: Point) -> (usize, usize) {
-        let c = self.index((p.x - self.min.x) * self.inv_w);
-        let r = self.index((p.y - self.min.y) * self.inv_h);
-        (c, r)
-    }
-
-    /// The coarse-table indices of the blocks of the points `(x[l], y[l])`, the same as
-    /// [`Lookup::cell`] then [`Lookup::block`] give, in floating point (vectorised over the
-    /// points): `floor(floor(f) / 8) = floor(f / 8)` for `f >= 0` (dividing by 8 is exact), and
-    /// the index, an integer below `2^32`, is read from the low bits of its sum with `2^52`.
-    #[inline(always)]
-    fn blocks(&self, x: &[f64; LANES], y: &[f64; LANES], out: &mut [u64; LANES]) {
-        const TWO_52: f64 = 4_503_599_627_370_496.0;
-        let floor8 = |f: f64| {
-            let f = if f > 0.0 { f } else { 0.0 };
-            let f = (if f < self.last { f } else { self.last }) * 0.125;
-            let rounded = (f + TWO_52) - TWO_52;
-            rounded - if rounded > f { 1.0 } else { 0.0 }
-        };
-        let blocks = self.blocks as f64;
-        for ((o, &x), &y) in out.iter_mut().zip(x).zip(y) {
-            let c = floor8((x - self.min.x) * self.inv_w);
-            let r = floor8((y - self.min.y) * self.inv_h);
-            *o = (c * blocks + r + TWO_52).to_bits() & 0xffff_ffff;
-        }
-    }
-
-    /// The index in the coarse table of the block holding cell `(c, r)`.
-    #[inline(always)]
-    fn block(&self, c: usize, r: usize) -> usize {
-        (c >> BLOCK_SHIFT) * self.blocks + (r >> BLOCK_SHIFT)
-    }
-
-    /// `floor(f)` clamped to `0..=last` (0 for NaN), as `GridFrame::col` computes it, in a
-    /// few branch-free instructions: each `if` is one `max`/`min` instruction, and adding
-    /// `2^52` rounds to an integer held in the low bits (no saturating conversion).
-    #[inline]
-    fn index(&self, f: f64) -> usize {
-        const TWO_52: f64 = 4_503_599_627_370_496.0;
-        let f = if f > 0.0 { f } else { 0.0 };
-        let f = if f < self.last { f } else { self.last };
-        let t = f + TWO_52;
-        let rounded = t - TWO_52;
-        (t.to_bits() as u32 as usize) - usize::from(rounded > f)
-    }
-}
-
-/// The two tables a query reads and what it needs to find its cell in them, copied out of the
-/// index into locals: the loops over many points then keep them in registers instead of
-/// reloading each through the index on every point.
-#[derive(Clone, Copy)]
-struct Tables<'a> {
-    lookup: Lookup,
-    coarse: &'a [u8],
-    block_start: &'a [u32],
-    fine: &'a [u32],
-}
-
-impl Tables<'_> {
-    /// The coarse state of `p`'s block (`OUTSIDE`, `INSIDE` or `REFINED`), without a branch.
-    #[inline]
-    fn coarse_state(&self, p: Point) -> usize {
-        let (c, r) = self.lookup.cell(p);
-        usize::from(self.coarse[self.lookup.block(c, r)])
-    }
-
-    /// The fine entry of `p`'s cell, in a refined block.
-    #[inline]
-    fn fine_entry(&self, p: Point) -> u32 {
-        let (c, r) = self.lookup.cell(p);
-        let block = self.lookup.block(c, r);
-        let within = (c & (BLOCK - 1)) * BLOCK + (r & (BLOCK - 1));
-        self.fine[self.block_start[block] as usize + within]
-    }
-}
-
-impl LocatorIndex {
-    /// The tables queries read.
-    fn tables(&self) -> Tables<'_> {
-        Tables {
-            lookup: self.lookup,
-            coarse: &self.coarse,
-            block_start: &self.block_start,
-            fine: &self.fine,
-        }
+impl Classifier {
+    /// The grid locator with the default options, its index built on the first call and kept.
+    pub fn locator(&self) -> PointLocator<'_> {
+        let index = self
+            .grid
+            .get_or_init(|| PointLocator::new(self, LocatorOptions::default()).into_index());
+        PointLocator::with_index(self, index)
     }
 }
 
@@ -536,10 +340,6 @@ impl PointLocator<'_> {
 /// Points per parallel task.
 const PARALLEL_TASK: usize = 1 << 16;
 
-/// Points whose blocks are found side by side ([`Lookup::blocks`]): their coordinates and
-/// indices take 6 KiB of the first-level cache.
-const LANES: usize = 256;
-
 /// [`PointQuery::values_into`] as an operation `pulp` runs with the best instruction
 /// set at hand.
 struct LocateChunks<'l, 'a, F> {
@@ -562,6 +362,7 @@ const VERTICAL_FLAG: u32 = 1 << 31;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rs_spline::grid::GridFrame;
 
     /// `Lookup::blocks` gives the block `Lookup::cell` and `Lookup::block` give, for points
     /// on cell edges, inside cells, off the grid, and not finite.
