@@ -12,6 +12,8 @@ use rs_testkit::FixtureMeta;
 
 mod bench;
 mod figures;
+#[cfg(test)]
+mod imports;
 mod splines;
 
 const HELP: &str = "\
