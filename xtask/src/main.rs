@@ -12,6 +12,7 @@ use rs_testkit::FixtureMeta;
 
 mod bench;
 mod figures;
+mod frontends;
 #[cfg(test)]
 mod imports;
 mod splines;
