@@ -211,13 +211,13 @@ impl WindingField {
         }
     }
 
-    /// The same field answering [`Locate`] with fill rule `rule`.
+    /// The same field answering [`Locate`](crate::Locate) with fill rule `rule`.
     pub fn with_fill_rule(mut self, rule: FillRule) -> Self {
         self.rule = rule;
         self
     }
 
-    /// The fill rule of [`Locate`].
+    /// The fill rule of [`Locate`](crate::Locate).
     pub fn fill_rule(&self) -> FillRule {
         self.rule
     }

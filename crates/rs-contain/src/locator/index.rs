@@ -38,8 +38,8 @@ pub(super) struct MixedCell {
     pub(super) critical: (u32, u32),
 }
 
-/// The grid of a [`PointLocator`], without the classifier it indexes (so that a
-/// [`Classifier`] can build it once and lend it; see [`Classifier::locator`]).
+/// The grid of a [`PointLocator`](crate::PointLocator), without the classifier it indexes (so that a
+/// [`Classifier`](crate::Classifier) can build it once and lend it; see [`Classifier::locator`](crate::Classifier::locator)).
 #[derive(Clone, Debug)]
 pub struct LocatorIndex {
     /// Cells per side of the fine grid.
