@@ -22,7 +22,7 @@ pub(super) fn single_thread(
     let _ = writeln!(
         md,
         "\nLocator queries alone (index built once), N = {n} Halton points: million points per \
-         second on one thread written into a buffer the caller keeps (`locate_into`, as the CLI \
+         second on one thread written into a buffer the caller keeps (`values_into`, as the CLI \
          streams), on one thread and on {threads} threads into a new vector (`locate_all`, \
          `locate_all_parallel`), the scaling between those two, the ratio to inRS2, and the \
          fraction of a pass that only reads the points (counts x < y: the memory-bandwidth \
