@@ -3,39 +3,8 @@
 
 use std::process::Command;
 
-fn inrs(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_inrs"))
-        .args(args)
-        .output()
-        .expect("run inrs")
-}
-
-fn fixture(rel: &str) -> String {
-    format!("{}/../../fixtures/{rel}", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn temp_file(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("inrs-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
-}
-
-/// Runs `inrs`, asserts success and returns standard output.
-fn inrs_ok(args: &[&str]) -> String {
-    stdout_of_success(inrs(args))
-}
-
-/// The standard output of a run that must have succeeded (its standard error otherwise).
-fn stdout_of_success(out: std::process::Output) -> String {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
+mod common;
+use common::{fixture, inrs, inrs_ok, last_column, stdout_of_success, temp_file};
 
 /// `inrs classify` of a points file against a domain: the location column, in order.
 fn classify_locations(domain: &str, points: &str) -> Vec<String> {
@@ -1188,14 +1157,6 @@ fn fit_data_interpolates_scattered_points_in_every_c1_space() {
         assert_eq!(out.status.code(), Some(2), "{extra:?}: {err}");
         assert!(err.contains("cannot be used with"), "{extra:?}: {err}");
     }
-}
-
-/// The last column of a CSV output, as numbers.
-fn last_column(text: &str) -> Vec<String> {
-    text.lines()
-        .skip(1)
-        .map(|l| l.rsplit(',').next().unwrap().to_string())
-        .collect()
 }
 
 /// Points on curves up to rounding (the cubic at t = 0.1, 0.4, 0.7, evaluated in f64)

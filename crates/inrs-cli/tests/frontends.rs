@@ -1,39 +1,8 @@
 //! The command-line cells of docs/FRONTENDS.md not exercised elsewhere: `classify` by every
 //! `--method` and `--fill-rule` against analytic locations, and `mesh --refine`.
 
-use std::process::Command;
-
-fn inrs_ok(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_inrs"))
-        .args(args)
-        .output()
-        .expect("run inrs");
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn temp_file(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("inrs-cli-frontends-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
-}
-
-fn fixture(rel: &str) -> String {
-    format!("{}/../../fixtures/{rel}", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn last_column(text: &str) -> Vec<String> {
-    text.lines()
-        .skip(1)
-        .map(|l| l.rsplit(',').next().unwrap().to_string())
-        .collect()
-}
+mod common;
+use common::{fixture, inrs_ok, last_column, temp_file};
 
 #[test]
 fn classify_by_every_method_and_fill_rule() {
