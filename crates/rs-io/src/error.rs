@@ -107,6 +107,26 @@ pub enum IoError {
         /// What is wrong.
         message: String,
     },
+    /// A CAD file (STEP, IGES) could not be read: its syntax or its entity graph is broken.
+    #[error("{format}: {message}")]
+    Cad {
+        /// `"STEP"` or `"IGES"`.
+        format: &'static str,
+        /// What is wrong, and where (line, entity).
+        message: String,
+    },
+    /// A face of a CAD file could not be turned into a domain.
+    #[error("{format} face {index} ({entity}): {message}")]
+    CadFace {
+        /// `"STEP"` or `"IGES"`.
+        format: &'static str,
+        /// The face's index in the file (`#face:K`).
+        index: usize,
+        /// The face's entity (`#123`, `DE 57`).
+        entity: String,
+        /// What is wrong.
+        message: String,
+    },
     /// The input holds no boundary with area (no paths, only open lines, empty glyph, ...).
     #[error("no boundary curves found in the {0}")]
     Empty(String),

@@ -29,6 +29,7 @@
 //! ```
 
 mod builder;
+pub mod cad;
 #[cfg(feature = "dxf")]
 pub mod dxf_file;
 mod error;
