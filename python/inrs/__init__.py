@@ -39,6 +39,8 @@ __all__ = [
     "fit",
     "interpolate",
     "convex_domain",
+    "cad_faces",
+    "CadFace",
     "DEFAULT_CONVEX_TOLERANCE",
     "__version__",
 ]
@@ -63,6 +65,11 @@ DomainSummary = _inrs.DomainSummary
 #: ``last_curve`` (the loop is the curves ``first_curve..=last_curve``), ``closed``, ``gap``,
 #: ``signed_area`` (positive counter-clockwise).
 LoopSummary = _inrs.LoopSummary
+#: One face of a STEP or IGES file (what :func:`cad_faces` lists): read-only attributes
+#: ``index`` (``Domain.load(f"{path}#face:{index}")`` reads it), ``entity`` (``"#123"``,
+#: ``"DE 57"``), ``surface``, ``loops``, ``curves``, ``area`` (of its ``(u, v)`` domain),
+#: ``bbox`` (``(umin, vmin, umax, vmax)``) and ``error`` (why it is refused, or ``None``).
+CadFace = _inrs.CadFace
 
 _METHODS = ("fast", "inrs1", "inrs2", "gwn")
 
@@ -173,12 +180,18 @@ class Domain:
         self._summary: Optional[DomainSummary] = None
 
     @classmethod
-    def load(cls, path: Union[str, os.PathLike]) -> "Domain":
-        """Reads a domain file: JSON, SVG, DXF, or a font glyph such as ``"font.ttf#B"``.
+    def load(cls, path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "Domain":
+        """Reads a domain file: JSON, SVG, DXF, a font glyph such as ``"font.ttf#B"``, or a face
+        of a STEP or IGES part in its ``(u, v)`` such as ``"part.step#face:3"`` (:func:`cad_faces`
+        lists them).
+
+        ``closure_tol``: the largest gap between consecutive curves that still counts as
+        meeting, relative to the diagonal of the domain's bounding box (default ``1e-9``; for a
+        CAD face the larger of it and the file's own tolerance).
 
         Raises ``OSError`` if the file cannot be read and ``ValueError`` if it is not a domain.
         """
-        return cls(_inrs.NativeDomain.load(os.fspath(path)))
+        return cls(_inrs.NativeDomain.load(os.fspath(path), closure_tol))
 
     @classmethod
     def from_json(cls, text: str) -> "Domain":
@@ -186,7 +199,9 @@ class Domain:
         return cls(_inrs.NativeDomain.from_json(text))
 
     @classmethod
-    def from_curves(cls, curves: Sequence[Any], name: Optional[str] = None) -> "Domain":
+    def from_curves(
+        cls, curves: Sequence[Any], name: Optional[str] = None, closure_tol: Optional[float] = None
+    ) -> "Domain":
         """A domain from NURBS curves given as arrays, without JSON.
 
         Each curve is a dict with the keys of the JSON file's NURBS form, ``degree``, ``knots``,
@@ -194,8 +209,9 @@ class Domain:
         1), or a tuple ``(degree, knots, control_points)`` or ``(degree, knots, control_points,
         weights)``. The curves are checked as the JSON reader checks them (the same Rust
         constructor: knot count and order, finite coordinates, positive weights, the limits)
-        and grouped into loops the same way. Bad input raises ``ValueError`` naming the curve
-        by its index (``"curve 1: ..."``).
+        and grouped into loops the same way (``closure_tol``: the relative closure tolerance, as
+        in :meth:`load`). Bad input raises ``ValueError`` naming the curve by its index
+        (``"curve 1: ..."``).
 
         >>> import math
         >>> s = math.sqrt(0.5)
@@ -211,7 +227,9 @@ class Domain:
         if isinstance(curves, Mapping) or not isinstance(curves, Sequence):
             raise ValueError("curves must be a list of curves (dicts or tuples)")
         return cls(
-            _inrs.NativeDomain.from_curves([_curve_arrays(i, c) for i, c in enumerate(curves)], name)
+            _inrs.NativeDomain.from_curves(
+                [_curve_arrays(i, c) for i, c in enumerate(curves)], name, closure_tol
+            )
         )
 
     def to_json(self) -> str:
@@ -502,6 +520,17 @@ def interpolate(domain: Domain, xy: ArrayLike, z: ArrayLike, *, space: str = "ct
             stacklevel=2,
         )
     return Spline(native)
+
+
+def cad_faces(path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "list[CadFace]":
+    """The faces of a STEP (``.step``, ``.stp``) or IGES (``.igs``, ``.iges``) file, in the
+    order OpenCASCADE's face explorer visits them (as ``inrs info part.step`` lists them).
+
+    Each :class:`CadFace` says whether the face reads (its loops, curves, ``(u, v)`` area and
+    box) or why it is refused; ``Domain.load(f"{path}#face:{face.index}")`` reads one.
+    Raises ``OSError`` if the file cannot be read and ``ValueError`` if it is not STEP/IGES.
+    """
+    return _inrs.cad_faces(os.fspath(path), closure_tol)
 
 
 def convex_domain(

@@ -154,12 +154,30 @@ fn check_tolerance(tol: f64) -> PyResult<()> {
     }
 }
 
+/// `closure_tol=`: `None`, or finite and non-negative.
+pub(crate) fn check_closure_tol(closure_tol: Option<f64>) -> PyResult<()> {
+    match closure_tol {
+        Some(t) if !(t.is_finite() && t >= 0.0) => Err(value_error(format!(
+            "closure_tol {t} must be finite and >= 0"
+        ))),
+        _ => Ok(()),
+    }
+}
+
 #[pymethods]
 impl NativeDomain {
-    /// Reads a domain file: JSON, SVG, DXF, or a font glyph `font.ttf#B`.
+    /// Reads a domain file: JSON, SVG, DXF, a font glyph `font.ttf#B`, or a face of a STEP or
+    /// IGES part `part.step#face:3`; `closure_tol` (relative) overrides the closure tolerance.
     #[staticmethod]
-    fn load(path: &str) -> PyResult<Self> {
-        Ok(Self::new(inrs::io::load_domain(path).map_err(io_error)?))
+    #[pyo3(signature = (path, closure_tol = None))]
+    fn load(path: &str, closure_tol: Option<f64>) -> PyResult<Self> {
+        check_closure_tol(closure_tol)?;
+        let options = inrs::io::LoadOptions {
+            closure_tolerance: closure_tol,
+        };
+        Ok(Self::new(
+            inrs::io::load_domain_with(path, &options).map_err(io_error)?,
+        ))
     }
 
     /// A domain from the text of a JSON domain file.
@@ -174,8 +192,13 @@ impl NativeDomain {
     /// weights (M,) or None)` each, checked as the JSON reader checks a curve of the NURBS
     /// form ([`NurbsCurve::new`], then [`Domain::new`]); errors name the curve by its index.
     #[staticmethod]
-    #[pyo3(signature = (curves, name = None))]
-    fn from_curves(curves: Vec<CurveArrays<'_>>, name: Option<&str>) -> PyResult<Self> {
+    #[pyo3(signature = (curves, name = None, closure_tol = None))]
+    fn from_curves(
+        curves: Vec<CurveArrays<'_>>,
+        name: Option<&str>,
+        closure_tol: Option<f64>,
+    ) -> PyResult<Self> {
+        check_closure_tol(closure_tol)?;
         let mut built = Vec::with_capacity(curves.len());
         for (i, (degree, knots, points, weights)) in curves.iter().enumerate() {
             let points = pairs(points)
@@ -196,7 +219,9 @@ impl NativeDomain {
                 })?;
             built.push(curve);
         }
-        let domain = Domain::new(built).map_err(|e| io_error(e.into()))?;
+        let tol = closure_tol.unwrap_or(inrs::spline::DEFAULT_RELATIVE_CLOSURE_TOLERANCE);
+        let domain =
+            Domain::with_relative_closure_tolerance(built, tol).map_err(|e| io_error(e.into()))?;
         Ok(Self::new(match name {
             Some(name) => domain.with_name(name),
             None => domain,

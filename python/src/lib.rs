@@ -11,6 +11,7 @@
 //! - [`convex`]: `convex_domain`; [`halton`]: `halton_points`;
 //! - [`threads`], [`errors`]: thread pools and exceptions.
 
+mod cad;
 mod convex;
 mod domain;
 mod errors;
@@ -32,6 +33,8 @@ use inrs::convex::ConvexDomainOptions;
 fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<domain::NativeDomain>()?;
     m.add_class::<summary::DomainSummary>()?;
+    m.add_class::<cad::CadFace>()?;
+    m.add_function(wrap_pyfunction!(cad::cad_faces, m)?)?;
     m.add_class::<summary::LoopSummary>()?;
     m.add_class::<spline::NativeSpline>()?;
     m.add_class::<spline::FitPlan>()?;

@@ -13,17 +13,26 @@ use crate::cli::error::CliError;
 /// `--domain`: the domain every subcommand but `convex-domain` reads.
 #[derive(Args, Debug)]
 pub(crate) struct DomainArg {
-    /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, or a font
-    /// glyph (`font.ttf#B`, `#U+0040`, `#gid:37`).
+    /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, a font
+    /// glyph (`font.ttf#B`, `#U+0040`, `#gid:37`), or a face of a STEP/IGES part in its (u, v)
+    /// (`part.step#face:3`; `inrs info part.step` lists the faces).
     #[arg(long)]
     pub(crate) domain: PathBuf,
+    /// Closure tolerance, relative to the diagonal of the domain's bounding box: consecutive
+    /// curves whose end and start are at most this far apart meet [default: 1e-9; for a CAD
+    /// face the larger of it and the file's own tolerance].
+    #[arg(long, value_name = "REL")]
+    pub(crate) closure_tol: Option<f64>,
 }
 
 impl DomainArg {
     /// Reads the domain, choosing the reader by the file name.
     pub(crate) fn load(&self) -> Result<Domain, CliError> {
         let spec = self.domain.to_string_lossy();
-        inrs::io::load_domain(&spec).map_err(|e| match e {
+        let options = inrs::io::LoadOptions {
+            closure_tolerance: self.closure_tol,
+        };
+        inrs::io::load_domain_with(&spec, &options).map_err(|e| match e {
             inrs::io::IoError::Read { .. }
             | inrs::io::IoError::UnknownFormat { .. }
             | inrs::io::IoError::FormatDisabled { .. } => CliError::Message(e.to_string()),

@@ -1215,3 +1215,33 @@ fn winding_on_curves_is_the_average_from_every_algorithm() {
     ]);
     assert!(!out.status.success());
 }
+
+/// Two curves that miss by 2e-10 on a thin face: the error names them and their gap (not the
+/// gap of the one-curve loop the grouping cut off), and `--closure-tol` joins them for every
+/// command.
+#[test]
+fn closure_tolerance_names_the_curves_that_miss_and_joins_them() {
+    let thin = fixture("bad/thin_gap.json");
+    let points = temp_file("thin_points.csv", "x,y\n0.05,0.001\n0.05,-0.001\n");
+    let out = inrs(&["classify", "--domain", &thin, "--points", &points]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("open boundary: curve 0 ends 2e-10 away from the start of curve 1"),
+        "{err}"
+    );
+    let out = inrs(&[
+        "classify",
+        "--domain",
+        &thin,
+        "--closure-tol",
+        "1e-8",
+        "--points",
+        &points,
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(last_column(&stdout), ["inside", "outside"]);
+    let out = inrs(&["info", "--domain", &thin, "--closure-tol", "-1"]);
+    assert!(!out.status.success());
+}

@@ -55,7 +55,7 @@ pub enum IoError {
     },
     /// The file name does not say which format it is in.
     #[error(
-        "{}: unknown domain file type (expected .json, .svg, .ttf/.otf/.ttc with #glyph, or .dxf)",
+        "{}: unknown domain file type (expected .json, .svg, .ttf/.otf/.ttc with #glyph, .dxf, or .step/.stp/.igs/.iges)",
         path.display()
     )]
     UnknownFormat {

@@ -7,6 +7,8 @@
 //! - [`font`]: TrueType/OpenType glyphs (quadratic or cubic contours) as domains with holes.
 //! - [`dxf_file`] (feature `dxf`, on by default): DXF drawings: `SPLINE`, `LWPOLYLINE`/`POLYLINE` with bulges (exact arcs),
 //!   `LINE`, `ARC`, `CIRCLE`, `ELLIPSE`, chained into loops.
+//! - [`cad`]: STEP and IGES parts: the trimming loops of each face in its `(u, v)`
+//!   (`part.step#face:3`).
 //! - [`load_domain`]: one entry point choosing the reader from the file name, as the `inrs`
 //!   command line does.
 //! - [`points`]: the points files (CSV `x,y`, `.npy`) the command line streams points from,
@@ -43,18 +45,72 @@ use std::path::Path;
 pub use error::IoError;
 use rs_spline::Domain;
 
+/// How [`load_domain_with`] reads a domain.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LoadOptions {
+    /// The closure tolerance, relative to the diagonal of the domain's bounding box: the
+    /// largest gap between consecutive curves that still counts as meeting. `None`: the
+    /// reader's default ([`rs_spline::DEFAULT_RELATIVE_CLOSURE_TOLERANCE`]; for a CAD face the
+    /// larger of it and the file's own tolerance, see [`cad`]).
+    pub closure_tolerance: Option<f64>,
+}
+
+/// Reads a domain from `spec` with the default options ([`load_domain_with`]).
+///
+/// # Errors
+/// As [`load_domain_with`].
+pub fn load_domain(spec: &str) -> Result<Domain, IoError> {
+    load_domain_with(spec, &LoadOptions::default())
+}
+
 /// Reads a domain from `spec`, choosing the reader by extension:
 ///
 /// - `*.json`: the domain file ([`json::domain_from_json_file`]);
 /// - `*.svg`: an SVG document ([`svg::domain_from_svg_file`]);
-/// - `*.dxf`: a DXF drawing ([`dxf_file::domain_from_dxf_file`], default options);
+/// - `*.dxf`: a DXF drawing ([`dxf_file::domain_from_dxf_file`]);
 /// - `*.ttf`, `*.otf`, `*.ttc`, `*.otc` followed by `#glyph`: one glyph of a font
-///   ([`font::Glyph`] syntax: `font.ttf#B`, `font.ttf#U+0040`, `font.ttf#gid:37`).
+///   ([`font::Glyph`] syntax: `font.ttf#B`, `font.ttf#U+0040`, `font.ttf#gid:37`);
+/// - `*.step`, `*.stp`, `*.igs`, `*.iges`, followed by `#face:K` unless the file has one
+///   face: face `K` of a CAD part in its `(u, v)` ([`cad::CadModel::face_domain`]).
+///
+/// `options.closure_tolerance`, when given, groups the curves into loops with that relative
+/// tolerance whatever the reader.
 ///
 /// # Errors
-/// [`IoError::UnknownFormat`] for another extension or a font without `#glyph`; the
-/// reader's errors otherwise.
-pub fn load_domain(spec: &str) -> Result<Domain, IoError> {
+/// [`IoError::UnknownFormat`] for another extension; [`IoError::Glyph`] for a font without
+/// `#glyph`; [`IoError::Cad`] for a CAD file with several faces and no `#face:K`, or a bad
+/// selection; the reader's errors otherwise.
+pub fn load_domain_with(spec: &str, options: &LoadOptions) -> Result<Domain, IoError> {
+    let closure = options.closure_tolerance;
+    if let Some((file, selection)) = cad::split_face_spec(spec) {
+        let model = cad::CadModel::read(file)?;
+        let index = match selection {
+            Some(s) => s?.0,
+            None if model.faces.len() == 1 => 0,
+            None => {
+                return Err(IoError::Cad {
+                    format: model.format.name(),
+                    message: format!(
+                        "{file} has {} faces: name one as {file}#face:K (`inrs info {file}` lists them)",
+                        model.faces.len()
+                    ),
+                });
+            }
+        };
+        return model.face_domain(index, closure);
+    }
+    let d = read_domain(spec, closure)?;
+    match closure {
+        Some(t) => Ok(d.with_closure_tolerance(t)?),
+        None => Ok(d),
+    }
+}
+
+/// The domain of a non-CAD `spec` with the reader's own closure (DXF chains its entities with
+/// `closure`).
+fn read_domain(spec: &str, closure: Option<f64>) -> Result<Domain, IoError> {
+    #[cfg(not(feature = "dxf"))]
+    let _ = closure;
     let lower = spec.to_ascii_lowercase();
     for ext in [".ttf#", ".otf#", ".ttc#", ".otc#"] {
         if let Some(i) = lower.find(ext) {
@@ -77,7 +133,13 @@ pub fn load_domain(spec: &str) -> Result<Domain, IoError> {
         Some("json") => json::domain_from_json_file(path),
         Some("svg") => svg::domain_from_svg_file(path),
         #[cfg(feature = "dxf")]
-        Some("dxf") => dxf_file::domain_from_dxf_file(path, &dxf_file::DxfOptions::default()),
+        Some("dxf") => {
+            let mut dxf = dxf_file::DxfOptions::default();
+            if let Some(t) = closure {
+                dxf = dxf.with_relative_closure_tolerance(t);
+            }
+            dxf_file::domain_from_dxf_file(path, &dxf)
+        }
         #[cfg(not(feature = "dxf"))]
         Some("dxf") => Err(IoError::FormatDisabled {
             format: "DXF",

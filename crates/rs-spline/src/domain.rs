@@ -28,6 +28,9 @@ pub struct BoundaryLoop {
     last: usize,
     gap: f64,
     closed: bool,
+    /// When the loop ended because the next curve of the list does not start where the
+    /// last one ends (rather than by returning to its start): how far apart they are.
+    next_gap: Option<f64>,
 }
 
 impl BoundaryLoop {
@@ -44,6 +47,13 @@ impl BoundaryLoop {
     /// True if the gap is within the domain's closure tolerance.
     pub fn is_closed(&self) -> bool {
         self.closed
+    }
+
+    /// For an open loop followed by another curve: the distance from the loop's last curve's
+    /// end to the next curve's start (the loop was cut there because it exceeds the closure
+    /// tolerance). `None` for a closed loop or the domain's last loop.
+    pub fn gap_to_next(&self) -> Option<f64> {
+        self.next_gap
     }
 }
 
@@ -83,6 +93,19 @@ pub struct Domain {
 }
 
 impl Domain {
+    /// The same curves grouped again with another closure tolerance (relative to the
+    /// bounding-box diagonal, as in [`Domain::with_relative_closure_tolerance`]); the name is
+    /// kept.
+    ///
+    /// # Errors
+    /// [`DomainError::InvalidTolerance`].
+    pub fn with_closure_tolerance(self, relative_tolerance: f64) -> Result<Self, DomainError> {
+        let name = self.name;
+        let mut d = Self::with_relative_closure_tolerance(self.curves, relative_tolerance)?;
+        d.name = name;
+        Ok(d)
+    }
+
     /// Groups `curves` into loops with the default closure tolerance.
     ///
     /// # Errors
@@ -176,6 +199,14 @@ impl Domain {
         }
         match self.loops.iter().find(|l| !l.closed) {
             None => Ok(()),
+            // The loop was cut because two consecutive curves miss each other by less than
+            // the loop misses its own start: name those two curves, the real cause.
+            Some(l) if l.next_gap.is_some_and(|g| g < l.gap) => Err(DomainError::CurvesMiss {
+                curve: l.last,
+                next: l.last + 1,
+                gap: l.next_gap.unwrap_or(l.gap),
+                tolerance: self.tolerance,
+            }),
             Some(l) => Err(DomainError::OpenLoop {
                 first_curve: l.first,
                 last_curve: l.last,
@@ -290,11 +321,17 @@ fn group_loops(curves: &[NurbsCurve], tol: f64) -> Vec<BoundaryLoop> {
         let continues = i + 1 < curves.len() && ends[i].1.distance(ends[i + 1].0) <= tol;
         if returns || !continues {
             let gap = ends[i].1.distance(loop_start);
+            let closed = gap <= tol;
+            let next_gap = match ends.get(i + 1) {
+                Some(next) if !closed => Some(ends[i].1.distance(next.0)),
+                _ => None,
+            };
             loops.push(BoundaryLoop {
                 first,
                 last: i,
                 gap,
-                closed: gap <= tol,
+                closed,
+                next_gap,
             });
             first = i + 1;
         }

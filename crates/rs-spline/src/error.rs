@@ -253,6 +253,21 @@ pub enum DomainError {
         /// The closure tolerance in force.
         tolerance: f64,
     },
+    /// Two consecutive curves do not meet: the end of `curve` is more than the closure
+    /// tolerance away from the start of `next`, so the loop through them is open there.
+    #[error(
+        "open boundary: curve {curve} ends {gap:e} away from the start of curve {next} (closure tolerance {tolerance:e}; a larger relative closure tolerance joins them)"
+    )]
+    CurvesMiss {
+        /// The curve whose end misses.
+        curve: usize,
+        /// The curve whose start it misses.
+        next: usize,
+        /// The distance between them.
+        gap: f64,
+        /// The closure tolerance in force.
+        tolerance: f64,
+    },
     /// A curve's Bezier pieces do not meet at a break (an interior knot of multiplicity
     /// `degree + 1`): the boundary has a gap there.
     #[error(

@@ -63,3 +63,34 @@ fn flatten_loop_chains_the_loop_curves_and_leaves_the_gap() {
     d.curves()[3].flatten(1e-3, &mut |p| alone.push(p));
     assert_eq!(ring, alone);
 }
+
+/// A thin loop whose second curve starts a hair away from the first's end: the error names the
+/// two curves that miss and their gap, not the (large) gap of the one-curve loop the grouping
+/// cut off; a looser closure tolerance given afterwards joins them.
+#[test]
+fn the_open_loop_error_names_the_two_curves_that_miss() {
+    let a = segment(Point::new(0.0, 0.0), Point::new(1.0, 0.0)).unwrap();
+    let b = segment(Point::new(1.0, 2e-8), Point::new(0.5, 0.1)).unwrap();
+    let c = segment(Point::new(0.5, 0.1), Point::new(0.0, 0.0)).unwrap();
+    let d = Domain::new(vec![a, b, c]).unwrap();
+    assert_eq!(d.loops().len(), 2);
+    assert_eq!(d.loops()[0].gap_to_next(), Some(2e-8));
+    match d.require_closed() {
+        Err(DomainError::CurvesMiss {
+            curve: 0,
+            next: 1,
+            gap,
+            ..
+        }) => assert_eq!(gap, 2e-8),
+        other => panic!("expected CurvesMiss, got {other:?}"),
+    }
+    let msg = d.require_closed().unwrap_err().to_string();
+    assert!(
+        msg.starts_with("open boundary: curve 0 ends 2e-8 away from the start of curve 1"),
+        "{msg}"
+    );
+    let joined = d.with_closure_tolerance(1e-7).unwrap();
+    assert_eq!(joined.loops().len(), 1);
+    assert!(joined.is_closed());
+    assert_eq!(joined.loops()[0].gap_to_next(), None);
+}

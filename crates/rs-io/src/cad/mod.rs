@@ -4,20 +4,47 @@
 //! A face of a B-rep is a patch of a surface `S(u, v)`; the part of the patch that belongs to the
 //! face is bounded by trimming loops of 2-D curves in `(u, v)` ("pcurves"). This module reads
 //! those loops, exactly (NURBS, lines and conics stay what they are), into one [`CadModel`]
-//! per file, whose faces come in the order OpenCASCADE's face explorer visits them in the same
-//! file; [`CadModel::face_domain`] turns face `K` into a [`Domain`].
+//! per file, whose faces come in the order `OpenCASCADE`'s face explorer visits them in the same
+//! file; [`CadModel::face_domain`] turns face `K` into a [`Domain`](rs_spline::Domain).
+//!
+//! # Tolerance
+//! Consecutive trimming curves of real files meet only within the model's tolerance (often
+//! `1e-7`), above the default closure tolerance of a domain (`1e-9` of its diagonal). A face's
+//! loops close within the larger of the two, the file's tolerance taken as a distance in
+//! `(u, v)`, unless the caller gives a relative closure tolerance; end points that meet within
+//! it are made bit-identical (the end of each curve is moved onto the start of the next), so
+//! the loops are watertight as every reader's are. A larger gap is an error naming the loop,
+//! the two curves and the gap.
+//!
+//! # Examples
+//!
+//! ```no_run
+//! use rs_io::cad::CadModel;
+//! let model = CadModel::read("part.step")?;
+//! for face in model.face_summaries(None) {
+//!     println!("{face}");
+//! }
+//! let domain = model.face_domain(3, None)?;
+//! # Ok::<(), rs_io::IoError>(())
+//! ```
 //!
 //! - [`step`]: STEP AP203/AP214/AP242 (ISO 10303-21 files).
 //! - [`iges`]: IGES 5.3 (the fixed-column format): trimmed surfaces (144) and bounded
 //!   surfaces (143).
 
+mod face;
 pub mod iges;
+mod spec;
 pub mod step;
+mod summary;
 
 use std::path::Path;
 
 use rs_spline::NurbsCurve;
 
+use crate::IoError;
+pub use spec::{FaceSelection, split_face_spec};
+pub use summary::CadFaceSummary;
 
 /// The file formats of [`CadModel`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,6 +101,37 @@ pub struct CadModel {
     /// `UNCERTAINTY_MEASURE_WITH_UNIT` of length, IGES's minimum resolution (global
     /// parameter 19).
     pub tolerance: Option<f64>,
-    /// The faces in OpenCASCADE's face-explorer order of the same file.
+    /// The faces in `OpenCASCADE`'s face-explorer order of the same file.
     pub faces: Vec<CadFace>,
+}
+
+impl CadModel {
+    /// Reads a STEP (`.step`, `.stp`) or IGES (`.igs`, `.iges`) file (at most
+    /// [`rs_spline::limits::MAX_FILE_BYTES`]).
+    ///
+    /// # Errors
+    /// [`IoError::Read`], [`IoError::UnknownFormat`] for another extension, the reader's
+    /// [`IoError::Cad`].
+    pub fn read(path: impl AsRef<Path>) -> Result<Self, IoError> {
+        let path = path.as_ref();
+        let format = CadFormat::from_path(path).ok_or_else(|| IoError::UnknownFormat {
+            path: path.to_path_buf(),
+        })?;
+        let bytes = rs_spline::limits::read_file(path).map_err(|source| IoError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_bytes(format, &bytes)
+    }
+
+    /// Reads the faces of a file's contents in `format`.
+    ///
+    /// # Errors
+    /// The reader's [`IoError::Cad`].
+    pub fn from_bytes(format: CadFormat, bytes: &[u8]) -> Result<Self, IoError> {
+        match format {
+            CadFormat::Step => step::read_step(bytes),
+            CadFormat::Iges => iges::read_iges(bytes),
+        }
+    }
 }
