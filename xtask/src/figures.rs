@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use inrs::boxes::{BoxOptions, MonotoneBoxes};
 use inrs::contain::{FastWindingField, WindingField};
 use inrs::{BoundingBox, Domain, Location, Point};
-use rs_figure::{FieldImage, Figure, Marker, Style};
+use rs_figure::{ChartAxis, FieldImage, Figure, Marker, Style};
 
 /// Pixel width of a figure's plot area.
 const SIZE: f64 = 560.0;
@@ -84,6 +84,56 @@ fn winding_figure(d: &Domain, width: usize, caption: &str) -> Result<Figure, Str
     draw_boundary(&mut fig, d);
     fig.caption(caption);
     Ok(fig)
+}
+
+/// A CAD face in its `(u, v)`: each trimming loop in its own colour (the outer one first) over
+/// the classified points, on a chart with `u` and `v` at their own scales (a face's parameter
+/// box is often far from square).
+pub(crate) fn cad_face_figure(
+    d: &Domain,
+    pts: &[Point],
+    loc: &[Location],
+    caption: &str,
+) -> Figure {
+    let mut bb = d.bounding_box();
+    for p in pts {
+        bb = bb.including(*p);
+    }
+    let mut fig = Figure::chart(
+        bb,
+        SIZE,
+        0.75 * SIZE,
+        ChartAxis::linear("u"),
+        ChartAxis::linear("v"),
+    );
+    let dot = |color: &str, label: &str| {
+        Style::fill(color)
+            .with_marker(Marker::Dot(1.6))
+            .labelled(label)
+    };
+    let (inside, outside, boundary) = (
+        dot("#2ca02c", "inside"),
+        dot("#d62728", "outside"),
+        dot("#000000", "on the boundary"),
+    );
+    for (p, l) in pts.iter().zip(loc) {
+        let style = match l {
+            Location::Inside => &inside,
+            Location::Outside => &outside,
+            Location::Boundary => &boundary,
+        };
+        fig.mark(*p, style);
+    }
+    let outer = Style::stroke("#000000", 1.8).labelled("outer trimming loop");
+    let inner = Style::stroke("#1f3fbf", 1.8).labelled("inner trimming loop (hole)");
+    for (i, l) in d.loops().iter().enumerate() {
+        let style = if i == 0 { &outer } else { &inner };
+        for c in &d.curves()[l.curves()] {
+            fig.curve(c, style);
+        }
+    }
+    fig.caption(caption);
+    fig
 }
 
 fn save(path: &Path, fig: &Figure) -> Result<(), String> {

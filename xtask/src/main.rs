@@ -41,6 +41,10 @@ Commands:
   splines [--quick]       The curved-triangulation paper's convergence experiments: the
                           quasi-interpolant of sin(10x) + sin(10y) in S_d^0 (d = 5, 6) on
                           three domains, ny = 5..65; writes target/bench-report/splines.{md,csv}.
+  cad-figure --domain SPEC [--output F.svg] [--points N]
+                          A CAD face (`part.step#face:K`) in its (u, v): its trimming loops and
+                          N Halton points (default 3000) classified; default output
+                          target/figures/cad_face.svg.
   help                    Show this help.
 ";
 
@@ -240,6 +244,61 @@ fn demo(dir: &Path) -> Result<(), String> {
     }
 }
 
+/// The value after `flag` in `args`, if the flag is there.
+fn flag_value<'a>(args: &'a [String], flag: &str) -> Result<Option<&'a str>, String> {
+    match args.iter().position(|a| a == flag) {
+        Some(i) => args
+            .get(i + 1)
+            .map(|v| Some(v.as_str()))
+            .ok_or_else(|| format!("{flag} needs a value")),
+        None => Ok(None),
+    }
+}
+
+/// `cargo xtask cad-figure`: a CAD face's trimming loops and classified points.
+fn cad_figure(args: &[String]) -> Result<(), String> {
+    let spec = flag_value(args, "--domain")?.ok_or("cad-figure needs --domain part.step#face:K")?;
+    let output = flag_value(args, "--output")?.map_or_else(
+        || workspace_root().join("target/figures/cad_face.svg"),
+        PathBuf::from,
+    );
+    let n: usize = match flag_value(args, "--points")? {
+        Some(v) => v
+            .parse()
+            .map_err(|_| format!("--points {v}: not a count"))?,
+        None => 3000,
+    };
+    let d = inrs::io::load_domain(spec).map_err(|e| format!("{spec}: {e}"))?;
+    let mut bb = d.bounding_box();
+    let pad = Point::new(0.06 * bb.width(), 0.06 * bb.height());
+    bb.min = bb.min - pad;
+    bb.max = bb.max + pad;
+    let pts = halton_points(n.min(200_000), bb);
+    let loc = Classifier::new(&d, ContainOptions::default())
+        .map_err(|e| format!("{spec}: {e}"))?
+        .locate_all(&pts);
+    let inside = loc.iter().filter(|l| **l == Location::Inside).count();
+    let file = Path::new(spec.split('#').next().unwrap_or(spec))
+        .file_name()
+        .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+    let face = spec.split('#').nth(1).unwrap_or("face:0");
+    let caption = format!(
+        "{file} {face} ({}) in its surface's parameters (u, v): {} trimming loop(s) of {} curves; \
+         {} Halton points, {inside} inside",
+        d.name().unwrap_or_default(),
+        d.loops().len(),
+        d.curves().len(),
+        pts.len()
+    );
+    let fig = figures::cad_face_figure(&d, &pts, &loc, &caption);
+    if let Some(dir) = output.parent() {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    std::fs::write(&output, fig.to_svg()).map_err(|e| format!("{}: {e}", output.display()))?;
+    println!("{}", output.display());
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
@@ -256,6 +315,7 @@ fn main() -> ExitCode {
             };
             demo(&dir)
         }
+        Some("cad-figure") => cad_figure(&args[1..]),
         Some("splines") => splines::run(&workspace_root(), args.iter().any(|a| a == "--quick")),
         Some("bench") => {
             bench::BenchOptions::parse(&args[1..]).and_then(|o| bench::run(&workspace_root(), &o))

@@ -1239,7 +1239,11 @@ fn closure_tolerance_names_the_curves_that_miss_and_joins_them() {
         "--points",
         &points,
     ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(last_column(&stdout), ["inside", "outside"]);
     let out = inrs(&["info", "--domain", &thin, "--closure-tol", "-1"]);
