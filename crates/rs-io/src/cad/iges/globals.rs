@@ -74,19 +74,16 @@ pub(super) fn globals(g: &[u8]) -> Result<Globals, IoError> {
         end,
         "global section".into(),
     );
-    // Fields 2 (its remaining delimiter) to 18, then 19.
+    // Fields 2 to the end: every field is checked (a broken one is a syntax error), 19 kept.
     let mut resolution = None;
-    for index in 2..=19 {
-        let field = p.next_field().map_err(cad_err)?;
-        match field {
-            None => break,
-            Some(Field::Text(t)) if index == 19 => {
-                let r = super::params::parse_real(t)
-                    .map_err(|m| cad_err(format!("global section: parameter 19: {m}")))?;
-                resolution = (r > 0.0).then_some(r);
-            }
-            Some(_) => {}
+    let mut index = 2;
+    while let Some(field) = p.next_field().map_err(cad_err)? {
+        if let (19, Field::Text(t)) = (index, field) {
+            let r = super::params::parse_real(t)
+                .map_err(|m| cad_err(format!("global section: parameter 19: {m}")))?;
+            resolution = (r > 0.0).then_some(r);
         }
+        index += 1;
     }
     Ok(Globals {
         delim,

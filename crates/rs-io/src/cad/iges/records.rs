@@ -147,6 +147,19 @@ pub(super) fn sections(bytes: &[u8]) -> Result<Sections<'_>, IoError> {
     for r in &records {
         let letter = r.section();
         let Some(at) = ORDER.iter().position(|&c| c == letter) else {
+            if r.text.len() < 73 {
+                let last = std::ptr::eq(r, records.last().unwrap_or(r));
+                let why = if last {
+                    "the file is truncated"
+                } else {
+                    "not an IGES record"
+                };
+                return Err(cad_err(format!(
+                    "line {}: {why} ({} columns, no section letter in column 73)",
+                    r.line,
+                    r.text.len()
+                )));
+            }
             return Err(cad_err(format!(
                 "line {}: unknown section letter {:?} in column 73 (expected S, G, D, P or T)",
                 r.line,
