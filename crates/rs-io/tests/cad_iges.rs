@@ -198,7 +198,14 @@ fn square_with_a_round_hole() {
         sub(142, "142,0,3,21,0,1;"),                   // DE 19
         sub(100, "100,0.,0.5,0.5,0.75,0.5,0.75,0.5;"), // DE 21: full circle
     ];
-    let m = read(&iges(&ents, "1.E-07"));
+    let text = iges(&ents, "1.E-07");
+    let m = read(&text);
+    // CRLF line ends and a file without line breaks read the same.
+    let crlf = read(&text.replace('\n', "\r\n"));
+    let flat = read(&text.replace('\n', ""));
+    for other in [&crlf, &flat] {
+        assert_eq!(loops(other, 0), loops(&m, 0));
+    }
     assert_eq!(m.tolerance, Some(1e-7));
     assert_eq!(m.faces.len(), 1);
     assert_eq!(m.faces[0].entity, "DE 1");
@@ -513,6 +520,44 @@ fn faces_come_in_group_order_then_directory_order() {
     let m = read(&iges(&ents, "1.E-07"));
     let order: Vec<&str> = m.faces.iter().map(|f| f.entity.as_str()).collect();
     assert_eq!(order, ["DE 9", "DE 3", "DE 13"]);
+}
+
+#[test]
+fn brep_solid_faces_in_shell_order() {
+    let ents = [
+        root(186, "186,3,1,0;"),            // DE 1: a solid, its shell DE 3
+        sub(514, "514,2,9,1,5,1;").form(1), // DE 3: faces DE 9, DE 5
+        sub(510, "510,7,1,1,11;").form(1),  // DE 5
+        unit_square_128(),                  // DE 7
+        sub(510, "510,21,1,1,23;").form(1), // DE 9: on a plane
+        // DE 11: three edges with parameter-space curves, the third against its curve.
+        sub(
+            508,
+            "508,3,0,13,1,1,1,0,15,0,13,2,1,1,0,17,0,13,3,0,1,0,19;",
+        )
+        .form(1),
+        sub(504, "504,3,25,0,0,0,0,27,0,0,0,0,29,0,0,0,0;").form(1), // DE 13
+        sub(110, "110,0.,0.,0.,1.,0.,0.;"),                          // DE 15
+        sub(110, "110,1.,0.,0.,0.,1.,0.;"),                          // DE 17
+        sub(110, "110,0.,0.,0.,0.,1.,0.;"),                          // DE 19
+        sub(108, "108,0.,0.,1.,0.,0,0.,0.,0.,0.;"),                  // DE 21
+        // DE 23: the same edges without parameter-space curves: the 504's model curves.
+        sub(508, "508,3,0,13,1,1,0,0,13,2,1,0,0,13,3,0,0;").form(1),
+        sub(110, "110,0.,0.,0.,2.,0.,0.;"), // DE 25
+        sub(110, "110,2.,0.,0.,0.,2.,0.;"), // DE 27
+        sub(110, "110,0.,0.,0.,0.,2.,0.;"), // DE 29
+    ];
+    let m = read(&iges(&ents, "1.E-07"));
+    let order: Vec<&str> = m.faces.iter().map(|f| f.entity.as_str()).collect();
+    assert_eq!(order, ["DE 9", "DE 5"]);
+    assert_eq!(m.faces[0].surface, "108 (plane)");
+    let big = &loops(&m, 0)[0];
+    assert_closed(big, 1e-15, "plane face");
+    assert!(close(area(big), 2.0, 1e-15));
+    let small = &loops(&m, 1)[0];
+    assert_closed(small, 1e-15, "128 face");
+    assert_eq!(small[2].start_point(), Point::new(0.0, 1.0));
+    assert!(close(area(small), 0.5, 1e-15));
 }
 
 /// Asserts that reading `bytes` is a file-level `Err` whose one-line message contains `want`.

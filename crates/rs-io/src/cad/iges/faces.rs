@@ -55,15 +55,20 @@ impl Iges<'_> {
         (0..n).map(|_| p.pointer("member").ok()).collect()
     }
 
-    /// Indices into `dir` of the faces: roots (not physically dependent, not in a group) in
-    /// directory order; groups expanded in member order (each entity once).
+    /// Indices into `dir` of the faces: roots (not physically dependent, not a member of a
+    /// group, solid or shell) in directory order; groups, solids and shells expanded in member
+    /// order (each entity once).
     fn face_order(&self) -> Vec<usize> {
         let n = self.dir.len();
         let mut in_group = vec![false; n];
         let mut members: Vec<Option<Vec<usize>>> = vec![None; n];
         for (i, e) in self.dir.iter().enumerate() {
-            if is_group(e) {
-                members[i] = self.group_members(e);
+            if is_group(e) || matches!(e.kind, 186 | 514) {
+                members[i] = if e.kind == 402 {
+                    self.group_members(e)
+                } else {
+                    self.brep_members(e)
+                };
                 for &m in members[i].iter().flatten() {
                     if m % 2 == 1 && m / 2 < n && m / 2 != i {
                         in_group[m / 2] = true;
@@ -94,8 +99,8 @@ impl Iges<'_> {
         }
         seen[i] = true;
         match self.dir[i].kind {
-            143 | 144 => out.push(i),
-            402 => {
+            143 | 144 | 510 => out.push(i),
+            186 | 402 | 514 => {
                 for &m in members[i].iter().flatten() {
                     if m % 2 == 1 && m / 2 < self.dir.len() {
                         self.expand(m / 2, members, seen, out, depth + 1);
@@ -111,6 +116,7 @@ impl Iges<'_> {
         let mut surface = String::from("unknown");
         let loops = match e.kind {
             144 => self.trimmed_surface(e, &mut surface),
+            510 => self.brep_face(e, &mut surface),
             _ => self.bounded_surface(e, &mut surface),
         };
         CadFace {
@@ -121,7 +127,7 @@ impl Iges<'_> {
     }
 
     /// The surface entry `ptr` of face `e`, its name written to `surface`.
-    fn surface_of(
+    pub(super) fn surface_of(
         &self,
         e: &DirEntry,
         ptr: usize,
@@ -287,7 +293,7 @@ impl Iges<'_> {
     }
 
     /// Checks that each piece ends where the next starts; `named` is the loop's entity.
-    fn check_gaps(&self, named: usize, pieces: &[Piece]) -> Result<(), String> {
+    pub(super) fn check_gaps(&self, named: usize, pieces: &[Piece]) -> Result<(), String> {
         let tol = self.gap_tolerance(pieces);
         for w in pieces.windows(2) {
             let gap = w[0].curve.end_point().distance(w[1].curve.start_point());
@@ -302,7 +308,7 @@ impl Iges<'_> {
     }
 
     /// The parameter rectangle of surface `s` as a loop (for a 144 with `N1 = 0`).
-    fn rectangle(&self, s: &DirEntry) -> Result<Vec<rs_spline::NurbsCurve>, String> {
+    pub(super) fn rectangle(&self, s: &DirEntry) -> Result<Vec<rs_spline::NurbsCurve>, String> {
         let who = self.who(s);
         if s.kind != 128 {
             return Err(format!(
@@ -342,7 +348,7 @@ impl Iges<'_> {
 
     /// The affine map from model space into the parameters of surface `s`, if `s` is a plane
     /// this reader parametrises (see the module documentation); `Ok(None)` if it is not.
-    fn plane_map(&self, s: &DirEntry) -> Result<Option<PlaneMap>, String> {
+    pub(super) fn plane_map(&self, s: &DirEntry) -> Result<Option<PlaneMap>, String> {
         let who = self.who(s);
         let tol = self.globals.resolution.unwrap_or(0.0);
         let (origin, e1, e2, uv0) = match s.kind {
