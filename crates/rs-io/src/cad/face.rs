@@ -7,13 +7,20 @@ use rs_spline::{BoundingBox, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, NurbsCu
 use super::{CadFace, CadModel};
 use crate::IoError;
 
+/// CAD files print about ten significant digits, so the ends of consecutive trimming curves
+/// written from one point can differ by a few units in the tenth digit of the coordinates (4e-9
+/// at coordinates near 6 on a real IGES part whose stated resolution is 5.5e-11): such gaps,
+/// up to this fraction of the largest coordinate, are rounding and close by default.
+const PRINTED_DIGITS_TOLERANCE: f64 = 1e-8;
+
 impl CadModel {
     /// Face `index` (in file order, `#face:K`) as a domain in its surface's `(u, v)`.
     ///
     /// `relative_closure_tolerance`: the largest gap between consecutive trimming curves that
     /// still counts as meeting, relative to the diagonal of the face's `(u, v)` bounding box;
-    /// `None` takes the larger of the file's tolerance (as a distance in `(u, v)`) and
-    /// [`DEFAULT_RELATIVE_CLOSURE_TOLERANCE`] of the diagonal. Gaps within it are closed by
+    /// `None` takes the largest of the file's tolerance (as a distance in `(u, v)`),
+    /// [`DEFAULT_RELATIVE_CLOSURE_TOLERANCE`] of the diagonal and `1e-8` of the largest
+    /// coordinate (the rounding of the ten or so digits files print). Gaps within it are closed by
     /// moving each curve's end onto the next curve's start (bit-identical joints). The loops
     /// are reversed together when needed so that the face's area is positive (outer loops
     /// counter-clockwise), whatever the orientation flags of the file made them.
@@ -49,7 +56,16 @@ impl CadModel {
         let tolerance = match relative_closure_tolerance {
             Some(t) => t * diagonal,
             None => {
-                (DEFAULT_RELATIVE_CLOSURE_TOLERANCE * diagonal).max(self.tolerance.unwrap_or(0.0))
+                let magnitude = bbox
+                    .min
+                    .x
+                    .abs()
+                    .max(bbox.min.y.abs())
+                    .max(bbox.max.x.abs())
+                    .max(bbox.max.y.abs());
+                (DEFAULT_RELATIVE_CLOSURE_TOLERANCE * diagonal)
+                    .max(PRINTED_DIGITS_TOLERANCE * magnitude)
+                    .max(self.tolerance.unwrap_or(0.0))
             }
         };
         let mut curves = Vec::new();
