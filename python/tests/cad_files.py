@@ -1,0 +1,497 @@
+"""The real CAD files and the OpenCASCADE oracle, shared by test_cad_occ.py and cad_table.py.
+
+The files come from Debian packages (``.ci/run`` installs them): ``freecad-common``'s IDF
+library (28 STEP and 4 IGES parts written by OpenCASCADE, with pcurves) and ``gmsh-doc``'s
+gzipped demos (STEP from other writers). OpenCASCADE (OCP, PyPI ``cadquery-ocp-novtk``) reads
+each file as ``STEPControl_Reader`` / ``IGESControl_Reader`` do it (``TransferRoots``,
+``OneShape``) and lists the faces with ``TopExp_Explorer(shape, TopAbs_FACE)``: that order is
+the order ``inrs.cad_faces`` promises.
+
+Per face, random ``(u, v)`` points in the face's ``BRepTools.UVBounds`` box enlarged by 5% on
+each side are classified by ``BRepClass_FaceClassifier`` (the oracle) and by an inrs domain;
+points that either side puts on the boundary, or that lie within a margin of the loops, are
+left out of the comparison (there the answer depends on tolerances, not on the loops).
+
+This module imports OCP only inside :func:`load_ocp` and the functions that need it, so that
+the test module can skip (or fail) with a message when OCP is missing.
+"""
+
+from __future__ import annotations
+
+import gzip
+import math
+import os
+import pathlib
+import re
+import shutil
+import zlib
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Tuple
+
+import numpy as np
+
+IDF = pathlib.Path("/usr/share/freecad/Mod/Idf/Idflibs")
+GMSH = pathlib.Path("/usr/share/doc/gmsh-doc/doc/gmsh")
+
+#: The 28 STEP and 4 IGES parts of freecad-common's IDF library (Debian 0.19-0.21).
+IDF_FILES = [
+    "0603_SMD.stp", "0805_SMD.stp", "1206_SMD.stp", "1210_SMD.stp", "1812_SMD.stp",
+    "2225_SMD.stp", "2512_SMD.stp", "CAP_50SGV_8_10.stp", "EPL22_6_16.stp",
+    "I22_2_5_16.stp", "I22_2_5_16withEPL22_6_16.stp", "MSOP_10.stp", "RLF_12545.stp",
+    "RLF_7030.stp", "SMB_DO_214AA.stp", "SMC_DO_214AB.stp", "SOD_323.stp", "SOD_523.stp",
+    "SOT23.stp", "SOT404.stp", "SOT428_DPAK.stp", "SOT_323_3.stp", "SOT_96.stp",
+    "TCMT1107_4.stp", "TSM_103_01_L_DV_A.stp", "TSM_104_01_L_DV_A.stp", "TSS0P_8.stp",
+    "VC0603_SMD.stp",
+    "RLF_12545.igs", "SOD_323.igs", "SOT23.igs", "SOT404.igs",
+]  # fmt: skip
+
+#: gmsh-doc's gzipped STEP demos.
+GMSH_FILES = [
+    "demos/api/as1-tu-203.stp.gz",
+    "demos/api/step_boundary_colors.stp.gz",
+    "demos/boolean/component8.step.gz",
+    "tutorial/t20_data.step.gz",
+]
+
+#: The Debian package of each directory, for the messages about missing files.
+PACKAGES = {IDF: "freecad-common", GMSH: "gmsh-doc"}
+
+#: Points per face: 3327 faces in all, so the two comparisons stay well under two minutes.
+POINTS_PER_FACE = 64
+#: Relative closure tolerance given to inrs when it takes one (OCC writes pcurves whose ends
+#: miss by up to ~2e-6 of the face's (u, v) diagonal; the default 1e-9 would refuse those).
+CLOSURE_TOL = 1e-5
+#: OCC's classifier tolerance, relative to the (u, v) box diagonal.
+OCC_TOL = 1e-7
+#: Points closer than this (relative to the diagonal) to the loops are left out: it covers the
+#: closure gaps and the classifiers' tolerances.
+MARGIN = 1e-5
+#: A face whose (u, v) box is thinner than this fraction of its length is degenerate (a sliver
+#: of zero area: OCC's classifier answers IN far from it); it is reported, not compared.
+DEGENERATE = 1e-6
+
+
+def require_system_files() -> bool:
+    """True where missing files or a missing OCP must fail the tests (``.ci/run`` sets it)."""
+    return os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1"
+
+
+def all_files() -> List[Tuple[str, pathlib.Path]]:
+    """``(name, path)`` of every real file, present or not (the name is the test id)."""
+    return [(n, IDF / n) for n in IDF_FILES] + [(pathlib.Path(g).name[: -len(".gz")], GMSH / g) for g in GMSH_FILES]
+
+
+def missing_message(path: pathlib.Path) -> str:
+    """Why ``path`` is absent and how to get it."""
+    package = next((p for d, p in PACKAGES.items() if d in path.parents), None)
+    return f"{path} is missing" + (f" (Debian package {package})" if package else "")
+
+
+def materialize(path: pathlib.Path, scratch: pathlib.Path) -> pathlib.Path:
+    """``path`` itself, or for ``x.stp.gz`` the decompressed ``scratch/x.stp``."""
+    if path.suffix != ".gz":
+        return path
+    out = scratch / path.name[: -len(".gz")]
+    if not out.exists():
+        scratch.mkdir(parents=True, exist_ok=True)
+        with gzip.open(path, "rb") as src, open(out, "wb") as dst:
+            shutil.copyfileobj(src, dst)
+    return out
+
+
+def load_ocp():
+    """Imports OCP, quiets OpenCASCADE's messages, and returns the module (``ImportError``
+    when it is not installed)."""
+    import OCP  # noqa: F401
+    from OCP.Message import Message, Message_Gravity
+
+    for printer in Message.DefaultMessenger_s().Printers():
+        printer.SetTraceLevel(Message_Gravity.Message_Fail)
+    return OCP
+
+
+@dataclass
+class OccFile:
+    """A CAD file as OpenCASCADE reads it."""
+
+    path: pathlib.Path
+    format: str  # "STEP" or "IGES"
+    faces: list  # TopoDS_Face, in TopExp_Explorer order
+    #: The entity of each face as the file names it (``#123``, ``DE 57``), None where OCC's
+    #: transfer keeps no link.
+    entities: List[Optional[str]]
+    #: Millimetres per length unit of the file (OCC converts lengths to millimetres).
+    mm_per_unit: float
+    #: Radians per plane-angle unit of the file (OCC converts angles to radians).
+    rad_per_angle_unit: float
+    #: Lazily computed per face: points, OCC codes, diagonal (see :meth:`face_sample`).
+    samples: Dict[int, "FaceSample"] = field(default_factory=dict)
+
+    @staticmethod
+    def read(path: pathlib.Path) -> "OccFile":
+        """Reads ``path`` (``.stp``/``.step`` or ``.igs``/``.iges``) with OCC."""
+        from OCP.IFSelect import IFSelect_RetDone
+        from OCP.IGESControl import IGESControl_Reader
+        from OCP.STEPControl import STEPControl_Reader
+        from OCP.TopAbs import TopAbs_FACE
+        from OCP.TopExp import TopExp_Explorer
+        from OCP.TopLoc import TopLoc_Location
+        from OCP.TopoDS import TopoDS
+
+        as_face = getattr(TopoDS, "Face_s", None) or TopoDS.Face
+        step = path.suffix.lower() in (".stp", ".step")
+        reader = STEPControl_Reader() if step else IGESControl_Reader()
+        if reader.ReadFile(str(path)) != IFSelect_RetDone:
+            raise OSError(f"OpenCASCADE cannot read {path}")
+        reader.TransferRoots()
+        shape = reader.OneShape()
+        faces = []
+        explorer = TopExp_Explorer(shape, TopAbs_FACE)
+        while explorer.More():
+            faces.append(as_face(explorer.Current()))
+            explorer.Next()
+        ws = reader.WS()
+        model, transfer = ws.Model(), ws.TransferReader()
+        text = path.read_text(errors="replace")
+        if step:
+            names = _step_face_labels(model, text)
+            mm = float(reader.StepModel().LocalLengthUnit())
+            rad = math.pi / 180 if re.search(r"CONVERSION_BASED_UNIT\s*\(\s*'DEGREES?'", text, re.I) else 1.0
+        else:
+            # IGES: the directory entry of entity number i (from 1) is line 2 i - 1.
+            names = {model.Value(i): f"DE {2 * i - 1}" for i in range(1, model.NbEntities() + 1)}
+            section = reader.IGESModel().GlobalSection()
+            mm = float(section.UnitValue()) / float(section.CascadeUnit())
+            rad = 1.0  # IGES angles are radians
+        entities = []
+        for face in faces:
+            # The transfer binds the part's faces without the assembly's placement: look the
+            # face up without its location (IsSame compares the location too).
+            entity = transfer.EntityFromShapeResult(face.Located(TopLoc_Location()), 1)
+            entities.append(None if entity is None else names.get(entity))
+        return OccFile(path, "STEP" if step else "IGES", faces, entities, mm, rad)
+
+    def face_sample(self, k: int, n: int = POINTS_PER_FACE) -> "FaceSample":
+        """The random points of face ``k`` and OCC's codes for them (computed once)."""
+        if k not in self.samples:
+            self.samples[k] = FaceSample.of(self.faces[k], seed=(zlib.crc32(self.path.name.encode()), k), n=n)
+        return self.samples[k]
+
+
+def _step_face_labels(model, text: str) -> dict:
+    """``{entity object: "#123"}`` for the file's ADVANCED_FACE instances. (The binding's
+    ``IdentLabel`` and ``Number`` answer 0 for every entity; ``NextNumberForLabel`` works, and
+    OCP hands out one Python object per live entity, so the objects are the keys.)"""
+    labels = {}
+    for m in re.finditer(r"#(\d+)\s*=\s*ADVANCED_FACE\b", text):
+        number = model.NextNumberForLabel(f"#{m.group(1)}", 0, True)
+        if number > 0:
+            labels[model.Value(number)] = f"#{m.group(1)}"
+    return labels
+
+
+@dataclass
+class FaceSample:
+    """Random ``(u, v)`` points of one face and what OCC says of them."""
+
+    points: np.ndarray  # (n, 2), in OCC's (u, v)
+    codes: np.ndarray  # int8: 0 OUT, 1 IN, 2 ON (OCC's classifier)
+    diagonal: float  # of the UVBounds box
+    size: Tuple[float, float]  # width and height of the UVBounds box
+    #: Why the face is not compared (degenerate), or None.
+    skip: Optional[str]
+
+    @staticmethod
+    def of(face, seed, n: int) -> "FaceSample":
+        from OCP.BRepClass import BRepClass_FaceClassifier
+        from OCP.BRepTools import BRepTools
+        from OCP.gp import gp_Pnt2d
+        from OCP.TopAbs import TopAbs_IN, TopAbs_OUT
+
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+        du, dv = u1 - u0, v1 - v0
+        diagonal = math.hypot(du, dv)
+        skip = None
+        if not (math.isfinite(diagonal) and diagonal > 0):
+            skip = f"UV bounds {(u0, u1, v0, v1)}"
+        elif min(du, dv) <= DEGENERATE * max(du, dv):
+            skip = f"degenerate: UV box {du:.3g} x {dv:.3g}"
+        if skip:
+            return FaceSample(np.zeros((0, 2)), np.zeros(0, np.int8), diagonal, (du, dv), skip)
+        rng = np.random.default_rng(list(seed))
+        points = np.column_stack(
+            [rng.uniform(u0 - 0.05 * du, u1 + 0.05 * du, n), rng.uniform(v0 - 0.05 * dv, v1 + 0.05 * dv, n)]
+        )
+        tol = OCC_TOL * diagonal
+        codes = np.empty(n, np.int8)
+        for i, (u, v) in enumerate(points):
+            state = BRepClass_FaceClassifier(face, gp_Pnt2d(float(u), float(v)), tol).State()
+            codes[i] = 1 if state == TopAbs_IN else 0 if state == TopAbs_OUT else 2
+        return FaceSample(points, codes, diagonal, (du, dv), None)
+
+
+@dataclass
+class Comparison:
+    """The points of one face compared: how many, how many left out, which disagree."""
+
+    compared: int
+    excluded: int
+    #: ``(point, OCC code, inrs code)`` of each disagreement.
+    disagreements: List[Tuple[Tuple[float, float], int, int]]
+
+
+def compare(domain, points: np.ndarray, occ_codes: np.ndarray, diagonal: float) -> Comparison:
+    """Classifies ``points`` by ``domain`` (in the domain's coordinates) and compares with
+    ``occ_codes``, leaving out the points either side puts on the boundary and those within
+    ``MARGIN * diagonal`` of the domain's loops."""
+    ours = domain.classify(points)
+    accuracy = 0.1 * MARGIN * diagonal
+    near = near_loops(domain.flatten(accuracy), points, MARGIN * diagonal + accuracy)
+    keep = (occ_codes != 2) & (ours != 2) & ~near
+    bad = np.flatnonzero(keep & (ours != occ_codes))
+    return Comparison(
+        int(keep.sum()),
+        int(len(points) - keep.sum()),
+        [((float(points[i, 0]), float(points[i, 1])), int(occ_codes[i]), int(ours[i])) for i in bad],
+    )
+
+
+def near_loops(rings: List[np.ndarray], points: np.ndarray, distance: float) -> np.ndarray:
+    """True for each point within ``distance`` of one of the closed polylines ``rings``."""
+    near = np.zeros(len(points), bool)
+    for ring in rings:
+        if len(ring) == 0:
+            continue
+        a, b = ring, np.roll(ring, -1, axis=0)
+        # Blocks of points keep the (points, segments) arrays small on long polylines.
+        step = max(1, 2_000_000 // max(1, len(a)))
+        for s in range(0, len(points), step):
+            p = points[s : s + step, None, :]
+            ab = b - a
+            t = np.clip(np.einsum("psk,sk->ps", p - a, ab) / np.maximum(np.einsum("sk,sk->s", ab, ab), 1e-300), 0, 1)
+            d2 = np.sum((a + t[..., None] * ab - p) ** 2, axis=-1)
+            near[s : s + step] |= d2.min(axis=1) <= distance * distance
+    return near
+
+
+def max_relative_gap(loops) -> float:
+    """The largest distance from one curve's end to the next one's start (the last to the
+    first) over the loops of :func:`inrs.occ.face_loops`, relative to their box diagonal."""
+    points = [c[2] for loop in loops for c in loop]
+    if not points:
+        return math.inf
+    allp = np.concatenate(points)
+    diagonal = float(np.hypot(*(allp.max(axis=0) - allp.min(axis=0))))
+    gap = 0.0
+    for loop in loops:
+        for c, d in zip(loop, loop[1:] + loop[:1]):
+            gap = max(gap, float(np.hypot(*(c[2][-1] - d[2][0]))))
+    return gap / diagonal if diagonal > 0 else math.inf
+
+
+def uv_scale(face, occ_file: OccFile) -> Optional[Tuple[float, float]]:
+    """``(su, sv)`` such that the file's own ``(u, v)`` (what ``inrs.cad_faces`` reads) is
+    OCC's ``(u / su, v / sv)``, or None where the two parameterisations differ by more than
+    a scale.
+
+    OCC converts lengths to millimetres and angles to radians, so a length parameter scales
+    by ``mm_per_unit`` and an angle by ``rad_per_angle_unit``: planes (both lengths),
+    cylinders (angle, length), spheres and tori (angles), B-spline and Bezier surfaces (their
+    own knots: unscaled). A cone's ``v`` is the height along the axis in STEP (ISO 10303-42)
+    but the length along the generatrix in OCC: ``sv = mm / cos(semi-angle)``. IGES
+    surfaces other than B-splines are parameterised otherwise than OCC's (lines on [0, 1],
+    revolution angle second): None.
+    """
+    from OCP.BRep import BRep_Tool
+    from OCP.Geom import (
+        Geom_BezierSurface,
+        Geom_BSplineSurface,
+        Geom_ConicalSurface,
+        Geom_CylindricalSurface,
+        Geom_Plane,
+        Geom_RectangularTrimmedSurface,
+        Geom_SphericalSurface,
+        Geom_ToroidalSurface,
+    )
+
+    surface = BRep_Tool.Surface_s(face)
+    for _ in range(8):
+        if not isinstance(surface, Geom_RectangularTrimmedSurface):
+            break
+        surface = surface.BasisSurface()
+    mm, rad = occ_file.mm_per_unit, occ_file.rad_per_angle_unit
+    if isinstance(surface, (Geom_BSplineSurface, Geom_BezierSurface)):
+        return (1.0, 1.0)
+    if occ_file.format != "STEP":
+        return None
+    if isinstance(surface, Geom_Plane):
+        return (mm, mm)
+    if isinstance(surface, Geom_CylindricalSurface):
+        return (rad, mm)
+    if isinstance(surface, Geom_ConicalSurface):
+        return (rad, mm / math.cos(surface.SemiAngle()))
+    if isinstance(surface, (Geom_SphericalSurface, Geom_ToroidalSurface)):
+        return (rad, rad)
+    return None
+
+
+def reason(error: str) -> str:
+    """A refusal message without its numbers and entity names, so that the faces refused for
+    one reason group together."""
+    text = re.sub(r"(#|DE )\d+", "#N", error)
+    return re.sub(r"[-+]?\d+(\.\d+)?([eE][-+]?\d+)?", "N", text)
+
+
+def surface_name(face) -> str:
+    """OCC's surface type of ``face`` without the ``Geom_`` prefix."""
+    from OCP.BRep import BRep_Tool
+
+    return type(BRep_Tool.Surface_s(face)).__name__.replace("Geom_", "")
+
+
+def closure_kwargs() -> dict:
+    """``closure_tol=CLOSURE_TOL`` where this build's ``Domain.from_curves`` takes it, else
+    nothing (the default 1e-9 is in force)."""
+    import inrs.occ
+
+    return {"closure_tol": CLOSURE_TOL} if inrs.occ._from_curves_takes_closure_tol() else {}
+
+
+@dataclass
+class OccReport:
+    """Part a for one file: ``inrs.occ.face_domain`` of every OCC face against OCC."""
+
+    faces: int
+    built: int = 0
+    #: Faces refused as open, their pcurves missing by more than the closure tolerance.
+    open: List[int] = field(default_factory=list)
+    degenerate: List[int] = field(default_factory=list)
+    compared: int = 0
+    excluded: int = 0
+    #: ``(face, surface, (u, v), OCC code, inrs code)``.
+    disagreements: list = field(default_factory=list)
+    #: Anything else that is wrong, one line each (a refusal the gaps do not explain, ...).
+    problems: List[str] = field(default_factory=list)
+    closure_tol: float = 1e-9
+
+
+def check_occ_faces(occ: OccFile) -> OccReport:
+    """Builds ``inrs.occ.face_domain`` of every face of ``occ`` and compares it with OCC on
+    the face's random points."""
+    import inrs.occ
+
+    kwargs = closure_kwargs()
+    report = OccReport(faces=len(occ.faces), closure_tol=kwargs.get("closure_tol", 1e-9))
+    for k, face in enumerate(occ.faces):
+        try:
+            loops = inrs.occ.face_loops(face)
+        except ValueError as e:
+            report.problems.append(f"face {k}: {e}")
+            continue
+        if not loops or not all(loops):
+            report.problems.append(f"face {k}: no loops")
+            continue
+        gap = max_relative_gap(loops)
+        try:
+            domain = inrs.occ.face_domain(face, **kwargs)
+            domain.classify(np.zeros((1, 2)))  # open loops refuse to classify
+        except ValueError as e:
+            # Refused only as open, and only when the pcurves do miss by more than the
+            # tolerance in force (the relative gap measured here on the same curves).
+            if "open boundary" in str(e) and gap > 0.99 * report.closure_tol:
+                report.open.append(k)
+            else:
+                report.problems.append(f"face {k}: {e} (largest gap {gap:.3g} of the diagonal)")
+            continue
+        report.built += 1
+        sample = occ.face_sample(k)
+        if sample.skip:
+            report.degenerate.append(k)
+            continue
+        if not domain.area > 0:
+            report.problems.append(f"face {k}: area {domain.area}")
+        c = compare(domain, sample.points, sample.codes, sample.diagonal)
+        report.compared += c.compared
+        report.excluded += c.excluded
+        report.disagreements += [(k, surface_name(face), *d) for d in c.disagreements]
+    return report
+
+
+@dataclass
+class ReadersReport:
+    """Part b for one file: ``inrs.cad_faces`` (the Rust readers) against OCC."""
+
+    faces: int  # ours
+    occ_faces: int
+    read: int = 0
+    #: ``{reason without numbers: [face, ...]}`` of the faces refused.
+    refused: Dict[str, List[int]] = field(default_factory=dict)
+    #: STEP faces whose label was checked against OCC's (all of them, when OCC links them).
+    labels_checked: int = 0
+    #: IGES faces whose DE is the one OCC links the face to (told, not required).
+    iges_same_de: int = 0
+    #: Faces whose parameterisation differs from OCC's by more than a scale (see uv_scale).
+    other_parameterisation: int = 0
+    degenerate: int = 0
+    compared: int = 0
+    excluded: int = 0
+    #: ``(face, entity, surface, (u, v), OCC code, inrs code)``, (u, v) in the file's units.
+    disagreements: list = field(default_factory=list)
+    problems: List[str] = field(default_factory=list)
+
+
+def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
+    """Reads ``path`` with ``inrs.cad_faces`` and ``Domain.load("path#face:K")`` and compares
+    each face with OCC's on the same random points, mapped to the file's units."""
+    import inrs
+
+    faces = inrs.cad_faces(path)
+    report = ReadersReport(faces=len(faces), occ_faces=len(occ.faces))
+    if len(faces) != len(occ.faces):
+        report.problems.append(f"{len(faces)} faces, OCC reads {len(occ.faces)}")
+    for k, (ours, face) in enumerate(zip(faces, occ.faces)):
+        where = f"face {k} ({ours.entity})"
+        if ours.index != k:
+            report.problems.append(f"{where}: index {ours.index}")
+        if occ.format == "STEP":
+            if occ.entities[k] is None:
+                report.problems.append(f"{where}: OCC links the face to no ADVANCED_FACE")
+            elif ours.entity != occ.entities[k]:
+                report.problems.append(f"{where}: OCC's face {k} is {occ.entities[k]}")
+            else:
+                report.labels_checked += 1
+        else:
+            report.iges_same_de += ours.entity == occ.entities[k]
+        if ours.error is not None:
+            if not ours.error or "\n" in ours.error or ours.loops != 0 or ours.bbox is not None:
+                report.problems.append(f"{where}: refused as {ours.error!r} with loops {ours.loops}, bbox {ours.bbox}")
+            report.refused.setdefault(reason(ours.error), []).append(k)
+            continue
+        report.read += 1
+        try:
+            domain = inrs.Domain.load(f"{path}#face:{k}")
+        except (OSError, ValueError) as e:
+            report.problems.append(f"{where}: listed as read, but Domain.load fails: {e}")
+            continue
+        if not (ours.loops == len(domain.loops) > 0 and ours.curves == domain.summary().curves):
+            loaded = (len(domain.loops), domain.summary().curves)
+            report.problems.append(f"{where}: {ours.loops} loops, {ours.curves} curves; loaded {loaded}")
+        if not math.isclose(ours.area, domain.area, rel_tol=1e-9):
+            report.problems.append(f"{where}: area {ours.area}, loaded {domain.area}")
+        sample = occ.face_sample(k)
+        if sample.skip:
+            report.degenerate += 1
+            continue
+        if not domain.area > 0:
+            report.problems.append(f"{where}: area {domain.area}")
+        scale = uv_scale(face, occ)
+        if scale is None:
+            report.other_parameterisation += 1
+            continue
+        points = sample.points / np.array(scale)
+        diagonal = math.hypot(sample.size[0] / scale[0], sample.size[1] / scale[1])
+        c = compare(domain, points, sample.codes, diagonal)
+        report.compared += c.compared
+        report.excluded += c.excluded
+        report.disagreements += [(k, ours.entity, ours.surface, *d) for d in c.disagreements]
+    return report
