@@ -103,6 +103,7 @@ pub(crate) fn face_loops(
             return Err(format!("{}: loop type not supported", li.what()));
         }
         let mut curves = edge_loop(cx, li)?;
+        curves = to_base_period(cx.surface, curves)?;
         if !forward {
             curves.reverse();
             curves = curves.iter().map(ParamCurve::reversed).collect();
@@ -228,6 +229,32 @@ fn pole_segment(cx: &FaceContext<'_>, a: Point, b: Point) -> Option<NurbsCurve> 
     } else {
         None
     }
+}
+
+/// The loop moved by whole periods so that the middle of its box lies in the base period.
+fn to_base_period(s: &Surface, curves: Vec<NurbsCurve>) -> Result<Vec<NurbsCurve>, String> {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for c in &curves {
+        for p in c.control_points() {
+            lo = [lo[0].min(p.x), lo[1].min(p.y)];
+            hi = [hi[0].max(p.x), hi[1].max(p.y)];
+        }
+    }
+    let mut shift = [0.0; 2];
+    for d in 0..2 {
+        if let Some(p) = s.period[d] {
+            let mid = 0.5 * (lo[d] + hi[d]);
+            let k = ((mid - s.base[d]) / p).floor();
+            if k.is_finite() && k.abs() < 1e6 {
+                shift[d] = -k * p;
+            }
+        }
+    }
+    if shift == [0.0; 2] {
+        return Ok(curves);
+    }
+    translated(&curves, Point::new(shift[0], shift[1]))
 }
 
 /// The candidate curves of one oriented edge.

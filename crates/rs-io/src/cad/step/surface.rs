@@ -17,6 +17,10 @@ pub(crate) struct Surface {
     pub(crate) name: String,
     /// The periods of `u` and `v`, where the surface is closed in them.
     pub(crate) period: [Option<f64>; 2],
+    /// Where the base period of each closed parameter starts (0 for angles, the knot
+    /// domain's start for B-spline surfaces): loops are moved by whole periods so that their
+    /// middle lies in `[base, base + period)`, as OpenCASCADE places them.
+    pub(crate) base: [f64; 2],
     /// The values of `v` at which the whole line `v = const` is one point (sphere poles,
     /// cone apex).
     pub(crate) v_poles: Vec<f64>,
@@ -38,6 +42,7 @@ impl Surface {
             label,
             name: name.clone(),
             period: [None, None],
+            base: [0.0; 2],
             v_poles: Vec::new(),
             plane: None,
             revolution: None,
@@ -79,7 +84,13 @@ impl Surface {
             }
             "TOROIDAL_SURFACE" | "DEGENERATE_TOROIDAL_SURFACE" => s.period = [Some(TAU); 2],
             _ if inst.is("B_SPLINE_SURFACE") || inst.is("B_SPLINE_SURFACE_WITH_KNOTS") => {
-                s.period = bspline_periods(g, inst).unwrap_or([None, None]);
+                let p = bspline_periods(g, inst).unwrap_or([None, None]);
+                for d in 0..2 {
+                    if let Some((a, len)) = p[d] {
+                        s.period[d] = Some(len);
+                        s.base[d] = a;
+                    }
+                }
             }
             _ => {}
         }
@@ -110,8 +121,8 @@ impl Surface {
     }
 }
 
-/// A closed B-spline surface's knot-domain lengths in the closed directions.
-fn bspline_periods(_g: &Graph, inst: &super::graph::Instance) -> Option<[Option<f64>; 2]> {
+/// A closed B-spline surface's knot-domain start and length in the closed directions.
+fn bspline_periods(_g: &Graph, inst: &super::graph::Instance) -> Option<[Option<(f64, f64)>; 2]> {
     // Simple: (name, u_degree, v_degree, points, form, u_closed, v_closed, self_int,
     // u_mults, v_mults, u_knots, v_knots, spec); complex: B_SPLINE_SURFACE(u_degree,
     // v_degree, points, form, u_closed, v_closed, self_int) and
@@ -145,7 +156,7 @@ fn bspline_periods(_g: &Graph, inst: &super::graph::Instance) -> Option<[Option<
             let p = degree as usize;
             let a = *expanded.get(p)?;
             let b = *expanded.get(expanded.len().checked_sub(p + 1)?)?;
-            *slot = (b > a).then_some(b - a);
+            *slot = (b > a).then_some((a, b - a));
         }
     }
     Some(out)
