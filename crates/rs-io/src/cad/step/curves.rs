@@ -107,7 +107,7 @@ impl Curve {
                 let va = vi.record("VECTOR")?;
                 let d = geom::direction(g, va.reference(1, "orientation")?, &vi.what())?;
                 let m = va.real(2, "magnitude")?;
-                if !(m > 0.0) {
+                if m.is_nan() || m <= 0.0 {
                     return Err(format!("{}: magnitude {m}", vi.what()));
                 }
                 Ok(Curve::Line { p, v: scale(d, m) })
@@ -210,7 +210,7 @@ impl Curve {
                 {
                     t1 += p * ((t0 - t1) / p).floor() + p;
                 }
-                if !(t1 > t0) {
+                if t1.is_nan() || t1 <= t0 {
                     return Err(format!("{what}: empty trim [{t0}, {t1}]"));
                 }
                 Ok(Curve::Trimmed {
@@ -294,7 +294,7 @@ impl Curve {
 
     /// The exact planar NURBS of the curve on `[t0, t1]` (`t0 < t1`) through `map`.
     pub(crate) fn to_nurbs(&self, t0: f64, t1: f64, map: &PlaneMap) -> Result<NurbsCurve, String> {
-        if !(t0 < t1) || !t0.is_finite() || !t1.is_finite() {
+        if !t0.is_finite() || !t1.is_finite() || t0 >= t1 {
             return Err(format!("empty parameter interval [{t0}, {t1}]"));
         }
         match self {
@@ -414,8 +414,9 @@ fn spline_point(s: &BSplineData, t: f64) -> V3 {
             } else {
                 0.0
             };
-            for c in 0..4 {
-                d[j][c] = (1.0 - alpha) * d[j - 1][c] + alpha * d[j][c];
+            let prev = d[j - 1];
+            for (x, p) in d[j].iter_mut().zip(prev) {
+                *x = (1.0 - alpha) * p + alpha * *x;
             }
         }
     }

@@ -1,4 +1,4 @@
-//! The faces of a file in OpenCASCADE's face-explorer order (see the module docs of
+//! The faces of a file in `OpenCASCADE`'s face-explorer order (see the module docs of
 //! [`super`] for the rule).
 
 use std::collections::HashMap;
@@ -191,10 +191,12 @@ impl Walk<'_> {
     }
 
     /// A representation: its items in order, then the representations related to it without
-    /// a transformation (not those already on the path).
+    /// a transformation (not those already on the path: the relation is symmetric).
     fn representation(&mut self, rep: u64, depth: usize) -> Result<(), String> {
         if !self.enter(rep, depth)? {
-            return Ok(());
+            return Err(format!(
+                "#{rep}: the representation contains itself (reference cycle)"
+            ));
         }
         let inst = self.g.get(rep, "a shape definition")?;
         let rec = inst
@@ -210,7 +212,9 @@ impl Walk<'_> {
         }
         let related = self.ix.related.get(&rep).cloned().unwrap_or_default();
         for r in related {
-            self.representation(r, depth + 1)?;
+            if !self.path.contains(&r) {
+                self.representation(r, depth + 1)?;
+            }
         }
         self.path.pop();
         Ok(())

@@ -11,9 +11,9 @@
 //! A seam edge (two pcurves on the surface) used twice in a loop takes one pcurve per use:
 //! the first use the pcurve that continues the loop, the second the other one. Where a
 //! curve misses by a whole period of a closed surface it is translated by that period (the
-//! first curve of the loop stays where it is), as OpenCASCADE's wires are made continuous in
+//! first curve of the loop stays where it is), as `OpenCASCADE`'s wires are made continuous in
 //! `(u, v)`. Where both ends lie on one pole line (sphere poles, cone apex: STEP has no
-//! degenerate edges there, OpenCASCADE adds them) a straight segment along the pole line
+//! degenerate edges there, `OpenCASCADE` adds them) a straight segment along the pole line
 //! joins them.
 
 use rs_spline::prelude::*;
@@ -343,7 +343,7 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse, Str
                 .ok_or_else(|| format!("{}: no items", dr.what()))?;
             let c2 = Curve::read(cx.g, c2_label, &dr.what(), cx.radians)?;
             // On a plane the vertices' (u, v) are exact, so the pcurve is cut where it passes
-            // them (its parametrisation need not be the 3-D curve's: OpenCASCADE writes
+            // them (its parametrisation need not be the 3-D curve's: `OpenCASCADE` writes
             // circles in (u, v) as rational B-splines, not parametrised by angle). Elsewhere
             // the curves of a SURFACE_CURVE share their parameter.
             let (range, period) = match cx.surface.plane {
@@ -442,7 +442,7 @@ fn edge_range(
     if closed && let Some((a, b)) = c3.range() {
         return Ok((a, b));
     }
-    if !(hi > lo) {
+    if hi.is_nan() || hi <= lo {
         return Err(format!(
             "the vertices are at parameters {ts} and {te} of the curve, the wrong way round for same_sense {same_sense}"
         ));

@@ -3,7 +3,7 @@
 //!
 //! # Parser
 //!
-//! The Part 21 layer is our own small tokenizer ([`tokens`](self)) and instance table
+//! The Part 21 layer is our own small tokenizer (`tokens`) and instance table
 //! (`graph`). The crate `step-io` (0.3, MIT/Apache-2.0, depends on `logos` and `memchr`)
 //! was evaluated: its parser does bound nesting (64 levels) and has an untyped `Graph`, but
 //! it is marked experimental with breaking changes expected, it brings about 200,000 lines of
@@ -16,8 +16,8 @@
 //!
 //! # Face order
 //!
-//! The faces come in the order OpenCASCADE's `TopExp_Explorer(shape, TopAbs_FACE)` visits
-//! them after `STEPControl_Reader::TransferRoots` and `OneShape` (checked with OpenCASCADE 7.8
+//! The faces come in the order `OpenCASCADE`'s `TopExp_Explorer(shape, TopAbs_FACE)` visits
+//! them after `STEPControl_Reader::TransferRoots` and `OneShape` (checked with `OpenCASCADE` 7.8
 //! on the 28 STEP files of `FreeCAD`'s `Idflibs` and the gmsh demos, assemblies included):
 //!
 //! 1. roots: the `PRODUCT_DEFINITION`s that are not the component (related product
@@ -39,13 +39,13 @@
 //! A file with no product structure leading to faces falls back to every shape
 //! representation in file order (then every solid or surface model, then every shell). The
 //! order of a product's own shape before its components could not be told apart on the real
-//! files (their assembly representations hold placements only); it follows OpenCASCADE's
+//! files (their assembly representations hold placements only); it follows `OpenCASCADE`'s
 //! `STEPControl_ActorRead`.
 //!
 //! # Loops
 //!
 //! The `FACE_OUTER_BOUND` comes first, then the other bounds in the face's order.
-//! OpenCASCADE keeps the file order of the bounds (its outer wire is found geometrically,
+//! `OpenCASCADE` keeps the file order of the bounds (its outer wire is found geometrically,
 //! by `BRepTools::OuterWire`); the domain built from the loops does not depend on their order.
 //! Edges are trimmed between their vertices on the 3-D curve (the parameters of the
 //! vertices: exact for lines and conics, a bounded search for B-splines) and the pcurve is
@@ -61,10 +61,10 @@
 //! # Units
 //!
 //! Lengths (and so `(u, v)` on planes, the `v` of cylinders, the tolerance) stay in the
-//! file's length unit; [`length_unit_mm`] gives millimetres per unit (OpenCASCADE converts to
+//! file's length unit; [`length_unit_mm`] gives millimetres per unit (`OpenCASCADE` converts to
 //! millimetres). Angles of circles, ellipses and trims are converted to radians with the
 //! context's `PLANE_ANGLE_UNIT`. Pcurves are read as written: a file in degrees would have
-//! its angular surface parameters in degrees where OpenCASCADE rescales them.
+//! its angular surface parameters in degrees where `OpenCASCADE` rescales them.
 //!
 //! # Tolerance
 //!

@@ -19,7 +19,7 @@ pub(crate) struct Surface {
     pub(crate) period: [Option<f64>; 2],
     /// Where the base period of each closed parameter starts (0 for angles, the knot
     /// domain's start for B-spline surfaces): loops are moved by whole periods so that their
-    /// middle lies in `[base, base + period)`, as OpenCASCADE places them.
+    /// middle lies in `[base, base + period)`, as `OpenCASCADE` places them.
     pub(crate) base: [f64; 2],
     /// The values of `v` at which the whole line `v = const` is one point (sphere poles,
     /// cone apex).
@@ -85,8 +85,8 @@ impl Surface {
             "TOROIDAL_SURFACE" | "DEGENERATE_TOROIDAL_SURFACE" => s.period = [Some(TAU); 2],
             _ if inst.is("B_SPLINE_SURFACE") || inst.is("B_SPLINE_SURFACE_WITH_KNOTS") => {
                 let p = bspline_periods(g, inst).unwrap_or([None, None]);
-                for d in 0..2 {
-                    if let Some((a, len)) = p[d] {
+                for (d, pd) in p.into_iter().enumerate() {
+                    if let Some((a, len)) = pd {
                         s.period[d] = Some(len);
                         s.base[d] = a;
                     }

@@ -23,7 +23,7 @@ pub(crate) struct Units {
 
 impl Default for Units {
     /// Radians and millimetres (ISO 10303-41's defaults are SI, but AP203/214 files always
-    /// state theirs; OpenCASCADE assumes millimetres), no uncertainty.
+    /// state theirs; `OpenCASCADE` assumes millimetres), no uncertainty.
     fn default() -> Self {
         Self {
             radians_per_angle: 1.0,
