@@ -391,11 +391,9 @@ fn spline_point(s: &BSplineData, t: f64) -> V3 {
     let n = s.points.len();
     let (a, b) = (s.knots[p], s.knots[n]);
     let t = t.clamp(a, b);
-    // The span k with knots[k] <= t < knots[k+1], p <= k < n.
-    let mut k = p;
-    while k + 1 < n && s.knots[k + 1] <= t {
-        k += 1;
-    }
+    // The span k with knots[k] <= t < knots[k+1], p <= k < n (binary search: the knots are
+    // non-decreasing, checked when the curve is read; a spline of many points stays fast).
+    let k = (p + s.knots[p + 1..n].partition_point(|&x| x <= t)).min(n - 1);
     let w = |i: usize| s.weights.as_ref().map_or(1.0, |w| w[i]);
     let mut d: Vec<[f64; 4]> = (0..=p)
         .map(|j| {

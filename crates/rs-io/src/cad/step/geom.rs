@@ -194,6 +194,9 @@ pub(crate) fn bspline(g: &Graph, inst: &Instance) -> Result<BSplineData, String>
             knots.len()
         ));
     }
+    if knots.windows(2).any(|w| w[1] < w[0]) {
+        return Err(format!("{what}: decreasing knots"));
+    }
     let weights = if let Ok(r) = inst.record("RATIONAL_B_SPLINE_CURVE") {
         let w = r.reals(0, "weights_data")?;
         if w.len() != n {

@@ -140,20 +140,21 @@ fn edge_loop(cx: &FaceContext<'_>, li: &Instance) -> Result<Vec<NurbsCurve>, Str
 /// Chains the uses starting with option `first` of the first one.
 fn chain(cx: &FaceContext<'_>, uses: &[EdgeUse], first: usize) -> Result<Vec<NurbsCurve>, String> {
     let mut out: Vec<NurbsCurve> = Vec::with_capacity(uses.len() + 2);
-    let mut taken: Vec<(u64, usize)> = Vec::new();
+    // Edge -> the candidate its first use in this loop took.
+    let mut taken: std::collections::HashMap<u64, usize> = std::collections::HashMap::new();
     let c0 = uses[0].options[first].clone();
-    taken.push((uses[0].label, first));
+    taken.insert(uses[0].label, first);
     let start = start_of(&c0);
     let mut end = end_of(&c0);
     out.extend(c0);
     for u in &uses[1..] {
         // A seam's second use takes the pcurve its first use did not.
-        let before = taken.iter().find(|(l, _)| *l == u.label).map(|t| t.1);
+        let before = taken.get(&u.label).copied();
         let allowed: Vec<usize> = (0..u.options.len())
             .filter(|&k| u.options.len() < 2 || before != Some(k))
             .collect();
         let (k, pre, c) = join(cx, end, u, &allowed)?;
-        taken.push((u.label, k));
+        taken.entry(u.label).or_insert(k);
         out.extend(pre);
         end = end_of(&c);
         out.extend(c);
