@@ -65,11 +65,6 @@ DomainSummary = _inrs.DomainSummary
 #: ``last_curve`` (the loop is the curves ``first_curve..=last_curve``), ``closed``, ``gap``,
 #: ``signed_area`` (positive counter-clockwise).
 LoopSummary = _inrs.LoopSummary
-#: One face of a STEP or IGES file (what :func:`cad_faces` lists): read-only attributes
-#: ``index`` (``Domain.load(f"{path}#face:{index}")`` reads it), ``entity`` (``"#123"``,
-#: ``"DE 57"``), ``surface``, ``loops``, ``curves``, ``area`` (of its ``(u, v)`` domain),
-#: ``bbox`` (``(umin, vmin, umax, vmax)``) and ``error`` (why it is refused, or ``None``).
-CadFace = _inrs.CadFace
 
 _METHODS = ("fast", "inrs1", "inrs2", "gwn")
 
@@ -522,15 +517,50 @@ def interpolate(domain: Domain, xy: ArrayLike, z: ArrayLike, *, space: str = "ct
     return Spline(native)
 
 
+class CadFace:
+    """One face of a STEP or IGES file, as :func:`cad_faces` lists it.
+
+    Read-only attributes: ``index`` (``Domain.load(f"{path}#face:{index}")`` reads it),
+    ``entity`` (``"#123"`` for STEP, ``"DE 57"`` for IGES), ``surface`` (the surface type as
+    the file names it), ``loops``, ``curves``, ``area`` (of the face's ``(u, v)`` domain),
+    ``bbox`` (``(umin, vmin, umax, vmax)``), ``error`` (why the face is refused, or ``None``)
+    and ``domain`` (the face as a :class:`Domain`, or ``None`` when refused).
+    """
+
+    __slots__ = ("_native", "_domain")
+
+    def __init__(self, native: "_inrs.CadFace", domain: Optional["Domain"]) -> None:
+        self._native = native
+        self._domain = domain
+
+    index = property(lambda self: self._native.index)
+    entity = property(lambda self: self._native.entity)
+    surface = property(lambda self: self._native.surface)
+    loops = property(lambda self: self._native.loops)
+    curves = property(lambda self: self._native.curves)
+    area = property(lambda self: self._native.area)
+    bbox = property(lambda self: self._native.bbox)
+    error = property(lambda self: self._native.error)
+    domain = property(lambda self: self._domain)
+
+    def __repr__(self) -> str:
+        return repr(self._native)
+
+
 def cad_faces(path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "list[CadFace]":
     """The faces of a STEP (``.step``, ``.stp``) or IGES (``.igs``, ``.iges``) file, in the
-    order OpenCASCADE's face explorer visits them (as ``inrs info part.step`` lists them).
+    order OpenCASCADE's face explorer visits them (as ``inrs info --domain part.step`` lists
+    them), each with its domain, from one read of the file.
 
     Each :class:`CadFace` says whether the face reads (its loops, curves, ``(u, v)`` area and
-    box) or why it is refused; ``Domain.load(f"{path}#face:{face.index}")`` reads one.
-    Raises ``OSError`` if the file cannot be read and ``ValueError`` if it is not STEP/IGES.
+    box, and ``domain``) or why it is refused (``error``); ``closure_tol`` is the relative
+    closure tolerance of :meth:`Domain.load`. Raises ``OSError`` if the file cannot be read
+    and ``ValueError`` if it is not STEP or IGES.
     """
-    return _inrs.cad_faces(os.fspath(path), closure_tol)
+    return [
+        CadFace(native, None if domain is None else Domain(domain))
+        for native, domain in _inrs.cad_faces(os.fspath(path), closure_tol)
+    ]
 
 
 def convex_domain(

@@ -47,7 +47,9 @@ class CadFace:
     @property
     def error(self) -> Optional[str]: ...
 
-def cad_faces(path: str, closure_tol: Optional[float] = None) -> list[CadFace]: ...
+def cad_faces(
+    path: str, closure_tol: Optional[float] = None
+) -> list[Tuple[CadFace, Optional["NativeDomain"]]]: ...
 
 class DomainSummary:
     """Facts about a domain, as ``inrs info`` prints them."""

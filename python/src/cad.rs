@@ -5,7 +5,7 @@ use pyo3::prelude::*;
 
 use inrs::io::cad::{CadFaceSummary, CadModel};
 
-use crate::domain::check_closure_tol;
+use crate::domain::{NativeDomain, check_closure_tol};
 use crate::errors::io_error;
 
 /// One face of a CAD file: its index (`#face:K`), entity, surface, and its loops, curves,
@@ -61,19 +61,27 @@ impl CadFace {
     }
 }
 
-/// The faces of a STEP (`.step`, `.stp`) or IGES (`.igs`, `.iges`) file in file order.
+/// The faces of a STEP (`.step`, `.stp`) or IGES (`.igs`, `.iges`) file in file order, each
+/// with its domain (`None` when refused), from one read of the file.
 #[pyfunction]
 #[pyo3(signature = (path, closure_tol = None))]
 pub(crate) fn cad_faces(
     py: Python<'_>,
     path: &str,
     closure_tol: Option<f64>,
-) -> PyResult<Vec<CadFace>> {
+) -> PyResult<Vec<(CadFace, Option<NativeDomain>)>> {
     check_closure_tol(closure_tol)?;
-    let summaries = py.detach(|| CadModel::read(path).map(|m| m.face_summaries(closure_tol)));
-    Ok(summaries
-        .map_err(io_error)?
-        .into_iter()
-        .map(CadFace::from)
-        .collect())
+    let faces = py.detach(|| {
+        CadModel::read(path).map(|m| {
+            m.face_domains(closure_tol)
+                .into_iter()
+                .enumerate()
+                .map(|(k, d)| {
+                    let summary = CadFaceSummary::of(&m, k, &d);
+                    (CadFace::from(summary), d.ok().map(NativeDomain::new))
+                })
+                .collect::<Vec<_>>()
+        })
+    });
+    faces.map_err(io_error)
 }

@@ -40,7 +40,7 @@ pub(crate) struct NativeDomain {
 }
 
 impl NativeDomain {
-    fn new(domain: Domain) -> Self {
+    pub(crate) fn new(domain: Domain) -> Self {
         Self {
             domain,
             containments: Mutex::new(HashMap::new()),

@@ -2,9 +2,10 @@
 
 use std::fmt;
 
-use rs_spline::BoundingBox;
+use rs_spline::{BoundingBox, Domain};
 
 use super::CadModel;
+use crate::IoError;
 
 /// Facts about one face of a CAD file: its place, its surface, and either its loops, curves,
 /// `(u, v)` area and box, or why it cannot be read.
@@ -32,37 +33,54 @@ impl CadModel {
     /// One summary per face, in file order, with the closure tolerance of
     /// [`CadModel::face_domain`].
     pub fn face_summaries(&self, relative_closure_tolerance: Option<f64>) -> Vec<CadFaceSummary> {
-        self.faces
+        self.face_domains(relative_closure_tolerance)
             .iter()
             .enumerate()
-            .map(|(index, face)| {
-                let mut s = CadFaceSummary {
-                    index,
-                    entity: face.entity.clone(),
-                    surface: face.surface.clone(),
-                    loops: 0,
-                    curves: 0,
-                    area: 0.0,
-                    bounding_box: None,
-                    error: None,
-                };
-                match self.face_domain(index, relative_closure_tolerance) {
-                    Ok(d) => {
-                        s.loops = d.loops().len();
-                        s.curves = d.curves().len();
-                        s.area = d.signed_area();
-                        s.bounding_box = Some(d.bounding_box());
-                    }
-                    Err(e) => {
-                        s.error = Some(match e {
-                            crate::IoError::CadFace { message, .. } => message,
-                            other => other.to_string(),
-                        });
-                    }
-                }
-                s
-            })
+            .map(|(index, d)| CadFaceSummary::of(self, index, d))
             .collect()
+    }
+
+    /// Every face as a domain ([`CadModel::face_domain`]), in file order, each `Err` for a
+    /// face that cannot be read: one pass over a file for callers that want all its faces.
+    pub fn face_domains(
+        &self,
+        relative_closure_tolerance: Option<f64>,
+    ) -> Vec<Result<Domain, IoError>> {
+        (0..self.faces.len())
+            .map(|index| self.face_domain(index, relative_closure_tolerance))
+            .collect()
+    }
+}
+
+impl CadFaceSummary {
+    /// The summary of face `index` of `model` from its domain (or the reason it has none), as
+    /// [`CadModel::face_domains`] gives it.
+    ///
+    /// # Panics
+    /// If `index` is not a face of `model`.
+    pub fn of(model: &CadModel, index: usize, domain: &Result<Domain, IoError>) -> Self {
+        let face = &model.faces[index];
+        let mut s = CadFaceSummary {
+            index,
+            entity: face.entity.clone(),
+            surface: face.surface.clone(),
+            loops: 0,
+            curves: 0,
+            area: 0.0,
+            bounding_box: None,
+            error: None,
+        };
+        match domain {
+            Ok(d) => {
+                s.loops = d.loops().len();
+                s.curves = d.curves().len();
+                s.area = d.signed_area();
+                s.bounding_box = Some(d.bounding_box());
+            }
+            Err(IoError::CadFace { message, .. }) => s.error = Some(message.clone()),
+            Err(other) => s.error = Some(other.to_string()),
+        }
+        s
     }
 }
 
