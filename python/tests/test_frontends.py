@@ -53,3 +53,22 @@ def test_sample_with_count_is_the_cli_halton_sample(cli):
     for kwargs, message in [({"count": 0}, None), ({"count": -1}, "count must be positive"), ({"ny": 5, "count": 5}, "not both")]:
         with pytest.raises(ValueError, match=message):
             inrs.sample(d, **kwargs)
+
+
+PLATE = FIXTURES / "cad" / "plate.step"
+
+
+def test_cad_faces_are_what_cli_info_lists_and_load_reads_them(cli):
+    out = subprocess.run([cli, "info", "--domain", PLATE], check=True, capture_output=True, text=True).stdout
+    faces = inrs.cad_faces(PLATE)
+    rows = re.findall(r"^face (\d+)\s+(\S+)\s+(\S+)\s+loops (\d+)  curves (\d+)", out, re.M)
+    assert [(f.index, f.entity, f.surface, f.loops, f.curves) for f in faces] == [
+        (int(k), e, s, int(l), int(c)) for k, e, s, l, c in rows
+    ]
+    assert faces[0].error is None and faces[0].area == pytest.approx(100 - 4 * np.pi, rel=1e-13)
+    d = inrs.Domain.load(f"{PLATE}#face:0")
+    assert d.to_json() == faces[0].domain.to_json()
+    uv = np.array([[1.0, 1.0], [5.0, 5.0], [11.0, 5.0]])
+    assert d.classify(uv).tolist() == [inrs.INSIDE, inrs.OUTSIDE, inrs.OUTSIDE]
+    with pytest.raises(ValueError, match="face 3 does not exist"):
+        inrs.Domain.load(f"{PLATE}#face:3")

@@ -2,7 +2,7 @@
 //! `--method` and `--fill-rule` against analytic locations, and `mesh --refine`.
 
 mod common;
-use common::{fixture, inrs_ok, last_column, temp_file};
+use common::{fixture, inrs, inrs_ok, last_column, temp_file};
 
 #[test]
 fn classify_by_every_method_and_fill_rule() {
@@ -62,5 +62,39 @@ fn mesh_refine_splits_every_triangle() {
             .unwrap()
             .len(),
         t
+    );
+}
+
+/// `--domain part.step#face:K` reads face K in its (u, v) for every command; `inrs info` on the
+/// file lists its faces.
+#[test]
+fn cad_faces_are_listed_and_classified() {
+    let plate = fixture("cad/plate.step");
+    let listing = inrs_ok(&["info", "--domain", &plate]);
+    assert!(
+        listing.contains("1 STEP faces (1 read, 0 refused); tolerance 1e-7"),
+        "{listing}"
+    );
+    assert!(listing.contains("face 0    #99       PLANE"), "{listing}");
+    assert!(listing.contains("loops 2  curves 5"), "{listing}");
+    let points = temp_file("plate_uv.csv", "x,y\n1,1\n5,5\n11,5\n7,5\n");
+    let spec = format!("{plate}#face:0");
+    let out = inrs_ok(&["classify", "--domain", &spec, "--points", &points]);
+    assert_eq!(
+        last_column(&out),
+        ["inside", "outside", "outside", "boundary"]
+    );
+    let out = inrs(&[
+        "classify",
+        "--domain",
+        &format!("{plate}#face:1"),
+        "--points",
+        &points,
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("face 1 does not exist: the file has 1 face"),
+        "{err}"
     );
 }

@@ -143,3 +143,56 @@ fn domain_to_json_round_trips_and_classifies_the_same() {
     let (a, b) = (inrs::DomainSummary::of(&d), inrs::DomainSummary::of(&back));
     assert_eq!(a.signed_area, b.signed_area);
 }
+
+/// fixtures/cad/plate.step: a 10 x 10 plate with a hole of radius 2 about (5, 5), on a tilted
+/// plane, with pcurves (written by the STEP reader's tests).
+fn plate_step() -> String {
+    format!(
+        "{}/../../fixtures/cad/plate.step",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+#[test]
+fn a_cad_face_is_a_domain_in_its_parameters() {
+    use inrs::io::cad::CadModel;
+    let model = CadModel::read(plate_step()).unwrap();
+    let faces = model.face_summaries(None);
+    assert_eq!(faces.len(), 1);
+    assert_eq!((faces[0].loops, faces[0].curves), (2, 5));
+    assert_eq!(faces[0].surface, "PLANE");
+    let area = 100.0 - 4.0 * std::f64::consts::PI;
+    assert!((faces[0].area - area).abs() < 1e-12, "{}", faces[0].area);
+    let d = model.face_domain(0, None).unwrap();
+    let same = inrs::io::load_domain(&format!("{}#face:0", plate_step())).unwrap();
+    assert_eq!(domain_to_json(&d), domain_to_json(&same));
+    let points = [
+        Point::new(1.0, 1.0),
+        Point::new(5.0, 5.0),
+        Point::new(11.0, 5.0),
+    ];
+    let expected = [Location::Inside, Location::Outside, Location::Outside];
+    for method in Method::ALL {
+        assert_eq!(classify(&d, method, FillRule::EvenOdd, &points), expected);
+    }
+}
+
+#[test]
+fn a_closure_tolerance_joins_curves_for_any_source() {
+    use inrs::io::{LoadOptions, load_domain, load_domain_with};
+    let thin = format!(
+        "{}/../../fixtures/bad/thin_gap.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    assert!(load_domain(&thin).unwrap().require_closed().is_err());
+    let options = LoadOptions {
+        closure_tolerance: Some(1e-8),
+    };
+    let d = load_domain_with(&thin, &options).unwrap();
+    assert!(d.require_closed().is_ok());
+    let points = [Point::new(0.05, 0.001), Point::new(0.05, -0.001)];
+    assert_eq!(
+        classify(&d, Method::InRS2, FillRule::EvenOdd, &points),
+        [Location::Inside, Location::Outside]
+    );
+}
