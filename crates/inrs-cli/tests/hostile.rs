@@ -435,6 +435,121 @@ fn hostile_svg_dxf_and_font_files_fail_cleanly() {
     assert!(r.stdout.contains("0.5,0.5,inside"));
 }
 
+/// Hostile STEP and IGES files (truncated, dangling and cyclic references, non-finite numbers,
+/// deep nesting, a 20 MB line, broken IGES sections) each give one line naming the format,
+/// under the time and memory limits. A broken file fails its face list the same way; a file
+/// whose face alone is broken lists the face as refused, with the reason.
+#[test]
+fn hostile_step_and_iges_files_fail_cleanly() {
+    let d = scratch("cad");
+    let pts = write(&d, "p.csv", "5,5\n");
+    let plate = std::fs::read_to_string(fixture("cad/plate.step")).unwrap();
+    let half = plate[..plate.len() / 2].to_string();
+    let deep = format!(
+        "ISO-10303-21;HEADER;ENDSEC;DATA;#1=A({}1{});ENDSEC;END-ISO-10303-21;",
+        "(".repeat(100_000),
+        ")".repeat(100_000)
+    );
+    let long = format!(
+        "ISO-10303-21;HEADER;ENDSEC;DATA;#1=A({}",
+        "(".repeat(20 << 20)
+    );
+    let iges_line = |text: &str, section: char, n: usize| format!("{text:<72}{section}{n:>7}\n");
+    let iges_truncated = iges_line("", 'S', 1);
+    let iges_bad_pointer = [
+        iges_line("", 'S', 1),
+        iges_line("1H,,1H;;", 'G', 1),
+        iges_line(
+            "     144  99999999       0       0       0       0       0       000000000",
+            'D',
+            1,
+        ),
+        iges_line(
+            "     144       0       0       1       0                               0",
+            'D',
+            2,
+        ),
+        iges_line("144,1,1,0,3;", 'P', 1),
+        iges_line("S      1G      1D      2P      1", 'T', 1),
+    ]
+    .concat();
+    // Faces broken alone: (file, its text, the refusal).
+    let face_cases = [
+        (
+            "dangling.step",
+            plate.replace("#204=PLANE('',#203);", "#204=PLANE('',#999999);"),
+            "#204 PLANE refers to #999999, which is not in the file",
+        ),
+        (
+            "cycle.step",
+            plate.replace(
+                "#203=AXIS2_PLACEMENT_3D('',#200,#201,#202);",
+                "#203=AXIS2_PLACEMENT_3D('',#203,#201,#202);",
+            ),
+            "#203 AXIS2_PLACEMENT_3D is not a CARTESIAN_POINT",
+        ),
+    ];
+    for (name, text, reason) in &face_cases {
+        let f = write(&d, name, text);
+        let spec = format!("{f}#face:0");
+        check(
+            &d,
+            &["classify", "--domain", &spec, "--points", &pts],
+            Expect::Error(reason),
+            20,
+        );
+        let r = check(&d, &["info", "--domain", &f], Expect::Success, 20);
+        assert!(
+            r.stdout.contains(&format!("refused: {reason}")),
+            "{}",
+            r.stdout
+        );
+        check(
+            &d,
+            &["info", "--require-closed", "--domain", &f],
+            Expect::Error("1 of 1 faces are refused"),
+            20,
+        );
+    }
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("truncated.step", half, "STEP: line 49: the file ends early"),
+        (
+            "nan.step",
+            plate.replacen("(1.0,2.0,3.0)", "(1.E400,2.0,3.0)", 1),
+            "STEP",
+        ),
+        ("deep.step", deep, "STEP"),
+        ("long.stp", long, "STEP"),
+        ("truncated.igs", iges_truncated, "IGES"),
+        ("pointer.iges", iges_bad_pointer, "IGES"),
+        ("notcad.step", "hello".into(), "STEP"),
+    ];
+    for (name, text, needle) in &cases {
+        let f = write(&d, name, text);
+        check(
+            &d,
+            &[
+                "classify",
+                "--domain",
+                &format!("{f}#face:0"),
+                "--points",
+                &pts,
+            ],
+            Expect::Error(needle),
+            20,
+        );
+        check(&d, &["info", "--domain", &f], Expect::Error(needle), 20);
+    }
+    // A bad selection is an error naming the syntax.
+    let f = write(&d, "plate.step", &plate);
+    check(
+        &d,
+        &["info", "--domain", &format!("{f}#face:x")],
+        Expect::Error("write #face:K"),
+        20,
+    );
+}
+
 /// A boundary of 10^6 pieces (an SVG path of 10^6 commands: a circle polygon and a zigzag)
 /// is refused at once by everything that meshes or samples by lines, naming the limit
 /// (it used to run for minutes at 1.3 GB).
