@@ -99,10 +99,13 @@ pub(crate) fn cad_face_figure(
     for p in pts {
         bb = bb.including(*p);
     }
+    // Equal scales on both axes unless that would make the plot too flat or too tall.
+    let aspect = (bb.height() / bb.width()).clamp(0.4, 1.2);
+    let aspect = if aspect.is_finite() { aspect } else { 0.75 };
     let mut fig = Figure::chart(
         bb,
         SIZE,
-        0.75 * SIZE,
+        aspect * SIZE,
         ChartAxis::linear("u"),
         ChartAxis::linear("v"),
     );

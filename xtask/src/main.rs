@@ -26,7 +26,8 @@ Commands:
                           data stored in the files, print a table and a summary of each domain,
                           and write SVG figures to target/figures/ (monotone boxes, refined
                           boxes, classified points, a winding-number field with a gap, curved
-                          triangulations of S(4) and of a disc with an elliptic hole).
+                          triangulations of S(4) and of a disc with an elliptic hole, the face of
+                          fixtures/cad/plate.step in its (u, v)).
   bench [OPTIONS]         The papers' comparisons in one process (medians of repeated runs):
                           Tables 1-2 (inRS1, inRS2, polygon within 1e-10), the fast paths and
                           GWN, evaluation histograms and linearisation errors of the GWN paper;
@@ -229,6 +230,7 @@ fn demo(dir: &Path) -> Result<(), String> {
         14,
         &mut failures,
     )?);
+    figures_written.push(cad_demo(&figures_dir, &mut failures)?);
     println!("figures written to {}:", figures_dir.display());
     for f in &figures_written {
         println!(
@@ -242,6 +244,45 @@ fn demo(dir: &Path) -> Result<(), String> {
     } else {
         Err(failures.join("; "))
     }
+}
+
+/// The CAD part of the demo: the face of fixtures/cad/plate.step (a plate with a round hole
+/// on a tilted plane) read from the STEP file, its `(u, v)` area checked against `100 - 4 pi`,
+/// and its figure.
+fn cad_demo(dir: &Path, failures: &mut Vec<String>) -> Result<PathBuf, String> {
+    let spec = workspace_root().join("fixtures/cad/plate.step#face:0");
+    let spec = spec.to_string_lossy();
+    let d = inrs::io::load_domain(&spec).map_err(|e| format!("{spec}: {e}"))?;
+    let area = 100.0 - 4.0 * std::f64::consts::PI;
+    println!(
+        "CAD face plate.step#face:0: {} loops, {} curves, (u, v) area {:.15} (100 - 4 pi = {area:.15})",
+        d.loops().len(),
+        d.curves().len(),
+        d.signed_area()
+    );
+    if (d.signed_area() - area).abs() > 1e-12 * area {
+        failures.push(format!(
+            "plate.step: area {} instead of {area}",
+            d.signed_area()
+        ));
+    }
+    let pts = halton_points(2000, d.bounding_box());
+    let loc = Classifier::new(&d, ContainOptions::default())
+        .map_err(|e| format!("{spec}: {e}"))?
+        .locate_all(&pts);
+    let caption = format!(
+        "plate.step, {}: a plate with a round hole on a tilted plane, in the plane's (u, v); \
+         {} Halton points",
+        d.name().unwrap_or_default(),
+        pts.len()
+    );
+    let path = dir.join("cad_plate_face.svg");
+    std::fs::write(
+        &path,
+        figures::cad_face_figure(&d, &pts, &loc, &caption).to_svg(),
+    )
+    .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(path)
 }
 
 /// The value after `flag` in `args`, if the flag is there.
@@ -281,10 +322,10 @@ fn cad_figure(args: &[String]) -> Result<(), String> {
     let file = Path::new(spec.split('#').next().unwrap_or(spec))
         .file_name()
         .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
-    let face = spec.split('#').nth(1).unwrap_or("face:0");
+    let max_degree = d.curves().iter().map(|c| c.degree()).max().unwrap_or(0);
     let caption = format!(
-        "{file} {face} ({}) in its surface's parameters (u, v): {} trimming loop(s) of {} curves; \
-         {} Halton points, {inside} inside",
+        "{file}, {} in its surface's parameters (u, v): {} trimming loop(s) of {} curves \
+         (degree up to {max_degree}); {} Halton points classified, {inside} inside",
         d.name().unwrap_or_default(),
         d.loops().len(),
         d.curves().len(),
