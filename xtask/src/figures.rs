@@ -42,8 +42,8 @@ fn boxes_figure(d: &Domain, subdivisions: usize, caption: &str) -> Result<Figure
     Ok(fig)
 }
 
-fn points_figure(d: &Domain, pts: &[Point], loc: &[Location], caption: &str) -> Figure {
-    let mut fig = Figure::new(d.bounding_box(), SIZE);
+/// Each point as a dot coloured by its location (inside green, outside red, boundary black).
+fn mark_locations(fig: &mut Figure, pts: &[Point], loc: &[Location]) {
     let dot = |color: &str, label: &str| {
         Style::fill(color)
             .with_marker(Marker::Dot(1.6))
@@ -62,6 +62,11 @@ fn points_figure(d: &Domain, pts: &[Point], loc: &[Location], caption: &str) -> 
         };
         fig.mark(*p, style);
     }
+}
+
+fn points_figure(d: &Domain, pts: &[Point], loc: &[Location], caption: &str) -> Figure {
+    let mut fig = Figure::new(d.bounding_box(), SIZE);
+    mark_locations(&mut fig, pts, loc);
     draw_boundary(&mut fig, d);
     fig.caption(caption);
     fig
@@ -109,24 +114,7 @@ pub(crate) fn cad_face_figure(
         ChartAxis::linear("u"),
         ChartAxis::linear("v"),
     );
-    let dot = |color: &str, label: &str| {
-        Style::fill(color)
-            .with_marker(Marker::Dot(1.6))
-            .labelled(label)
-    };
-    let (inside, outside, boundary) = (
-        dot("#2ca02c", "inside"),
-        dot("#d62728", "outside"),
-        dot("#000000", "on the boundary"),
-    );
-    for (p, l) in pts.iter().zip(loc) {
-        let style = match l {
-            Location::Inside => &inside,
-            Location::Outside => &outside,
-            Location::Boundary => &boundary,
-        };
-        fig.mark(*p, style);
-    }
+    mark_locations(&mut fig, pts, loc);
     let outer = Style::stroke("#000000", 1.8).labelled("outer trimming loop");
     let inner = Style::stroke("#1f3fbf", 1.8).labelled("inner trimming loop (hole)");
     for (i, l) in d.loops().iter().enumerate() {
