@@ -12,6 +12,14 @@ each side are classified by ``BRepClass_FaceClassifier`` (the oracle) and by an 
 points that either side puts on the boundary, or that lie within a margin of the loops, are
 left out of the comparison (there the answer depends on tolerances, not on the loops).
 
+``inrs.cad_faces`` reads each face in the file's own ``(u, v)``, OCC in its own. Where OCC's is
+the file's scaled to millimetres and radians (:func:`uv_scale`), the points are scaled, and the
+scale is checked in space: the file's surface, evaluated from the file's numbers by
+:mod:`cad_surfaces` (written from ISO 10303-42 and IGES 5.3), meets OCC's surface at the scaled
+point (:func:`scale_map_error`). Elsewhere (surfaces of revolution, whose curve OCC re-frames
+and whose ``u``, ``v`` IGES and OCC swap; IGES planes) the points are drawn in the file's box
+and carried to OCC's ``(u, v)`` through space (:class:`ProjectionMap`).
+
 This module imports OCP only inside :func:`load_ocp` and the functions that need it, so that
 the test module can skip (or fail) with a message when OCP is missing.
 """
@@ -29,6 +37,8 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
 import numpy as np
+
+import cad_surfaces
 
 IDF = pathlib.Path("/usr/share/freecad/Mod/Idf/Idflibs")
 GMSH = pathlib.Path("/usr/share/doc/gmsh-doc/doc/gmsh")
@@ -126,6 +136,8 @@ class OccFile:
     rad_per_angle_unit: float
     #: Lazily computed per face: points, OCC codes, diagonal (see :meth:`face_sample`).
     samples: Dict[int, "FaceSample"] = field(default_factory=dict)
+    #: The file's entities for :mod:`cad_surfaces` (see :meth:`file_model`).
+    model: object = None
 
     @staticmethod
     def read(path: pathlib.Path) -> "OccFile":
@@ -171,6 +183,25 @@ class OccFile:
             entities.append(None if entity is None else names.get(entity))
         return OccFile(path, "STEP" if step else "IGES", faces, entities, mm, rad)
 
+    def file_model(self):
+        """The file's entities, parsed once: a :class:`cad_surfaces.StepFile` or
+        :class:`cad_surfaces.IgesFile`."""
+        if self.model is None:
+            text = self.path.read_text(errors="replace")
+            step = self.format == "STEP"
+            self.model = cad_surfaces.StepFile(text, self.rad_per_angle_unit) if step else cad_surfaces.IgesFile(text)
+        return self.model
+
+    def face_surface(self, entity: str) -> Tuple[str, "cad_surfaces.Surface"]:
+        """``(type, (u, v) -> points in millimetres)``: the surface of the face the file names
+        ``entity`` (``#123``, ``DE 57``), in the file's own parameters (raises
+        :class:`cad_surfaces.Unsupported`)."""
+        model = self.file_model()
+        key = entity if self.format == "STEP" else int(entity.split()[-1])
+        kind, surface = model.face_surface(key)
+        mm = self.mm_per_unit
+        return kind, lambda uv: mm * surface(np.asarray(uv, float))
+
     def face_sample(self, k: int, n: int = POINTS_PER_FACE) -> "FaceSample":
         """The random points of face ``k`` and OCC's codes for them (computed once)."""
         if k not in self.samples:
@@ -203,31 +234,59 @@ class FaceSample:
 
     @staticmethod
     def of(face, seed, n: int) -> "FaceSample":
-        from OCP.BRepClass import BRepClass_FaceClassifier
         from OCP.BRepTools import BRepTools
-        from OCP.gp import gp_Pnt2d
-        from OCP.TopAbs import TopAbs_IN, TopAbs_OUT
 
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
         du, dv = u1 - u0, v1 - v0
         diagonal = math.hypot(du, dv)
-        skip = None
-        if not (math.isfinite(diagonal) and diagonal > 0):
-            skip = f"UV bounds {(u0, u1, v0, v1)}"
-        elif min(du, dv) <= DEGENERATE * max(du, dv):
-            skip = f"degenerate: UV box {du:.3g} x {dv:.3g}"
+        skip = box_skip(du, dv)
         if skip:
             return FaceSample(np.zeros((0, 2)), np.zeros(0, np.int8), diagonal, (du, dv), skip)
-        rng = np.random.default_rng(list(seed))
-        points = np.column_stack(
-            [rng.uniform(u0 - 0.05 * du, u1 + 0.05 * du, n), rng.uniform(v0 - 0.05 * dv, v1 + 0.05 * dv, n)]
-        )
-        tol = OCC_TOL * diagonal
-        codes = np.empty(n, np.int8)
-        for i, (u, v) in enumerate(points):
+        points = random_points((u0, v0, u1, v1), seed, n)
+        return FaceSample(points, occ_codes(face, points, OCC_TOL * diagonal), diagonal, (du, dv), None)
+
+
+def occ_box(face) -> Tuple[float, float, float, float]:
+    """``(u0, v0, du, dv)``: OCC's ``BRepTools.UVBounds`` of ``face``, corner and size."""
+    from OCP.BRepTools import BRepTools
+
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    return u0, v0, u1 - u0, v1 - v0
+
+
+def box_skip(du: float, dv: float) -> Optional[str]:
+    """Why a face whose ``(u, v)`` box is ``du`` by ``dv`` is not compared, or None."""
+    diagonal = math.hypot(du, dv)
+    if not (math.isfinite(diagonal) and diagonal > 0):
+        return f"UV box {du} x {dv}"
+    if min(du, dv) <= DEGENERATE * max(du, dv):
+        return f"degenerate: UV box {du:.3g} x {dv:.3g}"
+    return None
+
+
+def random_points(box: Tuple[float, float, float, float], seed, n: int) -> np.ndarray:
+    """``n`` random points in ``box = (u0, v0, u1, v1)`` grown by 5% on each side."""
+    u0, v0, u1, v1 = box
+    du, dv = u1 - u0, v1 - v0
+    rng = np.random.default_rng(list(seed))
+    return np.column_stack(
+        [rng.uniform(u0 - 0.05 * du, u1 + 0.05 * du, n), rng.uniform(v0 - 0.05 * dv, v1 + 0.05 * dv, n)]
+    )
+
+
+def occ_codes(face, points: np.ndarray, tol: float) -> np.ndarray:
+    """OCC's classification of ``points`` (in OCC's ``(u, v)`` of ``face``): int8 codes 0
+    OUT, 1 IN, 2 ON; NaN points get 2 (left out)."""
+    from OCP.BRepClass import BRepClass_FaceClassifier
+    from OCP.gp import gp_Pnt2d
+    from OCP.TopAbs import TopAbs_IN, TopAbs_OUT
+
+    codes = np.full(len(points), 2, np.int8)
+    for i, (u, v) in enumerate(points):
+        if math.isfinite(u) and math.isfinite(v):
             state = BRepClass_FaceClassifier(face, gp_Pnt2d(float(u), float(v)), tol).State()
             codes[i] = 1 if state == TopAbs_IN else 0 if state == TopAbs_OUT else 2
-        return FaceSample(points, codes, diagonal, (du, dv), None)
+    return codes
 
 
 @dataclass
@@ -300,7 +359,9 @@ def uv_scale(face, occ_file: OccFile) -> Optional[Tuple[float, float]]:
     own knots: unscaled). A cone's ``v`` is the height along the axis in STEP (ISO 10303-42)
     but the length along the generatrix in OCC: ``sv = mm / cos(semi-angle)``. IGES
     surfaces other than B-splines are parameterised otherwise than OCC's (lines on [0, 1],
-    revolution angle second): None.
+    revolution angle second; a 108 plane's axes chosen by the reader), as are surfaces of
+    revolution: None (:class:`ProjectionMap` maps those). :func:`scale_map_error` checks the
+    scale where it is given.
     """
     from OCP.BRep import BRep_Tool
     from OCP.Geom import (
@@ -333,6 +394,173 @@ def uv_scale(face, occ_file: OccFile) -> Optional[Tuple[float, float]]:
     if isinstance(surface, (Geom_SphericalSurface, Geom_ToroidalSurface)):
         return (rad, rad)
     return None
+
+
+#: Largest distance, relative to the face's extent in space, between the file's surface at a
+#: point and OCC's surface at the point's mapped ``(u, v)``. Both are the same surface, its
+#: numbers written with 10 or more significant digits; the real files give under 1e-11.
+MAP_TOL = 1e-7
+
+
+#: How well a mapped point's OCC ``(u, v)`` must be known, relative to OCC's box diagonal (the
+#: distance left in space over the surface's stretch), to be compared: far below MARGIN, so
+#: that the points kept are on the same side of the loops for OCC as for inrs.
+UV_TOL = 1e-8
+
+
+class MapError(ValueError):
+    """No map between a face's ``(u, v)`` in the file and in OCC."""
+
+
+def occ_surfaces(face) -> list:
+    """OCC's surface of ``face`` in the frames the file's points may be in: without the
+    face's location (a STEP part's own frame, when an assembly places the part) and with it
+    (IGES: model space, where OCC may have moved a transformation matrix into the location)."""
+    from OCP.BRep import BRep_Tool
+    from OCP.TopLoc import TopLoc_Location
+
+    return [BRep_Tool.Surface_s(face, TopLoc_Location()), BRep_Tool.Surface_s(face)]
+
+
+def _extent(evaluate, box) -> float:
+    """The diagonal of the 3-D box of the file's surface on a 3 x 3 grid of ``box``."""
+    u0, v0, u1, v1 = box
+    g = np.array([(u, v) for u in (u0, (u0 + u1) / 2, u1) for v in (v0, (v0 + v1) / 2, v1)])
+    p = evaluate(g)
+    return float(np.linalg.norm(p.max(axis=0) - p.min(axis=0)))
+
+
+def _value(surface, u: float, v: float) -> np.ndarray:
+    p = surface.Value(float(u), float(v))
+    return np.array([p.X(), p.Y(), p.Z()])
+
+
+def newton(surface, target: np.ndarray, uv: np.ndarray, eps: float) -> Tuple[Optional[np.ndarray], float]:
+    """``(uv, error)``: the ``(u, v)`` near ``uv`` where OCC's ``surface`` meets the 3-D point
+    ``target`` (Gauss-Newton on the distance, until a step is below ``eps``) and a bound on
+    how far it may be from the exact one: the distance left in space divided by the
+    surface's smallest stretch there (near an axis or a pole ``u`` is ill-conditioned and
+    the steps stop shrinking at the rounding level; that bound says how much it matters).
+    ``(None, inf)`` where the surface is singular."""
+    from OCP.gp import gp_Pnt, gp_Vec
+
+    p, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
+    u, v = float(uv[0]), float(uv[1])
+    best: Tuple[Optional[np.ndarray], float] = (None, math.inf)
+    for _ in range(12):
+        surface.D1(u, v, p, su, sv)
+        r = target - np.array([p.X(), p.Y(), p.Z()])
+        eu, ev = np.array([su.X(), su.Y(), su.Z()]), np.array([sv.X(), sv.Y(), sv.Z()])
+        aa, ab, bb = eu @ eu, eu @ ev, ev @ ev
+        det = aa * bb - ab * ab
+        if not (det > 1e-20 * aa * bb):
+            break
+        # The smallest singular value of the Jacobian [eu ev]: the square root of the Gram
+        # matrix's smallest eigenvalue.
+        stretch = math.sqrt(max(0.0, (aa + bb) / 2 - math.sqrt(((aa - bb) / 2) ** 2 + ab * ab)))
+        error = float(np.linalg.norm(r)) / stretch if stretch > 0 else math.inf
+        if error < best[1]:
+            best = (np.array([u, v]), error)
+        ra, rb = eu @ r, ev @ r
+        du, dv = (bb * ra - ab * rb) / det, (aa * rb - ab * ra) / det
+        if not (math.isfinite(du) and math.isfinite(dv)) or math.hypot(du, dv) <= eps:
+            break
+        u, v = u + du, v + dv
+    return best
+
+
+@dataclass
+class ProjectionMap:
+    """The map from the file's ``(u, v)`` of a face to OCC's, through space: a point's image
+    on the file's surface (:mod:`cad_surfaces`, written from the standards) is found on OCC's
+    surface by Newton's method, started from the map's linear approximation at the face's
+    centre. Where OCC's parameterisation is periodic, that start picks the representative:
+    the centre's image is taken in OCC's face box, and the others follow continuously (a
+    point outside the file's box goes outside OCC's, as it should)."""
+
+    surface: object  # OCC's Geom_Surface, in the file's frame
+    evaluate: object  # the file's surface, (n, 2) -> (n, 3) millimetres
+    centre: np.ndarray  # the file's (u, v)
+    image: np.ndarray  # its OCC (u, v)
+    jacobian: np.ndarray  # d(OCC's u, v) / d(the file's u, v) at the centre
+    diagonal: float  # of OCC's (u, v) box of the face
+    eps: float  # Newton's last step in OCC's (u, v)
+
+    @staticmethod
+    def of(face, evaluate, box: Tuple[float, float, float, float]) -> "ProjectionMap":
+        """The map of ``face`` whose file surface is ``evaluate``, the file's domain in
+        ``box = (u0, v0, u1, v1)``."""
+        from OCP.BRepTools import BRepTools
+        from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
+        from OCP.gp import gp_Pnt
+
+        u0, v0, u1, v1 = map(float, box)
+        ou0, ou1, ov0, ov1 = BRepTools.UVBounds_s(face)
+        tol = MAP_TOL * _extent(evaluate, box)
+        box_diagonal = math.hypot(ou1 - ou0, ov1 - ov0)
+        eps = 1e-13 * box_diagonal
+        if not (tol > 0 and eps > 0):
+            raise MapError(f"empty box {box} or OCC box {(ou0, ou1, ov0, ov1)}")
+        h = np.array([1e-3 * (u1 - u0), 1e-3 * (v1 - v0)])
+        # The centre, or a point near it where the surface is regular (not an apex or pole).
+        for fu, fv in ((0.5, 0.5), (0.4, 0.6), (0.6, 0.35)):
+            centre = np.array([u0 + fu * (u1 - u0), v0 + fv * (v1 - v0)])
+            target = evaluate(centre[None])[0]
+            best = None
+            for surface in occ_surfaces(face):
+                proj = GeomAPI_ProjectPointOnSurf(gp_Pnt(*map(float, target)), surface)
+                if proj.NbPoints() > 0 and (best is None or proj.LowerDistance() < best[0]):
+                    best = (proj.LowerDistance(), surface, np.array(proj.LowerDistanceParameters()))
+            if best is None or not best[0] <= tol:
+                dist = "nowhere" if best is None else f"{best[0]:.3g} mm away"
+                raise MapError(f"the file's surface at {tuple(centre)} is {dist} from OCC's (tolerance {tol:.3g} mm)")
+            _, surface, image = best
+            # The representative of a periodic parameter nearest the middle of OCC's box.
+            if surface.IsUPeriodic():
+                image[0] += surface.UPeriod() * round(((ou0 + ou1) / 2 - image[0]) / surface.UPeriod())
+            if surface.IsVPeriodic():
+                image[1] += surface.VPeriod() * round(((ov0 + ov1) / 2 - image[1]) / surface.VPeriod())
+            image, error = newton(surface, target, image, eps)
+            if not error <= UV_TOL * box_diagonal:
+                continue
+            columns = []
+            for d in (np.array([h[0], 0.0]), np.array([0.0, h[1]])):
+                q, error = newton(surface, evaluate((centre + d)[None])[0], image, eps)
+                if not error <= UV_TOL * box_diagonal:
+                    break
+                columns.append((q - image) / d[d != 0][0])
+            if len(columns) == 2:
+                return ProjectionMap(surface, evaluate, centre, image, np.column_stack(columns), box_diagonal, eps)
+        raise MapError("OCC's surface is singular at the centre of the face and near it")
+
+    def __call__(self, points: np.ndarray) -> np.ndarray:
+        """OCC's ``(u, v)`` of ``points`` (n, 2) in the file's; NaN rows where Newton's method
+        fails or its result is not known within ``UV_TOL`` of the box diagonal (at and near
+        a singular point of the surface): those are left out of the comparison."""
+        targets = self.evaluate(points)
+        starts = self.image + (points - self.centre) @ self.jacobian.T
+        out = np.full(points.shape, np.nan)
+        for i, (target, start) in enumerate(zip(targets, starts)):
+            q, error = newton(self.surface, target, start, self.eps)
+            if error <= UV_TOL * self.diagonal:
+                out[i] = q
+        return out
+
+
+def scale_map_error(face, evaluate, scale: Tuple[float, float], box) -> float:
+    """How far (relative to the face's extent) OCC's surface at ``(su u, sv v)`` is from the
+    file's surface at ``(u, v)``, the largest over five points of ``box``: ~0 where
+    :func:`uv_scale` gives the exact map."""
+    u0, v0, u1, v1 = box
+    fractions = np.array([(0.5, 0.5), (0.2, 0.3), (0.8, 0.7), (0.3, 0.9), (0.9, 0.1)])
+    uv = np.array([u0, v0]) + fractions * np.array([u1 - u0, v1 - v0])
+    targets = evaluate(uv)
+    extent = _extent(evaluate, box)
+    best = math.inf  # over the frames of occ_surfaces: the one the file's points are in
+    for surface in occ_surfaces(face):
+        d = max(float(np.linalg.norm(_value(surface, scale[0] * u, scale[1] * v) - t)) for (u, v), t in zip(uv, targets))
+        best = min(best, d)
+    return best / extent if extent > 0 else math.inf
 
 
 def reason(error: str) -> str:
@@ -430,7 +658,16 @@ class ReadersReport:
     labels_checked: int = 0
     #: IGES faces whose DE is the one OCC links the face to (told, not required).
     iges_same_de: int = 0
-    #: Faces whose parameterisation differs from OCC's by more than a scale (see uv_scale).
+    #: Faces compared through a :class:`ProjectionMap` (their parameterisation in OCC is not
+    #: a scaling of the file's: see uv_scale).
+    mapped: int = 0
+    #: Points of those faces left out because the map has no image there (a singular point).
+    unmapped_points: int = 0
+    #: Faces compared through uv_scale whose scale was checked in space (the file's surface
+    #: evaluated), and ``{surface type: count}`` of those not checked (no evaluator).
+    scale_checked: int = 0
+    scale_unchecked: Dict[str, int] = field(default_factory=dict)
+    #: Faces with neither map (each also a problem): not compared.
     other_parameterisation: int = 0
     degenerate: int = 0
     compared: int = 0
@@ -442,8 +679,9 @@ class ReadersReport:
 
 def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
     """Reads ``path`` with ``inrs.cad_faces`` (and its first face again with
-    ``Domain.load("path#face:K")``) and compares
-    each face with OCC's on the same random points, mapped to the file's units."""
+    ``Domain.load("path#face:K")``) and compares each face with OCC's on the same random
+    points: OCC's scaled to the file's ``(u, v)`` (the scale checked in space), or, where
+    the parameterisations differ otherwise, the file's carried to OCC's through space."""
     import inrs
 
     faces = inrs.cad_faces(path)
@@ -487,19 +725,53 @@ def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
             report.problems.append(f"{where}: {ours.loops} loops, {ours.curves} curves; loaded {loaded}")
         if not math.isclose(ours.area, domain.area, rel_tol=1e-9):
             report.problems.append(f"{where}: area {ours.area}, loaded {domain.area}")
-        sample = occ.face_sample(k)
-        if sample.skip:
+        scale = uv_scale(face, occ)
+        # Faces mapped through space are sampled in the file's (u, v) box, the others in
+        # OCC's (shared with check_occ_faces); a thin box in either is degenerate.
+        u0, v0, u1, v1 = ours.bbox
+        sample = occ.face_sample(k) if scale is not None else None
+        skip = sample.skip if sample is not None else box_skip(*occ_box(face)[2:]) or box_skip(u1 - u0, v1 - v0)
+        if skip:
             report.degenerate += 1
             continue
         if not domain.area > 0:
             report.problems.append(f"{where}: area {domain.area}")
-        scale = uv_scale(face, occ)
-        if scale is None:
-            report.other_parameterisation += 1
-            continue
-        points = sample.points / np.array(scale)
-        diagonal = math.hypot(sample.size[0] / scale[0], sample.size[1] / scale[1])
-        c = compare(domain, points, sample.codes, diagonal)
+        try:
+            _kind, evaluate = occ.face_surface(ours.entity)
+            unsupported = None
+        except cad_surfaces.Unsupported as e:
+            evaluate, unsupported = None, str(e)
+        if sample is not None:
+            # The scale is checked in space where the file's surface can be evaluated.
+            if evaluate is None:
+                kind = ours.surface.split(" (")[0]
+                report.scale_unchecked[kind] = report.scale_unchecked.get(kind, 0) + 1
+            else:
+                error = scale_map_error(face, evaluate, scale, ours.bbox)
+                report.scale_checked += 1
+                if not error <= MAP_TOL:
+                    report.problems.append(f"{where}: OCC's (u, v) is not the file's scaled by {scale}: {error:.3g}")
+            points = sample.points / np.array(scale)
+            diagonal = math.hypot(sample.size[0] / scale[0], sample.size[1] / scale[1])
+            c = compare(domain, points, sample.codes, diagonal)
+        else:
+            try:
+                if evaluate is None:
+                    raise MapError(unsupported)
+                to_occ = ProjectionMap.of(face, evaluate, ours.bbox)
+            except MapError as e:
+                report.other_parameterisation += 1
+                report.problems.append(f"{where}: {ours.surface}: no map from the file's (u, v) to OCC's: {e}")
+                continue
+            points = random_points(ours.bbox, (zlib.crc32(occ.path.name.encode()), k), POINTS_PER_FACE)
+            mapped = to_occ(points)
+            report.mapped += 1
+            unmapped = int(np.isnan(mapped[:, 0]).sum())
+            report.unmapped_points += unmapped
+            if unmapped > len(points) // 8:
+                report.problems.append(f"{where}: {unmapped} of {len(points)} points have no image in OCC's (u, v)")
+            codes = occ_codes(face, mapped, OCC_TOL * math.hypot(*occ_box(face)[2:]))
+            c = compare(domain, points, codes, math.hypot(u1 - u0, v1 - v0))
         report.compared += c.compared
         report.excluded += c.excluded
         report.disagreements += [(k, ours.entity, ours.surface, *d) for d in c.disagreements]

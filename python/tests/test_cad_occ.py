@@ -4,7 +4,9 @@ Part a (``inrs.occ``): for every face OCC reads, ``inrs.occ.face_domain`` (its p
 converted exactly) classifies random ``(u, v)`` points as OCC's ``BRepClass_FaceClassifier``
 does, away from the boundary. Part b (``inrs.cad_faces``, the Rust readers): the same face
 count as OCC, STEP faces in OCC's order (checked by their instance labels), and every face
-read classifies as OCC does.
+read classifies as OCC does, each through an exact map between the file's ``(u, v)`` and
+OCC's, checked in space (``cad_files``, ``cad_surfaces``); IGES 108 planes, absent from the
+real files, on hand-written files.
 
 Also the conversion itself on shapes built with OCC (analytic areas, holes, orientation, the
 errors). Without OCP or the files the tests skip with a message, and fail instead under
@@ -109,15 +111,113 @@ def test_cad_faces_match_occ(name, occ_files):
         f"\n[cad_faces] {name}: {r.faces} faces (OCC {r.occ_faces}; {r.labels_checked} STEP labels "
         f"checked, {r.iges_same_de} IGES faces with OCC's DE), {r.read} read, "
         f"{sum(map(len, r.refused.values()))} refused {sorted(r.refused.items())[:4]}; {r.compared} "
-        f"points compared, {r.excluded} excluded, {r.other_parameterisation} faces in another "
+        f"points compared, {r.excluded} excluded; {r.mapped} faces mapped through space "
+        f"({r.unmapped_points} points without image), scale maps checked on {r.scale_checked} faces "
+        f"(not on {sorted(r.scale_unchecked.items())}), {r.other_parameterisation} faces in another "
         f"parameterisation, {r.degenerate} degenerate, {len(r.disagreements)} disagree "
         f"({time.perf_counter() - start:.1f} s)"
     )
     # The same faces in the same order (STEP: OCC's face K is our face K's instance), each
     # listed consistently with its domain.
     assert not r.problems, f"{name}: {r.problems[:5]}"
-    # Every face read classifies as OCC does.
+    # Every face read classifies as OCC does, each compared through an exact map from its
+    # (u, v) in the file to OCC's, checked in space (the file's surface evaluated).
     assert not r.disagreements, f"{name}: (face, entity, surface, (u, v), OCC, inrs): {r.disagreements[:5]}"
+    assert r.other_parameterisation == 0 and not r.scale_unchecked
+    assert r.read == r.degenerate + r.mapped + r.scale_checked
+
+
+# --- The IGES 108 plane (none in the real files): hand-written files against OCC ------------
+
+
+def iges_text(entities) -> str:
+    """A fixed-form IGES 5.3 file (millimetres) of ``entities``: ``(type, parameters ending in
+    ';', transformation matrix DE, status)`` each; entity ``k`` (from 0) is ``DE 2k+1``."""
+
+    def line(text: str, section: str, seq: int) -> str:
+        return f"{text:<72}{section}{seq:07d}\n"
+
+    out = line("hand-written by python/tests/test_cad_occ.py", "S", 1)
+    glob = (
+        ",,4Htest,8Htest.igs,4Htest,4Htest,32,308,15,308,15,,1.,2,2HMM,1,0.01,"
+        "15H20240101.000000,1.E-09,100.,4Htest,,11,0,15H20240101.000000;"
+    )
+    g = [glob[i : i + 72] for i in range(0, len(glob), 72)]
+    out += "".join(line(t, "G", i + 1) for i, t in enumerate(g))
+    d, p, seq = "", "", 1
+    for i, (kind, params, transform, status) in enumerate(entities):
+        de = 2 * i + 1
+        lines = [""]  # parameter lines of at most 64 columns, split after delimiters
+        for piece in params.replace(",", ",\0").split("\0"):
+            if len(lines[-1]) + len(piece) > 64:
+                lines.append("")
+            lines[-1] += piece
+        d += f"{kind:>8}{seq:>8}{0:>8}{0:>8}{0:>8}{0:>8}{transform:>8}{0:>8}{status:>8}D{de:07d}\n"
+        d += f"{kind:>8}{0:>8}{0:>8}{len(lines):>8}{0:>8}{'':>8}{'':>8}{'':>8}{0:>8}D{de + 1:07d}\n"
+        for text in lines:
+            p += f"{text:<64} {de:>7}P{seq:07d}\n"
+            seq += 1
+    out += d + p
+    return out + f"S{1:07d}G{len(g):07d}D{2 * len(entities):07d}P{seq - 1:07d}{'':40}T{1:07d}\n"
+
+
+def plane_face_file(placed: bool, hole_clockwise: bool) -> str:
+    """One 144 face on the plane x + 2y + 2z = 6 bounded by model-space curves (142s with no
+    parameter-space curve): in the plane's frame (o; a, b), o = (2, 4, 4) / 3 its point nearest
+    the origin, a = (2, -1, 0) / sqrt 5, b = n x a, the triangle with corners (-3, -2),
+    (3, -2), (0, 3) less the unit disk around o. The disk's circle is a 100 placed by a 124
+    frame (a, b, n) or, for a clockwise hole, (a, -b, -n). The plane is the 108
+    ``x + 2y + 2z = 6``, or (``placed``) the 108 ``z = 0`` placed by the frame (a, b, n)."""
+    n = np.array([1.0, 2.0, 2.0]) / 3
+    o = 2 * n
+    a = np.array([2.0, -1.0, 0.0]) / math.sqrt(5)
+    b = np.cross(n, a)
+    corners = [o + s * a + t * b for s, t in ((-3, -2), (3, -2), (0, 3))]
+
+    def numbers(*arrays) -> str:
+        return ",".join(repr(float(c)) for x in arrays for c in np.ravel(x))
+
+    dep = "00010000"  # physically dependent: only the 144 is a root
+    return iges_text(
+        [
+            (144, "144,3,1,1,5,15;", 0, "00000000"),  # DE 1
+            (108, "108,0.,0.,1.,0.;" if placed else "108,1.,2.,2.,6.;", 19 if placed else 0, dep),  # DE 3
+            (142, "142,0,3,0,7,2;", 0, dep),  # DE 5: the outer boundary
+            (102, "102,3,9,11,13;", 0, dep),  # DE 7
+            (110, f"110,{numbers(corners[0], corners[1])};", 0, dep),  # DE 9
+            (110, f"110,{numbers(corners[1], corners[2])};", 0, dep),  # DE 11
+            (110, f"110,{numbers(corners[2], corners[0])};", 0, dep),  # DE 13
+            (142, "142,0,3,0,17,2;", 0, dep),  # DE 15: the hole
+            (100, "100,0.,0.,0.,1.,0.,1.,0.;", 21 if hole_clockwise else 19, dep),  # DE 17
+            (124, f"124,{numbers(np.column_stack([a, b, n, o]))};", 0, dep),  # DE 19
+            (124, f"124,{numbers(np.column_stack([a, -b, -n, o]))};", 0, dep),  # DE 21
+        ]
+    )
+
+
+@pytest.mark.parametrize("placed", [False, True], ids=["tilted 108", "108 placed by a 124"])
+def test_an_iges_plane_in_the_readers_axes_classifies_as_occ(placed, tmp_path):
+    need_ocp()
+    if not hasattr(inrs, "cad_faces"):
+        pytest.skip("this build of inrs has no cad_faces (the CAD readers)")
+    path = tmp_path / "plane.igs"
+    path.write_text(plane_face_file(placed, hole_clockwise=True))
+    (face,) = inrs.cad_faces(path)
+    assert face.surface == "108 (plane)" and face.error is None and face.loops == 2
+    # (u, v) are lengths in the plane, so the domain is the triangle (area 15) less the disk.
+    assert face.domain.area == pytest.approx(15 - math.pi, rel=1e-12)
+    assert face.area == pytest.approx(15 - math.pi, rel=1e-12)
+    # The reader's axes put (0, 0) at o, the centre of the hole; the ring around it is in.
+    theta = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    ring = np.column_stack([1.25 * np.cos(theta), 1.25 * np.sin(theta)])
+    assert face.domain.classify(np.array([[0.0, 0.0], [0.5, 0.1]])).tolist() == [0, 0]
+    assert (face.domain.classify(ring) == 1).all()
+    # Against OCC through the map (the reader's axes evaluated in space, projected on OCC's
+    # plane): the triangle's orientation in (u, v) pins the axes, not only the area.
+    r = cad_files.check_readers(path, OccFile.read(path))
+    assert (r.faces, r.occ_faces, r.read, r.mapped) == (1, 1, 1, 1)
+    assert not r.problems and not r.disagreements
+    assert r.compared >= cad_files.POINTS_PER_FACE - 4
 
 
 # --- inrs.occ on shapes built with OCC: analytic answers and errors --------------------------
@@ -346,3 +446,23 @@ def test_import_inrs_does_not_import_ocp_and_inrs_occ_names_the_package(tmp_path
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path)
     assert "pip install cadquery-ocp-novtk" in out.stdout, (out.stdout, out.stderr)
+
+
+def test_an_iges_hole_run_like_its_outer_loop_is_a_hole(tmp_path):
+    need_ocp()
+    if not hasattr(inrs, "cad_faces"):
+        pytest.skip("this build of inrs has no cad_faces (the CAD readers)")
+    path = tmp_path / "plane.igs"
+    path.write_text(plane_face_file(False, hole_clockwise=False))
+    (face,) = inrs.cad_faces(path)
+    # IGES does not orient a 144's inner boundaries: the even-odd domain has the hole anyway.
+    assert face.domain.area == pytest.approx(15 - math.pi, rel=1e-12)
+    assert face.domain.classify(np.array([[0.0, 0.0], [1.25, 0.0]])).tolist() == [0, 1]
+    r = cad_files.check_readers(path, OccFile.read(path))
+    assert (r.read, r.mapped) == (1, 1) and not r.disagreements
+    assert r.compared >= cad_files.POINTS_PER_FACE - 4
+    if not math.isclose(face.area, 15 - math.pi, rel_tol=1e-12):
+        # Reported: CadFaceSummary::of (crates/rs-io/src/cad/summary.rs) takes the domain's
+        # signed area, the loops' sum, where Domain.area is the even-odd one.
+        pytest.xfail(f"CadFace.area {face.area} is the loops' signed sum, not the domain's area")
+    assert not r.problems
