@@ -455,14 +455,14 @@ def test_an_iges_hole_run_like_its_outer_loop_is_a_hole(tmp_path):
     path = tmp_path / "plane.igs"
     path.write_text(plane_face_file(False, hole_clockwise=False))
     (face,) = inrs.cad_faces(path)
-    # IGES does not orient a 144's inner boundaries: the even-odd domain has the hole anyway.
+    # IGES does not orient a 144's inner boundaries: the hole is one by its nesting.
     assert face.domain.area == pytest.approx(15 - math.pi, rel=1e-12)
     assert face.domain.classify(np.array([[0.0, 0.0], [1.25, 0.0]])).tolist() == [0, 1]
     r = cad_files.check_readers(path, OccFile.read(path))
     assert (r.read, r.mapped) == (1, 1) and not r.disagreements
     assert r.compared >= cad_files.POINTS_PER_FACE - 4
-    if not math.isclose(face.area, 15 - math.pi, rel_tol=1e-12):
-        # Reported: CadFaceSummary::of (crates/rs-io/src/cad/summary.rs) takes the domain's
-        # signed area, the loops' sum, where Domain.area is the even-odd one.
-        pytest.xfail(f"CadFace.area {face.area} is the loops' signed sum, not the domain's area")
+    # The loops are oriented by nesting: the hole runs clockwise, so the face's signed area
+    # is its area.
+    assert face.area == pytest.approx(15 - math.pi, rel=1e-12)
+    assert face.domain.summary().signed_area == pytest.approx(15 - math.pi, rel=1e-12)
     assert not r.problems

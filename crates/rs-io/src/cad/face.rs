@@ -2,7 +2,7 @@
 //! joints, positive area.
 
 use rs_spline::prelude::*;
-use rs_spline::{BoundingBox, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, NurbsCurve};
+use rs_spline::{BoundingBox, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, NurbsCurve, Point};
 
 use super::{CadFace, CadModel};
 use crate::IoError;
@@ -86,16 +86,18 @@ impl CadModel {
             DEFAULT_RELATIVE_CLOSURE_TOLERANCE
         };
         let domain = Domain::with_relative_closure_tolerance(curves.clone(), relative)?;
-        let domain = if domain.signed_area() < 0.0 {
-            for r in ranges {
+        let flips = loops_to_reverse(&domain);
+        let domain = if flips.is_empty() {
+            domain
+        } else {
+            for i in flips {
+                let r = domain.loops()[i].curves();
                 curves[r.clone()].reverse();
                 for c in &mut curves[r] {
                     *c = c.reversed();
                 }
             }
             Domain::with_relative_closure_tolerance(curves, relative)?
-        } else {
-            domain
         };
         Ok(domain.with_name(format!("face {index} ({})", face.entity)))
     }
@@ -111,6 +113,62 @@ impl CadModel {
             ),
         }
     }
+}
+
+/// The loops of `d` whose orientation disagrees with their nesting: a loop inside an even
+/// number of the other loops should run counter-clockwise, inside an odd number clockwise.
+/// Nesting is decided for a point of each loop (the middle of its first curve) by crossing
+/// parity against the other loops flattened within `1e-7` of the diagonal: rs-io has no
+/// containment kernel (rs-contain sits above it), and orientation needs only the nesting of
+/// disjoint loops, which a point well on one loop settles.
+fn loops_to_reverse(d: &Domain) -> Vec<usize> {
+    let n = d.loops().len();
+    let accuracy = 1e-7 * d.bounding_box().diagonal();
+    let rings: Vec<Vec<Point>> = (0..n)
+        .map(|i| {
+            let mut ring = Vec::new();
+            d.flatten_loop(i, accuracy, &mut |p| ring.push(p));
+            ring
+        })
+        .collect();
+    let boxes: Vec<BoundingBox> = (0..n)
+        .map(|i| {
+            d.curves()[d.loops()[i].curves()]
+                .iter()
+                .map(NurbsCurve::bounding_box)
+                .reduce(BoundingBox::union)
+                .unwrap_or(d.bounding_box())
+        })
+        .collect();
+    (0..n)
+        .filter(|&i| {
+            let first = &d.curves()[*d.loops()[i].curves().start()];
+            let (a, b) = first.param_range();
+            let probe = first.point_at(0.5 * (a + b));
+            let depth = (0..n)
+                .filter(|&j| j != i && boxes[j].contains(probe) && odd_crossings(&rings[j], probe))
+                .count();
+            let area = d.loop_signed_area(i);
+            area != 0.0 && (area > 0.0) != (depth % 2 == 0)
+        })
+        .collect()
+}
+
+/// Crossing parity of the closed polygon `ring` (its last point joined to its first) at `p`:
+/// true when a ray from `p` towards `+x` crosses it an odd number of times (half-open rule on
+/// `y`).
+fn odd_crossings(ring: &[Point], p: Point) -> bool {
+    let mut odd = false;
+    for (k, a) in ring.iter().enumerate() {
+        let b = ring[(k + 1) % ring.len()];
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if x > p.x {
+                odd = !odd;
+            }
+        }
+    }
+    odd
 }
 
 /// The bounding box of a face's trimming curves, `None` without curves or for an unread face.
@@ -219,6 +277,41 @@ mod tests {
                 .face_domain(0, Some(f64::NAN))
                 .is_err()
         );
+    }
+
+    /// Loops oriented by nesting whatever the file says: an outer square drawn clockwise, a
+    /// hole drawn counter-clockwise like an outer loop, and an island in the hole drawn
+    /// clockwise come out counter-clockwise, clockwise and counter-clockwise.
+    #[test]
+    fn loops_are_oriented_by_their_nesting() {
+        let square = |lo: f64, hi: f64, ccw: bool| {
+            let p = |x, y| Point::new(x, y);
+            let mut c = [p(lo, lo), p(hi, lo), p(hi, hi), p(lo, hi)];
+            if !ccw {
+                c.reverse();
+            }
+            (0..4)
+                .map(|k| segment(c[k], c[(k + 1) % 4]).unwrap())
+                .collect::<Vec<_>>()
+        };
+        let model = CadModel {
+            format: CadFormat::Iges,
+            tolerance: None,
+            faces: vec![CadFace {
+                entity: "DE 1".into(),
+                surface: "128".into(),
+                loops: Ok(vec![
+                    square(0.0, 10.0, false),
+                    square(2.0, 8.0, true),
+                    square(4.0, 6.0, false),
+                ]),
+            }],
+        };
+        let d = model.face_domain(0, None).unwrap();
+        for (i, area) in [100.0, -36.0, 4.0].into_iter().enumerate() {
+            assert!((d.loop_signed_area(i) - area).abs() < 1e-12, "loop {i}");
+        }
+        assert!((model.face_summaries(None)[0].area - 68.0).abs() < 1e-12);
     }
 
     #[test]
