@@ -359,10 +359,17 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse, Str
                 }
                 None => ((lo, hi), c3.period()),
             };
+            let mut cuts = pieces(&c2, range.0, range.1, period);
+            if cx.surface.plane.is_none() {
+                let (x_lo, x_hi) = if same_sense { (vs, ve) } else { (ve, vs) };
+                cuts = super::invert::cut_at_vertices(cx.surface, &c2, cuts, x_lo, x_hi, cx.gap);
+            } else {
+                cuts = super::invert::clamped(&c2, cuts);
+            }
             let mut option = Vec::new();
-            for (a2, b2) in pieces(&c2, range.0, range.1, period) {
-                option.push(
-                    c2.to_nurbs(a2, b2, &PlaneMap::XY)
+            for (a2, b2) in cuts {
+                option.extend(
+                    c2.to_nurbs_extended(a2, b2, &PlaneMap::XY)
                         .map_err(|m| format!("{pw} on {what}: {m}"))?,
                 );
             }

@@ -77,8 +77,10 @@ mod curves;
 mod faces;
 mod geom;
 mod graph;
+mod invert;
 mod loops;
 mod plane;
+mod shape;
 mod surface;
 mod tokens;
 mod units;
@@ -194,7 +196,7 @@ fn read_face(g: &Graph, label: u64, units: &Units, gap: f64) -> Result<CadFace, 
     let geometry = inst
         .simple()
         .and_then(|a| a.reference(2, "face_geometry"))
-        .and_then(|s| surface::Surface::read(g, s, &inst.what()));
+        .and_then(|s| surface::Surface::read(g, s, &inst.what(), units.radians_per_angle));
     let (surface, loops): (String, Result<Vec<Vec<NurbsCurve>>, String>) = match geometry {
         Ok(s) => {
             let cx = loops::FaceContext {
