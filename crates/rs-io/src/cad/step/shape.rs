@@ -264,7 +264,8 @@ fn spline_surface(g: &Graph, inst: &Instance) -> Result<SplineSurface, String> {
             count[0], count[1]
         ));
     }
-    let mut points = Vec::with_capacity(count[0] * count[1]);
+    // Grown as the points are read (rows of unequal length are found only on the way).
+    let mut points = Vec::with_capacity(count[0].saturating_mul(count[1]).min(1 << 16));
     for r in rows {
         let Value::List(r) = r else {
             return Err(format!(
