@@ -58,6 +58,7 @@ pub(crate) fn cut_at_vertices(
     if n == 0 {
         return pieces;
     }
+    let pieces = clamped(c2, pieces);
     let mut out = pieces.clone();
     if let Some(t) = vertex_param(shape, s, c2, out[0].0, lo, gap) {
         out[0].0 = t;
@@ -68,7 +69,7 @@ pub(crate) fn cut_at_vertices(
     if out.iter().all(|(a, b)| a < b) {
         out
     } else {
-        clamped(c2, pieces)
+        pieces
     }
 }
 
@@ -86,6 +87,13 @@ pub(crate) fn clamped(c2: &Curve, mut pieces: Vec<(f64, f64)>) -> Vec<(f64, f64)
 /// The parameter near `t0` where the pcurve `c2` passes the `(u, v)` of the point `x`.
 fn vertex_param(shape: &Shape, s: &Surface, c2: &Curve, t0: f64, x: V3, gap: f64) -> Option<f64> {
     let start = c2.point(t0);
+    // Where the 3-D parameter already gives the vertex (to 1e-9 of the model's size) it
+    // stays: the curves meeting there keep the ends they had, bit for bit, rather than ends
+    // found by searches from different starts (a sliver face's two sides would then differ
+    // by rounding and enclose a spurious area).
+    if dist(eval(shape, s, [start[0], start[1]]), x) <= 1e-9 * norm(x).max(1.0) {
+        return None;
+    }
     let uv = surface_uv(shape, s, x, [start[0], start[1]], gap)?;
     let q = [uv[0], uv[1], 0.0];
     let t = param_near(c2, q, t0, 0)?;
