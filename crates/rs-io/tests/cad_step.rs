@@ -367,6 +367,91 @@ fn cylinder_with_a_seam_takes_one_seam_pcurve_per_use() {
     }
 }
 
+/// A quarter of the unit cylinder about z, `0 <= u <= pi/2`, `0 <= v <= 1`, whose bottom
+/// edge's 3-D curve is the rational quadratic quarter circle (parameter `t` in `[0, 1]`, not
+/// the angle) while its pcurve is the `LINE` `v = 0` (parameter `u`): the curves do not share
+/// their parameter. `reversed_edge` writes the bottom edge from `(0, 1, 0)` to `(1, 0, 0)`
+/// against its curve (`same_sense .F.`), used backwards by the loop.
+fn cylinder_quarter(reversed_edge: bool) -> String {
+    let h = std::f64::consts::FRAC_PI_2;
+    let mut b = Builder::new();
+    let ax = b.axis3([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let cyl = b.add(&format!("CYLINDRICAL_SURFACE('',#{ax},1.)"));
+    let va = b.vertex([1.0, 0.0, 0.0]);
+    let vb = b.vertex([0.0, 1.0, 0.0]);
+    let vc = b.vertex([0.0, 1.0, 1.0]);
+    let vd = b.vertex([1.0, 0.0, 1.0]);
+    let side = |b: &mut Builder, p: [f64; 3], u: f64| {
+        let l3 = b.line(&p, &[0.0, 0.0, 1.0]);
+        let l2 = b.line(&[u, 0.0], &[0.0, 1.0]);
+        let pc = b.pcurve(cyl, l2);
+        b.add(&format!("SURFACE_CURVE('',#{l3},(#{pc}),.PCURVE_S1.)"))
+    };
+    // Bottom: (1, 0, 0) -> (0, 1, 0) on the rational quadratic arc, pcurve the line v = 0.
+    let ids = [
+        b.point(&[1.0, 0.0, 0.0]),
+        b.point(&[1.0, 1.0, 0.0]),
+        b.point(&[0.0, 1.0, 0.0]),
+    ];
+    let arc = b.add(&format!(
+        "(BOUNDED_CURVE()B_SPLINE_CURVE(2,({}),.CIRCULAR_ARC.,.F.,.F.)B_SPLINE_CURVE_WITH_KNOTS((3,3),(0.,1.),.UNSPECIFIED.)CURVE()GEOMETRIC_REPRESENTATION_ITEM()RATIONAL_B_SPLINE_CURVE((1.,{:?},1.))REPRESENTATION_ITEM(''))",
+        refs(&ids),
+        0.5f64.sqrt()
+    ));
+    let l2 = b.line(&[0.0, 0.0], &[1.0, 0.0]);
+    let pc = b.pcurve(cyl, l2);
+    let sc = b.add(&format!("SURFACE_CURVE('',#{arc},(#{pc}),.PCURVE_S1.)"));
+    let bottom = if reversed_edge {
+        let e = b.edge(vb, va, sc, false);
+        b.oriented(e, false)
+    } else {
+        let e = b.edge(va, vb, sc, true);
+        b.oriented(e, true)
+    };
+    // Right: (0, 1, 0) -> (0, 1, 1) at u = pi/2.
+    let right = side(&mut b, [0.0, 1.0, 0.0], h);
+    let right = b.edge(vb, vc, right, true);
+    let right = b.oriented(right, true);
+    // Top: the circle at z = 1 (parameter the angle) from (1, 0, 1) to (0, 1, 1), used
+    // backwards; pcurve the line v = 1.
+    let a1 = b.axis3([0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let c3 = b.add(&format!("CIRCLE('',#{a1},1.)"));
+    let l2 = b.line(&[0.0, 1.0], &[1.0, 0.0]);
+    let pc = b.pcurve(cyl, l2);
+    let sc = b.add(&format!("SURFACE_CURVE('',#{c3},(#{pc}),.PCURVE_S1.)"));
+    let top = b.edge(vd, vc, sc, true);
+    let top = b.oriented(top, false);
+    // Left: (1, 0, 0) -> (1, 0, 1) at u = 0, used backwards.
+    let left = side(&mut b, [1.0, 0.0, 0.0], 0.0);
+    let left = b.edge(va, vd, left, true);
+    let left = b.oriented(left, false);
+    let bo = b.bound(&[bottom, right, top, left], true, true);
+    b.file(&[bo], cyl)
+}
+
+#[test]
+fn a_pcurve_parametrised_unlike_its_3d_curve_is_cut_at_the_vertices_uv() {
+    let h = std::f64::consts::FRAC_PI_2;
+    for reversed_edge in [false, true] {
+        let loops = closed(one_face(&cylinder_quarter(reversed_edge)));
+        assert_eq!(loops.len(), 1);
+        assert_eq!(loops[0].len(), 4);
+        // The bottom runs along v = 0 from u = 0 to u = pi/2 (the same-parameter rule would
+        // stop it at u = 1, the arc's parameter at (0, 1, 0)).
+        let bottom = &loops[0][0];
+        assert_eq!(bottom.degree(), 1);
+        assert!(bottom.start_point().distance(Point::new(0.0, 0.0)) < 1e-12);
+        assert!(
+            bottom.end_point().distance(Point::new(h, 0.0)) < 1e-12,
+            "{:?}",
+            bottom.end_point()
+        );
+        // The rectangle [0, pi/2] x [0, 1], counter-clockwise.
+        let area = loop_area(&loops[0]);
+        assert!((area - h).abs() < 1e-12, "{area}");
+    }
+}
+
 /// A triangle-like face: a line (0,0)-(4,0), a cubic Bezier (4,0)(4,2)(2,4)(0,4) with an
 /// interior knot (two spans after inserting 0.5), and a line back; with B-spline pcurves.
 #[test]

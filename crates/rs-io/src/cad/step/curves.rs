@@ -349,6 +349,150 @@ impl Curve {
     }
 }
 
+impl Curve {
+    /// The domain of the B-spline under the curve (through trims), `None` for lines and
+    /// conics.
+    pub(crate) fn spline_domain(&self) -> Option<(f64, f64)> {
+        match self {
+            Curve::Spline(_) => self.range(),
+            Curve::Trimmed { basis, .. } => basis.spline_domain(),
+            _ => None,
+        }
+    }
+
+    /// The point at `t`, a B-spline continued past its domain by the polynomial of its end
+    /// span (how a pcurve that stops just short of its vertex is extended to it).
+    pub(crate) fn point_extended(&self, t: f64) -> V3 {
+        match self {
+            Curve::Spline(s) => match self.range() {
+                Some((a, b)) if t < a || t > b => {
+                    let (k, _) = end_span(s, t < a);
+                    let h = blossom(s, k, &vec![t; s.degree]);
+                    [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+                }
+                _ => self.point(t),
+            },
+            Curve::Trimmed { basis, .. } => basis.point_extended(t),
+            _ => self.point(t),
+        }
+    }
+
+    /// [`Curve::to_nurbs`] on `[t0, t1]`, where a B-spline's interval may reach past its
+    /// domain `[a, b]`: the part inside, with the end spans' polynomials on `[t0, a]` and
+    /// `[b, t1]` as Bezier curves before and after (exact: their control points are the
+    /// polar forms of the end span, in homogeneous coordinates).
+    pub(crate) fn to_nurbs_extended(
+        &self,
+        t0: f64,
+        t1: f64,
+        map: &PlaneMap,
+    ) -> Result<Vec<NurbsCurve>, String> {
+        let Some((a, b)) = self.spline_domain() else {
+            return Ok(vec![self.to_nurbs(t0, t1, map)?]);
+        };
+        let s = match self {
+            Curve::Spline(s) => s,
+            Curve::Trimmed { basis, .. } => return basis.to_nurbs_extended(t0, t1, map),
+            _ => return Ok(vec![self.to_nurbs(t0, t1, map)?]),
+        };
+        let mut out = Vec::new();
+        if t0 < a {
+            out.push(extension(s, true, t0, a.min(t1), map)?);
+        }
+        if t0.max(a) < t1.min(b) {
+            out.push(self.to_nurbs(t0.max(a), t1.min(b), map)?);
+        }
+        if t1 > b {
+            out.push(extension(s, false, t0.max(b), t1, map)?);
+        }
+        if out.is_empty() {
+            return Err(format!("empty parameter interval [{t0}, {t1}]"));
+        }
+        Ok(out)
+    }
+}
+
+/// The first (`start`) or last non-empty knot span `k` (`knots[k] < knots[k + 1]`) and
+/// whether there is one.
+fn end_span(s: &BSplineData, start: bool) -> (usize, bool) {
+    let p = s.degree;
+    let n = s.points.len();
+    let ok = |k: usize| s.knots[k] < s.knots[k + 1];
+    if start {
+        (p..n).find(|&k| ok(k)).map_or((p, false), |k| (k, true))
+    } else {
+        (p..n)
+            .rev()
+            .find(|&k| ok(k))
+            .map_or((n - 1, false), |k| (k, true))
+    }
+}
+
+/// The polar form (blossom) of span `k`'s polynomial at the `degree` arguments `us`, in
+/// homogeneous coordinates: de Boor's algorithm with argument `us[r - 1]` at level `r`.
+fn blossom(s: &BSplineData, k: usize, us: &[f64]) -> [f64; 4] {
+    let p = s.degree;
+    let w = |i: usize| s.weights.as_ref().map_or(1.0, |w| w[i]);
+    let mut d: Vec<[f64; 4]> = (0..=p)
+        .map(|j| {
+            let i = k - p + j;
+            let q = s.points[i];
+            let wi = w(i);
+            [q[0] * wi, q[1] * wi, q[2] * wi, wi]
+        })
+        .collect();
+    for r in 1..=p {
+        let t = us.get(r - 1).copied().unwrap_or(f64::NAN);
+        for j in (r..=p).rev() {
+            let i = k - p + j;
+            let den = s.knots[i + p + 1 - r] - s.knots[i];
+            let alpha = if den > 0.0 {
+                (t - s.knots[i]) / den
+            } else {
+                0.0
+            };
+            let prev = d[j - 1];
+            for (x, p) in d[j].iter_mut().zip(prev) {
+                *x = (1.0 - alpha) * p + alpha * *x;
+            }
+        }
+    }
+    d[p]
+}
+
+/// The end span's polynomial (the first span's if `start`) on `[t0, t1]` as a Bezier curve:
+/// control point `i` is the polar form at `t0` (`degree - i` times) and `t1` (`i` times).
+fn extension(
+    s: &BSplineData,
+    start: bool,
+    t0: f64,
+    t1: f64,
+    map: &PlaneMap,
+) -> Result<NurbsCurve, String> {
+    let (k, ok) = end_span(s, start);
+    if !ok || t0.is_nan() || t1.is_nan() || t0 >= t1 {
+        return Err(format!("no end span to extend over [{t0}, {t1}]"));
+    }
+    let p = s.degree;
+    let mut points = Vec::with_capacity(p + 1);
+    let mut weights = Vec::with_capacity(p + 1);
+    for i in 0..=p {
+        let mut us = vec![t0; p - i];
+        us.extend(std::iter::repeat_n(t1, i));
+        let h = blossom(s, k, &us);
+        if !(h[3] > 0.0 && h[3].is_finite()) {
+            return Err(format!(
+                "the extension over [{t0}, {t1}] has weight {}",
+                h[3]
+            ));
+        }
+        points.push(map.point([h[0] / h[3], h[1] / h[3], h[2] / h[3]]));
+        weights.push(h[3]);
+    }
+    let weights = s.weights.as_ref().map(|_| weights);
+    NurbsCurve::bezier(points, weights).map_err(|e| e.to_string())
+}
+
 /// The unit hyperbola `(cosh t, sinh t)` on `[t0, t1]`: pieces of half-width `d <= 1/2`, each
 /// the rational quadratic with ends on the curve, middle point `(cosh m, sinh m) / cosh d`
 /// (the tangents' intersection, `m` the middle parameter) and middle weight `cosh d`.

@@ -343,10 +343,11 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse, Str
                 .first()
                 .ok_or_else(|| format!("{}: no items", dr.what()))?;
             let c2 = Curve::read(cx.g, c2_label, &dr.what(), cx.radians)?;
-            // On a plane the vertices' (u, v) are exact, so the pcurve is cut where it passes
-            // them (its parametrisation need not be the 3-D curve's: `OpenCASCADE` writes
-            // circles in (u, v) as rational B-splines, not parametrised by angle). Elsewhere
-            // the curves of a SURFACE_CURVE share their parameter.
+            // The pcurve is cut where it passes the vertices' (u, v): its parametrisation
+            // need not be the 3-D curve's (`OpenCASCADE` writes circles in (u, v) as
+            // rational B-splines, not parametrised by angle, and 3-D circles as rational
+            // B-splines under angle-parametrised pcurves). On a plane the (u, v) are exact;
+            // elsewhere the 3-D parameters give the start of `invert`'s search.
             let (range, period) = match cx.surface.plane {
                 Some(f) => {
                     let uv = |p: geom::V3| {
@@ -359,10 +360,17 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse, Str
                 }
                 None => ((lo, hi), c3.period()),
             };
+            let mut cuts = pieces(&c2, range.0, range.1, period);
+            if cx.surface.plane.is_none() {
+                let (x_lo, x_hi) = if same_sense { (vs, ve) } else { (ve, vs) };
+                cuts = super::invert::cut_at_vertices(cx.surface, &c2, cuts, x_lo, x_hi, cx.gap);
+            } else {
+                cuts = super::invert::clamped(&c2, cuts);
+            }
             let mut option = Vec::new();
-            for (a2, b2) in pieces(&c2, range.0, range.1, period) {
-                option.push(
-                    c2.to_nurbs(a2, b2, &PlaneMap::XY)
+            for (a2, b2) in cuts {
+                option.extend(
+                    c2.to_nurbs_extended(a2, b2, &PlaneMap::XY)
                         .map_err(|m| format!("{pw} on {what}: {m}"))?,
                 );
             }

@@ -48,9 +48,12 @@
 //! `OpenCASCADE` keeps the file order of the bounds (its outer wire is found geometrically,
 //! by `BRepTools::OuterWire`); the domain built from the loops does not depend on their order.
 //! Edges are trimmed between their vertices on the 3-D curve (the parameters of the
-//! vertices: exact for lines and conics, a bounded search for B-splines) and the pcurve is
-//! cut at the same parameters (a `SURFACE_CURVE`'s curves share their parameter); see
-//! `loops` for orientation, seams, periods and poles. A `VERTEX_LOOP` (a cone's apex)
+//! vertices: exact for lines and conics, a bounded search for B-splines); each pcurve is cut
+//! where it passes the vertices' `(u, v)`, since the 3-D curve and the pcurve need not share
+//! their parameter (a rational B-spline circle in 3-D, a line in `(u, v)`): on a plane the
+//! `(u, v)` is exact, elsewhere the surface is inverted at the vertex starting from the
+//! pcurve's point at the 3-D parameter (see `invert`; that point stays where the inversion
+//! fails); see `loops` for orientation, seams, periods and poles. A `VERTEX_LOOP` (a cone's apex)
 //! bounds nothing in `(u, v)` and is skipped. The face's own `same_sense` is not applied:
 //! it flips the surface normal, not the loops in `(u, v)`.
 //!
@@ -77,8 +80,10 @@ mod curves;
 mod faces;
 mod geom;
 mod graph;
+mod invert;
 mod loops;
 mod plane;
+mod shape;
 mod surface;
 mod tokens;
 mod units;
@@ -194,7 +199,7 @@ fn read_face(g: &Graph, label: u64, units: &Units, gap: f64) -> Result<CadFace, 
     let geometry = inst
         .simple()
         .and_then(|a| a.reference(2, "face_geometry"))
-        .and_then(|s| surface::Surface::read(g, s, &inst.what()));
+        .and_then(|s| surface::Surface::read(g, s, &inst.what(), units.radians_per_angle));
     let (surface, loops): (String, Result<Vec<Vec<NurbsCurve>>, String>) = match geometry {
         Ok(s) => {
             let cx = loops::FaceContext {

@@ -7,6 +7,7 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 use super::curves::Curve;
 use super::geom::{self, Frame, V3};
 use super::graph::Graph;
+use super::shape::Shape;
 
 /// A face's surface.
 #[derive(Clone, Debug)]
@@ -29,12 +30,17 @@ pub(crate) struct Surface {
     /// A `SURFACE_OF_REVOLUTION`'s swept curve and axis (point, unit direction): the line
     /// `v = const` is one point where the curve at `v` is on the axis.
     pub(crate) revolution: Option<(Curve, V3, V3)>,
+    /// The geometry of a non-planar surface of a known type, to find the `(u, v)` of the
+    /// edges' vertices (`None` for planes and types it does not know, or when it cannot be
+    /// read: the pcurves are then cut at the 3-D curves' parameters).
+    pub(crate) shape: Option<Shape>,
 }
 
 impl Surface {
-    /// Reads the surface `#label`. Only what the loops need is read; an unknown surface type
-    /// is not an error (its pcurves are read all the same, without periods).
-    pub(crate) fn read(g: &Graph, label: u64, from: &str) -> Result<Surface, String> {
+    /// Reads the surface `#label`; `radians` per angle unit of the file. Only what the loops
+    /// need is read; an unknown surface type is not an error (its pcurves are read all the
+    /// same, without periods).
+    pub(crate) fn read(g: &Graph, label: u64, from: &str, radians: f64) -> Result<Surface, String> {
         let inst = g.get(label, from)?;
         let name = inst.type_name();
         let what = inst.what();
@@ -46,6 +52,7 @@ impl Surface {
             v_poles: Vec::new(),
             plane: None,
             revolution: None,
+            shape: Shape::read(g, inst, radians).ok().flatten(),
         };
         match name.as_str() {
             "PLANE" => {
@@ -76,13 +83,18 @@ impl Surface {
                 s.period[0] = Some(TAU);
                 // (R + v tan a)(cos u x + sin u y) + v z: the apex is at v = -R / tan a.
                 let a = inst.simple()?;
-                let (r, angle) = (a.real(2, "radius")?, a.real(3, "semi_angle")?);
+                let (r, angle) = (a.real(2, "radius")?, a.real(3, "semi_angle")? * radians);
                 let apex = -r / angle.tan();
                 if apex.is_finite() {
                     s.v_poles.push(apex);
                 }
             }
             "TOROIDAL_SURFACE" | "DEGENERATE_TOROIDAL_SURFACE" => s.period = [Some(TAU); 2],
+            "SURFACE_OF_LINEAR_EXTRUSION" => {
+                if let Some(Shape::Extrusion { curve, .. }) = &s.shape {
+                    s.period[0] = curve.period();
+                }
+            }
             _ if inst.is("B_SPLINE_SURFACE") || inst.is("B_SPLINE_SURFACE_WITH_KNOTS") => {
                 let p = bspline_periods(g, inst).unwrap_or([None, None]);
                 for (d, pd) in p.into_iter().enumerate() {
