@@ -14,7 +14,7 @@ the same points.
 Only what the real files of the tests need is read: STEP ``PLANE``, ``CYLINDRICAL_SURFACE``,
 ``CONICAL_SURFACE``, ``SPHERICAL_SURFACE``, ``TOROIDAL_SURFACE``, ``SURFACE_OF_REVOLUTION``
 and ``SURFACE_OF_LINEAR_EXTRUSION`` with ``LINE``, ``CIRCLE`` or ``ELLIPSE`` curves, and
-(non-rational, simple-instance) ``B_SPLINE_SURFACE_WITH_KNOTS``; IGES 108 plane, 120 surface
+``B_SPLINE_SURFACE_WITH_KNOTS`` (simple, or the rational complex instance); IGES 108 plane, 120 surface
 of revolution with 110 line or 100 circular arc generatrices and 128 rational B-spline
 surface, each with its 124 transformation matrices. Anything else raises
 :class:`Unsupported` (the caller reports the face). Lengths are in the file's unit, angles
@@ -182,6 +182,9 @@ class StepFile:
 
     def surface(self, ref) -> Tuple[str, Surface]:
         """``(type, (u, v) -> points)`` with ISO 10303-42's parameterisation."""
+        n = int(str(ref).lstrip("#"))
+        if self.raw.get(n, "").lstrip().startswith("("):
+            return self._complex_surface(n)
         kind, args = self.get(ref)
         rad = self.rad
         if kind == "PLANE":  # loc + u x + v y
@@ -242,6 +245,28 @@ class StepFile:
             kv = np.repeat(np.array(args[11], float), np.array(args[9], int))
             return kind, bspline_surface((p, q), (ku, kv), points, np.ones(points.shape[:2]))
         raise Unsupported(f"#{int(str(ref).lstrip('#'))}: surface {kind}")
+
+    def _complex_surface(self, n: int) -> Tuple[str, Surface]:
+        return _complex_b_spline_surface(self, n)
+
+
+def _complex_b_spline_surface(file: "StepFile", n: int) -> Tuple[str, Surface]:
+    """The rational B-spline surface of a complex instance ``#n = (B_SPLINE_SURFACE(...)
+    B_SPLINE_SURFACE_WITH_KNOTS(...) RATIONAL_B_SPLINE_SURFACE(...) ...)``: its parts carry
+    no name, so ``B_SPLINE_SURFACE``'s arguments are (u_degree, v_degree, points, form,
+    u_closed, v_closed, self_intersect)."""
+    value = _parse_step(file.raw[n])
+    parts = {part[0]: part[1] for part in value if isinstance(part, tuple)} if isinstance(value, list) else {}
+    if "B_SPLINE_SURFACE" not in parts or "B_SPLINE_SURFACE_WITH_KNOTS" not in parts:
+        raise Unsupported(f"#{n}: complex instance without a B-spline surface")
+    b, k = parts["B_SPLINE_SURFACE"], parts["B_SPLINE_SURFACE_WITH_KNOTS"]
+    p, q = int(b[0]), int(b[1])
+    points = np.array([[file.point(r) for r in row] for row in b[2]], float)
+    ku = np.repeat(np.array(k[2], float), np.array(k[0], int))
+    kv = np.repeat(np.array(k[3], float), np.array(k[1], int))
+    rational = parts.get("RATIONAL_B_SPLINE_SURFACE")
+    weights = np.array(rational[0], float) if rational else np.ones(points.shape[:2])
+    return "RATIONAL_B_SPLINE_SURFACE", bspline_surface((p, q), (ku, kv), points, weights)
 
 
 def _measure(value) -> float:
