@@ -538,31 +538,8 @@ fn spline_point(s: &BSplineData, t: f64) -> V3 {
     // The span k with knots[k] <= t < knots[k+1], p <= k < n (binary search: the knots are
     // non-decreasing, checked when the curve is read; a spline of many points stays fast).
     let k = (p + s.knots[p + 1..n].partition_point(|&x| x <= t)).min(n - 1);
-    let w = |i: usize| s.weights.as_ref().map_or(1.0, |w| w[i]);
-    let mut d: Vec<[f64; 4]> = (0..=p)
-        .map(|j| {
-            let i = k - p + j;
-            let q = s.points[i];
-            let wi = w(i);
-            [q[0] * wi, q[1] * wi, q[2] * wi, wi]
-        })
-        .collect();
-    for r in 1..=p {
-        for j in (r..=p).rev() {
-            let i = k - p + j;
-            let den = s.knots[i + p + 1 - r] - s.knots[i];
-            let alpha = if den > 0.0 {
-                (t - s.knots[i]) / den
-            } else {
-                0.0
-            };
-            let prev = d[j - 1];
-            for (x, p) in d[j].iter_mut().zip(prev) {
-                *x = (1.0 - alpha) * p + alpha * *x;
-            }
-        }
-    }
-    let h = d[p];
+    // de Boor's algorithm is the blossom with every argument t.
+    let h = blossom(s, k, &vec![t; p]);
     [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
 }
 
