@@ -10,6 +10,7 @@
 //! - B-spline surfaces (simple `B_SPLINE_SURFACE_WITH_KNOTS` or the complex instance with
 //!   `RATIONAL_B_SPLINE_SURFACE`): their knots, the control points indexed `[u][v]`.
 
+use rs_spline::KnotVector;
 use rs_spline::limits::MAX_DEGREE;
 
 use super::curves::Curve;
@@ -31,15 +32,11 @@ pub(crate) enum Shape {
 /// A (rational) B-spline surface.
 #[derive(Clone, Debug)]
 pub(crate) struct SplineSurface {
-    /// Degrees in `u` and `v`.
-    pub(crate) degree: [usize; 2],
-    /// Control points in `u` and `v`.
-    pub(crate) count: [usize; 2],
-    /// `count[0] * count[1]` points, `[i][j]` at `i * count[1] + j`.
+    /// `nu * nv` points (`n_control()` of the two knot vectors), `[i][j]` at `i * nv + j`.
     pub(crate) points: Vec<V3>,
     pub(crate) weights: Option<Vec<f64>>,
-    /// Full knot vectors, `count[d] + degree[d] + 1` each, non-decreasing.
-    pub(crate) knots: [Vec<f64>; 2],
+    /// The knot vectors in `u` and `v` (with their degrees and control-point counts).
+    pub(crate) knots: [KnotVector; 2],
 }
 
 impl Shape {
@@ -161,10 +158,7 @@ impl Shape {
 
 impl SplineSurface {
     fn domain(&self, d: usize) -> Option<(f64, f64)> {
-        let k = self.knots.get(d)?;
-        let p = *self.degree.get(d)?;
-        let n = *self.count.get(d)?;
-        Some((*k.get(p)?, *k.get(n)?))
+        Some(self.knots.get(d)?.domain())
     }
 
     /// The point at `(u, v)`, each clamped to its domain; NaN where the surface is degenerate.
@@ -173,11 +167,12 @@ impl SplineSurface {
         let (Some((iu, bu)), Some((iv, bv))) = (self.basis(0, u), self.basis(1, v)) else {
             return nan;
         };
-        let [p, q] = self.degree;
+        let (p, q) = (self.knots[0].degree(), self.knots[1].degree());
+        let nv = self.knots[1].n_control();
         let mut h = [0.0; 4];
         for (a, nu) in bu.iter().enumerate().take(p + 1) {
-            for (b, nv) in bv.iter().enumerate().take(q + 1) {
-                let k = (iu - p + a) * self.count[1] + (iv - q + b);
+            for (b, nv_b) in bv.iter().enumerate().take(q + 1) {
+                let k = (iu - p + a) * nv + (iv - q + b);
                 let (Some(x), w) = (
                     self.points.get(k),
                     self.weights
@@ -186,45 +181,23 @@ impl SplineSurface {
                 ) else {
                     return nan;
                 };
-                let c = nu * nv * w.unwrap_or(f64::NAN);
+                let c = nu * nv_b * w.unwrap_or(f64::NAN);
                 h = [h[0] + c * x[0], h[1] + c * x[1], h[2] + c * x[2], h[3] + c];
             }
         }
         [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
     }
 
-    /// The span index `k` (`knots[k] < knots[k + 1]`) holding `t` (clamped) in direction `d`
-    /// and the `degree + 1` basis functions non-zero there (Cox-de Boor's recurrence).
-    fn basis(&self, d: usize, t: f64) -> Option<(usize, [f64; MAX_DEGREE + 1])> {
-        let k = &self.knots[d];
-        let p = self.degree[d];
-        let n = self.count[d];
-        let (a, b) = self.domain(d)?;
+    /// The span index `k` holding `t` (clamped; NaN reads as the domain's start) in direction
+    /// `d` and the `degree + 1` basis functions non-zero there ([`KnotVector::span`],
+    /// [`KnotVector::basis_derivatives`]).
+    fn basis(&self, d: usize, t: f64) -> Option<(usize, Vec<f64>)> {
+        let kv = self.knots.get(d)?;
+        let (a, b) = kv.domain();
         let t = if t.is_nan() { a } else { t.clamp(a, b) };
-        let mut i = (p + k.get(p + 1..n)?.partition_point(|&x| x <= t)).min(n - 1);
-        while i > p && k[i] >= k[i + 1] {
-            i -= 1;
-        }
-        if k[i] >= k[i + 1] {
-            return None;
-        }
-        let mut out = [0.0; MAX_DEGREE + 1];
-        let mut left = [0.0; MAX_DEGREE + 1];
-        let mut right = [0.0; MAX_DEGREE + 1];
-        out[0] = 1.0;
-        for j in 1..=p {
-            left[j] = t - k[i + 1 - j];
-            right[j] = k[i + j] - t;
-            let mut saved = 0.0;
-            for r in 0..j {
-                let den = right[r + 1] + left[j - r];
-                let tmp = if den > 0.0 { out[r] / den } else { 0.0 };
-                out[r] = saved + right[r + 1] * tmp;
-                saved = left[j - r] * tmp;
-            }
-            out[j] = saved;
-        }
-        Some((i, out))
+        let i = kv.span(t);
+        let values = kv.basis_derivatives(i, t, 0).into_iter().next()?;
+        Some((i, values))
     }
 }
 
@@ -312,12 +285,14 @@ fn spline_surface(g: &Graph, inst: &Instance) -> Result<SplineSurface, String> {
         }
         Err(_) => None,
     };
+    let [ku, kv] = knots;
+    let knot_vector = |knots, d: usize| {
+        KnotVector::new(knots, degree[d], count[d]).map_err(|e| format!("{what}: {e}"))
+    };
     Ok(SplineSurface {
-        degree,
-        count,
         points,
         weights,
-        knots,
+        knots: [knot_vector(ku, 0)?, knot_vector(kv, 1)?],
     })
 }
 
