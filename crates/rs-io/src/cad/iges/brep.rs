@@ -60,11 +60,7 @@ impl Iges<'_> {
         let surf = p.pointer("SURF")?;
         let n = p.count("N")?;
         let outer = p.int("OF")?;
-        p.check_count("N", n, 1)?;
-        let mut ptrs = Vec::with_capacity(n);
-        for _ in 0..n {
-            ptrs.push(p.pointer("LOOP")?);
-        }
+        let ptrs = p.pointers("N", n, "LOOP")?;
         let s = self.surface_of(e, surf, surface)?;
         let mut loops = Vec::with_capacity(n + 1);
         match outer {

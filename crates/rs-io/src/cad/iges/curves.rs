@@ -122,11 +122,7 @@ impl Iges<'_> {
                 }
                 let mut p = self.params(e)?;
                 let n = p.count("N")?;
-                p.check_count("N", n, 1)?;
-                let mut members = Vec::with_capacity(n);
-                for _ in 0..n {
-                    members.push(p.pointer("constituent")?);
-                }
+                let members = p.pointers("N", n, "constituent")?;
                 stack.push(e.de);
                 for (i, m) in members.into_iter().enumerate() {
                     let from = format!("{who}: constituent {}", i + 1);

@@ -149,11 +149,7 @@ impl Iges<'_> {
         let n1 = p.int("N1")?;
         let n2 = p.count("N2")?;
         let pto = p.pointer("PTO")?;
-        p.check_count("N2", n2, 1)?;
-        let mut inner = Vec::with_capacity(n2);
-        for _ in 0..n2 {
-            inner.push(p.pointer("PTI")?);
-        }
+        let inner = p.pointers("N2", n2, "PTI")?;
         let s = self.surface_of(e, pts, surface)?;
         let mut loops = Vec::with_capacity(n2 + 1);
         match n1 {
@@ -456,11 +452,7 @@ impl Iges<'_> {
         let _kind = p.int("TYPE")?;
         let sptr = p.pointer("SPTR")?;
         let n = p.count("N")?;
-        p.check_count("N", n, 1)?;
-        let mut bounds = Vec::with_capacity(n);
-        for _ in 0..n {
-            bounds.push(p.pointer("BDPT")?);
-        }
+        let bounds = p.pointers("N", n, "BDPT")?;
         let s = self.surface_of(e, sptr, surface)?;
         if n == 0 {
             return Err(format!("{who}: no boundaries"));

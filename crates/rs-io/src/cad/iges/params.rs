@@ -206,6 +206,18 @@ impl<'a> Params<'a> {
         usize::try_from(n.unsigned_abs()).map_err(|_| self.err(name, "pointer out of range"))
     }
 
+    /// `count` pointer fields named `name`, after checking that the record can hold them (the
+    /// count read as field `count_name`).
+    pub(super) fn pointers(
+        &mut self,
+        count_name: &str,
+        count: usize,
+        name: &str,
+    ) -> Result<Vec<usize>, String> {
+        self.check_count(count_name, count, 1)?;
+        (0..count).map(|_| self.pointer(name)).collect()
+    }
+
     /// Skips one field (any kind).
     pub(super) fn skip(&mut self, name: &str) -> Result<(), String> {
         self.required(name).map(|_| ())
