@@ -1,6 +1,7 @@
 //! `cargo xtask bench`: the papers' comparisons, measured in one process (medians of repeated
 //! runs), printed and written as Markdown and CSV under `target/bench-report/`.
 
+mod build;
 mod cli;
 mod gwn;
 mod locator;
@@ -28,7 +29,7 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 5] = ["paper", "locator", "gwn", "shapes", "cli"];
+const SECTIONS: [&str; 6] = ["paper", "locator", "gwn", "shapes", "build", "cli"];
 
 fn names(list: &[&str]) -> Vec<String> {
     list.iter().map(|s| s.to_string()).collect()
@@ -235,6 +236,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
         if let Some(fig) = plots::shapes_speedups_figure(&ratios) {
             list_plots(&mut md, &[plots::save(&dir, "speedups_shapes.svg", &fig)?]);
         }
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("build") {
+        build::section(&mut md, root, o)?;
         write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("cli") {
