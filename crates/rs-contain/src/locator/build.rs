@@ -297,8 +297,14 @@ impl Columns {
         parts: &Parts,
     ) -> Self {
         let mut start = vec![0usize; n + 1];
-        let mut rows: Vec<u32> = Vec::new();
-        let mut item_start: Vec<u32> = Vec::new();
+        // Sized once: the number of occupied cells, the distinct cells of the sorted pairs.
+        let occupied = pairs.len().min(1)
+            + pairs
+                .windows(2)
+                .filter(|w| pair_cell(w[0]) != pair_cell(w[1]))
+                .count();
+        let mut rows: Vec<u32> = Vec::with_capacity(occupied);
+        let mut item_start: Vec<u32> = Vec::with_capacity(occupied + 1);
         let mut items: Vec<u32> = Vec::with_capacity(pairs.len());
         let mut last = usize::MAX;
         for &pair in pairs {
