@@ -71,8 +71,10 @@ impl Default for LocatorOptions {
 /// spans a couple of cells, each with its own chord band ([`rs_boxes::ChordBand`]), narrow
 /// where the box's is wide. A cell that
 /// meets no box contains no boundary point, so all of its points share one location: for each
-/// column, the first cell of every run of such cells is classified exactly by inRS2 (one batch
-/// for the whole grid) and the run inherits it. The others are *mixed*.
+/// column, the first cell of every run of such cells gets inRS2's location of its centre and
+/// the run inherits it. That location is found walking the column upwards: inRS2's parity at
+/// the run below, changed by the boxes registered in the occupied cells between whose
+/// crossing test (inRS2's own) differs at the two centres. The others are *mixed*.
 ///
 /// The grid is stored in two levels, so that the table a query reads first stays in the
 /// processor's first-level cache: a coarse grid of `8 x 8` blocks of cells, a byte per block
@@ -102,8 +104,9 @@ impl Default for LocatorOptions {
 ///
 /// # Cost
 /// Build: the boxes' registrations (each box only in the cells near its curve: its piece is
-/// halved until each part spans a couple of cells), one inRS2 batch over the first cells of
-/// the runs between occupied cells, and a walk over the `(n / 8)^2` blocks; no table of all
+/// halved until each part spans a couple of cells), a walk up each column (the runs' states
+/// from the boxes of the occupied cells between them), and a walk over the `(n / 8)^2`
+/// blocks; no table of all
 /// `n^2` cells is made, so the work grows with the boundary's length in cells and the number
 /// of blocks. Memory: a byte per block of the coarse table, 256 bytes per refined block, the
 /// mixed-cell records with their item lists, and the parts' chord bands (96 bytes each, at
