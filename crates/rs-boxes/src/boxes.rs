@@ -509,10 +509,19 @@ fn monotone_pieces(
 fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
     let mut splits: Vec<(f64, EndFlags)> = Vec::new();
     let (mut at_start, mut at_end) = ((false, false), (false, false));
+    // Most pieces have no tangency in one or both coordinates: a derivative numerator whose
+    // Bernstein coefficients all have one sign, clear of rounding, has no root in [0, 1]
+    // (it is a convex combination of them), so the solve below would find none either.
+    let solve = Axis::BOTH.map(|axis| {
+        !piece.is_constant(axis) && !clearly_one_signed(&piece.derivative_numerator(axis))
+    });
+    if solve == [false, false] {
+        return Ok((Vec::new(), at_start, at_end));
+    }
     let bez = piece.to_bezier()?;
     let (dx, dy) = bez.derivative_numerators();
-    for (axis, d) in [(Axis::X, dx), (Axis::Y, dy)] {
-        if piece.is_constant(axis) {
+    for ((axis, d), solve) in [(Axis::X, dx), (Axis::Y, dy)].into_iter().zip(solve) {
+        if !solve {
             continue;
         }
         let roots = match real_roots_in(&d, 0.0, 1.0) {
@@ -546,6 +555,18 @@ fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
         }
     }
     Ok((merged, at_start, at_end))
+}
+
+/// Whether Bernstein coefficients are all finite, of one sign and at least `1e-6` of the largest
+/// in size: the polynomial is then at least that far from zero on `[0, 1]`, far beyond the
+/// rounding of these coefficients or of the power form's evaluation, so no root solve can
+/// report a root there.
+fn clearly_one_signed(c: &[f64]) -> bool {
+    let largest = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let floor = 1e-6 * largest;
+    largest.is_finite()
+        && largest > 0.0
+        && (c.iter().all(|&v| v > floor) || c.iter().all(|&v| v < -floor))
 }
 
 /// Split parameters with their tangency flags, and the flags at the piece's two ends.
