@@ -2,10 +2,12 @@
 
 use rs_roots::{RootsError, real_roots_in};
 use rs_spline::{Axis, BoundingBox, Domain, Point};
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 
-/// Default number of sub-boxes each monotone piece is cut into (Remark 2.1), chosen by
+/// Default most sub-boxes a monotone piece is cut into (Remark 2.1), chosen by
 /// measurement (`cargo xtask bench --sweep`, table in the README). Smaller boxes let most points
 /// be decided without a root solve: on the paper's three domains with `10^5` Halton points,
 /// inRS2 runs 6-14 times faster with 32 sub-boxes than with 1, and 64 or 128 gain at most another
@@ -13,6 +15,16 @@ use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 /// keeps build plus classification within about 10% of the best choice from `10^3` to `10^5`
 /// points.
 pub const DEFAULT_SUBDIVISIONS: usize = 32;
+
+/// Refined boxes per bounding-box diagonal of L1 length along the boundary: a monotone piece
+/// whose box has width plus height `l` gets `ceil(BOXES_PER_DIAGONAL * l / diagonal)` boxes
+/// (at least 1, at most [`BoxOptions::subdivisions`]), so that boxes are about one size across
+/// the domain: the paper's domains, whose pieces span much of the domain, keep 32 on their
+/// large pieces, while a glyph-like boundary of hundreds of small pieces gets 1 to 4 each.
+/// Chosen by measurement (`cargo xtask bench --only paper --quick`, best of three alternating
+/// runs): inRS2 on `10^3` and `10^4` points of the paper's domains within about 5% of 32 boxes
+/// on every piece, where 32 per diagonal was up to 15% slower.
+pub const BOXES_PER_DIAGONAL: f64 = 64.0;
 
 /// The most sub-boxes per monotone piece a caller may ask for.
 pub const MAX_SUBDIVISIONS: usize = 4096;
@@ -35,17 +47,18 @@ const END_ROOT_MARGIN: f64 = 1e-10;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct BoxOptions {
-    /// Sub-boxes per monotone piece (>= 1; 1 means no refinement).
+    /// The most sub-boxes per monotone piece (>= 1; 1 means no refinement): a piece gets
+    /// fewer when it is short against the domain ([`BOXES_PER_DIAGONAL`]).
     pub subdivisions: usize,
 }
 
 impl BoxOptions {
-    /// [`DEFAULT_SUBDIVISIONS`] sub-boxes per monotone piece.
+    /// At most [`DEFAULT_SUBDIVISIONS`] sub-boxes per monotone piece.
     pub const DEFAULT: BoxOptions = BoxOptions {
         subdivisions: DEFAULT_SUBDIVISIONS,
     };
 
-    /// With `subdivisions` sub-boxes per monotone piece.
+    /// With at most `subdivisions` sub-boxes per monotone piece.
     pub const fn with_subdivisions(mut self, subdivisions: usize) -> Self {
         self.subdivisions = subdivisions;
         self
@@ -104,11 +117,21 @@ pub struct CriticalPoint {
 ///    consecutive boxes share their end points bit for bit.
 /// 2. Each piece is split at the roots in `(0, 1)` of the numerators of `x'(t)` and `y'(t)`
 ///    (paper eq. (5), roots by `rs-roots`), by successive de Casteljau subdivision so that
-///    neighbouring pieces share the split point exactly.
-/// 3. Each monotone piece is cut into [`BoxOptions::subdivisions`] equal parameter parts.
-/// 4. Critical points: vertical/horizontal tangencies, x-/y-turning vertices (where consecutive
-///    boxes run in opposite directions, or one is constant), and constant (vertical or
-///    horizontal) pieces.
+///    neighbouring pieces share the split point exactly: the *monotone pieces*
+///    ([`MonotoneBoxes::pieces`], one box each).
+/// 3. Critical points: vertical/horizontal tangencies, x-/y-turning vertices (where consecutive
+///    monotone pieces run in opposite directions, or one is constant), and constant (vertical
+///    or horizontal) pieces.
+/// 4. Each monotone piece is cut into equal parameter parts, about one per
+///    `1 /` [`BOXES_PER_DIAGONAL`] of the bounding box's diagonal along it (its L1 length, the
+///    width plus the height of its box), at least 1 and at most
+///    [`MonotoneBoxes::subdivisions`]: the refined boxes ([`MonotoneBoxes::boxes`]).
+///
+/// Steps 1-3 are done by [`MonotoneBoxes::new`]; step 4 is deferred to the first call of
+/// [`MonotoneBoxes::boxes`] (thread-safe, done once), so that a caller answering a handful of
+/// points never pays for it: [`MonotoneBoxes::for_each_box_of_piece`] gives one piece's refined
+/// boxes, bit for bit those of [`MonotoneBoxes::boxes`], computing them on the fly while the
+/// whole refinement is not built.
 ///
 /// # Examples
 ///
@@ -117,12 +140,25 @@ pub struct CriticalPoint {
 /// use rs_spline::{circle, Domain, Point};
 /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
 /// let boxes = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(1)).unwrap();
-/// assert_eq!(boxes.boxes().len(), 4); // one per quadrant
+/// assert_eq!(boxes.pieces().len(), 4); // one per quadrant
+/// assert!(!boxes.is_refined());
+/// assert_eq!(boxes.boxes().len(), 4); // at most one box per piece
 /// assert_eq!(boxes.critical_abscissas(), &[-1.0, 1.0]);
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct MonotoneBoxes {
-    boxes: Vec<MonotoneBox>,
+    /// One box per monotone piece, loop by loop in boundary order.
+    pieces: Vec<MonotoneBox>,
+    /// How each monotone piece is refined (parallel to `pieces`).
+    refinement: Vec<Refinement>,
+    /// The refined boxes, built on first use.
+    boxes: OnceLock<Vec<MonotoneBox>>,
+    /// Refined boxes computed on the fly so far by `for_each_box_of_piece` (not kept): once
+    /// they reach the number of refined boxes, the refinement is built instead, so that the
+    /// work on the fly never exceeds one full build.
+    on_the_fly: AtomicUsize,
+    /// The number of refined boxes (`boxes().len()`, known before they are built).
+    box_count: usize,
     bbox: BoundingBox,
     critical: Vec<CriticalPoint>,
     critical_x: Vec<f64>,
@@ -130,14 +166,48 @@ pub struct MonotoneBoxes {
     subdivisions: usize,
 }
 
+impl Clone for MonotoneBoxes {
+    /// A copy, with the refined boxes if they are built.
+    fn clone(&self) -> Self {
+        Self {
+            pieces: self.pieces.clone(),
+            refinement: self.refinement.clone(),
+            boxes: self.boxes.clone(),
+            on_the_fly: AtomicUsize::new(self.on_the_fly.load(Ordering::Relaxed)),
+            box_count: self.box_count,
+            bbox: self.bbox,
+            critical: self.critical.clone(),
+            critical_x: self.critical_x.clone(),
+            critical_y: self.critical_y.clone(),
+            subdivisions: self.subdivisions,
+        }
+    }
+}
+
+/// How one monotone piece is cut into refined boxes.
+#[derive(Clone, Copy, Debug)]
+struct Refinement {
+    /// The monotone piece's local parameters `[t0, t1]` in its Bezier piece.
+    t: (f64, f64),
+    /// The Bezier piece's knot span (curve parameter `u0 + t (u1 - u0)`).
+    span: (f64, f64),
+    /// Refined boxes of this piece (>= 1).
+    count: usize,
+    /// Index of its first refined box in [`MonotoneBoxes::boxes`].
+    first: usize,
+}
+
 /// Tangency flags at a piece's ends: (vertical, horizontal).
 type EndFlags = (bool, bool);
 
 impl MonotoneBoxes {
-    /// Builds the boxes of every loop of `domain` (closed or not).
+    /// Builds the monotone pieces of every loop of `domain` (closed or not), their critical
+    /// points and bounding box; the refined boxes are built on the first call of
+    /// [`MonotoneBoxes::boxes`].
     ///
-    /// The refinement is fitted to the boundary's size: with `m` monotone pieces each is cut
-    /// into `min(subdivisions, max(1, BOX_BUDGET / m))` boxes, so memory stays linear in the
+    /// The refinement is fitted to each piece's size against the domain (see the type's
+    /// Construction), and to the boundary's size: with `m` monotone pieces, no piece gets more
+    /// than `min(subdivisions, max(1, BOX_BUDGET / m))` boxes, so memory stays linear in the
     /// boundary (about [`BYTES_PER_BOX`] bytes a box) whatever the requested refinement.
     ///
     /// # Errors
@@ -154,12 +224,11 @@ impl MonotoneBoxes {
                 limit: MAX_SUBDIVISIONS,
             });
         }
-        let (loops, monotone_pieces) = split_loops(domain)?;
+        let (pieces, mut refinement, critical) = monotone_pieces(domain)?;
         let subdivisions = options
             .subdivisions
-            .min((BOX_BUDGET / monotone_pieces.max(1)).max(1));
-        let (boxes, critical) = build_boxes(domain, loops, monotone_pieces, subdivisions);
-        let bbox = boxes
+            .min((BOX_BUDGET / pieces.len().max(1)).max(1));
+        let bbox = pieces
             .iter()
             .map(|b| BoundingBox {
                 min: Point::new(b.band.xmin, b.band.ymin),
@@ -167,6 +236,14 @@ impl MonotoneBoxes {
             })
             .reduce(BoundingBox::union)
             .unwrap_or_else(|| domain.bounding_box());
+        let diagonal = bbox.diagonal();
+        let mut box_count = 0;
+        for (b, r) in pieces.iter().zip(&mut refinement) {
+            let l1 = (b.band.xmax - b.band.xmin) + (b.band.ymax - b.band.ymin);
+            r.count = boxes_for(l1, diagonal, subdivisions);
+            r.first = box_count;
+            box_count += r.count;
+        }
         let mut critical_x: Vec<f64> = critical
             .iter()
             .filter(|c| c.kind.is_x_critical())
@@ -182,7 +259,11 @@ impl MonotoneBoxes {
             v.dedup();
         }
         Ok(Self {
-            boxes,
+            pieces,
+            refinement,
+            boxes: OnceLock::new(),
+            on_the_fly: AtomicUsize::new(0),
+            box_count,
             bbox,
             critical,
             critical_x,
@@ -191,16 +272,80 @@ impl MonotoneBoxes {
         })
     }
 
-    /// The sub-boxes per monotone piece actually used: the requested
+    /// The most refined boxes a monotone piece gets: the requested
     /// [`BoxOptions::subdivisions`], reduced if needed so that the domain has at most about
-    /// [`BOX_BUDGET`] boxes (never below 1).
+    /// [`BOX_BUDGET`] boxes (never below 1). Pieces short against the domain's diagonal get
+    /// fewer (see the type's Construction).
     pub fn subdivisions(&self) -> usize {
         self.subdivisions
     }
 
-    /// The boxes, loop by loop in boundary order.
+    /// The monotone pieces, one box each, loop by loop in boundary order (built by
+    /// [`MonotoneBoxes::new`]).
+    pub fn pieces(&self) -> &[MonotoneBox] {
+        &self.pieces
+    }
+
+    /// The refined boxes, loop by loop in boundary order: each monotone piece's boxes in order
+    /// from its start, consecutive boxes sharing their end points bit for bit. Built on the
+    /// first call (once, whichever thread asks) and kept.
     pub fn boxes(&self) -> &[MonotoneBox] {
-        &self.boxes
+        self.boxes.get_or_init(|| {
+            let mut all = Vec::with_capacity(self.box_count);
+            for (b, r) in self.pieces.iter().zip(&self.refinement) {
+                refine(b, r, |sub| all.push(sub));
+            }
+            all
+        })
+    }
+
+    /// Whether the refined boxes ([`MonotoneBoxes::boxes`]) have been built.
+    pub fn is_refined(&self) -> bool {
+        self.boxes.get().is_some()
+    }
+
+    /// The number of refined boxes, without building them.
+    pub fn box_count(&self) -> usize {
+        self.box_count
+    }
+
+    /// The number of refined boxes of monotone piece `piece` (an index of
+    /// [`MonotoneBoxes::pieces`]).
+    ///
+    /// # Panics
+    /// If `piece` is out of range.
+    pub fn boxes_of_piece(&self, piece: usize) -> std::ops::Range<usize> {
+        let r = &self.refinement[piece];
+        r.first..r.first + r.count
+    }
+
+    /// Calls `f` with the refined boxes of monotone piece `piece` in order, bit for bit
+    /// `boxes()[boxes_of_piece(piece)]`: from [`MonotoneBoxes::boxes`] once built, else
+    /// computed on the fly and dropped (a piece left whole is its own box). Once the boxes
+    /// computed on the fly reach [`MonotoneBoxes::box_count`], the refinement is built and
+    /// kept, so that many calls never cost more than twice a full build.
+    ///
+    /// # Panics
+    /// If `piece` is out of range.
+    pub fn for_each_box_of_piece(&self, piece: usize, mut f: impl FnMut(&MonotoneBox)) {
+        let r = &self.refinement[piece];
+        if r.count == 1 {
+            f(&self.pieces[piece]);
+            return;
+        }
+        let built = match self.boxes.get() {
+            Some(all) => Some(all.as_slice()),
+            None if self.on_the_fly.fetch_add(r.count, Ordering::Relaxed) + r.count
+                > self.box_count =>
+            {
+                Some(self.boxes())
+            }
+            None => None,
+        };
+        match built {
+            Some(all) => all[r.first..r.first + r.count].iter().for_each(f),
+            None => refine(&self.pieces[piece], r, |sub| f(&sub)),
+        }
     }
 
     /// The global bounding box (union of the boxes: the tight box of the boundary).
@@ -241,98 +386,122 @@ impl MonotoneBoxes {
     }
 }
 
+/// The refined boxes of a monotone piece of L1 length `l1` (width plus height of its box) in a
+/// domain of diagonal `diagonal`: `ceil(BOXES_PER_DIAGONAL * l1 / diagonal)`, clamped to
+/// `1..=most` (1 for a degenerate domain).
+fn boxes_for(l1: f64, diagonal: f64, most: usize) -> usize {
+    let want = (BOXES_PER_DIAGONAL * l1 / diagonal).ceil();
+    if want >= most as f64 {
+        most
+    } else if want >= 1.0 {
+        want as usize
+    } else {
+        // Also NaN (a domain of one point).
+        1
+    }
+}
+
+/// Pushes the `r.count` refined boxes of the monotone piece `b` (equal parameter parts, split
+/// off one by one from its start so that consecutive boxes share their end points exactly).
+fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
+    let k = r.count;
+    if k == 1 {
+        push(b.clone());
+        return;
+    }
+    let ((t_prev, t), (u0, u1)) = (r.t, r.span);
+    let param = |t: f64| u0 + t * (u1 - u0);
+    let mut part = b.piece().clone();
+    for j in 0..k {
+        let a = t_prev + (t - t_prev) * j as f64 / k as f64;
+        let e = t_prev + (t - t_prev) * (j + 1) as f64 / k as f64;
+        let sub = if j + 1 < k {
+            let (left, right) = part.split(1.0 / (k - j) as f64);
+            part = right;
+            left
+        } else {
+            part.clone()
+        };
+        push(MonotoneBox::new(
+            sub,
+            b.curve,
+            b.boundary_loop,
+            (param(a), param(e)),
+        ));
+    }
+}
+
 fn near_sorted(v: &[f64], x: f64, tol: f64) -> bool {
     let i = v.partition_point(|&c| c < x - tol);
     i < v.len() && v[i] <= x + tol
 }
 
-/// One loop's pieces: (curve, knot span, watertight piece, its monotone splits).
-type SplitLoop = Vec<(usize, (f64, f64), BezierPiece, Splits)>;
-
-/// First pass: the watertight pieces of every loop (each piece starts exactly where the
-/// previous one ends) and their monotone splits, with the number of monotone pieces, so that
-/// the refinement can be fitted to the box budget.
-fn split_loops(domain: &Domain) -> Result<(Vec<SplitLoop>, usize), BoxError> {
-    let mut loops = Vec::with_capacity(domain.loops().len());
-    let mut monotone_pieces = 0usize;
-    for l in domain.loops() {
-        let mut pieces: Vec<(usize, (f64, f64), BezierPiece)> = l
-            .curves()
-            .flat_map(|ci| {
-                domain.curves()[ci]
-                    .to_bezier()
-                    .into_iter()
-                    .map(move |b| (ci, b.knot_span(), BezierPiece::from_bezier(&b)))
-            })
-            .collect();
+/// The monotone pieces of every loop (one box each, their refinement still to be counted),
+/// and the critical points.
+///
+/// Each loop's Bezier pieces are made watertight (each starts exactly where the previous one
+/// ends), split at their tangency roots, and the tangency flags are carried across piece joins.
+#[allow(clippy::type_complexity)]
+fn monotone_pieces(
+    domain: &Domain,
+) -> Result<(Vec<MonotoneBox>, Vec<Refinement>, Vec<CriticalPoint>), BoxError> {
+    let mut boxes = Vec::new();
+    let mut refinement = Vec::new();
+    let mut critical = Vec::new();
+    // Tangency flags at the start of each monotone piece of the current loop.
+    let mut start_flags: Vec<EndFlags> = Vec::new();
+    let mut pieces: Vec<(usize, (f64, f64), BezierPiece)> = Vec::new();
+    for (li, l) in domain.loops().iter().enumerate() {
+        pieces.clear();
+        pieces.extend(l.curves().flat_map(|ci| {
+            domain.curves()[ci]
+                .to_bezier()
+                .into_iter()
+                .map(move |b| (ci, b.knot_span(), BezierPiece::from_bezier(&b)))
+        }));
         for i in 1..pieces.len() {
             let end = pieces[i - 1].2.end();
             pieces[i].2.set_start(end);
         }
-        if l.is_closed() {
-            let end = pieces[pieces.len() - 1].2.end();
+        if l.is_closed()
+            && let Some(end) = pieces.last().map(|p| p.2.end())
+        {
             pieces[0].2.set_start(end);
         }
-        let mut split = Vec::with_capacity(pieces.len());
-        for (ci, range, piece) in pieces {
-            let s = monotone_splits(&piece).map_err(|source| BoxError::Piece {
-                curve: ci,
-                parameter: range.0,
-                source,
-            })?;
-            monotone_pieces += s.0.len() + 1;
-            split.push((ci, range, piece, s));
-        }
-        loops.push(split);
-    }
-    Ok((loops, monotone_pieces))
-}
-
-/// Second pass: the boxes of every loop (each monotone piece cut into `subdivisions`), with
-/// the tangency flags carried across piece joins, and the loop's critical points.
-fn build_boxes(
-    domain: &Domain,
-    loops: Vec<SplitLoop>,
-    monotone_pieces: usize,
-    subdivisions: usize,
-) -> (Vec<MonotoneBox>, Vec<CriticalPoint>) {
-    let mut boxes = Vec::with_capacity(monotone_pieces * subdivisions);
-    let mut critical = Vec::new();
-    for (li, (l, split)) in domain.loops().iter().zip(loops).enumerate() {
         let first = boxes.len();
-        // Tangency flags at the start of each box of this loop.
-        let mut start_flags: Vec<EndFlags> = Vec::new();
+        start_flags.clear();
         let mut pending_end: EndFlags = (false, false);
-        for (ci, range, piece, (splits, at_start, at_end)) in split {
-            let before = boxes.len();
+        for (ci, span, piece) in pieces.drain(..) {
+            let (splits, at_start, at_end) =
+                monotone_splits(&piece).map_err(|source| BoxError::Piece {
+                    curve: ci,
+                    parameter: span.0,
+                    source,
+                })?;
+            let idx = boxes.len() - first;
             split_piece(
                 &piece,
                 ci,
                 li,
-                range,
+                span,
                 &splits,
-                subdivisions,
                 &mut boxes,
+                &mut refinement,
                 &mut start_flags,
             );
-            let idx = before - first;
             start_flags[idx].0 |= at_start.0 || pending_end.0;
             start_flags[idx].1 |= at_start.1 || pending_end.1;
             pending_end = at_end;
         }
-        let last = boxes.len();
-        if l.is_closed() {
-            start_flags[0].0 |= pending_end.0;
-            start_flags[0].1 |= pending_end.1;
+        if l.is_closed()
+            && let Some(f) = start_flags.first_mut()
+        {
+            f.0 |= pending_end.0;
+            f.1 |= pending_end.1;
         }
-        collect_critical(
-            &boxes[first..last],
-            &start_flags,
-            l.is_closed(),
-            &mut critical,
-        );
+        collect_critical(&boxes[first..], &start_flags, l.is_closed(), &mut critical);
     }
-    (boxes, critical)
+    Ok((boxes, refinement, critical))
 }
 
 /// Split parameters of a piece at the roots of `x'` and `y'` in `(0, 1)`, each with its
@@ -340,10 +509,19 @@ fn build_boxes(
 fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
     let mut splits: Vec<(f64, EndFlags)> = Vec::new();
     let (mut at_start, mut at_end) = ((false, false), (false, false));
+    // Most pieces have no tangency in one or both coordinates: a derivative numerator whose
+    // Bernstein coefficients all have one sign, clear of rounding, has no root in [0, 1]
+    // (it is a convex combination of them), so the solve below would find none either.
+    let solve = Axis::BOTH.map(|axis| {
+        !piece.is_constant(axis) && !clearly_one_signed(&piece.derivative_numerator(axis))
+    });
+    if solve == [false, false] {
+        return Ok((Vec::new(), at_start, at_end));
+    }
     let bez = piece.to_bezier()?;
     let (dx, dy) = bez.derivative_numerators();
-    for (axis, d) in [(Axis::X, dx), (Axis::Y, dy)] {
-        if piece.is_constant(axis) {
+    for ((axis, d), solve) in [(Axis::X, dx), (Axis::Y, dy)].into_iter().zip(solve) {
+        if !solve {
             continue;
         }
         let roots = match real_roots_in(&d, 0.0, 1.0) {
@@ -379,6 +557,18 @@ fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
     Ok((merged, at_start, at_end))
 }
 
+/// Whether Bernstein coefficients are all finite, of one sign and at least `1e-6` of the largest
+/// in size: the polynomial is then at least that far from zero on `[0, 1]`, far beyond the
+/// rounding of these coefficients or of the power form's evaluation, so no root solve can
+/// report a root there.
+fn clearly_one_signed(c: &[f64]) -> bool {
+    let largest = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let floor = 1e-6 * largest;
+    largest.is_finite()
+        && largest > 0.0
+        && (c.iter().all(|&v| v > floor) || c.iter().all(|&v| v < -floor))
+}
+
 /// Split parameters with their tangency flags, and the flags at the piece's two ends.
 type Splits = (Vec<(f64, EndFlags)>, EndFlags, EndFlags);
 
@@ -386,8 +576,8 @@ fn or(a: EndFlags, b: EndFlags) -> EndFlags {
     (a.0 || b.0, a.1 || b.1)
 }
 
-/// Cuts `piece` at `splits` and each part into `k` equal parameter parts, pushing the boxes and
-/// the tangency flags at their starts.
+/// Cuts `piece` at `splits` into monotone pieces, pushing one box for each, its refinement
+/// record (count still to be set) and the tangency flags at its start.
 #[allow(clippy::too_many_arguments)]
 fn split_piece(
     piece: &BezierPiece,
@@ -395,8 +585,8 @@ fn split_piece(
     loop_index: usize,
     (u0, u1): (f64, f64),
     splits: &[(f64, EndFlags)],
-    k: usize,
     boxes: &mut Vec<MonotoneBox>,
+    refinement: &mut Vec<Refinement>,
     start_flags: &mut Vec<EndFlags>,
 ) {
     let param = |t: f64| u0 + t * (u1 - u0);
@@ -415,26 +605,20 @@ fn split_piece(
         } else {
             rest.clone()
         };
-        // Refine into k equal parts of [t_prev, t].
-        let mut part = monotone;
-        for j in 0..k {
-            let a = t_prev + (t - t_prev) * j as f64 / k as f64;
-            let b = t_prev + (t - t_prev) * (j + 1) as f64 / k as f64;
-            let sub = if j + 1 < k {
-                let (left, right) = part.split(1.0 / (k - j) as f64);
-                part = right;
-                left
-            } else {
-                part.clone()
-            };
-            boxes.push(MonotoneBox::new(
-                sub,
-                curve,
-                loop_index,
-                (param(a), param(b)),
-            ));
-            start_flags.push(if j == 0 { flags_prev } else { (false, false) });
-        }
+        // The parameter range a refinement into one box gives (`refine`'s formula with
+        // k = 1), so that a piece left whole is bit for bit its own refined box.
+        let range = (
+            param(t_prev + (t - t_prev) * 0.0 / 1.0),
+            param(t_prev + (t - t_prev) * 1.0 / 1.0),
+        );
+        boxes.push(MonotoneBox::new(monotone, curve, loop_index, range));
+        refinement.push(Refinement {
+            t: (t_prev, t),
+            span: (u0, u1),
+            count: 1,
+            first: 0,
+        });
+        start_flags.push(flags_prev);
         t_prev = t;
         flags_prev = flags;
     }

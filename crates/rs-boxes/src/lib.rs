@@ -21,8 +21,8 @@ mod monotone_box;
 mod piece;
 
 pub use boxes::{
-    BOX_BUDGET, BYTES_PER_BOX, BoxOptions, CriticalKind, CriticalPoint, DEFAULT_SUBDIVISIONS,
-    MAX_SUBDIVISIONS, MonotoneBoxes,
+    BOX_BUDGET, BOXES_PER_DIAGONAL, BYTES_PER_BOX, BoxOptions, CriticalKind, CriticalPoint,
+    DEFAULT_SUBDIVISIONS, MAX_SUBDIVISIONS, MonotoneBoxes,
 };
 pub use chord_band::ChordBand;
 pub use error::{BoxError, PieceError};

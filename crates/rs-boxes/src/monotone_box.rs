@@ -133,6 +133,11 @@ impl MonotoneBox {
         }
     }
 
+    /// The stored piece.
+    pub(crate) fn piece(&self) -> &BezierPiece {
+        &self.piece
+    }
+
     /// The piece's point at local parameter `t` in `[0, 1]` (exactly the band's `start` and
     /// `end` at `t = 0` and `t = 1`). The curve parameter is
     /// `u0 + t (u1 - u0)` with `(u0, u1) = param_range`.

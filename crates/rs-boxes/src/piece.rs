@@ -152,6 +152,37 @@ impl BezierPiece {
         (left, right)
     }
 
+    /// The numerator of `x'(t)` (for [`Axis::X`]) or `y'(t)`: `X' W - X W'`, in the Bernstein
+    /// basis of degree `2n - 1` on `[0, 1]` (`n` the degree; one more than the polynomial's
+    /// degree `2n - 2`, a degree-elevated form of it), formed from the control points directly.
+    /// Its sign is the sign of the derivative (`W^2 > 0`). The coordinate is taken relative to
+    /// the first control point, which leaves the numerator unchanged (`W' W - W W' = 0`) and
+    /// makes its first coefficient `n w_0 w_1 (c_1 - c_0)`, exactly zero at a tangency there.
+    pub(crate) fn derivative_numerator(&self, axis: Axis) -> SmallVec<[f64; 16]> {
+        let n = self.degree();
+        if n == 0 {
+            return SmallVec::from_elem(0.0, 1);
+        }
+        let (c, w) = (self.coords(axis), &self.w);
+        let h = |i: usize| w[i] * (c[i] - c[0]);
+        let m = 2 * n - 1;
+        let mut out: SmallVec<[f64; 16]> = SmallVec::from_elem(0.0, m + 1);
+        // X' = n sum_i (h_{i+1} - h_i) B_i^{n-1}, W' likewise, and
+        // B_i^{n-1} B_j^n = C(n-1, i) C(n, j) / C(2n-1, i+j) B_{i+j}^{2n-1}.
+        for i in 0..n {
+            let (dh, dw) = (h(i + 1) - h(i), w[i + 1] - w[i]);
+            let bi = binomial(n - 1, i);
+            for j in 0..=n {
+                let v = dh * w[j] - h(j) * dw;
+                out[i + j] += v * (bi * binomial(n, j) / binomial(m, i + j));
+            }
+        }
+        for o in &mut out {
+            *o *= n as f64;
+        }
+        out
+    }
+
     /// The piece as a [`RationalBezier`] on `[0, 1]`.
     ///
     /// # Errors
@@ -160,6 +191,14 @@ impl BezierPiece {
         let pts = (0..self.w.len()).map(|i| self.control_point(i)).collect();
         RationalBezier::new(pts, self.w.to_vec())
     }
+}
+
+/// The binomial coefficient `C(n, k)` as `f64` (exact up to `n = 56`, within rounding above).
+fn binomial(n: usize, k: usize) -> f64 {
+    let k = k.min(n - k);
+    (0..k)
+        .fold(1.0, |r, i| r * (n - i) as f64 / (i + 1) as f64)
+        .round()
 }
 
 /// `X(t) / W(t)`, exact at the ends.
@@ -220,6 +259,41 @@ mod tests {
         assert!(a.solve_x(1.5).is_none());
         let t = a.solve_y(0.6).unwrap();
         assert!((a.y_at(t) - 0.6).abs() < 1e-15);
+    }
+
+    /// The Bernstein derivative numerators equal the power-form ones of `rs-spline` (up to
+    /// rounding) on rational pieces of degrees 1 to 5, and vanish exactly at an end tangency.
+    #[test]
+    fn derivative_numerators_match_the_power_form() {
+        for n in 1..=5usize {
+            let pts: Vec<Point> = (0..=n)
+                .map(|i| {
+                    Point::new(
+                        (i as f64 * 1.7).sin() * 3.0 + 1.0,
+                        (i * i) as f64 * 0.3 - 2.0,
+                    )
+                })
+                .collect();
+            let w: Vec<f64> = (0..=n)
+                .map(|i| 1.0 + 0.4 * (i as f64 * 0.9).cos())
+                .collect();
+            let b = RationalBezier::new(pts, w).unwrap();
+            let piece = BezierPiece::from_bezier(&b);
+            let (dx, dy) = b.derivative_numerators();
+            for (axis, d) in [(Axis::X, dx), (Axis::Y, dy)] {
+                let c = piece.derivative_numerator(axis);
+                assert_eq!(c.len(), 2 * n);
+                let scale: f64 = c.iter().map(|v| v.abs()).sum();
+                for k in 0..=10 {
+                    let t = k as f64 / 10.0;
+                    let got = de_casteljau(&c, t);
+                    assert!((got - d.eval(t)).abs() <= 1e-12 * scale, "{n} {axis:?} {t}");
+                }
+            }
+        }
+        let a = arc();
+        assert_eq!(a.derivative_numerator(Axis::X)[0], 0.0);
+        assert_eq!(*a.derivative_numerator(Axis::Y).last().unwrap(), 0.0);
     }
 
     #[test]

@@ -4,8 +4,8 @@
 use rs_spline::prelude::*;
 use std::f64::consts::PI;
 
-use rs_boxes::{BoxOptions, CriticalKind, MonotoneBoxes, Monotonicity};
-use rs_spline::{Domain, Point, circle, circular_arc, segment};
+use rs_boxes::{BOXES_PER_DIAGONAL, BoxOptions, CriticalKind, MonotoneBoxes, Monotonicity};
+use rs_spline::{Domain, Point, circle, circular_arc, polyline, segment};
 
 fn all_domains() -> Vec<(String, Domain)> {
     let mut v = rs_testkit::fixtures();
@@ -110,21 +110,97 @@ fn boxes_cover_the_boundary_and_are_watertight() {
     }
 }
 
+/// The refined boxes follow the size policy: `ceil(BOXES_PER_DIAGONAL * l1 / diagonal)` per
+/// monotone piece, clamped to `1..=subdivisions`, in boundary order; each piece's boxes run
+/// from its start to its end sharing their end points bit for bit and keep its directions (so
+/// the critical points, taken from the pieces, are those the refined boxes give).
 #[test]
-fn refinement_multiplies_the_boxes() {
+fn refinement_follows_the_size_policy() {
     for (name, d) in all_domains() {
-        let n1 = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(1))
-            .unwrap()
-            .boxes()
-            .len();
-        let n7 = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(7))
-            .unwrap()
-            .boxes()
-            .len();
-        assert_eq!(n7, 7 * n1, "{name}");
+        for most in [1, 7, 32] {
+            let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(most)).unwrap();
+            assert_eq!(mb.subdivisions(), most);
+            let diagonal = mb.bounding_box().diagonal();
+            let all = mb.boxes();
+            let mut next = 0;
+            for (i, piece) in mb.pieces().iter().enumerate() {
+                let range = mb.boxes_of_piece(i);
+                assert_eq!(range.start, next, "{name}");
+                next = range.end;
+                let band = &piece.band;
+                let l1 = (band.xmax - band.xmin) + (band.ymax - band.ymin);
+                let want = ((BOXES_PER_DIAGONAL * l1 / diagonal).ceil() as usize).clamp(1, most);
+                assert_eq!(range.len(), want, "{name}: piece {i} of l1 {l1}");
+                let own = &all[range];
+                assert_eq!(own[0].band.start, band.start, "{name}");
+                assert_eq!(own[own.len() - 1].band.end, band.end, "{name}");
+                assert_eq!(own[0].param_range.0, piece.param_range.0, "{name}");
+                for w in own.windows(2) {
+                    assert_eq!(w[0].band.end, w[1].band.start, "{name}");
+                    assert_eq!(w[0].param_range.1, w[1].param_range.0, "{name}");
+                }
+                for b in own {
+                    assert_eq!((b.x_dir, b.y_dir), (piece.x_dir, piece.y_dir), "{name}");
+                    assert_eq!(
+                        (b.curve, b.boundary_loop),
+                        (piece.curve, piece.boundary_loop)
+                    );
+                }
+                if want == 1 {
+                    assert_eq!(&own[0], piece, "{name}: a whole piece is its own box");
+                }
+            }
+            assert_eq!((next, mb.box_count()), (all.len(), all.len()), "{name}");
+        }
     }
     let d = &rs_testkit::fixtures()[0].domain;
     assert!(MonotoneBoxes::new(d, BoxOptions::DEFAULT.with_subdivisions(0)).is_err());
+
+    // A circle's quadrants span the domain: 32 boxes each. A 400-gon's sides are short: one.
+    let c = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+    let mb = MonotoneBoxes::new(&c, BoxOptions::DEFAULT).unwrap();
+    assert_eq!((mb.pieces().len(), mb.box_count()), (4, 128));
+    let corners: Vec<Point> = (0..=400)
+        .map(|i| {
+            let a = 2.0 * PI * (i % 400) as f64 / 400.0;
+            Point::new(a.cos(), a.sin())
+        })
+        .collect();
+    let d = Domain::new(vec![polyline(&corners).unwrap()]).unwrap();
+    let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT).unwrap();
+    assert_eq!(mb.pieces().len(), 400);
+    assert_eq!(mb.box_count(), 400);
+}
+
+/// The refined boxes are built on the first call of `boxes()`, not before; one piece's boxes
+/// computed on the fly are bit for bit the built ones; once the boxes computed on the fly reach
+/// the total, the refinement is built and kept.
+#[test]
+fn refined_boxes_are_built_on_first_use() {
+    for (name, d) in all_domains() {
+        let eager = MonotoneBoxes::new(&d, BoxOptions::DEFAULT).unwrap();
+        let lazy = MonotoneBoxes::new(&d, BoxOptions::DEFAULT).unwrap();
+        assert!(!eager.is_refined() && !lazy.is_refined(), "{name}");
+        let all = eager.boxes();
+        assert!(eager.is_refined());
+        let pass = |mb: &MonotoneBoxes| {
+            let mut got = Vec::new();
+            for i in 0..mb.pieces().len() {
+                mb.for_each_box_of_piece(i, |b| got.push(b.clone()));
+            }
+            got
+        };
+        // One pass computes at most box_count boxes on the fly: nothing is kept.
+        assert_eq!(pass(&lazy), all, "{name}");
+        assert!(!lazy.is_refined(), "{name}");
+        let refined = lazy.box_count() > lazy.pieces().len();
+        assert_eq!(pass(&lazy), all, "{name}");
+        assert_eq!(lazy.is_refined(), refined, "{name}: the second pass builds");
+        assert_eq!(lazy.boxes(), all, "{name}");
+        // A copy keeps what is built.
+        assert!(eager.clone().is_refined());
+        assert_eq!(eager.critical_abscissas(), lazy.critical_abscissas());
+    }
 }
 
 #[test]
@@ -260,4 +336,100 @@ fn box_grid_finds_every_near_box() {
         }
         assert!(near_count > 100, "{name}");
     }
+}
+
+/// The split parameters of one open Bezier curve: where its monotone pieces meet.
+fn splits_of(points: Vec<Point>, weights: Option<Vec<f64>>) -> Vec<f64> {
+    let c = rs_spline::NurbsCurve::bezier(points, weights).unwrap();
+    let mb = MonotoneBoxes::new(&Domain::new(vec![c]).unwrap(), BoxOptions::DEFAULT).unwrap();
+    mb.pieces()[1..].iter().map(|b| b.param_range.0).collect()
+}
+
+/// The tangency roots against analytic ones: a cubic with two vertical tangents, one with a
+/// double root of `x'` (an inflection with a vertical tangent), an ellipse arc (rational) with
+/// its vertical tangent in the middle, roots near the ends (within the end margin: no split,
+/// just outside it: a split), and the quarter circle's tangents at its ends.
+#[test]
+fn tangency_roots_are_the_analytic_ones() {
+    let p = Point::new;
+    // x(t) = t^3 - 1.5 t^2 + 0.63 t: x' = 3 (t - 0.3)(t - 0.7); y(t) = t.
+    let s = splits_of(
+        vec![
+            p(0.0, 0.0),
+            p(0.21, 1.0 / 3.0),
+            p(-0.08, 2.0 / 3.0),
+            p(0.13, 1.0),
+        ],
+        None,
+    );
+    assert_eq!(s.len(), 2, "{s:?}");
+    assert!(
+        (s[0] - 0.3).abs() < 1e-14 && (s[1] - 0.7).abs() < 1e-14,
+        "{s:?}"
+    );
+    // x(t) = (t - 0.5)^3 + 0.125: x' = 3 (t - 0.5)^2, a double root, reported once.
+    let s = splits_of(
+        vec![
+            p(0.0, 0.0),
+            p(0.25, 1.0 / 3.0),
+            p(0.0, 2.0 / 3.0),
+            p(0.25, 1.0),
+        ],
+        None,
+    );
+    assert_eq!(s.len(), 1, "{s:?}");
+    assert!((s[0] - 0.5).abs() < 1e-7, "{s:?}");
+    // The ellipse x = 3 cos a, y = sin a for a in [-1, 1], one rational quadratic: symmetric,
+    // so its vertical tangent (a = 0) is at t = 1/2, and y' has no root.
+    let (a, w) = (1.0f64, 1.0f64.cos());
+    let s = splits_of(
+        vec![
+            p(3.0 * a.cos(), -a.sin()),
+            p(3.0 / a.cos(), 0.0),
+            p(3.0 * a.cos(), a.sin()),
+        ],
+        Some(vec![1.0, w, 1.0]),
+    );
+    assert_eq!(s.len(), 1, "{s:?}");
+    assert!((s[0] - 0.5).abs() < 1e-15, "{s:?}");
+    // Near-end roots: x(t) = (t - e)^2 on [0, 1] as a quadratic, y(t) = t.
+    for (e, split) in [
+        (1e-12, false),
+        (1e-9, true),
+        (1.0 - 1e-12, false),
+        (1.0 - 1e-9, true),
+    ] {
+        // Power form e^2 - 2 e t + t^2: controls e^2, e^2 - e, (1 - e)^2.
+        let s = splits_of(
+            vec![
+                p(e * e, 0.0),
+                p(e * e - e, 0.5),
+                p((1.0 - e) * (1.0 - e), 1.0),
+            ],
+            None,
+        );
+        if split {
+            assert_eq!(s.len(), 1, "{e}: {s:?}");
+            assert!((s[0] - e).abs() < 1e-15, "{e}: {s:?}");
+        } else {
+            assert!(s.is_empty(), "{e}: {s:?}");
+        }
+    }
+    // A quarter circle: tangents at both ends, vertical at (1, 0) and horizontal at (0, 1).
+    let c = rs_spline::NurbsCurve::bezier(
+        vec![p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)],
+        Some(vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]),
+    )
+    .unwrap();
+    let mb = MonotoneBoxes::new(&Domain::new(vec![c]).unwrap(), BoxOptions::DEFAULT).unwrap();
+    assert_eq!(mb.pieces().len(), 1);
+    let kinds: Vec<(Point, CriticalKind)> = mb
+        .critical_points()
+        .iter()
+        .map(|c| (c.point, c.kind))
+        .collect();
+    assert!(
+        kinds.contains(&(p(1.0, 0.0), CriticalKind::VerticalTangent)),
+        "{kinds:?}"
+    );
 }

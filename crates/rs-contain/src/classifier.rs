@@ -12,6 +12,11 @@ use crate::{
     WindingField,
 };
 
+/// The rounding part of [`Classifier::vertical_parity`]'s reach, relative to the coordinates'
+/// scale plus the diagonal: far above the few units in the last place by which a refined box's
+/// end points can stray from its piece's rectangle, far below any tolerance in use.
+const REACH_ROUNDING: f64 = 1e-12;
+
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 pub const DEFAULT_RELATIVE_TOLERANCE: f64 = 1e-12;
 
@@ -28,7 +33,8 @@ pub const DEFAULT_RELATIVE_TOLERANCE: f64 = 1e-12;
 pub struct ContainOptions {
     /// Boundary tolerance relative to the bounding-box diagonal (see the crate's Semantics).
     pub relative_tolerance: f64,
-    /// Sub-boxes per monotone piece (paper Remark 2.1).
+    /// The most sub-boxes per monotone piece (paper Remark 2.1; pieces short against the
+    /// domain get fewer, see [`rs_boxes::BOXES_PER_DIAGONAL`]).
     pub subdivisions: usize,
     /// The method [`Locate::locate_all`] uses (all give the same answers; they differ in
     /// speed). Default [`Method::Fast`], as on the command line.
@@ -54,7 +60,7 @@ impl ContainOptions {
         self
     }
 
-    /// With `subdivisions` sub-boxes per monotone piece.
+    /// With at most `subdivisions` sub-boxes per monotone piece.
     pub const fn with_subdivisions(mut self, subdivisions: usize) -> Self {
         self.subdivisions = subdivisions;
         self
@@ -81,11 +87,16 @@ impl Default for ContainOptions {
 
 /// A point classifier for one closed domain: the paper's Algorithm inRS.
 ///
-/// Build it once (monotone boxes, critical points, bounding box) and locate any number of
+/// Build it once (monotone pieces, critical points, bounding box) and locate any number of
 /// points through [`Locate`] (one point, or a batch with the method of its options), or with
 /// [`Classifier::locate_all_with`] and a method of your choice (every method gives the same
 /// answers; [`Classifier::engine`] says which algorithm answers a batch).
-/// The winding-number field and the grid of [`Method::Fast`] are built on first use and kept.
+/// [`Classifier::new`] builds only the monotone pieces, their critical points and bounding box
+/// and the tolerance ([`MonotoneBoxes::new`]): what one point needs. Built on first use and
+/// kept (thread-safe, once): the refined boxes ([`MonotoneBoxes::boxes`], for inRS2, the rows
+/// of the fallback, the grid and the winding field; a point answered one by one before they
+/// exist computes the refined boxes of only the pieces it is near), the rows of the fallback,
+/// the winding-number field and the grid of [`Method::Fast`].
 /// See the crate documentation for the exact semantics.
 ///
 /// # Examples
@@ -109,6 +120,10 @@ pub struct Classifier {
     domain: Domain,
     relative_tolerance: f64,
     tol: f64,
+    /// Distance beyond which a point is away from a monotone piece for every test of its
+    /// refined boxes ([`Classifier::vertical_parity`]): twice the tolerance plus a rounding
+    /// margin far above the rounding of the refined boxes' end points.
+    reach: f64,
     outer: BoundingBox,
     method: Method,
     /// Built on first use: the generalized winding-number field ([`Method::Gwn`]).
@@ -128,6 +143,7 @@ impl Clone for Classifier {
             domain: self.domain.clone(),
             relative_tolerance: self.relative_tolerance,
             tol: self.tol,
+            reach: self.reach,
             outer: self.outer,
             method: self.method,
             field: OnceLock::new(),
@@ -158,11 +174,14 @@ impl Classifier {
             min: Point::new(bbox.min.x - tol, bbox.min.y - tol),
             max: Point::new(bbox.max.x + tol, bbox.max.y + tol),
         };
+        let scale = bbox.min.x.abs().max(bbox.max.x.abs()) + bbox.min.y.abs().max(bbox.max.y.abs());
+        let reach = 2.0 * tol + REACH_ROUNDING * (scale + bbox.diagonal());
         Ok(Self {
             boxes: Arc::new(boxes),
             domain: domain.clone(),
             relative_tolerance: options.relative_tolerance,
             tol,
+            reach,
             outer,
             method: options.method,
             field: OnceLock::new(),
@@ -171,7 +190,8 @@ impl Classifier {
         })
     }
 
-    /// The monotone boxes and critical points in use.
+    /// The monotone pieces, their refined boxes (built on first use) and critical points in
+    /// use.
     pub fn boxes(&self) -> &MonotoneBoxes {
         &self.boxes
     }
@@ -209,10 +229,53 @@ impl Classifier {
             return (Location::Outside, Decision::BoundingBox);
         }
         if !self.boxes().is_critical_x(p.x, self.tol) {
-            let odd = parity(self.boxes().boxes(), |b| vertical(b, p, self.tol));
-            return (location(odd), Decision::VerticalRay);
+            return (location(self.vertical_parity(p)), Decision::VerticalRay);
         }
         self.fallback(p)
+    }
+
+    /// The downward vertical ray from `p` over the refined boxes, as
+    /// `parity(boxes().boxes(), vertical)` gives it, but looking at the refined boxes of only
+    /// the monotone pieces `p` is within `reach` of (computed on the fly while the refinement
+    /// is not built).
+    ///
+    /// A piece's refined boxes lie in its end-point rectangle (up to the rounding of their end
+    /// points, far below the rounding part of `reach`). For `p` farther than `reach` outside it,
+    /// no refined box is near `p` (`reach` >= the tolerance); below it, or beside it, none is
+    /// crossed; above it, each is decided by its half-open abscissas `[xmin, xmax)` alone, and
+    /// along the chain of end points `x_0 .. x_k` the number of those holding `p.x` is odd
+    /// exactly when `p.x` lies in the piece's own `[xmin, xmax)`, the answer taken here (a
+    /// vertical piece, whose boxes are all vertical, is never crossed). So the parity, and
+    /// whether a box is near `p`, are those of the scan of every refined box.
+    pub(crate) fn vertical_parity(&self, p: Point) -> Option<bool> {
+        let (boxes, reach) = (self.boxes(), self.reach);
+        let mut odd = false;
+        let mut boundary = false;
+        for (i, piece) in boxes.pieces().iter().enumerate() {
+            let band = &piece.band;
+            if p.x < band.xmin - reach || p.x > band.xmax + reach || p.y < band.ymin - reach {
+                continue;
+            }
+            if p.y > band.ymax + reach {
+                if !band.vertical && band.xmin <= p.x && p.x < band.xmax {
+                    odd = !odd;
+                }
+                continue;
+            }
+            boxes.for_each_box_of_piece(i, |b| {
+                if !boundary {
+                    match vertical(b, p, self.tol) {
+                        Hit::Boundary => boundary = true,
+                        Hit::Cross => odd = !odd,
+                        Hit::Miss => {}
+                    }
+                }
+            });
+            if boundary {
+                return None;
+            }
+        }
+        Some(odd)
     }
 
     /// Paper steps (vii)-(viii): the horizontal ray, then the winding number.

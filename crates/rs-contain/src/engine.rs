@@ -87,13 +87,29 @@ pub enum Engine<'a> {
     Winding(FastWindingField<'a>),
 }
 
+/// The largest batch [`Method::Fast`] answers one point at a time (inRS1) while the refined
+/// boxes are not built: inRS1 looks at the refined boxes of only the monotone pieces near each
+/// point, so a handful of points costs far less than building every refined box, which inRS2
+/// needs.
+pub const FAST_ONE_BY_ONE_MAX_POINTS: usize = 16;
+
 impl Classifier {
     /// What answers a batch of `n` points with `method`: [`Method::Fast`] takes the grid
-    /// locator (built on first use, kept) when [`fast_uses_locator`]`(n)`, inRS2 otherwise.
+    /// locator (built on first use, kept) when [`fast_uses_locator`]`(n)`, inRS1 for at most
+    /// [`FAST_ONE_BY_ONE_MAX_POINTS`] points while the refined boxes are not built, inRS2
+    /// otherwise. inRS1 for more than [`FAST_ONE_BY_ONE_MAX_POINTS`] points builds the refined
+    /// boxes first.
     pub fn engine(&self, method: Method, n: usize) -> Engine<'_> {
+        let tiny = n <= FAST_ONE_BY_ONE_MAX_POINTS;
         match method {
-            Method::InRS1 => Engine::OneByOne(self),
+            Method::InRS1 => {
+                if !tiny {
+                    self.boxes().boxes();
+                }
+                Engine::OneByOne(self)
+            }
             Method::Fast if fast_uses_locator(n) => Engine::Grid(self.locator()),
+            Method::Fast if tiny && !self.boxes().is_refined() => Engine::OneByOne(self),
             Method::InRS2 | Method::Fast => Engine::Sorted(self),
             Method::Gwn => Engine::ClassifierWinding(self),
         }
@@ -174,6 +190,7 @@ mod tests {
     use super::*;
     use crate::{FAST_METHOD_MIN_POINTS, FillRule, points_from_fn};
     use rs_spline::circle;
+    use rs_spline::prelude::ParamCurve;
 
     /// An annulus 1 < r < 2 (two circles of one orientation), and a grid of points over it
     /// with their analytic locations (points within 1e-6 of a circle left out).
@@ -241,6 +258,71 @@ mod tests {
             }
             assert_eq!(c.locate_all_with(method, &pts), expected, "{method:?}");
         }
+    }
+
+    /// A tiny batch with `Method::Fast` is answered one by one without building the refined
+    /// boxes (unless a point needs the fallback's rows), and every answer, on, near and away
+    /// from the boundary, is the one the refined boxes give (inRS1 and inRS2 after the build).
+    #[test]
+    fn a_tiny_batch_builds_no_refined_boxes_and_answers_alike() {
+        let mut cases: Vec<(String, Domain)> = rs_testkit::fixtures()
+            .into_iter()
+            .map(|c| (c.name, c.domain))
+            .collect();
+        let (annulus, _, _) = annulus_and_points(4);
+        cases.push(("annulus".into(), annulus));
+        for (name, d) in cases {
+            let eager = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+            assert!(!eager.boxes().is_refined(), "{name}");
+            let tol = eager.abs_tol();
+            // Points on the curves, moved by fractions and multiples of the tolerance, and a
+            // grid over the bounding box.
+            let mut pts = Vec::new();
+            for (_, b) in d.bezier_pieces() {
+                for i in 0..=6 {
+                    let p = b.point_at(i as f64 / 6.0);
+                    pts.push(p);
+                    for s in [0.5, 0.7, 1.0, 1.4, 3.0] {
+                        for (dx, dy) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+                            pts.push(Point::new(p.x + dx * s * tol, p.y + dy * s * tol));
+                        }
+                    }
+                }
+            }
+            let bb = d.bounding_box();
+            for i in 0..=20 {
+                for j in 0..=20 {
+                    pts.push(Point::new(
+                        bb.min.x - 0.1 * bb.width() + 1.2 * bb.width() * i as f64 / 20.0,
+                        bb.min.y - 0.1 * bb.height() + 1.2 * bb.height() * j as f64 / 20.0,
+                    ));
+                }
+            }
+            let want = eager.locate_all_with(Method::InRS2, &pts);
+            assert!(eager.boxes().is_refined(), "{name}");
+            assert_eq!(eager.locate_all_with(Method::InRS1, &pts), want, "{name}");
+            for (p, w) in pts.iter().zip(&want) {
+                // A fresh classifier for every point, so that the refined boxes are computed
+                // on the fly (the amortised build would otherwise take over).
+                let lazy = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+                let engine = lazy.engine(Method::Fast, 1);
+                assert!(matches!(engine, Engine::OneByOne(_)), "{name}");
+                let mut out = [Location::Outside];
+                engine.values_into(&[*p][..], &mut out);
+                assert_eq!(out[0], *w, "{name} at {p:?}");
+                if !lazy.boxes().is_critical_x(p.x, tol) {
+                    assert!(!lazy.boxes().is_refined(), "{name} at {p:?}");
+                }
+            }
+        }
+        // Once built, a tiny batch takes inRS2 again; inRS1 on a large batch builds first.
+        let (d, _, _) = annulus_and_points(4);
+        let c = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+        assert!(matches!(c.engine(Method::InRS1, 2), Engine::OneByOne(_)));
+        assert!(!c.boxes().is_refined());
+        assert!(matches!(c.engine(Method::InRS1, 1000), Engine::OneByOne(_)));
+        assert!(c.boxes().is_refined());
+        assert!(matches!(c.engine(Method::Fast, 1), Engine::Sorted(_)));
     }
 
     /// `Method::Gwn` takes the fill rule of the options: the annulus's two circles have one

@@ -61,7 +61,7 @@ mod rows;
 mod summary;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
-pub use engine::{Containment, Engine};
+pub use engine::{Containment, Engine, FAST_ONE_BY_ONE_MAX_POINTS};
 pub use error::ContainError;
 pub use filled_area::{MAX_NESTED_LOOPS, even_odd_area};
 pub use gwn::{
