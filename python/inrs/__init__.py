@@ -41,6 +41,7 @@ __all__ = [
     "convex_domain",
     "cad_faces",
     "CadFace",
+    "classify_many",
     "DEFAULT_CONVEX_TOLERANCE",
     "__version__",
 ]
@@ -515,6 +516,67 @@ def interpolate(domain: Domain, xy: ArrayLike, z: ArrayLike, *, space: str = "ct
             stacklevel=2,
         )
     return Spline(native)
+
+
+def classify_many(
+    domains: Sequence["Domain"],
+    points: Union[ArrayLike, Sequence[ArrayLike]],
+    *,
+    method: str = "fast",
+    tol: float = DEFAULT_TOLERANCE,
+    fill_rule: str = "even-odd",
+    threads: Optional[int] = None,
+    errors: str = "raise",
+) -> "list[Optional[np.ndarray]]":
+    """Locations of points in many domains at once: per domain, an int8 array of
+    :data:`OUTSIDE`, :data:`INSIDE`, :data:`BOUNDARY` (what :meth:`Domain.classify` returns).
+
+    ``points`` is one ``(N, 2)`` array that every domain classifies, or a list of ``(N_k, 2)``
+    arrays, one per domain (a list of lists of pairs is read as one array when it has shape
+    ``(N, 2)``; pass a tuple or list of NumPy arrays for one array per domain). ``method``,
+    ``tol``, ``fill_rule`` and ``threads`` are those of :meth:`Domain.classify`, and each
+    answer equals it. The domains are spread over the cores with the GIL released (the
+    library's ``locate_many``: each domain built and answered on one core, a large batch of
+    one domain split over the cores), which is what makes thousands of small domains (a CAD
+    part's faces, a font's glyphs) cheap: nothing is cached on the domains.
+
+    The result is in the order of ``domains``. A domain that cannot be prepared (an open
+    boundary with a crossing method) raises ``ValueError`` naming its index when ``errors`` is
+    ``"raise"`` (the default); with ``errors="none"`` its entry is ``None`` and the others
+    still answer. Bad arguments (shapes, method, tolerance, a list of arrays of another length
+    than ``domains``) raise ``ValueError``.
+    """
+    if method not in _METHODS:
+        raise ValueError(f"unknown method {method!r} (one of {', '.join(_METHODS)})")
+    if errors not in ("raise", "none"):
+        raise ValueError(f"errors must be 'raise' or 'none', got {errors!r}")
+    natives = []
+    for k, d in enumerate(domains):
+        if not isinstance(d, Domain):
+            raise TypeError(f"domains[{k}] is a {type(d).__name__}, not an inrs.Domain")
+        natives.append(d._native)
+    args = (method, float(tol), fill_rule, _threads(threads))
+    shared = None
+    each = None
+    if isinstance(points, np.ndarray) or not isinstance(points, (list, tuple)):
+        shared = np.asarray(points, dtype=np.float64)
+    elif points and all(isinstance(p, np.ndarray) for p in points):
+        each = [np.asarray(p, dtype=np.float64) for p in points]
+    else:
+        # A list of pairs (or an empty list) is one array of points.
+        shared = np.asarray(points, dtype=np.float64)
+        if shared.size == 0:
+            shared = shared.reshape(0, 2)
+    for k, a in enumerate([shared] if each is None else each):
+        if a.ndim != 2 or a.shape[1] != 2:
+            where = "points" if each is None else f"points[{k}]"
+            raise ValueError(f"{where} must have shape (N, 2), got {a.shape}")
+    arrays, failures = _inrs.classify_many(natives, shared, each, *args)
+    if errors == "raise":
+        for k, e in enumerate(failures):
+            if e is not None:
+                raise ValueError(f"domain {k}: {e}")
+    return arrays
 
 
 class CadFace:

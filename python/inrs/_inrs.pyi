@@ -47,6 +47,16 @@ class CadFace:
     @property
     def error(self) -> Optional[str]: ...
 
+def classify_many(
+    domains: list["NativeDomain"],
+    shared: Optional[npt.NDArray[np.float64]],
+    each: Optional[list[npt.NDArray[np.float64]]],
+    method: str,
+    tol: float,
+    fill_rule: str,
+    threads: int,
+) -> Tuple[list[Optional[npt.NDArray[np.int8]]], list[Optional[str]]]: ...
+
 def cad_faces(
     path: str, closure_tol: Optional[float] = None
 ) -> list[Tuple[CadFace, Optional["NativeDomain"]]]: ...

@@ -144,7 +144,8 @@ fn cached<K: std::hash::Hash + Eq, T>(
     Ok(v)
 }
 
-fn check_tolerance(tol: f64) -> PyResult<()> {
+/// The boundary tolerance: finite and non-negative.
+pub(crate) fn check_tolerance(tol: f64) -> PyResult<()> {
     if tol.is_finite() && tol >= 0.0 {
         Ok(())
     } else {

@@ -5,6 +5,7 @@
 //! in place.
 //!
 //! - [`domain`]: `NativeDomain` (loading, classification, winding numbers, flattening);
+//! - [`many`]: `classify_many` (many domains at once, spread over the cores);
 //! - [`summary`]: `DomainSummary`, `LoopSummary`;
 //! - [`points`]: the points' layouts and the per-chunk codes;
 //! - [`mesh`]: `sample`, `sample_halton`, `mesh`; [`spline`]: `FitPlan`, `interpolate`, `NativeSpline`;
@@ -16,6 +17,7 @@ mod convex;
 mod domain;
 mod errors;
 mod halton;
+mod many;
 mod mesh;
 mod points;
 mod spline;
@@ -35,6 +37,7 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<summary::DomainSummary>()?;
     m.add_class::<cad::CadFace>()?;
     m.add_function(wrap_pyfunction!(cad::cad_faces, m)?)?;
+    m.add_function(wrap_pyfunction!(many::classify_many, m)?)?;
     m.add_class::<summary::LoopSummary>()?;
     m.add_class::<spline::NativeSpline>()?;
     m.add_class::<spline::FitPlan>()?;

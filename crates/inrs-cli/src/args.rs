@@ -46,6 +46,47 @@ impl DomainArg {
     }
 }
 
+/// `classify --domain`, which may be given several times: the domains every point is
+/// classified against.
+#[derive(Args, Debug)]
+pub(crate) struct DomainsArg {
+    /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, a font
+    /// glyph (`font.ttf#B`, `#U+0040`, `#gid:37`), or a face of a STEP/IGES part in its (u, v)
+    /// (`part.step#face:3`; `inrs info part.step` lists the faces). Repeat it, or name every
+    /// face of a part with `part.step#face:*`, to classify against several domains: one
+    /// output column per domain.
+    #[arg(long, required = true)]
+    pub(crate) domain: Vec<PathBuf>,
+    /// Closure tolerance, relative to the diagonal of the domain's bounding box: consecutive
+    /// curves whose end and start are at most this far apart meet [default: 1e-9; for a CAD
+    /// face the larger of it and the file's own tolerance].
+    #[arg(long, value_name = "REL")]
+    pub(crate) closure_tol: Option<f64>,
+}
+
+impl DomainsArg {
+    /// The one domain as a [`DomainArg`], when exactly one is given and it names no set of
+    /// faces (`#face:*`): the single-domain path, unchanged.
+    pub(crate) fn single(&self) -> Option<DomainArg> {
+        match self.domain.as_slice() {
+            [d] if all_faces(&d.to_string_lossy()).is_none() => Some(DomainArg {
+                domain: d.clone(),
+                closure_tol: self.closure_tol,
+            }),
+            _ => None,
+        }
+    }
+}
+
+/// For `part.step#face:*` (any case of the CAD extensions and of `face`): the file
+/// `part.step`. `None` for any other specification.
+pub(crate) fn all_faces(spec: &str) -> Option<&str> {
+    let cut = spec.len().checked_sub("#face:*".len())?;
+    let (file, tail) = (spec.get(..cut)?, spec.get(cut..)?);
+    let is_cad = matches!(inrs::io::cad::split_face_spec(file), Some((f, None)) if f == file);
+    (tail.eq_ignore_ascii_case("#face:*") && is_cad).then_some(file)
+}
+
 /// `classify --method`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {

@@ -66,6 +66,7 @@ pub use rs_trispline as trispline;
 
 pub use rs_contain::{
     Classifier, ContainError, ContainOptions, Containment, Locate, Location, Method, PointQuery,
+    locate_each, locate_many,
 };
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 

@@ -1,4 +1,5 @@
-//! `inrs classify`: inside, outside or boundary for every point of a points file.
+//! `inrs classify`: inside, outside or boundary for every point of a points file, against one
+//! domain (streamed) or several ([`super::classify_many`]).
 
 use std::path::PathBuf;
 
@@ -6,38 +7,43 @@ use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
 use inrs::{ContainOptions, Containment, Location, NpyType};
 
-use crate::args::{DomainArg, FillRuleArg, MethodArg};
+use crate::args::{DomainsArg, FillRuleArg, MethodArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
 use crate::stream::{Column, PointsInput, stream_points};
 
-/// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order.
+/// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order
+/// (with several domains, `x,y` and one column per domain).
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct ClassifyArgs {
     #[command(flatten)]
-    domain: DomainArg,
+    pub(super) domains: DomainsArg,
     /// The points file: CSV `x,y` per line (extra columns ignored; optional header; `#`
     /// comments), or `.npy` (float64 or float32, shape (N, 2)); streamed: any number of points.
     #[arg(long)]
-    points: PathBuf,
+    pub(super) points: PathBuf,
     /// The algorithm; all agree on closed domains.
     #[arg(long, value_enum, default_value_t = MethodArg::Fast)]
-    method: MethodArg,
+    pub(super) method: MethodArg,
     /// Fill rule of --method gwn.
     #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
-    fill_rule: FillRuleArg,
+    pub(super) fill_rule: FillRuleArg,
     /// Write here instead of standard output: CSV, or `.npy` (int8: 0 outside, 1 inside,
-    /// 2 boundary) when the name ends in `.npy`.
+    /// 2 boundary; shape (points, domains) with several domains) when the name ends in `.npy`.
     #[arg(long)]
-    output: Option<PathBuf>,
+    pub(super) output: Option<PathBuf>,
     /// Boundary tolerance relative to the bounding-box diagonal (>= 0, see below).
     #[arg(long, default_value = limits::DEFAULT_TOL, value_parser = parse_tolerance, allow_negative_numbers = true)]
-    tol: f64,
+    pub(super) tol: f64,
     /// Sub-boxes per monotone piece (the paper's box refinement), 1 to 4096; reduced
     /// automatically so that a domain has at most about 131072 boxes.
     #[arg(long, default_value_t = DEFAULT_SUBDIVISIONS, value_parser = parse_subdivisions, allow_negative_numbers = true)]
-    subdivisions: usize,
+    pub(super) subdivisions: usize,
+    /// With several domains: leave out the columns of the domains (faces) that cannot be read
+    /// or prepared (an open boundary, ...), naming each on standard error, instead of failing.
+    #[arg(long)]
+    pub(super) skip_unreadable: bool,
 }
 
 /// The `location` column: CSV labels, `.npy` int8 codes (0 outside, 1 inside, 2 boundary,
@@ -65,16 +71,24 @@ impl Column<Location> for Locations {
 
 impl ClassifyArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let d = self.domain.load()?;
+        let Some(domain) = self.domains.single() else {
+            return super::classify_many::run(&self);
+        };
+        let d = domain.load()?;
         let input = PointsInput::open(&self.points)?;
-        let options = ContainOptions::DEFAULT
-            .with_relative_tolerance(self.tol)
-            .with_subdivisions(self.subdivisions)
-            .with_method(self.method.into())
-            .with_fill_rule(self.fill_rule.into());
-        let containment = Containment::new(&d, options).map_err(|e| self.domain.error(e))?;
+        let options = self.options();
+        let containment = Containment::new(&d, options).map_err(|e| domain.error(e))?;
         // The library picks the algorithm for the whole stream's size.
         let engine = containment.engine(input.estimated_points());
         stream_points(input, self.output.as_deref(), &Locations, &engine)
+    }
+
+    /// The options of every domain.
+    pub(super) fn options(&self) -> ContainOptions {
+        ContainOptions::DEFAULT
+            .with_relative_tolerance(self.tol)
+            .with_subdivisions(self.subdivisions)
+            .with_method(self.method.into())
+            .with_fill_rule(self.fill_rule.into())
     }
 }

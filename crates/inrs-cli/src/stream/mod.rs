@@ -19,4 +19,4 @@ mod spares;
 
 pub(crate) use format::{Column, write_f64};
 pub(crate) use scheduler::stream_points;
-pub(crate) use source::PointsInput;
+pub(crate) use source::{PointsInput, input_error};

@@ -38,7 +38,7 @@ impl PointsInput {
 }
 
 /// The message for a points-file error, naming the file once.
-pub(super) fn input_error(path: &Path, e: PointsError) -> CliError {
+pub(crate) fn input_error(path: &Path, e: PointsError) -> CliError {
     match e {
         PointsError::Io { .. } | PointsError::Npy { .. } => CliError::Message(e.to_string()),
         other => CliError::Message(format!("{}: {other}", path.display())),
