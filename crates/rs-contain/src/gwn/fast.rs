@@ -138,7 +138,7 @@ impl CurveHierarchy {
 
 /// Depth bound of the walk's stack: the hierarchy is balanced, so its depth is at most
 /// `log2(pieces) + 1`.
-const STACK: usize = 64;
+pub(super) const STACK: usize = 64;
 
 /// A node of the bounding-volume hierarchy: a contiguous run of pieces in boundary order.
 #[derive(Clone, Debug)]
@@ -228,15 +228,19 @@ fn leaf_rows(nodes: &[BvhNode]) -> Rows {
 }
 
 impl<'a> FastWindingField<'a> {
-    /// Builds the hierarchy over `field`'s pieces (`O(n log n)` box merges; the pieces'
-    /// subdivision hierarchies are built later, as queries reach them).
+    /// Builds the hierarchy over `field`'s pieces: `2n - 1` nodes by `n - 1` box merges, with
+    /// their chain chords, in three allocations (the nodes, the chords, the per-piece slots);
+    /// plus, for at most [`ROW_PIECES`] pieces, the leaves' rows. The pieces' subdivision
+    /// hierarchies are built later, as queries reach them; so are the field's monotone boxes
+    /// (see [`WindingField`]'s Construction).
     pub fn new(field: &'a WindingField) -> Self {
         let pieces = field.pieces();
-        let mut nodes = Vec::with_capacity(2 * pieces.len());
-        let mut chords = Vec::new();
+        let mut nodes = Vec::with_capacity((2 * pieces.len()).saturating_sub(1));
+        // Each node keeps at most LEFT_CHAINS chords, most a handful: about two per piece is
+        // enough for closed loops, and the vector grows if not.
+        let mut chords = Vec::with_capacity(2 * pieces.len());
         if !pieces.is_empty() {
-            let near = field.near_boxes();
-            build(pieces, &near, 0, pieces.len(), &mut nodes, &mut chords);
+            build(field, 0, pieces.len(), &mut nodes, &mut chords);
         }
         let rows = (!pieces.is_empty() && pieces.len() <= ROW_PIECES).then(|| leaf_rows(&nodes));
         Self {
@@ -299,7 +303,7 @@ impl<'a> FastWindingField<'a> {
     /// A leaf whose box holds `q` is always visited: the boxes of its ancestors hold `q` too,
     /// so none is skipped, nor decided by its chords (which needs `q` right of its box). So
     /// leaving out the pieces of `skip` there leaves them out of the sum.
-    fn crossing_sum(
+    pub(super) fn crossing_sum(
         &self,
         q: Point,
         skip: &[u32],
@@ -445,9 +449,25 @@ impl PointQuery<f64> for FastWindingField<'_> {
 }
 
 impl PointQuery<Location> for FastWindingField<'_> {
-    /// As the [`WindingField`]'s [`Locate`](crate::Locate), with its fill rule, from the fast winding number.
+    /// As the [`WindingField`]'s [`Locate`](crate::Locate), with its fill rule, from the fast
+    /// winding number. The boundary test runs only for a query the walk found within reach of
+    /// a piece (every point of the band is: see [`WindingField`]'s Construction), so a query
+    /// away from the curves leaves the field's boundary index unbuilt.
     fn value(&self, q: Point) -> Location {
-        self.location(q, || self.winding_number(q))
+        let (mut stack, mut stats) = ([0; STACK], QueryStats::default());
+        let mut sum = self.crossing_sum(q, &[], &mut stack, &mut stats);
+        let rule = self.field.fill_rule();
+        if sum.near() {
+            if self.field.is_on_boundary(q) {
+                return Location::Boundary;
+            }
+            if let Some(w) = self.band_winding_number(q, &mut stack, &mut stats) {
+                return self.field.location_from_winding(w, rule);
+            }
+        }
+        self.field
+            .add_open_chain_ends(std::slice::from_mut(&mut sum));
+        self.field.location_from_winding(sum.value(), rule)
     }
 
     /// The winding numbers computed together, as for [`PointQuery`]`<f64>`.
@@ -468,59 +488,52 @@ impl PointQuery<Location> for FastWindingField<'_> {
     }
 }
 
-impl FastWindingField<'_> {
-    /// The location of `q`, from its winding number `w()` unless `q` is on the boundary.
-    fn location(&self, q: Point, w: impl FnOnce() -> f64) -> Location {
-        if self.field.is_on_boundary(q) {
-            return Location::Boundary;
-        }
-        self.field
-            .location_from_winding(w(), self.field.fill_rule())
-    }
-}
-
-/// Builds the subtree over pieces `[i, j)`; returns its index (children before parents). Its
-/// chain chords go to the end of `chords`.
+/// Builds the subtree over `field`'s pieces `[i, j)`; returns its index (children before
+/// parents). Its chain chords go to the end of `chords`.
 fn build(
-    pieces: &[RationalBezier],
-    near: &[(Point, Point)],
+    field: &WindingField,
     i: usize,
     j: usize,
     nodes: &mut Vec<BvhNode>,
     chords: &mut Vec<(Point, Point)>,
 ) -> u32 {
     let (kind, lo, hi, own) = if j - i == 1 {
-        let (lo, hi) = near[i];
+        let (lo, hi) = field.near_box(i);
+        let p = &field.pieces()[i];
         let one: SmallVec<[(Point, Point); LEFT_CHAINS]> =
-            SmallVec::from_elem((pieces[i].start_point(), pieces[i].end_point()), 1);
+            SmallVec::from_elem((p.start_point(), p.end_point()), 1);
         (Kind::Leaf(i as u32), lo, hi, Some(one))
     } else {
         let m = (i + j) / 2;
         let (l, r) = (
-            build(pieces, near, i, m, nodes, chords),
-            build(pieces, near, m, j, nodes, chords),
+            build(field, i, m, nodes, chords),
+            build(field, m, j, nodes, chords),
         );
         let (ln, rn) = (&nodes[l as usize], &nodes[r as usize]);
         let lo = Point::new(ln.lo.x.min(rn.lo.x), ln.lo.y.min(rn.lo.y));
         let hi = Point::new(ln.hi.x.max(rn.hi.x), ln.hi.y.max(rn.hi.y));
         // The children's chains, the left's last joined to the right's first if it ends
-        // exactly where that starts; none if either child has too many.
+        // exactly where that starts; none if either child has none, or if they come to more
+        // than LEFT_CHAINS (counted first, so the list never outgrows its inline storage).
         let (lc, rc) = (ln.chords, rn.chords);
-        let own = (lc.0 < lc.1 && rc.0 < rc.1)
+        let (left, right) = (
+            &chords[lc.0 as usize..lc.1 as usize],
+            &chords[rc.0 as usize..rc.1 as usize],
+        );
+        let joined = matches!((left.last(), right.first()), (Some(l), Some(r)) if l.1 == r.0);
+        let own = (!left.is_empty()
+            && !right.is_empty()
+            && left.len() + right.len() - usize::from(joined) <= LEFT_CHAINS)
             .then(|| {
-                let mut own: SmallVec<[(Point, Point); LEFT_CHAINS]> =
-                    SmallVec::from_slice(&chords[lc.0 as usize..lc.1 as usize]);
-                let mut right = &chords[rc.0 as usize..rc.1 as usize];
-                if let (Some(last), Some(&(a, b))) = (own.last_mut(), right.first())
-                    && last.1 == a
-                {
+                let mut own: SmallVec<[(Point, Point); LEFT_CHAINS]> = SmallVec::from_slice(left);
+                let mut right = right;
+                if joined && let (Some(last), Some(&(_, b))) = (own.last_mut(), right.first()) {
                     last.1 = b;
                     right = &right[1..];
                 }
                 own.extend_from_slice(right);
                 own
-            })
-            .filter(|own| own.len() <= LEFT_CHAINS);
+            });
         (Kind::Inner(l, r), lo, hi, own)
     };
     let start = chords.len() as u32;
