@@ -230,7 +230,7 @@ fn leaf_rows(nodes: &[BvhNode]) -> Rows {
 impl<'a> FastWindingField<'a> {
     /// Builds the hierarchy over `field`'s pieces: `2n - 1` nodes by `n - 1` box merges, with
     /// their chain chords, in three allocations (the nodes, the chords, the per-piece slots);
-    /// plus, for at most [`ROW_PIECES`] pieces, the leaves' rows. The pieces' subdivision
+    /// plus, for at most 32 pieces, the leaves' rows. The pieces' subdivision
     /// hierarchies are built later, as queries reach them; so are the field's monotone boxes
     /// (see [`WindingField`]'s Construction).
     pub fn new(field: &'a WindingField) -> Self {

@@ -540,7 +540,7 @@ impl PointQuery<Location> for WindingField {
     /// Boundary within the tolerance, otherwise the rounded winding number and the fill rule.
     ///
     /// The boundary test runs only for a query the adaptive walk found within reach of a piece
-    /// ([`WindingSum::near`]): every point of the band is (see [`BandReach`]), so the answer is
+    /// (the walk's near flag): every point of the band is (see the Construction), so the answer is
     /// the one testing every query gives, and a query away from the curves leaves the boundary
     /// index unbuilt.
     fn value(&self, q: Point) -> Location {
