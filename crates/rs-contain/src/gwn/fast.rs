@@ -3,6 +3,7 @@
 //! on first use.
 
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rs_spline::prelude::*;
 use rs_spline::{Point, RationalBezier};
@@ -168,7 +169,8 @@ enum Kind {
 /// `B` crosses the ray as its chord `A -> B` does (decided by two comparisons), and one whose
 /// pieces form several chains as their chords do, without opening the node; other nodes
 /// are opened, and a leaf whose box holds `q` runs the adaptive algorithm on its piece's
-/// subdivision hierarchy ([`CurveHierarchy`], built the first time a query needs it and kept).
+/// subdivision hierarchy ([`CurveHierarchy`], built the second time a query needs it and kept;
+/// the first query walks the piece's sub-curves on the fly, with the same result).
 /// A query far from the boundary costs a few node tests; one near it visits the nodes along
 /// its ray.
 ///
@@ -192,7 +194,26 @@ pub struct FastWindingField<'a> {
     /// With at most [`ROW_PIECES`] pieces, the leaves by rows of the pieces' height
     /// ([`leaf_rows`]; then a query visits its row's leaves instead of walking the tree).
     rows: Option<Rows>,
-    hierarchies: Vec<OnceLock<CurveHierarchy>>,
+    hierarchies: Vec<HierarchySlot>,
+}
+
+/// A piece's subdivision hierarchy, built on the second query that refines the piece (the
+/// first walks the same sub-curves on the fly: a piece refined once, as by a single query on a
+/// freshly built field, never pays for the 127 sub-curves).
+#[derive(Debug, Default)]
+struct HierarchySlot {
+    hierarchy: OnceLock<CurveHierarchy>,
+    /// Some query has refined the piece (on the fly, or through the hierarchy).
+    refined: AtomicBool,
+}
+
+impl Clone for HierarchySlot {
+    fn clone(&self) -> Self {
+        Self {
+            hierarchy: self.hierarchy.clone(),
+            refined: AtomicBool::new(self.refined.load(Ordering::Relaxed)),
+        }
+    }
 }
 
 /// A node wholly left of the query made of at most this many chains adds their chords'
@@ -248,7 +269,7 @@ impl<'a> FastWindingField<'a> {
             nodes,
             chords,
             rows,
-            hierarchies: pieces.iter().map(|_| OnceLock::new()).collect(),
+            hierarchies: pieces.iter().map(|_| HierarchySlot::default()).collect(),
         }
     }
 
@@ -367,8 +388,7 @@ impl<'a> FastWindingField<'a> {
         match n.kind {
             Kind::Leaf(p) => {
                 if skip.binary_search(&p).is_err() {
-                    let h = self.hierarchy(p as usize);
-                    h.refine(q, sum, stats);
+                    self.refine_piece(p as usize, q, sum, stats);
                 }
                 None
             }
@@ -376,9 +396,34 @@ impl<'a> FastWindingField<'a> {
         }
     }
 
-    /// The subdivision hierarchy of piece `p`, built on first use.
-    fn hierarchy(&self, p: usize) -> &CurveHierarchy {
-        self.hierarchies[p].get_or_init(|| CurveHierarchy::new(&self.field.pieces()[p]))
+    /// The adaptive algorithm on piece `p`: through its subdivision hierarchy, built by the
+    /// second query that needs it; the first walks the piece on the fly.
+    ///
+    /// Both walks send `sum` the same chords and coincident pieces in the same order (bit for
+    /// bit the same sum): each starts with [`settle`] on the whole piece (no far-field shortcut
+    /// first, see [`CurveHierarchy::refine`]), halves a sub-curve by the same
+    /// [`SubCurve::halves`], computes the same tests of it (convexity inherited from the parent
+    /// or [`is_simple_convex`], [`is_linear`], the control box and polygon area), and pushes the
+    /// right half before the left.
+    #[inline(always)]
+    fn refine_piece(&self, p: usize, q: Point, sum: &mut WindingSum, stats: &mut QueryStats) {
+        let slot = &self.hierarchies[p];
+        if let Some(h) = slot.hierarchy.get() {
+            h.refine(q, sum, stats);
+        } else if slot.refined.swap(true, Ordering::Relaxed) {
+            slot.hierarchy
+                .get_or_init(|| CurveHierarchy::new(&self.field.pieces()[p]))
+                .refine(q, sum, stats);
+        } else {
+            stats.curve_evaluations += 1;
+            refine_below(self.field.root(p).clone(), 0, false, q, sum, stats);
+        }
+    }
+
+    /// Has a query built piece `p`'s subdivision hierarchy? (A probe for the tests.)
+    #[cfg(test)]
+    pub(super) fn hierarchy_built(&self, p: usize) -> bool {
+        self.hierarchies[p].hierarchy.get().is_some()
     }
 
     /// Winding numbers of many points, in input order, on the current thread: each equal to

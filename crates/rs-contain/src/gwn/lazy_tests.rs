@@ -245,3 +245,49 @@ fn the_classifier_field_shares_its_boxes() {
         assert_eq!(own.monotone_boxes().expect("boxes").boxes(), built.boxes());
     }
 }
+
+/// A piece's subdivision hierarchy is built by the second walk that refines it, not the first,
+/// and the on-the-fly walk of the first gives the same winding number bit for bit (on and near
+/// every piece of the fixtures, where the walks go deepest).
+#[test]
+fn hierarchies_wait_for_a_second_query() {
+    for (name, d) in fixtures().into_iter().skip(3) {
+        let field = WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).expect("field");
+        let pts = queries(&d, 0, 3);
+        let warm = FastWindingField::new(&field);
+        for &q in &pts {
+            let _ = warm.winding_number(q);
+            let _ = warm.winding_number(q);
+        }
+        for &q in &pts {
+            // A fresh field per query: its first walk of every piece is on the fly.
+            let cold = FastWindingField::new(&field);
+            let w = cold.winding_number(q);
+            assert_eq!(
+                w.to_bits(),
+                warm.winding_number(q).to_bits(),
+                "{name}: {q:?}"
+            );
+            // (A query in the band walks again without the pieces it passes: that second walk
+            // builds the hierarchies of the others it refines.)
+            assert!(
+                !field.passages(q).is_empty()
+                    || (0..field.pieces().len()).all(|p| !cold.hierarchy_built(p)),
+                "{name}: {q:?} built a hierarchy"
+            );
+            assert_eq!(
+                cold.winding_number(q).to_bits(),
+                w.to_bits(),
+                "{name}: {q:?}"
+            );
+        }
+        let q = pts[1];
+        let fresh = FastWindingField::new(&field);
+        let _ = fresh.winding_number(q);
+        let _ = fresh.winding_number(q);
+        assert!(
+            (0..field.pieces().len()).any(|p| fresh.hierarchy_built(p)),
+            "{name}"
+        );
+    }
+}

@@ -411,6 +411,11 @@ impl WindingField {
         &self.pieces
     }
 
+    /// Piece `p`'s whole curve as the adaptive algorithm's first sub-curve.
+    pub(crate) fn root(&self, p: usize) -> &SubCurve {
+        &self.roots[p]
+    }
+
     /// The generalized winding number at `q` (adaptive algorithm).
     pub fn winding_number(&self, q: Point) -> f64 {
         self.adaptive_winding_number(q, &mut QueryStats::default())
