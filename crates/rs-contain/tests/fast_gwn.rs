@@ -119,11 +119,20 @@ fn far_queries_take_one_angle_per_chain() {
         &mut reference,
     );
     assert!(reference.curve_evaluations >= 500);
-    // Near the boundary the precomputed hierarchy answers without new subdivisions.
+    // Near the boundary the precomputed hierarchy answers without new subdivisions (built by
+    // the second query that refines the piece; the first walks it on the fly).
+    let q = field.pieces()[10].point_at(0.37) * (1.0 - 1e-3);
+    let mut first = QueryStats::default();
+    let w = fast.winding_number_counted(q, &mut first);
+    assert!(first.subdivisions > 0, "{first:?}");
+    fast.winding_number_counted(q, &mut QueryStats::default());
     let mut near = QueryStats::default();
-    let q = field.pieces()[10].point_at(0.37);
-    fast.winding_number_counted(q * (1.0 - 1e-3), &mut near);
+    assert_eq!(
+        fast.winding_number_counted(q, &mut near).to_bits(),
+        w.to_bits()
+    );
     assert_eq!(near.subdivisions, 0, "{near:?}");
+    assert_eq!(near.curve_evaluations, first.curve_evaluations);
 }
 
 /// The GWN paper's five shapes (three closed, two open curve collections): the fast field

@@ -8,7 +8,7 @@ use rs_spline::Point;
 use rs_spline::prelude::*;
 
 fn queries(field: &WindingField) -> Vec<Point> {
-    let b = field.monotone_boxes().bounding_box();
+    let b = field.monotone_boxes().unwrap().bounding_box();
     let mut pts = halton_points(2000, b.grown_by(0.05 * b.diagonal()));
     // Near and on the curves, where the adaptive algorithm subdivides.
     for p in field.pieces() {

@@ -71,7 +71,8 @@ fn check_point(d: &Domain, ci: usize, u: f64, want: f64, sides: Option<f64>, wha
     let c = &d.curves()[ci];
     let p = c.point_at(u);
     let n = normal(c, u);
-    let tol = DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().bounding_box().diagonal();
+    let tol =
+        DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().unwrap().bounding_box().diagonal();
     // Within the band: |n.x|, |n.y| <= 1, so a step of 0.6 tol along the normal is within 0.6
     // tol vertically and horizontally of p (and p within rounding of the curve).
     for s in [0.0, 0.6, -0.6, 0.3, -0.3] {
@@ -159,7 +160,8 @@ fn straight_pieces_and_corners() {
         }
     }
     let field = WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).unwrap();
-    let tol = DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().bounding_box().diagonal();
+    let tol =
+        DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().unwrap().bounding_box().diagonal();
     for i in 0..3 {
         let (prev, next) = (v[(i + 2) % 3] - v[i], v[(i + 1) % 3] - v[i]);
         let interior = next.cross(prev).atan2(next.dot(prev)) / TAU;
@@ -282,7 +284,8 @@ fn classify_and_gwn_agree_on_the_band() {
     .unwrap();
     let field = WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).unwrap();
     let classifier = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
-    let tol = DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().bounding_box().diagonal();
+    let tol =
+        DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().unwrap().bounding_box().diagonal();
     let mut queries = Vec::new();
     for u in [0.1, 0.4, 0.7] {
         let p = cubic.point_at(u);
@@ -366,7 +369,8 @@ fn the_walk_never_misses_the_band() {
     for (name, d) in domains {
         let field = WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).unwrap();
         let fast = FastWindingField::new(&field);
-        let tol = DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().bounding_box().diagonal();
+        let tol =
+            DEFAULT_RELATIVE_TOLERANCE * field.monotone_boxes().unwrap().bounding_box().diagonal();
         let mut queries = Vec::new();
         for b in field.pieces() {
             for t in [0.0, 0.123456789, 0.3, 0.5, 0.777] {

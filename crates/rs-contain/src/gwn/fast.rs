@@ -3,6 +3,7 @@
 //! on first use.
 
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rs_spline::prelude::*;
 use rs_spline::{Point, RationalBezier};
@@ -138,7 +139,7 @@ impl CurveHierarchy {
 
 /// Depth bound of the walk's stack: the hierarchy is balanced, so its depth is at most
 /// `log2(pieces) + 1`.
-const STACK: usize = 64;
+pub(super) const STACK: usize = 64;
 
 /// A node of the bounding-volume hierarchy: a contiguous run of pieces in boundary order.
 #[derive(Clone, Debug)]
@@ -168,7 +169,8 @@ enum Kind {
 /// `B` crosses the ray as its chord `A -> B` does (decided by two comparisons), and one whose
 /// pieces form several chains as their chords do, without opening the node; other nodes
 /// are opened, and a leaf whose box holds `q` runs the adaptive algorithm on its piece's
-/// subdivision hierarchy ([`CurveHierarchy`], built the first time a query needs it and kept).
+/// subdivision hierarchy ([`CurveHierarchy`], built the second time a query needs it and kept;
+/// the first query walks the piece's sub-curves on the fly, with the same result).
 /// A query far from the boundary costs a few node tests; one near it visits the nodes along
 /// its ray.
 ///
@@ -192,7 +194,26 @@ pub struct FastWindingField<'a> {
     /// With at most [`ROW_PIECES`] pieces, the leaves by rows of the pieces' height
     /// ([`leaf_rows`]; then a query visits its row's leaves instead of walking the tree).
     rows: Option<Rows>,
-    hierarchies: Vec<OnceLock<CurveHierarchy>>,
+    hierarchies: Vec<HierarchySlot>,
+}
+
+/// A piece's subdivision hierarchy, built on the second query that refines the piece (the
+/// first walks the same sub-curves on the fly: a piece refined once, as by a single query on a
+/// freshly built field, never pays for the 127 sub-curves).
+#[derive(Debug, Default)]
+struct HierarchySlot {
+    hierarchy: OnceLock<CurveHierarchy>,
+    /// Some query has refined the piece (on the fly, or through the hierarchy).
+    refined: AtomicBool,
+}
+
+impl Clone for HierarchySlot {
+    fn clone(&self) -> Self {
+        Self {
+            hierarchy: self.hierarchy.clone(),
+            refined: AtomicBool::new(self.refined.load(Ordering::Relaxed)),
+        }
+    }
 }
 
 /// A node wholly left of the query made of at most this many chains adds their chords'
@@ -228,15 +249,19 @@ fn leaf_rows(nodes: &[BvhNode]) -> Rows {
 }
 
 impl<'a> FastWindingField<'a> {
-    /// Builds the hierarchy over `field`'s pieces (`O(n log n)` box merges; the pieces'
-    /// subdivision hierarchies are built later, as queries reach them).
+    /// Builds the hierarchy over `field`'s pieces: `2n - 1` nodes by `n - 1` box merges, with
+    /// their chain chords, in three allocations (the nodes, the chords, the per-piece slots);
+    /// plus, for at most 32 pieces, the leaves' rows. The pieces' subdivision
+    /// hierarchies are built later, as queries reach them; so are the field's monotone boxes
+    /// (see [`WindingField`]'s Construction).
     pub fn new(field: &'a WindingField) -> Self {
         let pieces = field.pieces();
-        let mut nodes = Vec::with_capacity(2 * pieces.len());
-        let mut chords = Vec::new();
+        let mut nodes = Vec::with_capacity((2 * pieces.len()).saturating_sub(1));
+        // Each node keeps at most LEFT_CHAINS chords, most a handful: about two per piece is
+        // enough for closed loops, and the vector grows if not.
+        let mut chords = Vec::with_capacity(2 * pieces.len());
         if !pieces.is_empty() {
-            let near = field.near_boxes();
-            build(pieces, &near, 0, pieces.len(), &mut nodes, &mut chords);
+            build(field, 0, pieces.len(), &mut nodes, &mut chords);
         }
         let rows = (!pieces.is_empty() && pieces.len() <= ROW_PIECES).then(|| leaf_rows(&nodes));
         Self {
@@ -244,7 +269,7 @@ impl<'a> FastWindingField<'a> {
             nodes,
             chords,
             rows,
-            hierarchies: pieces.iter().map(|_| OnceLock::new()).collect(),
+            hierarchies: pieces.iter().map(|_| HierarchySlot::default()).collect(),
         }
     }
 
@@ -299,7 +324,7 @@ impl<'a> FastWindingField<'a> {
     /// A leaf whose box holds `q` is always visited: the boxes of its ancestors hold `q` too,
     /// so none is skipped, nor decided by its chords (which needs `q` right of its box). So
     /// leaving out the pieces of `skip` there leaves them out of the sum.
-    fn crossing_sum(
+    pub(super) fn crossing_sum(
         &self,
         q: Point,
         skip: &[u32],
@@ -363,8 +388,7 @@ impl<'a> FastWindingField<'a> {
         match n.kind {
             Kind::Leaf(p) => {
                 if skip.binary_search(&p).is_err() {
-                    let h = self.hierarchy(p as usize);
-                    h.refine(q, sum, stats);
+                    self.refine_piece(p as usize, q, sum, stats);
                 }
                 None
             }
@@ -372,9 +396,34 @@ impl<'a> FastWindingField<'a> {
         }
     }
 
-    /// The subdivision hierarchy of piece `p`, built on first use.
-    fn hierarchy(&self, p: usize) -> &CurveHierarchy {
-        self.hierarchies[p].get_or_init(|| CurveHierarchy::new(&self.field.pieces()[p]))
+    /// The adaptive algorithm on piece `p`: through its subdivision hierarchy, built by the
+    /// second query that needs it; the first walks the piece on the fly.
+    ///
+    /// Both walks send `sum` the same chords and coincident pieces in the same order (bit for
+    /// bit the same sum): each starts with [`settle`] on the whole piece (no far-field shortcut
+    /// first, see [`CurveHierarchy::refine`]), halves a sub-curve by the same
+    /// [`SubCurve::halves`], computes the same tests of it (convexity inherited from the parent
+    /// or [`is_simple_convex`], [`is_linear`], the control box and polygon area), and pushes the
+    /// right half before the left.
+    #[inline(always)]
+    fn refine_piece(&self, p: usize, q: Point, sum: &mut WindingSum, stats: &mut QueryStats) {
+        let slot = &self.hierarchies[p];
+        if let Some(h) = slot.hierarchy.get() {
+            h.refine(q, sum, stats);
+        } else if slot.refined.swap(true, Ordering::Relaxed) {
+            slot.hierarchy
+                .get_or_init(|| CurveHierarchy::new(&self.field.pieces()[p]))
+                .refine(q, sum, stats);
+        } else {
+            stats.curve_evaluations += 1;
+            refine_below(self.field.root(p).clone(), 0, false, q, sum, stats);
+        }
+    }
+
+    /// Has a query built piece `p`'s subdivision hierarchy? (A probe for the tests.)
+    #[cfg(test)]
+    pub(super) fn hierarchy_built(&self, p: usize) -> bool {
+        self.hierarchies[p].hierarchy.get().is_some()
     }
 
     /// Winding numbers of many points, in input order, on the current thread: each equal to
@@ -445,9 +494,25 @@ impl PointQuery<f64> for FastWindingField<'_> {
 }
 
 impl PointQuery<Location> for FastWindingField<'_> {
-    /// As the [`WindingField`]'s [`Locate`](crate::Locate), with its fill rule, from the fast winding number.
+    /// As the [`WindingField`]'s [`Locate`](crate::Locate), with its fill rule, from the fast
+    /// winding number. The boundary test runs only for a query the walk found within reach of
+    /// a piece (every point of the band is: see [`WindingField`]'s Construction), so a query
+    /// away from the curves leaves the field's boundary index unbuilt.
     fn value(&self, q: Point) -> Location {
-        self.location(q, || self.winding_number(q))
+        let (mut stack, mut stats) = ([0; STACK], QueryStats::default());
+        let mut sum = self.crossing_sum(q, &[], &mut stack, &mut stats);
+        let rule = self.field.fill_rule();
+        if sum.near() {
+            if self.field.is_on_boundary(q) {
+                return Location::Boundary;
+            }
+            if let Some(w) = self.band_winding_number(q, &mut stack, &mut stats) {
+                return self.field.location_from_winding(w, rule);
+            }
+        }
+        self.field
+            .add_open_chain_ends(std::slice::from_mut(&mut sum));
+        self.field.location_from_winding(sum.value(), rule)
     }
 
     /// The winding numbers computed together, as for [`PointQuery`]`<f64>`.
@@ -468,59 +533,52 @@ impl PointQuery<Location> for FastWindingField<'_> {
     }
 }
 
-impl FastWindingField<'_> {
-    /// The location of `q`, from its winding number `w()` unless `q` is on the boundary.
-    fn location(&self, q: Point, w: impl FnOnce() -> f64) -> Location {
-        if self.field.is_on_boundary(q) {
-            return Location::Boundary;
-        }
-        self.field
-            .location_from_winding(w(), self.field.fill_rule())
-    }
-}
-
-/// Builds the subtree over pieces `[i, j)`; returns its index (children before parents). Its
-/// chain chords go to the end of `chords`.
+/// Builds the subtree over `field`'s pieces `[i, j)`; returns its index (children before
+/// parents). Its chain chords go to the end of `chords`.
 fn build(
-    pieces: &[RationalBezier],
-    near: &[(Point, Point)],
+    field: &WindingField,
     i: usize,
     j: usize,
     nodes: &mut Vec<BvhNode>,
     chords: &mut Vec<(Point, Point)>,
 ) -> u32 {
     let (kind, lo, hi, own) = if j - i == 1 {
-        let (lo, hi) = near[i];
+        let (lo, hi) = field.near_box(i);
+        let p = &field.pieces()[i];
         let one: SmallVec<[(Point, Point); LEFT_CHAINS]> =
-            SmallVec::from_elem((pieces[i].start_point(), pieces[i].end_point()), 1);
+            SmallVec::from_elem((p.start_point(), p.end_point()), 1);
         (Kind::Leaf(i as u32), lo, hi, Some(one))
     } else {
         let m = (i + j) / 2;
         let (l, r) = (
-            build(pieces, near, i, m, nodes, chords),
-            build(pieces, near, m, j, nodes, chords),
+            build(field, i, m, nodes, chords),
+            build(field, m, j, nodes, chords),
         );
         let (ln, rn) = (&nodes[l as usize], &nodes[r as usize]);
         let lo = Point::new(ln.lo.x.min(rn.lo.x), ln.lo.y.min(rn.lo.y));
         let hi = Point::new(ln.hi.x.max(rn.hi.x), ln.hi.y.max(rn.hi.y));
         // The children's chains, the left's last joined to the right's first if it ends
-        // exactly where that starts; none if either child has too many.
+        // exactly where that starts; none if either child has none, or if they come to more
+        // than LEFT_CHAINS (counted first, so the list never outgrows its inline storage).
         let (lc, rc) = (ln.chords, rn.chords);
-        let own = (lc.0 < lc.1 && rc.0 < rc.1)
+        let (left, right) = (
+            &chords[lc.0 as usize..lc.1 as usize],
+            &chords[rc.0 as usize..rc.1 as usize],
+        );
+        let joined = matches!((left.last(), right.first()), (Some(l), Some(r)) if l.1 == r.0);
+        let own = (!left.is_empty()
+            && !right.is_empty()
+            && left.len() + right.len() - usize::from(joined) <= LEFT_CHAINS)
             .then(|| {
-                let mut own: SmallVec<[(Point, Point); LEFT_CHAINS]> =
-                    SmallVec::from_slice(&chords[lc.0 as usize..lc.1 as usize]);
-                let mut right = &chords[rc.0 as usize..rc.1 as usize];
-                if let (Some(last), Some(&(a, b))) = (own.last_mut(), right.first())
-                    && last.1 == a
-                {
+                let mut own: SmallVec<[(Point, Point); LEFT_CHAINS]> = SmallVec::from_slice(left);
+                let mut right = right;
+                if joined && let (Some(last), Some(&(_, b))) = (own.last_mut(), right.first()) {
                     last.1 = b;
                     right = &right[1..];
                 }
                 own.extend_from_slice(right);
                 own
-            })
-            .filter(|own| own.len() <= LEFT_CHAINS);
+            });
         (Kind::Inner(l, r), lo, hi, own)
     };
     let start = chords.len() as u32;

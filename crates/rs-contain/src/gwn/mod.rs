@@ -3,19 +3,21 @@
 
 mod curve;
 mod fast;
+#[cfg(test)]
+mod lazy_tests;
 mod on_boundary;
 mod raycast;
 mod sum;
 
-use rs_boxes::{BoxGrid, BoxOptions, MonotoneBoxes};
+use rs_boxes::{BoxError, BoxGrid, BoxOptions, MonotoneBoxes};
 use smallvec::SmallVec;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
 use crate::{ContainError, Location, PointQuery, PointSource};
-use curve::{SubCurve, control_box, misses_cut, refine};
+use curve::{SubCurve, control_box, misses_cut, outside, refine};
 use sum::{ChainEnds, WindingSum};
 
 pub use curve::curve_winding_number;
@@ -110,6 +112,26 @@ impl std::str::FromStr for FillRule {
 ///   [`Location::Boundary`]; otherwise the winding number is rounded to the nearest integer and
 ///   the [`FillRule`] decides.
 ///
+/// # Construction: what is built when
+/// - The constructors build what every query reads: the rational Bezier pieces, per piece its
+///   far-field frame (its control box grown by the reach of the band, see below) and its
+///   first sub-curve, and the ends of the open chains. That is linear in the pieces, with no
+///   root finding and a few allocations per field (besides the pieces' own control points).
+/// - The *boundary index* (the monotone boxes, which piece each box lies on, the grid of the
+///   boxes, and the exact tolerance, which is relative to the boxes' bounding box) is built on
+///   the first query that may be in the band: a query the adaptive walk finds within the
+///   band's reach of a piece ([`WindingField::is_on_boundary`], the average across the jump,
+///   [`WindingField::monotone_boxes`]). It is built once, by whichever thread needs it first
+///   (`OnceLock`), and shared. A query farther than the reach from every piece (the reach is
+///   about `1e-9` of the domain's size plus twice the tolerance) never builds it.
+/// - A field made by a [`crate::Classifier`] ([`crate::Classifier::winding_field`]) shares the
+///   classifier's monotone boxes instead of building its own; only their grid is built on
+///   first need.
+/// - If the monotone boxes cannot be built (a piece whose tangency roots cannot be computed,
+///   which the input limits of `rs_spline::limits` leave no known way to reach), no point is
+///   in the band: every answer is the exact winding number, [`WindingField::monotone_boxes`]
+///   reports the error.
+///
 /// # Examples
 ///
 /// ```
@@ -127,72 +149,172 @@ pub struct WindingField {
     pieces: Vec<RationalBezier>,
     /// Per piece: the box where a query may be near it, and its chord, for the far-field test.
     frames: Vec<PieceFrame>,
-    /// Per monotone box: the piece it lies on.
-    box_pieces: Vec<u32>,
-    /// A bound on the rounding of coordinates near the boundary (a few ulps of the largest).
-    rounding: f64,
+    /// The union of the frames' boxes: a query outside it is in no piece's band.
+    near_lo: Point,
+    /// See `near_lo`.
+    near_hi: Point,
+    /// Per piece: the index of its curve in the domain (which monotone boxes lie on it).
+    piece_curves: Vec<u32>,
     /// The widest gap between consecutive pieces of a loop: the monotone boxes close every
     /// joint, so they lie this far from the pieces at most.
     joint_gap: f64,
-    /// How far a query may be from the pieces and still be in the band: twice the tolerance,
-    /// the rounding and the joint gap.
+    /// How far a query may be from the pieces and still be in the band: at least twice the
+    /// tolerance, the rounding margin and the joint gap (see [`BandReach`]).
     reach: f64,
     /// Per piece: its whole curve as the adaptive algorithm's first sub-curve.
     roots: Vec<SubCurve>,
     /// Start and end of every open chain of pieces (see [`chains`]).
     open_chains: ChainEnds,
-    boxes: Arc<MonotoneBoxes>,
-    grid: BoxGrid,
-    tol: f64,
+    /// Where the monotone boxes come from (given, or built from the domain).
+    source: BoxSource,
+    /// The boundary index, built on first need (see the type's Construction).
+    index: OnceLock<Result<BoundaryIndex, BoxError>>,
+    relative_tolerance: f64,
     rule: FillRule,
+}
+
+/// Where a field's monotone boxes come from.
+#[derive(Clone, Debug)]
+enum BoxSource {
+    /// Built before (by a classifier of the same domain) and shared.
+    Given(Arc<MonotoneBoxes>),
+    /// Built from this domain, with the default options, on first need.
+    Domain(Arc<Domain>),
+}
+
+/// What the band tests read: the monotone boxes, the piece of each, their grid and the exact
+/// tolerance and rounding margin (both relative to the boxes' bounding box).
+#[derive(Clone, Debug)]
+struct BoundaryIndex {
+    boxes: Arc<MonotoneBoxes>,
+    /// Per monotone box: the piece it lies on.
+    box_pieces: Vec<u32>,
+    grid: BoxGrid,
+    /// The boundary tolerance: the relative tolerance times the boxes' bounding-box diagonal.
+    tol: f64,
+    /// A bound on the rounding of coordinates near the boundary (a few ulps of the largest).
+    rounding: f64,
+}
+
+/// The relative margin (times the pieces' coordinate scale) that covers every rounding between
+/// the pieces' control points and the points the monotone boxes hold, and the rounding margin
+/// of the band (`256 eps` of the scale).
+///
+/// A box's points come from the watertight piece (its first control point moved onto the
+/// previous piece's end) by at most `2 MAX_DEGREE + MAX_SUBDIVISIONS` de Casteljau splits in
+/// homogeneous coordinates (the roots of `x'` and `y'`, then the sub-boxes), and a projection.
+/// The weights being positive, each step of a split is a convex combination whose rounding is
+/// a few ulps of the largest coordinate of the piece split, so after all of them a point is
+/// within `(64 + 4096) * 64 * 2 eps < 1.2e-10` of the scale from the exact curve; the band's own
+/// rounding margin is `256 eps < 6e-14` of it, and the tolerance's solve rounds far less.
+/// `2^-30 > 9.3e-10` covers both with a factor of seven to spare (and the rounding of the few
+/// operations that compute the bound).
+const BAND_ROUNDING: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// The far-field bounds of the band, computed from the pieces alone (the boxes and their exact
+/// tolerance come later).
+#[derive(Clone, Copy, Debug)]
+struct BandReach {
+    /// How far from a piece's control box a query may be and still be in the band of one of
+    /// its boxes: `2 tol' + margin + joint_gap`, where `tol' >= tol` is the relative tolerance
+    /// times the diagonal of the pieces' control box grown by the joint gap and the margin,
+    /// and `margin = BAND_ROUNDING * scale`.
+    reach: f64,
+}
+
+impl BandReach {
+    /// The reach for pieces whose control boxes' union is `[lo, hi]`, `joint_gap` apart at most.
+    ///
+    /// Why it holds: the monotone boxes' pieces are the domain's pieces made watertight (the
+    /// first control point of each moved onto the end of the one before, at most `joint_gap`
+    /// away), split. Moving one control point by `d` moves every point of a rational Bezier
+    /// curve with positive weights by at most `d` (the rational basis functions are `>= 0` and
+    /// add up to 1), and every point of a piece lies in its control box, so every point of a
+    /// box's curve lies within `joint_gap` of its piece's control box, plus the splits'
+    /// rounding (below `BAND_ROUNDING * scale`, see there). The boxes' bounding box therefore
+    /// lies in `[lo, hi]` grown by `joint_gap + margin`, so its diagonal, and with it the
+    /// exact tolerance `tol`, is at most the bound's (`hypot` and the products are monotone,
+    /// and the margin dwarfs their rounding). A point in the band of a box is within `tol` of
+    /// the box's curve, measured vertically, horizontally or from an end, up to the solve's
+    /// rounding; so it lies within `tol + joint_gap + margin <= reach` of its piece's control
+    /// box. `reach` is also at least the band's old reach, `2 tol + rounding + joint_gap`
+    /// (the rounding margin `256 eps` of a scale below the bound's).
+    fn of(lo: Point, hi: Point, joint_gap: f64, relative_tolerance: f64) -> Self {
+        let scale = [lo.x, lo.y, hi.x, hi.y]
+            .iter()
+            .fold((hi - lo).length(), |m, v| m.max(v.abs()));
+        let margin = BAND_ROUNDING * scale;
+        let grow = joint_gap + margin;
+        let diagonal = rs_spline::BoundingBox { min: lo, max: hi }
+            .grown_by(grow)
+            .diagonal();
+        let tol = relative_tolerance * diagonal;
+        // The margin is taken at the grown scale, which may exceed `scale` by `grow`.
+        let margin = BAND_ROUNDING * (scale + 4.0 * grow);
+        Self {
+            reach: 2.0 * tol + margin + joint_gap,
+        }
+    }
 }
 
 impl WindingField {
     /// The field of every curve of `domain`, with boundary tolerance `relative_tolerance`
-    /// times the bounding-box diagonal, and the even-odd fill rule.
+    /// times the bounding-box diagonal, and the even-odd fill rule. Builds the pieces and
+    /// their frames; the monotone boxes and their grid wait for the first query that may be
+    /// in the band (see the type's Construction).
     ///
     /// # Errors
-    /// [`ContainError::InvalidTolerance`], [`ContainError::Boxes`].
+    /// [`ContainError::InvalidTolerance`]. (The monotone boxes are built later; if they cannot
+    /// be, see the type's Construction.)
     pub fn new(domain: &Domain, relative_tolerance: f64) -> Result<Self, ContainError> {
         if !(relative_tolerance.is_finite() && relative_tolerance >= 0.0) {
             return Err(ContainError::InvalidTolerance(relative_tolerance));
         }
-        let boxes = MonotoneBoxes::new(domain, BoxOptions::default())?;
-        Ok(Self::from_shared_boxes(
+        Ok(Self::build(
             domain,
-            Arc::new(boxes),
+            BoxSource::Domain(Arc::new(domain.clone())),
             relative_tolerance,
         ))
     }
 
-    /// The field over boxes built before from the same domain; `relative_tolerance` already
-    /// checked.
+    /// The field over boxes built before from the same domain (shared, not built again);
+    /// `relative_tolerance` already checked. Only their grid is built, on first need.
     pub(crate) fn from_shared_boxes(
         domain: &Domain,
         boxes: Arc<MonotoneBoxes>,
         relative_tolerance: f64,
     ) -> Self {
-        let bbox = boxes.bounding_box();
-        let tol = relative_tolerance * bbox.diagonal();
-        let rounding = 256.0
-            * f64::EPSILON
-            * [bbox.min.x, bbox.min.y, bbox.max.x, bbox.max.y]
-                .iter()
-                .fold(bbox.diagonal(), |m, v| m.max(v.abs()));
+        Self::build(domain, BoxSource::Given(boxes), relative_tolerance)
+    }
+
+    /// The pieces, their frames and roots, and the open chains; the boundary index left for
+    /// later.
+    fn build(domain: &Domain, source: BoxSource, relative_tolerance: f64) -> Self {
         let numbered = domain.bezier_pieces();
-        let box_pieces = pieces_of_boxes(&numbered, &boxes);
         let joint_gap = widest_joint(domain, &numbered);
-        let reach = 2.0 * tol + rounding + joint_gap;
-        let pieces: Vec<RationalBezier> = numbered.into_iter().map(|(_, b)| b).collect();
-        let grid = BoxGrid::new(boxes.boxes(), tol);
+        let mut piece_curves = Vec::with_capacity(numbered.len());
+        let mut pieces = Vec::with_capacity(numbered.len());
+        for (c, b) in numbered {
+            piece_curves.push(c as u32);
+            pieces.push(b);
+        }
         let mut frames: Vec<PieceFrame> = pieces.iter().map(PieceFrame::of).collect();
-        for (b, &p) in boxes.boxes().iter().zip(&box_pieces) {
-            frames[p as usize].include(b.band.rectangle_near(tol), rounding);
+        let (mut lo, mut hi) = frames
+            .first()
+            .map_or((Point::default(), Point::default()), |f| (f.lo, f.hi));
+        for f in &frames {
+            lo = Point::new(lo.x.min(f.lo.x), lo.y.min(f.lo.y));
+            hi = Point::new(hi.x.max(f.hi.x), hi.y.max(f.hi.y));
+        }
+        let reach = BandReach::of(lo, hi, joint_gap, relative_tolerance).reach;
+        for f in &mut frames {
+            f.grow(reach);
         }
         Self {
             frames,
-            box_pieces,
-            rounding,
+            near_lo: Point::new(lo.x - reach, lo.y - reach),
+            near_hi: Point::new(hi.x + reach, hi.y + reach),
+            piece_curves,
             joint_gap,
             reach,
             roots: pieces.iter().map(SubCurve::of).collect(),
@@ -204,11 +326,54 @@ impl WindingField {
                     .collect(),
             ),
             pieces,
-            boxes,
-            grid,
-            tol,
+            source,
+            index: OnceLock::new(),
+            relative_tolerance,
             rule: FillRule::EvenOdd,
         }
+    }
+
+    /// The boundary index, built on the first call (see the type's Construction); the error if
+    /// the monotone boxes cannot be built.
+    fn boundary_index(&self) -> Result<&BoundaryIndex, &BoxError> {
+        self.index
+            .get_or_init(|| {
+                let boxes = match &self.source {
+                    BoxSource::Given(b) => Arc::clone(b),
+                    BoxSource::Domain(d) => Arc::new(MonotoneBoxes::new(d, BoxOptions::default())?),
+                };
+                let bbox = boxes.bounding_box();
+                let tol = self.relative_tolerance * bbox.diagonal();
+                let rounding = 256.0
+                    * f64::EPSILON
+                    * [bbox.min.x, bbox.min.y, bbox.max.x, bbox.max.y]
+                        .iter()
+                        .fold(bbox.diagonal(), |m, v| m.max(v.abs()));
+                Ok(BoundaryIndex {
+                    box_pieces: pieces_of_boxes(&self.piece_curves, &self.pieces, &boxes),
+                    grid: BoxGrid::new(boxes.boxes(), tol),
+                    boxes,
+                    tol,
+                    rounding,
+                })
+            })
+            .as_ref()
+    }
+
+    /// The boundary index if `q` may be in the band (inside the union of the pieces' frames)
+    /// and the index can be built; `None` otherwise (then `q` is in no band).
+    fn index_near(&self, q: Point) -> Option<&BoundaryIndex> {
+        if outside(self.near_lo, self.near_hi, q) {
+            return None;
+        }
+        self.boundary_index().ok()
+    }
+
+    /// Has the boundary index been built (or its build been tried)? A probe for the tests of
+    /// laziness.
+    #[cfg(test)]
+    pub(crate) fn boundary_index_built(&self) -> bool {
+        self.index.get().is_some()
     }
 
     /// The same field answering [`Locate`](crate::Locate) with fill rule `rule`.
@@ -222,20 +387,33 @@ impl WindingField {
         self.rule
     }
 
-    /// The monotone boxes of the collection's curves.
-    pub fn monotone_boxes(&self) -> &MonotoneBoxes {
-        &self.boxes
+    /// The monotone boxes of the collection's curves, with their grid: built on the first call
+    /// unless a query in the band built them before (see the type's Construction).
+    ///
+    /// # Errors
+    /// [`ContainError::Boxes`] if they cannot be built.
+    pub fn monotone_boxes(&self) -> Result<&MonotoneBoxes, ContainError> {
+        match self.boundary_index() {
+            Ok(index) => Ok(&index.boxes),
+            Err(e) => Err(ContainError::Boxes(e.clone())),
+        }
     }
 
     /// Per piece, the corners of the box outside which no query is near it (the far-field
     /// test's box).
-    pub(crate) fn near_boxes(&self) -> Vec<(Point, Point)> {
-        self.frames.iter().map(|f| (f.lo, f.hi)).collect()
+    pub(crate) fn near_box(&self, piece: usize) -> (Point, Point) {
+        let f = &self.frames[piece];
+        (f.lo, f.hi)
     }
 
     /// The rational Bezier pieces of the collection.
     pub fn pieces(&self) -> &[RationalBezier] {
         &self.pieces
+    }
+
+    /// Piece `p`'s whole curve as the adaptive algorithm's first sub-curve.
+    pub(crate) fn root(&self, p: usize) -> &SubCurve {
+        &self.roots[p]
     }
 
     /// The generalized winding number at `q` (adaptive algorithm).
@@ -313,8 +491,11 @@ impl WindingField {
             return self.adaptive_winding_number(q, stats);
         }
         // The ray-casting baselines need the query off the curves: in the band, the average
-        // across the jump as above.
-        if let Some(w) = self.band_winding_number(q, stats) {
+        // across the jump as above. Only a query in some piece's frame may be in the band (a
+        // scan as long as the baselines' own, which keeps the boxes unbuilt for the others).
+        if self.frames.iter().any(|f| !outside(f.lo, f.hi, q))
+            && let Some(w) = self.band_winding_number(q, stats)
+        {
             return w;
         }
         self.pieces
@@ -331,13 +512,18 @@ impl WindingField {
             .sum()
     }
 
-    /// True if `q` is within the boundary tolerance of a curve.
+    /// True if `q` is within the boundary tolerance of a curve. Builds the boundary index
+    /// unless `q` lies outside every piece's frame (see the type's Construction).
     pub fn is_on_boundary(&self, q: Point) -> bool {
-        let boxes = self.boxes.boxes();
-        self.grid
+        let Some(index) = self.index_near(q) else {
+            return false;
+        };
+        let boxes = index.boxes.boxes();
+        index
+            .grid
             .candidates(q)
             .iter()
-            .any(|&i| boxes[i as usize].is_near(q, self.tol))
+            .any(|&i| boxes[i as usize].is_near(q, index.tol))
     }
 
     /// Inside or outside from a winding number off the boundary: rounded, then the fill rule.
@@ -357,11 +543,25 @@ impl WindingField {
 
 impl PointQuery<Location> for WindingField {
     /// Boundary within the tolerance, otherwise the rounded winding number and the fill rule.
+    ///
+    /// The boundary test runs only for a query the adaptive walk found within reach of a piece
+    /// (the walk's near flag): every point of the band is (see the Construction), so the answer is
+    /// the one testing every query gives, and a query away from the curves leaves the boundary
+    /// index unbuilt.
     fn value(&self, q: Point) -> Location {
-        if self.is_on_boundary(q) {
-            return Location::Boundary;
+        let mut stats = QueryStats::default();
+        let mut sum = WindingSum::tracking(q, self.reach);
+        self.add_pieces(q, &[], &mut sum, &mut stats);
+        if sum.near() {
+            if self.is_on_boundary(q) {
+                return Location::Boundary;
+            }
+            if let Some(w) = self.band_winding_number(q, &mut stats) {
+                return self.location_from_winding(w, self.rule);
+            }
         }
-        self.location_from_winding(self.winding_number(q), self.rule)
+        self.add_open_chain_ends(std::slice::from_mut(&mut sum));
+        self.location_from_winding(sum.value(), self.rule)
     }
 }
 
@@ -419,12 +619,12 @@ fn widest_joint(domain: &Domain, pieces: &[(usize, RationalBezier)]) -> f64 {
         let curves = l.curves();
         let first = pieces.partition_point(|(c, _)| c < curves.start());
         let end = pieces.partition_point(|(c, _)| c <= curves.end());
-        let of_loop: Vec<&RationalBezier> = pieces[first..end].iter().map(|(_, b)| b).collect();
+        let of_loop = &pieces[first..end];
         for w in of_loop.windows(2) {
-            widest = widest.max(w[0].end_point().distance(w[1].start_point()));
+            widest = widest.max(w[0].1.end_point().distance(w[1].1.start_point()));
         }
         if l.is_closed()
-            && let (Some(first), Some(last)) = (of_loop.first(), of_loop.last())
+            && let (Some((_, first)), Some((_, last))) = (of_loop.first(), of_loop.last())
         {
             widest = widest.max(last.end_point().distance(first.start_point()));
         }
@@ -440,8 +640,9 @@ pub(crate) fn passage_pieces(passages: &on_boundary::Passages) -> SmallVec<[u32;
 }
 
 /// What the far-field test needs of a piece: the box where a query may be near it (its
-/// control box, and its monotone boxes' rectangles where a query may be within the tolerance,
-/// grown by the rounding margin), and its chord.
+/// control box grown by the band's reach, [`BandReach`]: it holds every point of the band of
+/// the piece's monotone boxes, and every point the adaptive walk may find within the reach of
+/// the piece), and its chord.
 #[derive(Clone, Copy, Debug)]
 struct PieceFrame {
     lo: Point,
@@ -462,32 +663,25 @@ impl PieceFrame {
         }
     }
 
-    /// Grows the near box to hold `r` grown by `margin`.
-    fn include(&mut self, r: rs_spline::BoundingBox, margin: f64) {
-        self.lo = Point::new(
-            self.lo.x.min(r.min.x - margin),
-            self.lo.y.min(r.min.y - margin),
-        );
-        self.hi = Point::new(
-            self.hi.x.max(r.max.x + margin),
-            self.hi.y.max(r.max.y + margin),
-        );
+    /// Grows the near box by `reach` on every side.
+    fn grow(&mut self, reach: f64) {
+        self.lo = Point::new(self.lo.x - reach, self.lo.y - reach);
+        self.hi = Point::new(self.hi.x + reach, self.hi.y + reach);
     }
 }
 
-/// The index in `pieces` (`(curve, piece)` in curve order, as [`Domain::bezier_pieces`] lists
-/// them) of the piece each monotone box lies on: the piece of the box's curve whose knot span
-/// holds the middle of the box's parameter range.
-fn pieces_of_boxes(pieces: &[(usize, RationalBezier)], boxes: &MonotoneBoxes) -> Vec<u32> {
+/// The index in `pieces` (in curve order, as [`Domain::bezier_pieces`] lists them, the curve
+/// of each in `curves`) of the piece each monotone box lies on: the piece of the box's curve
+/// whose knot span holds the middle of the box's parameter range.
+fn pieces_of_boxes(curves: &[u32], pieces: &[RationalBezier], boxes: &MonotoneBoxes) -> Vec<u32> {
     boxes
         .boxes()
         .iter()
         .map(|b| {
-            let first = pieces.partition_point(|(c, _)| *c < b.curve);
-            let count = pieces[first..].partition_point(|(c, _)| *c == b.curve);
+            let first = curves.partition_point(|&c| (c as usize) < b.curve);
+            let count = curves[first..].partition_point(|&c| c as usize == b.curve);
             let mid = 0.5 * (b.param_range.0 + b.param_range.1);
-            let within =
-                pieces[first..first + count].partition_point(|(_, p)| p.knot_span().1 <= mid);
+            let within = pieces[first..first + count].partition_point(|p| p.knot_span().1 <= mid);
             (first + within.min(count.saturating_sub(1))) as u32
         })
         .collect()

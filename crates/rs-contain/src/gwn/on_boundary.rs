@@ -19,7 +19,7 @@ use rs_spline::prelude::*;
 
 use super::curve::{SubCurve, refine};
 use super::sum::{AngleSum, ChordSink};
-use super::{QueryStats, WindingField};
+use super::{BoundaryIndex, QueryStats, WindingField};
 
 /// Passages of a query: `(piece, local parameter)`, sorted, one per passage.
 pub(crate) type Passages = SmallVec<[(u32, f64); 4]>;
@@ -42,13 +42,19 @@ impl WindingField {
     /// monotone boxes of one piece give for it are merged, and a passage that runs across the
     /// joint of two pieces (`q` near both, the joint a few tolerances away) is put at the
     /// joint on both, so that the stretch between is not counted as a detour round `q`.
+    ///
+    /// Builds the boundary index unless `q` lies outside every piece's frame (then it has no
+    /// passage).
     pub(crate) fn passages(&self, q: Point) -> Passages {
-        let boxes = self.boxes.boxes();
         let mut found: Passages = SmallVec::new();
-        for &i in self.grid.candidates(q) {
+        let Some(index) = self.index_near(q) else {
+            return found;
+        };
+        let boxes = index.boxes.boxes();
+        for &i in index.grid.candidates(q) {
             let b = &boxes[i as usize];
-            if let Some(t) = b.near_parameter(q, self.tol) {
-                let piece = self.box_pieces[i as usize];
+            if let Some(t) = b.near_parameter(q, index.tol) {
+                let piece = index.box_pieces[i as usize];
                 found.push((piece, self.piece_parameter(piece, b, t)));
             }
         }
@@ -60,13 +66,13 @@ impl WindingField {
         for (piece, s) in found {
             if let Some(&(last_piece, last)) = passages.last()
                 && last_piece == piece
-                && self.part_near(piece, last, s, q)
+                && self.part_near(index, piece, last, s, q)
             {
                 continue;
             }
             passages.push((piece, s));
         }
-        self.join_at_joints(&mut passages, q);
+        self.join_at_joints(index, &mut passages, q);
         passages
     }
 
@@ -74,9 +80,9 @@ impl WindingField {
     /// another (or of the same closed piece): the last passage of a piece whose rest lies near
     /// `q` goes to its end, the first passage of a piece whose beginning lies near `q` and
     /// that starts there goes to its start. A piece lying wholly near `q` gets both.
-    fn join_at_joints(&self, passages: &mut Passages, q: Point) {
+    fn join_at_joints(&self, index: &BoundaryIndex, passages: &mut Passages, q: Point) {
         // Pieces of a loop meet within the joint gap.
-        let reach = self.passage_reach() + self.joint_gap;
+        let reach = index.passage_reach() + self.joint_gap;
         // Per piece: its range in `passages`, and whether its rest and its beginning lie near.
         let mut groups: SmallVec<[(usize, usize, bool, bool); 4]> = SmallVec::new();
         let mut k = 0;
@@ -87,8 +93,8 @@ impl WindingField {
             groups.push((
                 k,
                 n,
-                first == 0.0 || self.part_near(piece, 0.0, first, q),
-                last == 1.0 || self.part_near(piece, last, 1.0, q),
+                first == 0.0 || self.part_near(index, piece, 0.0, first, q),
+                last == 1.0 || self.part_near(index, piece, last, 1.0, q),
             ));
             k += n;
         }
@@ -162,24 +168,16 @@ impl WindingField {
         ((u - a) / (z - a)).clamp(0.0, 1.0)
     }
 
-    /// How far from `q` a stretch of one passage may run: [`SAME_PASSAGE_TOLERANCES`]
-    /// tolerances plus the rounding margin.
-    fn passage_reach(&self) -> f64 {
-        SAME_PASSAGE_TOLERANCES * self.tol + self.rounding
-    }
-
-    /// Does `piece` between local parameters `s0 <= s1` stay within [`passage_reach`] of `q`
-    /// (its control points do, in each coordinate)?
-    ///
-    /// [`passage_reach`]: WindingField::passage_reach
-    fn part_near(&self, piece: u32, s0: f64, s1: f64, q: Point) -> bool {
+    /// Does `piece` between local parameters `s0 <= s1` stay within
+    /// [`BoundaryIndex::passage_reach`] of `q` (its control points do, in each coordinate)?
+    fn part_near(&self, index: &BoundaryIndex, piece: u32, s0: f64, s1: f64, q: Point) -> bool {
         if s0 == s1 {
             return true;
         }
         let Some(part) = self.roots[piece as usize].part(s0, s1) else {
             return true; // the parameters a rounding apart: one point
         };
-        let reach = self.passage_reach();
+        let reach = index.passage_reach();
         part.points()
             .iter()
             .all(|&p| (p.x - q.x).abs() <= reach && (p.y - q.y).abs() <= reach)
@@ -194,13 +192,18 @@ impl WindingField {
         sink: &mut K,
         stats: &mut QueryStats,
     ) {
+        // Passages come from the boundary index: it is built (and so is its error otherwise,
+        // which leaves no passage).
+        let Ok(index) = self.boundary_index() else {
+            return;
+        };
         let mut rest = &passages[..];
         while let Some(&(piece, _)) = rest.first() {
             let n = rest.iter().take_while(|p| p.0 == piece).count();
             let params: SmallVec<[f64; 4]> = rest[..n].iter().map(|p| p.1).collect();
             rest = &rest[n..];
             let root = &self.roots[piece as usize];
-            let value = cut_at_passages(root, &params, q, self.passage_reach(), stats);
+            let value = cut_at_passages(root, &params, q, index.passage_reach(), stats);
             let b = &self.pieces[piece as usize];
             sink.special(value, b.start_point(), b.end_point());
         }
@@ -240,6 +243,14 @@ fn cut_at_passages(
         refine(part, q, &mut sum, stats);
     }
     sum.turns
+}
+
+impl BoundaryIndex {
+    /// How far from `q` a stretch of one passage may run: [`SAME_PASSAGE_TOLERANCES`]
+    /// tolerances plus the rounding margin.
+    fn passage_reach(&self) -> f64 {
+        SAME_PASSAGE_TOLERANCES * self.tol + self.rounding
+    }
 }
 
 /// Sorts passages by piece, then parameter, and drops repeats.
