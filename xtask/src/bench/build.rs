@@ -151,8 +151,51 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             run_probe(&old_bin, &args, &mut old)?;
         }
     }
-    report(md, &old, &new, rounds, cad.len());
+    let all_cores = if cad.is_empty() {
+        None
+    } else {
+        Some(faces_on_all_cores(&cad, o)?)
+    };
+    report(md, &old, &new, rounds, cad.len(), all_cores);
     Ok(())
+}
+
+/// The probe's many-faces workload through [`inrs::contain::locate_each`] (the domains spread
+/// over all cores): seconds per face, the median of the rounds.
+fn faces_on_all_cores(paths: &[String], o: &BenchOptions) -> Result<f64, String> {
+    let mut faces: Vec<(inrs::Domain, Vec<inrs::Point>)> = Vec::new();
+    for p in paths {
+        let model = inrs::io::cad::CadModel::read(p).map_err(|e| format!("{p}: {e}"))?;
+        for d in model.face_domains(None).into_iter().flatten() {
+            let pts = face_grid(&d, 20);
+            faces.push((d, pts));
+        }
+    }
+    let batches: Vec<(&inrs::Domain, &[inrs::Point])> =
+        faces.iter().map(|(d, p)| (d, p.as_slice())).collect();
+    let t = super::median_time(o.reps.clamp(3, 11), || {
+        std::hint::black_box(inrs::contain::locate_each(
+            &batches,
+            inrs::contain::ContainOptions::DEFAULT,
+        ));
+    });
+    Ok(t / faces.len().max(1) as f64)
+}
+
+/// The probe's points of a face: a `side x side` grid over its box grown by 5%.
+fn face_grid(d: &inrs::Domain, side: usize) -> Vec<inrs::Point> {
+    let b = d.bounding_box();
+    let (w, h) = (b.max.x - b.min.x, b.max.y - b.min.y);
+    let (x0, y0) = (b.min.x - 0.05 * w, b.min.y - 0.05 * h);
+    (0..side * side)
+        .map(|k| {
+            let (i, j) = (k % side, k / side);
+            inrs::Point::new(
+                x0 + 1.1 * w * (i as f64 + 0.37) / side as f64,
+                y0 + 1.1 * h * (j as f64 + 0.61) / side as f64,
+            )
+        })
+        .collect()
 }
 
 fn stem(s: &str) -> &str {
@@ -160,7 +203,14 @@ fn stem(s: &str) -> &str {
     name.split('.').next().unwrap_or(name)
 }
 
-fn report(md: &mut String, old: &Samples, new: &Samples, rounds: usize, cad_files: usize) {
+fn report(
+    md: &mut String,
+    old: &Samples,
+    new: &Samples,
+    rounds: usize,
+    cad_files: usize,
+    all_cores: Option<f64>,
+) {
     let _ = writeln!(
         md,
         "\nStart-up: from a loaded domain to its first answer, this tree against {BASELINE_REV} \
@@ -234,6 +284,65 @@ fn report(md: &mut String, old: &Samples, new: &Samples, rounds: usize, cad_file
             a * 1e6,
             b * 1e6,
             a / b
+        );
+        if let Some(c) = all_cores {
+            let _ = writeln!(
+                md,
+                "The same faces and points through `locate_each` (the faces spread over all \
+                 cores): {:.1} us a face, {:.1}x the one-thread loop before.",
+                c * 1e6,
+                a / c
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The table reads the probe's keys: per piece, ratios old / new for the builds and
+    /// new / old for the queries, and the faces' line with the all-cores figure.
+    #[test]
+    fn the_report_turns_probe_lines_into_ratios() {
+        let sample = |pairs: &[(&str, f64)]| -> Samples {
+            pairs
+                .iter()
+                .map(|(k, v)| (k.to_string(), vec![*v]))
+                .collect()
+        };
+        let old = sample(&[
+            ("pieces/butterfly", 500.0),
+            ("field_ready/butterfly", 20e-3),
+            ("classifier_locator/butterfly", 25e-3),
+            ("locator_query/butterfly", 10e-9),
+            ("cad_per_face", 400e-6),
+        ]);
+        let new = sample(&[
+            ("pieces/butterfly", 500.0),
+            ("field_ready/butterfly", 0.5e-3),
+            ("classifier_locator/butterfly", 5e-3),
+            ("locator_query/butterfly", 10.2e-9),
+            ("cad_per_face", 200e-6),
+            ("cad_faces", 3000.0),
+        ]);
+        let mut md = String::new();
+        report(&mut md, &old, &new, 2, 32, Some(100e-6));
+        let row = md
+            .lines()
+            .find(|l| l.starts_with("| butterfly |"))
+            .expect("a butterfly row");
+        assert!(row.contains("| 40.00, 1.00, 40.0 |"), "{row}");
+        assert!(row.contains("| 50.00, 10.00, 5.0 |"), "{row}");
+        assert!(row.contains("| 1.020 |"), "{row}");
+        assert!(
+            md.contains("400.0 us a face before, 200.0 after (2.0x)"),
+            "{md}"
+        );
+        assert!(md.contains("100.0 us a face, 4.0x"), "{md}");
+        assert!(
+            !md.contains("| rose |"),
+            "shapes the probe did not report are left out"
         );
     }
 }
