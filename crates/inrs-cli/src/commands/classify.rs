@@ -36,8 +36,9 @@ pub(crate) struct ClassifyArgs {
     /// Boundary tolerance relative to the bounding-box diagonal (>= 0, see below).
     #[arg(long, default_value = limits::DEFAULT_TOL, value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub(super) tol: f64,
-    /// Sub-boxes per monotone piece (the paper's box refinement), 1 to 4096; reduced
-    /// automatically so that a domain has at most about 131072 boxes.
+    /// The most sub-boxes per monotone piece (the paper's box refinement), 1 to 4096; a piece
+    /// small against the domain gets fewer (about 64 boxes per diagonal of the domain), and a
+    /// domain has at most about 131072 boxes.
     #[arg(long, default_value_t = DEFAULT_SUBDIVISIONS, value_parser = parse_subdivisions, allow_negative_numbers = true)]
     pub(super) subdivisions: usize,
     /// With several domains: leave out the columns of the domains (faces) that cannot be read
