@@ -9,6 +9,7 @@
 
 use std::time::Instant;
 
+use inrs::contain::baselines::halton_points;
 use inrs::contain::{
     Classifier, ContainOptions, Containment, FastWindingField, Locate, Method, PointQuery,
     WindingField,
@@ -28,20 +29,10 @@ fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
     t[t.len() / 2]
 }
 
-/// A `side x side` grid of points over `d`'s bounding box grown by 5%.
-fn grid(d: &Domain, side: usize) -> Vec<Point> {
+/// `n` Halton points of `d`'s bounding box grown by 5% of its diagonal.
+fn points_around(d: &Domain, n: usize) -> Vec<Point> {
     let b = d.bounding_box();
-    let (w, h) = (b.max.x - b.min.x, b.max.y - b.min.y);
-    let (x0, y0) = (b.min.x - 0.05 * w, b.min.y - 0.05 * h);
-    (0..side * side)
-        .map(|k| {
-            let (i, j) = (k % side, k / side);
-            Point::new(
-                x0 + 1.1 * w * (i as f64 + 0.37) / side as f64,
-                y0 + 1.1 * h * (j as f64 + 0.61) / side as f64,
-            )
-        })
-        .collect()
+    halton_points(n, b.grown_by(0.05 * b.diagonal()))
 }
 
 /// One query point away from the boundary's vertices (an odd offset from the box's centre).
@@ -90,7 +81,7 @@ fn per_domain(path: &str, reps: usize) -> Result<(), String> {
         println!("json_one_point/{name}\t{from_text:e}");
     }
     // Query speeds, the indexes built before the clock starts (seconds per point).
-    let pts = grid(&d, 300);
+    let pts = points_around(&d, 90_000);
     let field = WindingField::new(&d, options.relative_tolerance).expect("a valid tolerance");
     let fast = FastWindingField::new(&field);
     let mut w = vec![0.0f64; pts.len()];
@@ -110,14 +101,14 @@ fn per_domain(path: &str, reps: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// Every face of the CAD files, each with 400 points of its own box: the per-face loop (a
+/// Every face of the CAD files, each with 400 Halton points around its box: the per-face loop (a
 /// fresh `Containment` per face, one thread), as a front end did it one call at a time.
 fn cad_faces(paths: &[String]) -> Result<(), String> {
     let mut faces: Vec<(Domain, Vec<Point>)> = Vec::new();
     for p in paths {
         let model = inrs::io::cad::CadModel::read(p).map_err(|e| format!("{p}: {e}"))?;
         for d in model.face_domains(None).into_iter().flatten() {
-            let pts = grid(&d, 20);
+            let pts = points_around(&d, 400);
             faces.push((d, pts));
         }
     }

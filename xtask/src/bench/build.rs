@@ -167,7 +167,9 @@ fn faces_on_all_cores(paths: &[String], o: &BenchOptions) -> Result<f64, String>
     for p in paths {
         let model = inrs::io::cad::CadModel::read(p).map_err(|e| format!("{p}: {e}"))?;
         for d in model.face_domains(None).into_iter().flatten() {
-            let pts = face_grid(&d, 20);
+            // The probe's points of a face (`points_around`).
+            let b = d.bounding_box();
+            let pts = inrs::contain::baselines::halton_points(400, b.grown_by(0.05 * b.diagonal()));
             faces.push((d, pts));
         }
     }
@@ -180,22 +182,6 @@ fn faces_on_all_cores(paths: &[String], o: &BenchOptions) -> Result<f64, String>
         ));
     });
     Ok(t / faces.len().max(1) as f64)
-}
-
-/// The probe's points of a face: a `side x side` grid over its box grown by 5%.
-fn face_grid(d: &inrs::Domain, side: usize) -> Vec<inrs::Point> {
-    let b = d.bounding_box();
-    let (w, h) = (b.max.x - b.min.x, b.max.y - b.min.y);
-    let (x0, y0) = (b.min.x - 0.05 * w, b.min.y - 0.05 * h);
-    (0..side * side)
-        .map(|k| {
-            let (i, j) = (k % side, k / side);
-            inrs::Point::new(
-                x0 + 1.1 * w * (i as f64 + 0.37) / side as f64,
-                y0 + 1.1 * h * (j as f64 + 0.61) / side as f64,
-            )
-        })
-        .collect()
 }
 
 fn stem(s: &str) -> &str {
@@ -220,8 +206,8 @@ fn report(
          (goal <= 2 us a piece and >= 10x less). *Classifier + locator*: `Classifier::new` + \
          `locator()` + one point (goal >= 5x less). *One point*: `Containment::new` + \
          `engine(1)` on one point; *from JSON*: the same from the JSON text (goal < 50 us on the \
-         paper domains). Query ratios: new time / old time per point (300 x 300 grid over the \
-         box; inRS2 on 10^4 of them), goal within 5%.\n"
+         paper domains). Query ratios: new time / old time per point (9 x 10^4 Halton points of the \
+         box grown by 5%; inRS2 on 10^4 of them), goal within 5%.\n"
     );
     let _ = writeln!(
         md,
@@ -279,7 +265,7 @@ fn report(
         let _ = writeln!(
             md,
             "\nMany small domains: the {n} faces read from the {cad_files} parts of {CAD_DIR} \
-             (freecad-common), 400 points each (a 20 x 20 grid over the face's box), one \
+             (freecad-common), 400 Halton points each (the face's box grown by 5% of its diagonal), one \
              `Containment` per face on one thread: {:.1} us a face before, {:.1} after ({:.1}x).",
             a * 1e6,
             b * 1e6,
