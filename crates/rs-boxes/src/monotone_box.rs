@@ -6,6 +6,7 @@ use smallvec::SmallVec;
 
 use crate::BezierPiece;
 use crate::chord_band::{ChordBand, halving_margin};
+use crate::piece::HalvedPiece;
 
 /// How a coordinate varies along a piece, from its start to its end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -83,6 +84,33 @@ impl MonotoneBox {
     pub fn for_grid_parts(&self, frame: &GridFrame, mut f: impl FnMut(ChordBand, bool)) {
         let vertical = self.x_dir == Monotonicity::Constant;
         let margin = halving_margin(&self.piece);
+        // Degree <= 7 (every piece in practice): halve fixed-size copies, which give the very
+        // control points of `BezierPiece::split(0.5)` (so the very parts and bands) without
+        // its SmallVec copies and moves.
+        if let Some(whole) = HalvedPiece::of(&self.piece) {
+            let mut stack: SmallVec<[(HalvedPiece, u32); 26]> = SmallVec::new();
+            stack.push((whole, 0));
+            // Bounded: every halving adds one to the depth, capped at MAX_REGISTER_DEPTH.
+            while let Some((piece, depth)) = stack.pop() {
+                let part = BoundingBox::from_point(piece.start()).including(piece.end());
+                let (c0, c1, r0, r1) = frame.cell_range(part);
+                if depth == 0 && c1 - c0 <= 1 && r1 - r0 <= 1 {
+                    f(self.band, true);
+                } else if (c1 - c0 <= 1 && r1 - r0 <= 1) || depth >= MAX_REGISTER_DEPTH {
+                    let (xs, ys) = (piece.xs(), piece.ys());
+                    let control = |i: usize| Point::new(xs[i], ys[i]);
+                    f(
+                        ChordBand::of_controls(xs.len(), control, vertical, margin),
+                        false,
+                    );
+                } else {
+                    let (left, right) = piece.halve();
+                    stack.push((right, depth + 1));
+                    stack.push((left, depth + 1));
+                }
+            }
+            return;
+        }
         let mut stack: SmallVec<[(BezierPiece, u32); 16]> = SmallVec::new();
         stack.push((self.piece.clone(), 0));
         while let Some((piece, depth)) = stack.pop() {
