@@ -257,13 +257,21 @@ impl HalvedPiece {
         Point::new(self.x[self.len - 1], self.y[self.len - 1])
     }
 
-    /// The halves on `[0, 0.5]` and `[0.5, 1]`, equal bit for bit to [`BezierPiece::split`]`(0.5)`.
-    pub(crate) fn halve(&self) -> (Self, Self) {
+    /// Halves the piece in place: it becomes the half on `[0, 0.5]` and the half on `[0.5, 1]`
+    /// is returned, both equal bit for bit to [`BezierPiece::split`]`(0.5)`'s (one copy of the
+    /// arrays per halving).
+    pub(crate) fn halve(&mut self) -> Self {
         const S: f64 = 0.5;
         let n = self.len;
-        let (mut left, mut right) = (*self, *self);
+        // Constancy of the piece being split, as `split` tests it.
+        let (x0, y0) = (self.x[0], self.y[0]);
+        let x_constant = self.xs().iter().all(|&v| v == x0);
+        let y_constant = self.ys().iter().all(|&v| v == y0);
+        let mut right = *self;
+        let left = self;
         // de_casteljau_split on each of hx, hy, w: `right` is the work array (already a copy
-        // of the coefficients); after level k its entry n-1-k is final.
+        // of the coefficients); after level k its entry n-1-k is final, and `left` keeps its
+        // entry 0.
         let r = 1.0 - S;
         for level in 1..n {
             for i in 0..n - level {
@@ -276,24 +284,23 @@ impl HalvedPiece {
             left.w[level] = right.w[0];
         }
         // from_homogeneous.
-        for half in [&mut left, &mut right] {
+        for half in [&mut *left, &mut right] {
             for i in 0..n {
                 half.x[i] = half.hx[i] / half.w[i];
                 half.y[i] = half.hy[i] / half.w[i];
             }
         }
         // Constant coordinates stay exactly constant (as in `split`).
-        let (x0, y0) = (self.x[0], self.y[0]);
-        if self.xs().iter().all(|&v| v == x0) {
-            for half in [&mut left, &mut right] {
+        if x_constant {
+            for half in [&mut *left, &mut right] {
                 for i in 0..n {
                     half.x[i] = x0;
                     half.hx[i] = x0 * half.w[i];
                 }
             }
         }
-        if self.ys().iter().all(|&v| v == y0) {
-            for half in [&mut left, &mut right] {
+        if y_constant {
+            for half in [&mut *left, &mut right] {
                 for i in 0..n {
                     half.y[i] = y0;
                     half.hy[i] = y0 * half.w[i];
@@ -303,7 +310,7 @@ impl HalvedPiece {
         // Both sides agree on the shared point bit for bit.
         right.x[0] = left.x[n - 1];
         right.y[0] = left.y[n - 1];
-        (left, right)
+        right
     }
 }
 
@@ -447,7 +454,9 @@ mod tests {
                 assert_eq!((h.start(), h.end()), (p.start(), p.end()));
                 compared += 1;
                 if depth < 4 {
-                    let ((l, r), (hl, hr)) = (p.split(0.5), h.halve());
+                    let (l, r) = p.split(0.5);
+                    let mut hl = h;
+                    let hr = hl.halve();
                     stack.push((l, hl, depth + 1));
                     stack.push((r, hr, depth + 1));
                 }
