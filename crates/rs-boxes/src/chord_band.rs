@@ -49,10 +49,23 @@ pub struct ChordBand {
 impl ChordBand {
     /// The band of `piece`, standing for a curve within `margin` of it.
     pub(crate) fn of_piece(piece: &BezierPiece, vertical: bool, margin: f64) -> Self {
-        let (start, end) = (piece.start(), piece.end());
+        let n = piece.degree();
+        Self::of_controls(n + 1, |i| piece.control_point(i), vertical, margin)
+    }
+
+    /// The band of the piece with the `count` control points `control(0..count)` (the first
+    /// and last its end points; `count >= 1`), standing for a curve within `margin` of it.
+    #[inline]
+    pub(crate) fn of_controls(
+        count: usize,
+        control: impl Fn(usize) -> Point + Clone,
+        vertical: bool,
+        margin: f64,
+    ) -> Self {
+        let (start, end) = (control(0), control(count - 1));
         let chord = end - start;
         let len = chord.length();
-        let controls = (0..=piece.degree()).map(|i| piece.control_point(i));
+        let controls = (0..count).map(control);
         let flatness = if len > 0.0 {
             controls
                 .clone()

@@ -6,6 +6,7 @@ use smallvec::SmallVec;
 
 use crate::BezierPiece;
 use crate::chord_band::{ChordBand, halving_margin};
+use crate::piece::HalvedPiece;
 
 /// How a coordinate varies along a piece, from its start to its end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,6 +64,43 @@ pub struct MonotoneBox {
 /// Halving depth cap of [`MonotoneBox::for_cells_near`].
 const MAX_REGISTER_DEPTH: u32 = 24;
 
+/// What [`MonotoneBox::for_grid_parts`] halves a piece of degree <= 7 against.
+struct HalvedParts<'a> {
+    frame: &'a GridFrame,
+    /// The box's own band (its only part when it spans at most two cells each way).
+    band: ChordBand,
+    vertical: bool,
+    margin: f64,
+}
+
+impl HalvedParts<'_> {
+    /// Calls `f` with the parts of `piece` (at halving depth `depth`) in order, depth first,
+    /// the left half before the right: the parts and order of the `BezierPiece::split` stack.
+    /// The recursion is at most `MAX_REGISTER_DEPTH` deep. `piece` is halved in place (it is
+    /// left as the last left half).
+    fn visit<F: FnMut(ChordBand, bool)>(&self, piece: &mut HalvedPiece, depth: u32, f: &mut F) {
+        let part = BoundingBox::from_point(piece.start()).including(piece.end());
+        // The stopping test is on the part itself, not grown by a tolerance: a tolerance
+        // wider than a cell must not make the halving run to its cap.
+        let (c0, c1, r0, r1) = self.frame.cell_range(part);
+        let small = c1 - c0 <= 1 && r1 - r0 <= 1;
+        if depth == 0 && small {
+            f(self.band, true);
+        } else if small || depth >= MAX_REGISTER_DEPTH {
+            let (xs, ys) = (piece.xs(), piece.ys());
+            let control = |i: usize| Point::new(xs[i], ys[i]);
+            f(
+                ChordBand::of_controls(xs.len(), control, self.vertical, self.margin),
+                false,
+            );
+        } else {
+            let mut right = piece.halve();
+            self.visit(piece, depth + 1, f);
+            self.visit(&mut right, depth + 1, f);
+        }
+    }
+}
+
 impl MonotoneBox {
     /// Calls `f` with every cell of `frame` that holds a point within `abs_tol` of the box's curve
     /// (some cells twice): those of each of [`MonotoneBox::for_grid_parts`]'s parts'
@@ -83,6 +121,19 @@ impl MonotoneBox {
     pub fn for_grid_parts(&self, frame: &GridFrame, mut f: impl FnMut(ChordBand, bool)) {
         let vertical = self.x_dir == Monotonicity::Constant;
         let margin = halving_margin(&self.piece);
+        // Degree <= 7 (every piece in practice): halve fixed-size copies, which give the very
+        // control points of `BezierPiece::split(0.5)` (so the very parts and bands) without
+        // its SmallVec copies and moves.
+        if let Some(mut whole) = HalvedPiece::of(&self.piece) {
+            let parts = HalvedParts {
+                frame,
+                band: self.band,
+                vertical,
+                margin,
+            };
+            parts.visit(&mut whole, 0, &mut f);
+            return;
+        }
         let mut stack: SmallVec<[(BezierPiece, u32); 16]> = SmallVec::new();
         stack.push((self.piece.clone(), 0));
         while let Some((piece, depth)) = stack.pop() {

@@ -193,6 +193,127 @@ impl BezierPiece {
     }
 }
 
+/// Most coefficients of a [`HalvedPiece`]: degree <= 7 (larger degrees halve through
+/// [`BezierPiece::split`]).
+pub(crate) const HALVED_COEFFS: usize = 8;
+
+/// A piece of degree at most 7 in fixed-size arrays, for the repeated halvings of
+/// [`MonotoneBox::for_grid_parts`](crate::MonotoneBox::for_grid_parts): [`HalvedPiece::halve`]
+/// gives, bit for bit, the control points and weights of [`BezierPiece::split`] at `t = 0.5`
+/// (the same de Casteljau blends `a * (1 - s) + b * s` in the same order, the same divisions,
+/// the same fix-ups of constant coordinates and of the shared point), without the `SmallVec`
+/// copies and moves.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct HalvedPiece {
+    /// Number of coefficients, `degree + 1`, in `1..=HALVED_COEFFS`.
+    len: usize,
+    x: [f64; HALVED_COEFFS],
+    y: [f64; HALVED_COEFFS],
+    w: [f64; HALVED_COEFFS],
+    hx: [f64; HALVED_COEFFS],
+    hy: [f64; HALVED_COEFFS],
+}
+
+impl HalvedPiece {
+    /// The piece in fixed-size arrays, `None` above degree 7 (or for an empty piece).
+    pub(crate) fn of(piece: &BezierPiece) -> Option<Self> {
+        let len = piece.w.len();
+        if len == 0 || len > HALVED_COEFFS {
+            return None;
+        }
+        let mut out = Self {
+            len,
+            x: [0.0; HALVED_COEFFS],
+            y: [0.0; HALVED_COEFFS],
+            w: [0.0; HALVED_COEFFS],
+            hx: [0.0; HALVED_COEFFS],
+            hy: [0.0; HALVED_COEFFS],
+        };
+        out.x[..len].copy_from_slice(&piece.x);
+        out.y[..len].copy_from_slice(&piece.y);
+        out.w[..len].copy_from_slice(&piece.w);
+        out.hx[..len].copy_from_slice(&piece.hx);
+        out.hy[..len].copy_from_slice(&piece.hy);
+        Some(out)
+    }
+
+    /// The control points' abscissas.
+    pub(crate) fn xs(&self) -> &[f64] {
+        &self.x[..self.len]
+    }
+
+    /// The control points' ordinates.
+    pub(crate) fn ys(&self) -> &[f64] {
+        &self.y[..self.len]
+    }
+
+    /// `C(0)`.
+    pub(crate) fn start(&self) -> Point {
+        Point::new(self.x[0], self.y[0])
+    }
+
+    /// `C(1)`.
+    pub(crate) fn end(&self) -> Point {
+        Point::new(self.x[self.len - 1], self.y[self.len - 1])
+    }
+
+    /// Halves the piece in place: it becomes the half on `[0, 0.5]` and the half on `[0.5, 1]`
+    /// is returned, both equal bit for bit to [`BezierPiece::split`]`(0.5)`'s (one copy of the
+    /// arrays per halving).
+    pub(crate) fn halve(&mut self) -> Self {
+        const S: f64 = 0.5;
+        let n = self.len;
+        // Constancy of the piece being split, as `split` tests it.
+        let (x0, y0) = (self.x[0], self.y[0]);
+        let x_constant = self.xs().iter().all(|&v| v == x0);
+        let y_constant = self.ys().iter().all(|&v| v == y0);
+        let mut right = *self;
+        let left = self;
+        // de_casteljau_split on each of hx, hy, w: `right` is the work array (already a copy
+        // of the coefficients); after level k its entry n-1-k is final, and `left` keeps its
+        // entry 0.
+        let r = 1.0 - S;
+        for level in 1..n {
+            for i in 0..n - level {
+                right.hx[i] = right.hx[i] * r + right.hx[i + 1] * S;
+                right.hy[i] = right.hy[i] * r + right.hy[i + 1] * S;
+                right.w[i] = right.w[i] * r + right.w[i + 1] * S;
+            }
+            left.hx[level] = right.hx[0];
+            left.hy[level] = right.hy[0];
+            left.w[level] = right.w[0];
+        }
+        // from_homogeneous.
+        for half in [&mut *left, &mut right] {
+            for i in 0..n {
+                half.x[i] = half.hx[i] / half.w[i];
+                half.y[i] = half.hy[i] / half.w[i];
+            }
+        }
+        // Constant coordinates stay exactly constant (as in `split`).
+        if x_constant {
+            for half in [&mut *left, &mut right] {
+                for i in 0..n {
+                    half.x[i] = x0;
+                    half.hx[i] = x0 * half.w[i];
+                }
+            }
+        }
+        if y_constant {
+            for half in [&mut *left, &mut right] {
+                for i in 0..n {
+                    half.y[i] = y0;
+                    half.hy[i] = y0 * half.w[i];
+                }
+            }
+        }
+        // Both sides agree on the shared point bit for bit.
+        right.x[0] = left.x[n - 1];
+        right.y[0] = left.y[n - 1];
+        right
+    }
+}
+
 /// The binomial coefficient `C(n, k)` as `f64` (exact up to `n = 56`, within rounding above).
 fn binomial(n: usize, k: usize) -> f64 {
     let k = k.min(n - k);
@@ -294,6 +415,57 @@ mod tests {
         let a = arc();
         assert_eq!(a.derivative_numerator(Axis::X)[0], 0.0);
         assert_eq!(*a.derivative_numerator(Axis::Y).last().unwrap(), 0.0);
+    }
+
+    /// Repeated halvings of the fixed-size piece equal `split(0.5)`'s bit for bit, on
+    /// rational pieces of degrees 1 to 7 and on pieces with a constant coordinate.
+    #[test]
+    fn halving_equals_split_bit_for_bit() {
+        let mut pieces = vec![arc()];
+        for n in 1..=7usize {
+            let pts: Vec<Point> = (0..=n)
+                .map(|i| Point::new((i as f64 * 1.3).cos() * 7.1 + 0.3, (i as f64).sqrt() * 2.9))
+                .collect();
+            let w: Vec<f64> = (0..=n)
+                .map(|i| 0.7 + 0.5 * (i as f64 * 2.1).sin().abs())
+                .collect();
+            pieces.push(BezierPiece::from_bezier(
+                &RationalBezier::new(pts.clone(), w.clone()).unwrap(),
+            ));
+            let vert: Vec<Point> = pts.iter().map(|p| Point::new(0.1, p.y)).collect();
+            pieces.push(BezierPiece::from_bezier(
+                &RationalBezier::new(vert, w.clone()).unwrap(),
+            ));
+            let horiz: Vec<Point> = pts.iter().map(|p| Point::new(p.x, -3.3)).collect();
+            pieces.push(BezierPiece::from_bezier(
+                &RationalBezier::new(horiz, w).unwrap(),
+            ));
+        }
+        let mut compared = 0;
+        for p in pieces {
+            let h = HalvedPiece::of(&p).unwrap();
+            let mut stack = vec![(p, h, 0)];
+            while let Some((p, h, depth)) = stack.pop() {
+                assert_eq!(h.xs(), &p.x[..]);
+                assert_eq!(h.ys(), &p.y[..]);
+                assert_eq!(&h.w[..h.len], &p.w[..]);
+                assert_eq!(&h.hx[..h.len], &p.hx[..]);
+                assert_eq!(&h.hy[..h.len], &p.hy[..]);
+                assert_eq!((h.start(), h.end()), (p.start(), p.end()));
+                compared += 1;
+                if depth < 4 {
+                    let (l, r) = p.split(0.5);
+                    let mut hl = h;
+                    let hr = hl.halve();
+                    stack.push((l, hl, depth + 1));
+                    stack.push((r, hr, depth + 1));
+                }
+            }
+        }
+        assert_eq!(compared, 22 * 31);
+        let big = vec![Point::new(0.0, 0.0); 9];
+        let big = BezierPiece::from_bezier(&RationalBezier::new(big, vec![1.0; 9]).unwrap());
+        assert!(HalvedPiece::of(&big).is_none());
     }
 
     #[test]
