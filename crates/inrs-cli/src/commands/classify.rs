@@ -73,7 +73,13 @@ impl Column<Location> for Locations {
 impl ClassifyArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let Some(domain) = self.domains.single() else {
-            return super::classify_many::run(&self);
+            return super::classify_many::run(super::classify_many::ManyDomains {
+                domains: &self.domains,
+                points: &self.points,
+                output: self.output.as_deref(),
+                skip_unreadable: self.skip_unreadable,
+                options: self.options(),
+            });
         };
         let d = domain.load()?;
         let input = PointsInput::open(&self.points)?;

@@ -9,12 +9,12 @@
 
 use std::path::Path;
 
+use inrs::contain::ContainOptions;
 use inrs::io::cad::CadModel;
 use inrs::io::{IoError, LoadOptions};
 use inrs::{Domain, NpyType, Point, PointRecord};
 
-use super::classify::ClassifyArgs;
-use crate::args::{DomainArg, all_faces};
+use crate::args::{DomainArg, DomainsArg, all_faces};
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
 use crate::stream::{input_error, write_f64};
@@ -34,7 +34,17 @@ struct ReadPoints {
     texts: Option<Vec<(String, String)>>,
 }
 
-pub(super) fn run(args: &ClassifyArgs) -> Result<(), CliError> {
+/// What `inrs classify` with several domains was asked: its arguments, read by `classify`
+/// (this module does not import it back).
+pub(super) struct ManyDomains<'a> {
+    pub(super) domains: &'a DomainsArg,
+    pub(super) points: &'a Path,
+    pub(super) output: Option<&'a Path>,
+    pub(super) skip_unreadable: bool,
+    pub(super) options: ContainOptions,
+}
+
+pub(super) fn run(args: ManyDomains<'_>) -> Result<(), CliError> {
     let specs = &args.domains.domain;
     let mut named = Vec::new();
     for spec in specs {
@@ -50,8 +60,8 @@ pub(super) fn run(args: &ClassifyArgs) -> Result<(), CliError> {
             Err(e) => skip_or_fail(args.skip_unreadable, e)?,
         }
     }
-    let read = read_points(&args.points)?;
-    let found = inrs::locate_many(&domains, &read.points[..], args.options());
+    let read = read_points(args.points)?;
+    let found = inrs::locate_many(&domains, &read.points[..], args.options);
     let mut columns = Vec::with_capacity(found.len());
     let mut kept = Vec::with_capacity(found.len());
     for (label, result) in labels.into_iter().zip(found) {
@@ -68,7 +78,7 @@ pub(super) fn run(args: &ClassifyArgs) -> Result<(), CliError> {
             "no domain could be read and prepared (see the messages above)".into(),
         ));
     }
-    write(args.output.as_deref(), &read, &kept, &columns)
+    write(args.output, &read, &kept, &columns)
 }
 
 /// With `skip`, names the domain left out on standard error; else fails with `message`.
