@@ -1,7 +1,7 @@
 //! A rational Bezier piece stored as homogeneous Bernstein coefficients, with the fast
 //! evaluations and monotone solves the containment tests need.
 
-use rs_roots::{bernstein_sign_change_root, de_casteljau, de_casteljau_split};
+use rs_roots::{bernstein_sign_change_root, binomial, de_casteljau, de_casteljau_split};
 use smallvec::SmallVec;
 
 use rs_spline::{Axis, Point, RationalBezier, SplineError};
@@ -269,20 +269,11 @@ impl HalvedPiece {
         let y_constant = self.ys().iter().all(|&v| v == y0);
         let mut right = *self;
         let left = self;
-        // de_casteljau_split on each of hx, hy, w: `right` is the work array (already a copy
-        // of the coefficients); after level k its entry n-1-k is final, and `left` keeps its
-        // entry 0.
-        let r = 1.0 - S;
-        for level in 1..n {
-            for i in 0..n - level {
-                right.hx[i] = right.hx[i] * r + right.hx[i + 1] * S;
-                right.hy[i] = right.hy[i] * r + right.hy[i + 1] * S;
-                right.w[i] = right.w[i] * r + right.w[i + 1] * S;
-            }
-            left.hx[level] = right.hx[0];
-            left.hy[level] = right.hy[0];
-            left.w[level] = right.w[0];
-        }
+        // The one de Casteljau kernel, as `split` calls it, on the arrays in place.
+        let (hx, hy, w) = (left.hx, left.hy, left.w);
+        de_casteljau_split(&hx[..n], S, &mut left.hx[..n], &mut right.hx[..n]);
+        de_casteljau_split(&hy[..n], S, &mut left.hy[..n], &mut right.hy[..n]);
+        de_casteljau_split(&w[..n], S, &mut left.w[..n], &mut right.w[..n]);
         // from_homogeneous.
         for half in [&mut *left, &mut right] {
             for i in 0..n {
@@ -312,14 +303,6 @@ impl HalvedPiece {
         right.y[0] = left.y[n - 1];
         right
     }
-}
-
-/// The binomial coefficient `C(n, k)` as `f64` (exact up to `n = 56`, within rounding above).
-fn binomial(n: usize, k: usize) -> f64 {
-    let k = k.min(n - k);
-    (0..k)
-        .fold(1.0, |r, i| r * (n - i) as f64 / (i + 1) as f64)
-        .round()
 }
 
 /// `X(t) / W(t)`, exact at the ends.

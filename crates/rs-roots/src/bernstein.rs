@@ -27,8 +27,9 @@ pub struct Bernstein {
     coeffs: Vec<f64>,
 }
 
-/// Binomial coefficient `C(n, k)` as `f64` (exact for the degrees used here).
-pub(crate) fn binomial(n: usize, k: usize) -> f64 {
+/// Binomial coefficient `C(n, k)` as `f64`, rounded to the nearest integer (exact up to
+/// `n = 56`); `0` for `k > n`.
+pub fn binomial(n: usize, k: usize) -> f64 {
     if k > n {
         return 0.0;
     }

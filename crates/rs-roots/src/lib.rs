@@ -39,7 +39,7 @@ mod isolate;
 mod polynomial;
 
 pub use bernstein::{
-    Bernstein, Blend, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
+    Bernstein, Blend, binomial, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
 };
 pub use bracket::{bernstein_sign_change_root, itp, newton_bracketed};
 pub use closed_form::{linear_root, quadratic_roots};
