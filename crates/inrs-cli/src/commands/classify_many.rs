@@ -66,8 +66,8 @@ pub(super) fn run(args: ManyDomains<'_>) -> Result<(), CliError> {
     let mut kept = Vec::with_capacity(found.len());
     for (label, result) in labels.into_iter().zip(found) {
         match result {
-            Ok(codes) => {
-                columns.push(codes.iter().map(|l| l.code()).collect::<Vec<i8>>());
+            Ok(locations) => {
+                columns.push(locations);
                 kept.push(label);
             }
             Err(e) => skip_or_fail(args.skip_unreadable, format!("{label}: {e}"))?,
@@ -185,7 +185,7 @@ fn write(
     output: Option<&Path>,
     read: &ReadPoints,
     labels: &[String],
-    columns: &[Vec<i8>],
+    columns: &[Vec<inrs::Location>],
 ) -> Result<(), CliError> {
     let n = read.points.len();
     let mut out = Output::create(output)?;
@@ -197,7 +197,7 @@ fn write(
         for first in (0..n).step_by(ROWS_PER_WRITE) {
             bytes.clear();
             for i in first..(first + ROWS_PER_WRITE).min(n) {
-                bytes.extend(columns.iter().map(|c| c[i] as u8));
+                bytes.extend(columns.iter().map(|c| c[i].code() as u8));
             }
             out.write_bytes(&bytes)?;
         }
@@ -228,22 +228,13 @@ fn write(
             }
             for c in columns {
                 bytes.push(b',');
-                bytes.extend_from_slice(label_of(c[i]).as_bytes());
+                bytes.extend_from_slice(c[i].as_str().as_bytes());
             }
             bytes.push(b'\n');
         }
         out.write_bytes(&bytes)?;
     }
     out.finish()
-}
-
-/// The CSV word of a location code, as the single-domain output writes it.
-fn label_of(code: i8) -> &'static str {
-    match code {
-        1 => inrs::Location::Inside.as_str(),
-        2 => inrs::Location::Boundary.as_str(),
-        _ => inrs::Location::Outside.as_str(),
-    }
 }
 
 /// `s` as a CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
@@ -264,17 +255,6 @@ mod tests {
         assert_eq!(csv_field("face:3"), "face:3");
         assert_eq!(csv_field("a,b.json"), "\"a,b.json\"");
         assert_eq!(csv_field("say \"x\".json"), "\"say \"\"x\"\".json\"");
-    }
-
-    #[test]
-    fn codes_are_written_as_the_single_domain_words() {
-        for l in [
-            inrs::Location::Outside,
-            inrs::Location::Inside,
-            inrs::Location::Boundary,
-        ] {
-            assert_eq!(label_of(l.code()), l.as_str());
-        }
     }
 
     #[test]
