@@ -54,18 +54,9 @@ impl NativeDomain {
         method: Method,
         fill_rule: FillRule,
     ) -> PyResult<Arc<Containment>> {
-        // The fill rule matters only to the winding-number method.
-        let fill_rule = if method == Method::Gwn {
-            fill_rule
-        } else {
-            FillRule::EvenOdd
-        };
-        let key = (tol.to_bits(), method, fill_rule);
+        let options = contain_options(tol, method, fill_rule);
+        let key = (tol.to_bits(), options.method, options.fill_rule);
         cached(&self.containments, tol, key, "classifier", || {
-            let options = ContainOptions::DEFAULT
-                .with_relative_tolerance(tol)
-                .with_method(method)
-                .with_fill_rule(fill_rule);
             Containment::new(&self.domain, options).map_err(value_error)
         })
     }
@@ -121,6 +112,21 @@ impl NativeDomain {
             })
         })
     }
+}
+
+/// The options of a classification with tolerance `tol`, `method` and `fill_rule`; the fill
+/// rule matters only to the winding-number method, so the others carry the default (one
+/// cached `Containment` whatever rule they were given).
+pub(crate) fn contain_options(tol: f64, method: Method, fill_rule: FillRule) -> ContainOptions {
+    let fill_rule = if method == Method::Gwn {
+        fill_rule
+    } else {
+        FillRule::EvenOdd
+    };
+    ContainOptions::DEFAULT
+        .with_relative_tolerance(tol)
+        .with_method(method)
+        .with_fill_rule(fill_rule)
 }
 
 /// The value cached in `cache` under `key` (for tolerance `tol`, checked first), built by

@@ -6,9 +6,9 @@ use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
 use inrs::contain::FillRule;
-use inrs::{ContainOptions, Domain, Location, Method, Point};
+use inrs::{Domain, Location, Method, Point};
 
-use crate::domain::{NativeDomain, check_tolerance};
+use crate::domain::{NativeDomain, check_tolerance, contain_options};
 use crate::errors::value_error;
 use crate::points::{pairs, with_point_source};
 use crate::threads::with_threads;
@@ -36,16 +36,7 @@ pub(crate) fn classify_many<'py>(
     let method: Method = method.parse().map_err(value_error)?;
     let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
     check_tolerance(tol)?;
-    // The fill rule matters only to the winding-number method (as `Domain.classify` keys it).
-    let fill_rule = if method == Method::Gwn {
-        fill_rule
-    } else {
-        FillRule::EvenOdd
-    };
-    let options = ContainOptions::DEFAULT
-        .with_relative_tolerance(tol)
-        .with_method(method)
-        .with_fill_rule(fill_rule);
+    let options = contain_options(tol, method, fill_rule);
     let refs: Vec<&Domain> = domains.iter().map(|d| &d.get().domain).collect();
     let answers: Vec<Answer> = match (&shared, &each) {
         (Some(xy), None) => {
