@@ -240,9 +240,7 @@ impl BandReach {
     /// box. `reach` is also at least the band's old reach, `2 tol + rounding + joint_gap`
     /// (the rounding margin `256 eps` of a scale below the bound's).
     fn of(lo: Point, hi: Point, joint_gap: f64, relative_tolerance: f64) -> Self {
-        let scale = [lo.x, lo.y, hi.x, hi.y]
-            .iter()
-            .fold((hi - lo).length(), |m, v| m.max(v.abs()));
+        let scale = coordinate_scale(rs_spline::BoundingBox { min: lo, max: hi });
         let margin = BAND_ROUNDING * scale;
         let grow = joint_gap + margin;
         let diagonal = rs_spline::BoundingBox { min: lo, max: hi }
@@ -299,13 +297,14 @@ impl WindingField {
             pieces.push(b);
         }
         let mut frames: Vec<PieceFrame> = pieces.iter().map(PieceFrame::of).collect();
-        let (mut lo, mut hi) = frames
-            .first()
-            .map_or((Point::default(), Point::default()), |f| (f.lo, f.hi));
-        for f in &frames {
-            lo = Point::new(lo.x.min(f.lo.x), lo.y.min(f.lo.y));
-            hi = Point::new(hi.x.max(f.hi.x), hi.y.max(f.hi.y));
-        }
+        let rs_spline::BoundingBox { min: lo, max: hi } = frames
+            .iter()
+            .map(|f| rs_spline::BoundingBox {
+                min: f.lo,
+                max: f.hi,
+            })
+            .reduce(rs_spline::BoundingBox::union)
+            .unwrap_or(rs_spline::BoundingBox::from_point(Point::default()));
         let reach = BandReach::of(lo, hi, joint_gap, relative_tolerance).reach;
         for f in &mut frames {
             f.grow(reach);
@@ -344,11 +343,7 @@ impl WindingField {
                 };
                 let bbox = boxes.bounding_box();
                 let tol = self.relative_tolerance * bbox.diagonal();
-                let rounding = 256.0
-                    * f64::EPSILON
-                    * [bbox.min.x, bbox.min.y, bbox.max.x, bbox.max.y]
-                        .iter()
-                        .fold(bbox.diagonal(), |m, v| m.max(v.abs()));
+                let rounding = 256.0 * f64::EPSILON * coordinate_scale(bbox);
                 Ok(BoundaryIndex {
                     box_pieces: pieces_of_boxes(&self.piece_curves, &self.pieces, &boxes),
                     grid: BoxGrid::new(boxes.boxes(), tol),
@@ -608,6 +603,14 @@ impl PointQuery<f64> for WindingNumbers<'_> {
             }
         }
     }
+}
+
+/// The scale of coordinates in box `b`: the larger of its diagonal and its largest absolute
+/// coordinate (what a rounding margin is relative to).
+fn coordinate_scale(b: rs_spline::BoundingBox) -> f64 {
+    [b.min.x, b.min.y, b.max.x, b.max.y]
+        .iter()
+        .fold(b.diagonal(), |m, v| m.max(v.abs()))
 }
 
 /// The widest gap between consecutive pieces of one loop of `domain` (`pieces` as
