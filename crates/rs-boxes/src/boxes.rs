@@ -1,6 +1,6 @@
 //! Building the monotone boxes of a domain (paper steps (i)-(ii) and Remark 2.1).
 
-use rs_roots::{RootsError, real_roots_in};
+use rs_roots::{RootsError, clearly_one_signed, real_roots_in};
 use rs_spline::{Axis, BoundingBox, Domain, Point};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -555,18 +555,6 @@ fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
         }
     }
     Ok((merged, at_start, at_end))
-}
-
-/// Whether Bernstein coefficients are all finite, of one sign and at least `1e-6` of the largest
-/// in size: the polynomial is then at least that far from zero on `[0, 1]`, far beyond the
-/// rounding of these coefficients or of the power form's evaluation, so no root solve can
-/// report a root there.
-fn clearly_one_signed(c: &[f64]) -> bool {
-    let largest = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let floor = 1e-6 * largest;
-    largest.is_finite()
-        && largest > 0.0
-        && (c.iter().all(|&v| v > floor) || c.iter().all(|&v| v < -floor))
 }
 
 /// Split parameters with their tangency flags, and the flags at the piece's two ends.

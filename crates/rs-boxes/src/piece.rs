@@ -1,7 +1,9 @@
 //! A rational Bezier piece stored as homogeneous Bernstein coefficients, with the fast
 //! evaluations and monotone solves the containment tests need.
 
-use rs_roots::{bernstein_sign_change_root, binomial, de_casteljau, de_casteljau_split};
+use rs_roots::{
+    bernstein_sign_change_root, de_casteljau, de_casteljau_split, rational_derivative_numerator,
+};
 use smallvec::SmallVec;
 
 use rs_spline::{Axis, Point, RationalBezier, SplineError};
@@ -160,26 +162,8 @@ impl BezierPiece {
     /// makes its first coefficient `n w_0 w_1 (c_1 - c_0)`, exactly zero at a tangency there.
     pub(crate) fn derivative_numerator(&self, axis: Axis) -> SmallVec<[f64; 16]> {
         let n = self.degree();
-        if n == 0 {
-            return SmallVec::from_elem(0.0, 1);
-        }
-        let (c, w) = (self.coords(axis), &self.w);
-        let h = |i: usize| w[i] * (c[i] - c[0]);
-        let m = 2 * n - 1;
-        let mut out: SmallVec<[f64; 16]> = SmallVec::from_elem(0.0, m + 1);
-        // X' = n sum_i (h_{i+1} - h_i) B_i^{n-1}, W' likewise, and
-        // B_i^{n-1} B_j^n = C(n-1, i) C(n, j) / C(2n-1, i+j) B_{i+j}^{2n-1}.
-        for i in 0..n {
-            let (dh, dw) = (h(i + 1) - h(i), w[i + 1] - w[i]);
-            let bi = binomial(n - 1, i);
-            for j in 0..=n {
-                let v = dh * w[j] - h(j) * dw;
-                out[i + j] += v * (bi * binomial(n, j) / binomial(m, i + j));
-            }
-        }
-        for o in &mut out {
-            *o *= n as f64;
-        }
+        let mut out: SmallVec<[f64; 16]> = SmallVec::from_elem(0.0, (2 * n).max(1));
+        rational_derivative_numerator(self.coords(axis), &self.w, &mut out);
         out
     }
 

@@ -37,6 +37,7 @@ mod companion;
 mod error;
 mod isolate;
 mod polynomial;
+mod rational_derivative;
 
 pub use bernstein::{
     Bernstein, Blend, binomial, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
@@ -47,3 +48,6 @@ pub use companion::real_roots_in;
 pub use error::RootsError;
 pub use isolate::{bernstein_roots, bernstein_roots_in};
 pub use polynomial::Polynomial;
+pub use rational_derivative::{
+    clearly_one_signed, no_interior_root, rational_derivative_numerator,
+};
