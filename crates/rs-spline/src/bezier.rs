@@ -2,7 +2,7 @@
 
 use rs_roots::{
     Bernstein, Polynomial, RootsError, bernstein_roots, de_casteljau, de_casteljau_split,
-    de_casteljau_with_derivative, real_roots_in,
+    de_casteljau_with_derivative, no_interior_root, rational_derivative_numerator, real_roots_in,
 };
 
 use crate::curve::prelude::*;
@@ -10,7 +10,7 @@ use crate::curve::{basis_derivative_size, derivative_rounding_size, one_norm};
 use crate::error::check_control_points;
 use crate::homogeneous::{Hpoint, rational_derivatives, rational_point_and_tangent};
 use crate::quadrature::{Integral, integrate_adaptive};
-use crate::{BoundingBox, CurveDerivatives, Point, SplineError};
+use crate::{Axis, BoundingBox, CurveDerivatives, Point, SplineError};
 
 /// A rational Bezier curve `C(t) = sum_i B_{i,n}(t) w_i P_i / sum_i B_{i,n}(t) w_i`, `t` in
 /// `[0, 1]`, with the parameter range `[u0, u1]` it came from (the knot span of a NURBS, or
@@ -77,6 +77,13 @@ impl RationalBezier {
             weights,
             range,
         }
+    }
+
+    /// Replaces the first control point and its weight (the shared end of the piece before,
+    /// in [`NurbsCurve::to_bezier`](crate::NurbsCurve::to_bezier)).
+    pub(crate) fn set_start(&mut self, point: Point, weight: f64) {
+        self.points[0] = point;
+        self.weights[0] = weight;
     }
 
     fn from_homogeneous(hp: &[Hpoint], range: (f64, f64)) -> Self {
@@ -158,6 +165,33 @@ impl RationalBezier {
         let dx = &(&x.derivative() * &w) - &(&x * &dw);
         let dy = &(&y.derivative() * &w) - &(&y * &dw);
         (dx, dy)
+    }
+
+    /// Whether `x'(t)` (for [`Axis::X`]) or `y'(t)` has no isolated root in `(0, 1)` to look
+    /// for (the extrema are interior): the coordinate is constant, or its derivative keeps one
+    /// sign on the open interval clear of rounding, zero at most at an end (see
+    /// [`no_interior_root`]: its numerator's Bernstein coefficients,
+    /// [`rational_derivative_numerator`]). False for degrees beyond 16, which are not checked.
+    fn derivative_has_no_isolated_root(&self, axis: Axis) -> bool {
+        const MOST: usize = 17;
+        let n = self.points.len();
+        if n > MOST {
+            return false;
+        }
+        // A constant coordinate has no isolated extremum (its power-form numerator cancels to
+        // zero, up to rounding): nothing to solve for.
+        let first = self.points[0].coord(axis);
+        if self.points.iter().all(|p| p.coord(axis) == first) {
+            return true;
+        }
+        let mut coords = [0.0; MOST];
+        for (c, p) in coords.iter_mut().zip(&self.points) {
+            *c = p.coord(axis);
+        }
+        let mut numerator = [0.0; 2 * MOST];
+        let len = (2 * (n - 1)).max(1);
+        rational_derivative_numerator(&coords[..n], &self.weights, &mut numerator[..len]);
+        no_interior_root(&numerator[..len])
     }
 
     /// The local parameter `t` in `[0, 1]` of a point of the piece nearest to `p`, and its
@@ -331,9 +365,16 @@ impl ParamCurveExtrema for RationalBezier {
     /// Roots in `(0, 1)` of the derivative numerators (see
     /// [`RationalBezier::derivative_numerators`]); a constant coordinate has none.
     fn extrema(&self) -> Result<Vec<f64>, RootsError> {
-        let (dx, dy) = self.derivative_numerators();
+        // Most pieces are monotone in one coordinate or both: a derivative numerator whose
+        // Bernstein coefficients are clearly one-signed has no root in [0, 1], so the solve
+        // below would find none either, and is skipped (all of it when both are).
+        let solve = [Axis::X, Axis::Y].map(|axis| !self.derivative_has_no_isolated_root(axis));
         let mut out = Vec::new();
-        for d in [dx, dy] {
+        if solve == [false, false] {
+            return Ok(out);
+        }
+        let (dx, dy) = self.derivative_numerators();
+        for (d, _) in [dx, dy].into_iter().zip(solve).filter(|(_, s)| *s) {
             match real_roots_in(&d, 0.0, 1.0) {
                 Ok(roots) => out.extend(roots.into_iter().filter(|&t| t > 0.0 && t < 1.0)),
                 // The zero polynomial (constant coordinate) has no isolated extremes.
