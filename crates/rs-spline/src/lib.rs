@@ -46,6 +46,7 @@
 mod affine;
 mod arc;
 mod bezier;
+mod bezier_extraction;
 mod curve;
 mod domain;
 mod error;

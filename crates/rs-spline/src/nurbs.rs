@@ -2,6 +2,7 @@
 
 use rs_roots::RootsError;
 
+use crate::bezier_extraction::SpanExtraction;
 use crate::curve::prelude::*;
 use crate::error::{check_control_points, normalized_weights};
 use crate::homogeneous::{Hpoint, rational_derivatives, rational_point_and_tangent};
@@ -291,32 +292,24 @@ impl NurbsCurve {
     ///
     /// Each span is extracted on its own: its `p + 1` control points and `2p` neighbouring
     /// knots form a one-span curve that is clamped at both ends by Boehm insertion, so the work
-    /// is `O(p^2)` per span and linear in the number of spans.
+    /// is `O(p^2)` per span and linear in the number of spans (in buffers reused from span to
+    /// span).
     pub fn to_bezier(&self) -> Vec<RationalBezier> {
         let p = self.degree();
         let knots = self.knots.knots();
         let n = self.points.len();
         let mut pieces: Vec<RationalBezier> = Vec::with_capacity(n - p);
+        let mut extraction = SpanExtraction::default();
         for k in (p..n).filter(|&k| knots[k] < knots[k + 1]) {
-            let mut local = Self {
-                knots: KnotVector::from_raw(knots[k - p..=k + p + 1].to_vec(), p),
-                points: self.points[k - p..=k].to_vec(),
-                weights: self.weights[k - p..=k].to_vec(),
-            }
-            .clamped();
+            let mut piece = extraction.piece(p, k, knots, &self.points, &self.weights);
             // Where the curve is continuous (multiplicity <= p) both pieces have C(u_k) as an
             // end; share it bit for bit instead of two roundings of the same point.
             if let Some(prev) = pieces.last()
                 && knots[k - p..=k].iter().filter(|&&x| x == knots[k]).count() <= p
             {
-                local.points[0] = prev.end_point();
-                local.weights[0] = prev.weights()[p];
+                piece.set_start(prev.end_point(), prev.weights()[p]);
             }
-            pieces.push(RationalBezier::from_valid_parts(
-                local.points,
-                local.weights,
-                (knots[k], knots[k + 1]),
-            ));
+            pieces.push(piece);
         }
         pieces
     }
@@ -530,6 +523,81 @@ mod tests {
             Some(vec![1.0, 0.5, 2.0, 1.0, 3.0, 0.7, 1.0]),
         )
         .unwrap()
+    }
+
+    /// `to_bezier` (in reused buffers) gives the pieces of the construction it replaced, bit
+    /// for bit: each span's local curve through `clamped()`, the shared start copied from the
+    /// piece before. Random degrees 1 to 6, weights, clamped and unclamped knot vectors with
+    /// repeated interior knots.
+    #[test]
+    fn extraction_equals_clamping_each_span_bit_for_bit() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut checked, mut unclamped) = (0, 0);
+        for case in 0..400 {
+            let p = 1 + case % 6;
+            let n = p + 1 + (case / 6) % 9;
+            let clamped_ends = case % 3 != 0;
+            let mut knots: Vec<f64> = Vec::new();
+            let mut u = 0.0;
+            for i in 0..n + p + 1 {
+                let repeat = i > 0 && next() < 0.25;
+                let at_end = clamped_ends && (i <= p || i >= n);
+                if !(repeat || (at_end && i <= p && i > 0) || (at_end && i > n)) {
+                    u += 0.1 + next();
+                }
+                knots.push(u);
+            }
+            let points: Vec<Point> = (0..n)
+                .map(|_| Point::new(next() * 10.0 - 5.0, next() * 3.0))
+                .collect();
+            let weights: Vec<f64> = (0..n).map(|_| 0.2 + next() * 3.0).collect();
+            let Ok(c) = NurbsCurve::new(p, knots.clone(), points.clone(), Some(weights.clone()))
+            else {
+                continue;
+            };
+            let mut want: Vec<RationalBezier> = Vec::new();
+            for k in (p..n).filter(|&k| knots[k] < knots[k + 1]) {
+                let mut local = NurbsCurve {
+                    knots: KnotVector::from_raw(knots[k - p..=k + p + 1].to_vec(), p),
+                    points: points[k - p..=k].to_vec(),
+                    weights: weights[k - p..=k].to_vec(),
+                }
+                .clamped();
+                if let Some(prev) = want.last()
+                    && knots[k - p..=k].iter().filter(|&&x| x == knots[k]).count() <= p
+                {
+                    local.points[0] = prev.end_point();
+                    local.weights[0] = prev.weights()[p];
+                }
+                want.push(RationalBezier::from_valid_parts(
+                    local.points,
+                    local.weights,
+                    (knots[k], knots[k + 1]),
+                ));
+            }
+            let got = c.to_bezier();
+            assert_eq!(got.len(), want.len(), "case {case}");
+            checked += 1;
+            unclamped += usize::from(!clamped_ends);
+            for (g, w) in got.iter().zip(&want) {
+                let bits = |b: &RationalBezier| {
+                    b.control_points()
+                        .iter()
+                        .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
+                        .chain(b.weights().iter().map(|w| w.to_bits()))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(bits(g), bits(w), "case {case}");
+                assert_eq!(g.knot_span(), w.knot_span(), "case {case}");
+            }
+        }
+        assert!(checked >= 300 && unclamped >= 100, "{checked} {unclamped}");
     }
 
     #[test]
