@@ -11,8 +11,8 @@ use std::time::Instant;
 
 use inrs::contain::baselines::halton_points;
 use inrs::contain::{
-    Classifier, ContainOptions, Containment, FastWindingField, Locate, Method, PointQuery,
-    WindingField,
+    Classifier, ContainOptions, Containment, FastWindingField, Locate, LocatorOptions, Method,
+    PointLocator, PointQuery, WindingField,
 };
 use inrs::{Domain, Location, Point};
 
@@ -69,6 +69,12 @@ fn per_domain(path: &str, reps: usize) -> Result<(), String> {
         std::hint::black_box(c.locator().locate(q));
     });
     println!("classifier_locator/{name}\t{with_locator:e}");
+    // The whole grid built at once (the eager constructor), whatever the first query needs.
+    let whole_grid = median_time(reps, || {
+        let c = Classifier::new(&d, options).expect("a closed fixture");
+        std::hint::black_box(PointLocator::new(&c, LocatorOptions::DEFAULT).locate(q));
+    });
+    println!("classifier_whole_grid/{name}\t{whole_grid:e}");
     if path.ends_with(".json") {
         let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
         let from_text = median_time(reps, || {

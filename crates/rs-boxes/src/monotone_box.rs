@@ -1,5 +1,7 @@
 //! Monotone boxes: pieces of the boundary on which both coordinates are monotone.
 
+use std::ops::Range;
+
 use rs_spline::grid::GridFrame;
 use rs_spline::{Axis, BoundingBox, Point};
 use smallvec::SmallVec;
@@ -67,6 +69,10 @@ const MAX_REGISTER_DEPTH: u32 = 24;
 /// What [`MonotoneBox::for_grid_parts`] halves a piece of degree <= 7 against.
 struct HalvedParts<'a> {
     frame: &'a GridFrame,
+    /// The parts wanted meet these columns of the frame; a half whose end points' rectangle,
+    /// grown by `reach`, meets none of them is not visited.
+    columns: Range<usize>,
+    reach: f64,
     /// The box's own band (its only part when it spans at most two cells each way).
     band: ChordBand,
     vertical: bool,
@@ -80,6 +86,13 @@ impl HalvedParts<'_> {
     /// left as the last left half).
     fn visit<F: FnMut(ChordBand, bool)>(&self, piece: &mut HalvedPiece, depth: u32, f: &mut F) {
         let part = BoundingBox::from_point(piece.start()).including(piece.end());
+        let (g0, g1) = (
+            self.frame.col(part.min.x - self.reach),
+            self.frame.col(part.max.x + self.reach),
+        );
+        if g1 < self.columns.start || g0 >= self.columns.end {
+            return;
+        }
         // The stopping test is on the part itself, not grown by a tolerance: a tolerance
         // wider than a cell must not make the halving run to its cap.
         let (c0, c1, r0, r1) = self.frame.cell_range(part);
@@ -118,7 +131,23 @@ impl MonotoneBox {
     /// rectangle of its end points, and the parts share out the box's abscissas `[xmin, xmax)`
     /// exactly (consecutive parts share their end point bit for bit). A part's band carries a
     /// margin covering the halving's rounding, so what it decides holds for this box's curve.
-    pub fn for_grid_parts(&self, frame: &GridFrame, mut f: impl FnMut(ChordBand, bool)) {
+    pub fn for_grid_parts(&self, frame: &GridFrame, f: impl FnMut(ChordBand, bool)) {
+        self.for_grid_parts_near(frame, 0..frame.columns(), 0.0, f);
+    }
+
+    /// [`MonotoneBox::for_grid_parts`]'s parts that may lie within `reach` of the columns
+    /// `columns` of `frame`, the same parts in the same order, with at least every part whose
+    /// end points' rectangle grown by `reach` meets those columns (more may come): a half
+    /// lying farther from them is not halved further. `reach` must cover the halving's
+    /// rounding (a part lies in its half's end-point rectangle up to it): a cell width is
+    /// plenty.
+    pub fn for_grid_parts_near(
+        &self,
+        frame: &GridFrame,
+        columns: Range<usize>,
+        reach: f64,
+        mut f: impl FnMut(ChordBand, bool),
+    ) {
         let vertical = self.x_dir == Monotonicity::Constant;
         let margin = halving_margin(&self.piece);
         // Degree <= 7 (every piece in practice): halve fixed-size copies, which give the very
@@ -127,6 +156,8 @@ impl MonotoneBox {
         if let Some(mut whole) = HalvedPiece::of(&self.piece) {
             let parts = HalvedParts {
                 frame,
+                columns,
+                reach,
                 band: self.band,
                 vertical,
                 margin,

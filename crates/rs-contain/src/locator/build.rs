@@ -3,12 +3,17 @@
 //! the mixed-cell records and the two levels. The work follows the boundary (its cells, the
 //! runs between them, the blocks), not the grid's area: no table of `n x n` cells is built.
 
+use std::ops::Range;
+use std::sync::atomic::{AtomicU8, Ordering};
+
 use rs_spline::grid::GridFrame;
 use rs_spline::{BoundingBox, Point};
 
+use std::sync::OnceLock;
+
 use super::{
-    BLOCK, FIRST_RECORD, INSIDE, LocatorIndex, Lookup, MixedCell, OUTSIDE, Parts, REFINED,
-    VERTICAL_FLAG,
+    BLOCK, Complete, FIRST_RECORD, INSIDE, LocatorIndex, Lookup, MixedCell, OUTSIDE, Parts,
+    REFINED, STRIP, Strip, UNBUILT, VERTICAL_FLAG, strip_of_column,
 };
 use crate::{Classifier, Location};
 
@@ -18,27 +23,149 @@ use crate::{Classifier, Location};
 const BY_INRS2: u8 = 2;
 
 impl LocatorIndex {
-    /// Registers every box (or its parts) in the cells near its curve, classifies the uniform
-    /// runs between them, and stores the two levels and the mixed-cell records.
+    /// The index's frame, with every strip still to build: the grid over the classifier's
+    /// bounding box, the critical abscissas' column ranges, and the boxes that may register
+    /// in each strip (a box's end-point rectangle grown by the tolerance, its band's margin
+    /// and a cell each way holds all of its parts' registrations).
     pub(super) fn build(classifier: &Classifier, cells: usize) -> Self {
         let tol = classifier.abs_tol();
         let frame = framed_grid(classifier.outer(), tol, cells);
         let n = frame.n();
-        let (parts, pairs) = register(classifier, &frame);
-        let incidences = pairs.len();
-        let columns = Columns::new(n, &pairs, classifier, &frame, &parts);
-        Self::from_columns(&frame, parts, &columns, incidences)
-    }
-
-    /// The index of the grid `frame` from its columns.
-    fn from_columns(frame: &GridFrame, parts: Parts, columns: &Columns, incidences: usize) -> Self {
-        let n = frame.n();
         let blocks = n.div_ceil(BLOCK);
-        let mut ix = Self {
+        let strips = n.div_ceil(STRIP);
+        let (cw, _) = frame.cell_size();
+        let all = classifier.boxes().boxes();
+        // Each box's range of strips, counted then placed (a counting sort: each strip's
+        // boxes ascending).
+        let strip_range = |b: &rs_boxes::MonotoneBox| {
+            let reach = tol + b.band.margin + cw;
+            let first = strip_of_column(frame.col(b.band.xmin - reach));
+            let last = strip_of_column(frame.col(b.band.xmax + reach));
+            first..=last
+        };
+        let mut strip_box_start = vec![0u32; strips + 1];
+        for b in all {
+            for s in strip_range(b) {
+                strip_box_start[s + 1] += 1;
+            }
+        }
+        for s in 0..strips {
+            strip_box_start[s + 1] += strip_box_start[s];
+        }
+        let mut next: Vec<u32> = strip_box_start[..strips].to_vec();
+        let mut strip_boxes = vec![0u32; strip_box_start[strips] as usize];
+        for (bi, b) in all.iter().enumerate() {
+            for s in strip_range(b) {
+                strip_boxes[next[s] as usize] = bi as u32;
+                next[s] += 1;
+            }
+        }
+        Self {
             n,
             blocks,
-            coarse: vec![OUTSIDE; blocks * blocks],
-            block_start: vec![0; blocks * blocks],
+            coarse: (0..blocks * blocks)
+                .map(|_| AtomicU8::new(UNBUILT))
+                .collect(),
+            strips: (0..strips).map(|_| OnceLock::new()).collect(),
+            built: std::sync::atomic::AtomicUsize::new(0),
+            complete: OnceLock::new(),
+            lookup: Lookup::new(&frame, blocks),
+            frame,
+            critical: critical_ranges(&frame, classifier.boxes().critical_abscissas(), tol),
+            strip_box_start,
+            strip_boxes,
+        }
+    }
+
+    /// Strip `s` (the columns `s * STRIP..(s + 1) * STRIP`), built on first use; its coarse states are then
+    /// published to the index's table.
+    #[inline]
+    pub(super) fn strip(&self, classifier: &Classifier, s: usize) -> &Strip {
+        match self.strips[s].get() {
+            Some(strip) => strip,
+            None => self.build_strip(classifier, s),
+        }
+    }
+
+    /// [`LocatorIndex::strip`]'s first call for strip `s` (or a wait for another thread's).
+    #[cold]
+    #[inline(never)]
+    fn build_strip(&self, classifier: &Classifier, s: usize) -> &Strip {
+        let mut built_here = false;
+        let strip = self.strips[s].get_or_init(|| {
+            built_here = true;
+            let columns = s * STRIP..((s + 1) * STRIP).min(self.n);
+            let boxes = &self.strip_boxes
+                [self.strip_box_start[s] as usize..self.strip_box_start[s + 1] as usize];
+            let strip = Strip::build(classifier, &self.frame, &self.critical, columns, boxes);
+            // The strip's blocks are a run of the table (block columns first).
+            let first = strip.first_block_column * self.blocks;
+            for (k, &state) in strip.coarse.iter().enumerate() {
+                self.coarse[first + k].store(state, Ordering::Relaxed);
+            }
+            strip
+        });
+        // Each strip is counted once, by the call that built it, after it is stored: the
+        // count reaching the number of strips means all are, and that call makes the flat
+        // tables (only it sets them).
+        if built_here && self.built.fetch_add(1, Ordering::AcqRel) + 1 == self.strips.len() {
+            let all = self.strips.iter().filter_map(OnceLock::get);
+            let _ = self.complete.set(Complete::of(self.blocks, all));
+        }
+        strip
+    }
+
+    /// Every strip, built now (for reports over the whole grid, and for an eager build).
+    pub(super) fn built_strips<'s>(
+        &'s self,
+        classifier: &Classifier,
+    ) -> impl Iterator<Item = &'s Strip> {
+        (0..self.strips.len()).map(move |s| self.strip(classifier, s))
+    }
+}
+
+impl Strip {
+    /// The strip of the grid `frame` over its columns `columns` (global cell columns, starting
+    /// on a block's first), from the boxes `boxes` (global indices, ascending; every box that
+    /// registers in these columns must be among them) and the critical abscissas' ranges of
+    /// every column of the grid.
+    pub(super) fn build(
+        classifier: &Classifier,
+        frame: &GridFrame,
+        critical: &[(u32, u32)],
+        columns: Range<usize>,
+        boxes: &[u32],
+    ) -> Self {
+        let (parts, owner_local, pairs) = register(classifier, frame, &columns, boxes);
+        let incidences = pairs.len();
+        let first_block_column = columns.start / BLOCK;
+        let cols = Columns::new(
+            frame.n(),
+            columns,
+            &pairs,
+            classifier,
+            frame,
+            (&owner_local, boxes),
+            critical,
+        );
+        Self::from_columns(frame, parts, &cols, incidences, first_block_column)
+    }
+
+    /// The strip from its columns.
+    fn from_columns(
+        frame: &GridFrame,
+        parts: Parts,
+        columns: &Columns,
+        incidences: usize,
+        first_block_column: usize,
+    ) -> Self {
+        let blocks = frame.n().div_ceil(BLOCK);
+        let block_columns = columns.ncols.div_ceil(BLOCK);
+        let mut strip = Self {
+            first_block_column,
+            blocks,
+            coarse: vec![OUTSIDE; block_columns * blocks],
+            block_start: vec![0; block_columns * blocks],
             fine: Vec::new(),
             records: Vec::new(),
             // The `k`-th occupied cell's items are its record's near items: one copy of all.
@@ -46,12 +173,11 @@ impl LocatorIndex {
             column_items: Vec::new(),
             mixed_cells: columns.rows.len(),
             incidences,
-            lookup: Lookup::new(frame, blocks),
             parts,
         };
-        let by_inrs2 = ix.mixed_records(columns);
-        ix.two_levels(columns, by_inrs2);
-        ix
+        let by_inrs2 = strip.mixed_records(columns);
+        strip.two_levels(columns, by_inrs2);
+        strip
     }
 
     /// One record per occupied cell, in the columns' order (the `k`-th occupied cell's record
@@ -65,7 +191,7 @@ impl LocatorIndex {
         // new item) shares its range in `column_items`.
         let mut since_uniform: Vec<u32> = Vec::new();
         let mut merged: Vec<u32> = Vec::new();
-        for c in 0..columns.n {
+        for c in 0..columns.ncols {
             let (mut inside_below, mut unknown_below) = (false, false);
             since_uniform.clear();
             let mut shared = None;
@@ -121,9 +247,9 @@ impl LocatorIndex {
     /// column `cols.start + i`'s occupied cells at or above the current block's first row (the
     /// index a binary search would give, found by moving forward).
     fn two_levels(&mut self, columns: &Columns, by_inrs2: u32) {
-        let (n, blocks) = (self.n, self.blocks);
-        for bc in 0..blocks {
-            let cols = (bc * BLOCK)..((bc + 1) * BLOCK).min(n);
+        let (n, blocks) = (columns.n, self.blocks);
+        for bc in 0..columns.ncols.div_ceil(BLOCK) {
+            let cols = (bc * BLOCK)..((bc + 1) * BLOCK).min(columns.ncols);
             let mut next = [0usize; BLOCK];
             for br in 0..blocks {
                 let block = bc * blocks + br;
@@ -176,30 +302,51 @@ impl LocatorIndex {
     }
 }
 
-/// Registers every box in the cells near its curve: a box that spans a couple of cells as
-/// itself, a longer one as its parts (see [`Parts`]). Returns the parts and the sorted,
-/// distinct `(cell, item)` pairs, vertical items flagged, each as one integer
-/// `cell << 32 | item` (see [`pair_cell`] and [`pair_item`]).
-fn register(classifier: &Classifier, frame: &GridFrame) -> (Parts, Vec<u64>) {
+/// Registers the boxes `boxes` (global indices) in the cells of the columns `columns` near
+/// their curves: a box that spans a couple of cells as itself, a longer one as its parts (see
+/// [`Parts`]; a part that meets none of these columns is left out). Returns the parts, each
+/// part's box as an index into `boxes`, and the sorted, distinct `(cell, item)` pairs, vertical
+/// items flagged, each as one integer `cell << 32 | item` (see [`pair_cell`] and [`pair_item`]),
+/// the cell numbered within the columns (`(c - columns.start) * n + r`).
+fn register(
+    classifier: &Classifier,
+    frame: &GridFrame,
+    columns: &Range<usize>,
+    boxes: &[u32],
+) -> (Parts, Vec<u32>, Vec<u64>) {
     let tol = classifier.abs_tol();
     let all = classifier.boxes().boxes();
-    let cells = frame.cell_count();
+    let rows = frame.rows();
     // Each pair as one integer, `cell << 32 | item`, so that sorting compares one word (a
     // grid has at most 8192^2 < 2^32 cells). A part meets a few cells.
-    let mut pairs: Vec<u64> = Vec::with_capacity(4 * all.len());
+    let mut pairs: Vec<u64> = Vec::with_capacity(4 * boxes.len());
     let mut parts = Parts {
-        bands: Vec::with_capacity(all.len()),
-        owner: Vec::with_capacity(all.len()),
+        bands: Vec::with_capacity(boxes.len()),
+        owner: Vec::with_capacity(boxes.len()),
     };
-    let mut add = |band: rs_boxes::ChordBand, bi: usize, flag: u32| {
+    let mut owner_local: Vec<u32> = Vec::with_capacity(boxes.len());
+    // Halves farther than this from the columns are not halved further (a cell covers the
+    // halving's rounding; `add` drops the parts that meet none of the columns).
+    let reach = tol + frame.cell_size().0;
+    let mut add = |band: rs_boxes::ChordBand, local: usize, flag: u32| {
+        let (c0, c1, r0, r1) = frame.cell_range(band.rectangle_near(tol));
+        let (c0, c1) = (c0.max(columns.start), c1.min(columns.end - 1));
+        if c0 > c1 {
+            return;
+        }
         let id = parts.bands.len() as u32;
         parts.bands.push(band);
-        parts.owner.push(bi as u32);
-        frame.for_cells_in(band.rectangle_near(tol), |c| {
-            pairs.push((c as u64) << 32 | u64::from(id | flag));
-        });
+        parts.owner.push(boxes[local]);
+        owner_local.push(local as u32);
+        for c in c0..=c1 {
+            for r in r0..=r1 {
+                let cell = (c - columns.start) * rows + r;
+                pairs.push((cell as u64) << 32 | u64::from(id | flag));
+            }
+        }
     };
-    for (bi, b) in all.iter().enumerate() {
+    for (local, &bi) in boxes.iter().enumerate() {
+        let b = &all[bi as usize];
         // Vertical boxes are never crossed by the ray (it runs an infinitesimal distance
         // to their right): flag them so the walk down a column skips them.
         let flag = if b.x_dir == rs_boxes::Monotonicity::Constant {
@@ -216,15 +363,16 @@ fn register(classifier: &Classifier, frame: &GridFrame) -> (Parts, Vec<u64>) {
         };
         let (c0, c1, r0, r1) = frame.cell_range(ends);
         if c1 - c0 <= 1 && r1 - r0 <= 1 {
-            add(b.band, bi, flag);
+            add(b.band, local, flag);
         } else {
-            b.for_grid_parts(frame, |band, _| add(band, bi, flag));
+            b.for_grid_parts_near(frame, columns.clone(), reach, |band, _| {
+                add(band, local, flag)
+            });
         }
     }
-    pairs.retain(|&p| pair_cell(p) < cells);
     pairs.sort_unstable();
     pairs.dedup();
-    (parts, pairs)
+    (parts, owner_local, pairs)
 }
 
 /// The cell of a registration `cell << 32 | item`.
@@ -263,10 +411,16 @@ enum Cell {
     Run(u8),
 }
 
-/// The grid column by column: its occupied cells (those where an item is registered), their
-/// items, and the state of each run of unoccupied cells between them.
+/// The columns of a strip, column by column: their occupied cells (those where an item is
+/// registered), their items, and the state of each run of unoccupied cells between them.
+/// Columns are numbered within the strip (`c` is the grid's column `offset + c`).
 struct Columns {
+    /// Cells per column (the grid's rows).
     n: usize,
+    /// Number of columns.
+    ncols: usize,
+    /// The grid's column of the first.
+    offset: usize,
     /// Column `c`'s occupied cells are `start[c]..start[c + 1]`.
     start: Vec<usize>,
     /// The row of each occupied cell (ascending within a column).
@@ -286,17 +440,22 @@ struct Columns {
 }
 
 impl Columns {
-    /// The columns of the grid `frame` (`n` cells per side) from the sorted, distinct
-    /// `(cell, item)` pairs of the `parts` ([`register`]'s), with the runs' states (see
-    /// [`Columns::classify_runs`]).
+    /// The columns `columns` of the grid `frame` (`n` cells per side) from the sorted,
+    /// distinct `(cell, item)` pairs of the `parts` ([`register`]'s, with each part's box as an
+    /// index into the strip's `boxes`), with the runs' states (see
+    /// [`Columns::classify_runs`]); `critical` holds the ranges of every column of the grid.
+    #[allow(clippy::too_many_arguments)]
     fn new(
         n: usize,
+        columns: Range<usize>,
         pairs: &[u64],
         classifier: &Classifier,
         frame: &GridFrame,
-        parts: &Parts,
+        (owner_local, boxes): (&[u32], &[u32]),
+        critical: &[(u32, u32)],
     ) -> Self {
-        let mut start = vec![0usize; n + 1];
+        let ncols = columns.len();
+        let mut start = vec![0usize; ncols + 1];
         // Sized once: the number of occupied cells, the distinct cells of the sorted pairs.
         let occupied = pairs.len().min(1)
             + pairs
@@ -319,24 +478,22 @@ impl Columns {
             items.push(item);
         }
         item_start.push(items.len() as u32);
-        for c in 0..n {
+        for c in 0..ncols {
             start[c + 1] += start[c];
         }
-        let mut columns = Self {
+        let mut strip = Self {
             n,
+            ncols,
+            offset: columns.start,
             start,
             rows,
             item_start,
             items,
             runs: Vec::new(),
-            critical: critical_ranges(
-                frame,
-                classifier.boxes().critical_abscissas(),
-                classifier.abs_tol(),
-            ),
+            critical: critical[columns].to_vec(),
         };
-        columns.classify_runs(classifier, frame, parts);
-        columns
+        strip.classify_runs(classifier, frame, owner_local, boxes);
+        strip
     }
 
     /// Each run's state: the location inRS2 gives its first cell's centre (empty runs are left
@@ -353,38 +510,47 @@ impl Columns {
     /// column on a critical abscissa takes inRS2's fallback at each centre; a centre near one
     /// of the boxes registered just below it (which the registration's reach rules out but
     /// for rounding) is on the boundary, a [`BY_INRS2`] run.
-    fn classify_runs(&mut self, classifier: &Classifier, frame: &GridFrame, parts: &Parts) {
+    fn classify_runs(
+        &mut self,
+        classifier: &Classifier,
+        frame: &GridFrame,
+        owner_local: &[u32],
+        boxes: &[u32],
+    ) {
         let (cw, ch) = frame.cell_size();
         let origin = frame.bounding_box().min;
         let (tol, outer) = (classifier.abs_tol(), classifier.outer());
-        let boxes = classifier.boxes();
-        let all = boxes.boxes();
-        self.runs = vec![OUTSIDE; self.rows.len() + self.n];
+        let all = classifier.boxes().boxes();
+        let mono = classifier.boxes();
+        self.runs = vec![OUTSIDE; self.rows.len() + self.ncols];
+        // The strip's boxes are numbered by their place in `boxes` here (`b`), so that these
+        // tables grow with the strip, not with the domain.
         // The boxes of the occupied cells since the last run, each once: `seen[b] == epoch`
         // once box `b` is among `candidates` (a new epoch for every new list; fewer than
         // `2^32` lists, one per run).
-        let mut seen = vec![0u32; all.len()];
+        let mut seen = vec![0u32; boxes.len()];
         let mut epoch = 0u32;
         let mut candidates: Vec<u32> = Vec::new();
         // `MonotoneBox::crosses_below` (the band's answer, else the solve's) at a point of
         // column `c`, its solve made once per box and column: where the curve meets the
         // column is `solved[b]` while `solved_in[b]` is `c + 1`.
-        let mut solved: Vec<Option<(f64, f64)>> = vec![None; all.len()];
-        let mut solved_in = vec![0usize; all.len()];
+        let mut solved: Vec<Option<(f64, f64)>> = vec![None; boxes.len()];
+        let mut solved_in = vec![0usize; boxes.len()];
         let mut crosses_below = |b: usize, p: Point, c: usize| {
-            all[b].band.crossing_below(p).unwrap_or_else(|| {
+            let bx = &all[boxes[b] as usize];
+            bx.band.crossing_below(p).unwrap_or_else(|| {
                 if solved_in[b] != c + 1 {
                     solved_in[b] = c + 1;
-                    solved[b] = all[b].at_x(p.x);
+                    solved[b] = bx.at_x(p.x);
                 }
                 solved[b].is_some_and(|(_, y)| y < p.y)
             })
         };
-        for c in 0..self.n {
-            let x = origin.x + (c as f64 + 0.5) * cw;
+        for c in 0..self.ncols {
+            let x = origin.x + ((self.offset + c) as f64 + 0.5) * cw;
             let (first, end) = self.critical[c];
             let critical =
-                first < end && boxes.is_critical_x_among(x, tol, first as usize..end as usize);
+                first < end && mono.is_critical_x_among(x, tol, first as usize..end as usize);
             let occupied = self.start[c + 1] - self.start[c];
             let (mut odd, mut below) = (false, None::<Point>);
             candidates.clear();
@@ -399,7 +565,7 @@ impl Columns {
                         let mut near = false;
                         for &b in &candidates {
                             let b = b as usize;
-                            near |= all[b].is_near(p, tol);
+                            near |= all[boxes[b] as usize].is_near(p, tol);
                             let crossed_below_q = below.is_some_and(|q| crosses_below(b, q, c));
                             odd ^= crosses_below(b, p, c) != crossed_below_q;
                         }
@@ -426,7 +592,7 @@ impl Columns {
                 if j < occupied {
                     for &item in self.items_of(self.start[c] + j) {
                         if item & VERTICAL_FLAG == 0 {
-                            let b = parts.owner[item as usize];
+                            let b = owner_local[item as usize];
                             if seen[b as usize] != epoch {
                                 seen[b as usize] = epoch;
                                 candidates.push(b);
@@ -554,6 +720,21 @@ mod tests {
     use crate::{ContainOptions, Method};
     use rs_spline::{Domain, circle};
 
+    /// Every box, as the strip over the whole grid takes them.
+    fn all_boxes(c: &Classifier) -> Vec<u32> {
+        (0..c.boxes().boxes().len() as u32).collect()
+    }
+
+    /// The registration and the columns of the strip over the whole grid `frame`.
+    fn whole_grid(c: &Classifier, frame: &GridFrame) -> (Parts, Vec<u64>, Columns) {
+        let n = frame.n();
+        let boxes = all_boxes(c);
+        let (parts, owner_local, pairs) = register(c, frame, &(0..n), &boxes);
+        let critical = critical_ranges(frame, c.boxes().critical_abscissas(), c.abs_tol());
+        let columns = Columns::new(n, 0..n, &pairs, c, frame, (&owner_local, &boxes), &critical);
+        (parts, pairs, columns)
+    }
+
     /// The sparse columns against the dense grid they stand for: every cell is occupied
     /// exactly where an item is registered, every other cell carries the inRS2 location of
     /// its run's first cell, which is its own centre's location too, and a block's rows share
@@ -569,10 +750,9 @@ mod tests {
         for cells in [5, 40] {
             let frame = framed_grid(c.outer(), c.abs_tol(), cells);
             let n = frame.n();
-            let (parts, pairs) = register(&c, &frame);
+            let (_, pairs, columns) = whole_grid(&c, &frame);
             let occupied: std::collections::BTreeSet<usize> =
                 pairs.iter().map(|&p| pair_cell(p)).collect();
-            let columns = Columns::new(n, &pairs, &c, &frame, &parts);
             let (cw, ch) = frame.cell_size();
             let origin = frame.bounding_box().min;
             let mut k_expected = 0;
@@ -637,8 +817,8 @@ mod tests {
         pairs: &[u64],
     ) {
         let n = frame.n();
-        let (parts, _) = register(c, frame);
-        let ix = LocatorIndex::from_columns(frame, parts, columns, pairs.len());
+        let (parts, _, _) = whole_grid(c, frame);
+        let ix = Strip::from_columns(frame, parts, columns, pairs.len(), 0);
         let by_inrs2 = FIRST_RECORD + (ix.records.len() - 1) as u32;
         let (mut uniform, mut refined) = (0, 0);
         for bc in 0..ix.blocks {
@@ -699,7 +879,7 @@ mod tests {
             .unwrap();
             for cells in [4, 40, 512] {
                 let frame = framed_grid(c.outer(), c.abs_tol(), cells);
-                let (parts, _) = register(&c, &frame);
+                let (parts, _, _) = whole_grid(&c, &frame);
                 let (mut bands, mut owner) = (Vec::new(), Vec::new());
                 for (bi, b) in c.boxes().boxes().iter().enumerate() {
                     b.for_grid_parts(&frame, |band, is_whole| {
@@ -732,8 +912,7 @@ mod tests {
                 for cells in [64, 512] {
                     let frame = framed_grid(c.outer(), c.abs_tol(), cells);
                     let n = frame.n();
-                    let (parts, pairs) = register(&c, &frame);
-                    let columns = Columns::new(n, &pairs, &c, &frame, &parts);
+                    let (_, _, columns) = whole_grid(&c, &frame);
                     let (cw, ch) = frame.cell_size();
                     let origin = frame.bounding_box().min;
                     let (mut centres, mut states) = (Vec::new(), Vec::new());
@@ -797,30 +976,52 @@ mod tests {
         use crate::locator::PointLocator;
         let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
         let c = Classifier::new(&d, ContainOptions::default()).unwrap();
-        let frame = framed_grid(c.outer(), c.abs_tol(), 16);
+        let ix = LocatorIndex::build(&c, 16);
+        let frame = ix.frame;
         let n = frame.n();
-        let (parts, pairs) = register(&c, &frame);
+        // The strip of the middle column, built by hand.
+        let col = n / 2;
+        let s = strip_of_column(col);
+        let cols = s * STRIP..((s + 1) * STRIP).min(n);
+        let boxes =
+            &ix.strip_boxes[ix.strip_box_start[s] as usize..ix.strip_box_start[s + 1] as usize];
+        let (parts, owner_local, pairs) = register(&c, &frame, &cols, boxes);
         let incidences = pairs.len();
-        let mut columns = Columns::new(n, &pairs, &c, &frame, &parts);
+        let mut columns = Columns::new(
+            n,
+            cols.clone(),
+            &pairs,
+            &c,
+            &frame,
+            (&owner_local, boxes),
+            &ix.critical,
+        );
         // The middle column's run inside the circle (between its two boundary crossings),
         // marked of unknown parity; its state was inside.
-        let col = n / 2;
-        let j = (1..=columns.start[col + 1] - columns.start[col])
+        let lc = col - cols.start;
+        let j = (1..=columns.start[lc + 1] - columns.start[lc])
             .find(|&j| {
-                !columns.run(col, j).is_empty() && columns.runs[columns.run_slot(col, j)] == INSIDE
+                !columns.run(lc, j).is_empty() && columns.runs[columns.run_slot(lc, j)] == INSIDE
             })
             .unwrap();
-        let slot = columns.run_slot(col, j);
+        let slot = columns.run_slot(lc, j);
         columns.runs[slot] = BY_INRS2;
-        let run = columns.run(col, j);
-        let ix = LocatorIndex::from_columns(&frame, parts, &columns, incidences);
+        let run = columns.run(lc, j);
+        let strip = Strip::from_columns(&frame, parts, &columns, incidences, s);
         // The occupied cells right above the run take inRS2 too.
-        let above = columns.start[col] + j;
-        assert!(ix.records[above].by_inrs2);
+        let above = columns.start[lc] + j;
+        assert!(strip.records[above].by_inrs2);
         assert!(
-            !ix.records[columns.start[col]].by_inrs2,
+            !strip.records[columns.start[lc]].by_inrs2,
             "below the run: parity known"
         );
+        let by_inrs2 = FIRST_RECORD + (strip.records.len() - 1) as u32;
+        assert!(strip.records[(by_inrs2 - FIRST_RECORD) as usize].by_inrs2);
+        // Installed in the index as its strip `s` (the others are built on demand).
+        for (k, &state) in strip.coarse.iter().enumerate() {
+            ix.coarse[strip.first_block_column * ix.blocks + k].store(state, Ordering::Relaxed);
+        }
+        assert!(ix.strips[s].set(strip).is_ok());
         // Points across the run's cells and the cell above it: inRS2's answers.
         let loc = PointLocator::with_index(&c, &ix);
         let (cw, ch) = frame.cell_size();
@@ -835,18 +1036,87 @@ mod tests {
                 })
             })
             .collect();
-        let by_inrs2 = FIRST_RECORD + (ix.records.len() - 1) as u32;
-        assert!(ix.records[(by_inrs2 - FIRST_RECORD) as usize].by_inrs2);
+        let strip = ix.strip(&c, s);
         for p in &pts[..5 * run.len()] {
-            assert_eq!(
-                ix.tables().fine_entry(*p),
-                by_inrs2,
-                "a cell of the run at {p:?}"
-            );
+            let (pc, pr) = ix.lookup.cell(*p);
+            assert_eq!(strip.entry(pc, pr), by_inrs2, "a cell of the run at {p:?}");
         }
         let expected = c.locate_all_with(Method::InRS2, &pts);
         assert!(expected.contains(&Location::Inside));
         assert_eq!(crate::Locate::locate_all(&loc, &pts), expected);
+    }
+
+    /// The strips built one by one (each from its own boxes) hold what the strip over the
+    /// whole grid holds: every cell's uniform state, and for a mixed cell a record with the
+    /// same parity below, the same inRS2 flag and critical range, and the same parts (box and
+    /// band) near it and below it. On the paper's fixtures and an annulus, at a coarse grid,
+    /// the default one and one whose last strip is narrower than a block.
+    #[test]
+    fn strips_one_by_one_equal_the_whole_grid() {
+        let mut cases = rs_testkit::fixtures();
+        cases.push(rs_testkit::annulus());
+        for case in &cases {
+            let c = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
+            for cells in [30, 61, 512] {
+                let ix = LocatorIndex::build(&c, cells);
+                let frame = ix.frame;
+                let n = frame.n();
+                let (parts, pairs, columns) = whole_grid(&c, &frame);
+                let whole = Strip::from_columns(&frame, parts, &columns, pairs.len(), 0);
+                let key = |st: &Strip, item: u32| {
+                    let item = item & !VERTICAL_FLAG;
+                    let b = st.parts.band(item);
+                    (
+                        st.parts.owner[item as usize],
+                        [b.xmin, b.xmax, b.ymin, b.ymax, b.margin].map(f64::to_bits),
+                    )
+                };
+                let set = |st: &Strip, items: &[u32]| {
+                    items
+                        .iter()
+                        .map(|&i| key(st, i))
+                        .collect::<std::collections::BTreeSet<_>>()
+                };
+                let (mut mixed, mut uniform) = (0, 0);
+                for col in 0..n {
+                    let strip = ix.strip(&c, strip_of_column(col));
+                    for r in 0..n {
+                        let (a, b) = (whole.entry(col, r), strip.entry(col, r));
+                        if a < FIRST_RECORD || b < FIRST_RECORD {
+                            assert_eq!(a, b, "{} cells {cells}: ({col}, {r})", case.name);
+                            uniform += 1;
+                            continue;
+                        }
+                        mixed += 1;
+                        let (ra, rb) = (
+                            &whole.records[(a - FIRST_RECORD) as usize],
+                            &strip.records[(b - FIRST_RECORD) as usize],
+                        );
+                        assert_eq!(ra.inside_below, rb.inside_below);
+                        assert_eq!(ra.by_inrs2, rb.by_inrs2);
+                        assert_eq!(ra.critical, rb.critical);
+                        let items = |st: &Strip, range: (u32, u32), column: bool| {
+                            let list = if column {
+                                &st.column_items
+                            } else {
+                                &st.near_items
+                            };
+                            set(st, &list[range.0 as usize..range.1 as usize])
+                        };
+                        assert_eq!(items(&whole, ra.near, false), items(strip, rb.near, false));
+                        assert_eq!(
+                            items(&whole, ra.column, true),
+                            items(strip, rb.column, true)
+                        );
+                    }
+                }
+                assert!(mixed > 0 && uniform > 0, "{} cells {cells}", case.name);
+                // The coarse table, published as the strips were built, is theirs.
+                for (k, state) in ix.coarse.iter().enumerate() {
+                    assert_eq!(state.load(Ordering::Relaxed), whole.coarse[k]);
+                }
+            }
+        }
     }
 
     /// The critical-abscissa test among a column's range agrees with the test among all of

@@ -2,6 +2,9 @@
 //! boxes are registered as, and the lookup of a point's cell. Plain data, built by `build.rs`
 //! and read by the queries of `mod.rs`.
 
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
+
 use rs_spline::Point;
 use rs_spline::grid::GridFrame;
 
@@ -10,8 +13,22 @@ pub(super) const BLOCK: usize = 8;
 /// `log2(BLOCK)`.
 pub(super) const BLOCK_SHIFT: u32 = 3;
 
+/// Width of a strip, the unit the grid is built in, in cells: a few blocks. Narrower strips
+/// make a first answer cheaper; wider ones repeat less work between neighbouring strips (a
+/// box that spans two is registered from each).
+pub(super) const STRIP: usize = 4 * BLOCK;
+
+/// The strip holding column `c` of cells.
+#[inline(always)]
+pub(super) fn strip_of_column(c: usize) -> usize {
+    c / STRIP
+}
+
 /// Coarse state: the block holds mixed cells, or cells of both locations; read its cells.
 pub(super) const REFINED: u8 = 2;
+
+/// Coarse state: the block's strip is not built yet; build it, then read its cells.
+pub(super) const UNBUILT: u8 = 3;
 
 /// A fine entry below this is a uniform state; from it on, `entry - FIRST_RECORD` indexes the
 /// mixed-cell records.
@@ -40,13 +57,70 @@ pub(super) struct MixedCell {
 
 /// The grid of a [`PointLocator`](crate::PointLocator), without the classifier it indexes (so that a
 /// [`Classifier`](crate::Classifier) can build it once and lend it; see [`Classifier::locator`](crate::Classifier::locator)).
-#[derive(Clone, Debug)]
+///
+/// The grid is built one *strip* (a column of blocks, `BLOCK` cells wide) at a time, when a
+/// query first needs it: until then its blocks' coarse states read [`UNBUILT`], which sends
+/// the query to the strip (built then, once, whichever thread asks first). What a strip holds
+/// depends on nothing outside its columns (the states of a column come from a walk up that
+/// column), so the strips built on demand are the ones an eager build makes.
+#[derive(Debug)]
 pub struct LocatorIndex {
     /// Cells per side of the fine grid.
     pub(super) n: usize,
     /// Blocks per side of the coarse grid.
     pub(super) blocks: usize,
-    /// Coarse states, a byte per block.
+    /// Coarse states, a byte per block, block columns first: [`UNBUILT`] until the block's
+    /// strip is built, then the strip's own state for it (never changed again).
+    pub(super) coarse: Vec<AtomicU8>,
+    /// The strips, each built on first use.
+    pub(super) strips: Vec<OnceLock<Strip>>,
+    /// How many strips are built; when all are, `complete` is set.
+    pub(super) built: AtomicUsize,
+    /// The flat tables, made when the last strip is built: queries then read them as they
+    /// would an eagerly built grid's.
+    pub(super) complete: OnceLock<Complete>,
+    pub(super) lookup: Lookup,
+    pub(super) frame: GridFrame,
+    /// For each column of cells, the range of critical abscissas that may lie within the
+    /// tolerance of one of its points (`build::critical_ranges`).
+    pub(super) critical: Vec<(u32, u32)>,
+    /// The boxes that may register in strip `s` are `strip_boxes[strip_box_start[s]..
+    /// strip_box_start[s + 1]]`, ascending.
+    pub(super) strip_box_start: Vec<u32>,
+    pub(super) strip_boxes: Vec<u32>,
+}
+
+impl Clone for LocatorIndex {
+    fn clone(&self) -> Self {
+        Self {
+            n: self.n,
+            blocks: self.blocks,
+            coarse: self
+                .coarse
+                .iter()
+                .map(|s| AtomicU8::new(s.load(Ordering::Relaxed)))
+                .collect(),
+            strips: self.strips.clone(),
+            built: AtomicUsize::new(self.built.load(Ordering::Acquire)),
+            complete: self.complete.clone(),
+            lookup: self.lookup,
+            frame: self.frame,
+            critical: self.critical.clone(),
+            strip_box_start: self.strip_box_start.clone(),
+            strip_boxes: self.strip_boxes.clone(),
+        }
+    }
+}
+
+/// The grid over a range of block columns: the coarse states of its blocks, the fine entries
+/// of its refined blocks, its mixed-cell records and the parts registered in its cells.
+#[derive(Clone, Debug)]
+pub(super) struct Strip {
+    /// The first block column (global index).
+    pub(super) first_block_column: usize,
+    /// Blocks per column (the grid's).
+    pub(super) blocks: usize,
+    /// Coarse states of the strip's blocks, block columns first.
     pub(super) coarse: Vec<u8>,
     /// For each block, the first of its `BLOCK^2` fine entries in `fine` (refined blocks only).
     pub(super) block_start: Vec<u32>,
@@ -55,11 +129,37 @@ pub struct LocatorIndex {
     pub(super) records: Vec<MixedCell>,
     pub(super) near_items: Vec<u32>,
     pub(super) column_items: Vec<u32>,
-    /// Number of mixed cells and of (box, cell) registrations, for reports.
+    /// Number of mixed cells and of (item, cell) registrations, for reports.
     pub(super) mixed_cells: usize,
     pub(super) incidences: usize,
-    pub(super) lookup: Lookup,
     pub(super) parts: Parts,
+}
+
+impl Strip {
+    /// The fine entry of cell `(c, r)` (global column and row, `c` in the strip): a uniform
+    /// block's state, else the cell's entry in its block.
+    #[inline]
+    pub(super) fn entry(&self, c: usize, r: usize) -> u32 {
+        let block = self.block(c, r);
+        let state = self.coarse[block];
+        if state != REFINED {
+            return u32::from(state);
+        }
+        self.fine_entry(block, c, r)
+    }
+
+    /// The entry of cell `(c, r)` of block `block` (the strip's index of a refined block).
+    #[inline(always)]
+    pub(super) fn fine_entry(&self, block: usize, c: usize, r: usize) -> u32 {
+        let within = (c & (BLOCK - 1)) * BLOCK + (r & (BLOCK - 1));
+        self.fine[self.block_start[block] as usize + within]
+    }
+
+    /// The strip's index of the block of cell `(c, r)`.
+    #[inline(always)]
+    pub(super) fn block(&self, c: usize, r: usize) -> usize {
+        ((c >> BLOCK_SHIFT) - self.first_block_column) * self.blocks + (r >> BLOCK_SHIFT)
+    }
 }
 
 /// The parts the boxes are registered as, each with its chord band
@@ -173,43 +273,132 @@ impl Lookup {
     }
 }
 
-/// The two tables a query reads and what it needs to find its cell in them, copied out of the
-/// index into locals: the loops over many points then keep them in registers instead of
-/// reloading each through the index on every point.
-#[derive(Clone, Copy)]
-pub(super) struct Tables<'a> {
-    pub(super) lookup: Lookup,
-    pub(super) coarse: &'a [u8],
-    pub(super) block_start: &'a [u32],
-    pub(super) fine: &'a [u32],
+/// The grid once every strip is built, in the two flat tables an eager build would make: the
+/// coarse states as plain bytes (which the compiler can gather side by side) and the refined
+/// blocks' fine entries (copied from the strips; a mixed cell's entry still names a record of
+/// its strip).
+#[derive(Clone, Debug)]
+pub(super) struct Complete {
+    /// Blocks per column.
+    pub(super) blocks: usize,
+    pub(super) coarse: Box<[u8]>,
+    /// For each block, the first of its `BLOCK^2` entries in `fine` (refined blocks only).
+    pub(super) block_start: Box<[u32]>,
+    pub(super) fine: Box<[u32]>,
 }
 
-impl Tables<'_> {
-    /// The coarse state of `p`'s block (`OUTSIDE`, `INSIDE` or `REFINED`), without a branch.
-    #[inline]
-    pub(super) fn coarse_state(&self, p: Point) -> usize {
-        let (c, r) = self.lookup.cell(p);
-        usize::from(self.coarse[self.lookup.block(c, r)])
+impl Complete {
+    /// The flat tables of the built `strips` (in order) over `blocks x blocks` blocks.
+    pub(super) fn of<'s>(blocks: usize, strips: impl Iterator<Item = &'s Strip>) -> Self {
+        let (mut coarse, mut block_start, mut fine) = (Vec::new(), Vec::new(), Vec::new());
+        for strip in strips {
+            coarse.extend_from_slice(&strip.coarse);
+            let base = fine.len() as u32;
+            block_start.extend(strip.block_start.iter().map(|&b| b + base));
+            fine.extend_from_slice(&strip.fine);
+        }
+        debug_assert_eq!(coarse.len(), blocks * blocks);
+        Self {
+            blocks,
+            coarse: coarse.into(),
+            block_start: block_start.into(),
+            fine: fine.into(),
+        }
     }
 
-    /// The fine entry of `p`'s cell, in a refined block.
-    #[inline]
-    pub(super) fn fine_entry(&self, p: Point) -> u32 {
-        let (c, r) = self.lookup.cell(p);
-        let block = self.lookup.block(c, r);
+    /// Bytes held.
+    pub(super) fn memory_bytes(&self) -> usize {
+        self.coarse.len() + 4 * (self.block_start.len() + self.fine.len())
+    }
+}
+
+/// The grid as a query reads it: [`Complete`] once every strip is built, else the coarse table
+/// being filled in and the strips.
+pub(super) trait GridView: Copy {
+    /// The state of block `block`: `OUTSIDE`, `INSIDE`, `REFINED` or `UNBUILT`.
+    fn state(self, block: usize) -> usize;
+
+    /// The entry of cell `(c, r)`, in a block whose state read `REFINED` or `UNBUILT`;
+    /// `strip` gives the strip of a column (built now if it was not yet).
+    fn entry<'s>(self, c: usize, r: usize, strip: impl FnOnce(usize) -> &'s Strip) -> u32;
+}
+
+/// [`Complete`]'s tables as slices held in locals (so that the loops over many points keep
+/// them in registers, not reloading them through the index on every point).
+#[derive(Clone, Copy)]
+pub(super) struct CompleteView<'a> {
+    blocks: usize,
+    coarse: &'a [u8],
+    block_start: &'a [u32],
+    fine: &'a [u32],
+}
+
+impl GridView for CompleteView<'_> {
+    #[inline(always)]
+    fn state(self, block: usize) -> usize {
+        usize::from(self.coarse[block]) & 3
+    }
+
+    /// The block is refined (this table has no [`UNBUILT`] state).
+    #[inline(always)]
+    fn entry<'s>(self, c: usize, r: usize, _: impl FnOnce(usize) -> &'s Strip) -> u32 {
+        let block = (c >> BLOCK_SHIFT) * self.blocks + (r >> BLOCK_SHIFT);
         let within = (c & (BLOCK - 1)) * BLOCK + (r & (BLOCK - 1));
         self.fine[self.block_start[block] as usize + within]
     }
 }
 
+impl GridView for &[AtomicU8] {
+    /// A relaxed load: a state other than [`UNBUILT`] is final, and [`UNBUILT`] sends the
+    /// query to the strip, which waits for its build.
+    #[inline(always)]
+    fn state(self, block: usize) -> usize {
+        usize::from(self[block].load(Ordering::Relaxed)) & 3
+    }
+
+    #[inline(always)]
+    fn entry<'s>(self, c: usize, r: usize, strip: impl FnOnce(usize) -> &'s Strip) -> u32 {
+        strip(strip_of_column(c)).entry(c, r)
+    }
+}
+
+/// The table a query reads first and what it needs to find its cell in it, copied out of
+/// the index into locals: the loops over many points then keep them in registers instead of
+/// reloading each through the index on every point.
+#[derive(Clone, Copy)]
+pub(super) struct Tables<G> {
+    pub(super) lookup: Lookup,
+    pub(super) grid: G,
+}
+
+impl<G: GridView> Tables<G> {
+    /// The coarse state of `p`'s block, without a branch.
+    #[inline]
+    pub(super) fn coarse_state(&self, p: Point) -> usize {
+        let (c, r) = self.lookup.cell(p);
+        self.grid.state(self.lookup.block(c, r))
+    }
+}
+
 impl LocatorIndex {
-    /// The tables queries read.
-    pub(super) fn tables(&self) -> Tables<'_> {
+    /// The flat tables, once every strip is built.
+    pub(super) fn complete(&self) -> Option<Tables<CompleteView<'_>>> {
+        self.complete.get().map(|c| Tables {
+            lookup: self.lookup,
+            grid: CompleteView {
+                blocks: c.blocks,
+                coarse: &c.coarse,
+                block_start: &c.block_start,
+                fine: &c.fine,
+            },
+        })
+    }
+
+    /// The coarse table being filled in, strip by strip.
+    pub(super) fn filling(&self) -> Tables<&[AtomicU8]> {
         Tables {
             lookup: self.lookup,
-            coarse: &self.coarse,
-            block_start: &self.block_start,
-            fine: &self.fine,
+            grid: &self.coarse,
         }
     }
 }

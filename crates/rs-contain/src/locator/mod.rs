@@ -76,6 +76,14 @@ impl Default for LocatorOptions {
 /// the run below, changed by the boxes registered in the occupied cells between whose
 /// crossing test (inRS2's own) differs at the two centres. The others are *mixed*.
 ///
+/// Since a column's states come from its own walk, the grid is built in *strips* of 32
+/// columns, each from the boxes that reach it (a box's parts far from the strip are not
+/// halved further), each when a query first falls in it: [`Classifier::locator`]'s first
+/// answer costs about one strip, not the grid. Until a strip is built its blocks read "not
+/// built", which sends a query to the strip (built then, once, whichever thread asks first).
+/// When the last strip is built, its call copies the strips' tables into the flat two-level
+/// tables below, which queries read from then on. [`PointLocator::new`] builds every strip.
+///
 /// The grid is stored in two levels, so that the table a query reads first stays in the
 /// processor's first-level cache: a coarse grid of `8 x 8` blocks of cells, a byte per block
 /// (all outside, all inside, or refined: about 4 KiB for the default 512 x 512 cells, plus a
@@ -104,9 +112,9 @@ impl Default for LocatorOptions {
 ///
 /// # Cost
 /// Build: the boxes' registrations (each box only in the cells near its curve: its piece is
-/// halved until each part spans a couple of cells), a walk up each column (the runs' states
-/// from the boxes of the occupied cells between them), and a walk over the `(n / 8)^2`
-/// blocks; no table of all
+/// halved until each part spans a couple of cells; a box that reaches two strips is halved
+/// from each), a walk up each column (the runs' states from the boxes of the occupied cells
+/// between them), and a walk over the `(n / 8)^2` blocks; no table of all
 /// `n^2` cells is made, so the work grows with the boundary's length in cells and the number
 /// of blocks. Memory: a byte per block of the coarse table, 256 bytes per refined block, the
 /// mixed-cell records with their item lists, and the parts' chord bands (96 bytes each, at
@@ -135,21 +143,26 @@ pub struct PointLocator<'a> {
 }
 
 impl Classifier {
-    /// The grid locator with the default options, its index built on the first call and kept.
+    /// The grid locator with the default options, its index made on the first call and kept:
+    /// each strip of its grid (a column of blocks) is built when a query first needs it, so a
+    /// few queries pay for the strips they fall in, not for the whole grid.
     pub fn locator(&self) -> PointLocator<'_> {
         let index = self
             .grid
-            .get_or_init(|| PointLocator::new(self, LocatorOptions::default()).into_index());
+            .get_or_init(|| LocatorIndex::build(self, LocatorOptions::default().cells));
         PointLocator::with_index(self, index)
     }
 }
 
 impl<'a> PointLocator<'a> {
-    /// Builds the index.
+    /// Builds the index, all of it (the locator of [`Classifier::locator`] builds each strip
+    /// of the grid when a query first needs it).
     pub fn new(classifier: &'a Classifier, options: LocatorOptions) -> Self {
+        let ix = LocatorIndex::build(classifier, options.cells);
+        ix.built_strips(classifier).for_each(drop);
         Self {
             classifier,
-            ix: Cow::Owned(LocatorIndex::build(classifier, options.cells)),
+            ix: Cow::Owned(ix),
         }
     }
 
@@ -161,58 +174,83 @@ impl<'a> PointLocator<'a> {
         }
     }
 
-    /// The index, to keep (see [`PointLocator::with_index`]).
-    pub(crate) fn into_index(self) -> LocatorIndex {
-        self.ix.into_owned()
-    }
-
     /// The grid resolution (cells per side).
     pub fn cells(&self) -> usize {
         self.ix.n
     }
 
-    /// Fraction of cells that are mixed (meet a box).
+    /// The grid's strips, each built now if it was not yet.
+    fn strips(&self) -> impl Iterator<Item = &Strip> {
+        self.ix.built_strips(self.classifier)
+    }
+
+    /// Fraction of cells that are mixed (meet a box). Builds the whole grid.
     pub fn mixed_fraction(&self) -> f64 {
-        self.ix.mixed_cells as f64 / (self.ix.n * self.ix.n) as f64
+        let mixed: usize = self.strips().map(|s| s.mixed_cells).sum();
+        mixed as f64 / (self.ix.n * self.ix.n) as f64
     }
 
     /// Number of (item, cell) incidences registered while building (an item is a box or a
-    /// part of one).
+    /// part of one; a part that spans two strips counts in each). Builds the whole grid.
     pub fn incidences(&self) -> usize {
-        self.ix.incidences
+        self.strips().map(|s| s.incidences).sum()
     }
 
     /// Bytes held by the index (tables, records, item lists and the parts' chord bands).
+    /// Builds the whole grid.
     pub fn memory_bytes(&self) -> usize {
+        let strips: usize = self
+            .strips()
+            .map(|s| {
+                s.coarse.len()
+                    + 4 * (s.block_start.len() + s.fine.len())
+                    + std::mem::size_of::<MixedCell>() * s.records.len()
+                    + 4 * (s.near_items.len() + s.column_items.len())
+                    + (std::mem::size_of::<rs_boxes::ChordBand>() + 4) * s.parts.bands.len()
+            })
+            .sum();
         let ix = &self.ix;
-        ix.coarse.len()
-            + 4 * (ix.block_start.len() + ix.fine.len())
-            + std::mem::size_of::<MixedCell>() * ix.records.len()
-            + 4 * (ix.near_items.len() + ix.column_items.len())
-            + (std::mem::size_of::<rs_boxes::ChordBand>() + 4) * ix.parts.bands.len()
+        strips
+            + ix.coarse.len()
+            + 4 * (ix.critical.len() * 2 + ix.strip_box_start.len() + ix.strip_boxes.len())
+            + std::mem::size_of::<std::sync::OnceLock<Strip>>() * ix.strips.len()
+            + ix.complete.get().map_or(0, Complete::memory_bytes)
+    }
+
+    /// Strip `s` of the grid, built now if it was not yet.
+    #[inline]
+    fn strip(&self, s: usize) -> &Strip {
+        self.ix.strip(self.classifier, s)
     }
 
     /// The location of one point (same as [`Method::InRS2`](crate::Method::InRS2)).
     fn locate_point(&self, p: Point) -> Location {
-        match STATE_LOCATION[self.ix.tables().coarse_state(p)] {
+        let state = match self.ix.complete() {
+            Some(tables) => tables.coarse_state(p),
+            None => self.ix.filling().coarse_state(p),
+        };
+        match STATE_LOCATION[state] {
             Location::Boundary => self.locate_refined(p),
             uniform => uniform,
         }
     }
 
-    /// A point of a refined block: its cell's entry, then the mixed-cell record if any.
+    /// A point of a refined (or not yet built) block: its cell's entry in its strip, then the
+    /// mixed-cell record if any.
     fn locate_refined(&self, p: Point) -> Location {
-        let entry = self.ix.tables().fine_entry(p);
+        let (c, r) = self.ix.lookup.cell(p);
+        let strip = self.strip(strip_of_column(c));
+        let entry = strip.entry(c, r);
         if entry < FIRST_RECORD {
             return STATE_LOCATION[entry as usize];
         }
-        self.locate_mixed(p, entry)
+        self.locate_mixed(p, strip, entry)
     }
 
     /// A point of a mixed cell, whose fine entry is `entry`: the boundary test against the
     /// cell's items, then the parity below plus the crossings of the record's column items.
-    fn locate_mixed(&self, p: Point, entry: u32) -> Location {
-        let rec = &self.ix.records[(entry - FIRST_RECORD) as usize];
+    fn locate_mixed(&self, p: Point, strip: &Strip, entry: u32) -> Location {
+        let rec = &strip.records[(entry - FIRST_RECORD) as usize];
         let cls = self.classifier;
         if rec.by_inrs2 {
             return cls.classify_point_with_decision(p).0;
@@ -223,10 +261,10 @@ impl<'a> PointLocator<'a> {
         if !critical.is_empty() && cls.boxes().is_critical_x_among(p.x, tol, critical) {
             return cls.fallback(p).0;
         }
-        let parts = &self.ix.parts;
+        let parts = &strip.parts;
         // A box near p has a part (or is an item itself) whose band may be near p, registered
         // in p's cell: the bands screen, the box's own test decides.
-        let near = &self.ix.near_items[rec.near.0 as usize..rec.near.1 as usize];
+        let near = &strip.near_items[rec.near.0 as usize..rec.near.1 as usize];
         if near.iter().any(|&item| {
             let item = item & !VERTICAL_FLAG;
             parts.band(item).may_be_near(p, tol) && parts.owner(all, item).is_near(p, tol)
@@ -236,7 +274,7 @@ impl<'a> PointLocator<'a> {
         // No box is near p (checked above), so inRS2's per-box test reduces to the crossing,
         // which the one part of the box over p.x decides (the parts share out its abscissas),
         // by its band or else by the box's own test.
-        let column = &self.ix.column_items[rec.column.0 as usize..rec.column.1 as usize];
+        let column = &strip.column_items[rec.column.0 as usize..rec.column.1 as usize];
         let crossings = column
             .iter()
             .filter(|&&item| {
@@ -277,11 +315,22 @@ impl PointQuery<Location> for PointLocator<'_> {
     /// points in mixed cells), then the points in mixed cells one by one.
     fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
         assert_eq!(points.len(), out.len(), "one location per point");
-        pulp::Arch::new().dispatch(LocateChunks {
-            locator: self,
-            point: |i| points.point(i),
-            out,
-        });
+        let point = |i| points.point(i);
+        // The final table once the grid is built; the one being filled in before.
+        match self.ix.complete() {
+            Some(tables) => pulp::Arch::new().dispatch(LocateChunks {
+                locator: self,
+                tables,
+                point,
+                out,
+            }),
+            None => pulp::Arch::new().dispatch(LocateChunks {
+                locator: self,
+                tables: self.ix.filling(),
+                point,
+                out,
+            }),
+        }
     }
 
     /// Large tasks: the grid answers a point in a few nanoseconds.
@@ -293,11 +342,17 @@ impl PointQuery<Location> for PointLocator<'_> {
 impl PointLocator<'_> {
     /// [`PointQuery::values_into`], inlined into each instruction set's copy.
     #[inline(always)]
-    fn locate_chunks(&self, point: impl Fn(usize) -> Point, out: &mut [Location]) {
+    fn locate_chunks<G: GridView>(
+        &self,
+        tables: Tables<G>,
+        point: impl Fn(usize) -> Point,
+        out: &mut [Location],
+    ) {
         const CHUNK: usize = 2048;
-        let tables = self.ix.tables();
         let mut refined = [0u16; CHUNK];
         let mut entries = [0u32; CHUNK];
+        // The column of each refined point's cell, for its strip if it is mixed.
+        let mut columns = [0u16; CHUNK];
         let mut mixed = [0u16; CHUNK];
         for (c, out) in out.chunks_mut(CHUNK).enumerate() {
             let first = c * CHUNK;
@@ -315,10 +370,11 @@ impl PointLocator<'_> {
                     // `& 3` and `& (CHUNK - 1)` change nothing (a state is below 4, `k <= i`);
                     // they spare the bounds checks the compiler cannot drop. (Lanes past the
                     // group's end hold the blocks of stale coordinates and are not read.)
-                    let state = usize::from(tables.coarse[blocks[l] as usize]) & 3;
+                    let state = tables.grid.state(blocks[l] as usize);
                     *o = STATE_LOCATION[state];
                     refined[k & (CHUNK - 1)] = (base + l) as u16;
-                    k += usize::from(state == REFINED as usize);
+                    // A refined block, or one whose strip is not built yet.
+                    k += usize::from(state >= REFINED as usize);
                 }
             }
             // The refined blocks' points: their fine entries without a branch, noting those
@@ -326,15 +382,19 @@ impl PointLocator<'_> {
             let mut m = 0;
             for j in 0..k {
                 let i = usize::from(refined[j]);
-                let entry = tables.fine_entry(point(first + i));
+                let (c, r) = tables.lookup.cell(point(first + i));
+                let entry = tables.grid.entry(c, r, |s| self.strip(s));
                 entries[j] = entry;
+                // A column is below 8192 (`GridFrame::MAX_CELLS`).
+                columns[j] = c as u16;
                 out[i] = STATE_LOCATION[entry.min(FIRST_RECORD) as usize];
                 mixed[m & (CHUNK - 1)] = j as u16;
                 m += usize::from(entry >= FIRST_RECORD);
             }
             for &j in &mixed[..m] {
                 let i = usize::from(refined[usize::from(j)]);
-                out[i] = self.locate_mixed(point(first + i), entries[usize::from(j)]);
+                let strip = self.strip(strip_of_column(usize::from(columns[usize::from(j)])));
+                out[i] = self.locate_mixed(point(first + i), strip, entries[usize::from(j)]);
             }
         }
     }
@@ -345,17 +405,19 @@ const PARALLEL_TASK: usize = 1 << 16;
 
 /// [`PointQuery::values_into`] as an operation `pulp` runs with the best instruction
 /// set at hand.
-struct LocateChunks<'l, 'a, F> {
+struct LocateChunks<'l, 'a, G, F> {
     locator: &'l PointLocator<'a>,
+    tables: Tables<G>,
     point: F,
     out: &'l mut [Location],
 }
 
-impl<F: Fn(usize) -> Point> pulp::WithSimd for LocateChunks<'_, '_, F> {
+impl<G: GridView, F: Fn(usize) -> Point> pulp::WithSimd for LocateChunks<'_, '_, G, F> {
     type Output = ();
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
-        self.locator.locate_chunks(self.point, self.out);
+        self.locator
+            .locate_chunks(self.tables, self.point, self.out);
     }
 }
 
@@ -366,6 +428,50 @@ const VERTICAL_FLAG: u32 = 1 << 31;
 mod tests {
     use super::*;
     use rs_spline::grid::GridFrame;
+
+    /// A locator whose strips are built by the queries that first need them, from several
+    /// threads at once (the same strip asked for by many), answers as inRS2 does, point by
+    /// point and in batches; once every strip is built its flat tables are made and give the
+    /// same answers again; a fresh locator asked one point builds only that point's strip.
+    #[test]
+    fn strips_built_on_demand_by_concurrent_queries_answer_as_inrs2() {
+        use crate::{ContainOptions, Locate, Method};
+        for case in rs_testkit::fixtures() {
+            let c = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
+            let b = c.outer();
+            let pts = crate::baselines::halton_points(40_000, b.grown_by(0.05 * b.diagonal()));
+            let expected = c.locate_all_with(Method::InRS2, &pts);
+            let one = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
+            let _ = one.locator().locate(pts[7]);
+            let ix = one.grid.get().unwrap();
+            let built = ix.strips.iter().filter(|s| s.get().is_some()).count();
+            assert_eq!(built, 1, "{}", case.name);
+            assert!(ix.complete.get().is_none());
+            let loc = c.locator();
+            let got: Vec<Vec<Location>> = std::thread::scope(|scope| {
+                let handles: Vec<_> = (0..4)
+                    .map(|t| {
+                        let (loc, pts) = (&loc, &pts);
+                        scope.spawn(move || {
+                            if t % 2 == 0 {
+                                loc.locate_all(pts)
+                            } else {
+                                pts.iter().map(|&p| loc.locate(p)).collect()
+                            }
+                        })
+                    })
+                    .collect();
+                handles.into_iter().map(|h| h.join().unwrap()).collect()
+            });
+            for g in &got {
+                assert_eq!(g, &expected, "{}", case.name);
+            }
+            let ix = c.grid.get().unwrap();
+            assert!(ix.strips.iter().all(|s| s.get().is_some()));
+            assert!(ix.complete.get().is_some(), "{}", case.name);
+            assert_eq!(loc.locate_all(&pts), expected, "{}", case.name);
+        }
+    }
 
     /// `Lookup::blocks` gives the block `Lookup::cell` and `Lookup::block` give, for points
     /// on cell edges, inside cells, off the grid, and not finite.
