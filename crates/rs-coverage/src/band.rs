@@ -17,7 +17,8 @@ use rs_spline::Point;
 use crate::arc::{Arc, PartIntegrals, Rules};
 use crate::lines::add_covered;
 
-/// Where a band writes its results: row-major slices of the caller's arrays.
+/// Where a band writes its results: row-major slices of the caller's arrays, the fractions
+/// and centroids zeroed.
 pub(crate) struct BandOut<'a> {
     /// `(rows, nx)`; holds the sum of the parts' `b` until the end.
     pub(crate) fractions: &'a mut [f64],
@@ -64,7 +65,8 @@ struct Crossings {
 }
 
 impl Band<'_> {
-    /// Computes the band's results into `out`, from every piece of the boundary.
+    /// Computes the band's results into `out`, from every piece of the boundary. The
+    /// fractions and centroids must be zero on entry (they accumulate the parts' integrals).
     pub(crate) fn cover(&self, arcs: &[Arc], out: BandOut<'_>) {
         let BandOut {
             fractions,
@@ -73,10 +75,6 @@ impl Band<'_> {
             y_apertures,
             y_top,
         } = out;
-        fractions.fill(0.0);
-        if let Some(m) = centroids.as_deref_mut() {
-            m.fill([0.0; 2]);
-        }
         let mut c = Crossings::default();
         for arc in arcs {
             self.visit(arc, &mut c, fractions, centroids.as_deref_mut());
@@ -109,13 +107,13 @@ impl Band<'_> {
         if y_dir != Monotonicity::Constant {
             let k_start = j0.max(ys.partition_point(|&y| y < b.ymin));
             let k_end = (j1 + 1).min(ys.partition_point(|&y| y < b.ymax));
-            for k in k_start..k_end {
+            for (k, &y) in ys.iter().enumerate().take(k_end).skip(k_start) {
                 let line = (k - j0) as u32;
                 if left_of_grid {
                     c.horizontal.push((line, f64::NEG_INFINITY));
                     continue;
                 }
-                let (t, x) = arc.at_y(ys[k]);
+                let (t, x) = arc.at_y(y);
                 c.horizontal.push((line, x));
                 c.local.push((k, t, x));
             }
@@ -132,11 +130,15 @@ impl Band<'_> {
         // Vertical lines with x_i in [bx0, bx1) cross the part (half-open, as the lines
         // `x_i + 0`); those strictly inside split it.
         c.v_events.clear();
-        for i in xs.partition_point(|&x| x < bx0)..xs.partition_point(|&x| x < bx1) {
-            let y = if xs[i] == bx0 {
+        let (i_lo, i_hi) = (
+            xs.partition_point(|&x| x < bx0),
+            xs.partition_point(|&x| x < bx1),
+        );
+        for (i, &x) in xs.iter().enumerate().take(i_hi).skip(i_lo) {
+            let y = if x == bx0 {
                 if pa.x == bx0 { pa.y } else { pb.y }
             } else {
-                let (t, y) = arc.at_x(xs[i]);
+                let (t, y) = arc.at_x(x);
                 c.v_events.push((t.clamp(ta, tb), i));
                 y.clamp(ylow, yhigh)
             };
@@ -389,29 +391,46 @@ impl Band<'_> {
 
     /// The vertical apertures: each line `x_i + 0` starts the band with the status the
     /// bottom line's crossings give it (the parity of those at or left of `x_i`) and flips
-    /// at its crossings inside the band.
+    /// at its crossings inside the band. Rows are written one after the other (each row's
+    /// faces are contiguous), every line keeping its place in its crossings.
     fn finish_x_apertures(&self, bottom: &[f64], vertical: &mut [(u32, f64)], out: &mut [f64]) {
-        let (xs, ys) = (self.xs, self.ys);
-        let nx = xs.len() - 1;
-        let edges = &ys[self.rows.start..=self.rows.end];
-        let rows = self.rows.len();
+        let xs = self.xs;
+        let lines = xs.len();
+        let edges = &self.ys[self.rows.start..=self.rows.end];
         vertical.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        let mut len = vec![0.0; rows];
-        let mut line: Vec<f64> = Vec::new();
+        // Per line: the next crossing, one past its last, and whether it is inside.
+        let mut next = vec![0usize; lines];
+        let mut end = vec![0usize; lines];
+        let mut inside = vec![false; lines];
         let (mut v, mut left) = (0, 0);
         for (i, &x) in xs.iter().enumerate() {
             while left < bottom.len() && bottom[left] <= x {
                 left += 1;
             }
-            line.clear();
+            inside[i] = left % 2 == 1;
+            next[i] = v;
             while v < vertical.len() && vertical[v].0 as usize == i {
-                line.push(vertical[v].1);
                 v += 1;
             }
-            len.fill(0.0);
-            add_covered(edges, &line, left % 2 == 1, &mut len, None);
-            for (r, l) in len.iter().enumerate() {
-                out[r * (nx + 1) + i] = (l / (edges[r + 1] - edges[r])).clamp(0.0, 1.0);
+            end[i] = v;
+        }
+        for (r, row) in out.chunks_exact_mut(lines).enumerate() {
+            let (e0, e1) = (edges[r], edges[r + 1]);
+            for (i, face) in row.iter_mut().enumerate() {
+                let (mut at, mut len, mut ins) = (e0, 0.0, inside[i]);
+                while next[i] < end[i] && vertical[next[i]].1 < e1 {
+                    let y = vertical[next[i]].1.clamp(e0, e1);
+                    if ins {
+                        len += y - at;
+                    }
+                    (at, ins) = (y, !ins);
+                    next[i] += 1;
+                }
+                if ins {
+                    len += e1 - at;
+                }
+                inside[i] = ins;
+                *face = (len / (e1 - e0)).clamp(0.0, 1.0);
             }
         }
     }

@@ -141,13 +141,20 @@ impl Coverage {
     }
 }
 
-/// A vector of `len` copies of `value`, or [`CoverageError::OutOfMemory`].
-fn zeros<T: Clone>(len: usize, value: T) -> Result<Vec<T>, CoverageError> {
+/// A vector of `len` copies of `value`, or [`CoverageError::OutOfMemory`]. With the
+/// `parallel` feature the (first-touch) writes are spread over rayon's threads.
+fn zeros<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, CoverageError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len)
         .map_err(|_| CoverageError::OutOfMemory {
             bytes: len.saturating_mul(std::mem::size_of::<T>()),
         })?;
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        v.par_extend(rayon::iter::repeat_n(value, len));
+    }
+    #[cfg(not(feature = "parallel"))]
     v.resize(len, value);
     Ok(v)
 }

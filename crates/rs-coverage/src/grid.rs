@@ -121,7 +121,10 @@ fn check_edges(axis: char, edges: &[f64]) -> Result<f64, CoverageError> {
             limit: MAX_EDGES,
         });
     }
-    if let Some(index) = edges.iter().position(|v| !(v.abs() <= MAX_COORDINATE)) {
+    if let Some(index) = edges
+        .iter()
+        .position(|v| !v.is_finite() || v.abs() > MAX_COORDINATE)
+    {
         return Err(CoverageError::EdgeOutOfRange {
             axis,
             index,

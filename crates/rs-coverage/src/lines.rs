@@ -32,7 +32,7 @@ pub(crate) fn add_covered(
 /// Adds the covered interval `[a, b]` to the columns it meets (see [`add_covered`]).
 fn add_interval(edges: &[f64], (a, b): (f64, f64), len: &mut [f64], mut first: Option<&mut [f64]>) {
     let last = edges.len() - 1;
-    if !(b > a) || b <= edges[0] || a >= edges[last] {
+    if b <= a || b.is_nan() || b <= edges[0] || a >= edges[last] {
         return;
     }
     // The column holding `a` (or the first column when `a` is left of the grid).
