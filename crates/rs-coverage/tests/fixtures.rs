@@ -239,6 +239,12 @@ fn open_boundaries_and_bad_grids_are_refused() {
         let e = cover.rows(rows, CoverageOptions::DEFAULT).unwrap_err();
         assert!(matches!(e, CoverageError::BadRows { .. }), "{e}");
     }
+    // Two coincident loops: no nesting to decide the fill by.
+    let c = || rs_spline::circle(rs_spline::Point::new(0.0, 0.0), 1.0).unwrap();
+    let twice = Domain::new(vec![c(), c()]).unwrap();
+    let grid = CellGrid::uniform(-1.0, 1.0, 4, -1.0, 1.0, 4).unwrap();
+    let e = cell_coverage(&twice, &grid, CoverageOptions::DEFAULT).unwrap_err();
+    assert!(matches!(e, CoverageError::Nesting { .. }), "{e}");
     // Too many cells for one call, fine in bands.
     let big = CellGrid::uniform(-1.0, 1.0, 1 << 15, -1.0, 1.0, 1 << 14).unwrap();
     let cover = GridCoverage::new(&d, big).unwrap();

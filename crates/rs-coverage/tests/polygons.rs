@@ -325,3 +325,52 @@ fn squares_touching_at_a_grid_vertex() {
     let b = vec![[0.5, 0.5], [0.75, 0.5], [0.75, 0.75], [0.5, 0.75]];
     check("touching", &[(a, 0), (b, 0)], &unit_grid(4));
 }
+
+/// Random star-shaped polygons with vertices on the lattice of sixteenths, on grids of
+/// eighths and of other steps: edges along grid lines, vertices on grid vertices and on
+/// lines, collinear edges, everywhere.
+#[test]
+fn random_lattice_stars() {
+    let mut rng = rs_testkit::XorShift64::new(0x5eed_c0fe);
+    let grids = [
+        unit_grid(8),
+        unit_grid(4),
+        CellGrid::uniform(0.0, 1.0, 5, 0.0, 1.0, 7).unwrap(),
+        CellGrid::uniform(-0.25, 1.25, 12, 0.0, 1.0, 16).unwrap(),
+    ];
+    let mut checked = 0;
+    for case in 0..160 {
+        let n = 3 + rng.below(9) as usize;
+        let mut pts: Vec<([f64; 2], f64)> = (0..n)
+            .map(|_| {
+                let a = rng.uniform(0.0, std::f64::consts::TAU);
+                let r = rng.uniform(0.05, 0.5);
+                let snap = |v: f64| (v * 16.0).round() / 16.0;
+                let p = [snap(0.5 + r * a.cos()), snap(0.5 + r * a.sin())];
+                (p, (p[1] - 0.5).atan2(p[0] - 0.5))
+            })
+            .filter(|(p, _)| *p != [0.5, 0.5])
+            .collect();
+        // Sorted by angle about the centre, one vertex per angle: a simple polygon when the
+        // centre is inside it (every gap between angles below pi).
+        pts.sort_by(|a, b| a.1.total_cmp(&b.1));
+        pts.dedup_by(|a, b| a.1 == b.1);
+        if pts.len() < 3 {
+            continue;
+        }
+        let gaps = pts
+            .windows(2)
+            .map(|w| w[1].1 - w[0].1)
+            .chain(std::iter::once(
+                pts[0].1 + std::f64::consts::TAU - pts[pts.len() - 1].1,
+            ));
+        if gaps.into_iter().any(|g| g >= std::f64::consts::PI - 1e-9) {
+            continue;
+        }
+        let poly: Vec<[f64; 2]> = pts.iter().map(|p| p.0).collect();
+        let grid = &grids[case % grids.len()];
+        check(&format!("star {case} {poly:?}"), &[(poly, 0)], grid);
+        checked += 1;
+    }
+    assert!(checked >= 100, "only {checked} stars");
+}
