@@ -13,6 +13,8 @@
 //! - [`spline`] (`rs-spline`): NURBS algebra, the curve traits, primitives, domains.
 //! - [`boxes`] (`rs-boxes`): monotone boxes and critical points.
 //! - [`contain`] (`rs-contain`): the inRS classifier (inRS1, inRS2, fallbacks, boundary).
+//! - [`coverage`] (`rs-coverage`): exact cell coverage on rectilinear grids (area
+//!   fractions, centroids and face apertures), for whole grids or bands of rows.
 //! - [`mesh`] (`rs-mesh`): well-spaced points, curved triangulations (and their
 //!   Clough–Tocher and Powell–Sabin refinements) and point location in them.
 //! - [`trispline`] (`rs-trispline`): polynomial splines on curved triangulations:
@@ -58,6 +60,7 @@ pub struct ReadmeDoctests;
 pub use rs_boxes as boxes;
 pub use rs_contain as contain;
 pub use rs_convex as convex;
+pub use rs_coverage as coverage;
 pub use rs_io as io;
 pub use rs_mesh as mesh;
 pub use rs_roots as roots;

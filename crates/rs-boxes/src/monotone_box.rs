@@ -227,6 +227,19 @@ impl MonotoneBox {
         self.piece.point_at(t)
     }
 
+    /// The piece's control points `P_0 .. P_n` (Cartesian; `P_0` and `P_n` are the band's
+    /// `start` and `end` bit for bit): with [`MonotoneBox::weights`], the rational Bezier
+    /// curve that [`MonotoneBox::point_at`], [`MonotoneBox::at_x`] and [`MonotoneBox::at_y`]
+    /// evaluate, for callers that integrate along it.
+    pub fn control_points(&self) -> impl ExactSizeIterator<Item = Point> + '_ {
+        (0..self.piece.degree() + 1).map(|i| self.piece.control_point(i))
+    }
+
+    /// The piece's weights `w_0 .. w_n` (all > 0; see [`MonotoneBox::control_points`]).
+    pub fn weights(&self) -> &[f64] {
+        self.piece.weights()
+    }
+
     /// Where the piece meets the vertical line at abscissa `x`: its local parameter `t` and
     /// ordinate `y(t)`, by one bracketed solve of `x(t) = x` (at most one root, the piece being
     /// monotone). `None` if `x` is outside `[xmin, xmax]`.

@@ -58,6 +58,11 @@ impl BezierPiece {
         Point::new(self.x[i], self.y[i])
     }
 
+    /// The weights `w_i` (all > 0).
+    pub(crate) fn weights(&self) -> &[f64] {
+        &self.w
+    }
+
     /// `C(0)`.
     pub(crate) fn start(&self) -> Point {
         self.control_point(0)

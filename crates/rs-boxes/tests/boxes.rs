@@ -34,6 +34,29 @@ fn line_crossings_lie_on_the_piece_of_a_circle() {
     }
 }
 
+/// The control points and weights a box exposes are its curve: de Casteljau on them (an
+/// evaluation independent of the box's own) gives `point_at`, and the end points are the band's.
+#[test]
+fn control_points_and_weights_are_the_boxs_curve() {
+    for (name, d) in all_domains() {
+        let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(2)).unwrap();
+        for b in mb.boxes() {
+            let pts: Vec<Point> = b.control_points().collect();
+            let w = b.weights();
+            assert_eq!(pts.len(), w.len());
+            assert_eq!(pts[0], b.band.start, "{name}");
+            assert_eq!(pts[pts.len() - 1], b.band.end, "{name}");
+            let curve = rs_spline::RationalBezier::new(pts, w.to_vec()).unwrap();
+            let size = d.bounding_box().diagonal();
+            for i in 0..=16 {
+                let t = i as f64 / 16.0;
+                let gap = curve.point_at(t).distance(b.point_at(t));
+                assert!(gap <= 1e-14 * size, "{name}: {gap} at {t}");
+            }
+        }
+    }
+}
+
 #[test]
 fn every_box_is_monotone_and_spanned_by_its_end_points() {
     for (name, d) in all_domains() {

@@ -13,11 +13,10 @@ pub const MAX_NESTED_LOOPS: usize = 10_000;
 /// (whatever their orientation). This is the measure of the set of points of odd crossing
 /// parity, the set the crossing methods call inside, for loops that do not cross each other.
 ///
-/// A loop's depth is the parity count at one of its points (a piece's start or middle) that
-/// lies on no other loop: the rounded winding number of each other loop there, which is exact
-/// away from that loop. `None` if every sampled point of some loop lies on another loop
-/// (coincident loops), if a loop is open, or if there are more than [`MAX_NESTED_LOOPS`]
-/// loops.
+/// The depths are [`loop_depths`]': the parity count at one of a loop's points that lies on
+/// no other loop (the rounded winding number of each other loop there, which is exact away
+/// from that loop). `None` where [`loop_depths`] is `None`: coincident loops, an open loop,
+/// or more than [`MAX_NESTED_LOOPS`] loops.
 ///
 /// # Examples
 ///
@@ -34,6 +33,40 @@ pub const MAX_NESTED_LOOPS: usize = 10_000;
 /// assert!((even_odd_area(&d).unwrap() - 3.0 * std::f64::consts::PI).abs() < 1e-12);
 /// ```
 pub fn even_odd_area(domain: &Domain) -> Option<f64> {
+    let depths = loop_depths(domain)?;
+    let total = depths
+        .iter()
+        .enumerate()
+        .map(|(i, &depth)| {
+            let area = domain.loop_signed_area(i).abs();
+            if depth % 2 == 0 { area } else { -area }
+        })
+        .sum();
+    Some(total)
+}
+
+/// For every loop of `domain`, its *depth*: the number of other loops that enclose it
+/// (whatever their orientation), the nesting [`even_odd_area`] weighs the loops by. Under the
+/// even-odd rule, loop `i` bounds the filled region with the region on its left when it is
+/// multiplied by `(-1)^depth_i` times the sign of its signed area: outer boundaries
+/// counter-clockwise, holes clockwise (for loops that do not cross each other).
+///
+/// A loop's depth is the parity count at one of its points (a piece's start or middle) that
+/// lies on no other loop. `None` if every sampled point of some loop lies on another loop
+/// (coincident loops), if a loop is open, or if there are more than [`MAX_NESTED_LOOPS`]
+/// loops.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::loop_depths;
+/// use rs_spline::{circle, Domain, Point};
+/// let c = |x: f64, r: f64| circle(Point::new(x, 0.0), r).unwrap();
+/// // A ring (two concentric circles) and a disc beside it.
+/// let d = Domain::new(vec![c(0.0, 2.0), c(0.0, 1.0), c(5.0, 1.0)]).unwrap();
+/// assert_eq!(loop_depths(&d), Some(vec![0, 1, 0]));
+/// ```
+pub fn loop_depths(domain: &Domain) -> Option<Vec<usize>> {
     let loops = domain.loops();
     if loops.len() > MAX_NESTED_LOOPS || loops.iter().any(|l| !l.is_closed()) {
         return None;
@@ -46,19 +79,19 @@ pub fn even_odd_area(domain: &Domain) -> Option<f64> {
                 .collect()
         })
         .collect();
-    let mut total = 0.0;
-    for (i, own) in pieces.iter().enumerate() {
-        let samples = own
-            .iter()
-            .flat_map(|b| [b.start_point(), b.point_at(0.5)])
-            .take(64);
-        let depth = samples
-            .into_iter()
-            .find_map(|q| enclosing_loops(&pieces, i, q))?;
-        let area = domain.loop_signed_area(i).abs();
-        total += if depth % 2 == 0 { area } else { -area };
-    }
-    Some(total)
+    pieces
+        .iter()
+        .enumerate()
+        .map(|(i, own)| {
+            let samples = own
+                .iter()
+                .flat_map(|b| [b.start_point(), b.point_at(0.5)])
+                .take(64);
+            samples
+                .into_iter()
+                .find_map(|q| enclosing_loops(&pieces, i, q))
+        })
+        .collect()
 }
 
 /// The number of loops other than `own` that enclose `q`, or `None` if `q` is (within

@@ -1,0 +1,342 @@
+//! One monotone piece of the boundary, with the integrals over its parts in cells.
+
+use rs_boxes::{MonotoneBox, Monotonicity};
+use rs_roots::{de_casteljau, de_casteljau_with_derivative};
+use rs_spline::Point;
+use rs_spline::quadrature::{gauss_legendre, integrate_adaptive};
+use smallvec::SmallVec;
+
+/// Bernstein coefficients on the stack up to degree 7.
+type Coeffs = SmallVec<[f64; 8]>;
+
+/// The most nodes of the fixed Gauss-Legendre rules kept in [`Rules`].
+const MAX_RULE: usize = 16;
+
+/// Relative tolerance of the adaptive integrals over rational parts, against the cell's
+/// area (or its first moments): well below the `1e-12` the fractions promise.
+const RELATIVE_TOLERANCE: f64 = 1e-15;
+
+/// Gauss-Legendre rules on `[-1, 1]` with `1 ..= MAX_RULE` nodes (the `m`-node rule is exact
+/// for polynomials of degree `2m - 1`).
+pub(crate) struct Rules {
+    rules: Vec<(Vec<f64>, Vec<f64>)>,
+}
+
+impl Rules {
+    pub(crate) fn new() -> Self {
+        Self {
+            rules: (1..=MAX_RULE).map(gauss_legendre).collect(),
+        }
+    }
+
+    /// The `m`-node rule, `None` beyond [`MAX_RULE`].
+    fn get(&self, m: usize) -> Option<&(Vec<f64>, Vec<f64>)> {
+        self.rules.get(m.checked_sub(1)?)
+    }
+}
+
+/// Integrals over a part of the boundary, in coordinates local to a cell's lower-left corner
+/// `(x_c, y_r)`, with `u = x - x_c`, `v = y - y_r`: `b = int v dx`, `mx = int u v dx`,
+/// `my = int v^2 / 2 dx` (the moments are 0 unless asked for).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct PartIntegrals {
+    pub(crate) b: f64,
+    pub(crate) mx: f64,
+    pub(crate) my: f64,
+}
+
+/// A monotone piece of a closed boundary loop (a [`MonotoneBox`] with one box), with its loop's
+/// orientation factor.
+pub(crate) struct Arc {
+    /// The piece: end points, bounds, directions and the crossing solves.
+    pub(crate) piece: MonotoneBox,
+    /// `+1` or `-1`: the factor that puts the filled region on the piece's left (the even-odd
+    /// sign of its loop, see [`rs_contain::loop_depths`]).
+    pub(crate) sign: f64,
+    x: Coeffs,
+    y: Coeffs,
+    w: Coeffs,
+    /// All weights equal: `x(t)`, `y(t)` are polynomials of the piece's degree.
+    polynomial: bool,
+}
+
+impl Arc {
+    pub(crate) fn new(piece: MonotoneBox, sign: f64) -> Self {
+        let (x, y): (Coeffs, Coeffs) = piece.control_points().map(|p| (p.x, p.y)).unzip();
+        let w: Coeffs = piece.weights().iter().copied().collect();
+        let polynomial = w.iter().all(|&v| v == w[0]);
+        Self {
+            piece,
+            sign,
+            x,
+            y,
+            w,
+            polynomial,
+        }
+    }
+
+    /// Degree of the piece.
+    fn degree(&self) -> usize {
+        self.w.len() - 1
+    }
+
+    /// The piece as a [`RationalBezier`] (for tests: an evaluation independent of this one).
+    #[cfg(test)]
+    pub(crate) fn bezier(&self) -> rs_spline::RationalBezier {
+        let pts = self
+            .x
+            .iter()
+            .zip(&self.y)
+            .map(|(&x, &y)| Point::new(x, y))
+            .collect();
+        rs_spline::RationalBezier::new(pts, self.w.to_vec())
+            .expect("a monotone piece is a valid curve")
+    }
+
+    /// Where the piece meets the horizontal line at ordinate `y` (between its end ordinates):
+    /// its parameter and abscissa, the stored end point exactly when `y` is an end's ordinate,
+    /// and the piece's own abscissa when it is vertical.
+    pub(crate) fn at_y(&self, y: f64) -> (f64, f64) {
+        let b = &self.piece.band;
+        if y == b.start.y {
+            return (0.0, b.start.x);
+        }
+        if y == b.end.y {
+            return (1.0, b.end.x);
+        }
+        // A monotone piece whose end ordinates bracket `y` has one root; without a sign change
+        // (impossible between the ends) fall back on the nearer end.
+        let (t, x) = self.piece.at_y(y).unwrap_or_else(|| {
+            if (y - b.start.y).abs() <= (y - b.end.y).abs() {
+                (0.0, b.start.x)
+            } else {
+                (1.0, b.end.x)
+            }
+        });
+        if self.piece.x_dir == Monotonicity::Constant {
+            (t, b.start.x)
+        } else {
+            (t, x)
+        }
+    }
+
+    /// Where the piece meets the vertical line at abscissa `x` (strictly between its end
+    /// abscissas): its parameter and ordinate (see [`Arc::at_y`]).
+    pub(crate) fn at_x(&self, x: f64) -> (f64, f64) {
+        let b = &self.piece.band;
+        let (t, y) = self.piece.at_x(x).unwrap_or_else(|| {
+            if (x - b.start.x).abs() <= (x - b.end.x).abs() {
+                (0.0, b.start.y)
+            } else {
+                (1.0, b.end.y)
+            }
+        });
+        if self.piece.y_dir == Monotonicity::Constant {
+            (t, b.start.y)
+        } else {
+            (t, y)
+        }
+    }
+
+    /// The integrals of [`PartIntegrals`] over the parameters `[t0, t1]`, relative to the cell
+    /// corner `corner` of a cell `width` by `height`.
+    ///
+    /// Polynomial pieces use the Gauss-Legendre rule that is exact for the integrands
+    /// (`v x'` has degree `2n - 1`, `u v x'` and `v^2 x'` degree `3n - 1`); rational ones the
+    /// bounded adaptive rule of `rs-spline` with a tolerance of `1e-15` of the cell's area
+    /// (or moments). The control points are shifted to the corner before evaluation, so the
+    /// values are computed in the cell's coordinates.
+    pub(crate) fn integrals(
+        &self,
+        (t0, t1): (f64, f64),
+        corner: Point,
+        (width, height): (f64, f64),
+        moments: bool,
+        rules: &Rules,
+    ) -> PartIntegrals {
+        let local = Local::new(self, corner);
+        let n = self.degree();
+        let nodes = if moments { (3 * n).div_ceil(2) } else { n };
+        if self.polynomial
+            && let Some((xs, ws)) = rules.get(nodes.max(1))
+        {
+            let (half, mid) = (0.5 * (t1 - t0), 0.5 * (t0 + t1));
+            let mut sum = PartIntegrals::default();
+            for (&s, &wt) in xs.iter().zip(ws) {
+                let (u, v, dx) = local.eval(mid + half * s);
+                let f = wt * dx * v;
+                sum.b += f;
+                if moments {
+                    sum.mx += f * u;
+                    sum.my += 0.5 * f * v;
+                }
+            }
+            return PartIntegrals {
+                b: half * sum.b,
+                mx: half * sum.mx,
+                my: half * sum.my,
+            };
+        }
+        let area = width * height;
+        let (um, vm) = (local.u_size, local.v_size);
+        let b = integrate_adaptive(
+            |t| {
+                let (_, v, dx) = local.eval(t);
+                (v * dx, vm * dx)
+            },
+            t0,
+            t1,
+            RELATIVE_TOLERANCE * area,
+        );
+        if !moments {
+            return PartIntegrals {
+                b: b.value,
+                ..PartIntegrals::default()
+            };
+        }
+        let mx = integrate_adaptive(
+            |t| {
+                let (u, v, dx) = local.eval(t);
+                (u * v * dx, um * vm * dx)
+            },
+            t0,
+            t1,
+            RELATIVE_TOLERANCE * area * width,
+        );
+        let my = integrate_adaptive(
+            |t| {
+                let (_, v, dx) = local.eval(t);
+                (0.5 * v * v * dx, 0.5 * vm * vm * dx)
+            },
+            t0,
+            t1,
+            RELATIVE_TOLERANCE * area * height,
+        );
+        PartIntegrals {
+            b: b.value,
+            mx: mx.value,
+            my: my.value,
+        }
+    }
+}
+
+/// A piece's homogeneous coefficients in a cell's local coordinates:
+/// `w_i (x_i - x_c)`, `w_i (y_i - y_r)`, `w_i`.
+struct Local {
+    hx: Coeffs,
+    hy: Coeffs,
+    w: Coeffs,
+    /// The largest `|x_i - x_c|` and `|y_i - y_r|`: the size of the terms `u` and `v` are
+    /// sums of (their rounding scale for the adaptive rule).
+    u_size: f64,
+    v_size: f64,
+}
+
+impl Local {
+    fn new(arc: &Arc, corner: Point) -> Self {
+        let (mut u_size, mut v_size) = (0.0f64, 0.0f64);
+        let mut hx = Coeffs::new();
+        let mut hy = Coeffs::new();
+        for ((&x, &y), &w) in arc.x.iter().zip(&arc.y).zip(&arc.w) {
+            let (u, v) = (x - corner.x, y - corner.y);
+            u_size = u_size.max(u.abs());
+            v_size = v_size.max(v.abs());
+            hx.push(w * u);
+            hy.push(w * v);
+        }
+        Self {
+            hx,
+            hy,
+            w: arc.w.clone(),
+            u_size,
+            v_size,
+        }
+    }
+
+    /// `(u(t), v(t), x'(t))`: the local coordinates and the derivative of `x`, by the
+    /// quotient rule `x' = (X' W - X W') / W^2`.
+    fn eval(&self, t: f64) -> (f64, f64, f64) {
+        let (x, dx) = de_casteljau_with_derivative(&self.hx, t);
+        let (w, dw) = de_casteljau_with_derivative(&self.w, t);
+        let y = de_casteljau(&self.hy, t);
+        let inv = 1.0 / w;
+        (x * inv, y * inv, (dx * w - x * dw) * inv * inv)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rs_boxes::{BoxOptions, MonotoneBoxes};
+    use rs_spline::prelude::*;
+    use rs_spline::{Domain, circle, polyline};
+
+    fn arcs(d: &Domain) -> Vec<Arc> {
+        let boxes = MonotoneBoxes::new(d, BoxOptions::DEFAULT.with_subdivisions(1)).unwrap();
+        boxes
+            .pieces()
+            .iter()
+            .map(|p| Arc::new(p.clone(), 1.0))
+            .collect()
+    }
+
+    /// Over a whole closed loop, `-sum b` relative to the origin is Green's area, and the
+    /// moments are the loop's first moments (closed forms for a circle of radius 2 about
+    /// (1, -0.5): area 4 pi, moments 4 pi * centre).
+    #[test]
+    fn whole_loop_integrals_are_the_area_and_moments() {
+        let (cx, cy, r) = (1.0, -0.5, 2.0);
+        let d = Domain::new(vec![circle(Point::new(cx, cy), r).unwrap()]).unwrap();
+        let rules = Rules::new();
+        let mut total = PartIntegrals::default();
+        for a in arcs(&d) {
+            let p = a.integrals((0.0, 1.0), Point::new(0.0, 0.0), (1.0, 1.0), true, &rules);
+            total.b += p.b;
+            total.mx += p.mx;
+            total.my += p.my;
+        }
+        let area = std::f64::consts::PI * r * r;
+        assert!((-total.b - area).abs() < 1e-14 * area, "{total:?}");
+        assert!((-total.mx - area * cx).abs() < 1e-14 * area, "{total:?}");
+        assert!((-total.my - area * cy).abs() < 1e-14 * area, "{total:?}");
+    }
+
+    /// The Gauss-Legendre path is exact on polynomial pieces: a triangle's area and moments.
+    #[test]
+    fn polynomial_pieces_are_integrated_exactly() {
+        let pts = [(0.0, 0.0), (3.0, 0.0), (0.0, 2.0), (0.0, 0.0)];
+        let pts: Vec<Point> = pts.iter().map(|&(x, y)| Point::new(x, y)).collect();
+        let d = Domain::new(vec![polyline(&pts).unwrap()]).unwrap();
+        let rules = Rules::new();
+        let corner = Point::new(0.5, 0.25);
+        let mut total = PartIntegrals::default();
+        for a in arcs(&d) {
+            assert!(a.polynomial);
+            let p = a.integrals((0.0, 1.0), corner, (1.0, 1.0), true, &rules);
+            total.b += p.b;
+            total.mx += p.mx;
+            total.my += p.my;
+        }
+        // Area 3, centroid (1, 2/3).
+        assert!((-total.b - 3.0).abs() < 1e-15);
+        assert!((-total.mx - 3.0 * (1.0 - 0.5)).abs() < 1e-15);
+        assert!((-total.my - 3.0 * (2.0 / 3.0 - 0.25)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn crossings_are_on_the_curve() {
+        let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+        for a in arcs(&d) {
+            let b = a.bezier();
+            let band = a.piece.band;
+            let y = 0.5 * (band.ymin + band.ymax);
+            let (t, x) = a.at_y(y);
+            assert!(b.point_at(t).distance(Point::new(x, y)) < 1e-15);
+            let (t, _) = a.at_y(band.start.y);
+            assert_eq!(t, 0.0);
+            let x = 0.3 * band.xmin + 0.7 * band.xmax;
+            let (t, y) = a.at_x(x);
+            assert!(b.point_at(t).distance(Point::new(x, y)) < 1e-15);
+        }
+    }
+}

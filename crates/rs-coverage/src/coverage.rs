@@ -1,0 +1,395 @@
+//! The coverage of a domain on a grid: preparation, row bands and whole grids.
+
+use std::ops::Range;
+
+use rs_boxes::{BoxOptions, MonotoneBoxes};
+use rs_contain::{MAX_NESTED_LOOPS, loop_depths};
+use rs_spline::Domain;
+
+use crate::arc::{Arc, Rules};
+use crate::band::{Band, BandOut};
+use crate::{CellGrid, CoverageError};
+
+/// Most cells one call computes ([`GridCoverage::all`], [`GridCoverage::rows`],
+/// [`cell_coverage`]): `2^28`, 2 GiB of fractions. Larger grids are computed in row bands.
+pub const MAX_CELLS: usize = 1 << 28;
+
+/// What to compute besides the fractions: [`CoverageOptions::DEFAULT`] (fractions only) and
+/// `with_*` setters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct CoverageOptions {
+    /// The centroid of each cell's covered part.
+    pub centroids: bool,
+    /// The covered fraction of each cell face.
+    pub apertures: bool,
+}
+
+impl CoverageOptions {
+    /// Fractions only.
+    pub const DEFAULT: CoverageOptions = CoverageOptions {
+        centroids: false,
+        apertures: false,
+    };
+
+    /// With or without the centroids.
+    pub const fn with_centroids(mut self, centroids: bool) -> Self {
+        self.centroids = centroids;
+        self
+    }
+
+    /// With or without the apertures.
+    pub const fn with_apertures(mut self, apertures: bool) -> Self {
+        self.apertures = apertures;
+        self
+    }
+}
+
+impl Default for CoverageOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// The coverage of a band of rows `rows` of a grid with `nx` columns (all rows for a whole
+/// grid). Arrays are row-major, the band's first row first: entry `(r, i)` is column `i` of
+/// row `rows.start + r`, the cell `[x_i, x_{i+1}] x [y_j, y_{j+1}]` with `j = rows.start + r`.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Coverage {
+    /// The grid's rows this coverage holds.
+    pub rows: Range<usize>,
+    /// The grid's columns.
+    pub nx: usize,
+    /// `(rows, nx)`: the covered fraction of each cell's area, in `[0, 1]`.
+    pub fractions: Vec<f64>,
+    /// `(rows, nx)`: the centroid `[x, y]` of each cell's covered part (inside the cell),
+    /// `[NaN, NaN]` where the fraction is 0; with [`CoverageOptions::centroids`].
+    pub centroids: Option<Vec<[f64; 2]>>,
+    /// `(rows, nx + 1)`: the covered fraction of each vertical face `x = x_i`,
+    /// `y in [y_j, y_{j+1}]`; with [`CoverageOptions::apertures`].
+    pub x_apertures: Option<Vec<f64>>,
+    /// `(rows + 1, nx)`: the covered fraction of each horizontal face `y = y_j`,
+    /// `x in [x_i, x_{i+1}]`, for the lines `rows.start ..= rows.end` (a band shares its
+    /// first and last line with the bands below and above); with
+    /// [`CoverageOptions::apertures`].
+    pub y_apertures: Option<Vec<f64>>,
+}
+
+impl Coverage {
+    /// The number of rows held.
+    pub fn ny(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// The fraction of cell `(i, j)` (column `i`, grid row `j`); `None` outside the rows
+    /// held.
+    pub fn fraction(&self, i: usize, j: usize) -> Option<f64> {
+        if i >= self.nx || !self.rows.contains(&j) {
+            return None;
+        }
+        self.fractions
+            .get((j - self.rows.start) * self.nx + i)
+            .copied()
+    }
+
+    /// Zeroed arrays for `rows` of `nx` columns.
+    fn zeroed(
+        rows: Range<usize>,
+        nx: usize,
+        options: CoverageOptions,
+    ) -> Result<Self, CoverageError> {
+        let n = rows.len();
+        let cells = n * nx;
+        Ok(Self {
+            fractions: zeros(cells, 0.0)?,
+            centroids: options
+                .centroids
+                .then(|| zeros(cells, [0.0; 2]))
+                .transpose()?,
+            x_apertures: options
+                .apertures
+                .then(|| zeros(n * (nx + 1), 0.0))
+                .transpose()?,
+            y_apertures: options
+                .apertures
+                .then(|| zeros((n + 1) * nx, 0.0))
+                .transpose()?,
+            rows,
+            nx,
+        })
+    }
+
+    /// The whole arrays as one band's output.
+    fn as_band_out(&mut self) -> BandOut<'_> {
+        let nx = self.nx;
+        let rows = self.rows.len();
+        let (y_apertures, y_top) = match self.y_apertures.as_deref_mut() {
+            Some(y) => {
+                let (lines, top) = y.split_at_mut(rows * nx);
+                (Some(lines), Some(top))
+            }
+            None => (None, None),
+        };
+        BandOut {
+            fractions: &mut self.fractions,
+            centroids: self.centroids.as_deref_mut(),
+            x_apertures: self.x_apertures.as_deref_mut(),
+            y_apertures,
+            y_top,
+        }
+    }
+}
+
+/// A vector of `len` copies of `value`, or [`CoverageError::OutOfMemory`]. With the
+/// `parallel` feature the (first-touch) writes are spread over rayon's threads.
+fn zeros<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, CoverageError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| CoverageError::OutOfMemory {
+            bytes: len.saturating_mul(std::mem::size_of::<T>()),
+        })?;
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        v.par_extend(rayon::iter::repeat_n(value, len));
+    }
+    #[cfg(not(feature = "parallel"))]
+    v.resize(len, value);
+    Ok(v)
+}
+
+/// A domain prepared for coverage on a grid: its boundary cut into monotone pieces, each with
+/// the even-odd orientation of its loop. Build once, then ask for the whole grid
+/// ([`GridCoverage::all`]) or for bands of rows ([`GridCoverage::rows`]) from any thread.
+///
+/// # Examples
+///
+/// ```
+/// use rs_coverage::{CellGrid, CoverageOptions, GridCoverage};
+/// use rs_spline::{circle, Domain, Point};
+/// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+/// let grid = CellGrid::uniform(-1.0, 1.0, 64, -1.0, 1.0, 64).unwrap();
+/// let cover = GridCoverage::new(&d, grid).unwrap();
+/// // Streaming: two bands of rows give the whole grid's values.
+/// let whole = cover.all(CoverageOptions::DEFAULT).unwrap();
+/// let low = cover.rows(0..20, CoverageOptions::DEFAULT).unwrap();
+/// let high = cover.rows(20..64, CoverageOptions::DEFAULT).unwrap();
+/// assert_eq!([low.fractions, high.fractions].concat(), whole.fractions);
+/// ```
+pub struct GridCoverage {
+    grid: CellGrid,
+    arcs: Vec<Arc>,
+    rules: Rules,
+}
+
+impl GridCoverage {
+    /// Prepares `domain` for coverage on `grid`.
+    ///
+    /// # Errors
+    /// [`CoverageError::Domain`] for an open boundary (a loop that does not close, or a curve
+    /// that falls apart at a break); [`CoverageError::Nesting`] when the loops' nesting cannot
+    /// be decided (a loop on another, or more than [`rs_contain::MAX_NESTED_LOOPS`] loops);
+    /// [`CoverageError::Boxes`] when a piece cannot be cut into monotone pieces.
+    pub fn new(domain: &Domain, grid: CellGrid) -> Result<Self, CoverageError> {
+        domain.require_closed()?;
+        let depths = loop_depths(domain).ok_or(CoverageError::Nesting {
+            limit: MAX_NESTED_LOOPS,
+        })?;
+        // Outer boundaries counter-clockwise, holes clockwise: the region on the left.
+        let signs: Vec<f64> = depths
+            .iter()
+            .enumerate()
+            .map(|(i, &depth)| {
+                let orientation = if domain.loop_signed_area(i) < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                if depth % 2 == 0 {
+                    orientation
+                } else {
+                    -orientation
+                }
+            })
+            .collect();
+        let boxes = MonotoneBoxes::new(domain, BoxOptions::DEFAULT.with_subdivisions(1))?;
+        let arcs = boxes
+            .pieces()
+            .iter()
+            .map(|p| Arc::new(p.clone(), signs[p.boundary_loop]))
+            .collect();
+        Ok(Self {
+            grid,
+            arcs,
+            rules: Rules::new(),
+        })
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &CellGrid {
+        &self.grid
+    }
+
+    /// The coverage of the grid's rows `rows` (`j0 .. j1`), with the horizontal faces of the
+    /// lines `j0 ..= j1`. The work is `O(pieces + crossings of the boundary with the band's
+    /// lines + cells of the band)`; the memory beyond the output is that of the band's
+    /// crossings and one row. The values of a cell do not depend on the band it is computed
+    /// in (up to the last bit where the boundary passes through a grid vertex).
+    ///
+    /// # Errors
+    /// [`CoverageError::BadRows`] for an empty range or one beyond the grid;
+    /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`];
+    /// [`CoverageError::OutOfMemory`].
+    pub fn rows(
+        &self,
+        rows: Range<usize>,
+        options: CoverageOptions,
+    ) -> Result<Coverage, CoverageError> {
+        let ny = self.grid.ny();
+        if rows.start >= rows.end || rows.end > ny {
+            return Err(CoverageError::BadRows {
+                start: rows.start,
+                end: rows.end,
+                rows: ny,
+            });
+        }
+        self.check_cells(rows.len())?;
+        let mut out = Coverage::zeroed(rows.clone(), self.grid.nx(), options)?;
+        self.band(rows, options)
+            .cover(&self.arcs, out.as_band_out());
+        Ok(out)
+    }
+
+    /// The coverage of the whole grid. With the `parallel` feature, bands of rows are
+    /// computed on rayon's threads (the same values as one band).
+    ///
+    /// # Errors
+    /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`] (use [`GridCoverage::rows`]);
+    /// [`CoverageError::OutOfMemory`].
+    pub fn all(&self, options: CoverageOptions) -> Result<Coverage, CoverageError> {
+        let ny = self.grid.ny();
+        self.check_cells(ny)?;
+        let mut out = Coverage::zeroed(0..ny, self.grid.nx(), options)?;
+        self.cover_in_bands(&mut out, options);
+        Ok(out)
+    }
+
+    fn check_cells(&self, rows: usize) -> Result<(), CoverageError> {
+        let columns = self.grid.nx();
+        if rows.checked_mul(columns).is_none_or(|c| c > MAX_CELLS) {
+            return Err(CoverageError::TooManyCells {
+                rows,
+                columns,
+                limit: MAX_CELLS,
+            });
+        }
+        Ok(())
+    }
+
+    fn band(&self, rows: Range<usize>, options: CoverageOptions) -> Band<'_> {
+        Band {
+            xs: self.grid.x_edges(),
+            ys: self.grid.y_edges(),
+            rows,
+            moments: options.centroids,
+            apertures: options.apertures,
+            rules: &self.rules,
+        }
+    }
+
+    #[cfg(not(feature = "parallel"))]
+    fn cover_in_bands(&self, out: &mut Coverage, options: CoverageOptions) {
+        let rows = out.rows.clone();
+        self.band(rows, options)
+            .cover(&self.arcs, out.as_band_out());
+    }
+
+    /// Splits the rows into about four bands per thread (each band walks every piece, so
+    /// more bands cost more) and covers them on rayon's pool.
+    #[cfg(feature = "parallel")]
+    fn cover_in_bands(&self, out: &mut Coverage, options: CoverageOptions) {
+        use rayon::prelude::*;
+        let (nx, ny) = (out.nx, out.rows.len());
+        let threads = rayon::current_num_threads();
+        if threads <= 1 || ny < 2 {
+            let rows = out.rows.clone();
+            self.band(rows, options)
+                .cover(&self.arcs, out.as_band_out());
+            return;
+        }
+        let per_band = ny.div_ceil(4 * threads).max(1);
+        let mut bands: Vec<(Range<usize>, BandOut<'_>)> = Vec::new();
+        let mut fractions = out.fractions.chunks_mut(per_band * nx);
+        let mut centroids = out
+            .centroids
+            .as_deref_mut()
+            .map(|c| c.chunks_mut(per_band * nx));
+        let mut x_apertures = out
+            .x_apertures
+            .as_deref_mut()
+            .map(|x| x.chunks_mut(per_band * (nx + 1)));
+        let (mut y_lines, mut y_top) = match out.y_apertures.as_deref_mut() {
+            Some(y) => {
+                let (lines, top) = y.split_at_mut(ny * nx);
+                (Some(lines.chunks_mut(per_band * nx)), Some(top))
+            }
+            None => (None, None),
+        };
+        let mut j0 = 0;
+        while j0 < ny {
+            let j1 = (j0 + per_band).min(ny);
+            let (Some(f), c, x, y) = (
+                fractions.next(),
+                centroids.as_mut().and_then(Iterator::next),
+                x_apertures.as_mut().and_then(Iterator::next),
+                y_lines.as_mut().and_then(Iterator::next),
+            ) else {
+                break;
+            };
+            bands.push((
+                j0..j1,
+                BandOut {
+                    fractions: f,
+                    centroids: c,
+                    x_apertures: x,
+                    y_apertures: y,
+                    y_top: if j1 == ny { y_top.take() } else { None },
+                },
+            ));
+            j0 = j1;
+        }
+        bands
+            .into_par_iter()
+            .for_each(|(rows, band_out)| self.band(rows, options).cover(&self.arcs, band_out));
+    }
+}
+
+/// The coverage of the whole `grid` by `domain` (even-odd fill): [`GridCoverage::new`] then
+/// [`GridCoverage::all`].
+///
+/// # Errors
+/// As [`GridCoverage::new`] and [`GridCoverage::all`].
+///
+/// # Examples
+///
+/// ```
+/// use rs_coverage::{cell_coverage, CellGrid, CoverageOptions};
+/// use rs_spline::{polyline, Domain, Point};
+/// // The square [0.5, 1.5]^2 on the unit grid [0, 2]^2: a quarter of each cell.
+/// let pts = [(0.5, 0.5), (1.5, 0.5), (1.5, 1.5), (0.5, 1.5), (0.5, 0.5)]
+///     .map(|(x, y)| Point::new(x, y));
+/// let d = Domain::new(vec![polyline(&pts).unwrap()]).unwrap();
+/// let grid = CellGrid::uniform(0.0, 2.0, 2, 0.0, 2.0, 2).unwrap();
+/// let c = cell_coverage(&d, &grid, CoverageOptions::DEFAULT.with_centroids(true)).unwrap();
+/// assert!(c.fractions.iter().all(|f| (f - 0.25).abs() < 1e-15));
+/// let [x, y] = c.centroids.unwrap()[0]; // cell (0, 0): the part [0.5, 1]^2
+/// assert!((x - 0.75).abs() < 1e-15 && (y - 0.75).abs() < 1e-15);
+/// ```
+pub fn cell_coverage(
+    domain: &Domain,
+    grid: &CellGrid,
+    options: CoverageOptions,
+) -> Result<Coverage, CoverageError> {
+    GridCoverage::new(domain, grid.clone())?.all(options)
+}

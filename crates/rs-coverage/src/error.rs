@@ -1,0 +1,109 @@
+//! Errors of the coverage kernel: bad grids, domains it cannot cover, outputs too large.
+
+use rs_boxes::BoxError;
+use rs_spline::DomainError;
+use thiserror::Error;
+
+/// Why a grid or a coverage could not be built.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum CoverageError {
+    /// Fewer than two edges along an axis: no cell.
+    #[error("a grid needs at least 2 {axis} edges (one cell), got {got}")]
+    TooFewEdges {
+        /// `'x'` or `'y'`.
+        axis: char,
+        /// The number of edges given.
+        got: usize,
+    },
+    /// More edges along an axis than [`crate::MAX_EDGES`].
+    #[error("{got} {axis} edges exceed the limit of {limit}")]
+    TooManyEdges {
+        /// `'x'` or `'y'`.
+        axis: char,
+        /// The number of edges asked for.
+        got: usize,
+        /// The limit.
+        limit: usize,
+    },
+    /// An edge that is not finite or is larger than [`rs_spline::limits::MAX_COORDINATE`].
+    #[error("{axis} edge {index} is {value:?}: edges must be finite and at most {limit:e} in size")]
+    EdgeOutOfRange {
+        /// `'x'` or `'y'`.
+        axis: char,
+        /// Index of the edge.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The largest magnitude allowed.
+        limit: f64,
+    },
+    /// Edges that do not increase strictly (reversed, repeated or unsorted).
+    #[error(
+        "{axis} edges must increase strictly: edge {index} ({value:?}) is not above edge {} ({previous:?})",
+        index - 1
+    )]
+    NotIncreasing {
+        /// `'x'` or `'y'`.
+        axis: char,
+        /// Index of the edge that is not above the one before it (>= 1).
+        index: usize,
+        /// The edge before it.
+        previous: f64,
+        /// Its value.
+        value: f64,
+    },
+    /// The narrowest column times the lowest row is below the smallest normal `f64`: cell
+    /// areas and fractions would lose their precision.
+    #[error(
+        "cells too small: the narrowest width {width:e} times the lowest height {height:e} underflows"
+    )]
+    CellsTooSmall {
+        /// The narrowest column width.
+        width: f64,
+        /// The lowest row height.
+        height: f64,
+    },
+    /// More cells in one call than [`crate::MAX_CELLS`].
+    #[error(
+        "{rows} rows of {columns} cells exceed the limit of {limit} cells for one call: compute the grid in row bands"
+    )]
+    TooManyCells {
+        /// Rows asked for.
+        rows: usize,
+        /// Columns of the grid.
+        columns: usize,
+        /// The limit on `rows * columns`.
+        limit: usize,
+    },
+    /// A row range that is empty or outside the grid.
+    #[error("rows {start}..{end} are not a non-empty range of the grid's {rows} rows")]
+    BadRows {
+        /// First row asked for.
+        start: usize,
+        /// One past the last row asked for.
+        end: usize,
+        /// Rows of the grid.
+        rows: usize,
+    },
+    /// The boundary is open (or falls apart at a curve's break): coverage needs closed loops.
+    #[error("open boundary: {0}")]
+    Domain(#[from] DomainError),
+    /// The even-odd nesting of the loops cannot be decided.
+    #[error(
+        "the loops' nesting cannot be decided: a loop lies on another loop, or there are more than {limit} loops"
+    )]
+    Nesting {
+        /// The most loops that are nested ([`rs_contain::MAX_NESTED_LOOPS`]).
+        limit: usize,
+    },
+    /// The boundary could not be cut into monotone pieces.
+    #[error("monotone pieces: {0}")]
+    Boxes(#[from] BoxError),
+    /// The output could not be allocated.
+    #[error("cannot allocate {bytes} bytes for the output: compute the grid in smaller row bands")]
+    OutOfMemory {
+        /// The bytes asked for.
+        bytes: usize,
+    },
+}

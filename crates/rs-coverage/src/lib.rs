@@ -1,0 +1,76 @@
+//! Exact cell coverage of planar NURBS domains on rectilinear grids: for every cell the
+//! covered fraction of its area, optionally the covered part's centroid, and for every cell
+//! face the covered fraction of its length (volume fractions and apertures, as cut-cell and
+//! embedded-boundary solvers use them).
+//!
+//! # Method
+//! The boundary is cut into pieces monotone in `x` and `y` (`rs-boxes`), each multiplied by
+//! the even-odd orientation of its loop (outer boundaries counter-clockwise, holes clockwise:
+//! [`rs_contain::loop_depths`]). For a column `[x_i, x_{i+1}]` and a row `[y_j, y_{j+1}]` of
+//! height `h`, Green's theorem with `g(y) = min(y, y_{j+1}) - min(y, y_j)` on the column's
+//! strip (whose vertical sides add nothing, `dx = 0` there) gives the covered area
+//!
+//! `A_ij = h L_ij - sum over the boundary's parts in the cell of int (y - y_j) dx`,
+//!
+//! where `L_ij` is the covered length of the cell's top face: the boundary above that line
+//! contributes `-h int dx`, which adds up to `h L_ij`. `L_ij` comes from the sorted crossings
+//! of the line with the boundary and their parity, so cells the boundary misses are exactly 0
+//! or 1. The first moments follow from `int int x dA = -oint x min(y, Y) dx` and
+//! `int int y dA = -oint min(y, Y)^2 / 2 dx` the same way. The parts are found by one
+//! bracketed solve per crossing of a monotone piece with a grid line (the lines it crosses by
+//! binary search); the integrals over a part are Gauss-Legendre (exact) on polynomial pieces
+//! and the bounded adaptive rule of `rs-spline` on rational ones, in coordinates local to the
+//! cell. The work is `O(cells + crossings)`; a band of rows needs only its own crossings.
+//!
+//! # Semantics
+//! - **Fill rule**: even-odd, for closed loops that do not cross each other (they may touch,
+//!   nest and have holes). A loop that crosses itself or another loop is not covered by the
+//!   guarantees.
+//! - **Accuracy**: exact up to rounding. The error of a fraction is about `2 eps D / s`,
+//!   where `D` is the size of the monotone boundary piece through the cell (at most the
+//!   domain's size; the piece's control points are shifted to the cell's corner, so the
+//!   distance from the origin does not count beyond the rounding already in the input) and
+//!   `s` the cell's smaller side: on the unit disc at most `5e-13` at `2048^2` cells and
+//!   `6e-14` at `256^2` (measured against double-double circle segments). Faces: the same
+//!   relative to the face's length. Cells the boundary does not meet are exactly 0 or 1;
+//!   fractions are clamped to `[0, 1]`.
+//! - **Centroids**: the covered part's centroid, clamped into the cell; `[NaN, NaN]` where the
+//!   fraction is 0. Where the fraction is at the level of rounding the centroid carries an
+//!   error of about `eps / fraction` of the cell's size.
+//! - **Apertures** (the covered fraction of a face's length): a face on which the boundary
+//!   runs takes the value of the line just to its right (vertical faces, `x = x_i + 0`) or
+//!   just above it (horizontal faces, `y = y_j + 0`); a face the boundary only touches (a
+//!   tangency, a vertex on it) is unaffected.
+//! - **Layout**: row-major `(ny, nx)`; row `j`, column `i` is the cell
+//!   `[x_i, x_{i+1}] x [y_j, y_{j+1}]`, `y` increasing with the row. Vertical faces are
+//!   `(ny, nx + 1)`, horizontal faces `(ny + 1, nx)`.
+//! - **Grids** need not cover the domain: cells outside it are 0, the domain outside the
+//!   grid is ignored.
+//! - **Limits**: at most [`MAX_EDGES`] edges per axis and [`MAX_CELLS`] cells per call
+//!   ([`GridCoverage::rows`] streams larger grids by row bands); bad grids, open boundaries
+//!   and undecidable nestings are [`CoverageError`]s, never panics.
+//!
+//! # Examples
+//!
+//! ```
+//! use rs_coverage::{cell_coverage, CellGrid, CoverageOptions};
+//! use rs_spline::{circle, Domain, Point};
+//! let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+//! let grid = CellGrid::uniform(-1.0, 1.0, 2, -1.0, 1.0, 2).unwrap();
+//! let c = cell_coverage(&d, &grid, CoverageOptions::DEFAULT.with_apertures(true)).unwrap();
+//! // Each quadrant cell holds a quarter disc: pi / 4 of its area.
+//! assert!(c.fractions.iter().all(|f| (f - std::f64::consts::FRAC_PI_4).abs() < 1e-15));
+//! // The vertical faces on x = 0 are covered, those on x = -1 and x = 1 are not.
+//! assert_eq!(c.x_apertures.unwrap(), vec![0.0, 1.0, 0.0, 0.0, 1.0, 0.0]);
+//! ```
+
+mod arc;
+mod band;
+mod coverage;
+mod error;
+mod grid;
+mod lines;
+
+pub use coverage::{Coverage, CoverageOptions, GridCoverage, MAX_CELLS, cell_coverage};
+pub use error::CoverageError;
+pub use grid::{CellGrid, MAX_EDGES};

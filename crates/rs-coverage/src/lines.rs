@@ -1,0 +1,86 @@
+//! Covered lengths along one grid line, from its sorted crossings with the boundary.
+
+/// Adds to `len[c]` the length of the covered part of `[edges[c], edges[c + 1]]` on a line
+/// whose status is `inside` before its first crossing and flips at each crossing
+/// (`crossings` sorted ascending; an odd count leaves the line covered to `+inf`). With
+/// `first`, also adds `int (s - edges[c]) ds` over that covered part to `first[c]` (the
+/// covered part's first moment about the interval's start).
+///
+/// A column covered from edge to edge gets exactly `edges[c + 1] - edges[c]`. The work is one
+/// binary search per covered interval plus one step per column it meets.
+pub(crate) fn add_covered(
+    edges: &[f64],
+    crossings: &[f64],
+    mut inside: bool,
+    len: &mut [f64],
+    mut first: Option<&mut [f64]>,
+) {
+    let mut start = f64::NEG_INFINITY;
+    for &c in crossings {
+        if inside {
+            add_interval(edges, (start, c), len, first.as_deref_mut());
+        } else {
+            start = c;
+        }
+        inside = !inside;
+    }
+    if inside {
+        add_interval(edges, (start, f64::INFINITY), len, first);
+    }
+}
+
+/// Adds the covered interval `[a, b]` to the columns it meets (see [`add_covered`]).
+fn add_interval(edges: &[f64], (a, b): (f64, f64), len: &mut [f64], mut first: Option<&mut [f64]>) {
+    let last = edges.len() - 1;
+    if b <= a || b.is_nan() || b <= edges[0] || a >= edges[last] {
+        return;
+    }
+    // The column holding `a` (or the first column when `a` is left of the grid).
+    let mut c = edges.partition_point(|&e| e <= a).saturating_sub(1);
+    while c < last && edges[c] < b {
+        let (e0, e1) = (edges[c], edges[c + 1]);
+        let (lo, hi) = (a.max(e0), b.min(e1));
+        if hi > lo {
+            len[c] += hi - lo;
+            if let Some(f) = first.as_deref_mut() {
+                let (u0, u1) = (lo - e0, hi - e0);
+                f[c] += 0.5 * (u1 * u1 - u0 * u0);
+            }
+        }
+        c += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn intervals_are_split_over_columns() {
+        let edges = [0.0, 1.0, 2.0, 4.0];
+        let mut len = [0.0; 3];
+        let mut first = [0.0; 3];
+        // Covered on [-1, 0.5] and [1.5, 3] and from 3.5 on.
+        add_covered(
+            &edges,
+            &[-1.0, 0.5, 1.5, 3.0, 3.5],
+            false,
+            &mut len,
+            Some(&mut first),
+        );
+        assert_eq!(len, [0.5, 0.5, 1.5]);
+        assert_eq!(first, [0.125, 0.5 * (1.0 - 0.25), 0.5 * (1.0 + 4.0 - 2.25)]);
+        // Inside before the first crossing: covered up to 0.25, then from 3 on.
+        let mut len = [0.0; 3];
+        add_covered(&edges, &[0.25, 3.0], true, &mut len, None);
+        assert_eq!(len, [0.25, 0.0, 1.0]);
+        // Two crossings at one point (a tangency) change nothing.
+        let mut len = [0.0; 3];
+        add_covered(&edges, &[1.5, 1.5], true, &mut len, None);
+        assert_eq!(len, [1.0, 1.0, 2.0]);
+        // Nothing when the line is outside throughout.
+        let mut len = [0.0; 3];
+        add_covered(&edges, &[], false, &mut len, None);
+        assert_eq!(len, [0.0; 3]);
+    }
+}
