@@ -3,7 +3,9 @@
 //! domains spread over the cores, each through the one decision of `Containment`).
 //!
 //! Unlike the single-domain stream, the points are read into memory first: each domain answers
-//! its whole batch on one core, which is what makes many small domains cheap. Output: CSV
+//! its whole batch on one core, which is what makes many small domains cheap. So that memory
+//! stays bounded, at most [`MAX_POINTS`] points and [`MAX_ANSWERS`] answers (points times
+//! domains) are taken; more is an error naming the limit. Output: CSV
 //! `x,y,<label>,<label>,...` (coordinates echoed as written for CSV input, in shortest
 //! round-trip form for `.npy` input), or an int8 `.npy` array of shape (points, domains).
 
@@ -21,6 +23,32 @@ use crate::stream::{input_error, write_f64};
 
 /// Rows of CSV formatted before they are handed to the output.
 const ROWS_PER_WRITE: usize = 4096;
+
+/// Most points read with several domains: they are held in memory with their text (about
+/// 100 bytes a point, 1.6 GB at the limit).
+pub(crate) const MAX_POINTS: usize = 1 << 24;
+
+/// Most answers (points times domains) held in memory with several domains, a byte each.
+pub(crate) const MAX_ANSWERS: usize = 1 << 31;
+
+/// `Err` naming the limit when `points` points against `domains` domains would be more than
+/// [`MAX_POINTS`] or [`MAX_ANSWERS`].
+fn check_size(points: usize, domains: usize) -> Result<(), CliError> {
+    if points > MAX_POINTS {
+        return Err(CliError::Message(format!(
+            "with several domains at most {MAX_POINTS} points are classified (they are held in \
+             memory); split the points file, or classify against one domain at a time \
+             (streamed, any size)"
+        )));
+    }
+    if points.saturating_mul(domains) > MAX_ANSWERS {
+        return Err(CliError::Message(format!(
+            "{points} points against {domains} domains is more than {MAX_ANSWERS} answers held \
+             in memory; split the points file or the domains"
+        )));
+    }
+    Ok(())
+}
 
 /// A domain of the command line with its column label, or why it could not be read.
 struct Named {
@@ -61,6 +89,7 @@ pub(super) fn run(args: ManyDomains<'_>) -> Result<(), CliError> {
         }
     }
     let read = read_points(args.points)?;
+    check_size(read.points.len(), domains.len())?;
     let found = inrs::locate_many(&domains, &read.points[..], args.options);
     let mut columns = Vec::with_capacity(found.len());
     let mut kept = Vec::with_capacity(found.len());
@@ -154,6 +183,7 @@ fn read_points(path: &Path) -> Result<ReadPoints, CliError> {
         .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
     if is_npy {
         let mut npy = inrs::open_npy_points(path).map_err(|e| input_error(path, e))?;
+        check_size(npy.len(), 1)?;
         let mut points = Vec::with_capacity(npy.len());
         // Each block is at least one point until the end: at most `len` blocks.
         for _ in 0..=npy.len() {
@@ -170,7 +200,13 @@ fn read_points(path: &Path) -> Result<ReadPoints, CliError> {
             texts: None,
         });
     }
-    let records: Vec<PointRecord> = inrs::read_points(path).map_err(|e| input_error(path, e))?;
+    // One more than the limit is read, to tell a file at the limit from one beyond it.
+    let records: Vec<PointRecord> = inrs::open_points(path)
+        .map_err(|e| input_error(path, e))?
+        .take(MAX_POINTS + 1)
+        .collect::<Result<_, _>>()
+        .map_err(|e| input_error(path, e))?;
+    check_size(records.len(), 1)?;
     let points = records.iter().map(|r| r.point).collect();
     let texts = records.into_iter().map(|r| (r.x_text, r.y_text)).collect();
     Ok(ReadPoints {
@@ -249,6 +285,19 @@ fn csv_field(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_points_held_in_memory_are_bounded() {
+        assert!(check_size(MAX_POINTS, MAX_ANSWERS / MAX_POINTS).is_ok());
+        let message = |e| match e {
+            CliError::Message(m) => m,
+            CliError::ClosedPipe => String::new(),
+        };
+        let many = message(check_size(MAX_POINTS + 1, 1).unwrap_err());
+        assert!(many.contains("at most 16777216 points"), "{many}");
+        let answers = message(check_size(1 << 20, 1 << 12).unwrap_err());
+        assert!(answers.contains("2147483648 answers"), "{answers}");
+    }
 
     #[test]
     fn labels_with_commas_or_quotes_are_quoted() {

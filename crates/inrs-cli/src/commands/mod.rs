@@ -1,7 +1,7 @@
 //! One module per subcommand: its arguments (`#[derive(Args)]`) and its `run`.
 
 pub(crate) mod classify;
-mod classify_many;
+pub(crate) mod classify_many;
 pub(crate) mod convert;
 pub(crate) mod convex_domain;
 pub(crate) mod eval;
