@@ -3,6 +3,8 @@ forms: circle segments on the unit disc, the annulus' area, rectangles' overlaps
 
 import math
 import os
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -13,8 +15,10 @@ from conftest import FIXTURES
 if os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1":
     # CI installs dask: a missing one must fail, not skip.
     import dask
+    import distributed
 else:
     dask = pytest.importorskip("dask")
+    distributed = pytest.importorskip("distributed")
 
 DISC = '{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}'
 ANNULUS = (
@@ -183,6 +187,33 @@ def test_threads_and_edge_layouts_give_the_same_values():
     assert np.array_equal(d.cell_fractions(wide[::2], ys, threads=1), f)
 
 
+def test_the_gil_is_released_while_the_library_works():
+    # Another Python thread keeps running during the call: with the GIL held it could not
+    # record a time strictly inside the call (only before it enters Rust or after it returns).
+    d = inrs.Domain.from_json(DISC)
+    xs, ys = np.linspace(-1, 1, 4097), np.linspace(-1, 1, 1025)
+    stamps, stop = [], threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            stamps.append(time.perf_counter())
+            time.sleep(0.001)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    try:
+        time.sleep(0.01)
+        t0 = time.perf_counter()
+        d.cell_fractions(xs, ys, threads=1)
+        t1 = time.perf_counter()
+    finally:
+        stop.set()
+        ticker.join()
+    assert t1 - t0 > 0.04, f"the call took {t1 - t0:.3f} s: too short to tell"
+    inside = [t for t in stamps if t0 + 0.01 < t < t1 - 0.01]
+    assert len(inside) >= 3, f"{len(inside)} ticks in a call of {t1 - t0:.3f} s"
+
+
 def test_dask_blocks_equal_the_eager_array_bit_for_bit():
     import inrs.dask
 
@@ -198,6 +229,21 @@ def test_dask_blocks_equal_the_eager_array_bit_for_bit():
     want = disc.cell_fractions(xs, ys)
     for chunk in (1, 3, 100, None):
         assert np.array_equal(inrs.dask.cell_fractions(disc, xs, ys, row_chunk=chunk).compute(), want)
+
+
+def test_dask_blocks_on_worker_processes_equal_the_eager_array():
+    import inrs.dask
+
+    d = inrs.Domain.load(FIXTURES / "inrs-paper" / "s5_lune.json")
+    xs, ys = irregular_edges(5, -1.1, 1.1), np.linspace(-1.05, 1.1, 90)
+    want = d.cell_fractions(xs, ys)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster):
+        got = inrs.dask.cell_fractions(d, xs, ys, row_chunk=10).compute()
+    assert np.array_equal(got, want)
+    areas = np.outer(np.diff(ys), np.diff(xs))
+    assert math.fsum((want * areas).ravel()) == pytest.approx(d.area, rel=1e-12)
 
 
 def test_dask_computes_a_band_of_a_grid_too_large_for_one_call():
