@@ -12,13 +12,15 @@ import pytest
 import inrs
 from conftest import FIXTURES
 
-if os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1":
-    # CI installs dask: a missing one must fail, not skip.
-    import dask
-    import distributed
-else:
-    dask = pytest.importorskip("dask")
-    distributed = pytest.importorskip("distributed")
+
+def require(module: str):
+    """``module``, imported; CI installs dask and distributed, so there (with
+    ``INRS_REQUIRE_SYSTEM_FILES=1``) a missing one fails, elsewhere it skips only the tests that
+    need it."""
+    if os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1":
+        return __import__(module)
+    return pytest.importorskip(module)
+
 
 DISC = '{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}'
 ANNULUS = (
@@ -215,6 +217,7 @@ def test_the_gil_is_released_while_the_library_works():
 
 
 def test_dask_blocks_equal_the_eager_array_bit_for_bit():
+    require("dask")
     import inrs.dask
 
     d = inrs.Domain.load(FIXTURES / "axom-contours" / "butterfly.svg")
@@ -232,6 +235,7 @@ def test_dask_blocks_equal_the_eager_array_bit_for_bit():
 
 
 def test_dask_blocks_on_worker_processes_equal_the_eager_array():
+    distributed = require("distributed")
     import inrs.dask
 
     d = inrs.Domain.load(FIXTURES / "inrs-paper" / "s5_lune.json")
@@ -247,6 +251,7 @@ def test_dask_blocks_on_worker_processes_equal_the_eager_array():
 
 
 def test_dask_computes_a_band_of_a_grid_too_large_for_one_call():
+    require("dask")
     import inrs.dask
 
     d = inrs.Domain.from_json(DISC)
@@ -284,6 +289,7 @@ def test_dask_computes_a_band_of_a_grid_too_large_for_one_call():
     ],
 )
 def test_bad_edges_raise_one_line_value_errors(xs, ys, message):
+    require("dask")
     import inrs.dask
 
     d = inrs.Domain.from_json(DISC)
@@ -295,6 +301,7 @@ def test_bad_edges_raise_one_line_value_errors(xs, ys, message):
 
 
 def test_open_boundary_raises_value_error_naming_it():
+    require("dask")
     import inrs.dask
 
     cubic = inrs.Domain.from_json(
