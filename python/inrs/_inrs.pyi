@@ -11,6 +11,8 @@ BOUNDARY: int
 DEFAULT_TOLERANCE: float
 DEFAULT_CONVEX_TOLERANCE: float
 FAST_METHOD_MIN_POINTS: int
+MAX_CELLS: int
+MAX_EDGES: int
 __version__: str
 
 class LoopSummary:
@@ -162,3 +164,22 @@ def convex_domain(
     tol: float,
     max_level: int,
 ) -> dict: ...
+
+def cell_coverage(
+    domain: NativeDomain,
+    x_edges: npt.NDArray[np.float64],
+    y_edges: npt.NDArray[np.float64],
+    rows: Optional[Tuple[int, int]],
+    centroids: bool,
+    apertures: bool,
+    threads: int,
+) -> Tuple[
+    npt.NDArray[np.float64],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+]:
+    """Exact cell coverage of the grid ``x_edges`` x ``y_edges`` (the whole grid, or the rows
+    ``j0 .. j1`` when ``rows = (j0, j1)``): ``(fractions (R, nx), centroids (R, nx, 2) or None,
+    x_apertures (R, nx + 1) or None, y_apertures (R + 1, nx) or None)`` for ``R`` rows."""
+    ...

@@ -1,4 +1,6 @@
-"""Classification of chunked Dask arrays: ``inrs.dask.classify(domain, xy)``.
+"""Dask front ends: ``inrs.dask.classify(domain, xy)`` classifies chunked arrays of points;
+``inrs.dask.cell_fractions(domain, x_edges, y_edges)`` computes the cell fractions of grids
+larger than memory by blocks of rows.
 
 The domain travels to the workers by pickle (its JSON form); each worker process builds its
 index once and reuses it for all its chunks.
@@ -8,7 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import DEFAULT_TOLERANCE, Domain
+from . import DEFAULT_TOLERANCE, Domain, _edges
+
+#: Cells per block of :func:`cell_fractions` by default: ``2**22`` (32 MiB of float64).
+DEFAULT_BLOCK_CELLS = 1 << 22
 
 
 def _classify_block(block: np.ndarray, domain: Domain, method: str, tol: float) -> np.ndarray:
@@ -33,3 +38,55 @@ def classify(domain: Domain, xy, *, method: str = "fast", tol: float = DEFAULT_T
         drop_axis=1,
         dtype=np.int8,
     )
+
+
+def _fraction_rows(domain: Domain, x_edges: np.ndarray, y_edges: np.ndarray, j0: int, j1: int) -> np.ndarray:
+    # One band of rows on this task's thread: the library prepares the domain for the grid
+    # (a cost independent of the band's size) and covers only the rows j0 .. j1.
+    return domain._coverage(x_edges, y_edges, (j0, j1), False, False, 1)
+
+
+def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None):
+    """Lazy :meth:`Domain.cell_fractions`: a float64 ``dask.array`` of shape ``(ny, nx)``
+    (row ``j``, column ``i`` is the cell ``[x_i, x_{i+1}] x [y_j, y_{j+1}]``), for grids
+    larger than memory or than :data:`inrs.MAX_CELLS` cells.
+
+    Each block holds ``row_chunk`` rows (default: about ``DEFAULT_BLOCK_CELLS`` cells, at
+    least one row) and is one task that covers only its rows (the library's
+    ``GridCoverage::rows``), so no task ever holds the whole grid; write the result block by
+    block (``dask.array.to_zarr``, ``store``) or reduce it. The values are those of the eager
+    call, bit for bit (a cell's value does not depend on the band it is computed in). Each
+    task prepares the domain for the grid again, a cost of the order of covering one row of a
+    few thousand cells per block.
+
+    The grid and the domain are checked now, by covering the first row: bad edges (as
+    :meth:`Domain.cell_fractions` lists them), an open boundary or a bad ``row_chunk`` raise
+    ``ValueError`` here rather than at ``compute()``.
+    """
+    import dask
+    import dask.array as da
+
+    x = _edges("x_edges", x_edges)
+    y = _edges("y_edges", y_edges)
+    if not isinstance(domain, Domain):
+        raise TypeError(f"domain is a {type(domain).__name__}, not an inrs.Domain")
+    # Checks the edges and the domain with the library's messages (one row of one band).
+    domain._coverage(x, y, (0, 1), False, False, 1)
+    nx, ny = len(x) - 1, len(y) - 1
+    if row_chunk is None:
+        row_chunk = max(1, DEFAULT_BLOCK_CELLS // nx)
+    elif isinstance(row_chunk, bool) or not isinstance(row_chunk, (int, np.integer)) or row_chunk < 1:
+        raise ValueError(f"row_chunk must be an integer >= 1, got {row_chunk!r}")
+    row_chunk = int(min(row_chunk, ny))
+    # The domain and the edges are one node each of the graph, shared by every block.
+    shared = [dask.delayed(v, pure=True) for v in (domain, x, y)]
+    blocks = [
+        da.from_delayed(
+            dask.delayed(_fraction_rows, pure=True)(*shared, j0, min(j0 + row_chunk, ny)),
+            shape=(min(j0 + row_chunk, ny) - j0, nx),
+            dtype=np.float64,
+            meta=np.empty((0, 0), dtype=np.float64),
+        )
+        for j0 in range(0, ny, row_chunk)
+    ]
+    return blocks[0] if len(blocks) == 1 else da.concatenate(blocks, axis=0)

@@ -10,10 +10,12 @@
 //! - [`points`]: the points' layouts and the per-chunk codes;
 //! - [`mesh`]: `sample`, `sample_halton`, `mesh`; [`spline`]: `FitPlan`, `interpolate`, `NativeSpline`;
 //! - [`convex`]: `convex_domain`; [`halton`]: `halton_points`;
+//! - [`coverage`]: `cell_coverage` (area fractions, centroids and apertures on a grid);
 //! - [`threads`], [`errors`]: thread pools and exceptions.
 
 mod cad;
 mod convex;
+mod coverage;
 mod domain;
 mod errors;
 mod halton;
@@ -47,6 +49,9 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spline::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(halton::halton_points, m)?)?;
     m.add_function(wrap_pyfunction!(convex::convex_domain, m)?)?;
+    m.add_function(wrap_pyfunction!(coverage::cell_coverage, m)?)?;
+    m.add("MAX_CELLS", inrs::coverage::MAX_CELLS)?;
+    m.add("MAX_EDGES", inrs::coverage::MAX_EDGES)?;
     m.add(
         "DEFAULT_CONVEX_TOLERANCE",
         ConvexDomainOptions::DEFAULT.relative_tolerance,

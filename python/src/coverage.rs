@@ -1,0 +1,76 @@
+//! Exact cell coverage of a domain on a rectilinear grid ([`inrs::coverage`]) as NumPy arrays:
+//! area fractions, centroids of the covered parts and face apertures, for the whole grid or
+//! for one band of rows (the blocks of `inrs.dask.cell_fractions`).
+
+use numpy::{IntoPyArray, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
+use pyo3::prelude::*;
+
+use inrs::coverage::{CellGrid, CoverageOptions, GridCoverage};
+
+use crate::domain::NativeDomain;
+use crate::errors::value_error;
+use crate::threads::with_threads;
+
+/// The arrays of one coverage of `rows` rows and `nx` columns: fractions `(rows, nx)`, then,
+/// when asked for, centroids `(rows, nx, 2)`, vertical-face apertures `(rows, nx + 1)` and
+/// horizontal-face apertures `(rows + 1, nx)`.
+type CoverageArrays<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Option<Bound<'py, PyArray3<f64>>>,
+    Option<Bound<'py, PyArray2<f64>>>,
+    Option<Bound<'py, PyArray2<f64>>>,
+);
+
+/// The coverage of the grid with edges `x_edges`, `y_edges` by `domain` (even-odd fill):
+/// [`GridCoverage::new`], then [`GridCoverage::all`] (`rows` is `None`, on `threads` threads, 0
+/// for all) or [`GridCoverage::rows`] for the rows `j0 .. j1` (`rows = (j0, j1)`, one band,
+/// computed on the calling thread: the other rows are never built). The GIL is released while
+/// the library works; its errors (bad edges, open boundary, too many cells) are `ValueError`s
+/// with its one-line message.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn cell_coverage<'py>(
+    py: Python<'py>,
+    domain: &NativeDomain,
+    x_edges: PyReadonlyArray1<'py, f64>,
+    y_edges: PyReadonlyArray1<'py, f64>,
+    rows: Option<(usize, usize)>,
+    centroids: bool,
+    apertures: bool,
+    threads: usize,
+) -> PyResult<CoverageArrays<'py>> {
+    let grid = CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec())
+        .map_err(value_error)?;
+    let nx = grid.nx();
+    let options = CoverageOptions::DEFAULT
+        .with_centroids(centroids)
+        .with_apertures(apertures);
+    let d = &domain.domain;
+    let coverage = py
+        .detach(|| {
+            with_threads(threads, || {
+                let cover = GridCoverage::new(d, grid)?;
+                match rows {
+                    Some((j0, j1)) => cover.rows(j0..j1, options),
+                    None => cover.all(options),
+                }
+            })
+        })?
+        .map_err(value_error)?;
+    let n = coverage.ny();
+    Ok((
+        coverage.fractions.into_pyarray(py).reshape([n, nx])?,
+        coverage
+            .centroids
+            .map(|c| c.into_flattened().into_pyarray(py).reshape([n, nx, 2]))
+            .transpose()?,
+        coverage
+            .x_apertures
+            .map(|a| a.into_pyarray(py).reshape([n, nx + 1]))
+            .transpose()?,
+        coverage
+            .y_apertures
+            .map(|a| a.into_pyarray(py).reshape([n + 1, nx]))
+            .transpose()?,
+    ))
+}
