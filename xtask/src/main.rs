@@ -11,6 +11,7 @@ use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Location, Method, 
 use rs_testkit::FixtureMeta;
 
 mod bench;
+mod coverage_figure;
 mod figures;
 mod frontends;
 #[cfg(test)]
@@ -27,7 +28,8 @@ Commands:
                           and write SVG figures to target/figures/ (monotone boxes, refined
                           boxes, classified points, a winding-number field with a gap, curved
                           triangulations of S(4) and of a disc with an elliptic hole, the face of
-                          fixtures/cad/plate.step in its (u, v)).
+                          fixtures/cad/plate.step in its (u, v), the exact covered fractions
+                          of the butterfly on a 64 x 64 grid).
   bench [OPTIONS]         The papers' comparisons in one process (medians of repeated runs):
                           Tables 1-2 (inRS1, inRS2, polygon within 1e-10), the fast paths and
                           GWN, evaluation histograms and linearisation errors of the GWN paper;
@@ -231,6 +233,18 @@ fn demo(dir: &Path) -> Result<(), String> {
         &mut failures,
     )?);
     figures_written.push(cad_demo(&figures_dir, &mut failures)?);
+    let (coverage_files, relative) = coverage_figure::write(&figures_dir, &workspace_root())?;
+    println!(
+        "covered fractions of the butterfly on a {n} x {n} grid: sum of fraction x cell area \
+         within {relative:.1e} (relative) of the even-odd area",
+        n = coverage_figure::CELLS
+    );
+    if relative > 1e-12 {
+        failures.push(format!(
+            "butterfly coverage: fractions add up to the area only within {relative:e}"
+        ));
+    }
+    figures_written.extend(coverage_files);
     println!("figures written to {}:", figures_dir.display());
     for f in &figures_written {
         println!(
