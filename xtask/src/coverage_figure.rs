@@ -30,8 +30,13 @@ pub(crate) fn butterfly_fractions(d: &Domain) -> Result<(CellGrid, Coverage, f64
     Ok((grid, c, (covered - area).abs() / area))
 }
 
-/// The figure: one pixel per cell (row 0 of the image is the top row of cells, the last of
-/// the coverage's rows), viridis from 0 to 1, the boundary on top.
+/// Image pixels per cell side: each cell a block of `PIXELS x PIXELS` equal pixels, so that
+/// renderers that smooth embedded images (librsvg ignores `image-rendering: pixelated`) still
+/// show sharp cells.
+const PIXELS: usize = 8;
+
+/// The figure: each cell a square block of the image (the image's top rows are the top row
+/// of cells, the last of the coverage's rows), viridis from 0 to 1, the boundary on top.
 pub(crate) fn fractions_figure(
     d: &Domain,
     grid: &CellGrid,
@@ -39,18 +44,21 @@ pub(crate) fn fractions_figure(
     relative_difference: f64,
 ) -> Figure {
     let (nx, ny) = (grid.nx(), grid.ny());
-    let values = (0..ny)
+    let values = (0..ny * PIXELS)
         .rev()
-        .flat_map(|j| c.fractions[j * nx..(j + 1) * nx].iter().map(|&f| Some(f)))
+        .flat_map(|r| {
+            let row = &c.fractions[(r / PIXELS) * nx..(r / PIXELS + 1) * nx];
+            (0..nx * PIXELS).map(move |k| Some(row[k / PIXELS]))
+        })
         .collect();
     let image = FieldImage {
-        width: nx,
-        height: ny,
+        width: nx * PIXELS,
+        height: ny * PIXELS,
         values,
     };
     let mut fig = Figure::new(grid.bounding_box(), 560.0);
     fig.field(&image, 0.0, 1.0, "covered fraction");
-    let style = Style::stroke("#ffffff", 1.2).labelled("boundary (even-odd fill)");
+    let style = Style::stroke("#e8112d", 1.1).labelled("boundary (even-odd fill)");
     for curve in d.curves() {
         fig.curve(curve, &style);
     }
