@@ -40,7 +40,9 @@ Commands:
       --reps R            repetitions per timing (default 11)
       --sweep             also the box-refinement and grid-resolution sweeps
       --full              time inRS1 and the reference GWN at every size (default: up to 10^5)
-      --only A,B          only these sections: paper, locator, gwn, shapes, cli
+      --only A,B          only these sections: paper, locator, gwn, shapes, build, cli,
+                          coverage (exact cell coverage at 1024^2 and 4096^2 beside
+                          exactextract; --quick: 64^2 and 256^2)
   splines [--quick]       The curved-triangulation paper's convergence experiments: the
                           quasi-interpolant of sin(10x) + sin(10y) in S_d^0 (d = 5, 6) on
                           three domains, ny = 5..65; writes target/bench-report/splines.{md,csv}.
