@@ -174,7 +174,7 @@ fn cell_centres(b: &BoundingBox, n: usize) -> Vec<Point> {
         .collect()
 }
 
-/// The boundary flattened within [`FLATTEN_RELATIVE`] of the diagonal as one GeoJSON Feature
+/// The boundary flattened within [`FLATTEN_RELATIVE`] of the diagonal as one `GeoJSON` feature
 /// (a MultiPolygon): each loop of even depth a shell, each loop of odd depth a hole of the
 /// loop one level up that holds its first vertex (even-odd nesting, as the coverage fills).
 fn flattened_geojson(d: &Domain) -> Result<String, String> {
