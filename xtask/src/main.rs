@@ -11,6 +11,7 @@ use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Location, Method, 
 use rs_testkit::FixtureMeta;
 
 mod bench;
+mod coverage_figure;
 mod figures;
 mod frontends;
 #[cfg(test)]
@@ -27,7 +28,8 @@ Commands:
                           and write SVG figures to target/figures/ (monotone boxes, refined
                           boxes, classified points, a winding-number field with a gap, curved
                           triangulations of S(4) and of a disc with an elliptic hole, the face of
-                          fixtures/cad/plate.step in its (u, v)).
+                          fixtures/cad/plate.step in its (u, v), the exact covered fractions
+                          of the butterfly on a 64 x 64 grid).
   bench [OPTIONS]         The papers' comparisons in one process (medians of repeated runs):
                           Tables 1-2 (inRS1, inRS2, polygon within 1e-10), the fast paths and
                           GWN, evaluation histograms and linearisation errors of the GWN paper;
@@ -38,7 +40,9 @@ Commands:
       --reps R            repetitions per timing (default 11)
       --sweep             also the box-refinement and grid-resolution sweeps
       --full              time inRS1 and the reference GWN at every size (default: up to 10^5)
-      --only A,B          only these sections: paper, locator, gwn, shapes, cli
+      --only A,B          only these sections: paper, locator, gwn, shapes, build, cli,
+                          coverage (exact cell coverage at 1024^2 and 4096^2 beside
+                          exactextract; --quick: 64^2 and 256^2)
   splines [--quick]       The curved-triangulation paper's convergence experiments: the
                           quasi-interpolant of sin(10x) + sin(10y) in S_d^0 (d = 5, 6) on
                           three domains, ny = 5..65; writes target/bench-report/splines.{md,csv}.
@@ -231,6 +235,18 @@ fn demo(dir: &Path) -> Result<(), String> {
         &mut failures,
     )?);
     figures_written.push(cad_demo(&figures_dir, &mut failures)?);
+    let (coverage_files, relative) = coverage_figure::write(&figures_dir, &workspace_root())?;
+    println!(
+        "covered fractions of the butterfly on a {n} x {n} grid: sum of fraction x cell area \
+         within {relative:.1e} (relative) of the even-odd area",
+        n = coverage_figure::CELLS
+    );
+    if relative > 1e-12 {
+        failures.push(format!(
+            "butterfly coverage: fractions add up to the area only within {relative:e}"
+        ));
+    }
+    figures_written.extend(coverage_files);
     println!("figures written to {}:", figures_dir.display());
     for f in &figures_written {
         println!(

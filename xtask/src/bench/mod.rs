@@ -3,6 +3,7 @@
 
 mod build;
 mod cli;
+mod coverage;
 mod gwn;
 mod locator;
 mod paper;
@@ -29,7 +30,9 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 6] = ["paper", "locator", "gwn", "shapes", "build", "cli"];
+const SECTIONS: [&str; 7] = [
+    "paper", "locator", "gwn", "shapes", "build", "cli", "coverage",
+];
 
 fn names(list: &[&str]) -> Vec<String> {
     list.iter().map(|s| s.to_string()).collect()
@@ -244,6 +247,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("cli") {
         cli::end_to_end(&mut md, root, o)?;
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("coverage") {
+        coverage::section(&mut md, root, o)?;
     }
     write_report(root, o, &md, &csv, true)
 }
