@@ -20,11 +20,12 @@ pub(crate) use grid::{MAX_CELLS_PER_AXIS, MAX_GRID_CELLS};
 /// Exact covered fraction of every cell of a uniform grid (even-odd fill of closed loops);
 /// writes float64 `.npy` arrays.
 ///
-/// F.npy has shape (ny, nx): row j, column i is the cell [x_i, x_i+1] x [y_j, y_j+1] with
-/// x_i = x0 + i (x1 - x0) / nx and y_j likewise (y increases with the row). --centroids adds
-/// F.centroids.npy (ny, nx, 2): the [x, y] centroid of each cell's covered part, NaN where the
-/// cell is empty. --apertures adds F.x_apertures.npy (ny, nx + 1), the covered fraction of each
-/// vertical face x = x_i, and F.y_apertures.npy (ny + 1, nx), of each horizontal face y = y_j.
+/// `F.npy` has shape (ny, nx): row j, column i is the cell `[x_i, x_i+1] x [y_j, y_j+1]` with
+/// `x_i = x0 + i (x1 - x0) / nx` and `y_j` likewise (y increases with the row). --centroids
+/// adds `F.centroids.npy` (ny, nx, 2): the [x, y] centroid of each cell's covered part, NaN
+/// where the cell is empty. --apertures adds `F.x_apertures.npy` (ny, nx + 1), the covered
+/// fraction of each vertical face `x = x_i`, and `F.y_apertures.npy` (ny + 1, nx), of each
+/// horizontal face `y = y_j`.
 /// The grid is computed in row bands on all cores and written as it goes: memory stays a few
 /// bands whatever the grid (at most 2^32 cells). The boundary must be closed (an open one is
 /// an error: `inrs winding` handles open curves). Files appear only when the run succeeds.
@@ -42,14 +43,14 @@ pub(crate) struct FractionsArgs {
         allow_hyphen_values = true
     )]
     grid: GridSpec,
-    /// Also write F.centroids.npy (ny, nx, 2): the covered part's centroid, NaN where empty.
+    /// Also write `F.centroids.npy` (ny, nx, 2): the covered part's centroid, NaN where empty.
     #[arg(long)]
     centroids: bool,
-    /// Also write F.x_apertures.npy (ny, nx + 1) and F.y_apertures.npy (ny + 1, nx): the
+    /// Also write `F.x_apertures.npy` (ny, nx + 1) and `F.y_apertures.npy` (ny + 1, nx): the
     /// covered fraction of each vertical and horizontal cell face.
     #[arg(long)]
     apertures: bool,
-    /// The fractions file F.npy (float64, shape (ny, nx)); its name must end in .npy.
+    /// The fractions file `F.npy` (float64, shape (ny, nx)); its name must end in .npy.
     #[arg(long, value_parser = parse_npy_path)]
     output: PathBuf,
 }
