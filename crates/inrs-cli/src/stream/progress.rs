@@ -82,7 +82,8 @@ impl Progress {
                 .with_elapsed(self.start.elapsed());
             let template = match self.unit {
                 Unit::Bytes => "{elapsed_precise} [{bar:40}] {bytes}/{total_bytes} {msg}",
-                Unit::Cells => "{elapsed_precise} [{bar:40}] {human_pos}/{human_len} cells {msg}",
+                // Short enough for an 80-column terminal (a longer line wraps and redraws).
+                Unit::Cells => "{elapsed_precise} [{bar:30}] {percent:>3}% of the cells {msg}",
             };
             if let Ok(style) = indicatif::ProgressStyle::with_template(template) {
                 bar.set_style(style.progress_chars("=> "));
