@@ -13,7 +13,9 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use cli::error::CliError;
-use commands::{classify, convert, convex_domain, eval, fit, info, mesh, sample, winding};
+use commands::{
+    classify, convert, convex_domain, eval, fit, fractions, info, mesh, sample, winding,
+};
 
 /// Exact point containment for planar domains bounded by NURBS curves.
 #[derive(Parser)]
@@ -39,6 +41,7 @@ enum Command {
     Eval(eval::EvalArgs),
     ConvexDomain(convex_domain::ConvexDomainArgs),
     Info(info::InfoArgs),
+    Fractions(fractions::FractionsArgs),
 }
 
 impl Command {
@@ -53,6 +56,7 @@ impl Command {
             Command::Eval(a) => a.run(),
             Command::ConvexDomain(a) => a.run(),
             Command::Info(a) => a.run(),
+            Command::Fractions(a) => a.run(),
         }
     }
 }

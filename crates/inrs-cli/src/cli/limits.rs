@@ -24,7 +24,9 @@ Limits (inputs beyond them are errors, never a crash or a hang):
                                                 fit: 1.8 KB at degree 2, 3.8 KB at degree 5)
   boundary pieces for mesh, fit, sample --ny    10^4 Bezier pieces (a piece costs about 0.25 ms)
   fit --degree / formula length                 12 / 4096 bytes; spline files 1 GiB
-  convex-domain --box coordinates / --max-level 1e100 / 20";
+  convex-domain --box coordinates / --max-level 1e100 / 20
+  fractions --grid                              nx, ny 1..67108863; nx x ny <= 2^32 cells,
+                                                computed and written in bands of 8 MiB";
 
 /// The default `--tol` of classify as shown by `--help` (the value is
 /// [`inrs::contain::DEFAULT_RELATIVE_TOLERANCE`], checked by a test).
@@ -136,6 +138,10 @@ mod tests {
             ),
             format!("{:e}", inrs::convex::MAX_BOX_COORDINATE),
             format!("/ {}", inrs::convex::MAX_LEVEL),
+            format!(
+                "nx, ny 1..{}",
+                crate::commands::fractions::MAX_CELLS_PER_AXIS
+            ),
         ];
         assert_eq!(crate::commands::classify_many::MAX_POINTS, 1 << 24);
         assert_eq!(crate::commands::classify_many::MAX_ANSWERS, 1 << 31);
@@ -146,5 +152,6 @@ mod tests {
         assert_eq!(inrs::mesh::MAX_SAMPLE_POINTS, 10_000_000);
         assert_eq!(inrs::mesh::MAX_MESH_VERTICES, 2_000_000);
         assert_eq!(inrs::mesh::MAX_MESH_PIECES, 10_000);
+        assert_eq!(crate::commands::fractions::MAX_GRID_CELLS, 1 << 32);
     }
 }

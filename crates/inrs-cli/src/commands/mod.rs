@@ -6,6 +6,7 @@ pub(crate) mod convert;
 pub(crate) mod convex_domain;
 pub(crate) mod eval;
 pub(crate) mod fit;
+pub(crate) mod fractions;
 pub(crate) mod info;
 pub(crate) mod mesh;
 pub(crate) mod sample;

@@ -8,7 +8,7 @@
 //! - [`scheduler`]: the workers ([`stream_points`]);
 //! - [`in_order`]: the ordered writing, and the bound on the chunks in flight;
 //! - [`format`]: the output ([`Column`]: CSV rows or `.npy` values);
-//! - [`progress`]: the progress bar; [`spares`]: the pools of reused buffers.
+//! - [`progress`]: the progress bar (also of `inrs fractions`); [`spares`]: the pools of reused buffers.
 
 mod format;
 mod in_order;
@@ -18,5 +18,6 @@ mod source;
 mod spares;
 
 pub(crate) use format::{Column, write_f64};
+pub(crate) use progress::Progress;
 pub(crate) use scheduler::stream_points;
 pub(crate) use source::{PointsInput, input_error};

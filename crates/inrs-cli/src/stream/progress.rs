@@ -1,15 +1,25 @@
-//! The progress bar of a long run.
+//! The progress bar of a long run: bytes of a points file read, or cells of a grid written.
 
 use std::time::{Duration, Instant};
 
 /// Progress is shown (on a terminal) once a run has taken this long.
 const PROGRESS_AFTER: Duration = Duration::from_secs(2);
 
+/// What a bar counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Unit {
+    /// Bytes of the input read.
+    Bytes,
+    /// Cells of a grid written.
+    Cells,
+}
+
 /// A progress bar on standard error, shown only on a terminal and only once the run has
 /// lasted [`PROGRESS_AFTER`].
-pub(super) struct Progress {
+pub(crate) struct Progress {
     start: Instant,
     total: u64,
+    unit: Unit,
     bar: Option<indicatif::ProgressBar>,
     enabled: bool,
     /// How long a run goes before the bar appears.
@@ -21,14 +31,25 @@ pub(super) struct Progress {
 impl Progress {
     /// A bar over `total` bytes, on standard error if it is a terminal.
     pub(super) fn new(total: u64) -> Self {
+        Self::on_stderr(total, Unit::Bytes)
+    }
+
+    /// A bar over `total` grid cells, on standard error if it is a terminal.
+    pub(crate) fn cells(total: u64) -> Self {
+        Self::on_stderr(total, Unit::Cells)
+    }
+
+    fn on_stderr(total: u64, unit: Unit) -> Self {
         use std::io::IsTerminal;
         let enabled = total > 0 && std::io::stderr().is_terminal();
-        Self::shown_after(
+        let mut p = Self::shown_after(
             total,
             PROGRESS_AFTER,
             enabled,
             indicatif::ProgressDrawTarget::stderr,
-        )
+        );
+        p.unit = unit;
+        p
     }
 
     /// A bar over `total` bytes that appears once `after` has passed, if `enabled`.
@@ -41,6 +62,7 @@ impl Progress {
         Self {
             start: Instant::now(),
             total,
+            unit: Unit::Bytes,
             bar: None,
             enabled,
             after,
@@ -48,8 +70,8 @@ impl Progress {
         }
     }
 
-    /// Reports `done` bytes read.
-    pub(super) fn update(&mut self, done: u64) {
+    /// Reports `done` bytes read (cells written).
+    pub(crate) fn update(&mut self, done: u64) {
         if !self.enabled {
             return;
         }
@@ -58,9 +80,12 @@ impl Progress {
             let bar = indicatif::ProgressBar::with_draw_target(Some(self.total), (self.target)())
                 .with_position(done.min(self.total))
                 .with_elapsed(self.start.elapsed());
-            if let Ok(style) = indicatif::ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:40}] {bytes}/{total_bytes} {msg}",
-            ) {
+            let template = match self.unit {
+                Unit::Bytes => "{elapsed_precise} [{bar:40}] {bytes}/{total_bytes} {msg}",
+                // Short enough for an 80-column terminal (a longer line wraps and redraws).
+                Unit::Cells => "{elapsed_precise} [{bar:30}] {percent:>3}% of the cells {msg}",
+            };
+            if let Ok(style) = indicatif::ProgressStyle::with_template(template) {
                 bar.set_style(style.progress_chars("=> "));
             }
             self.bar = Some(bar);
@@ -68,28 +93,37 @@ impl Progress {
         if let Some(bar) = &self.bar {
             let done = done.min(self.total);
             bar.set_position(done);
-            bar.set_message(rate_and_time_left(done, self.total, self.start.elapsed()));
+            bar.set_message(rate_and_time_left(
+                done,
+                self.total,
+                self.start.elapsed(),
+                self.unit,
+            ));
         }
     }
 
     /// Removes the bar, if shown.
-    pub(super) fn finish(&mut self) {
+    pub(crate) fn finish(&mut self) {
         if let Some(bar) = self.bar.take() {
             bar.finish_and_clear();
         }
     }
 }
 
-/// `(12.3 MiB/s, 4 s left)`: the average rate of the whole run so far and the time the rest
-/// takes at that rate (the bar's own estimate follows the bursts in which chunks are written).
-fn rate_and_time_left(done: u64, total: u64, elapsed: Duration) -> String {
+/// `(12.3 MiB/s, 4 s left)` (`M cells/s` for cells): the average rate of the whole run so far
+/// and the time the rest takes at that rate (the bar's own estimate follows the bursts in
+/// which chunks are written).
+fn rate_and_time_left(done: u64, total: u64, elapsed: Duration, unit: Unit) -> String {
     let seconds = elapsed.as_secs_f64();
     if done == 0 || seconds <= 0.0 {
         return String::new();
     }
     let rate = done as f64 / seconds;
     let left = (total - done.min(total)) as f64 / rate;
-    format!("({:.1} MiB/s, {left:.0} s left)", rate / (1 << 20) as f64)
+    match unit {
+        Unit::Bytes => format!("({:.1} MiB/s, {left:.0} s left)", rate / (1 << 20) as f64),
+        Unit::Cells => format!("({:.1} M cells/s, {left:.0} s left)", rate / 1e6),
+    }
 }
 
 #[cfg(test)]
@@ -129,13 +163,20 @@ mod tests {
     fn the_rate_is_the_average_so_far_and_the_time_left_follows_from_it() {
         let mib = 1 << 20;
         assert_eq!(
-            rate_and_time_left(10 * mib, 40 * mib, Duration::from_secs(2)),
+            rate_and_time_left(10 * mib, 40 * mib, Duration::from_secs(2), Unit::Bytes),
             "(5.0 MiB/s, 6 s left)"
         );
-        assert_eq!(rate_and_time_left(0, 40, Duration::from_secs(2)), "");
         assert_eq!(
-            rate_and_time_left(50 * mib, 40 * mib, Duration::from_secs(5)),
+            rate_and_time_left(0, 40, Duration::from_secs(2), Unit::Bytes),
+            ""
+        );
+        assert_eq!(
+            rate_and_time_left(50 * mib, 40 * mib, Duration::from_secs(5), Unit::Bytes),
             "(10.0 MiB/s, 0 s left)"
+        );
+        assert_eq!(
+            rate_and_time_left(3_000_000, 9_000_000, Duration::from_secs(2), Unit::Cells),
+            "(1.5 M cells/s, 4 s left)"
         );
     }
 }
