@@ -58,8 +58,8 @@ pub(super) struct MixedCell {
 /// The grid of a [`PointLocator`](crate::PointLocator), without the classifier it indexes (so that a
 /// [`Classifier`](crate::Classifier) can build it once and lend it; see [`Classifier::locator`](crate::Classifier::locator)).
 ///
-/// The grid is built one *strip* (a column of blocks, `BLOCK` cells wide) at a time, when a
-/// query first needs it: until then its blocks' coarse states read [`UNBUILT`], which sends
+/// The grid is built one *strip* (32 columns of cells, four of blocks) at a time, when a
+/// query first needs it: until then its blocks' coarse states read "not built", which sends
 /// the query to the strip (built then, once, whichever thread asks first). What a strip holds
 /// depends on nothing outside its columns (the states of a column come from a walk up that
 /// column), so the strips built on demand are the ones an eager build makes.
