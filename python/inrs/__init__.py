@@ -390,6 +390,7 @@ class Domain:
         centroids: bool = False,
         apertures: bool = False,
         *,
+        fill_rule: str = "even-odd",
         threads: Optional[int] = None,
     ) -> Union[np.ndarray, CellCoverage]:
         """The exact covered fraction of every cell of a rectilinear grid (volume fractions of
@@ -404,8 +405,10 @@ class Domain:
         (``NaN`` where a cell is empty), ``x_apertures`` ``(ny, nx + 1)`` (the covered fraction of
         each vertical face), ``y_apertures`` ``(ny + 1, nx)`` (each horizontal face).
 
-        The fill is even-odd for closed loops that do not cross (holes, nesting, touching loops
-        are fine). Values are exact up to rounding (within about ``1e-12`` of the cell's area;
+        ``fill_rule`` is ``even-odd`` (the default) or ``nonzero`` (filled where the winding
+        number is not zero, from the loops' orientations: two nested counter-clockwise circles
+        fill the outer disc, with opposite orientations the ring), for closed loops that do not
+        cross (holes, nesting, touching loops are fine); an unknown rule is a ``ValueError``. Values are exact up to rounding (within about ``1e-12`` of the cell's area;
         cells the boundary misses are exactly 0 or 1); a face on which the boundary runs takes
         the value of the line just to its right (vertical) or just above it (horizontal). The
         grid need not cover the domain. One call of the library (``GridCoverage``) with the GIL
@@ -424,7 +427,9 @@ class Domain:
         >>> bool(np.allclose(f, np.pi / 4, rtol=0, atol=1e-15)), f.shape
         (True, (2, 2))
         """
-        return self._coverage(x_edges, y_edges, None, centroids, apertures, _threads(threads))
+        return self._coverage(
+            x_edges, y_edges, None, centroids, apertures, fill_rule, _threads(threads)
+        )
 
     def _coverage(
         self,
@@ -433,6 +438,7 @@ class Domain:
         rows: Optional[Tuple[int, int]],
         centroids: bool,
         apertures: bool,
+        fill_rule: str,
         threads: int,
     ) -> Union[np.ndarray, CellCoverage]:
         """:meth:`cell_fractions` on the whole grid (``rows`` ``None``) or on its rows
@@ -444,6 +450,7 @@ class Domain:
             rows,
             bool(centroids),
             bool(apertures),
+            str(fill_rule),
             threads,
         )
         if not (centroids or apertures):

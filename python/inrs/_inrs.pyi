@@ -172,6 +172,7 @@ def cell_coverage(
     rows: Optional[Tuple[int, int]],
     centroids: bool,
     apertures: bool,
+    fill_rule: str,
     threads: int,
 ) -> Tuple[
     npt.NDArray[np.float64],
@@ -180,6 +181,7 @@ def cell_coverage(
     Optional[npt.NDArray[np.float64]],
 ]:
     """Exact cell coverage of the grid ``x_edges`` x ``y_edges`` (the whole grid, or the rows
-    ``j0 .. j1`` when ``rows = (j0, j1)``): ``(fractions (R, nx), centroids (R, nx, 2) or None,
+    ``j0 .. j1`` when ``rows = (j0, j1)``) under ``fill_rule`` (``even-odd`` or ``nonzero``):
+    ``(fractions (R, nx), centroids (R, nx, 2) or None,
     x_apertures (R, nx + 1) or None, y_apertures (R + 1, nx) or None)`` for ``R`` rows."""
     ...

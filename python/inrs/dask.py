@@ -40,13 +40,15 @@ def classify(domain: Domain, xy, *, method: str = "fast", tol: float = DEFAULT_T
     )
 
 
-def _fraction_rows(domain: Domain, x_edges: np.ndarray, y_edges: np.ndarray, j0: int, j1: int) -> np.ndarray:
+def _fraction_rows(
+    domain: Domain, x_edges: np.ndarray, y_edges: np.ndarray, fill_rule: str, j0: int, j1: int
+) -> np.ndarray:
     # One band of rows on this task's thread: the library prepares the domain for the grid
     # (a cost independent of the band's size) and covers only the rows j0 .. j1.
-    return domain._coverage(x_edges, y_edges, (j0, j1), False, False, 1)
+    return domain._coverage(x_edges, y_edges, (j0, j1), False, False, fill_rule, 1)
 
 
-def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None):
+def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rule="even-odd"):
     """Lazy :meth:`Domain.cell_fractions`: a float64 ``dask.array`` of shape ``(ny, nx)``
     (row ``j``, column ``i`` is the cell ``[x_i, x_{i+1}] x [y_j, y_{j+1}]``), for grids
     larger than memory or than :data:`inrs.MAX_CELLS` cells.
@@ -57,10 +59,12 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None):
     block (``dask.array.to_zarr``, ``store``) or reduce it. The values are those of the eager
     call, bit for bit (a cell's value does not depend on the band it is computed in). Each
     task prepares the domain for the grid again, a cost of the order of covering one row of a
-    few thousand cells per block.
+    few thousand cells per block. ``fill_rule`` (``even-odd`` or ``nonzero``) is that of
+    :meth:`Domain.cell_fractions`.
 
     The grid and the domain are checked now, by covering the first row: bad edges (as
-    :meth:`Domain.cell_fractions` lists them), an open boundary or a bad ``row_chunk`` raise
+    :meth:`Domain.cell_fractions` lists them), an open boundary, an unknown ``fill_rule`` or a
+    bad ``row_chunk`` raise
     ``ValueError`` here rather than at ``compute()``.
     """
     import dask
@@ -71,7 +75,8 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None):
     if not isinstance(domain, Domain):
         raise TypeError(f"domain is a {type(domain).__name__}, not an inrs.Domain")
     # Checks the edges and the domain with the library's messages (one row of one band).
-    domain._coverage(x, y, (0, 1), False, False, 1)
+    fill_rule = str(fill_rule)
+    domain._coverage(x, y, (0, 1), False, False, fill_rule, 1)
     nx, ny = len(x) - 1, len(y) - 1
     if row_chunk is None:
         row_chunk = max(1, DEFAULT_BLOCK_CELLS // nx)
@@ -79,7 +84,7 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None):
         raise ValueError(f"row_chunk must be an integer >= 1, got {row_chunk!r}")
     row_chunk = int(min(row_chunk, ny))
     # The domain and the edges are one node each of the graph, shared by every block.
-    shared = [dask.delayed(v, pure=True) for v in (domain, x, y)]
+    shared = [dask.delayed(v, pure=True) for v in (domain, x, y)] + [fill_rule]
     blocks = [
         da.from_delayed(
             dask.delayed(_fraction_rows, pure=True)(*shared, j0, min(j0 + row_chunk, ny)),

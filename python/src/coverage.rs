@@ -5,6 +5,7 @@
 use numpy::{IntoPyArray, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
+use inrs::contain::FillRule;
 use inrs::coverage::{CellGrid, CoverageOptions, GridCoverage};
 
 use crate::domain::NativeDomain;
@@ -21,8 +22,9 @@ type CoverageArrays<'py> = (
     Option<Bound<'py, PyArray2<f64>>>,
 );
 
-/// The coverage of the grid with edges `x_edges`, `y_edges` by `domain` (even-odd fill):
-/// [`GridCoverage::new`], then [`GridCoverage::all`] (`rows` is `None`, on `threads` threads, 0
+/// The coverage of the grid with edges `x_edges`, `y_edges` by `domain` under `fill_rule`
+/// (`even-odd` or `nonzero`, as `Domain.classify` parses it): [`GridCoverage::with_fill_rule`],
+/// then [`GridCoverage::all`] (`rows` is `None`, on `threads` threads, 0
 /// for all) or [`GridCoverage::rows`] for the rows `j0 .. j1` (`rows = (j0, j1)`, one band,
 /// computed on the calling thread: the other rows are never built). The GIL is released while
 /// the library works; its errors (bad edges, open boundary, too many cells) are `ValueError`s
@@ -37,8 +39,10 @@ pub(crate) fn cell_coverage<'py>(
     rows: Option<(usize, usize)>,
     centroids: bool,
     apertures: bool,
+    fill_rule: &str,
     threads: usize,
 ) -> PyResult<CoverageArrays<'py>> {
+    let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
     let grid = CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec())
         .map_err(value_error)?;
     let nx = grid.nx();
@@ -49,7 +53,7 @@ pub(crate) fn cell_coverage<'py>(
     let coverage = py
         .detach(|| {
             with_threads(threads, || {
-                let cover = GridCoverage::new(d, grid)?;
+                let cover = GridCoverage::with_fill_rule(d, grid, fill_rule)?;
                 match rows {
                     Some((j0, j1)) => cover.rows(j0..j1, options),
                     None => cover.all(options),

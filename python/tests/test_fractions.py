@@ -104,6 +104,29 @@ def test_annulus_sums_to_three_pi_with_exact_hole_and_ring_cells():
     assert np.all(f[near > 2] == 0.0)
 
 
+def test_nonzero_fills_nested_circles_of_one_orientation():
+    # ANNULUS: two counter-clockwise circles (radii 1 and 2). Nonzero fills the disc of
+    # radius 2, whose fraction of a cell is the unit disc's in the cell scaled by 1/2.
+    d = inrs.Domain.from_json(ANNULUS)
+    xs, ys = irregular_edges(3, -2.4, 2.4), np.linspace(-2.3, 2.2, 41)
+    areas = np.outer(np.diff(ys), np.diff(xs))
+    f = d.cell_fractions(xs, ys, fill_rule="nonzero")
+    assert np.abs(f - disc_fractions(xs / 2, ys / 2)).max() <= 1e-12
+    assert math.fsum((f * areas).ravel()) == pytest.approx(4 * math.pi, rel=1e-13, abs=0)
+    even_odd = d.cell_fractions(xs, ys, fill_rule="even-odd")
+    assert np.array_equal(even_odd, d.cell_fractions(xs, ys))
+    assert math.fsum((even_odd * areas).ravel()) == pytest.approx(3 * math.pi, rel=1e-13, abs=0)
+    # Only the outer circle bounds the filled set: the apertures are the disc of radius 2's.
+    disc2 = inrs.Domain.from_json(DISC.replace('"radius": 1', '"radius": 2'))
+    got = d.cell_fractions(xs, ys, apertures=True, fill_rule="nonzero")
+    want = disc2.cell_fractions(xs, ys, apertures=True)
+    assert np.abs(got.x_apertures - want.x_apertures).max() <= 1e-12
+    assert np.abs(got.y_apertures - want.y_apertures).max() <= 1e-12
+    assert np.abs(got.fractions - want.fractions).max() <= 1e-12
+    with pytest.raises(ValueError, match="unknown fill rule"):
+        d.cell_fractions(xs, ys, fill_rule="winding")
+
+
 def rectangle_coverage(rect, xs, ys):
     """Fractions, centroids and apertures of the rectangle ``(x0, x1, y0, y1)`` on the grid,
     from the overlaps of intervals; a face on the rectangle's side takes the value just to its
@@ -232,6 +255,20 @@ def test_dask_blocks_equal_the_eager_array_bit_for_bit():
     want = disc.cell_fractions(xs, ys)
     for chunk in (1, 3, 100, None):
         assert np.array_equal(inrs.dask.cell_fractions(disc, xs, ys, row_chunk=chunk).compute(), want)
+
+
+def test_dask_blocks_take_the_fill_rule():
+    require("dask")
+    import inrs.dask
+
+    d = inrs.Domain.from_json(ANNULUS)
+    xs, ys = np.linspace(-2.2, 2.1, 30), irregular_edges(5, -2.1, 2.3)
+    want = d.cell_fractions(xs, ys, fill_rule="nonzero")
+    lazy = inrs.dask.cell_fractions(d, xs, ys, row_chunk=4, fill_rule="nonzero")
+    assert np.array_equal(lazy.compute(), want)
+    assert not np.array_equal(want, d.cell_fractions(xs, ys))
+    with pytest.raises(ValueError, match="unknown fill rule"):
+        inrs.dask.cell_fractions(d, xs, ys, fill_rule="odd")
 
 
 def test_dask_blocks_on_worker_processes_equal_the_eager_array():

@@ -112,7 +112,7 @@ impl From<MethodArg> for inrs::Method {
     }
 }
 
-/// `classify --fill-rule`.
+/// `classify --fill-rule` and `fractions --fill-rule`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum FillRuleArg {
     /// Inside where the winding number is odd (agrees with the crossing methods).

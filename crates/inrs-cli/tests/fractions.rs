@@ -255,6 +255,69 @@ fn unit_disc_fractions_are_circle_segment_areas() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `--fill-rule`: two counter-clockwise circles (radii 1 and 0.5, written as a JSON domain
+/// here) fill the unit disc under nonzero, every cell within 1e-12 of the closed form and the
+/// total `pi`; under even-odd (the default, and asked for by name) they fill the annulus,
+/// `3 pi / 4`.
+#[test]
+fn fill_rule_nonzero_fills_nested_circles_of_one_orientation() {
+    use inrs::spline::{Domain, Point, circle};
+    let dir = scratch("nonzero");
+    let domain = dir.join("two_circles.json");
+    let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+    let d = Domain::new(vec![c(1.0), c(0.5)]).unwrap();
+    std::fs::write(&domain, inrs::io::json::domain_to_json(&d)).unwrap();
+    let (x0, x1, y0, y1, n) = (-1.1, 1.05, -1.05, 1.1, 32);
+    let (xs, ys) = (edges(x0, x1, n), edges(y0, y1, n));
+    let cell_area = (xs[1] - xs[0]) * (ys[1] - ys[0]);
+    let run = |rule: Option<&str>, name: &str| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "--domain",
+            domain.to_str().unwrap(),
+            "--grid=-1.1,1.05,32,-1.05,1.1,32",
+            "--output",
+            out.to_str().unwrap(),
+        ];
+        if let Some(rule) = rule {
+            args.extend(["--fill-rule", rule]);
+        }
+        fractions_ok(&args);
+        let (shape, f) = read_npy(&out);
+        assert_eq!(shape, [n, n]);
+        f
+    };
+    let pi = std::f64::consts::PI;
+    let nonzero = run(Some("nonzero"), "nonzero.npy");
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (xs[i], xs[i + 1], ys[j], ys[j + 1]);
+            let want = disc_area_in(a, b, c, d) / ((b - a) * (d - c));
+            let got = nonzero[j * n + i];
+            assert!((got - want).abs() < 1e-12, "cell ({i}, {j}): {got}, {want}");
+        }
+    }
+    let total = nonzero.iter().sum::<f64>() * cell_area;
+    assert!((total - pi).abs() < 1e-12, "nonzero area {total}");
+    for (rule, name) in [(None, "default.npy"), (Some("even-odd"), "even_odd.npy")] {
+        let total = run(rule, name).iter().sum::<f64>() * cell_area;
+        assert!((total - 0.75 * pi).abs() < 1e-12, "{rule:?}: area {total}");
+    }
+    let o = inrs(&[
+        "fractions",
+        "--domain",
+        domain.to_str().unwrap(),
+        "--grid=0,1,2,0,1,2",
+        "--fill-rule",
+        "winding",
+        "--output",
+        dir.join("bad.npy").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(!dir.join("bad.npy").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A grid of many row bands (1500 x 1500 on the gear, which has a hole with an island in
 /// it): every array equals the library's whole-grid `all()` bit for bit, the faces shared by
 /// two bands written once.

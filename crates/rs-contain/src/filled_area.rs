@@ -1,17 +1,109 @@
-//! The area a domain fills under the even-odd rule.
+//! The area a domain fills under a fill rule, and the nesting of its loops that decides it.
 
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point};
 
-use crate::{QueryStats, curve_winding_number};
+use crate::{FillRule, QueryStats, curve_winding_number};
 
-/// Most loops [`even_odd_area`] nests (its work is quadratic in the number of loops).
+/// Most loops [`loop_nesting`] nests (its work is quadratic in the number of loops).
 pub const MAX_NESTED_LOOPS: usize = 10_000;
+
+/// Where one loop of a domain lies among the others: [`loop_nesting`]'s answer.
+///
+/// For loops that do not cross each other, the winding number of the whole boundary is
+/// `winding` just outside the loop and `winding + orientation` just inside it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct LoopNesting {
+    /// The number of other loops that enclose this loop (whatever their orientation): those
+    /// whose winding number at the loop is odd.
+    pub depth: usize,
+    /// The sum over the other loops of their (rounded, signed) winding numbers at this loop.
+    pub winding: i64,
+    /// `+1` if the loop is counter-clockwise (signed area `>= 0`), else `-1`.
+    pub orientation: i64,
+}
+
+impl LoopNesting {
+    /// `d = f(winding + orientation) - f(winding)` in `{-1, 0, 1}`, with `f(w)` the filled
+    /// set's indicator under `rule` (`w` odd, or `w != 0`): how the filled set's indicator
+    /// changes from just outside the loop to just inside it. The filled area is
+    /// `sum_i d_i |A_i|`; a loop with `d = 0` does not bound the filled set (the inner of two
+    /// nested counter-clockwise circles under the nonzero rule).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_contain::{loop_nesting, FillRule};
+    /// use rs_spline::{circle, Domain, Point};
+    /// let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+    /// let n = loop_nesting(&Domain::new(vec![c(2.0), c(1.0)]).unwrap()).unwrap();
+    /// assert_eq!(n[1].fill_change(FillRule::EvenOdd), -1); // a hole
+    /// assert_eq!(n[1].fill_change(FillRule::NonZero), 0); // inside the filled disc anyway
+    /// ```
+    pub fn fill_change(&self, rule: FillRule) -> i64 {
+        let filled = |w: i64| -> i64 {
+            match rule {
+                FillRule::EvenOdd => w.rem_euclid(2),
+                FillRule::NonZero => i64::from(w != 0),
+            }
+        };
+        filled(self.winding + self.orientation) - filled(self.winding)
+    }
+
+    /// `fill_change(rule) * orientation`: the factor that puts the filled set on the loop's
+    /// left (`+1` for outer boundaries, `-1` for holes), `0` for a loop that does not bound
+    /// the filled set.
+    pub fn boundary_sign(&self, rule: FillRule) -> i64 {
+        self.fill_change(rule) * self.orientation
+    }
+}
+
+/// The area filled by `domain` under `rule`: `sum_i d_i |A_i|`, where `A_i` is the signed
+/// area of loop `i` and `d_i` its [`LoopNesting::fill_change`]. For even-odd `d_i` is
+/// `(-1)^depth_i`; for nonzero it depends on the orientations (two nested counter-clockwise
+/// circles fill the outer disc, the same circles with opposite orientations an annulus).
+/// Exact for closed loops that do not cross each other (they may touch and nest).
+///
+/// `None` where [`loop_nesting`] is `None`: coincident loops, an open loop, or more than
+/// [`MAX_NESTED_LOOPS`] loops.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::{filled_area, FillRule};
+/// use rs_spline::{circle, Domain, ParamCurve, Point};
+/// use std::f64::consts::PI;
+/// let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+/// let same = Domain::new(vec![c(2.0), c(1.0)]).unwrap();
+/// assert!((filled_area(&same, FillRule::NonZero).unwrap() - 4.0 * PI).abs() < 1e-12);
+/// assert!((filled_area(&same, FillRule::EvenOdd).unwrap() - 3.0 * PI).abs() < 1e-12);
+/// let opposite = Domain::new(vec![c(2.0), c(1.0).reversed()]).unwrap();
+/// assert!((filled_area(&opposite, FillRule::NonZero).unwrap() - 3.0 * PI).abs() < 1e-12);
+/// ```
+pub fn filled_area(domain: &Domain, rule: FillRule) -> Option<f64> {
+    let nesting = loop_nesting(domain)?;
+    // Summed loop by loop in order: the even-odd case has the bits it has always had.
+    let total = nesting
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            let area = domain.loop_signed_area(i).abs();
+            match n.fill_change(rule) {
+                1 => area,
+                -1 => -area,
+                _ => 0.0,
+            }
+        })
+        .sum();
+    Some(total)
+}
 
 /// The area filled by `domain` under the even-odd rule: `sum_i (-1)^depth_i |A_i|`, where
 /// `A_i` is the signed area of loop `i` and `depth_i` the number of other loops that enclose it
 /// (whatever their orientation). This is the measure of the set of points of odd crossing
-/// parity, the set the crossing methods call inside, for loops that do not cross each other.
+/// parity, the set the crossing methods call inside, for loops that do not cross each other;
+/// [`filled_area`] with [`FillRule::EvenOdd`].
 ///
 /// The depths are [`loop_depths`]': the parity count at one of a loop's points that lies on
 /// no other loop (the rounded winding number of each other loop there, which is exact away
@@ -33,28 +125,17 @@ pub const MAX_NESTED_LOOPS: usize = 10_000;
 /// assert!((even_odd_area(&d).unwrap() - 3.0 * std::f64::consts::PI).abs() < 1e-12);
 /// ```
 pub fn even_odd_area(domain: &Domain) -> Option<f64> {
-    let depths = loop_depths(domain)?;
-    let total = depths
-        .iter()
-        .enumerate()
-        .map(|(i, &depth)| {
-            let area = domain.loop_signed_area(i).abs();
-            if depth % 2 == 0 { area } else { -area }
-        })
-        .sum();
-    Some(total)
+    filled_area(domain, FillRule::EvenOdd)
 }
 
 /// For every loop of `domain`, its *depth*: the number of other loops that enclose it
-/// (whatever their orientation), the nesting [`even_odd_area`] weighs the loops by. Under the
-/// even-odd rule, loop `i` bounds the filled region with the region on its left when it is
-/// multiplied by `(-1)^depth_i` times the sign of its signed area: outer boundaries
-/// counter-clockwise, holes clockwise (for loops that do not cross each other).
+/// (whatever their orientation), the nesting [`even_odd_area`] weighs the loops by: the
+/// `depth` of [`loop_nesting`]. Under the even-odd rule, loop `i` bounds the filled region
+/// with the region on its left when it is multiplied by `(-1)^depth_i` times the sign of its
+/// signed area: outer boundaries counter-clockwise, holes clockwise (for loops that do not
+/// cross each other).
 ///
-/// A loop's depth is the parity count at one of its points (a piece's start or middle) that
-/// lies on no other loop. `None` if every sampled point of some loop lies on another loop
-/// (coincident loops), if a loop is open, or if there are more than [`MAX_NESTED_LOOPS`]
-/// loops.
+/// `None` where [`loop_nesting`] is `None`.
 ///
 /// # Examples
 ///
@@ -67,6 +148,31 @@ pub fn even_odd_area(domain: &Domain) -> Option<f64> {
 /// assert_eq!(loop_depths(&d), Some(vec![0, 1, 0]));
 /// ```
 pub fn loop_depths(domain: &Domain) -> Option<Vec<usize>> {
+    Some(loop_nesting(domain)?.iter().map(|n| n.depth).collect())
+}
+
+/// For every loop of `domain`, its [`LoopNesting`]: the number of other loops enclosing it,
+/// the sum of their winding numbers there and its own orientation.
+///
+/// Both counts come from one point of the loop (a piece's start or middle, the first of up
+/// to 64 that lies on no other loop): the winding number of each other loop there, rounded
+/// (exact away from that loop). `None` if every sampled point of some loop lies on another
+/// loop (coincident loops), if a loop is open, or if there are more than
+/// [`MAX_NESTED_LOOPS`] loops.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::loop_nesting;
+/// use rs_spline::{circle, Domain, ParamCurve, Point};
+/// let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+/// // Three nested circles, the middle one clockwise.
+/// let d = Domain::new(vec![c(3.0), c(2.0).reversed(), c(1.0)]).unwrap();
+/// let n = loop_nesting(&d).unwrap();
+/// let got: Vec<_> = n.iter().map(|n| (n.depth, n.winding, n.orientation)).collect();
+/// assert_eq!(got, vec![(0, 0, 1), (1, 1, -1), (2, 0, 1)]);
+/// ```
+pub fn loop_nesting(domain: &Domain) -> Option<Vec<LoopNesting>> {
     let loops = domain.loops();
     if loops.len() > MAX_NESTED_LOOPS || loops.iter().any(|l| !l.is_closed()) {
         return None;
@@ -83,6 +189,11 @@ pub fn loop_depths(domain: &Domain) -> Option<Vec<usize>> {
         .iter()
         .enumerate()
         .map(|(i, own)| {
+            let orientation = if domain.loop_signed_area(i) < 0.0 {
+                -1
+            } else {
+                1
+            };
             let samples = own
                 .iter()
                 .flat_map(|b| [b.start_point(), b.point_at(0.5)])
@@ -90,19 +201,24 @@ pub fn loop_depths(domain: &Domain) -> Option<Vec<usize>> {
             samples
                 .into_iter()
                 .find_map(|q| enclosing_loops(&pieces, i, q))
+                .map(|(depth, winding)| LoopNesting {
+                    depth,
+                    winding,
+                    orientation,
+                })
         })
         .collect()
 }
 
-/// The number of loops other than `own` that enclose `q`, or `None` if `q` is (within
-/// rounding) on one of them.
+/// The number of loops other than `own` that enclose `q` and the sum of their rounded
+/// winding numbers there, or `None` if `q` is (within rounding) on one of them.
 fn enclosing_loops(
     pieces: &[Vec<rs_spline::RationalBezier>],
     own: usize,
     q: Point,
-) -> Option<usize> {
+) -> Option<(usize, i64)> {
     let mut stats = QueryStats::default();
-    let mut depth = 0;
+    let (mut depth, mut winding) = (0, 0_i64);
     for (j, other) in pieces.iter().enumerate() {
         if j == own {
             continue;
@@ -114,11 +230,14 @@ fn enclosing_loops(
         if (w - w.round()).abs() > 1e-6 {
             return None;
         }
-        if (w.round() as i64).rem_euclid(2) == 1 {
+        // A loop of finitely many pieces winds a bounded number of times: the cast is exact.
+        let w = w.round() as i64;
+        if w.rem_euclid(2) == 1 {
             depth += 1;
         }
+        winding = winding.saturating_add(w);
     }
-    Some(depth)
+    Some((depth, winding))
 }
 
 #[cfg(test)]
@@ -137,6 +256,55 @@ mod tests {
         let far = circle(Point::new(10.0, 0.0), 1.0).unwrap().reversed();
         let d = Domain::new(vec![c(1.0), far]).unwrap();
         assert!((even_odd_area(&d).unwrap() - 2.0 * pi).abs() < 1e-12);
+    }
+
+    #[test]
+    fn nonzero_fills_nested_loops_of_one_orientation() {
+        let pi = std::f64::consts::PI;
+        let (r_out, r_in) = (2.0_f64, 0.75_f64);
+        let c = |r: f64| circle(Point::new(0.5, -0.25), r).unwrap();
+        let disc = pi * r_out * r_out;
+        let annulus = pi * (r_out * r_out - r_in * r_in);
+        let cases = [
+            // (outer, inner) orientation: same ones fill the disc under nonzero.
+            (c(r_out), c(r_in), disc),
+            (c(r_out).reversed(), c(r_in).reversed(), disc),
+            (c(r_out), c(r_in).reversed(), annulus),
+            (c(r_out).reversed(), c(r_in), annulus),
+        ];
+        for (outer, inner, nonzero) in cases {
+            let d = Domain::new(vec![outer, inner]).unwrap();
+            let got = filled_area(&d, FillRule::NonZero).unwrap();
+            assert!((got - nonzero).abs() < 1e-12, "{got} vs {nonzero}");
+            let even_odd = filled_area(&d, FillRule::EvenOdd).unwrap();
+            assert!(
+                (even_odd - annulus).abs() < 1e-12,
+                "{even_odd} vs {annulus}"
+            );
+            assert_eq!(even_odd.to_bits(), even_odd_area(&d).unwrap().to_bits());
+        }
+    }
+
+    #[test]
+    fn nonzero_windings_add_through_three_levels() {
+        // Radii 3, 2, 1, all counter-clockwise: windings 1, 2, 3 inside; nonzero fills the
+        // big disc and only the outer loop bounds it. With the middle one clockwise the
+        // windings are 1, 0, 1: the same set as even-odd.
+        let pi = std::f64::consts::PI;
+        let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+        let d = Domain::new(vec![c(3.0), c(2.0), c(1.0)]).unwrap();
+        let n = loop_nesting(&d).unwrap();
+        let changes: Vec<_> = n.iter().map(|n| n.fill_change(FillRule::NonZero)).collect();
+        assert_eq!(changes, vec![1, 0, 0]);
+        assert!((filled_area(&d, FillRule::NonZero).unwrap() - 9.0 * pi).abs() < 1e-12);
+        let d = Domain::new(vec![c(3.0), c(2.0).reversed(), c(1.0)]).unwrap();
+        let n = loop_nesting(&d).unwrap();
+        let signs: Vec<_> = n
+            .iter()
+            .map(|n| n.boundary_sign(FillRule::NonZero))
+            .collect();
+        assert_eq!(signs, vec![1, 1, 1]); // each loop has the filled set on its left
+        assert!((filled_area(&d, FillRule::NonZero).unwrap() - 6.0 * pi).abs() < 1e-12);
     }
 
     #[test]

@@ -64,7 +64,9 @@ mod summary;
 pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
 pub use engine::{Containment, Engine, FAST_ONE_BY_ONE_MAX_POINTS};
 pub use error::ContainError;
-pub use filled_area::{MAX_NESTED_LOOPS, even_odd_area, loop_depths};
+pub use filled_area::{
+    LoopNesting, MAX_NESTED_LOOPS, even_odd_area, filled_area, loop_depths, loop_nesting,
+};
 pub use gwn::{
     CurveHierarchy, FastWindingField, FillRule, HIERARCHY_DEPTH, QueryStats, WindingField,
     WindingNumbers, curve_winding_number,

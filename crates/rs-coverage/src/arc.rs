@@ -50,8 +50,8 @@ pub(crate) struct PartIntegrals {
 pub(crate) struct Arc {
     /// The piece: end points, bounds, directions and the crossing solves.
     pub(crate) piece: MonotoneBox,
-    /// `+1` or `-1`: the factor that puts the filled region on the piece's left (the even-odd
-    /// sign of its loop, see [`rs_contain::loop_depths`]).
+    /// `+1` or `-1`: the factor that puts the filled region on the piece's left (the sign of
+    /// its loop under the fill rule, see [`rs_contain::LoopNesting::boundary_sign`]).
     pub(crate) sign: f64,
     x: Coeffs,
     y: Coeffs,

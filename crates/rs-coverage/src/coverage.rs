@@ -3,7 +3,7 @@
 use std::ops::Range;
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
-use rs_contain::{MAX_NESTED_LOOPS, loop_depths};
+use rs_contain::{FillRule, MAX_NESTED_LOOPS, loop_nesting};
 use rs_spline::Domain;
 
 use crate::arc::{Arc, Rules};
@@ -160,7 +160,7 @@ fn zeros<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, Coverag
 }
 
 /// A domain prepared for coverage on a grid: its boundary cut into monotone pieces, each with
-/// the even-odd orientation of its loop. Build once, then ask for the whole grid
+/// the orientation of its loop that puts the filled set (even-odd or nonzero) on its left. Build once, then ask for the whole grid
 /// ([`GridCoverage::all`]) or for bands of rows ([`GridCoverage::rows`]) from any thread.
 ///
 /// # Examples
@@ -184,40 +184,62 @@ pub struct GridCoverage {
 }
 
 impl GridCoverage {
-    /// Prepares `domain` for coverage on `grid`.
+    /// Prepares `domain` for coverage on `grid` under the even-odd rule:
+    /// [`GridCoverage::with_fill_rule`] with [`FillRule::EvenOdd`].
+    ///
+    /// # Errors
+    /// As [`GridCoverage::with_fill_rule`].
+    pub fn new(domain: &Domain, grid: CellGrid) -> Result<Self, CoverageError> {
+        Self::with_fill_rule(domain, grid, FillRule::EvenOdd)
+    }
+
+    /// Prepares `domain` for coverage on `grid` under `rule`. Each loop's pieces are
+    /// multiplied by its [`rs_contain::LoopNesting::boundary_sign`], which puts the filled set
+    /// on their left; a loop that does not bound the filled set (sign 0: the inner of two
+    /// nested loops of one orientation under [`FillRule::NonZero`]) is left out, so that the
+    /// crossing parity of the loops kept (the apertures and the covered lengths) is the
+    /// filled set's indicator. Exact for loops that do not cross each other.
     ///
     /// # Errors
     /// [`CoverageError::Domain`] for an open boundary (a loop that does not close, or a curve
     /// that falls apart at a break); [`CoverageError::Nesting`] when the loops' nesting cannot
     /// be decided (a loop on another, or more than [`rs_contain::MAX_NESTED_LOOPS`] loops);
     /// [`CoverageError::Boxes`] when a piece cannot be cut into monotone pieces.
-    pub fn new(domain: &Domain, grid: CellGrid) -> Result<Self, CoverageError> {
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_contain::FillRule;
+    /// use rs_coverage::{CellGrid, CoverageOptions, GridCoverage};
+    /// use rs_spline::{circle, Domain, Point};
+    /// // Two counter-clockwise circles: nonzero fills the big disc, even-odd the ring.
+    /// let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+    /// let d = Domain::new(vec![c(2.0), c(1.0)]).unwrap();
+    /// let grid = CellGrid::uniform(-0.5, 0.5, 1, -0.5, 0.5, 1).unwrap();
+    /// let centre = |rule| {
+    ///     let cover = GridCoverage::with_fill_rule(&d, grid.clone(), rule).unwrap();
+    ///     cover.all(CoverageOptions::DEFAULT).unwrap().fractions[0]
+    /// };
+    /// assert_eq!(centre(FillRule::NonZero), 1.0);
+    /// assert_eq!(centre(FillRule::EvenOdd), 0.0);
+    /// ```
+    pub fn with_fill_rule(
+        domain: &Domain,
+        grid: CellGrid,
+        rule: FillRule,
+    ) -> Result<Self, CoverageError> {
         domain.require_closed()?;
-        let depths = loop_depths(domain).ok_or(CoverageError::Nesting {
+        let nesting = loop_nesting(domain).ok_or(CoverageError::Nesting {
             limit: MAX_NESTED_LOOPS,
         })?;
-        // Outer boundaries counter-clockwise, holes clockwise: the region on the left.
-        let signs: Vec<f64> = depths
-            .iter()
-            .enumerate()
-            .map(|(i, &depth)| {
-                let orientation = if domain.loop_signed_area(i) < 0.0 {
-                    -1.0
-                } else {
-                    1.0
-                };
-                if depth % 2 == 0 {
-                    orientation
-                } else {
-                    -orientation
-                }
-            })
-            .collect();
+        // Outer boundaries counter-clockwise, holes clockwise: the filled set on the left.
+        let signs: Vec<i64> = nesting.iter().map(|n| n.boundary_sign(rule)).collect();
         let boxes = MonotoneBoxes::new(domain, BoxOptions::DEFAULT.with_subdivisions(1))?;
         let arcs = boxes
             .pieces()
             .iter()
-            .map(|p| Arc::new(p.clone(), signs[p.boundary_loop]))
+            .filter(|p| signs[p.boundary_loop] != 0)
+            .map(|p| Arc::new(p.clone(), signs[p.boundary_loop] as f64))
             .collect();
         Ok(Self {
             grid,
@@ -366,7 +388,7 @@ impl GridCoverage {
 }
 
 /// The coverage of the whole `grid` by `domain` (even-odd fill): [`GridCoverage::new`] then
-/// [`GridCoverage::all`].
+/// [`GridCoverage::all`]. For the nonzero rule, [`GridCoverage::with_fill_rule`].
 ///
 /// # Errors
 /// As [`GridCoverage::new`] and [`GridCoverage::all`].

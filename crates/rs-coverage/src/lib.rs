@@ -5,8 +5,9 @@
 //!
 //! # Method
 //! The boundary is cut into pieces monotone in `x` and `y` (`rs-boxes`), each multiplied by
-//! the even-odd orientation of its loop (outer boundaries counter-clockwise, holes clockwise:
-//! [`rs_contain::loop_depths`]). For a column `[x_i, x_{i+1}]` and a row `[y_j, y_{j+1}]` of
+//! the orientation of its loop that puts the filled set on its left (outer boundaries
+//! counter-clockwise, holes clockwise: [`rs_contain::LoopNesting::boundary_sign`]); loops
+//! that do not bound the filled set are left out. For a column `[x_i, x_{i+1}]` and a row `[y_j, y_{j+1}]` of
 //! height `h`, Green's theorem with `g(y) = min(y, y_{j+1}) - min(y, y_j)` on the column's
 //! strip (whose vertical sides add nothing, `dx = 0` there) gives the covered area
 //!
@@ -23,9 +24,14 @@
 //! cell. The work is `O(cells + crossings)`; a band of rows needs only its own crossings.
 //!
 //! # Semantics
-//! - **Fill rule**: even-odd, for closed loops that do not cross each other (they may touch,
-//!   nest and have holes). A loop that crosses itself or another loop is not covered by the
-//!   guarantees.
+//! - **Fill rule**: even-odd by default ([`GridCoverage::new`], [`cell_coverage`]), nonzero
+//!   through [`GridCoverage::with_fill_rule`], for closed loops that do not cross each other
+//!   (they may touch, nest and have holes). Under nonzero, with `W_i` the sum of the other
+//!   loops' winding numbers on loop `i` and `o_i = +-1` its orientation, the winding number
+//!   is `W_i + o_i` just inside loop `i` and `W_i` just outside: the loop bounds the filled
+//!   set only if exactly one of the two is 0 (two nested counter-clockwise circles fill the
+//!   outer disc; with opposite orientations, the ring). A loop that crosses itself or
+//!   another loop is not covered by the guarantees.
 //! - **Accuracy**: exact up to rounding. The error of a fraction is about `2 eps D / s`,
 //!   where `D` is the size of the monotone boundary piece through the cell (at most the
 //!   domain's size; the piece's control points are shifted to the cell's corner, so the

@@ -5,6 +5,7 @@
 
 use std::f64::consts::PI;
 
+use rs_contain::FillRule;
 use rs_coverage::{CellGrid, Coverage, CoverageOptions, GridCoverage, cell_coverage};
 use rs_spline::{Domain, Point, circle, prelude::*};
 
@@ -153,6 +154,16 @@ fn annulus() -> Domain {
     .unwrap()
 }
 
+/// The circles of radius 1 and 0.5 about the origin, the outer counter-clockwise unless
+/// `outer_cw`, the inner of the same orientation unless `opposite`.
+fn two_circles(outer_cw: bool, opposite: bool) -> Domain {
+    let c = |r: f64, cw: bool| {
+        let c = circle(Point::new(0.0, 0.0), r).unwrap();
+        if cw { c.reversed() } else { c }
+    };
+    Domain::new(vec![c(1.0, outer_cw), c(0.5, outer_cw != opposite)]).unwrap()
+}
+
 /// Every cell of `c` (rows `c.rows` of `grid`) against `truth`, within `1e-12` of the cell's
 /// area; returns the largest error relative to the cell's area.
 fn check_cells(grid: &CellGrid, c: &Coverage, truth: impl Fn([f64; 4]) -> f64, what: &str) -> f64 {
@@ -206,6 +217,80 @@ fn annulus_every_cell_from_4_to_256() {
             let c = cell_coverage(&d, &grid, CoverageOptions::DEFAULT).unwrap();
             let worst = check_cells(&grid, &c, truth, "annulus");
             eprintln!("annulus {n}: worst {worst:e}");
+        }
+    }
+}
+
+/// Nonzero: two nested circles of one orientation (either) fill the unit disc, of opposite
+/// orientations the annulus; even-odd gives the annulus for all four. Every cell against the
+/// closed forms.
+#[test]
+fn nonzero_two_circles_every_cell() {
+    let disc = |cell| disc_in_cell(1.0, cell);
+    let ring = |cell| disc_in_cell(1.0, cell) - disc_in_cell(0.5, cell);
+    for n in [4, 16, 64, 256] {
+        for grid in grids(n) {
+            for outer_cw in [false, true] {
+                for opposite in [false, true] {
+                    let d = two_circles(outer_cw, opposite);
+                    let tag = format!("cw {outer_cw} opposite {opposite} {n}");
+                    let cover = |rule| {
+                        let cover = GridCoverage::with_fill_rule(&d, grid.clone(), rule).unwrap();
+                        cover.all(CoverageOptions::DEFAULT).unwrap()
+                    };
+                    let c = cover(FillRule::NonZero);
+                    if opposite {
+                        check_cells(&grid, &c, ring, &format!("nonzero {tag}"));
+                    } else {
+                        check_cells(&grid, &c, disc, &format!("nonzero {tag}"));
+                    }
+                    let c = cover(FillRule::EvenOdd);
+                    check_cells(&grid, &c, ring, &format!("even-odd {tag}"));
+                }
+            }
+        }
+    }
+}
+
+/// Nonzero on two counter-clockwise circles keeps only the outer one's pieces: the values,
+/// apertures and centroids are the unit disc's bit for bit, and the apertures (both
+/// orientations) are the exact chords of the unit circle.
+#[test]
+fn nonzero_same_orientation_apertures_are_the_outer_discs() {
+    let options = CoverageOptions::DEFAULT
+        .with_apertures(true)
+        .with_centroids(true);
+    for grid in grids(64) {
+        let (xs, ys) = (grid.x_edges(), grid.y_edges());
+        let (nx, ny) = (grid.nx(), grid.ny());
+        let disc = cell_coverage(&unit_disc(), &grid, options).unwrap();
+        for outer_cw in [false, true] {
+            let d = two_circles(outer_cw, false);
+            let c = GridCoverage::with_fill_rule(&d, grid.clone(), FillRule::NonZero)
+                .unwrap()
+                .all(options)
+                .unwrap();
+            if !outer_cw {
+                assert_eq!(c.fractions, disc.fractions);
+                assert_eq!(c.x_apertures, disc.x_apertures);
+                assert_eq!(c.y_apertures, disc.y_apertures);
+            }
+            let xa = c.x_apertures.unwrap();
+            let ya = c.y_apertures.unwrap();
+            for j in 0..ny {
+                for (i, &x) in xs.iter().enumerate() {
+                    let expected = chord_in(1.0, x, ys[j], ys[j + 1]) / (ys[j + 1] - ys[j]);
+                    let got = xa[j * (nx + 1) + i];
+                    assert!((got - expected).abs() <= 1e-12, "x face {i},{j}: {got}");
+                }
+            }
+            for (j, &y) in ys.iter().enumerate() {
+                for i in 0..nx {
+                    let expected = chord_in(1.0, y, xs[i], xs[i + 1]) / (xs[i + 1] - xs[i]);
+                    let got = ya[j * nx + i];
+                    assert!((got - expected).abs() <= 1e-12, "y face {i},{j}: {got}");
+                }
+            }
         }
     }
 }

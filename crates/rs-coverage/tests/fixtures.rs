@@ -3,7 +3,7 @@
 //! by Green's theorem on the whole loops), bands of rows give the whole grid's values, and
 //! bad input gets the right error.
 
-use rs_contain::{even_odd_area, loop_depths};
+use rs_contain::{FillRule, even_odd_area, filled_area, loop_depths, loop_nesting};
 use rs_coverage::{
     CellGrid, CoverageError, CoverageOptions, GridCoverage, MAX_CELLS, cell_coverage,
 };
@@ -60,22 +60,28 @@ fn covering_grids(d: &Domain) -> Vec<CellGrid> {
         .collect()
 }
 
-/// `(area, first moment x, first moment y)` of the region of `d` under the even-odd rule:
-/// each loop with the sign that makes it bound the region on its left, and
-/// `int int x dA = oint x^2 / 2 dy`, `int int y dA = -oint y^2 / 2 dx` on its pieces by
-/// adaptive quadrature.
-fn domain_moments(d: &Domain) -> (f64, f64, f64) {
+/// `(area, first moment x, first moment y)` of the region of `d` under `rule`: each loop
+/// with the sign that makes it bound the region on its left (0 for loops that do not bound
+/// it), and `int int x dA = oint x^2 / 2 dy`, `int int y dA = -oint y^2 / 2 dx` on its pieces
+/// by adaptive quadrature. Under even-odd the signs are also checked against the depths'
+/// `(-1)^depth` times the orientation.
+fn domain_moments(d: &Domain, rule: FillRule) -> (f64, f64, f64) {
     let depths = loop_depths(d).unwrap();
+    let nesting = loop_nesting(d).unwrap();
     let (mut mx, mut my) = (0.0, 0.0);
     let scale = d.bounding_box().diagonal();
     for (i, l) in d.loops().iter().enumerate() {
         let a = d.loop_signed_area(i);
-        let s = a.signum()
+        let even_odd = a.signum()
             * if depths[i].is_multiple_of(2) {
                 1.0
             } else {
                 -1.0
             };
+        let s = nesting[i].boundary_sign(rule) as f64;
+        if rule == FillRule::EvenOdd {
+            assert_eq!(s, even_odd, "loop {i}");
+        }
         for c in l.curves() {
             for b in d.curves()[c].to_bezier() {
                 let tol = 1e-16 * scale.powi(3);
@@ -102,7 +108,11 @@ fn domain_moments(d: &Domain) -> (f64, f64, f64) {
             }
         }
     }
-    (even_odd_area(d).unwrap(), mx, my)
+    let area = filled_area(d, rule).unwrap();
+    if rule == FillRule::EvenOdd {
+        assert_eq!(area.to_bits(), even_odd_area(d).unwrap().to_bits());
+    }
+    (area, mx, my)
 }
 
 /// A compensated (Neumaier) sum: the grids have up to `7 * 10^5` cells, whose naive sum
@@ -148,17 +158,36 @@ fn totals(grid: &CellGrid, fractions: &[f64], centroids: &[[f64; 2]]) -> (f64, f
 fn covered_areas_and_moments_add_up_on_every_fixture() {
     let mut cases = closed_fixtures();
     cases.extend(glyphs());
-    for (name, d) in cases {
-        let (area, mx, my) = domain_moments(&d);
+    let mut differ = Vec::new();
+    for ((name, d), rule) in cases
+        .iter()
+        .flat_map(|c| [(c, FillRule::EvenOdd), (c, FillRule::NonZero)])
+    {
+        let (area, mx, my) = domain_moments(d, rule);
+        if rule == FillRule::NonZero && area != filled_area(d, FillRule::EvenOdd).unwrap() {
+            differ.push(name.clone());
+        }
         let b = d.bounding_box();
         // Moments about a point of the box are of size area * diagonal at most.
         let moment_scale =
             area.abs() * (b.max.x.abs().max(b.min.x.abs()) + b.max.y.abs().max(b.min.y.abs()));
-        for grid in covering_grids(&d) {
-            let c =
-                cell_coverage(&d, &grid, CoverageOptions::DEFAULT.with_centroids(true)).unwrap();
+        for grid in covering_grids(d) {
+            let c = GridCoverage::with_fill_rule(d, grid.clone(), rule)
+                .unwrap()
+                .all(CoverageOptions::DEFAULT.with_centroids(true))
+                .unwrap();
+            // Even-odd is `cell_coverage`'s rule; nonzero gives the same cells wherever every
+            // loop bounds the filled set with the same sign under both rules.
+            let alike = loop_nesting(d)
+                .unwrap()
+                .iter()
+                .all(|n| n.boundary_sign(FillRule::EvenOdd) == n.boundary_sign(FillRule::NonZero));
+            if rule == FillRule::EvenOdd || alike {
+                let plain = cell_coverage(d, &grid, CoverageOptions::DEFAULT.with_centroids(true));
+                assert_eq!(c.fractions, plain.unwrap().fractions, "{name} ({rule:?})");
+            }
             let (a, x, y) = totals(&grid, &c.fractions, c.centroids.as_ref().unwrap());
-            let tag = format!("{name} on {}x{}", grid.nx(), grid.ny());
+            let tag = format!("{name} ({rule:?}) on {}x{}", grid.nx(), grid.ny());
             assert!(
                 (a - area).abs() <= 1e-12 * area,
                 "{tag}: area {a} vs {area}"
@@ -173,6 +202,7 @@ fn covered_areas_and_moments_add_up_on_every_fixture() {
             );
         }
     }
+    eprintln!("nonzero area differs from even-odd on: {differ:?}");
 }
 
 /// The whole grid on rayon's threads, one band of all rows, and many small bands give the

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use inrs::coverage::{CoverageOptions, GridCoverage};
 
-use crate::args::DomainArg;
+use crate::args::{DomainArg, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::limits;
 
@@ -17,8 +17,8 @@ use grid::{GridSpec, parse_grid};
 #[cfg(test)]
 pub(crate) use grid::{MAX_CELLS_PER_AXIS, MAX_GRID_CELLS};
 
-/// Exact covered fraction of every cell of a uniform grid (even-odd fill of closed loops);
-/// writes float64 `.npy` arrays.
+/// Exact covered fraction of every cell of a uniform grid (even-odd or nonzero fill of closed
+/// loops); writes float64 `.npy` arrays.
 ///
 /// `F.npy` has shape (ny, nx): row j, column i is the cell `[x_i, x_i+1] x [y_j, y_j+1]` with
 /// `x_i = x0 + i (x1 - x0) / nx` and `y_j` likewise (y increases with the row). --centroids
@@ -50,6 +50,11 @@ pub(crate) struct FractionsArgs {
     /// covered fraction of each vertical and horizontal cell face.
     #[arg(long)]
     apertures: bool,
+    /// Fill rule: even-odd (odd crossing parity), or nonzero (winding number not zero, from
+    /// the loops' orientations: two nested counter-clockwise circles fill the outer disc).
+    /// Nonzero is exact for loops that do not cross each other.
+    #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
+    fill_rule: FillRuleArg,
     /// The fractions file `F.npy` (float64, shape (ny, nx)); its name must end in .npy.
     #[arg(long, value_parser = parse_npy_path)]
     output: PathBuf,
@@ -86,7 +91,8 @@ impl FractionsArgs {
             .cell_grid()
             .map_err(|e| CliError::Message(format!("--grid: {e}")))?;
         let d = self.domain.load()?;
-        let cover = GridCoverage::new(&d, grid).map_err(|e| self.domain.error(e))?;
+        let cover = GridCoverage::with_fill_rule(&d, grid, self.fill_rule.into())
+            .map_err(|e| self.domain.error(e))?;
         let options = CoverageOptions::DEFAULT
             .with_centroids(self.centroids)
             .with_apertures(self.apertures);
