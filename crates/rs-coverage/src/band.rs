@@ -18,11 +18,13 @@ use crate::arc::{Arc, PartIntegrals, Rules};
 use crate::lines::add_covered;
 
 /// Where a band writes its results: row-major slices of the caller's arrays, the fractions
-/// and centroids zeroed.
+/// zeroed and the centroids `NaN` on entry. Only the cells the covered set reaches are
+/// written: the others keep those values (a zeroed page the band never writes is never
+/// touched).
 pub(crate) struct BandOut<'a> {
-    /// `(rows, nx)`; holds the sum of the parts' `b` until the end.
+    /// `(rows, nx)`.
     pub(crate) fractions: &'a mut [f64],
-    /// `(rows, nx)`; holds the sums of the parts' moments until the end.
+    /// `(rows, nx)`.
     pub(crate) centroids: Option<&'a mut [[f64; 2]]>,
     /// `(rows, nx + 1)`.
     pub(crate) x_apertures: Option<&'a mut [f64]>,
@@ -62,38 +64,43 @@ struct Crossings {
     v_events: Vec<(f64, usize)>,
     /// Its crossings with horizontal lines strictly inside its band part: `(t, x)`, by `t`.
     h_events: Vec<(f64, f64)>,
+    /// `(cell, [b, mx, my])`: the signed integrals of every part, by the cell's index in the
+    /// band, in the order the walk found them (summed per cell in that order).
+    parts: Vec<(usize, [f64; 3])>,
 }
 
 impl Band<'_> {
-    /// Computes the band's results into `out`, from every piece of the boundary. The
-    /// fractions and centroids must be zero on entry (they accumulate the parts' integrals).
+    /// Computes the band's results into `out` (see [`BandOut`] for its values on entry), from
+    /// every piece of the boundary.
     pub(crate) fn cover(&self, arcs: &[Arc], out: BandOut<'_>) {
         let BandOut {
             fractions,
-            mut centroids,
+            centroids,
             x_apertures,
             y_apertures,
             y_top,
         } = out;
         let mut c = Crossings::default();
         for arc in arcs {
-            self.visit(arc, &mut c, fractions, centroids.as_deref_mut());
+            self.visit(arc, &mut c);
         }
+        let cells = sum_by_cell(&mut c.parts);
         let (hx, starts) = self.group_horizontal(&mut c.horizontal);
-        self.finish_rows(&hx, &starts, fractions, centroids, y_apertures, y_top);
+        self.finish_rows(
+            (&hx, &starts),
+            &cells,
+            fractions,
+            centroids,
+            y_apertures,
+            y_top,
+        );
         if let Some(xa) = x_apertures {
             self.finish_x_apertures(&hx[starts[0]..starts[1]], &mut c.vertical, xa);
         }
     }
 
     /// Collects one piece's crossings and integrates its parts in the band's cells.
-    fn visit(
-        &self,
-        arc: &Arc,
-        c: &mut Crossings,
-        acc: &mut [f64],
-        mut mom: Option<&mut [[f64; 2]]>,
-    ) {
+    fn visit(&self, arc: &Arc, c: &mut Crossings) {
         let (xs, ys) = (self.xs, self.ys);
         let (j0, j1) = (self.rows.start, self.rows.end);
         let b = &arc.piece.band;
@@ -207,14 +214,7 @@ impl Band<'_> {
             } else {
                 c.h_events[hi]
             };
-            self.add_part(
-                arc,
-                (col, row),
-                (t_prev, t),
-                (x_prev, x),
-                acc,
-                mom.as_deref_mut(),
-            );
+            self.add_part(arc, (col, row), (t_prev, t), (x_prev, x), &mut c.parts);
             if vertical {
                 col += dcol;
                 vi += 1;
@@ -224,7 +224,7 @@ impl Band<'_> {
             }
             (t_prev, x_prev) = (t, x);
         }
-        self.add_part(arc, (col, row), (t_prev, tb), (x_prev, pb.x), acc, mom);
+        self.add_part(arc, (col, row), (t_prev, tb), (x_prev, pb.x), &mut c.parts);
     }
 
     /// The piece's part in the band, `((ta, pa), (tb, pb))` in the piece's order: clipped at
@@ -270,16 +270,15 @@ impl Band<'_> {
         })
     }
 
-    /// Adds the integrals of the piece's part over `[t0, t1]` (abscissas `x0`, `x1`) to the
-    /// cell `(col, row)` when that cell is one of the band's.
+    /// Records the integrals of the piece's part over `[t0, t1]` (abscissas `x0`, `x1`) for
+    /// the cell `(col, row)` when that cell is one of the band's.
     fn add_part(
         &self,
         arc: &Arc,
         (col, row): (isize, isize),
         (t0, t1): (f64, f64),
         (x0, x1): (f64, f64),
-        acc: &mut [f64],
-        mom: Option<&mut [[f64; 2]]>,
+        parts: &mut Vec<(usize, [f64; 3])>,
     ) {
         let nx = self.xs.len() - 1;
         let (j0, j1) = (self.rows.start, self.rows.end);
@@ -302,11 +301,10 @@ impl Band<'_> {
             arc.integrals((t0, t1), corner, size, self.moments, self.rules)
         };
         let idx = (j - j0) * nx + i;
-        acc[idx] += arc.sign * part.b;
-        if let Some(m) = mom {
-            m[idx][0] += arc.sign * part.mx;
-            m[idx][1] += arc.sign * part.my;
-        }
+        parts.push((
+            idx,
+            [arc.sign * part.b, arc.sign * part.mx, arc.sign * part.my],
+        ));
     }
 
     /// Sorts the horizontal crossings by line and abscissa: their abscissas, and where each
@@ -324,14 +322,18 @@ impl Band<'_> {
         (horizontal.iter().map(|h| h.1).collect(), starts)
     }
 
-    /// The fractions and centroids of every row, from the covered lengths of its top line,
-    /// and the horizontal apertures.
+    /// The fractions and centroids of every row, from the covered lengths of its top line and
+    /// the parts' integrals `cells` (by cell, ascending), and the horizontal apertures. Only
+    /// the cells of the line's covered intervals and those the boundary passes through are
+    /// written; a cell covered from side to side that the boundary misses is exactly 1
+    /// (`h w / (h w)`, which [`CellGrid`](crate::CellGrid) keeps finite and nonzero) without a
+    /// division.
     fn finish_rows(
         &self,
-        hx: &[f64],
-        starts: &[usize],
+        (hx, starts): (&[f64], &[usize]),
+        cells: &[(usize, [f64; 3])],
         fractions: &mut [f64],
-        centroids: Option<&mut [[f64; 2]]>,
+        mut centroids: Option<&mut [[f64; 2]]>,
         mut y_apertures: Option<&mut [f64]>,
         mut y_top: Option<&mut [f64]>,
     ) {
@@ -340,7 +342,8 @@ impl Band<'_> {
         let (j0, rows) = (self.rows.start, self.rows.len());
         let mut len = vec![0.0; nx];
         let mut first = vec![0.0; if centroids.is_some() { nx } else { 0 }];
-        let mut centroids = centroids;
+        let mut touched: Vec<Range<usize>> = Vec::new();
+        let mut next_cell = 0;
         for k in 0..=rows {
             let faces = if k < rows {
                 y_apertures
@@ -353,10 +356,19 @@ impl Band<'_> {
             if k == 0 && faces.is_none() {
                 continue;
             }
-            len.fill(0.0);
-            first.fill(0.0);
+            for r in touched.drain(..) {
+                len[r.clone()].fill(0.0);
+                if let Some(f) = first.get_mut(r) {
+                    f.fill(0.0);
+                }
+            }
             let moments = centroids.is_some().then_some(&mut first[..]);
-            add_covered(xs, &hx[starts[k]..starts[k + 1]], false, &mut len, moments);
+            add_covered(
+                xs,
+                &hx[starts[k]..starts[k + 1]],
+                (false, &mut len, moments),
+                &mut touched,
+            );
             if let Some(faces) = faces {
                 for (i, f) in faces.iter_mut().enumerate() {
                     *f = (len[i] / (xs[i + 1] - xs[i])).clamp(0.0, 1.0);
@@ -366,25 +378,55 @@ impl Band<'_> {
                 continue;
             }
             let (r, j) = (k - 1, j0 + k - 1);
-            let h = ys[j + 1] - ys[j];
-            for i in 0..nx {
-                let idx = r * nx + i;
-                let w = xs[i + 1] - xs[i];
-                let area = h * len[i] - fractions[idx];
-                let fraction = (area / (h * w)).clamp(0.0, 1.0);
-                fractions[idx] = fraction;
-                if let Some(m) = centroids.as_deref_mut() {
-                    m[idx] = if fraction == 0.0 {
-                        [f64::NAN; 2]
-                    } else {
-                        let mx = h * first[i] - m[idx][0];
-                        let my = 0.5 * h * h * len[i] - m[idx][1];
-                        [
-                            (xs[i] + mx / area).clamp(xs[i], xs[i + 1]),
-                            (ys[j] + my / area).clamp(ys[j], ys[j + 1]),
-                        ]
-                    };
+            let row = Row {
+                xs,
+                y: (ys[j], ys[j + 1]),
+                len: &len,
+                first: &first,
+            };
+            let fractions = &mut fractions[r * nx..(r + 1) * nx];
+            let mut centroids = centroids
+                .as_deref_mut()
+                .map(|m| &mut m[r * nx..(r + 1) * nx]);
+            // This row's cells the boundary passes through, as columns.
+            let row_cells = cells[next_cell..].partition_point(|c| c.0 < (r + 1) * nx);
+            let mut cuts = cells[next_cell..next_cell + row_cells]
+                .iter()
+                .map(|&(idx, acc)| (idx - r * nx, acc))
+                .peekable();
+            next_cell += row_cells;
+            // The covered intervals' columns (ascending; an interval's last column may be the
+            // next one's first) merged with the cut cells.
+            let mut done = 0;
+            for range in &touched {
+                let mut i = range.start.max(done);
+                while i < range.end {
+                    let cut = cuts.next_if(|c| c.0 < range.end);
+                    let run_end = cut.map_or(range.end, |c| c.0);
+                    if run_end < i {
+                        // A cut cell left of the interval.
+                        if let Some((c, acc)) = cut {
+                            row.set(c, acc, fractions, centroids.as_deref_mut());
+                        }
+                        continue;
+                    }
+                    // Columns without parts: whole ones are 1 (no moments asked) or take
+                    // the general formula with no parts.
+                    for c in i..run_end {
+                        match centroids.as_deref_mut() {
+                            None if len[c] == xs[c + 1] - xs[c] => fractions[c] = 1.0,
+                            m => row.set(c, [0.0; 3], fractions, m),
+                        }
+                    }
+                    if let Some((c, acc)) = cut {
+                        row.set(c, acc, fractions, centroids.as_deref_mut());
+                    }
+                    i = run_end + 1;
                 }
+                done = done.max(range.end);
+            }
+            for (c, acc) in cuts {
+                row.set(c, acc, fractions, centroids.as_deref_mut());
             }
         }
     }
@@ -432,6 +474,69 @@ impl Band<'_> {
                 inside[i] = ins;
                 *face = (len / (e1 - e0)).clamp(0.0, 1.0);
             }
+        }
+    }
+}
+
+/// Sums the parts' integrals per cell, in the order they were found (so each cell's sums are
+/// those of adding its parts one by one from zero), ascending by cell.
+fn sum_by_cell(parts: &mut [(usize, [f64; 3])]) -> Vec<(usize, [f64; 3])> {
+    // Stable: the parts of one cell keep their order.
+    parts.sort_by_key(|p| p.0);
+    let mut cells: Vec<(usize, [f64; 3])> = Vec::with_capacity(parts.len());
+    for &(idx, v) in parts.iter() {
+        match cells.last_mut() {
+            Some((last, acc)) if *last == idx => {
+                for (a, v) in acc.iter_mut().zip(v) {
+                    *a += v;
+                }
+            }
+            _ => cells.push((idx, [0.0 + v[0], 0.0 + v[1], 0.0 + v[2]])),
+        }
+    }
+    cells
+}
+
+/// One row of cells: its top line's covered lengths (and their first moments, with
+/// centroids) by column, from which, with the parts' integrals, a cell's values follow.
+struct Row<'a> {
+    xs: &'a [f64],
+    /// The row's bottom and top edges.
+    y: (f64, f64),
+    len: &'a [f64],
+    first: &'a [f64],
+}
+
+impl Row<'_> {
+    /// Writes the fraction (and centroid) of column `i` from the sums `acc = [b, mx, my]` of
+    /// its parts: the covered area is `h L - b`, its first moments `h F - mx` and
+    /// `h^2 L / 2 - my` about the cell's corner (`L`, `F`: the top line's covered length in
+    /// the column and its first moment).
+    #[inline]
+    fn set(
+        &self,
+        i: usize,
+        acc: [f64; 3],
+        fractions: &mut [f64],
+        centroids: Option<&mut [[f64; 2]]>,
+    ) {
+        let (xs, (y0, y1)) = (self.xs, self.y);
+        let (h, w) = (y1 - y0, xs[i + 1] - xs[i]);
+        let len = self.len[i];
+        let area = h * len - acc[0];
+        let fraction = (area / (h * w)).clamp(0.0, 1.0);
+        fractions[i] = fraction;
+        if let Some(m) = centroids {
+            m[i] = if fraction == 0.0 {
+                [f64::NAN; 2]
+            } else {
+                let mx = h * self.first[i] - acc[1];
+                let my = 0.5 * h * h * len - acc[2];
+                [
+                    (xs[i] + mx / area).clamp(xs[i], xs[i + 1]),
+                    (y0 + my / area).clamp(y0, y1),
+                ]
+            };
         }
     }
 }

@@ -93,7 +93,8 @@ impl Coverage {
             .copied()
     }
 
-    /// Zeroed arrays for `rows` of `nx` columns.
+    /// The arrays for `rows` of `nx` columns as a band expects them: zeros, the centroids
+    /// `NaN` (see `BandOut`).
     fn zeroed(
         rows: Range<usize>,
         nx: usize,
@@ -102,19 +103,13 @@ impl Coverage {
         let n = rows.len();
         let cells = n * nx;
         Ok(Self {
-            fractions: zeros(cells, 0.0)?,
+            fractions: zeros(cells)?,
             centroids: options
                 .centroids
-                .then(|| zeros(cells, [0.0; 2]))
+                .then(|| filled(cells, [f64::NAN; 2]))
                 .transpose()?,
-            x_apertures: options
-                .apertures
-                .then(|| zeros(n * (nx + 1), 0.0))
-                .transpose()?,
-            y_apertures: options
-                .apertures
-                .then(|| zeros((n + 1) * nx, 0.0))
-                .transpose()?,
+            x_apertures: options.apertures.then(|| zeros(n * (nx + 1))).transpose()?,
+            y_apertures: options.apertures.then(|| zeros((n + 1) * nx)).transpose()?,
             rows,
             nx,
         })
@@ -141,14 +136,31 @@ impl Coverage {
     }
 }
 
+/// The error for an array of `len` values that cannot be had.
+fn out_of_memory<T>(len: usize) -> CoverageError {
+    CoverageError::OutOfMemory {
+        bytes: len.saturating_mul(std::mem::size_of::<T>()),
+    }
+}
+
+/// `len` zeros, or [`CoverageError::OutOfMemory`]. The size is reserved fallibly first; the
+/// vector itself is `vec![0.0; len]`, which the system hands out zeroed (`calloc`): its pages
+/// are touched only where a band writes, so cells the covered set never reaches cost nothing.
+fn zeros(len: usize) -> Result<Vec<f64>, CoverageError> {
+    let mut probe: Vec<f64> = Vec::new();
+    probe
+        .try_reserve_exact(len)
+        .map_err(|_| out_of_memory::<f64>(len))?;
+    drop(probe);
+    Ok(vec![0.0; len])
+}
+
 /// A vector of `len` copies of `value`, or [`CoverageError::OutOfMemory`]. With the
 /// `parallel` feature the (first-touch) writes are spread over rayon's threads.
-fn zeros<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, CoverageError> {
+fn filled<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, CoverageError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len)
-        .map_err(|_| CoverageError::OutOfMemory {
-            bytes: len.saturating_mul(std::mem::size_of::<T>()),
-        })?;
+        .map_err(|_| out_of_memory::<T>(len))?;
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;

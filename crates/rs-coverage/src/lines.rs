@@ -1,43 +1,53 @@
 //! Covered lengths along one grid line, from its sorted crossings with the boundary.
 
+use std::ops::Range;
+
 /// Adds to `len[c]` the length of the covered part of `[edges[c], edges[c + 1]]` on a line
 /// whose status is `inside` before its first crossing and flips at each crossing
 /// (`crossings` sorted ascending; an odd count leaves the line covered to `+inf`). With
 /// `first`, also adds `int (s - edges[c]) ds` over that covered part to `first[c]` (the
 /// covered part's first moment about the interval's start).
 ///
-/// A column covered from edge to edge gets exactly `edges[c + 1] - edges[c]`. The work is one
-/// binary search per covered interval plus one step per column it meets.
+/// A column covered from edge to edge gets exactly `edges[c + 1] - edges[c]`. The columns
+/// each covered interval meets are pushed to `touched` as a range (ascending; consecutive
+/// ranges may share a column); the others are left alone. The work is one binary search per
+/// covered interval plus one step per column it meets.
 pub(crate) fn add_covered(
     edges: &[f64],
     crossings: &[f64],
-    mut inside: bool,
-    len: &mut [f64],
-    mut first: Option<&mut [f64]>,
+    (mut inside, len, mut first): (bool, &mut [f64], Option<&mut [f64]>),
+    touched: &mut Vec<Range<usize>>,
 ) {
     let mut start = f64::NEG_INFINITY;
     for &c in crossings {
         if inside {
-            add_interval(edges, (start, c), len, first.as_deref_mut());
+            add_interval(edges, (start, c), (len, first.as_deref_mut()), touched);
         } else {
             start = c;
         }
         inside = !inside;
     }
     if inside {
-        add_interval(edges, (start, f64::INFINITY), len, first);
+        add_interval(edges, (start, f64::INFINITY), (len, first), touched);
     }
 }
 
 /// Adds the covered interval `[a, b]` to the columns it meets (see [`add_covered`]).
-fn add_interval(edges: &[f64], (a, b): (f64, f64), len: &mut [f64], mut first: Option<&mut [f64]>) {
+fn add_interval(
+    edges: &[f64],
+    (a, b): (f64, f64),
+    (len, mut first): (&mut [f64], Option<&mut [f64]>),
+    touched: &mut Vec<Range<usize>>,
+) {
     let last = edges.len() - 1;
     if b <= a || b.is_nan() || b <= edges[0] || a >= edges[last] {
         return;
     }
-    // The column holding `a` (or the first column when `a` is left of the grid).
-    let mut c = edges.partition_point(|&e| e <= a).saturating_sub(1);
-    while c < last && edges[c] < b {
+    // The columns meeting the interval: from the one holding `a` (or the first when `a` is
+    // left of the grid) to the last whose left edge is below `b`.
+    let c_first = edges.partition_point(|&e| e <= a).saturating_sub(1);
+    let c_end = edges.partition_point(|&e| e < b).min(last);
+    let mut add = |c: usize| {
         let (e0, e1) = (edges[c], edges[c + 1]);
         let (lo, hi) = (a.max(e0), b.min(e1));
         if hi > lo {
@@ -47,8 +57,28 @@ fn add_interval(edges: &[f64], (a, b): (f64, f64), len: &mut [f64], mut first: O
                 f[c] += 0.5 * (u1 * u1 - u0 * u0);
             }
         }
-        c += 1;
+    };
+    add(c_first);
+    if c_end > c_first + 1 {
+        add(c_end - 1);
+        // The columns between are covered from edge to edge (`lo = e0`, `hi = e1` above).
+        let (lo, hi) = (c_first + 1, c_end - 1);
+        let widths = || {
+            edges[lo + 1..=hi]
+                .iter()
+                .zip(&edges[lo..hi])
+                .map(|(e1, e0)| e1 - e0)
+        };
+        for (l, w) in len[lo..hi].iter_mut().zip(widths()) {
+            *l += w;
+        }
+        if let Some(f) = first {
+            for (f, w) in f[lo..hi].iter_mut().zip(widths()) {
+                *f += 0.5 * (w * w);
+            }
+        }
     }
+    touched.push(c_first..c_end);
 }
 
 #[cfg(test)]
@@ -61,26 +91,34 @@ mod tests {
         let mut len = [0.0; 3];
         let mut first = [0.0; 3];
         // Covered on [-1, 0.5] and [1.5, 3] and from 3.5 on.
+        let mut touched = Vec::new();
         add_covered(
             &edges,
             &[-1.0, 0.5, 1.5, 3.0, 3.5],
-            false,
-            &mut len,
-            Some(&mut first),
+            (false, &mut len, Some(&mut first)),
+            &mut touched,
         );
         assert_eq!(len, [0.5, 0.5, 1.5]);
+        // [-1, 0.5] meets column 0, [1.5, 3] columns 1 and 2, [3.5, inf) column 2.
+        assert_eq!(touched, [0..1, 1..3, 2..3]);
         assert_eq!(first, [0.125, 0.5 * (1.0 - 0.25), 0.5 * (1.0 + 4.0 - 2.25)]);
         // Inside before the first crossing: covered up to 0.25, then from 3 on.
         let mut len = [0.0; 3];
-        add_covered(&edges, &[0.25, 3.0], true, &mut len, None);
+        add_covered(
+            &edges,
+            &[0.25, 3.0],
+            (true, &mut len, None),
+            &mut Vec::new(),
+        );
         assert_eq!(len, [0.25, 0.0, 1.0]);
         // Two crossings at one point (a tangency) change nothing.
         let mut len = [0.0; 3];
-        add_covered(&edges, &[1.5, 1.5], true, &mut len, None);
+        add_covered(&edges, &[1.5, 1.5], (true, &mut len, None), &mut Vec::new());
         assert_eq!(len, [1.0, 1.0, 2.0]);
         // Nothing when the line is outside throughout.
-        let mut len = [0.0; 3];
-        add_covered(&edges, &[], false, &mut len, None);
+        let (mut len, mut touched) = ([0.0; 3], Vec::new());
+        add_covered(&edges, &[], (false, &mut len, None), &mut touched);
         assert_eq!(len, [0.0; 3]);
+        assert!(touched.is_empty());
     }
 }
