@@ -15,6 +15,9 @@
 //! - [`contain`] (`rs-contain`): the inRS classifier (inRS1, inRS2, fallbacks, boundary).
 //! - [`coverage`] (`rs-coverage`): exact cell coverage on rectilinear grids (area
 //!   fractions, centroids and face apertures), for whole grids or bands of rows.
+//! - [`cubature`] (`rs-cubature`): positive interior cubature (Sommariva and Vianello):
+//!   rules of degree `n` with at most `(n + 1)(n + 2) / 2` nodes inside the domain and
+//!   positive weights, and exact polynomial moments by Green's theorem.
 //! - [`mesh`] (`rs-mesh`): well-spaced points, curved triangulations (and their
 //!   Clough–Tocher and Powell–Sabin refinements) and point location in them.
 //! - [`trispline`] (`rs-trispline`): polynomial splines on curved triangulations:
@@ -61,6 +64,7 @@ pub use rs_boxes as boxes;
 pub use rs_contain as contain;
 pub use rs_convex as convex;
 pub use rs_coverage as coverage;
+pub use rs_cubature as cubature;
 pub use rs_io as io;
 pub use rs_mesh as mesh;
 pub use rs_roots as roots;

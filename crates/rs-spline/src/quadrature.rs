@@ -104,20 +104,138 @@ impl std::iter::Sum for Integral {
     }
 }
 
-/// The 16-point rule on `[a, b]`: the integral of `f` and of its rounding magnitude.
-fn fixed(f: &impl Fn(f64) -> (f64, f64), a: f64, b: f64) -> (f64, f64) {
-    let (x, w) = rule();
-    let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
-    let (mut sum, mut abs) = (0.0, 0.0);
-    for (&xi, &wi) in x.iter().zip(w) {
-        let (v, scale) = f(m + h * xi);
-        sum += wi * v;
-        abs += wi * scale.abs().max(v.abs());
-    }
-    (h * sum, h.abs() * abs)
+/// The integral of a vector-valued integrand by adaptive Gauss-Legendre:
+/// [`integrate_adaptive_vector`]'s answer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VectorIntegral {
+    /// The estimate of the integral of each component.
+    pub values: Vec<f64>,
+    /// An estimate of the absolute error of the worst component: the sum over the accepted
+    /// intervals of the largest difference between the rule on the interval and on its halves.
+    pub error: f64,
+    /// False if the interval budget ([`MAX_INTERVALS`]) or the depth limit ended the
+    /// refinement before every interval met the tolerance.
+    pub converged: bool,
 }
 
-/// `integral_a^b f` by adaptive 16-point Gauss-Legendre.
+/// The 16-point rule on `[a, b]` for the `out.len()` components of `f`, written to `out`;
+/// returns the integral of the rounding magnitude `f` returns.
+fn fixed_into(
+    f: &mut impl FnMut(f64, &mut [f64]) -> f64,
+    a: f64,
+    b: f64,
+    at: &mut [f64],
+    out: &mut [f64],
+) -> f64 {
+    let (x, w) = rule();
+    let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
+    out.fill(0.0);
+    let mut abs = 0.0;
+    for (&xi, &wi) in x.iter().zip(w) {
+        let scale = f(m + h * xi, at);
+        for (o, &v) in out.iter_mut().zip(at.iter()) {
+            *o += wi * v;
+        }
+        abs += wi * scale;
+    }
+    for o in out.iter_mut() {
+        *o *= h;
+    }
+    h.abs() * abs
+}
+
+/// `integral_a^b f` for an integrand with `dim` components, by adaptive 16-point
+/// Gauss-Legendre: **the** adaptive kernel ([`integrate_adaptive`] is its one-component case).
+///
+/// `f(t, values)` writes the `dim` components at `t` into `values` and returns their rounding
+/// magnitude: at least the size of the terms whose sum each component is, so that a value
+/// computed with cancellation is not refined below the noise of its own evaluation. An
+/// interval is accepted when its estimate and the sum over its halves agree, in every
+/// component, within `abs_tol` (scaled by the interval's share of `[a, b]`) or within the
+/// rounding noise (`256 eps integral magnitude`), or at depth 40. At most [`MAX_INTERVALS`]
+/// intervals are examined, so the work is bounded for every integrand;
+/// [`VectorIntegral::converged`] says whether every interval met the tolerance. Exact to
+/// rounding for polynomials of degree <= 31.
+///
+/// # Examples
+///
+/// ```
+/// use rs_spline::quadrature::integrate_adaptive_vector;
+/// // (integral of 1 / (1 + t^2), integral of t^3) on [0, 1] = (pi / 4, 1 / 4).
+/// let got = integrate_adaptive_vector(
+///     |t, v| {
+///         v[0] = 1.0 / (1.0 + t * t);
+///         v[1] = t * t * t;
+///         1.0
+///     },
+///     2,
+///     0.0,
+///     1.0,
+///     1e-15,
+/// );
+/// assert!(got.converged);
+/// assert!((got.values[0] - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+/// assert!((got.values[1] - 0.25).abs() < 1e-15);
+/// ```
+pub fn integrate_adaptive_vector(
+    mut f: impl FnMut(f64, &mut [f64]) -> f64,
+    dim: usize,
+    a: f64,
+    b: f64,
+    abs_tol: f64,
+) -> VectorIntegral {
+    let total = b - a;
+    let mut out = VectorIntegral {
+        values: vec![0.0; dim],
+        error: 0.0,
+        converged: true,
+    };
+    let mut at = vec![0.0; dim];
+    let (mut left, mut right) = (vec![0.0; dim], vec![0.0; dim]);
+    // The intervals still to examine, a stack; `wholes` holds their rule estimates, `dim`
+    // values per interval, in the same order.
+    let mut stack = vec![(a, b, 0u32)];
+    let mut wholes = vec![0.0; dim];
+    fixed_into(&mut f, a, b, &mut at, &mut wholes);
+    let mut examined = 0usize;
+    while let Some((lo, hi, depth)) = stack.pop() {
+        examined += 1;
+        let whole_at = wholes.len() - dim;
+        let mid = 0.5 * (lo + hi);
+        let left_abs = fixed_into(&mut f, lo, mid, &mut at, &mut left);
+        let right_abs = fixed_into(&mut f, mid, hi, &mut at, &mut right);
+        let share = if total != 0.0 { (hi - lo) / total } else { 1.0 };
+        let noise = 256.0 * f64::EPSILON * (left_abs + right_abs);
+        // The largest difference over the components; a NaN stays (it never meets the test).
+        let mut diff = 0.0f64;
+        for ((w, l), r) in wholes[whole_at..].iter().zip(&left).zip(&right) {
+            let d = (w - (l + r)).abs();
+            if d > diff || d.is_nan() {
+                diff = d;
+            }
+        }
+        let met = diff <= (abs_tol * share).max(noise);
+        if met || depth >= MAX_DEPTH || examined + stack.len() >= MAX_INTERVALS || !diff.is_finite()
+        {
+            wholes.truncate(whole_at);
+            for ((o, l), r) in out.values.iter_mut().zip(&left).zip(&right) {
+                *o += l + r;
+            }
+            out.error += diff;
+            out.converged &= met;
+        } else {
+            wholes.truncate(whole_at);
+            stack.push((mid, hi, depth + 1));
+            wholes.extend_from_slice(&right);
+            stack.push((lo, mid, depth + 1));
+            wholes.extend_from_slice(&left);
+        }
+    }
+    out
+}
+
+/// `integral_a^b f` by adaptive 16-point Gauss-Legendre ([`integrate_adaptive_vector`] with
+/// one component).
 ///
 /// `f(t)` returns the integrand and its rounding magnitude: the size of the terms whose sum the
 /// integrand is (for `x y' - y x'`, `|x y'| + |y x'|`), so that a value computed with
@@ -128,33 +246,17 @@ fn fixed(f: &impl Fn(f64) -> (f64, f64), a: f64, b: f64) -> (f64, f64) {
 /// every integrand; [`Integral::converged`] says whether every interval met the tolerance.
 /// Exact to rounding for polynomials of degree <= 31.
 pub fn integrate_adaptive(f: impl Fn(f64) -> (f64, f64), a: f64, b: f64, abs_tol: f64) -> Integral {
-    let total = b - a;
-    let mut out = Integral::ZERO;
-    let mut stack = vec![(a, b, fixed(&f, a, b).0, 0u32)];
-    let mut examined = 0usize;
-    while let Some((lo, hi, whole, depth)) = stack.pop() {
-        examined += 1;
-        let mid = 0.5 * (lo + hi);
-        let (left, left_abs) = fixed(&f, lo, mid);
-        let (right, right_abs) = fixed(&f, mid, hi);
-        let share = if total != 0.0 { (hi - lo) / total } else { 1.0 };
-        let noise = 256.0 * f64::EPSILON * (left_abs + right_abs);
-        let diff = (whole - (left + right)).abs();
-        let met = diff <= (abs_tol * share).max(noise);
-        if met || depth >= MAX_DEPTH || examined + stack.len() >= MAX_INTERVALS || !diff.is_finite()
-        {
-            out = out
-                + Integral {
-                    value: left + right,
-                    error: diff,
-                    converged: met,
-                };
-        } else {
-            stack.push((mid, hi, right, depth + 1));
-            stack.push((lo, mid, left, depth + 1));
-        }
+    let one = |t: f64, out: &mut [f64]| {
+        let (v, scale) = f(t);
+        out[0] = v;
+        scale.abs().max(v.abs())
+    };
+    let got = integrate_adaptive_vector(one, 1, a, b, abs_tol);
+    Integral {
+        value: got.values[0],
+        error: got.error,
+        converged: got.converged,
     }
-    out
 }
 
 #[cfg(test)]

@@ -1,0 +1,109 @@
+//! Positive interior cubature on NURBS-shaped domains: for a degree `n`, a rule with at most
+//! `dim P_n = (n + 1)(n + 2) / 2` nodes, all strictly inside the domain, all weights positive,
+//! exact (up to a reported residual) for every polynomial of total degree `<= n`. The method
+//! of Sommariva and Vianello: exact moments by Green's theorem on the boundary's Bezier
+//! pieces, then Caratheodory-Tchakaloff compression of a discrete measure on candidate points
+//! by non-negative least squares.
+//!
+//! # Method
+//! - **Basis.** Products of normalised Legendre polynomials of the coordinates scaled to the
+//!   bounding box, `phi_ij = sqrt((2i + 1)(2j + 1)) P_i(u) P_j(v)`, `u = (x - cx) / hx`,
+//!   `v = (y - cy) / hy`, `i + j <= n`, in graded order. Orthogonal on the box, so their
+//!   Vandermonde matrix at points spread over the domain is far better conditioned than
+//!   that of raw monomials.
+//! - **Moments.** `integral phi dA = oint F dy`, `F = integral phi dx` (the antiderivative of
+//!   `P_i` is `(P_{i+1} - P_{i-1}) / (2i + 1)`), on every Bezier piece, each loop multiplied
+//!   by its even-odd boundary sign ([`rs_contain::LoopNesting::boundary_sign`]): holes and
+//!   several loops are handled, whatever the loops' orientation. Polynomial pieces of degree
+//!   `p`: Gauss-Legendre with `ceil(p (n + 2) / 2)` nodes, exact. Rational pieces: adaptive
+//!   Gauss-Legendre with an error estimate and bounded work
+//!   ([`rs_spline::quadrature::integrate_adaptive_vector`]); a piece that does not converge is
+//!   an error.
+//! - **Candidates.** Halton points in the bounding box kept when the grid locator classifies
+//!   them [`Location::Inside`](rs_contain::Location::Inside) (farther than the boundary
+//!   tolerance, `1e-12` of the box's diagonal, from the boundary):
+//!   [`CubatureOptions::candidates_per_polynomial`]` x dim P_n` of them, at most 256 Halton
+//!   points tried per candidate wanted.
+//! - **Orthonormal basis.** The Vandermonde matrix `V` at the candidates is orthonormalised,
+//!   `V = Q R`, by Cholesky QR (a second pass when the first factor is ill-conditioned, a
+//!   shifted first pass when the Gram matrix is numerically singular: matrix products at
+//!   `gemm` speed), and the moments carried along: `Q^T w = R^{-T} m` is `V^T w = m`.
+//! - **Compression.** Non-negative least squares on `min ||Q^T w - R^{-T} m||`, `w >= 0`:
+//!   Lawson-Hanson's active-set method with the deviation-maximisation choice of entering
+//!   columns (LHDM, Dessole, Marcuzzi and Vianello: several nearly orthogonal columns with
+//!   large gradients enter at once) and the passive set's QR factorisation updated column by
+//!   column; at most `dim P_n` weights are positive. The nodes are the candidates with
+//!   positive weights. The weights are then refined (at most three steps, kept while they stay
+//!   positive and the residual falls): the residual of the moments is computed in the basis
+//!   itself, mapped by `R^{-T}` and solved for on the passive set, so the final accuracy does
+//!   not depend on how orthonormal `Q` is.
+//! - **Residual.** Computed afresh from the nodes and weights ([`CubatureRule::residual`]). If
+//!   it is above [`CubatureOptions::target_residual`], or the candidates do not resolve the
+//!   polynomials, the attempt is repeated with twice the candidates, at most
+//!   [`CubatureOptions::max_retries`] times.
+//!
+//! # Semantics
+//! A rule from [`CubatureRule::new`] guarantees: every node classified `Inside` by the
+//! domain's [`rs_contain::Classifier`]; every weight `> 0`; at most `dim P_n` nodes; the
+//! residual at most the target (default `1e-13`); the weights add up to the even-odd area up
+//! to the residual. The domain must be closed (an open boundary is an error). The fill is
+//! even-odd. See docs/SEMANTICS.md.
+//!
+//! # Examples
+//!
+//! ```
+//! use rs_cubature::CubatureRule;
+//! use rs_spline::{circle, Domain, Point};
+//! // An annulus: 1 <= r <= 2. The integral of x^2 over it is (2^4 - 1) pi / 4.
+//! let d = Domain::new(vec![
+//!     circle(Point::new(0.0, 0.0), 2.0).unwrap(),
+//!     circle(Point::new(0.0, 0.0), 1.0).unwrap(),
+//! ])
+//! .unwrap();
+//! let rule = CubatureRule::new(&d, 6).unwrap();
+//! let got = rule.integrate(|p| p.x * p.x).unwrap();
+//! assert!((got - 15.0 * std::f64::consts::PI / 4.0).abs() < 1e-12);
+//! ```
+//!
+//! # References
+//! - A. Sommariva, M. Vianello, *Compression of multivariate discrete measures and
+//!   applications*, Numer. Funct. Anal. Optim. 36 (2015) 1198-1223.
+//! - A. Sommariva, M. Vianello, *Low cardinality positive interior cubature on NURBS-shaped
+//!   domains*, BIT Numer. Math. 63 (2023).
+//! - C. L. Lawson, R. J. Hanson, *Solving Least Squares Problems* (Prentice-Hall, 1974),
+//!   chapter 23.
+//! - M. Dessole, F. Marcuzzi, M. Vianello, *Accelerating the Lawson-Hanson NNLS solver: a new
+//!   strategy based on Deviation Maximization*, Adv. Comput. Math. (2020).
+//! - T. Fukaya, Y. Nakatsukasa, Y. Yanagisawa, Y. Yamamoto, *`CholeskyQR2`: a simple and
+//!   communication-avoiding algorithm for computing a tall-skinny QR factorization* (2014);
+//!   T. Fukaya, R. Kannan, Y. Nakatsukasa, Y. Yamamoto, Y. Yanagisawa, *Shifted Cholesky QR
+//!   for computing the QR factorization of ill-conditioned matrices*, SIAM J. Sci. Comput.
+//!   42 (2020).
+
+mod basis;
+mod candidates;
+mod error;
+mod moments;
+mod nnls;
+mod orthogonal;
+mod rule;
+
+pub use basis::dim_polynomials;
+pub use error::CubatureError;
+pub use moments::monomial_moments;
+/// The point type of the nodes (from `rs-spline`).
+pub use rs_spline::Point;
+pub use rule::{
+    CubatureOptions, CubatureRule, DEFAULT_CANDIDATES_PER_POLYNOMIAL, DEFAULT_MAX_CANDIDATES,
+    DEFAULT_MAX_RETRIES, DEFAULT_TARGET_RESIDUAL, MAX_CANDIDATES, MAX_RETRIES,
+};
+
+/// The highest degree of exactness a rule or a moment vector may have: 40, `dim P_40 = 861`
+/// basis polynomials. The work of a rule grows like `n^6` (the orthonormalisation costs
+/// `M N^2` with `N = dim P_n` and `M ~ 12 N` candidates: seconds at degree 30) and its memory
+/// like `n^4` (the candidates' Vandermonde matrix, up to `20 000 x 861` values, 138 MB, with
+/// the default cap); and the box-scaled Legendre basis at the candidates grows so
+/// ill-conditioned that, from about degree 30 on domains far from filling their box, the
+/// default target residual is no longer reached (an error, not a wrong rule). Moments alone
+/// ([`monomial_moments`]) are cheap at any degree up to it.
+pub const MAX_DEGREE: usize = 40;

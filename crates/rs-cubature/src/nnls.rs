@@ -1,0 +1,443 @@
+//! Non-negative least squares, `min ||A x - b||` over `x >= 0`, by the active-set method of
+//! Lawson and Hanson (*Solving Least Squares Problems*, 1974, ch. 23), with the least-squares
+//! problem of the passive set kept as a QR factorisation updated column by column.
+//!
+//! `A` has `n` rows and `m >= n` columns (here: the discrete orthonormal basis at the
+//! candidate points, one column per candidate). The passive set never holds more than `n`
+//! columns, so a solution has at most `n` positive entries: the Caratheodory bound.
+
+/// One dot product, in eight independent sums (vectorised).
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..8 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let mut tail = 0.0;
+    for (x, y) in ra.iter().zip(rb) {
+        tail += x * y;
+    }
+    acc.iter().sum::<f64>() + tail
+}
+
+/// `y += alpha x`.
+fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += alpha * xi;
+    }
+}
+
+/// The QR factorisation `A_P = Q R` of the passive columns, with `Q` (`n x n`, orthogonal) and
+/// `Q^T b` kept up to date as columns come and go.
+///
+/// Invariants: `q` is orthogonal (column-major, `n x n`); the first `cols.len()` columns of
+/// `r` (column-major, `n x n`) are upper triangular and `A[:, cols[i]] = Q r[:, i]`;
+/// `qtb = Q^T b`.
+struct PassiveQr {
+    n: usize,
+    q: Vec<f64>,
+    r: Vec<f64>,
+    qtb: Vec<f64>,
+    cols: Vec<usize>,
+    scratch: Vec<f64>,
+}
+
+impl PassiveQr {
+    fn new(n: usize, b: &[f64]) -> Self {
+        let mut q = vec![0.0; n * n];
+        for i in 0..n {
+            q[i * n + i] = 1.0;
+        }
+        Self {
+            n,
+            q,
+            r: vec![0.0; n * n],
+            qtb: b.to_vec(),
+            cols: Vec::with_capacity(n),
+            scratch: vec![0.0; n],
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.cols.len()
+    }
+
+    /// Appends column `a` (candidate `j`) unless it is numerically in the span of the passive
+    /// columns (`false` then: `|R_kk| <= 1e-12 |a|`) or the set is full.
+    fn insert(&mut self, a: &[f64], j: usize) -> bool {
+        let (n, k) = (self.n, self.cols.len());
+        if k == n {
+            return false;
+        }
+        // c = Q^T a.
+        let mut c = vec![0.0; n];
+        for (i, ci) in c.iter_mut().enumerate() {
+            *ci = dot(&self.q[i * n..(i + 1) * n], a);
+        }
+        let tail = c[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
+        let size = dot(a, a).sqrt();
+        if tail.is_nan() || tail <= 1e-12 * size {
+            return false;
+        }
+        // A Householder reflection H = I - 2 v v^T / (v^T v) on rows k.. maps c[k..] to
+        // (alpha, 0, ...); Q <- Q H keeps A_P = Q R for the old columns (H fixes rows < k of
+        // their R, which are zero below).
+        let alpha = if c[k] > 0.0 { -tail } else { tail };
+        let mut v = c[k..].to_vec();
+        v[0] -= alpha;
+        let vv = dot(&v, &v);
+        if vv > 0.0 {
+            // s = Q[:, k..] v; Q[:, k + l] -= (2 v_l / vv) s.
+            let s = &mut self.scratch;
+            s.fill(0.0);
+            for (l, &vl) in v.iter().enumerate() {
+                let col = (k + l) * n;
+                axpy(vl, &self.q[col..col + n], s);
+            }
+            for (l, &vl) in v.iter().enumerate() {
+                let col = (k + l) * n;
+                axpy(-2.0 * vl / vv, s, &mut self.q[col..col + n]);
+            }
+            let t = dot(&v, &self.qtb[k..]);
+            axpy(-2.0 * t / vv, &v, &mut self.qtb[k..]);
+        }
+        let col = &mut self.r[k * n..(k + 1) * n];
+        col[..k].copy_from_slice(&c[..k]);
+        col[k] = alpha;
+        col[k + 1..].fill(0.0);
+        self.cols.push(j);
+        true
+    }
+
+    /// Removes the passive column at position `pos`, restoring the triangle by Givens
+    /// rotations of rows `pos..` (applied to `R`, `Q^T b` and `Q`).
+    fn remove(&mut self, pos: usize) {
+        let n = self.n;
+        let k = self.cols.len();
+        self.cols.remove(pos);
+        self.r.copy_within((pos + 1) * n..k * n, pos * n);
+        for i in pos..k - 1 {
+            // Column i now has a subdiagonal entry at row i + 1.
+            let (a, b) = (self.r[i * n + i], self.r[i * n + i + 1]);
+            let h = a.hypot(b);
+            if h == 0.0 {
+                continue;
+            }
+            let (c, s) = (a / h, b / h);
+            for col in i..k - 1 {
+                let (x, y) = (self.r[col * n + i], self.r[col * n + i + 1]);
+                self.r[col * n + i] = c * x + s * y;
+                self.r[col * n + i + 1] = -s * x + c * y;
+            }
+            self.r[i * n + i + 1] = 0.0;
+            let (x, y) = (self.qtb[i], self.qtb[i + 1]);
+            self.qtb[i] = c * x + s * y;
+            self.qtb[i + 1] = -s * x + c * y;
+            let (left, right) = self.q.split_at_mut((i + 1) * n);
+            let (qi, qj) = (&mut left[i * n..], &mut right[..n]);
+            for (x, y) in qi.iter_mut().zip(qj.iter_mut()) {
+                let (a, b) = (*x, *y);
+                *x = c * a + s * b;
+                *y = -s * a + c * b;
+            }
+        }
+    }
+
+    /// The least-squares solution on the passive columns: `R z = (Q^T b)[..k]`.
+    fn solve(&self, z: &mut Vec<f64>) {
+        self.back_substitute(&self.qtb, z);
+    }
+
+    /// `z = R^{-1} c[..k]` for the passive triangle `R`.
+    fn back_substitute(&self, c: &[f64], z: &mut Vec<f64>) {
+        let (n, k) = (self.n, self.cols.len());
+        z.clear();
+        z.extend_from_slice(&c[..k]);
+        for i in (0..k).rev() {
+            let zi = z[i] / self.r[i * n + i];
+            z[i] = zi;
+            for (l, zl) in z[..i].iter_mut().enumerate() {
+                *zl -= self.r[i * n + l] * zi;
+            }
+        }
+    }
+}
+
+/// Options of [`nnls`]: when to stop, and how many columns may enter at once.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NnlsOptions {
+    /// Stop when `||A x - b|| <= residual_tolerance`.
+    pub(crate) residual_tolerance: f64,
+    /// Most columns entering the passive set per iteration (1: Lawson-Hanson; more: the
+    /// deviation-maximisation choice of Dessole, Marcuzzi and Vianello, LHDM).
+    pub(crate) max_entering: usize,
+    /// LHDM: a column may enter with the best one if its gradient is at least this fraction
+    /// of the largest ...
+    pub(crate) gradient_fraction: f64,
+    /// ... and the cosine of its angle with each column entering with it is at most this.
+    pub(crate) max_cosine: f64,
+}
+
+/// The solution of [`nnls`]: the passive columns with their values, and the factorisation of
+/// the passive columns, for refinement.
+pub(crate) struct NnlsSolution {
+    qr: PassiveQr,
+    /// The values of the passive columns `qr.cols`, in order.
+    x: Vec<f64>,
+}
+
+impl NnlsSolution {
+    /// The passive columns (candidate indices).
+    pub(crate) fn columns(&self) -> &[usize] {
+        &self.qr.cols
+    }
+
+    /// Their values (all `> 0` unless the iteration cap ended an inner loop).
+    pub(crate) fn values(&self) -> &[f64] {
+        &self.x
+    }
+
+    /// The least-squares solution `z` of `A_P z = rhs` on the passive columns (for iterative
+    /// refinement: `rhs` a residual mapped as `b` was).
+    pub(crate) fn solve_passive(&self, rhs: &[f64]) -> Vec<f64> {
+        let n = self.qr.n;
+        let mut qtr = vec![0.0; n];
+        for (i, v) in qtr.iter_mut().enumerate() {
+            *v = dot(&self.qr.q[i * n..(i + 1) * n], rhs);
+        }
+        let mut z = Vec::new();
+        self.qr.back_substitute(&qtr, &mut z);
+        z
+    }
+}
+
+/// Lawson-Hanson NNLS (with LHDM's several entering columns if
+/// `options.max_entering > 1`) for `A` (`n x m`, column-major in `a`) and `b`, stopped when
+/// `||A x - b|| <= residual_tolerance`, at optimality (no gradient above rounding), or after
+/// `3 n + 100` outer iterations (each with at most `2 n` inner steps): the work is bounded.
+pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], options: NnlsOptions) -> NnlsSolution {
+    let m = a.len() / n;
+    let column = |j: usize| &a[j * n..(j + 1) * n];
+    let norms: Vec<f64> = (0..m).map(|j| dot(column(j), column(j)).sqrt()).collect();
+    let col_norm_max = norms.iter().fold(0.0f64, |a, &b| a.max(b));
+    let b_norm = dot(b, b).sqrt();
+    // Gradients below this are rounding: the components of A^T r carry errors of about
+    // eps |a_j| |r| per term.
+    let gradient_floor = 16.0 * f64::EPSILON * col_norm_max * b_norm.max(f64::MIN_POSITIVE);
+    let mut qr = PassiveQr::new(n, b);
+    let mut passive = vec![false; m];
+    // Columns that failed to enter since the passive set last changed.
+    let mut blocked = vec![false; m];
+    let mut x: Vec<f64> = Vec::with_capacity(n);
+    let mut z = Vec::with_capacity(n);
+    let mut r = b.to_vec();
+    let mut g = vec![0.0; m];
+    let mut order: Vec<usize> = Vec::new();
+    let mut entering: Vec<usize> = Vec::new();
+    let cap = 3 * n + 100;
+    let mut iterations = 0;
+    while iterations < cap {
+        iterations += 1;
+        if dot(&r, &r).sqrt() <= options.residual_tolerance {
+            break;
+        }
+        for (j, gj) in g.iter_mut().enumerate() {
+            *gj = if passive[j] || blocked[j] {
+                f64::NEG_INFINITY
+            } else {
+                dot(column(j), &r)
+            };
+        }
+        let Some((best, &g_best)) = g.iter().enumerate().max_by(|p, q| p.1.total_cmp(q.1)) else {
+            break;
+        };
+        if g_best.is_nan() || g_best <= gradient_floor {
+            break;
+        }
+        // The entering columns: the best, then (LHDM) others with a large gradient nearly
+        // orthogonal to those chosen, scanned by decreasing gradient.
+        entering.clear();
+        entering.push(best);
+        let room = options.max_entering.min(n - qr.len());
+        if room > 1 {
+            let threshold = options.gradient_fraction * g_best;
+            order.clear();
+            order.extend(
+                (0..m).filter(|&j| j != best && g[j] >= threshold && g[j] > gradient_floor),
+            );
+            order.sort_unstable_by(|&p, &q| g[q].total_cmp(&g[p]));
+            for &j in order.iter() {
+                if entering.len() >= room {
+                    break;
+                }
+                let apart = entering.iter().all(|&l| {
+                    dot(column(j), column(l)).abs() <= options.max_cosine * norms[j] * norms[l]
+                });
+                if apart {
+                    entering.push(j);
+                }
+            }
+        }
+        let mut added = 0;
+        for &j in &entering {
+            if qr.insert(column(j), j) {
+                passive[j] = true;
+                x.push(0.0);
+                added += 1;
+            } else {
+                blocked[j] = true;
+            }
+        }
+        if added == 0 {
+            continue;
+        }
+        let mut changed = false;
+        // Inner loop: move towards the unconstrained solution on the passive set until it is
+        // positive, dropping the columns that reach zero.
+        for _ in 0..2 * n {
+            qr.solve(&mut z);
+            // An entering column (value still 0) whose solution is not positive would stop the
+            // step at once: it leaves again, and is not tried until the set changes.
+            let mut dropped = false;
+            for pos in (0..x.len()).rev() {
+                if x[pos] == 0.0 && z[pos] <= 0.0 {
+                    let j = qr.cols[pos];
+                    passive[j] = false;
+                    blocked[j] = true;
+                    qr.remove(pos);
+                    x.remove(pos);
+                    dropped = true;
+                }
+            }
+            if dropped {
+                if x.is_empty() {
+                    break;
+                }
+                continue;
+            }
+            if z.iter().all(|&v| v > 0.0) {
+                x.copy_from_slice(&z);
+                changed = true;
+                break;
+            }
+            // Step to the first value that reaches zero; it (and any other at zero) leaves.
+            let (mut alpha, mut first) = (1.0f64, 0);
+            for (pos, (&xi, &zi)) in x.iter().zip(&z).enumerate() {
+                if zi <= 0.0 {
+                    let t = xi / (xi - zi);
+                    if t < alpha {
+                        alpha = t;
+                        first = pos;
+                    }
+                }
+            }
+            for (xi, &zi) in x.iter_mut().zip(&z) {
+                *xi += alpha * (zi - *xi);
+            }
+            x[first] = 0.0;
+            for pos in (0..x.len()).rev() {
+                if x[pos] <= 0.0 {
+                    passive[qr.cols[pos]] = false;
+                    qr.remove(pos);
+                    x.remove(pos);
+                }
+            }
+            changed = true;
+            if x.is_empty() {
+                break;
+            }
+        }
+        if changed {
+            blocked.iter_mut().for_each(|b| *b = false);
+        }
+        r.copy_from_slice(b);
+        for (&j, &xj) in qr.cols.iter().zip(&x) {
+            axpy(-xj, column(j), &mut r);
+        }
+    }
+    NnlsSolution { qr, x }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LH: NnlsOptions = NnlsOptions {
+        residual_tolerance: 1e-14,
+        max_entering: 1,
+        gradient_fraction: 1.0,
+        max_cosine: 0.0,
+    };
+    const LHDM: NnlsOptions = NnlsOptions {
+        residual_tolerance: 1e-14,
+        max_entering: 3,
+        gradient_fraction: 0.1,
+        max_cosine: 0.9,
+    };
+
+    /// A right-hand side made from known non-negative weights is reached exactly.
+    #[test]
+    fn matches_a_consistent_problem_with_a_positive_solution() {
+        // A 3 x 6, b = A x* with x* >= 0 having three positive entries.
+        let a = [
+            1.0, 0.2, 0.1, //
+            0.3, 1.0, 0.0, //
+            0.5, 0.5, 0.5, //
+            0.0, 0.1, 1.0, //
+            0.9, 0.1, 0.3, //
+            0.2, 0.8, 0.7,
+        ];
+        let xs = [0.0, 0.7, 0.0, 1.3, 0.0, 0.4];
+        let mut b = [0.0; 3];
+        for (j, &xj) in xs.iter().enumerate() {
+            axpy(xj, &a[3 * j..3 * j + 3], &mut b);
+        }
+        for options in [LH, LHDM] {
+            let s = nnls(&a, 3, &b, options);
+            assert!(s.columns().len() <= 3);
+            assert!(s.values().iter().all(|&v| v > 0.0));
+            let mut got = [0.0; 3];
+            for (&j, &v) in s.columns().iter().zip(s.values()) {
+                axpy(v, &a[3 * j..3 * j + 3], &mut got);
+            }
+            for k in 0..3 {
+                assert!((got[k] - b[k]).abs() < 1e-13, "{got:?} vs {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn an_unreachable_right_hand_side_gets_the_nearest_point_of_the_cone() {
+        // Columns e1 and e2 in R^2, b = (1, -1): the best x >= 0 is (1, 0).
+        let a = [1.0, 0.0, 0.0, 1.0];
+        for options in [LH, LHDM] {
+            let s = nnls(&a, 2, &[1.0, -1.0], options);
+            assert_eq!(s.columns(), [0]);
+            assert!((s.values()[0] - 1.0).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn removals_keep_the_factorisation() {
+        let n = 4;
+        let a: Vec<f64> = (0..n * 7)
+            .map(|i| ((i * 37 % 11) as f64 - 5.0) / 3.0)
+            .collect();
+        let mut qr = PassiveQr::new(n, &[1.0, 2.0, 3.0, 4.0]);
+        for j in [0, 3, 5, 6] {
+            assert!(qr.insert(&a[j * n..(j + 1) * n], j));
+        }
+        qr.remove(1);
+        qr.remove(0);
+        // Q R reproduces the remaining columns.
+        for (pos, &j) in qr.cols.iter().enumerate() {
+            for i in 0..n {
+                let v: f64 = (0..n).map(|l| qr.q[l * n + i] * qr.r[pos * n + l]).sum();
+                assert!((v - a[j * n + i]).abs() < 1e-13);
+            }
+        }
+    }
+}
