@@ -13,6 +13,7 @@ DEFAULT_CONVEX_TOLERANCE: float
 FAST_METHOD_MIN_POINTS: int
 MAX_CELLS: int
 MAX_EDGES: int
+MAX_CUBATURE_DEGREE: int
 __version__: str
 
 class LoopSummary:
@@ -185,3 +186,24 @@ def cell_coverage(
     ``(fractions (R, nx), centroids (R, nx, 2) or None,
     x_apertures (R, nx + 1) or None, y_apertures (R + 1, nx) or None)`` for ``R`` rows."""
     ...
+
+class CubatureRule:
+    """A positive interior cubature rule of a domain (``inrs.cubature``, ``Domain.integrate``)."""
+
+    def __init__(self, domain: NativeDomain, degree: int) -> None: ...
+    def nodes(self) -> npt.NDArray[np.float64]:
+        """The nodes, shape ``(N, 2)``."""
+        ...
+    def weights(self) -> npt.NDArray[np.float64]:
+        """The weights, shape ``(N,)``, all positive."""
+        ...
+    @property
+    def degree(self) -> int: ...
+    @property
+    def residual(self) -> float: ...
+    @property
+    def candidates(self) -> int: ...
+    def integrate_values(self, values: npt.NDArray[np.float64]) -> float:
+        """``sum_i w_i values[i]``; ``ValueError`` for another length or a value that is not
+        finite (naming the node)."""
+        ...

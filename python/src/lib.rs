@@ -11,11 +11,13 @@
 //! - [`mesh`]: `sample`, `sample_halton`, `mesh`; [`spline`]: `FitPlan`, `interpolate`, `NativeSpline`;
 //! - [`convex`]: `convex_domain`; [`halton`]: `halton_points`;
 //! - [`coverage`]: `cell_coverage` (area fractions, centroids and apertures on a grid);
+//! - [`cubature`]: `CubatureRule` (positive interior cubature: nodes, weights, integrals);
 //! - [`threads`], [`errors`]: thread pools and exceptions.
 
 mod cad;
 mod convex;
 mod coverage;
+mod cubature;
 mod domain;
 mod errors;
 mod halton;
@@ -50,6 +52,8 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(halton::halton_points, m)?)?;
     m.add_function(wrap_pyfunction!(convex::convex_domain, m)?)?;
     m.add_function(wrap_pyfunction!(coverage::cell_coverage, m)?)?;
+    m.add_class::<cubature::NativeCubatureRule>()?;
+    m.add("MAX_CUBATURE_DEGREE", inrs::cubature::MAX_DEGREE)?;
     m.add("MAX_CELLS", inrs::coverage::MAX_CELLS)?;
     m.add("MAX_EDGES", inrs::coverage::MAX_EDGES)?;
     m.add(

@@ -14,7 +14,8 @@ use clap::{Parser, Subcommand};
 
 use cli::error::CliError;
 use commands::{
-    classify, convert, convex_domain, eval, fit, fractions, info, mesh, sample, winding,
+    classify, convert, convex_domain, cubature, eval, fit, fractions, info, integrate, mesh,
+    sample, winding,
 };
 
 /// Exact point containment for planar domains bounded by NURBS curves.
@@ -42,6 +43,8 @@ enum Command {
     ConvexDomain(convex_domain::ConvexDomainArgs),
     Info(info::InfoArgs),
     Fractions(fractions::FractionsArgs),
+    Cubature(cubature::CubatureArgs),
+    Integrate(integrate::IntegrateArgs),
 }
 
 impl Command {
@@ -57,6 +60,8 @@ impl Command {
             Command::ConvexDomain(a) => a.run(),
             Command::Info(a) => a.run(),
             Command::Fractions(a) => a.run(),
+            Command::Cubature(a) => a.run(),
+            Command::Integrate(a) => a.run(),
         }
     }
 }

@@ -1,7 +1,7 @@
 //! The library cells of docs/FRONTENDS.md not exercised elsewhere, through the facade `inrs`:
 //! classification by every method and fill rule through [`inrs::Containment`], winding numbers
 //! by every algorithm through `WindingField::winding_numbers_by`, the domain summary and the
-//! JSON writer, each against analytic values.
+//! JSON writer, and a cubature rule with its integrals, each against analytic values.
 
 use inrs::contain::baselines::WindingAlgorithm;
 use inrs::contain::{FillRule, WindingField};
@@ -195,4 +195,58 @@ fn a_closure_tolerance_joins_curves_for_any_source() {
         classify(&d, Method::InRS2, FillRule::EvenOdd, &points),
         [Location::Inside, Location::Outside]
     );
+}
+
+#[test]
+fn cubature_rule_and_integrals_on_a_ring() {
+    use inrs::cubature::{CubatureError, CubatureRule, MAX_DEGREE, dim_polynomials};
+    // Even-odd, the nested circles fill the ring 1 <= r <= 2: area 3 pi, integral of x^2
+    // (2^4 - 1) pi / 4, of x^2 y^2 (2^6 - 1) pi / 24.
+    let d = nested();
+    let pi = std::f64::consts::PI;
+    let rule = CubatureRule::new(&d, 8).unwrap();
+    assert_eq!(rule.degree(), 8);
+    assert!(!rule.nodes().is_empty() && rule.nodes().len() <= dim_polynomials(8));
+    assert_eq!(rule.weights().len(), rule.nodes().len());
+    assert!(rule.weights().iter().all(|&w| w > 0.0));
+    assert!(rule.residual() <= 1e-13);
+    let containment = Containment::new(&d, ContainOptions::DEFAULT).unwrap();
+    let engine = containment.engine(rule.nodes().len());
+    let mut at = vec![Location::Outside; rule.nodes().len()];
+    engine.values_into(rule.nodes(), &mut at);
+    assert!(at.iter().all(|&l| l == Location::Inside));
+    let area: f64 = rule.weights().iter().sum();
+    assert!((area - 3.0 * pi).abs() < 1e-12, "{area}");
+    let x2 = rule.integrate(|p| p.x * p.x).unwrap();
+    assert!((x2 - 15.0 * pi / 4.0).abs() < 1e-12, "{x2}");
+    let values: Vec<f64> = rule.nodes().iter().map(|p| p.x * p.x * p.y * p.y).collect();
+    let x2y2 = rule.integrate_values(&values).unwrap();
+    assert!((x2y2 - 63.0 * pi / 24.0).abs() < 1e-12, "{x2y2}");
+    assert_eq!(
+        x2y2,
+        rule.integrate(|p| p.x * p.x * p.y * p.y).unwrap(),
+        "the same sum in the same order"
+    );
+    // Errors: a value per node, finite values (the node named), the degree limit.
+    assert!(matches!(
+        rule.integrate_values(&values[1..]),
+        Err(CubatureError::ValuesLength { expected, got }) if expected == values.len() && got == expected - 1
+    ));
+    let mut bad = values.clone();
+    bad[3] = f64::NAN;
+    match rule.integrate_values(&bad) {
+        Err(
+            e @ CubatureError::NonFiniteValue {
+                index: 3, point, ..
+            },
+        ) => {
+            assert_eq!(point, rule.nodes()[3]);
+            assert!(e.to_string().contains("at node 3 ("), "{e}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(
+        CubatureRule::new(&d, MAX_DEGREE + 1),
+        Err(CubatureError::DegreeTooHigh { .. })
+    ));
 }

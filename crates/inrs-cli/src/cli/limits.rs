@@ -26,7 +26,9 @@ Limits (inputs beyond them are errors, never a crash or a hang):
   fit --degree / formula length                 12 / 4096 bytes; spline files 1 GiB
   convex-domain --box coordinates / --max-level 1e100 / 20
   fractions --grid                              nx, ny 1..67108863; nx x ny <= 2^32 cells,
-                                                computed and written in bands of 8 MiB";
+                                                computed and written in bands of 8 MiB
+  cubature / integrate --degree                 0..40 (at most 861 nodes; the work grows
+                                                like degree^6: seconds at 40)";
 
 /// The default `--tol` of classify as shown by `--help` (the value is
 /// [`inrs::contain::DEFAULT_RELATIVE_TOLERANCE`], checked by a test).
@@ -66,6 +68,11 @@ pub(crate) fn parse_subdivisions(s: &str) -> Result<usize, String> {
 /// `--degree`: 1 to [`inrs::trispline::bb::MAX_DEGREE`].
 pub(crate) fn parse_degree(s: &str) -> Result<usize, String> {
     in_range(s, 1, inrs::trispline::bb::MAX_DEGREE as u64).map(|v| v as usize)
+}
+
+/// `cubature --degree`, `integrate --degree`: 0 to [`inrs::cubature::MAX_DEGREE`].
+pub(crate) fn parse_cubature_degree(s: &str) -> Result<usize, String> {
+    in_range(s, 0, inrs::cubature::MAX_DEGREE as u64).map(|v| v as usize)
 }
 
 /// `--ny`: 2 to [`inrs::mesh::MAX_LINES`].
@@ -110,6 +117,12 @@ mod tests {
         assert!(parse_count("1000000000").is_err());
         assert_eq!(parse_count("10"), Ok(10));
         assert!(parse_level("21").is_err());
+        assert_eq!(parse_cubature_degree("0"), Ok(0));
+        assert!(
+            parse_cubature_degree("41")
+                .unwrap_err()
+                .contains("expected 0 to 40")
+        );
     }
 
     #[test]
@@ -138,6 +151,11 @@ mod tests {
             ),
             format!("{:e}", inrs::convex::MAX_BOX_COORDINATE),
             format!("/ {}", inrs::convex::MAX_LEVEL),
+            format!("--degree                 0..{}", inrs::cubature::MAX_DEGREE),
+            format!(
+                "{} nodes",
+                inrs::cubature::dim_polynomials(inrs::cubature::MAX_DEGREE)
+            ),
             format!(
                 "nx, ny 1..{}",
                 crate::commands::fractions::MAX_CELLS_PER_AXIS

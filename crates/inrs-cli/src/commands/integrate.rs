@@ -1,0 +1,56 @@
+//! `inrs integrate`: the integral of a formula over a domain by a positive interior cubature
+//! rule.
+
+use clap::Args;
+
+use crate::args::DomainArg;
+use crate::cli::error::CliError;
+use crate::cli::limits::{self, parse_cubature_degree};
+use crate::cli::output::Output;
+use crate::commands::cubature::{build_rule, summarize};
+use crate::function::Function;
+use crate::stream::write_f64;
+
+/// The degree of `inrs integrate` when `--degree` is not given.
+const DEFAULT_DEGREE: usize = 20;
+
+/// The integral of a formula over a domain; prints it on standard output (shortest round-trip
+/// form).
+///
+/// The sum `sum_i w_i f(x_i)` over the rule `inrs cubature --degree n` writes: exact (up to
+/// the residual printed on standard error) when f is a polynomial of degree <= n, and as close
+/// as f is to such a polynomial otherwise (for a smooth f the error falls fast with n). f is
+/// evaluated only at the nodes, all strictly inside the domain; a value there that is not
+/// finite (a division by zero, the square root of a negative number) is an error naming the
+/// node.
+#[derive(Args, Debug)]
+#[command(after_help = limits::AFTER_HELP)]
+pub(crate) struct IntegrateArgs {
+    #[command(flatten)]
+    domain: DomainArg,
+    /// The integrand: a formula in x and y with + - * / ^, parentheses, pi, e, and sin cos tan
+    /// exp log sqrt abs.
+    #[arg(long)]
+    function: String,
+    /// The degree of exactness of the rule, 0 to 40.
+    #[arg(long, default_value_t = DEFAULT_DEGREE, value_parser = parse_cubature_degree, allow_negative_numbers = true)]
+    degree: usize,
+}
+
+impl IntegrateArgs {
+    pub(crate) fn run(self) -> Result<(), CliError> {
+        let f = Function::parse(&self.function)?;
+        let (rule, seconds) = build_rule(&self.domain, self.degree)?;
+        let integral = rule
+            .integrate(|p| f.at(p))
+            .map_err(|e| CliError::Message(format!("--function {:?}: {e}", self.function)))?;
+        let mut text = Vec::with_capacity(32);
+        write_f64(integral, &mut text);
+        text.push(b'\n');
+        let mut out = Output::create(None)?;
+        out.write_bytes(&text)?;
+        out.finish()?;
+        summarize(&rule, seconds);
+        Ok(())
+    }
+}
