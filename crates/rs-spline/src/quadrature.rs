@@ -2,6 +2,11 @@
 
 use std::sync::OnceLock;
 
+use smallvec::SmallVec;
+
+/// Per-component scratch of the adaptive rule.
+type Scratch = SmallVec<[f64; 4]>;
+
 /// Number of nodes of the rule used by [`integrate_adaptive`]: exact for polynomials of degree
 /// up to 31.
 const ORDER: usize = 16;
@@ -190,12 +195,15 @@ pub fn integrate_adaptive_vector(
         error: 0.0,
         converged: true,
     };
-    let mut at = vec![0.0; dim];
-    let (mut left, mut right) = (vec![0.0; dim], vec![0.0; dim]);
+    // Scratch on the stack for a few components (the scalar rule and small moment vectors
+    // allocate nothing more than `out`).
+    let zeros = || Scratch::from_elem(0.0, dim);
+    let (mut at, mut left, mut right) = (zeros(), zeros(), zeros());
     // The intervals still to examine, a stack; `wholes` holds their rule estimates, `dim`
     // values per interval, in the same order.
-    let mut stack = vec![(a, b, 0u32)];
-    let mut wholes = vec![0.0; dim];
+    let mut stack: SmallVec<[(f64, f64, u32); 16]> = SmallVec::new();
+    stack.push((a, b, 0u32));
+    let mut wholes: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, dim);
     fixed_into(&mut f, a, b, &mut at, &mut wholes);
     let mut examined = 0usize;
     while let Some((lo, hi, depth)) = stack.pop() {
