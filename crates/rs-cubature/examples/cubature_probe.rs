@@ -1,7 +1,8 @@
 //! Nodes, candidates, residual and time of the rules of degree 5, 10, 20 and 30 on the inRS
 //! paper's three domains (best of three runs each, one thread).
 //!
-//! `cargo run --release -p rs-cubature --example cubature_probe [--candidates K] [--runs R]`
+//! `cargo run --release -p rs-cubature --example cubature_probe [--candidates K] [--runs R]
+//! [--degree N]`
 
 use std::time::Instant;
 
@@ -31,7 +32,11 @@ fn main() {
                 std::process::exit(1);
             }
         };
-        for degree in [5, 10, 20, 30] {
+        let only = value("--degree", 0);
+        for degree in [5, 10, 20, 30]
+            .into_iter()
+            .filter(|&d| only == 0 || d == only)
+        {
             let options = CubatureOptions::new(degree).with_candidates_per_polynomial(k);
             let mut best = f64::INFINITY;
             let mut last = None;

@@ -79,7 +79,7 @@ impl PassiveQr {
         }
         let tail = c[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
         let size = dot(a, a).sqrt();
-        if !(tail > 1e-12 * size) {
+        if tail.is_nan() || tail <= 1e-12 * size {
             return false;
         }
         // A Householder reflection H = I - 2 v v^T / (v^T v) on rows k.. maps c[k..] to
@@ -148,9 +148,14 @@ impl PassiveQr {
 
     /// The least-squares solution on the passive columns: `R z = (Q^T b)[..k]`.
     fn solve(&self, z: &mut Vec<f64>) {
+        self.back_substitute(&self.qtb, z);
+    }
+
+    /// `z = R^{-1} c[..k]` for the passive triangle `R`.
+    fn back_substitute(&self, c: &[f64], z: &mut Vec<f64>) {
         let (n, k) = (self.n, self.cols.len());
         z.clear();
-        z.extend_from_slice(&self.qtb[..k]);
+        z.extend_from_slice(&c[..k]);
         for i in (0..k).rev() {
             let zi = z[i] / self.r[i * n + i];
             z[i] = zi;
@@ -161,39 +166,82 @@ impl PassiveQr {
     }
 }
 
-/// The passive columns and their positive values, and why the iteration stopped.
-#[derive(Clone, Debug)]
-pub(crate) struct NnlsSolution {
-    /// Candidate (column) indices.
-    pub(crate) columns: Vec<usize>,
-    /// Their values, all `> 0`.
-    pub(crate) values: Vec<f64>,
+/// Options of [`nnls`]: when to stop, and how many columns may enter at once.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NnlsOptions {
+    /// Stop when `||A x - b|| <= residual_tolerance`.
+    pub(crate) residual_tolerance: f64,
+    /// Most columns entering the passive set per iteration (1: Lawson-Hanson; more: the
+    /// deviation-maximisation choice of Dessole, Marcuzzi and Vianello, LHDM).
+    pub(crate) max_entering: usize,
+    /// LHDM: a column may enter with the best one if its gradient is at least this fraction
+    /// of the largest ...
+    pub(crate) gradient_fraction: f64,
+    /// ... and the cosine of its angle with each column entering with it is at most this.
+    pub(crate) max_cosine: f64,
 }
 
-/// Lawson-Hanson NNLS for `A` (`n x m`, column-major in `a`) and `b`, stopped when
-/// `||A x - b|| <= residual_tolerance`, at optimality, or after `3 n + 100` column
-/// additions (each followed by at most `n` removal steps): the work is bounded.
-pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], residual_tolerance: f64) -> NnlsSolution {
+/// The solution of [`nnls`]: the passive columns with their values, and the factorisation of
+/// the passive columns, for refinement.
+pub(crate) struct NnlsSolution {
+    qr: PassiveQr,
+    /// The values of the passive columns `qr.cols`, in order.
+    x: Vec<f64>,
+}
+
+impl NnlsSolution {
+    /// The passive columns (candidate indices).
+    pub(crate) fn columns(&self) -> &[usize] {
+        &self.qr.cols
+    }
+
+    /// Their values (all `> 0` unless the iteration cap ended an inner loop).
+    pub(crate) fn values(&self) -> &[f64] {
+        &self.x
+    }
+
+    /// The least-squares solution `z` of `A_P z = rhs` on the passive columns (for iterative
+    /// refinement: `rhs` a residual mapped as `b` was).
+    pub(crate) fn solve_passive(&self, rhs: &[f64]) -> Vec<f64> {
+        let n = self.qr.n;
+        let mut qtr = vec![0.0; n];
+        for (i, v) in qtr.iter_mut().enumerate() {
+            *v = dot(&self.qr.q[i * n..(i + 1) * n], rhs);
+        }
+        let mut z = Vec::new();
+        self.qr.back_substitute(&qtr, &mut z);
+        z
+    }
+}
+
+/// Lawson-Hanson NNLS (with LHDM's several entering columns if
+/// `options.max_entering > 1`) for `A` (`n x m`, column-major in `a`) and `b`, stopped when
+/// `||A x - b|| <= residual_tolerance`, at optimality (no gradient above rounding), or after
+/// `3 n + 100` outer iterations (each with at most `2 n` inner steps): the work is bounded.
+pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], options: NnlsOptions) -> NnlsSolution {
     let m = a.len() / n;
     let column = |j: usize| &a[j * n..(j + 1) * n];
-    let col_norm_max = (0..m)
-        .map(|j| dot(column(j), column(j)))
-        .fold(0.0f64, f64::max)
-        .sqrt();
+    let norms: Vec<f64> = (0..m).map(|j| dot(column(j), column(j)).sqrt()).collect();
+    let col_norm_max = norms.iter().fold(0.0f64, |a, &b| a.max(b));
     let b_norm = dot(b, b).sqrt();
     // Gradients below this are rounding: the components of A^T r carry errors of about
     // eps |a_j| |r| per term.
     let gradient_floor = 16.0 * f64::EPSILON * col_norm_max * b_norm.max(f64::MIN_POSITIVE);
     let mut qr = PassiveQr::new(n, b);
     let mut passive = vec![false; m];
+    // Columns that failed to enter since the passive set last changed.
     let mut blocked = vec![false; m];
-    let mut x: Vec<f64> = Vec::with_capacity(n); // values of the passive columns, in order
+    let mut x: Vec<f64> = Vec::with_capacity(n);
     let mut z = Vec::with_capacity(n);
     let mut r = b.to_vec();
     let mut g = vec![0.0; m];
+    let mut order: Vec<usize> = Vec::new();
+    let mut entering: Vec<usize> = Vec::new();
     let cap = 3 * n + 100;
-    for _ in 0..cap {
-        if dot(&r, &r).sqrt() <= residual_tolerance {
+    let mut iterations = 0;
+    while iterations < cap {
+        iterations += 1;
+        if dot(&r, &r).sqrt() <= options.residual_tolerance {
             break;
         }
         for (j, gj) in g.iter_mut().enumerate() {
@@ -203,59 +251,106 @@ pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], residual_tolerance: f64) -> N
                 dot(column(j), &r)
             };
         }
-        let Some((j, &gj)) = g.iter().enumerate().max_by(|p, q| p.1.total_cmp(q.1)) else {
+        let Some((best, &g_best)) = g.iter().enumerate().max_by(|p, q| p.1.total_cmp(q.1)) else {
             break;
         };
-        if !(gj > gradient_floor) {
+        if g_best.is_nan() || g_best <= gradient_floor {
             break;
         }
-        if !qr.insert(column(j), j) {
-            blocked[j] = true;
+        // The entering columns: the best, then (LHDM) others with a large gradient nearly
+        // orthogonal to those chosen, scanned by decreasing gradient.
+        entering.clear();
+        entering.push(best);
+        let room = options.max_entering.min(n - qr.len());
+        if room > 1 {
+            let threshold = options.gradient_fraction * g_best;
+            order.clear();
+            order.extend(
+                (0..m).filter(|&j| j != best && g[j] >= threshold && g[j] > gradient_floor),
+            );
+            order.sort_unstable_by(|&p, &q| g[q].total_cmp(&g[p]));
+            for &j in order.iter() {
+                if entering.len() >= room {
+                    break;
+                }
+                let apart = entering.iter().all(|&l| {
+                    dot(column(j), column(l)).abs() <= options.max_cosine * norms[j] * norms[l]
+                });
+                if apart {
+                    entering.push(j);
+                }
+            }
+        }
+        let mut added = 0;
+        for &j in &entering {
+            if qr.insert(column(j), j) {
+                passive[j] = true;
+                x.push(0.0);
+                added += 1;
+            } else {
+                blocked[j] = true;
+            }
+        }
+        if added == 0 {
             continue;
         }
-        passive[j] = true;
-        x.push(0.0);
+        let mut changed = false;
         // Inner loop: move towards the unconstrained solution on the passive set until it is
         // positive, dropping the columns that reach zero.
-        let mut entering = true;
-        for _ in 0..=n {
+        for _ in 0..2 * n {
             qr.solve(&mut z);
+            // An entering column (value still 0) whose solution is not positive would stop the
+            // step at once: it leaves again, and is not tried until the set changes.
+            let mut dropped = false;
+            for pos in (0..x.len()).rev() {
+                if x[pos] == 0.0 && z[pos] <= 0.0 {
+                    let j = qr.cols[pos];
+                    passive[j] = false;
+                    blocked[j] = true;
+                    qr.remove(pos);
+                    x.remove(pos);
+                    dropped = true;
+                }
+            }
+            if dropped {
+                if x.is_empty() {
+                    break;
+                }
+                continue;
+            }
             if z.iter().all(|&v| v > 0.0) {
                 x.copy_from_slice(&z);
+                changed = true;
                 break;
             }
-            if entering && z[z.len() - 1] <= 0.0 {
-                // Rounding made the entering column useless: take it out again.
-                let last = qr.len() - 1;
-                passive[qr.cols[last]] = false;
-                blocked[qr.cols[last]] = true;
-                qr.remove(last);
-                x.pop();
-                break;
-            }
-            entering = false;
-            let mut alpha = 1.0f64;
-            for (&xi, &zi) in x.iter().zip(&z) {
+            // Step to the first value that reaches zero; it (and any other at zero) leaves.
+            let (mut alpha, mut first) = (1.0f64, 0);
+            for (pos, (&xi, &zi)) in x.iter().zip(&z).enumerate() {
                 if zi <= 0.0 {
-                    alpha = alpha.min(xi / (xi - zi));
+                    let t = xi / (xi - zi);
+                    if t < alpha {
+                        alpha = t;
+                        first = pos;
+                    }
                 }
             }
             for (xi, &zi) in x.iter_mut().zip(&z) {
                 *xi += alpha * (zi - *xi);
             }
+            x[first] = 0.0;
             for pos in (0..x.len()).rev() {
-                if x[pos] <= 0.0 || (z[pos] <= 0.0 && x[pos] <= f64::EPSILON * x[pos].abs()) {
+                if x[pos] <= 0.0 {
                     passive[qr.cols[pos]] = false;
                     qr.remove(pos);
                     x.remove(pos);
                 }
             }
+            changed = true;
             if x.is_empty() {
                 break;
             }
         }
-        // A removed or rejected column may be worth trying again once the set has changed.
-        if qr.len() > 0 {
+        if changed {
             blocked.iter_mut().for_each(|b| *b = false);
         }
         r.copy_from_slice(b);
@@ -263,19 +358,25 @@ pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], residual_tolerance: f64) -> N
             axpy(-xj, column(j), &mut r);
         }
     }
-    let (columns, values) = qr
-        .cols
-        .iter()
-        .zip(&x)
-        .filter(|&(_, &v)| v > 0.0)
-        .map(|(&j, &v)| (j, v))
-        .unzip();
-    NnlsSolution { columns, values }
+    NnlsSolution { qr, x }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const LH: NnlsOptions = NnlsOptions {
+        residual_tolerance: 1e-14,
+        max_entering: 1,
+        gradient_fraction: 1.0,
+        max_cosine: 0.0,
+    };
+    const LHDM: NnlsOptions = NnlsOptions {
+        residual_tolerance: 1e-14,
+        max_entering: 3,
+        gradient_fraction: 0.1,
+        max_cosine: 0.9,
+    };
 
     /// A right-hand side made from known non-negative weights is reached exactly.
     #[test]
@@ -294,15 +395,17 @@ mod tests {
         for (j, &xj) in xs.iter().enumerate() {
             axpy(xj, &a[3 * j..3 * j + 3], &mut b);
         }
-        let s = nnls(&a, 3, &b, 1e-14);
-        assert!(s.columns.len() <= 3);
-        assert!(s.values.iter().all(|&v| v > 0.0));
-        let mut got = [0.0; 3];
-        for (&j, &v) in s.columns.iter().zip(&s.values) {
-            axpy(v, &a[3 * j..3 * j + 3], &mut got);
-        }
-        for k in 0..3 {
-            assert!((got[k] - b[k]).abs() < 1e-13, "{got:?} vs {b:?}");
+        for options in [LH, LHDM] {
+            let s = nnls(&a, 3, &b, options);
+            assert!(s.columns().len() <= 3);
+            assert!(s.values().iter().all(|&v| v > 0.0));
+            let mut got = [0.0; 3];
+            for (&j, &v) in s.columns().iter().zip(s.values()) {
+                axpy(v, &a[3 * j..3 * j + 3], &mut got);
+            }
+            for k in 0..3 {
+                assert!((got[k] - b[k]).abs() < 1e-13, "{got:?} vs {b:?}");
+            }
         }
     }
 
@@ -310,9 +413,11 @@ mod tests {
     fn an_unreachable_right_hand_side_gets_the_nearest_point_of_the_cone() {
         // Columns e1 and e2 in R^2, b = (1, -1): the best x >= 0 is (1, 0).
         let a = [1.0, 0.0, 0.0, 1.0];
-        let s = nnls(&a, 2, &[1.0, -1.0], 1e-14);
-        assert_eq!(s.columns, vec![0]);
-        assert!((s.values[0] - 1.0).abs() < 1e-15);
+        for options in [LH, LHDM] {
+            let s = nnls(&a, 2, &[1.0, -1.0], options);
+            assert_eq!(s.columns(), [0]);
+            assert!((s.values()[0] - 1.0).abs() < 1e-15);
+        }
     }
 
     #[test]

@@ -1,19 +1,19 @@
 //! The rule: candidates inside the domain, a discrete orthonormal basis at them, and
 //! Caratheodory-Tchakaloff compression by non-negative least squares.
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use rs_contain::{Classifier, ContainOptions};
 use rs_spline::{Domain, Point};
 
 use crate::basis::LegendreBasis;
 use crate::candidates::Candidates;
 use crate::moments::basis_moments;
-use crate::nnls::{dot, nnls};
+use crate::nnls::{NnlsOptions, dot, nnls};
 use crate::orthogonal::orthonormalise;
 use crate::{CubatureError, MAX_DEGREE};
 
 /// Default of [`CubatureOptions::candidates_per_polynomial`].
-pub const DEFAULT_CANDIDATES_PER_POLYNOMIAL: usize = 6;
+pub const DEFAULT_CANDIDATES_PER_POLYNOMIAL: usize = 12;
 /// Default of [`CubatureOptions::max_retries`].
 pub const DEFAULT_MAX_RETRIES: usize = 4;
 /// Default of [`CubatureOptions::max_candidates`]: at degree 40 the candidates' Vandermonde
@@ -330,6 +330,10 @@ impl CubatureRule {
     }
 }
 
+/// Most steps of iterative refinement of the weights (each solves on the passive set's
+/// factorisation, `O(N^2)`); one or two bring the residual to rounding on the paper's domains.
+const MAX_REFINEMENTS: usize = 3;
+
 /// The rule from the candidates `points` (at least `dim P_n` of them), or `None` if they do
 /// not resolve the basis.
 fn compress(basis: &LegendreBasis, points: &[Point], moments: &[f64]) -> Option<Attempt> {
@@ -339,24 +343,88 @@ fn compress(basis: &LegendreBasis, points: &[Point], moments: &[f64]) -> Option<
     for (p, column) in points.iter().zip(vt.as_mut_slice().chunks_exact_mut(n)) {
         basis.values_into(*p, &mut scratch, column);
     }
-    let (at, b) = orthonormalise(vt, moments)?;
-    let b = b.as_slice();
-    let solution = nnls(at.as_slice(), n, b, 1e-15 * dot(b, b).sqrt());
-    let mut chosen: Vec<(usize, f64)> = solution
-        .columns
+    let orthonormal = orthonormalise(vt, moments)?;
+    let b = orthonormal.b.as_slice();
+    // LHDM: up to N / 20 columns enter at once, those within half the best gradient whose
+    // mutual cosines are at most 0.2. Measured at degree 20 on the paper's domains: about 30
+    // iterations instead of 240 for Lawson-Hanson, the NNLS 8 times faster.
+    let options = NnlsOptions {
+        residual_tolerance: 1e-15 * dot(b, b).sqrt(),
+        max_entering: n.div_ceil(20),
+        gradient_fraction: 0.5,
+        max_cosine: 0.2,
+    };
+    let solution = nnls(orthonormal.qt.as_slice(), n, b, options);
+    let nodes: Vec<Point> = solution.columns().iter().map(|&j| points[j]).collect();
+    let mut weights = solution.values().to_vec();
+    // Iterative refinement on the passive set, in the basis itself: the residual there is
+    // computed accurately, mapped as the moments were and solved for a correction.
+    let mut values = DMatrix::zeros(n, nodes.len());
+    for (p, column) in nodes.iter().zip(values.as_mut_slice().chunks_exact_mut(n)) {
+        basis.values_into(*p, &mut scratch, column);
+    }
+    let mut res = residual_of(&values, &weights, moments);
+    for _ in 0..MAX_REFINEMENTS {
+        let rho = DVector::from_iterator(
+            n,
+            moments
+                .iter()
+                .zip(values_times(&values, &weights))
+                .map(|(m, s)| m - s),
+        );
+        let correction = solution.solve_passive(orthonormal.map(rho.as_slice()).as_slice());
+        let tried: Vec<f64> = weights
+            .iter()
+            .zip(&correction)
+            .map(|(w, c)| w + c)
+            .collect();
+        if tried.iter().any(|&w| w.is_nan() || w <= 0.0) {
+            break;
+        }
+        let r = residual_of(&values, &tried, moments);
+        if r < res {
+            weights = tried;
+            res = r;
+        } else {
+            break;
+        }
+    }
+    // Nodes and weights by candidate index; zero weights (an inner loop cut short) dropped.
+    let mut chosen: Vec<(usize, Point, f64)> = solution
+        .columns()
         .iter()
-        .copied()
-        .zip(solution.values.iter().copied())
+        .zip(nodes)
+        .zip(weights)
+        .filter(|(_, w)| *w > 0.0)
+        .map(|((&j, p), w)| (j, p, w))
         .collect();
     chosen.sort_by_key(|c| c.0);
-    let nodes: Vec<Point> = chosen.iter().map(|c| points[c.0]).collect();
-    let weights: Vec<f64> = chosen.iter().map(|c| c.1).collect();
+    let nodes: Vec<Point> = chosen.iter().map(|c| c.1).collect();
+    let weights: Vec<f64> = chosen.iter().map(|c| c.2).collect();
     let residual = residual(basis, &nodes, &weights, moments);
     Some(Attempt {
         nodes,
         weights,
         residual,
     })
+}
+
+/// `sum_i w_i phi(x_i)` from the basis values at the nodes (one column per node).
+fn values_times(values: &DMatrix<f64>, weights: &[f64]) -> Vec<f64> {
+    (values * DVector::from_column_slice(weights))
+        .as_slice()
+        .to_vec()
+}
+
+/// [`residual`] from the basis values at the nodes.
+fn residual_of(values: &DMatrix<f64>, weights: &[f64], moments: &[f64]) -> f64 {
+    let sums = values_times(values, weights);
+    let scale = moments.iter().fold(0.0f64, |a, m| a.max(m.abs()));
+    let worst = sums
+        .iter()
+        .zip(moments)
+        .fold(0.0f64, |a, (s, m)| a.max((s - m).abs()));
+    worst / scale
 }
 
 /// `max_k |sum_i w_i phi_k(x_i) - m_k| / max_k |m_k|`, from the nodes and weights.

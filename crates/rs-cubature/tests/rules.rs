@@ -1,0 +1,109 @@
+//! Rules of degree 5, 10 and 20 on the inRS paper's domains, a disc and an annulus: every
+//! monomial `x^a y^b`, `a + b <= n`, integrated by the rule within `1e-12` of its exact moment
+//! (`monomial_moments`, itself checked against closed forms and fine polygons in the other
+//! tests) relative to `area x max over the bounding box of |x^a y^b|`; every node classified
+//! `Inside` by inRS2 (a method other than the grid locator that chose the candidates); every
+//! weight `> 0`; at most `dim P_n` nodes; the weights adding up to the even-odd area within
+//! `1e-12` relative.
+
+use rs_contain::{Classifier, ContainOptions, FillRule, Location, Method, filled_area};
+use rs_cubature::{CubatureRule, dim_polynomials, monomial_moments};
+use rs_spline::{Domain, Point, circle};
+
+fn check_rule(name: &str, domain: &Domain, degree: usize) {
+    let rule = CubatureRule::new(domain, degree).unwrap_or_else(|e| panic!("{name} {degree}: {e}"));
+    assert_eq!(rule.degree(), degree);
+    let (nodes, weights) = (rule.nodes(), rule.weights());
+    assert_eq!(nodes.len(), weights.len());
+    assert!(!nodes.is_empty());
+    assert!(
+        nodes.len() <= dim_polynomials(degree),
+        "{name} {degree}: {} nodes",
+        nodes.len()
+    );
+    assert!(
+        weights.iter().all(|&w| w > 0.0),
+        "{name} {degree}: a weight <= 0"
+    );
+    assert!(rule.residual() <= rs_cubature::DEFAULT_TARGET_RESIDUAL);
+    assert!(rule.candidates() >= nodes.len());
+
+    let classifier = Classifier::new(domain, ContainOptions::DEFAULT).unwrap();
+    let locations = classifier.locate_all_with(Method::InRS2, nodes);
+    for (p, l) in nodes.iter().zip(&locations) {
+        assert_eq!(*l, Location::Inside, "{name} {degree}: node {p:?}");
+    }
+
+    let area = filled_area(domain, FillRule::EvenOdd).unwrap();
+    let sum: f64 = weights.iter().sum();
+    assert!(
+        (sum - area).abs() <= 1e-12 * area,
+        "{name} {degree}: {sum} vs area {area}"
+    );
+
+    let exact = monomial_moments(domain, degree).unwrap();
+    let bbox = domain.bounding_box();
+    let rx = bbox.min.x.abs().max(bbox.max.x.abs());
+    let ry = bbox.min.y.abs().max(bbox.max.y.abs());
+    let mut k = 0;
+    let mut worst = 0.0f64;
+    for total in 0..=degree {
+        for b in 0..=total {
+            let a = total - b;
+            let got = rule
+                .integrate(|p: Point| p.x.powi(a as i32) * p.y.powi(b as i32))
+                .unwrap();
+            let scale = area * rx.powi(a as i32) * ry.powi(b as i32);
+            let err = (got - exact[k]).abs() / scale;
+            worst = worst.max(err);
+            assert!(
+                err <= 1e-12,
+                "{name} {degree}: x^{a} y^{b}: {got} vs {} (relative {err:e})",
+                exact[k]
+            );
+            k += 1;
+        }
+    }
+    eprintln!(
+        "{name} {degree}: {} nodes of {} candidates, residual {:e}, worst monomial {worst:e}",
+        nodes.len(),
+        rule.candidates(),
+        rule.residual()
+    );
+}
+
+const DEGREES: [usize; 3] = [5, 10, 20];
+
+#[test]
+fn rules_on_the_paper_domains() {
+    for name in rs_testkit::PAPER_DOMAINS {
+        let path = rs_testkit::fixture_path(&format!("inrs-paper/{name}.json"));
+        let d = rs_io::json::domain_from_json_file(&path).unwrap();
+        for degree in DEGREES {
+            check_rule(name, &d, degree);
+        }
+    }
+}
+
+#[test]
+fn rules_on_a_disc_and_an_annulus() {
+    let disc = Domain::new(vec![circle(Point::new(0.5, -1.0), 1.5).unwrap()]).unwrap();
+    let c = Point::new(0.0, 0.0);
+    let annulus = Domain::new(vec![circle(c, 1.0).unwrap(), circle(c, 0.5).unwrap()]).unwrap();
+    for degree in DEGREES {
+        check_rule("disc", &disc, degree);
+        check_rule("annulus", &annulus, degree);
+    }
+}
+
+#[test]
+fn integrate_and_integrate_values_agree() {
+    let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+    let rule = CubatureRule::new(&d, 6).unwrap();
+    let f = |p: Point| (p.x * 3.0).cos() + p.y * p.y;
+    let values: Vec<f64> = rule.nodes().iter().map(|&p| f(p)).collect();
+    assert_eq!(
+        rule.integrate(f).unwrap(),
+        rule.integrate_values(&values).unwrap()
+    );
+}
