@@ -55,7 +55,11 @@ pub(crate) fn nodes_figure(
     let reference_weight = rules
         .first()
         .map_or(1.0, |r| area / r.nodes().len().max(1) as f64);
-    // Higher degrees first, so that the lower degree's outlines are drawn on top.
+    // The legend lists the degrees in increasing order; higher degrees are drawn first, so
+    // that the lower degree's outlines lie on top.
+    for rule in rules {
+        fig.legend_entry(&node_style(rule.degree(), rule.nodes().len()));
+    }
     for rule in rules.iter().rev() {
         let style = node_style(rule.degree(), rule.nodes().len());
         for (&p, &w) in rule.nodes().iter().zip(rule.weights()) {

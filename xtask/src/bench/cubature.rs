@@ -64,14 +64,11 @@ fn timings(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) {
     );
     for (name, d) in domains {
         for &n in degrees {
-            let mut made = CubatureRule::new(d, n).map_err(|e| e.to_string());
-            let t = if made.is_ok() {
-                median_time(reps, || {
-                    made = CubatureRule::new(d, n).map_err(|e| e.to_string())
-                })
-            } else {
-                f64::NAN
-            };
+            // A failure is timed too (how long the library takes to give up).
+            let mut made = Err(String::new());
+            let t = median_time(reps, || {
+                made = CubatureRule::new(d, n).map_err(|e| e.to_string());
+            });
             let goal = match (n, &made) {
                 (20, Ok(_)) if t < GOAL_SECONDS => "met",
                 (20, _) => "**missed**",
@@ -89,8 +86,9 @@ fn timings(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) {
                 ),
                 Err(e) => writeln!(
                     md,
-                    "| {name} | {n} | {} | failed: {e} | - | - | - | {goal} |",
-                    dim_polynomials(n)
+                    "| {name} | {n} | {} | failed: {e} | - | - | {:.1} | {goal} |",
+                    dim_polynomials(n),
+                    t * 1e3
                 ),
             };
         }
@@ -121,7 +119,10 @@ fn convergence(
          panels over the box's width, 24 nodes each), the outer integral by adaptive \
          Gauss-Legendre on every Bezier piece (`rs_spline::quadrature`, tolerance 1e-16 x box \
          area x max |f|); a test checks the route against a closed form on an annulus (2e-15) \
-         and against the exact monomial moments.\n",
+         and against the exact monomial moments. A rule of degree n with positive weights \
+         errs by at most 2 x area x the best uniform error of a polynomial of degree n on the \
+         domain: geometric in n for these analytic functions, slowest for 1 / (1 + 25 r^2), \
+         whose poles lie 0.2 (in box-scaled units) from the domain.\n",
         names.join(", ")
     );
     let mut references = Vec::new();
