@@ -6,7 +6,9 @@ use std::fmt::Write as _;
 
 use inrs::contain::baselines::halton_points;
 use inrs::contain::even_odd_area;
-use inrs::cubature::{CubatureRule, dim_polynomials};
+use inrs::cubature::{
+    CubatureRule, DEFAULT_CANDIDATES_PER_POLYNOMIAL, DEFAULT_TARGET_RESIDUAL, dim_polynomials,
+};
 use inrs::{Classifier, ContainOptions, Domain, Location, Method, Point};
 
 use super::green_reference::{TestFunction, green_integral, grid_max};
@@ -45,8 +47,9 @@ fn timings(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) {
     let reps = o.reps.min(5);
     let _ = writeln!(
         md,
-        "\nPositive interior cubature (`CubatureRule::new`, default options: candidates 6 x dim \
-         P_n Halton points inside, doubled on a retry; target residual 1e-13) on one thread \
+        "\nPositive interior cubature (`CubatureRule::new`, default options: candidates \
+         {DEFAULT_CANDIDATES_PER_POLYNOMIAL} x dim P_n Halton points inside, doubled on a retry; \
+         target residual {DEFAULT_TARGET_RESIDUAL:.0e}) on one thread \
          (inside a one-thread rayon pool; the library uses none): *nodes* (at most dim P_n), \
          *candidates* of the attempt that made the rule, *residual* (`CubatureRule::residual`: \
          max over the scaled Legendre basis of |rule - exact moment| / max |moment|), *time*: \
