@@ -12,6 +12,7 @@ use rs_testkit::FixtureMeta;
 
 mod bench;
 mod coverage_figure;
+mod cubature_figure;
 mod figures;
 mod frontends;
 #[cfg(test)]
@@ -29,7 +30,8 @@ Commands:
                           boxes, classified points, a winding-number field with a gap, curved
                           triangulations of S(4) and of a disc with an elliptic hole, the face of
                           fixtures/cad/plate.step in its (u, v), the exact covered fractions
-                          of the butterfly on a 64 x 64 grid).
+                          of the butterfly on a 64 x 64 grid, the nodes of the positive
+                          interior cubature rules of degree 10 and 20 on S3 and S5).
   bench [OPTIONS]         The papers' comparisons in one process (medians of repeated runs):
                           Tables 1-2 (inRS1, inRS2, polygon within 1e-10), the fast paths and
                           GWN, evaluation histograms and linearisation errors of the GWN paper;
@@ -42,7 +44,9 @@ Commands:
       --full              time inRS1 and the reference GWN at every size (default: up to 10^5)
       --only A,B          only these sections: paper, locator, gwn, shapes, build, cli,
                           coverage (exact cell coverage at 1024^2 and 4096^2 beside
-                          exactextract; --quick: 64^2 and 256^2)
+                          exactextract; --quick: 64^2 and 256^2), cubature (positive
+                          interior rules of degree 5-30 on S3, S4, S5 on one thread, and
+                          their errors on smooth integrands beside QMC with 100x the points)
   splines [--quick]       The curved-triangulation paper's convergence experiments: the
                           quasi-interpolant of sin(10x) + sin(10y) in S_d^0 (d = 5, 6) on
                           three domains, ny = 5..65; writes target/bench-report/splines.{md,csv}.
@@ -247,6 +251,7 @@ fn demo(dir: &Path) -> Result<(), String> {
         ));
     }
     figures_written.extend(coverage_files);
+    figures_written.extend(cubature_figure::write(&figures_dir, &workspace_root())?);
     println!("figures written to {}:", figures_dir.display());
     for f in &figures_written {
         println!(

@@ -229,6 +229,22 @@ impl Figure {
         self.body.push('\n');
     }
 
+    /// The style's [`Marker`] at a data point with its size replaced by `size` pixels (a
+    /// dot's or circle's radius, a cross's half-size): marks whose size carries a value. For
+    /// areas proportional to values `v`, pass `size = r_ref * sqrt(v / v_ref)` (a mark of
+    /// value `v_ref` then has radius `r_ref`) and say `r_ref` and `v_ref` in the caption.
+    /// A size that is not finite or below zero draws nothing.
+    pub fn mark_sized(&mut self, p: Point, size: f64, style: &Style) {
+        self.remember(style);
+        if !(size.is_finite() && size >= 0.0) {
+            return;
+        }
+        let (x, y) = self.to_pixels(p);
+        self.body
+            .push_str(&style.sized_marker_svg(style.marker().with_size(size), x, y));
+        self.body.push('\n');
+    }
+
     /// A raw SVG fragment in pixel coordinates (for elements this type has no method for).
     pub fn raw(&mut self, svg: &str, legend: Option<&Style>) {
         if let Some(s) = legend {
@@ -447,6 +463,56 @@ mod tests {
             doc.descendants()
                 .any(|n| n.attribute("class") == Some("axes"))
         );
+    }
+
+    #[test]
+    fn sized_marks_take_their_size_and_the_style() {
+        let mut fig = Figure::new(
+            BoundingBox::from_point(Point::new(0.0, 0.0)).including(Point::new(1.0, 1.0)),
+            100.0,
+        );
+        let s = Style::stroke("#123456", 0.5)
+            .with_fill("#abcdef", 0.4)
+            .with_marker(Marker::Circle(2.0))
+            .labelled("weighted");
+        fig.mark_sized(Point::new(0.5, 0.5), 7.25, &s);
+        fig.mark_sized(Point::new(0.2, 0.5), f64::NAN, &s);
+        fig.mark_sized(
+            Point::new(0.2, 0.2),
+            4.0,
+            &Style::fill("#000000").with_marker(Marker::Cross(1.0)),
+        );
+        let svg = fig.to_svg();
+        let doc = roxmltree::Document::parse(&svg).expect("well-formed SVG");
+        let circles: Vec<_> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("circle"))
+            .collect();
+        // The mark of radius 7.25 at the plot's centre, and the legend's swatch (radius 6 at
+        // most); the mark of size NaN draws nothing.
+        assert_eq!(circles.len(), 2, "{svg}");
+        let mark = circles
+            .iter()
+            .find(|c| c.attribute("r") == Some("7.25"))
+            .expect("the sized circle");
+        let (x, y) = fig.to_pixels(Point::new(0.5, 0.5));
+        assert_eq!(mark.attribute("cx"), Some(format!("{x:.2}").as_str()));
+        assert_eq!(mark.attribute("cy"), Some(format!("{y:.2}").as_str()));
+        assert_eq!(mark.attribute("fill"), Some("#abcdef"));
+        assert_eq!(mark.attribute("fill-opacity"), Some("0.4"));
+        assert_eq!(mark.attribute("stroke"), Some("#123456"));
+        let swatch = circles.iter().find(|c| c != &mark).unwrap();
+        assert_eq!(swatch.attribute("r"), Some("2.00"));
+        // The cross's half-size is 4: its path spans 8 pixels.
+        let (cx, cy) = fig.to_pixels(Point::new(0.2, 0.2));
+        assert!(svg.contains(&format!(
+            "M{:.2},{:.2} L{:.2},{:.2}",
+            cx - 4.0,
+            cy - 4.0,
+            cx + 4.0,
+            cy + 4.0
+        )));
+        assert_eq!(svg.matches(">weighted</text>").count(), 1);
     }
 
     #[test]

@@ -11,6 +11,22 @@ pub enum Marker {
     Dot(f64),
     /// A cross of the given half-size in pixels.
     Cross(f64),
+    /// A circle of the given radius in pixels drawn with the style's fill, fill opacity and
+    /// stroke, so that overlapping circles stay visible (for marks whose size carries a value,
+    /// see [`Figure::mark_sized`](crate::Figure::mark_sized)).
+    Circle(f64),
+}
+
+impl Marker {
+    /// The same shape with its size (a dot's or a circle's radius, a cross's half-size)
+    /// replaced by `size` pixels.
+    pub fn with_size(self, size: f64) -> Self {
+        match self {
+            Marker::Dot(_) => Marker::Dot(size),
+            Marker::Cross(_) => Marker::Cross(size),
+            Marker::Circle(_) => Marker::Circle(size),
+        }
+    }
 }
 
 /// Fill, stroke, dash pattern, opacity, marker and an optional legend label.
@@ -73,6 +89,11 @@ impl Style {
         self
     }
 
+    /// The marker of [`Figure::mark`](crate::Figure::mark).
+    pub(crate) fn marker(&self) -> Marker {
+        self.marker
+    }
+
     /// The legend label, if any.
     pub fn label(&self) -> Option<&str> {
         self.label.as_deref()
@@ -106,15 +127,24 @@ impl Style {
 
     /// The marker at pixel `(x, y)`.
     pub(crate) fn marker_svg(&self, x: f64, y: f64) -> String {
+        self.sized_marker_svg(self.marker, x, y)
+    }
+
+    /// `marker` (this style's, or it with another size) at pixel `(x, y)`.
+    pub(crate) fn sized_marker_svg(&self, marker: Marker, x: f64, y: f64) -> String {
         let color = self
             .fill
             .as_deref()
             .or(self.stroke.as_deref())
             .unwrap_or("#000000");
-        match self.marker {
+        match marker {
             Marker::Dot(r) => {
                 format!(r##"<circle cx="{x:.2}" cy="{y:.2}" r="{r}" fill="{color}"/>"##)
             }
+            Marker::Circle(r) => format!(
+                r##"<circle cx="{x:.2}" cy="{y:.2}" r="{r:.2}"{}/>"##,
+                self.attributes()
+            ),
             Marker::Cross(h) => format!(
                 r##"<path d="M{:.2},{:.2} L{:.2},{:.2} M{:.2},{:.2} L{:.2},{:.2}" stroke="{color}" stroke-width="1.2"/>"##,
                 x - h,
@@ -135,6 +165,12 @@ impl Style {
             "<title>{}</title>",
             escape(self.label().unwrap_or_default())
         );
+        if let Marker::Circle(r) = self.marker {
+            // A circle of at most the legend row's height.
+            return self
+                .sized_marker_svg(Marker::Circle(r.min(6.0)), x + 8.0, y)
+                .replace("/>", &format!(">{title}</circle>"));
+        }
         if self.stroke.is_none() {
             // Filled marks and areas: a dot or a square.
             return match self.marker {
@@ -142,7 +178,7 @@ impl Style {
                     .marker_svg(x + 8.0, y)
                     .replace("/>", &format!(">{title}</circle>")),
                 Marker::Cross(_) => self.marker_svg(x + 8.0, y),
-                _ => format!(
+                Marker::Circle(_) | Marker::Dot(_) => format!(
                     r##"<rect x="{x:.1}" y="{:.1}" width="16" height="10"{}>{title}</rect>"##,
                     y - 5.0,
                     self.attributes()

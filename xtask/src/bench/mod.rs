@@ -4,6 +4,8 @@
 mod build;
 mod cli;
 mod coverage;
+mod cubature;
+mod green_reference;
 mod gwn;
 mod locator;
 mod paper;
@@ -30,8 +32,8 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 7] = [
-    "paper", "locator", "gwn", "shapes", "build", "cli", "coverage",
+const SECTIONS: [&str; 8] = [
+    "paper", "locator", "gwn", "shapes", "build", "cli", "coverage", "cubature",
 ];
 
 fn names(list: &[&str]) -> Vec<String> {
@@ -251,6 +253,19 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("coverage") {
         coverage::section(&mut md, root, o)?;
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("cubature") {
+        let paper = PAPER_DOMAINS
+            .iter()
+            .map(|name| {
+                Ok((
+                    name.to_string(),
+                    load(root, &format!("inrs-paper/{name}.json"))?,
+                ))
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        cubature::section(&mut md, &paper, o)?;
     }
     write_report(root, o, &md, &csv, true)
 }
