@@ -1,5 +1,6 @@
-//! Nodes, candidates, residual and time of the rules of degree 5, 10, 20 and 30 on the inRS
-//! paper's three domains (best of three runs each, one thread).
+//! Nodes, candidates, residual and time of the rules of degree 5, 10, 20 and 30 (or of the one
+//! degree `--degree N`, e.g. 40) on the inRS paper's three domains (best of three runs each,
+//! one thread).
 //!
 //! `cargo run --release -p rs-cubature --example cubature_probe [--candidates K] [--runs R]
 //! [--degree N]`
@@ -33,10 +34,12 @@ fn main() {
             }
         };
         let only = value("--degree", 0);
-        for degree in [5, 10, 20, 30]
-            .into_iter()
-            .filter(|&d| only == 0 || d == only)
-        {
+        let degrees = if only == 0 {
+            vec![5, 10, 20, 30]
+        } else {
+            vec![only]
+        };
+        for degree in degrees {
             let options = CubatureOptions::new(degree).with_candidates_per_polynomial(k);
             let mut best = f64::INFINITY;
             let mut last = None;

@@ -187,12 +187,20 @@ pub(crate) struct NnlsSolution {
     qr: PassiveQr,
     /// The values of the passive columns `qr.cols`, in order.
     x: Vec<f64>,
+    /// Whether the caller's stall test ended the iteration.
+    stalled: bool,
 }
 
 impl NnlsSolution {
     /// The passive columns (candidate indices).
     pub(crate) fn columns(&self) -> &[usize] {
         &self.qr.cols
+    }
+
+    /// Whether the caller's stall test ended the iteration (the residual is then not
+    /// expected to reach what the caller needs).
+    pub(crate) fn stalled(&self) -> bool {
+        self.stalled
     }
 
     /// Their values (all `> 0` unless the iteration cap ended an inner loop).
@@ -216,9 +224,17 @@ impl NnlsSolution {
 
 /// Lawson-Hanson NNLS (with LHDM's several entering columns if
 /// `options.max_entering > 1`) for `A` (`n x m`, column-major in `a`) and `b`, stopped when
-/// `||A x - b|| <= residual_tolerance`, at optimality (no gradient above rounding), or after
-/// `3 n + 100` outer iterations (each with at most `2 n` inner steps): the work is bounded.
-pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], options: NnlsOptions) -> NnlsSolution {
+/// `||A x - b|| <= residual_tolerance`, at optimality (no gradient above rounding), when
+/// `stalled(r)` (called with the residual `r = b - A x` before each outer iteration) says
+/// so, or after `3 n + 100` outer iterations (each with at most `2 n` inner steps): the work
+/// is bounded.
+pub(crate) fn nnls(
+    a: &[f64],
+    n: usize,
+    b: &[f64],
+    options: NnlsOptions,
+    mut stalled: impl FnMut(&[f64]) -> bool,
+) -> NnlsSolution {
     let m = a.len() / n;
     let column = |j: usize| &a[j * n..(j + 1) * n];
     let norms: Vec<f64> = (0..m).map(|j| dot(column(j), column(j)).sqrt()).collect();
@@ -243,6 +259,13 @@ pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], options: NnlsOptions) -> Nnls
         iterations += 1;
         if dot(&r, &r).sqrt() <= options.residual_tolerance {
             break;
+        }
+        if stalled(&r) {
+            return NnlsSolution {
+                qr,
+                x,
+                stalled: true,
+            };
         }
         for (j, gj) in g.iter_mut().enumerate() {
             *gj = if passive[j] || blocked[j] {
@@ -358,7 +381,11 @@ pub(crate) fn nnls(a: &[f64], n: usize, b: &[f64], options: NnlsOptions) -> Nnls
             axpy(-xj, column(j), &mut r);
         }
     }
-    NnlsSolution { qr, x }
+    NnlsSolution {
+        qr,
+        x,
+        stalled: false,
+    }
 }
 
 #[cfg(test)]
@@ -396,7 +423,7 @@ mod tests {
             axpy(xj, &a[3 * j..3 * j + 3], &mut b);
         }
         for options in [LH, LHDM] {
-            let s = nnls(&a, 3, &b, options);
+            let s = nnls(&a, 3, &b, options, |_| false);
             assert!(s.columns().len() <= 3);
             assert!(s.values().iter().all(|&v| v > 0.0));
             let mut got = [0.0; 3];
@@ -414,10 +441,27 @@ mod tests {
         // Columns e1 and e2 in R^2, b = (1, -1): the best x >= 0 is (1, 0).
         let a = [1.0, 0.0, 0.0, 1.0];
         for options in [LH, LHDM] {
-            let s = nnls(&a, 2, &[1.0, -1.0], options);
+            let s = nnls(&a, 2, &[1.0, -1.0], options, |_| false);
             assert_eq!(s.columns(), [0]);
             assert!((s.values()[0] - 1.0).abs() < 1e-15);
         }
+    }
+
+    #[test]
+    fn a_stall_ends_the_iteration_at_once() {
+        let a = [1.0, 0.0, 0.0, 1.0];
+        let mut calls = 0;
+        let s = nnls(&a, 2, &[1.0, 2.0], LH, |r| {
+            calls += 1;
+            assert_eq!(r, [1.0, 2.0]);
+            true
+        });
+        assert!(s.stalled());
+        assert_eq!(calls, 1);
+        assert!(s.columns().is_empty());
+        let s = nnls(&a, 2, &[1.0, 2.0], LH, |_| false);
+        assert!(!s.stalled());
+        assert_eq!(s.columns().len(), 2);
     }
 
     #[test]

@@ -1,4 +1,5 @@
-//! Rules of degree 5, 10 and 20 on the inRS paper's domains, a disc and an annulus: every
+//! Rules of degree 5, 10 and 20 on the inRS paper's domains, a disc and an annulus, and of
+//! degree 30 on the paper's M-shaped domain: every
 //! monomial `x^a y^b`, `a + b <= n`, integrated by the rule within `1e-12` of its exact moment
 //! (`monomial_moments`, itself checked against closed forms and fine polygons in the other
 //! tests) relative to `area x max over the bounding box of |x^a y^b|`; every node classified
@@ -83,6 +84,15 @@ fn rules_on_the_paper_domains() {
             check_rule(name, &d, degree);
         }
     }
+}
+
+/// Degree 30 (496 polynomials) on S(3), the first attempt's candidates grown with the degree;
+/// about 0.5 s in a release build.
+#[test]
+fn a_rule_of_degree_30_on_the_m_shaped_domain() {
+    let path = rs_testkit::fixture_path("inrs-paper/s3_m_shape.json");
+    let d = rs_io::json::domain_from_json_file(&path).unwrap();
+    check_rule("s3_m_shape", &d, 30);
 }
 
 #[test]
