@@ -131,8 +131,13 @@ def test_cubature_and_integrate_equal_the_cli(cli):
     assert lines[0] == "x,y,w"
     rows = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
     nodes, weights = inrs.cubature(inrs.Domain.load(DISC), 10)
-    # The same library call and round-trip floats: equal bit for bit.
-    assert np.array_equal(rows[:, :2], nodes) and np.array_equal(rows[:, 2], weights)
+    # The same library call: the same candidates are chosen as nodes, bit for bit. The weights
+    # agree to rounding of the least-squares solve, not to the bit: the `inrs` binary that
+    # `cargo test --workspace` builds has a dev-dependency's math feature (num-traits `libm`)
+    # unified into nalgebra, which the wheel's build does not (measured: 2.4e-12 relative on the
+    # smallest weights, sums equal within 4e-16).
+    assert np.array_equal(rows[:, :2], nodes)
+    np.testing.assert_allclose(rows[:, 2], weights, rtol=1e-10, atol=0)
     assert "nodes (at most 66)" in out.stderr
     value = subprocess.run(
         [cli, "integrate", "--domain", DISC, "--function", "x^2 * y^4 + 3", "--degree", "10"],
