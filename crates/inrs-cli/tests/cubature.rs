@@ -7,7 +7,7 @@
 mod common;
 use common::{fixture, inrs, stdout_of_success, temp_file};
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// `Gamma(k / 2)` for `k >= 1`, from `Gamma(1 / 2) = sqrt(pi)`, `Gamma(1) = 1` and
 /// `Gamma(s + 1) = s Gamma(s)`.
@@ -51,20 +51,7 @@ fn rule_rows(text: &str) -> Vec<[f64; 3]> {
 
 /// A fresh scratch directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("inrs-cubature-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// The directory's entries, sorted.
-fn entries(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+    common::scratch("cubature", name)
 }
 
 /// The unit square `[0, 1]^2` as a JSON domain file.
@@ -206,7 +193,7 @@ fn bad_input_gets_one_line_and_leaves_no_file() {
         assert!(err.contains(message), "{args:?}: {err}");
         assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
         assert!(o.stdout.is_empty(), "{args:?}");
-        assert_eq!(entries(&dir), ["rule.csv"], "{args:?}");
+        assert_eq!(common::entries(&dir), ["rule.csv"], "{args:?}");
         assert_eq!(std::fs::read(&out).unwrap(), b"old");
         err
     };

@@ -52,20 +52,7 @@ fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
 
 /// A fresh scratch directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("inrs-fractions-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// The directory's entries, sorted.
-fn entries(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+    common::scratch("fractions", name)
 }
 
 /// `int sqrt(1 - t^2) dt` from `u` to `v` (`-1 <= u <= v <= 1`) in closed form through
@@ -167,7 +154,7 @@ fn unit_disc_fractions_are_circle_segment_areas() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(
-        entries(&dir),
+        common::entries(&dir),
         [
             "disc.centroids.npy",
             "disc.npy",
@@ -392,7 +379,7 @@ fn a_grid_of_many_bands_equals_the_whole_grid_bit_for_bit() {
     ]);
     same("alone.npy", &[n, n], &fractions_only.fractions);
     assert_eq!(
-        entries(&dir),
+        common::entries(&dir),
         [
             "alone.npy",
             "gear.centroids.npy",
@@ -467,7 +454,7 @@ fn bad_input_gets_one_line_and_leaves_no_file() {
         let (status, err) = run(domain, grid, &out, &["--centroids", "--apertures"]);
         assert!(err.contains(message), "{grid}: {err}");
         assert_eq!(status, code, "{grid}: {err}");
-        assert_eq!(entries(&dir), ["f.npy"], "{grid}");
+        assert_eq!(common::entries(&dir), ["f.npy"], "{grid}");
         assert_eq!(std::fs::read(&out).unwrap(), b"old");
     }
     let (status, err) = run(&circle, "0,1,4,0,1,4", &dir.join("f.csv"), &[]);
@@ -481,7 +468,7 @@ fn bad_input_gets_one_line_and_leaves_no_file() {
     let (status, err) = run(&circle, "0,1,4,0,1,4", &dir.join("no/f.npy"), &[]);
     assert!(err.contains("f.npy"), "{err}");
     assert_eq!(status, Some(1));
-    assert_eq!(entries(&dir), ["f.npy"]);
+    assert_eq!(common::entries(&dir), ["f.npy"]);
     assert_eq!(std::fs::read(&out).unwrap(), b"old");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -46,3 +46,24 @@ pub(crate) fn last_column(text: &str) -> Vec<String> {
         .map(|l| l.rsplit(',').next().unwrap().to_string())
         .collect()
 }
+
+/// A fresh scratch directory for one test, `inrs-{command}-{test}-{pid}` in the system's
+/// temporary directory.
+#[allow(dead_code)] // not every test binary writes files
+pub(crate) fn scratch(command: &str, test: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("inrs-{command}-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The directory's entries, sorted.
+#[allow(dead_code)] // not every test binary writes files
+pub(crate) fn entries(dir: &std::path::Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
