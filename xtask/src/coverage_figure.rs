@@ -86,20 +86,7 @@ pub(crate) fn write(dir: &Path, root: &Path) -> Result<(Vec<PathBuf>, f64), Stri
     std::fs::write(&svg, fractions_figure(&d, &grid, &c, rel).to_svg())
         .map_err(|e| format!("{}: {e}", svg.display()))?;
     let mut written = vec![svg.clone()];
-    let png = svg.with_extension("png");
-    // The PNG is a convenience for viewers without SVG support; its absence is not an error.
-    let converted = std::process::Command::new("rsvg-convert")
-        .args(["--background-color", "white", "--output"])
-        .arg(&png)
-        .arg(&svg)
-        .status();
-    match converted {
-        Ok(s) if s.success() => written.push(png),
-        _ => {
-            let _ = std::fs::remove_file(&png);
-            println!("(rsvg-convert not available: coverage figure written as SVG only)");
-        }
-    }
+    written.extend(crate::figures::png_beside(&svg));
     Ok((written, rel))
 }
 

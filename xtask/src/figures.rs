@@ -8,6 +8,29 @@ use inrs::contain::{FastWindingField, WindingField};
 use inrs::{BoundingBox, Domain, Location, Point};
 use rs_figure::{ChartAxis, FieldImage, Figure, Marker, Style};
 
+/// Renders `svg` to a PNG beside it (`rsvg-convert`, white background) and returns its path;
+/// `None` (and a note on standard output) where the tool is missing or fails. The PNG is a
+/// convenience for viewers without SVG support; its absence is not an error.
+pub(crate) fn png_beside(svg: &Path) -> Option<PathBuf> {
+    let png = svg.with_extension("png");
+    let converted = std::process::Command::new("rsvg-convert")
+        .args(["--background-color", "white", "--output"])
+        .arg(&png)
+        .arg(svg)
+        .status();
+    match converted {
+        Ok(s) if s.success() => Some(png),
+        _ => {
+            let _ = std::fs::remove_file(&png);
+            println!(
+                "(rsvg-convert not available: {} written as SVG only)",
+                svg.display()
+            );
+            None
+        }
+    }
+}
+
 /// Pixel width of a figure's plot area.
 const SIZE: f64 = 560.0;
 
