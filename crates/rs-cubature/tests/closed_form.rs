@@ -5,19 +5,14 @@
 //! the size of the terms a moment sums), relative error at most `1e-12`.
 
 use rs_cubature::monomial_moments;
+mod common;
+
+use common::{binomial, factorial};
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, circle, polyline};
 
 const DEGREE: usize = 20;
 const TOLERANCE: f64 = 1e-12;
-
-fn binomial(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)
-}
-
-fn factorial(n: usize) -> f64 {
-    (1..=n).fold(1.0, |f, i| f * i as f64)
-}
 
 /// `(2k - 1)!!` (1 for k = 0).
 fn odd_double_factorial(k: usize) -> f64 {

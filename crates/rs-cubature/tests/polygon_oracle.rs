@@ -18,19 +18,14 @@
 //! by degree on slices and the edges are shared among threads.
 
 use rs_cubature::monomial_moments;
+mod common;
+
+use common::{binomial, factorial};
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, circle, polyline};
 
 const DEGREE: usize = 20;
 const RELATIVE_FLATTENING: f64 = 1e-13;
-
-fn binomial(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)
-}
-
-fn factorial(n: usize) -> f64 {
-    (1..=n).fold(1.0, |f, i| f * i as f64)
-}
 
 fn index(a: usize, b: usize) -> usize {
     let k = a + b;
