@@ -59,6 +59,32 @@ impl LoopNesting {
     }
 }
 
+/// [`LoopNesting::boundary_sign`] of each curve's loop, by curve index: the factor that puts
+/// the filled set on each boundary curve's left under `rule` (`0` for curves of loops that do
+/// not bound it), as Green's-theorem integrals over the curves want it. `None` where
+/// [`loop_nesting`] is `None`.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::{curve_boundary_signs, FillRule};
+/// use rs_spline::{circle, Domain, Point};
+/// let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+/// let d = Domain::new(vec![c(2.0), c(1.0)]).unwrap();
+/// // The outer circle as it runs, the hole turned clockwise.
+/// assert_eq!(curve_boundary_signs(&d, FillRule::EvenOdd).unwrap(), vec![1, -1]);
+/// ```
+pub fn curve_boundary_signs(domain: &Domain, rule: FillRule) -> Option<Vec<i64>> {
+    let nesting = loop_nesting(domain)?;
+    let mut signs = vec![0; domain.curves().len()];
+    for (l, n) in domain.loops().iter().zip(&nesting) {
+        for c in l.curves() {
+            signs[c] = n.boundary_sign(rule);
+        }
+    }
+    Some(signs)
+}
+
 /// The area filled by `domain` under `rule`: `sum_i d_i |A_i|`, where `A_i` is the signed
 /// area of loop `i` and `d_i` its [`LoopNesting::fill_change`]. For even-odd `d_i` is
 /// `(-1)^depth_i`; for nonzero it depends on the orientations (two nested counter-clockwise

@@ -9,7 +9,7 @@
 //! by the adaptive rule of `rs_spline::quadrature` (all components at once, bounded work); a
 //! piece that does not converge is an error.
 
-use rs_contain::{FillRule, MAX_NESTED_LOOPS, loop_nesting};
+use rs_contain::{FillRule, MAX_NESTED_LOOPS, curve_boundary_signs};
 use rs_spline::prelude::*;
 use rs_spline::quadrature::{gauss_legendre, integrate_adaptive_vector};
 use rs_spline::{BoundingBox, Domain, Point};
@@ -33,21 +33,16 @@ fn green_integrals(
     antiderivatives: &mut dyn FnMut(Point, &mut [f64]) -> f64,
 ) -> Result<Vec<f64>, CubatureError> {
     domain.require_closed()?;
-    let nesting = loop_nesting(domain).ok_or(CubatureError::Nesting {
-        limit: MAX_NESTED_LOOPS,
-    })?;
-    let mut curve_sign = vec![0.0; domain.curves().len()];
-    for (l, n) in domain.loops().iter().zip(&nesting) {
-        for c in l.curves() {
-            curve_sign[c] = n.boundary_sign(FillRule::EvenOdd) as f64;
-        }
-    }
+    let curve_sign =
+        curve_boundary_signs(domain, FillRule::EvenOdd).ok_or(CubatureError::Nesting {
+            limit: MAX_NESTED_LOOPS,
+        })?;
     let mut total = vec![0.0; dim];
     let mut at = vec![0.0; dim];
     // Gauss-Legendre rules by number of nodes, made once per call.
     let mut rules: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
     for (curve, piece) in domain.bezier_pieces() {
-        let sign = curve_sign[curve];
+        let sign = curve_sign[curve] as f64;
         if sign == 0.0 {
             continue;
         }

@@ -8,7 +8,7 @@
 //! The test functions of the convergence table live here too, in coordinates scaled to the
 //! bounding box.
 
-use inrs::contain::{FillRule, loop_nesting};
+use inrs::contain::{FillRule, curve_boundary_signs};
 use inrs::prelude::*;
 use inrs::spline::quadrature::{gauss_legendre, integrate_adaptive};
 use inrs::{BoundingBox, Domain, Point};
@@ -81,13 +81,8 @@ pub(super) fn green_integral(
     f_max: f64,
 ) -> Result<(f64, f64), String> {
     let b = d.bounding_box();
-    let nesting = loop_nesting(d).ok_or("the loops have no even-odd nesting")?;
-    let mut sign = vec![0.0; d.curves().len()];
-    for (l, n) in d.loops().iter().zip(&nesting) {
-        for c in l.curves() {
-            sign[c] = n.boundary_sign(FillRule::EvenOdd) as f64;
-        }
-    }
+    let sign =
+        curve_boundary_signs(d, FillRule::EvenOdd).ok_or("the loops have no even-odd nesting")?;
     let (xs, ws) = gauss_legendre(NODES);
     let panel = b.width() / PANELS;
     // F(x, y) and the sum of |terms| (its rounding scale).
@@ -109,7 +104,7 @@ pub(super) fn green_integral(
     let tolerance = RELATIVE_TOLERANCE * b.width() * b.height() * f_max;
     let (mut total, mut worst) = (0.0, 0.0f64);
     for (curve, piece) in d.bezier_pieces() {
-        if sign[curve] == 0.0 {
+        if sign[curve] == 0 {
             continue;
         }
         let got = integrate_adaptive(
@@ -128,7 +123,7 @@ pub(super) fn green_integral(
                 got.error
             ));
         }
-        total += sign[curve] * got.value;
+        total += sign[curve] as f64 * got.value;
         worst = worst.max(got.error);
     }
     Ok((total, worst))
