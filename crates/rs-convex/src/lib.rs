@@ -31,7 +31,6 @@ mod clip;
 mod curve_file;
 mod error;
 mod limits;
-mod point3;
 mod polygon;
 mod polytope;
 mod sign_numerator;
@@ -45,9 +44,9 @@ pub use approximation::{
 pub use curve_file::{FreeCurve, load_curve, parse_curve};
 pub use error::ConvexError;
 pub use limits::MAX_LEVEL;
-pub use point3::Point3;
 pub use polygon::ConvexPolygon;
 pub use polytope::{ConvexPolytope, P3};
+pub use rs_spline::Point3;
 pub use sign_numerator::{AffineForm, SignNumerator};
 pub use space_curve::SpaceCurve;
 pub use svg::to_svg;

@@ -58,8 +58,10 @@ mod line;
 mod nearest;
 mod nurbs;
 mod point;
+mod point3;
 mod point_source;
 pub mod quadrature;
+mod vector;
 
 pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
@@ -77,3 +79,5 @@ pub use nearest::{NearestBoundary, NearestPoint};
 pub use nurbs::NurbsCurve;
 pub use point::{Axis, BoundingBox, Point};
 pub use point_source::{PointSource, PointsFn, points_from_fn};
+pub use point3::Point3;
+pub use vector::Vector;

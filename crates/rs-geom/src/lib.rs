@@ -1,0 +1,23 @@
+//! 3-D geometry for CAD parts: the surfaces and edges of B-rep faces as objects that can be
+//! evaluated, and the B-rep model a STEP or IGES file is read into.
+//!
+//! - [`Frame`] (a right-handed orthonormal placement, built as ISO 10303-42's `build_axes`)
+//!   and [`Affine3`] (placements of assemblies, IGES 124 matrices).
+//! - Curves of any dimension: lines, conics and rational B-splines on `rs-spline`'s one
+//!   [`KnotVector`](rs_spline::KnotVector) and evaluation kernel, exact conversion of any
+//!   of them to a rational B-spline.
+//! - Surfaces: plane, cylinder, cone, sphere, torus, surface of revolution, surface of linear
+//!   extrusion, offset surface, rational B-spline surface; each with its point, first and
+//!   second derivatives, normal, parameter box, periods, poles and closest-point inversion.
+//!
+//! Points and vectors are [`Point3`]; parameters are those of the file's standard
+//! (ISO 10303-42 for STEP, IGES 5.3 for IGES), documented per surface.
+
+mod affine3;
+mod error;
+mod frame;
+
+pub use affine3::Affine3;
+pub use error::GeomError;
+pub use frame::Frame;
+pub use rs_spline::{Point, Point3, Vector};
