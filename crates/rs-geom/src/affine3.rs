@@ -27,8 +27,8 @@ impl Affine3 {
         ],
     };
 
-    /// The map from `frame`'s local coordinates to the world: `(a, b, c) -> origin + a x + b y
-    /// + c z`.
+    /// The map from `frame`'s local coordinates to the world:
+    /// `(a, b, c) -> origin + a x + b y + c z`.
     pub fn from_frame(frame: &Frame) -> Affine3 {
         let (x, y, z, o) = (frame.x, frame.y, frame.z, frame.origin);
         Affine3 {
