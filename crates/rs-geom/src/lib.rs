@@ -14,10 +14,12 @@
 //! (ISO 10303-42 for STEP, IGES 5.3 for IGES), documented per surface.
 
 mod affine3;
+pub mod curve;
 mod error;
 mod frame;
 
 pub use affine3::Affine3;
+pub use curve::{Conic, ConicKind, Curve};
 pub use error::GeomError;
 pub use frame::Frame;
 pub use rs_spline::{Point, Point3, Vector};

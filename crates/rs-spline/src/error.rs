@@ -2,27 +2,28 @@
 
 use thiserror::Error;
 
-use crate::Point;
+use crate::Vector;
 use crate::limits::{MAX_COORDINATE, MAX_WEIGHT_RATIO};
 
 /// Checks what every rational curve needs of its control data: finite control points within
 /// [`MAX_COORDINATE`], one weight per point, every weight finite and > 0, and a weight spread
 /// within [`MAX_WEIGHT_RATIO`].
-pub(crate) fn check_control_points(points: &[Point], weights: &[f64]) -> Result<(), SplineError> {
-    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+pub(crate) fn check_control_points<P: Vector>(
+    points: &[P],
+    weights: &[f64],
+) -> Result<(), SplineError> {
+    if let Some(index) = points.iter().position(|p| !p.all_finite()) {
         return Err(SplineError::NonFiniteControlPoint {
             index,
-            x: points[index].x,
-            y: points[index].y,
+            x: points[index].coord(0),
+            y: points[index].coord(1),
         });
     }
-    if let Some(index) = points
-        .iter()
-        .position(|p| p.x.abs().max(p.y.abs()) > MAX_COORDINATE)
-    {
+    let largest = |p: &P| (0..P::DIM).map(|i| p.coord(i).abs()).fold(0.0, f64::max);
+    if let Some(index) = points.iter().position(|p| largest(p) > MAX_COORDINATE) {
         return Err(SplineError::LimitExceeded {
             what: "control point coordinate",
-            value: points[index].x.abs().max(points[index].y.abs()),
+            value: largest(&points[index]),
             limit: MAX_COORDINATE,
         });
     }

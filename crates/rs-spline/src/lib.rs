@@ -61,6 +61,7 @@ mod point;
 mod point3;
 mod point_source;
 pub mod quadrature;
+mod rational_bspline;
 mod vector;
 
 pub use affine::Affine;
@@ -80,4 +81,5 @@ pub use nurbs::NurbsCurve;
 pub use point::{Axis, BoundingBox, Point};
 pub use point_source::{PointSource, PointsFn, points_from_fn};
 pub use point3::Point3;
+pub use rational_bspline::{RationalBSpline, rational_quotient, rational_sums};
 pub use vector::Vector;
