@@ -14,12 +14,15 @@
 //! (ISO 10303-42 for STEP, IGES 5.3 for IGES), documented per surface.
 
 mod affine3;
+pub mod brep;
 pub mod curve;
 mod error;
 mod frame;
+mod tolerance;
 
 pub use affine3::Affine3;
 pub use curve::{Conic, ConicKind, Curve};
 pub use error::GeomError;
 pub use frame::Frame;
 pub use rs_spline::{Point, Point3, Vector};
+pub use tolerance::{CHAIN_FACTOR, DEFAULT_MODEL_TOLERANCE, PRINTED_DIGITS, Tolerance};

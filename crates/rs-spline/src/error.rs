@@ -235,7 +235,7 @@ pub enum SplineError {
 }
 
 /// Invalid domain file or domain.
-#[derive(Debug, Error)]
+#[derive(Clone, Debug, Error)]
 pub enum DomainError {
     /// A domain needs at least one curve.
     #[error("the domain has no curves")]
