@@ -77,7 +77,7 @@ pub(crate) fn cad_faces(
                 .into_iter()
                 .enumerate()
                 .map(|(k, d)| {
-                    let summary = CadFaceSummary::of(&m, k, &d);
+                    let summary = CadFaceSummary::of(&m, k, &d, closure_tol);
                     (CadFace::from(summary), d.ok().map(NativeDomain::new))
                 })
                 .collect::<Vec<_>>()

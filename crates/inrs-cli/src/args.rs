@@ -83,7 +83,7 @@ impl DomainsArg {
 pub(crate) fn all_faces(spec: &str) -> Option<&str> {
     let cut = spec.len().checked_sub("#face:*".len())?;
     let (file, tail) = (spec.get(..cut)?, spec.get(cut..)?);
-    let is_cad = matches!(inrs::io::cad::split_face_spec(file), Some((f, None)) if f == file);
+    let is_cad = matches!(inrs::io::cad::split_cad_spec(file), Some((f, None)) if f == file);
     (tail.eq_ignore_ascii_case("#face:*") && is_cad).then_some(file)
 }
 

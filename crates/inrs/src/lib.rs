@@ -23,6 +23,9 @@
 //! - [`trispline`] (`rs-trispline`): polynomial splines on curved triangulations:
 //!   Bernstein–Bézier polynomials, `S_d^0`, evaluation anywhere in the domain,
 //!   quasi-interpolation, the spline file.
+//! - [`geom`] (`rs-geom`): 3-D geometry of CAD parts: frames and placements, curves of any
+//!   dimension, surfaces with derivatives, normals and inversion, the B-rep model (faces,
+//!   shells, solids) and the tolerance policy of CAD files.
 //! - [`convex`] (`rs-convex`): convex domains of a free control point keeping the sign of
 //!   curvature or torsion.
 //! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
@@ -65,6 +68,7 @@ pub use rs_contain as contain;
 pub use rs_convex as convex;
 pub use rs_coverage as coverage;
 pub use rs_cubature as cubature;
+pub use rs_geom as geom;
 pub use rs_io as io;
 pub use rs_mesh as mesh;
 pub use rs_roots as roots;

@@ -71,7 +71,8 @@ pub fn load_domain(spec: &str) -> Result<Domain, IoError> {
 /// - `*.ttf`, `*.otf`, `*.ttc`, `*.otc` followed by `#glyph`: one glyph of a font
 ///   ([`font::Glyph`] syntax: `font.ttf#B`, `font.ttf#U+0040`, `font.ttf#gid:37`);
 /// - `*.step`, `*.stp`, `*.igs`, `*.iges`, followed by `#face:K` unless the file has one
-///   face: face `K` of a CAD part in its `(u, v)` ([`cad::CadModel::face_domain`]).
+///   face: face `K` of a CAD part in its `(u, v)` ([`cad::CadModel::face_domain`]); a solid
+///   (`#solid:K`) is not a planar domain and is refused here.
 ///
 /// `options.closure_tolerance`, when given, groups the curves into loops with that relative
 /// tolerance whatever the reader.
@@ -82,10 +83,19 @@ pub fn load_domain(spec: &str) -> Result<Domain, IoError> {
 /// selection; the reader's errors otherwise.
 pub fn load_domain_with(spec: &str, options: &LoadOptions) -> Result<Domain, IoError> {
     let closure = options.closure_tolerance;
-    if let Some((file, selection)) = cad::split_face_spec(spec) {
+    if let Some((file, selection)) = cad::split_cad_spec(spec) {
         let model = cad::CadModel::read(file)?;
-        let index = match selection {
-            Some(s) => s?.0,
+        let index = match selection.transpose()? {
+            Some(cad::CadSelection::Face(k)) => k,
+            Some(cad::CadSelection::Solid(k)) => {
+                return Err(IoError::Cad {
+                    format: model.format.name(),
+                    message: format!(
+                        "{file}#solid:{k} is a solid, not a planar domain: name a face as \
+                         {file}#face:K (`inrs info {file}#solid:{k}` lists the solid's faces)"
+                    ),
+                });
+            }
             None if model.faces.len() == 1 => 0,
             None => {
                 return Err(IoError::Cad {

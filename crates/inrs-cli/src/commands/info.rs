@@ -2,15 +2,18 @@
 
 use clap::Args;
 use inrs::DomainSummary;
-use inrs::io::cad::CadModel;
+use inrs::geom::brep::ModelError;
+use inrs::io::cad::{CadModel, CadSelection};
 
 use crate::args::DomainArg;
 use crate::cli::error::CliError;
 use crate::cli::output::write_text;
 
 /// Print a summary of a domain: curves, Bezier pieces, loops, orientation, area, size. For a
-/// STEP or IGES file without `#face:K`: one line per face (index, entity, surface, loops,
-/// curves, (u, v) area and box, or why the face is refused).
+/// STEP or IGES file without `#face:K`: its solids with their shells, then one line per face
+/// (index, entity, surface, loops, curves, (u, v) area and box, natural bounds, the bound of
+/// fitted pcurves, faces narrower than their closure tolerance, or why the face is refused);
+/// `part.step#solid:K`: that solid and its faces.
 #[derive(Args, Debug)]
 pub(crate) struct InfoArgs {
     #[command(flatten)]
@@ -23,8 +26,12 @@ pub(crate) struct InfoArgs {
 impl InfoArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let spec = self.domain.domain.to_string_lossy().into_owned();
-        if let Some((file, None)) = inrs::io::cad::split_face_spec(&spec) {
-            return self.list_faces(file);
+        match inrs::io::cad::split_cad_spec(&spec) {
+            Some((file, None)) => return self.list_model(file, None),
+            Some((file, Some(Ok(CadSelection::Solid(k))))) => {
+                return self.list_model(file, Some(k));
+            }
+            _ => {}
         }
         let d = self.domain.load()?;
         if self.require_closed {
@@ -33,29 +40,64 @@ impl InfoArgs {
         write_text(None, &format!("{}\n", DomainSummary::of(&d)))
     }
 
-    /// `inrs info part.step`: the faces of a CAD file, one per line; with `--require-closed`
-    /// an error if some face is refused.
-    fn list_faces(&self, file: &str) -> Result<(), CliError> {
+    /// `inrs info part.step`: the solids of a CAD file with their shells, then its faces, one
+    /// per line; `part.step#solid:K` the solid `K` and its faces only. With `--require-closed`
+    /// an error if some face listed is refused.
+    fn list_model(&self, file: &str, solid: Option<usize>) -> Result<(), CliError> {
         let model = CadModel::read(file).map_err(|e| CliError::Message(e.to_string()))?;
-        let faces = model.face_summaries(self.domain.closure_tol);
-        let refused = faces.iter().filter(|f| f.error.is_some()).count();
+        let solids = model.solid_summaries();
+        let (solids, faces): (Vec<_>, Vec<usize>) = match solid {
+            None => (solids, (0..model.faces.len()).collect()),
+            Some(k) => {
+                let Some(s) = solids.into_iter().nth(k) else {
+                    let e = ModelError::NoSolid {
+                        index: k,
+                        count: model.solids.len(),
+                    };
+                    return Err(CliError::Message(format!("{file}: {e}")));
+                };
+                let mut faces: Vec<usize> =
+                    s.shells.iter().flat_map(|sh| sh.faces.clone()).collect();
+                faces.sort_unstable();
+                faces.dedup();
+                (vec![s], faces)
+            }
+        };
+        let all = model.face_summaries(self.domain.closure_tol);
+        let listed: Vec<_> = faces.iter().filter_map(|&k| all.get(k)).collect();
+        let refused = listed.iter().filter(|f| f.error.is_some()).count();
+        let narrow = listed.iter().filter(|f| f.is_narrow()).count();
         let mut text = format!(
-            "{file}: {} {} faces ({} read, {refused} refused); tolerance {}\n",
-            faces.len(),
+            "{file}: {} {} solid{}, {} shell{}, {} face{} ({} read, {refused} refused{}); tolerance {}\n",
+            model.solids.len(),
             model.format.name(),
-            faces.len() - refused,
+            if model.solids.len() == 1 { "" } else { "s" },
+            model.shells.len(),
+            if model.shells.len() == 1 { "" } else { "s" },
+            model.faces.len(),
+            if model.faces.len() == 1 { "" } else { "s" },
+            all.len() - all.iter().filter(|f| f.error.is_some()).count(),
+            if narrow > 0 {
+                format!(", {narrow} narrower than their closure tolerance")
+            } else {
+                String::new()
+            },
             model
                 .tolerance
+                .stated()
                 .map_or_else(|| "not stated".to_string(), |t| format!("{t:e}")),
         );
-        for f in &faces {
+        for s in &solids {
+            text.push_str(&format!("{s}\n"));
+        }
+        for f in &listed {
             text.push_str(&format!("{f}\n"));
         }
         write_text(None, &text)?;
         if self.require_closed && refused > 0 {
             return Err(CliError::Message(format!(
                 "{file}: {refused} of {} faces are refused",
-                faces.len()
+                listed.len()
             )));
         }
         Ok(())

@@ -5,7 +5,8 @@
 //! face is bounded by trimming loops of 2-D curves in `(u, v)` ("pcurves"). This module reads
 //! those loops, exactly (NURBS, lines and conics stay what they are), into one [`CadModel`]
 //! per file, whose faces come in the order `OpenCASCADE`'s face explorer visits them in the same
-//! file; [`CadModel::face_domain`] turns face `K` into a [`Domain`](rs_spline::Domain).
+//! file; [`CadModel::face_domain`] turns face `K` into a [`Domain`](rs_spline::Domain). The
+//! model itself (faces, shells, solids) is `rs-geom`'s [`Model`].
 //!
 //! # Tolerance
 //! Consecutive trimming curves of real files meet only within the model's tolerance (often
@@ -32,19 +33,20 @@
 //! - [`iges`]: IGES 5.3 (the fixed-column format): trimmed surfaces (144) and bounded
 //!   surfaces (143).
 
-mod face;
 pub mod iges;
 mod spec;
 pub mod step;
 mod summary;
 
+use std::ops::{Deref, DerefMut};
 use std::path::Path;
 
-use rs_spline::NurbsCurve;
+use rs_geom::brep::{FaceError, Model, ModelError, ReadError};
+use rs_spline::{Domain, NurbsCurve};
 
 use crate::IoError;
-pub use spec::{FaceSelection, split_face_spec};
-pub use summary::CadFaceSummary;
+pub use spec::{CadSelection, split_cad_spec};
+pub use summary::{CadFaceSummary, CadShellSummary, CadSolidSummary};
 
 /// The file formats of [`CadModel`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -75,34 +77,27 @@ impl CadFormat {
     }
 }
 
-/// One face of a CAD file: where it is in the file, its surface, and its trimming loops in the
-/// surface's parameter space (or why they could not be read).
-#[derive(Clone, Debug)]
-pub struct CadFace {
-    /// The face's entity in the file: `#123` (STEP instance) or `DE 57` (IGES directory entry
-    /// sequence number).
-    pub entity: String,
-    /// The surface type as the file names it (`PLANE`, `CYLINDRICAL_SURFACE`,
-    /// `B_SPLINE_SURFACE_WITH_KNOTS`, IGES `128 (rational B-spline surface)`, ...).
-    pub surface: String,
-    /// The loops, the outer one first, each its curves in loop order in `(u, v)`; each curve
-    /// ends where the next one starts (within the file's tolerance) and the last returns to
-    /// the first. `Err` says why the face could not be read (a one-line message naming the
-    /// entity at fault); the other faces of the file are unaffected.
-    pub loops: Result<Vec<Vec<NurbsCurve>>, String>,
-}
-
-/// The faces of a CAD file.
+/// A CAD file read into a boundary representation: its faces, shells and solids in
+/// `OpenCASCADE`'s explorer order ([`Model`], which this dereferences to), and its format.
 #[derive(Clone, Debug)]
 pub struct CadModel {
     /// The file format.
     pub format: CadFormat,
-    /// The file's own tolerance in model units, if it states one: STEP's
-    /// `UNCERTAINTY_MEASURE_WITH_UNIT` of length, IGES's minimum resolution (global
-    /// parameter 19).
-    pub tolerance: Option<f64>,
-    /// The faces in `OpenCASCADE`'s face-explorer order of the same file.
-    pub faces: Vec<CadFace>,
+    /// The faces, shells and solids.
+    pub model: Model,
+}
+
+impl Deref for CadModel {
+    type Target = Model;
+    fn deref(&self) -> &Model {
+        &self.model
+    }
+}
+
+impl DerefMut for CadModel {
+    fn deref_mut(&mut self) -> &mut Model {
+        &mut self.model
+    }
 }
 
 impl CadModel {
@@ -133,5 +128,89 @@ impl CadModel {
             CadFormat::Step => step::read_step(bytes),
             CadFormat::Iges => iges::read_iges(bytes),
         }
+    }
+
+    /// Face `index` (`#face:K`) as a domain in its surface's `(u, v)`
+    /// ([`Model::face_domain`]: loops closed within the file's tolerance or
+    /// `relative_closure_tolerance` of the face's `(u, v)` diagonal, watertight, oriented by
+    /// nesting).
+    ///
+    /// # Errors
+    /// [`IoError::Cad`] for an index past the last face; [`IoError::CadFace`] for a face that
+    /// could not be read (the reader's reason) or whose loop has a gap beyond the tolerance
+    /// (naming the loop, the two curves and the gap); [`IoError::Domain`] for an invalid
+    /// tolerance.
+    pub fn face_domain(
+        &self,
+        index: usize,
+        relative_closure_tolerance: Option<f64>,
+    ) -> Result<Domain, IoError> {
+        self.model
+            .face_domain(index, relative_closure_tolerance)
+            .map_err(|e| self.io_error(e))
+    }
+
+    /// Every face as a domain ([`CadModel::face_domain`]), in file order, each `Err` for a
+    /// face that cannot be read: one pass over a file for callers that want all its faces.
+    pub fn face_domains(
+        &self,
+        relative_closure_tolerance: Option<f64>,
+    ) -> Vec<Result<Domain, IoError>> {
+        self.model
+            .face_domains(relative_closure_tolerance)
+            .into_iter()
+            .map(|r| r.map_err(|e| self.io_error(e)))
+            .collect()
+    }
+
+    /// The [`IoError`] of a model error, naming the format.
+    pub fn io_error(&self, e: ModelError) -> IoError {
+        let format = self.format.name();
+        match e {
+            ModelError::Face {
+                index,
+                entity,
+                error,
+            } => IoError::CadFace {
+                format,
+                index,
+                entity,
+                message: error.to_string(),
+            },
+            ModelError::Domain(e) => IoError::Domain(e),
+            other => IoError::Cad {
+                format,
+                message: other.to_string(),
+            },
+        }
+    }
+}
+
+/// A reader's message while the readers still report strings.
+#[derive(Debug)]
+pub(crate) struct LegacyMessage(pub(crate) String);
+
+impl std::fmt::Display for LegacyMessage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for LegacyMessage {}
+
+/// A face of the old readers (entity, surface name, loops or the reason) as a model face.
+pub(crate) fn legacy_face(
+    entity: String,
+    surface_name: String,
+    loops: Result<Vec<Vec<NurbsCurve>>, String>,
+) -> rs_geom::brep::Face {
+    rs_geom::brep::Face {
+        entity,
+        surface_name,
+        same_sense: true,
+        loops: loops.map_err(|m| FaceError::Read(ReadError::new(LegacyMessage(m)))),
+        edges: Vec::new(),
+        pcurve_deviation: None,
+        natural_bounds: false,
     }
 }

@@ -22,10 +22,12 @@ use super::curves::{Piece, Target};
 use super::directory::DirEntry;
 use super::maps::{PlaneMap, cross, dot, sub};
 use super::{Iges, MAX_DEPTH, type_name};
-use crate::cad::CadFace;
+use rs_geom::brep::Face;
+
+use crate::cad::legacy_face;
 
 /// The faces of the file, in Open CASCADE's order.
-pub(super) fn faces(iges: &Iges<'_>) -> Vec<CadFace> {
+pub(super) fn faces(iges: &Iges<'_>) -> Vec<Face> {
     iges.face_order()
         .into_iter()
         .map(|i| iges.face(&iges.dir[i]))
@@ -112,18 +114,14 @@ impl Iges<'_> {
     }
 
     /// One face: its entity, surface and loops.
-    fn face(&self, e: &DirEntry) -> CadFace {
+    fn face(&self, e: &DirEntry) -> Face {
         let mut surface = String::from("unknown");
         let loops = match e.kind {
             144 => self.trimmed_surface(e, &mut surface),
             510 => self.brep_face(e, &mut surface),
             _ => self.bounded_surface(e, &mut surface),
         };
-        CadFace {
-            entity: format!("DE {}", e.de),
-            surface,
-            loops,
-        }
+        legacy_face(format!("DE {}", e.de), surface, loops)
     }
 
     /// The surface entry `ptr` of face `e`, its name written to `surface`.

@@ -69,7 +69,7 @@ fn cad_err(message: String) -> IoError {
     }
 }
 
-/// The name of an entity type, for messages and [`super::CadFace::surface`].
+/// The name of an entity type, for messages and a face's surface name.
 fn type_name(kind: i64) -> &'static str {
     match kind {
         100 => "circular arc",
@@ -225,7 +225,11 @@ pub fn read_iges(bytes: &[u8]) -> Result<CadModel, IoError> {
     let faces = faces::faces(&iges);
     Ok(CadModel {
         format: CadFormat::Iges,
-        tolerance: globals.resolution,
-        faces,
+        model: rs_geom::brep::Model {
+            faces,
+            tolerance: rs_geom::Tolerance::new(globals.resolution)
+                .map_err(|e| cad_err(e.to_string()))?,
+            ..rs_geom::brep::Model::default()
+        },
     })
 }

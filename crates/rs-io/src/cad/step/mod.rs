@@ -71,7 +71,7 @@
 //!
 //! # Tolerance
 //!
-//! [`CadModel::tolerance`] is the largest length `UNCERTAINTY_MEASURE_WITH_UNIT` of the
+//! The model's [`Tolerance`] states the largest length `UNCERTAINTY_MEASURE_WITH_UNIT` of the
 //! representation contexts the faces are read in (in the file's length unit), `None` if none
 //! states one. Consecutive curves of a loop must meet within [`gap_tolerance`] of it in
 //! `(u, v)`.
@@ -92,7 +92,10 @@ use std::collections::HashMap;
 
 use rs_spline::NurbsCurve;
 
-use super::{CadFace, CadFormat, CadModel};
+use rs_geom::Tolerance;
+use rs_geom::brep::{Face, Model};
+
+use super::{CadFormat, CadModel, legacy_face};
 use crate::IoError;
 use graph::Graph;
 use units::Units;
@@ -135,7 +138,7 @@ fn cad(message: String) -> IoError {
 /// # Errors
 /// [`IoError::Cad`] for a file that is not ISO 10303-21 or whose entity graph is broken
 /// (missing or cyclic references in the shape structure, nesting beyond the limits). A face
-/// whose loops cannot be read is listed with an `Err` in [`CadFace::loops`].
+/// whose loops cannot be read is listed with an `Err` in [`Face::loops`].
 pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
     let g = Graph::parse(text).map_err(cad)?;
     let uses = faces::face_order(&g).map_err(cad)?;
@@ -155,7 +158,7 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
         .reduce(f64::max);
     let gap = gap_tolerance(tolerance);
     // A face used many times (assemblies) is read once.
-    let mut read: HashMap<(u64, Option<u64>), CadFace> = HashMap::new();
+    let mut read: HashMap<(u64, Option<u64>), Face> = HashMap::new();
     let mut faces = Vec::with_capacity(uses.len().min(1 << 16));
     let mut points = 0usize;
     for u in uses {
@@ -184,8 +187,11 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
     }
     Ok(CadModel {
         format: CadFormat::Step,
-        tolerance,
-        faces,
+        model: Model {
+            faces,
+            tolerance: Tolerance::new(tolerance).map_err(|e| cad(e.to_string()))?,
+            ..Model::default()
+        },
     })
 }
 
@@ -193,7 +199,7 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
 /// per use; this bounds the memory of the model).
 const MAX_TOTAL_POINTS: usize = 1 << 26;
 
-fn read_face(g: &Graph, label: u64, units: &Units, gap: f64) -> Result<CadFace, IoError> {
+fn read_face(g: &Graph, label: u64, units: &Units, gap: f64) -> Result<Face, IoError> {
     let inst = g.get(label, "a shell").map_err(cad)?;
     let entity = format!("#{label}");
     let geometry = inst
@@ -213,9 +219,5 @@ fn read_face(g: &Graph, label: u64, units: &Units, gap: f64) -> Result<CadFace, 
         }
         Err(m) => (String::from("?"), Err(m)),
     };
-    Ok(CadFace {
-        entity,
-        surface,
-        loops,
-    })
+    Ok(legacy_face(entity, surface, loops))
 }
