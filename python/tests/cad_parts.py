@@ -23,7 +23,7 @@ depend on the day or the user.
 
 OCC's view of a file or shape: :func:`read_shape` (``STEPControl_Reader`` /
 ``IGESControl_Reader``, ``TransferRoots``, ``OneShape``), :func:`faces` (``TopExp_Explorer``
-face order: ``#face:K`` of inrs), :func:`topology` (solids, their shells, each shell's faces as
+face order: ``#face:K`` of inrs; :func:`face_at` picks one), :func:`topology` (solids, their shells, each shell's faces as
 indices into that order, and per face the surface type, orientation and ``(u, v)`` bounds),
 :func:`face_wires` (each wire's edges with OCC's pcurves), :func:`surface_points` (OCC's
 surface of face K, located, at ``(u, v)`` arrays), :func:`project_points` (OCC's ``(u, v)`` of
@@ -549,6 +549,16 @@ def faces(shape) -> list:
     from OCP.TopoDS import TopoDS
 
     return [TopoDS.Face(f) for f in _explore(shape, TopAbs_FACE)]
+
+
+def face_at(shape_or_path, k: int):
+    """Face ``k`` (explorer order, inrs's ``#face:K``) of a shape or of a file read by
+    :func:`read_shape`."""
+    shape = read_shape(shape_or_path) if isinstance(shape_or_path, (str, pathlib.Path)) else shape_or_path
+    found = faces(shape)
+    if not 0 <= k < len(found):
+        raise IndexError(f"face {k} of {len(found)}")
+    return found[k]
 
 
 class _ShapeIndex:

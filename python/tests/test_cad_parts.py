@@ -165,7 +165,7 @@ def test_evaluate_then_project_returns_the_parameters(name, parts):
 
 
 def test_full_sphere_face_has_natural_bounds(parts):
-    face = cad_parts.faces(parts["sphere"].shape)[0]
+    face = cad_parts.face_at(parts["sphere"].step, 0)
     u0, u1, v0, v1 = cad_parts.face_info(face).uv_bounds
     assert (u0, u1) == pytest.approx((0.0, 2 * math.pi)) and (v0, v1) == pytest.approx((-math.pi / 2, math.pi / 2))
     # The point at parameters (u, v) is centre + r (cos v cos u, cos v sin u, sin v).
