@@ -23,8 +23,9 @@ depend on the day or the user.
 
 OCC's view of a file or shape: :func:`read_shape` (``STEPControl_Reader`` /
 ``IGESControl_Reader``, ``TransferRoots``, ``OneShape``), :func:`faces` (``TopExp_Explorer``
-face order: ``#face:K`` of inrs; :func:`face_at` picks one), :func:`topology` (solids, their shells, each shell's faces as
-indices into that order, and per face the surface type, orientation and ``(u, v)`` bounds),
+face order: ``#face:K`` of inrs; :func:`face_at` picks one), :func:`topology` (solids, their
+shells, each shell's faces as indices into that order, and per face the surface type,
+orientation and ``(u, v)`` bounds),
 :func:`face_wires` (each wire's edges with OCC's pcurves), :func:`surface_points` (OCC's
 surface of face K, located, at ``(u, v)`` arrays), :func:`project_points` (OCC's ``(u, v)`` of
 3-D points), :func:`classify_uv` (``BRepClass_FaceClassifier``) and :func:`classify_solid`
