@@ -1,5 +1,6 @@
 """Shared helpers: the repository's fixtures, Halton points as the inRS paper defines them,
-and the command-line tool (built with cargo) for comparisons."""
+and the command-line tool (built with cargo) for comparisons. The package itself is imported
+where it is used, so that tests of OCC-only helpers (test_cad_parts.py) run without it."""
 
 import json
 import os
@@ -9,8 +10,6 @@ import subprocess
 import numpy as np
 import pytest
 
-import inrs
-
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 FIXTURES = ROOT / "fixtures"
 PAPER = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune", "circle", "l_shape", "leaf_cubic"]
@@ -19,6 +18,8 @@ PAPER = ["s3_m_shape", "s4_disk_ellipse_segment", "s5_lune", "circle", "l_shape"
 def halton(n: int, box) -> np.ndarray:
     """The first ``n`` Halton points (bases 2, 3, starting at (0, 0)) of ``(xmin, xmax, ymin,
     ymax)``, by the package's generator (checked against exact values in test_halton.py)."""
+    import inrs
+
     xmin, xmax, ymin, ymax = box
     return inrs.halton_points(n, (xmin, ymin, xmax, ymax))
 
