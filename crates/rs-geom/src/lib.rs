@@ -17,9 +17,11 @@ mod affine3;
 pub mod curve;
 mod error;
 mod frame;
+pub mod surface;
 
 pub use affine3::Affine3;
 pub use curve::{Conic, ConicKind, Curve};
 pub use error::GeomError;
 pub use frame::Frame;
 pub use rs_spline::{Point, Point3, Vector};
+pub use surface::{ParamSurface, Surface};
