@@ -323,39 +323,18 @@ impl ParamSurface for BSplineSurface {
 
 #[cfg(test)]
 mod tests {
-    use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, TAU};
+    use std::f64::consts::{FRAC_PI_2, TAU};
 
     use super::*;
     use crate::Frame;
     use crate::surface::Sphere;
-    use crate::surface::testing::{Rng, check_derivatives, check_normal, check_round_trip};
-
-    /// The rational biquadratic octant of the sphere of radius `r` about the origin: a quarter
-    /// turn about `z` (along `u`) of the meridian quarter circle from the equator to the north
-    /// pole (along `v`); the column `v = 1` is the pole, the normal points outwards.
-    fn octant(r: f64) -> BSplineSurface {
-        let w = FRAC_1_SQRT_2;
-        let meridian = [(r, 0.0, 1.0), (r, r, w), (0.0, r, 1.0)]; // (radius, height, weight)
-        let turn = [(1.0, 0.0, 1.0), (1.0, 1.0, w), (0.0, 1.0, 1.0)]; // (x, y, weight)
-        let mut points = Vec::new();
-        let mut weights = Vec::new();
-        for &(x, y, wi) in &turn {
-            for &(rad, h, wj) in &meridian {
-                points.push(Point3::new(rad * x, rad * y, h));
-                weights.push(wi * wj);
-            }
-        }
-        BSplineSurface::new(
-            [KnotVector::bezier(2), KnotVector::bezier(2)],
-            points,
-            Some(weights),
-        )
-        .unwrap()
-    }
+    use crate::surface::testing::{
+        Rng, check_derivatives, check_normal, check_round_trip, sphere_octant,
+    };
 
     #[test]
     fn a_rational_octant_is_the_sphere() {
-        let s = octant(2.0);
+        let s = sphere_octant(2.0);
         let sphere = Sphere::new(Frame::WORLD, 2.0).unwrap();
         assert_eq!(
             s.poles(),

@@ -563,3 +563,106 @@ pub(crate) fn finite(what: &'static str, value: f64) -> Result<f64, GeomError> {
         Err(GeomError::NotFinite { what, value })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::testing::{Rng, check_derivatives, check_normal, check_round_trip, one_of_each};
+    use super::*;
+
+    #[test]
+    fn every_kind_dispatches_and_names_itself() {
+        let mut rng = Rng::new(71);
+        let all = one_of_each(&mut rng);
+        let names: Vec<&str> = all.iter().map(Surface::kind_name).collect();
+        assert_eq!(
+            names,
+            [
+                "plane",
+                "cylinder",
+                "cone",
+                "sphere",
+                "torus",
+                "surface of revolution",
+                "surface of linear extrusion",
+                "offset surface",
+                "B-spline surface",
+                "reparameterised surface"
+            ]
+        );
+        for s in &all {
+            for _ in 0..5 {
+                let uv = [rng.range(0.1, 0.4), rng.range(0.1, 0.4)];
+                check_derivatives(s, uv, 0.1);
+                check_normal(s, uv);
+                check_round_trip(s, uv, None, 1e-10, 10.0);
+                check_round_trip(s, uv, Some([uv[0] + 0.05, uv[1] - 0.05]), 1e-10, 10.0);
+                // Through the enum, the inner surface's answers.
+                let inner = dispatch!(s, x => x.derivatives(uv));
+                assert_eq!(inner, s.derivatives(uv));
+            }
+            assert!(s.depth() <= 1 && s.length_scale() > 0.0);
+        }
+    }
+
+    #[test]
+    fn hostile_inputs_are_bounded() {
+        let mut rng = Rng::new(72);
+        let start = std::time::Instant::now();
+        let points = [
+            Point3::new(f64::NAN, 0.0, 0.0),
+            Point3::new(0.0, f64::INFINITY, 0.0),
+            Point3::new(1e300, -1e300, 1e300),
+            Point3::new(1e150, 1e150, -1e150),
+            Point3::new(-1e-300, 1e-300, 0.0),
+        ];
+        let nears = [
+            None,
+            Some([f64::NAN, 0.0]),
+            Some([1e300, -1e300]),
+            Some([0.5, 0.5]),
+        ];
+        for s in one_of_each(&mut rng) {
+            for x in points {
+                for near in nears {
+                    let inv = s.invert(x, near);
+                    if x.is_finite() {
+                        assert!(
+                            inv.distance >= 0.0 || inv.distance.is_nan(),
+                            "{}: {inv:?}",
+                            s.kind_name()
+                        );
+                    } else {
+                        assert!(inv.distance.is_nan(), "{}: {inv:?}", s.kind_name());
+                    }
+                }
+            }
+            // A point at a moderate distance always gets finite parameters and distance.
+            let inv = s.invert(Point3::new(1e6, -2e6, 3e6), None);
+            assert!(inv.uv.iter().all(|t| t.is_finite()) && inv.distance.is_finite());
+            for uv in [[f64::NAN, 0.5], [0.5, f64::INFINITY], [1e300, -1e300]] {
+                let _ = (s.point(uv), s.derivatives(uv), s.normal(uv));
+            }
+        }
+        assert!(start.elapsed().as_secs() < 30);
+    }
+
+    #[test]
+    fn periodic_copies_and_box_helpers() {
+        assert_eq!(nearest_copy(0.5, 0.5 + 3.0 * TAU, TAU), 0.5 + 3.0 * TAU);
+        assert_eq!(nearest_copy(0.5, 0.6, TAU), 0.5);
+        assert_eq!(copy_from(-0.5, 0.0, TAU), TAU - 0.5);
+        assert_eq!(copy_from(1.0, 0.0, TAU), 1.0);
+        let bx = ParamBox {
+            u: (0.0, 1.0),
+            v: (f64::NEG_INFINITY, 2.0),
+        };
+        assert_eq!(bx.clamp([2.0, 5.0]), [1.0, 2.0]);
+        assert!(bx.contains([0.5, -1e300]) && !bx.contains([0.5, 3.0]));
+        assert_eq!(bx.lengths()[0], 1.0);
+        assert_eq!(interior_side(&bx, [0.9, 0.0]), [-1.0, 1.0]);
+        assert_eq!(
+            place_periodic([-0.5, 7.0], None, [Some(TAU), None], &bx),
+            [TAU - 0.5, 7.0]
+        );
+    }
+}

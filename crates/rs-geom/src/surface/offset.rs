@@ -322,7 +322,9 @@ mod tests {
 
     use super::*;
     use crate::Frame;
-    use crate::surface::testing::{Rng, check_derivatives, check_normal, check_round_trip};
+    use crate::surface::testing::{
+        Rng, check_derivatives, check_normal, check_round_trip, sphere_octant,
+    };
     use crate::surface::{Cone, Cylinder, Plane, Sphere, Torus};
 
     #[test]
@@ -438,6 +440,41 @@ mod tests {
             );
         }
         assert_eq!(fat.poles().len(), 2);
+    }
+
+    #[test]
+    fn offset_of_a_rational_octant_is_the_concentric_octant() {
+        let s = Offset::new(Surface::BSpline(sphere_octant(2.0)), 0.5).unwrap();
+        let sphere = Sphere::new(Frame::WORLD, 2.5).unwrap();
+        // The pole column stays a pole: the normal is +z all along it.
+        assert_eq!(
+            s.poles(),
+            vec![Pole {
+                param: 1,
+                value: 1.0
+            }]
+        );
+        assert!(s.point([0.3, 1.0]).distance(Point3::new(0.0, 0.0, 2.5)) < 1e-12);
+        let mut rng = Rng::new(34);
+        for _ in 0..20 {
+            let uv = [rng.range(0.03, 0.97), rng.range(0.03, 0.97)];
+            assert!((s.point(uv).length() - 2.5).abs() < 1e-13 * 4.0);
+            check_derivatives(&s, uv, 0.1);
+            check_normal(&s, uv);
+            check_round_trip(&s, uv, None, 1e-10, 4.0);
+            let dir = Point3::new(
+                rng.range(0.05, 1.0),
+                rng.range(0.05, 1.0),
+                rng.range(0.05, 1.0),
+            );
+            let x = dir * (rng.range(0.2, 5.0) / dir.length());
+            let (i, j) = (s.invert(x, Some(uv)), sphere.invert(x, None));
+            assert!(
+                (i.distance - j.distance).abs() < 1e-12 * 4.0,
+                "{i:?} vs {j:?}"
+            );
+            assert!(s.point(i.uv).distance(sphere.point(j.uv)) < 1e-10 * 4.0);
+        }
     }
 
     #[test]

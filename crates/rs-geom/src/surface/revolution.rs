@@ -367,6 +367,65 @@ mod tests {
     }
 
     #[test]
+    fn closed_swept_curves_make_a_periodic_v_and_trimmed_arcs_do_not() {
+        // The rational quadratic full circle of radius 0.5 about (2, 0, 0) in the x-z plane
+        // (nine points, knots in quarters): a closed B-spline, so v has period 1.
+        let w = FRAC_1_SQRT_2;
+        let c = |x: f64, z: f64| Point3::new(2.0 + 0.5 * x, 0.0, 0.5 * z);
+        let circle = RationalBSpline::new(
+            2,
+            vec![
+                0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+            ],
+            vec![
+                c(1.0, 0.0),
+                c(1.0, 1.0),
+                c(0.0, 1.0),
+                c(-1.0, 1.0),
+                c(-1.0, 0.0),
+                c(-1.0, -1.0),
+                c(0.0, -1.0),
+                c(1.0, -1.0),
+                c(1.0, 0.0),
+            ],
+            Some(vec![1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0]),
+        )
+        .unwrap();
+        let s = Revolution::new(Curve::BSpline(circle), Point3::ORIGIN, Point3::Z).unwrap();
+        let torus = Torus::new(Frame::WORLD, 2.0, 0.5).unwrap();
+        assert_eq!(s.periods(), [Some(TAU), Some(1.0)]);
+        assert_eq!(s.param_box().v, (0.0, 1.0));
+        let mut rng = Rng::new(15);
+        for _ in 0..20 {
+            let uv = [rng.range(-4.0, 10.0), rng.range(0.02, 0.98)];
+            assert!(s.point([uv[0], uv[1] + 3.0]).distance(s.point(uv)) < 1e-14 * 4.0);
+            check_round_trip(&s, uv, Some([uv[0], uv[1] - 2.0]), 1e-12, 4.0);
+            let x = rng.point(4.0);
+            let (i, j) = (s.invert(x, None), torus.invert(x, None));
+            assert!(
+                (i.distance - j.distance).abs() < 1e-12 * 4.0,
+                "{i:?} vs {j:?}"
+            );
+        }
+        // Beside the seam v = 0 = 1: the copy nearest near, on either side.
+        let x = s.point([0.5, 0.999]);
+        let inv = s.invert(x, Some([0.5, 0.01]));
+        assert!((inv.uv[1] + 0.001).abs() < 1e-12, "{inv:?}");
+        // A trimmed half of an ellipse: the period of its basis is no period of the surface.
+        let half = Curve::Trimmed {
+            basis: Box::new(circle_curve()),
+            range: (0.0, PI),
+        };
+        let s = Revolution::new(half, Point3::ORIGIN, Point3::Z).unwrap();
+        assert_eq!(s.periods(), [Some(TAU), None]);
+        assert_eq!(s.param_box().v, (0.0, PI));
+    }
+
+    fn circle_curve() -> Curve<Point3> {
+        circle(Point3::new(2.0, 0.0, 0.0), Point3::X, Point3::Z, 0.5)
+    }
+
+    #[test]
     fn a_revolved_line_is_a_cone_and_unbounded() {
         let mut rng = Rng::new(13);
         for _ in 0..10 {

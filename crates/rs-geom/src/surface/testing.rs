@@ -2,10 +2,13 @@
 //! (derivatives against finite differences of `point`, normals against `S_u x S_v`,
 //! inversion round trips).
 
-use rs_spline::Point3;
+use rs_spline::{KnotVector, Point3, RationalBSpline};
 
-use super::{ParamSurface, nearest_copy};
-use crate::Frame;
+use super::{
+    BSplineSurface, Cone, Cylinder, Extrusion, Offset, ParamSurface, Plane, Reparam, Revolution,
+    Sphere, Surface, Torus, nearest_copy,
+};
+use crate::{Conic, ConicKind, Curve, Frame};
 
 /// `SplitMix64`: a small seeded generator (reproducible test inputs).
 pub(crate) struct Rng(u64);
@@ -150,4 +153,83 @@ pub(crate) fn check_round_trip<S: ParamSurface + ?Sized>(
             }
         }
     }
+}
+
+/// One surface of each kind, in a random frame (the order of [`Surface`]'s variants).
+pub(crate) fn one_of_each(rng: &mut Rng) -> Vec<Surface> {
+    let f = rng.frame(2.0);
+    let arc = RationalBSpline::new(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Point3::new(2.0, 0.0, -1.0),
+            Point3::new(3.0, 0.0, 0.0),
+            Point3::new(2.0, 0.5, 1.0),
+        ],
+        Some(vec![1.0, 0.6, 1.0]),
+    )
+    .unwrap();
+    let ellipse = Curve::Conic(Conic {
+        kind: ConicKind::Ellipse,
+        center: Point3::new(0.5, 0.0, 0.0),
+        u: Point3::new(2.0, 0.0, 0.0),
+        v: Point3::new(0.0, 1.0, 0.3),
+    });
+    let mut points = Vec::new();
+    for i in 0..3 {
+        for j in 0..4 {
+            points.push(Point3::new(
+                f64::from(i),
+                f64::from(j),
+                rng.range(-1.0, 1.0),
+            ));
+        }
+    }
+    let bs = BSplineSurface::new(
+        [
+            KnotVector::bezier(2),
+            KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], 2, 4).unwrap(),
+        ],
+        points,
+        Some(vec![
+            1.0, 1.2, 0.8, 1.0, 1.1, 0.9, 1.0, 1.0, 1.0, 1.3, 0.7, 1.0,
+        ]),
+    )
+    .unwrap();
+    let sphere = Surface::Sphere(Sphere::new(f, 1.5).unwrap());
+    vec![
+        Surface::Plane(Plane::new(f)),
+        Surface::Cylinder(Cylinder::new(f, 1.5).unwrap()),
+        Surface::Cone(Cone::new(f, 1.0, 0.4).unwrap()),
+        sphere.clone(),
+        Surface::Torus(Torus::new(f, 2.0, 0.5).unwrap()),
+        Surface::Revolution(Revolution::new(Curve::BSpline(arc), f.origin, f.z).unwrap()),
+        Surface::Extrusion(Extrusion::new(ellipse, Point3::new(0.2, 0.1, 1.5)).unwrap()),
+        Surface::Offset(Offset::new(sphere.clone(), 0.25).unwrap()),
+        Surface::BSpline(bs),
+        Surface::Reparam(Reparam::new(sphere, true, [0.5, -2.0], [0.1, 0.2]).unwrap()),
+    ]
+}
+
+/// The rational biquadratic octant of the sphere of radius `r` about the origin: a quarter
+/// turn about `z` (along `u`) of the meridian quarter circle from the equator to the north
+/// pole (along `v`); the column `v = 1` is the pole, the normal points outwards.
+pub(crate) fn sphere_octant(r: f64) -> BSplineSurface {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let meridian = [(r, 0.0, 1.0), (r, r, w), (0.0, r, 1.0)]; // (radius, height, weight)
+    let turn = [(1.0, 0.0, 1.0), (1.0, 1.0, w), (0.0, 1.0, 1.0)]; // (x, y, weight)
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for &(x, y, wi) in &turn {
+        for &(rad, h, wj) in &meridian {
+            points.push(Point3::new(rad * x, rad * y, h));
+            weights.push(wi * wj);
+        }
+    }
+    BSplineSurface::new(
+        [KnotVector::bezier(2), KnotVector::bezier(2)],
+        points,
+        Some(weights),
+    )
+    .unwrap()
 }

@@ -175,13 +175,9 @@ fn map_curve(c: &Curve<Point3>, m: &Affine3) -> Result<Curve<Point3>, GeomError>
 
 #[cfg(test)]
 mod tests {
-    use rs_spline::{KnotVector, RationalBSpline};
-
     use super::*;
-    use crate::ConicKind;
-    use crate::surface::BSplineSurface;
     use crate::surface::ParamSurface;
-    use crate::surface::testing::Rng;
+    use crate::surface::testing::{Rng, one_of_each};
 
     /// A random similarity: a rotation and translation, a scale, maybe a reflection.
     fn similarity_map(rng: &mut Rng, reflect: bool) -> Affine3 {
@@ -194,68 +190,13 @@ mod tests {
         Affine3::from_frame(&f).after(scale)
     }
 
-    fn surfaces(rng: &mut Rng) -> Vec<Surface> {
-        let f = rng.frame(2.0);
-        let arc = RationalBSpline::new(
-            2,
-            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-            vec![
-                Point3::new(2.0, 0.0, -1.0),
-                Point3::new(3.0, 0.0, 0.0),
-                Point3::new(2.0, 0.5, 1.0),
-            ],
-            Some(vec![1.0, 0.6, 1.0]),
-        )
-        .unwrap();
-        let ellipse = Curve::Conic(Conic {
-            kind: ConicKind::Ellipse,
-            center: Point3::new(0.5, 0.0, 0.0),
-            u: Point3::new(2.0, 0.0, 0.0),
-            v: Point3::new(0.0, 1.0, 0.3),
-        });
-        let mut points = Vec::new();
-        for i in 0..3 {
-            for j in 0..4 {
-                points.push(Point3::new(
-                    f64::from(i),
-                    f64::from(j),
-                    rng.range(-1.0, 1.0),
-                ));
-            }
-        }
-        let bs = BSplineSurface::new(
-            [
-                KnotVector::bezier(2),
-                KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], 2, 4).unwrap(),
-            ],
-            points,
-            Some(vec![
-                1.0, 1.2, 0.8, 1.0, 1.1, 0.9, 1.0, 1.0, 1.0, 1.3, 0.7, 1.0,
-            ]),
-        )
-        .unwrap();
-        let sphere = Surface::Sphere(Sphere::new(f, 1.5).unwrap());
-        vec![
-            Surface::Plane(Plane::new(f)),
-            Surface::Cylinder(Cylinder::new(f, 1.5).unwrap()),
-            Surface::Cone(Cone::new(f, 1.0, 0.4).unwrap()),
-            sphere.clone(),
-            Surface::Torus(Torus::new(f, 2.0, 0.5).unwrap()),
-            Surface::Revolution(Revolution::new(Curve::BSpline(arc), f.origin, f.z).unwrap()),
-            Surface::Extrusion(Extrusion::new(ellipse, Point3::new(0.2, 0.1, 1.5)).unwrap()),
-            Surface::Offset(Offset::new(sphere.clone(), 0.25).unwrap()),
-            Surface::BSpline(bs),
-            Surface::Reparam(Reparam::new(sphere, true, [0.5, -2.0], [0.1, 0.2]).unwrap()),
-        ]
-    }
-
     #[test]
     fn similarities_map_every_surface_exactly_in_the_same_parameters() {
         let mut rng = Rng::new(61);
         for k in 0..8 {
             let m = similarity_map(&mut rng, k % 2 == 1);
             let s = (m.determinant().abs()).cbrt();
-            for surface in surfaces(&mut rng) {
+            for surface in one_of_each(&mut rng) {
                 let image = surface.transformed(&m).unwrap();
                 for _ in 0..10 {
                     let uv = [rng.range(0.05, 0.95), rng.range(0.05, 0.95)];
@@ -301,7 +242,7 @@ mod tests {
                 [0.0, 0.0, 2.0, 0.0],
             ],
         };
-        for surface in surfaces(&mut rng) {
+        for surface in one_of_each(&mut rng) {
             let image = surface.transformed(&shear);
             match surface {
                 Surface::BSpline(ref b) => {
@@ -336,12 +277,12 @@ mod tests {
             ],
         };
         assert!(matches!(
-            surfaces(&mut rng)[0].transformed(&nan),
+            one_of_each(&mut rng)[0].transformed(&nan),
             Err(GeomError::NotFinite { .. })
         ));
         // A rigid motion keeps elementary surfaces of their kind.
         let rigid = Affine3::from_frame(&rng.frame(3.0));
-        for surface in surfaces(&mut rng).into_iter().take(5) {
+        for surface in one_of_each(&mut rng).into_iter().take(5) {
             let image = surface.transformed(&rigid).unwrap();
             assert_eq!(image.kind_name(), surface.kind_name());
         }
