@@ -421,6 +421,80 @@ mod tests {
     }
 
     #[test]
+    fn feet_are_global_and_stationary() {
+        // A wavy rational bicubic; the truth is a dense grid (independent of the grid the
+        // search starts from) and the stationarity of the foot.
+        let ku =
+            KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0], 3, 6).unwrap();
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0], 3, 5).unwrap();
+        let mut rng = Rng::new(44);
+        let mut points = Vec::new();
+        let mut weights = Vec::new();
+        for i in 0..6 {
+            for j in 0..5 {
+                points.push(Point3::new(
+                    f64::from(i),
+                    f64::from(j),
+                    2.0 * rng.range(-1.0, 1.0),
+                ));
+                weights.push(rng.range(0.5, 2.0));
+            }
+        }
+        let s = BSplineSurface::new([ku, kv], points, Some(weights)).unwrap();
+        let n = 300;
+        let dense: Vec<([f64; 2], Point3)> = (0..=n)
+            .flat_map(|i| {
+                (0..=n).map(move |j| [f64::from(i) / f64::from(n), f64::from(j) / f64::from(n)])
+            })
+            .map(|uv| (uv, s.point(uv)))
+            .collect();
+        for _ in 0..40 {
+            let x = Point3::new(
+                rng.range(-1.0, 6.0),
+                rng.range(-1.0, 5.0),
+                rng.range(-3.0, 3.0),
+            );
+            let inv = s.invert(x, None);
+            let grid_best = dense
+                .iter()
+                .map(|(_, p)| p.distance(x))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                inv.distance <= grid_best + 1e-12,
+                "{inv:?} vs the grid's {grid_best}"
+            );
+            // Stationary: the offset is orthogonal to the surface in each free direction.
+            let d = s.derivatives(inv.uv);
+            let r = x - d.point;
+            for (i, t) in [d.du, d.dv].into_iter().enumerate() {
+                let at_bound = inv.uv[i] == 0.0 || inv.uv[i] == 1.0;
+                if !at_bound {
+                    assert!(
+                        r.dot(t).abs() <= 1e-12 * 8.0 * t.length(),
+                        "{inv:?}: {}",
+                        r.dot(t)
+                    );
+                }
+            }
+        }
+        // Off the surface along the normal, within the curvature radii: the same parameters.
+        for _ in 0..40 {
+            let uv = [rng.range(0.05, 0.95), rng.range(0.05, 0.95)];
+            let h = rng.range(-0.01, 0.01);
+            let x = s.point(uv) + s.normal(uv).unwrap() * h;
+            let inv = s.invert(x, None);
+            assert!(
+                (inv.distance - h.abs()).abs() < 1e-12 * 8.0,
+                "{inv:?} vs {h}"
+            );
+            assert!(
+                (inv.uv[0] - uv[0]).abs() < 1e-10 && (inv.uv[1] - uv[1]).abs() < 1e-10,
+                "{inv:?} vs {uv:?}"
+            );
+        }
+    }
+
+    #[test]
     fn a_periodic_surface_wraps_its_seam() {
         // Along u: a uniform periodic cubic over 8 points on a circle (the first 3 repeated
         // at the end, unclamped knots); along v: a linear segment. A tube.

@@ -231,6 +231,28 @@ mod tests {
             let inv = s.invert(x, None);
             assert!(inv.distance <= x.distance(s.point(uv)) + 1e-12);
         }
+        // The foot is global: no node of a dense grid over u (each with its nearest v, a
+        // projection) is nearer.
+        let dense: Vec<Point3> = (0..=4000)
+            .map(|i| s.curve().point(f64::from(i) / 4000.0))
+            .collect();
+        let d = s.vector();
+        for _ in 0..40 {
+            let x = Point3::new(
+                rng.range(-1.0, 7.0),
+                rng.range(-3.0, 3.0),
+                rng.range(-3.0, 3.0),
+            );
+            let inv = s.invert(x, None);
+            let best = dense
+                .iter()
+                .map(|&c| {
+                    let r = x - c;
+                    (r - d * (r.dot(d) / d.dot(d))).length()
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(inv.distance <= best + 1e-12, "{inv:?} vs {best}");
+        }
         // A point beyond the curve's end: the foot is on the end line u = 1.
         let x = s.point([1.0, 0.5]) + Point3::new(2.0, 0.0, 0.0);
         let inv = s.invert(x, None);
