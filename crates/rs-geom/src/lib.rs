@@ -18,6 +18,7 @@ pub mod brep;
 pub mod curve;
 mod error;
 mod frame;
+pub mod surface;
 mod tolerance;
 
 pub use affine3::Affine3;
@@ -25,4 +26,5 @@ pub use curve::{Conic, ConicKind, Curve};
 pub use error::GeomError;
 pub use frame::Frame;
 pub use rs_spline::{Point, Point3, Vector};
+pub use surface::{ParamSurface, Surface};
 pub use tolerance::{CHAIN_FACTOR, DEFAULT_MODEL_TOLERANCE, PRINTED_DIGITS, Tolerance};

@@ -178,6 +178,8 @@ mod tests {
         Face {
             entity: "#7".into(),
             surface_name: "PLANE".into(),
+            surface: None,
+            surface_error: None,
             same_sense: true,
             loops: Ok(loops),
             edges: Vec::new(),

@@ -35,6 +35,11 @@ pub struct Face {
     /// The surface type as the file names it (`PLANE`, `B_SPLINE_SURFACE_WITH_KNOTS`,
     /// IGES `128 (rational B-spline surface)`, ...).
     pub surface_name: String,
+    /// The surface, in the parameters of the file's standard; `None` when it could not be
+    /// read (its type is not supported, or its data is broken: `surface_error` says why).
+    pub surface: Option<crate::surface::Surface>,
+    /// Why the surface could not be read, when it could not.
+    pub surface_error: Option<FaceError>,
     /// Whether the face's outward normal is the surface's `S_u x S_v` (`true`) or its
     /// opposite (STEP's `same_sense`, IGES's face orientation in its shell).
     pub same_sense: bool,

@@ -207,6 +207,8 @@ pub(crate) fn legacy_face(
     rs_geom::brep::Face {
         entity,
         surface_name,
+        surface: None,
+        surface_error: None,
         same_sense: true,
         loops: loops.map_err(|m| FaceError::Read(ReadError::new(LegacyMessage(m)))),
         edges: Vec::new(),
