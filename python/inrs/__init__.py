@@ -40,7 +40,12 @@ __all__ = [
     "interpolate",
     "convex_domain",
     "cad_faces",
+    "cad_model",
+    "CadModel",
     "CadFace",
+    "CadEdge",
+    "CadShell",
+    "CadSolid",
     "classify_many",
     "CellCoverage",
     "cubature",
@@ -772,20 +777,34 @@ def classify_many(
 
 
 class CadFace:
-    """One face of a STEP or IGES file, as :func:`cad_faces` lists it.
+    """One face of a STEP or IGES file, as :func:`cad_model` and :func:`cad_faces` give it.
 
     Read-only attributes: ``index`` (``Domain.load(f"{path}#face:{index}")`` reads it),
     ``entity`` (``"#123"`` for STEP, ``"DE 57"`` for IGES), ``surface`` (the surface type as
     the file names it), ``loops``, ``curves``, ``area`` (of the face's ``(u, v)`` domain),
-    ``bbox`` (``(umin, vmin, umax, vmax)``), ``error`` (why the face is refused, or ``None``)
-    and ``domain`` (the face as a :class:`Domain`, or ``None`` when refused).
+    ``bbox`` (``(umin, vmin, umax, vmax)``), ``error`` (why the face is refused, or ``None``),
+    ``domain`` (the face as a :class:`Domain`, or ``None`` when refused), ``closure_tolerance``
+    (the gap its loops were closed within, in ``(u, v)``), ``width`` (twice its area over its
+    loops' length), ``narrow`` (narrower than its closure tolerance: its shape is then no more
+    exact than the file's tolerance), ``pcurve_deviation`` (the bound of pcurves fitted to 3-D
+    edges, model units, or ``None``) and ``natural_bounds`` (bounded by its surface's
+    parameter box).
+
+    Faces from :func:`cad_model` also have their surface and edges in 3-D:
+    ``surface_kind`` (``"plane"``, ``"cylinder"``, ``"cone"``, ``"sphere"``, ``"torus"``,
+    ``"revolution"``, ``"extrusion"``, ``"offset"``, ``"bspline"``, ``"reparam"``, or ``None``
+    when the surface was not read), ``same_sense`` (the face's outward normal is the surface's
+    ``S_u x S_v``), :meth:`points`, :meth:`normals` and ``edges``.
     """
 
-    __slots__ = ("_native", "_domain")
+    __slots__ = ("_native", "_domain", "_model")
 
-    def __init__(self, native: "_inrs.CadFace", domain: Optional["Domain"]) -> None:
+    def __init__(
+        self, native: "_inrs.CadFace", domain: Optional["Domain"], model: "Optional[_inrs.NativeCadModel]" = None
+    ) -> None:
         self._native = native
         self._domain = domain
+        self._model = model
 
     index = property(lambda self: self._native.index)
     entity = property(lambda self: self._native.entity)
@@ -796,15 +815,156 @@ class CadFace:
     bbox = property(lambda self: self._native.bbox)
     error = property(lambda self: self._native.error)
     domain = property(lambda self: self._domain)
+    closure_tolerance = property(lambda self: self._native.closure_tolerance)
+    width = property(lambda self: self._native.width)
+    narrow = property(lambda self: self._native.narrow)
+    pcurve_deviation = property(lambda self: self._native.pcurve_deviation)
+    natural_bounds = property(lambda self: self._native.natural_bounds)
+
+    def _need_model(self) -> "_inrs.NativeCadModel":
+        if self._model is None:
+            raise ValueError("this face comes from cad_faces(); read the file with cad_model() for its surface and edges")
+        return self._model
+
+    @property
+    def surface_kind(self) -> Optional[str]:
+        """The kind of the face's surface as this library evaluates it, or ``None``."""
+        return self._need_model().surface_of(self.index)[0]
+
+    @property
+    def same_sense(self) -> bool:
+        """Whether the face's outward normal is its surface's ``S_u x S_v`` (not reversed)."""
+        return self._need_model().surface_of(self.index)[1]
+
+    @property
+    def surface_error(self) -> Optional[str]:
+        """Why the face's surface was not read, or ``None``."""
+        return self._need_model().surface_of(self.index)[2]
+
+    def points(self, uv) -> np.ndarray:
+        """The surface's points ``S(u, v)`` at the rows of ``uv`` (``(n, 2)``): an ``(n, 3)``
+        array in the file's length unit (placed in the assembly, for a component)."""
+        uv = np.ascontiguousarray(uv, dtype=np.float64)
+        return self._need_model().points(self.index, uv.reshape(-1, 2) if uv.size == 0 else uv)
+
+    def normals(self, uv) -> np.ndarray:
+        """The face's outward unit normals at the rows of ``uv`` (``(n, 2)``): the surface's
+        ``S_u x S_v`` normalised, reversed when the face is; NaN rows where the normal is
+        undefined (a cone's apex)."""
+        uv = np.ascontiguousarray(uv, dtype=np.float64)
+        return self._need_model().normals(self.index, uv.reshape(-1, 2) if uv.size == 0 else uv)
+
+    @property
+    def edges(self) -> "list[list[CadEdge]]":
+        """The face's 3-D edges, loop by loop in loop order (empty when the face has none:
+        natural bounds)."""
+        m = self._need_model()
+        return [
+            [CadEdge(m, self.index, l, e, row) for e, row in enumerate(loop)]
+            for l, loop in enumerate(m.edges(self.index))
+        ]
 
     def __repr__(self) -> str:
         return repr(self._native)
 
 
+class CadEdge:
+    """A 3-D edge of a :class:`CadFace`: the window ``[t0, t1]`` of its curve between its
+    vertices, run backwards in its loop when ``reversed``. ``entity`` names it in the file."""
+
+    __slots__ = ("_model", "_where", "entity", "t0", "t1", "reversed")
+
+    def __init__(self, model, face: int, loop: int, edge: int, row) -> None:
+        self._model = model
+        self._where = (face, loop, edge)
+        self.entity, self.t0, self.t1, self.reversed = row
+
+    def points(self, t) -> np.ndarray:
+        """The curve's points at the parameters ``t`` (1-D): an ``(n, 3)`` array."""
+        t = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
+        return self._model.edge_points(*self._where, t)
+
+    def sample(self, n: int = 64) -> np.ndarray:
+        """``n >= 2`` points along the edge in loop order, at equal steps of its parameter."""
+        return self._model.edge_sample(*self._where, int(n))
+
+    def __repr__(self) -> str:
+        face, loop, edge = self._where
+        return f"CadEdge(face={face}, loop={loop}, edge={edge}, entity={self.entity!r}, t=[{self.t0}, {self.t1}], reversed={self.reversed})"
+
+
+class CadShell(NamedTuple):
+    """A shell of a :class:`CadModel`: its ``index``, ``entity``, whether the file says it is
+    ``closed``, and its ``faces`` (indices into :attr:`CadModel.faces`)."""
+
+    index: int
+    entity: str
+    closed: bool
+    faces: "list[int]"
+
+
+class CadSolid(NamedTuple):
+    """A solid of a :class:`CadModel` (``part.step#solid:K``): its ``index``, ``entity`` and
+    ``shells`` (the outer one first, then the voids)."""
+
+    index: int
+    entity: str
+    shells: "list[CadShell]"
+
+    @property
+    def faces(self) -> "list[int]":
+        """The faces of all its shells, in shell order."""
+        return [f for s in self.shells for f in s.faces]
+
+
+class CadModel:
+    """A STEP or IGES file read once into a boundary representation: ``faces``
+    (:class:`CadFace`, with their surfaces and edges), ``shells`` (:class:`CadShell`) and
+    ``solids`` (:class:`CadSolid`), each in OpenCASCADE's explorer order of the same file;
+    ``format`` (``"STEP"`` or ``"IGES"``) and ``tolerance`` (the file's stated tolerance in its
+    length unit, or ``None``)."""
+
+    __slots__ = ("_native", "faces", "shells", "solids")
+
+    def __init__(self, native: "_inrs.NativeCadModel") -> None:
+        self._native = native
+        self.faces = [
+            CadFace(face, None if domain is None else Domain(domain), native)
+            for face, domain in native.faces()
+        ]
+        self.shells = [
+            CadShell(k, entity, closed, list(faces)) for k, (entity, closed, faces) in enumerate(native.shells())
+        ]
+        self.solids = [
+            CadSolid(k, entity, [self.shells[s] for s in shells]) for k, (entity, shells) in enumerate(native.solids())
+        ]
+
+    format = property(lambda self: self._native.format())
+    tolerance = property(lambda self: self._native.tolerance())
+
+    def __repr__(self) -> str:
+        return f"CadModel({self.format}, {len(self.solids)} solids, {len(self.shells)} shells, {len(self.faces)} faces)"
+
+
+def cad_model(path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> CadModel:
+    """A STEP (``.step``, ``.stp``) or IGES (``.igs``, ``.iges``) file as a :class:`CadModel`:
+    its faces (each with its ``(u, v)`` domain, surface and 3-D edges), shells and solids, from
+    one read of the file. ``closure_tol`` is the relative closure tolerance of
+    :meth:`Domain.load`. Raises ``OSError`` if the file cannot be read and ``ValueError`` if it
+    is not STEP or IGES.
+
+    >>> import inrs, numpy as np
+    >>> m = inrs.cad_model("fixtures/cad/plate.step")  # doctest: +SKIP
+    >>> m.faces[0].points(np.array([[1.0, 2.0]]))  # doctest: +SKIP
+    """
+    return CadModel(_inrs.NativeCadModel(os.fspath(path), closure_tol))
+
+
 def cad_faces(path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "list[CadFace]":
     """The faces of a STEP (``.step``, ``.stp``) or IGES (``.igs``, ``.iges``) file, in the
     order OpenCASCADE's face explorer visits them (as ``inrs info --domain part.step`` lists
-    them), each with its domain, from one read of the file.
+    them), each with its domain, from one read of the file (:func:`cad_model` gives their
+    surfaces and edges too).
 
     Each :class:`CadFace` says whether the face reads (its loops, curves, ``(u, v)`` area and
     box, and ``domain``) or why it is refused (``error``); ``closure_tol`` is the relative

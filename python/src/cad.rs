@@ -1,12 +1,18 @@
-//! `inrs.cad_faces(path)`: the faces of a STEP or IGES file, as `inrs info part.step` lists
-//! them (the library's `CadModel::face_summaries`).
+//! CAD parts: `inrs.cad_model(path)` (faces with their surfaces and 3-D edges, shells, solids)
+//! and `inrs.cad_faces(path)` (the faces as `inrs info part.step` lists them), from the
+//! library's `CadModel`.
 
+use std::sync::Arc;
+
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
+use inrs::geom::ParamSurface;
+use inrs::geom::brep::Edge;
 use inrs::io::cad::{CadFaceSummary, CadModel};
 
 use crate::domain::{NativeDomain, check_closure_tol};
-use crate::errors::io_error;
+use crate::errors::{io_error, value_error};
 
 /// One face of a CAD file: its index (`#face:K`), entity, surface, and its loops, curves,
 /// `(u, v)` area and box, or why it is refused.
@@ -26,6 +32,16 @@ pub(crate) struct CadFace {
     area: f64,
     /// `(umin, vmin, umax, vmax)`, or `None` when refused.
     bbox: Option<(f64, f64, f64, f64)>,
+    /// The gap within which the loops were closed, in `(u, v)`.
+    closure_tolerance: f64,
+    /// Twice the `(u, v)` area over the loops' length.
+    width: f64,
+    /// Whether the face is narrower than its closure tolerance.
+    narrow: bool,
+    /// The bound of fitted pcurves' 3-D deviation from their edges, or `None`.
+    pcurve_deviation: Option<f64>,
+    /// Whether the loops are the surface's natural parameter box.
+    natural_bounds: bool,
     /// Why the face cannot be read, or `None`.
     error: Option<String>,
 }
@@ -33,6 +49,7 @@ pub(crate) struct CadFace {
 impl From<CadFaceSummary> for CadFace {
     fn from(s: CadFaceSummary) -> Self {
         Self {
+            narrow: s.is_narrow(),
             index: s.index,
             entity: s.entity,
             surface: s.surface,
@@ -40,6 +57,10 @@ impl From<CadFaceSummary> for CadFace {
             curves: s.curves,
             area: s.area,
             bbox: s.bounding_box.map(|b| (b.min.x, b.min.y, b.max.x, b.max.y)),
+            closure_tolerance: s.closure_tolerance,
+            width: s.width,
+            pcurve_deviation: s.pcurve_deviation,
+            natural_bounds: s.natural_bounds,
             error: s.error,
         }
     }
@@ -70,18 +91,243 @@ pub(crate) fn cad_faces(
     path: &str,
     closure_tol: Option<f64>,
 ) -> PyResult<Vec<(CadFace, Option<NativeDomain>)>> {
+    Ok(read(py, path, closure_tol)?.1)
+}
+
+/// An edge as Python sees it: `(entity, t0, t1, reversed)`.
+type EdgeRow = (String, f64, f64, bool);
+
+/// A file's model and its faces' summaries and domains.
+type ReadModel = (CadModel, Vec<(CadFace, Option<NativeDomain>)>);
+
+/// Reads `path` (GIL released).
+fn read(py: Python<'_>, path: &str, closure_tol: Option<f64>) -> PyResult<ReadModel> {
     check_closure_tol(closure_tol)?;
-    let faces = py.detach(|| {
-        CadModel::read(path).map(|m| {
-            m.face_domains(closure_tol)
-                .into_iter()
-                .enumerate()
-                .map(|(k, d)| {
-                    let summary = CadFaceSummary::of(&m, k, &d, closure_tol);
-                    (CadFace::from(summary), d.ok().map(NativeDomain::new))
-                })
-                .collect::<Vec<_>>()
+    py.detach(|| {
+        let m = CadModel::read(path)?;
+        let faces = m
+            .face_domains(closure_tol)
+            .into_iter()
+            .enumerate()
+            .map(|(k, d)| {
+                let summary = CadFaceSummary::of(&m, k, &d, closure_tol);
+                (CadFace::from(summary), d.ok().map(NativeDomain::new))
+            })
+            .collect();
+        Ok((m, faces))
+    })
+    .map_err(io_error)
+}
+
+/// A CAD file read once: its faces (summary and domain each), and the model they come from
+/// (surfaces, edges, shells, solids).
+#[pyclass(module = "inrs._inrs", name = "NativeCadModel", frozen)]
+pub(crate) struct NativeCadModel {
+    model: Arc<CadModel>,
+    faces: Vec<(Py<CadFace>, Option<Py<NativeDomain>>)>,
+}
+
+impl NativeCadModel {
+    fn face(&self, index: usize) -> PyResult<&inrs::geom::brep::Face> {
+        self.model.faces.get(index).ok_or_else(|| {
+            value_error(format!(
+                "face {index} does not exist (the file has {} faces)",
+                self.model.faces.len()
+            ))
         })
-    });
-    faces.map_err(io_error)
+    }
+
+    fn edge(&self, face: usize, loop_index: usize, edge: usize) -> PyResult<&Edge> {
+        self.face(face)?
+            .edges
+            .get(loop_index)
+            .and_then(|l| l.get(edge))
+            .ok_or_else(|| {
+                value_error(format!(
+                    "face {face} has no edge {edge} in loop {loop_index}"
+                ))
+            })
+    }
+}
+
+/// An `(n, 3)` array of the points `f(i)`, `i < n`.
+fn points3<'py>(
+    py: Python<'py>,
+    n: usize,
+    f: impl Fn(usize) -> [f64; 3] + Sync,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = py.detach(|| (0..n).flat_map(&f).collect());
+    flat.into_pyarray(py).reshape([n, 3])
+}
+
+#[pymethods]
+impl NativeCadModel {
+    /// Reads `path` with the relative closure tolerance `closure_tol`.
+    #[new]
+    #[pyo3(signature = (path, closure_tol = None))]
+    fn new(py: Python<'_>, path: &str, closure_tol: Option<f64>) -> PyResult<Self> {
+        let (model, faces) = read(py, path, closure_tol)?;
+        let faces = faces
+            .into_iter()
+            .map(|(f, d)| Ok((Py::new(py, f)?, d.map(|d| Py::new(py, d)).transpose()?)))
+            .collect::<PyResult<_>>()?;
+        Ok(Self {
+            model: Arc::new(model),
+            faces,
+        })
+    }
+
+    /// `"STEP"` or `"IGES"`.
+    fn format(&self) -> &'static str {
+        self.model.format.name()
+    }
+
+    /// The file's stated tolerance (model units), or `None`.
+    fn tolerance(&self) -> Option<f64> {
+        self.model.tolerance.stated()
+    }
+
+    /// The faces with their domains.
+    fn faces(&self, py: Python<'_>) -> Vec<(Py<CadFace>, Option<Py<NativeDomain>>)> {
+        self.faces
+            .iter()
+            .map(|(f, d)| (f.clone_ref(py), d.as_ref().map(|d| d.clone_ref(py))))
+            .collect()
+    }
+
+    /// The shells: `(entity, closed, face indices)` each.
+    fn shells(&self) -> Vec<(String, bool, Vec<usize>)> {
+        self.model
+            .shells
+            .iter()
+            .map(|s| (s.entity.clone(), s.closed, s.faces.clone()))
+            .collect()
+    }
+
+    /// The solids: `(entity, shell indices)` each, the outer shell first.
+    fn solids(&self) -> Vec<(String, Vec<usize>)> {
+        self.model
+            .solids
+            .iter()
+            .map(|s| (s.entity.clone(), s.shells.clone()))
+            .collect()
+    }
+
+    /// Face `face`'s surface kind (`"plane"`, `"cylinder"`, ...), its orientation and whether
+    /// its surface was read (with the reason when not).
+    fn surface_of(&self, face: usize) -> PyResult<(Option<&'static str>, bool, Option<String>)> {
+        let f = self.face(face)?;
+        Ok((
+            f.surface.as_ref().map(|s| s.kind_name()),
+            f.same_sense,
+            f.surface_error.as_ref().map(ToString::to_string),
+        ))
+    }
+
+    /// The points `S(u, v)` of face `face`'s surface at the rows of `uv` (`(n, 2)`), as an
+    /// `(n, 3)` array.
+    fn points<'py>(
+        &self,
+        py: Python<'py>,
+        face: usize,
+        uv: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let s = self.surface(face)?;
+        let uv = pairs_of(&uv)?;
+        points3(py, uv.len(), |i| s.point(uv[i]).to_array())
+    }
+
+    /// The face's outward unit normals at the rows of `uv` (the surface's `S_u x S_v`
+    /// normalised, reversed where the face's sense is), NaN where the normal is undefined.
+    fn normals<'py>(
+        &self,
+        py: Python<'py>,
+        face: usize,
+        uv: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let s = self.surface(face)?;
+        let sign = if self.face(face)?.same_sense {
+            1.0
+        } else {
+            -1.0
+        };
+        let uv = pairs_of(&uv)?;
+        points3(py, uv.len(), |i| {
+            s.normal(uv[i])
+                .map_or([f64::NAN; 3], |n| (n * sign).to_array())
+        })
+    }
+
+    /// The 3-D edges of face `face`, loop by loop: `(entity, t0, t1, reversed)` each.
+    fn edges(&self, face: usize) -> PyResult<Vec<Vec<EdgeRow>>> {
+        Ok(self
+            .face(face)?
+            .edges
+            .iter()
+            .map(|l| {
+                l.iter()
+                    .map(|e| (e.entity.clone(), e.range.0, e.range.1, e.reversed))
+                    .collect()
+            })
+            .collect())
+    }
+
+    /// The points of edge `edge` of loop `loop_index` of face `face` at its curve's
+    /// parameters `t`, as an `(n, 3)` array.
+    fn edge_points<'py>(
+        &self,
+        py: Python<'py>,
+        face: usize,
+        loop_index: usize,
+        edge: usize,
+        t: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let e = self.edge(face, loop_index, edge)?;
+        let t = t.as_array().to_vec();
+        points3(py, t.len(), |i| e.curve.point(t[i]).to_array())
+    }
+
+    /// `n` points along edge `edge` of loop `loop_index` of face `face`, in loop order.
+    fn edge_sample<'py>(
+        &self,
+        py: Python<'py>,
+        face: usize,
+        loop_index: usize,
+        edge: usize,
+        n: usize,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let e = self.edge(face, loop_index, edge)?;
+        if !(2..=1 << 24).contains(&n) {
+            return Err(value_error(format!("n must be 2 to 2**24, not {n}")));
+        }
+        let p = py.detach(|| e.sample(n));
+        points3(py, p.len(), |i| p[i].to_array())
+    }
+}
+
+impl NativeCadModel {
+    fn surface(&self, face: usize) -> PyResult<&inrs::geom::Surface> {
+        let f = self.face(face)?;
+        f.surface.as_ref().ok_or_else(|| {
+            value_error(match &f.surface_error {
+                Some(e) => format!("face {face} ({}): its surface was not read: {e}", f.entity),
+                None => format!(
+                    "face {face} ({}): its surface ({}) was not read",
+                    f.entity, f.surface_name
+                ),
+            })
+        })
+    }
+}
+
+/// The rows of an `(n, 2)` array as `[u, v]` pairs.
+fn pairs_of(uv: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]>> {
+    let a = uv.as_array();
+    if a.ncols() != 2 {
+        return Err(value_error(format!(
+            "uv must have shape (n, 2), got {:?}",
+            a.shape()
+        )));
+    }
+    Ok(a.rows().into_iter().map(|r| [r[0], r[1]]).collect())
 }

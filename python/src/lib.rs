@@ -40,6 +40,7 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<domain::NativeDomain>()?;
     m.add_class::<summary::DomainSummary>()?;
     m.add_class::<cad::CadFace>()?;
+    m.add_class::<cad::NativeCadModel>()?;
     m.add_function(wrap_pyfunction!(cad::cad_faces, m)?)?;
     m.add_function(wrap_pyfunction!(many::classify_many, m)?)?;
     m.add_class::<summary::LoopSummary>()?;
