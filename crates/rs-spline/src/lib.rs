@@ -8,6 +8,11 @@
 //! - [`KnotVector`] and [`NurbsCurve`]: validated NURBS, evaluation with first and second
 //!   derivatives (rational quotient rule), knot insertion (Boehm), refinement, splitting,
 //!   reversal, clamping, Bezier extraction.
+//! - [`RationalBSpline`]: rational B-splines of any dimension ([`Point`], [`Point3`]) on the
+//!   same kernels: evaluation through [`rational_sums`] (which [`NurbsCurve`] uses too), knot
+//!   insertion, refinement, splitting, subsegments, clamping and reversal (one implementation,
+//!   planar results bit for bit [`NurbsCurve`]'s), and the end-span continuation past the
+//!   domain (`point_extended`, `extension`).
 //! - [`RationalBezier`]: evaluation, derivatives, de Casteljau subdivision in homogeneous
 //!   coordinates, control and tight bounding boxes, conversion to `rs-roots` polynomials.
 //! - Primitives with exact rational representations: [`segment`], [`polyline`],
@@ -52,6 +57,7 @@ mod domain;
 mod error;
 pub mod grid;
 mod homogeneous;
+mod insertion;
 mod knots;
 pub mod limits;
 mod line;
