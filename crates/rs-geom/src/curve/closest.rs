@@ -1,6 +1,6 @@
 //! The closest point of a B-spline curve to a point: a bounded search (samples per knot span,
 //! golden-section search around the best local minima, Newton's method on the foot condition),
-//! keeping an exact end of the window when it is as near.
+//! keeping an exact end of the window when it is as near (to rounding).
 
 use rs_spline::{RationalBSpline, Vector};
 
@@ -24,9 +24,12 @@ const GOLDEN_STEPS: usize = 60;
 const NEWTON_STEPS: usize = 8;
 
 /// The rounding of a computed distance, relative to the distance plus the size of the
-/// coordinates it comes from: a Newton step may come this much farther (a flat minimum's
-/// computed distance moves by its rounding while the parameter converges).
-const DISTANCE_ROUNDING: f64 = 8.0 * f64::EPSILON;
+/// coordinates it comes from (a rational point evaluated through de Boor's basis and a quotient
+/// is good to some dozens of units in the last place). A Newton step may come this much farther
+/// (a flat minimum's computed distance moves by its rounding while the parameter converges);
+/// an exact end of the window, or a conic's closed form, this much farther than the refined
+/// point is as near.
+pub(crate) const DISTANCE_ROUNDING: f64 = 64.0 * f64::EPSILON;
 
 /// The parameter in `[lo, hi]` (within the domain) of the point of `c` nearest `x`.
 pub(crate) fn bspline_closest_parameter<P>(
@@ -46,12 +49,7 @@ where
         .collect();
     minima.sort_by(|&i, &j| ds[i].total_cmp(&ds[j]));
     minima.truncate(REFINED_MINIMA);
-    let mut best = (distance(lo), lo);
-    // Exact ends first: a refined parameter must be strictly nearer to replace them.
-    let end = (distance(hi), hi);
-    if end.0 < best.0 {
-        best = end;
-    }
+    let mut best = (f64::INFINITY, lo);
     for i in minima {
         let (a, b) = (ts[i.saturating_sub(1)], ts[(i + 1).min(ts.len() - 1)]);
         let t = foot_newton(|t| c.derivatives(t), x, golden(&distance, a, b), (a, b));
@@ -60,7 +58,18 @@ where
             best = (d, t);
         }
     }
-    best.1
+    // An exact end of the window wins unless the refined point is nearer by more than
+    // rounding (a vertex at the end of an edge is the common case; the curve may pass the same
+    // point again inside, as on a seam).
+    let slack = best.0 + DISTANCE_ROUNDING * (best.0 + c.point_at(best.1).norm());
+    let (d_lo, d_hi) = (distance(lo), distance(hi));
+    if d_lo <= slack && d_lo <= d_hi {
+        lo
+    } else if d_hi <= slack {
+        hi
+    } else {
+        best.1
+    }
 }
 
 /// The sample parameters in `[lo, hi]`: its ends, the knots inside it, and evenly spaced points

@@ -8,7 +8,7 @@ use std::ops::Div;
 use rs_roots::{Polynomial, real_roots_in};
 use rs_spline::{NurbsCurve, Point, RationalBSpline, Vector, circular_arc};
 
-use super::closest::foot_newton;
+use super::closest::{DISTANCE_ROUNDING, foot_newton};
 use crate::{AffineMap, GeomError};
 
 /// The most rational quadratic pieces of a hyperbola arc: each spans at most one unit of its
@@ -138,8 +138,9 @@ impl<P: Vector> Conic<P> {
     /// of the foot condition `(C(t) - x) . C'(t) = 0`, exactly: a quartic in `tan(t / 2)` for
     /// an ellipse (on each half of the period), a quartic in `e^t` for a hyperbola (on each
     /// side of `t = 0`), a cubic in `t` for a parabola; each polished by Newton's method in
-    /// `t`, with the window's ends; the nearest wins. `x` off the conic's plane is measured in
-    /// space (its foot is its projection's).
+    /// `t`, with the window's ends; the nearest wins, the closed form when none is nearer by
+    /// more than rounding (on a circle, where it is every point's foot, the closed form). `x`
+    /// off the conic's plane is measured in space (its foot is its projection's).
     pub fn closest_parameter(&self, x: P, window: Option<(f64, f64)>) -> f64 {
         let distance = |t: f64| self.point(t).distance_to(x);
         let closed = self.in_window(self.parameter_of(x), window);
@@ -148,7 +149,7 @@ impl<P: Vector> Conic<P> {
         {
             return t;
         }
-        let mut best: Option<(f64, f64)> = closed.map(|t| (distance(t), t));
+        let mut best: Option<(f64, f64)> = None;
         let mut consider = |t: f64| {
             let d = distance(t);
             if t.is_finite() && best.is_none_or(|(bd, _)| d < bd) {
@@ -163,7 +164,18 @@ impl<P: Vector> Conic<P> {
             consider(lo);
             consider(hi);
         }
-        best.map_or_else(|| window.map_or(0.0, |w| w.0), |(_, t)| t)
+        // The closed form stays unless a candidate is nearer by more than rounding (on a
+        // circle it is the foot of every point).
+        match (closed, best) {
+            (Some(t), Some((bd, _)))
+                if distance(t) <= bd + DISTANCE_ROUNDING * (bd + self.point(t).norm()) =>
+            {
+                t
+            }
+            (Some(t), None) => t,
+            (_, Some((_, t))) => t,
+            (None, None) => window.map_or(0.0, |w| w.0),
+        }
     }
 
     /// `t` (an ellipse's moved by whole periods) within `window`, or `None`.
@@ -585,6 +597,25 @@ mod tests {
             assert!((c.closest_parameter(x, Some(w)) - (t + shift)).abs() < 1e-11);
             let beyond = (t + shift + 0.5, t + shift + 1.0);
             assert_eq!(c.closest_parameter(x, Some(beyond)), beyond.0, "{kind}");
+        }
+    }
+
+    /// On a circle the closed form is every point's foot: it is what comes back, bit for bit,
+    /// for points off the circle and off its plane.
+    #[test]
+    fn circles_keep_the_closed_form_everywhere() {
+        let mut rng = Rng::new(12);
+        for _ in 0..200 {
+            let (x, y) = rng.axes();
+            let r = rng.uniform(0.1, 5.0);
+            let c = Conic {
+                kind: ConicKind::Ellipse,
+                center: rng.point3(10.0),
+                u: x * r,
+                v: y * r,
+            };
+            let p = c.center + rng.point3(3.0 * r);
+            assert_eq!(c.closest_parameter(p, None), c.parameter_of(p));
         }
     }
 
