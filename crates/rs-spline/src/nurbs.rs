@@ -6,11 +6,9 @@ use crate::bezier_extraction::SpanExtraction;
 use crate::curve::prelude::*;
 use crate::error::{check_control_points, normalized_weights};
 use crate::insertion::{SplineParts, SplineRef};
+use crate::kernel::{rational_quotient, rational_sums};
 use crate::quadrature::Integral;
-use crate::{
-    BoundingBox, CurveDerivatives, KnotVector, Point, RationalBezier, SplineError,
-    rational_quotient, rational_sums,
-};
+use crate::{BoundingBox, CurveDerivatives, KnotVector, Point, RationalBezier, SplineError};
 
 /// A planar NURBS curve `C(u) = sum_i N_{i,p}(u) w_i P_i / sum_i N_{i,p}(u) w_i` on the domain
 /// `[u_p, u_n]` of its knot vector.

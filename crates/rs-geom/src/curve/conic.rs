@@ -2,13 +2,13 @@
 //! rational B-splines, closed-form parameters of their points and exact closest points.
 
 use std::f64::consts::{PI, TAU};
-use std::fmt;
 use std::ops::Div;
 
 use rs_roots::{Polynomial, real_roots_in};
 use rs_spline::{NurbsCurve, Point, RationalBSpline, Vector, circular_arc};
 
 use super::closest::{DISTANCE_ROUNDING, foot_newton};
+use super::conic_kind::ConicKind;
 use crate::{AffineMap, GeomError};
 
 /// The most rational quadratic pieces of a hyperbola arc: each spans at most one unit of its
@@ -21,44 +21,6 @@ pub const MAX_HYPERBOLA_PIECES: usize = 64;
 /// (exact for a point on the conic; for a point this near, off by as little as the point is
 /// off the curve), so points read from a file keep the parameters the formulas give.
 const ON_CONIC_RELATIVE_DISTANCE: f64 = 1e-12;
-
-/// The kind of a [`Conic`], which fixes its parameterisation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ConicKind {
-    /// `(cos t, sin t)`: ellipses and circles, period `2 pi`.
-    Ellipse,
-    /// `(cosh t, sinh t)`: one branch of a hyperbola.
-    Hyperbola,
-    /// `(t^2, 2 t)`: a parabola.
-    Parabola,
-}
-
-impl ConicKind {
-    /// `(f, f', f'')` and `(g, g', g'')` at `t`.
-    fn basis(self, t: f64) -> ([f64; 3], [f64; 3]) {
-        match self {
-            ConicKind::Ellipse => {
-                let (s, c) = t.sin_cos();
-                ([c, -s, -c], [s, c, -s])
-            }
-            ConicKind::Hyperbola => {
-                let (s, c) = (t.sinh(), t.cosh());
-                ([c, s, c], [s, c, s])
-            }
-            ConicKind::Parabola => ([t * t, 2.0 * t, 2.0], [2.0 * t, 2.0, 0.0]),
-        }
-    }
-}
-
-impl fmt::Display for ConicKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            ConicKind::Ellipse => "ellipse",
-            ConicKind::Hyperbola => "hyperbola",
-            ConicKind::Parabola => "parabola",
-        })
-    }
-}
 
 /// A conic `center + f(t) u + g(t) v`: `(f, g) = (cos t, sin t)` for an ellipse (`u`, `v` its
 /// semi-axes as vectors), `(cosh t, sinh t)` for a hyperbola's branch, `(t^2, 2 t)` for a

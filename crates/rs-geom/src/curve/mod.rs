@@ -13,15 +13,15 @@
 
 mod closest;
 mod conic;
+mod conic_kind;
 mod implicit;
-#[cfg(test)]
-mod testing;
 
 use std::ops::Div;
 
 use rs_spline::{NurbsCurve, Point, RationalBSpline, Vector};
 
-pub use conic::{Conic, ConicKind, MAX_HYPERBOLA_PIECES};
+pub use conic::{Conic, MAX_HYPERBOLA_PIECES};
+pub use conic_kind::ConicKind;
 
 use crate::{AffineMap, GeomError};
 use conic::check_interval;
@@ -305,6 +305,9 @@ impl Curve<Point> {
         Ok(self.to_bspline(t0, t1)?.to_planar()?)
     }
 }
+
+#[cfg(test)]
+mod testing;
 
 #[cfg(test)]
 mod tests {
