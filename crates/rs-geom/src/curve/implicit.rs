@@ -97,7 +97,7 @@ impl Conic<Point> {
             if !p.is_finite() {
                 return Err(GeomError::NotFinite {
                     what: "conic arc end",
-                    value: p.x + p.y,
+                    value: if p.x.is_finite() { p.y } else { p.x },
                 });
             }
         }

@@ -206,18 +206,30 @@ impl<P: Vector + std::ops::Div<f64, Output = P>> Curve<P> {
     /// - a line: the orthogonal projection `(x - o) . d / |d|^2`, clamped into the window;
     /// - a conic: exact ([`Conic::closest_parameter`]: the closed form for points on it, the
     ///   roots of the foot condition otherwise);
-    /// - a B-spline: a bounded search: 16 samples per knot span in the window (at most 4096 in
-    ///   all), golden-section search around the (at most four) nearest sampled local minima,
-    ///   then Newton's method on the foot condition; an end of the window is kept, exactly,
-    ///   when nothing is strictly nearer (vertices at ends are the common case);
+    /// - a B-spline: a bounded search: 16 samples per knot span in the window (4096 in all at
+    ///   most, fewer per span on curves of more than 256 spans, at least the knots),
+    ///   golden-section search around the (at most four) nearest sampled local minima, then
+    ///   Newton's method on the foot condition; an end of the window is kept, exactly, unless
+    ///   the refined point is nearer by more than rounding (vertices at ends are the common
+    ///   case);
     /// - a trimmed curve: its basis curve's within its range.
     ///
-    /// Windows with `lo > hi` give `lo`; a B-spline window that misses the domain gives the
-    /// domain's nearer end.
+    /// A window with `lo > hi` (or not a number) gives `lo`; a B-spline window that misses the
+    /// domain gives the domain's nearer end; a line of zero direction gives `0` (or the
+    /// window's start).
     pub fn closest_parameter(&self, x: P, window: Option<(f64, f64)>) -> f64 {
+        if let Some((lo, hi)) = window
+            && (lo > hi || lo.is_nan() || hi.is_nan())
+        {
+            return lo;
+        }
         match self {
             Curve::Line { origin, direction } => {
-                let t = (x - *origin).dot(*direction) / direction.dot(*direction);
+                let dd = direction.dot(*direction);
+                if dd == 0.0 {
+                    return window.map_or(0.0, |w| w.0);
+                }
+                let t = (x - *origin).dot(*direction) / dd;
                 match window {
                     Some((lo, hi)) => t.min(hi).max(lo),
                     None => t,
@@ -570,6 +582,15 @@ mod tests {
             line.closest_parameter(Point::new(4.0, 7.0), Some((0.0, 1.0))),
             1.0
         );
+        assert_eq!(
+            line.closest_parameter(Point::new(4.0, 7.0), Some((3.0, 1.0))),
+            3.0
+        );
+        let point = Curve::Line {
+            origin: Point::new(1.0, 1.0),
+            direction: Point::new(0.0, 0.0),
+        };
+        assert_eq!(point.closest_parameter(Point::new(4.0, 7.0), None), 0.0);
         let circle = Curve::Conic(Conic {
             kind: ConicKind::Ellipse,
             center: Point::new(0.0, 0.0),
