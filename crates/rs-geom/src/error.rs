@@ -71,6 +71,43 @@ pub enum GeomError {
         /// The deepest nesting accepted.
         limit: usize,
     },
+    /// A parameter interval that is empty or not finite.
+    #[error("empty parameter interval [{t0:?}, {t1:?}]")]
+    EmptyInterval {
+        /// Its start.
+        t0: f64,
+        /// Its end.
+        t1: f64,
+    },
+    /// A hyperbola arc too long to convert (its rational quadratic pieces span one parameter
+    /// unit each, at most [`crate::curve::MAX_HYPERBOLA_PIECES`]).
+    #[error("hyperbola arc [{t0:?}, {t1:?}] longer than {max} parameter units")]
+    HyperbolaTooLong {
+        /// Its start.
+        t0: f64,
+        /// Its end.
+        t1: f64,
+        /// The most parameter units converted.
+        max: usize,
+    },
+    /// Implicit conic coefficients of another kind than the one the file states.
+    #[error("the coefficients describe a {found}, not the {expected} the form states")]
+    ConicKindMismatch {
+        /// The kind the discriminant gives.
+        found: crate::ConicKind,
+        /// The kind asked for.
+        expected: crate::ConicKind,
+    },
+    /// Implicit conic coefficients with no real curve of their kind (an imaginary ellipse, a
+    /// point, a pair of lines).
+    #[error("the coefficients describe no real {0}")]
+    NoRealConic(crate::ConicKind),
+    /// An arc of an open conic (hyperbola, parabola) that starts and ends at one point.
+    #[error("a {0} arc cannot start and end at the same point")]
+    ClosedOpenConicArc(crate::ConicKind),
+    /// Hyperbola arc ends on different branches.
+    #[error("the arc's start and end are on different branches of the hyperbola")]
+    EndsOnDifferentBranches,
     /// A curve or surface that the spline layer refused.
     #[error(transparent)]
     Spline(#[from] rs_spline::SplineError),

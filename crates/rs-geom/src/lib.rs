@@ -3,9 +3,11 @@
 //!
 //! - [`Frame`] (a right-handed orthonormal placement, built as ISO 10303-42's `build_axes`)
 //!   and [`Affine3`] (placements of assemblies, IGES 124 matrices).
-//! - Curves of any dimension: lines, conics and rational B-splines on `rs-spline`'s one
-//!   [`KnotVector`](rs_spline::KnotVector) and evaluation kernel, exact conversion of any
-//!   of them to a rational B-spline.
+//! - Curves of any dimension ([`Curve`], [`Conic`]): lines, conics and rational B-splines on
+//!   `rs-spline`'s one [`KnotVector`](rs_spline::KnotVector) and evaluation kernel; exact
+//!   conversion of any of them to a rational B-spline on an interval, closest points, exact
+//!   images under affine maps ([`AffineMap`]: [`Affine3`] placements, a plane's
+//!   [`PlaneCoordinates`]), conic arcs from implicit equations (IGES 104).
 //! - Surfaces: plane, cylinder, cone, sphere, torus, surface of revolution, surface of linear
 //!   extrusion, offset surface, rational B-spline surface; each with its point, first and
 //!   second derivatives, normal, parameter box, periods, poles and closest-point inversion.
@@ -18,6 +20,7 @@ pub mod brep;
 pub mod curve;
 mod error;
 mod frame;
+mod map;
 pub mod surface;
 mod tolerance;
 
@@ -25,6 +28,7 @@ pub use affine3::Affine3;
 pub use curve::{Conic, ConicKind, Curve};
 pub use error::GeomError;
 pub use frame::Frame;
+pub use map::{AffineMap, PlaneCoordinates};
 pub use rs_spline::{Point, Point3, Vector};
 pub use surface::{ParamSurface, Surface};
 pub use tolerance::{CHAIN_FACTOR, DEFAULT_MODEL_TOLERANCE, PRINTED_DIGITS, Tolerance};

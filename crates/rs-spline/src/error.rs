@@ -232,6 +232,21 @@ pub enum SplineError {
         /// Its value.
         value: f64,
     },
+    /// An end-span extension was asked for an interval that is empty or not wholly before or
+    /// after the domain.
+    #[error(
+        "cannot extend over [{t0:?}, {t1:?}]: not an interval before or after the domain [{start:?}, {end:?}]"
+    )]
+    ExtensionInterval {
+        /// Start of the interval asked for.
+        t0: f64,
+        /// Its end.
+        t1: f64,
+        /// Domain start.
+        start: f64,
+        /// Domain end.
+        end: f64,
+    },
 }
 
 /// Invalid domain file or domain.

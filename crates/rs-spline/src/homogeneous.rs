@@ -46,11 +46,6 @@ impl Hpoint {
     pub fn project(self) -> Point {
         Point::new(self.x / self.w, self.y / self.w)
     }
-
-    /// `(1 - t) self + t o`.
-    pub(crate) fn lerp(self, o: Hpoint, t: f64) -> Hpoint {
-        self * (1.0 - t) + o * t
-    }
 }
 
 impl Add for Hpoint {

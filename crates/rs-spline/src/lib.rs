@@ -8,6 +8,11 @@
 //! - [`KnotVector`] and [`NurbsCurve`]: validated NURBS, evaluation with first and second
 //!   derivatives (rational quotient rule), knot insertion (Boehm), refinement, splitting,
 //!   reversal, clamping, Bezier extraction.
+//! - [`RationalBSpline`]: rational B-splines of any dimension ([`Point`], [`Point3`]) on the
+//!   same kernels: evaluation through [`rational_sums`] (which [`NurbsCurve`] uses too), knot
+//!   insertion, refinement, splitting, subsegments, clamping and reversal (one implementation,
+//!   planar results bit for bit [`NurbsCurve`]'s), and the end-span continuation past the
+//!   domain (`point_extended`, `extension`).
 //! - [`RationalBezier`]: evaluation, derivatives, de Casteljau subdivision in homogeneous
 //!   coordinates, control and tight bounding boxes, conversion to `rs-roots` polynomials.
 //! - Primitives with exact rational representations: [`segment`], [`polyline`],
@@ -52,6 +57,8 @@ mod domain;
 mod error;
 pub mod grid;
 mod homogeneous;
+mod insertion;
+mod kernel;
 mod knots;
 pub mod limits;
 mod line;
@@ -74,6 +81,7 @@ pub use curve::{
 pub use domain::{BoundaryLoop, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};
 pub use homogeneous::{CurveDerivatives, Hpoint};
+pub use kernel::{rational_quotient, rational_sums};
 pub use knots::KnotVector;
 pub use line::{polyline, segment};
 pub use nearest::{NearestBoundary, NearestPoint};
@@ -81,5 +89,5 @@ pub use nurbs::NurbsCurve;
 pub use point::{Axis, BoundingBox, Point};
 pub use point_source::{PointSource, PointsFn, points_from_fn};
 pub use point3::Point3;
-pub use rational_bspline::{RationalBSpline, rational_quotient, rational_sums};
+pub use rational_bspline::RationalBSpline;
 pub use vector::Vector;
