@@ -6,7 +6,7 @@ use rs_spline::Point3;
 use super::{
     Cone, Cylinder, Extrusion, Offset, Plane, Reparam, Revolution, Sphere, Surface, Torus,
 };
-use crate::{Affine3, Conic, Curve, Frame, GeomError};
+use crate::{Affine3, Frame, GeomError};
 
 /// The largest relative deviation of a map's linear part `M` from a similarity (`M^T M = s^2
 /// I`) accepted for surfaces that need one, and the largest deviation of its scale `s` from 1
@@ -110,13 +110,13 @@ pub(super) fn transformed(surface: &Surface, m: &Affine3) -> Result<Surface, Geo
             let sim = need()?;
             let axis = m.apply_vector(r.axis()) * angle_sign(sim);
             Surface::Revolution(Revolution::new(
-                map_curve(r.curve(), m)?,
+                r.curve().map_affine(m)?,
                 m.apply(r.axis_point()),
                 axis,
             )?)
         }
         Surface::Extrusion(e) => Surface::Extrusion(Extrusion::new(
-            map_curve(e.curve(), m)?,
+            e.curve().map_affine(m)?,
             m.apply_vector(e.vector()),
         )?),
         Surface::Offset(o) => {
@@ -149,28 +149,6 @@ fn reparam(s: Surface, scale: [f64; 2]) -> Result<Surface, GeomError> {
     } else {
         Ok(Surface::Reparam(Reparam::new(s, false, scale, [0.0, 0.0])?))
     }
-}
-
-/// The image of a curve under `m`, in the same parameter (exact: lines and conics are affine
-/// in their basis functions, B-splines in their control points).
-fn map_curve(c: &Curve<Point3>, m: &Affine3) -> Result<Curve<Point3>, GeomError> {
-    Ok(match c {
-        Curve::Line { origin, direction } => Curve::Line {
-            origin: m.apply(*origin),
-            direction: m.apply_vector(*direction),
-        },
-        Curve::Conic(k) => Curve::Conic(Conic {
-            kind: k.kind,
-            center: m.apply(k.center),
-            u: m.apply_vector(k.u),
-            v: m.apply_vector(k.v),
-        }),
-        Curve::BSpline(b) => Curve::BSpline(b.map_points(|p| m.apply(p))?),
-        Curve::Trimmed { basis, range } => Curve::Trimmed {
-            basis: Box::new(map_curve(basis, m)?),
-            range: *range,
-        },
-    })
 }
 
 #[cfg(test)]
