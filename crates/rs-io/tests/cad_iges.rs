@@ -531,7 +531,9 @@ fn brep_solid_faces_in_shell_order() {
         sub(510, "510,7,1,1,11;").form(1),  // DE 5
         unit_square_128(),                  // DE 7
         sub(510, "510,21,1,1,23;").form(1), // DE 9: on a plane
-        // DE 11: three edges with parameter-space curves, the third against its curve.
+        // DE 11: three edges with parameter-space curves, the third against its model curve
+        // (OF = 0): its parameter-space curve is written in the loop's direction all the
+        // same, as Open CASCADE writes and reads them.
         sub(
             508,
             "508,3,0,13,1,1,1,0,15,0,13,2,1,1,0,17,0,13,3,0,1,0,19;",
@@ -540,7 +542,7 @@ fn brep_solid_faces_in_shell_order() {
         sub(504, "504,3,25,0,0,0,0,27,0,0,0,0,29,0,0,0,0;").form(1), // DE 13
         sub(110, "110,0.,0.,0.,1.,0.,0.;"),                          // DE 15
         sub(110, "110,1.,0.,0.,0.,1.,0.;"),                          // DE 17
-        sub(110, "110,0.,0.,0.,0.,1.,0.;"),                          // DE 19
+        sub(110, "110,0.,1.,0.,0.,0.,0.;"),                          // DE 19
         sub(108, "108,0.,0.,1.,0.,0,0.,0.,0.,0.;"),                  // DE 21
         // DE 23: the same edges without parameter-space curves: the 504's model curves.
         sub(508, "508,3,0,13,1,1,0,0,13,2,1,0,0,13,3,0,0;").form(1),
