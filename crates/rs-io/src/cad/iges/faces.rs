@@ -484,8 +484,9 @@ impl Iges<'_> {
     /// Adds the degenerate edges the file leaves out at the poles of its surface: where the
     /// end of piece `i` and the start of piece `i + 1` (or the last and the first) are apart in
     /// `(u, v)` but the segment between them is one point of the surface (its ends and its
-    /// middle map to the same point within the model's coincidence tolerance, and lie in the
-    /// surface's parameter box), that segment, the edge Open CASCADE adds there.
+    /// middle map to the same point within the model's coincidence tolerance, and its ends lie
+    /// in the surface's parameter box, where the surface is not clamped to one corner), that
+    /// segment, the edge Open CASCADE adds there.
     fn bridge_poles(
         &self,
         bridge: usize,
@@ -494,10 +495,16 @@ impl Iges<'_> {
         tol: f64,
     ) -> Vec<Piece> {
         let n = pieces.len();
-        let bx = surface.param_box();
+        let (bx, periods) = (surface.param_box(), surface.periods());
+        // Within the box in each parameter that is not periodic (a periodic one may take any
+        // value).
         let in_box = |p: Point| {
             let c = bx.clamp([p.x, p.y]);
-            Point::new(c[0], c[1]).distance(p) <= tol
+            let c = Point::new(
+                if periods[0].is_some() { p.x } else { c[0] },
+                if periods[1].is_some() { p.y } else { c[1] },
+            );
+            c.distance(p) <= tol
         };
         let mut out = Vec::with_capacity(n + 2);
         for i in 0..n {
