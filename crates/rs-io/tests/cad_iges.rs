@@ -980,18 +980,18 @@ fn assert_pcurves_on_edges(m: &CadModel, name: &str, faces: usize, tol: f64) {
 /// The error of face `k`, typed.
 fn face_iges_err(m: &CadModel, k: usize) -> IgesError {
     match &m.faces[k].loops {
-        Err(FaceError::Read(e)) => e
-            .0
-            .downcast_ref::<IgesError>()
-            .unwrap_or_else(|| panic!("face {k}: not an IgesError: {e}"))
-            .clone(),
+        Err(FaceError::Read(e)) => {
+            e.0.downcast_ref::<IgesError>()
+                .unwrap_or_else(|| panic!("face {k}: not an IgesError: {e}"))
+                .clone()
+        }
         other => panic!("face {k}: {other:?}"),
     }
 }
 
-/// The cube with a spherical void of `python/tests/cad_parts.py`, written by OpenCASCADE 8.0 in
+/// The cube with a spherical void of `python/tests/cad_parts.py`, written by Open CASCADE 8.0 in
 /// IGES B-rep mode: one solid of two shells, the void's written with `VOF = 0` and read
-/// reversed, as OpenCASCADE reads it (`TopAbs_REVERSED` shell and face); the six 190 planes
+/// reversed, as Open CASCADE reads it (`TopAbs_REVERSED` shell and face); the six 190 planes
 /// have no pcurves (their loops are their edges mapped into the planes), the sphere's loop is
 /// its seam twice and its two poles, in degrees.
 #[test]
@@ -1036,7 +1036,7 @@ fn brep_box_with_a_void_is_one_solid_of_two_shells() {
 /// The frustum with a spherical dimple in IGES B-rep mode: the 194 cone (slant `v`, degrees),
 /// the 196 sphere cap through its south pole (the pole's own pcurve closes the loop), the 190
 /// plane (a circle of radius 2 mapped from its edge), against the formulas of the research
-/// notes (b.1) from the file's numbers; orientations as OpenCASCADE's (cone forward, cap and
+/// notes (b.1) from the file's numbers; orientations as Open CASCADE's (cone forward, cap and
 /// plane reversed).
 #[test]
 fn brep_cone_sphere_and_plane_follow_the_formulas() {
@@ -1116,7 +1116,10 @@ fn faces_mode_torus_is_the_whole_rectangle() {
             let h = d.dot(axis);
             let rho = (d - axis * h).length();
             // (rho - 3)^2 + h^2 = 1 on the torus, to the file's ten printed digits.
-            assert!(((rho - 3.0).powi(2) + h * h - 1.0).abs() < 1e-8, "{uv:?} {rho} {h}");
+            assert!(
+                ((rho - 3.0).powi(2) + h * h - 1.0).abs() < 1e-8,
+                "{uv:?} {rho} {h}"
+            );
         }
     }
     assert_eq!(m.faces[0].edges.len(), 1);
@@ -1149,12 +1152,16 @@ fn idf_pcurves_lie_on_their_edges() {
         assert_pcurves_on_edges(&m, name, faces, tol);
         // The Idf files are in inches (SOD_323 in millimetres).
         let mm = if name == "SOD_323" { 1.0 } else { 25.4 };
-        assert_eq!(m.length_unit.as_ref().map(|u| u.millimetres), Some(mm), "{name}");
+        assert_eq!(
+            m.length_unit.as_ref().map(|u| u.millimetres),
+            Some(mm),
+            "{name}"
+        );
     }
 }
 
-/// The OpenCASCADE test parts of `python/tests/cad_parts.py`, in both IGES modes: faces,
-/// solids and shells as OpenCASCADE 8.0 reads them (its `TopExp_Explorer` counts).
+/// The Open CASCADE test parts of `python/tests/cad_parts.py`, in both IGES modes: faces,
+/// solids and shells as Open CASCADE 8.0 reads them (its `TopExp_Explorer` counts).
 const PARTS: [(&str, usize, usize, usize); 9] = [
     ("box_void", 7, 1, 2),
     ("bspline_box_hole", 7, 1, 1),
@@ -1168,7 +1175,7 @@ const PARTS: [(&str, usize, usize, usize); 9] = [
 ];
 
 /// Every face of every IGES test part reads and makes a domain, with its surface and edges
-/// (pcurves on the edges as for the Idf files); B-rep mode files have OpenCASCADE's solids and
+/// (pcurves on the edges as for the Idf files); B-rep mode files have Open CASCADE's solids and
 /// shells, faces mode files none. The parts are written by `python/tests/cad_parts.py`:
 /// `python -c "import cad_parts; cad_parts.write_parts('DIR')"` in `python/tests` (with
 /// OCP), then `INRS_CAD_PARTS=DIR cargo test -p rs-io --test cad_iges`; without the variable
@@ -1189,7 +1196,11 @@ fn every_iges_test_part_reads() {
             let (solids, shells) = if brep { (solids, shells) } else { (0, 0) };
             assert_eq!((m.solids.len(), m.shells.len()), (solids, shells), "{file}");
             for (k, f) in m.faces.iter().enumerate() {
-                assert!(f.surface.is_some(), "{file} face {k}: {:?}", f.surface_error);
+                assert!(
+                    f.surface.is_some(),
+                    "{file} face {k}: {:?}",
+                    f.surface_error
+                );
                 m.face_domain(k, None)
                     .unwrap_or_else(|e| panic!("{file} face {k}: {e}"));
             }
@@ -1203,7 +1214,10 @@ fn every_iges_test_part_reads() {
 /// (142 DE 3, 102 DE 5, lines DE 7 to 13) on the surface DE 15, the first entity of `surface`.
 fn rect_face((u0, u1, v0, v1): (f64, f64, f64, f64), surface: Vec<Ent>) -> CadModel {
     let line = |a: (f64, f64), b: (f64, f64)| {
-        sub(110, &format!("110,{:?},{:?},0.,{:?},{:?},0.;", a.0, a.1, b.0, b.1))
+        sub(
+            110,
+            &format!("110,{:?},{:?},0.,{:?},{:?},0.;", a.0, a.1, b.0, b.1),
+        )
     };
     let mut ents = vec![
         root(144, "144,15,1,0,3;"),
@@ -1253,9 +1267,9 @@ fn surfaces_follow_the_iges_parameterisations() {
         (0.0, 90.0, 0.0, 5.0),
         vec![
             sub(192, "192,17,19,2.,21;").form(1).transform(23), // DE 15
-            sub(116, "116,1.,2.,3.,0;"),                         // DE 17
-            sub(123, "123,0.,0.,2.;"),                           // DE 19
-            sub(123, "123,1.,1.,0.;"),                           // DE 21
+            sub(116, "116,1.,2.,3.,0;"),                        // DE 17
+            sub(123, "123,0.,0.,2.;"),                          // DE 19
+            sub(123, "123,1.,1.,0.;"),                          // DE 21
             sub(124, "124,0.,-1.,0.,10.,1.,0.,0.,0.,0.,0.,1.,0.;"), // DE 23
         ],
     );
@@ -1272,14 +1286,17 @@ fn surfaces_follow_the_iges_parameterisations() {
     };
     assert_surface(&m, 0, (0.0, 90.0, 0.0, 5.0), cylinder, tol);
     assert!(close(area(&loops(&m, 0)[0]).abs(), 450.0, 1e-12));
-    assert_eq!(m.faces[0].surface_name, "192 (right circular cylindrical surface)");
+    assert_eq!(
+        m.faces[0].surface_name,
+        "192 (right circular cylindrical surface)"
+    );
     // 192 form 0 about -z: Open CASCADE's reference direction (-1, 0, 0).
     let m = rect_face(
         (0.0, 90.0, 0.0, 1.0),
         vec![
-            sub(192, "192,17,19,2.;"),  // DE 15
+            sub(192, "192,17,19,2.;"),   // DE 15
             sub(116, "116,0.,0.,0.,0;"), // DE 17
-            sub(123, "123,0.,0.,-1.;"), // DE 19
+            sub(123, "123,0.,0.,-1.;"),  // DE 19
         ],
     );
     let down = |u: f64, v: f64| {
@@ -1300,7 +1317,11 @@ fn surfaces_follow_the_iges_parameterisations() {
     );
     let cone = |u: f64, v: f64| {
         let r = 1.0 + v * (30.0 * deg).sin();
-        [r * (u * deg).cos(), r * (u * deg).sin(), 1.0 + v * (30.0 * deg).cos()]
+        [
+            r * (u * deg).cos(),
+            r * (u * deg).sin(),
+            1.0 + v * (30.0 * deg).cos(),
+        ]
     };
     assert_surface(&m, 0, (0.0, 360.0, 0.0, 2.0), cone, tol);
     // 196 form 0: no axis, the world's.
@@ -1362,8 +1383,8 @@ fn surfaces_follow_the_iges_parameterisations() {
     let m = rect_face(
         (0.0, 1.0, 0.0, 1.0),
         vec![
-            sub(122, "122,17,1.,0.,3.;"),              // DE 15
-            sub(100, "100,0.,0.,0.,1.,0.,0.,1.;"),     // DE 17
+            sub(122, "122,17,1.,0.,3.;"),          // DE 15
+            sub(100, "100,0.,0.,0.,1.,0.,0.,1.;"), // DE 17
         ],
     );
     let tabulated = |u: f64, v: f64| [(u * PI / 2.0).cos(), (u * PI / 2.0).sin(), 3.0 * v];
@@ -1380,7 +1401,9 @@ fn surfaces_follow_the_iges_parameterisations() {
     );
     assert_surface(&m, 0, (0.0, 1.0, 0.0, 1.0), |u, v| [2.0 * u, v, u * v], tol);
     assert_eq!(
-        m.length_unit.as_ref().map(|u| (u.name.as_str(), u.millimetres)),
+        m.length_unit
+            .as_ref()
+            .map(|u| (u.name.as_str(), u.millimetres)),
         Some(("MM", 1.0))
     );
 }
@@ -1415,27 +1438,49 @@ fn hostile_surfaces_shells_and_loops() {
     let m = rect_face((far, far + 1.0, far, far + 1.0), vec![unit_square_128()]);
     assert!(close(area(&loops(&m, 0)[0]).abs(), 1.0, 1e-6));
     let ents = vec![
-        root(144, "144,9,1,0,3;"),     // DE 1
-        sub(142, "142,0,9,5,0,1;"),    // DE 3
-        sub(102, "102,2,7,11;"),       // DE 5
-        sub(110, &format!("110,{far:?},{far:?},0.,{:?},{far:?},0.;", far + 1.0)), // DE 7
-        unit_square_128(),             // DE 9
-        sub(110, &format!("110,{:?},{:?},0.,{far:?},{:?},0.;", far + 1.0, far + 2.0, far + 3.0)), // DE 11
+        root(144, "144,9,1,0,3;"),  // DE 1
+        sub(142, "142,0,9,5,0,1;"), // DE 3
+        sub(102, "102,2,7,11;"),    // DE 5
+        sub(
+            110,
+            &format!("110,{far:?},{far:?},0.,{:?},{far:?},0.;", far + 1.0),
+        ), // DE 7
+        unit_square_128(),          // DE 9
+        sub(
+            110,
+            &format!(
+                "110,{:?},{:?},0.,{far:?},{:?},0.;",
+                far + 1.0,
+                far + 2.0,
+                far + 3.0
+            ),
+        ), // DE 11
     ];
     let m = read(&iges(&ents, "1.E-07"));
     let e = face_iges_err(&m, 0);
-    assert!(matches!(e, IgesError::Gap { named: 5, first: 7, second: 11, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            IgesError::Gap {
+                named: 5,
+                first: 7,
+                second: 11,
+                ..
+            }
+        ),
+        "{e}"
+    );
     // A 186 whose shell is missing (pointer 0), one whose shell is a line, one listing itself
     // as its shell, a group holding itself: no solid, no shell, no face, no panic; the lone 510
     // after them (physically dependent, held by nothing) is a face, as Open CASCADE reads it.
     let ents = vec![
-        root(186, "186,0,1,0;"),                 // DE 1
-        root(186, "186,7,1,0;"),                 // DE 3
-        root(186, "186,5,1,0;"),                 // DE 5
-        sub(110, "110,0.,0.,0.,1.,0.,0.;"),      // DE 7
-        root(402, "402,1,9;").form(7),           // DE 9
-        sub(510, "510,13,1,1,15;").form(1),      // DE 11
-        unit_square_128(),                       // DE 13
+        root(186, "186,0,1,0;"),            // DE 1
+        root(186, "186,7,1,0;"),            // DE 3
+        root(186, "186,5,1,0;"),            // DE 5
+        sub(110, "110,0.,0.,0.,1.,0.,0.;"), // DE 7
+        root(402, "402,1,9;").form(7),      // DE 9
+        sub(510, "510,13,1,1,15;").form(1), // DE 11
+        unit_square_128(),                  // DE 13
         // DE 15: the unit square's loop, its pcurves given, the edges of the 504 DE 17.
         sub(
             508,
@@ -1443,10 +1488,10 @@ fn hostile_surfaces_shells_and_loops() {
         )
         .form(1),
         sub(504, "504,4,19,0,0,0,0,21,0,0,0,0,23,0,0,0,0,25,0,0,0,0;").form(1), // DE 17
-        sub(110, "110,0.,0.,0.,1.,0.,0.;"),      // DE 19
-        sub(110, "110,1.,0.,0.,1.,1.,0.;"),      // DE 21
-        sub(110, "110,1.,1.,0.,0.,1.,0.;"),      // DE 23
-        sub(110, "110,0.,1.,0.,0.,0.,0.;"),      // DE 25
+        sub(110, "110,0.,0.,0.,1.,0.,0.;"),                                     // DE 19
+        sub(110, "110,1.,0.,0.,1.,1.,0.;"),                                     // DE 21
+        sub(110, "110,1.,1.,0.,0.,1.,0.;"),                                     // DE 23
+        sub(110, "110,0.,1.,0.,0.,0.,0.;"),                                     // DE 25
     ];
     let m = read(&iges(&ents, "1.E-07"));
     assert_eq!((m.solids.len(), m.shells.len()), (0, 0));
@@ -1459,8 +1504,14 @@ fn hostile_surfaces_shells_and_loops() {
     // A 508 use of an edge the 504 does not have, of an unknown type, and without a
     // parameter-space curve on a curved surface.
     for (loop_params, want) in [
-        ("508,1,0,17,9,1,1,0,19;", "edge 9 of the 504 edge list DE 17, which has 4"),
-        ("508,1,2,17,1,1,1,0,19;", "type 2 (expected 0 (edge) or 1 (vertex))"),
+        (
+            "508,1,0,17,9,1,1,0,19;",
+            "edge 9 of the 504 edge list DE 17, which has 4",
+        ),
+        (
+            "508,1,2,17,1,1,1,0,19;",
+            "type 2 (expected 0 (edge) or 1 (vertex))",
+        ),
     ] {
         let mut bad = ents.clone_ents();
         bad[7] = sub(508, loop_params).form(1);

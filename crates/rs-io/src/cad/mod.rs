@@ -30,8 +30,8 @@
 //! ```
 //!
 //! - [`step`]: STEP AP203/AP214/AP242 (ISO 10303-21 files).
-//! - [`iges`]: IGES 5.3 (the fixed-column format): trimmed surfaces (144) and bounded
-//!   surfaces (143).
+//! - [`iges`]: IGES 5.3 (the fixed-column format): trimmed surfaces (144), bounded surfaces
+//!   (143) and B-rep solids (186, 514, 510), with their surfaces and 3-D edges.
 
 pub mod iges;
 mod spec;

@@ -394,15 +394,14 @@ impl Iges<'_> {
         closed
     }
 
-    /// The plane coordinates of surface `s`: its surface's error if it could not be read,
-    /// `not_plane` if it is no plane.
+    /// The plane coordinates of surface `s`: the error of a plane entity (108, 190) that could
+    /// not be read, `not_plane` for any other surface that is not a plane.
     pub(super) fn plane_of(
         &self,
         s: &DirEntry,
         info: &SurfaceInfo,
         not_plane: impl FnOnce() -> IgesError,
     ) -> Result<rs_geom::AffinePlaneCoordinates, IgesError> {
-        let _ = s;
         match (&info.surface, info.plane) {
             (_, Some(plane)) => Ok(plane),
             (Err(e), None) if s.kind == 108 || s.kind == 190 => Err(e.clone()),
