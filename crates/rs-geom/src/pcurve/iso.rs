@@ -4,20 +4,25 @@
 //! The edge is sampled at [`ISO_SAMPLES`] (its ends and seven interior points), each point
 //! inverted on the surface continuing from the one before (the first from the previous edge's
 //! end or the options' `near`), the periodic copies unwrapped and the samples at a pole given
-//! the pole's parameter and their neighbour's free parameter. The edge is on the line
-//! `uv[d] = c` (`c` the first sample's) when every sample is within
-//! [`super::ISO_RELATIVE`] of the edge's size of the surface's point with its own free
-//! parameter and `c`, and the free parameter runs strictly one way. The segment runs from the
-//! first sample's `(u, v)` to the last's (with `c`); a closed edge spans whole periods
-//! exactly.
+//! the pole's parameter and their neighbour's free parameter. With `c` the first sample's
+//! `uv[d]`, the edge is on the line `uv[d] = c` when the free parameter runs strictly one way
+//! and either
+//! - every sample is within [`super::ISO_RELATIVE`] of the edge's size of the surface's point
+//!   with its own free parameter and `c` (the edge is the line), or
+//! - every sample's foot has `uv[d] = c` to the rounding of an inversion and lies within the
+//!   fit's target (the options' tolerance) of the sample (the edge's projection is the line:
+//!   a patch's boundary edge written a little off the patch, whose feet all land on the
+//!   boundary).
 //!
-//! The deviation is measured: the largest of those samples' distances and of the distances
-//! from [`ISO_CHECKS`] points of the segment's image to their closest points on the edge. It
-//! must be within the iso-line tolerance too, or the edge is fitted instead.
+//! The segment runs from the first sample's `(u, v)` to the last's (with `c`); a closed edge
+//! spans whole periods exactly. The deviation is measured: the largest of those samples'
+//! distances and of the distances from [`ISO_CHECKS`] points of the segment's image to their
+//! closest points on the edge; it must be within the same limit (the iso-line tolerance, or
+//! the target), or the edge is fitted instead.
 
 use rs_spline::{Point, Point3, segment};
 
-use super::{Arc, ArcPcurve, Context, Sample, Start};
+use super::{Arc, ArcPcurve, Context, PARAMETER_ROUNDING, Sample, Start};
 use crate::GeomError;
 use crate::surface::ParamSurface;
 
@@ -62,7 +67,14 @@ pub(crate) fn iso_line(
             ctx.surface.point(uv).distance(p.x)
         };
         let worst = samples.iter().map(on_line).fold(0.0f64, f64::max);
-        if worst > ctx.iso_tol || worst.is_nan() {
+        // On the line in space, or every foot on it to the rounding of its parameters (the
+        // edge's projection is the line: a patch's boundary edge written a little off it).
+        let exact = worst <= ctx.iso_tol;
+        let flat = samples
+            .iter()
+            .all(|p| (p.uv[d] - c).abs() <= PARAMETER_ROUNDING * (1.0 + c.abs()));
+        let accept = if exact { ctx.iso_tol } else { ctx.target };
+        if !(exact || flat) || worst > accept || worst.is_nan() {
             continue;
         }
         let up = samples[last].uv[w] > samples[0].uv[w];
@@ -83,7 +95,7 @@ pub(crate) fn iso_line(
             }
         }
         let deviation = worst.max(measured(ctx, arc, from, to));
-        if deviation > ctx.iso_tol || deviation.is_nan() {
+        if deviation > accept || deviation.is_nan() {
             continue;
         }
         return Ok(Some(ArcPcurve {

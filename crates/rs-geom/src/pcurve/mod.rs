@@ -17,7 +17,9 @@
 //!    `v = c` of the surface (rulings and circles of cylinders, cones, spheres, tori, surfaces
 //!    of revolution and extrusion, the boundary and interior iso-lines of B-spline patches):
 //!    the pcurve is the straight segment in `(u, v)` between the edge's inverted vertices; a
-//!    closed edge spans exactly whole periods. The deviation is measured (see [`iso`]).
+//!    closed edge spans exactly whole periods. An edge a little off the surface whose closest
+//!    points all lie on one iso-line (a patch's boundary) has that line as its pcurve too.
+//!    The deviation is measured (see [`iso`]).
 //! 3. **Fitted** ([`PcurveKind::Fitted`]): otherwise, a cubic B-spline fitted by least squares
 //!    to the edge's closest points on the surface, refined where its error is largest, with a
 //!    computed bound on `|S(g(s)) - C(t(s))|` (see [`fit`] for what is rigorous).
@@ -303,13 +305,16 @@ pub fn pcurve(
 }
 
 /// The pieces of `[lo, hi]` (increasing) within the edge's own parameter domain, in order:
-/// lines and conics take it whole; a bounded periodic curve (a closed B-spline) takes it
-/// translated by whole periods into its range, and where it then runs past the range's end
-/// (an interval across the seam of a curve spanning one period) two pieces, `[lo, b]` and
-/// `[a, hi - p]`; a partial periodic curve the translation that overlaps its range most.
+/// lines, conics and trimmed curves (whose window is their range) take it whole; a closed
+/// B-spline takes it translated by whole periods into its range, and where it then runs past
+/// the range's end (an interval across the seam) two pieces, `[lo, b]` and `[a, hi - p]`.
 /// (These are the STEP reader's pieces of planar faces' edges.)
 pub(crate) fn domain_pieces(edge: &Curve<Point3>, lo: f64, hi: f64) -> Vec<(f64, f64)> {
-    let (Some((a, b)), Some(p)) = (edge.range(), edge.period()) else {
+    let period = match edge {
+        Curve::Trimmed { .. } => None,
+        _ => edge.period(),
+    };
+    let (Some((a, b)), Some(p)) = (edge.range(), period) else {
         return vec![(lo, hi)];
     };
     // Parameters this close (relative to the period) to the range are in it.
@@ -677,7 +682,7 @@ impl<'a> Context<'a> {
 
 /// Two values of a parameter this close (relative to `1 + |value|`) are the same up to the
 /// rounding of an inversion.
-const PARAMETER_ROUNDING: f64 = 1e-12;
+pub(crate) const PARAMETER_ROUNDING: f64 = 1e-12;
 
 /// Points of a segment along a pole line checked to map to the pole.
 const LINK_SAMPLES: usize = 8;

@@ -500,6 +500,44 @@ fn iso_lines_of_a_rational_patch() {
     }
 }
 
+/// Edges a little off their surface whose closest points all lie on one iso-line (a circle of
+/// a slightly larger radius about a cylinder, a patch's boundary arc written off the patch):
+/// that line, with the edge's distance as the measured deviation; farther than the tolerance,
+/// fitted instead.
+#[test]
+fn projections_onto_iso_lines_are_iso_lines() {
+    let mut rng = Rng::new(109);
+    for _ in 0..10 {
+        let f = rng.frame(3.0);
+        let (r, h) = (rng.range(0.5, 3.0), rng.range(0.5, 3.0));
+        let off = 1e-6;
+        let cylinder = Surface::Cylinder(Cylinder::new(f, r).unwrap());
+        let patch = Surface::BSpline(quarter_cylinder(&f, r, h));
+        let height = rng.range(-1.0, 1.0);
+        for (s, z, range, constant) in [
+            (&cylinder, height, (0.3, 5.0), height),
+            (&patch, 0.0, (0.0, FRAC_PI_2), 0.0),
+            (&patch, h, (0.2, 1.3), 1.0),
+        ] {
+            let edge = circle(f.origin + f.z * z, f.x, f.y, r + off, 0.0, 1.0);
+            let o = PcurveOptions::DEFAULT.with_tolerance(1e-5);
+            let p = pcurve(s, &edge, Some(range), &o).unwrap();
+            assert_eq!(p.kind, PcurveKind::IsoLine, "{}", s.kind_name());
+            let (a, b) = ends(&p.curves[0]);
+            assert!(
+                a[1] == b[1] && (a[1] - constant).abs() < 1e-12,
+                "{a:?} {b:?}"
+            );
+            assert!((p.deviation - off).abs() < 1e-9, "{}", p.deviation);
+            // Beyond the tolerance: the fit's bound, at least the distance.
+            let o = PcurveOptions::DEFAULT.with_tolerance(1e-7);
+            let p = pcurve(s, &edge, Some(range), &o).unwrap();
+            assert_eq!(p.kind, PcurveKind::Fitted);
+            assert!(p.deviation >= off);
+        }
+    }
+}
+
 /// A full circle spans exactly one period, its start the copy nearest `near`; a closed edge
 /// on a seam takes the copy of `near`.
 #[test]
