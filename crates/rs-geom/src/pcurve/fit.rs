@@ -24,7 +24,8 @@
 //!    its bounded directions, so `g` stays in it (convex hull).
 //! 3. **Bound** (below). Spans whose bound exceeds the target while their fit error (the
 //!    largest `D` less the largest distance of their samples from the surface, which no pcurve
-//!    can beat) exceeds [`FIT_SHARE`] of the target get a knot at their middle; at most
+//!    can beat) exceeds [`FIT_SHARE`] of the target and of that distance get a knot at their
+//!    middle; at most
 //!    [`MAX_ROUNDS`] rounds and [`MAX_CONTROL_POINTS`] control points. The round with the
 //!    least bound is kept.
 //!
@@ -45,10 +46,11 @@
 //! the span's control points (which holds `g` there) and the edge's over the span's window,
 //! both from [`super::bounds`]: rigorous for every surface but offsets, whose bounds are
 //! estimated (twice the largest of a grid of samples). `n` is chosen so that the gap term is
-//! at most [`GAP_SHARE`] of the target, within [`MIN_CHECKS`] per span and [`MAX_CHECKS`]
-//! per bound (beyond it the gap term is larger, and stated); the kept fit's bound is computed
-//! once more with the gap term sized to the largest `D` found instead (see [`TIGHT_FLOOR`]),
-//! and the smaller of the two is its deviation. The bound adds [`ROUNDING`]
+//! at most [`GAP_SHARE`] of the target (or of the samples' largest distance from the surface,
+//! if larger), within [`MIN_CHECKS`] per span and [`MAX_CHECKS`] per bound (beyond it the gap
+//! term is larger, and stated); the kept fit's bound is computed once more with the gap term
+//! sized to the largest `D` found instead (see [`TIGHT_FLOOR`]), and the smaller of the two is
+//! its deviation. The bound adds [`ROUNDING`]
 //! times the edge's size for the rounding of the evaluations. So the stated deviation is
 //! proven up to floating-point rounding whenever the surface is not an offset
 //! ([`crate::pcurve::Pcurve::rigorous`]).
@@ -159,12 +161,21 @@ pub(crate) fn fit(ctx: &Context<'_>, arc: &Arc, start: &Start) -> Result<ArcPcur
             points.iter().map(|p| Point::new(p[0], p[1])).collect(),
             None,
         )?;
-        let check = check(ctx, arc, &curve, &samples, GAP_SHARE * ctx.target);
+        // No pcurve comes nearer than the samples' distances: a gap term far below them
+        // would cost evaluations for nothing.
+        let floor = samples.iter().map(Sample::distance).fold(0.0, f64::max);
+        let check = check(
+            ctx,
+            arc,
+            &curve,
+            &samples,
+            GAP_SHARE * ctx.target.max(floor),
+        );
         let done = check.bound <= ctx.target;
         let refine: Vec<f64> = check
             .spans
             .iter()
-            .filter(|sp| sp.bound > ctx.target && sp.excess > FIT_SHARE * ctx.target)
+            .filter(|sp| sp.bound > ctx.target && sp.excess > FIT_SHARE * ctx.target.max(sp.floor))
             .map(|sp| 0.5 * (sp.a + sp.b))
             .collect();
         if best
@@ -438,7 +449,9 @@ struct SpanCheck {
     b: f64,
     /// Its bound on `D`.
     bound: f64,
-    /// Its largest `D` less its samples' largest distance from the surface.
+    /// Its samples' largest distance from the surface.
+    floor: f64,
+    /// Its largest `D` less `floor`.
     excess: f64,
 }
 
@@ -581,6 +594,7 @@ fn check(ctx: &Context<'_>, arc: &Arc, curve: &NurbsCurve, samples: &[Sample], g
             a: plan.a,
             b: plan.b,
             bound: span_bound,
+            floor,
             excess: largest - floor,
         });
     }
