@@ -36,7 +36,9 @@
 //! Where the edge passes through a pole of the surface (a sphere's pole, a cone's apex, a
 //! degenerate boundary of a B-spline patch), it is cut there: the pole's point has every
 //! value of the free parameter, so each side takes it from its neighbouring samples, and a
-//! segment along the pole line (one point in space) joins the two sides. Of the periodic
+//! segment along the pole line (one point in space) joins the two sides. An edge that starts
+//! at the pole where [`PcurveOptions::near`] is (the previous edge of its loop ended there)
+//! starts with such a segment from `near`. Of the periodic
 //! copies of the start, the one nearest [`PcurveOptions::near`] is taken (the copy on the
 //! right side of a seam); every later sample continues from the one before it.
 //!
@@ -240,7 +242,22 @@ pub fn pcurve(
         deviation: 0.0,
         rigorous: true,
     };
+    // The end of the previous stretch: its point and (u, v). An edge that starts at a pole
+    // where `near` is (the previous edge of the loop ended there) starts from `near` with a
+    // segment along the pole line, so that the loop runs on without a gap.
     let mut previous: Option<(Point3, [f64; 2])> = None;
+    if let (Some(n), Some(first)) = (options.near, arcs.first()) {
+        let x = edge.point(first.ta);
+        if let Some((_, p)) = ctx
+            .poles
+            .iter()
+            .find(|(_, p)| p.distance(x) <= ctx.coincidence)
+            && n.iter().all(|t| t.is_finite())
+            && surface.point(n).distance(*p) <= ctx.coincidence
+        {
+            previous = Some((x, n));
+        }
+    }
     // The last piece if it is an iso-line segment: its start and constant parameter.
     let mut last_iso: Option<([f64; 2], usize)> = None;
     for arc in arcs {

@@ -1213,3 +1213,38 @@ fn an_unreachable_tolerance_stops_at_the_edges_distance() {
     let truth = dense_deviation(&s, &edge, (0.0, 1.0), &p.curves[0], 20_000);
     assert!(truth <= p.deviation);
 }
+
+/// An edge leaving a pole where the previous edge of its loop ended (`near`) starts with a
+/// segment along the pole line from `near`: the loop runs on without a gap.
+#[test]
+fn an_edge_leaving_a_pole_starts_at_near() {
+    let mut rng = Rng::new(112);
+    for _ in 0..10 {
+        let f = rng.frame(3.0);
+        let r = rng.range(0.5, 3.0);
+        let s = Surface::Sphere(Sphere::new(f, r).unwrap());
+        let c = rng.range(0.0, TAU);
+        let meridian = circle(f.origin, rho(&f, c), f.z, r, 0.0, 1.0);
+        for k in [-1.0, 0.0, 1.0, 2.0] {
+            let near = [c + 0.7 + k * TAU, FRAC_PI_2];
+            let o = PcurveOptions::DEFAULT.with_near(Some(near));
+            let p = pcurve(&s, &meridian, Some((FRAC_PI_2, 0.2)), &o).unwrap();
+            assert_eq!(p.kind, PcurveKind::IsoLine);
+            assert_eq!(p.curves.len(), 2, "{p:?}");
+            let (a, b) = ends(&p.curves[0]);
+            assert_eq!(a, near);
+            assert!(
+                (b[0] - (c + k * TAU)).abs() < 1e-12 && b[1] == FRAC_PI_2,
+                "{b:?}"
+            );
+            check_chain(&s, &meridian, (FRAC_PI_2, 0.2), &p, 1e-11 * 10.0);
+            assert!(p.deviation < 1e-11 * 10.0);
+        }
+        // Without near, or near elsewhere: no segment.
+        for near in [None, Some([c, 0.5])] {
+            let o = PcurveOptions::DEFAULT.with_near(near);
+            let p = pcurve(&s, &meridian, Some((FRAC_PI_2, 0.2)), &o).unwrap();
+            assert_eq!(p.curves.len(), 1);
+        }
+    }
+}
