@@ -36,11 +36,14 @@
 //! Where the edge passes through a pole of the surface (a sphere's pole, a cone's apex, a
 //! degenerate boundary of a B-spline patch), it is cut there: the pole's point has every
 //! value of the free parameter, so each side takes it from its neighbouring samples, and a
-//! segment along the pole line (one point in space) joins the two sides. An edge that starts
-//! at the pole where [`PcurveOptions::near`] is (the previous edge of its loop ended there)
-//! starts with such a segment from `near`. Of the periodic
-//! copies of the start, the one nearest [`PcurveOptions::near`] is taken (the copy on the
-//! right side of a seam); every later sample continues from the one before it.
+//! segment along the pole line (one point in space) joins the two sides (none where both
+//! sides are one line, as a ruling through a cone's apex: consecutive segments on one line
+//! are merged). An edge that starts at the pole where [`PcurveOptions::near`] is (the
+//! previous edge of its loop ended there) starts with such a segment from `near`.
+//!
+//! Of the periodic copies of the start, the one nearest [`PcurveOptions::near`] is taken (the
+//! copy on the right side of a seam); every later sample continues from the one before it, so
+//! a pcurve crossing a seam runs on past the period's end.
 //!
 //! # Tolerances
 //!
