@@ -200,10 +200,14 @@ pub(crate) fn fit(ctx: &Context<'_>, arc: &Arc, start: &Start) -> Result<ArcPcur
             check = again;
         }
     }
+    // The ends of the kept round's fit (a sample at a pole may have taken another free
+    // parameter from a neighbour added since): its end control points, exactly.
+    let cps = curve.control_points();
+    let (first, last) = (cps[0], cps[cps.len() - 1]);
     Ok(ArcPcurve {
+        start: [first.x, first.y],
+        end: [last.x, last.y],
         curve,
-        start: samples[0].uv,
-        end: samples[samples.len() - 1].uv,
         deviation: check.bound,
         rigorous: check.rigorous,
         fitted: true,
