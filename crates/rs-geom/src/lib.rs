@@ -12,6 +12,8 @@
 //! - Surfaces: plane, cylinder, cone, sphere, torus, surface of revolution, surface of linear
 //!   extrusion, offset surface, rational B-spline surface; each with its point, first and
 //!   second derivatives, normal, parameter box, periods, poles and closest-point inversion.
+//! - Pcurves ([`pcurve`]): the `(u, v)` curve of a 3-D edge on a face's surface (exact on
+//!   planes and iso-lines, fitted with a deviation bound otherwise).
 //!
 //! Points and vectors are [`Point3`]; parameters are those of the file's standard
 //! (ISO 10303-42 for STEP, IGES 5.3 for IGES), documented per surface.
@@ -22,6 +24,7 @@ pub mod curve;
 mod error;
 mod frame;
 mod map;
+pub mod pcurve;
 pub mod surface;
 mod tolerance;
 
