@@ -461,10 +461,12 @@ fn model_space_curves_on_planes() {
     assert!(tri[1].start_point().distance(Point::new(1.0, 0.0)) < 1e-15);
     assert!(tri[2].start_point().distance(Point::new(0.0, 1.0)) < 1e-15);
     assert!(close(area(tri), 0.5, 1e-15));
+    // Without a parameter-space curve on a curved surface the pcurve is computed from the
+    // model-space curve (rs_geom::pcurve); this line leaves the patch (it reaches x = 2, the
+    // patch stops at x = 1): refused, naming the curve and how far off it is.
     let e = face_err(&m, 3);
     assert!(
-        e.starts_with("DE 37: curve on surface has no parameter-space curve (pointer 0)")
-            && e.contains("is not a plane"),
+        e.starts_with("DE 27 (110 line): the edge is") && e.contains("from the B-spline surface"),
         "{e}"
     );
     assert!(face_err(&m, 4).contains("off the surface's plane"));
@@ -1514,8 +1516,9 @@ fn hostile_surfaces_shells_and_loops() {
     // The edges are the 504's model curves (here the pcurves' lines in z = 0, on the patch).
     assert_eq!(m.faces[0].edges[0].len(), 4);
     assert_pcurves_on_edges(&m, "square", 1, 1e-15);
-    // A 508 use of an edge the 504 does not have, of an unknown type, and without a
-    // parameter-space curve on a curved surface.
+    // A 508 use of an edge the 504 does not have, of an unknown type, and one without a
+    // parameter-space curve on a curved surface whose model curve is off the surface (the
+    // straight line (0, 0, 0)-(1, 0, 0) under a patch bulging to z = 0.5 along it).
     for (loop_params, want) in [
         (
             "508,1,0,17,9,1,1,0,19;",
@@ -1536,7 +1539,11 @@ fn hostile_surfaces_shells_and_loops() {
     curved[7] = sub(508, "508,1,0,17,1,1,0;").form(1);
     let e = face_iges_err(&read(&iges(&curved, "1.E-07")), 0);
     assert!(
-        matches!(&e, IgesError::NoEdgeParameterCurve { surface, .. } if surface.starts_with("DE 13")),
+        matches!(
+            &e,
+            IgesError::Geometry { who, source: rs_geom::GeomError::EdgeOffSurface { .. } }
+                if who.starts_with("DE 19")
+        ),
         "{e}"
     );
     assert!(t.elapsed() < Duration::from_secs(10));
@@ -1559,4 +1566,75 @@ impl CloneEnts for Vec<Ent> {
             })
             .collect()
     }
+}
+
+/// The quarter cylinder `x^2 + y^2 = 4`, `0 <= z <= 3`, `x, y >= 0`, bounded by model-space
+/// curves only (a 142 without a parameter-space curve, and a 508 of four edges without
+/// pcurves, two of them used against their curves): the pcurves are computed (iso-lines of the
+/// 192 cylinder: exact, in degrees), the face is the rectangle `[0, 90] x [0, 3]`, its
+/// deviation recorded.
+#[test]
+fn model_space_curves_on_curved_surfaces_get_computed_pcurves() {
+    // The cylinder of radius 2 about z (DE 15) with its point, axis and reference direction.
+    let cylinder = || {
+        vec![
+            sub(192, "192,17,19,2.,21;").form(1), // DE 15
+            sub(116, "116,0.,0.,0.,0;"),          // DE 17
+            sub(123, "123,0.,0.,1.;"),            // DE 19
+            sub(123, "123,1.,0.,0.;"),            // DE 21
+        ]
+    };
+    let w = SQRT_2 / 2.0;
+    let quarter_at_3 = format!(
+        "126,2,2,1,0,0,0,0.,0.,0.,1.,1.,1.,1.,{w},1.,0.,2.,3.,2.,2.,3.,2.,0.,3.,0.,1.,0.,0.,1.;"
+    );
+    // Faces mode: 144 (DE 1) -> 142 (DE 3) without BPTR -> 102 (DE 5): the arc at z = 0
+    // counter-clockwise, the line up, the arc at z = 3 back, the line down.
+    let mut ents = vec![
+        root(144, "144,15,1,0,3;"),            // DE 1
+        sub(142, "142,0,15,0,5,2;"),           // DE 3
+        sub(102, "102,4,7,9,11,13;"),          // DE 5
+        sub(100, "100,0.,0.,0.,2.,0.,0.,2.;"), // DE 7
+        sub(110, "110,0.,2.,0.,0.,2.,3.;"),    // DE 9
+        sub(126, &quarter_at_3),               // DE 11
+        sub(110, "110,2.,0.,3.,2.,0.,0.;"),    // DE 13
+    ];
+    ents.extend(cylinder());
+    let m = read(&iges(&ents, "1.E-07"));
+    let check = |m: &CadModel, what: &str| {
+        let l = loops(m, 0);
+        assert_eq!(l.len(), 1, "{what}");
+        assert_closed(&l[0], 1e-9, what);
+        assert!(
+            close(area(&l[0]).abs(), 270.0, 1e-9),
+            "{what}: {}",
+            area(&l[0])
+        );
+        let d = m.faces[0].pcurve_deviation.expect("computed pcurves");
+        assert!(d <= 1e-12, "{what}: deviation {d:e}");
+        assert_pcurves_on_edges(m, what, 1, 1e-12);
+    };
+    check(&m, "faces mode");
+    // B-rep mode: 510 (DE 1) -> 508 (DE 3) of the 504 (DE 5) edges: the arc at z = 0, the
+    // line up, the arc at z = 3 counter-clockwise (used backwards), the line from the bottom
+    // up at x = 2 (used backwards).
+    let mut ents = vec![
+        sub(510, "510,15,1,1,3;").form(1), // DE 1
+        sub(508, "508,4,0,5,1,1,0,0,5,2,1,0,0,5,3,0,0,0,5,4,0,0;").form(1), // DE 3
+        sub(504, "504,4,7,0,0,0,0,9,0,0,0,0,11,0,0,0,0,13,0,0,0,0;").form(1), // DE 5
+        sub(100, "100,0.,0.,0.,2.,0.,0.,2.;"), // DE 7
+        sub(110, "110,0.,2.,0.,0.,2.,3.;"), // DE 9
+        sub(100, "100,3.,0.,0.,2.,0.,0.,2.;"), // DE 11
+        sub(110, "110,2.,0.,0.,2.,0.,3.;"), // DE 13
+    ];
+    ents.extend(cylinder());
+    let m = read(&iges(&ents, "1.E-07"));
+    check(&m, "B-rep mode");
+    assert_eq!(
+        m.faces[0].edges[0]
+            .iter()
+            .map(|e| e.reversed)
+            .collect::<Vec<_>>(),
+        [false, false, true, true]
+    );
 }

@@ -20,9 +20,10 @@ use std::rc::Rc;
 
 use rs_geom::brep::{Edge, Face};
 use rs_spline::NurbsCurve;
+use rs_spline::prelude::*;
 
 use super::Iges;
-use super::curves::{Piece, reverse_pieces};
+use super::curves::Piece;
 use super::directory::DirEntry;
 use super::error::IgesError;
 use super::surfaces::SurfaceInfo;
@@ -67,7 +68,13 @@ impl Iges<'_> {
             }
         }
         for ptr in ptrs {
-            loops.push(self.brep_loop(e, ptr, s, &info, &mut face.edges)?);
+            loops.push(self.brep_loop(
+                e,
+                ptr,
+                &info,
+                &mut face.edges,
+                &mut face.pcurve_deviation,
+            )?);
         }
         if loops.is_empty() {
             return Err(IgesError::Nothing { who, what: "loops" });
@@ -118,9 +125,9 @@ impl Iges<'_> {
         &self,
         face: &DirEntry,
         ptr: usize,
-        s: &DirEntry,
         info: &SurfaceInfo,
         edges: &mut Vec<Vec<Edge>>,
+        deviation: &mut Option<f64>,
     ) -> Result<Vec<NurbsCurve>, IgesError> {
         let l = self.entry_of(ptr, &format!("{}: loop", self.who(face)), 508, "a 508 loop")?;
         let who = self.who(l);
@@ -161,16 +168,9 @@ impl Iges<'_> {
                     let entry = self.edge_entry(&from, list, ndx)?;
                     let leaves = self.curve_leaves(entry.curve, &format!("{from}: model curve"));
                     if these.is_empty() {
-                        let plane = self.plane_of(s, info, || IgesError::NoEdgeParameterCurve {
-                            who: from.clone(),
-                            surface: self.who(s),
-                        })?;
-                        for leaf in leaves.clone()? {
-                            these.push(leaf.plane_piece(&plane, self.tolerance)?);
-                        }
-                        if reversed {
-                            reverse_pieces(&mut these);
-                        }
+                        let near = pieces.last().map(|p| p.curve.end_point());
+                        these =
+                            self.model_pieces(&leaves.clone()?, reversed, info, near, deviation)?;
                     }
                     if let Ok(leaves) = leaves {
                         let mut e: Vec<Edge> = leaves

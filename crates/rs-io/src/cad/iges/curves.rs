@@ -23,7 +23,12 @@
 use std::f64::consts::TAU;
 
 use rs_geom::brep::Edge;
-use rs_geom::{Affine3, AffineMap, AffinePlaneCoordinates, Conic, ConicKind, Curve, Tolerance};
+use rs_geom::pcurve::{PcurveOptions, pcurve};
+use rs_geom::surface::Surface;
+use rs_geom::{
+    Affine3, AffineMap, AffinePlaneCoordinates, Conic, ConicKind, Curve, DEFAULT_MODEL_TOLERANCE,
+    Tolerance,
+};
 use rs_spline::prelude::*;
 use rs_spline::{NurbsCurve, Point, Point3, RationalBSpline};
 
@@ -168,6 +173,37 @@ impl Placed {
                 .to_planar()
                 .map_err(|e| IgesError::spline(&self.who(), e))?,
         })
+    }
+
+    /// The pcurve of the model-space curve on `surface` (not a plane), computed by
+    /// [`rs_geom::pcurve::pcurve`] to the model's tolerance (the file's, or
+    /// [`DEFAULT_MODEL_TOLERANCE`] when it states none): its pieces from the curve's start to
+    /// its end, or from its end to its start when `reversed`, the first starting at the
+    /// periodic copy nearest `near` (the end of the loop's piece before), and the bound on
+    /// their 3-D distance from the curve.
+    pub(super) fn computed_pieces(
+        &self,
+        surface: &Surface,
+        reversed: bool,
+        tolerance: Tolerance,
+        near: Option<Point>,
+    ) -> Result<(Vec<Piece>, f64), IgesError> {
+        let edge = self.model_curve()?;
+        let (t0, t1) = self.leaf.range;
+        let range = if reversed { (t1, t0) } else { (t0, t1) };
+        let options = PcurveOptions::DEFAULT
+            .with_tolerance(tolerance.stated().unwrap_or(DEFAULT_MODEL_TOLERANCE))
+            .with_near(near.map(|p| [p.x, p.y]));
+        let p = pcurve(surface, &edge, Some(range), &options)
+            .map_err(|e| IgesError::geometry(&self.who(), e))?;
+        let de = self.leaf.de;
+        Ok((
+            p.curves
+                .into_iter()
+                .map(|curve| Piece { de, curve })
+                .collect(),
+            p.deviation,
+        ))
     }
 
     /// The curve placed in model space, in its own parameter (not trimmed).

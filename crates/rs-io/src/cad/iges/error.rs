@@ -446,26 +446,6 @@ pub enum IgesError {
         /// The surface's type.
         kind: i64,
     },
-    /// A 142 without a parameter-space curve on a surface that is not a plane.
-    #[error(
-        "DE {curve}: curve on surface has no parameter-space curve (pointer 0) and its surface \
-         {surface} is not a plane"
-    )]
-    NoParameterCurve {
-        /// The 142 entry.
-        curve: usize,
-        /// The surface (`DE 35 (128 rational B-spline surface)`).
-        surface: String,
-    },
-    /// An edge (508) or boundary curve (141) without a parameter-space curve on a surface
-    /// that is not a plane.
-    #[error("{who} has no parameter-space curve and the surface {surface} is not a plane")]
-    NoEdgeParameterCurve {
-        /// The edge (`DE 11 (508 loop): edge 2`).
-        who: String,
-        /// The surface.
-        surface: String,
-    },
     /// A model-space curve that does not lie on its plane.
     #[error(
         "{who}: a control point of the model-space curve is {distance:e} off the surface's plane \

@@ -25,7 +25,7 @@ use rs_geom::surface::{ParamSurface, Surface};
 use rs_spline::prelude::*;
 use rs_spline::{BoundingBox, NurbsCurve, Point, segment};
 
-use super::curves::{Piece, reverse_pieces};
+use super::curves::{Piece, Placed, reverse_pieces};
 use super::directory::DirEntry;
 use super::error::IgesError;
 use super::surfaces::SurfaceInfo;
@@ -320,7 +320,13 @@ impl Iges<'_> {
                 face.edges.push(Vec::new());
                 face.natural_bounds = n2 == 0;
             }
-            1 => loops.push(self.curve_on_surface(e, pto, s, &info, &mut face.edges)?),
+            1 => loops.push(self.curve_on_surface(
+                e,
+                pto,
+                &info,
+                &mut face.edges,
+                &mut face.pcurve_deviation,
+            )?),
             _ => {
                 return Err(IgesError::Flag {
                     who,
@@ -331,7 +337,13 @@ impl Iges<'_> {
             }
         }
         for ptr in inner {
-            loops.push(self.curve_on_surface(e, ptr, s, &info, &mut face.edges)?);
+            loops.push(self.curve_on_surface(
+                e,
+                ptr,
+                &info,
+                &mut face.edges,
+                &mut face.pcurve_deviation,
+            )?);
         }
         Ok(loops)
     }
@@ -342,9 +354,9 @@ impl Iges<'_> {
         &self,
         face: &DirEntry,
         ptr: usize,
-        s: &DirEntry,
         info: &SurfaceInfo,
         edges: &mut Vec<Vec<Edge>>,
+        deviation: &mut Option<f64>,
     ) -> Result<Vec<NurbsCurve>, IgesError> {
         let c = self.entry_of(
             ptr,
@@ -375,18 +387,11 @@ impl Iges<'_> {
                 .map(|l| l.param_piece())
                 .collect::<Result<Vec<_>, _>>()?
         } else {
-            let plane = self.plane_of(s, info, || IgesError::NoParameterCurve {
-                curve: c.de,
-                surface: self.who(s),
-            })?;
             let leaves = match model {
                 Some(m) => m?,
                 None => self.curve_leaves(cptr, &format!("{who}: model-space curve"))?,
             };
-            leaves
-                .iter()
-                .map(|l| l.plane_piece(&plane, self.tolerance))
-                .collect::<Result<Vec<_>, _>>()?
+            self.model_pieces(&leaves, false, info, None, deviation)?
         };
         let named = if bptr != 0 { bptr } else { c.de };
         let closed = self.close_loop(named, c.de, pieces, &mut loop_edges, info);
@@ -394,19 +399,44 @@ impl Iges<'_> {
         closed
     }
 
-    /// The plane coordinates of surface `s`: the error of a plane entity (108, 190) that could
-    /// not be read, `not_plane` for any other surface that is not a plane.
-    pub(super) fn plane_of(
+    /// The `(u, v)` pieces of the model-space curves `leaves` of one boundary curve or edge on
+    /// a face's surface (`info`), in the loop's direction (the leaves run backwards when `reversed`): on a
+    /// plane (108, 190, a flat 128) the curves mapped into it exactly; on another surface their
+    /// pcurves computed by [`rs_geom::pcurve::pcurve`], the first starting near `near` (the end
+    /// of the loop's piece before), their deviation bound raised into `deviation`. A plane or
+    /// surface that could not be read gives its error.
+    pub(super) fn model_pieces(
         &self,
-        s: &DirEntry,
+        leaves: &[Placed],
+        reversed: bool,
         info: &SurfaceInfo,
-        not_plane: impl FnOnce() -> IgesError,
-    ) -> Result<rs_geom::AffinePlaneCoordinates, IgesError> {
-        match (&info.surface, info.plane) {
-            (_, Some(plane)) => Ok(plane),
-            (Err(e), None) if s.kind == 108 || s.kind == 190 => Err(e.clone()),
-            _ => Err(not_plane()),
+        near: Option<Point>,
+        deviation: &mut Option<f64>,
+    ) -> Result<Vec<Piece>, IgesError> {
+        if let Some(plane) = info.plane {
+            let mut pieces = leaves
+                .iter()
+                .map(|l| l.plane_piece(&plane, self.tolerance))
+                .collect::<Result<Vec<_>, _>>()?;
+            if reversed {
+                reverse_pieces(&mut pieces);
+            }
+            return Ok(pieces);
         }
+        let surface = info.surface.as_ref().map_err(Clone::clone)?;
+        let mut pieces: Vec<Piece> = Vec::new();
+        let ordered: Vec<&Placed> = if reversed {
+            leaves.iter().rev().collect()
+        } else {
+            leaves.iter().collect()
+        };
+        for leaf in ordered {
+            let start = pieces.last().map(|p| p.curve.end_point()).or(near);
+            let (these, d) = leaf.computed_pieces(surface, reversed, self.tolerance, start)?;
+            *deviation = Some(deviation.unwrap_or(0.0).max(d));
+            pieces.extend(these);
+        }
+        Ok(pieces)
     }
 
     /// The parameter rectangle of surface `s` as a loop (for a 144 with `N1 = 0`, a 510 with
@@ -544,7 +574,7 @@ impl Iges<'_> {
         let sptr = p.pointer("SPTR")?;
         let n = p.count("N")?;
         let bounds = p.pointers("N", n, "BDPT")?;
-        let (s, info) = self.face_surface(e, sptr, face)?;
+        let (_, info) = self.face_surface(e, sptr, face)?;
         if n == 0 {
             return Err(IgesError::Nothing {
                 who,
@@ -553,7 +583,7 @@ impl Iges<'_> {
         }
         bounds
             .into_iter()
-            .map(|b| self.boundary(e, b, s, &info, &mut face.edges))
+            .map(|b| self.boundary(e, b, &info, &mut face.edges, &mut face.pcurve_deviation))
             .collect()
     }
 
@@ -563,9 +593,9 @@ impl Iges<'_> {
         &self,
         face: &DirEntry,
         ptr: usize,
-        s: &DirEntry,
         info: &SurfaceInfo,
         edges: &mut Vec<Vec<Edge>>,
+        deviation: &mut Option<f64>,
     ) -> Result<Vec<NurbsCurve>, IgesError> {
         let b = self.entry_of(
             ptr,
@@ -609,16 +639,9 @@ impl Iges<'_> {
                 }
             };
             let leaves = self.curve_leaves(model, &from);
-            let mut these = if params.is_empty() {
-                let plane = self.plane_of(s, info, || IgesError::NoEdgeParameterCurve {
-                    who: from.clone(),
-                    surface: self.who(s),
-                })?;
-                leaves
-                    .clone()?
-                    .iter()
-                    .map(|l| l.plane_piece(&plane, self.tolerance))
-                    .collect::<Result<Vec<_>, _>>()?
+            let these = if params.is_empty() {
+                let near = pieces.last().map(|p: &Piece| p.curve.end_point());
+                self.model_pieces(&leaves.clone()?, reversed, info, near, deviation)?
             } else {
                 let mut these = Vec::new();
                 for ptr in params {
@@ -626,6 +649,9 @@ impl Iges<'_> {
                     for l in self.curve_leaves(ptr, &from)? {
                         these.push(l.param_piece()?);
                     }
+                }
+                if reversed {
+                    reverse_pieces(&mut these);
                 }
                 these
             };
@@ -639,9 +665,6 @@ impl Iges<'_> {
                     e.reverse();
                 }
                 loop_edges.extend(e);
-            }
-            if reversed {
-                reverse_pieces(&mut these);
             }
             pieces.extend(these);
         }
