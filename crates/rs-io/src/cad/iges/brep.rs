@@ -9,7 +9,8 @@
 //!     so, whatever `OF`, and reads them so); `OF` says whether the loop runs along the edge's
 //!     model curve (1) or against it (0): the 3-D edge and, where there is no parameter-space
 //!     curve (`K = 0`, Open CASCADE's planes), the model curve mapped into the plane's `(u,
-//!     v)` are taken in that direction.
+//!     v)` (on another surface its pcurve computed by `rs_geom::pcurve`) are taken in that
+//!     direction.
 //!   - `TYPE = 1`: a vertex of the 502 vertex list `EDGE`: a degenerate edge (a pole of a
 //!     sphere), whose parameter-space curves (Open CASCADE writes the pole's segment) are part
 //!     of the loop; it has no 3-D edge.

@@ -4,8 +4,9 @@
 //! - 144 trimmed surface: `PTS, N1, N2, PTO, PTI1..PTIN2`; the outer boundary (a 142, or the
 //!   surface's parameter rectangle when `N1 = 0`) then the inner ones.
 //! - 142 curve on a parametric surface: `CRTN, SPTR, BPTR, CPTR, PREF`; the loop is curve
-//!   `BPTR` in parameter space, or, if `BPTR = 0`, the model curve `CPTR` mapped onto a plane;
-//!   `CPTR` gives the loop's 3-D edges.
+//!   `BPTR` in parameter space, or, if `BPTR = 0`, the model curve `CPTR` mapped onto a plane
+//!   or, on another surface, its pcurve computed (`rs_geom::pcurve`); `CPTR` gives the loop's
+//!   3-D edges.
 //! - 143 bounded surface: `TYPE, SPTR, N, BDPT1..BDPTN`, the first boundary taken as the
 //!   outer one; 141 boundary: `TYPE, PREF, SPTR, N`, then per model curve `CRVPT, SENSE, K`
 //!   and its `K` parameter-space curves (sense 2: the pieces and the edge reversed).

@@ -13,7 +13,9 @@
 //!   rectangle) then the inner boundaries, each a 142 curve on a parametric surface whose
 //!   parameter-space curve is read; if that pointer is 0 and the surface is a plane (108, 190,
 //!   or a 128 that is a flat parallelogram), the model-space curve is mapped into `(u, v)`
-//!   exactly (the map is affine). The 142's model-space curve gives the face's 3-D edges.
+//!   exactly (the map is affine), on any other surface its pcurve is computed by
+//!   `rs_geom::pcurve` (the face's `pcurve_deviation` bounds the 3-D distance). The 142's
+//!   model-space curve gives the face's 3-D edges.
 //! - 143 bounded surface with 141 boundaries (their parameter-space curves, each model curve's
 //!   sense applied).
 //! - 510 faces of B-rep solids (186 solids of 514 shells; a 510 no shell lists is a face of
