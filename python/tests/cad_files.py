@@ -186,8 +186,8 @@ class OccFile:
 
         box = Bnd_Box()
         BRepBndLib.Add_s(shape, box)
-        x0, y0, z0, x1, y1, z1 = box.Get()
-        size = math.sqrt((x1 - x0) ** 2 + (y1 - y0) ** 2 + (z1 - z0) ** 2)
+        lo, hi = box.CornerMin(), box.CornerMax()
+        size = lo.Distance(hi)
         return OccFile(path, "STEP" if step else "IGES", faces, entities, mm, rad, size=size)
 
     def face_sample(self, k: int, n: int = POINTS_PER_FACE) -> "FaceSample":
