@@ -5,7 +5,7 @@
 //! face is bounded by trimming loops of 2-D curves in `(u, v)` ("pcurves"). This module reads
 //! those loops, exactly (NURBS, lines and conics stay what they are), into one [`CadModel`]
 //! per file, whose faces come in the order `OpenCASCADE`'s face explorer visits them in the same
-//! file; [`CadModel::face_domain`] turns face `K` into a [`Domain`](rs_spline::Domain). The
+//! file; [`CadModel::face_domain`] turns face `K` into a [`Domain`]. The
 //! model itself (faces, shells, solids) is `rs-geom`'s [`Model`].
 //!
 //! # Tolerance
