@@ -42,7 +42,7 @@ fn check_rule(name: &str, domain: &Domain, degree: usize) {
         "{name} {degree}: {sum} vs area {area}"
     );
 
-    let exact = monomial_moments(domain, degree).unwrap();
+    let exact = monomial_moments(domain, degree, FillRule::EvenOdd).unwrap();
     let bbox = domain.bounding_box();
     let rx = bbox.min.x.abs().max(bbox.max.x.abs());
     let ry = bbox.min.y.abs().max(bbox.max.y.abs());
