@@ -112,13 +112,15 @@ impl From<MethodArg> for inrs::Method {
     }
 }
 
-/// `classify --fill-rule` and `fractions --fill-rule`.
+/// `--fill-rule` of `classify`, `fractions`, `cubature`, `integrate` and `info`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum FillRuleArg {
-    /// Inside where the winding number is odd (agrees with the crossing methods).
+    /// Inside where the winding number is odd: holes are holes whatever the loops'
+    /// orientation.
     #[value(alias = "evenodd")]
     EvenOdd,
-    /// Inside where the winding number is not zero.
+    /// Inside where the winding number is not zero: two nested counter-clockwise circles fill
+    /// the outer disc.
     #[value(alias = "non-zero")]
     Nonzero,
 }

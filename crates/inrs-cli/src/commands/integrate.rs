@@ -3,7 +3,7 @@
 
 use clap::Args;
 
-use crate::args::DomainArg;
+use crate::args::{DomainArg, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_cubature_degree};
 use crate::cli::output::Output;
@@ -35,12 +35,16 @@ pub(crate) struct IntegrateArgs {
     /// The degree of exactness of the rule, 0 to 40.
     #[arg(long, default_value_t = DEFAULT_DEGREE, value_parser = parse_cubature_degree, allow_negative_numbers = true)]
     degree: usize,
+    /// Which winding numbers are inside (as `inrs cubature --fill-rule`: loops that cross are
+    /// refused).
+    #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
+    fill_rule: FillRuleArg,
 }
 
 impl IntegrateArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let f = Function::parse(&self.function)?;
-        let (rule, seconds) = build_rule(&self.domain, self.degree)?;
+        let (rule, seconds) = build_rule(&self.domain, self.degree, self.fill_rule.into())?;
         let integral = rule
             .integrate(|p| f.at(p))
             .map_err(|e| CliError::Message(format!("--function {:?}: {e}", self.function)))?;
