@@ -25,7 +25,10 @@ pub struct BoundaryCrossing {
 impl std::fmt::Display for BoundaryCrossing {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (a, b) = self.curves;
-        let (x, y) = (self.near.x, self.near.y);
+        let (x, y) = (
+            crate::significant(self.near.x),
+            crate::significant(self.near.y),
+        );
         if a == b {
             write!(f, "curve {a} crosses itself near ({x}, {y})")
         } else {
