@@ -27,6 +27,7 @@ from . import _inrs
 __all__ = [
     "Domain",
     "DomainSummary",
+    "Formula",
     "LoopSummary",
     "Spline",
     "OUTSIDE",
@@ -509,7 +510,7 @@ class Domain:
 
     def integrate(
         self,
-        f: Callable[[np.ndarray, np.ndarray], ArrayLike],
+        f: Union[str, Callable[[np.ndarray, np.ndarray], ArrayLike]],
         degree: int = 20,
         *,
         fill_rule: str = "even-odd",
@@ -523,7 +524,8 @@ class Domain:
         ``f`` is called once, as :func:`fit` calls it: ``f(x, y)`` with the two 1-D float64
         arrays of the nodes' coordinates (every node strictly inside the domain), and must
         return one value per node (an array of shape ``(N,)``) or a scalar (a constant, used at
-        every node). The rule of each degree is built on the first call and kept. The domain is
+        every node); or it is a formula's text, read as ``inrs integrate --function`` reads it
+        (:class:`Formula`). The rule of each degree is built on the first call and kept. The domain is
         the set it fills under ``fill_rule`` (``even-odd`` or ``nonzero``, as
         :func:`cubature`).
 
@@ -536,6 +538,7 @@ class Domain:
         >>> bool(abs(d.integrate(lambda x, y: x**2 * y**2, degree=4) - np.pi / 24) < 1e-14)
         True
         """
+        f = _callable(f)
         rule = self._cubature_rule(degree, fill_rule)
         nodes = rule.nodes()
         out = f(nodes[:, 0], nodes[:, 1])
@@ -556,6 +559,51 @@ class Domain:
         """The boundary as closed polylines within ``accuracy`` (absolute): one ``(M, 2)`` array
         per loop (for comparisons with polygon tools)."""
         return self._native.flatten(float(accuracy))
+
+
+class Formula:
+    """A formula in ``x`` and ``y``, read by the one grammar of ``inrs fit --function`` and
+    ``inrs integrate --function``: numbers (``1e-3``, ``2.5E+4`` too), ``+ - * /``, ``^`` or
+    ``**`` (right to left; ``-x^2`` is ``-(x^2)``), parentheses, the constants ``pi``, ``e``,
+    ``tau`` and the functions ``inrs fit --help`` lists (``sin``, ``exp``, ``sqrt``,
+    ``atan2(y, x)``, ...). A bad formula is a one-line ``ValueError`` naming the column and
+    what was expected there. Calling it evaluates it on arrays (broadcast together), the GIL
+    released; :func:`fit` and :meth:`Domain.integrate` take the text itself too.
+
+    >>> f = Formula("-x^2 + 2.5E+1 * y - 1e-3")
+    >>> f(np.array([3.0, 0.0]), 2.0).tolist()
+    [40.999, 49.999]
+    >>> Formula("foo(x)")
+    Traceback (most recent call last):
+    ...
+    ValueError: formula "foo(x)": column 1: unknown function "foo" (see the functions in `inrs fit --help`)
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(self, text: str):
+        self._native = _inrs.Formula(str(text))
+
+    @property
+    def text(self) -> str:
+        """The formula as written."""
+        return self._native.text
+
+    def __call__(self, x: ArrayLike, y: ArrayLike) -> np.ndarray:
+        x, y = np.broadcast_arrays(np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64))
+        values = self._native.evaluate(np.ravel(x), np.ravel(y))
+        return values.reshape(x.shape)
+
+    def __repr__(self) -> str:
+        return f"Formula({self.text!r})"
+
+    def __reduce__(self):
+        return (Formula, (self.text,))
+
+
+def _callable(f: Union[str, Callable[[np.ndarray, np.ndarray], ArrayLike]]):
+    """``f`` itself, or the :class:`Formula` of a string."""
+    return Formula(f) if isinstance(f, str) else f
 
 
 class Spline:
@@ -673,7 +721,7 @@ def mesh(domain: Domain, ny: int, refine: str = "none") -> dict:
 
 def fit(
     domain: Domain,
-    f: Callable[[np.ndarray, np.ndarray], ArrayLike],
+    f: Union[str, Callable[[np.ndarray, np.ndarray], ArrayLike]],
     *,
     ny: int = 9,
     degree: int = 5,
@@ -681,7 +729,9 @@ def fit(
 ) -> Spline:
     """The quasi-interpolating spline of degree ``degree`` of ``f`` on the curved triangulation
     of ``mesh(domain, ny, refine)`` (continuous, exact for polynomials of that degree). ``f``
-    is called once, with the arrays ``x``, ``y`` of every point it is needed at."""
+    is called once, with the arrays ``x``, ``y`` of every point it is needed at; or it is a
+    formula's text, read as ``inrs fit --function`` reads it (:class:`Formula`)."""
+    f = _callable(f)
     plan = _inrs.FitPlan(domain._native, int(ny), int(degree), refine)
     xy = plan.points()
     values = np.ascontiguousarray(np.broadcast_to(f(xy[:, 0], xy[:, 1]), (len(xy),)), dtype=np.float64)

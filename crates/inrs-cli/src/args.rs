@@ -87,6 +87,13 @@ pub(crate) fn all_faces(spec: &str) -> Option<&str> {
     (tail.eq_ignore_ascii_case("#face:*") && is_cad).then_some(file)
 }
 
+/// The help of `--function` (`fit`, `integrate`): the grammar of `inrs::io::formula`.
+pub(crate) const FUNCTION_HELP: &str = "A formula in x and y: numbers (1e-3 and 2.5E+4 too), \
++ - * / and ^ (or **; -x^2 is -(x^2), 2^3^2 is 2^9), parentheses, the constants pi, e, tau, \
+the functions abs signum sqrt cbrt exp ln log (natural) log2 log10 sin cos tan asin acos atan \
+sinh cosh tanh asinh acosh atanh floor ceil round trunc fract, and atan2(y, x), min(a, b), \
+max(a, b), hypot(a, b). A leading minus is read as the formula: --function -x^2.";
+
 /// `classify --method`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {

@@ -13,6 +13,8 @@
 //!   command line does.
 //! - [`points`]: the points files (CSV `x,y`, `.npy`) the command line streams points from,
 //!   read in bounded memory, in order or by position.
+//! - [`formula`]: formulas in `x` and `y` (`inrs fit --function`, `inrs integrate
+//!   --function`, the Python package), one grammar with standard float literals.
 //!
 //! Every reader produces exact NURBS (no flattening): lines stay degree 1, Bezier commands
 //! keep their degree, arcs are exact conics. Loops are watertight: shared end points are
@@ -36,6 +38,7 @@ pub mod cad;
 pub mod dxf_file;
 mod error;
 pub mod font;
+pub mod formula;
 pub mod json;
 pub mod points;
 pub mod svg;

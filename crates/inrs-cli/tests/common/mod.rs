@@ -11,6 +11,7 @@ pub(crate) fn inrs(args: &[&str]) -> std::process::Output {
 }
 
 /// A file of `fixtures/`.
+#[allow(dead_code)] // not every test binary reads fixtures
 pub(crate) fn fixture(rel: &str) -> String {
     format!("{}/../../fixtures/{rel}", env!("CARGO_MANIFEST_DIR"))
 }
@@ -40,6 +41,7 @@ pub(crate) fn stdout_of_success(out: std::process::Output) -> String {
 }
 
 /// The last column of a CSV output, as text.
+#[allow(dead_code)] // not every test binary reads CSV
 pub(crate) fn last_column(text: &str) -> Vec<String> {
     text.lines()
         .skip(1)
