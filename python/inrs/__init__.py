@@ -236,8 +236,13 @@ class Domain:
         CAD face the larger of it and the file's own tolerance).
 
         Raises ``OSError`` if the file cannot be read and ``ValueError`` if it is not a domain.
+        An SVG ``path`` whose data has an error is drawn up to its last complete segment, as
+        renderers draw it, with a ``UserWarning`` naming the element and the error.
         """
-        return cls(_inrs.NativeDomain.load(os.fspath(path), closure_tol))
+        native, recovered = _inrs.NativeDomain.load(os.fspath(path), closure_tol)
+        for message in recovered:
+            warnings.warn(message, UserWarning, stacklevel=2)
+        return cls(native)
 
     @classmethod
     def from_json(cls, text: str) -> "Domain":

@@ -163,16 +163,18 @@ pub(crate) fn check_closure_tol(closure_tol: Option<f64>) -> PyResult<()> {
 impl NativeDomain {
     /// Reads a domain file: JSON, SVG, DXF, a font glyph `font.ttf#B`, or a face of a STEP or
     /// IGES part `part.step#face:3`; `closure_tol` (relative) overrides the closure tolerance.
+    /// Returns the domain and the messages of what the reader recovered from (an SVG path
+    /// drawn up to an error in its data), which the Python layer turns into warnings.
     #[staticmethod]
     #[pyo3(signature = (path, closure_tol = None))]
-    fn load(path: &str, closure_tol: Option<f64>) -> PyResult<Self> {
+    fn load(path: &str, closure_tol: Option<f64>) -> PyResult<(Self, Vec<String>)> {
         check_closure_tol(closure_tol)?;
         let options = inrs::io::LoadOptions {
             closure_tolerance: closure_tol,
         };
-        Ok(Self::new(
-            inrs::io::load_domain_with(path, &options).map_err(io_error)?,
-        ))
+        let loaded = inrs::io::load_domain_with_warnings(path, &options).map_err(io_error)?;
+        let warnings = loaded.warnings.iter().map(|w| format!("{path}: {w}")).collect();
+        Ok((Self::new(loaded.domain), warnings))
     }
 
     /// A domain from the text of a JSON domain file.

@@ -26,18 +26,24 @@ pub(crate) struct DomainArg {
 }
 
 impl DomainArg {
-    /// Reads the domain, choosing the reader by the file name.
+    /// Reads the domain, choosing the reader by the file name; what the reader recovered from
+    /// (an SVG path drawn up to an error in its data) is a warning on standard error, one line
+    /// each.
     pub(crate) fn load(&self) -> Result<Domain, CliError> {
         let spec = self.domain.to_string_lossy();
         let options = inrs::io::LoadOptions {
             closure_tolerance: self.closure_tol,
         };
-        inrs::io::load_domain_with(&spec, &options).map_err(|e| match e {
+        let loaded = inrs::io::load_domain_with_warnings(&spec, &options).map_err(|e| match e {
             inrs::io::IoError::Read { .. }
             | inrs::io::IoError::UnknownFormat { .. }
             | inrs::io::IoError::FormatDisabled { .. } => CliError::Message(e.to_string()),
             other => CliError::Message(format!("{spec}: {other}")),
-        })
+        })?;
+        for w in &loaded.warnings {
+            eprintln!("inrs: warning: {spec}: {w}");
+        }
+        Ok(loaded.domain)
     }
 
     /// An error about the domain, prefixed with its file name.
