@@ -168,10 +168,17 @@ pub fn load_svg_file(path: impl AsRef<Path>, open: OpenSubpaths) -> Result<crate
 /// errors.
 fn read_svg(text: &str, open: OpenSubpaths, what: &str) -> Result<crate::Loaded, IoError> {
     let mut b = LoopBuilder::new(open);
-    let mut warnings = Vec::new();
+    let mut warnings: Vec<IoError> = Vec::new();
     document::read_document(text, &mut b, &mut warnings)?;
+    let curves = b.into_curves().map_err(curve_error)?;
+    if curves.is_empty()
+        && let Some(first) = warnings.first()
+    {
+        // Nothing drawn: the path data errors say why.
+        return Err(IoError::Empty(format!("{what} ({first})")));
+    }
     Ok(crate::Loaded {
-        domain: domain(b.into_curves().map_err(curve_error)?, what)?,
+        domain: domain(curves, what)?,
         warnings,
     })
 }
