@@ -26,7 +26,12 @@ impl NativeCubatureRule {
     /// a residual not reached) are `ValueError`s with the library's one-line message.
     #[new]
     #[pyo3(signature = (domain, degree, fill_rule = "even-odd"))]
-    fn new(py: Python<'_>, domain: &NativeDomain, degree: usize, fill_rule: &str) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        domain: &NativeDomain,
+        degree: usize,
+        fill_rule: &str,
+    ) -> PyResult<Self> {
         let rule: FillRule = fill_rule.parse().map_err(value_error)?;
         let options = CubatureOptions::new(degree).with_fill_rule(rule);
         let d = &domain.domain;

@@ -173,7 +173,11 @@ impl NativeDomain {
             closure_tolerance: closure_tol,
         };
         let loaded = inrs::io::load_domain_with_warnings(path, &options).map_err(io_error)?;
-        let warnings = loaded.warnings.iter().map(|w| format!("{path}: {w}")).collect();
+        let warnings = loaded
+            .warnings
+            .iter()
+            .map(|w| format!("{path}: {w}"))
+            .collect();
         Ok((Self::new(loaded.domain), warnings))
     }
 

@@ -126,7 +126,7 @@ def test_green_capabilities_follow_the_rule_or_name_the_crossing(name):
             continue
         area = AREAS[(name, rule)]
         assert d.filled_area(rule) == pytest.approx(area, rel=1e-12)
-        fractions = d.cell_fractions(xe, ye, fill_rule=rule).fractions
+        fractions = d.cell_fractions(xe, ye, fill_rule=rule)
         assert fractions.sum() * cell == pytest.approx(area, rel=1e-11)
         nodes, weights = inrs.cubature(d, 6, fill_rule=rule)
         assert weights.sum() == pytest.approx(area, rel=1e-12)
