@@ -27,6 +27,7 @@ from . import _inrs
 __all__ = [
     "Domain",
     "DomainSummary",
+    "Formula",
     "LoopSummary",
     "Spline",
     "OUTSIDE",
@@ -222,7 +223,7 @@ class Domain:
         self._native = native
         self._summary: Optional[DomainSummary] = None
         # Cubature rules by degree, built on first use and kept (the domain never changes).
-        self._rules: "dict[int, _inrs.CubatureRule]" = {}
+        self._rules: "dict[tuple[int, str], _inrs.CubatureRule]" = {}
 
     @classmethod
     def load(cls, path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "Domain":
@@ -235,8 +236,13 @@ class Domain:
         CAD face the larger of it and the file's own tolerance).
 
         Raises ``OSError`` if the file cannot be read and ``ValueError`` if it is not a domain.
+        An SVG ``path`` whose data has an error is drawn up to its last complete segment, as
+        renderers draw it, with a ``UserWarning`` naming the element and the error.
         """
-        return cls(_inrs.NativeDomain.load(os.fspath(path), closure_tol))
+        native, recovered = _inrs.NativeDomain.load(os.fspath(path), closure_tol)
+        for message in recovered:
+            warnings.warn(message, UserWarning, stacklevel=2)
+        return cls(native)
 
     @classmethod
     def from_json(cls, text: str) -> "Domain":
@@ -290,10 +296,11 @@ class Domain:
         """Facts about the domain, as ``inrs info`` prints them: a :class:`DomainSummary` with
         read-only attributes ``curves`` (number of NURBS curves), ``bezier_pieces``,
         ``max_degree``, ``rational``, ``loops`` (a list of :class:`LoopSummary`: ``first_curve``,
-        ``last_curve``, ``closed``, ``gap``, ``signed_area``), ``filled_area`` (the even-odd
-        area, ``None`` for open or coincident loops), ``signed_area`` (sum over the loops),
-        ``areas_converged`` and ``bounds`` ``(xmin, ymin, xmax, ymax)``. Computed once and
-        kept (the domain never changes).
+        ``last_curve``, ``closed``, ``gap``, ``signed_area``), ``fill_rule`` (``"even-odd"``),
+        ``filled_area`` (the even-odd area, ``None`` for open, coincident or crossing loops:
+        :meth:`filled_area` says why), ``signed_area`` (sum over the loops), ``areas_converged``
+        and ``bounds`` ``(xmin, ymin, xmax, ymax)``. Computed once and kept (the domain never
+        changes).
 
         >>> s = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}').summary()
         >>> s.curves, len(s.loops), round(s.filled_area, 12), s.bounds
@@ -303,12 +310,30 @@ class Domain:
             self._summary = self._native.summary()
         return self._summary
 
+    def filled_area(self, fill_rule: str = "even-odd") -> float:
+        """The area the domain fills under ``fill_rule`` (``even-odd`` or ``nonzero``), as
+        ``inrs info --fill-rule`` prints it: exact for closed loops that do not cross each other
+        or themselves. ``ValueError`` (one line, naming the crossing or the loop) for open,
+        coincident or crossing loops, whose nesting does not decide the fill.
+
+        >>> d = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 2}},'
+        ...                      ' {"circle": {"center": [0, 0], "radius": 1}}]}')
+        >>> round(d.filled_area() / np.pi, 12), round(d.filled_area("nonzero") / np.pi, 12)
+        (3.0, 4.0)
+        """
+        return self._native.filled_area(str(fill_rule))
+
     @property
     def area(self) -> float:
-        """The area filled by the even-odd rule (holes subtracted); for open or coincident
-        loops, the absolute value of the signed area."""
+        """The area filled by the even-odd rule (holes subtracted); for open loops, the
+        absolute value of the signed area. ``ValueError`` for coincident or crossing loops
+        (see :meth:`filled_area`)."""
         s = self.summary()
-        return float(s.filled_area) if s.filled_area is not None else abs(s.signed_area)
+        if s.filled_area is not None:
+            return float(s.filled_area)
+        if not all(loop.closed for loop in s.loops):
+            return abs(s.signed_area)
+        return self.filled_area()
 
     @property
     def bounds(self) -> Tuple[float, float, float, float]:
@@ -349,9 +374,10 @@ class Domain:
         of one shape (the result has that shape); any float type and memory layout. A point is
         on the boundary when it is within ``tol`` times the bounding-box diagonal of the curves
         (measured vertically or horizontally); all methods (``fast``, ``inrs1``, ``inrs2``,
-        ``gwn``) agree elsewhere. ``gwn`` rounds the generalized winding number and accepts open
-        boundaries; ``fill_rule`` (``even-odd`` or ``nonzero``) applies to it. ``threads``
-        limits the cores used (default all).
+        ``gwn``) agree elsewhere. ``fill_rule`` says which winding numbers are inside:
+        ``even-odd`` (odd) or ``nonzero`` (not 0), for every method and any loops (nested,
+        overlapping, crossing themselves). ``gwn`` rounds the generalized winding number and
+        accepts open boundaries. ``threads`` limits the cores used (default all).
         """
         if method not in _METHODS:
             raise ValueError(f"unknown method {method!r} (one of {', '.join(_METHODS)})")
@@ -420,7 +446,9 @@ class Domain:
         ``fill_rule`` is ``even-odd`` (the default) or ``nonzero`` (filled where the winding
         number is not zero, from the loops' orientations: two nested counter-clockwise circles
         fill the outer disc, with opposite orientations the ring), for closed loops that do not
-        cross (holes, nesting, touching loops are fine); an unknown rule is a ``ValueError``. Values are exact up to rounding (within about ``1e-12`` of the cell's area;
+        cross (holes, nesting, touching loops are fine): loops that cross each other or
+        themselves are a ``ValueError`` naming the crossing, as is an unknown rule. Values are
+        exact up to rounding (within about ``1e-12`` of the cell's area;
         cells the boundary misses are exactly 0 or 1); a face on which the boundary runs takes
         the value of the line just to its right (vertical) or just above it (horizontal). The
         grid need not cover the domain. One call of the library (``GridCoverage``) with the GIL
@@ -469,21 +497,29 @@ class Domain:
             return fractions
         return CellCoverage(fractions, c, xa, ya)
 
-    def _cubature_rule(self, degree: int) -> "_inrs.CubatureRule":
-        """The cubature rule of degree ``degree``, built once (GIL released) and kept."""
+    def _cubature_rule(self, degree: int, fill_rule: str = "even-odd") -> "_inrs.CubatureRule":
+        """The cubature rule of degree ``degree`` on the set the domain fills under
+        ``fill_rule``, built once (GIL released) and kept."""
         try:
             degree = operator.index(degree)
         except TypeError:
             raise ValueError(f"degree must be an integer, got {degree!r}") from None
         if degree < 0:
             raise ValueError(f"degree must be an integer >= 0, got {degree}")
-        rule = self._rules.get(degree)
+        key = (degree, str(fill_rule))
+        rule = self._rules.get(key)
         if rule is None:
-            rule = _inrs.CubatureRule(self._native, degree)
-            self._rules[degree] = rule
+            rule = _inrs.CubatureRule(self._native, degree, key[1])
+            self._rules[key] = rule
         return rule
 
-    def integrate(self, f: Callable[[np.ndarray, np.ndarray], ArrayLike], degree: int = 20) -> float:
+    def integrate(
+        self,
+        f: Union[str, Callable[[np.ndarray, np.ndarray], ArrayLike]],
+        degree: int = 20,
+        *,
+        fill_rule: str = "even-odd",
+    ) -> float:
         """The integral of ``f`` over the domain by the positive interior cubature rule of
         degree ``degree`` (:func:`cubature`, as ``inrs integrate --degree``): ``sum_i w_i f(x_i,
         y_i)``, exact up to the rule's residual (about ``1e-15`` relative) when ``f`` is a
@@ -493,18 +529,22 @@ class Domain:
         ``f`` is called once, as :func:`fit` calls it: ``f(x, y)`` with the two 1-D float64
         arrays of the nodes' coordinates (every node strictly inside the domain), and must
         return one value per node (an array of shape ``(N,)``) or a scalar (a constant, used at
-        every node). The rule of each degree is built on the first call and kept.
+        every node); or it is a formula's text, read as ``inrs integrate --function`` reads it
+        (:class:`Formula`). The rule of each degree is built on the first call and kept. The domain is
+        the set it fills under ``fill_rule`` (``even-odd`` or ``nonzero``, as
+        :func:`cubature`).
 
         Errors (``ValueError``, one line): a degree above :data:`MAX_CUBATURE_DEGREE`, an open
-        boundary, a domain too thin or too small against its bounding box for the rule's
-        candidate points, ``f`` returning another shape or non-numbers, a value that is not
-        finite (naming the node: its index and coordinates).
+        boundary, loops that cross, a domain too thin or too small against its bounding box
+        for the rule's candidate points, ``f`` returning another shape or non-numbers, a value
+        that is not finite (naming the node: its index and coordinates).
 
         >>> d = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
         >>> bool(abs(d.integrate(lambda x, y: x**2 * y**2, degree=4) - np.pi / 24) < 1e-14)
         True
         """
-        rule = self._cubature_rule(degree)
+        f = _callable(f)
+        rule = self._cubature_rule(degree, fill_rule)
         nodes = rule.nodes()
         out = f(nodes[:, 0], nodes[:, 1])
         try:
@@ -524,6 +564,51 @@ class Domain:
         """The boundary as closed polylines within ``accuracy`` (absolute): one ``(M, 2)`` array
         per loop (for comparisons with polygon tools)."""
         return self._native.flatten(float(accuracy))
+
+
+class Formula:
+    """A formula in ``x`` and ``y``, read by the one grammar of ``inrs fit --function`` and
+    ``inrs integrate --function``: numbers (``1e-3``, ``2.5E+4`` too), ``+ - * /``, ``^`` or
+    ``**`` (right to left; ``-x^2`` is ``-(x^2)``), parentheses, the constants ``pi``, ``e``,
+    ``tau`` and the functions ``inrs fit --help`` lists (``sin``, ``exp``, ``sqrt``,
+    ``atan2(y, x)``, ...). A bad formula is a one-line ``ValueError`` naming the column and
+    what was expected there. Calling it evaluates it on arrays (broadcast together), the GIL
+    released; :func:`fit` and :meth:`Domain.integrate` take the text itself too.
+
+    >>> f = Formula("-x^2 + 2.5E+1 * y - 1e-3")
+    >>> f(np.array([3.0, 0.0]), 2.0).tolist()
+    [40.999, 49.999]
+    >>> Formula("foo(x)")
+    Traceback (most recent call last):
+    ...
+    ValueError: formula "foo(x)": column 1: unknown function "foo" (see the functions in `inrs fit --help`)
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(self, text: str):
+        self._native = _inrs.Formula(str(text))
+
+    @property
+    def text(self) -> str:
+        """The formula as written."""
+        return self._native.text
+
+    def __call__(self, x: ArrayLike, y: ArrayLike) -> np.ndarray:
+        x, y = np.broadcast_arrays(np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64))
+        values = self._native.evaluate(np.ravel(x), np.ravel(y))
+        return values.reshape(x.shape)
+
+    def __repr__(self) -> str:
+        return f"Formula({self.text!r})"
+
+    def __reduce__(self):
+        return (Formula, (self.text,))
+
+
+def _callable(f: Union[str, Callable[[np.ndarray, np.ndarray], ArrayLike]]):
+    """``f`` itself, or the :class:`Formula` of a string."""
+    return Formula(f) if isinstance(f, str) else f
 
 
 class Spline:
@@ -641,7 +726,7 @@ def mesh(domain: Domain, ny: int, refine: str = "none") -> dict:
 
 def fit(
     domain: Domain,
-    f: Callable[[np.ndarray, np.ndarray], ArrayLike],
+    f: Union[str, Callable[[np.ndarray, np.ndarray], ArrayLike]],
     *,
     ny: int = 9,
     degree: int = 5,
@@ -649,33 +734,37 @@ def fit(
 ) -> Spline:
     """The quasi-interpolating spline of degree ``degree`` of ``f`` on the curved triangulation
     of ``mesh(domain, ny, refine)`` (continuous, exact for polynomials of that degree). ``f``
-    is called once, with the arrays ``x``, ``y`` of every point it is needed at."""
+    is called once, with the arrays ``x``, ``y`` of every point it is needed at; or it is a
+    formula's text, read as ``inrs fit --function`` reads it (:class:`Formula`)."""
+    f = _callable(f)
     plan = _inrs.FitPlan(domain._native, int(ny), int(degree), refine)
     xy = plan.points()
     values = np.ascontiguousarray(np.broadcast_to(f(xy[:, 0], xy[:, 1]), (len(xy),)), dtype=np.float64)
     return Spline(plan.finish(values))
 
 
-def cubature(domain: Domain, degree: int) -> Tuple[np.ndarray, np.ndarray]:
+def cubature(domain: Domain, degree: int, *, fill_rule: str = "even-odd") -> Tuple[np.ndarray, np.ndarray]:
     """A positive interior cubature rule of degree ``degree`` on ``domain`` (Sommariva and
     Vianello; ``inrs cubature --degree``): ``(nodes, weights)``, float64 arrays of shapes
     ``(N, 2)`` and ``(N,)``.
 
     At most ``(degree + 1)(degree + 2) / 2`` nodes, every one strictly inside the domain
     (:meth:`Domain.classify` says :data:`INSIDE`), every weight positive, and ``sum_i w_i
-    x_i^a y_i^b`` equal to the integral of ``x^a y^b`` over the domain (even-odd fill) for
-    ``a + b <= degree``, up to a relative residual of about ``1e-15``: the weights add up to
-    the area. Built with the GIL released, once per domain and degree (kept for
-    :meth:`Domain.integrate`). Errors (``ValueError``, one line): a degree above
-    :data:`MAX_CUBATURE_DEGREE`, an open boundary, a domain too thin or too small against its
-    bounding box for the candidate points, the residual not reached.
+    x_i^a y_i^b`` equal to the integral of ``x^a y^b`` over the set the domain fills under
+    ``fill_rule`` (``even-odd``, the default, or ``nonzero``) for ``a + b <= degree``, up to a
+    relative residual of about ``1e-15``: the weights add up to the filled area. Built with the
+    GIL released, once per domain, degree and rule (kept for :meth:`Domain.integrate`).
+    Errors (``ValueError``, one line): a degree above :data:`MAX_CUBATURE_DEGREE`, an open
+    boundary, loops that cross each other or themselves (naming the crossing), a domain too
+    thin or too small against its bounding box for the candidate points, the residual not
+    reached.
 
     >>> d = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
     >>> nodes, weights = cubature(d, 6)
     >>> nodes.shape[1], len(nodes) <= 28, bool((weights > 0).all()), round(float(weights.sum()), 12)
     (2, True, True, 3.14159265359)
     """
-    rule = domain._cubature_rule(degree)
+    rule = domain._cubature_rule(degree, fill_rule)
     return rule.nodes(), rule.weights()
 
 

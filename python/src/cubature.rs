@@ -4,7 +4,8 @@
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
-use inrs::cubature::CubatureRule;
+use inrs::contain::FillRule;
+use inrs::cubature::{CubatureOptions, CubatureRule};
 
 use crate::domain::NativeDomain;
 use crate::errors::value_error;
@@ -19,15 +20,23 @@ pub(crate) struct NativeCubatureRule {
 
 #[pymethods]
 impl NativeCubatureRule {
-    /// The rule of degree `degree` on `domain`: [`CubatureRule::new`] with the GIL released.
-    /// Its errors (a degree above `MAX_DEGREE`, an open boundary, a domain too thin for the
-    /// candidates, a residual not reached) are `ValueError`s with the library's one-line
-    /// message.
+    /// The rule of degree `degree` on the set `domain` fills under `fill_rule`:
+    /// [`CubatureRule::with_options`] with the GIL released. Its errors (a degree above
+    /// `MAX_DEGREE`, an open boundary, loops that cross, a domain too thin for the candidates,
+    /// a residual not reached) are `ValueError`s with the library's one-line message.
     #[new]
-    fn new(py: Python<'_>, domain: &NativeDomain, degree: usize) -> PyResult<Self> {
+    #[pyo3(signature = (domain, degree, fill_rule = "even-odd"))]
+    fn new(
+        py: Python<'_>,
+        domain: &NativeDomain,
+        degree: usize,
+        fill_rule: &str,
+    ) -> PyResult<Self> {
+        let rule: FillRule = fill_rule.parse().map_err(value_error)?;
+        let options = CubatureOptions::new(degree).with_fill_rule(rule);
         let d = &domain.domain;
         let rule = py
-            .detach(|| CubatureRule::new(d, degree))
+            .detach(|| CubatureRule::with_options(d, options))
             .map_err(value_error)?;
         Ok(Self { rule })
     }

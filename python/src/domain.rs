@@ -32,9 +32,9 @@ type CurveArrays<'py> = (
 #[pyclass(module = "inrs._inrs", name = "NativeDomain", frozen)]
 pub(crate) struct NativeDomain {
     pub(crate) domain: Domain,
-    /// What classifies, by relative tolerance (its bits), method and fill rule, built on
-    /// first use and kept.
-    containments: Mutex<HashMap<(u64, Method, FillRule), Arc<Containment>>>,
+    /// What classifies, by its options (the library's value, validated: the key is the
+    /// options themselves), built on first use and kept.
+    containments: Mutex<HashMap<ContainOptions, Arc<Containment>>>,
     /// The winding-number fields by tolerance.
     fields: Mutex<HashMap<u64, Arc<WindingField>>>,
 }
@@ -48,21 +48,15 @@ impl NativeDomain {
         }
     }
 
-    fn containment(
-        &self,
-        tol: f64,
-        method: Method,
-        fill_rule: FillRule,
-    ) -> PyResult<Arc<Containment>> {
-        let options = contain_options(tol, method, fill_rule);
-        let key = (tol.to_bits(), options.method, options.fill_rule);
-        cached(&self.containments, tol, key, "classifier", || {
+    fn containment(&self, options: ContainOptions) -> PyResult<Arc<Containment>> {
+        cached(&self.containments, options, "classifier", || {
             Containment::new(&self.domain, options).map_err(value_error)
         })
     }
 
     fn field(&self, tol: f64) -> PyResult<Arc<WindingField>> {
-        cached(&self.fields, tol, tol.to_bits(), "winding-field", || {
+        check_tolerance(tol)?;
+        cached(&self.fields, tol.to_bits(), "winding-field", || {
             WindingField::new(&self.domain, tol).map_err(value_error)
         })
     }
@@ -78,9 +72,7 @@ impl NativeDomain {
         fill_rule: &str,
         threads: usize,
     ) -> PyResult<Vec<i8>> {
-        let method: Method = method.parse().map_err(value_error)?;
-        let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
-        let containment = self.containment(tol, method, fill_rule)?;
+        let containment = self.containment(contain_options(tol, method, fill_rule)?)?;
         py.detach(|| {
             with_threads(threads, || {
                 let engine = containment.engine(pts.len());
@@ -114,31 +106,27 @@ impl NativeDomain {
     }
 }
 
-/// The options of a classification with tolerance `tol`, `method` and `fill_rule`; the fill
-/// rule matters only to the winding-number method, so the others carry the default (one
-/// cached `Containment` whatever rule they were given).
-pub(crate) fn contain_options(tol: f64, method: Method, fill_rule: FillRule) -> ContainOptions {
-    let fill_rule = if method == Method::Gwn {
-        fill_rule
-    } else {
-        FillRule::EvenOdd
-    };
+/// The options of a classification, from the words Python passes (`method` and `fill_rule`
+/// as their `FromStr` reads them), validated once ([`ContainOptions::validated`]): what
+/// every classification of the package and its cache key are.
+pub(crate) fn contain_options(tol: f64, method: &str, fill_rule: &str) -> PyResult<ContainOptions> {
+    let method: Method = method.parse().map_err(value_error)?;
+    let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
     ContainOptions::DEFAULT
         .with_relative_tolerance(tol)
         .with_method(method)
         .with_fill_rule(fill_rule)
+        .validated()
+        .map_err(value_error)
 }
 
-/// The value cached in `cache` under `key` (for tolerance `tol`, checked first), built by
-/// `build` and kept on first use.
+/// The value cached in `cache` under `key`, built by `build` and kept on first use.
 fn cached<K: std::hash::Hash + Eq, T>(
     cache: &Mutex<HashMap<K, Arc<T>>>,
-    tol: f64,
     key: K,
     what: &str,
     build: impl FnOnce() -> PyResult<T>,
 ) -> PyResult<Arc<T>> {
-    check_tolerance(tol)?;
     let mut cache = cache
         .lock()
         .map_err(|_| value_error(format!("{what} cache poisoned")))?;
@@ -175,16 +163,22 @@ pub(crate) fn check_closure_tol(closure_tol: Option<f64>) -> PyResult<()> {
 impl NativeDomain {
     /// Reads a domain file: JSON, SVG, DXF, a font glyph `font.ttf#B`, or a face of a STEP or
     /// IGES part `part.step#face:3`; `closure_tol` (relative) overrides the closure tolerance.
+    /// Returns the domain and the messages of what the reader recovered from (an SVG path
+    /// drawn up to an error in its data), which the Python layer turns into warnings.
     #[staticmethod]
     #[pyo3(signature = (path, closure_tol = None))]
-    fn load(path: &str, closure_tol: Option<f64>) -> PyResult<Self> {
+    fn load(path: &str, closure_tol: Option<f64>) -> PyResult<(Self, Vec<String>)> {
         check_closure_tol(closure_tol)?;
         let options = inrs::io::LoadOptions {
             closure_tolerance: closure_tol,
         };
-        Ok(Self::new(
-            inrs::io::load_domain_with(path, &options).map_err(io_error)?,
-        ))
+        let loaded = inrs::io::load_domain_with_warnings(path, &options).map_err(io_error)?;
+        let warnings = loaded
+            .warnings
+            .iter()
+            .map(|w| format!("{path}: {w}"))
+            .collect();
+        Ok((Self::new(loaded.domain), warnings))
     }
 
     /// A domain from the text of a JSON domain file.
@@ -246,9 +240,20 @@ impl NativeDomain {
         self.domain.name().map(str::to_string)
     }
 
-    /// Curves, loops, areas and bounds (see [`DomainSummary`]).
-    fn summary(&self) -> DomainSummary {
-        DomainSummary::of(&self.domain)
+    /// Curves, loops, areas and bounds (see [`DomainSummary`]), the area filled under
+    /// `fill_rule`.
+    #[pyo3(signature = (fill_rule = "even-odd"))]
+    fn summary(&self, fill_rule: &str) -> PyResult<DomainSummary> {
+        let rule: FillRule = fill_rule.parse().map_err(value_error)?;
+        Ok(DomainSummary::of(&self.domain, rule))
+    }
+
+    /// The area the domain fills under `fill_rule`: a `ValueError` naming why where its loops'
+    /// nesting does not decide it (open, coincident or crossing loops).
+    #[pyo3(signature = (fill_rule = "even-odd"))]
+    fn filled_area(&self, fill_rule: &str) -> PyResult<f64> {
+        let rule: FillRule = fill_rule.parse().map_err(value_error)?;
+        inrs::contain::filled_area(&self.domain, rule).map_err(value_error)
     }
 
     /// Codes for an `(N, 2)` float64 array (any layout).

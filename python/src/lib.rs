@@ -12,6 +12,7 @@
 //! - [`convex`]: `convex_domain`; [`halton`]: `halton_points`;
 //! - [`coverage`]: `cell_coverage` (area fractions, centroids and apertures on a grid);
 //! - [`cubature`]: `CubatureRule` (positive interior cubature: nodes, weights, integrals);
+//! - [`formula`]: `Formula` (the command line's formulas, evaluated on arrays);
 //! - [`threads`], [`errors`]: thread pools and exceptions.
 
 mod cad;
@@ -20,6 +21,7 @@ mod coverage;
 mod cubature;
 mod domain;
 mod errors;
+mod formula;
 mod halton;
 mod many;
 mod mesh;
@@ -54,6 +56,7 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(convex::convex_domain, m)?)?;
     m.add_function(wrap_pyfunction!(coverage::cell_coverage, m)?)?;
     m.add_class::<cubature::NativeCubatureRule>()?;
+    m.add_class::<formula::NativeFormula>()?;
     m.add("MAX_CUBATURE_DEGREE", inrs::cubature::MAX_DEGREE)?;
     m.add("MAX_CELLS", inrs::coverage::MAX_CELLS)?;
     m.add("MAX_EDGES", inrs::coverage::MAX_EDGES)?;

@@ -5,10 +5,9 @@
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
-use inrs::contain::FillRule;
-use inrs::{Domain, Location, Method, Point};
+use inrs::{Domain, Location, Point};
 
-use crate::domain::{NativeDomain, check_tolerance, contain_options};
+use crate::domain::{NativeDomain, contain_options};
 use crate::errors::value_error;
 use crate::points::{pairs, with_point_source};
 use crate::threads::with_threads;
@@ -33,10 +32,7 @@ pub(crate) fn classify_many<'py>(
     fill_rule: &str,
     threads: usize,
 ) -> PyResult<(Vec<Option<Bound<'py, PyArray1<i8>>>>, Vec<Option<String>>)> {
-    let method: Method = method.parse().map_err(value_error)?;
-    let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
-    check_tolerance(tol)?;
-    let options = contain_options(tol, method, fill_rule);
+    let options = contain_options(tol, method, fill_rule)?;
     let refs: Vec<&Domain> = domains.iter().map(|d| &d.get().domain).collect();
     let answers: Vec<Answer> = match (&shared, &each) {
         (Some(xy), None) => {

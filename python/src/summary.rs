@@ -4,6 +4,7 @@
 use pyo3::prelude::*;
 
 use inrs::Domain;
+use inrs::contain::FillRule;
 
 /// Facts about one boundary loop (an item of [`DomainSummary::loops`]).
 #[pyclass(module = "inrs._inrs", name = "LoopSummary", frozen, get_all)]
@@ -48,8 +49,11 @@ pub(crate) struct DomainSummary {
     rational: bool,
     /// The boundary loops, in order.
     loops: Vec<LoopSummary>,
-    /// The area filled under the even-odd rule (holes subtracted), the region the crossing
-    /// methods classify; `None` for open or coincident loops.
+    /// The fill rule of `filled_area` (`even-odd` or `nonzero`).
+    fill_rule: &'static str,
+    /// The area filled under `fill_rule` (holes subtracted), the region `classify` calls
+    /// inside with that rule; `None` for open, coincident or crossing loops
+    /// (`Domain.filled_area` says which).
     filled_area: Option<f64>,
     /// Sum of the loops' signed areas.
     signed_area: f64,
@@ -60,9 +64,10 @@ pub(crate) struct DomainSummary {
 }
 
 impl DomainSummary {
-    /// The summary of `domain` ([`inrs::DomainSummary::of`]).
-    pub(crate) fn of(domain: &Domain) -> Self {
-        let s = inrs::DomainSummary::of(domain);
+    /// The summary of `domain` with the area it fills under `rule`
+    /// ([`inrs::DomainSummary::with_fill_rule`]).
+    pub(crate) fn of(domain: &Domain, rule: FillRule) -> Self {
+        let s = inrs::DomainSummary::with_fill_rule(domain, rule);
         let b = s.bounding_box;
         Self {
             curves: s.curves,
@@ -80,7 +85,8 @@ impl DomainSummary {
                     signed_area: l.signed_area,
                 })
                 .collect(),
-            filled_area: s.filled_area,
+            fill_rule: rule.as_str(),
+            filled_area: s.filled_area.ok(),
             signed_area: s.signed_area,
             areas_converged: s.areas_converged,
             bounds: (b.min.x, b.min.y, b.max.x, b.max.y),

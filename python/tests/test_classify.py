@@ -323,3 +323,14 @@ def test_unknown_winding_algorithm():
     d = inrs.Domain.load(FIXTURES / "inrs-paper" / "circle.json")
     with pytest.raises(ValueError, match=r'^unknown winding algorithm "raycast" \(expected adaptive, binary-search or bezier-clipping\)$'):
         d.winding(np.zeros((1, 2)), algorithm="raycast")
+
+
+def test_svg_path_data_errors_are_drawn_up_to_them_with_a_warning(tmp_path):
+    f = tmp_path / "icon.svg"
+    f.write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg"><path id="tri" d="M 13,9 3,19 h 11 v -3 l"/></svg>'
+    )
+    with pytest.warns(UserWarning, match='path id="tri".*drawn up to its last complete segment'):
+        d = inrs.Domain.load(f)
+    # The quadrilateral drawn before the error: (13, 9), (3, 19), (14, 19), (14, 16).
+    assert len(d.loops) == 1 and d.area == pytest.approx(56.5, rel=1e-12)

@@ -20,7 +20,7 @@ pub(crate) fn butterfly_fractions(d: &Domain) -> Result<(CellGrid, Coverage, f64
     let grid = CellGrid::uniform(b.min.x, b.max.x, CELLS, b.min.y, b.max.y, CELLS)
         .map_err(|e| e.to_string())?;
     let c = cell_coverage(d, &grid, CoverageOptions::DEFAULT).map_err(|e| e.to_string())?;
-    let area = even_odd_area(d).ok_or("the butterfly's loops have no even-odd nesting")?;
+    let area = even_odd_area(d).map_err(|e| e.to_string())?;
     let mut covered = 0.0;
     for j in 0..grid.ny() {
         for i in 0..grid.nx() {

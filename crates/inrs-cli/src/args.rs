@@ -26,18 +26,24 @@ pub(crate) struct DomainArg {
 }
 
 impl DomainArg {
-    /// Reads the domain, choosing the reader by the file name.
+    /// Reads the domain, choosing the reader by the file name; what the reader recovered from
+    /// (an SVG path drawn up to an error in its data) is a warning on standard error, one line
+    /// each.
     pub(crate) fn load(&self) -> Result<Domain, CliError> {
         let spec = self.domain.to_string_lossy();
         let options = inrs::io::LoadOptions {
             closure_tolerance: self.closure_tol,
         };
-        inrs::io::load_domain_with(&spec, &options).map_err(|e| match e {
+        let loaded = inrs::io::load_domain_with_warnings(&spec, &options).map_err(|e| match e {
             inrs::io::IoError::Read { .. }
             | inrs::io::IoError::UnknownFormat { .. }
             | inrs::io::IoError::FormatDisabled { .. } => CliError::Message(e.to_string()),
             other => CliError::Message(format!("{spec}: {other}")),
-        })
+        })?;
+        for w in &loaded.warnings {
+            eprintln!("inrs: warning: {spec}: {w}");
+        }
+        Ok(loaded.domain)
     }
 
     /// An error about the domain, prefixed with its file name.
@@ -87,6 +93,13 @@ pub(crate) fn all_faces(spec: &str) -> Option<&str> {
     (tail.eq_ignore_ascii_case("#face:*") && is_cad).then_some(file)
 }
 
+/// The help of `--function` (`fit`, `integrate`): the grammar of `inrs::io::formula`.
+pub(crate) const FUNCTION_HELP: &str = "A formula in x and y: numbers (1e-3 and 2.5E+4 too), \
++ - * / and ^ (or **; -x^2 is -(x^2), 2^3^2 is 2^9), parentheses, the constants pi, e, tau, \
+the functions abs signum sqrt cbrt exp ln log (natural) log2 log10 sin cos tan asin acos atan \
+sinh cosh tanh asinh acosh atanh floor ceil round trunc fract, and atan2(y, x), min(a, b), \
+max(a, b), hypot(a, b). A leading minus is read as the formula: --function -x^2.";
+
 /// `classify --method`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {
@@ -112,13 +125,15 @@ impl From<MethodArg> for inrs::Method {
     }
 }
 
-/// `classify --fill-rule` and `fractions --fill-rule`.
+/// `--fill-rule` of `classify`, `fractions`, `cubature`, `integrate` and `info`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum FillRuleArg {
-    /// Inside where the winding number is odd (agrees with the crossing methods).
+    /// Inside where the winding number is odd: holes are holes whatever the loops'
+    /// orientation.
     #[value(alias = "evenodd")]
     EvenOdd,
-    /// Inside where the winding number is not zero.
+    /// Inside where the winding number is not zero: two nested counter-clockwise circles fill
+    /// the outer disc.
     #[value(alias = "non-zero")]
     Nonzero,
 }

@@ -4,7 +4,6 @@
 mod args;
 mod cli;
 mod commands;
-mod function;
 mod stream;
 
 use std::io::Write;

@@ -5,50 +5,11 @@
 
 #[allow(dead_code)]
 mod common;
-use common::{fixture, inrs, temp_file};
+use common::{fixture, inrs, read_npy, temp_file};
 
 use std::path::{Path, PathBuf};
 
 use inrs::coverage::{CellGrid, CoverageOptions, GridCoverage};
-
-/// A `.npy` file read back: its shape and float64 data, after checking the header is the
-/// version 1.0 C-order float64 one `NumPy` reads.
-fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
-    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00", "{}", path.display());
-    let header_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    let header = std::str::from_utf8(&bytes[10..10 + header_len]).unwrap();
-    assert_eq!(
-        (10 + header_len) % 64,
-        0,
-        "NumPy aligns the data to 64 bytes"
-    );
-    assert!(header.contains("'descr': '<f8'"), "{header}");
-    assert!(header.contains("'fortran_order': False"), "{header}");
-    let shape_text = header
-        .split("'shape': (")
-        .nth(1)
-        .and_then(|t| t.split(')').next())
-        .unwrap();
-    let shape: Vec<usize> = shape_text
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse().unwrap())
-        .collect();
-    let data: Vec<f64> = bytes[10 + header_len..]
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-        .collect();
-    assert_eq!(
-        data.len(),
-        shape.iter().product::<usize>(),
-        "{}: data and shape disagree",
-        path.display()
-    );
-    assert_eq!((bytes.len() - 10 - header_len) % 8, 0);
-    (shape, data)
-}
 
 /// A fresh scratch directory for one test.
 fn scratch(name: &str) -> PathBuf {

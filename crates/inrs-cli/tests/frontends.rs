@@ -28,8 +28,8 @@ fn classify_by_every_method_and_fill_rule() {
                 "--fill-rule",
                 rule,
             ]);
-            // The fill rule matters to the winding-number method only.
-            let want = if method == "gwn" && rule == "nonzero" {
+            // Every method honours the fill rule: nonzero fills the inner disc (winding 2).
+            let want = if rule == "nonzero" {
                 ["inside", "inside", "outside", "boundary"]
             } else {
                 even_odd

@@ -377,7 +377,12 @@ fn hostile_svg_dxf_and_font_files_fail_cleanly() {
             svg(r#"<g transform="scale(1e300)"><circle r="1e10"/></g>"#),
             "<circle> at line 1: control point 0 is not finite",
         ),
-        ("badpath.svg", svg(r#"<path d="M0 0 L 1 Q"/>"#), "path data"),
+        // A path whose data breaks before its first segment draws nothing.
+        (
+            "badpath.svg",
+            svg(r#"<path d="M0 0 L 1 Q"/>"#),
+            "no boundary curves found",
+        ),
         (
             "garbage.dxf",
             "0\nSECTION\n2\nENTITIES\n0\nLINE\n10\nnot-a-number\n".into(),
@@ -433,6 +438,27 @@ fn hostile_svg_dxf_and_font_files_fail_cleanly() {
         60,
     );
     assert!(r.stdout.contains("0.5,0.5,inside"));
+    // Path data with an error is drawn up to its last complete segment, with a warning.
+    let f = write(
+        &d,
+        "broken_path.svg",
+        svg(r#"<path id="icon" d="M -1,-1 2,-1 2,2 -1,2 l"/>"#),
+    );
+    let r = check(
+        &d,
+        &["classify", "--domain", &f, "--points", &pts],
+        Expect::Success,
+        20,
+    );
+    assert!(r.stdout.contains("0.5,0.5,inside"), "{}", r.stdout);
+    assert!(
+        r.stderr.lines().count() == 1
+            && r.stderr.contains("warning")
+            && r.stderr.contains("path id=\"icon\"")
+            && r.stderr.contains("drawn up to its last complete segment"),
+        "{}",
+        r.stderr
+    );
 }
 
 /// Hostile STEP and IGES files (truncated, dangling and cyclic references, non-finite numbers,

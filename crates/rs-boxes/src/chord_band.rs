@@ -143,6 +143,15 @@ impl ChordBand {
         true
     }
 
+    /// What a crossing of the downward ray adds to the winding number: `+1` if the curve runs
+    /// in the `+x` direction (`start.x < end.x`), else `-1` (for a band that is not vertical;
+    /// a part's band keeps its box's direction). The sum of these over the crossings of the
+    /// downward ray from a point off a closed boundary is its winding number.
+    #[inline]
+    pub fn x_sign(&self) -> i64 {
+        if self.start.x < self.end.x { 1 } else { -1 }
+    }
+
     /// Whether the downward vertical ray from `p` crosses the curve, when the band decides it
     /// without a solve, for a `p` not near the curve: half-open in x (`xmin <= p.x < xmax`, so
     /// the parts of one piece share out its abscissas exactly), no crossing of a vertical

@@ -3,7 +3,7 @@
 use rs_boxes::{BoxOptions, DEFAULT_SUBDIVISIONS, MonotoneBoxes};
 use rs_spline::{BoundingBox, Domain, Point};
 
-use crate::rays::{Hit, horizontal, parity, vertical};
+use crate::rays::{Hit, downward_sign, horizontal, vertical, winding};
 use std::sync::{Arc, OnceLock};
 
 use crate::rows::{Rows, box_rows};
@@ -12,7 +12,7 @@ use crate::{
     WindingField,
 };
 
-/// The rounding part of [`Classifier::vertical_parity`]'s reach, relative to the coordinates'
+/// The rounding part of [`Classifier::vertical_winding`]'s reach, relative to the coordinates'
 /// scale plus the diagonal: far above the few units in the last place by which a refined box's
 /// end points can stray from its piece's rectangle, far below any tolerance in use.
 const REACH_ROUNDING: f64 = 1e-12;
@@ -20,15 +20,24 @@ const REACH_ROUNDING: f64 = 1e-12;
 /// Default boundary tolerance, relative to the diagonal of the domain's bounding box.
 pub const DEFAULT_RELATIVE_TOLERANCE: f64 = 1e-12;
 
-/// Options of a [`Classifier`]: start from [`ContainOptions::DEFAULT`] and change what you
-/// need with the `with_*` setters.
+/// Options of a [`Classifier`] and a [`Containment`](crate::Containment): start from
+/// [`ContainOptions::DEFAULT`] and change what you need with the `with_*` setters. Every
+/// option that changes answers lives here, so the value itself is what a cache of prepared
+/// domains is keyed by (it is `Eq` and `Hash`: the tolerance compares by its bits, and
+/// [`ContainOptions::with_relative_tolerance`] stores `-0.0` as `0.0`);
+/// [`ContainOptions::validated`] checks it, once, for every front end.
 ///
 /// ```
-/// use rs_contain::{ContainOptions, Method};
-/// let o = ContainOptions::DEFAULT.with_relative_tolerance(1e-10).with_method(Method::InRS2);
+/// use rs_contain::{ContainOptions, FillRule, Method};
+/// let o = ContainOptions::DEFAULT
+///     .with_relative_tolerance(1e-10)
+///     .with_method(Method::InRS2)
+///     .with_fill_rule(FillRule::NonZero);
 /// assert_eq!(o.method, Method::InRS2);
+/// assert_eq!(o.validated().unwrap(), o);
+/// assert!(o.with_relative_tolerance(f64::NAN).validated().is_err());
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 #[non_exhaustive]
 pub struct ContainOptions {
     /// Boundary tolerance relative to the bounding-box diagonal (see the crate's Semantics).
@@ -39,8 +48,8 @@ pub struct ContainOptions {
     /// The method [`Locate::locate_all`] uses (all give the same answers; they differ in
     /// speed). Default [`Method::Fast`], as on the command line.
     pub method: Method,
-    /// The fill rule of [`Method::Gwn`] through [`Containment`](crate::Containment) (a
-    /// [`Classifier`] is even-odd). Default [`FillRule::EvenOdd`].
+    /// Which winding numbers are inside, for every method (the crossing methods count
+    /// signed crossings: see the crate's Semantics). Default [`FillRule::EvenOdd`].
     pub fill_rule: FillRule,
 }
 
@@ -54,9 +63,13 @@ impl ContainOptions {
         fill_rule: FillRule::EvenOdd,
     };
 
-    /// With another relative boundary tolerance.
+    /// With another relative boundary tolerance (`-0.0` stored as `0.0`).
     pub const fn with_relative_tolerance(mut self, relative_tolerance: f64) -> Self {
-        self.relative_tolerance = relative_tolerance;
+        self.relative_tolerance = if relative_tolerance == 0.0 {
+            0.0
+        } else {
+            relative_tolerance
+        };
         self
     }
 
@@ -72,10 +85,48 @@ impl ContainOptions {
         self
     }
 
-    /// With another fill rule for [`Method::Gwn`].
+    /// With another fill rule.
     pub const fn with_fill_rule(mut self, fill_rule: FillRule) -> Self {
         self.fill_rule = fill_rule;
         self
+    }
+
+    /// The options if every one is usable, checked once for every front end (the
+    /// constructors that take options check them the same way).
+    ///
+    /// # Errors
+    /// [`ContainError::InvalidTolerance`] for a relative tolerance that is negative or not
+    /// finite.
+    pub fn validated(self) -> Result<Self, ContainError> {
+        if self.relative_tolerance.is_finite() && self.relative_tolerance >= 0.0 {
+            Ok(self)
+        } else {
+            Err(ContainError::InvalidTolerance(self.relative_tolerance))
+        }
+    }
+
+    /// The fields, the tolerance by its bits: what equality and hashing compare.
+    fn key(&self) -> (u64, usize, Method, FillRule) {
+        (
+            self.relative_tolerance.to_bits(),
+            self.subdivisions,
+            self.method,
+            self.fill_rule,
+        )
+    }
+}
+
+impl PartialEq for ContainOptions {
+    fn eq(&self, other: &Self) -> bool {
+        self.key() == other.key()
+    }
+}
+
+impl Eq for ContainOptions {}
+
+impl std::hash::Hash for ContainOptions {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.key().hash(state);
     }
 }
 
@@ -85,7 +136,9 @@ impl Default for ContainOptions {
     }
 }
 
-/// A point classifier for one closed domain: the paper's Algorithm inRS.
+/// A point classifier for one closed domain: the paper's Algorithm inRS, with the crossings
+/// counted with their signs, so that its options' [`FillRule`] decides (the sum of the signed
+/// crossings is the winding number, `crate::rays` shows why; even-odd reads its parity).
 ///
 /// Build it once (monotone pieces, critical points, bounding box) and locate any number of
 /// points through [`Locate`] (one point, or a batch with the method of its options), or with
@@ -121,11 +174,12 @@ pub struct Classifier {
     relative_tolerance: f64,
     tol: f64,
     /// Distance beyond which a point is away from a monotone piece for every test of its
-    /// refined boxes ([`Classifier::vertical_parity`]): twice the tolerance plus a rounding
+    /// refined boxes ([`Classifier::vertical_winding`]): twice the tolerance plus a rounding
     /// margin far above the rounding of the refined boxes' end points.
     reach: f64,
     outer: BoundingBox,
     method: Method,
+    fill_rule: FillRule,
     /// Built on first use: the generalized winding-number field ([`Method::Gwn`]).
     field: OnceLock<WindingField>,
     /// Built on first use: the grid of [`Method::Fast`] with the default options
@@ -146,6 +200,7 @@ impl Clone for Classifier {
             reach: self.reach,
             outer: self.outer,
             method: self.method,
+            fill_rule: self.fill_rule,
             field: OnceLock::new(),
             grid: OnceLock::new(),
             rows: OnceLock::new(),
@@ -161,9 +216,7 @@ impl Classifier {
     /// [`ContainError::InvalidTolerance`], [`ContainError::Boxes`].
     pub fn new(domain: &Domain, options: ContainOptions) -> Result<Self, ContainError> {
         domain.require_closed()?;
-        if !(options.relative_tolerance.is_finite() && options.relative_tolerance >= 0.0) {
-            return Err(ContainError::InvalidTolerance(options.relative_tolerance));
-        }
+        let options = options.validated()?;
         let boxes = MonotoneBoxes::new(
             domain,
             BoxOptions::DEFAULT.with_subdivisions(options.subdivisions),
@@ -184,6 +237,7 @@ impl Classifier {
             reach,
             outer,
             method: options.method,
+            fill_rule: options.fill_rule,
             field: OnceLock::new(),
             grid: OnceLock::new(),
             rows: OnceLock::new(),
@@ -201,13 +255,18 @@ impl Classifier {
         self.method
     }
 
+    /// The fill rule every method applies.
+    pub fn fill_rule(&self) -> FillRule {
+        self.fill_rule
+    }
+
     /// The bounding box grown by the tolerance: everything outside is outside.
     pub(crate) fn outer(&self) -> BoundingBox {
         self.outer
     }
 
-    /// The generalized winding-number field of the same boundary (even-odd rule), built on
-    /// the first call and kept.
+    /// The generalized winding-number field of the same boundary (with the classifier's fill
+    /// rule), built on the first call and kept.
     pub fn winding_field(&self) -> &WindingField {
         self.field.get_or_init(|| {
             WindingField::from_shared_boxes(
@@ -215,6 +274,7 @@ impl Classifier {
                 Arc::clone(&self.boxes),
                 self.relative_tolerance,
             )
+            .with_fill_rule(self.fill_rule)
         })
     }
 
@@ -225,17 +285,35 @@ impl Classifier {
 
     /// The location of one point and which step of the algorithm decided it.
     pub fn classify_point_with_decision(&self, p: Point) -> (Location, Decision) {
+        let (w, decision) = self.winding_with_decision(p);
+        (self.location(w), decision)
+    }
+
+    /// The winding number of one point (`None` on the boundary) and which step of the
+    /// algorithm decided it: the signed crossings of the ray it takes.
+    pub(crate) fn winding_with_decision(&self, p: Point) -> (Option<i64>, Decision) {
         if !self.outer.contains(p) {
-            return (Location::Outside, Decision::BoundingBox);
+            return (Some(0), Decision::BoundingBox);
         }
         if !self.boxes().is_critical_x(p.x, self.tol) {
-            return (location(self.vertical_parity(p)), Decision::VerticalRay);
+            return (self.vertical_winding(p), Decision::VerticalRay);
         }
         self.fallback(p)
     }
 
+    /// [`Location::Boundary`] for `None`, else inside where the fill rule fills winding
+    /// number `w`.
+    #[inline]
+    pub(crate) fn location(&self, w: Option<i64>) -> Location {
+        match w {
+            None => Location::Boundary,
+            Some(w) if self.fill_rule.fills(w) => Location::Inside,
+            Some(_) => Location::Outside,
+        }
+    }
+
     /// The downward vertical ray from `p` over the refined boxes, as
-    /// `parity(boxes().boxes(), vertical)` gives it, but looking at the refined boxes of only
+    /// `winding(boxes().boxes(), vertical)` gives it, but looking at the refined boxes of only
     /// the monotone pieces `p` is within `reach` of (computed on the fly while the refinement
     /// is not built).
     ///
@@ -243,13 +321,14 @@ impl Classifier {
     /// points, far below the rounding part of `reach`). For `p` farther than `reach` outside it,
     /// no refined box is near `p` (`reach` >= the tolerance); below it, or beside it, none is
     /// crossed; above it, each is decided by its half-open abscissas `[xmin, xmax)` alone, and
-    /// along the chain of end points `x_0 .. x_k` the number of those holding `p.x` is odd
-    /// exactly when `p.x` lies in the piece's own `[xmin, xmax)`, the answer taken here (a
-    /// vertical piece, whose boxes are all vertical, is never crossed). So the parity, and
-    /// whether a box is near `p`, are those of the scan of every refined box.
-    pub(crate) fn vertical_parity(&self, p: Point) -> Option<bool> {
+    /// along the monotone chain of end points `x_0 .. x_k` one of them holds `p.x` exactly
+    /// when `p.x` lies in the piece's own `[xmin, xmax)`, and none otherwise, the answer taken
+    /// here, with the piece's sign (its boxes share its direction; a vertical piece, whose
+    /// boxes are all vertical, is never crossed). So the winding number, and whether a box is
+    /// near `p`, are those of the scan of every refined box.
+    pub(crate) fn vertical_winding(&self, p: Point) -> Option<i64> {
         let (boxes, reach) = (self.boxes(), self.reach);
-        let mut odd = false;
+        let mut w = 0;
         let mut boundary = false;
         for (i, piece) in boxes.pieces().iter().enumerate() {
             let band = &piece.band;
@@ -258,7 +337,7 @@ impl Classifier {
             }
             if p.y > band.ymax + reach {
                 if !band.vertical && band.xmin <= p.x && p.x < band.xmax {
-                    odd = !odd;
+                    w += downward_sign(piece);
                 }
                 continue;
             }
@@ -266,7 +345,7 @@ impl Classifier {
                 if !boundary {
                     match vertical(b, p, self.tol) {
                         Hit::Boundary => boundary = true,
-                        Hit::Cross => odd = !odd,
+                        Hit::Cross(s) => w += s,
                         Hit::Miss => {}
                     }
                 }
@@ -275,39 +354,35 @@ impl Classifier {
                 return None;
             }
         }
-        Some(odd)
+        Some(w)
     }
 
-    /// Paper steps (vii)-(viii): the horizontal ray, then the winding number.
+    /// Paper steps (vii)-(viii): the horizontal ray, then the winding number (`None` on the
+    /// boundary).
     ///
     /// The ray and the boundary test look only at the boxes whose reach holds `p.y` (rows
     /// built on first use): the others are neither near `p` nor crossed by its horizontal ray,
     /// so the answer is the one a scan of every box gives (a domain whose tolerance is wider
     /// than the domain made every point take this path through tens of thousands of boxes).
-    pub(crate) fn fallback(&self, p: Point) -> (Location, Decision) {
+    pub(crate) fn fallback(&self, p: Point) -> (Option<i64>, Decision) {
         let all = self.boxes().boxes();
         let rows = self.rows.get_or_init(|| box_rows(all, self.tol));
         let near = || rows.near(p.y).iter().map(|&i| &all[i as usize]);
         if !self.boxes().is_critical_y(p.y, self.tol) {
-            let odd = parity(near(), |b| horizontal(b, p, self.tol));
-            return (location(odd), Decision::HorizontalRay);
+            let w = winding(near(), |b| horizontal(b, p, self.tol));
+            return (w, Decision::HorizontalRay);
         }
         if near().any(|b| b.is_near(p, self.tol)) {
-            return (Location::Boundary, Decision::WindingNumber);
+            return (None, Decision::WindingNumber);
         }
         // The generalized winding number (the one winding routine of the crate), exact up to
         // rounding at a point off the boundary; its field is built on the first call.
         let w = self.winding_field().winding_number(p).round() as i64;
-        let loc = if w.rem_euclid(2) == 1 {
-            Location::Inside
-        } else {
-            Location::Outside
-        };
-        (loc, Decision::WindingNumber)
+        (Some(w), Decision::WindingNumber)
     }
 
     /// [`Method::Gwn`]'s location of one point: outside the grown bounding box, else from the
-    /// winding-number field (even-odd).
+    /// winding-number field (with the classifier's fill rule).
     pub(crate) fn winding_location(&self, p: Point) -> Location {
         if self.outer.contains(p) {
             self.winding_field().locate(p)
@@ -317,8 +392,9 @@ impl Classifier {
     }
 
     /// inRS2: the points that need the vertical ray are sorted by abscissa; each box finds the
-    /// points in its x-range (grown by the tolerance) by binary search and updates their
-    /// parities. Points on critical abscissas take the fallbacks one by one.
+    /// points in its x-range (grown by the tolerance) by binary search and adds its signed
+    /// crossings to their winding numbers. Points on critical abscissas take the fallbacks one
+    /// by one.
     pub(crate) fn sorted_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
         assert_eq!(points.len(), out.len(), "one value per point");
         out.fill(Location::Outside);
@@ -329,14 +405,14 @@ impl Classifier {
                 continue;
             }
             if self.boxes().is_critical_x(p.x, self.tol) {
-                *o = self.fallback(p).0;
+                *o = self.location(self.fallback(p).0);
             } else {
                 order.push(i);
             }
         }
         order.sort_by(|&a, &b| points.point(a).x.total_cmp(&points.point(b).x));
         let xs: Vec<f64> = order.iter().map(|&i| points.point(i).x).collect();
-        let mut odd = vec![false; order.len()];
+        let mut windings = vec![0_i64; order.len()];
         let mut on_boundary = vec![false; order.len()];
         let tol = self.tol;
         for b in self.boxes().boxes() {
@@ -349,25 +425,13 @@ impl Classifier {
                 }
                 match vertical(b, p, tol) {
                     Hit::Boundary => on_boundary[j] = true,
-                    Hit::Cross => odd[j] = !odd[j],
+                    Hit::Cross(s) => windings[j] += s,
                     Hit::Miss => {}
                 }
             }
         }
         for (j, &i) in order.iter().enumerate() {
-            out[i] = if on_boundary[j] {
-                Location::Boundary
-            } else {
-                location(Some(odd[j]))
-            };
+            out[i] = self.location((!on_boundary[j]).then_some(windings[j]));
         }
-    }
-}
-
-fn location(odd: Option<bool>) -> Location {
-    match odd {
-        None => Location::Boundary,
-        Some(true) => Location::Inside,
-        Some(false) => Location::Outside,
     }
 }

@@ -44,6 +44,7 @@ impl Containment {
     /// As [`Classifier::new`] (an open boundary, a bad tolerance, too many boxes), or for
     /// [`Method::Gwn`] as [`WindingField::new`].
     pub fn new(domain: &Domain, options: ContainOptions) -> Result<Self, ContainError> {
+        let options = options.validated()?;
         Ok(Self(if options.method == Method::Gwn {
             Prepared::Winding(
                 WindingField::new(domain, options.relative_tolerance)?
@@ -81,7 +82,7 @@ pub enum Engine<'a> {
     Sorted(&'a Classifier),
     /// The grid locator ([`Method::Fast`] on a batch large enough to pay for its grid).
     Grid(PointLocator<'a>),
-    /// The classifier's winding-number field (even-odd), after its bounding-box test.
+    /// The classifier's winding-number field (its fill rule), after its bounding-box test.
     ClassifierWinding(&'a Classifier),
     /// The accelerated winding-number field with its own fill rule.
     Winding(FastWindingField<'a>),

@@ -2,11 +2,40 @@
 
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point};
+use thiserror::Error;
 
-use crate::{FillRule, QueryStats, curve_winding_number};
+use crate::{BoundaryCrossing, FillRule, QueryStats, boundary_crossing, curve_winding_number};
 
 /// Most loops [`loop_nesting`] nests (its work is quadratic in the number of loops).
 pub const MAX_NESTED_LOOPS: usize = 10_000;
+
+/// Why the loops of a domain have no nesting that decides its fill ([`fill_nesting`]): the
+/// Green's-theorem capabilities (filled areas, cell coverage, cubature) need closed loops that
+/// do not cross; classification and winding numbers take any loops.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum NestingError {
+    /// A loop does not close.
+    #[error("loop {0} is open")]
+    OpenLoop(usize),
+    /// More loops than [`MAX_NESTED_LOOPS`].
+    #[error("{loops} loops, more than the {limit} whose nesting is computed")]
+    TooManyLoops {
+        /// The domain's loops.
+        loops: usize,
+        /// [`MAX_NESTED_LOOPS`].
+        limit: usize,
+    },
+    /// Every sampled point of a loop lies on another loop (coincident loops).
+    #[error("loop {0} lies on another loop")]
+    Coincident(usize),
+    /// The boundary crosses itself ([`boundary_crossing`]): the fill changes along a loop.
+    #[error("the loops cross ({0}): only classification and winding numbers take crossing loops")]
+    Crossing(BoundaryCrossing),
+    /// The boundary could not be cut into monotone pieces to look for crossings.
+    #[error("{0}")]
+    Boxes(rs_boxes::BoxError),
+}
 
 /// Where one loop of a domain lies among the others: [`loop_nesting`]'s answer.
 ///
@@ -42,12 +71,7 @@ impl LoopNesting {
     /// assert_eq!(n[1].fill_change(FillRule::NonZero), 0); // inside the filled disc anyway
     /// ```
     pub fn fill_change(&self, rule: FillRule) -> i64 {
-        let filled = |w: i64| -> i64 {
-            match rule {
-                FillRule::EvenOdd => w.rem_euclid(2),
-                FillRule::NonZero => i64::from(w != 0),
-            }
-        };
+        let filled = |w: i64| i64::from(rule.fills(w));
         filled(self.winding + self.orientation) - filled(self.winding)
     }
 
@@ -61,8 +85,10 @@ impl LoopNesting {
 
 /// [`LoopNesting::boundary_sign`] of each curve's loop, by curve index: the factor that puts
 /// the filled set on each boundary curve's left under `rule` (`0` for curves of loops that do
-/// not bound it), as Green's-theorem integrals over the curves want it. `None` where
-/// [`loop_nesting`] is `None`.
+/// not bound it), as Green's-theorem integrals over the curves want it.
+///
+/// # Errors
+/// As [`fill_nesting`].
 ///
 /// # Examples
 ///
@@ -73,16 +99,18 @@ impl LoopNesting {
 /// let d = Domain::new(vec![c(2.0), c(1.0)]).unwrap();
 /// // The outer circle as it runs, the hole turned clockwise.
 /// assert_eq!(curve_boundary_signs(&d, FillRule::EvenOdd).unwrap(), vec![1, -1]);
+/// // Under the nonzero rule the inner circle of one orientation bounds nothing.
+/// assert_eq!(curve_boundary_signs(&d, FillRule::NonZero).unwrap(), vec![1, 0]);
 /// ```
-pub fn curve_boundary_signs(domain: &Domain, rule: FillRule) -> Option<Vec<i64>> {
-    let nesting = loop_nesting(domain)?;
+pub fn curve_boundary_signs(domain: &Domain, rule: FillRule) -> Result<Vec<i64>, NestingError> {
+    let nesting = fill_nesting(domain)?;
     let mut signs = vec![0; domain.curves().len()];
     for (l, n) in domain.loops().iter().zip(&nesting) {
         for c in l.curves() {
             signs[c] = n.boundary_sign(rule);
         }
     }
-    Some(signs)
+    Ok(signs)
 }
 
 /// The area filled by `domain` under `rule`: `sum_i d_i |A_i|`, where `A_i` is the signed
@@ -91,7 +119,8 @@ pub fn curve_boundary_signs(domain: &Domain, rule: FillRule) -> Option<Vec<i64>>
 /// circles fill the outer disc, the same circles with opposite orientations an annulus).
 /// Exact for closed loops that do not cross each other (they may touch and nest).
 ///
-/// `None` where [`loop_nesting`] is `None`: coincident loops, an open loop, or more than
+/// # Errors
+/// As [`fill_nesting`]: an open loop, coincident loops, loops that cross, or more than
 /// [`MAX_NESTED_LOOPS`] loops.
 ///
 /// # Examples
@@ -107,8 +136,8 @@ pub fn curve_boundary_signs(domain: &Domain, rule: FillRule) -> Option<Vec<i64>>
 /// let opposite = Domain::new(vec![c(2.0), c(1.0).reversed()]).unwrap();
 /// assert!((filled_area(&opposite, FillRule::NonZero).unwrap() - 3.0 * PI).abs() < 1e-12);
 /// ```
-pub fn filled_area(domain: &Domain, rule: FillRule) -> Option<f64> {
-    let nesting = loop_nesting(domain)?;
+pub fn filled_area(domain: &Domain, rule: FillRule) -> Result<f64, NestingError> {
+    let nesting = fill_nesting(domain)?;
     // Summed loop by loop in order: the even-odd case has the bits it has always had.
     let total = nesting
         .iter()
@@ -122,7 +151,7 @@ pub fn filled_area(domain: &Domain, rule: FillRule) -> Option<f64> {
             }
         })
         .sum();
-    Some(total)
+    Ok(total)
 }
 
 /// The area filled by `domain` under the even-odd rule: `sum_i (-1)^depth_i |A_i|`, where
@@ -133,8 +162,10 @@ pub fn filled_area(domain: &Domain, rule: FillRule) -> Option<f64> {
 ///
 /// The depths are [`loop_depths`]': the parity count at one of a loop's points that lies on
 /// no other loop (the rounded winding number of each other loop there, which is exact away
-/// from that loop). `None` where [`loop_depths`] is `None`: coincident loops, an open loop,
-/// or more than [`MAX_NESTED_LOOPS`] loops.
+/// from that loop).
+///
+/// # Errors
+/// As [`fill_nesting`].
 ///
 /// # Examples
 ///
@@ -150,18 +181,19 @@ pub fn filled_area(domain: &Domain, rule: FillRule) -> Option<f64> {
 /// assert!((d.signed_area() - 5.0 * std::f64::consts::PI).abs() < 1e-12);
 /// assert!((even_odd_area(&d).unwrap() - 3.0 * std::f64::consts::PI).abs() < 1e-12);
 /// ```
-pub fn even_odd_area(domain: &Domain) -> Option<f64> {
+pub fn even_odd_area(domain: &Domain) -> Result<f64, NestingError> {
     filled_area(domain, FillRule::EvenOdd)
 }
 
 /// For every loop of `domain`, its *depth*: the number of other loops that enclose it
 /// (whatever their orientation), the nesting [`even_odd_area`] weighs the loops by: the
-/// `depth` of [`loop_nesting`]. Under the even-odd rule, loop `i` bounds the filled region
+/// `depth` of [`fill_nesting`]. Under the even-odd rule, loop `i` bounds the filled region
 /// with the region on its left when it is multiplied by `(-1)^depth_i` times the sign of its
 /// signed area: outer boundaries counter-clockwise, holes clockwise (for loops that do not
 /// cross each other).
 ///
-/// `None` where [`loop_nesting`] is `None`.
+/// # Errors
+/// As [`fill_nesting`].
 ///
 /// # Examples
 ///
@@ -171,10 +203,10 @@ pub fn even_odd_area(domain: &Domain) -> Option<f64> {
 /// let c = |x: f64, r: f64| circle(Point::new(x, 0.0), r).unwrap();
 /// // A ring (two concentric circles) and a disc beside it.
 /// let d = Domain::new(vec![c(0.0, 2.0), c(0.0, 1.0), c(5.0, 1.0)]).unwrap();
-/// assert_eq!(loop_depths(&d), Some(vec![0, 1, 0]));
+/// assert_eq!(loop_depths(&d), Ok(vec![0, 1, 0]));
 /// ```
-pub fn loop_depths(domain: &Domain) -> Option<Vec<usize>> {
-    Some(loop_nesting(domain)?.iter().map(|n| n.depth).collect())
+pub fn loop_depths(domain: &Domain) -> Result<Vec<usize>, NestingError> {
+    Ok(fill_nesting(domain)?.iter().map(|n| n.depth).collect())
 }
 
 /// For every loop of `domain`, its [`LoopNesting`]: the number of other loops enclosing it,
@@ -182,7 +214,9 @@ pub fn loop_depths(domain: &Domain) -> Option<Vec<usize>> {
 ///
 /// Both counts come from one point of the loop (a piece's start or middle, the first of up
 /// to 64 that lies on no other loop): the winding number of each other loop there, rounded
-/// (exact away from that loop). `None` if every sampled point of some loop lies on another
+/// (exact away from that loop). They describe the fill only where the loops do not cross
+/// (then a loop lies wholly inside or outside each other one), which this function does not
+/// check: [`fill_nesting`] does. `None` if every sampled point of some loop lies on another
 /// loop (coincident loops), if a loop is open, or if there are more than
 /// [`MAX_NESTED_LOOPS`] loops.
 ///
@@ -199,9 +233,47 @@ pub fn loop_depths(domain: &Domain) -> Option<Vec<usize>> {
 /// assert_eq!(got, vec![(0, 0, 1), (1, 1, -1), (2, 0, 1)]);
 /// ```
 pub fn loop_nesting(domain: &Domain) -> Option<Vec<LoopNesting>> {
+    nesting_of(domain).ok()
+}
+
+/// The [`loop_nesting`] that decides the fill: the loops' nesting once they are known not to
+/// cross ([`boundary_crossing`]), what every Green's-theorem capability integrates the loops
+/// with ([`curve_boundary_signs`], [`filled_area`]).
+///
+/// # Errors
+/// [`NestingError::OpenLoop`], [`NestingError::TooManyLoops`] (more than
+/// [`MAX_NESTED_LOOPS`]), [`NestingError::Crossing`] where the boundary certainly crosses
+/// itself, [`NestingError::Coincident`] if every sampled point of some loop lies on another
+/// loop, [`NestingError::Boxes`] if the boundary cannot be cut into monotone pieces.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::{fill_nesting, NestingError};
+/// use rs_spline::{circle, Domain, Point};
+/// let c = |x: f64| circle(Point::new(x, 0.0), 1.0).unwrap();
+/// let overlapping = Domain::new(vec![c(-0.5), c(0.5)]).unwrap();
+/// assert!(matches!(fill_nesting(&overlapping), Err(NestingError::Crossing(_))));
+/// ```
+pub fn fill_nesting(domain: &Domain) -> Result<Vec<LoopNesting>, NestingError> {
+    let nesting = nesting_of(domain)?;
+    if let Some(x) = boundary_crossing(domain).map_err(NestingError::Boxes)? {
+        return Err(NestingError::Crossing(x));
+    }
+    Ok(nesting)
+}
+
+/// [`loop_nesting`] with the reason it has none.
+fn nesting_of(domain: &Domain) -> Result<Vec<LoopNesting>, NestingError> {
     let loops = domain.loops();
-    if loops.len() > MAX_NESTED_LOOPS || loops.iter().any(|l| !l.is_closed()) {
-        return None;
+    if let Some(open) = loops.iter().position(|l| !l.is_closed()) {
+        return Err(NestingError::OpenLoop(open));
+    }
+    if loops.len() > MAX_NESTED_LOOPS {
+        return Err(NestingError::TooManyLoops {
+            loops: loops.len(),
+            limit: MAX_NESTED_LOOPS,
+        });
     }
     let pieces: Vec<Vec<_>> = loops
         .iter()
@@ -232,6 +304,7 @@ pub fn loop_nesting(domain: &Domain) -> Option<Vec<LoopNesting>> {
                     winding,
                     orientation,
                 })
+                .ok_or(NestingError::Coincident(i))
         })
         .collect()
 }

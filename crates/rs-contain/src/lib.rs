@@ -47,6 +47,7 @@
 //! ```
 
 mod classifier;
+mod crossings;
 mod engine;
 mod error;
 mod filled_area;
@@ -62,11 +63,12 @@ mod rows;
 mod summary;
 
 pub use classifier::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE};
+pub use crossings::{BoundaryCrossing, boundary_crossing};
 pub use engine::{Containment, Engine, FAST_ONE_BY_ONE_MAX_POINTS};
 pub use error::ContainError;
 pub use filled_area::{
-    LoopNesting, MAX_NESTED_LOOPS, curve_boundary_signs, even_odd_area, filled_area, loop_depths,
-    loop_nesting,
+    LoopNesting, MAX_NESTED_LOOPS, NestingError, curve_boundary_signs, even_odd_area, fill_nesting,
+    filled_area, loop_depths, loop_nesting,
 };
 pub use gwn::{
     CurveHierarchy, FastWindingField, FillRule, HIERARCHY_DEPTH, QueryStats, WindingField,

@@ -61,7 +61,7 @@ pub enum Method {
     InRS1,
     /// Points sorted by abscissa, a binary search per box (the paper's inRS2).
     InRS2,
-    /// Generalized winding number, rounded, even-odd rule (see [`crate::WindingField`]).
+    /// Generalized winding number, rounded, then the fill rule (see [`crate::WindingField`]).
     Gwn,
     /// The fastest exact path for the batch size: inRS2 below
     /// [`FAST_METHOD_MIN_POINTS`] points, otherwise the grid [`crate::PointLocator`] run on all

@@ -1,9 +1,11 @@
 //! A printable summary of a domain: curves, pieces, loops, orientation, area, size. It lives
-//! here, not in `rs-spline`, for the even-odd filled area ([`crate::even_odd_area`]).
+//! here, not in `rs-spline`, for the filled area under a fill rule ([`crate::filled_area`]).
 
 use std::fmt;
 
 use rs_spline::{BoundingBox, Domain, Orientation};
+
+use crate::{FillRule, NestingError};
 
 /// Facts about one boundary loop.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,9 +40,12 @@ pub struct DomainSummary {
     /// Sum of the loops' signed areas (the area when outer loops run counter-clockwise and
     /// holes clockwise).
     pub signed_area: f64,
-    /// The area filled under the even-odd rule, the region the crossing methods classify
-    /// ([`crate::even_odd_area`]); `None` for open or coincident loops.
-    pub filled_area: Option<f64>,
+    /// The fill rule of `filled_area`.
+    pub fill_rule: FillRule,
+    /// The area filled under `fill_rule`, the region the classifiers call inside with that
+    /// rule ([`crate::filled_area`]), or why the loops' nesting does not decide it (open,
+    /// coincident or crossing loops).
+    pub filled_area: Result<f64, NestingError>,
     /// False if some piece's area quadrature stopped at its work limit before meeting its
     /// tolerance (the areas are then estimates).
     pub areas_converged: bool,
@@ -51,8 +56,24 @@ pub struct DomainSummary {
 }
 
 impl DomainSummary {
-    /// Computes the summary of `d`.
+    /// Computes the summary of `d`, with the area it fills under the even-odd rule.
     pub fn of(d: &Domain) -> Self {
+        Self::with_fill_rule(d, FillRule::EvenOdd)
+    }
+
+    /// Computes the summary of `d`, with the area it fills under `rule`.
+    ///
+    /// ```
+    /// use rs_contain::{DomainSummary, FillRule};
+    /// use rs_spline::{circle, Domain, Point};
+    /// let c = |r: f64| circle(Point::new(0.0, 0.0), r).unwrap();
+    /// let d = Domain::new(vec![c(2.0), c(1.0)]).unwrap(); // both counter-clockwise
+    /// let pi = std::f64::consts::PI;
+    /// let area = |rule| DomainSummary::with_fill_rule(&d, rule).filled_area.unwrap();
+    /// assert!((area(FillRule::EvenOdd) - 3.0 * pi).abs() < 1e-12);
+    /// assert!((area(FillRule::NonZero) - 4.0 * pi).abs() < 1e-12);
+    /// ```
+    pub fn with_fill_rule(d: &Domain, rule: FillRule) -> Self {
         let areas: Vec<_> = (0..d.loops().len())
             .map(|i| d.loop_area_integral(i))
             .collect();
@@ -75,7 +96,8 @@ impl DomainSummary {
             max_degree: d.curves().iter().map(|c| c.degree()).max().unwrap_or(0),
             rational: d.curves().iter().any(|c| !c.is_polynomial()),
             signed_area: loops.iter().map(|l| l.signed_area).sum(),
-            filled_area: crate::even_odd_area(d),
+            fill_rule: rule,
+            filled_area: crate::filled_area(d, rule),
             areas_converged: areas.iter().all(|a| a.converged),
             loops,
             bounding_box: d.bounding_box(),
@@ -115,8 +137,8 @@ pub fn significant(x: f64) -> String {
 }
 
 impl fmt::Display for DomainSummary {
-    /// The name, the even-odd filled area, the box, the curves, then each loop; numbers with
-    /// the digits that mean something ([`significant`]).
+    /// The name, the filled area, the box, the curves, then each loop; numbers with the
+    /// digits that mean something ([`significant`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let b = &self.bounding_box;
         let name = if self.name.is_empty() {
@@ -125,9 +147,10 @@ impl fmt::Display for DomainSummary {
             &self.name
         };
         writeln!(f, "{name}")?;
-        match self.filled_area {
-            Some(a) => writeln!(f, "  filled area (even-odd): {}", significant(a))?,
-            None => writeln!(f, "  filled area (even-odd): - (open or coincident loops)")?,
+        let rule = self.fill_rule.as_str();
+        match &self.filled_area {
+            Ok(a) => writeln!(f, "  filled area ({rule}): {}", significant(*a))?,
+            Err(e) => writeln!(f, "  filled area ({rule}): - ({e})")?,
         }
         writeln!(
             f,

@@ -372,3 +372,32 @@ fn gwn_containment_agrees_with_inrs_on_watertight_fixtures() {
         assert_eq!(f.locate_all(&pts), gwn, "{name}");
     }
 }
+
+/// A point on the chord of a piece, with the two other sides of its control polygon clear,
+/// is inside the polygon: the chord's angle there is `+-pi`, which rounding used to decide
+/// (the clockwise circle of radius 2 gave `-1/2` at `(-1, -1)`, on the chord of its third
+/// quarter, and inRS1's winding-number fallback there called the point inside).
+#[test]
+fn a_point_on_a_chord_is_not_outside_the_control_polygon() {
+    let clockwise = circular_arc(Point::new(0.0, 0.0), 2.0, 0.0, -TAU).unwrap();
+    let d = Domain::new(vec![clockwise]).unwrap();
+    let f = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
+    for q in [
+        Point::new(-1.0, -1.0),
+        Point::new(1.0, 1.0),
+        Point::new(-1.5, -0.5),
+    ] {
+        assert!(
+            (f.winding_number(q) + 1.0).abs() < 1e-12,
+            "{q:?}: {}",
+            f.winding_number(q)
+        );
+    }
+    let mut stats = QueryStats::default();
+    let total: f64 = d
+        .bezier_pieces()
+        .iter()
+        .map(|(_, b)| curve_winding_number(b, Point::new(-1.0, -1.0), &mut stats))
+        .sum();
+    assert!((total + 1.0).abs() < 1e-12, "{total}");
+}

@@ -3,7 +3,7 @@
 use std::ops::Range;
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
-use rs_contain::{FillRule, MAX_NESTED_LOOPS, loop_nesting};
+use rs_contain::{FillRule, fill_nesting};
 use rs_spline::Domain;
 
 use crate::arc::{Arc, Rules};
@@ -210,12 +210,14 @@ impl GridCoverage {
     /// on their left; a loop that does not bound the filled set (sign 0: the inner of two
     /// nested loops of one orientation under [`FillRule::NonZero`]) is left out, so that the
     /// crossing parity of the loops kept (the apertures and the covered lengths) is the
-    /// filled set's indicator. Exact for loops that do not cross each other.
+    /// filled set's indicator. Exact for loops that do not cross each other; loops that do are
+    /// refused.
     ///
     /// # Errors
     /// [`CoverageError::Domain`] for an open boundary (a loop that does not close, or a curve
-    /// that falls apart at a break); [`CoverageError::Nesting`] when the loops' nesting cannot
-    /// be decided (a loop on another, or more than [`rs_contain::MAX_NESTED_LOOPS`] loops);
+    /// that falls apart at a break); [`CoverageError::Nesting`] when the loops' nesting does
+    /// not decide the fill (loops that cross, a loop on another, or more than
+    /// [`rs_contain::MAX_NESTED_LOOPS`] loops: [`rs_contain::fill_nesting`]);
     /// [`CoverageError::Boxes`] when a piece cannot be cut into monotone pieces.
     ///
     /// # Examples
@@ -241,9 +243,7 @@ impl GridCoverage {
         rule: FillRule,
     ) -> Result<Self, CoverageError> {
         domain.require_closed()?;
-        let nesting = loop_nesting(domain).ok_or(CoverageError::Nesting {
-            limit: MAX_NESTED_LOOPS,
-        })?;
+        let nesting = fill_nesting(domain).map_err(CoverageError::Nesting)?;
         // Outer boundaries counter-clockwise, holes clockwise: the filled set on the left.
         let signs: Vec<i64> = nesting.iter().map(|n| n.boundary_sign(rule)).collect();
         let boxes = MonotoneBoxes::new(domain, BoxOptions::DEFAULT.with_subdivisions(1))?;

@@ -89,14 +89,10 @@ pub enum CoverageError {
     /// The boundary is open (or falls apart at a curve's break): coverage needs closed loops.
     #[error("open boundary: {0}")]
     Domain(#[from] DomainError),
-    /// The even-odd nesting of the loops cannot be decided.
-    #[error(
-        "the loops' nesting cannot be decided: a loop lies on another loop, or there are more than {limit} loops"
-    )]
-    Nesting {
-        /// The most loops that are nested ([`rs_contain::MAX_NESTED_LOOPS`]).
-        limit: usize,
-    },
+    /// The loops' nesting does not decide the fill (coincident or crossing loops, or too
+    /// many loops: [`rs_contain::fill_nesting`]).
+    #[error("{0}")]
+    Nesting(rs_contain::NestingError),
     /// The boundary could not be cut into monotone pieces.
     #[error("monotone pieces: {0}")]
     Boxes(#[from] BoxError),

@@ -30,8 +30,8 @@
 //!   loops' winding numbers on loop `i` and `o_i = +-1` its orientation, the winding number
 //!   is `W_i + o_i` just inside loop `i` and `W_i` just outside: the loop bounds the filled
 //!   set only if exactly one of the two is 0 (two nested counter-clockwise circles fill the
-//!   outer disc; with opposite orientations, the ring). A loop that crosses itself or
-//!   another loop is not covered by the guarantees.
+//!   outer disc; with opposite orientations, the ring). Loops that cross each other or
+//!   themselves are refused ([`CoverageError::Nesting`]: [`rs_contain::fill_nesting`]).
 //! - **Accuracy**: exact up to rounding. The error of a fraction is about `2 eps D / s`,
 //!   where `D` is the size of the monotone boundary piece through the cell (at most the
 //!   domain's size; the piece's control points are shifted to the cell's corner, so the

@@ -344,3 +344,41 @@ fn a_square_ring_is_exact_cell_by_cell() {
         }
     }
 }
+
+/// `fixtures/fill-rule`: nested loops of either orientation are covered by the rule's
+/// filled area (the cells add up to `rs_contain::filled_area`); loops that cross each other
+/// or themselves are refused, naming the crossing, under either rule.
+#[test]
+fn fill_rule_fixtures_are_covered_by_their_rule_or_refused() {
+    for (case, crossing) in rs_testkit::fill_rule_fixtures() {
+        let d = &case.domain;
+        let grid = covering_grids(d).swap_remove(2);
+        for rule in [FillRule::EvenOdd, FillRule::NonZero] {
+            match GridCoverage::with_fill_rule(d, grid.clone(), rule) {
+                Err(e) => {
+                    assert!(crossing, "{} ({rule}): {e}", case.name);
+                    assert!(
+                        matches!(
+                            e,
+                            CoverageError::Nesting(rs_contain::NestingError::Crossing(_))
+                        ),
+                        "{e}"
+                    );
+                }
+                Ok(cover) => {
+                    assert!(!crossing, "{} ({rule})", case.name);
+                    let c = cover
+                        .all(CoverageOptions::DEFAULT.with_centroids(true))
+                        .unwrap();
+                    let (a, _, _) = totals(&grid, &c.fractions, c.centroids.as_ref().unwrap());
+                    let want = filled_area(d, rule).unwrap();
+                    assert!(
+                        (a - want).abs() < 1e-12 * want,
+                        "{} ({rule}): {a} vs {want}",
+                        case.name
+                    );
+                }
+            }
+        }
+    }
+}

@@ -18,14 +18,10 @@ pub enum CubatureError {
     /// A loop of the boundary does not close (or a curve falls apart at a break).
     #[error("open boundary: {0}")]
     OpenBoundary(#[from] DomainError),
-    /// The nesting of the loops cannot be decided (a loop on another, or too many loops).
-    #[error(
-        "the loops' nesting cannot be decided (a loop lies on another, or more than {limit} loops)"
-    )]
-    Nesting {
-        /// [`rs_contain::MAX_NESTED_LOOPS`].
-        limit: usize,
-    },
+    /// The loops' nesting does not decide the fill (coincident or crossing loops, or too
+    /// many loops: [`rs_contain::fill_nesting`]).
+    #[error("{0}")]
+    Nesting(rs_contain::NestingError),
     /// The containment index could not be built.
     #[error("containment: {0}")]
     Contain(#[from] rs_contain::ContainError),
@@ -37,7 +33,7 @@ pub enum CubatureError {
         /// The quadrature's error estimate.
         error: f64,
     },
-    /// The domain has no positive area (under the even-odd rule).
+    /// The domain has no positive area (under the fill rule).
     #[error("the domain has no area (moment of 1 is {area:e})")]
     NoArea {
         /// The computed area.

@@ -13,8 +13,9 @@
 //!   that of raw monomials.
 //! - **Moments.** `integral phi dA = oint F dy`, `F = integral phi dx` (the antiderivative of
 //!   `P_i` is `(P_{i+1} - P_{i-1}) / (2i + 1)`), on every Bezier piece, each loop multiplied
-//!   by its even-odd boundary sign ([`rs_contain::LoopNesting::boundary_sign`]): holes and
-//!   several loops are handled, whatever the loops' orientation. Polynomial pieces of degree
+//!   by its boundary sign under the fill rule ([`CubatureOptions::fill_rule`],
+//!   [`rs_contain::LoopNesting::boundary_sign`]): holes and several loops are handled,
+//!   whatever the loops' orientation; loops that cross are refused. Polynomial pieces of degree
 //!   `p`: Gauss-Legendre with `ceil(p (n + 2) / 2)` nodes, exact. Rational pieces: adaptive
 //!   Gauss-Legendre with an error estimate and bounded work
 //!   ([`rs_spline::quadrature::integrate_adaptive_vector`]); a piece that does not converge is
@@ -53,9 +54,10 @@
 //! # Semantics
 //! A rule from [`CubatureRule::new`] guarantees: every node classified `Inside` by the
 //! domain's [`rs_contain::Classifier`]; every weight `> 0`; at most `dim P_n` nodes; the
-//! residual at most the target (default `1e-13`); the weights add up to the even-odd area up
+//! residual at most the target (default `1e-13`); the weights add up to the filled area up
 //! to the residual. The domain must be closed (an open boundary is an error). The fill is
-//! even-odd. See docs/SEMANTICS.md.
+//! even-odd unless [`CubatureOptions::with_fill_rule`] says otherwise; loops that cross each
+//! other or themselves are refused ([`rs_contain::fill_nesting`]). See docs/SEMANTICS.md.
 //!
 //! # Examples
 //!

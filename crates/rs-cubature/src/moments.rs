@@ -1,7 +1,9 @@
 //! Exact moments by Green's theorem: `integral f dA = oint F dy` with `F = integral f dx`,
-//! summed over the Bezier pieces of every loop, each loop multiplied by its even-odd
-//! [`boundary_sign`](rs_contain::LoopNesting::boundary_sign) (which puts the filled set on its
-//! left: outer boundaries counter-clockwise, holes clockwise).
+//! summed over the Bezier pieces of every loop, each loop multiplied by its
+//! [`boundary_sign`](rs_contain::LoopNesting::boundary_sign) under the fill rule (which puts
+//! the filled set on its left: outer boundaries counter-clockwise, holes clockwise; `0` for a
+//! loop that bounds nothing, as the inner of two nested loops of one orientation under the
+//! nonzero rule).
 //!
 //! On a polynomial piece of degree `p` (all weights equal) the integrand `F(C(t)) y'(t)` of a
 //! basis of total degree `n` is a polynomial of degree at most `p (n + 1) + p - 1`, integrated
@@ -9,7 +11,7 @@
 //! by the adaptive rule of `rs_spline::quadrature` (all components at once, bounded work); a
 //! piece that does not converge is an error.
 
-use rs_contain::{FillRule, MAX_NESTED_LOOPS, curve_boundary_signs};
+use rs_contain::{FillRule, curve_boundary_signs};
 use rs_spline::prelude::*;
 use rs_spline::quadrature::{gauss_legendre, integrate_adaptive_vector};
 use rs_spline::{BoundingBox, Domain, Point};
@@ -22,21 +24,20 @@ use crate::{CubatureError, MAX_DEGREE};
 /// moment is at most a small multiple of the area).
 const RELATIVE_QUADRATURE_TOLERANCE: f64 = 1e-15;
 
-/// `integral F_k(C(t)) y'(t) dt` over the boundary for the `dim` functions `F_k` that
-/// `antiderivatives(p, out)` writes at `p` (returning `max_k |F_k(p)|`), `F_k` of total degree
-/// at most `degree + 1`; `abs_tol` for rational pieces.
+/// `integral F_k(C(t)) y'(t) dt` over the boundary of the set `domain` fills under `rule`
+/// for the `dim` functions `F_k` that `antiderivatives(p, out)` writes at `p` (returning
+/// `max_k |F_k(p)|`), `F_k` of total degree at most `degree + 1`; `abs_tol` for rational
+/// pieces.
 fn green_integrals(
     domain: &Domain,
+    rule: FillRule,
     degree: usize,
     dim: usize,
     abs_tol: f64,
     antiderivatives: &mut dyn FnMut(Point, &mut [f64]) -> f64,
 ) -> Result<Vec<f64>, CubatureError> {
     domain.require_closed()?;
-    let curve_sign =
-        curve_boundary_signs(domain, FillRule::EvenOdd).ok_or(CubatureError::Nesting {
-            limit: MAX_NESTED_LOOPS,
-        })?;
+    let curve_sign = curve_boundary_signs(domain, rule).map_err(CubatureError::Nesting)?;
     let mut total = vec![0.0; dim];
     let mut at = vec![0.0; dim];
     // Gauss-Legendre rules by number of nodes, made once per call.
@@ -104,23 +105,25 @@ fn box_area(bbox: BoundingBox) -> f64 {
     (bbox.width() * bbox.height()).max(f64::MIN_POSITIVE)
 }
 
-/// The exact integrals of the scaled Legendre basis over the domain (even-odd fill).
+/// The exact integrals of the scaled Legendre basis over the set `domain` fills under `rule`.
 pub(crate) fn basis_moments(
     domain: &Domain,
+    rule: FillRule,
     basis: &LegendreBasis,
     degree: usize,
 ) -> Result<Vec<f64>, CubatureError> {
     let dim = basis.len();
     let mut scratch = vec![0.0; basis.scratch_len()];
     let abs_tol = RELATIVE_QUADRATURE_TOLERANCE * box_area(domain.bounding_box());
-    green_integrals(domain, degree, dim, abs_tol, &mut |p, out| {
+    green_integrals(domain, rule, degree, dim, abs_tol, &mut |p, out| {
         basis.x_antiderivatives_into(p, &mut scratch, out)
     })
 }
 
-/// Exact integrals over the domain of the monomials `x^a y^b`, `a + b <= degree`, in graded
-/// order (degree 0; then `x`, `y`; then `x^2`, `x y`, `y^2`; ...), under the even-odd fill
-/// rule (holes are holes however the loops run).
+/// Exact integrals over the set `domain` fills under `rule` of the monomials `x^a y^b`,
+/// `a + b <= degree`, in graded order (degree 0; then `x`, `y`; then `x^2`, `x y`, `y^2`;
+/// ...). Under [`FillRule::EvenOdd`] holes are holes however the loops run; under
+/// [`FillRule::NonZero`] a loop inside another of the same orientation adds nothing.
 ///
 /// Computed by Green's theorem on the raw monomials, `integral x^a y^b dA = oint x^(a+1) y^b /
 /// (a + 1) dy`, each component scaled by `max |x|^a max |y|^b` over the bounding box while it
@@ -132,22 +135,35 @@ pub(crate) fn basis_moments(
 ///
 /// # Errors
 /// [`CubatureError::DegreeTooHigh`] above [`MAX_DEGREE`]; [`CubatureError::OpenBoundary`];
-/// [`CubatureError::Nesting`]; [`CubatureError::MomentsNotConverged`] if a rational piece's
-/// quadrature hits its work bound.
+/// [`CubatureError::Nesting`] (coincident or crossing loops, whose nesting does not decide
+/// the fill); [`CubatureError::MomentsNotConverged`] if a rational piece's quadrature hits
+/// its work bound.
 ///
 /// # Examples
 ///
 /// ```
+/// use rs_contain::FillRule;
 /// use rs_cubature::monomial_moments;
-/// use rs_spline::{polyline, Domain, Point};
+/// use rs_spline::{circle, polyline, Domain, Point};
 /// let p = |x: f64, y: f64| Point::new(x, y);
 /// let square = polyline(&[p(0.0, 0.0), p(2.0, 0.0), p(2.0, 1.0), p(0.0, 1.0), p(0.0, 0.0)]).unwrap();
-/// let m = monomial_moments(&Domain::new(vec![square]).unwrap(), 2).unwrap();
+/// let m = monomial_moments(&Domain::new(vec![square]).unwrap(), 2, FillRule::EvenOdd).unwrap();
 /// // 1, x, y, x^2, x y, y^2 over [0, 2] x [0, 1].
 /// let exact = [2.0, 2.0, 1.0, 8.0 / 3.0, 1.0, 2.0 / 3.0];
 /// assert!(m.iter().zip(exact).all(|(a, b)| (a - b).abs() < 1e-14));
+/// // Two counter-clockwise circles: a ring under even-odd, the big disc under nonzero.
+/// let c = |r: f64| circle(p(0.0, 0.0), r).unwrap();
+/// let d = Domain::new(vec![c(2.0), c(1.0)]).unwrap();
+/// let area = |rule| monomial_moments(&d, 0, rule).unwrap()[0];
+/// let pi = std::f64::consts::PI;
+/// assert!((area(FillRule::EvenOdd) - 3.0 * pi).abs() < 1e-12);
+/// assert!((area(FillRule::NonZero) - 4.0 * pi).abs() < 1e-12);
 /// ```
-pub fn monomial_moments(domain: &Domain, degree: usize) -> Result<Vec<f64>, CubatureError> {
+pub fn monomial_moments(
+    domain: &Domain,
+    degree: usize,
+    rule: FillRule,
+) -> Result<Vec<f64>, CubatureError> {
     if degree > MAX_DEGREE {
         return Err(CubatureError::DegreeTooHigh {
             degree,
@@ -169,7 +185,7 @@ pub fn monomial_moments(domain: &Domain, degree: usize) -> Result<Vec<f64>, Cuba
     }
     let (mut xs, mut ys) = (vec![0.0; degree + 2], vec![0.0; degree + 1]);
     let abs_tol = RELATIVE_QUADRATURE_TOLERANCE * box_area(bbox);
-    let scaled = green_integrals(domain, degree, dim, abs_tol, &mut |p, out| {
+    let scaled = green_integrals(domain, rule, degree, dim, abs_tol, &mut |p, out| {
         // Powers of x / rx and y / ry: every component at most |x| / (a + 1) <= rx.
         let (u, v) = (p.x / rx, p.y / ry);
         xs[0] = 1.0;

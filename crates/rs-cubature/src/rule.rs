@@ -2,7 +2,7 @@
 //! Caratheodory-Tchakaloff compression by non-negative least squares.
 
 use nalgebra::{DMatrix, DVector};
-use rs_contain::{Classifier, ContainOptions};
+use rs_contain::{Classifier, ContainOptions, FillRule};
 use rs_spline::{Domain, Point};
 
 use crate::basis::LegendreBasis;
@@ -50,6 +50,9 @@ pub struct CubatureOptions {
     pub max_candidates: usize,
     /// The largest residual accepted (see [`CubatureRule::residual`]), in `(0, 1)`.
     pub target_residual: f64,
+    /// The set the rule integrates over: what `domain` fills under this rule (the moments
+    /// and the candidates' classification both take it). Default [`FillRule::EvenOdd`].
+    pub fill_rule: FillRule,
 }
 
 impl CubatureOptions {
@@ -60,6 +63,7 @@ impl CubatureOptions {
         max_retries: DEFAULT_MAX_RETRIES,
         max_candidates: DEFAULT_MAX_CANDIDATES,
         target_residual: DEFAULT_TARGET_RESIDUAL,
+        fill_rule: FillRule::EvenOdd,
     };
 
     /// The defaults with degree `degree`.
@@ -94,6 +98,12 @@ impl CubatureOptions {
     /// With another target residual.
     pub const fn with_target_residual(mut self, residual: f64) -> Self {
         self.target_residual = residual;
+        self
+    }
+
+    /// With another fill rule.
+    pub const fn with_fill_rule(mut self, rule: FillRule) -> Self {
+        self.fill_rule = rule;
         self
     }
 
@@ -206,12 +216,15 @@ impl CubatureRule {
         domain.require_closed()?;
         let degree = options.degree;
         let basis = LegendreBasis::new(degree, domain.bounding_box());
-        let moments = basis_moments(domain, &basis, degree)?;
+        let moments = basis_moments(domain, options.fill_rule, &basis, degree)?;
         let area = moments[0];
         if !(area > 0.0 && area.is_finite()) {
             return Err(CubatureError::NoArea { area });
         }
-        let classifier = Classifier::new(domain, ContainOptions::DEFAULT)?;
+        let classifier = Classifier::new(
+            domain,
+            ContainOptions::DEFAULT.with_fill_rule(options.fill_rule),
+        )?;
         let mut candidates = Candidates::new(&classifier);
         let dim = basis.len();
         let mut error = None;

@@ -50,7 +50,7 @@ fn disc(c: Point, r: f64, a: usize, b: usize) -> f64 {
 
 /// Checks every moment of `domain` against `exact(a, b)` at the stated scale.
 fn check(name: &str, domain: &Domain, area: f64, exact: impl Fn(usize, usize) -> f64) {
-    let got = monomial_moments(domain, DEGREE).unwrap();
+    let got = monomial_moments(domain, DEGREE, rs_contain::FillRule::EvenOdd).unwrap();
     let bbox = domain.bounding_box();
     let rx = bbox.min.x.abs().max(bbox.max.x.abs());
     let ry = bbox.min.y.abs().max(bbox.max.y.abs());

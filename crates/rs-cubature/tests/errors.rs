@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use rs_contain::{Classifier, ContainOptions, Locate, Location};
+use rs_contain::{Classifier, ContainOptions, FillRule, Locate, Location};
 use rs_cubature::{
     CubatureError, CubatureOptions, CubatureRule, MAX_DEGREE, dim_polynomials, monomial_moments,
 };
@@ -29,7 +29,7 @@ fn a_degree_above_the_limit_is_refused() {
         matches!(e, CubatureError::DegreeTooHigh { degree, max } if degree == MAX_DEGREE + 1 && max == MAX_DEGREE)
     );
     assert!(one_line(&e).contains("above the limit"));
-    let e = monomial_moments(&disc(), MAX_DEGREE + 1).unwrap_err();
+    let e = monomial_moments(&disc(), MAX_DEGREE + 1, FillRule::EvenOdd).unwrap_err();
     assert!(matches!(e, CubatureError::DegreeTooHigh { .. }));
 }
 
@@ -43,7 +43,7 @@ fn an_open_boundary_is_refused() {
     assert!(matches!(e, CubatureError::OpenBoundary(_)), "{e:?}");
     assert!(one_line(&e).starts_with("open boundary"));
     assert!(matches!(
-        monomial_moments(&open, 4),
+        monomial_moments(&open, 4, FillRule::EvenOdd),
         Err(CubatureError::OpenBoundary(_))
     ));
 }

@@ -169,7 +169,7 @@ fn polygon_moments(domain: &Domain, roles: &[f64], degree: usize) -> (Vec<f64>, 
 }
 
 fn check(name: &str, domain: &Domain, roles: &[f64]) {
-    let got = monomial_moments(domain, DEGREE).unwrap();
+    let got = monomial_moments(domain, DEGREE, rs_contain::FillRule::EvenOdd).unwrap();
     let (want, area, perimeter) = polygon_moments(domain, roles, DEGREE);
     let bbox = domain.bounding_box();
     let rx = bbox.min.x.abs().max(bbox.max.x.abs());

@@ -42,7 +42,7 @@ fn check_rule(name: &str, domain: &Domain, degree: usize) {
         "{name} {degree}: {sum} vs area {area}"
     );
 
-    let exact = monomial_moments(domain, degree).unwrap();
+    let exact = monomial_moments(domain, degree, FillRule::EvenOdd).unwrap();
     let bbox = domain.bounding_box();
     let rx = bbox.min.x.abs().max(bbox.max.x.abs());
     let ry = bbox.min.y.abs().max(bbox.max.y.abs());
@@ -116,4 +116,47 @@ fn integrate_and_integrate_values_agree() {
         rule.integrate(f).unwrap(),
         rule.integrate_values(&values).unwrap()
     );
+}
+
+/// `fixtures/fill-rule`: a rule for each fill rule on nested loops (weights adding up to the
+/// rule's filled area, every node inside by that rule, `x^2` integrated as the moments say);
+/// loops that cross are refused, naming the crossing.
+#[test]
+fn fill_rule_fixtures_get_their_rules_rule_or_are_refused() {
+    use rs_cubature::{CubatureError, CubatureOptions};
+    for (case, crossing) in rs_testkit::fill_rule_fixtures() {
+        let d = &case.domain;
+        for rule in [FillRule::EvenOdd, FillRule::NonZero] {
+            let got = CubatureRule::with_options(d, CubatureOptions::new(6).with_fill_rule(rule));
+            if crossing {
+                let e = got.unwrap_err();
+                assert!(matches!(e, CubatureError::Nesting(_)), "{}: {e}", case.name);
+                assert!(e.to_string().contains("loops cross"), "{e}");
+                continue;
+            }
+            let r = got.unwrap();
+            let area = filled_area(d, rule).unwrap();
+            let sum: f64 = r.weights().iter().sum();
+            assert!(
+                (sum - area).abs() < 1e-12 * area,
+                "{} ({rule}): {sum} vs {area}",
+                case.name
+            );
+            let c = Classifier::new(d, ContainOptions::DEFAULT.with_fill_rule(rule)).unwrap();
+            let nodes = c.locate_all_with(Method::InRS2, r.nodes());
+            assert!(
+                nodes.iter().all(|l| *l == Location::Inside),
+                "{} ({rule})",
+                case.name
+            );
+            let m = monomial_moments(d, 2, rule).unwrap();
+            let x2 = r.integrate(|p| p.x * p.x).unwrap();
+            assert!(
+                (x2 - m[3]).abs() < 1e-12 * m[3].abs().max(1.0),
+                "{}: {x2} vs {}",
+                case.name,
+                m[3]
+            );
+        }
+    }
 }

@@ -13,6 +13,8 @@
 //!   command line does.
 //! - [`points`]: the points files (CSV `x,y`, `.npy`) the command line streams points from,
 //!   read in bounded memory, in order or by position.
+//! - [`formula`]: formulas in `x` and `y` (`inrs fit --function`, `inrs integrate
+//!   --function`, the Python package), one grammar with standard float literals.
 //!
 //! Every reader produces exact NURBS (no flattening): lines stay degree 1, Bezier commands
 //! keep their degree, arcs are exact conics. Loops are watertight: shared end points are
@@ -36,6 +38,7 @@ pub mod cad;
 pub mod dxf_file;
 mod error;
 pub mod font;
+pub mod formula;
 pub mod json;
 pub mod points;
 pub mod svg;
@@ -53,6 +56,18 @@ pub struct LoadOptions {
     /// reader's default ([`rs_spline::DEFAULT_RELATIVE_CLOSURE_TOLERANCE`]; for a CAD face the
     /// larger of it and the file's own tolerance, see [`cad`]).
     pub closure_tolerance: Option<f64>,
+}
+
+/// A domain read, with the errors the reader recovered from on the way, as renderers recover
+/// from them (an SVG `path` drawn up to an error in its data): each a one-line message of its
+/// own, for the caller to show as a warning.
+#[derive(Debug)]
+#[non_exhaustive]
+pub struct Loaded {
+    /// The domain.
+    pub domain: Domain,
+    /// The errors recovered from, in the order met (empty for most files).
+    pub warnings: Vec<IoError>,
 }
 
 /// Reads a domain from `spec` with the default options ([`load_domain_with`]).
@@ -75,13 +90,23 @@ pub fn load_domain(spec: &str) -> Result<Domain, IoError> {
 ///   (`#solid:K`) is not a planar domain and is refused here.
 ///
 /// `options.closure_tolerance`, when given, groups the curves into loops with that relative
-/// tolerance whatever the reader.
+/// tolerance whatever the reader. What a reader recovers from (an SVG path drawn up to an
+/// error in its data) is dropped here: [`load_domain_with_warnings`] gives it.
 ///
 /// # Errors
 /// [`IoError::UnknownFormat`] for another extension; [`IoError::Glyph`] for a font without
 /// `#glyph`; [`IoError::Cad`] for a CAD file with several faces and no `#face:K`, or a bad
 /// selection; the reader's errors otherwise.
 pub fn load_domain_with(spec: &str, options: &LoadOptions) -> Result<Domain, IoError> {
+    load_domain_with_warnings(spec, options).map(|l| l.domain)
+}
+
+/// [`load_domain_with`], with the errors the reader recovered from ([`Loaded`]), which the
+/// command line prints as warnings.
+///
+/// # Errors
+/// As [`load_domain_with`].
+pub fn load_domain_with_warnings(spec: &str, options: &LoadOptions) -> Result<Loaded, IoError> {
     let closure = options.closure_tolerance;
     if let Some((file, selection)) = cad::split_cad_spec(spec) {
         let model = cad::CadModel::read(file)?;
@@ -107,18 +132,19 @@ pub fn load_domain_with(spec: &str, options: &LoadOptions) -> Result<Domain, IoE
                 });
             }
         };
-        return model.face_domain(index, closure);
+        return model.face_domain(index, closure).map(plain);
     }
-    let d = read_domain(spec, closure)?;
-    match closure {
-        Some(t) => Ok(d.with_closure_tolerance(t)?),
-        None => Ok(d),
-    }
+    let Loaded { domain, warnings } = read_domain(spec, closure)?;
+    let domain = match closure {
+        Some(t) => domain.with_closure_tolerance(t)?,
+        None => domain,
+    };
+    Ok(Loaded { domain, warnings })
 }
 
 /// The domain of a non-CAD `spec` with the reader's own closure (DXF chains its entities with
-/// `closure`).
-fn read_domain(spec: &str, closure: Option<f64>) -> Result<Domain, IoError> {
+/// `closure`), and what the reader recovered from.
+fn read_domain(spec: &str, closure: Option<f64>) -> Result<Loaded, IoError> {
     #[cfg(not(feature = "dxf"))]
     let _ = closure;
     let lower = spec.to_ascii_lowercase();
@@ -126,14 +152,15 @@ fn read_domain(spec: &str, closure: Option<f64>) -> Result<Domain, IoError> {
         if let Some(i) = lower.find(ext) {
             let (file, glyph) = spec.split_at(i + ext.len() - 1);
             let glyph: font::Glyph = glyph[1..].parse()?;
-            return font::glyph_domain_from_file(file, &glyph);
+            return font::glyph_domain_from_file(file, &glyph).map(plain);
         }
     }
     let path = Path::new(spec);
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match ext.as_deref() {
+    let domain = match ext.as_deref() {
+        Some("svg") => return svg::load_svg_file(path, svg::OpenSubpaths::Close),
         Some("ttf" | "otf" | "ttc" | "otc") => Err(IoError::Glyph {
             glyph: String::new(),
             message: format!(
@@ -141,7 +168,6 @@ fn read_domain(spec: &str, closure: Option<f64>) -> Result<Domain, IoError> {
             ),
         }),
         Some("json") => json::domain_from_json_file(path),
-        Some("svg") => svg::domain_from_svg_file(path),
         #[cfg(feature = "dxf")]
         Some("dxf") => {
             let mut dxf = dxf_file::DxfOptions::default();
@@ -158,5 +184,14 @@ fn read_domain(spec: &str, closure: Option<f64>) -> Result<Domain, IoError> {
         _ => Err(IoError::UnknownFormat {
             path: path.to_path_buf(),
         }),
+    };
+    domain.map(plain)
+}
+
+/// A domain read without anything recovered from.
+fn plain(domain: Domain) -> Loaded {
+    Loaded {
+        domain,
+        warnings: Vec::new(),
     }
 }

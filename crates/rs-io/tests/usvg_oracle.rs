@@ -411,3 +411,53 @@ fn adwaita_icons_read_like_usvg_reads_them() {
         "{points} points compared"
     );
 }
+
+/// Path data with an error, as icon themes have it: drawn up to its last complete segment,
+/// as the SVG specification says, by our reader as by `usvg` (the winding numbers of every
+/// grid point agree, the elements after the path read as usual), with one warning naming the
+/// path.
+#[test]
+fn path_data_with_errors_is_drawn_up_to_the_error_as_usvg_draws_it() {
+    let dir = std::env::temp_dir().join(format!("inrs-usvg-path-errors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases = [
+        // A command without its arguments at the end (the Adwaita-style case).
+        "M 13,9 3,19 h 11 v -3 l",
+        // An implicit repetition cut short.
+        "M 0 0 L 10 0 10 10 5",
+        // A letter that is no command.
+        "M 0 0 L 10 0 L 10 10 x 5 5",
+        // An error in a second subpath: the first one whole, the second up to it.
+        "M 0 0 L 10 0 L 10 10 Z M 20 20 L 30 20 L 30 30 L 25",
+        // A curve whose arguments run out.
+        "M 0 0 C 5 0 10 5 10 10 C 10",
+        // An arc flag that is not 0 or 1.
+        "M 0 0 h 10 v 10 A 5 5 0 2 0 0 0",
+        // A trailing moveto without its point after a closed subpath.
+        "M 0 0 h 10 v 10 h -10 z m",
+    ];
+    for (k, d) in cases.iter().enumerate() {
+        let text = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="40" height="40"><path id="p{k}" d="{d}"/><circle cx="35" cy="35" r="3"/></svg>"#
+        );
+        let file = dir.join(format!("case{k}.svg"));
+        std::fs::write(&file, &text).unwrap();
+        match compare(&file) {
+            Outcome::Agreed(n) => assert!(n > GRID * GRID / 2, "{d}: {n} points compared"),
+            Outcome::BothEmpty => panic!("{d}: nothing drawn"),
+            Outcome::Differs(why) => panic!("{d}: {why}"),
+        }
+        let read = rs_io::svg::load_svg_str(&text, rs_io::svg::OpenSubpaths::Close).unwrap();
+        assert_eq!(read.warnings.len(), 1, "{d}");
+        let w = read.warnings[0].to_string();
+        assert!(
+            w.contains(&format!("path id=\"p{k}\""))
+                && w.contains("drawn up to")
+                && !w.contains('\n'),
+            "{d}: {w}"
+        );
+        // Path data read on its own is strict.
+        assert!(rs_io::svg::curves_from_path_data(d).is_err(), "{d}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

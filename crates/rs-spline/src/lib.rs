@@ -52,6 +52,7 @@ mod affine;
 mod arc;
 mod bezier;
 mod bezier_extraction;
+mod crossing;
 mod curve;
 mod domain;
 mod error;
@@ -74,6 +75,7 @@ mod vector;
 pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
 pub use bezier::RationalBezier;
+pub use crossing::certain_crossing;
 pub use curve::{
     ArcLengthTable, Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv,
     ParamCurveExtrema, flatten_chain, prelude,

@@ -142,6 +142,35 @@ pub fn fixtures() -> Vec<Case> {
     v
 }
 
+/// The files of `fixtures/fill-rule/`: nested loops of either orientation, loops that cross
+/// each other and loops that cross themselves (see `fixtures/README.md`), by name.
+pub const FILL_RULE_FIXTURES: [&str; 7] = [
+    "nested_same",
+    "nested_opposite",
+    "three_nested",
+    "overlapping",
+    "overlapping_opposite",
+    "pentagram",
+    "figure_eight",
+];
+
+/// The domains of `fixtures/fill-rule/`, in the order of [`FILL_RULE_FIXTURES`], and whether
+/// their loops cross (each other or themselves).
+pub fn fill_rule_fixtures() -> Vec<(Case, bool)> {
+    FILL_RULE_FIXTURES
+        .iter()
+        .map(|name| {
+            let path = fixture_path(&format!("fill-rule/{name}.json"));
+            let case = Case {
+                name: name.to_string(),
+                domain: rs_io::json::domain_from_json_file(&path).unwrap(),
+            };
+            let crossing = !name.starts_with("nested") && !name.starts_with("three");
+            (case, crossing)
+        })
+        .collect()
+}
+
 /// Annulus: outer circle counter-clockwise, hole clockwise.
 pub fn annulus() -> Case {
     case(

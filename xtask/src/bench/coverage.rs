@@ -81,7 +81,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
         let b = d
             .bounding_box()
             .grown_by(0.01 * d.bounding_box().diagonal());
-        let area = even_odd_area(d).ok_or_else(|| format!("{name}: no even-odd nesting"))?;
+        let area = even_odd_area(d).map_err(|e| format!("{name}: {e}"))?;
         let geojson = tmp.join("domain.geojson");
         std::fs::write(&geojson, flattened_geojson(d)?)
             .map_err(|e| format!("{}: {e}", geojson.display()))?;
@@ -178,7 +178,7 @@ fn cell_centres(b: &BoundingBox, n: usize) -> Vec<Point> {
 /// (a MultiPolygon): each loop of even depth a shell, each loop of odd depth a hole of the
 /// loop one level up that holds its first vertex (even-odd nesting, as the coverage fills).
 fn flattened_geojson(d: &Domain) -> Result<String, String> {
-    let depths = loop_depths(d).ok_or("the loops have no even-odd nesting")?;
+    let depths = loop_depths(d).map_err(|e| e.to_string())?;
     let accuracy = FLATTEN_RELATIVE * d.bounding_box().diagonal();
     let rings: Vec<Vec<Point>> = (0..d.loops().len())
         .map(|i| {

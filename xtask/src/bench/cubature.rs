@@ -142,7 +142,7 @@ fn convergence(
     let _ = writeln!(md, "| --- | ---: |{}", " ---: |".repeat(names.len()));
     for (name, d) in domains {
         let b = d.bounding_box();
-        let area = even_odd_area(d).ok_or_else(|| format!("{name}: no even-odd nesting"))?;
+        let area = even_odd_area(d).map_err(|e| format!("{name}: {e}"))?;
         let mut row = Vec::new();
         let mut cells = Vec::new();
         for f in TestFunction::ALL {

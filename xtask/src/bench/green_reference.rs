@@ -81,8 +81,7 @@ pub(super) fn green_integral(
     f_max: f64,
 ) -> Result<(f64, f64), String> {
     let b = d.bounding_box();
-    let sign =
-        curve_boundary_signs(d, FillRule::EvenOdd).ok_or("the loops have no even-odd nesting")?;
+    let sign = curve_boundary_signs(d, FillRule::EvenOdd).map_err(|e| e.to_string())?;
     let (xs, ws) = gauss_legendre(NODES);
     let panel = b.width() / PANELS;
     // F(x, y) and the sum of |terms| (its rounding scale).
@@ -186,7 +185,7 @@ mod tests {
         // closed form, Gauss-Legendre on polynomial pieces).
         for name in rs_testkit::PAPER_DOMAINS {
             let d = rs_testkit::inrs_fixture(name).domain;
-            let m = monomial_moments(&d, 7).unwrap();
+            let m = monomial_moments(&d, 7, FillRule::EvenOdd).unwrap();
             // (a, b) = (3, 4): graded index 7 * 8 / 2 + 4.
             let f = |p: Point| p.x.powi(3) * p.y.powi(4);
             let (got, _) = green_integral(&d, f, grid_max(d.bounding_box(), f)).unwrap();

@@ -26,7 +26,8 @@ pub(crate) struct ClassifyArgs {
     /// The algorithm; all agree on closed domains.
     #[arg(long, value_enum, default_value_t = MethodArg::Fast)]
     pub(super) method: MethodArg,
-    /// Fill rule of --method gwn.
+    /// Which winding numbers are inside; every method honours it, on any loops (nested,
+    /// overlapping, crossing themselves).
     #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
     pub(super) fill_rule: FillRuleArg,
     /// Write here instead of standard output: CSV, or `.npy` (int8: 0 outside, 1 inside,

@@ -4,9 +4,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use inrs::cubature::CubatureRule;
+use inrs::contain::FillRule;
+use inrs::cubature::{CubatureOptions, CubatureRule};
 
-use crate::args::DomainArg;
+use crate::args::{DomainArg, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_cubature_degree};
 use crate::cli::output::Output;
@@ -17,9 +18,9 @@ use crate::stream::write_f64;
 /// At most `(n + 1)(n + 2) / 2` nodes, every one strictly inside the domain (farther than the
 /// boundary tolerance from the boundary), every weight > 0, exact for every polynomial of total
 /// degree <= n up to the residual printed on standard error (with the nodes, the degree and the
-/// candidates tried): `sum_i w_i x_i^a y_i^b` is the integral of `x^a y^b` over the domain
-/// (even-odd fill) for `a + b <= n`. One node per line, floats in shortest round-trip form.
-/// The boundary must be closed.
+/// candidates tried): `sum_i w_i x_i^a y_i^b` is the integral of `x^a y^b` over the set the
+/// domain fills (--fill-rule) for `a + b <= n`. One node per line, floats in shortest
+/// round-trip form. The boundary must be closed, its loops must not cross.
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct CubatureArgs {
@@ -31,11 +32,16 @@ pub(crate) struct CubatureArgs {
     /// Write the CSV here instead of standard output.
     #[arg(long)]
     output: Option<PathBuf>,
+    /// Which winding numbers are inside. Under either rule the loops must not cross each other
+    /// or themselves (their fill is then decided by their nesting): a domain whose loops cross
+    /// is refused, naming the crossing (`classify` takes any loops).
+    #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
+    fill_rule: FillRuleArg,
 }
 
 impl CubatureArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let (rule, seconds) = build_rule(&self.domain, self.degree)?;
+        let (rule, seconds) = build_rule(&self.domain, self.degree, self.fill_rule.into())?;
         let mut text = Vec::with_capacity(rule.nodes().len() * 64 + 8);
         text.extend_from_slice(b"x,y,w\n");
         for (p, &w) in rule.nodes().iter().zip(rule.weights()) {
@@ -52,16 +58,18 @@ impl CubatureArgs {
     }
 }
 
-/// The rule of degree `degree` on the domain of `domain` (one library call,
-/// [`CubatureRule::new`]) and the seconds it took; the library's errors prefixed with the
-/// domain's file name.
+/// The rule of degree `degree` on the set the domain of `domain` fills under `fill_rule` (one
+/// library call, [`CubatureRule::with_options`]) and the seconds it took; the library's errors
+/// prefixed with the domain's file name.
 pub(crate) fn build_rule(
     domain: &DomainArg,
     degree: usize,
+    fill_rule: FillRule,
 ) -> Result<(CubatureRule, f64), CliError> {
     let d = domain.load()?;
     let start = Instant::now();
-    let rule = CubatureRule::new(&d, degree).map_err(|e| domain.error(e))?;
+    let options = CubatureOptions::new(degree).with_fill_rule(fill_rule);
+    let rule = CubatureRule::with_options(&d, options).map_err(|e| domain.error(e))?;
     Ok((rule, start.elapsed().as_secs_f64()))
 }
 

@@ -8,11 +8,11 @@ use clap::{Args, ValueEnum};
 use inrs::mesh::{CurvedTriangulation, Refinement, WellSpacedPoints, well_spaced_points};
 use inrs::trispline::{C1Space, Spline, TriSplineError, quasi_interpolate, spline_to_json};
 
-use crate::args::DomainArg;
+use crate::args::{DomainArg, FUNCTION_HELP};
 use crate::cli::error::CliError;
 use crate::cli::limits::{parse_degree, parse_ny};
 use crate::cli::output::Output;
-use crate::function::Function;
+use inrs::io::formula::Formula;
 
 /// Plot-area width of the `--svg` figure, in pixels.
 const FIGURE_WIDTH: f64 = 700.0;
@@ -90,9 +90,13 @@ pub(crate) struct FitArgs {
     /// The polynomial degree d (1 to 12; --function only: --space sets the degree with --data).
     #[arg(long, default_value_t = 5, value_parser = parse_degree, allow_negative_numbers = true, conflicts_with = "data")]
     degree: usize,
-    /// The function: a formula in x and y with + - * / ^, parentheses, pi, e, and sin cos tan
-    /// exp log sqrt abs.
-    #[arg(long, required_unless_present = "data", conflicts_with = "data")]
+    #[arg(
+        long,
+        help = FUNCTION_HELP,
+        allow_hyphen_values = true,
+        required_unless_present = "data",
+        conflicts_with = "data"
+    )]
     function: Option<String>,
     /// Scattered data to interpolate: a CSV file of `x,y,z` rows (extra columns ignored; blank
     /// lines and `#` comments skipped), or with a header line naming the columns `x`, `y` and
@@ -124,7 +128,7 @@ impl FitArgs {
             return self.run_data(data, space.space());
         }
         let text = self.function.clone().unwrap_or_default();
-        let f = Function::parse(&text)?;
+        let f = Formula::parse(&text).map_err(|e| CliError::Message(e.to_string()))?;
         let d = self.domain.load()?;
         let start = Instant::now();
         let in_domain = |e: inrs::mesh::MeshError| self.domain.error(e);

@@ -5,11 +5,13 @@ use inrs::DomainSummary;
 use inrs::geom::brep::ModelError;
 use inrs::io::cad::{CadModel, CadSelection};
 
-use crate::args::DomainArg;
+use crate::args::{DomainArg, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::output::write_text;
 
-/// Print a summary of a domain: curves, Bezier pieces, loops, orientation, area, size. For a
+/// Print a summary of a domain: curves, Bezier pieces, loops, orientation, the area it fills
+/// (--fill-rule; "-" with the reason where its loops' nesting does not decide it: open,
+/// coincident or crossing loops), size. For a
 /// STEP or IGES file without `#face:K`: its solids with their shells, then one line per face
 /// (index, entity, surface, loops, curves, (u, v) area and box, natural bounds, the bound of
 /// fitted pcurves, faces narrower than their closure tolerance, or why the face is refused);
@@ -21,6 +23,9 @@ pub(crate) struct InfoArgs {
     /// Exit with an error if some loop does not close.
     #[arg(long)]
     require_closed: bool,
+    /// The fill rule of the filled area.
+    #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
+    fill_rule: FillRuleArg,
 }
 
 impl InfoArgs {
@@ -37,7 +42,8 @@ impl InfoArgs {
         if self.require_closed {
             d.require_closed().map_err(|e| self.domain.error(e))?;
         }
-        write_text(None, &format!("{}\n", DomainSummary::of(&d)))
+        let summary = DomainSummary::with_fill_rule(&d, self.fill_rule.into());
+        write_text(None, &format!("{summary}\n"))
     }
 
     /// `inrs info part.step`: the solids of a CAD file with their shells, then its faces, one

@@ -3,13 +3,13 @@
 
 use clap::Args;
 
-use crate::args::DomainArg;
+use crate::args::{DomainArg, FUNCTION_HELP, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_cubature_degree};
 use crate::cli::output::Output;
 use crate::commands::cubature::{build_rule, summarize};
-use crate::function::Function;
 use crate::stream::write_f64;
+use inrs::io::formula::Formula;
 
 /// The degree of `inrs integrate` when `--degree` is not given.
 const DEFAULT_DEGREE: usize = 20;
@@ -28,19 +28,21 @@ const DEFAULT_DEGREE: usize = 20;
 pub(crate) struct IntegrateArgs {
     #[command(flatten)]
     domain: DomainArg,
-    /// The integrand: a formula in x and y with + - * / ^, parentheses, pi, e, and sin cos tan
-    /// exp log sqrt abs.
-    #[arg(long)]
+    #[arg(long, help = FUNCTION_HELP, allow_hyphen_values = true)]
     function: String,
     /// The degree of exactness of the rule, 0 to 40.
     #[arg(long, default_value_t = DEFAULT_DEGREE, value_parser = parse_cubature_degree, allow_negative_numbers = true)]
     degree: usize,
+    /// Which winding numbers are inside (as `inrs cubature --fill-rule`: loops that cross are
+    /// refused).
+    #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
+    fill_rule: FillRuleArg,
 }
 
 impl IntegrateArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let f = Function::parse(&self.function)?;
-        let (rule, seconds) = build_rule(&self.domain, self.degree)?;
+        let f = Formula::parse(&self.function).map_err(|e| CliError::Message(e.to_string()))?;
+        let (rule, seconds) = build_rule(&self.domain, self.degree, self.fill_rule.into())?;
         let integral = rule
             .integrate(|p| f.at(p))
             .map_err(|e| CliError::Message(format!("--function {:?}: {e}", self.function)))?;

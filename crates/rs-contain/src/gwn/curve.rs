@@ -102,8 +102,13 @@ pub(crate) fn polygon_area(p: &[Point]) -> f64 {
 }
 
 /// Where `q` lies against the convex polygon `p` (closed by `p[n] -> p[0]`, simple and convex,
-/// twice its signed area `area`, see [`polygon_area`]): strictly outside an edge's line, and by
-/// more than `reach` (then `q` is farther than `reach` from the polygon).
+/// twice its signed area `area`, see [`polygon_area`]): outside an edge's line by more than
+/// the rounding of the side test, and by more than `reach` (then `q` is farther than `reach`
+/// from the polygon).
+///
+/// A query on an edge's line within that rounding is not outside it: on the closing edge, the
+/// chord, the chord's angle at `q` would be `+-pi`, decided by the rounding (a point of the
+/// chord of a quarter circle, with the two other edges' sides clear, got half a turn wrong).
 fn outside_convex(p: &[Point], area: f64, q: Point, reach: f64) -> Outside {
     if area == 0.0 {
         return Outside::No;
@@ -112,9 +117,11 @@ fn outside_convex(p: &[Point], area: f64, q: Point, reach: f64) -> Outside {
     let mut seen = Outside::No;
     for i in 0..n {
         let (a, b) = (p[i], p[if i + 1 == n { 0 } else { i + 1 }]);
-        let e = b - a;
-        let c = e.cross(q - a);
-        if area * c < 0.0 {
+        let (e, d) = (b - a, q - a);
+        let c = e.cross(d);
+        // `c` is rounded by a few units in the last place of `|e| |d|`.
+        let rounding = 4.0 * f64::EPSILON;
+        if area * c < 0.0 && c * c > rounding * rounding * e.dot(e) * d.dot(d) {
             if c * c > reach * reach * e.dot(e) {
                 return Outside::Far;
             }

@@ -71,6 +71,39 @@ pub enum FillRule {
     NonZero,
 }
 
+impl FillRule {
+    /// Whether a point of winding number `w` (off the boundary) is in the filled set: `w` odd
+    /// for [`FillRule::EvenOdd`], `w != 0` for [`FillRule::NonZero`]. The one definition
+    /// of the rules every method and capability applies.
+    ///
+    /// ```
+    /// use rs_contain::FillRule;
+    /// assert!(FillRule::EvenOdd.fills(-1) && !FillRule::EvenOdd.fills(2));
+    /// assert!(FillRule::NonZero.fills(2) && !FillRule::NonZero.fills(0));
+    /// ```
+    #[inline]
+    pub const fn fills(self, w: i64) -> bool {
+        match self {
+            Self::EvenOdd => w.rem_euclid(2) == 1,
+            Self::NonZero => w != 0,
+        }
+    }
+
+    /// The rule's name, as [`FromStr`](std::str::FromStr) reads it: `even-odd` or `nonzero`.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            Self::EvenOdd => "even-odd",
+            Self::NonZero => "nonzero",
+        }
+    }
+}
+
+impl std::fmt::Display for FillRule {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 impl std::str::FromStr for FillRule {
     type Err = String;
 
@@ -523,12 +556,7 @@ impl WindingField {
 
     /// Inside or outside from a winding number off the boundary: rounded, then the fill rule.
     pub(crate) fn location_from_winding(&self, w: f64, rule: FillRule) -> Location {
-        let w = w.round() as i64;
-        let inside = match rule {
-            FillRule::EvenOdd => w.rem_euclid(2) == 1,
-            FillRule::NonZero => w != 0,
-        };
-        if inside {
+        if rule.fills(w.round() as i64) {
             Location::Inside
         } else {
             Location::Outside

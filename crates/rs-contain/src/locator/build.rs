@@ -15,6 +15,7 @@ use super::{
     BLOCK, Complete, FIRST_RECORD, INSIDE, LocatorIndex, Lookup, MixedCell, OUTSIDE, Parts,
     REFINED, STRIP, Strip, UNBUILT, VERTICAL_FLAG, strip_of_column,
 };
+use crate::rays::downward_sign;
 use crate::{Classifier, Location};
 
 /// Run state: inRS2 found the run's first cell centre on the boundary, which a cell that
@@ -192,13 +193,13 @@ impl Strip {
         let mut since_uniform: Vec<u32> = Vec::new();
         let mut merged: Vec<u32> = Vec::new();
         for c in 0..columns.ncols {
-            let (mut inside_below, mut unknown_below) = (false, false);
+            let (mut winding_below, mut unknown_below) = (0, false);
             since_uniform.clear();
             let mut shared = None;
             for k in columns.start[c]..columns.start[c + 1] {
-                let (below, state) = columns.run_below(c, k);
+                let (below, state, winding) = columns.run_below(c, k);
                 if !below.is_empty() {
-                    inside_below = state == INSIDE;
+                    winding_below = winding;
                     // Above a run of unknown parity, inRS2 decides too.
                     unknown_below = state == BY_INRS2;
                     since_uniform.clear();
@@ -221,7 +222,7 @@ impl Strip {
                 let column = *shared
                     .get_or_insert_with(|| push_items(&mut self.column_items, &since_uniform));
                 self.records.push(MixedCell {
-                    inside_below,
+                    winding_below,
                     near: (columns.item_start[k], columns.item_start[k + 1]),
                     column,
                     by_inrs2: unknown_below,
@@ -230,7 +231,7 @@ impl Strip {
             }
         }
         self.records.push(MixedCell {
-            inside_below: false,
+            winding_below: 0,
             near: (0, 0),
             column: (0, 0),
             by_inrs2: true,
@@ -433,6 +434,9 @@ struct Columns {
     /// the location of its first cell's centre by inRS2 ([`OUTSIDE`], [`INSIDE`] or
     /// [`BY_INRS2`]).
     runs: Vec<u8>,
+    /// The winding number of each run's first cell's centre, beside `runs` (0 for a
+    /// [`BY_INRS2`] run, whose records above are decided by inRS2).
+    run_windings: Vec<i32>,
     /// For column `c`, the range of critical abscissas (indices into
     /// `MonotoneBoxes::critical_abscissas`) that may lie within the tolerance of one of its
     /// points (see [`critical_ranges`]).
@@ -490,22 +494,25 @@ impl Columns {
             item_start,
             items,
             runs: Vec::new(),
+            run_windings: Vec::new(),
             critical: critical[columns].to_vec(),
         };
         strip.classify_runs(classifier, frame, owner_local, boxes);
         strip
     }
 
-    /// Each run's state: the location inRS2 gives its first cell's centre (empty runs are left
-    /// outside), found walking each column upwards instead of by an inRS2 batch.
+    /// Each run's state and winding number: the location inRS2 gives its first cell's centre
+    /// (empty runs are left outside), found walking each column upwards instead of by an inRS2
+    /// batch.
     ///
-    /// inRS2 at a point `p` off the boundary is the parity of the boxes whose
-    /// [`MonotoneBox::crosses_below`](rs_boxes::MonotoneBox::crosses_below) holds at `p`. From
-    /// one run's first centre `q` to the next run's `p` (same abscissa, higher), that test
-    /// changes only for boxes whose curve meets the column between them, in the occupied cells
-    /// between the two runs (a run's cells meet no box): so the parity at `p` is the parity at
-    /// `q` plus the number of those cells' boxes (non-vertical, each once) whose test differs
-    /// at `p` and at `q`, the very test inRS2 makes. Below the first run no box is crossed.
+    /// inRS2 at a point `p` off the boundary is the sum of the signs of the boxes whose
+    /// [`MonotoneBox::crosses_below`](rs_boxes::MonotoneBox::crosses_below) holds at `p` (the
+    /// winding number, read by the fill rule). From one run's first centre `q` to the next
+    /// run's `p` (same abscissa, higher), that test changes only for boxes whose curve meets
+    /// the column between them, in the occupied cells between the two runs (a run's cells meet
+    /// no box): so the winding number at `p` is the one at `q` plus the signs of those cells'
+    /// boxes (non-vertical, each once) crossed below `p` and not `q`, minus those crossed below
+    /// `q` and not `p`, the very test inRS2 makes. Below the first run no box is crossed.
     /// inRS2's other answers are kept: outside the grown bounding box a point is outside; a
     /// column on a critical abscissa takes inRS2's fallback at each centre; a centre near one
     /// of the boxes registered just below it (which the registration's reach rules out but
@@ -523,6 +530,7 @@ impl Columns {
         let all = classifier.boxes().boxes();
         let mono = classifier.boxes();
         self.runs = vec![OUTSIDE; self.rows.len() + self.ncols];
+        self.run_windings = vec![0; self.rows.len() + self.ncols];
         // The strip's boxes are numbered by their place in `boxes` here (`b`), so that these
         // tables grow with the strip, not with the domain.
         // The boxes of the occupied cells since the last run, each once: `seen[b] == epoch`
@@ -552,39 +560,44 @@ impl Columns {
             let critical =
                 first < end && mono.is_critical_x_among(x, tol, first as usize..end as usize);
             let occupied = self.start[c + 1] - self.start[c];
-            let (mut odd, mut below) = (false, None::<Point>);
+            let (mut winding, mut below) = (0_i64, None::<Point>);
             candidates.clear();
             epoch += 1;
             for j in 0..=occupied {
                 let run = self.run(c, j);
                 if !run.is_empty() {
                     let p = Point::new(x, origin.y + (run.start as f64 + 0.5) * ch);
-                    let location = if critical {
-                        classifier.classify_point_with_decision(p).0
+                    let w = if critical {
+                        classifier.winding_with_decision(p).0
                     } else {
                         let mut near = false;
                         for &b in &candidates {
                             let b = b as usize;
-                            near |= all[boxes[b] as usize].is_near(p, tol);
+                            let bx = &all[boxes[b] as usize];
+                            near |= bx.is_near(p, tol);
                             let crossed_below_q = below.is_some_and(|q| crosses_below(b, q, c));
-                            odd ^= crosses_below(b, p, c) != crossed_below_q;
+                            let crossed_below_p = crosses_below(b, p, c);
+                            if crossed_below_p != crossed_below_q {
+                                let sign = downward_sign(bx);
+                                winding += if crossed_below_p { sign } else { -sign };
+                            }
                         }
                         if !outer.contains(p) {
-                            Location::Outside
+                            Some(0)
                         } else if near {
-                            Location::Boundary
-                        } else if odd {
-                            Location::Inside
+                            None
                         } else {
-                            Location::Outside
+                            Some(winding)
                         }
                     };
                     let slot = self.run_slot(c, j);
-                    self.runs[slot] = match location {
+                    self.runs[slot] = match classifier.location(w) {
                         Location::Inside => INSIDE,
                         Location::Outside => OUTSIDE,
                         Location::Boundary => BY_INRS2,
                     };
+                    // A column's winding number is bounded by its boxes (fewer than 2^31).
+                    self.run_windings[slot] = w.unwrap_or(0) as i32;
                     below = Some(p);
                     candidates.clear();
                     epoch += 1;
@@ -626,10 +639,11 @@ impl Columns {
         first..end.max(first)
     }
 
-    /// The run just below occupied cell `k` of column `c`, and its state.
-    fn run_below(&self, c: usize, k: usize) -> (std::ops::Range<usize>, u8) {
+    /// The run just below occupied cell `k` of column `c`, its state and winding number.
+    fn run_below(&self, c: usize, k: usize) -> (std::ops::Range<usize>, u8, i32) {
         let j = k - self.start[c];
-        (self.run(c, j), self.runs[self.run_slot(c, j)])
+        let slot = self.run_slot(c, j);
+        (self.run(c, j), self.runs[slot], self.run_windings[slot])
     }
 
     /// The items registered in occupied cell `k`.
@@ -1092,7 +1106,7 @@ mod tests {
                             &whole.records[(a - FIRST_RECORD) as usize],
                             &strip.records[(b - FIRST_RECORD) as usize],
                         );
-                        assert_eq!(ra.inside_below, rb.inside_below);
+                        assert_eq!(ra.winding_below, rb.winding_below);
                         assert_eq!(ra.by_inrs2, rb.by_inrs2);
                         assert_eq!(ra.critical, rb.critical);
                         let items = |st: &Strip, range: (u32, u32), column: bool| {

@@ -37,8 +37,8 @@ pub(super) const FIRST_RECORD: u32 = 2;
 /// What the points of one mixed cell need.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct MixedCell {
-    /// Parity of the nearest uniform cell below in the column (false below the grid).
-    pub(super) inside_below: bool,
+    /// Winding number of the nearest uniform cell below in the column (0 below the grid).
+    pub(super) winding_below: i32,
     /// The parts (see [`Parts`]) registered in the cell
     /// (`near_items[near.0..near.1]`, vertical ones flagged).
     pub(super) near: (u32, u32),

@@ -248,7 +248,8 @@ impl<'a> PointLocator<'a> {
     }
 
     /// A point of a mixed cell, whose fine entry is `entry`: the boundary test against the
-    /// cell's items, then the parity below plus the crossings of the record's column items.
+    /// cell's items, then the winding number below plus the signed crossings of the record's
+    /// column items.
     fn locate_mixed(&self, p: Point, strip: &Strip, entry: u32) -> Location {
         let rec = &strip.records[(entry - FIRST_RECORD) as usize];
         let cls = self.classifier;
@@ -259,7 +260,7 @@ impl<'a> PointLocator<'a> {
         let all = cls.boxes().boxes();
         let critical = rec.critical.0 as usize..rec.critical.1 as usize;
         if !critical.is_empty() && cls.boxes().is_critical_x_among(p.x, tol, critical) {
-            return cls.fallback(p).0;
+            return cls.location(cls.fallback(p).0);
         }
         let parts = &strip.parts;
         // A box near p has a part (or is an item itself) whose band may be near p, registered
@@ -273,22 +274,20 @@ impl<'a> PointLocator<'a> {
         }
         // No box is near p (checked above), so inRS2's per-box test reduces to the crossing,
         // which the one part of the box over p.x decides (the parts share out its abscissas),
-        // by its band or else by the box's own test.
+        // by its band or else by the box's own test; its sign is its box's direction, which
+        // the part's band keeps.
         let column = &strip.column_items[rec.column.0 as usize..rec.column.1 as usize];
-        let crossings = column
+        let crossings: i64 = column
             .iter()
-            .filter(|&&item| {
-                parts
-                    .band(item)
+            .map(|&item| {
+                let band = parts.band(item);
+                let crossed = band
                     .crossing_below(p)
-                    .unwrap_or_else(|| parts.owner(all, item).crosses_below(p))
+                    .unwrap_or_else(|| parts.owner(all, item).crosses_below(p));
+                if crossed { band.x_sign() } else { 0 }
             })
-            .count();
-        if rec.inside_below ^ (crossings % 2 == 1) {
-            Location::Inside
-        } else {
-            Location::Outside
-        }
+            .sum();
+        cls.location(Some(i64::from(rec.winding_below) + crossings))
     }
 
     /// Locations of a stream of points, lazily: nothing is held but the index.

@@ -40,8 +40,13 @@ pub const MAX_SVG_NODES: u32 = 10_000_000;
 
 const SVG_NS: &str = "http://www.w3.org/2000/svg";
 
-/// Reads the shapes of an SVG document into `builder`.
-pub(crate) fn read_document(text: &str, builder: &mut LoopBuilder) -> Result<(), IoError> {
+/// Reads the shapes of an SVG document into `builder`; a path drawn up to an error in its
+/// data adds that error to `warnings`.
+pub(crate) fn read_document(
+    text: &str,
+    builder: &mut LoopBuilder,
+    warnings: &mut Vec<IoError>,
+) -> Result<(), IoError> {
     // DTDs are accepted (matplotlib, Illustrator and Inkscape write the SVG 1.1 one); roxmltree
     // expands internal entities with a depth and reference-count limit (entity-expansion
     // bombs fail fast) and never fetches external ones.
@@ -59,75 +64,92 @@ pub(crate) fn read_document(text: &str, builder: &mut LoopBuilder) -> Result<(),
             root.tag_name().name()
         )));
     }
-    visit(&doc, root, Affine::IDENTITY, builder, 0)
+    let mut reader = Reader {
+        doc: &doc,
+        warnings,
+    };
+    reader.visit(root, Affine::IDENTITY, builder, 0)
 }
 
-fn visit(
-    doc: &roxmltree::Document<'_>,
-    node: roxmltree::Node<'_, '_>,
-    parent: Affine,
-    builder: &mut LoopBuilder,
-    depth: usize,
-) -> Result<(), IoError> {
-    let ns = node.tag_name().namespace();
-    if ns.is_some_and(|n| n != SVG_NS) {
-        return Ok(());
-    }
-    let name = node.tag_name().name();
-    if SKIPPED.contains(&name) || is_hidden(node) {
-        return Ok(());
-    }
-    let fail = |message: String| {
-        let element = match node.attribute("id") {
-            Some(id) => format!("{name} id={id:?}"),
-            None => name.to_string(),
-        };
-        IoError::SvgElement {
-            element,
-            line: doc.text_pos_at(node.range().start).row,
-            message,
+/// The document being read and the errors recovered from so far.
+struct Reader<'d, 'w> {
+    doc: &'d roxmltree::Document<'d>,
+    warnings: &'w mut Vec<IoError>,
+}
+
+impl Reader<'_, '_> {
+    fn visit(
+        &mut self,
+        node: roxmltree::Node<'_, '_>,
+        parent: Affine,
+        builder: &mut LoopBuilder,
+        depth: usize,
+    ) -> Result<(), IoError> {
+        let doc = self.doc;
+        let ns = node.tag_name().namespace();
+        if ns.is_some_and(|n| n != SVG_NS) {
+            return Ok(());
         }
-    };
-    let own = match node.attribute("transform") {
-        Some(t) => parse_transform(t).map_err(|m| fail(format!("transform: {m}")))?,
-        None => Affine::IDENTITY,
-    };
-    let ctm = parent.then_apply_to(own);
-    builder.set_transform(ctm);
-    if matches!(name, "svg" | "g" | "a" | "switch") {
-        if depth >= MAX_SVG_DEPTH {
-            return Err(fail(format!(
-                "groups nested more than {MAX_SVG_DEPTH} deep (the limit)"
+        let name = node.tag_name().name();
+        if SKIPPED.contains(&name) || is_hidden(node) {
+            return Ok(());
+        }
+        let fail = |message: String| {
+            let element = match node.attribute("id") {
+                Some(id) => format!("{name} id={id:?}"),
+                None => name.to_string(),
+            };
+            IoError::SvgElement {
+                element,
+                line: doc.text_pos_at(node.range().start).row,
+                message,
+            }
+        };
+        let own = match node.attribute("transform") {
+            Some(t) => parse_transform(t).map_err(|m| fail(format!("transform: {m}")))?,
+            None => Affine::IDENTITY,
+        };
+        let ctm = parent.then_apply_to(own);
+        builder.set_transform(ctm);
+        if matches!(name, "svg" | "g" | "a" | "switch") {
+            if depth >= MAX_SVG_DEPTH {
+                return Err(fail(format!(
+                    "groups nested more than {MAX_SVG_DEPTH} deep (the limit)"
+                )));
+            }
+            for child in node.children().filter(roxmltree::Node::is_element) {
+                self.visit(child, ctm, builder, depth + 1)?;
+            }
+        } else if let Some(recovered) = shape(node, name, builder).map_err(fail)? {
+            self.warnings.push(fail(format!(
+                "{recovered}; drawn up to its last complete segment, as renderers draw it"
             )));
         }
-        for child in node.children().filter(roxmltree::Node::is_element) {
-            visit(doc, child, ctm, builder, depth + 1)?;
+        // The element's last subpath is finished under its own transform, and nothing of its
+        // pen state reaches the next element.
+        builder.end_path();
+        if let Some(e) = builder.take_error() {
+            return Err(fail(e.to_string()));
         }
-    } else {
-        shape(node, name, builder).map_err(fail)?;
+        builder.set_transform(parent);
+        Ok(())
     }
-    // The element's last subpath is finished under its own transform, and nothing of its
-    // pen state reaches the next element.
-    builder.end_path();
-    if let Some(e) = builder.take_error() {
-        return Err(fail(e.to_string()));
-    }
-    builder.set_transform(parent);
-    Ok(())
 }
 
 /// Adds the outline of one shape element `name` to `builder`. Lines enclose nothing; images,
-/// `use` references and unknown elements are not read.
+/// `use` references and unknown elements are not read. A path drawn up to an error in its data
+/// gives that error (`Ok(Some(message))`).
 fn shape(
     node: roxmltree::Node<'_, '_>,
     name: &str,
     builder: &mut LoopBuilder,
-) -> Result<(), String> {
+) -> Result<Option<String>, String> {
     let curve_err = |e: SplineError| e.to_string();
     match name {
         "path" => {
             if let Some(d) = node.attribute("d") {
-                read_path_data(d, builder).map_err(|e| e.to_string())?;
+                let recovered = read_path_data(d, builder).map_err(|e| e.to_string())?;
+                return Ok(recovered.map(|e| e.to_string()));
             }
         }
         "rect" => {
@@ -179,7 +201,7 @@ fn shape(
         }
         _ => {}
     }
-    Ok(())
+    Ok(None)
 }
 
 fn is_hidden(node: roxmltree::Node<'_, '_>) -> bool {

@@ -2,8 +2,13 @@
 //!
 //! Coordinates are SVG user units as written (y pointing down, `viewBox` not applied): the
 //! domain is the shape, not its rendering. Every subpath is closed as a renderer fills it;
-//! containment is by crossing parity (even-odd), so overlapping shapes cancel where they
-//! overlap.
+//! containment is even-odd by default, so overlapping shapes cancel where they overlap.
+//!
+//! A `path` element whose data has an error (`d="M 13,9 3,19 h 11 v -3 l"`: a command
+//! without its arguments, as real icon themes have) is drawn up to its last complete
+//! segment, as the SVG specification says and renderers do; [`load_svg_file`] and
+//! [`load_svg_str`] report each such error beside the domain ([`crate::Loaded`]). Path data
+//! given on its own ([`curves_from_path_data`]) is read strictly: an error is an error.
 
 mod arc;
 mod document;
@@ -37,7 +42,9 @@ pub use crate::builder::OpenSubpaths;
 /// ```
 pub fn curves_from_path_data(d: &str) -> Result<Vec<NurbsCurve>, IoError> {
     let mut b = LoopBuilder::new(OpenSubpaths::Close);
-    path_data::read_path_data(d, &mut b)?;
+    if let Some(grammar) = path_data::read_path_data(d, &mut b)? {
+        return Err(grammar);
+    }
     b.into_curves().map_err(|e| IoError::PathData {
         position: d.len(),
         message: e.to_string(),
@@ -71,7 +78,8 @@ pub fn domain_from_path_data(d: &str) -> Result<Domain, IoError> {
 ///
 /// # Errors
 /// [`IoError::Xml`] for malformed XML, [`IoError::SvgElement`] naming the element (and its
-/// line) with a bad attribute or path data, [`IoError::Empty`] if nothing encloses area.
+/// line) with a bad attribute, [`IoError::Empty`] if nothing encloses area. (Path data with
+/// an error is drawn up to it: [`load_svg_str`] reports it.)
 pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
     domain_from_svg_str_with(text, OpenSubpaths::Close)
 }
@@ -95,6 +103,27 @@ pub fn domain_from_svg_str(text: &str) -> Result<Domain, IoError> {
 /// assert_eq!(filled.curves().len(), 2); // with its closing segment
 /// ```
 pub fn domain_from_svg_str_with(text: &str, open: OpenSubpaths) -> Result<Domain, IoError> {
+    load_svg_str(text, open).map(|l| l.domain)
+}
+
+/// [`domain_from_svg_str_with`], with the errors it recovered from: each `path` whose data
+/// has an error, drawn up to its last complete segment, as an [`IoError::SvgElement`] naming
+/// the element, its line, the byte and what was expected there.
+///
+/// # Errors
+/// As [`domain_from_svg_str`].
+///
+/// # Examples
+///
+/// ```
+/// use rs_io::svg::{OpenSubpaths, load_svg_str};
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 13,9 3,19 h 11 v -3 l"/></svg>"#;
+/// let read = load_svg_str(svg, OpenSubpaths::Close).unwrap();
+/// assert_eq!(read.domain.curves().len(), 4); // three segments and the closing one
+/// assert_eq!(read.warnings.len(), 1);
+/// assert!(read.warnings[0].to_string().contains("drawn up to its last complete segment"));
+/// ```
+pub fn load_svg_str(text: &str, open: OpenSubpaths) -> Result<crate::Loaded, IoError> {
     read_svg(text, open, "SVG document")
 }
 
@@ -114,20 +143,44 @@ pub fn domain_from_svg_file_with(
     path: impl AsRef<Path>,
     open: OpenSubpaths,
 ) -> Result<Domain, IoError> {
+    load_svg_file(path, open).map(|l| l.domain)
+}
+
+/// [`domain_from_svg_file_with`], with the errors it recovered from (see [`load_svg_str`]).
+///
+/// # Errors
+/// As [`domain_from_svg_file`].
+pub fn load_svg_file(path: impl AsRef<Path>, open: OpenSubpaths) -> Result<crate::Loaded, IoError> {
     let path = path.as_ref();
     let text = rs_spline::limits::read_text_file(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;
     let name = path.display().to_string();
-    Ok(read_svg(&text, open, "SVG file")?.with_name(name))
+    let read = read_svg(&text, open, "SVG file")?;
+    Ok(crate::Loaded {
+        domain: read.domain.with_name(name),
+        warnings: read.warnings,
+    })
 }
 
-/// The domain of an SVG document; `what` names the input in errors.
-fn read_svg(text: &str, open: OpenSubpaths, what: &str) -> Result<Domain, IoError> {
+/// The domain of an SVG document and the errors it recovered from; `what` names the input in
+/// errors.
+fn read_svg(text: &str, open: OpenSubpaths, what: &str) -> Result<crate::Loaded, IoError> {
     let mut b = LoopBuilder::new(open);
-    document::read_document(text, &mut b)?;
-    domain(b.into_curves().map_err(curve_error)?, what)
+    let mut warnings: Vec<IoError> = Vec::new();
+    document::read_document(text, &mut b, &mut warnings)?;
+    let curves = b.into_curves().map_err(curve_error)?;
+    if curves.is_empty()
+        && let Some(first) = warnings.first()
+    {
+        // Nothing drawn: the path data errors say why.
+        return Err(IoError::Empty(format!("{what} ({first})")));
+    }
+    Ok(crate::Loaded {
+        domain: domain(curves, what)?,
+        warnings,
+    })
 }
 
 /// A curve of the document its transform could not map (the reader reports these per

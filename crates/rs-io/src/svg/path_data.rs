@@ -13,7 +13,16 @@ use crate::builder::LoopBuilder;
 /// Path data is read on its own, whatever `builder` drew before: the pen starts at the origin
 /// (so a leading relative `m` is absolute, as the SVG specification says), `S` and `T` have no
 /// previous control point to reflect, and `z` returns to a subpath this data opened.
-pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), IoError> {
+///
+/// An error of the grammar (a token that is not a command or a number, a command without all
+/// its arguments) stops the reading there, the segments before it drawn: `Ok(Some(error))`,
+/// the specification's error handling ("render up to the command containing the first
+/// error", which renderers apply segment by segment). A segment whose curve cannot be made
+/// (an arc's radii beyond the limits, say) is an error (`Err`).
+pub(crate) fn read_path_data(
+    d: &str,
+    builder: &mut LoopBuilder,
+) -> Result<Option<IoError>, IoError> {
     builder.end_path();
     let mut reader = PathReader {
         lexer: Lexer::new(d),
@@ -21,10 +30,17 @@ pub(crate) fn read_path_data(d: &str, builder: &mut LoopBuilder) -> Result<(), I
         last_cubic: None,
         last_quad: None,
     };
-    while let Some((cmd, start)) = reader.next_command()? {
-        reader.segment(cmd, start, builder)?;
+    loop {
+        let (cmd, start) = match reader.next_command() {
+            Ok(Some(next)) => next,
+            Ok(None) => return Ok(None),
+            Err(e) => return Ok(Some(e)),
+        };
+        match reader.segment(cmd, start, builder)? {
+            None => {}
+            Some(grammar) => return Ok(Some(grammar)),
+        }
     }
-    Ok(())
 }
 
 /// The state of the path-data grammar between segments.
@@ -69,8 +85,66 @@ impl PathReader<'_> {
     }
 
     /// Reads the arguments of one segment of command `cmd` (at byte `start`) and adds it to
-    /// `builder`, keeping the control points that `S` and `T` reflect.
-    fn segment(&mut self, cmd: u8, start: usize, builder: &mut LoopBuilder) -> Result<(), IoError> {
+    /// `builder`, keeping the control points that `S` and `T` reflect. An error of the grammar
+    /// (its arguments) is `Ok(Some(error))`, the segment not drawn; a curve that cannot be made
+    /// is `Err`.
+    fn segment(
+        &mut self,
+        cmd: u8,
+        start: usize,
+        builder: &mut LoopBuilder,
+    ) -> Result<Option<IoError>, IoError> {
+        match self.arguments(cmd, start) {
+            Ok(args) => self.draw(cmd, start, args, builder).map(|()| None),
+            Err(grammar) => Ok(Some(grammar)),
+        }
+    }
+
+    /// The numbers of one segment of command `cmd` (at byte `start`; flags as 0 and 1), all
+    /// read before any is drawn.
+    fn arguments(&mut self, cmd: u8, start: usize) -> Result<[f64; 7], IoError> {
+        let mut args = Arguments(&mut self.lexer);
+        let mut v = [0.0; 7];
+        match cmd.to_ascii_uppercase() {
+            b'M' | b'L' | b'T' => [v[0], v[1]] = [args.number()?, args.number()?],
+            b'H' | b'V' => v[0] = args.number()?,
+            b'C' => {
+                for x in &mut v[..6] {
+                    *x = args.number()?;
+                }
+            }
+            b'S' | b'Q' => {
+                for x in &mut v[..4] {
+                    *x = args.number()?;
+                }
+            }
+            b'A' => {
+                for x in &mut v[..3] {
+                    *x = args.number()?;
+                }
+                v[3] = f64::from(u8::from(args.flag()?));
+                v[4] = f64::from(u8::from(args.flag()?));
+                [v[5], v[6]] = [args.number()?, args.number()?];
+            }
+            b'Z' => {}
+            _ => {
+                return Err(error(
+                    start,
+                    &format!("unknown command {:?}", char::from(cmd)),
+                ));
+            }
+        }
+        Ok(v)
+    }
+
+    /// Draws one segment of command `cmd` (at byte `start`) with its numbers `v`.
+    fn draw(
+        &mut self,
+        cmd: u8,
+        start: usize,
+        v: [f64; 7],
+        builder: &mut LoopBuilder,
+    ) -> Result<(), IoError> {
         let rel = cmd.is_ascii_lowercase();
         let pen = builder.pen();
         let origin = if rel { pen } else { Point::new(0.0, 0.0) };
@@ -79,58 +153,52 @@ impl PathReader<'_> {
             position: start,
             message: e.to_string(),
         };
-        let mut args = Arguments(&mut self.lexer);
+        let point = |i: usize| at(Point::new(v[i], v[i + 1]));
         let (mut new_cubic, mut new_quad) = (None, None);
         match cmd.to_ascii_uppercase() {
-            b'M' => builder.move_to(at(args.point()?)),
-            b'L' => builder.line_to(at(args.point()?)).map_err(curve_err)?,
+            b'M' => builder.move_to(point(0)),
+            b'L' => builder.line_to(point(0)).map_err(curve_err)?,
             b'H' => {
-                let x = args.number()? + origin.x;
+                let x = v[0] + origin.x;
                 builder.line_to(Point::new(x, pen.y)).map_err(curve_err)?;
             }
             b'V' => {
-                let y = args.number()? + origin.y;
+                let y = v[0] + origin.y;
                 builder.line_to(Point::new(pen.x, y)).map_err(curve_err)?;
             }
             b'C' => {
-                let (c1, c2, p) = (at(args.point()?), at(args.point()?), at(args.point()?));
+                let (c1, c2, p) = (point(0), point(2), point(4));
                 builder.bezier_to(&[c1, c2, p]).map_err(curve_err)?;
                 new_cubic = Some(c2);
             }
             b'S' => {
                 let c1 = self.last_cubic.map_or(pen, |c| pen * 2.0 - c);
-                let (c2, p) = (at(args.point()?), at(args.point()?));
+                let (c2, p) = (point(0), point(2));
                 builder.bezier_to(&[c1, c2, p]).map_err(curve_err)?;
                 new_cubic = Some(c2);
             }
             b'Q' => {
-                let (c, p) = (at(args.point()?), at(args.point()?));
+                let (c, p) = (point(0), point(2));
                 builder.bezier_to(&[c, p]).map_err(curve_err)?;
                 new_quad = Some(c);
             }
             b'T' => {
                 let c = self.last_quad.map_or(pen, |c| pen * 2.0 - c);
-                let p = at(args.point()?);
+                let p = point(0);
                 builder.bezier_to(&[c, p]).map_err(curve_err)?;
                 new_quad = Some(c);
             }
             b'A' => {
-                let (rx, ry, phi) = (args.number()?, args.number()?, args.number()?);
-                let (large, sweep) = (args.flag()?, args.flag()?);
-                let p = at(args.point()?);
+                let (rx, ry, phi) = (v[0], v[1], v[2]);
+                let (large, sweep) = (v[3] == 1.0, v[4] == 1.0);
+                let p = point(5);
                 match endpoint_arc(pen, rx, ry, phi, large, sweep, p).map_err(curve_err)? {
                     ArcSegment::Nothing => {}
                     ArcSegment::Line => builder.line_to(p).map_err(curve_err)?,
                     ArcSegment::Curve(c) => builder.curve(c),
                 }
             }
-            b'Z' => builder.close(),
-            _ => {
-                return Err(error(
-                    start,
-                    &format!("unknown command {:?}", char::from(cmd)),
-                ));
-            }
+            _ => builder.close(),
         }
         self.last_cubic = new_cubic;
         self.last_quad = new_quad;
@@ -149,12 +217,6 @@ fn error(position: usize, message: &str) -> IoError {
 struct Arguments<'l, 'a>(&'l mut Lexer<'a>);
 
 impl Arguments<'_, '_> {
-    fn point(&mut self) -> Result<Point, IoError> {
-        let x = self.number()?;
-        let y = self.number()?;
-        Ok(Point::new(x, y))
-    }
-
     /// A number of the SVG grammar (see [`Lexer::number`]).
     fn number(&mut self) -> Result<f64, IoError> {
         self.0.skip_separators();

@@ -5,40 +5,11 @@
 use rs_spline::prelude::*;
 use rs_spline::{NurbsCurve, Point};
 
-/// A point where two curves certainly meet, if their control polygons show it: each curve
-/// lies in the slab of its control points round its chord (the convex hull property), each
-/// one's ends lie outside the other's slab on opposite sides (by `1e-9 size`, above any
-/// rounding here), so within the parallelogram where the slabs overlap one curve joins two
-/// opposite sides and the other the two others, and two such paths meet. The point
-/// returned, where the chords cross, lies in that parallelogram. Curves that share an end
-/// are never certified (the end lies in both slabs).
+/// A point where two curves certainly meet, if their control polygons show it
+/// ([`rs_spline::certain_crossing`] with a margin of `1e-9 size`, above any rounding here).
+/// Curves that share an end are never certified.
 fn arcs_certainly_meet(p: &NurbsCurve, q: &NurbsCurve, size: f64) -> Option<Point> {
-    let margin = 1e-9 * size;
-    // The unit normal of a chord, its slab's half-width, and its ends.
-    let slab = |c: &NurbsCurve| {
-        let pts = c.control_points();
-        let (a, b) = (pts[0], pts[pts.len() - 1]);
-        let len = a.distance(b);
-        if len.is_nan() || len <= 0.0 {
-            return None;
-        }
-        let n = (b - a).perp() / len;
-        let half = pts.iter().fold(0.0f64, |m, &x| m.max(n.dot(x - a).abs()));
-        Some((n, half + margin, a, b))
-    };
-    let (n1, w1, a, b) = slab(p)?;
-    let (n2, w2, c, d) = slab(q)?;
-    let across = |n: Point, w: f64, o: Point, x: Point, y: Point| {
-        let (sx, sy) = (n.dot(x - o), n.dot(y - o));
-        (sx > w && sy < -w) || (sx < -w && sy > w)
-    };
-    if !(across(n2, w2, c, a, b) && across(n1, w1, a, c, d)) {
-        return None;
-    }
-    // The chords cross (their ends are on opposite sides of each other's line): where.
-    let (r, s) = (b - a, d - c);
-    let t = (c - a).cross(s) / r.cross(s);
-    Some(a + r * t)
+    rs_spline::certain_crossing(p.control_points(), q.control_points(), 1e-9 * size)
 }
 
 /// Halvings of two certainly meeting arcs ([`where_arcs_meet`]) to close in on where.

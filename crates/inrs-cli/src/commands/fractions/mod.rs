@@ -50,9 +50,9 @@ pub(crate) struct FractionsArgs {
     /// covered fraction of each vertical and horizontal cell face.
     #[arg(long)]
     apertures: bool,
-    /// Fill rule: even-odd (odd crossing parity), or nonzero (winding number not zero, from
-    /// the loops' orientations: two nested counter-clockwise circles fill the outer disc).
-    /// Nonzero is exact for loops that do not cross each other.
+    /// Which winding numbers are inside. Under either rule the loops must not cross each other
+    /// or themselves (their fill is then decided by their nesting): a domain whose loops cross
+    /// is refused, naming the crossing (`classify` takes any loops).
     #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
     fill_rule: FillRuleArg,
     /// The fractions file `F.npy` (float64, shape (ny, nx)); its name must end in .npy.
