@@ -4,7 +4,7 @@
 //! (each an `Err` with a one-line message, never a panic).
 
 use rs_io::cad::CadModel;
-use rs_io::cad::step::{gap_tolerance, read_step};
+use rs_io::cad::step::read_step;
 use rs_spline::prelude::*;
 use rs_spline::{NurbsCurve, Point};
 
@@ -903,7 +903,7 @@ const IDF_FACES: [(&str, usize); 28] = [
 
 /// Checks the invariants of a real file's model; returns (read, refused).
 fn check_real(name: &str, m: &CadModel) -> (usize, usize) {
-    let tol = gap_tolerance(m.tolerance.stated());
+    let tol = m.tolerance.chain_gap();
     let (mut ok, mut refused) = (0, 0);
     for (k, f) in m.faces.iter().enumerate() {
         match &f.loops {

@@ -25,6 +25,10 @@ pub struct Model {
     pub solids: Vec<Solid>,
     /// The file's tolerance policy.
     pub tolerance: Tolerance,
+    /// Millimetres per length unit of the model's coordinates (the file's length unit, which
+    /// the model keeps: lengths, `(u, v)` on planes and the tolerance are in it), `None` when
+    /// the file does not say.
+    pub length_unit_mm: Option<f64>,
 }
 
 /// One face: a patch of a surface bounded by trimming loops in the surface's `(u, v)`.

@@ -5,6 +5,7 @@
 //! conversion factor is a measure in another unit (followed at most [`MAX_UNIT_CHAIN`]
 //! deep). Lengths are kept in the file's unit; only angles are converted (to radians).
 
+use super::error::{Result, StepError};
 use super::graph::{Graph, Instance, value_real};
 
 /// The longest chain of conversion-based units followed.
@@ -36,7 +37,7 @@ impl Default for Units {
 /// The units of the context `#label`; anything missing or unreadable keeps its default.
 /// Unit errors are not fatal: a face's geometry is read in the file's numbers either way, and
 /// only the angle factor changes values (reported when it is not positive and finite).
-pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units, String> {
+pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units> {
     let mut u = Units::default();
     let Ok(ctx) = g.get(label, "a representation") else {
         return Ok(u);
@@ -56,7 +57,11 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units, String> {
                 && let Some(f) = unit_factor(g, unit, 0)
             {
                 if !(f.is_finite() && f > 0.0) {
-                    return Err(format!("{}: plane angle unit factor {f}", unit.what()));
+                    return Err(StepError::BadNumber {
+                        what: unit.what(),
+                        name: "plane angle unit factor",
+                        value: f,
+                    });
                 }
                 u.radians_per_angle = f;
             }
