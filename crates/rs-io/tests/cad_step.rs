@@ -3,8 +3,11 @@
 //! message when absent, failing under `INRS_REQUIRE_SYSTEM_FILES=1`), and hostile inputs
 //! (each an `Err` with a one-line message, never a panic).
 
+use rs_geom::brep::{Edge, Face, FaceError};
+use rs_geom::surface::ParamSurface;
+use rs_geom::{Point3, Surface};
 use rs_io::cad::CadModel;
-use rs_io::cad::step::read_step;
+use rs_io::cad::step::{StepError, read_step};
 use rs_spline::prelude::*;
 use rs_spline::{NurbsCurve, Point};
 
@@ -1077,6 +1080,584 @@ fn gmsh_demos_planar_faces_are_mapped_and_the_others_refused_with_a_reason() {
                         && e.to_string().contains("B_SPLINE_SURFACE"),
                     "{rel}: {e}"
                 ),
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Surfaces, edges, topology and placements
+
+/// A fixture of `fixtures/cad/`.
+fn fixture(name: &str) -> Vec<u8> {
+    let path = format!("{}/../../fixtures/cad/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// The largest distance from the face's surface at points of its loops (9 per trimming curve)
+/// to the nearest of its 3-D edges: how well the `(u, v)` loops and the surface agree with the
+/// edges. `None` for a face without loops, surface or edges.
+fn surface_to_edges(f: &Face) -> Option<f64> {
+    let (Ok(loops), Some(s)) = (&f.loops, &f.surface) else {
+        return None;
+    };
+    let edges: Vec<&Edge> = f.edges.iter().flatten().collect();
+    if edges.is_empty() {
+        return None;
+    }
+    let mut worst = 0.0f64;
+    for c in loops.iter().flatten() {
+        let (a, b) = c.param_range();
+        for i in 0..=8 {
+            let uv = c.point_at(a + (b - a) * f64::from(i) / 8.0);
+            let x = s.point([uv.x, uv.y]);
+            let d = edges
+                .iter()
+                .map(|e| {
+                    let t = e.curve.closest_parameter(x, Some(e.range));
+                    e.curve.point(t).distance(x)
+                })
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(d);
+        }
+    }
+    Some(worst)
+}
+
+/// Faces whose own pcurves and 3-D edges disagree by more than their file's stated tolerance,
+/// with `OpenCASCADE`'s largest edge tolerance on the face (`BRep_Tool::Tolerance`, OCP 8.0),
+/// which bounds the disagreement there: the files' data, not the reader.
+const EDGE_TOLERANCES: [(&str, usize, f64); 17] = [
+    ("CAP_50SGV_8_10.stp", 18, 1.4977e-4),
+    ("CAP_50SGV_8_10.stp", 19, 1.0242e-4),
+    ("CAP_50SGV_8_10.stp", 21, 8.0918e-5),
+    ("SMB_DO_214AA.stp", 17, 4.7848e-4),
+    ("SMB_DO_214AA.stp", 18, 4.7848e-4),
+    ("SMB_DO_214AA.stp", 22, 4.7848e-4),
+    ("SMB_DO_214AA.stp", 26, 4.7848e-4),
+    ("SMB_DO_214AA.stp", 41, 4.37505e-3),
+    ("SMB_DO_214AA.stp", 42, 4.37505e-3),
+    ("SMB_DO_214AA.stp", 43, 4.37505e-3),
+    ("SMC_DO_214AB.stp", 14, 4.7848e-4),
+    ("SMC_DO_214AB.stp", 15, 4.7848e-4),
+    ("SMC_DO_214AB.stp", 22, 4.7848e-4),
+    ("SMC_DO_214AB.stp", 26, 4.7848e-4),
+    ("SMC_DO_214AB.stp", 41, 4.37505e-3),
+    ("SMC_DO_214AB.stp", 42, 4.37505e-3),
+    ("SMC_DO_214AB.stp", 43, 4.37505e-3),
+];
+
+/// Every readable face of the model: its surface at its loops lies on its 3-D edges within the
+/// file's tolerance (or, for the faces of [`EDGE_TOLERANCES`], `OpenCASCADE`'s edge
+/// tolerance). Returns how many faces were checked.
+fn check_surfaces_meet_edges(name: &str, m: &CadModel) -> usize {
+    let stated = m.tolerance.stated().unwrap_or(0.0);
+    let mut checked = 0;
+    for (k, f) in m.faces.iter().enumerate() {
+        let Some(d) = surface_to_edges(f) else {
+            continue;
+        };
+        checked += 1;
+        let bound = EDGE_TOLERANCES
+            .iter()
+            .find(|e| name.ends_with(e.0) && e.1 == k)
+            .map_or(stated, |e| e.2);
+        assert!(
+            d <= bound,
+            "{name} face {k} {} ({}): surface {d:e} off its edges (bound {bound:e})",
+            f.entity,
+            f.surface_name
+        );
+    }
+    checked
+}
+
+#[test]
+fn surfaces_at_the_loops_lie_on_the_edges_in_every_real_file() {
+    let mut checked = 0;
+    for (file, _) in IDF_FACES {
+        let path = format!("{IDF}/{file}");
+        let Some(text) = rs_testkit::system_file(&path, "freecad") else {
+            return;
+        };
+        let m = read_step(&text).unwrap();
+        checked += check_surfaces_meet_edges(file, &m);
+    }
+    for rel in [
+        "demos/api/as1-tu-203.stp.gz",
+        "demos/api/step_boundary_colors.stp.gz",
+        "demos/boolean/component8.step.gz",
+        "tutorial/t20_data.step.gz",
+    ] {
+        let Some(text) = gmsh_demo(rel) else { return };
+        let m = read_step(&text).unwrap();
+        checked += check_surfaces_meet_edges(rel, &m);
+    }
+    for name in ["cone_minus_sphere.step", "box_void.step"] {
+        let m = read_step(&fixture(name)).unwrap();
+        checked += check_surfaces_meet_edges(name, &m);
+    }
+    // The readable faces (natural-bounds faces have no edges to meet).
+    assert_eq!(checked, 2845 + 90 + 6 + 3 + 6, "faces checked");
+}
+
+/// A whole sphere of radius 2 about (1, 2, 3) bounded by a `VERTEX_LOOP` at its south pole
+/// only, as `OpenCASCADE` writes it.
+fn whole_sphere(surface: &str) -> String {
+    let mut b = Builder::new();
+    let ax = b.axis3([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let s = b.add(&format!("{surface}('',#{ax},2.)"));
+    let v = b.vertex([1.0, 2.0, 1.0]);
+    let l = b.add(&format!("VERTEX_LOOP('',#{v})"));
+    let bo = b.add(&format!("FACE_BOUND('',#{l},.T.)"));
+    b.file(&[bo], s)
+}
+
+#[test]
+fn a_whole_sphere_takes_its_natural_box_as_opencascade_s_wire() {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+    let m = read_step(whole_sphere("SPHERICAL_SURFACE").as_bytes()).unwrap();
+    let f = &m.faces[0];
+    assert!(f.natural_bounds && f.edges.iter().all(Vec::is_empty));
+    let loops = closed(f.loops.clone().unwrap());
+    assert_eq!(loops.len(), 1);
+    // The seam down at u = 0, the south pole, the seam up at u = 2 pi, the north pole.
+    let corners = [
+        (0.0, FRAC_PI_2),
+        (0.0, -FRAC_PI_2),
+        (TAU, -FRAC_PI_2),
+        (TAU, FRAC_PI_2),
+    ];
+    for (c, &(u, v)) in loops[0].iter().zip(&corners) {
+        assert_eq!(c.degree(), 1);
+        assert_eq!(c.start_point(), Point::new(u, v));
+    }
+    assert!((loop_area(&loops[0]) - TAU * PI).abs() < 1e-12);
+    let s = f.surface.as_ref().unwrap();
+    // Both poles and the seam are where ISO 10303-42 puts them.
+    assert!(
+        s.point([0.3, FRAC_PI_2])
+            .distance(Point3::new(1.0, 2.0, 5.0))
+            < 1e-15
+    );
+    assert!(
+        s.point([5.0, -FRAC_PI_2])
+            .distance(Point3::new(1.0, 2.0, 1.0))
+            < 1e-15
+    );
+    assert!(s.point([TAU, 0.0]).distance(Point3::new(3.0, 2.0, 3.0)) < 1e-15);
+    // The face's domain is the whole box.
+    let d = m.face_domain(0, None).unwrap();
+    assert!((d.signed_area() - TAU * PI).abs() < 1e-12);
+}
+
+#[test]
+fn a_face_without_bounds_on_an_unbounded_surface_is_a_typed_error() {
+    for (surface, text) in [
+        ("CYLINDRICAL_SURFACE", whole_sphere("CYLINDRICAL_SURFACE")),
+        ("PLANE", {
+            let mut b = Builder::new();
+            let ax = b.axis3([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+            let s = b.add(&format!("PLANE('',#{ax})"));
+            b.file(&[], s)
+        }),
+    ] {
+        let m = read_step(text.as_bytes()).unwrap();
+        let FaceError::Read(e) = m.faces[0].loops.as_ref().unwrap_err() else {
+            panic!("{surface}: not a reader's error");
+        };
+        let e = e.0.downcast_ref::<StepError>().unwrap();
+        assert!(
+            matches!(e, StepError::UnboundedFace { surface: s, .. } if s == surface),
+            "{e}"
+        );
+        let msg = e.to_string();
+        assert!(
+            msg.starts_with("#99 ADVANCED_FACE: a face with no bounds on an unbounded ")
+                && msg.contains(&format!("{surface} #"))
+                && !msg.contains('\n'),
+            "{msg}"
+        );
+    }
+}
+
+#[test]
+fn the_sphere_cap_through_the_seam_closes_at_the_pole() {
+    use std::f64::consts::{FRAC_PI_2, TAU};
+    // OCC's loop of the dimple: the circle, the seam twice; its seam pcurves are written a
+    // period off in v (v = t - 2 pi for the circle parameter t in [3 pi/2, 2 pi - 0.725]).
+    let m = read_step(&fixture("cone_minus_sphere.step")).unwrap();
+    assert_eq!(m.faces.len(), 3);
+    let f = &m.faces[1];
+    assert_eq!(f.surface_name, "SPHERICAL_SURFACE");
+    assert!(!f.same_sense && !f.natural_bounds);
+    let loops = closed(f.loops.clone().unwrap());
+    assert_eq!(loops.len(), 1);
+    // The rectangle [0, 2 pi] x [-pi/2, v0]: circle, seam, pole segment, seam.
+    let v0 = -0.725255469595;
+    assert_eq!(loops[0].len(), 4);
+    let b = f.loops_box().unwrap();
+    for (got, want) in [
+        (b.min.x, 0.0),
+        (b.max.x, TAU),
+        (b.min.y, -FRAC_PI_2),
+        (b.max.y, v0),
+    ] {
+        assert!((got - want).abs() < 1e-9, "{b:?}");
+    }
+    let area = loop_area(&loops[0]).abs();
+    assert!((area - TAU * (v0 + FRAC_PI_2)).abs() < 1e-9, "{area}");
+    // One of the curves is the pole (the whole segment is the point (0, 0, 1.8)).
+    let s = f.surface.as_ref().unwrap();
+    let pole = loops[0]
+        .iter()
+        .find(|c| c.start_point().y.abs() > 1.5 && c.end_point().y.abs() > 1.5)
+        .unwrap();
+    for t in [0.0, 0.3, 1.0] {
+        let uv = pole.point_at(t);
+        assert!(s.point([uv.x, uv.y]).distance(Point3::new(0.0, 0.0, 1.8)) < 1e-12);
+    }
+    // Its 3-D edges: the circle and the seam used twice (in the bound's reversed order).
+    let edges: Vec<&str> = f.edges[0].iter().map(|e| e.entity.as_str()).collect();
+    assert_eq!(edges, ["#110", "#110", "#21"]);
+    assert!(surface_to_edges(f).unwrap() < 1e-12);
+}
+
+/// The outward normal of face `f` at the middle of its loops' box.
+fn outward(f: &Face) -> (Point3, Point3) {
+    let b = f.loops_box().unwrap();
+    let uv = [0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)];
+    let s = f.surface.as_ref().unwrap();
+    let n = s.normal(uv).unwrap();
+    (s.point(uv), if f.same_sense { n } else { n * -1.0 })
+}
+
+#[test]
+fn a_void_is_a_reversed_shell_of_its_solid() {
+    // The cube [-2, 2]^3 with a spherical void: BREP_WITH_VOIDS(outer, (ORIENTED_CLOSED_SHELL .F.)).
+    let m = read_step(&fixture("box_void.step")).unwrap();
+    assert_eq!(m.faces.len(), 7);
+    assert_eq!(m.solids.len(), 1);
+    assert_eq!(m.solids[0].entity, "#15");
+    assert_eq!(m.solids[0].shells, [0, 1]);
+    assert_eq!(m.shells[0].faces, (0..6).collect::<Vec<_>>());
+    assert_eq!(m.shells[1].faces, [6]);
+    assert!(m.shells.iter().all(|s| s.closed));
+    // The void: a whole sphere (natural bounds), its face reversed by its shell.
+    let sphere = &m.faces[6];
+    assert!(sphere.natural_bounds && !sphere.same_sense);
+    let Some(Surface::Sphere(s)) = &sphere.surface else {
+        panic!("{:?}", sphere.surface);
+    };
+    let c = s.frame().origin;
+    // Outward normals of the solid: away from the cube's centre on its faces, towards the
+    // void's centre on the sphere.
+    let centre = Point3::ORIGIN;
+    for f in &m.faces[..6] {
+        let (p, n) = outward(f);
+        assert!((p - centre).dot(n) > 1.0, "{}", f.entity);
+    }
+    let (p, n) = outward(sphere);
+    assert!((p - c).dot(n) < -0.5, "{p:?} {n:?}");
+}
+
+#[test]
+fn a_closed_shell_with_free_edges_is_no_solid() {
+    // The cone_minus_sphere solid without its plane face: its two circle edges are used once.
+    let text = String::from_utf8(fixture("cone_minus_sphere.step")).unwrap();
+    let open = text.replace(
+        "#16 = CLOSED_SHELL('',(#17,#105,#134));",
+        "#16 = CLOSED_SHELL('',(#17,#105));",
+    );
+    assert_ne!(open, text);
+    let m = read_step(open.as_bytes()).unwrap();
+    assert_eq!(m.faces.len(), 2);
+    assert!(m.solids.is_empty());
+    assert_eq!(m.shells.len(), 1);
+    assert!(!m.shells[0].closed);
+    // The whole part is a solid.
+    let m = read_step(text.as_bytes()).unwrap();
+    assert_eq!(m.solids.len(), 1);
+    assert!(m.shells[0].closed);
+    // An OPEN_SHELL as a solid's outer shell is no solid either.
+    let m = read_step(
+        text.replace("#16 = CLOSED_SHELL(", "#16 = OPEN_SHELL(")
+            .as_bytes(),
+    )
+    .unwrap();
+    assert!(m.solids.is_empty() && m.shells.len() == 1 && !m.shells[0].closed);
+}
+
+#[test]
+fn an_oriented_face_reverses_the_face() {
+    let text = plate(&FLAT, true);
+    let m = read_step(text.as_bytes()).unwrap();
+    assert!(m.faces[0].same_sense);
+    let t = text.replace(
+        "#100=OPEN_SHELL('',(#99));",
+        "#100=OPEN_SHELL('',(#98));\n#98=ORIENTED_FACE('',*,#99,.F.);",
+    );
+    let m = read_step(t.as_bytes()).unwrap();
+    assert_eq!(m.faces.len(), 1);
+    assert!(!m.faces[0].same_sense);
+    // The loops do not change.
+    assert_eq!(
+        m.faces[0].loops.as_ref().unwrap(),
+        read_step(text.as_bytes()).unwrap().faces[0]
+            .loops
+            .as_ref()
+            .unwrap()
+    );
+}
+
+#[test]
+fn a_degenerate_placement_is_an_error_naming_it() {
+    // The plane's reference direction along its axis.
+    let text = plate(&FLAT, true);
+    let at = text.find("=PLANE('',#").unwrap();
+    let ax: u64 = text[at + 11..].split(')').next().unwrap().parse().unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with(&format!("#{ax}=AXIS2_PLACEMENT_3D(")))
+        .unwrap();
+    // #ax=AXIS2_PLACEMENT_3D('',#point,#axis,#ref);
+    let parts: Vec<&str> = line.split(",#").collect();
+    assert_eq!(parts.len(), 4, "{line}");
+    let bad = format!("{},#{},#{},#{});", parts[0], parts[1], parts[2], parts[2]);
+    let m = read_step(text.replace(line, &bad).as_bytes()).unwrap();
+    let e = m.faces[0].surface_error.as_ref().unwrap().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "#{ax} AXIS2_PLACEMENT_3D: degenerate axes: the reference direction is along the axis"
+        )
+    );
+    assert!(m.faces[0].surface.is_none());
+    // The hole's pcurve, a circle on a placement with a zero reference direction: the face's
+    // loops name the placement.
+    let centre = text.find("CARTESIAN_POINT('',(5.0,5.0))").unwrap();
+    let t = text[..centre].to_string()
+        + &text[centre..].replacen("DIRECTION('',(1.0,0.0))", "DIRECTION('',(0.0,0.0))", 1);
+    assert_ne!(t, text);
+    let m = read_step(t.as_bytes()).unwrap();
+    let e = m.faces[0].loops.as_ref().unwrap_err().to_string();
+    assert!(
+        e.contains("AXIS2_PLACEMENT_2D: degenerate axes: the reference direction is zero")
+            && !e.contains('\n'),
+        "{e}"
+    );
+}
+
+#[test]
+fn cycles_between_shells_and_solids_are_errors() {
+    let m = hostile(
+        "void cycle",
+        step_file(
+            "#100=BREP_WITH_VOIDS('',#101,(#102));#101=CLOSED_SHELL('',());#102=ORIENTED_CLOSED_SHELL('',*,#102,.F.);",
+        )
+        .replace("SHELL_BASED_SURFACE_MODEL('',(#100))", "SHELL_BASED_SURFACE_MODEL('',(#103))")
+        .replace("#9007=", "#103=OPEN_SHELL('',());\n#9007=")
+        .replace("(#9007),#9010)", "(#9007,#100),#9010)")
+        .as_bytes(),
+    );
+    assert!(m.contains("#102") && m.contains("cycle"), "{m}");
+}
+
+/// The plate as the one part of an assembly placed twice: by a translation (10, 0, 0), and by
+/// the frame at (0, 5, 0) with axis x and reference y.
+fn placed_plates() -> String {
+    let part = plate(&FLAT, true);
+    let assembly = "#9008=AXIS2_PLACEMENT_3D('',#9040,$,$);
+#9040=CARTESIAN_POINT('',(0.,0.,0.));
+#8001=PRODUCT_DEFINITION('design','',#9023,#9024);
+#8002=PRODUCT_DEFINITION_SHAPE('','',#8001);
+#8003=SHAPE_DEFINITION_REPRESENTATION(#8002,#8006);
+#8006=SHAPE_REPRESENTATION('',(#8010,#8011,#8012),#9010);
+#8010=AXIS2_PLACEMENT_3D('',#9040,$,$);
+#8011=AXIS2_PLACEMENT_3D('',#8013,$,$);
+#8013=CARTESIAN_POINT('',(10.,0.,0.));
+#8012=AXIS2_PLACEMENT_3D('',#8014,#8015,#8016);
+#8014=CARTESIAN_POINT('',(0.,5.,0.));
+#8015=DIRECTION('',(1.,0.,0.));
+#8016=DIRECTION('',(0.,1.,0.));
+#8020=NEXT_ASSEMBLY_USAGE_OCCURRENCE('1','','',#8001,#9001,$);
+#8021=NEXT_ASSEMBLY_USAGE_OCCURRENCE('2','','',#8001,#9001,$);
+#8030=PRODUCT_DEFINITION_SHAPE('','',#8020);
+#8031=PRODUCT_DEFINITION_SHAPE('','',#8021);
+#8040=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#8050,#8030);
+#8041=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#8051,#8031);
+#8050=(REPRESENTATION_RELATIONSHIP('','',#9006,#8006)REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#8060)SHAPE_REPRESENTATION_RELATIONSHIP());
+#8051=(REPRESENTATION_RELATIONSHIP('','',#9006,#8006)REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#8061)SHAPE_REPRESENTATION_RELATIONSHIP());
+#8060=ITEM_DEFINED_TRANSFORMATION('','',#9008,#8011);
+#8061=ITEM_DEFINED_TRANSFORMATION('','',#9008,#8012);
+";
+    part.replace("ENDSEC;\nEND-ISO", &format!("{assembly}ENDSEC;\nEND-ISO"))
+}
+
+#[test]
+fn assembly_occurrences_place_surfaces_and_edges_not_loops() {
+    let part = read_step(plate(&FLAT, true).as_bytes()).unwrap();
+    let m = read_step(placed_plates().as_bytes()).unwrap();
+    assert_eq!(m.faces.len(), 2);
+    assert_eq!(m.shells.len(), 2);
+    assert_eq!(m.length_unit_mm, Some(1.0));
+    // The two placements, written out: (x, y, z) -> (x + 10, y, z) and -> (0, 5 + x, y) (the
+    // frame's x is the world y, its y = z x x the world z).
+    let places: [fn(Point3) -> Point3; 2] = [
+        |p| Point3::new(p.x + 10.0, p.y, p.z),
+        |p| Point3::new(p.z, 5.0 + p.x, p.y),
+    ];
+    let s0 = part.faces[0].surface.as_ref().unwrap();
+    for (f, place) in m.faces.iter().zip(places) {
+        assert_eq!(f.entity, "#99");
+        assert_eq!(
+            f.loops.as_ref().unwrap(),
+            part.faces[0].loops.as_ref().unwrap()
+        );
+        let s = f.surface.as_ref().unwrap();
+        for uv in [[0.0, 0.0], [3.0, -1.0], [10.0, 10.0]] {
+            assert!(s.point(uv).distance(place(s0.point(uv))) < 1e-14, "{uv:?}");
+        }
+        for (e, e0) in f
+            .edges
+            .iter()
+            .flatten()
+            .zip(part.faces[0].edges.iter().flatten())
+        {
+            assert_eq!(e.range, e0.range);
+            let (a, b) = e.ends();
+            let (a0, b0) = e0.ends();
+            assert!(a.distance(place(a0)) < 1e-14 && b.distance(place(b0)) < 1e-14);
+        }
+        assert!(surface_to_edges(f).unwrap() < 1e-14);
+    }
+}
+
+/// A file's topology: its name, the faces of each solid's shells, its free shells (faces,
+/// closed).
+type Topology = (&'static str, Vec<Vec<usize>>, Vec<(usize, bool)>);
+
+#[test]
+fn solids_and_shells_of_the_real_files_are_opencascade_s() {
+    // (file, the faces of each solid's shells, free shells (faces, closed)), from
+    // `OpenCASCADE`'s explorers on the same files.
+    let one = |n: usize| vec![vec![n]];
+    let cases: Vec<Topology> = vec![
+        ("0603_SMD.stp", one(90), vec![]),
+        (
+            "I22_2_5_16withEPL22_6_16.stp",
+            vec![vec![36], vec![36]],
+            vec![],
+        ),
+        ("RLF_12545.stp", vec![vec![10], vec![27], vec![10]], vec![]),
+        ("SOT23.stp", vec![], vec![(1, false); 73]),
+        ("SOD_323.stp", vec![], vec![(1, false); 75]),
+        (
+            "SOT404.stp",
+            vec![vec![25], vec![3], vec![6], vec![24]],
+            vec![(17, false)],
+        ),
+        ("TSM_103_01_L_DV_A.stp", vec![vec![418, 8, 8]], vec![]),
+        ("TSM_104_01_L_DV_A.stp", vec![vec![536, 8, 8]], vec![]),
+    ];
+    for (file, solids, free) in cases {
+        let path = format!("{IDF}/{file}");
+        let Some(text) = rs_testkit::system_file(&path, "freecad") else {
+            return;
+        };
+        let m = read_step(&text).unwrap();
+        let got: Vec<Vec<usize>> = m
+            .solids
+            .iter()
+            .map(|s| s.shells.iter().map(|&k| m.shells[k].faces.len()).collect())
+            .collect();
+        assert_eq!(got, solids, "{file}");
+        let in_solids: Vec<usize> = m.solids.iter().flat_map(|s| s.shells.clone()).collect();
+        let got_free: Vec<(usize, bool)> = (0..m.shells.len())
+            .filter(|k| !in_solids.contains(k))
+            .map(|k| (m.shells[k].faces.len(), m.shells[k].closed))
+            .collect();
+        assert_eq!(got_free, free, "{file}");
+        // Solids' shells, then free shells: the faces in order, each once.
+        let order: Vec<usize> = in_solids
+            .iter()
+            .chain(
+                (0..m.shells.len())
+                    .filter(|k| !in_solids.contains(k))
+                    .collect::<Vec<_>>()
+                    .iter(),
+            )
+            .flat_map(|&k| m.shells[k].faces.clone())
+            .collect();
+        assert_eq!(order, (0..m.faces.len()).collect::<Vec<_>>(), "{file}");
+        assert_eq!(m.length_unit_mm, Some(1.0), "{file}");
+    }
+}
+
+/// The bounding box centre of the placed edges of faces `range`.
+fn edges_centre(m: &CadModel, range: std::ops::Range<usize>) -> Point3 {
+    let mut lo = Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let mut hi = lo * -1.0;
+    for f in &m.faces[range] {
+        for e in f.edges.iter().flatten() {
+            for p in e.sample(33) {
+                lo = Point3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+                hi = Point3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+            }
+        }
+    }
+    (lo + hi) * 0.5
+}
+
+#[test]
+fn as1_occurrences_are_placed_as_the_file_s_validation_centroids_say() {
+    let Some(text) = gmsh_demo("demos/api/as1-tu-203.stp.gz") else {
+        return;
+    };
+    let m = read_step(&text).unwrap();
+    let sizes: Vec<usize> = m
+        .solids
+        .iter()
+        .map(|s| m.shells[s.shells[0]].faces.len())
+        .collect();
+    assert_eq!(
+        sizes,
+        [8, 8, 4, 7, 8, 7, 8, 7, 8, 16, 18, 7, 8, 7, 8, 7, 8, 16]
+    );
+    assert_eq!(m.faces.len(), 160);
+    // The file's own validation properties ('centroid of instance - ...', in the assembly's
+    // coordinates): the rod assembly (two nuts and a rod, symmetric about its centre) at
+    // (90, 75, 60), the plate at (90, 75, 10). A centrally symmetric part's centroid is the
+    // centre of its edges' box, wherever it is turned.
+    let rod_assembly = edges_centre(&m, 0..20);
+    assert!(
+        rod_assembly.distance(Point3::new(90.0, 75.0, 60.0)) < 1e-9,
+        "{rod_assembly:?}"
+    );
+    let plate = edges_centre(&m, 81..99);
+    assert!(
+        plate.distance(Point3::new(90.0, 75.0, 10.0)) < 1e-6,
+        "{plate:?}"
+    );
+    // The two nuts of the rod assembly sit 173 apart (at z = 186.5 and 13.5 along the rod).
+    let (n1, n2) = (edges_centre(&m, 0..8), edges_centre(&m, 8..16));
+    assert!((n1.distance(n2) - 173.0).abs() < 1e-9, "{n1:?} {n2:?}");
+    // Every nut occurrence is the same nut moved rigidly: its edges' chords are the first's.
+    let chords = |k: usize| -> Vec<f64> {
+        m.faces[k..k + 8]
+            .iter()
+            .flat_map(|f| f.edges.iter().flatten())
+            .map(|e| {
+                let (a, b) = e.ends();
+                a.distance(b)
+            })
+            .collect()
+    };
+    let first = chords(0);
+    for (k, f) in m.faces.iter().enumerate() {
+        if k > 0 && f.entity == m.faces[0].entity {
+            for (a, b) in chords(k).iter().zip(&first) {
+                assert!((a - b).abs() < 1e-9, "nut at face {k}");
             }
         }
     }
