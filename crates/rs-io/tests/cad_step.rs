@@ -1662,3 +1662,102 @@ fn as1_occurrences_are_placed_as_the_file_s_validation_centroids_say() {
         }
     }
 }
+
+/// A whole torus (R = 3, r = 1 about z) as `OpenCASCADE` writes it: one vertex at (4, 0, 0),
+/// two seam edges (the outer equator, pcurves `v = 2 pi` then `v = 0`; the meridian at
+/// `u = 0`, pcurves `u = 2 pi` then `u = 0`), the loop `(-e1, -e2, +e1, +e2)`.
+fn whole_torus() -> String {
+    let tau = std::f64::consts::TAU;
+    let mut b = Builder::new();
+    let ax = b.axis3([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let torus = b.add(&format!("TOROIDAL_SURFACE('',#{ax},3.,1.)"));
+    let v = b.vertex([4.0, 0.0, 0.0]);
+    let seam = |b: &mut Builder, c3: u64, p: [[f64; 2]; 2], d: [f64; 2]| {
+        let (l1, l2) = (b.line(&p[0], &d), b.line(&p[1], &d));
+        let (p1, p2) = (b.pcurve(torus, l1), b.pcurve(torus, l2));
+        let s = b.add(&format!("SEAM_CURVE('',#{c3},(#{p1},#{p2}),.PCURVE_S1.)"));
+        b.edge(v, v, s, true)
+    };
+    let equator = b.add(&format!("CIRCLE('',#{ax},4.)"));
+    let e1 = seam(&mut b, equator, [[0.0, tau], [0.0, 0.0]], [1.0, 0.0]);
+    let max = b.axis3([3.0, 0.0, 0.0], [0.0, -1.0, 0.0], [1.0, 0.0, 0.0]);
+    let meridian = b.add(&format!("CIRCLE('',#{max},1.)"));
+    let e2 = seam(&mut b, meridian, [[tau, 0.0], [0.0, 0.0]], [0.0, 1.0]);
+    let uses = [
+        b.oriented(e1, false),
+        b.oriented(e2, false),
+        b.oriented(e1, true),
+        b.oriented(e2, true),
+    ];
+    let bo = b.bound(&uses, true, true);
+    b.file(&[bo], torus)
+}
+
+#[test]
+fn a_whole_torus_of_four_seam_uses_is_its_rectangle() {
+    let tau = std::f64::consts::TAU;
+    let m = read_step(whole_torus().as_bytes()).unwrap();
+    let f = &m.faces[0];
+    assert!(!f.natural_bounds);
+    let loops = closed(f.loops.clone().unwrap());
+    assert_eq!(loops.len(), 1);
+    assert_eq!(loops[0].len(), 4);
+    assert!((loop_area(&loops[0]) - tau * tau).abs() < 1e-12);
+    let b = f.loops_box().unwrap();
+    assert!(b.min.x.abs() < 1e-15 && b.min.y.abs() < 1e-15);
+    assert!((b.max.x - tau).abs() < 1e-15 && (b.max.y - tau).abs() < 1e-15);
+    assert!(surface_to_edges(f).unwrap() < 1e-14);
+}
+
+/// A band of the unit cylinder about z across its seam, `-1 <= u <= 1`, `0 <= v <= 1`, its
+/// bottom pcurve written a period up (`u = 2 pi + t`), the others at the 3-D angles.
+#[test]
+fn a_loop_through_the_seam_is_made_continuous_and_moved_into_the_base_period() {
+    let tau = std::f64::consts::TAU;
+    let mut b = Builder::new();
+    let ax = b.axis3([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let cyl = b.add(&format!("CYLINDRICAL_SURFACE('',#{ax},1.)"));
+    let at = |u: f64, v: f64| [u.cos(), u.sin(), v];
+    let (va, vb, vc, vd) = (
+        b.vertex(at(-1.0, 0.0)),
+        b.vertex(at(1.0, 0.0)),
+        b.vertex(at(1.0, 1.0)),
+        b.vertex(at(-1.0, 1.0)),
+    );
+    let arc = |b: &mut Builder, z: f64, u0: f64, s: u64, e: u64| {
+        let a = b.axis3([0.0, 0.0, z], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+        let c3 = b.add(&format!("CIRCLE('',#{a},1.)"));
+        let l2 = b.line(&[u0, z], &[1.0, 0.0]);
+        let pc = b.pcurve(cyl, l2);
+        let sc = b.add(&format!("SURFACE_CURVE('',#{c3},(#{pc}),.PCURVE_S1.)"));
+        b.edge(s, e, sc, true)
+    };
+    let side = |b: &mut Builder, u: f64, s: u64, e: u64| {
+        let l3 = b.line(&at(u, 0.0), &[0.0, 0.0, 1.0]);
+        let l2 = b.line(&[u, 0.0], &[0.0, 1.0]);
+        let pc = b.pcurve(cyl, l2);
+        let sc = b.add(&format!("SURFACE_CURVE('',#{l3},(#{pc}),.PCURVE_S1.)"));
+        b.edge(s, e, sc, true)
+    };
+    let bottom = arc(&mut b, 0.0, tau, va, vb);
+    let right = side(&mut b, 1.0, vb, vc);
+    let top = arc(&mut b, 1.0, 0.0, vd, vc);
+    let left = side(&mut b, -1.0, va, vd);
+    let uses = [
+        b.oriented(bottom, true),
+        b.oriented(right, true),
+        b.oriented(top, false),
+        b.oriented(left, false),
+    ];
+    let bo = b.bound(&uses, true, true);
+    let m = read_step(b.file(&[bo], cyl).as_bytes()).unwrap();
+    let f = &m.faces[0];
+    let loops = closed(f.loops.clone().unwrap());
+    assert!((loop_area(&loops[0]) - 2.0).abs() < 1e-12);
+    let bx = f.loops_box().unwrap();
+    assert!(
+        (bx.min.x + 1.0).abs() < 1e-12 && (bx.max.x - 1.0).abs() < 1e-12,
+        "{bx:?}"
+    );
+    assert!(surface_to_edges(f).unwrap() < 1e-14);
+}

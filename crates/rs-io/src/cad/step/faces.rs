@@ -547,3 +547,39 @@ fn has_free_edges(g: &Graph, faces: &[u64]) -> bool {
     }
     uses.values().any(|&n| n == 1)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two triangles sharing edge #22 (the third edges #23, #24 of each face its own), and a
+    /// triangle whose edges are all its own.
+    fn graph() -> Graph {
+        let text = "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;
+#1=ADVANCED_FACE('',(#2),#0,.T.);
+#2=FACE_OUTER_BOUND('',#3,.T.);
+#3=EDGE_LOOP('',(#4,#5,#6));
+#4=ORIENTED_EDGE('',*,*,#21,.T.);
+#5=ORIENTED_EDGE('',*,*,#22,.T.);
+#6=ORIENTED_EDGE('',*,*,#23,.T.);
+#11=ADVANCED_FACE('',(#12),#0,.T.);
+#12=FACE_BOUND('',#13,.T.);
+#13=EDGE_LOOP('',(#14,#15,#16));
+#14=ORIENTED_EDGE('',*,*,#21,.F.);
+#15=ORIENTED_EDGE('',*,*,#22,.F.);
+#16=ORIENTED_EDGE('',*,*,#23,.F.);
+#31=ORIENTED_FACE('',*,#1,.F.);
+ENDSEC;\nEND-ISO-10303-21;\n";
+        Graph::parse(text.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn free_edges_are_edges_used_once() {
+        let g = graph();
+        assert!(!has_free_edges(&g, &[1, 11]));
+        assert!(!has_free_edges(&g, &[31, 11]));
+        assert!(has_free_edges(&g, &[1]));
+        // Unreadable faces count no edges.
+        assert!(!has_free_edges(&g, &[1, 11, 77]));
+    }
+}

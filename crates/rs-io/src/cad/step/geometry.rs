@@ -712,3 +712,151 @@ fn bspline_surface(g: &Graph, inst: &Instance) -> Result<Surface> {
     let s = BSplineSurface::new(kv, points, weights).map_err(geo)?;
     Ok(Surface::BSpline(s.with_closed(closed)))
 }
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::{FRAC_PI_2, PI};
+
+    use rs_geom::surface::ParamSurface;
+
+    use super::*;
+
+    fn graph(data: &str) -> Graph {
+        let text = format!(
+            "ISO-10303-21;\nHEADER;\nFILE_NAME('a',(''));\nENDSEC;\nDATA;\n{data}\nENDSEC;\nEND-ISO-10303-21;\n"
+        );
+        Graph::parse(text.as_bytes()).unwrap()
+    }
+
+    /// Points `#1..#n` on the x axis at `0, 1, ..., n - 1`.
+    fn points(n: usize) -> String {
+        (1..=n)
+            .map(|i| format!("#{i}=CARTESIAN_POINT('',({}.,0.));\n", i - 1))
+            .collect()
+    }
+
+    fn knots(c: &Curve<Point>) -> Vec<f64> {
+        let Curve::BSpline(b) = c else {
+            panic!("{c:?}")
+        };
+        b.knots().knots().to_vec()
+    }
+
+    #[test]
+    fn b_spline_forms_without_knots_get_iso_s_knots() {
+        let form = |name: &str, n: usize, p: usize| {
+            let refs: Vec<String> = (1..=n).map(|i| format!("#{i}")).collect();
+            let g = graph(&format!(
+                "{}#50=(BOUNDED_CURVE()B_SPLINE_CURVE({p},({}),.UNSPECIFIED.,.F.,.F.){name}()CURVE()GEOMETRIC_REPRESENTATION_ITEM()REPRESENTATION_ITEM(''));",
+                points(n),
+                refs.join(",")
+            ));
+            curve::<Point>(&g, 50, "test", 1.0)
+        };
+        assert_eq!(
+            knots(&form("UNIFORM_CURVE", 4, 2).unwrap()),
+            [-2.0, -1.0, 0.0, 1.0, 2.0, 3.0, 4.0]
+        );
+        assert_eq!(
+            knots(&form("QUASI_UNIFORM_CURVE", 5, 2).unwrap()),
+            [0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0]
+        );
+        let bezier = form("BEZIER_CURVE", 7, 3).unwrap();
+        assert_eq!(
+            knots(&bezier),
+            [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0]
+        );
+        // A piecewise Bezier curve passes through every third point.
+        assert_eq!(bezier.point(1.0), Point::new(3.0, 0.0));
+        let e = form("BEZIER_CURVE", 6, 3).unwrap_err().to_string();
+        assert!(e.contains("#50") && e.contains("no knots"), "{e}");
+    }
+
+    #[test]
+    fn conics_and_trims_in_their_parameters() {
+        let g = graph(
+            "#1=CARTESIAN_POINT('',(1.,2.,3.));
+#2=DIRECTION('',(0.,0.,1.));
+#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=HYPERBOLA('',#4,2.,1.);
+#6=PARABOLA('',#4,0.5);
+#7=CIRCLE('',#4,2.);
+#8=CARTESIAN_POINT('',(1.,4.,3.));
+#9=TRIMMED_CURVE('',#7,(PARAMETER_VALUE(0.)),(#8),.T.,.PARAMETER.);
+#10=TRIMMED_CURVE('',#7,(PARAMETER_VALUE(90.)),(PARAMETER_VALUE(0.)),.T.,.PARAMETER.);",
+        );
+        let h = curve::<Point3>(&g, 5, "test", 1.0).unwrap();
+        // (x - 1)^2 / 4 - (y - 2)^2 = 1.
+        let p = h.point(0.7);
+        assert!(((p.x - 1.0).powi(2) / 4.0 - (p.y - 2.0).powi(2) - 1.0).abs() < 1e-14);
+        let q = curve::<Point3>(&g, 6, "test", 1.0).unwrap().point(3.0);
+        // Vertex (1, 2, 3), focal distance 1/2: (y - 2)^2 = 2 (x - 1).
+        assert!(((q.y - 2.0).powi(2) - 2.0 * (q.x - 1.0)).abs() < 1e-14);
+        // A trim by a point: its angle on the circle.
+        let t = curve::<Point3>(&g, 9, "test", 1.0).unwrap();
+        assert_eq!(t.range(), Some((0.0, FRAC_PI_2)));
+        // Angles in degrees; a trim past the circle's end wraps by a period.
+        let t = curve::<Point3>(&g, 10, "test", PI / 180.0).unwrap();
+        let (a, b) = t.range().unwrap();
+        assert!((a - FRAC_PI_2).abs() < 1e-15 && (b - 2.0 * PI).abs() < 1e-15);
+    }
+
+    fn surface_graph() -> Graph {
+        graph(
+            "#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=DIRECTION('',(0.,0.,1.));
+#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=CYLINDRICAL_SURFACE('',#4,2.);
+#6=RECTANGULAR_TRIMMED_SURFACE('',#5,0.,1.,0.,1.,.T.,.T.);
+#7=OFFSET_SURFACE('',#5,0.5,.F.);
+#8=LINE('',#1,#9);
+#9=VECTOR('',#3,1.);
+#10=VECTOR('',#2,3.);
+#11=SURFACE_OF_LINEAR_EXTRUSION('',#8,#10);
+#12=AXIS2_PLACEMENT_3D('',#1,#2,#2);",
+        )
+    }
+
+    #[test]
+    fn surfaces_built_on_surfaces_and_swept_curves() {
+        let g = surface_graph();
+        let cyl = surface(&g, 5, "test", 1.0).unwrap();
+        assert!(matches!(cyl, Surface::Cylinder(_)));
+        assert_eq!(surface(&g, 6, "test", 1.0).unwrap(), cyl);
+        let off = surface(&g, 7, "test", 1.0).unwrap();
+        assert!(off.point([0.0, 1.0]).distance(Point3::new(2.5, 0.0, 1.0)) < 1e-15);
+        let ext = surface(&g, 11, "test", 1.0).unwrap();
+        // The line's point at u plus v times the vector (0, 0, 3).
+        assert_eq!(ext.point([2.0, 0.5]), Point3::new(2.0, 0.0, 1.5));
+    }
+
+    #[test]
+    fn a_file_in_degrees_keeps_its_angle_parameters() {
+        let g = surface_graph();
+        let deg = PI / 180.0;
+        let rad = surface(&g, 5, "test", 1.0).unwrap();
+        let s = surface(&g, 5, "test", deg).unwrap();
+        assert!(matches!(s, Surface::Reparam(_)));
+        assert!(s.point([90.0, 1.5]).distance(rad.point([FRAC_PI_2, 1.5])) < 1e-15);
+        assert_eq!(s.periods()[0], Some(360.0));
+    }
+
+    #[test]
+    fn degenerate_placements_and_unknown_types_are_named() {
+        let g = surface_graph();
+        let e = placement(&g, 12, "test").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "#12 AXIS2_PLACEMENT_3D: degenerate axes: the reference direction is along the axis"
+        );
+        let e = surface(&g, 8, "test", 1.0).unwrap_err();
+        assert_eq!(e.to_string(), "#8 LINE: surface type LINE is not supported");
+        let e = curve::<Point>(&g, 5, "test", 1.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "#5 CYLINDRICAL_SURFACE: curve type CYLINDRICAL_SURFACE is not supported"
+        );
+    }
+}

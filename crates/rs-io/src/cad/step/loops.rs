@@ -457,14 +457,14 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
     let gap = cx.gap();
     let mut options = Vec::new();
     if pcurves.is_empty() {
-        let (Some(frame), Some(map)) = (cx.surface.plane, cx.surface.plane_coordinates()) else {
+        let (Some(plane), Some(map)) = (&cx.surface.surface, cx.surface.plane_coordinates()) else {
             return Err(StepError::NoPcurve {
                 edge: ec.label,
                 surface: cx.surface.name.clone(),
                 label: cx.surface.label,
             });
         };
-        check_in_plane(&c3, lo, hi, &frame, gap, &what)?;
+        check_in_plane(&c3, lo, hi, plane, gap, &what)?;
         let mut option = Vec::new();
         for (a3, b3) in pieces(&c3, lo, hi, window_period(&c3)) {
             option.push(planar(c3.to_bspline_mapped(&map, a3, b3), &what)?);
@@ -556,17 +556,17 @@ fn planar(
         .map_err(|e| StepError::geometry(what, e))
 }
 
-/// Checks that the 3-D curve on `[lo, hi]` lies in the plane of `frame` within `tol` (on a
+/// Checks that the 3-D curve on `[lo, hi]` lies in the plane `plane` within `tol` (on a
 /// plane `(u, v)` are lengths, so the chain gap is a model distance there).
 fn check_in_plane(
     c: &Curve<Point3>,
     lo: f64,
     hi: f64,
-    frame: &rs_geom::Frame,
+    plane: &rs_geom::Surface,
     tol: f64,
     what: &str,
 ) -> Result<()> {
-    let off = |p: Point3| (p - frame.origin).dot(frame.z).abs();
+    let off = |p: Point3| plane.invert(p, None).distance;
     let worst = match c {
         Curve::BSpline(s) => s
             .control_points()

@@ -113,3 +113,48 @@ impl FaceSurface {
         others.iter().all(|p| p.distance(pa) <= tol)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+    use rs_geom::surface::{Cylinder, Revolution, Sphere};
+    use rs_geom::{Conic, ConicKind, Curve};
+
+    use super::*;
+
+    fn face(s: Surface) -> FaceSurface {
+        FaceSurface::new(1, "TEST".into(), Some(s))
+    }
+
+    #[test]
+    fn pole_joins_are_segments_the_surface_maps_to_one_point() {
+        let t = Tolerance::new(Some(1e-7)).unwrap();
+        let p = Point::new;
+        let sphere = face(Surface::Sphere(Sphere::new(Frame::WORLD, 2.0).unwrap()));
+        assert_eq!(sphere.period, [Some(TAU), None]);
+        assert!(sphere.is_pole_join(p(TAU, -FRAC_PI_2), p(0.0, -FRAC_PI_2), 1e-6, t));
+        assert!(!sphere.is_pole_join(p(TAU, 0.0), p(0.0, 0.0), 1e-6, t));
+        // A latitude a period off is outside the box (pcurves written there get inverted).
+        assert!(sphere.outside_box(p(1.0, -FRAC_PI_2 - TAU), 1e-6));
+        assert!(!sphere.outside_box(p(1.0 + TAU, 0.3), 1e-6));
+        // A circle in a plane through the axis, centred on it (a sphere in disguise): the
+        // lines v = +-pi/2 (where the circle crosses the axis) are points.
+        let circle = Curve::Conic(Conic {
+            kind: ConicKind::Ellipse,
+            center: Point3::ORIGIN,
+            u: Point3::new(1.0, 0.0, 0.0),
+            v: Point3::new(0.0, 0.0, 1.0),
+        });
+        let rev = face(Surface::Revolution(
+            Revolution::new(circle, Point3::ORIGIN, Point3::Z).unwrap(),
+        ));
+        assert!(rev.is_pole_join(p(0.0, FRAC_PI_2), p(1.5, FRAC_PI_2), 1e-6, t));
+        assert!(!rev.is_pole_join(p(0.0, PI), p(1.5, PI), 1e-6, t));
+        // Across a whole period of a cylinder: same ends, not a point.
+        let cyl = face(Surface::Cylinder(Cylinder::new(Frame::WORLD, 1.0).unwrap()));
+        assert!(!cyl.is_pole_join(p(0.0, 0.5), p(TAU, 0.5), 1e-6, t));
+        assert!(!cyl.is_pole_join(p(0.0, 0.5), p(2.0 * TAU, 0.5), 1e-6, t));
+        assert!(cyl.plane.is_none() && cyl.base == [0.0, 0.0]);
+    }
+}
