@@ -1249,6 +1249,16 @@ fn a_whole_sphere_takes_its_natural_box_as_opencascade_s_wire() {
     // The face's domain is the whole box.
     let d = m.face_domain(0, None).unwrap();
     assert!((d.signed_area() - TAU * PI).abs() < 1e-12);
+    // A torus written so: the square of its two angles.
+    let torus = whole_sphere("SPHERICAL_SURFACE").replace(
+        "SPHERICAL_SURFACE('',#203,2.)",
+        "TOROIDAL_SURFACE('',#203,3.,1.)",
+    );
+    let m = read_step(torus.as_bytes()).unwrap();
+    assert_eq!(m.faces[0].surface_name, "TOROIDAL_SURFACE");
+    assert!(m.faces[0].natural_bounds);
+    let b = m.faces[0].loops_box().unwrap();
+    assert_eq!((b.min, b.max), (Point::new(0.0, 0.0), Point::new(TAU, TAU)));
 }
 
 #[test]

@@ -8,6 +8,9 @@
 use super::error::{Result, StepError};
 use super::graph::{Graph, Instance, value_real};
 
+/// Millimetres per metre (SI length units are metres with a prefix).
+const MM_PER_METRE: f64 = 1000.0;
+
 /// The longest chain of conversion-based units followed.
 const MAX_UNIT_CHAIN: usize = 8;
 
@@ -51,7 +54,7 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units> {
             };
             if unit.is("LENGTH_UNIT") {
                 if let Some(f) = unit_factor(g, unit, 0) {
-                    u.mm_per_length = f * 1000.0;
+                    u.mm_per_length = f * MM_PER_METRE;
                 }
             } else if unit.is("PLANE_ANGLE_UNIT")
                 && let Some(f) = unit_factor(g, unit, 0)
@@ -90,7 +93,7 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units> {
                 continue;
             }
             // The measure's unit may differ from the context's length unit.
-            let scale = unit_factor(g, unit, 0).map_or(1.0, |f| f * 1000.0 / u.mm_per_length);
+            let scale = unit_factor(g, unit, 0).map_or(1.0, |f| f * MM_PER_METRE / u.mm_per_length);
             let t = (value * scale).abs();
             if t.is_finite() && t > 0.0 {
                 u.uncertainty = Some(u.uncertainty.map_or(t, |v: f64| v.max(t)));
