@@ -1443,6 +1443,17 @@ fn a_degenerate_placement_is_an_error_naming_it() {
         )
     );
     assert!(m.faces[0].surface.is_none());
+    // The face is refused for it.
+    assert_eq!(m.faces[0].loops.as_ref().unwrap_err().to_string(), e);
+    // A surface type the reader does not know leaves the pcurves readable.
+    let t = text.replace("=PLANE('',#", "=SPHERICAL_SURFACE_OF_SOMETHING('',#");
+    let m = read_step(t.as_bytes()).unwrap();
+    let e = m.faces[0].surface_error.as_ref().unwrap().to_string();
+    assert!(
+        e.ends_with("surface type SPHERICAL_SURFACE_OF_SOMETHING is not supported"),
+        "{e}"
+    );
+    assert_eq!(m.faces[0].loops.as_ref().unwrap().len(), 2);
     // The hole's pcurve, a circle on a placement with a zero reference direction: the face's
     // loops name the placement.
     let centre = text.find("CARTESIAN_POINT('',(5.0,5.0))").unwrap();

@@ -354,7 +354,12 @@ fn read_face(
         radians: units.radians_per_angle,
         tolerance,
     };
-    let loops = loops::face_loops(&cx, inst);
+    // A surface of a type the reader does not know leaves the loops readable (their pcurves
+    // are read without periods or poles); a broken one refuses the face.
+    let loops = match &surface {
+        Err(e) if !matches!(e, StepError::Unsupported { .. }) => Err(e.clone()),
+        _ => loops::face_loops(&cx, inst),
+    };
     Ok(ReadFace {
         entity,
         surface_name: name,
