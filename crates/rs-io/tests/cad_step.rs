@@ -1555,33 +1555,40 @@ fn assembly_occurrences_place_surfaces_and_edges_not_loops() {
 }
 
 /// A file's topology: its name, the faces of each solid's shells, its free shells (faces,
-/// closed).
-type Topology = (&'static str, Vec<Vec<usize>>, Vec<(usize, bool)>);
+/// closed), and how many of its faces `OpenCASCADE` lists `REVERSED` (their outward normal
+/// against the surface's `S_u x S_v`).
+type Topology = (&'static str, Vec<Vec<usize>>, Vec<(usize, bool)>, usize);
 
 #[test]
 fn solids_and_shells_of_the_real_files_are_opencascade_s() {
-    // (file, the faces of each solid's shells, free shells (faces, closed)), from
-    // `OpenCASCADE`'s explorers on the same files.
+    // From `OpenCASCADE`'s explorers on the same files (OCP 8.0).
     let one = |n: usize| vec![vec![n]];
     let cases: Vec<Topology> = vec![
-        ("0603_SMD.stp", one(90), vec![]),
+        ("0603_SMD.stp", one(90), vec![], 11),
         (
             "I22_2_5_16withEPL22_6_16.stp",
             vec![vec![36], vec![36]],
             vec![],
+            12,
         ),
-        ("RLF_12545.stp", vec![vec![10], vec![27], vec![10]], vec![]),
-        ("SOT23.stp", vec![], vec![(1, false); 73]),
-        ("SOD_323.stp", vec![], vec![(1, false); 75]),
+        (
+            "RLF_12545.stp",
+            vec![vec![10], vec![27], vec![10]],
+            vec![],
+            20,
+        ),
+        ("SOT23.stp", vec![], vec![(1, false); 73], 0),
+        ("SOD_323.stp", vec![], vec![(1, false); 75], 0),
         (
             "SOT404.stp",
             vec![vec![25], vec![3], vec![6], vec![24]],
             vec![(17, false)],
+            22,
         ),
-        ("TSM_103_01_L_DV_A.stp", vec![vec![418, 8, 8]], vec![]),
-        ("TSM_104_01_L_DV_A.stp", vec![vec![536, 8, 8]], vec![]),
+        ("TSM_103_01_L_DV_A.stp", vec![vec![418, 8, 8]], vec![], 193),
+        ("TSM_104_01_L_DV_A.stp", vec![vec![536, 8, 8]], vec![], 252),
     ];
-    for (file, solids, free) in cases {
+    for (file, solids, free, reversed) in cases {
         let path = format!("{IDF}/{file}");
         let Some(text) = rs_testkit::system_file(&path, "freecad") else {
             return;
@@ -1612,6 +1619,11 @@ fn solids_and_shells_of_the_real_files_are_opencascade_s() {
             .collect();
         assert_eq!(order, (0..m.faces.len()).collect::<Vec<_>>(), "{file}");
         assert_eq!(m.length_unit_mm, Some(1.0), "{file}");
+        let got = m.faces.iter().filter(|f| !f.same_sense).count();
+        assert_eq!(
+            got, reversed,
+            "{file}: faces against their surface's normal"
+        );
     }
 }
 
