@@ -1560,6 +1560,38 @@ fn assembly_occurrences_place_surfaces_and_edges_not_loops() {
 type Topology = (&'static str, Vec<Vec<usize>>, Vec<(usize, bool)>, usize);
 
 #[test]
+fn a_part_in_another_length_unit_is_placed_in_the_assembly_s() {
+    // The assembly in metres, the plate in millimetres: each occurrence scales the plate by
+    // 1/1000 before placing it; the model is in metres.
+    let text = placed_plates()
+        .replace(
+            "#8006=SHAPE_REPRESENTATION('',(#8010,#8011,#8012),#9010);",
+            "#8006=SHAPE_REPRESENTATION('',(#8010,#8011,#8012),#8100);
+#8100=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNIT_ASSIGNED_CONTEXT((#8101,#9012,#9013))REPRESENTATION_CONTEXT('',''));
+#8101=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.));",
+        );
+    let m = read_step(text.as_bytes()).unwrap();
+    assert_eq!(m.length_unit_mm, Some(1000.0));
+    let part = read_step(plate(&FLAT, true).as_bytes()).unwrap();
+    let s0 = part.faces[0].surface.as_ref().unwrap();
+    let places: [fn(Point3) -> Point3; 2] = [
+        |p| Point3::new(p.x * 1e-3 + 10.0, p.y * 1e-3, p.z * 1e-3),
+        |p| Point3::new(p.z * 1e-3, 5.0 + p.x * 1e-3, p.y * 1e-3),
+    ];
+    for (f, place) in m.faces.iter().zip(places) {
+        assert_eq!(
+            f.loops.as_ref().unwrap(),
+            part.faces[0].loops.as_ref().unwrap()
+        );
+        let s = f.surface.as_ref().unwrap();
+        for uv in [[0.0, 0.0], [3.0, -1.0], [10.0, 10.0]] {
+            assert!(s.point(uv).distance(place(s0.point(uv))) < 1e-15, "{uv:?}");
+        }
+        assert!(surface_to_edges(f).unwrap() < 1e-14);
+    }
+}
+
+#[test]
 fn solids_and_shells_of_the_real_files_are_opencascade_s() {
     // From `OpenCASCADE`'s explorers on the same files (OCP 8.0).
     let one = |n: usize| vec![vec![n]];

@@ -9,6 +9,7 @@ use rs_geom::Affine3;
 use super::error::{Result, StepError};
 use super::geometry;
 use super::graph::{Attrs, Graph, Instance, Value};
+use super::units;
 
 /// The deepest nesting of products, representations and topology followed.
 const MAX_DEPTH: usize = 64;
@@ -17,13 +18,15 @@ const MAX_DEPTH: usize = 64;
 /// tree of assemblies that doubles at every level cannot run away.
 pub(crate) const MAX_FACE_USES: usize = 1 << 20;
 
-/// One use of a face: the face, the representation context it is read in, the placement of
-/// its assembly occurrence (`None`: where the file puts it) and whether its shell or an
+/// One use of a face: the face, the representation context it is read in, the context whose
+/// length unit its placed coordinates are in (its own, or the top assembly's), the placement
+/// of its assembly occurrence (`None`: where the file puts it) and whether its shell or an
 /// `ORIENTED_FACE` reverses it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FaceUse {
     pub(crate) face: u64,
     pub(crate) context: Option<u64>,
+    pub(crate) unit_context: Option<u64>,
     pub(crate) placement: Option<Affine3>,
     pub(crate) reversed: bool,
 }
@@ -104,7 +107,7 @@ pub(crate) fn structure(g: &Graph) -> Result<Structure> {
         .map(|i| i.label)
         .collect();
     for r in roots {
-        w.product(r, 0, Affine3::IDENTITY)?;
+        w.product(r, 0, Affine3::IDENTITY, None)?;
     }
     if w.out.faces.is_empty() {
         // No product structure leads to faces: every shape representation in file order, then
@@ -133,6 +136,7 @@ pub(crate) fn structure(g: &Graph) -> Result<Structure> {
             for l in labels {
                 let at = Site {
                     context: None,
+                    unit_context: None,
                     placement: Affine3::IDENTITY,
                 };
                 if level == 0 {
@@ -206,11 +210,13 @@ fn index(g: &Graph) -> Index {
     ix
 }
 
-/// Where items are being read: their representation's context and the placement of the
-/// assembly occurrence.
+/// Where items are being read: their representation's context, the context of the top
+/// assembly whose coordinates the occurrence's placement gives (`None` outside assemblies) and
+/// that placement.
 #[derive(Clone, Copy)]
 struct Site {
     context: Option<u64>,
+    unit_context: Option<u64>,
     placement: Affine3,
 }
 
@@ -231,8 +237,15 @@ impl Walk<'_> {
 
     /// A product definition: its own shape representations, then its components
     /// (`NEXT_ASSEMBLY_USAGE_OCCURRENCE`s in file order), each as often as it is used and
-    /// placed by its occurrence's transformation after `placement`.
-    fn product(&mut self, pd: u64, depth: usize, placement: Affine3) -> Result<()> {
+    /// placed by its occurrence's transformation after `placement` (into the coordinates and
+    /// length unit of the top assembly's representation context `unit_context`).
+    fn product(
+        &mut self,
+        pd: u64,
+        depth: usize,
+        placement: Affine3,
+        unit_context: Option<u64>,
+    ) -> Result<()> {
         if !self.enter(pd, depth)? {
             return Err(StepError::AssemblyCycle {
                 what: format!("#{pd}"),
@@ -250,25 +263,32 @@ impl Walk<'_> {
         for rep in reps {
             let at = Site {
                 context: None,
+                unit_context,
                 placement,
             };
             self.representation(rep, depth + 1, at)?;
         }
         let children = self.ix.children.get(&pd).cloned().unwrap_or_default();
         for (nauo, c) in children {
-            let t = self.occurrence_placement(nauo)?;
-            self.product(c, depth + 1, placement.after(t))?;
+            let (t, parent_context) = self.occurrence_placement(nauo)?;
+            self.product(
+                c,
+                depth + 1,
+                placement.after(t),
+                unit_context.or(parent_context),
+            )?;
         }
         self.path.pop();
         Ok(())
     }
 
-    /// The placement of an occurrence (child coordinates to parent coordinates):
-    /// `A(item_2) A(item_1)^-1` of the `ITEM_DEFINED_TRANSFORMATION` of the representation
-    /// relationship of the occurrence's `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` (`A(p)` the
-    /// map from placement `p`'s frame to its representation's coordinates); the identity for
-    /// an occurrence the file does not place.
-    fn occurrence_placement(&self, nauo: u64) -> Result<Affine3> {
+    /// The placement of an occurrence (child coordinates to parent coordinates) and the
+    /// parent representation's context: `A(item_2) k A(item_1)^-1` of the
+    /// `ITEM_DEFINED_TRANSFORMATION` of the representation relationship of the occurrence's
+    /// `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` (`A(p)` the map from placement `p`'s frame to
+    /// its representation's coordinates, `k` the child's length unit in the parent's, 1 when
+    /// they agree); the identity for an occurrence the file does not place.
+    fn occurrence_placement(&self, nauo: u64) -> Result<(Affine3, Option<u64>)> {
         let Some(rel) = self
             .ix
             .shapes
@@ -277,11 +297,11 @@ impl Walk<'_> {
             .flatten()
             .find_map(|pds| self.ix.placements.get(pds))
         else {
-            return Ok(Affine3::IDENTITY);
+            return Ok((Affine3::IDENTITY, None));
         };
         let ri = self.g.get(*rel, &format!("#{nauo}"))?;
         let Ok(rt) = ri.record("REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION") else {
-            return Ok(Affine3::IDENTITY);
+            return Ok((Affine3::IDENTITY, None));
         };
         let ti = self
             .g
@@ -295,7 +315,36 @@ impl Walk<'_> {
         };
         let from = geometry::placement(self.g, t.reference(2, "transform_item_1")?, &ti.what())?;
         let to = geometry::placement(self.g, t.reference(3, "transform_item_2")?, &ti.what())?;
-        Ok(Affine3::between(&from, &to))
+        // The contexts of the child (rep_1) and parent (rep_2) representations.
+        let context = |i: usize, name: &'static str| -> Option<u64> {
+            let rep = ri
+                .record("REPRESENTATION_RELATIONSHIP")
+                .ok()?
+                .reference(i, name)
+                .ok()?;
+            let r = self.g.get(rep, "").ok()?;
+            let rec = r
+                .parts
+                .iter()
+                .find(|p| p.name.ends_with("REPRESENTATION"))?;
+            Attrs { inst: r, part: rec }
+                .reference(2, "context_of_items")
+                .ok()
+        };
+        let (child, parent) = (context(2, "rep_1"), context(3, "rep_2"));
+        let mm = |c: Option<u64>| {
+            c.and_then(|c| units::context_units(self.g, c).ok())
+                .map_or(1.0, |u| u.mm_per_length)
+        };
+        let k = mm(child) / mm(parent);
+        let t = if k == 1.0 || !k.is_finite() || k <= 0.0 {
+            Affine3::between(&from, &to)
+        } else {
+            Affine3::from_frame(&to)
+                .after(uniform_scale(k))
+                .after(Affine3::from_frame(&from).rigid_inverse())
+        };
+        Ok((t, parent))
     }
 
     /// A representation: its items in order, then the representations related to it without
@@ -319,6 +368,7 @@ impl Walk<'_> {
         let items = attrs.refs(1, "items")?;
         let at = Site {
             context: attrs.reference(2, "context_of_items").ok(),
+            unit_context: at.unit_context,
             placement: at.placement,
         };
         for it in items {
@@ -401,6 +451,7 @@ impl Walk<'_> {
             self.out.faces.push(FaceUse {
                 face: label,
                 context: at.context,
+                unit_context: at.unit_context.or(at.context),
                 placement: (!at.placement.is_identity()).then_some(at.placement),
                 reversed,
             });
@@ -491,6 +542,13 @@ impl Walk<'_> {
             });
         }
         Ok(())
+    }
+}
+
+/// The map `p -> k p`.
+pub(crate) fn uniform_scale(k: f64) -> Affine3 {
+    Affine3 {
+        m: [[k, 0.0, 0.0, 0.0], [0.0, k, 0.0, 0.0], [0.0, 0.0, k, 0.0]],
     }
 }
 

@@ -81,8 +81,11 @@
 //!
 //! Lengths (and so `(u, v)` on planes, the `v` of cylinders, the tolerance) stay in the
 //! file's length unit; the model's `length_unit_mm` gives millimetres per unit (`OpenCASCADE`
-//! converts to millimetres). Faces of a representation context in another length unit than
-//! the first face's are scaled into it (their `(u, v)` unchanged). Angles of circles,
+//! converts to millimetres). A component whose representation context has another length
+//! unit than its assembly's is scaled into the assembly's by its occurrence's placement
+//! (`A(item_2) k A(item_1)^-1`, `k` the ratio of the units), and a second root part in another
+//! unit than the first into the first's: the model is in the unit of the first face's placed
+//! coordinates; `(u, v)` stay the file's. Angles of circles,
 //! ellipses and trims are converted to radians with the context's `PLANE_ANGLE_UNIT`.
 //! Pcurves are read as written: in a file in degrees the angular parameters of surfaces stay
 //! in degrees (the surfaces are read in those parameters) where `OpenCASCADE` rescales them.
@@ -165,25 +168,28 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
     let structure = faces::structure(&g).map_err(cad)?;
     let mut contexts: HashMap<Option<u64>, Units> = HashMap::new();
     for u in &structure.faces {
-        if let Entry::Vacant(e) = contexts.entry(u.context) {
-            let units = match u.context {
-                Some(c) => units::context_units(&g, c).map_err(cad)?,
-                None => Units::default(),
-            };
-            e.insert(units);
+        for c in [u.context, u.unit_context] {
+            if let Entry::Vacant(e) = contexts.entry(c) {
+                let units = match c {
+                    Some(c) => units::context_units(&g, c).map_err(cad)?,
+                    None => Units::default(),
+                };
+                e.insert(units);
+            }
         }
     }
-    let stated = contexts
-        .values()
-        .filter_map(|u| u.uncertainty)
+    let stated = structure
+        .faces
+        .iter()
+        .filter_map(|u| contexts.get(&u.context).and_then(|c| c.uncertainty))
         .reduce(f64::max);
     let tolerance = Tolerance::new(stated)
         .map_err(|e| cad(StepError::geometry("the file's uncertainty", e)))?;
-    // The model's length unit: the first face's context's.
+    // The model's length unit: the first face's (placed) coordinates'.
     let unit = structure
         .faces
         .first()
-        .and_then(|u| u.context)
+        .and_then(|u| u.unit_context)
         .and_then(|c| contexts.get(&Some(c)))
         .map(|u| u.mm_per_length);
     // A face used many times (assemblies) is read once.
@@ -211,9 +217,14 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
                 }));
             }
         }
+        // Coordinates in another length unit than the model's (a second root part) are scaled
+        // into it; `(u, v)` stay the file's.
+        let placed_mm = contexts
+            .get(&u.unit_context)
+            .map_or(1.0, |c| c.mm_per_length);
         let scale = unit
-            .filter(|&mm| mm != units.mm_per_length && mm > 0.0)
-            .map(|mm| uniform_scale(units.mm_per_length / mm));
+            .filter(|&mm| mm != placed_mm && mm > 0.0)
+            .map(|mm| faces::uniform_scale(placed_mm / mm));
         let placement = match (u.placement, scale) {
             (p, None) => p,
             (None, Some(s)) => Some(s),
@@ -248,13 +259,6 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
             length_unit_mm: unit,
         },
     })
-}
-
-/// The map `p -> k p`.
-fn uniform_scale(k: f64) -> Affine3 {
-    Affine3 {
-        m: [[k, 0.0, 0.0, 0.0], [0.0, k, 0.0, 0.0], [0.0, 0.0, k, 0.0]],
-    }
 }
 
 /// A face as read once, before its uses are placed.
