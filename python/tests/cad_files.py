@@ -12,13 +12,15 @@ each side are classified by ``BRepClass_FaceClassifier`` (the oracle) and by an 
 points that either side puts on the boundary, or that lie within a margin of the loops, are
 left out of the comparison (there the answer depends on tolerances, not on the loops).
 
-``inrs.cad_faces`` reads each face in the file's own ``(u, v)``, OCC in its own. Where OCC's is
+``inrs.cad_model`` reads each face in the file's own ``(u, v)``, OCC in its own. Where OCC's is
 the file's scaled to millimetres and radians (:func:`uv_scale`), the points are scaled, and the
-scale is checked in space: the file's surface, evaluated from the file's numbers by
-:mod:`cad_surfaces` (written from ISO 10303-42 and IGES 5.3), meets OCC's surface at the scaled
-point (:func:`scale_map_error`). Elsewhere (surfaces of revolution, whose curve OCC re-frames
-and whose ``u``, ``v`` IGES and OCC swap; IGES planes) the points are drawn in the file's box
-and carried to OCC's ``(u, v)`` through space (:class:`ProjectionMap`).
+scale is checked in space: our surface (``CadFace.points``, the Rust geometry layer) meets OCC's
+surface at the scaled point (:func:`scale_map_error`). Elsewhere (surfaces of revolution, whose
+curve OCC re-frames and whose ``u``, ``v`` IGES and OCC swap; IGES planes and the IGES analytic
+surfaces in degrees) the points are drawn in the file's box and carried to OCC's ``(u, v)``
+through space (:class:`ProjectionMap`): our surface's point, found on OCC's surface. Every face
+read also has its surface checked against OCC's: random points of our surface inside the face
+lie on OCC's surface within :data:`SURFACE_TOL` of the part's size (:func:`surface_deviation`).
 
 This module imports OCP only inside :func:`load_ocp` and the functions that need it, so that
 the test module can skip (or fail) with a message when OCP is missing.
@@ -37,8 +39,6 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
 import numpy as np
-
-import cad_surfaces
 
 IDF = pathlib.Path("/usr/share/freecad/Mod/Idf/Idflibs")
 GMSH = pathlib.Path("/usr/share/doc/gmsh-doc/doc/gmsh")
@@ -136,8 +136,8 @@ class OccFile:
     rad_per_angle_unit: float
     #: Lazily computed per face: points, OCC codes, diagonal (see :meth:`face_sample`).
     samples: Dict[int, "FaceSample"] = field(default_factory=dict)
-    #: The file's entities for :mod:`cad_surfaces` (see :meth:`file_model`).
-    model: object = None
+    #: The diagonal of OCC's bounding box of the whole shape (millimetres).
+    size: float = 0.0
 
     @staticmethod
     def read(path: pathlib.Path) -> "OccFile":
@@ -181,26 +181,14 @@ class OccFile:
             # face up without its location (IsSame compares the location too).
             entity = transfer.EntityFromShapeResult(face.Located(TopLoc_Location()), 1)
             entities.append(None if entity is None else names.get(entity))
-        return OccFile(path, "STEP" if step else "IGES", faces, entities, mm, rad)
+        from OCP.Bnd import Bnd_Box
+        from OCP.BRepBndLib import BRepBndLib
 
-    def file_model(self):
-        """The file's entities, parsed once: a :class:`cad_surfaces.StepFile` or
-        :class:`cad_surfaces.IgesFile`."""
-        if self.model is None:
-            text = self.path.read_text(errors="replace")
-            step = self.format == "STEP"
-            self.model = cad_surfaces.StepFile(text, self.rad_per_angle_unit) if step else cad_surfaces.IgesFile(text)
-        return self.model
-
-    def face_surface(self, entity: str) -> Tuple[str, "cad_surfaces.Surface"]:
-        """``(type, (u, v) -> points in millimetres)``: the surface of the face the file names
-        ``entity`` (``#123``, ``DE 57``), in the file's own parameters (raises
-        :class:`cad_surfaces.Unsupported`)."""
-        model = self.file_model()
-        key = entity if self.format == "STEP" else int(entity.split()[-1])
-        kind, surface = model.face_surface(key)
-        mm = self.mm_per_unit
-        return kind, lambda uv: mm * surface(np.asarray(uv, float))
+        box = Bnd_Box()
+        BRepBndLib.Add_s(shape, box)
+        lo, hi = box.CornerMin(), box.CornerMax()
+        size = lo.Distance(hi)
+        return OccFile(path, "STEP" if step else "IGES", faces, entities, mm, rad, size=size)
 
     def face_sample(self, k: int, n: int = POINTS_PER_FACE) -> "FaceSample":
         """The random points of face ``k`` and OCC's codes for them (computed once)."""
@@ -472,14 +460,13 @@ def newton(surface, target: np.ndarray, uv: np.ndarray, eps: float) -> Tuple[Opt
 @dataclass
 class ProjectionMap:
     """The map from the file's ``(u, v)`` of a face to OCC's, through space: a point's image
-    on the file's surface (:mod:`cad_surfaces`, written from the standards) is found on OCC's
-    surface by Newton's method, started from the map's linear approximation at the face's
+    on our surface (``CadFace.points``) is found on OCC's surface by Newton's method, started from the map's linear approximation at the face's
     centre. Where OCC's parameterisation is periodic, that start picks the representative:
     the centre's image is taken in OCC's face box, and the others follow continuously (a
     point outside the file's box goes outside OCC's, as it should)."""
 
     surface: object  # OCC's Geom_Surface, in the file's frame
-    evaluate: object  # the file's surface, (n, 2) -> (n, 3) millimetres
+    evaluate: object  # our surface, (n, 2) -> (n, 3) millimetres
     centre: np.ndarray  # the file's (u, v)
     image: np.ndarray  # its OCC (u, v)
     jacobian: np.ndarray  # d(OCC's u, v) / d(the file's u, v) at the centre
@@ -645,9 +632,40 @@ def check_occ_faces(occ: OccFile) -> OccReport:
     return report
 
 
+#: The largest distance, relative to the part's size (the diagonal of OCC's box of the whole
+#: shape), between a point of our surface inside a face and OCC's surface (the issue's 1e-9).
+SURFACE_TOL = 1e-9
+#: Points of our surface checked per face (inside the face, by our classifier).
+SURFACE_POINTS = 16
+
+
+def surface_deviation(face, evaluate, domain, box, seed) -> Tuple[float, int]:
+    """``(largest distance, points)``: random points of our surface inside the face (drawn in
+    ``box``, kept where our ``domain`` says inside), projected on OCC's surface of ``face``
+    (located; the part's frame too, as :func:`occ_surfaces`): the largest distance in
+    millimetres over those points (``inf`` if OCC cannot project one)."""
+    from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
+    from OCP.gp import gp_Pnt
+
+    points = random_points(box, seed, 4 * SURFACE_POINTS)
+    inside = points[domain.classify(points) == 1][:SURFACE_POINTS]
+    if len(inside) == 0:
+        return 0.0, 0
+    worst = 0.0
+    surfaces = occ_surfaces(face)
+    for target in evaluate(inside):
+        best = math.inf
+        for surface in surfaces:
+            proj = GeomAPI_ProjectPointOnSurf(gp_Pnt(*map(float, target)), surface)
+            if proj.NbPoints() > 0:
+                best = min(best, proj.LowerDistance())
+        worst = max(worst, best)
+    return worst, len(inside)
+
+
 @dataclass
 class ReadersReport:
-    """Part b for one file: ``inrs.cad_faces`` (the Rust readers) against OCC."""
+    """Part b for one file: ``inrs.cad_model`` (the Rust readers and geometry) against OCC."""
 
     faces: int  # ours
     occ_faces: int
@@ -663,28 +681,36 @@ class ReadersReport:
     mapped: int = 0
     #: Points of those faces left out because the map has no image there (a singular point).
     unmapped_points: int = 0
-    #: Faces compared through uv_scale whose scale was checked in space (the file's surface
-    #: evaluated), and ``{surface type: count}`` of those not checked (no evaluator).
+    #: Faces compared through uv_scale whose scale was checked in space.
     scale_checked: int = 0
-    scale_unchecked: Dict[str, int] = field(default_factory=dict)
     #: Faces with neither map (each also a problem): not compared.
     other_parameterisation: int = 0
     degenerate: int = 0
     compared: int = 0
     excluded: int = 0
+    #: Faces whose surface was checked against OCC's, the points checked, and the largest
+    #: distance relative to the part's size.
+    surfaces_checked: int = 0
+    surface_points: int = 0
+    surface_deviation: float = 0.0
+    #: Faces with pcurves fitted to their 3-D edges, and their largest bound (model units).
+    fitted: int = 0
+    largest_fit_bound: float = 0.0
     #: ``(face, entity, surface, (u, v), OCC code, inrs code)``, (u, v) in the file's units.
     disagreements: list = field(default_factory=list)
     problems: List[str] = field(default_factory=list)
 
 
 def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
-    """Reads ``path`` with ``inrs.cad_faces`` (and its first face again with
-    ``Domain.load("path#face:K")``) and compares each face with OCC's on the same random
-    points: OCC's scaled to the file's ``(u, v)`` (the scale checked in space), or, where
-    the parameterisations differ otherwise, the file's carried to OCC's through space."""
+    """Reads ``path`` with ``inrs.cad_model`` (and its first face again with
+    ``Domain.load("path#face:K")``) and compares each face with OCC's: its surface (points of
+    ours on OCC's), and its domain on the same random points: OCC's scaled to the file's
+    ``(u, v)`` (the scale checked in space), or, where the parameterisations differ otherwise,
+    the file's carried to OCC's through space."""
     import inrs
 
-    faces = inrs.cad_faces(path)
+    model = inrs.cad_model(path)
+    faces = model.faces
     report = ReadersReport(faces=len(faces), occ_faces=len(occ.faces))
     if len(faces) != len(occ.faces):
         report.problems.append(f"{len(faces)} faces, OCC reads {len(occ.faces)}")
@@ -711,6 +737,9 @@ def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
         if domain is None:
             report.problems.append(f"{where}: listed as read, but has no domain")
             continue
+        if ours.pcurve_deviation is not None:
+            report.fitted += 1
+            report.largest_fit_bound = max(report.largest_fit_bound, ours.pcurve_deviation)
         if report.read == 1:
             # The `#face:K` path reads the same face (once per file: it reads the file again).
             try:
@@ -719,7 +748,7 @@ def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
                 report.problems.append(f"{where}: listed as read, but Domain.load fails: {e}")
                 continue
             if loaded.to_json() != domain.to_json():
-                report.problems.append(f"{where}: Domain.load gives another domain than cad_faces")
+                report.problems.append(f"{where}: Domain.load gives another domain than cad_model")
         if not (ours.loops == len(domain.loops) > 0 and ours.curves == domain.summary().curves):
             loaded = (len(domain.loops), domain.summary().curves)
             report.problems.append(f"{where}: {ours.loops} loops, {ours.curves} curves; loaded {loaded}")
@@ -728,6 +757,22 @@ def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
         x0, y0, x1, y1 = ours.bbox
         if not math.isclose(ours.area, domain.area, rel_tol=1e-9, abs_tol=1e-12 * ((x1 - x0) ** 2 + (y1 - y0) ** 2)):
             report.problems.append(f"{where}: area {ours.area}, loaded {domain.area}")
+        if ours.surface_kind is None:
+            report.problems.append(f"{where}: {ours.surface}: the surface was not read: {ours.surface_error}")
+            continue
+        mm = occ.mm_per_unit
+
+        def evaluate(uv, ours=ours, mm=mm):
+            return mm * ours.points(np.asarray(uv, float))
+
+        seed = (zlib.crc32(occ.path.name.encode()), k)
+        deviation, checked = surface_deviation(face, evaluate, domain, ours.bbox, seed)
+        report.surfaces_checked += checked > 0
+        report.surface_points += checked
+        relative = deviation / occ.size if occ.size > 0 else math.inf
+        report.surface_deviation = max(report.surface_deviation, relative)
+        if not relative <= SURFACE_TOL:
+            report.problems.append(f"{where}: {ours.surface}: our surface is {relative:.3g} of the part's size off OCC's")
         scale = uv_scale(face, occ)
         # Faces mapped through space are sampled in the file's (u, v) box, the others in
         # OCC's (shared with check_occ_faces); a thin box in either is degenerate.
@@ -739,34 +784,22 @@ def check_readers(path: pathlib.Path, occ: OccFile) -> ReadersReport:
             continue
         if not domain.area > 0:
             report.problems.append(f"{where}: area {domain.area}")
-        try:
-            _kind, evaluate = occ.face_surface(ours.entity)
-            unsupported = None
-        except cad_surfaces.Unsupported as e:
-            evaluate, unsupported = None, str(e)
         if sample is not None:
-            # The scale is checked in space where the file's surface can be evaluated.
-            if evaluate is None:
-                kind = ours.surface.split(" (")[0]
-                report.scale_unchecked[kind] = report.scale_unchecked.get(kind, 0) + 1
-            else:
-                error = scale_map_error(face, evaluate, scale, ours.bbox)
-                report.scale_checked += 1
-                if not error <= MAP_TOL:
-                    report.problems.append(f"{where}: OCC's (u, v) is not the file's scaled by {scale}: {error:.3g}")
+            error = scale_map_error(face, evaluate, scale, ours.bbox)
+            report.scale_checked += 1
+            if not error <= MAP_TOL:
+                report.problems.append(f"{where}: OCC's (u, v) is not the file's scaled by {scale}: {error:.3g}")
             points = sample.points / np.array(scale)
             diagonal = math.hypot(sample.size[0] / scale[0], sample.size[1] / scale[1])
             c = compare(domain, points, sample.codes, diagonal)
         else:
             try:
-                if evaluate is None:
-                    raise MapError(unsupported)
                 to_occ = ProjectionMap.of(face, evaluate, ours.bbox)
             except MapError as e:
                 report.other_parameterisation += 1
                 report.problems.append(f"{where}: {ours.surface}: no map from the file's (u, v) to OCC's: {e}")
                 continue
-            points = random_points(ours.bbox, (zlib.crc32(occ.path.name.encode()), k), POINTS_PER_FACE)
+            points = random_points(ours.bbox, seed, POINTS_PER_FACE)
             mapped = to_occ(points)
             report.mapped += 1
             unmapped = int(np.isnan(mapped[:, 0]).sum())

@@ -5,8 +5,9 @@
 Without files: the files of test_cad_occ.py (freecad-common's IDF parts and gmsh-doc's demos;
 the gzipped ones are decompressed into a temporary directory). For each file: the faces OCC
 reads, what ``inrs.occ.face_domain`` makes of them and how its classification compares with
-OCC's, then, where this build has ``inrs.cad_faces`` (the Rust readers), the faces read and
-refused (with the distinct reasons) and the same comparison. Needs OCP (``pip install
+OCC's, then, where this build has ``inrs.cad_model`` (the Rust readers), the faces read and
+refused (with the distinct reasons), the faces with fitted pcurves, the largest distance of our
+surfaces from OCC's (relative to the part's size), and the same comparison. Needs OCP (``pip install
 cadquery-ocp-novtk``); missing files are listed, not fatal.
 """
 
@@ -37,7 +38,7 @@ def main(argv=None) -> int:
         print(f"OCP is not installed (pip install cadquery-ocp-novtk): {e}", file=sys.stderr)
         return 2
     sources = [(p.name[: -len(".gz")] if p.suffix == ".gz" else p.name, p) for p in args.files] or cad_files.all_files()
-    readers = hasattr(inrs, "cad_faces")
+    readers = hasattr(inrs, "cad_model")
     occ_rows, reader_rows, reasons, missing = [], [], [], []
     start = time.perf_counter()
     with tempfile.TemporaryDirectory() as scratch:
@@ -60,16 +61,16 @@ def main(argv=None) -> int:
                 try:
                     b = cad_files.check_readers(path, occ)
                 except (OSError, ValueError) as e:
-                    reader_rows.append([name, a.faces, "file refused"] + [""] * 5)
-                    reasons.append((name, "inrs.cad_faces", {str(e): []}))
+                    reader_rows.append([name, a.faces, "file refused"] + [""] * 7)
+                    reasons.append((name, "inrs.cad_model", {str(e): []}))
                     continue
                 refused = sum(map(len, b.refused.values()))
                 reader_rows.append(
-                    [name, b.occ_faces, b.faces, b.read, refused]
-                    + [b.compared, len(b.disagreements), b.other_parameterisation]
+                    [name, b.occ_faces, b.faces, b.read, refused, b.fitted]
+                    + [f"{b.surface_deviation:.1e}", b.compared, len(b.disagreements), b.other_parameterisation]
                 )
                 if b.refused or b.problems:
-                    reasons.append((name, "inrs.cad_faces", {**b.refused, **{p: [] for p in b.problems}}))
+                    reasons.append((name, "inrs.cad_model", {**b.refused, **{p: [] for p in b.problems}}))
     print(f"Points per face: {args.points}, in each face's (u, v) box grown by 5% on each side; points")
     print("on the boundary for either side or within 1e-5 of the box diagonal of a loop are left out.\n")
     print("#### `inrs.occ.face_domain` (OCC's pcurves) against `BRepClass_FaceClassifier`\n")
@@ -80,14 +81,14 @@ def main(argv=None) -> int:
         occ_rows,
     )
     if readers:
-        print("\n#### `inrs.cad_faces` (the readers) against OpenCASCADE\n")
+        print("\n#### `inrs.cad_model` (the readers and surfaces) against OpenCASCADE\n")
         table(
-            ["File", "Faces (OCC)", "Faces (inrs)", "Read", "Refused"]
-            + ["Points compared", "Disagree", "Not compared (parameterisation)"],
+            ["File", "Faces (OCC)", "Faces (inrs)", "Read", "Refused", "Fitted pcurves"]
+            + ["Surface deviation / size", "Points compared", "Disagree", "Not compared (parameterisation)"],
             reader_rows,
         )
     else:
-        print("\n(This build of inrs has no `cad_faces`: the readers' columns are left out.)")
+        print("\n(This build of inrs has no `cad_model`: the readers' columns are left out.)")
     if reasons:
         print("\n#### Refusals and problems\n")
         for name, who, found in reasons:

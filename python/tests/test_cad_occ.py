@@ -2,11 +2,14 @@
 
 Part a (``inrs.occ``): for every face OCC reads, ``inrs.occ.face_domain`` (its pcurves,
 converted exactly) classifies random ``(u, v)`` points as OCC's ``BRepClass_FaceClassifier``
-does, away from the boundary. Part b (``inrs.cad_faces``, the Rust readers): the same face
-count as OCC, STEP faces in OCC's order (checked by their instance labels), and every face
-read classifies as OCC does, each through an exact map between the file's ``(u, v)`` and
-OCC's, checked in space (``cad_files``, ``cad_surfaces``); IGES 108 planes, absent from the
-real files, on hand-written files.
+does, away from the boundary. Part b (``inrs.cad_model``, the Rust readers and geometry): the
+same face count as OCC, STEP faces in OCC's order (checked by their instance labels), every
+face read, its surface on OCC's (random points within 1e-9 of the part's size), and its
+domain classifying as OCC does, each through an exact map between the file's ``(u, v)`` and
+OCC's, checked in space with our surface (``cad_files``); the same for the test parts of
+``cad_parts`` (written by OCC to STEP, IGES faces and IGES B-rep), with their solids and shells
+as OCC's explorers list them; IGES 108 planes, absent from the real files, on hand-written
+files.
 
 Also the conversion itself on shapes built with OCC (analytic areas, holes, orientation, the
 errors). Without OCP or the files the tests skip with a message, and fail instead under
@@ -27,6 +30,7 @@ import pytest
 import inrs
 
 import cad_files
+import cad_parts
 from cad_files import OccFile
 
 try:
@@ -95,36 +99,85 @@ def test_occ_face_domains_classify_as_occ(name, occ_files):
     assert len(r.open) <= 2 or r.closure_tol < cad_files.CLOSURE_TOL
 
 
-# --- Part b: the Rust readers (inrs.cad_faces) against OCC ------------------------------------
-# Written against the lead's API (cad_faces, CadFace, Domain.load("...#face:K")); it runs only
-# where this build has inrs.cad_faces.
+# --- Part b: the Rust readers (inrs.cad_model) against OCC ----------------------------------
+
+#: Faces of the real files refused on purpose, with the reason: none. (Every face OCC reads
+#: must read; a refusal would need a malformed file that OCC refuses too, listed in docs/CAD.md.)
+KNOWN_REFUSALS: dict = {}
 
 
-@pytest.mark.parametrize("name", [n for n, _ in FILES])
-def test_cad_faces_match_occ(name, occ_files):
-    path, occ = occ_files(name)
-    if not hasattr(inrs, "cad_faces"):
-        pytest.skip("this build of inrs has no cad_faces (the CAD readers)")
+def check_model_against_occ(name: str, path, occ) -> "cad_files.ReadersReport":
+    """``cad_files.check_readers`` with its printout and the assertions every file shares."""
     start = time.perf_counter()
     r = cad_files.check_readers(path, occ)
     print(
-        f"\n[cad_faces] {name}: {r.faces} faces (OCC {r.occ_faces}; {r.labels_checked} STEP labels "
+        f"\n[cad_model] {name}: {r.faces} faces (OCC {r.occ_faces}; {r.labels_checked} STEP labels "
         f"checked, {r.iges_same_de} IGES faces with OCC's DE), {r.read} read, "
-        f"{sum(map(len, r.refused.values()))} refused {sorted(r.refused.items())[:4]}; {r.compared} "
-        f"points compared, {r.excluded} excluded; {r.mapped} faces mapped through space "
-        f"({r.unmapped_points} points without image), scale maps checked on {r.scale_checked} faces "
-        f"(not on {sorted(r.scale_unchecked.items())}), {r.other_parameterisation} faces in another "
-        f"parameterisation, {r.degenerate} degenerate, {len(r.disagreements)} disagree "
+        f"{sum(map(len, r.refused.values()))} refused {sorted(r.refused.items())[:4]}; surfaces of "
+        f"{r.surfaces_checked} faces on OCC's within {r.surface_deviation:.2g} of the part's size "
+        f"({r.surface_points} points); {r.fitted} faces with fitted pcurves (largest bound "
+        f"{r.largest_fit_bound:.2g}); {r.compared} points compared, {r.excluded} excluded; {r.mapped} "
+        f"faces mapped through space ({r.unmapped_points} points without image), scale maps checked "
+        f"on {r.scale_checked} faces, {r.degenerate} degenerate, {len(r.disagreements)} disagree "
         f"({time.perf_counter() - start:.1f} s)"
     )
     # The same faces in the same order (STEP: OCC's face K is our face K's instance), each
-    # listed consistently with its domain.
+    # listed consistently with its domain, its surface on OCC's.
     assert not r.problems, f"{name}: {r.problems[:5]}"
     # Every face read classifies as OCC does, each compared through an exact map from its
-    # (u, v) in the file to OCC's, checked in space (the file's surface evaluated).
+    # (u, v) in the file to OCC's, checked in space (our surface evaluated).
     assert not r.disagreements, f"{name}: (face, entity, surface, (u, v), OCC, inrs): {r.disagreements[:5]}"
-    assert r.other_parameterisation == 0 and not r.scale_unchecked
+    assert r.other_parameterisation == 0
     assert r.read == r.degenerate + r.mapped + r.scale_checked
+    refused = sorted(k for ks in r.refused.values() for k in ks)
+    assert refused == KNOWN_REFUSALS.get(name, []), f"{name}: refused {r.refused}"
+    # Solids and shells as OCC's explorers give them, each with the same faces: a solid's
+    # shells (the outer one first), then the shells in no solid.
+    import inrs
+
+    model = inrs.cad_model(path)
+    topo = cad_parts.topology(path)
+    in_solids = {s.index for solid in model.solids for s in solid.shells}
+    ours = [[list(s.faces) for s in solid.shells] for solid in model.solids]
+    theirs = [[list(shell.faces) for shell in solid.shells] for solid in topo.solids]
+    assert ours == theirs, f"{name}: solids {ours}, OCC {theirs}"
+    free = [list(s.faces) for s in model.shells if s.index not in in_solids]
+    assert free == [list(s.faces) for s in topo.free_shells], f"{name}: free shells"
+    return r
+
+
+@pytest.mark.parametrize("name", [n for n, _ in FILES])
+def test_cad_model_matches_occ(name, occ_files):
+    path, occ = occ_files(name)
+    check_model_against_occ(name, path, occ)
+
+
+# --- The test parts of cad_parts.py, written by OCC to STEP and IGES, against OCC ------------
+
+PART_FILES = [(part, kind) for part in cad_parts.PARTS for kind in ("step", "iges", "iges_brep")]
+
+
+@pytest.fixture(scope="module")
+def part_files(tmp_path_factory):
+    """Writes every part once: ``get(part, kind) -> (path, OccFile)``."""
+    cache = {}
+    scratch = tmp_path_factory.mktemp("parts")
+
+    def get(part: str, kind: str):
+        need_ocp()
+        if part not in cache:
+            cache[part] = cad_parts.write_part(part, scratch).files()
+        path = cache[part][kind]
+        return path, OccFile.read(path)
+
+    return get
+
+
+@pytest.mark.parametrize("part,kind", PART_FILES, ids=[f"{p}.{k}" for p, k in PART_FILES])
+def test_parts_match_occ(part, kind, part_files):
+    path, occ = part_files(part, kind)
+    r = check_model_against_occ(f"{part}.{kind}", path, occ)
+    assert r.read == r.faces > 0
 
 
 # --- The IGES 108 plane (none in the real files): hand-written files against OCC ------------

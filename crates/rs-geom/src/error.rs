@@ -108,6 +108,36 @@ pub enum GeomError {
     /// Hyperbola arc ends on different branches.
     #[error("the arc's start and end are on different branches of the hyperbola")]
     EndsOnDifferentBranches,
+    /// A point of an edge farther from the face's surface than its pcurve may bridge.
+    #[error(
+        "the edge is {distance:e} from the {surface} at its parameter {parameter:?} (more than {limit:e})"
+    )]
+    EdgeOffSurface {
+        /// The kind of surface (`cylinder`, ...).
+        surface: &'static str,
+        /// The distance from the surface.
+        distance: f64,
+        /// The edge curve's parameter at that point.
+        parameter: f64,
+        /// The largest distance accepted.
+        limit: f64,
+    },
+    /// An edge on an unbounded curve (a line, a conic) given without a parameter range.
+    #[error("the edge's curve is unbounded and no parameter range was given")]
+    UnboundedEdge,
+    /// The work limit of a pcurve computation: the edge's `(u, v)` on the surface still jumps
+    /// after the most samples allowed (the closest points of the edge are not continuous).
+    #[error(
+        "the edge's (u, v) on the {surface} jumps near its parameter {parameter:?} ({samples} samples, the work limit)"
+    )]
+    PcurveWorkLimit {
+        /// The kind of surface.
+        surface: &'static str,
+        /// The edge curve's parameter where the jump is.
+        parameter: f64,
+        /// The samples taken.
+        samples: usize,
+    },
     /// A curve or surface that the spline layer refused.
     #[error(transparent)]
     Spline(#[from] rs_spline::SplineError),

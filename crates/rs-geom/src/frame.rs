@@ -83,6 +83,50 @@ impl Frame {
         })
     }
 
+    /// The frame at `origin` with axis `axis` (any length) and the reference direction
+    /// `OpenCASCADE`'s `gp_Ax2(origin, axis)` chooses when none is given (IGES form 0 surfaces
+    /// 190 to 198, which `OpenCASCADE` reads this way): with `(a, b, c)` the absolute
+    /// components of the unit axis `A`, the reference direction is
+    ///
+    /// - `(-A_z, 0, A_x)` if `a > c`, else `(A_z, 0, -A_x)`, when `b` is the smallest;
+    /// - `(0, -A_z, A_y)` if `b > c`, else `(0, A_z, -A_y)`, when `a` is (and `b` is not);
+    /// - `(-A_y, A_x, 0)` if `a > b`, else `(A_y, -A_x, 0)`, when `c` is.
+    ///
+    /// # Errors
+    /// As [`Frame::new`]: a non-finite origin, a zero or non-finite axis.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_geom::{Frame, Point3};
+    /// let f = Frame::with_default_reference(Point3::ORIGIN, Point3::new(0.0, 0.0, -1.0)).unwrap();
+    /// assert_eq!(f.x, Point3::new(-1.0, 0.0, 0.0));
+    /// ```
+    pub fn with_default_reference(origin: Point3, axis: Point3) -> Result<Frame, GeomError> {
+        let z = axis
+            .normalized()
+            .ok_or(GeomError::DegenerateFrame("the axis is zero"))?;
+        let (a, b, c) = (z.x.abs(), z.y.abs(), z.z.abs());
+        let reference = if b <= a && b <= c {
+            if a > c {
+                Point3::new(-z.z, 0.0, z.x)
+            } else {
+                Point3::new(z.z, 0.0, -z.x)
+            }
+        } else if a <= b && a <= c {
+            if b > c {
+                Point3::new(0.0, -z.z, z.y)
+            } else {
+                Point3::new(0.0, z.z, -z.y)
+            }
+        } else if a > b {
+            Point3::new(-z.y, z.x, 0.0)
+        } else {
+            Point3::new(z.y, -z.x, 0.0)
+        };
+        Frame::new(origin, Some(z), Some(reference))
+    }
+
     /// The world point with local coordinates `(a, b, c)`: `origin + a x + b y + c z`.
     pub fn to_world(&self, a: f64, b: f64, c: f64) -> Point3 {
         self.origin + self.x * a + self.y * b + self.z * c
@@ -118,6 +162,44 @@ mod tests {
         assert!(f.to_local(p).distance(Point3::new(0.5, -2.0, 1.5)) < 1e-14);
         let tilted = Frame::new(Point3::ORIGIN, Some(Point3::new(1.0, 0.0, 0.0)), None).unwrap();
         assert!(tilted.x.dot(tilted.z).abs() < 1e-15);
+    }
+
+    /// `OpenCASCADE`'s own `gp_Ax2(P, A).XDirection()` (OCP 8.0), printed for these axes.
+    #[test]
+    fn default_reference_directions_are_opencascades() {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let cases = [
+            ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
+            ([0.0, 0.0, -1.0], [-1.0, 0.0, 0.0]),
+            ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+            ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
+            ([1.0, 1.0, 1.0], [h, 0.0, -h]),
+            (
+                [-1.0, 2.0, 0.5],
+                [0.894427190999916, 0.447213595499958, 0.0],
+            ),
+            (
+                [0.3, -0.2, -5.0],
+                [-0.9982048454657787, 0.0, -0.05989229072794672],
+            ),
+            (
+                [2.0, -3.0, 1.0],
+                [-0.8320502943378437, -0.5547001962252293, 0.0],
+            ),
+            ([-1.0, -1.0, 0.0], [-h, h, 0.0]),
+            ([0.0, -1.0, -1.0], [0.0, -h, h]),
+        ];
+        for (axis, x) in cases {
+            let axis = Point3::new(axis[0], axis[1], axis[2]);
+            let f = Frame::with_default_reference(Point3::new(1.0, 2.0, 3.0), axis).unwrap();
+            assert!(
+                f.x.distance(Point3::new(x[0], x[1], x[2])) < 1e-15,
+                "{axis:?}: {f:?}"
+            );
+            assert!(f.z.distance(axis.normalized().unwrap()) < 1e-15);
+            assert!(f.x.cross(f.y).distance(f.z) < 1e-15);
+        }
+        assert!(Frame::with_default_reference(Point3::ORIGIN, Point3::ORIGIN).is_err());
     }
 
     #[test]

@@ -1037,7 +1037,7 @@ fn as1_assembly_faces_come_in_opencascade_order() {
     assert_eq!(runs, want);
 }
 
-/// A gzipped gmsh demo decompressed with `gzip -dc` into the test's scratch directory.
+/// A gzipped gmsh demo decompressed with `gzip -dc`.
 fn gmsh_demo(rel: &str) -> Option<Vec<u8>> {
     let path = format!("{GMSH}/{rel}");
     if !std::path::Path::new(&path).exists() {
@@ -1049,10 +1049,8 @@ fn gmsh_demo(rel: &str) -> Option<Vec<u8>> {
         .output()
         .unwrap();
     assert!(out.status.success(), "gzip -dc {path}");
-    let name = rel.replace('/', "_").trim_end_matches(".gz").to_string();
-    let file = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    std::fs::write(&file, &out.stdout).unwrap();
-    Some(std::fs::read(&file).unwrap())
+    // Kept in memory: tests running at once decompress the same demo.
+    Some(out.stdout)
 }
 
 #[test]
@@ -1521,7 +1519,8 @@ fn assembly_occurrences_place_surfaces_and_edges_not_loops() {
     let m = read_step(placed_plates().as_bytes()).unwrap();
     assert_eq!(m.faces.len(), 2);
     assert_eq!(m.shells.len(), 2);
-    assert_eq!(m.length_unit_mm, Some(1.0));
+    let unit = m.length_unit.as_ref().unwrap();
+    assert_eq!((unit.name.as_str(), unit.millimetres), ("MILLIMETRE", 1.0));
     // The two placements, written out: (x, y, z) -> (x + 10, y, z) and -> (0, 5 + x, y) (the
     // frame's x is the world y, its y = z x x the world z).
     let places: [fn(Point3) -> Point3; 2] = [
@@ -1571,7 +1570,8 @@ fn a_part_in_another_length_unit_is_placed_in_the_assembly_s() {
 #8101=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.));",
         );
     let m = read_step(text.as_bytes()).unwrap();
-    assert_eq!(m.length_unit_mm, Some(1000.0));
+    let unit = m.length_unit.as_ref().unwrap();
+    assert_eq!((unit.name.as_str(), unit.millimetres), ("METRE", 1000.0));
     let part = read_step(plate(&FLAT, true).as_bytes()).unwrap();
     let s0 = part.faces[0].surface.as_ref().unwrap();
     let places: [fn(Point3) -> Point3; 2] = [
@@ -1650,7 +1650,11 @@ fn solids_and_shells_of_the_real_files_are_opencascade_s() {
             .flat_map(|&k| m.shells[k].faces.clone())
             .collect();
         assert_eq!(order, (0..m.faces.len()).collect::<Vec<_>>(), "{file}");
-        assert_eq!(m.length_unit_mm, Some(1.0), "{file}");
+        assert_eq!(
+            m.length_unit.as_ref().map(|u| u.millimetres),
+            Some(1.0),
+            "{file}"
+        );
         let got = m.faces.iter().filter(|f| !f.same_sense).count();
         assert_eq!(
             got, reversed,

@@ -25,10 +25,19 @@ pub struct Model {
     pub solids: Vec<Solid>,
     /// The file's tolerance policy.
     pub tolerance: Tolerance,
-    /// Millimetres per length unit of the model's coordinates (the file's length unit, which
-    /// the model keeps: lengths, `(u, v)` on planes and the tolerance are in it), `None` when
-    /// the file does not say.
-    pub length_unit_mm: Option<f64>,
+    /// The length unit of the file's coordinates, when the file states one (lengths stay in
+    /// it: the model is not converted).
+    pub length_unit: Option<LengthUnit>,
+}
+
+/// The length unit of a model's coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LengthUnit {
+    /// The unit's name as the file gives it (`MM`, `INCH`, ...).
+    pub name: String,
+    /// Millimetres per unit (`25.4` for inches): a length `l` of the model is `l * millimetres`
+    /// millimetres.
+    pub millimetres: f64,
 }
 
 /// One face: a patch of a surface bounded by trimming loops in the surface's `(u, v)`.

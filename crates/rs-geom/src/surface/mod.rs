@@ -79,7 +79,7 @@ mod revolution;
 mod sphere;
 mod swept;
 #[cfg(test)]
-mod testing;
+pub(crate) mod testing;
 mod torus;
 mod transform;
 

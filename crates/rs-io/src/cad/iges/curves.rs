@@ -1,36 +1,43 @@
-//! Curve entities as exact NURBS pieces, in a surface's parameter space or mapped from model
-//! space into a plane's `(u, v)`.
+//! Curve entities as `rs_geom` curves: each leaf entity (100, 104, 106, 110, 126) is read into a
+//! [`Curve`] in its definition space with the parameter interval IGES takes of it, composites
+//! (102) are expanded into their leaves, and each leaf carries the maps of its 124
+//! transformation chains (its own, then those of the composites holding it): the 3-D map to
+//! model space, and its 2-D part for parameter space.
 //!
-//! A curve entity is read in its definition space (3-D control points, weights, knots), its
-//! 124 transformation matrices are applied (each entity's own, then those of the composites
-//! holding it), and the result goes to its [`Target`]: parameter space keeps `(x, y)` (the
-//! 2-D part of each 124; z is not a parameter), a plane maps the model point to `(u, v)` after
-//! checking it lies on the plane. All maps are affine, so the curves stay exact.
+//! The curves are the entities' own parameterisations (IGES 5.3):
+//!
+//! - 110 line: `P1 + t (P2 - P1)`, `t` in `[0, 1]`: a degree-1 B-spline on `[0, 1]`, which is
+//!   exactly that line and keeps both end points exact;
+//! - 100 circular arc: the circle `C + r (cos t, sin t)` at height `ZT`, `t` from the start
+//!   point's angle counter-clockwise to the end point's (the whole circle when they are equal);
+//! - 104 conic arc: [`Conic::from_implicit`] (its parameterisation and interval), at `ZT`;
+//! - 106 copious data (forms 11, 12, 63): the polyline as a degree-1 B-spline, vertex `i` at
+//!   `t = i`;
+//! - 126 rational B-spline: its knots, trimmed to `[V0, V1]`.
+//!
+//! Curves become exact NURBS by [`Curve::to_bspline`], mapped by their affine maps point by
+//! point (affine maps keep rational curves exact, so nothing is ever resampled). A B-spline's
+//! control points are mapped before its window is cut and a conic is converted before it is
+//! mapped: the arithmetic the reader has always done, so that its curves keep their bits.
 
+use std::f64::consts::TAU;
+
+use rs_geom::brep::Edge;
+use rs_geom::pcurve::{PcurveOptions, pcurve};
+use rs_geom::surface::Surface;
+use rs_geom::{
+    Affine3, AffineMap, AffinePlaneCoordinates, Conic, ConicKind, Curve, DEFAULT_MODEL_TOLERANCE,
+    Tolerance,
+};
 use rs_spline::prelude::*;
-use rs_spline::{NurbsCurve, Point, circular_arc};
+use rs_spline::{NurbsCurve, Point, Point3, RationalBSpline};
 
-use super::conics::{Conic, ConicKind, conic_arc};
 use super::directory::DirEntry;
-use super::maps::{Map3, PlaneMap};
-use super::{Iges, MAX_DEPTH, type_name};
+use super::error::{FieldProblem, IgesError};
+use super::params::Params;
+use super::{Iges, MAX_DEPTH};
 
-/// Where curves go.
-#[derive(Clone, Debug)]
-pub(super) enum Target {
-    /// A surface's parameter space: the curve's `(x, y)` are `(u, v)`.
-    Param,
-    /// A plane's parameter space from model-space curves.
-    Plane(PlaneMap),
-    /// Model space, two of the coordinates: `(x, y)`, or `(z, 0)` when `z` is set (to find
-    /// the ends of model-space curves in 3-D).
-    Model {
-        /// `(z, 0)` instead of `(x, y)`.
-        z: bool,
-    },
-}
-
-/// One curve of a loop and the entity it came from.
+/// One curve of a loop in `(u, v)` and the entity it came from.
 #[derive(Clone, Debug)]
 pub(super) struct Piece {
     /// The directory entry of the curve entity.
@@ -39,86 +46,236 @@ pub(super) struct Piece {
     pub(super) curve: NurbsCurve,
 }
 
-/// A curve in its entity's definition space, before its transformations.
-struct Raw {
-    degree: usize,
-    knots: Vec<f64>,
-    points: Vec<[f64; 3]>,
-    weights: Option<Vec<f64>>,
-    /// The parameter interval to keep (126's `V0`, `V1`).
-    trim: Option<(f64, f64)>,
+/// A leaf curve entity read in its definition space.
+#[derive(Clone, Debug)]
+pub(super) struct Leaf {
+    /// Its directory entry.
+    pub(super) de: usize,
+    /// Its type (for messages).
+    pub(super) kind: i64,
+    /// The curve, in the entity's parameterisation.
+    pub(super) curve: Curve<Point3>,
+    /// The parameter interval IGES takes of it.
+    pub(super) range: (f64, f64),
 }
 
-impl Raw {
-    /// A 2-D curve lifted to height `z`.
-    fn lift(c: &NurbsCurve, z: f64) -> Raw {
-        Raw {
-            degree: c.degree(),
-            knots: c.knots().knots().to_vec(),
-            points: c.control_points().iter().map(|p| [p.x, p.y, z]).collect(),
-            weights: Some(c.weights().to_vec()),
-            trim: None,
+/// A leaf with the maps of its transformation chains.
+#[derive(Clone, Debug)]
+pub(super) struct Placed {
+    /// The leaf.
+    pub(super) leaf: Leaf,
+    /// Its definition space to model space (3-D).
+    pub(super) model: Affine3,
+    /// The 2-D parts of the same chains, for parameter-space curves: `x' = R11 x + R12 y + T1`,
+    /// `y' = R21 x + R22 y + T2` (`z` is not a parameter and passes through).
+    pub(super) param: Affine3,
+}
+
+impl Leaf {
+    /// The exact rational B-spline of the curve on its interval with every control point
+    /// mapped by `f` (`f` affine): a B-spline's points are mapped before the window is cut,
+    /// other curves are converted first.
+    fn to_bspline_by<Q>(&self, f: impl FnMut(Point3) -> Q) -> Result<RationalBSpline<Q>, IgesError>
+    where
+        Q: rs_spline::Vector + std::ops::Div<f64, Output = Q>,
+    {
+        let who = format!(
+            "DE {} ({} {})",
+            self.de,
+            self.kind,
+            super::type_name(self.kind)
+        );
+        let (t0, t1) = self.range;
+        match &self.curve {
+            Curve::BSpline(b) => {
+                let mapped = b.map_points(f).map_err(|e| IgesError::spline(&who, e))?;
+                Curve::BSpline(mapped)
+                    .to_bspline(t0, t1)
+                    .map_err(|e| IgesError::geometry(&who, e))
+            }
+            c => c
+                .to_bspline(t0, t1)
+                .map_err(|e| IgesError::geometry(&who, e))?
+                .map_points(f)
+                .map_err(|e| IgesError::spline(&who, e)),
         }
     }
 
-    /// A degree-1 polyline through `points` (vertex `i` at parameter `i`).
-    fn polyline(points: Vec<[f64; 3]>) -> Raw {
-        let n = points.len();
-        let mut knots = Vec::with_capacity(n + 2);
-        knots.push(0.0);
-        knots.extend((0..n).map(|i| i as f64));
-        knots.push(n.saturating_sub(1) as f64);
-        Raw {
-            degree: 1,
-            knots,
-            points,
-            weights: None,
-            trim: None,
+    /// The curve trimmed to its interval (a B-spline on its whole domain as it is).
+    pub(super) fn trimmed(curve: Curve<Point3>, range: (f64, f64)) -> Curve<Point3> {
+        match &curve {
+            Curve::BSpline(b) if b.param_range() == range => curve,
+            _ => Curve::Trimmed {
+                basis: Box::new(curve),
+                range,
+            },
         }
+    }
+}
+
+impl Placed {
+    /// `DE 57 (126 rational B-spline curve)`.
+    fn who(&self) -> String {
+        format!(
+            "DE {} ({} {})",
+            self.leaf.de,
+            self.leaf.kind,
+            super::type_name(self.leaf.kind)
+        )
+    }
+
+    /// The curve as a parameter-space curve: `(x, y)` after the 2-D maps.
+    pub(super) fn param_piece(&self) -> Result<Piece, IgesError> {
+        let m = self.param;
+        let b = self.leaf.to_bspline_by(|p| {
+            let q = m.apply(p);
+            Point::new(q.x, q.y)
+        })?;
+        Ok(Piece {
+            de: self.leaf.de,
+            curve: b
+                .to_planar()
+                .map_err(|e| IgesError::spline(&self.who(), e))?,
+        })
+    }
+
+    /// The model-space curve mapped into a plane's `(u, v)`, after checking that every control
+    /// point lies on the plane within the model's coincidence tolerance (of the curve's
+    /// largest coordinate).
+    pub(super) fn plane_piece(
+        &self,
+        plane: &AffinePlaneCoordinates,
+        tolerance: Tolerance,
+    ) -> Result<Piece, IgesError> {
+        let m = self.model;
+        let (mut worst, mut size) = (0.0f64, 0.0f64);
+        let b = self.leaf.to_bspline_by(|p| {
+            let q = m.apply(p);
+            let d = plane.distance(q);
+            // NaN is kept as the worst distance.
+            if d.is_nan() || d.abs() > worst {
+                worst = d.abs();
+            }
+            size = size.max(q.max_abs());
+            plane.point(q)
+        })?;
+        let tol = tolerance.coincidence(size);
+        if worst.is_nan() || worst > tol {
+            return Err(IgesError::OffPlane {
+                who: self.who(),
+                distance: worst,
+                tolerance: tol,
+            });
+        }
+        Ok(Piece {
+            de: self.leaf.de,
+            curve: b
+                .to_planar()
+                .map_err(|e| IgesError::spline(&self.who(), e))?,
+        })
+    }
+
+    /// The pcurve of the model-space curve on `surface` (not a plane), computed by
+    /// [`rs_geom::pcurve::pcurve`] to the model's tolerance (the file's, or
+    /// [`DEFAULT_MODEL_TOLERANCE`] when it states none): its pieces from the curve's start to
+    /// its end, or from its end to its start when `reversed`, the first starting at the
+    /// periodic copy nearest `near` (the end of the loop's piece before), and the bound on
+    /// their 3-D distance from the curve.
+    pub(super) fn computed_pieces(
+        &self,
+        surface: &Surface,
+        reversed: bool,
+        tolerance: Tolerance,
+        near: Option<Point>,
+    ) -> Result<(Vec<Piece>, f64), IgesError> {
+        let edge = self.model_curve()?;
+        let (t0, t1) = self.leaf.range;
+        let range = if reversed { (t1, t0) } else { (t0, t1) };
+        let options = PcurveOptions::DEFAULT
+            .with_tolerance(tolerance.stated().unwrap_or(DEFAULT_MODEL_TOLERANCE))
+            .with_near(near.map(|p| [p.x, p.y]));
+        let p = pcurve(surface, &edge, Some(range), &options)
+            .map_err(|e| IgesError::geometry(&self.who(), e))?;
+        let de = self.leaf.de;
+        Ok((
+            p.curves
+                .into_iter()
+                .map(|curve| Piece { de, curve })
+                .collect(),
+            p.deviation,
+        ))
+    }
+
+    /// The curve placed in model space, in its own parameter (not trimmed).
+    pub(super) fn model_curve(&self) -> Result<Curve<Point3>, IgesError> {
+        self.leaf
+            .curve
+            .map_affine(&self.model)
+            .map_err(|e| IgesError::geometry(&self.who(), e))
+    }
+
+    /// The curve as a 3-D edge of a loop, run backwards when `reversed`.
+    pub(super) fn edge(&self, reversed: bool) -> Result<Edge, IgesError> {
+        Ok(Edge {
+            entity: format!("DE {}", self.leaf.de),
+            curve: self.model_curve()?,
+            range: self.leaf.range,
+            reversed,
+        })
+    }
+}
+
+/// Reverses a list of pieces: the last first, each run backwards.
+pub(super) fn reverse_pieces(pieces: &mut [Piece]) {
+    pieces.reverse();
+    for p in pieces {
+        p.curve = p.curve.reversed();
     }
 }
 
 impl Iges<'_> {
-    /// The pieces of curve `de` sent to `target`, appended to `out`. `from` says who points
-    /// to it, for messages.
-    pub(super) fn curve_pieces(
-        &self,
-        de: usize,
-        from: &str,
-        target: &Target,
-        out: &mut Vec<Piece>,
-    ) -> Result<(), String> {
-        self.curve_in(de, from, target, Map3::IDENTITY, &mut Vec::new(), out)
+    /// The leaves of curve `de` (a composite's in order), each with its maps. `from` says who
+    /// points to it, for messages.
+    pub(super) fn curve_leaves(&self, de: usize, from: &str) -> Result<Vec<Placed>, IgesError> {
+        let mut out = Vec::new();
+        self.leaves_in(
+            de,
+            from,
+            [Affine3::IDENTITY, Affine3::IDENTITY],
+            &mut Vec::new(),
+            &mut out,
+        )?;
+        Ok(out)
     }
 
-    /// `outer` maps the curve's transformed definition space to the target's input space;
-    /// `stack` holds the composites being read (cycle detection).
-    fn curve_in(
+    /// `outer` maps the curve's transformed definition space onward (3-D, 2-D part); `stack`
+    /// holds the composites being read (cycle detection).
+    fn leaves_in(
         &self,
         de: usize,
         from: &str,
-        target: &Target,
-        outer: Map3,
+        outer: [Affine3; 2],
         stack: &mut Vec<usize>,
-        out: &mut Vec<Piece>,
-    ) -> Result<(), String> {
+        out: &mut Vec<Placed>,
+    ) -> Result<(), IgesError> {
         let e = self.entry(de, from)?;
-        let map = self
-            .transform(e, !matches!(target, Target::Param))?
-            .then(outer);
+        let [model, param] = self.transforms(e)?;
+        let maps = [outer[0].after(model), outer[1].after(param)];
         match e.kind {
             102 => {
                 let who = self.who(e);
                 if stack.contains(&e.de) {
-                    return Err(format!(
-                        "{who}: composite curves contain each other (a cycle through DE {})",
-                        e.de
-                    ));
+                    return Err(IgesError::Cycle {
+                        who,
+                        what: "composite curves",
+                        de: e.de,
+                    });
                 }
                 if stack.len() >= MAX_DEPTH {
-                    return Err(format!(
-                        "{who}: composite curves nested deeper than {MAX_DEPTH}"
-                    ));
+                    return Err(IgesError::TooDeep {
+                        who,
+                        what: "composite curves",
+                    });
                 }
                 let mut p = self.params(e)?;
                 let n = p.count("N")?;
@@ -126,99 +283,51 @@ impl Iges<'_> {
                 stack.push(e.de);
                 for (i, m) in members.into_iter().enumerate() {
                     let from = format!("{who}: constituent {}", i + 1);
-                    self.curve_in(m, &from, target, map, stack, out)?;
+                    self.leaves_in(m, &from, maps, stack, out)?;
                 }
                 stack.pop();
                 Ok(())
             }
             100 | 104 | 106 | 110 | 126 => {
-                let raw = self.leaf(e)?;
-                let curve =
-                    finish(raw, &map, target).map_err(|m| format!("{}: {m}", self.who(e)))?;
-                out.push(Piece { de: e.de, curve });
+                out.push(Placed {
+                    leaf: self.leaf(e)?,
+                    model: maps[0],
+                    param: maps[1],
+                });
                 Ok(())
             }
-            k => Err(format!(
-                "{from}: DE {} is a {k} {}, not a curve this reader knows (100, 102, 104, 106, \
-                 110, 126)",
-                e.de,
-                type_name(k)
-            )),
+            kind => Err(IgesError::WrongType {
+                from: from.to_string(),
+                de: e.de,
+                kind,
+                expected: "a curve this reader knows (100, 102, 104, 106, 110, 126)",
+            }),
         }
-    }
-
-    /// The map of `e`'s 124 chain (its matrix, then that matrix's own, ...), in 3-D for
-    /// model space (`model`) and its 2-D part for parameter space.
-    pub(super) fn transform(&self, e: &DirEntry, model: bool) -> Result<Map3, String> {
-        let mut acc = Map3::IDENTITY;
-        let mut ptr = e.transform;
-        let mut seen: Vec<usize> = Vec::new();
-        while ptr != 0 {
-            let who = self.who(e);
-            let Ok(de) = usize::try_from(ptr) else {
-                return Err(format!(
-                    "{who}: negative transformation matrix pointer {ptr}"
-                ));
-            };
-            if seen.contains(&de) {
-                return Err(format!(
-                    "{who}: its transformation matrices form a cycle (DE {de} again)"
-                ));
-            }
-            if seen.len() >= MAX_DEPTH {
-                return Err(format!(
-                    "{who}: a chain of more than {MAX_DEPTH} transformation matrices"
-                ));
-            }
-            seen.push(de);
-            let t = self.entry(de, &format!("{who}: transformation matrix"))?;
-            if t.kind != 124 {
-                return Err(format!(
-                    "{who}: its transformation matrix pointer is DE {de}, a {} {}",
-                    t.kind,
-                    type_name(t.kind)
-                ));
-            }
-            let mut p = self.params(t)?;
-            let mut v = [0.0; 12];
-            for (i, x) in v.iter_mut().enumerate() {
-                *x = p.real(
-                    [
-                        "R11", "R12", "R13", "T1", "R21", "R22", "R23", "T2", "R31", "R32", "R33",
-                        "T3",
-                    ][i],
-                )?;
-            }
-            let m = if model {
-                Map3::from_124(v)
-            } else {
-                Map3::from_124_2d(v)
-            };
-            acc = acc.then(m);
-            ptr = t.transform;
-        }
-        Ok(acc)
     }
 
     /// Reads a curve entity other than a composite, in its definition space.
-    fn leaf(&self, e: &DirEntry) -> Result<Raw, String> {
+    fn leaf(&self, e: &DirEntry) -> Result<Leaf, IgesError> {
         let who = self.who(e);
         let mut p = self.params(e)?;
-        match e.kind {
+        let (curve, range) = match e.kind {
             110 => {
                 if e.form != 0 {
                     let what = if e.form == 1 {
-                        "a ray"
+                        "is a ray, not a segment"
                     } else {
-                        "an unbounded line"
+                        "is an unbounded line, not a segment"
                     };
-                    return Err(format!("{who}: form {} is {what}, not a segment", e.form));
+                    return Err(IgesError::Form {
+                        who,
+                        form: e.form,
+                        what,
+                    });
                 }
-                let mut v = [0.0; 6];
-                for (x, name) in v.iter_mut().zip(["X1", "Y1", "Z1", "X2", "Y2", "Z2"]) {
-                    *x = p.real(name)?;
-                }
-                Ok(Raw::polyline(vec![[v[0], v[1], v[2]], [v[3], v[4], v[5]]]))
+                let a = point3(&mut p, ["X1", "Y1", "Z1"])?;
+                let b = point3(&mut p, ["X2", "Y2", "Z2"])?;
+                let line = RationalBSpline::new(1, vec![0.0, 0.0, 1.0, 1.0], vec![a, b], None)
+                    .map_err(|e| IgesError::spline(&who, e))?;
+                (Curve::BSpline(line), (0.0, 1.0))
             }
             100 => {
                 let mut v = [0.0; 7];
@@ -229,21 +338,26 @@ impl Iges<'_> {
                 let (start, end) = (Point::new(v[3], v[4]), Point::new(v[5], v[6]));
                 let r = start.distance(centre);
                 if r <= 0.0 || !r.is_finite() {
-                    return Err(format!("{who}: the start point is the centre (radius 0)"));
+                    return Err(IgesError::ZeroRadius { who });
                 }
                 let a0 = (start.y - centre.y).atan2(start.x - centre.x);
                 let a1 = (end.y - centre.y).atan2(end.x - centre.x);
                 // Counter-clockwise from start to end; equal points are the full circle.
                 let mut sweep = if start == end {
-                    std::f64::consts::TAU
+                    TAU
                 } else {
-                    (a1 - a0).rem_euclid(std::f64::consts::TAU)
+                    (a1 - a0).rem_euclid(TAU)
                 };
                 if sweep <= 0.0 {
-                    sweep = std::f64::consts::TAU;
+                    sweep = TAU;
                 }
-                let arc = circular_arc(centre, r, a0, sweep).map_err(|m| format!("{who}: {m}"))?;
-                Ok(Raw::lift(&arc, v[0]))
+                let circle = Conic {
+                    kind: ConicKind::Ellipse,
+                    center: Point3::new(centre.x, centre.y, v[0]),
+                    u: Point3::new(r, 0.0, 0.0),
+                    v: Point3::new(0.0, r, 0.0),
+                };
+                (Curve::Conic(circle), (a0, a0 + sweep))
             }
             104 => {
                 let mut v = [0.0; 11];
@@ -257,84 +371,126 @@ impl Iges<'_> {
                     1 => ConicKind::Ellipse,
                     2 => ConicKind::Hyperbola,
                     3 => ConicKind::Parabola,
-                    f => return Err(format!("{who}: form {f} (expected 1, 2 or 3)")),
+                    form => {
+                        return Err(IgesError::Form {
+                            who,
+                            form,
+                            what: "is not a conic arc (1 ellipse, 2 hyperbola, 3 parabola)",
+                        });
+                    }
                 };
-                let conic = Conic {
-                    c: [v[0], v[1], v[2], v[3], v[4], v[5]],
-                };
-                let arc = conic_arc(
-                    &conic,
+                let (c, range) = Conic::from_implicit(
+                    [v[0], v[1], v[2], v[3], v[4], v[5]],
                     kind,
                     Point::new(v[7], v[8]),
                     Point::new(v[9], v[10]),
                 )
-                .map_err(|m| format!("{who}: {m}"))?;
-                Ok(Raw::lift(&arc, v[6]))
+                .map_err(|e| IgesError::geometry(&who, e))?;
+                let lift = |p: Point, z: f64| Point3::new(p.x, p.y, z);
+                let conic = Conic {
+                    kind: c.kind,
+                    center: lift(c.center, v[6]),
+                    u: lift(c.u, 0.0),
+                    v: lift(c.v, 0.0),
+                };
+                (Curve::Conic(conic), range)
             }
-            106 => self.copious(e, &mut p),
-            126 => bspline(&who, &mut p),
-            _ => Err(format!("{who}: not a curve")),
-        }
-    }
-
-    /// 106 copious data, forms 11 (2-D path), 12 (3-D path), 63 (closed planar curve).
-    fn copious(&self, e: &DirEntry, p: &mut super::params::Params<'_>) -> Result<Raw, String> {
-        let who = self.who(e);
-        if !matches!(e.form, 11 | 12 | 63) {
-            return Err(format!(
-                "{who}: form {} is not a path (forms 11, 12, 63 are read)",
-                e.form
-            ));
-        }
-        let ip = p.int("IP")?;
-        let n = p.count("N")?;
-        let (each, zt) = match ip {
-            1 => (2, Some(p.real("ZT")?)),
-            2 => (3, None),
-            3 => (6, None),
-            _ => {
-                return Err(p.err(
-                    "IP",
-                    format!("interpretation flag {ip} (expected 1, 2 or 3)"),
-                ));
+            106 => copious(e, &who, &mut p)?,
+            126 => bspline(&who, &mut p)?,
+            kind => {
+                return Err(IgesError::WrongType {
+                    from: who,
+                    de: e.de,
+                    kind,
+                    expected: "a curve",
+                });
             }
         };
-        if n < 2 {
-            return Err(p.err("N", format!("{n} points (a path needs 2)")));
-        }
-        p.check_count("N", n, each)?;
-        let mut points = Vec::with_capacity(n + 1);
-        for _ in 0..n {
-            let x = p.real("X")?;
-            let y = p.real("Y")?;
-            let z = match zt {
-                Some(z) => z,
-                None => p.real("Z")?,
-            };
-            for _ in 3..each {
-                p.skip("normal")?;
-            }
-            points.push([x, y, z]);
-        }
-        if e.form == 63 && points.first() != points.last() {
-            points.push(points[0]);
-        }
-        Ok(Raw::polyline(points))
+        Ok(Leaf {
+            de: e.de,
+            kind: e.kind,
+            curve,
+            range,
+        })
     }
 }
 
-/// 126 rational B-spline curve: `K, M, PROP1..4`, knots, weights, control points,
-/// `V0, V1`.
-fn bspline(who: &str, p: &mut super::params::Params<'_>) -> Result<Raw, String> {
+/// Three reals named `names`, as a point.
+pub(super) fn point3(p: &mut Params<'_>, names: [&'static str; 3]) -> Result<Point3, IgesError> {
+    Ok(Point3::new(
+        p.real(names[0])?,
+        p.real(names[1])?,
+        p.real(names[2])?,
+    ))
+}
+
+/// A degree-1 polyline through `points` (vertex `i` at parameter `i`).
+fn polyline(who: &str, points: Vec<Point3>) -> Result<(Curve<Point3>, (f64, f64)), IgesError> {
+    let n = points.len();
+    let mut knots = Vec::with_capacity(n + 2);
+    knots.push(0.0);
+    knots.extend((0..n).map(|i| i as f64));
+    knots.push(n.saturating_sub(1) as f64);
+    let b = RationalBSpline::new(1, knots, points, None).map_err(|e| IgesError::spline(who, e))?;
+    let range = b.param_range();
+    Ok((Curve::BSpline(b), range))
+}
+
+/// 106 copious data, forms 11 (2-D path), 12 (3-D path), 63 (closed planar curve).
+fn copious(
+    e: &DirEntry,
+    who: &str,
+    p: &mut Params<'_>,
+) -> Result<(Curve<Point3>, (f64, f64)), IgesError> {
+    if !matches!(e.form, 11 | 12 | 63) {
+        return Err(IgesError::Form {
+            who: who.to_string(),
+            form: e.form,
+            what: "is not a path (forms 11, 12, 63 are read)",
+        });
+    }
+    let ip = p.int("IP")?;
+    let n = p.count("N")?;
+    let (each, zt) = match ip {
+        1 => (2, Some(p.real("ZT")?)),
+        2 => (3, None),
+        3 => (6, None),
+        _ => return Err(p.err("IP", FieldProblem::InterpretationFlag(ip))),
+    };
+    if n < 2 {
+        return Err(p.err("N", FieldProblem::TooFewPoints(n)));
+    }
+    p.check_count("N", n, each)?;
+    let mut points = Vec::with_capacity(n + 1);
+    for _ in 0..n {
+        let x = p.real("X")?;
+        let y = p.real("Y")?;
+        let z = match zt {
+            Some(z) => z,
+            None => p.real("Z")?,
+        };
+        for _ in 3..each {
+            p.skip("normal")?;
+        }
+        points.push(Point3::new(x, y, z));
+    }
+    if e.form == 63 && points.first() != points.last() {
+        points.push(points[0]);
+    }
+    polyline(who, points)
+}
+
+/// 126 rational B-spline curve: `K, M, PROP1..4`, knots, weights, control points, `V0, V1`.
+fn bspline(who: &str, p: &mut Params<'_>) -> Result<(Curve<Point3>, (f64, f64)), IgesError> {
     let k = p.count("K")?;
     let m = p.count("M")?;
     if m == 0 || m > rs_spline::limits::MAX_DEGREE {
         return Err(p.err(
             "M",
-            format!(
-                "degree {m} (1 to {} accepted)",
-                rs_spline::limits::MAX_DEGREE
-            ),
+            FieldProblem::Degree {
+                degree: m,
+                max: rs_spline::limits::MAX_DEGREE,
+            },
         ));
     }
     // K + 1 control points with 4 fields each (weight, x, y, z), K + M + 2 knots.
@@ -354,15 +510,15 @@ fn bspline(who: &str, p: &mut super::params::Params<'_>) -> Result<Raw, String> 
     }
     let mut points = Vec::with_capacity(n);
     for _ in 0..n {
-        points.push([p.real("X")?, p.real("Y")?, p.real("Z")?]);
+        points.push(point3(p, ["X", "Y", "Z"])?);
     }
     let v0 = p.real("V0")?;
     let v1 = p.real("V1")?;
     let weights = if polynomial {
         if weights.iter().any(|&w| w != weights[0]) {
-            return Err(format!(
-                "{who}: PROP3 says polynomial but the weights are not all equal"
-            ));
+            return Err(IgesError::NotPolynomial {
+                who: who.to_string(),
+            });
         }
         None
     } else {
@@ -370,50 +526,21 @@ fn bspline(who: &str, p: &mut super::params::Params<'_>) -> Result<Raw, String> 
     };
     // V0, V1 within the knot domain [t_M, t_(K+1)], rounding tolerated.
     let (a, b) = (knots[m], knots[n]);
-    let slack = 1e-9 * (b - a).abs().max(a.abs()).max(b.abs());
+    let slack = KNOT_ROUNDING * (b - a).abs().max(a.abs()).max(b.abs());
     if !(v0 < v1 && v0 >= a - slack && v1 <= b + slack) {
-        return Err(format!(
-            "{who}: parameter range [{v0}, {v1}] is not inside the knot domain [{a}, {b}]"
-        ));
-    }
-    let trim = (v0 > a || v1 < b).then_some((v0.max(a), v1.min(b)));
-    Ok(Raw {
-        degree: m,
-        knots,
-        points,
-        weights,
-        trim,
-    })
-}
-
-/// Maps `raw` by `map` into `target` and builds the curve (trimmed if asked).
-fn finish(raw: Raw, map: &Map3, target: &Target) -> Result<NurbsCurve, String> {
-    let mut points = Vec::with_capacity(raw.points.len());
-    for q in raw.points {
-        let q = map.apply(q);
-        let uv = match target {
-            Target::Param | Target::Model { z: false } => Point::new(q[0], q[1]),
-            Target::Model { z: true } => Point::new(q[2], 0.0),
-            Target::Plane(plane) => {
-                let d = plane.distance(q);
-                let size = q.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-                if d.abs() > plane.tol.max(1e-9 * size) || d.is_nan() {
-                    return Err(format!(
-                        "a control point of the model-space curve is {d:e} off the surface's \
-                         plane (tolerance {:e})",
-                        plane.tol
-                    ));
-                }
-                let (u, v) = plane.uv(q);
-                Point::new(u, v)
-            }
-        };
-        points.push(uv);
+        return Err(IgesError::TrimRange {
+            who: who.to_string(),
+            v0,
+            v1,
+            a,
+            b,
+        });
     }
     let curve =
-        NurbsCurve::new(raw.degree, raw.knots, points, raw.weights).map_err(|e| e.to_string())?;
-    match raw.trim {
-        Some(range) => curve.subsegment(range).map_err(|e| e.to_string()),
-        None => Ok(curve),
-    }
+        RationalBSpline::new(m, knots, points, weights).map_err(|e| IgesError::spline(who, e))?;
+    Ok((Curve::BSpline(curve), (v0.max(a), v1.min(b))))
 }
+
+/// A 126's `V0`, `V1` may pass its knot domain's ends by this fraction of the domain's size
+/// (files print about ten digits; the parameters are then clamped to the domain).
+const KNOT_ROUNDING: f64 = 1e-9;

@@ -7,9 +7,8 @@
 //! The status number's eight digits are four two-digit switches: blank status, subordinate
 //! entity switch, entity use flag, hierarchy.
 
-use super::cad_err;
+use super::error::IgesError;
 use super::records::{Record, trim};
-use crate::IoError;
 
 /// What the reader uses of one directory entry. Pointers are as written (range checked where
 /// they are followed, so a broken entry only breaks the faces that use it).
@@ -33,7 +32,7 @@ pub(super) struct DirEntry {
 }
 
 /// Field `k` (1-based, 8 columns each) of a directory record, as an integer; blank is 0.
-fn int_field(r: &Record<'_>, k: usize, name: &str) -> Result<i64, IoError> {
+fn int_field(r: &Record<'_>, k: usize, name: &'static str) -> Result<i64, IgesError> {
     let raw = trim(r.columns(8 * k - 7, 8 * k));
     if raw.is_empty() {
         return Ok(0);
@@ -47,27 +46,25 @@ fn int_field(r: &Record<'_>, k: usize, name: &str) -> Result<i64, IoError> {
     } else {
         None
     };
-    parsed.ok_or_else(|| {
-        cad_err(format!(
-            "line {}: directory field {k} ({name}) {:?} is not an integer",
-            r.line,
-            String::from_utf8_lossy(raw)
-        ))
+    parsed.ok_or_else(|| IgesError::DirectoryField {
+        line: r.line,
+        field: k,
+        name,
+        text: String::from_utf8_lossy(raw).into_owned(),
     })
 }
 
 /// The subordinate switch: digits 3-4 of the status number (blanks read as zeros).
-fn subordinate(r: &Record<'_>) -> Result<u8, IoError> {
+fn subordinate(r: &Record<'_>) -> Result<u8, IgesError> {
     let status = r.columns(65, 72);
-    let digit = |i: usize| -> Result<u8, IoError> {
+    let digit = |i: usize| -> Result<u8, IgesError> {
         match status.get(i) {
             None | Some(b' ') => Ok(0),
             Some(c) if c.is_ascii_digit() => Ok(c - b'0'),
-            Some(_) => Err(cad_err(format!(
-                "line {}: status number {:?} is not eight digits",
-                r.line,
-                String::from_utf8_lossy(status)
-            ))),
+            Some(_) => Err(IgesError::StatusNumber {
+                line: r.line,
+                text: String::from_utf8_lossy(status).into_owned(),
+            }),
         }
     };
     for i in 0..8 {
@@ -77,7 +74,7 @@ fn subordinate(r: &Record<'_>) -> Result<u8, IoError> {
 }
 
 /// Reads all directory entries (the record pairs of the `D` section).
-pub(super) fn entries(directory: &[Record<'_>]) -> Result<Vec<DirEntry>, IoError> {
+pub(super) fn entries(directory: &[Record<'_>]) -> Result<Vec<DirEntry>, IgesError> {
     directory
         .chunks_exact(2)
         .enumerate()
@@ -86,12 +83,12 @@ pub(super) fn entries(directory: &[Record<'_>]) -> Result<Vec<DirEntry>, IoError
             let kind = int_field(a, 1, "entity type")?;
             let kind2 = int_field(b, 1, "entity type")?;
             if kind != kind2 {
-                return Err(cad_err(format!(
-                    "line {}: DE {}: entity type {kind} on the first record, {kind2} on the \
-                     second",
-                    b.line,
-                    2 * i + 1
-                )));
+                return Err(IgesError::EntityTypes {
+                    line: b.line,
+                    de: 2 * i + 1,
+                    first: kind,
+                    second: kind2,
+                });
             }
             Ok(DirEntry {
                 de: 2 * i + 1,

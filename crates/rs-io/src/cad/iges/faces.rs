@@ -1,46 +1,46 @@
-//! Faces: which entities are faces and in what order, their surfaces, and their loops.
+//! Faces: which entities are faces, shells and solids and in what order, the loops of trimmed
+//! (144) and bounded (143) surfaces, and how a loop is closed.
 //!
 //! - 144 trimmed surface: `PTS, N1, N2, PTO, PTI1..PTIN2`; the outer boundary (a 142, or the
 //!   surface's parameter rectangle when `N1 = 0`) then the inner ones.
 //! - 142 curve on a parametric surface: `CRTN, SPTR, BPTR, CPTR, PREF`; the loop is curve
-//!   `BPTR` in parameter space, or, if `BPTR = 0`, the model curve `CPTR` mapped onto a plane.
+//!   `BPTR` in parameter space, or, if `BPTR = 0`, the model curve `CPTR` mapped onto a plane
+//!   or, on another surface, its pcurve computed (`rs_geom::pcurve`); `CPTR` gives the loop's
+//!   3-D edges.
 //! - 143 bounded surface: `TYPE, SPTR, N, BDPT1..BDPTN`, the first boundary taken as the
 //!   outer one; 141 boundary: `TYPE, PREF, SPTR, N`, then per model curve `CRVPT, SENSE, K`
-//!   and its `K` parameter-space curves (sense 2: the pieces reversed).
+//!   and its `K` parameter-space curves (sense 2: the pieces and the edge reversed).
 //!
-//! Surface parameter rectangles (for `N1 = 0`) are known for 128 (its `U0, U1, V0, V1`).
-//! Planes for model-space curves: 108 (axes chosen by this reader: origin the plane's point
-//! nearest the world origin, `u` along the world axis least aligned with the normal projected
-//! onto the plane, `v = n x u`; the IGES standard does not parametrise a 108), and a 128 of
-//! degree 1 x 1 with four control points forming a parallelogram and equal weights (then the
-//! surface is affine in `(u, v)`). Other flat 128s are refused.
+//! A loop whose pieces do not meet is closed the way Open CASCADE closes its wires, where that
+//! is sure: a gap whose whole segment is one point of the surface (its ends and its middle:
+//! a pole, the apex of a surface of revolution) is the degenerate edge the writer left out
+//! and becomes that segment; pieces that meet only modulo the surface's periods (the seams of
+//! a torus written in another order) are put in the order in which they meet. Other gaps
+//! refuse the face, naming the loop and the two pieces.
 
+use std::collections::HashMap;
+use std::rc::Rc;
+
+use rs_geom::brep::{Edge, Face, FaceError, ReadError, Shell, Solid};
+use rs_geom::surface::{ParamSurface, Surface};
 use rs_spline::prelude::*;
-use rs_spline::segment;
+use rs_spline::{BoundingBox, NurbsCurve, Point, segment};
 
-use super::curves::{Piece, Target};
+use super::curves::{Piece, Placed, reverse_pieces};
 use super::directory::DirEntry;
-use super::maps::{PlaneMap, cross, dot, sub};
-use super::{Iges, MAX_DEPTH, type_name};
-use rs_geom::brep::Face;
+use super::error::IgesError;
+use super::surfaces::SurfaceInfo;
+use super::{Iges, MAX_DEPTH};
 
-use crate::cad::legacy_face;
-
-/// The faces of the file, in Open CASCADE's order.
-pub(super) fn faces(iges: &Iges<'_>) -> Vec<Face> {
-    iges.face_order()
-        .into_iter()
-        .map(|i| iges.face(&iges.dir[i]))
-        .collect()
-}
-
-/// The 3-D start and end of a curve.
-type Ends = ([f64; 3], [f64; 3]);
-
-/// The distance between two 3-D points.
-fn dist3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let d = sub(a, b);
-    dot(d, d).sqrt()
+/// The faces, shells and solids of the file, in Open CASCADE's order.
+pub(super) fn model(iges: &Iges<'_>) -> (Vec<Face>, Vec<Shell>, Vec<Solid>) {
+    let walk = iges.structure();
+    let faces = walk
+        .faces
+        .iter()
+        .map(|&(i, same_sense)| iges.face(&iges.dir[i], same_sense))
+        .collect();
+    (faces, walk.shells, walk.solids)
 }
 
 /// True for the group forms of 402 (with or without back pointers, ordered or not).
@@ -48,99 +48,264 @@ fn is_group(e: &DirEntry) -> bool {
     e.kind == 402 && matches!(e.form, 1 | 7 | 14 | 15)
 }
 
-impl Iges<'_> {
-    /// The members of a 402 group, or `None` if its record cannot be read.
-    fn group_members(&self, e: &DirEntry) -> Option<Vec<usize>> {
-        let mut p = self.params(e).ok()?;
-        let n = p.count("N").ok()?;
-        p.check_count("N", n, 1).ok()?;
-        (0..n).map(|_| p.pointer("member").ok()).collect()
+/// What a grouping entity holds (pointers as written, checked when followed).
+#[derive(Clone, Debug)]
+enum Members {
+    /// A 402 group's members.
+    Group(Vec<usize>),
+    /// A 186's shells, the outer one first, each with its orientation flag.
+    Solid(Vec<(usize, i64)>),
+    /// A 514's faces, each with its orientation flag.
+    Shell(Vec<(usize, i64)>),
+}
+
+impl Members {
+    /// The entities held.
+    fn pointers(&self) -> Vec<usize> {
+        match self {
+            Members::Group(m) => m.clone(),
+            Members::Solid(m) | Members::Shell(m) => m.iter().map(|m| m.0).collect(),
+        }
+    }
+}
+
+/// The walk of the file's roots: faces with their orientation, shells and solids, in order.
+struct Walk {
+    /// What each grouping entity holds, by directory index.
+    members: Vec<Option<Members>>,
+    /// Entities visited.
+    seen: Vec<bool>,
+    /// The faces: directory index and `same_sense`.
+    faces: Vec<(usize, bool)>,
+    /// Face number of each face entity listed, by directory index.
+    face_of: HashMap<usize, usize>,
+    /// Shell number of each shell entity listed, by directory index.
+    shell_of: HashMap<usize, usize>,
+    shells: Vec<Shell>,
+    solids: Vec<Solid>,
+}
+
+impl Walk {
+    /// The directory index of pointer `m`, if it is one.
+    fn index(&self, m: usize) -> Option<usize> {
+        (m % 2 == 1 && m / 2 < self.seen.len()).then_some(m / 2)
     }
 
-    /// Indices into `dir` of the faces: roots (not physically dependent, not a member of a
-    /// group, solid or shell) in directory order; groups, solids and shells expanded in member
-    /// order (each entity once).
-    fn face_order(&self) -> Vec<usize> {
-        let n = self.dir.len();
-        let mut in_group = vec![false; n];
-        let mut members: Vec<Option<Vec<usize>>> = vec![None; n];
-        for (i, e) in self.dir.iter().enumerate() {
-            if is_group(e) || matches!(e.kind, 186 | 514) {
-                members[i] = if e.kind == 402 {
-                    self.group_members(e)
-                } else {
-                    self.brep_members(e)
-                };
-                for &m in members[i].iter().flatten() {
-                    if m % 2 == 1 && m / 2 < n && m / 2 != i {
-                        in_group[m / 2] = true;
-                    }
-                }
-            }
+    /// Lists face `i` (once) with its orientation; its number.
+    fn face(&mut self, i: usize, same_sense: bool) -> usize {
+        if let Some(&k) = self.face_of.get(&i) {
+            return k;
         }
-        let mut seen = vec![false; n];
-        let mut out = Vec::new();
-        for (i, e) in self.dir.iter().enumerate() {
-            if !in_group[i] && !matches!(e.subordinate, 1 | 3) {
-                self.expand(i, &members, &mut seen, &mut out, 0);
-            }
-        }
-        out
+        self.seen[i] = true;
+        self.faces.push((i, same_sense));
+        self.face_of.insert(i, self.faces.len() - 1);
+        self.faces.len() - 1
     }
 
-    fn expand(
-        &self,
-        i: usize,
-        members: &[Option<Vec<usize>>],
-        seen: &mut [bool],
-        out: &mut Vec<usize>,
-        depth: usize,
-    ) {
-        if seen[i] || depth > MAX_DEPTH {
+    /// Lists the 514 shell `i` (once) and its 510 faces; `reversed` for a shell its solid uses
+    /// reversed. Its number, or `None` for a pointer that is not a 514 that could be read.
+    fn shell(&mut self, iges: &Iges<'_>, i: usize, reversed: bool) -> Option<usize> {
+        if let Some(&k) = self.shell_of.get(&i) {
+            return Some(k);
+        }
+        let Some(Members::Shell(faces)) = self.members[i].clone() else {
+            return None;
+        };
+        self.seen[i] = true;
+        let mut listed = Vec::with_capacity(faces.len());
+        for (ptr, of) in faces {
+            if let Some(f) = self.index(ptr)
+                && iges.dir[f].kind == 510
+            {
+                listed.push(self.face(f, (of == 1) != reversed));
+            }
+        }
+        let e = &iges.dir[i];
+        self.shells.push(Shell {
+            entity: format!("DE {}", e.de),
+            faces: listed,
+            closed: e.form == 1,
+        });
+        self.shell_of.insert(i, self.shells.len() - 1);
+        Some(self.shells.len() - 1)
+    }
+
+    /// Visits entity `i` and what it holds.
+    fn expand(&mut self, iges: &Iges<'_>, i: usize, depth: usize) {
+        if depth > MAX_DEPTH {
             return;
         }
-        seen[i] = true;
-        match self.dir[i].kind {
-            143 | 144 | 510 => out.push(i),
-            186 | 402 | 514 => {
-                for &m in members[i].iter().flatten() {
-                    if m % 2 == 1 && m / 2 < self.dir.len() {
-                        self.expand(m / 2, members, seen, out, depth + 1);
+        let e = &iges.dir[i];
+        match e.kind {
+            143 | 144 | 510 if !self.seen[i] => {
+                self.face(i, true);
+            }
+            186 => {
+                if self.seen[i] {
+                    return;
+                }
+                self.seen[i] = true;
+                let Some(Members::Solid(shells)) = self.members[i].clone() else {
+                    return;
+                };
+                let mut listed = Vec::with_capacity(shells.len());
+                let mut outer = false;
+                for (k, (ptr, flag)) in shells.into_iter().enumerate() {
+                    let shell = self.index(ptr).and_then(|s| self.shell(iges, s, flag == 0));
+                    if let Some(s) = shell {
+                        listed.push(s);
+                        outer |= k == 0;
+                    }
+                }
+                // A solid whose outer shell cannot be read is not listed (its voids' faces
+                // and shells are).
+                if outer {
+                    self.solids.push(Solid {
+                        entity: format!("DE {}", e.de),
+                        shells: listed,
+                    });
+                }
+            }
+            514 => {
+                let _ = self.shell(iges, i, false);
+            }
+            402 if is_group(e) => {
+                if self.seen[i] {
+                    return;
+                }
+                self.seen[i] = true;
+                let Some(Members::Group(members)) = self.members[i].clone() else {
+                    return;
+                };
+                for m in members {
+                    if let Some(k) = self.index(m) {
+                        self.expand(iges, k, depth + 1);
                     }
                 }
             }
             _ => {}
         }
     }
+}
 
-    /// One face: its entity, surface and loops.
-    fn face(&self, e: &DirEntry) -> Face {
-        let mut surface = String::from("unknown");
-        let loops = match e.kind {
-            144 => self.trimmed_surface(e, &mut surface),
-            510 => self.brep_face(e, &mut surface),
-            _ => self.bounded_surface(e, &mut surface),
-        };
-        legacy_face(format!("DE {}", e.de), surface, loops)
+impl Iges<'_> {
+    /// The members of a 402 group, 186 solid or 514 shell, or `None` if its record cannot be
+    /// read (then it holds nothing).
+    fn members(&self, e: &DirEntry) -> Option<Members> {
+        let mut p = self.params(e).ok()?;
+        match e.kind {
+            402 => {
+                let n = p.count("N").ok()?;
+                p.check_count("N", n, 1).ok()?;
+                let m: Option<Vec<usize>> = (0..n).map(|_| p.pointer("member").ok()).collect();
+                m.map(Members::Group)
+            }
+            186 => {
+                let shell = p.pointer("SHELL").ok()?;
+                let sof = p.int("SOF").ok()?;
+                let n = p.count("N").ok()?;
+                p.check_count("N", n, 2).ok()?;
+                let mut out = vec![(shell, sof)];
+                for _ in 0..n {
+                    out.push((p.pointer("VOID").ok()?, p.int("VOF").ok()?));
+                }
+                Some(Members::Solid(out))
+            }
+            514 => {
+                let n = p.count("N").ok()?;
+                p.check_count("N", n, 2).ok()?;
+                let mut out = Vec::with_capacity(n);
+                for _ in 0..n {
+                    out.push((p.pointer("FACE").ok()?, p.int("OF").ok()?));
+                }
+                Some(Members::Shell(out))
+            }
+            _ => None,
+        }
     }
 
-    /// The surface entry `ptr` of face `e`, its name written to `surface`.
-    pub(super) fn surface_of(
+    /// The faces (with their orientation), shells and solids: roots (not physically
+    /// dependent, not a member of a group, solid or shell; a 510 that nothing holds is a root
+    /// whatever its status) in directory order; groups, solids and shells expanded in member
+    /// order (each entity once).
+    fn structure(&self) -> Walk {
+        let n = self.dir.len();
+        let mut walk = Walk {
+            members: vec![None; n],
+            seen: vec![false; n],
+            faces: Vec::new(),
+            face_of: HashMap::new(),
+            shell_of: HashMap::new(),
+            shells: Vec::new(),
+            solids: Vec::new(),
+        };
+        let mut held = vec![false; n];
+        for (i, e) in self.dir.iter().enumerate() {
+            if is_group(e) || matches!(e.kind, 186 | 514) {
+                walk.members[i] = self.members(e);
+                for m in walk.members[i].iter().flat_map(Members::pointers) {
+                    if let Some(k) = walk.index(m)
+                        && k != i
+                    {
+                        held[k] = true;
+                    }
+                }
+            }
+        }
+        for (i, e) in self.dir.iter().enumerate() {
+            let independent = !matches!(e.subordinate, 1 | 3) || e.kind == 510;
+            if !held[i] && independent {
+                walk.expand(self, i, 0);
+            }
+        }
+        walk
+    }
+
+    /// One face: its entity, surface, loops, edges.
+    fn face(&self, e: &DirEntry, same_sense: bool) -> Face {
+        let mut face = Face {
+            entity: format!("DE {}", e.de),
+            surface_name: String::from("unknown"),
+            surface: None,
+            surface_error: None,
+            same_sense,
+            loops: Ok(Vec::new()),
+            edges: Vec::new(),
+            pcurve_deviation: None,
+            natural_bounds: false,
+        };
+        let loops = match e.kind {
+            144 => self.trimmed_surface(e, &mut face),
+            510 => self.brep_face(e, &mut face),
+            _ => self.bounded_surface(e, &mut face),
+        };
+        face.loops = loops.map_err(|e| FaceError::Read(ReadError::new(e)));
+        face
+    }
+
+    /// The surface entry `ptr` of face `e`: its name, surface (or why not) written to `face`.
+    pub(super) fn face_surface(
         &self,
         e: &DirEntry,
         ptr: usize,
-        surface: &mut String,
-    ) -> Result<&DirEntry, String> {
+        face: &mut Face,
+    ) -> Result<(&DirEntry, Rc<SurfaceInfo>), IgesError> {
         let s = self.entry(ptr, &format!("{}: surface", self.who(e)))?;
-        *surface = format!("{} ({})", s.kind, type_name(s.kind));
-        Ok(s)
+        face.surface_name = format!("{} ({})", s.kind, super::type_name(s.kind));
+        let info = self.surface_info(s);
+        match &info.surface {
+            Ok(surface) => face.surface = Some(surface.clone()),
+            Err(err) => face.surface_error = Some(FaceError::Read(ReadError::new(err.clone()))),
+        }
+        Ok((s, info))
     }
 
+    /// 144 trimmed surface.
     fn trimmed_surface(
         &self,
         e: &DirEntry,
-        surface: &mut String,
-    ) -> Result<Vec<Vec<rs_spline::NurbsCurve>>, String> {
+        face: &mut Face,
+    ) -> Result<Vec<Vec<NurbsCurve>>, IgesError> {
         let who = self.who(e);
         let mut p = self.params(e)?;
         let pts = p.pointer("PTS")?;
@@ -148,333 +313,297 @@ impl Iges<'_> {
         let n2 = p.count("N2")?;
         let pto = p.pointer("PTO")?;
         let inner = p.pointers("N2", n2, "PTI")?;
-        let s = self.surface_of(e, pts, surface)?;
+        let (s, info) = self.face_surface(e, pts, face)?;
         let mut loops = Vec::with_capacity(n2 + 1);
         match n1 {
-            0 => loops.push(self.rectangle(s)?),
-            1 => loops.push(self.curve_on_surface(e, pto, s)?),
-            _ => return Err(format!("{who}: N1 = {n1} (expected 0 or 1)")),
+            0 => {
+                loops.push(self.rectangle(s, &info, "N1 = 0")?);
+                face.edges.push(Vec::new());
+                face.natural_bounds = n2 == 0;
+            }
+            1 => loops.push(self.curve_on_surface(
+                e,
+                pto,
+                &info,
+                &mut face.edges,
+                &mut face.pcurve_deviation,
+            )?),
+            _ => {
+                return Err(IgesError::Flag {
+                    who,
+                    name: "N1".into(),
+                    value: n1,
+                    expected: "0 or 1",
+                });
+            }
         }
         for ptr in inner {
-            loops.push(self.curve_on_surface(e, ptr, s)?);
+            loops.push(self.curve_on_surface(
+                e,
+                ptr,
+                &info,
+                &mut face.edges,
+                &mut face.pcurve_deviation,
+            )?);
         }
         Ok(loops)
     }
 
-    /// The loop of the 142 at `ptr`, a boundary of face `face` on surface `s`.
+    /// The loop of the 142 at `ptr`, a boundary of face `face` on surface `s`; its 3-D edges
+    /// (from the model-space curve, if it reads) are appended to `edges`.
     fn curve_on_surface(
         &self,
         face: &DirEntry,
         ptr: usize,
-        s: &DirEntry,
-    ) -> Result<Vec<rs_spline::NurbsCurve>, String> {
-        let c = self.entry(ptr, &format!("{}: boundary", self.who(face)))?;
+        info: &SurfaceInfo,
+        edges: &mut Vec<Vec<Edge>>,
+        deviation: &mut Option<f64>,
+    ) -> Result<Vec<NurbsCurve>, IgesError> {
+        let c = self.entry_of(
+            ptr,
+            &format!("{}: boundary", self.who(face)),
+            142,
+            "a 142 curve on a parametric surface",
+        )?;
         let who = self.who(c);
-        if c.kind != 142 {
-            return Err(format!(
-                "{}: boundary DE {} is a {} {}, not a 142 curve on a parametric surface",
-                self.who(face),
-                c.de,
-                c.kind,
-                type_name(c.kind)
-            ));
-        }
         let mut p = self.params(c)?;
         let _crtn = p.int("CRTN")?;
         let _sptr = p.pointer("SPTR")?;
         let bptr = p.pointer("BPTR")?;
         let cptr = p.pointer("CPTR")?;
-        let mut pieces = Vec::new();
-        if bptr != 0 {
+        let model =
+            (cptr != 0).then(|| self.curve_leaves(cptr, &format!("{who}: model-space curve")));
+        let mut loop_edges: Vec<Edge> = match &model {
+            Some(Ok(leaves)) => leaves
+                .iter()
+                .map(|l| l.edge(false))
+                .collect::<Result<_, _>>()
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        };
+        let pieces = if bptr != 0 {
             let from = format!("{who}: parameter-space curve");
-            self.curve_pieces(bptr, &from, &Target::Param, &mut pieces)?;
+            self.curve_leaves(bptr, &from)?
+                .iter()
+                .map(|l| l.param_piece())
+                .collect::<Result<Vec<_>, _>>()?
         } else {
-            let Some(plane) = self.plane_map(s)? else {
-                return Err(format!(
-                    "DE {}: curve on surface has no parameter-space curve (pointer 0) and its \
-                     surface DE {} ({} {}) is not a plane",
-                    c.de,
-                    s.de,
-                    s.kind,
-                    type_name(s.kind)
-                ));
+            let leaves = match model {
+                Some(m) => m?,
+                None => self.curve_leaves(cptr, &format!("{who}: model-space curve"))?,
             };
-            let from = format!("{who}: model-space curve");
-            self.curve_pieces(cptr, &from, &Target::Plane(plane), &mut pieces)?;
-        }
+            self.model_pieces(&leaves, false, info, None, deviation)?
+        };
         let named = if bptr != 0 { bptr } else { c.de };
-        if bptr != 0 && cptr != 0 {
-            pieces = self.bridge_poles(c.de, cptr, pieces);
+        let closed = self.close_loop(named, c.de, pieces, &mut loop_edges, info);
+        edges.push(loop_edges);
+        closed
+    }
+
+    /// The `(u, v)` pieces of the model-space curves `leaves` of one boundary curve or edge on
+    /// a face's surface (`info`), in the loop's direction (the leaves run backwards when `reversed`): on a
+    /// plane (108, 190, a flat 128) the curves mapped into it exactly; on another surface their
+    /// pcurves computed by [`rs_geom::pcurve::pcurve`], the first starting near `near` (the end
+    /// of the loop's piece before), their deviation bound raised into `deviation`. A plane or
+    /// surface that could not be read gives its error.
+    pub(super) fn model_pieces(
+        &self,
+        leaves: &[Placed],
+        reversed: bool,
+        info: &SurfaceInfo,
+        near: Option<Point>,
+        deviation: &mut Option<f64>,
+    ) -> Result<Vec<Piece>, IgesError> {
+        if let Some(plane) = info.plane {
+            let mut pieces = leaves
+                .iter()
+                .map(|l| l.plane_piece(&plane, self.tolerance))
+                .collect::<Result<Vec<_>, _>>()?;
+            if reversed {
+                reverse_pieces(&mut pieces);
+            }
+            return Ok(pieces);
         }
-        self.check_gaps(named, &pieces)?;
+        let surface = info.surface.as_ref().map_err(Clone::clone)?;
+        let mut pieces: Vec<Piece> = Vec::new();
+        let ordered: Vec<&Placed> = if reversed {
+            leaves.iter().rev().collect()
+        } else {
+            leaves.iter().collect()
+        };
+        for leaf in ordered {
+            let start = pieces.last().map(|p| p.curve.end_point()).or(near);
+            let (these, d) = leaf.computed_pieces(surface, reversed, self.tolerance, start)?;
+            *deviation = Some(deviation.unwrap_or(0.0).max(d));
+            pieces.extend(these);
+        }
+        Ok(pieces)
+    }
+
+    /// The parameter rectangle of surface `s` as a loop (for a 144 with `N1 = 0`, a 510 with
+    /// `OF = 0`; `flag` says which).
+    pub(super) fn rectangle(
+        &self,
+        s: &DirEntry,
+        info: &SurfaceInfo,
+        flag: &'static str,
+    ) -> Result<Vec<NurbsCurve>, IgesError> {
+        let [u0, u1, v0, v1] = match &info.bounds {
+            Ok(b) => *b,
+            Err(IgesError::NoNaturalBounds { who, kind, .. }) => {
+                return Err(IgesError::NoNaturalBounds {
+                    who: who.clone(),
+                    flag,
+                    kind: *kind,
+                });
+            }
+            Err(e) => return Err(e.clone()),
+        };
+        let who = self.who(s);
+        let c = [(u0, v0), (u1, v0), (u1, v1), (u0, v1)].map(|(u, v)| Point::new(u, v));
+        (0..4)
+            .map(|i| segment(c[i], c[(i + 1) % 4]).map_err(|e| IgesError::spline(&who, e)))
+            .collect()
+    }
+
+    /// The largest gap between consecutive pieces of a loop in `(u, v)` that closes it: the
+    /// model's closure gap ([`rs_geom::Tolerance::closure_gap`]) for the box of the pieces'
+    /// control points.
+    fn loop_tolerance(&self, pieces: &[Piece]) -> f64 {
+        let bbox = pieces
+            .iter()
+            .map(|p| p.curve.control_bounding_box())
+            .reduce(BoundingBox::union);
+        match bbox {
+            Some(b) => self.tolerance.closure_gap(&b, None),
+            None => self.tolerance.stated().unwrap_or(0.0),
+        }
+    }
+
+    /// Closes the loop `pieces` of entity `named` where it is sure how (see the module
+    /// documentation; bridges are named `bridge`), re-orders `edges` with the pieces, and
+    /// checks that each piece ends where the next starts.
+    pub(super) fn close_loop(
+        &self,
+        named: usize,
+        bridge: usize,
+        mut pieces: Vec<Piece>,
+        edges: &mut Vec<Edge>,
+        info: &SurfaceInfo,
+    ) -> Result<Vec<NurbsCurve>, IgesError> {
+        let tol = self.loop_tolerance(&pieces);
+        let open = |ps: &[Piece]| (0..ps.len()).any(|i| meets(ps, i, tol).is_none());
+        if open(&pieces)
+            && let Ok(surface) = &info.surface
+        {
+            let before = pieces.len();
+            pieces = self.bridge_poles(bridge, pieces, surface, tol);
+            if open(&pieces)
+                && let Some(order) = chain_order(&pieces, surface, tol)
+            {
+                if pieces.len() == before && edges.len() == before {
+                    *edges = order.iter().map(|&k| edges[k].clone()).collect();
+                }
+                pieces = order.into_iter().map(|k| pieces[k].clone()).collect();
+            }
+        }
+        check_gaps(named, &pieces, tol)?;
         Ok(pieces.into_iter().map(|p| p.curve).collect())
     }
 
-    /// The 3-D start and end of each piece of the model-space curve `de`.
-    fn model_ends(&self, de: usize, from: &str) -> Result<Vec<Ends>, String> {
-        let (mut xy, mut z) = (Vec::new(), Vec::new());
-        self.curve_pieces(de, from, &Target::Model { z: false }, &mut xy)?;
-        self.curve_pieces(de, from, &Target::Model { z: true }, &mut z)?;
-        Ok(xy
-            .iter()
-            .zip(&z)
-            .map(|(a, b)| {
-                let (s, e) = (a.curve.start_point(), a.curve.end_point());
-                let (sz, ez) = (b.curve.start_point().x, b.curve.end_point().x);
-                ([s.x, s.y, sz], [e.x, e.y, ez])
-            })
-            .collect())
-    }
-
-    /// Closes the gaps of a loop in `(u, v)` at the poles of its surface: where the parameter
-    /// pieces `i` and `i + 1` (or the last and the first) are apart but the model-space curve's
-    /// pieces `i` and `i + 1` meet, the gap is a degenerate edge (the whole segment maps to one
-    /// point of the surface, as at the apex of a surface of revolution) that the writer left
-    /// out; it is closed by the segment between the two pieces, the edge Open CASCADE adds
-    /// there. Needs as many model pieces as parameter pieces; otherwise `pieces` is returned
-    /// as it is (and its gaps are reported).
-    fn bridge_poles(&self, c: usize, cptr: usize, pieces: Vec<Piece>) -> Vec<Piece> {
-        let tol = self.gap_tolerance(&pieces);
+    /// Adds the degenerate edges the file leaves out at the poles of its surface: where the
+    /// end of piece `i` and the start of piece `i + 1` (or the last and the first) are apart in
+    /// `(u, v)` but the segment between them is one point of the surface (its ends and its
+    /// middle map to the same point within the model's coincidence tolerance, and its ends lie
+    /// in the surface's parameter box, where the surface is not clamped to one corner), that
+    /// segment, the edge Open CASCADE adds there.
+    fn bridge_poles(
+        &self,
+        bridge: usize,
+        pieces: Vec<Piece>,
+        surface: &Surface,
+        tol: f64,
+    ) -> Vec<Piece> {
         let n = pieces.len();
-        let gap = |i: usize| {
-            pieces[i]
-                .curve
-                .end_point()
-                .distance(pieces[(i + 1) % n].curve.start_point())
+        let (bx, periods) = (surface.param_box(), surface.periods());
+        // Within the box in each parameter that is not periodic (a periodic one may take any
+        // value).
+        let in_box = |p: Point| {
+            let c = bx.clamp([p.x, p.y]);
+            let c = Point::new(
+                if periods[0].is_some() { p.x } else { c[0] },
+                if periods[1].is_some() { p.y } else { c[1] },
+            );
+            c.distance(p) <= tol
         };
-        if n == 0 || (0..n).all(|i| gap(i) <= tol) {
-            return pieces;
-        }
-        let Ok(ends) = self.model_ends(cptr, &format!("DE {c}: model-space curve")) else {
-            return pieces;
-        };
-        if ends.len() != n {
-            return pieces;
-        }
-        let size = ends
-            .iter()
-            .flat_map(|(a, b)| a.iter().chain(b))
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-        let mtol = self.globals.resolution.unwrap_or(0.0).max(1e-8 * size);
         let mut out = Vec::with_capacity(n + 2);
         for i in 0..n {
-            let g = gap(i);
+            out.push(pieces[i].clone());
+            if meets(&pieces, i, tol).is_some() {
+                continue;
+            }
             let (a, b) = (
                 pieces[i].curve.end_point(),
                 pieces[(i + 1) % n].curve.start_point(),
             );
-            let meet = dist3(ends[i].1, ends[(i + 1) % n].0) <= mtol;
-            out.push(pieces[i].clone());
-            if g > tol
-                && meet
+            let mid = a.lerp(b, 0.5);
+            if !(in_box(a) && in_box(b)) {
+                continue;
+            }
+            let [pa, pb, pm] = [a, b, mid].map(|p| surface.point([p.x, p.y]));
+            let size = pa.max_abs().max(pb.max_abs()).max(pm.max_abs());
+            let same = self.tolerance.coincidence(size);
+            if pa.distance(pm) <= same
+                && pb.distance(pm) <= same
                 && let Ok(curve) = segment(a, b)
             {
-                out.push(Piece { de: c, curve });
+                out.push(Piece { de: bridge, curve });
             }
         }
         out
-    }
-
-    /// The largest gap accepted between consecutive pieces of a loop in `(u, v)`: the file's
-    /// resolution, but at least `1e-8` of the loop's largest coordinate (parameters need not
-    /// be lengths, and files print about ten significant digits).
-    fn gap_tolerance(&self, pieces: &[Piece]) -> f64 {
-        let size = pieces
-            .iter()
-            .flat_map(|p| p.curve.control_points())
-            .fold(0.0f64, |m, q| m.max(q.x.abs()).max(q.y.abs()));
-        self.globals.resolution.unwrap_or(0.0).max(1e-8 * size)
-    }
-
-    /// Checks that each piece ends where the next starts; `named` is the loop's entity.
-    pub(super) fn check_gaps(&self, named: usize, pieces: &[Piece]) -> Result<(), String> {
-        let tol = self.gap_tolerance(pieces);
-        for w in pieces.windows(2) {
-            let gap = w[0].curve.end_point().distance(w[1].curve.start_point());
-            if gap > tol || gap.is_nan() {
-                return Err(format!(
-                    "DE {named}: pieces DE {} and DE {} are {gap:e} apart (tolerance {tol:e})",
-                    w[0].de, w[1].de
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// The parameter rectangle of surface `s` as a loop (for a 144 with `N1 = 0`).
-    pub(super) fn rectangle(&self, s: &DirEntry) -> Result<Vec<rs_spline::NurbsCurve>, String> {
-        let who = self.who(s);
-        if s.kind != 128 {
-            return Err(format!(
-                "{who}: the outer boundary is the surface's parameter range (N1 = 0), which \
-                 this reader knows only for 128 rational B-spline surfaces"
-            ));
-        }
-        let mut p = self.params(s)?;
-        let (k1, k2) = (p.count("K1")?, p.count("K2")?);
-        let (m1, m2) = (p.count("M1")?, p.count("M2")?);
-        for name in ["PROP1", "PROP2", "PROP3", "PROP4", "PROP5"] {
-            p.skip(name)?;
-        }
-        // Knots, then 4 numbers (weight, x, y, z) per control point.
-        let fields = (k1.checked_add(m1))
-            .and_then(|a| a.checked_add(k2)?.checked_add(m2)?.checked_add(4))
-            .and_then(|a| {
-                let grid = k1.checked_add(1)?.checked_mul(k2.checked_add(1)?)?;
-                a.checked_add(grid.checked_mul(4)?)
-            })
-            .unwrap_or(usize::MAX);
-        p.check_count("K1, K2", fields, 1)?;
-        for _ in 0..fields {
-            p.skip("knots, weights, control points")?;
-        }
-        let (u0, u1, v0, v1) = (p.real("U0")?, p.real("U1")?, p.real("V0")?, p.real("V1")?);
-        if !(u0 < u1 && v0 < v1) {
-            return Err(format!(
-                "{who}: empty parameter range [{u0}, {u1}] x [{v0}, {v1}]"
-            ));
-        }
-        let c = [(u0, v0), (u1, v0), (u1, v1), (u0, v1)].map(|(u, v)| rs_spline::Point::new(u, v));
-        (0..4)
-            .map(|i| segment(c[i], c[(i + 1) % 4]).map_err(|m| format!("{who}: {m}")))
-            .collect()
-    }
-
-    /// The affine map from model space into the parameters of surface `s`, if `s` is a plane
-    /// this reader parametrises (see the module documentation); `Ok(None)` if it is not.
-    pub(super) fn plane_map(&self, s: &DirEntry) -> Result<Option<PlaneMap>, String> {
-        let who = self.who(s);
-        let tol = self.globals.resolution.unwrap_or(0.0);
-        let (origin, e1, e2, uv0) = match s.kind {
-            108 => {
-                let mut p = self.params(s)?;
-                let n = [p.real("A")?, p.real("B")?, p.real("C")?];
-                let d = p.real("D")?;
-                let nn = dot(n, n);
-                if !(nn > 0.0 && nn.is_finite()) {
-                    return Err(format!("{who}: the normal (A, B, C) is zero"));
-                }
-                let unit = n.map(|x| x / nn.sqrt());
-                let origin = n.map(|x| x * d / nn);
-                // The world axis least aligned with the normal, projected onto the plane.
-                let axis = (0..3)
-                    .min_by(|&i, &j| unit[i].abs().total_cmp(&unit[j].abs()))
-                    .unwrap_or(0);
-                let mut w = [0.0; 3];
-                w[axis] = 1.0;
-                let proj = sub(w, unit.map(|x| x * unit[axis]));
-                let len = dot(proj, proj).sqrt();
-                let e1 = proj.map(|x| x / len);
-                (origin, e1, cross(unit, e1), (0.0, 0.0))
-            }
-            128 => match self.flat_bilinear(s)? {
-                Some(parts) => parts,
-                None => return Ok(None),
-            },
-            _ => return Ok(None),
-        };
-        // The surface's own transformation places it in model space.
-        let t = self.transform(s, true)?;
-        let map = PlaneMap::new(
-            t.apply(origin),
-            t.apply_vector(e1),
-            t.apply_vector(e2),
-            uv0,
-            tol,
-        );
-        map.map(Some)
-            .ok_or_else(|| format!("{who}: the plane's axes are degenerate"))
-    }
-
-    /// A 128 of degree 1 x 1, four control points forming a parallelogram, equal weights:
-    /// `S(u, v) = P00 + (u - s0) e1 + (v - t0) e2`. Returns `(P00, e1, e2, (s0, t0))`, or
-    /// `None` for any other 128.
-    #[allow(clippy::type_complexity)]
-    fn flat_bilinear(
-        &self,
-        s: &DirEntry,
-    ) -> Result<Option<([f64; 3], [f64; 3], [f64; 3], (f64, f64))>, String> {
-        let who = self.who(s);
-        let mut p = self.params(s)?;
-        let head = [
-            p.count("K1")?,
-            p.count("K2")?,
-            p.count("M1")?,
-            p.count("M2")?,
-        ];
-        if head != [1, 1, 1, 1] {
-            return Ok(None);
-        }
-        for name in ["PROP1", "PROP2", "PROP3", "PROP4", "PROP5"] {
-            p.skip(name)?;
-        }
-        let mut knots = [0.0; 8];
-        for k in &mut knots {
-            *k = p.real("knot")?;
-        }
-        let mut w = [0.0; 4];
-        for x in &mut w {
-            *x = p.real("weight")?;
-        }
-        if w.iter().any(|&x| x != w[0]) || w[0] <= 0.0 {
-            return Ok(None);
-        }
-        let mut pts = [[0.0; 3]; 4];
-        for q in &mut pts {
-            *q = [p.real("X")?, p.real("Y")?, p.real("Z")?];
-        }
-        let [p00, p10, p01, p11] = pts;
-        let (s0, s1, t0, t1) = (knots[1], knots[2], knots[5], knots[6]);
-        if !(s0 < s1 && t0 < t1) {
-            return Err(format!("{who}: empty knot domain"));
-        }
-        let skew = sub(sub(p11, p10), sub(p01, p00));
-        let size = pts.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
-        let tol = self.globals.resolution.unwrap_or(0.0).max(1e-12 * size);
-        if dot(skew, skew).sqrt() > tol {
-            return Ok(None);
-        }
-        let e1 = sub(p10, p00).map(|x| x / (s1 - s0));
-        let e2 = sub(p01, p00).map(|x| x / (t1 - t0));
-        Ok(Some((p00, e1, e2, (s0, t0))))
     }
 
     /// 143 bounded surface with 141 boundaries.
     fn bounded_surface(
         &self,
         e: &DirEntry,
-        surface: &mut String,
-    ) -> Result<Vec<Vec<rs_spline::NurbsCurve>>, String> {
+        face: &mut Face,
+    ) -> Result<Vec<Vec<NurbsCurve>>, IgesError> {
         let who = self.who(e);
         let mut p = self.params(e)?;
         let _kind = p.int("TYPE")?;
         let sptr = p.pointer("SPTR")?;
         let n = p.count("N")?;
         let bounds = p.pointers("N", n, "BDPT")?;
-        let s = self.surface_of(e, sptr, surface)?;
+        let (_, info) = self.face_surface(e, sptr, face)?;
         if n == 0 {
-            return Err(format!("{who}: no boundaries"));
+            return Err(IgesError::Nothing {
+                who,
+                what: "boundaries",
+            });
         }
-        bounds.into_iter().map(|b| self.boundary(e, b, s)).collect()
+        bounds
+            .into_iter()
+            .map(|b| self.boundary(e, b, &info, &mut face.edges, &mut face.pcurve_deviation))
+            .collect()
     }
 
-    /// The loop of a 141 boundary of face `face` on surface `s`.
+    /// The loop of a 141 boundary of face `face` on surface `s`; its edges appended to
+    /// `edges`.
     fn boundary(
         &self,
         face: &DirEntry,
         ptr: usize,
-        s: &DirEntry,
-    ) -> Result<Vec<rs_spline::NurbsCurve>, String> {
-        let b = self.entry(ptr, &format!("{}: boundary", self.who(face)))?;
-        if b.kind != 141 {
-            return Err(format!(
-                "{}: boundary DE {} is a {} {}, not a 141 boundary",
-                self.who(face),
-                b.de,
-                b.kind,
-                type_name(b.kind)
-            ));
-        }
+        info: &SurfaceInfo,
+        edges: &mut Vec<Vec<Edge>>,
+        deviation: &mut Option<f64>,
+    ) -> Result<Vec<NurbsCurve>, IgesError> {
+        let b = self.entry_of(
+            ptr,
+            &format!("{}: boundary", self.who(face)),
+            141,
+            "a 141 boundary",
+        )?;
         let who = self.who(b);
         let mut p = self.params(b)?;
         let _kind = p.int("TYPE")?;
@@ -495,54 +624,124 @@ impl Iges<'_> {
             curves.push((model, sense, params));
         }
         let mut pieces = Vec::new();
-        let mut plane = None;
+        let mut loop_edges = Vec::new();
         for (i, (model, sense, params)) in curves.into_iter().enumerate() {
-            let mut these = Vec::new();
-            if params.is_empty() {
-                let map = match &plane {
-                    Some(m) => PlaneMap::clone(m),
-                    None => {
-                        let m = self.plane_map(s)?.ok_or_else(|| {
-                            format!(
-                                "{who}: model curve {} has no parameter-space curve and the \
-                                 surface DE {} ({} {}) is not a plane",
-                                i + 1,
-                                s.de,
-                                s.kind,
-                                type_name(s.kind)
-                            )
-                        })?;
-                        plane = Some(m.clone());
-                        m
-                    }
-                };
-                let target = Target::Plane(map);
-                let from = format!("{who}: model curve {}", i + 1);
-                self.curve_pieces(model, &from, &target, &mut these)?;
+            let from = format!("{who}: model curve {}", i + 1);
+            let reversed = match sense {
+                1 => false,
+                2 => true,
+                _ => {
+                    return Err(IgesError::Flag {
+                        who: from,
+                        name: "sense".into(),
+                        value: sense,
+                        expected: "1 or 2",
+                    });
+                }
+            };
+            let leaves = self.curve_leaves(model, &from);
+            let these = if params.is_empty() {
+                let near = pieces.last().map(|p: &Piece| p.curve.end_point());
+                self.model_pieces(&leaves.clone()?, reversed, info, near, deviation)?
             } else {
+                let mut these = Vec::new();
                 for ptr in params {
                     let from = format!("{who}: parameter-space curve of model curve {}", i + 1);
-                    self.curve_pieces(ptr, &from, &Target::Param, &mut these)?;
-                }
-            }
-            match sense {
-                1 => {}
-                2 => {
-                    these.reverse();
-                    for piece in &mut these {
-                        piece.curve = piece.curve.reversed();
+                    for l in self.curve_leaves(ptr, &from)? {
+                        these.push(l.param_piece()?);
                     }
                 }
-                _ => {
-                    return Err(format!(
-                        "{who}: model curve {}: sense {sense} (expected 1 or 2)",
-                        i + 1
-                    ));
+                if reversed {
+                    reverse_pieces(&mut these);
                 }
+                these
+            };
+            if let Ok(leaves) = leaves {
+                let mut e: Vec<Edge> = leaves
+                    .iter()
+                    .map(|l| l.edge(reversed))
+                    .collect::<Result<_, _>>()
+                    .unwrap_or_default();
+                if reversed {
+                    e.reverse();
+                }
+                loop_edges.extend(e);
             }
             pieces.extend(these);
         }
-        self.check_gaps(b.de, &pieces)?;
-        Ok(pieces.into_iter().map(|p| p.curve).collect())
+        let closed = self.close_loop(b.de, b.de, pieces, &mut loop_edges, info);
+        edges.push(loop_edges);
+        closed
     }
+}
+
+/// The gap in `(u, v)` after piece `i` of a loop (the last's to the first's start).
+fn gap(pieces: &[Piece], i: usize) -> f64 {
+    pieces[i]
+        .curve
+        .end_point()
+        .distance(pieces[(i + 1) % pieces.len()].curve.start_point())
+}
+
+/// `Some(gap)` when piece `i` ends within `tol` of the next one's start (cyclically), `None`
+/// when it does not (or the gap is not a number).
+fn meets(pieces: &[Piece], i: usize, tol: f64) -> Option<f64> {
+    Some(gap(pieces, i)).filter(|&g| g <= tol)
+}
+
+/// Checks that each piece ends where the next starts; `named` is the loop's entity.
+fn check_gaps(named: usize, pieces: &[Piece], tolerance: f64) -> Result<(), IgesError> {
+    for w in pieces.windows(2) {
+        let gap = w[0].curve.end_point().distance(w[1].curve.start_point());
+        if gap > tolerance || gap.is_nan() {
+            return Err(IgesError::Gap {
+                named,
+                first: w[0].de,
+                second: w[1].de,
+                gap,
+                tolerance,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The order in which the pieces of a loop meet, when they meet as written only modulo the
+/// periods of `surface` (each gap a whole number of periods in each parameter, within `tol`)
+/// and, in another order, exactly: from the first piece, each next piece is the unused one
+/// starting where the last ends. `None` when the gaps are not whole periods or no order
+/// closes.
+fn chain_order(pieces: &[Piece], surface: &Surface, tol: f64) -> Option<Vec<usize>> {
+    let periods = surface.periods();
+    if periods.iter().all(Option::is_none) {
+        return None;
+    }
+    let n = pieces.len();
+    let whole = |d: f64, period: Option<f64>| match period {
+        Some(p) if p > 0.0 => (d - p * (d / p).round()).abs() <= tol,
+        _ => d.abs() <= tol,
+    };
+    for i in 0..n {
+        let a = pieces[i].curve.end_point();
+        let b = pieces[(i + 1) % n].curve.start_point();
+        if !(whole(b.x - a.x, periods[0]) && whole(b.y - a.y, periods[1])) {
+            return None;
+        }
+    }
+    let mut used = vec![false; n];
+    let mut order = vec![0];
+    used[0] = true;
+    while order.len() < n {
+        let end = pieces[*order.last()?].curve.end_point();
+        let next = (0..n)
+            .filter(|&k| !used[k])
+            .map(|k| (k, pieces[k].curve.start_point().distance(end)))
+            .filter(|&(_, d)| d <= tol)
+            .min_by(|a, b| a.1.total_cmp(&b.1))?
+            .0;
+        used[next] = true;
+        order.push(next);
+    }
+    let last = pieces[*order.last()?].curve.end_point();
+    (last.distance(pieces[0].curve.start_point()) <= tol).then_some(order)
 }

@@ -9,6 +9,8 @@
 
 use std::borrow::Cow;
 
+use super::error::{FieldProblem, IgesError};
+
 /// One field of a parameter record.
 #[derive(Debug, PartialEq)]
 pub(super) enum Field<'a> {
@@ -48,13 +50,14 @@ impl<'a> Params<'a> {
         }
     }
 
-    /// A one-line error about the parameter just read, or about to be read.
-    pub(super) fn err(&self, name: &str, message: impl std::fmt::Display) -> String {
-        format!(
-            "{}: parameter {} ({name}): {message}",
-            self.who,
-            self.index.saturating_sub(1).max(1)
-        )
+    /// The error about the parameter just read (or about to be read, before the first).
+    pub(super) fn err(&self, name: &'static str, problem: FieldProblem) -> IgesError {
+        IgesError::Field {
+            who: self.who.clone(),
+            index: self.index.saturating_sub(1).max(1),
+            name,
+            problem,
+        }
     }
 
     /// An upper bound on the number of fields left: each takes at least one delimiter byte.
@@ -70,25 +73,25 @@ impl<'a> Params<'a> {
     /// anything is allocated for them.
     pub(super) fn check_count(
         &self,
-        name: &str,
+        name: &'static str,
         count: usize,
         fields_each: usize,
-    ) -> Result<(), String> {
+    ) -> Result<(), IgesError> {
         let need = count.checked_mul(fields_each);
         match need {
             Some(n) if n <= self.max_remaining() => Ok(()),
             _ => Err(self.err(
                 name,
-                format!(
-                    "count {count} is more than the {} fields left in the record",
-                    self.max_remaining() / fields_each.max(1)
-                ),
+                FieldProblem::CountTooLarge {
+                    count,
+                    left: self.max_remaining() / fields_each.max(1),
+                },
             )),
         }
     }
 
     /// The next field, or `None` after the record delimiter.
-    pub(super) fn next_field(&mut self) -> Result<Option<Field<'_>>, String> {
+    pub(super) fn next_field(&mut self) -> Result<Option<Field<'_>>, IgesError> {
         if self.ended {
             return Ok(None);
         }
@@ -108,11 +111,12 @@ impl<'a> Params<'a> {
                 .unwrap_or(usize::MAX);
             let start = i + digits + 1;
             if count > text.len() - start {
-                return Err(format!(
-                    "{}: parameter {index}: Hollerith string of {count} characters runs past \
-                     the end of the record",
-                    self.who
-                ));
+                return Err(IgesError::Field {
+                    who: self.who.clone(),
+                    index,
+                    name: "",
+                    problem: FieldProblem::HollerithPastEnd(count),
+                });
             }
             let mut j = start + count;
             while j < text.len() && text[j] == b' ' {
@@ -128,12 +132,12 @@ impl<'a> Params<'a> {
                     self.pos = j;
                 }
                 Some(&c) => {
-                    return Err(format!(
-                        "{}: parameter {index}: {:?} after a Hollerith string (expected a \
-                         delimiter)",
-                        self.who,
-                        char::from(c)
-                    ));
+                    return Err(IgesError::Field {
+                        who: self.who.clone(),
+                        index,
+                        name: "",
+                        problem: FieldProblem::AfterHollerith(char::from(c)),
+                    });
                 }
             }
             return Ok(Some(Field::String(&self.text[start..start + count])));
@@ -160,72 +164,73 @@ impl<'a> Params<'a> {
     }
 
     /// The next field, an error naming `name` if the record has ended.
-    fn required(&mut self, name: &str) -> Result<Field<'_>, String> {
+    fn required(&mut self, name: &'static str) -> Result<Field<'_>, IgesError> {
         if self.ended {
-            return Err(self.err_next(name, "the record ends before it"));
+            return Err(IgesError::Field {
+                who: self.who.clone(),
+                index: self.index,
+                name,
+                problem: FieldProblem::Missing,
+            });
         }
         // Not ended, so there is a field.
-        self.next_field()?
-            .ok_or_else(|| String::from("the record ended"))
-    }
-
-    fn err_next(&self, name: &str, message: &str) -> String {
-        format!("{}: parameter {} ({name}): {message}", self.who, self.index)
+        Ok(self.next_field()?.unwrap_or(Field::Empty))
     }
 
     /// A real number (empty: 0, the IGES default).
-    pub(super) fn real(&mut self, name: &str) -> Result<f64, String> {
+    pub(super) fn real(&mut self, name: &'static str) -> Result<f64, IgesError> {
         let value = match self.required(name)? {
             Field::Empty => Ok(0.0),
             Field::Text(t) => parse_real(t),
-            Field::String(_) => Err("a string where a number is expected".to_string()),
+            Field::String(_) => Err(FieldProblem::StringForNumber),
         };
         value.map_err(|m| self.err(name, m))
     }
 
     /// An integer (empty: 0, the IGES default).
-    pub(super) fn int(&mut self, name: &str) -> Result<i64, String> {
+    pub(super) fn int(&mut self, name: &'static str) -> Result<i64, IgesError> {
         let value = match self.required(name)? {
             Field::Empty => Ok(0),
             Field::Text(t) => parse_int(t),
-            Field::String(_) => Err("a string where an integer is expected".to_string()),
+            Field::String(_) => Err(FieldProblem::StringForInteger),
         };
         value.map_err(|m| self.err(name, m))
     }
 
     /// A count: a non-negative integer.
-    pub(super) fn count(&mut self, name: &str) -> Result<usize, String> {
+    pub(super) fn count(&mut self, name: &'static str) -> Result<usize, IgesError> {
         let n = self.int(name)?;
-        usize::try_from(n).map_err(|_| self.err(name, format!("negative count {n}")))
+        usize::try_from(n).map_err(|_| self.err(name, FieldProblem::NegativeCount(n)))
     }
 
     /// A pointer to a directory entry (its odd sequence number; 0 for none). The sign is
     /// dropped: IGES negates some pointers to mark them, the entry is the same.
-    pub(super) fn pointer(&mut self, name: &str) -> Result<usize, String> {
+    pub(super) fn pointer(&mut self, name: &'static str) -> Result<usize, IgesError> {
         let n = self.int(name)?;
-        usize::try_from(n.unsigned_abs()).map_err(|_| self.err(name, "pointer out of range"))
+        usize::try_from(n.unsigned_abs())
+            .map_err(|_| self.err(name, FieldProblem::PointerOutOfRange))
     }
 
     /// `count` pointer fields named `name`, after checking that the record can hold them (the
     /// count read as field `count_name`).
     pub(super) fn pointers(
         &mut self,
-        count_name: &str,
+        count_name: &'static str,
         count: usize,
-        name: &str,
-    ) -> Result<Vec<usize>, String> {
+        name: &'static str,
+    ) -> Result<Vec<usize>, IgesError> {
         self.check_count(count_name, count, 1)?;
         (0..count).map(|_| self.pointer(name)).collect()
     }
 
     /// Skips one field (any kind).
-    pub(super) fn skip(&mut self, name: &str) -> Result<(), String> {
+    pub(super) fn skip(&mut self, name: &'static str) -> Result<(), IgesError> {
         self.required(name).map(|_| ())
     }
 }
 
 /// Parses an IGES real: digits, sign, point, and an exponent with `E` or `D`; finite only.
-pub(super) fn parse_real(t: &[u8]) -> Result<f64, String> {
+pub(super) fn parse_real(t: &[u8]) -> Result<f64, FieldProblem> {
     let shown = || String::from_utf8_lossy(t).into_owned();
     let ok = !t.is_empty()
         && t.len() <= 64
@@ -234,7 +239,7 @@ pub(super) fn parse_real(t: &[u8]) -> Result<f64, String> {
         })
         && t.iter().any(u8::is_ascii_digit);
     if !ok {
-        return Err(format!("{:?} is not a number", shown()));
+        return Err(FieldProblem::NotANumber(shown()));
     }
     let s: String = t
         .iter()
@@ -245,25 +250,25 @@ pub(super) fn parse_real(t: &[u8]) -> Result<f64, String> {
         .collect();
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(format!("{:?} is not a finite number", shown())),
-        Err(_) => Err(format!("{:?} is not a number", shown())),
+        Ok(_) => Err(FieldProblem::NotFinite(shown())),
+        Err(_) => Err(FieldProblem::NotANumber(shown())),
     }
 }
 
 /// Parses an IGES integer (optional sign, digits).
-fn parse_int(t: &[u8]) -> Result<i64, String> {
+fn parse_int(t: &[u8]) -> Result<i64, FieldProblem> {
     let shown = || String::from_utf8_lossy(t).into_owned();
     let digits = match t {
         [b'+' | b'-', rest @ ..] => rest,
         _ => t,
     };
     if digits.is_empty() || !digits.iter().all(u8::is_ascii_digit) {
-        return Err(format!("{:?} is not an integer", shown()));
+        return Err(FieldProblem::NotAnInteger(shown()));
     }
     std::str::from_utf8(t)
         .ok()
         .and_then(|s| s.parse::<i64>().ok())
-        .ok_or_else(|| format!("{:?} is out of range", shown()))
+        .ok_or_else(|| FieldProblem::IntegerOutOfRange(shown()))
 }
 
 #[cfg(test)]
@@ -290,7 +295,12 @@ mod tests {
         assert_eq!(c.next_field().unwrap(), Some(Field::String(b";,ab")));
         assert_eq!(c.real("z").unwrap(), 0.5);
         assert_eq!(c.next_field().unwrap(), None);
-        assert!(c.real("more").unwrap_err().contains("ends before"));
+        assert!(
+            c.real("more")
+                .unwrap_err()
+                .to_string()
+                .contains("ends before")
+        );
     }
 
     #[test]
@@ -303,18 +313,14 @@ mod tests {
             ("99H abc;", "past the end"),
             ("3Habcd;", "after a Hollerith"),
         ] {
-            let e = p(text).real("x").unwrap_err();
+            let e = p(text).real("x").unwrap_err().to_string();
             assert!(e.contains(want), "{text}: {e}");
             assert!(!e.contains('\n'));
         }
-        assert!(p("1.5;").int("n").unwrap_err().contains("not an integer"));
-        assert!(p("-3;").count("n").unwrap_err().contains("negative"));
-        assert!(
-            p("99999999999999999999;")
-                .int("n")
-                .unwrap_err()
-                .contains("out of range")
-        );
+        let msg = |e: IgesError| e.to_string();
+        assert!(msg(p("1.5;").int("n").unwrap_err()).contains("not an integer"));
+        assert!(msg(p("-3;").count("n").unwrap_err()).contains("negative"));
+        assert!(msg(p("99999999999999999999;").int("n").unwrap_err()).contains("out of range"));
         let c = p("1,2,3;");
         assert!(c.check_count("K", 1_000_000_000_000, 4).is_err());
         assert!(c.check_count("K", 1, 4).is_ok());

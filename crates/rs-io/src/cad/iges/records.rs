@@ -7,8 +7,7 @@
 //! whose length is a multiple of 80 is read as consecutive 80-byte records. Blank lines are
 //! skipped. The compressed ASCII form (flag section `C`) and the binary form (`B`) are refused.
 
-use super::cad_err;
-use crate::IoError;
+use super::error::IgesError;
 
 /// Columns per record.
 const RECORD: usize = 80;
@@ -36,7 +35,7 @@ impl<'a> Record<'a> {
     }
 
     /// The sequence number in columns 74-80, if it is written (blank is `None`).
-    fn sequence(&self) -> Result<Option<usize>, IoError> {
+    fn sequence(&self) -> Result<Option<usize>, IgesError> {
         let s = trim(self.columns(74, 80));
         if s.is_empty() {
             return Ok(None);
@@ -45,12 +44,9 @@ impl<'a> Record<'a> {
             .ok()
             .and_then(|s| s.parse::<usize>().ok())
             .map(Some)
-            .ok_or_else(|| {
-                cad_err(format!(
-                    "line {}: bad sequence number {:?} in columns 74-80",
-                    self.line,
-                    String::from_utf8_lossy(s)
-                ))
+            .ok_or_else(|| IgesError::BadSequence {
+                line: self.line,
+                text: String::from_utf8_lossy(s).into_owned(),
             })
     }
 }
@@ -79,14 +75,13 @@ pub(super) struct Sections<'a> {
 }
 
 /// Splits `bytes` into records: at line breaks, or into 80-byte records for a file without any.
-fn split_records(bytes: &[u8]) -> Result<Vec<Record<'_>>, IoError> {
+fn split_records(bytes: &[u8]) -> Result<Vec<Record<'_>>, IgesError> {
     let mut out = Vec::new();
     if memchr::memchr(b'\n', bytes).is_none() && bytes.len() > RECORD {
         if !bytes.len().is_multiple_of(RECORD) {
-            return Err(cad_err(format!(
-                "line 1: {} columns without a line break (records are 80 columns)",
-                bytes.len()
-            )));
+            return Err(IgesError::NoLineBreaks {
+                columns: bytes.len(),
+            });
         }
         for (i, text) in bytes.chunks(RECORD).enumerate() {
             out.push(Record { line: i + 1, text });
@@ -100,10 +95,10 @@ fn split_records(bytes: &[u8]) -> Result<Vec<Record<'_>>, IoError> {
             // Blanks past column 80 are harmless; anything else is not an IGES record.
             let (head, tail) = text.split_at(RECORD);
             if !trim(tail).is_empty() {
-                return Err(cad_err(format!(
-                    "line {line}: {} columns (records are 80 columns)",
-                    text.len()
-                )));
+                return Err(IgesError::LongLine {
+                    line,
+                    columns: text.len(),
+                });
             }
             text = head;
         }
@@ -118,24 +113,14 @@ fn split_records(bytes: &[u8]) -> Result<Vec<Record<'_>>, IoError> {
 
 /// Reads the records of `bytes` and checks the section structure: `S`, `G`, `D`, `P`, `T` in
 /// this order, each numbered from 1, one `T` record last, an even number of `D` records.
-pub(super) fn sections(bytes: &[u8]) -> Result<Sections<'_>, IoError> {
+pub(super) fn sections(bytes: &[u8]) -> Result<Sections<'_>, IgesError> {
     let records = split_records(bytes)?;
     let Some(first) = records.first() else {
-        return Err(cad_err("empty file (no records)".into()));
+        return Err(IgesError::Empty);
     };
     match first.section() {
-        b'C' => {
-            return Err(cad_err(
-                "the compressed ASCII form (flag section C) is not supported; write the \
-                 fixed 80-column form"
-                    .into(),
-            ));
-        }
-        b'B' => {
-            return Err(cad_err(
-                "the binary form is not supported; write the fixed 80-column ASCII form".into(),
-            ));
-        }
+        b'C' => return Err(IgesError::Compressed),
+        b'B' => return Err(IgesError::Binary),
         _ => {}
     }
     const ORDER: &[u8] = b"SGDPT";
@@ -148,73 +133,58 @@ pub(super) fn sections(bytes: &[u8]) -> Result<Sections<'_>, IoError> {
         let letter = r.section();
         let Some(at) = ORDER.iter().position(|&c| c == letter) else {
             if r.text.len() < 73 {
-                let last = std::ptr::eq(r, records.last().unwrap_or(r));
-                let why = if last {
-                    "the file is truncated"
-                } else {
-                    "not an IGES record"
-                };
-                return Err(cad_err(format!(
-                    "line {}: {why} ({} columns, no section letter in column 73)",
-                    r.line,
-                    r.text.len()
-                )));
+                return Err(IgesError::NoSectionLetter {
+                    line: r.line,
+                    columns: r.text.len(),
+                    last: std::ptr::eq(r, records.last().unwrap_or(r)),
+                });
             }
-            return Err(cad_err(format!(
-                "line {}: unknown section letter {:?} in column 73 (expected S, G, D, P or T)",
-                r.line,
-                char::from(letter)
-            )));
+            return Err(IgesError::UnknownSection {
+                line: r.line,
+                letter: char::from(letter),
+            });
         };
         if at < stage || (at > stage && count[4] > 0) {
-            return Err(cad_err(format!(
-                "line {}: section {} after section {} (the order is S, G, D, P, T)",
-                r.line,
-                char::from(letter),
-                char::from(ORDER[stage])
-            )));
+            return Err(IgesError::SectionOrder {
+                line: r.line,
+                found: char::from(letter),
+                after: char::from(ORDER[stage]),
+            });
         }
         stage = at;
         count[at] += 1;
         if let Some(seq) = r.sequence()?
             && seq != count[at]
         {
-            return Err(cad_err(format!(
-                "line {}: {} record numbered {seq}, expected {}",
-                r.line,
-                char::from(letter),
-                count[at]
-            )));
+            return Err(IgesError::Sequence {
+                line: r.line,
+                section: char::from(letter),
+                found: seq,
+                expected: count[at],
+            });
         }
         match letter {
             b'G' => global.extend_from_slice(r.columns(1, 72)),
             b'D' => directory.push(*r),
             b'P' => parameters.push(*r),
             b'T' if count[4] > 1 => {
-                return Err(cad_err(format!(
-                    "line {}: a second terminate (T) record",
-                    r.line
-                )));
+                return Err(IgesError::SecondTerminate { line: r.line });
             }
             _ => {}
         }
     }
     if count[1] == 0 {
-        return Err(cad_err(
-            "no global (G) section: not an IGES file, or truncated".into(),
-        ));
+        return Err(IgesError::NoGlobal);
     }
     if count[4] == 0 {
-        return Err(cad_err(
-            "no terminate (T) record: the file is truncated".into(),
-        ));
+        return Err(IgesError::NoTerminate);
     }
     if directory.len() % 2 != 0 {
         let last = directory.last().map_or(0, |r| r.line);
-        return Err(cad_err(format!(
-            "line {last}: odd number of directory (D) records ({}); each entity has two",
-            directory.len()
-        )));
+        return Err(IgesError::OddDirectory {
+            line: last,
+            count: directory.len(),
+        });
     }
     Ok(Sections {
         global,

@@ -80,8 +80,8 @@
 //! # Units
 //!
 //! Lengths (and so `(u, v)` on planes, the `v` of cylinders, the tolerance) stay in the
-//! file's length unit; the model's `length_unit_mm` gives millimetres per unit (`OpenCASCADE`
-//! converts to millimetres). A component whose representation context has another length
+//! file's length unit; the model's `length_unit` names it, with millimetres per unit
+//! (`OpenCASCADE` converts to millimetres). A component whose representation context has another length
 //! unit than its assembly's is scaled into the assembly's by its occurrence's placement
 //! (`A(item_2) k A(item_1)^-1`, `k` the ratio of the units), and a second root part in another
 //! unit than the first into the first's: the model is in the unit of the first face's placed
@@ -115,7 +115,7 @@ mod units;
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 
-use rs_geom::brep::{Edge, Face, FaceError, Model, ReadError, Shell, Solid};
+use rs_geom::brep::{Edge, Face, FaceError, LengthUnit, Model, ReadError, Shell, Solid};
 use rs_geom::{Affine3, Surface, Tolerance};
 
 use super::{CadFormat, CadModel};
@@ -186,19 +186,25 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
     let tolerance = Tolerance::new(stated)
         .map_err(|e| cad(StepError::geometry("the file's uncertainty", e)))?;
     // The model's length unit: the first face's (placed) coordinates'.
-    let unit = structure
+    let model_units = structure
         .faces
         .first()
         .and_then(|u| u.unit_context)
-        .and_then(|c| contexts.get(&Some(c)))
-        .map(|u| u.mm_per_length);
+        .and_then(|c| contexts.get(&Some(c)));
+    let unit = model_units.map(|u| u.mm_per_length);
+    let length_unit = model_units.and_then(|u| {
+        u.length_name.clone().map(|name| LengthUnit {
+            name,
+            millimetres: u.mm_per_length,
+        })
+    });
     // A face used many times (assemblies) is read once.
     let mut read: HashMap<(u64, Option<u64>), ReadFace> = HashMap::new();
     let mut faces = Vec::with_capacity(structure.faces.len().min(1 << 16));
     let mut points = 0usize;
     for u in &structure.faces {
         let key = (u.face, u.context);
-        let units = contexts.get(&u.context).copied().unwrap_or_default();
+        let units = contexts.get(&u.context).cloned().unwrap_or_default();
         if let Entry::Vacant(e) = read.entry(key) {
             e.insert(read_face(&g, u.face, &units, tolerance).map_err(cad)?);
         }
@@ -256,7 +262,7 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
             shells,
             solids,
             tolerance,
-            length_unit_mm: unit,
+            length_unit,
         },
     })
 }

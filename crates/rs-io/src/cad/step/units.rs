@@ -15,12 +15,14 @@ const MM_PER_METRE: f64 = 1000.0;
 const MAX_UNIT_CHAIN: usize = 8;
 
 /// The units of one representation context.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Units {
     /// Radians per plane angle unit of the file (1 for radians, `pi / 180` for degrees).
     pub radians_per_angle: f64,
     /// Millimetres per length unit of the file.
     pub mm_per_length: f64,
+    /// The length unit's name, when the context states one (`MILLIMETRE`, `INCH`).
+    pub length_name: Option<String>,
     /// The context's length uncertainty in its length unit, if it states one.
     pub uncertainty: Option<f64>,
 }
@@ -32,6 +34,7 @@ impl Default for Units {
         Self {
             radians_per_angle: 1.0,
             mm_per_length: 1.0,
+            length_name: None,
             uncertainty: None,
         }
     }
@@ -55,6 +58,7 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units> {
             if unit.is("LENGTH_UNIT") {
                 if let Some(f) = unit_factor(g, unit, 0) {
                     u.mm_per_length = f * MM_PER_METRE;
+                    u.length_name = Some(unit_name(unit));
                 }
             } else if unit.is("PLANE_ANGLE_UNIT")
                 && let Some(f) = unit_factor(g, unit, 0)
@@ -101,6 +105,29 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units> {
         }
     }
     Ok(u)
+}
+
+/// The name of a unit: an SI unit's prefix and name (`MILLIMETRE`), a conversion-based unit's
+/// own name (`INCH`), else its type.
+fn unit_name(unit: &Instance) -> String {
+    use super::graph::Value;
+    if let Ok(si) = unit.record("SI_UNIT") {
+        let prefix = match si.get(0, "prefix") {
+            Ok(Value::Enum(p)) => p.as_str(),
+            _ => "",
+        };
+        let name = match si.get(1, "name") {
+            Ok(Value::Enum(n)) => n.as_str(),
+            _ => "",
+        };
+        return format!("{prefix}{name}");
+    }
+    if let Ok(cb) = unit.record("CONVERSION_BASED_UNIT")
+        && let Ok(Value::Str(n)) = cb.get(0, "name")
+    {
+        return n.clone();
+    }
+    unit.type_name()
 }
 
 /// SI base units (metre, radian) per unit of `unit`.
@@ -171,6 +198,7 @@ ENDSEC;END-ISO-10303-21;";
         let g = Graph::parse(text.as_bytes()).unwrap();
         let u = context_units(&g, 1).unwrap();
         assert_eq!(u.mm_per_length, 1.0);
+        assert_eq!(u.length_name.as_deref(), Some("MILLIMETRE"));
         assert!((u.radians_per_angle - std::f64::consts::PI / 180.0).abs() < 1e-15);
         assert_eq!(u.uncertainty, Some(1e-7));
     }
