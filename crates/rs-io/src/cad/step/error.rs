@@ -152,9 +152,10 @@ pub enum StepError {
         /// The edge's `same_sense`.
         same_sense: bool,
     },
-    /// An edge without a pcurve on a face whose surface it cannot be mapped onto exactly.
+    /// An edge without a pcurve on a face whose surface could not be read, so that none can
+    /// be computed.
     #[error(
-        "edge #{edge} has no pcurve on its {surface} #{label}; only planar faces are mapped from their 3-D edges"
+        "edge #{edge} has no pcurve on its {surface} #{label}, which could not be read to compute one"
     )]
     NoPcurve {
         /// The edge's label.
@@ -163,6 +164,23 @@ pub enum StepError {
         surface: String,
         /// The surface's label.
         label: u64,
+    },
+    /// An edge without a pcurve whose computed pcurve is farther from it than the file's
+    /// tolerance.
+    #[error(
+        "edge #{edge} has no pcurve on its {surface} #{label}; the one computed from its 3-D curve is within {bound:.3e} of it, more than the file's tolerance {tolerance:.3e}"
+    )]
+    PcurveDeviation {
+        /// The edge's label.
+        edge: u64,
+        /// The surface's type name.
+        surface: String,
+        /// The surface's label.
+        label: u64,
+        /// The computed pcurve's bound on its 3-D distance from the edge.
+        bound: f64,
+        /// The file's tolerance.
+        tolerance: f64,
     },
     /// An edge mapped into a plane whose 3-D curve leaves the plane.
     #[error(

@@ -1,6 +1,7 @@
 //! A face's loops in its surface's `(u, v)`: bounds -> edge loops -> oriented edges -> the
-//! edges' pcurves on the face's surface (or, on a plane, the 3-D curves mapped into it),
-//! trimmed to the edge, oriented, and chained; with the 3-D edges of each loop.
+//! edges' pcurves on the face's surface (without one: on a plane, the 3-D curve mapped into
+//! it; elsewhere, one computed from the 3-D curve by `rs_geom::pcurve`), trimmed to the edge,
+//! oriented, and chained; with the 3-D edges of each loop.
 //!
 //! Orientation: an edge runs from its start vertex to its end vertex; its curve runs the
 //! other way when the `EDGE_CURVE`'s `same_sense` is `.F.`; the `ORIENTED_EDGE` reverses it
@@ -31,8 +32,11 @@ use std::collections::HashMap;
 use std::f64::consts::TAU;
 
 use rs_geom::brep::Edge;
+use rs_geom::pcurve::{PcurveKind, PcurveOptions, pcurve};
 use rs_geom::surface::ParamSurface;
-use rs_geom::{AffineMap, Conic, ConicKind, Curve, Point, Point3, Tolerance};
+use rs_geom::{
+    AffineMap, Conic, ConicKind, Curve, DEFAULT_MODEL_TOLERANCE, Point, Point3, Tolerance,
+};
 use rs_spline::NurbsCurve;
 use rs_spline::prelude::*;
 
@@ -115,6 +119,8 @@ pub(crate) struct FaceLoops {
     pub(crate) edges: Vec<Vec<Edge>>,
     /// Whether the loops are the surface's natural box (no edge loop in the file).
     pub(crate) natural: bool,
+    /// The largest bound of the pcurves fitted to edges the file gives in model space only.
+    pub(crate) pcurve_deviation: Option<f64>,
 }
 
 /// One use of an edge in a loop: the edge's label, its candidates (two for a seam), each
@@ -123,6 +129,8 @@ pub(crate) struct FaceLoops {
 struct EdgeUse {
     label: u64,
     options: Vec<Piece>,
+    /// The bound of a fitted pcurve (computed from the 3-D edge, not exact).
+    fitted: Option<f64>,
     edge: Edge,
 }
 
@@ -196,7 +204,10 @@ pub(crate) fn face_loops(cx: &FaceContext<'_>, face: &Instance) -> Result<FaceLo
                 name: li.type_name(),
             });
         }
-        let (mut curves, mut edges) = edge_loop(cx, li)?;
+        let (mut curves, mut edges, fitted) = edge_loop(cx, li)?;
+        if let Some(d) = fitted {
+            out.pcurve_deviation = Some(out.pcurve_deviation.map_or(d, |m: f64| m.max(d)));
+        }
         curves = to_base_period(cx.surface, curves, &li.what())?;
         if !forward {
             curves.reverse();
@@ -250,7 +261,11 @@ fn natural_loop(cx: &FaceContext<'_>, face: &str) -> Result<Vec<NurbsCurve>> {
         .collect()
 }
 
-fn edge_loop(cx: &FaceContext<'_>, li: &Instance) -> Result<(Vec<NurbsCurve>, Vec<Edge>)> {
+/// The loop's curves, its 3-D edges and the largest bound of its fitted pcurves.
+fn edge_loop(
+    cx: &FaceContext<'_>,
+    li: &Instance,
+) -> Result<(Vec<NurbsCurve>, Vec<Edge>, Option<f64>)> {
     let what = li.what();
     let edges = li.simple()?.refs(1, "edge_list")?;
     if edges.is_empty() || edges.len() > MAX_EDGES {
@@ -264,7 +279,10 @@ fn edge_loop(cx: &FaceContext<'_>, li: &Instance) -> Result<(Vec<NurbsCurve>, Ve
     let mut last_err = None;
     for first in 0..uses[0].options.len() {
         match chain(cx, &uses, first, &what) {
-            Ok(c) => return Ok((c, uses.into_iter().map(|u| u.edge).collect())),
+            Ok(c) => {
+                let fitted = uses.iter().filter_map(|u| u.fitted).reduce(f64::max);
+                return Ok((c, uses.into_iter().map(|u| u.edge).collect(), fitted));
+            }
             Err(e) => last_err = Some(e),
         }
     }
@@ -456,20 +474,28 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
     let (lo, hi) = edge_range(&c3, vs, ve, same_sense, closed, &what)?;
     let gap = cx.gap();
     let mut options = Vec::new();
+    let mut fitted = None;
     if pcurves.is_empty() {
-        let (Some(plane), Some(map)) = (&cx.surface.surface, cx.surface.plane_coordinates()) else {
+        let Some(surface) = &cx.surface.surface else {
             return Err(StepError::NoPcurve {
                 edge: ec.label,
                 surface: cx.surface.name.clone(),
                 label: cx.surface.label,
             });
         };
-        check_in_plane(&c3, lo, hi, plane, gap, &what)?;
-        let mut option = Vec::new();
-        for (a3, b3) in pieces(&c3, lo, hi, window_period(&c3)) {
-            option.push(planar(c3.to_bspline_mapped(&map, a3, b3), &what)?);
+        if let Some(map) = cx.surface.plane_coordinates() {
+            // On a plane the edge's image in the plane's coordinates, exactly.
+            check_in_plane(&c3, lo, hi, surface, gap, &what)?;
+            let mut option = Vec::new();
+            for (a3, b3) in pieces(&c3, lo, hi, window_period(&c3)) {
+                option.push(planar(c3.to_bspline_mapped(&map, a3, b3), &what)?);
+            }
+            options.push(option);
+        } else {
+            let (option, deviation) = computed_pcurve(cx, surface, &c3, (lo, hi), ec.label)?;
+            fitted = deviation;
+            options.push(option);
         }
-        options.push(option);
     } else {
         for pi in pcurves.into_iter().take(2) {
             let pw = pi.what();
@@ -538,6 +564,7 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
     Ok(EdgeUse {
         label: ec.label,
         options,
+        fitted,
         edge: Edge {
             entity: format!("#{}", ec.label),
             curve: c3,
@@ -545,6 +572,39 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
             reversed: flip,
         },
     })
+}
+
+/// The pcurve of an edge the file gives in model space only, on a surface other than a plane
+/// ([`rs_geom::pcurve::pcurve`]: an exact iso-line of the surface, or a fit with a bound on
+/// its 3-D deviation), in the 3-D curve's direction on `range`, with the bound of a fit. A
+/// pcurve farther from its edge than the file's tolerance (the default model tolerance when it
+/// states none) refuses the edge.
+fn computed_pcurve(
+    cx: &FaceContext<'_>,
+    surface: &rs_geom::Surface,
+    c3: &Curve<Point3>,
+    range: (f64, f64),
+    edge: u64,
+) -> Result<(Piece, Option<f64>)> {
+    let tolerance = cx.tolerance.stated().unwrap_or(DEFAULT_MODEL_TOLERANCE);
+    let options = PcurveOptions::DEFAULT.with_tolerance(tolerance);
+    let p = pcurve(surface, c3, Some(range), &options).map_err(|e| {
+        StepError::geometry(
+            format!("edge #{edge} on {} #{}", cx.surface.name, cx.surface.label),
+            e,
+        )
+    })?;
+    if p.deviation > tolerance || p.deviation.is_nan() {
+        return Err(StepError::PcurveDeviation {
+            edge,
+            surface: cx.surface.name.clone(),
+            label: cx.surface.label,
+            bound: p.deviation,
+            tolerance,
+        });
+    }
+    let fitted = (p.kind == PcurveKind::Fitted).then_some(p.deviation);
+    Ok((p.curves, fitted))
 }
 
 /// The planar NURBS of a converted curve.

@@ -73,9 +73,12 @@
 //! surface is an error). The face's own `same_sense` is not applied to the loops: it flips the
 //! surface normal, not the loops in `(u, v)`.
 //!
-//! Faces on a `PLANE` whose edges have no pcurve are mapped from their 3-D curves into the
-//! plane's `(u, v)` (an exact affine map); other faces without pcurves are refused with a
-//! message naming the edge and the surface (no projection).
+//! Edges without a pcurve on the face's surface: on a `PLANE` their 3-D curves are mapped
+//! into the plane's `(u, v)` (an exact affine map); on other surfaces their pcurves are
+//! computed by `rs_geom::pcurve` (exact iso-lines of the surface where the edge is one, as on
+//! patch boundaries; otherwise a fit with a bound on its 3-D deviation, the largest of a face's
+//! in [`Face::pcurve_deviation`]); an edge whose pcurve's bound exceeds the file's tolerance
+//! refuses its face, naming the edge, the bound and the tolerance.
 //!
 //! # Units
 //!
@@ -312,7 +315,7 @@ impl ReadFace {
                 .map(|l| l.loops.clone())
                 .map_err(|e| fail(e.clone())),
             edges,
-            pcurve_deviation: None,
+            pcurve_deviation: self.loops.as_ref().ok().and_then(|l| l.pcurve_deviation),
             natural_bounds: self.loops.as_ref().is_ok_and(|l| l.natural),
         }
     }
