@@ -15,7 +15,9 @@
 //! degenerate edges there, `OpenCASCADE` adds them) a straight segment along the pole line
 //! joins them. Where a curve misses by a whole period of a closed surface it is translated by
 //! that period (the first curve of the loop stays where it is), as `OpenCASCADE`'s wires are
-//! made continuous in `(u, v)`.
+//! made continuous in `(u, v)`. Where two edges that share a vertex leave a larger gap, and
+//! their 3-D curves' own misses of that vertex explain it (a file's line ending off its
+//! vertex: `OpenCASCADE`'s vertex tolerance covers it), a segment bridges the gap.
 //!
 //! Cutting: edges are trimmed between their vertices on the 3-D curve (the vertices'
 //! parameters by [`Curve::closest_parameter`]); each pcurve is cut where it passes the
@@ -129,6 +131,9 @@ pub(crate) struct FaceLoops {
 struct EdgeUse {
     label: u64,
     options: Vec<Piece>,
+    /// The use's start and end vertices (in the use's direction), each with how far the 3-D
+    /// curve's end misses it.
+    ends: [VertexEnd; 2],
     /// The bound of a fitted pcurve (computed from the 3-D edge, not exact).
     fitted: Option<f64>,
     edge: Edge,
@@ -136,6 +141,14 @@ struct EdgeUse {
 
 /// The curves of one candidate, in order, never empty.
 type Piece = Vec<NurbsCurve>;
+
+/// A vertex at an end of an edge use: its label and the distance from the edge's 3-D curve's
+/// end to its point (0 where the file's curve ends on its vertex).
+#[derive(Clone, Copy, Debug)]
+struct VertexEnd {
+    label: u64,
+    miss: f64,
+}
 
 fn start_of(p: &Piece) -> Point {
     p.first()
@@ -303,6 +316,7 @@ fn chain(
     taken.insert(uses[0].label, first);
     let start = start_of(&c0);
     let mut end = end_of(&c0);
+    let mut end_vertex = uses[0].ends[1];
     out.extend(c0);
     for u in &uses[1..] {
         // A seam's second use takes the pcurve its first use did not.
@@ -310,16 +324,20 @@ fn chain(
         let allowed: Vec<usize> = (0..u.options.len())
             .filter(|&k| u.options.len() < 2 || before != Some(k))
             .collect();
-        let (k, pre, c) = join(cx, end, u, &allowed, what)?;
+        let (k, pre, c) = join(cx, (end, end_vertex), u, &allowed, what)?;
         taken.entry(u.label).or_insert(k);
         out.extend(pre);
         end = end_of(&c);
+        end_vertex = u.ends[1];
         out.extend(c);
     }
-    // Closure, with a pole segment if needed (no shift: the first curve stays).
+    // Closure, with a pole segment or a vertex bridge if needed (no shift: the first curve
+    // stays).
     let gap = end.distance(start);
     if gap > cx.gap() {
-        if let Some(seg) = pole_segment(cx, end, start) {
+        if let Some(seg) = pole_segment(cx, end, start)
+            .or_else(|| vertex_bridge(cx, (end, end_vertex), (start, uses[0].ends[0])))
+        {
             out.push(seg);
         } else {
             return Err(StepError::LoopOpen {
@@ -333,11 +351,12 @@ fn chain(
     Ok(out)
 }
 
-/// The option of `u` that continues from `end` (directly, through a pole segment, or
-/// translated by periods), with the segment to insert before it.
+/// The option of `u` that continues from `end` (directly, through a pole segment, translated
+/// by periods, or across the gap its edges leave at their shared vertex), with the segment to
+/// insert before it.
 fn join(
     cx: &FaceContext<'_>,
-    end: Point,
+    (end, end_vertex): (Point, VertexEnd),
     u: &EdgeUse,
     allowed: &[usize],
     what: &str,
@@ -376,6 +395,10 @@ fn join(
     if d <= cx.gap() {
         return Ok((k, None, translated(&u.options[k], shift, what)?));
     }
+    let k = best.1;
+    if let Some(seg) = vertex_bridge(cx, (end, end_vertex), (start_of(&u.options[k]), u.ends[0])) {
+        return Ok((k, Some(seg), u.options[k].clone()));
+    }
     Err(StepError::EdgeGap {
         edge_loop: what.to_string(),
         edge: u.label,
@@ -392,6 +415,29 @@ fn pole_segment(cx: &FaceContext<'_>, a: Point, b: Point) -> Option<NurbsCurve> 
     } else {
         None
     }
+}
+
+/// A segment from `a` to `b` across the gap two edges leave at the vertex they share, as
+/// `OpenCASCADE`'s vertex tolerance covers it: where the edges' curves miss their common
+/// vertex (a curve of the file ending off its vertex, the miss `m_a` and `m_b` of each), the
+/// surface points of the two pcurve ends are at most `m_a + m_b` (and the model's coincidence
+/// tolerance) apart. `None` for uses that do not share the vertex, ends farther apart, or a
+/// face without a surface.
+fn vertex_bridge(
+    cx: &FaceContext<'_>,
+    (a, va): (Point, VertexEnd),
+    (b, vb): (Point, VertexEnd),
+) -> Option<NurbsCurve> {
+    let s = cx.surface.surface.as_ref()?;
+    if va.label != vb.label {
+        return None;
+    }
+    let (pa, pb) = (s.point([a.x, a.y]), s.point([b.x, b.y]));
+    let size = pa.max_abs().max(pb.max_abs());
+    let allowed = va.miss + vb.miss + cx.tolerance.coincidence(size);
+    (pa.distance(pb) <= allowed && a.distance(b) > 0.0)
+        .then(|| rs_spline::segment(a, b).ok())
+        .flatten()
 }
 
 /// The loop moved by whole periods so that the middle of its box lies in the base period.
@@ -552,7 +598,27 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
             options.push(option);
         }
     }
+    // The vertices at the 3-D curve's ends (lo, hi), each with the curve's miss.
+    let at_lo = if same_sense {
+        (s_label, vs)
+    } else {
+        (e_label, ve)
+    };
+    let at_hi = if same_sense {
+        (e_label, ve)
+    } else {
+        (s_label, vs)
+    };
+    let curve_ends = [(at_lo, lo), (at_hi, hi)].map(|((label, p), t)| VertexEnd {
+        label,
+        miss: c3.point(t).distance(p),
+    });
     let flip = !same_sense ^ !oriented;
+    let ends = if flip {
+        [curve_ends[1], curve_ends[0]]
+    } else {
+        curve_ends
+    };
     if flip {
         for o in &mut options {
             o.reverse();
@@ -564,6 +630,7 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
     Ok(EdgeUse {
         label: ec.label,
         options,
+        ends,
         fitted,
         edge: Edge {
             entity: format!("#{}", ec.label),
