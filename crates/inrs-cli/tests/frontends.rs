@@ -72,7 +72,7 @@ fn cad_faces_are_listed_and_classified() {
     let plate = fixture("cad/plate.step");
     let listing = inrs_ok(&["info", "--domain", &plate]);
     assert!(
-        listing.contains("0 STEP solids, 0 shells, 1 face (1 read, 0 refused); tolerance 1e-7"),
+        listing.contains("0 STEP solids, 1 shell, 1 face (1 read, 0 refused); tolerance 1e-7"),
         "{listing}"
     );
     assert!(listing.contains("face 0    #99       PLANE"), "{listing}");

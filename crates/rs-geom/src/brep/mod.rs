@@ -118,8 +118,9 @@ pub struct Shell {
     pub entity: String,
     /// Its faces, as indices into [`Model::faces`].
     pub faces: Vec<usize>,
-    /// Whether the file says the shell is closed (STEP `CLOSED_SHELL`, an IGES 514 of a 186):
-    /// what the file claims, not a check of its edges.
+    /// Whether the file says the shell is closed (STEP `CLOSED_SHELL`, an IGES 514 of a 186).
+    /// The STEP reader also checks its edges, as `OpenCASCADE` does: a `CLOSED_SHELL` with an
+    /// edge used by only one of its faces is not closed (and is no solid's shell).
     pub closed: bool,
 }
 

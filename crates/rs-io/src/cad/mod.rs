@@ -41,8 +41,8 @@ mod summary;
 use std::ops::{Deref, DerefMut};
 use std::path::Path;
 
-use rs_geom::brep::{FaceError, Model, ModelError, ReadError};
-use rs_spline::{Domain, NurbsCurve};
+use rs_geom::brep::{Model, ModelError};
+use rs_spline::Domain;
 
 use crate::IoError;
 pub use spec::{CadSelection, split_cad_spec};
@@ -183,36 +183,5 @@ impl CadModel {
                 message: other.to_string(),
             },
         }
-    }
-}
-
-/// A reader's message while the readers still report strings.
-#[derive(Debug)]
-pub(crate) struct LegacyMessage(pub(crate) String);
-
-impl std::fmt::Display for LegacyMessage {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for LegacyMessage {}
-
-/// A face of the old readers (entity, surface name, loops or the reason) as a model face.
-pub(crate) fn legacy_face(
-    entity: String,
-    surface_name: String,
-    loops: Result<Vec<Vec<NurbsCurve>>, String>,
-) -> rs_geom::brep::Face {
-    rs_geom::brep::Face {
-        entity,
-        surface_name,
-        surface: None,
-        surface_error: None,
-        same_sense: true,
-        loops: loops.map_err(|m| FaceError::Read(ReadError::new(LegacyMessage(m)))),
-        edges: Vec::new(),
-        pcurve_deviation: None,
-        natural_bounds: false,
     }
 }

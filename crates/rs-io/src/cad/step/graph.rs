@@ -7,6 +7,7 @@
 
 use std::collections::HashMap;
 
+use super::error::{Result, StepError};
 use super::tokens::{Lexer, Token};
 
 /// The deepest nesting of parameter lists and typed parameters accepted. STEP geometry needs
@@ -110,7 +111,7 @@ impl Instance {
 
     /// The attributes of the record `name` (for a simple instance: the instance's own list,
     /// which starts with its supertypes' attributes).
-    pub(crate) fn record(&self, name: &str) -> Result<Attrs<'_>, String> {
+    pub(crate) fn record(&self, name: &str) -> Result<Attrs<'_>> {
         self.parts
             .iter()
             .find(|p| p.name == name)
@@ -118,17 +119,20 @@ impl Instance {
                 inst: self,
                 part: p,
             })
-            .ok_or_else(|| format!("{} is not a {name}", self.what()))
+            .ok_or_else(|| StepError::WrongType {
+                what: self.what(),
+                expected: name.to_string(),
+            })
     }
 
     /// The attributes of a simple instance, or `Err` for a complex one.
-    pub(crate) fn simple(&self) -> Result<Attrs<'_>, String> {
+    pub(crate) fn simple(&self) -> Result<Attrs<'_>> {
         match self.parts.as_slice() {
             [p] => Ok(Attrs {
                 inst: self,
                 part: p,
             }),
-            _ => Err(format!("{}: unexpected complex instance", self.what())),
+            _ => Err(StepError::Complex { what: self.what() }),
         }
     }
 }
@@ -141,12 +145,17 @@ pub(crate) struct Attrs<'a> {
 }
 
 impl<'a> Attrs<'a> {
-    fn err(&self, i: usize, name: &str, what: &str) -> String {
-        format!("{}: attribute {} ({name}) {what}", self.inst.what(), i + 1)
+    fn err(&self, i: usize, name: &'static str, problem: &str) -> StepError {
+        StepError::Attribute {
+            what: self.inst.what(),
+            index: i,
+            name,
+            problem: problem.to_string(),
+        }
     }
 
     /// Parameter `i` (0-based) as written.
-    pub(crate) fn get(&self, i: usize, name: &str) -> Result<&'a Value, String> {
+    pub(crate) fn get(&self, i: usize, name: &'static str) -> Result<&'a Value> {
         self.part
             .params
             .get(i)
@@ -154,19 +163,19 @@ impl<'a> Attrs<'a> {
     }
 
     /// A number (a typed measure `LENGTH_MEASURE(2.)` is accepted too).
-    pub(crate) fn real(&self, i: usize, name: &str) -> Result<f64, String> {
+    pub(crate) fn real(&self, i: usize, name: &'static str) -> Result<f64> {
         value_real(self.get(i, name)?).ok_or_else(|| self.err(i, name, "is not a number"))
     }
 
     /// A whole number in `0..=max`.
-    pub(crate) fn count(&self, i: usize, name: &str, max: usize) -> Result<usize, String> {
+    pub(crate) fn count(&self, i: usize, name: &'static str, max: usize) -> Result<usize> {
         let v = self.real(i, name)?;
         value_count(v, max)
             .ok_or_else(|| self.err(i, name, &format!("is not a whole number in 0..={max}")))
     }
 
     /// A reference.
-    pub(crate) fn reference(&self, i: usize, name: &str) -> Result<u64, String> {
+    pub(crate) fn reference(&self, i: usize, name: &'static str) -> Result<u64> {
         match self.get(i, name)? {
             Value::Ref(r) => Ok(*r),
             _ => Err(self.err(i, name, "is not a reference")),
@@ -174,7 +183,7 @@ impl<'a> Attrs<'a> {
     }
 
     /// A list.
-    pub(crate) fn list(&self, i: usize, name: &str) -> Result<&'a [Value], String> {
+    pub(crate) fn list(&self, i: usize, name: &'static str) -> Result<&'a [Value]> {
         match self.get(i, name)? {
             Value::List(v) => Ok(v),
             _ => Err(self.err(i, name, "is not a list")),
@@ -182,7 +191,7 @@ impl<'a> Attrs<'a> {
     }
 
     /// A list of references.
-    pub(crate) fn refs(&self, i: usize, name: &str) -> Result<Vec<u64>, String> {
+    pub(crate) fn refs(&self, i: usize, name: &'static str) -> Result<Vec<u64>> {
         self.list(i, name)?
             .iter()
             .map(|v| match v {
@@ -193,7 +202,7 @@ impl<'a> Attrs<'a> {
     }
 
     /// A list of numbers.
-    pub(crate) fn reals(&self, i: usize, name: &str) -> Result<Vec<f64>, String> {
+    pub(crate) fn reals(&self, i: usize, name: &'static str) -> Result<Vec<f64>> {
         self.list(i, name)?
             .iter()
             .map(|v| value_real(v).ok_or_else(|| self.err(i, name, "holds a non-number")))
@@ -201,7 +210,7 @@ impl<'a> Attrs<'a> {
     }
 
     /// A boolean or logical `.T.`/`.F.` (`.U.` is an error).
-    pub(crate) fn boolean(&self, i: usize, name: &str) -> Result<bool, String> {
+    pub(crate) fn boolean(&self, i: usize, name: &'static str) -> Result<bool> {
         match self.get(i, name)? {
             Value::Enum(e) if e == "T" => Ok(true),
             Value::Enum(e) if e == "F" => Ok(false),
@@ -240,7 +249,11 @@ impl Graph {
     /// # Errors
     /// A one-line message naming the line: syntax, duplicate instance names, nesting deeper
     /// than [`MAX_NESTING`], a file that ends early.
-    pub(crate) fn parse(text: &[u8]) -> Result<Graph, String> {
+    pub(crate) fn parse(text: &[u8]) -> Result<Graph> {
+        Self::parse_text(text).map_err(StepError::Syntax)
+    }
+
+    fn parse_text(text: &[u8]) -> Result<Graph, String> {
         let mut p = Parser {
             lx: Lexer::new(text),
             peeked: None,
@@ -352,11 +365,14 @@ impl Graph {
     }
 
     /// The instance `#label`, or an error saying who referred to it.
-    pub(crate) fn get(&self, label: u64, from: &str) -> Result<&Instance, String> {
+    pub(crate) fn get(&self, label: u64, from: &str) -> Result<&Instance> {
         self.by_label
             .get(&label)
             .and_then(|&i| self.instances.get(i))
-            .ok_or_else(|| format!("{from} refers to #{label}, which is not in the file"))
+            .ok_or_else(|| StepError::MissingInstance {
+                from: from.to_string(),
+                label,
+            })
     }
 }
 
@@ -477,6 +493,7 @@ mod tests {
             a.real(1, "position")
                 .map(|_| ())
                 .unwrap_err()
+                .to_string()
                 .contains("#1 CIRCLE: attribute 2 (position)")
         );
         let x = g.get(2, "test").unwrap();
@@ -485,7 +502,13 @@ mod tests {
             x.record("B").unwrap().reals(0, "l").unwrap(),
             vec![1.0, 2.0]
         );
-        assert!(g.get(3, "#2 X").map(|_| ()).unwrap_err().contains("#3"));
+        assert!(
+            g.get(3, "#2 X")
+                .map(|_| ())
+                .unwrap_err()
+                .to_string()
+                .contains("#3")
+        );
     }
 
     #[test]
@@ -494,6 +517,7 @@ mod tests {
             Graph::parse(file("#1=A(1);#1=B(2);").as_bytes())
                 .map(|_| ())
                 .unwrap_err()
+                .to_string()
                 .contains("twice")
         );
         let deep = format!("#1=A({}{});", "(".repeat(100), ")".repeat(100));
@@ -501,12 +525,14 @@ mod tests {
             Graph::parse(file(&deep).as_bytes())
                 .map(|_| ())
                 .unwrap_err()
+                .to_string()
                 .contains("nested")
         );
         assert!(
             Graph::parse(b"ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=A(")
                 .map(|_| ())
                 .unwrap_err()
+                .to_string()
                 .contains("ends early")
         );
         assert!(Graph::parse(file("#1=A(1,,2);").as_bytes()).is_err());

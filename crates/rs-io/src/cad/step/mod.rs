@@ -33,8 +33,8 @@
 //! 4. items: `MANIFOLD_SOLID_BREP`/`FACETED_BREP` -> outer shell; `BREP_WITH_VOIDS` -> outer
 //!    then void shells; `SHELL_BASED_SURFACE_MODEL` -> its shells; `CLOSED_SHELL`/`OPEN_SHELL`
 //!    -> `cfs_faces` in order; `ORIENTED_*_SHELL` -> its shell; `ORIENTED_FACE` -> its face;
-//!    `MAPPED_ITEM` -> the mapped representation; other items (placements, styles) are not
-//!    shapes.
+//!    `MAPPED_ITEM` -> the mapped representation (its placement is not applied: the files seen
+//!    map presentation only); other items (placements, styles) are not shapes.
 //!
 //! A file with no product structure leading to faces falls back to every shape
 //! representation in file order (then every solid or surface model, then every shell). The
@@ -42,72 +42,93 @@
 //! files (their assembly representations hold placements only); it follows `OpenCASCADE`'s
 //! `STEPControl_ActorRead`.
 //!
+//! # Shells, solids, placements
+//!
+//! The model's shells and solids come in the same walk, so the faces of the solids' shells,
+//! then of the free shells, then the free faces are the face order (as `OpenCASCADE`'s
+//! explorers give them). A `MANIFOLD_SOLID_BREP` is a solid of its outer `CLOSED_SHELL`, a
+//! `BREP_WITH_VOIDS` of its outer shell and its voids; a solid whose outer shell is not
+//! closed (an `OPEN_SHELL`, or a `CLOSED_SHELL` some `EDGE_CURVE` of which only one of its
+//! faces uses) is no solid for `OpenCASCADE`, and its shells stay free shells. A face's
+//! `same_sense` (its outward normal along `S_u x S_v`) composes the face's own flag with an
+//! `ORIENTED_FACE` and an `ORIENTED_CLOSED_SHELL` (a void) of orientation `.F.`.
+//!
+//! A component placed by an assembly occurrence (`NEXT_ASSEMBLY_USAGE_OCCURRENCE` ->
+//! `PRODUCT_DEFINITION_SHAPE` -> `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` ->
+//! `REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION` -> `ITEM_DEFINED_TRANSFORMATION`) is
+//! moved by `T = A(item_2) A(item_1)^-1` (`A(p)` the map of placement `p`'s frame), the
+//! occurrences' maps composed from the top (`T_1 T_2 ... T_n`), as `OpenCASCADE` locates them.
+//! A face's surface and 3-D edges are placed; its `(u, v)` loops are not changed by a
+//! placement. A face used by several occurrences is read once and placed per occurrence.
+//!
 //! # Loops
 //!
 //! The `FACE_OUTER_BOUND` comes first, then the other bounds in the face's order.
 //! `OpenCASCADE` keeps the file order of the bounds (its outer wire is found geometrically,
 //! by `BRepTools::OuterWire`); the domain built from the loops does not depend on their order.
-//! Edges are trimmed between their vertices on the 3-D curve (the parameters of the
-//! vertices: exact for lines and conics, a bounded search for B-splines); each pcurve is cut
-//! where it passes the vertices' `(u, v)`, since the 3-D curve and the pcurve need not share
-//! their parameter (a rational B-spline circle in 3-D, a line in `(u, v)`): on a plane the
-//! `(u, v)` is exact, elsewhere the surface is inverted at the vertex starting from the
-//! pcurve's point at the 3-D parameter (see `invert`; that point stays where the inversion
-//! fails); see `loops` for orientation, seams, periods and poles. A `VERTEX_LOOP` (a cone's apex)
-//! bounds nothing in `(u, v)` and is skipped. The face's own `same_sense` is not applied:
-//! it flips the surface normal, not the loops in `(u, v)`.
+//! See `loops` for the cutting of pcurves at the vertices, orientation, seams, periods and
+//! poles. A `VERTEX_LOOP` (a cone's apex) bounds nothing in `(u, v)` and is skipped; a face
+//! bounded by nothing else (a whole sphere) is its surface's natural parameter box, with the
+//! seams and poles as `OpenCASCADE`'s wire runs them, where that box is finite (an unbounded
+//! surface is an error). The face's own `same_sense` is not applied to the loops: it flips the
+//! surface normal, not the loops in `(u, v)`.
 //!
-//! Faces on a `PLANE` whose edges have no pcurve are mapped from their 3-D curves into the
-//! plane's `(u, v)` (an exact affine map); other faces without pcurves are refused with a
-//! message naming the edge and the surface (no projection).
+//! Edges without a pcurve on the face's surface: on a `PLANE` their 3-D curves are mapped
+//! into the plane's `(u, v)` (an exact affine map); on other surfaces their pcurves are
+//! computed by `rs_geom::pcurve` (exact iso-lines of the surface where the edge is one, as on
+//! patch boundaries; otherwise a fit with a bound on its 3-D deviation, the largest of a face's
+//! in [`Face::pcurve_deviation`]); an edge whose pcurve's bound exceeds the file's tolerance
+//! refuses its face, naming the edge, the bound and the tolerance.
 //!
 //! # Units
 //!
 //! Lengths (and so `(u, v)` on planes, the `v` of cylinders, the tolerance) stay in the
-//! file's length unit; [`length_unit_mm`] gives millimetres per unit (`OpenCASCADE` converts to
-//! millimetres). Angles of circles, ellipses and trims are converted to radians with the
-//! context's `PLANE_ANGLE_UNIT`. Pcurves are read as written: a file in degrees would have
-//! its angular surface parameters in degrees where `OpenCASCADE` rescales them.
+//! file's length unit; the model's `length_unit` names it, with millimetres per unit
+//! (`OpenCASCADE` converts to millimetres). A component whose representation context has another length
+//! unit than its assembly's is scaled into the assembly's by its occurrence's placement
+//! (`A(item_2) k A(item_1)^-1`, `k` the ratio of the units), and a second root part in another
+//! unit than the first into the first's: the model is in the unit of the first face's placed
+//! coordinates; `(u, v)` stay the file's. Angles of circles,
+//! ellipses and trims are converted to radians with the context's `PLANE_ANGLE_UNIT`.
+//! Pcurves are read as written: in a file in degrees the angular parameters of surfaces stay
+//! in degrees (the surfaces are read in those parameters) where `OpenCASCADE` rescales them.
 //!
 //! # Tolerance
 //!
 //! The model's [`Tolerance`] states the largest length `UNCERTAINTY_MEASURE_WITH_UNIT` of the
 //! representation contexts the faces are read in (in the file's length unit), `None` if none
-//! states one. Consecutive curves of a loop must meet within [`gap_tolerance`] of it in
-//! `(u, v)`.
+//! states one. Consecutive curves of a loop must meet within its
+//! [`Tolerance::chain_gap`] in `(u, v)`.
+//!
+//! # Errors
+//!
+//! [`StepError`]: one line, naming the instance at fault. A broken file (syntax, its shape
+//! structure) is an [`IoError::Cad`]; a broken face is listed with its error (a
+//! `FaceError::Read` holding the [`StepError`]) while the other faces read.
 
-mod curves;
+mod error;
 mod faces;
-mod geom;
+mod geometry;
 mod graph;
-mod invert;
 mod loops;
-mod plane;
-mod shape;
 mod surface;
 mod tokens;
 mod units;
 
 use std::collections::HashMap;
+use std::collections::hash_map::Entry;
 
-use rs_spline::NurbsCurve;
+use rs_geom::brep::{Edge, Face, FaceError, LengthUnit, Model, ReadError, Shell, Solid};
+use rs_geom::{Affine3, Surface, Tolerance};
 
-use rs_geom::Tolerance;
-use rs_geom::brep::{Face, Model};
-
-use super::{CadFormat, CadModel, legacy_face};
+use super::{CadFormat, CadModel};
 use crate::IoError;
+pub use error::StepError;
+use faces::FaceUse;
 use graph::Graph;
+use loops::{FaceContext, FaceLoops};
+use surface::FaceSurface;
 use units::Units;
-
-/// The gap accepted between consecutive curves of a loop in `(u, v)`, from the file's
-/// uncertainty `tol` (`1e-6` when it states none): `10 tol`, at least `1e-6`. Pcurves are
-/// approximations written to the file's tolerance in 3-D; the factor 10 leaves room for
-/// the parameter scale of the surface without accepting a wrong trim (whose gap is of the
-/// size of a curve).
-pub fn gap_tolerance(tol: Option<f64>) -> f64 {
-    (10.0 * tol.unwrap_or(1e-6)).max(1e-6)
-}
 
 /// Millimetres per length unit of the STEP file `text` (its first representation context
 /// with a length unit), 1 when it states none.
@@ -126,98 +147,237 @@ pub fn length_unit_mm(text: &[u8]) -> Result<f64, IoError> {
     Ok(1.0)
 }
 
-fn cad(message: String) -> IoError {
+fn cad(e: StepError) -> IoError {
     IoError::Cad {
         format: "STEP",
-        message,
+        message: e.to_string(),
     }
-}
-
-/// Reads the faces of a STEP file's text.
-///
-/// # Errors
-/// [`IoError::Cad`] for a file that is not ISO 10303-21 or whose entity graph is broken
-/// (missing or cyclic references in the shape structure, nesting beyond the limits). A face
-/// whose loops cannot be read is listed with an `Err` in [`Face::loops`].
-pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
-    let g = Graph::parse(text).map_err(cad)?;
-    let uses = faces::face_order(&g).map_err(cad)?;
-    let mut contexts: HashMap<Option<u64>, Units> = HashMap::new();
-    for u in &uses {
-        if let std::collections::hash_map::Entry::Vacant(e) = contexts.entry(u.context) {
-            let units = match u.context {
-                Some(c) => units::context_units(&g, c).map_err(cad)?,
-                None => Units::default(),
-            };
-            e.insert(units);
-        }
-    }
-    let tolerance = contexts
-        .values()
-        .filter_map(|u| u.uncertainty)
-        .reduce(f64::max);
-    let gap = gap_tolerance(tolerance);
-    // A face used many times (assemblies) is read once.
-    let mut read: HashMap<(u64, Option<u64>), Face> = HashMap::new();
-    let mut faces = Vec::with_capacity(uses.len().min(1 << 16));
-    let mut points = 0usize;
-    for u in uses {
-        let face = match read.get(&(u.face, u.context)) {
-            Some(f) => f.clone(),
-            None => {
-                let units = contexts.get(&u.context).copied().unwrap_or_default();
-                let f = read_face(&g, u.face, &units, gap)?;
-                read.insert((u.face, u.context), f.clone());
-                f
-            }
-        };
-        if let Ok(loops) = &face.loops {
-            points += loops
-                .iter()
-                .flatten()
-                .map(|c| c.control_points().len())
-                .sum::<usize>();
-            if points > MAX_TOTAL_POINTS {
-                return Err(cad(format!(
-                    "the faces hold more than {MAX_TOTAL_POINTS} control points in all"
-                )));
-            }
-        }
-        faces.push(face);
-    }
-    Ok(CadModel {
-        format: CadFormat::Step,
-        model: Model {
-            faces,
-            tolerance: Tolerance::new(tolerance).map_err(|e| cad(e.to_string()))?,
-            ..Model::default()
-        },
-    })
 }
 
 /// The most control points of all listed faces together (assemblies list shared faces once
 /// per use; this bounds the memory of the model).
 const MAX_TOTAL_POINTS: usize = 1 << 26;
 
-fn read_face(g: &Graph, label: u64, units: &Units, gap: f64) -> Result<Face, IoError> {
-    let inst = g.get(label, "a shell").map_err(cad)?;
-    let entity = format!("#{label}");
-    let geometry = inst
-        .simple()
-        .and_then(|a| a.reference(2, "face_geometry"))
-        .and_then(|s| surface::Surface::read(g, s, &inst.what(), units.radians_per_angle));
-    let (surface, loops): (String, Result<Vec<Vec<NurbsCurve>>, String>) = match geometry {
-        Ok(s) => {
-            let cx = loops::FaceContext {
-                g,
-                surface: &s,
-                radians: units.radians_per_angle,
-                gap,
-            };
-            let loops = loops::face_loops(&cx, inst);
-            (s.name.clone(), loops)
+/// Reads the faces, shells and solids of a STEP file's text.
+///
+/// # Errors
+/// [`IoError::Cad`] for a file that is not ISO 10303-21 or whose entity graph is broken
+/// (missing or cyclic references in the shape structure, nesting beyond the limits). A face
+/// whose loops cannot be read is listed with an `Err` in [`Face::loops`] (a
+/// [`FaceError::Read`] of a [`StepError`]); one whose surface cannot be read has it in
+/// [`Face::surface_error`].
+pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
+    let g = Graph::parse(text).map_err(cad)?;
+    let structure = faces::structure(&g).map_err(cad)?;
+    let mut contexts: HashMap<Option<u64>, Units> = HashMap::new();
+    for u in &structure.faces {
+        for c in [u.context, u.unit_context] {
+            if let Entry::Vacant(e) = contexts.entry(c) {
+                let units = match c {
+                    Some(c) => units::context_units(&g, c).map_err(cad)?,
+                    None => Units::default(),
+                };
+                e.insert(units);
+            }
         }
-        Err(m) => (String::from("?"), Err(m)),
+    }
+    let stated = structure
+        .faces
+        .iter()
+        .filter_map(|u| contexts.get(&u.context).and_then(|c| c.uncertainty))
+        .reduce(f64::max);
+    let tolerance = Tolerance::new(stated)
+        .map_err(|e| cad(StepError::geometry("the file's uncertainty", e)))?;
+    // The model's length unit: the first face's (placed) coordinates'.
+    let model_units = structure
+        .faces
+        .first()
+        .and_then(|u| u.unit_context)
+        .and_then(|c| contexts.get(&Some(c)));
+    let unit = model_units.map(|u| u.mm_per_length);
+    let length_unit = model_units.and_then(|u| {
+        u.length_name.clone().map(|name| LengthUnit {
+            name,
+            millimetres: u.mm_per_length,
+        })
+    });
+    // A face used many times (assemblies) is read once.
+    let mut read: HashMap<(u64, Option<u64>), ReadFace> = HashMap::new();
+    let mut faces = Vec::with_capacity(structure.faces.len().min(1 << 16));
+    let mut points = 0usize;
+    for u in &structure.faces {
+        let key = (u.face, u.context);
+        let units = contexts.get(&u.context).cloned().unwrap_or_default();
+        if let Entry::Vacant(e) = read.entry(key) {
+            e.insert(read_face(&g, u.face, &units, tolerance).map_err(cad)?);
+        }
+        let r = &read[&key];
+        if let Ok(l) = &r.loops {
+            points += l
+                .loops
+                .iter()
+                .flatten()
+                .map(|c| c.control_points().len())
+                .sum::<usize>();
+            if points > MAX_TOTAL_POINTS {
+                return Err(cad(StepError::TooMany {
+                    what: "control points of the faces in all".into(),
+                    limit: MAX_TOTAL_POINTS,
+                }));
+            }
+        }
+        // Coordinates in another length unit than the model's (a second root part) are scaled
+        // into it; `(u, v)` stay the file's.
+        let placed_mm = contexts
+            .get(&u.unit_context)
+            .map_or(1.0, |c| c.mm_per_length);
+        let scale = unit
+            .filter(|&mm| mm != placed_mm && mm > 0.0)
+            .map(|mm| faces::uniform_scale(placed_mm / mm));
+        let placement = match (u.placement, scale) {
+            (p, None) => p,
+            (None, Some(s)) => Some(s),
+            (Some(p), Some(s)) => Some(s.after(p)),
+        };
+        faces.push(r.placed(u, placement));
+    }
+    let shells = structure
+        .shells
+        .iter()
+        .map(|s| Shell {
+            entity: format!("#{}", s.entity),
+            faces: s.faces.clone(),
+            closed: s.closed(),
+        })
+        .collect();
+    let solids = structure
+        .solids
+        .iter()
+        .map(|s| Solid {
+            entity: format!("#{}", s.entity),
+            shells: s.shells.clone(),
+        })
+        .collect();
+    Ok(CadModel {
+        format: CadFormat::Step,
+        model: Model {
+            faces,
+            shells,
+            solids,
+            tolerance,
+            length_unit,
+        },
+    })
+}
+
+/// A face as read once, before its uses are placed.
+struct ReadFace {
+    entity: String,
+    surface_name: String,
+    surface: Result<Surface, StepError>,
+    same_sense: bool,
+    loops: Result<FaceLoops, StepError>,
+}
+
+impl ReadFace {
+    /// The model face of one use: reversed by its shell or `ORIENTED_FACE`, its surface and
+    /// edges moved by `placement`.
+    fn placed(&self, u: &FaceUse, placement: Option<Affine3>) -> Face {
+        let fail = |e: StepError| FaceError::Read(ReadError::new(e));
+        let mut surface = self.surface.clone();
+        let mut edges = self
+            .loops
+            .as_ref()
+            .map(|l| l.edges.clone())
+            .unwrap_or_default();
+        if let Some(m) = placement {
+            surface = surface.and_then(|s| {
+                s.transformed(&m)
+                    .map_err(|e| StepError::geometry(format!("{} placed", self.entity), e))
+            });
+            for e in edges.iter_mut().flatten() {
+                place_edge(e, &m);
+            }
+        }
+        let (surface, surface_error) = match surface {
+            Ok(s) => (Some(s), None),
+            Err(e) => (None, Some(fail(e))),
+        };
+        Face {
+            entity: self.entity.clone(),
+            surface_name: self.surface_name.clone(),
+            surface,
+            surface_error,
+            same_sense: self.same_sense ^ u.reversed,
+            loops: self
+                .loops
+                .as_ref()
+                .map(|l| l.loops.clone())
+                .map_err(|e| fail(e.clone())),
+            edges,
+            pcurve_deviation: self.loops.as_ref().ok().and_then(|l| l.pcurve_deviation),
+            natural_bounds: self.loops.as_ref().is_ok_and(|l| l.natural),
+        }
+    }
+}
+
+/// The edge moved by `m` (its curve mapped exactly; a curve the map cannot carry keeps its
+/// place, which only a non-finite map can cause).
+fn place_edge(e: &mut Edge, m: &Affine3) {
+    if let Ok(c) = e.curve.map_affine(m) {
+        e.curve = c;
+    }
+}
+
+fn read_face(
+    g: &Graph,
+    label: u64,
+    units: &Units,
+    tolerance: Tolerance,
+) -> Result<ReadFace, StepError> {
+    let inst = g.get(label, "a shell")?;
+    let entity = format!("#{label}");
+    let what = inst.what();
+    let attrs = inst.simple();
+    let same_sense = attrs
+        .as_ref()
+        .ok()
+        .and_then(|a| a.boolean(3, "same_sense").ok())
+        .unwrap_or(true);
+    let surface_label = attrs.and_then(|a| a.reference(2, "face_geometry"));
+    let found = surface_label.and_then(|s| g.get(s, &what).map(|i| (s, i)));
+    let (s_label, s_inst) = match found {
+        Ok(x) => x,
+        Err(e) => {
+            return Ok(ReadFace {
+                entity,
+                surface_name: String::from("?"),
+                surface: Err(e.clone()),
+                same_sense,
+                loops: Err(e),
+            });
+        }
     };
-    Ok(legacy_face(entity, surface, loops))
+    let name = s_inst.type_name();
+    let surface = geometry::surface(g, s_label, &what, units.radians_per_angle);
+    let fs = FaceSurface::new(s_label, name.clone(), surface.as_ref().ok().cloned());
+    let cx = FaceContext {
+        g,
+        surface: &fs,
+        radians: units.radians_per_angle,
+        tolerance,
+    };
+    // A surface of a type the reader does not know leaves the loops readable (their pcurves
+    // are read without periods or poles); a broken one refuses the face.
+    let loops = match &surface {
+        Err(e) if !matches!(e, StepError::Unsupported { .. }) => Err(e.clone()),
+        _ => loops::face_loops(&cx, inst),
+    };
+    Ok(ReadFace {
+        entity,
+        surface_name: name,
+        surface,
+        same_sense,
+        loops,
+    })
 }

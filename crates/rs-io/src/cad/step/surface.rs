@@ -1,175 +1,160 @@
-//! What the loops need to know about a face's surface: its name, the periods of its
-//! parameters, its poles (parameter lines that are one point in space) and, for a plane, its
-//! frame.
+//! What a face's loops need to know about its surface: the surface itself (when it could be
+//! read), the periods of its parameters and where their base period starts, its pole lines
+//! and, for a plane, its coordinates. Everything is asked of `rs-geom`'s [`Surface`].
 
-use std::f64::consts::{FRAC_PI_2, TAU};
+use rs_geom::surface::{ParamBox, ParamSurface};
+use rs_geom::{Frame, PlaneCoordinates, Point, Point3, Surface, Tolerance};
 
-use super::curves::Curve;
-use super::geom::{self, Frame, V3};
-use super::graph::Graph;
-use super::shape::Shape;
+/// Interior points of a joining segment checked to map to the same point of space as its
+/// ends (a quarter, a half and three quarters along: a segment across whole periods of a
+/// periodic parameter has an end-to-end image of one point but not its interior).
+const DEGENERATE_SAMPLES: [f64; 3] = [0.25, 0.5, 0.75];
 
-/// A face's surface.
+/// A face's surface, as the loops see it.
 #[derive(Clone, Debug)]
-pub(crate) struct Surface {
+pub(crate) struct FaceSurface {
     /// `#12`
     pub(crate) label: u64,
     /// The STEP type name (for a complex instance, its most specific record).
     pub(crate) name: String,
+    /// The surface, `None` when it could not be read (the loops are then read without
+    /// periods, poles or inversion: the pcurves cut at the 3-D curves' parameters).
+    pub(crate) surface: Option<Surface>,
     /// The periods of `u` and `v`, where the surface is closed in them.
     pub(crate) period: [Option<f64>; 2],
-    /// Where the base period of each closed parameter starts (0 for angles, the knot
-    /// domain's start for B-spline surfaces): loops are moved by whole periods so that their
-    /// middle lies in `[base, base + period)`, as `OpenCASCADE` places them.
+    /// Where the base period of each closed parameter starts (the natural box's start: 0 for
+    /// angles, the knot domain's start for B-spline surfaces): loops are moved by whole
+    /// periods so that their middle lies in `[base, base + period)`, as `OpenCASCADE` places
+    /// them.
     pub(crate) base: [f64; 2],
-    /// The values of `v` at which the whole line `v = const` is one point (sphere poles,
-    /// cone apex).
-    pub(crate) v_poles: Vec<f64>,
-    /// The frame of a `PLANE`.
+    /// The frame of a plane.
     pub(crate) plane: Option<Frame>,
-    /// A `SURFACE_OF_REVOLUTION`'s swept curve and axis (point, unit direction): the line
-    /// `v = const` is one point where the curve at `v` is on the axis.
-    pub(crate) revolution: Option<(Curve, V3, V3)>,
-    /// The geometry of a non-planar surface of a known type, to find the `(u, v)` of the
-    /// edges' vertices (`None` for planes and types it does not know, or when it cannot be
-    /// read: the pcurves are then cut at the 3-D curves' parameters).
-    pub(crate) shape: Option<Shape>,
 }
 
-impl Surface {
-    /// Reads the surface `#label`; `radians` per angle unit of the file. Only what the loops
-    /// need is read; an unknown surface type is not an error (its pcurves are read all the
-    /// same, without periods).
-    pub(crate) fn read(g: &Graph, label: u64, from: &str, radians: f64) -> Result<Surface, String> {
-        let inst = g.get(label, from)?;
-        let name = inst.type_name();
-        let what = inst.what();
-        let mut s = Surface {
-            label,
-            name: name.clone(),
-            period: [None, None],
-            base: [0.0; 2],
-            v_poles: Vec::new(),
-            plane: None,
-            revolution: None,
-            shape: Shape::read(g, inst, radians).ok().flatten(),
-        };
-        match name.as_str() {
-            "PLANE" => {
-                let a = inst.simple()?;
-                s.plane = Some(geom::placement(g, a.reference(1, "position")?, &what)?);
-            }
-            "CYLINDRICAL_SURFACE" => s.period[0] = Some(TAU),
-            "SURFACE_OF_REVOLUTION" => {
-                // ISO 10303-42: u is the angle of rotation, v the swept curve's parameter
-                // (periodic when the curve is a circle or ellipse).
-                let a = inst.simple()?;
-                let curve = Curve::read(g, a.reference(1, "swept_curve")?, &what, 1.0)?;
-                s.period = [Some(TAU), curve.period()];
-                let ax = g.get(a.reference(2, "axis_position")?, &what)?;
-                let axa = ax.record("AXIS1_PLACEMENT")?;
-                let o = geom::point(g, axa.reference(1, "location")?, &ax.what())?;
-                let d = match axa.get(2, "axis") {
-                    Ok(super::graph::Value::Ref(r)) => geom::direction(g, *r, &ax.what())?,
-                    _ => [0.0, 0.0, 1.0],
+impl FaceSurface {
+    /// The surface `#label` of type `name`, read or not.
+    pub(crate) fn new(label: u64, name: String, surface: Option<Surface>) -> FaceSurface {
+        let (period, base) = match &surface {
+            Some(s) => {
+                let b = s.param_box();
+                let start = |i: usize| {
+                    let a = b.range(i).0;
+                    if a.is_finite() { a } else { 0.0 }
                 };
-                s.revolution = Some((curve, o, d));
+                (s.periods(), [start(0), start(1)])
             }
-            "SPHERICAL_SURFACE" => {
-                s.period[0] = Some(TAU);
-                s.v_poles = vec![-FRAC_PI_2, FRAC_PI_2];
-            }
-            "CONICAL_SURFACE" => {
-                s.period[0] = Some(TAU);
-                // (R + v tan a)(cos u x + sin u y) + v z: the apex is at v = -R / tan a.
-                let a = inst.simple()?;
-                let (r, angle) = (a.real(2, "radius")?, a.real(3, "semi_angle")? * radians);
-                let apex = -r / angle.tan();
-                if apex.is_finite() {
-                    s.v_poles.push(apex);
-                }
-            }
-            "TOROIDAL_SURFACE" | "DEGENERATE_TOROIDAL_SURFACE" => s.period = [Some(TAU); 2],
-            "SURFACE_OF_LINEAR_EXTRUSION" => {
-                if let Some(Shape::Extrusion { curve, .. }) = &s.shape {
-                    s.period[0] = curve.period();
-                }
-            }
-            _ if inst.is("B_SPLINE_SURFACE") || inst.is("B_SPLINE_SURFACE_WITH_KNOTS") => {
-                let p = bspline_periods(g, inst).unwrap_or([None, None]);
-                for (d, pd) in p.into_iter().enumerate() {
-                    if let Some((a, len)) = pd {
-                        s.period[d] = Some(len);
-                        s.base[d] = a;
-                    }
-                }
-            }
-            _ => {}
+            None => ([None, None], [0.0; 2]),
+        };
+        let plane = match &surface {
+            Some(Surface::Plane(p)) => Some(*p.frame()),
+            _ => None,
+        };
+        FaceSurface {
+            label,
+            name,
+            surface,
+            period,
+            base,
+            plane,
         }
-        Ok(s)
     }
-}
 
-impl Surface {
-    /// Whether the straight segment from `a` to `b` in `(u, v)` is one point in space: both on
-    /// a pole line `v = const` (sphere, cone), or on a line `v = const` of a surface of
-    /// revolution whose swept curve meets the axis there.
-    pub(crate) fn is_pole_join(&self, a: [f64; 2], b: [f64; 2], tol: f64) -> bool {
-        if self
-            .v_poles
-            .iter()
-            .any(|&v| (a[1] - v).abs() <= tol && (b[1] - v).abs() <= tol)
-        {
+    /// The coordinates of a plane's `(u, v)`.
+    pub(crate) fn plane_coordinates(&self) -> Option<PlaneCoordinates> {
+        self.plane.as_ref().map(PlaneCoordinates::new)
+    }
+
+    /// The natural parameter box, if the surface was read.
+    pub(crate) fn param_box(&self) -> Option<ParamBox> {
+        self.surface.as_ref().map(ParamSurface::param_box)
+    }
+
+    /// Whether `uv` lies outside the natural box by more than `tol` in a parameter that is not
+    /// periodic (a sphere's latitude past a pole: a pcurve written a period off in a
+    /// parameter the surface's formula happens to repeat in).
+    pub(crate) fn outside_box(&self, uv: Point, tol: f64) -> bool {
+        let Some(b) = self.param_box() else {
+            return false;
+        };
+        (0..2).any(|i| {
+            let (lo, hi) = b.range(i);
+            let t = if i == 0 { uv.x } else { uv.y };
+            self.period[i].is_none() && (t < lo - tol || t > hi + tol)
+        })
+    }
+
+    /// Whether the straight segment from `a` to `b` in `(u, v)` is one point in space, so
+    /// that a loop may cross it where the file leaves out a degenerate edge: both ends within
+    /// `gap` of one of the surface's pole lines ([`ParamSurface::poles`]: sphere poles, a
+    /// cone's apex, a B-spline or swept surface's degenerate boundary), or the surface maps
+    /// the segment's ends and interior points ([`DEGENERATE_SAMPLES`]) within the model's
+    /// coincidence tolerance of one point (a surface of revolution whose swept curve crosses
+    /// its axis).
+    pub(crate) fn is_pole_join(&self, a: Point, b: Point, gap: f64, tolerance: Tolerance) -> bool {
+        let Some(s) = &self.surface else {
+            return false;
+        };
+        let at = |p: Point, i: usize| if i == 0 { p.x } else { p.y };
+        if s.poles().iter().any(|pole| {
+            (at(a, pole.param) - pole.value).abs() <= gap
+                && (at(b, pole.param) - pole.value).abs() <= gap
+        }) {
             return true;
         }
-        if let Some((c, o, d)) = &self.revolution
-            && (a[1] - b[1]).abs() <= tol
-        {
-            let p = geom::sub(c.point(a[1]), *o);
-            let off = geom::sub(p, geom::scale(*d, geom::dot(p, *d)));
-            return geom::norm(off) <= tol;
-        }
-        false
+        let point = |p: Point| s.point([p.x, p.y]);
+        let pa = point(a);
+        let others: Vec<Point3> = DEGENERATE_SAMPLES
+            .iter()
+            .map(|&t| point(a + (b - a) * t))
+            .chain(std::iter::once(point(b)))
+            .collect();
+        let size = others.iter().fold(pa.max_abs(), |m, p| m.max(p.max_abs()));
+        let tol = tolerance.coincidence(size);
+        others.iter().all(|p| p.distance(pa) <= tol)
     }
 }
 
-/// A closed B-spline surface's knot-domain start and length in the closed directions.
-fn bspline_periods(_g: &Graph, inst: &super::graph::Instance) -> Option<[Option<(f64, f64)>; 2]> {
-    // Simple: (name, u_degree, v_degree, points, form, u_closed, v_closed, self_int,
-    // u_mults, v_mults, u_knots, v_knots, spec); complex: B_SPLINE_SURFACE(u_degree,
-    // v_degree, points, form, u_closed, v_closed, self_int) and
-    // B_SPLINE_SURFACE_WITH_KNOTS(u_mults, v_mults, u_knots, v_knots, spec).
-    let (s, s0, k, k0) = if inst.is_complex() {
-        (
-            inst.record("B_SPLINE_SURFACE").ok()?,
-            0,
-            inst.record("B_SPLINE_SURFACE_WITH_KNOTS").ok()?,
-            0,
-        )
-    } else {
-        let a = inst.record("B_SPLINE_SURFACE_WITH_KNOTS").ok()?;
-        (a, 1, a, 8)
-    };
-    let mut out = [None, None];
-    for (d, slot) in out.iter_mut().enumerate() {
-        if s.boolean(s0 + 4 + d, "closed").ok()? {
-            let knots = k.reals(k0 + 2 + d, "knots").ok()?;
-            let mults = k.reals(k0 + d, "multiplicities").ok()?;
-            let degree = s.real(s0 + d, "degree").ok()?;
-            // The domain runs from the knot of index `degree` to the one `degree` from the
-            // end, counting multiplicities.
-            let mut expanded = Vec::new();
-            for (m, x) in mults.iter().zip(&knots) {
-                if !(*m >= 0.0 && *m <= 64.0) || expanded.len() > 1 << 16 {
-                    return None;
-                }
-                expanded.extend(std::iter::repeat_n(*x, *m as usize));
-            }
-            let p = degree as usize;
-            let a = *expanded.get(p)?;
-            let b = *expanded.get(expanded.len().checked_sub(p + 1)?)?;
-            *slot = (b > a).then_some((a, b - a));
-        }
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+    use rs_geom::surface::{Cylinder, Revolution, Sphere};
+    use rs_geom::{Conic, ConicKind, Curve};
+
+    use super::*;
+
+    fn face(s: Surface) -> FaceSurface {
+        FaceSurface::new(1, "TEST".into(), Some(s))
     }
-    Some(out)
+
+    #[test]
+    fn pole_joins_are_segments_the_surface_maps_to_one_point() {
+        let t = Tolerance::new(Some(1e-7)).unwrap();
+        let p = Point::new;
+        let sphere = face(Surface::Sphere(Sphere::new(Frame::WORLD, 2.0).unwrap()));
+        assert_eq!(sphere.period, [Some(TAU), None]);
+        assert!(sphere.is_pole_join(p(TAU, -FRAC_PI_2), p(0.0, -FRAC_PI_2), 1e-6, t));
+        assert!(!sphere.is_pole_join(p(TAU, 0.0), p(0.0, 0.0), 1e-6, t));
+        // A latitude a period off is outside the box (pcurves written there get inverted).
+        assert!(sphere.outside_box(p(1.0, -FRAC_PI_2 - TAU), 1e-6));
+        assert!(!sphere.outside_box(p(1.0 + TAU, 0.3), 1e-6));
+        // A circle in a plane through the axis, centred on it (a sphere in disguise): the
+        // lines v = +-pi/2 (where the circle crosses the axis) are points.
+        let circle = Curve::Conic(Conic {
+            kind: ConicKind::Ellipse,
+            center: Point3::ORIGIN,
+            u: Point3::new(1.0, 0.0, 0.0),
+            v: Point3::new(0.0, 0.0, 1.0),
+        });
+        let rev = face(Surface::Revolution(
+            Revolution::new(circle, Point3::ORIGIN, Point3::Z).unwrap(),
+        ));
+        assert!(rev.is_pole_join(p(0.0, FRAC_PI_2), p(1.5, FRAC_PI_2), 1e-6, t));
+        assert!(!rev.is_pole_join(p(0.0, PI), p(1.5, PI), 1e-6, t));
+        // Across a whole period of a cylinder: same ends, not a point.
+        let cyl = face(Surface::Cylinder(Cylinder::new(Frame::WORLD, 1.0).unwrap()));
+        assert!(!cyl.is_pole_join(p(0.0, 0.5), p(TAU, 0.5), 1e-6, t));
+        assert!(!cyl.is_pole_join(p(0.0, 0.5), p(2.0 * TAU, 0.5), 1e-6, t));
+        assert!(cyl.plane.is_none() && cyl.base == [0.0, 0.0]);
+    }
 }

@@ -5,18 +5,24 @@
 //! conversion factor is a measure in another unit (followed at most [`MAX_UNIT_CHAIN`]
 //! deep). Lengths are kept in the file's unit; only angles are converted (to radians).
 
+use super::error::{Result, StepError};
 use super::graph::{Graph, Instance, value_real};
+
+/// Millimetres per metre (SI length units are metres with a prefix).
+const MM_PER_METRE: f64 = 1000.0;
 
 /// The longest chain of conversion-based units followed.
 const MAX_UNIT_CHAIN: usize = 8;
 
 /// The units of one representation context.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Units {
     /// Radians per plane angle unit of the file (1 for radians, `pi / 180` for degrees).
     pub radians_per_angle: f64,
     /// Millimetres per length unit of the file.
     pub mm_per_length: f64,
+    /// The length unit's name, when the context states one (`MILLIMETRE`, `INCH`).
+    pub length_name: Option<String>,
     /// The context's length uncertainty in its length unit, if it states one.
     pub uncertainty: Option<f64>,
 }
@@ -28,6 +34,7 @@ impl Default for Units {
         Self {
             radians_per_angle: 1.0,
             mm_per_length: 1.0,
+            length_name: None,
             uncertainty: None,
         }
     }
@@ -36,7 +43,7 @@ impl Default for Units {
 /// The units of the context `#label`; anything missing or unreadable keeps its default.
 /// Unit errors are not fatal: a face's geometry is read in the file's numbers either way, and
 /// only the angle factor changes values (reported when it is not positive and finite).
-pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units, String> {
+pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units> {
     let mut u = Units::default();
     let Ok(ctx) = g.get(label, "a representation") else {
         return Ok(u);
@@ -50,13 +57,18 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units, String> {
             };
             if unit.is("LENGTH_UNIT") {
                 if let Some(f) = unit_factor(g, unit, 0) {
-                    u.mm_per_length = f * 1000.0;
+                    u.mm_per_length = f * MM_PER_METRE;
+                    u.length_name = Some(unit_name(unit));
                 }
             } else if unit.is("PLANE_ANGLE_UNIT")
                 && let Some(f) = unit_factor(g, unit, 0)
             {
                 if !(f.is_finite() && f > 0.0) {
-                    return Err(format!("{}: plane angle unit factor {f}", unit.what()));
+                    return Err(StepError::BadNumber {
+                        what: unit.what(),
+                        name: "plane angle unit factor",
+                        value: f,
+                    });
                 }
                 u.radians_per_angle = f;
             }
@@ -85,7 +97,7 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units, String> {
                 continue;
             }
             // The measure's unit may differ from the context's length unit.
-            let scale = unit_factor(g, unit, 0).map_or(1.0, |f| f * 1000.0 / u.mm_per_length);
+            let scale = unit_factor(g, unit, 0).map_or(1.0, |f| f * MM_PER_METRE / u.mm_per_length);
             let t = (value * scale).abs();
             if t.is_finite() && t > 0.0 {
                 u.uncertainty = Some(u.uncertainty.map_or(t, |v: f64| v.max(t)));
@@ -93,6 +105,29 @@ pub(crate) fn context_units(g: &Graph, label: u64) -> Result<Units, String> {
         }
     }
     Ok(u)
+}
+
+/// The name of a unit: an SI unit's prefix and name (`MILLIMETRE`), a conversion-based unit's
+/// own name (`INCH`), else its type.
+fn unit_name(unit: &Instance) -> String {
+    use super::graph::Value;
+    if let Ok(si) = unit.record("SI_UNIT") {
+        let prefix = match si.get(0, "prefix") {
+            Ok(Value::Enum(p)) => p.as_str(),
+            _ => "",
+        };
+        let name = match si.get(1, "name") {
+            Ok(Value::Enum(n)) => n.as_str(),
+            _ => "",
+        };
+        return format!("{prefix}{name}");
+    }
+    if let Ok(cb) = unit.record("CONVERSION_BASED_UNIT")
+        && let Ok(Value::Str(n)) = cb.get(0, "name")
+    {
+        return n.clone();
+    }
+    unit.type_name()
 }
 
 /// SI base units (metre, radian) per unit of `unit`.
@@ -163,6 +198,7 @@ ENDSEC;END-ISO-10303-21;";
         let g = Graph::parse(text.as_bytes()).unwrap();
         let u = context_units(&g, 1).unwrap();
         assert_eq!(u.mm_per_length, 1.0);
+        assert_eq!(u.length_name.as_deref(), Some("MILLIMETRE"));
         assert!((u.radians_per_angle - std::f64::consts::PI / 180.0).abs() < 1e-15);
         assert_eq!(u.uncertainty, Some(1e-7));
     }
