@@ -1010,8 +1010,8 @@ class CadModel:
     """A STEP or IGES file read once into a boundary representation: ``faces``
     (:class:`CadFace`, with their surfaces and edges), ``shells`` (:class:`CadShell`) and
     ``solids`` (:class:`CadSolid`), each in OpenCASCADE's explorer order of the same file;
-    ``format`` (``"STEP"`` or ``"IGES"``) and ``tolerance`` (the file's stated tolerance in its
-    length unit, or ``None``)."""
+    ``format`` (``"STEP"`` or ``"IGES"``), ``tolerance`` (the file's stated tolerance in its
+    length unit, or ``None``) and ``length_unit`` (``(name, millimetres per unit)``)."""
 
     __slots__ = ("_native", "faces", "shells", "solids")
 
@@ -1030,6 +1030,9 @@ class CadModel:
 
     format = property(lambda self: self._native.format())
     tolerance = property(lambda self: self._native.tolerance())
+    #: ``(name, millimetres per unit)`` of the file's length unit (lengths stay in it), or
+    #: ``None`` when the file states none.
+    length_unit = property(lambda self: self._native.length_unit())
 
     def __repr__(self) -> str:
         return f"CadModel({self.format}, {len(self.solids)} solids, {len(self.shells)} shells, {len(self.faces)} faces)"

@@ -187,6 +187,14 @@ impl NativeCadModel {
         self.model.tolerance.stated()
     }
 
+    /// The file's length unit: `(name, millimetres per unit)`, or `None` when it states none.
+    fn length_unit(&self) -> Option<(String, f64)> {
+        self.model
+            .length_unit
+            .as_ref()
+            .map(|u| (u.name.clone(), u.millimetres))
+    }
+
     /// The faces with their domains.
     fn faces(&self, py: Python<'_>) -> Vec<(Py<CadFace>, Option<Py<NativeDomain>>)> {
         self.faces

@@ -135,6 +135,7 @@ def test_solids_shells_and_faces_of_a_part_with_a_void(parts):
     need_ocp()
     model = inrs.cad_model(parts[("box_void", "step")])
     assert (model.format, len(model.solids), len(model.shells), len(model.faces)) == ("STEP", 1, 2, 7)
+    assert model.tolerance == 1e-7 and model.length_unit[1] == 1.0
     (solid,) = model.solids
     outer, void = solid.shells
     assert outer.closed and void.closed

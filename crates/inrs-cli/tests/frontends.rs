@@ -65,6 +65,41 @@ fn mesh_refine_splits_every_triangle() {
     );
 }
 
+/// `inrs info` on a part lists its solids with their shells, then its faces (a whole sphere on
+/// its natural bounds); `part.step#solid:K` lists that solid and its faces.
+#[test]
+fn cad_solids_and_shells_are_listed() {
+    let part = fixture("cad/box_void.step");
+    let listing = inrs_ok(&["info", "--domain", &part]);
+    assert!(
+        listing.contains("1 STEP solid, 2 shells, 7 faces (7 read, 0 refused); tolerance 1e-7"),
+        "{listing}"
+    );
+    assert!(
+        listing.contains("solid 0   #15       2 shells"),
+        "{listing}"
+    );
+    assert!(
+        listing.contains("outer shell 0   #16       closed 6 faces 0-5"),
+        "{listing}"
+    );
+    assert!(
+        listing.contains("void  shell 1   #346      closed 1 face 6"),
+        "{listing}"
+    );
+    assert!(
+        listing.contains("SPHERICAL_SURFACE") && listing.contains("natural bounds"),
+        "{listing}"
+    );
+    let solid = inrs_ok(&["info", "--domain", &format!("{part}#solid:0")]);
+    assert_eq!(
+        solid.lines().filter(|l| l.starts_with("face ")).count(),
+        7,
+        "{solid}"
+    );
+    assert!(solid.contains("solid 0"), "{solid}");
+}
+
 /// `--domain part.step#face:K` reads face K in its (u, v) for every command; `inrs info` on the
 /// file lists its faces.
 #[test]

@@ -566,12 +566,110 @@ fn hostile_step_and_iges_files_fail_cleanly() {
         );
         check(&d, &["info", "--domain", &f], Expect::Error(needle), 20);
     }
+    // Broken B-rep parts (the box with a spherical void of python/tests/cad_parts.py, written
+    // by OpenCASCADE): a face with no bounds on a plane and a face on a degenerate placement
+    // are refused with one line; a pcurve a million units off, or at 1e300, refuses its face;
+    // a solid whose shell lost a face is no solid; shells in a cycle fail the file.
+    let void = std::fs::read_to_string(fixture("cad/box_void.step")).unwrap();
+    let cone = std::fs::read_to_string(fixture("cad/cone_minus_sphere.step")).unwrap();
+    let refused_faces = [
+        (
+            "nobounds.step",
+            void.replace(
+                "#17 = ADVANCED_FACE('',(#18),#32,.F.);",
+                "#17 = ADVANCED_FACE('',(),#32,.F.);",
+            ),
+            "a face with no bounds on an unbounded PLANE #32",
+        ),
+        (
+            "degenerate.step",
+            void.replace(
+                "#36 = DIRECTION('',(0.,0.,1.));",
+                "#36 = DIRECTION('',(1.,0.,0.));",
+            ),
+            "#33 AXIS2_PLACEMENT_3D: degenerate axes: the reference direction is along the axis",
+        ),
+        (
+            "faroff.step",
+            cone.replace(
+                "#129 = CARTESIAN_POINT('',(0.,-6.28318530718));",
+                "#129 = CARTESIAN_POINT('',(1.E6,-1.E6));",
+            ),
+            "edge #110 does not meet the previous edge in (u, v)",
+        ),
+        (
+            "huge.step",
+            cone.replace(
+                "#122 = CARTESIAN_POINT('',(6.28318530718,-6.28318530718));",
+                "#122 = CARTESIAN_POINT('',(6.28318530718,-1.E300));",
+            ),
+            "#122 CARTESIAN_POINT: coordinate beyond",
+        ),
+    ];
+    for (name, text, reason) in &refused_faces {
+        assert_ne!(text, &void, "{name}: the edit applies");
+        let f = write(&d, name, text);
+        let r = check(&d, &["info", "--domain", &f], Expect::Success, 20);
+        assert!(
+            r.stdout.contains("refused: ") && r.stdout.contains(reason),
+            "{name}: {}",
+            r.stdout
+        );
+    }
+    let open = write(
+        &d,
+        "openshell.step",
+        void.replace(
+            "#16 = CLOSED_SHELL('',(#17,#137,#237,#284,#331,#338));",
+            "#16 = CLOSED_SHELL('',(#17,#137,#237,#284,#331));",
+        ),
+    );
+    let r = check(&d, &["info", "--domain", &open], Expect::Success, 20);
+    assert!(r.stdout.contains("0 STEP solids, 2 shells"), "{}", r.stdout);
+    assert!(
+        r.stdout.contains("shell 0   #16       open   5 faces 0-4"),
+        "{}",
+        r.stdout
+    );
+    check(
+        &d,
+        &["info", "--domain", &format!("{open}#solid:0")],
+        Expect::Error("solid 0 does not exist: the file has no solids"),
+        20,
+    );
+    let cycle = write(
+        &d,
+        "cycle.step",
+        void.replace(
+            "#345 = ORIENTED_CLOSED_SHELL('',*,#346,.F.);",
+            "#345 = ORIENTED_CLOSED_SHELL('',*,#345,.F.);",
+        ),
+    );
+    check(
+        &d,
+        &["info", "--domain", &cycle],
+        Expect::Error("#345 ORIENTED_CLOSED_SHELL: reference cycle"),
+        20,
+    );
     // A bad selection is an error naming the syntax.
     let f = write(&d, "plate.step", &plate);
     check(
         &d,
         &["info", "--domain", &format!("{f}#face:x")],
-        Expect::Error("write #face:K"),
+        Expect::Error("write #face:K or #solid:K"),
+        20,
+    );
+    // A solid is not a planar domain: commands that take one say so.
+    check(
+        &d,
+        &[
+            "classify",
+            "--domain",
+            &format!("{f}#solid:0"),
+            "--points",
+            &pts,
+        ],
+        Expect::Error("is a solid, not a planar domain"),
         20,
     );
 }

@@ -347,7 +347,7 @@ mod tests {
         boundary_crossing(&Domain::new(curves).unwrap()).unwrap()
     }
 
-    /// Face 90 of FreeCAD's TSM_103_01_L_DV_A.stp: its last arc starts with a span 9e-13
+    /// Face 90 of `FreeCAD`'s `TSM_103_01_L_DV_A.stp`: its last arc starts with a span 9e-13
     /// long whose control points wiggle by 4e-13 at the joint, a writer's cut next to a knot.
     /// That is below the rounding margin: the loop does not cross itself.
     #[test]

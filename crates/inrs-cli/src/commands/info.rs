@@ -96,6 +96,14 @@ impl InfoArgs {
         for s in &solids {
             text.push_str(&format!("{s}\n"));
         }
+        if solid.is_none() {
+            // The shells of no solid (open shells, and closed ones with free edges).
+            let in_solids: Vec<usize> =
+                model.solids.iter().flat_map(|s| s.shells.clone()).collect();
+            for k in (0..model.shells.len()).filter(|k| !in_solids.contains(k)) {
+                text.push_str(&format!("{}\n", model.shell_summary(k)));
+            }
+        }
         for f in &listed {
             text.push_str(&format!("{f}\n"));
         }

@@ -264,7 +264,61 @@ fn ranges(indices: &[usize]) -> String {
 
 #[cfg(test)]
 mod tests {
+    use rs_geom::Tolerance;
+    use rs_geom::brep::{Face, Model};
+    use rs_spline::{Point, segment};
+
     use super::*;
+    use crate::cad::CadFormat;
+
+    /// A one-face model: a `w` by 1 rectangle in `(u, v)`, in a file of tolerance `tol`.
+    fn strip(w: f64, tol: f64) -> CadModel {
+        let c = [(0.0, 0.0), (w, 0.0), (w, 1.0), (0.0, 1.0)].map(|(x, y)| Point::new(x, y));
+        let lines = (0..4)
+            .map(|k| segment(c[k], c[(k + 1) % 4]).unwrap())
+            .collect();
+        CadModel {
+            format: CadFormat::Step,
+            model: Model {
+                faces: vec![Face {
+                    entity: "#1".into(),
+                    surface_name: "PLANE".into(),
+                    surface: None,
+                    surface_error: None,
+                    same_sense: true,
+                    loops: Ok(vec![lines]),
+                    edges: Vec::new(),
+                    pcurve_deviation: None,
+                    natural_bounds: false,
+                }],
+                tolerance: Tolerance::new(Some(tol)).unwrap(),
+                ..Model::default()
+            },
+        }
+    }
+
+    /// A face narrower than the gap its loops close within says so (`SOD_323`'s faces a few
+    /// 1e-7 wide in a file of tolerance 2e-4); a wide one does not.
+    #[test]
+    fn faces_narrower_than_their_closure_tolerance_are_flagged() {
+        let thin = &strip(3e-7, 2e-4).face_summaries(None)[0];
+        // Width 2 area / perimeter = 2 (3e-7) / (2 + 6e-7).
+        assert!((thin.width - 3e-7).abs() < 1e-12, "{}", thin.width);
+        assert_eq!(thin.closure_tolerance, 2e-4);
+        assert!(thin.is_narrow());
+        assert!(
+            thin.to_string()
+                .contains("narrow: 3.0e-7 wide, closed within 2.0e-4"),
+            "{thin}"
+        );
+        let wide = &strip(0.5, 2e-4).face_summaries(None)[0];
+        assert!(
+            !wide.is_narrow() && !wide.to_string().contains("narrow"),
+            "{wide}"
+        );
+        // A caller's relative closure tolerance decides too.
+        assert!(!strip(3e-7, 2e-4).face_summaries(Some(1e-9))[0].is_narrow());
+    }
 
     #[test]
     fn runs_of_indices_are_joined() {
