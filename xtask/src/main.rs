@@ -10,6 +10,7 @@ use inrs::contain::baselines::halton_points;
 use inrs::{Classifier, ContainOptions, Domain, DomainSummary, Location, Method, Point};
 use rs_testkit::FixtureMeta;
 
+mod architecture;
 mod bench;
 mod coverage_figure;
 mod cubature_figure;
