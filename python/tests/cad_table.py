@@ -1,9 +1,10 @@
 """Markdown tables of the real CAD files against OpenCASCADE, for docs/CAD.md.
 
-    python python/tests/cad_table.py [FILE ...] [--points N]
+    python python/tests/cad_table.py [FILE ...] [--points N] [--parts]
 
 Without files: the files of test_cad_occ.py (freecad-common's IDF parts and gmsh-doc's demos;
-the gzipped ones are decompressed into a temporary directory). For each file: the faces OCC
+the gzipped ones are decompressed into a temporary directory); ``--parts`` adds the test parts
+OCC makes (cad_parts.py: STEP, IGES faces mode and IGES B-rep mode). For each file: the faces OCC
 reads, what ``inrs.occ.face_domain`` makes of them and how its classification compares with
 OCC's, then, where this build has ``inrs.cad_model`` (the Rust readers), the faces read and
 refused (with the distinct reasons), the faces with fitted pcurves, the largest distance of our
@@ -31,6 +32,7 @@ def main(argv=None) -> int:
         "files", nargs="*", type=pathlib.Path, help="STEP/IGES files (.gz too); default: the test's files"
     )
     parser.add_argument("--points", type=int, default=cad_files.POINTS_PER_FACE, help="random (u, v) points per face")
+    parser.add_argument("--parts", action="store_true", help="add the test parts OCC makes (cad_parts.py)")
     args = parser.parse_args(argv)
     try:
         cad_files.load_ocp()
@@ -42,6 +44,12 @@ def main(argv=None) -> int:
     occ_rows, reader_rows, reasons, missing = [], [], [], []
     start = time.perf_counter()
     with tempfile.TemporaryDirectory() as scratch:
+        if args.parts:
+            import cad_parts
+
+            cad_parts.quiet()
+            parts = cad_parts.write_parts(pathlib.Path(scratch) / "parts")
+            sources += [(path.name, path) for part in parts.values() for path in part.files().values()]
         for name, source in sources:
             if not source.exists():
                 missing.append(cad_files.missing_message(source))

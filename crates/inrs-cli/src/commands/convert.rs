@@ -8,7 +8,7 @@ use crate::args::DomainArg;
 use crate::cli::error::CliError;
 use crate::cli::output::write_text;
 
-/// Convert a domain (SVG, DXF, font glyph or JSON) to the JSON domain file format.
+/// Convert a domain (SVG, DXF, font glyph, STEP/IGES face or JSON) to the JSON domain file format.
 #[derive(Args, Debug)]
 pub(crate) struct ConvertArgs {
     #[command(flatten)]
