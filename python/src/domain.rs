@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 
 use inrs::contain::baselines::WindingAlgorithm;
 use inrs::contain::{FillRule, WindingField};
+use inrs::spline::limits::NonNegative;
 use inrs::{ContainOptions, Containment, Domain, Location, Method, NurbsCurve, Point, PointQuery};
 
 use crate::errors::{io_error, value_error};
@@ -140,21 +141,15 @@ fn cached<K: std::hash::Hash + Eq, T>(
 
 /// The boundary tolerance: finite and non-negative.
 pub(crate) fn check_tolerance(tol: f64) -> PyResult<()> {
-    if tol.is_finite() && tol >= 0.0 {
-        Ok(())
-    } else {
-        Err(value_error(format!(
-            "tolerance {tol} must be finite and >= 0"
-        )))
-    }
+    NonNegative::new(tol)
+        .map(|_| ())
+        .map_err(|e| value_error(format!("tolerance {e}")))
 }
 
 /// `closure_tol=`: `None`, or finite and non-negative.
 pub(crate) fn check_closure_tol(closure_tol: Option<f64>) -> PyResult<()> {
-    match closure_tol {
-        Some(t) if !(t.is_finite() && t >= 0.0) => Err(value_error(format!(
-            "closure_tol {t} must be finite and >= 0"
-        ))),
+    match closure_tol.map(NonNegative::new) {
+        Some(Err(e)) => Err(value_error(format!("closure_tol {e}"))),
         _ => Ok(()),
     }
 }

@@ -98,11 +98,9 @@ impl ContainOptions {
     /// [`ContainError::InvalidTolerance`] for a relative tolerance that is negative or not
     /// finite.
     pub fn validated(self) -> Result<Self, ContainError> {
-        if self.relative_tolerance.is_finite() && self.relative_tolerance >= 0.0 {
-            Ok(self)
-        } else {
-            Err(ContainError::InvalidTolerance(self.relative_tolerance))
-        }
+        rs_spline::limits::NonNegative::new(self.relative_tolerance)
+            .map(|_| self)
+            .map_err(|e| ContainError::InvalidTolerance(e.0))
     }
 
     /// The fields, the tolerance by its bits: what equality and hashing compare.

@@ -9,7 +9,7 @@
 
 use rs_boxes::{BoxError, BoxGrid, BoxOptions, MonotoneBox, MonotoneBoxes};
 use rs_spline::prelude::*;
-use rs_spline::{Domain, Point, RationalBezier, certain_crossing};
+use rs_spline::{Domain, Point, RationalBezier, certain_crossing, closed_in_crossing};
 
 /// A point where the boundary certainly crosses itself: [`boundary_crossing`]'s answer.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,8 +17,8 @@ use rs_spline::{Domain, Point, RationalBezier, certain_crossing};
 pub struct BoundaryCrossing {
     /// The indices of the two curves that cross (equal for a curve that crosses itself).
     pub curves: (usize, usize),
-    /// A point near the crossing: where the chords of the two parts that show it cross (the
-    /// parts' size away at most).
+    /// Where the loops cross: the parts that show it halved while a pair of halves still
+    /// shows it ([`closed_in_crossing`]), so to rounding unless the crossing is at a joint.
     pub near: Point,
 }
 
@@ -181,8 +181,11 @@ fn halved_crossing(
     if !bp.grown_by(margin).overlaps(&bq) {
         return None;
     }
-    if let Some(x) = certain_crossing(p.control_points(), q.control_points(), margin) {
-        return Some(x);
+    if certain_crossing(p.control_points(), q.control_points(), margin).is_some() {
+        // Closed in on to rounding, so that the error names where the loops cross.
+        return closed_in_crossing(p.clone(), q.clone(), margin, MAX_HALVINGS as usize, |c| {
+            c.control_points()
+        });
     }
     if depth == 0 {
         return None;

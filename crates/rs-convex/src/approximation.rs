@@ -293,9 +293,8 @@ pub fn approximate(
             bbox: bbox.dimension(),
         });
     }
-    if !(options.relative_tolerance.is_finite() && options.relative_tolerance >= 0.0) {
-        return Err(ConvexError::InvalidTolerance(options.relative_tolerance));
-    }
+    rs_spline::limits::NonNegative::new(options.relative_tolerance)
+        .map_err(|e| ConvexError::InvalidTolerance(e.0))?;
     if options.max_level > MAX_LEVEL {
         return Err(ConvexError::InvalidLevel(options.max_level));
     }

@@ -236,9 +236,10 @@ impl Figure {
     /// A size that is not finite or below zero draws nothing.
     pub fn mark_sized(&mut self, p: Point, size: f64, style: &Style) {
         self.remember(style);
-        if !(size.is_finite() && size >= 0.0) {
+        let Ok(size) = rs_spline::limits::NonNegative::new(size) else {
             return;
-        }
+        };
+        let size = size.get();
         let (x, y) = self.to_pixels(p);
         self.body
             .push_str(&style.sized_marker_svg(style.marker().with_size(size), x, y));

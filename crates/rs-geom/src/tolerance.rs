@@ -15,6 +15,7 @@
 //! `size` is the size of what is compared (its largest coordinate), `diagonal` and `magnitude`
 //! the diagonal and largest coordinate of the face's `(u, v)` box.
 
+use rs_spline::limits::NonNegative;
 use rs_spline::{BoundingBox, DEFAULT_RELATIVE_CLOSURE_TOLERANCE};
 
 use crate::GeomError;
@@ -47,13 +48,13 @@ impl Tolerance {
     /// # Errors
     /// [`GeomError::NotFinite`] for a stated tolerance that is negative, NaN or infinite.
     pub fn new(stated: Option<f64>) -> Result<Tolerance, GeomError> {
-        match stated {
-            Some(t) if !(t.is_finite() && t >= 0.0) => Err(GeomError::NotFinite {
+        if let Some(t) = stated {
+            NonNegative::new(t).map_err(|e| GeomError::NotFinite {
                 what: "model tolerance",
-                value: t,
-            }),
-            _ => Ok(Tolerance { stated }),
+                value: e.0,
+            })?;
         }
+        Ok(Tolerance { stated })
     }
 
     /// The file's own tolerance, if it states one.

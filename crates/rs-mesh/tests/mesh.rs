@@ -512,6 +512,28 @@ fn crossing_loops_are_refused_naming_the_crossing() {
     }
 }
 
+/// One loop crossing itself (a figure eight of two cubics through the origin): refused before
+/// any triangle is built (it used to give a triangulation whose arcs missed their vertices).
+#[test]
+fn a_loop_crossing_itself_is_refused() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fixtures/fill-rule/figure_eight.json"
+    ))
+    .unwrap();
+    let d = rs_io::json::domain_from_json(&text).unwrap();
+    for ny in [4, 8, 20] {
+        let err = CurvedTriangulation::new(&d, &well_spaced_points(&d, ny).unwrap()).unwrap_err();
+        let rs_mesh::MeshError::BoundaryCrosses { near } = err else {
+            panic!("ny={ny}: {err}");
+        };
+        assert!(
+            near.distance(Point::new(0.0, 0.0)) < 1e-6,
+            "ny={ny}: {near:?}"
+        );
+    }
+}
+
 /// Loops that touch without crossing, and a loop near another without meeting it: never
 /// refused as crossing (the certificate needs each arc's ends on both sides of the other).
 #[test]

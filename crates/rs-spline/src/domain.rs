@@ -123,9 +123,8 @@ impl Domain {
         curves: Vec<NurbsCurve>,
         relative_tolerance: f64,
     ) -> Result<Self, DomainError> {
-        if !(relative_tolerance.is_finite() && relative_tolerance >= 0.0) {
-            return Err(DomainError::InvalidTolerance(relative_tolerance));
-        }
+        crate::limits::NonNegative::new(relative_tolerance)
+            .map_err(|e| DomainError::InvalidTolerance(e.0))?;
         let bbox = curves
             .iter()
             .map(NurbsCurve::bounding_box)

@@ -75,7 +75,7 @@ mod vector;
 pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
 pub use bezier::RationalBezier;
-pub use crossing::certain_crossing;
+pub use crossing::{certain_crossing, closed_in_crossing};
 pub use curve::{
     ArcLengthTable, Flatten, ParamCurve, ParamCurveArclen, ParamCurveArea, ParamCurveDeriv,
     ParamCurveExtrema, flatten_chain, prelude,

@@ -61,3 +61,44 @@ pub fn read_text_file(path: &std::path::Path) -> std::io::Result<String> {
         )
     })
 }
+
+/// A number that is finite and `>= 0`: every tolerance, relative tolerance and size a user
+/// gives, checked once where it enters ([`NonNegative::new`]) so that code holding one needs
+/// no second check.
+///
+/// ```
+/// use rs_spline::limits::NonNegative;
+/// assert_eq!(NonNegative::new(1e-9).map(NonNegative::get), Ok(1e-9));
+/// assert!(NonNegative::new(-1.0).is_err());
+/// assert!(NonNegative::new(f64::NAN).is_err());
+/// assert_eq!(NonNegative::new(f64::INFINITY).unwrap_err().to_string(), "inf must be finite and >= 0");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub struct NonNegative(f64);
+
+/// A number that should have been finite and `>= 0` (its value is kept for the message).
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("{0} must be finite and >= 0")]
+pub struct NotNonNegative(pub f64);
+
+impl NonNegative {
+    /// Zero.
+    pub const ZERO: NonNegative = NonNegative(0.0);
+
+    /// `value` if it is finite and `>= 0`.
+    ///
+    /// # Errors
+    /// [`NotNonNegative`] with the value for a negative, NaN or infinite one.
+    pub fn new(value: f64) -> Result<NonNegative, NotNonNegative> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(NonNegative(value))
+        } else {
+            Err(NotNonNegative(value))
+        }
+    }
+
+    /// The number.
+    pub fn get(self) -> f64 {
+        self.0
+    }
+}

@@ -53,11 +53,12 @@ fn in_range(s: &str, lo: u64, hi: u64) -> Result<u64, String> {
 
 /// `--tol` (of classify and convex-domain): a finite number >= 0.
 pub(crate) fn parse_tolerance(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
-        Ok(v) => Err(format!("{v} must be finite and >= 0")),
-        Err(_) => Err(format!("{s:?} is not a number")),
-    }
+    let v = s
+        .parse::<f64>()
+        .map_err(|_| format!("{s:?} is not a number"))?;
+    inrs::spline::limits::NonNegative::new(v)
+        .map(|v| v.get())
+        .map_err(|e| e.to_string())
 }
 
 /// `--subdivisions`: 1 to [`inrs::boxes::MAX_SUBDIVISIONS`].

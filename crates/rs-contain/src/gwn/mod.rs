@@ -13,6 +13,7 @@ use rs_boxes::{BoxError, BoxGrid, BoxOptions, MonotoneBoxes};
 use smallvec::SmallVec;
 use std::sync::{Arc, OnceLock};
 
+use rs_spline::limits::NonNegative;
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point, RationalBezier};
 
@@ -298,9 +299,7 @@ impl WindingField {
     /// [`ContainError::InvalidTolerance`]. (The monotone boxes are built later; if they cannot
     /// be, see the type's Construction.)
     pub fn new(domain: &Domain, relative_tolerance: f64) -> Result<Self, ContainError> {
-        if !(relative_tolerance.is_finite() && relative_tolerance >= 0.0) {
-            return Err(ContainError::InvalidTolerance(relative_tolerance));
-        }
+        NonNegative::new(relative_tolerance).map_err(|e| ContainError::InvalidTolerance(e.0))?;
         Ok(Self::build(
             domain,
             BoxSource::Domain(Arc::new(domain.clone())),

@@ -2,6 +2,7 @@
 //! joints, loops oriented by their nesting (positive area).
 
 use rs_contain::loop_nesting;
+use rs_spline::limits::NonNegative;
 use rs_spline::prelude::*;
 use rs_spline::{BoundingBox, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, DomainError, NurbsCurve};
 
@@ -31,10 +32,8 @@ impl Model {
             index,
             count: self.faces.len(),
         })?;
-        if let Some(t) = relative_closure_tolerance
-            && !(t.is_finite() && t >= 0.0)
-        {
-            return Err(DomainError::InvalidTolerance(t).into());
+        if let Some(t) = relative_closure_tolerance {
+            NonNegative::new(t).map_err(|e| DomainError::InvalidTolerance(e.0))?;
         }
         let fail = |error: FaceError| ModelError::Face {
             index,

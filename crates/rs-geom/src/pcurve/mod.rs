@@ -202,13 +202,12 @@ pub fn pcurve(
     range: Option<(f64, f64)>,
     options: &PcurveOptions,
 ) -> Result<Pcurve, GeomError> {
-    let tolerance = options.tolerance;
-    if !(tolerance.is_finite() && tolerance >= 0.0) {
-        return Err(GeomError::NotFinite {
+    let tolerance = rs_spline::limits::NonNegative::new(options.tolerance)
+        .map_err(|e| GeomError::NotFinite {
             what: "pcurve tolerance",
-            value: tolerance,
-        });
-    }
+            value: e.0,
+        })?
+        .get();
     let (t0, t1) = range
         .or_else(|| edge.range())
         .ok_or(GeomError::UnboundedEdge)?;

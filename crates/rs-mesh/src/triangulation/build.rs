@@ -12,7 +12,7 @@ use spade::Triangulation as _;
 
 use super::arcs::{attach_arcs, chord_arc};
 use super::cdt::{Vertices, constrain_chords, faces_inside, stray_interior};
-use super::crossing::where_arcs_meet;
+use super::crossing::{check_no_crossing, where_arcs_meet};
 use super::curved::{CurvedTriangulation, Refinement};
 use super::insertion::{curve_corners, refine_loops};
 use super::refine::refine;
@@ -81,6 +81,7 @@ impl CurvedTriangulation {
         finish: impl Fn(Self) -> Result<Self, Vec<(usize, usize)>>,
     ) -> Result<Self, MeshError> {
         check_boundary_pieces(domain)?;
+        check_no_crossing(domain)?;
         let vertices = points.interior.len() + points.boundary.iter().map(Vec::len).sum::<usize>();
         if vertices > MAX_MESH_VERTICES {
             return Err(MeshError::TooManyPoints {

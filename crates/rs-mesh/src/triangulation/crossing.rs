@@ -2,47 +2,55 @@
 //! their control polygons and closed in on by halving. A boundary that crosses itself is
 //! reported there instead of being split without end.
 
-use rs_spline::prelude::*;
-use rs_spline::{NurbsCurve, Point};
+use rs_spline::{Domain, NurbsCurve, Point};
 
-/// A point where two curves certainly meet, if their control polygons show it
-/// ([`rs_spline::certain_crossing`] with a margin of `1e-9 size`, above any rounding here).
-/// Curves that share an end are never certified.
-fn arcs_certainly_meet(p: &NurbsCurve, q: &NurbsCurve, size: f64) -> Option<Point> {
-    rs_spline::certain_crossing(p.control_points(), q.control_points(), 1e-9 * size)
-}
+use crate::MeshError;
+
+/// The margin of the certificates on arcs: `1e-9` of the domain's size, above any rounding.
+const RELATIVE_MARGIN: f64 = 1e-9;
 
 /// Halvings of two certainly meeting arcs ([`where_arcs_meet`]) to close in on where.
 const MEETING_HALVINGS: usize = 40;
 
-/// A point where two arcs certainly meet ([`arcs_certainly_meet`]), closed in on by halving
-/// both and keeping a pair of halves that still certainly meets, up to
-/// [`MEETING_HALVINGS`] times (until no pair is certain: the meeting point is then near a
-/// half's end).
+/// A point where two arcs certainly meet (their control polygons show it:
+/// [`rs_spline::certain_crossing`]; arcs that share an end are never certified), closed in on
+/// by halving both ([`rs_spline::closed_in_crossing`], at most [`MEETING_HALVINGS`] times).
 pub(super) fn where_arcs_meet(p: NurbsCurve, q: NurbsCurve, size: f64) -> Option<Point> {
-    let mut near = arcs_certainly_meet(&p, &q, size)?;
-    let (mut p, mut q) = (p, q);
-    for _ in 0..MEETING_HALVINGS {
-        let (ps, qs) = (p.subdivide(), q.subdivide());
-        let (ps, qs) = ([ps.0, ps.1], [qs.0, qs.1]);
-        let Some((x, i, j)) = (0..4).find_map(|k| {
-            let (i, j) = (k / 2, k % 2);
-            arcs_certainly_meet(&ps[i], &qs[j], size).map(|x| (x, i, j))
-        }) else {
-            break;
-        };
-        near = x;
-        let [p0, p1] = ps;
-        let [q0, q1] = qs;
-        p = if i == 0 { p0 } else { p1 };
-        q = if j == 0 { q0 } else { q1 };
+    rs_spline::closed_in_crossing(p, q, RELATIVE_MARGIN * size, MEETING_HALVINGS, |c| {
+        c.control_points()
+    })
+}
+
+/// Refuses a boundary whose loops cross each other or themselves (a figure eight) before any
+/// triangle is built: no curved triangulation has both crossing arcs as edges, and building
+/// one anyway gives arcs that miss their vertices. Touching loops are left to the
+/// triangulation, which names them.
+///
+/// # Errors
+/// [`MeshError::BoundaryCrosses`] where the loops cross ([`rs_contain::boundary_crossing`]);
+/// [`MeshError::Boxes`] if the boundary cannot be cut into monotone pieces.
+pub(crate) fn check_no_crossing(domain: &Domain) -> Result<(), MeshError> {
+    match rs_contain::boundary_crossing(domain)? {
+        Some(crossing) => Err(MeshError::BoundaryCrosses {
+            near: crossing.near,
+        }),
+        None => Ok(()),
     }
-    Some(near)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rs_spline::prelude::*;
+
+    /// Whether two arcs certainly meet, without closing in.
+    fn arcs_certainly_meet(p: &NurbsCurve, q: &NurbsCurve, size: f64) -> Option<Point> {
+        rs_spline::certain_crossing(
+            p.control_points(),
+            q.control_points(),
+            RELATIVE_MARGIN * size,
+        )
+    }
 
     /// Segments and arcs that cross are certified, with the crossing found by halving;
     /// ends touching the other curve, shared ends, parallel and missing pairs are not.
