@@ -148,23 +148,7 @@ impl ConvexPolytope {
 }
 
 fn bounding_size(points: &[P3]) -> f64 {
-    let (lo, hi) = points.iter().fold(
-        (
-            Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
-            Point3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
-        ),
-        |(lo, hi), p| {
-            (
-                Point3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
-                Point3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
-            )
-        },
-    );
-    if lo.x.is_finite() {
-        (hi - lo).length()
-    } else {
-        0.0
-    }
+    Point3::bounds(points.iter().copied()).map_or(0.0, |(lo, hi)| (hi - lo).length())
 }
 
 #[cfg(test)]

@@ -64,6 +64,20 @@ impl Point3 {
         self + (o - self) * t
     }
 
+    /// The corners `(min, max)` of the axis-aligned box of `points`, coordinate by
+    /// coordinate; `None` for no points.
+    pub fn bounds(points: impl IntoIterator<Item = Point3>) -> Option<(Point3, Point3)> {
+        points.into_iter().fold(None, |b, p| {
+            Some(match b {
+                None => (p, p),
+                Some((lo, hi)) => (
+                    Point3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
+                    Point3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
+                ),
+            })
+        })
+    }
+
     /// The largest absolute coordinate.
     pub fn max_abs(self) -> f64 {
         self.x.abs().max(self.y.abs()).max(self.z.abs())

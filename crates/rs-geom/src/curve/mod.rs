@@ -49,6 +49,13 @@ pub enum Curve<P> {
     },
 }
 
+/// Parameters within this fraction of a period of a periodic curve's range are in it
+/// ([`Curve::pieces_in_range`]).
+const PERIODIC_RANGE_SLACK: f64 = 1e-9;
+
+/// The most whole periods [`Curve::pieces_in_range`] translates an interval by.
+const MAX_PERIODS_SHIFTED: f64 = 1e6;
+
 impl<P: Vector + std::ops::Div<f64, Output = P>> Curve<P> {
     /// The point at `t` (a B-spline's parameter clamped to its domain).
     pub fn point(&self, t: f64) -> P {
@@ -80,6 +87,47 @@ impl<P: Vector + std::ops::Div<f64, Output = P>> Curve<P> {
             Curve::Trimmed { range, .. } => Some(*range),
             Curve::Line { .. } | Curve::Conic(_) => None,
         }
+    }
+
+    /// The pieces of the curve's parameter range that `[lo, hi]` (increasing) covers when its
+    /// parameter repeats with `period`: an unbounded curve (line, conic) or one without a
+    /// period takes `[lo, hi]` as it is; a bounded one takes it translated by whole periods
+    /// into its range, and where the range spans a whole period an interval across its end
+    /// wraps around: two pieces, `[lo, b]` then `[a, hi - period]`. Parameters within `1e-9`
+    /// of a period of the range are in it (vertices printed to ten digits land a little
+    /// outside); an interval more than `1e6` periods away is taken as it is.
+    pub fn pieces_in_range(&self, lo: f64, hi: f64, period: Option<f64>) -> Vec<(f64, f64)> {
+        let (Some((a, b)), Some(p)) = (self.range(), period) else {
+            return vec![(lo, hi)];
+        };
+        let eps = PERIODIC_RANGE_SLACK * p;
+        if lo >= a - eps && hi <= b + eps {
+            return vec![(lo, hi)];
+        }
+        let full = (b - a - p).abs() <= eps;
+        let k = ((lo - a) / p).floor();
+        if !k.is_finite() || k.abs() > MAX_PERIODS_SHIFTED {
+            return vec![(lo, hi)];
+        }
+        let (l2, h2) = (lo - k * p, hi - k * p);
+        if h2 <= b + eps {
+            return vec![(l2, h2)];
+        }
+        if full {
+            let mut out = Vec::new();
+            if b - l2 > eps {
+                out.push((l2, b));
+            }
+            if h2 - p - a > eps {
+                out.push((a, h2 - p));
+            }
+            if !out.is_empty() {
+                return out;
+            }
+        }
+        // A partial curve: the translation that overlaps its range most.
+        let k2 = ((a - lo) / p).round();
+        vec![(lo + k2 * p, hi + k2 * p)]
     }
 
     /// The period of a closed curve: `2 pi` for ellipses (and trimmed windows of them), the

@@ -333,46 +333,8 @@ pub(crate) fn domain_pieces(edge: &Curve<Point3>, lo: f64, hi: f64) -> Vec<(f64,
         Curve::Trimmed { .. } => None,
         _ => edge.period(),
     };
-    let (Some((a, b)), Some(p)) = (edge.range(), period) else {
-        return vec![(lo, hi)];
-    };
-    // Parameters this close (relative to the period) to the range are in it.
-    let eps = DOMAIN_SLACK * p;
-    if lo >= a - eps && hi <= b + eps {
-        return vec![(lo, hi)];
-    }
-    let full = (b - a - p).abs() <= eps;
-    let k = ((lo - a) / p).floor();
-    if !k.is_finite() || k.abs() > MAX_PERIOD_SHIFT {
-        return vec![(lo, hi)];
-    }
-    let (l2, h2) = (lo - k * p, hi - k * p);
-    if h2 <= b + eps {
-        return vec![(l2, h2)];
-    }
-    if full {
-        let mut out = Vec::new();
-        if b - l2 > eps {
-            out.push((l2, b));
-        }
-        if h2 - p - a > eps {
-            out.push((a, h2 - p));
-        }
-        if !out.is_empty() {
-            return out;
-        }
-    }
-    let k2 = ((a - lo) / p).round();
-    vec![(lo + k2 * p, hi + k2 * p)]
+    edge.pieces_in_range(lo, hi, period)
 }
-
-/// Parameters within this fraction of a period of a periodic curve's range are in it
-/// (vertices printed to ten digits land a little outside).
-const DOMAIN_SLACK: f64 = 1e-9;
-
-/// The most whole periods a range is translated by (a range farther from the curve's domain
-/// is taken as it is: the curve's evaluation clamps it).
-const MAX_PERIOD_SHIFT: f64 = 1e6;
 
 /// A stretch of the edge from its parameter `ta` to `tb` (either order), parameterised by
 /// `s` in `[0, 1]`: `t = ta + s (tb - ta)`.

@@ -69,19 +69,9 @@ impl BSplineSurface {
         let checked = RationalBSpline::from_parts(polygon, points, weights)?;
         let weights = checked.weights().map(<[f64]>::to_vec);
         let points = checked.control_points().to_vec();
-        let (lo, hi) = points.iter().fold(
-            (
-                Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
-                Point3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
-            ),
-            |(lo, hi), p| {
-                (
-                    Point3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
-                    Point3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
-                )
-            },
-        );
-        let size = lo.distance(hi).max(f64::MIN_POSITIVE);
+        let size = Point3::bounds(points.iter().copied())
+            .map_or(0.0, |(lo, hi)| lo.distance(hi))
+            .max(f64::MIN_POSITIVE);
         let mut s = BSplineSurface {
             knots,
             points,

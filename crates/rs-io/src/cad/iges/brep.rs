@@ -24,7 +24,7 @@ use rs_spline::NurbsCurve;
 use rs_spline::prelude::*;
 
 use super::Iges;
-use super::curves::Piece;
+use super::curves::{Piece, leaf_edges};
 use super::directory::DirEntry;
 use super::error::IgesError;
 use super::surfaces::SurfaceInfo;
@@ -174,15 +174,7 @@ impl Iges<'_> {
                             self.model_pieces(&leaves.clone()?, reversed, info, near, deviation)?;
                     }
                     if let Ok(leaves) = leaves {
-                        let mut e: Vec<Edge> = leaves
-                            .iter()
-                            .map(|l| l.edge(reversed))
-                            .collect::<Result<_, _>>()
-                            .unwrap_or_default();
-                        if reversed {
-                            e.reverse();
-                        }
-                        loop_edges.extend(e);
+                        loop_edges.extend(leaf_edges(&leaves, reversed));
                     }
                 }
                 t => {

@@ -225,6 +225,20 @@ impl Placed {
     }
 }
 
+/// The 3-D edges of a curve's leaves in loop order, run backwards when `reversed` (none if
+/// a leaf has no model-space curve: the face then has no 3-D edges there).
+pub(super) fn leaf_edges(leaves: &[Placed], reversed: bool) -> Vec<Edge> {
+    let mut edges: Vec<Edge> = leaves
+        .iter()
+        .map(|l| l.edge(reversed))
+        .collect::<Result<_, _>>()
+        .unwrap_or_default();
+    if reversed {
+        edges.reverse();
+    }
+    edges
+}
+
 /// Reverses a list of pieces: the last first, each run backwards.
 pub(super) fn reverse_pieces(pieces: &mut [Piece]) {
     pieces.reverse();

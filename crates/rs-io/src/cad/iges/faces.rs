@@ -26,7 +26,7 @@ use rs_geom::surface::{ParamSurface, Surface};
 use rs_spline::prelude::*;
 use rs_spline::{BoundingBox, NurbsCurve, Point, segment};
 
-use super::curves::{Piece, Placed, reverse_pieces};
+use super::curves::{Piece, Placed, leaf_edges, reverse_pieces};
 use super::directory::DirEntry;
 use super::error::IgesError;
 use super::surfaces::SurfaceInfo;
@@ -657,15 +657,7 @@ impl Iges<'_> {
                 these
             };
             if let Ok(leaves) = leaves {
-                let mut e: Vec<Edge> = leaves
-                    .iter()
-                    .map(|l| l.edge(reversed))
-                    .collect::<Result<_, _>>()
-                    .unwrap_or_default();
-                if reversed {
-                    e.reverse();
-                }
-                loop_edges.extend(e);
+                loop_edges.extend(leaf_edges(&leaves, reversed));
             }
             pieces.extend(these);
         }

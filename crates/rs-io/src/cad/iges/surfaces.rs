@@ -278,6 +278,20 @@ impl Iges<'_> {
         frame.map_err(|e| IgesError::geometry(who, e))
     }
 
+    /// The frame at the 116 point `origin` with the 123 direction `axis` as its `z` (and the
+    /// 123 `reference` as its `x`, else `OpenCASCADE`'s default).
+    fn frame_of(
+        &self,
+        who: &str,
+        origin: usize,
+        axis: usize,
+        reference: Option<usize>,
+    ) -> Result<Frame, IgesError> {
+        let origin = self.point_116(origin, who)?;
+        let axis = self.direction_123(axis, who)?;
+        self.frame(who, origin, axis, reference)
+    }
+
     /// 192 cylinder, 194 cone, 196 sphere, 198 torus (see the module documentation).
     fn elementary(&self, s: &DirEntry) -> Result<Read, IgesError> {
         let who = self.who(s);
@@ -289,12 +303,7 @@ impl Iges<'_> {
             192 => {
                 let (origin, axis, r) = (p.pointer("P")?, p.pointer("A")?, p.real("R")?);
                 let x = if form1 { Some(p.pointer("X")?) } else { None };
-                let f = self.frame(
-                    &who,
-                    self.point_116(origin, &who)?,
-                    self.direction_123(axis, &who)?,
-                    x,
-                )?;
+                let f = self.frame_of(&who, origin, axis, x)?;
                 let c = Cylinder::new(f, r).map_err(geom)?;
                 (scaled(&who, Surface::Cylinder(c), [deg, 1.0])?, None)
             }
@@ -302,12 +311,7 @@ impl Iges<'_> {
                 let (origin, axis) = (p.pointer("P")?, p.pointer("A")?);
                 let (r, angle) = (p.real("R")?, p.real("SANG")?);
                 let x = if form1 { Some(p.pointer("X")?) } else { None };
-                let f = self.frame(
-                    &who,
-                    self.point_116(origin, &who)?,
-                    self.direction_123(axis, &who)?,
-                    x,
-                )?;
+                let f = self.frame_of(&who, origin, axis, x)?;
                 let a = angle * deg;
                 let c = Cone::new(f, r, a).map_err(geom)?;
                 (scaled(&who, Surface::Cone(c), [deg, a.cos()])?, None)
@@ -332,12 +336,7 @@ impl Iges<'_> {
                 let (centre, axis) = (p.pointer("C")?, p.pointer("A")?);
                 let (major, minor) = (p.real("R1")?, p.real("R2")?);
                 let x = if form1 { Some(p.pointer("X")?) } else { None };
-                let f = self.frame(
-                    &who,
-                    self.point_116(centre, &who)?,
-                    self.direction_123(axis, &who)?,
-                    x,
-                )?;
+                let f = self.frame_of(&who, centre, axis, x)?;
                 let torus = Torus::new(f, major, minor).map_err(geom)?;
                 (
                     scaled(&who, Surface::Torus(torus), [deg, deg])?,

@@ -388,11 +388,7 @@ impl Walk<'_> {
     fn item(&mut self, label: u64, at: Site, depth: usize) -> Result<()> {
         let inst = self.g.get(label, "a representation")?;
         let what = inst.what();
-        let name = inst
-            .parts
-            .first()
-            .map(|p| p.name.as_str())
-            .unwrap_or_default();
+        let name = inst.first_name();
         if inst.is("ADVANCED_FACE")
             || inst.is("FACE_SURFACE")
             || (name == "ORIENTED_FACE" && !inst.is_complex())
@@ -483,11 +479,7 @@ impl Walk<'_> {
     ) -> Result<Option<usize>> {
         let inst = self.g.get(label, "a solid")?;
         let what = inst.what();
-        let name = inst
-            .parts
-            .first()
-            .map(|p| p.name.as_str())
-            .unwrap_or_default();
+        let name = inst.first_name();
         if !self.enter(label, depth)? {
             return Err(StepError::Cycle { what });
         }

@@ -98,6 +98,14 @@ impl Instance {
         }
     }
 
+    /// The name of its first record (a simple instance's type), or `""`.
+    pub(crate) fn first_name(&self) -> &str {
+        self.parts
+            .first()
+            .map(|p| p.name.as_str())
+            .unwrap_or_default()
+    }
+
     /// Whether the instance is of type `name` (a simple instance of it, or a complex one with
     /// that record).
     pub(crate) fn is(&self, name: &str) -> bool {

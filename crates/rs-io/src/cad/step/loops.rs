@@ -68,10 +68,6 @@ const MAX_PERIODS_MOVED: f64 = 1e6;
 /// (the edge is the whole period), as vertices found by rounding meet.
 const WRAP_RELATIVE: f64 = 1e-12;
 
-/// A parameter interval within this fraction of a period of a pcurve's domain is inside it
-/// (the ends of an edge on a closed curve land on its domain's ends to rounding).
-const DOMAIN_RELATIVE: f64 = 1e-9;
-
 /// Where the pcurve's point at the 3-D parameter is already on the vertex (to this fraction
 /// of the vertex's distance from the origin, at least 1) the cut stays there: the curves
 /// meeting at the vertex keep the ends they had, bit for bit, rather than ends found by
@@ -533,7 +529,7 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
             // On a plane the edge's image in the plane's coordinates, exactly.
             check_in_plane(&c3, lo, hi, surface, gap, &what)?;
             let mut option = Vec::new();
-            for (a3, b3) in pieces(&c3, lo, hi, window_period(&c3)) {
+            for (a3, b3) in c3.pieces_in_range(lo, hi, window_period(&c3)) {
                 option.push(planar(c3.to_bspline_mapped(&map, a3, b3), &what)?);
             }
             options.push(option);
@@ -580,7 +576,7 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
                 }
                 None => ((lo, hi), window_period(&c3)),
             };
-            let mut cuts = pieces(&c2, range.0, range.1, period);
+            let mut cuts = c2.pieces_in_range(range.0, range.1, period);
             cuts = clamped(&c2, cuts);
             if map.is_none() {
                 let (x_lo, x_hi) = if same_sense { (vs, ve) } else { (ve, vs) };
@@ -712,45 +708,6 @@ fn check_in_plane(
         });
     }
     Ok(())
-}
-
-/// The pieces of the pcurve's parameter domain that `[lo, hi]` covers. Lines and conics
-/// take it as it is. A bounded pcurve (a B-spline) of an edge on a periodic 3-D curve takes
-/// it translated by whole periods into its domain; when the pcurve spans a whole period
-/// (a closed curve written as a B-spline) an interval across the end of its domain wraps
-/// around: two pieces, `[lo, b]` then `[a, hi - p]`.
-fn pieces<P: Space>(c2: &Curve<P>, lo: f64, hi: f64, period: Option<f64>) -> Vec<(f64, f64)> {
-    let (Some((a, b)), Some(p)) = (c2.range(), period) else {
-        return vec![(lo, hi)];
-    };
-    let eps = DOMAIN_RELATIVE * p;
-    if lo >= a - eps && hi <= b + eps {
-        return vec![(lo, hi)];
-    }
-    let full = (b - a - p).abs() <= eps;
-    let k = ((lo - a) / p).floor();
-    if !k.is_finite() || k.abs() > MAX_PERIODS_MOVED {
-        return vec![(lo, hi)];
-    }
-    let (l2, h2) = (lo - k * p, hi - k * p);
-    if h2 <= b + eps {
-        return vec![(l2, h2)];
-    }
-    if full {
-        let mut out = Vec::new();
-        if b - l2 > eps {
-            out.push((l2, b));
-        }
-        if h2 - p - a > eps {
-            out.push((a, h2 - p));
-        }
-        if !out.is_empty() {
-            return out;
-        }
-    }
-    // A partial pcurve: the translation that overlaps its domain most.
-    let k2 = ((a - lo) / p).round();
-    vec![(lo + k2 * p, hi + k2 * p)]
 }
 
 /// The increasing parameter interval of a curve between an edge's vertices (`what` names
