@@ -3,37 +3,19 @@
 use rs_boxes::{MonotoneBox, Monotonicity};
 use rs_roots::{de_casteljau, de_casteljau_with_derivative};
 use rs_spline::Point;
-use rs_spline::quadrature::{gauss_legendre, integrate_adaptive};
+use rs_spline::quadrature::{gauss_rule, integrate_adaptive};
 use smallvec::SmallVec;
 
 /// Bernstein coefficients on the stack up to degree 7.
 type Coeffs = SmallVec<[f64; 8]>;
 
-/// The most nodes of the fixed Gauss-Legendre rules kept in [`Rules`].
+/// The most nodes of the fixed Gauss-Legendre rule of a polynomial part (degree 16, or 10
+/// with moments): higher degrees take the adaptive rule.
 const MAX_RULE: usize = 16;
 
 /// Relative tolerance of the adaptive integrals over rational parts, against the cell's
 /// area (or its first moments): well below the `1e-12` the fractions promise.
 const RELATIVE_TOLERANCE: f64 = 1e-15;
-
-/// Gauss-Legendre rules on `[-1, 1]` with `1 ..= MAX_RULE` nodes (the `m`-node rule is exact
-/// for polynomials of degree `2m - 1`).
-pub(crate) struct Rules {
-    rules: Vec<(Vec<f64>, Vec<f64>)>,
-}
-
-impl Rules {
-    pub(crate) fn new() -> Self {
-        Self {
-            rules: (1..=MAX_RULE).map(gauss_legendre).collect(),
-        }
-    }
-
-    /// The `m`-node rule, `None` beyond [`MAX_RULE`].
-    fn get(&self, m: usize) -> Option<&(Vec<f64>, Vec<f64>)> {
-        self.rules.get(m.checked_sub(1)?)
-    }
-}
 
 /// Integrals over a part of the boundary, in coordinates local to a cell's lower-left corner
 /// `(x_c, y_r)`, with `u = x - x_c`, `v = y - y_r`: `b = int v dx`, `mx = int u v dx`,
@@ -152,18 +134,18 @@ impl Arc {
         corner: Point,
         (width, height): (f64, f64),
         moments: bool,
-        rules: &Rules,
     ) -> PartIntegrals {
         let local = Local::new(self, corner);
         let n = self.degree();
         let nodes = if moments { (3 * n).div_ceil(2) } else { n };
         if self.polynomial
-            && let Some((xs, ws)) = rules.get(nodes.max(1))
+            && nodes <= MAX_RULE
+            && let Some(rule) = gauss_rule(nodes.max(1))
         {
-            let (half, mid) = (0.5 * (t1 - t0), 0.5 * (t0 + t1));
+            let (half, pairs) = rule.on(t0, t1);
             let mut sum = PartIntegrals::default();
-            for (&s, &wt) in xs.iter().zip(ws) {
-                let (u, v, dx) = local.eval(mid + half * s);
+            for (t, wt) in pairs {
+                let (u, v, dx) = local.eval(t);
                 let f = wt * dx * v;
                 sum.b += f;
                 if moments {
@@ -287,10 +269,9 @@ mod tests {
     fn whole_loop_integrals_are_the_area_and_moments() {
         let (cx, cy, r) = (1.0, -0.5, 2.0);
         let d = Domain::new(vec![circle(Point::new(cx, cy), r).unwrap()]).unwrap();
-        let rules = Rules::new();
         let mut total = PartIntegrals::default();
         for a in arcs(&d) {
-            let p = a.integrals((0.0, 1.0), Point::new(0.0, 0.0), (1.0, 1.0), true, &rules);
+            let p = a.integrals((0.0, 1.0), Point::new(0.0, 0.0), (1.0, 1.0), true);
             total.b += p.b;
             total.mx += p.mx;
             total.my += p.my;
@@ -307,12 +288,11 @@ mod tests {
         let pts = [(0.0, 0.0), (3.0, 0.0), (0.0, 2.0), (0.0, 0.0)];
         let pts: Vec<Point> = pts.iter().map(|&(x, y)| Point::new(x, y)).collect();
         let d = Domain::new(vec![polyline(&pts).unwrap()]).unwrap();
-        let rules = Rules::new();
         let corner = Point::new(0.5, 0.25);
         let mut total = PartIntegrals::default();
         for a in arcs(&d) {
             assert!(a.polynomial);
-            let p = a.integrals((0.0, 1.0), corner, (1.0, 1.0), true, &rules);
+            let p = a.integrals((0.0, 1.0), corner, (1.0, 1.0), true);
             total.b += p.b;
             total.mx += p.mx;
             total.my += p.my;

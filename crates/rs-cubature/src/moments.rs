@@ -13,7 +13,7 @@
 
 use rs_contain::{FillRule, curve_boundary_signs};
 use rs_spline::prelude::*;
-use rs_spline::quadrature::{gauss_legendre, integrate_adaptive_vector};
+use rs_spline::quadrature::{gauss_rule, integrate_adaptive_vector};
 use rs_spline::{BoundingBox, Domain, Point};
 
 use crate::basis::{LegendreBasis, dim_polynomials, graded_index};
@@ -40,8 +40,6 @@ fn green_integrals(
     let curve_sign = curve_boundary_signs(domain, rule).map_err(CubatureError::Nesting)?;
     let mut total = vec![0.0; dim];
     let mut at = vec![0.0; dim];
-    // Gauss-Legendre rules by number of nodes, made once per call.
-    let mut rules: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
     for (curve, piece) in domain.bezier_pieces() {
         let sign = curve_sign[curve] as f64;
         if sign == 0.0 {
@@ -49,20 +47,12 @@ fn green_integrals(
         }
         let p = piece.degree();
         let w0 = piece.weights()[0];
-        if piece.weights().iter().all(|&w| w == w0) {
-            let nodes = (p * (degree + 2)).div_ceil(2).max(1);
-            let at_rule = match rules.iter().position(|r| r.0 == nodes) {
-                Some(i) => i,
-                None => {
-                    let (x, w) = gauss_legendre(nodes);
-                    rules.push((nodes, x, w));
-                    rules.len() - 1
-                }
-            };
-            let (_, xs, ws) = &rules[at_rule];
-            for (&x, &w) in xs.iter().zip(ws) {
-                // [-1, 1] -> [0, 1]: t = (x + 1) / 2, dt = dx / 2.
-                let (pt, tangent) = piece.point_and_tangent(0.5 * (x + 1.0));
+        let exact = piece.weights().iter().all(|&w| w == w0);
+        if exact && let Some(gauss) = gauss_rule((p * (degree + 2)).div_ceil(2).max(1)) {
+            let (_, pairs) = gauss.on(0.0, 1.0);
+            for (t, w) in pairs {
+                // The rule on [0, 1]: dt = dx / 2.
+                let (pt, tangent) = piece.point_and_tangent(t);
                 antiderivatives(pt, &mut at);
                 let factor = sign * 0.5 * w * tangent.y;
                 for (t, a) in total.iter_mut().zip(&at) {

@@ -1,8 +1,8 @@
-//! Gauss-Legendre quadrature, fixed and adaptive.
-
-use std::sync::OnceLock;
+//! Adaptive Gauss-Legendre quadrature with an error estimate and bounded work.
 
 use smallvec::SmallVec;
+
+use super::gauss::fixed_gauss_rule;
 
 /// Per-component scratch of the adaptive rule.
 type Scratch = SmallVec<[f64; 4]>;
@@ -12,57 +12,6 @@ type Scratch = SmallVec<[f64; 4]>;
 const ORDER: usize = 16;
 /// Recursion depth limit of [`integrate_adaptive`] (intervals of `2^-40` of the start).
 const MAX_DEPTH: u32 = 40;
-
-/// Nodes and weights of the `n`-point Gauss-Legendre rule on `[-1, 1]`, computed by Newton's
-/// method on the Legendre polynomial `P_n` (nodes ascending).
-pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut nodes = vec![0.0; n];
-    let mut weights = vec![0.0; n];
-    for i in 0..n.div_ceil(2) {
-        // Chebyshev-like initial guess for the i-th largest root.
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
-            let (p, d) = legendre(n, x);
-            dp = d;
-            let dx = p / d;
-            x -= dx;
-            if dx.abs() <= 1e-16 {
-                break;
-            }
-        }
-        let (_, d) = legendre(n, x);
-        if d.is_finite() {
-            dp = d;
-        }
-        let w = 2.0 / ((1.0 - x * x) * dp * dp);
-        nodes[i] = -x;
-        nodes[n - 1 - i] = x;
-        weights[i] = w;
-        weights[n - 1 - i] = w;
-    }
-    (nodes, weights)
-}
-
-/// `(P_n(x), P_n'(x))` by the three-term recurrence.
-fn legendre(n: usize, x: f64) -> (f64, f64) {
-    let (mut p0, mut p1) = (1.0, x);
-    if n == 0 {
-        return (1.0, 0.0);
-    }
-    for k in 2..=n {
-        let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-        p0 = p1;
-        p1 = p2;
-    }
-    let d = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-    (p1, d)
-}
-
-fn rule() -> &'static (Vec<f64>, Vec<f64>) {
-    static RULE: OnceLock<(Vec<f64>, Vec<f64>)> = OnceLock::new();
-    RULE.get_or_init(|| gauss_legendre(ORDER))
-}
 
 /// Most intervals [`integrate_adaptive`] examines for one integral (each costs two 16-point
 /// rules); past it the remaining intervals are accepted as they are and the result says so.
@@ -132,12 +81,11 @@ fn fixed_into(
     at: &mut [f64],
     out: &mut [f64],
 ) -> f64 {
-    let (x, w) = rule();
-    let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
+    let (h, nodes) = fixed_gauss_rule::<ORDER>().on(a, b);
     out.fill(0.0);
     let mut abs = 0.0;
-    for (&xi, &wi) in x.iter().zip(w) {
-        let scale = f(m + h * xi, at);
+    for (t, wi) in nodes {
+        let scale = f(t, at);
         for (o, &v) in out.iter_mut().zip(at.iter()) {
             *o += wi * v;
         }
@@ -270,15 +218,6 @@ pub fn integrate_adaptive(f: impl Fn(f64) -> (f64, f64), a: f64, b: f64, abs_tol
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rule_is_exact_for_polynomials() {
-        let (x, w) = gauss_legendre(16);
-        assert!((w.iter().sum::<f64>() - 2.0).abs() < 1e-14);
-        let i30: f64 = x.iter().zip(&w).map(|(xi, wi)| wi * xi.powi(30)).sum();
-        assert!((i30 - 2.0 / 31.0).abs() < 1e-14);
-        assert!(x.windows(2).all(|p| p[0] < p[1]));
-    }
 
     #[test]
     fn adaptive_handles_peaks() {
