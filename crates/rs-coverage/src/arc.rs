@@ -1,9 +1,11 @@
 //! One monotone piece of the boundary, with the integrals over its parts in cells.
 
+use std::ops::Range;
+
 use rs_boxes::{MonotoneBox, Monotonicity};
 use rs_roots::{de_casteljau, de_casteljau_with_derivative};
 use rs_spline::Point;
-use rs_spline::quadrature::{gauss_rule, integrate_adaptive};
+use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 use smallvec::SmallVec;
 
 /// Bernstein coefficients on the stack up to degree 7.
@@ -121,84 +123,100 @@ impl Arc {
     }
 
     /// The integrals of [`PartIntegrals`] over the parameters `[t0, t1]`, relative to the cell
-    /// corner `corner` of a cell `width` by `height`.
+    /// corner `corner` of a cell `width` by `height`, by `rs_spline::green`'s kernel.
     ///
     /// Polynomial pieces use the Gauss-Legendre rule that is exact for the integrands
-    /// (`v x'` has degree `2n - 1`, `u v x'` and `v^2 x'` degree `3n - 1`); rational ones the
-    /// bounded adaptive rule of `rs-spline` with a tolerance of `1e-15` of the cell's area
-    /// (or moments). The control points are shifted to the corner before evaluation, so the
-    /// values are computed in the cell's coordinates.
+    /// (`v x'` has degree `2n - 1`, `u v x'` and `v^2 x'` degree `3n - 1`) up to
+    /// [`MAX_RULE`] nodes, all the integrals in one pass; rational ones (and higher degrees) the
+    /// bounded adaptive rule, each integral on its own with a tolerance of `1e-15` of the
+    /// cell's area (or moments). The control points are shifted to the corner before
+    /// evaluation, so the values are computed in the cell's coordinates.
     pub(crate) fn integrals(
         &self,
-        (t0, t1): (f64, f64),
+        range: (f64, f64),
         corner: Point,
         (width, height): (f64, f64),
         moments: bool,
     ) -> PartIntegrals {
         let local = Local::new(self, corner);
         let n = self.degree();
-        let nodes = if moments { (3 * n).div_ceil(2) } else { n };
-        if self.polynomial
-            && nodes <= MAX_RULE
-            && let Some(rule) = gauss_rule(nodes.max(1))
-        {
-            let (half, pairs) = rule.on(t0, t1);
-            let mut sum = PartIntegrals::default();
-            for (t, wt) in pairs {
-                let (u, v, dx) = local.eval(t);
-                let f = wt * dx * v;
-                sum.b += f;
-                if moments {
-                    sum.mx += f * u;
-                    sum.my += 0.5 * f * v;
+        let degree = if moments { 3 * n } else { 2 * n }.saturating_sub(1);
+        let area = width * height;
+        // b alone, or b and the moments.
+        let count = if moments { 3 } else { 1 };
+        let mut sum = [0.0; 3];
+        match PieceRule::for_piece(self.polynomial, degree, MAX_RULE, RELATIVE_TOLERANCE * area) {
+            exact @ PieceRule::Exact(_) => {
+                let mut all = CellIntegrand {
+                    local: &local,
+                    components: 0..count,
+                };
+                integrate_piece(
+                    &mut all,
+                    range,
+                    exact,
+                    Jacobian::OnTheSum,
+                    &mut sum[..count],
+                );
+            }
+            PieceRule::Adaptive { abs_tol } => {
+                let tolerances = [abs_tol, abs_tol * width, abs_tol * height];
+                for (k, &abs_tol) in tolerances.iter().enumerate().take(count) {
+                    let mut one = CellIntegrand {
+                        local: &local,
+                        components: k..k + 1,
+                    };
+                    let rule = PieceRule::Adaptive { abs_tol };
+                    integrate_piece(&mut one, range, rule, Jacobian::OnTheSum, &mut sum[k..=k]);
                 }
             }
-            return PartIntegrals {
-                b: half * sum.b,
-                mx: half * sum.mx,
-                my: half * sum.my,
-            };
         }
-        let area = width * height;
-        let (um, vm) = (local.u_size, local.v_size);
-        let b = integrate_adaptive(
-            |t| {
-                let (_, v, dx) = local.eval(t);
-                (v * dx, vm * dx)
-            },
-            t0,
-            t1,
-            RELATIVE_TOLERANCE * area,
-        );
-        if !moments {
-            return PartIntegrals {
-                b: b.value,
-                ..PartIntegrals::default()
-            };
-        }
-        let mx = integrate_adaptive(
-            |t| {
-                let (u, v, dx) = local.eval(t);
-                (u * v * dx, um * vm * dx)
-            },
-            t0,
-            t1,
-            RELATIVE_TOLERANCE * area * width,
-        );
-        let my = integrate_adaptive(
-            |t| {
-                let (_, v, dx) = local.eval(t);
-                (0.5 * v * v * dx, 0.5 * vm * vm * dx)
-            },
-            t0,
-            t1,
-            RELATIVE_TOLERANCE * area * height,
-        );
         PartIntegrals {
-            b: b.value,
-            mx: mx.value,
-            my: my.value,
+            b: sum[0],
+            mx: sum[1],
+            my: sum[2],
         }
+    }
+}
+
+/// Some of the integrands of [`PartIntegrals`] along a piece: `v x'` (component 0, `b`),
+/// `u v x'` (1, `mx`) and `v^2 x' / 2` (2, `my`), the components `components` in order.
+struct CellIntegrand<'a> {
+    local: &'a Local,
+    components: Range<usize>,
+}
+
+impl PieceIntegrand for CellIntegrand<'_> {
+    /// `f = weight x' v`, then `f`, `f u`, `f v / 2`: the moments share the weighted `b` term.
+    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
+        let (u, v, dx) = self.local.eval(t);
+        let f = weight * dx * v;
+        for (s, k) in sum.iter_mut().zip(self.components.clone()) {
+            *s += match k {
+                0 => f,
+                1 => f * u,
+                _ => 0.5 * f * v,
+            };
+        }
+    }
+
+    /// Each value's magnitude is the integrand with `u`, `v` replaced by the sizes of the
+    /// coordinates they are computed from ([`Local::u_size`], [`Local::v_size`]), or the value
+    /// if larger (`integrate_adaptive`'s magnitude of a scalar integrand).
+    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
+        let (u, v, dx) = self.local.eval(t);
+        let (um, vm) = (self.local.u_size, self.local.v_size);
+        let mut magnitude = 0.0f64;
+        for (o, k) in out.iter_mut().zip(self.components.clone()) {
+            let (value, scale) = match k {
+                0 => (v * dx, vm * dx),
+                1 => (u * v * dx, um * vm * dx),
+                _ => (0.5 * v * v * dx, 0.5 * vm * vm * dx),
+            };
+            *o = value;
+            magnitude = magnitude.max(scale.abs().max(value.abs()));
+        }
+        magnitude
     }
 }
 

@@ -1,6 +1,7 @@
 //! Gauss-Legendre quadrature: the one cache of fixed rules ([`gauss_rule`]) and the adaptive
 //! rule with an error estimate and bounded work ([`integrate_adaptive_vector`],
-//! [`integrate_adaptive`]).
+//! [`integrate_adaptive`]). Green's-theorem integrals along boundary pieces, which choose
+//! between the two, are [`crate::green`]'s.
 
 mod adaptive;
 mod gauss;
