@@ -1,8 +1,11 @@
-//! A rational Bezier piece stored as homogeneous Bernstein coefficients, with the fast
-//! evaluations and monotone solves the containment tests need.
+//! **The** homogeneous Bezier piece: a rational Bezier piece stored as homogeneous Bernstein
+//! coefficients `(w x, w y, w)` beside its Cartesian control points, with the fast evaluations
+//! and monotone solves the containment tests need and the evaluation cell coverage integrates
+//! with ([`BezierPiece::relative_to`], [`BezierPiece::point_and_x_derivative`]).
 
 use rs_roots::{
-    bernstein_sign_change_root, de_casteljau, de_casteljau_split, rational_derivative_numerator,
+    bernstein_sign_change_root, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
+    rational_derivative_numerator,
 };
 use smallvec::SmallVec;
 
@@ -18,8 +21,9 @@ pub(crate) type Coeffs = SmallVec<[f64; 8]>;
 /// The end points are the stored Cartesian `(x_0, y_0)` and `(x_n, y_n)`, returned exactly by
 /// every evaluation at `t = 0` and `t = 1`, and solves use the coefficients `w_i (x_i - v)`, so
 /// the sign of a solve's end coefficient always agrees with comparing `v` to the end point.
+/// Degree <= 7 stays on the stack.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) struct BezierPiece {
+pub struct BezierPiece {
     x: Coeffs,
     y: Coeffs,
     w: Coeffs,
@@ -29,7 +33,7 @@ pub(crate) struct BezierPiece {
 
 impl BezierPiece {
     /// The piece of a rational Bezier curve.
-    pub(crate) fn from_bezier(b: &RationalBezier) -> Self {
+    pub fn from_bezier(b: &RationalBezier) -> Self {
         let w: Coeffs = b.weights().iter().copied().collect();
         let x = b.control_points().iter().map(|p| p.x).collect();
         let y = b.control_points().iter().map(|p| p.y).collect();
@@ -48,28 +52,55 @@ impl BezierPiece {
         Self { x, y, w, hx, hy }
     }
 
+    /// The same piece in coordinates relative to `origin`: control points `P_i - origin`
+    /// (each coordinate one rounded subtraction), the same weights.
+    #[inline]
+    pub fn relative_to(&self, origin: Point) -> Self {
+        let x = self.x.iter().map(|x| x - origin.x).collect();
+        let y = self.y.iter().map(|y| y - origin.y).collect();
+        Self::from_cartesian(x, y, self.w.clone())
+    }
+
     /// Degree `n`.
-    pub(crate) fn degree(&self) -> usize {
+    pub fn degree(&self) -> usize {
         self.w.len() - 1
     }
 
     /// Control point `i` in Cartesian coordinates.
-    pub(crate) fn control_point(&self, i: usize) -> Point {
+    ///
+    /// # Panics
+    /// If `i > n`.
+    pub fn control_point(&self, i: usize) -> Point {
         Point::new(self.x[i], self.y[i])
     }
 
+    /// The control points' abscissas `x_0 .. x_n`.
+    pub fn xs(&self) -> &[f64] {
+        &self.x
+    }
+
+    /// The control points' ordinates `y_0 .. y_n`.
+    pub fn ys(&self) -> &[f64] {
+        &self.y
+    }
+
     /// The weights `w_i` (all > 0).
-    pub(crate) fn weights(&self) -> &[f64] {
+    pub fn weights(&self) -> &[f64] {
         &self.w
     }
 
+    /// All weights equal: `x(t)`, `y(t)` are polynomials of the piece's degree.
+    pub fn is_polynomial(&self) -> bool {
+        self.w.iter().all(|&v| v == self.w[0])
+    }
+
     /// `C(0)`.
-    pub(crate) fn start(&self) -> Point {
+    pub fn start(&self) -> Point {
         self.control_point(0)
     }
 
     /// `C(1)`.
-    pub(crate) fn end(&self) -> Point {
+    pub fn end(&self) -> Point {
         self.control_point(self.degree())
     }
 
@@ -108,18 +139,32 @@ impl BezierPiece {
     }
 
     /// `C(t)` by de Casteljau in homogeneous coordinates (the stored end points at `t = 0, 1`).
-    pub(crate) fn point_at(&self, t: f64) -> Point {
+    pub fn point_at(&self, t: f64) -> Point {
         Point::new(self.x_at(t), self.y_at(t))
     }
 
-    /// `x(t)`.
-    pub(crate) fn x_at(&self, t: f64) -> f64 {
+    /// `x(t) = X(t) / W(t)`.
+    pub fn x_at(&self, t: f64) -> f64 {
         rational_at(&self.x, &self.hx, &self.w, t)
     }
 
-    /// `y(t)`.
-    pub(crate) fn y_at(&self, t: f64) -> f64 {
+    /// `y(t) = Y(t) / W(t)`.
+    pub fn y_at(&self, t: f64) -> f64 {
         rational_at(&self.y, &self.hy, &self.w, t)
+    }
+
+    /// `(x(t), y(t), x'(t))`, what a Green's-theorem integral `integral P dx` evaluates: one
+    /// de Casteljau pass for each of `X`, `Y`, `W` (with the derivatives of `X` and `W`), one
+    /// division `r = 1 / W`, then `x = X r`, `y = Y r` and the quotient rule
+    /// `x' = (X' W - X W') r^2`. Unlike [`BezierPiece::point_at`] the end points are
+    /// computed too, not the stored ones.
+    #[inline]
+    pub fn point_and_x_derivative(&self, t: f64) -> (f64, f64, f64) {
+        let (x, dx) = de_casteljau_with_derivative(&self.hx, t);
+        let (w, dw) = de_casteljau_with_derivative(&self.w, t);
+        let y = de_casteljau(&self.hy, t);
+        let inv = 1.0 / w;
+        (x * inv, y * inv, (dx * w - x * dw) * inv * inv)
     }
 
     /// The parameter where `x(t) = px`, for a piece whose `x(0) - px` and `x(1) - px` differ in
@@ -176,7 +221,7 @@ impl BezierPiece {
     ///
     /// # Errors
     /// Only if the coefficients were corrupted (subdivision keeps weights positive).
-    pub(crate) fn to_bezier(&self) -> Result<RationalBezier, SplineError> {
+    pub fn to_bezier(&self) -> Result<RationalBezier, SplineError> {
         let pts = (0..self.w.len()).map(|i| self.control_point(i)).collect();
         RationalBezier::new(pts, self.w.to_vec())
     }

@@ -2,14 +2,9 @@
 
 use std::ops::Range;
 
-use rs_boxes::{MonotoneBox, Monotonicity};
-use rs_roots::{de_casteljau, de_casteljau_with_derivative};
+use rs_boxes::{BezierPiece, MonotoneBox, Monotonicity};
 use rs_spline::Point;
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
-use smallvec::SmallVec;
-
-/// Bernstein coefficients on the stack up to degree 7.
-type Coeffs = SmallVec<[f64; 8]>;
 
 /// The most nodes of the fixed Gauss-Legendre rule of a polynomial part (degree 16, or 10
 /// with moments): higher degrees take the adaptive rule.
@@ -32,48 +27,37 @@ pub(crate) struct PartIntegrals {
 /// A monotone piece of a closed boundary loop (a [`MonotoneBox`] with one box), with its loop's
 /// orientation factor.
 pub(crate) struct Arc {
-    /// The piece: end points, bounds, directions and the crossing solves.
+    /// The piece: end points, bounds, directions, the crossing solves and its Bezier piece.
     pub(crate) piece: MonotoneBox,
     /// `+1` or `-1`: the factor that puts the filled region on the piece's left (the sign of
     /// its loop under the fill rule, see [`rs_contain::LoopNesting::boundary_sign`]).
     pub(crate) sign: f64,
-    x: Coeffs,
-    y: Coeffs,
-    w: Coeffs,
     /// All weights equal: `x(t)`, `y(t)` are polynomials of the piece's degree.
     polynomial: bool,
 }
 
 impl Arc {
     pub(crate) fn new(piece: MonotoneBox, sign: f64) -> Self {
-        let (x, y): (Coeffs, Coeffs) = piece.control_points().map(|p| (p.x, p.y)).unzip();
-        let w: Coeffs = piece.weights().iter().copied().collect();
-        let polynomial = w.iter().all(|&v| v == w[0]);
+        let polynomial = piece.piece().is_polynomial();
         Self {
             piece,
             sign,
-            x,
-            y,
-            w,
             polynomial,
         }
     }
 
     /// Degree of the piece.
     fn degree(&self) -> usize {
-        self.w.len() - 1
+        self.piece.piece().degree()
     }
 
-    /// The piece as a [`RationalBezier`] (for tests: an evaluation independent of this one).
+    /// The piece as a [`RationalBezier`](rs_spline::RationalBezier) (for tests: an evaluation
+    /// independent of this one).
     #[cfg(test)]
     pub(crate) fn bezier(&self) -> rs_spline::RationalBezier {
-        let pts = self
-            .x
-            .iter()
-            .zip(&self.y)
-            .map(|(&x, &y)| Point::new(x, y))
-            .collect();
-        rs_spline::RationalBezier::new(pts, self.w.to_vec())
+        self.piece
+            .piece()
+            .to_bezier()
             .expect("a monotone piece is a valid curve")
     }
 
@@ -220,12 +204,11 @@ impl PieceIntegrand for CellIntegrand<'_> {
     }
 }
 
-/// A piece's homogeneous coefficients in a cell's local coordinates:
-/// `w_i (x_i - x_c)`, `w_i (y_i - y_r)`, `w_i`.
+/// A piece in a cell's local coordinates, `u = x - x_c`, `v = y - y_r` (its homogeneous
+/// coefficients `w_i (x_i - x_c)`, `w_i (y_i - y_r)`, `w_i`), so that the integrands are
+/// computed in the cell's coordinates.
 struct Local {
-    hx: Coeffs,
-    hy: Coeffs,
-    w: Coeffs,
+    piece: BezierPiece,
     /// The largest `|x_i - x_c|` and `|y_i - y_r|`: the size of the terms `u` and `v` are
     /// sums of (their rounding scale for the adaptive rule).
     u_size: f64,
@@ -234,33 +217,19 @@ struct Local {
 
 impl Local {
     fn new(arc: &Arc, corner: Point) -> Self {
-        let (mut u_size, mut v_size) = (0.0f64, 0.0f64);
-        let mut hx = Coeffs::new();
-        let mut hy = Coeffs::new();
-        for ((&x, &y), &w) in arc.x.iter().zip(&arc.y).zip(&arc.w) {
-            let (u, v) = (x - corner.x, y - corner.y);
-            u_size = u_size.max(u.abs());
-            v_size = v_size.max(v.abs());
-            hx.push(w * u);
-            hy.push(w * v);
-        }
+        let piece = arc.piece.piece().relative_to(corner);
+        let largest = |c: &[f64]| c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         Self {
-            hx,
-            hy,
-            w: arc.w.clone(),
-            u_size,
-            v_size,
+            u_size: largest(piece.xs()),
+            v_size: largest(piece.ys()),
+            piece,
         }
     }
 
-    /// `(u(t), v(t), x'(t))`: the local coordinates and the derivative of `x`, by the
-    /// quotient rule `x' = (X' W - X W') / W^2`.
+    /// `(u(t), v(t), x'(t))`: the local coordinates and the derivative of `x`
+    /// ([`BezierPiece::point_and_x_derivative`]).
     fn eval(&self, t: f64) -> (f64, f64, f64) {
-        let (x, dx) = de_casteljau_with_derivative(&self.hx, t);
-        let (w, dw) = de_casteljau_with_derivative(&self.w, t);
-        let y = de_casteljau(&self.hy, t);
-        let inv = 1.0 / w;
-        (x * inv, y * inv, (dx * w - x * dw) * inv * inv)
+        self.piece.point_and_x_derivative(t)
     }
 }
 
