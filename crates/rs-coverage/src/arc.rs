@@ -1,8 +1,6 @@
 //! One monotone piece of the boundary, with the integrals over its parts in cells.
 
-use std::ops::Range;
-
-use rs_boxes::{BezierPiece, MonotoneBox, Monotonicity};
+use rs_boxes::{MonotoneBox, Monotonicity, RelativePiece};
 use rs_spline::Point;
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 
@@ -131,9 +129,9 @@ impl Arc {
         let mut sum = [0.0; 3];
         match PieceRule::for_piece(self.polynomial, degree, MAX_RULE, RELATIVE_TOLERANCE * area) {
             exact @ PieceRule::Exact(_) => {
-                let mut all = CellIntegrand {
+                let mut all = CellMoments {
                     local: &local,
-                    components: 0..count,
+                    moments,
                 };
                 integrate_piece(
                     &mut all,
@@ -144,92 +142,140 @@ impl Arc {
                 );
             }
             PieceRule::Adaptive { abs_tol } => {
-                let tolerances = [abs_tol, abs_tol * width, abs_tol * height];
-                for (k, &abs_tol) in tolerances.iter().enumerate().take(count) {
-                    let mut one = CellIntegrand {
-                        local: &local,
-                        components: k..k + 1,
-                    };
-                    let rule = PieceRule::Adaptive { abs_tol };
-                    integrate_piece(&mut one, range, rule, Jacobian::OnTheSum, &mut sum[k..=k]);
+                CellMoment::<B>::integrate(&local, range, abs_tol, &mut sum[B]);
+                if moments {
+                    CellMoment::<MX>::integrate(&local, range, abs_tol * width, &mut sum[MX]);
+                    CellMoment::<MY>::integrate(&local, range, abs_tol * height, &mut sum[MY]);
                 }
             }
         }
         PartIntegrals {
-            b: sum[0],
-            mx: sum[1],
-            my: sum[2],
+            b: sum[B],
+            mx: sum[MX],
+            my: sum[MY],
         }
     }
 }
 
-/// Some of the integrands of [`PartIntegrals`] along a piece: `v x'` (component 0, `b`),
-/// `u v x'` (1, `mx`) and `v^2 x' / 2` (2, `my`), the components `components` in order.
-struct CellIntegrand<'a> {
-    local: &'a Local,
-    components: Range<usize>,
+/// Index of `b = int v dx` in the sums (and the `M` of its [`CellMoment`]).
+const B: usize = 0;
+/// Index of `mx = int u v dx`.
+const MX: usize = 1;
+/// Index of `my = int v^2 / 2 dx`.
+const MY: usize = 2;
+
+/// Integrand `M` of [`PartIntegrals`] ([`B`], [`MX`] or [`MY`]) at `(u, v)` with `x' = dx`,
+/// and its rounding magnitude: the integrand with `u`, `v` replaced by the sizes `um`, `vm` of
+/// the coordinates they are computed from, or the value if larger (`integrate_adaptive`'s
+/// magnitude of a scalar integrand).
+#[inline]
+fn integrand<const M: usize>((u, v, dx): (f64, f64, f64), (um, vm): (f64, f64)) -> (f64, f64) {
+    let (value, scale) = match M {
+        B => (v * dx, vm * dx),
+        MX => (u * v * dx, um * vm * dx),
+        _ => (0.5 * v * v * dx, 0.5 * vm * vm * dx),
+    };
+    (value, scale.abs().max(value.abs()))
 }
 
-impl PieceIntegrand for CellIntegrand<'_> {
+/// The integrands of [`PartIntegrals`] all at once (`b` alone unless `moments`): what the
+/// exact rule sums, one evaluation of the piece per node.
+struct CellMoments<'a> {
+    local: &'a Local<'a>,
+    moments: bool,
+}
+
+impl PieceIntegrand for CellMoments<'_> {
     /// `f = weight x' v`, then `f`, `f u`, `f v / 2`: the moments share the weighted `b` term.
     fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
         let (u, v, dx) = self.local.eval(t);
         let f = weight * dx * v;
-        for (s, k) in sum.iter_mut().zip(self.components.clone()) {
-            *s += match k {
-                0 => f,
-                1 => f * u,
-                _ => 0.5 * f * v,
-            };
+        sum[B] += f;
+        if self.moments {
+            sum[MX] += f * u;
+            sum[MY] += 0.5 * f * v;
         }
     }
 
-    /// Each value's magnitude is the integrand with `u`, `v` replaced by the sizes of the
-    /// coordinates they are computed from ([`Local::u_size`], [`Local::v_size`]), or the value
-    /// if larger (`integrate_adaptive`'s magnitude of a scalar integrand).
     fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
-        let (u, v, dx) = self.local.eval(t);
-        let (um, vm) = (self.local.u_size, self.local.v_size);
-        let mut magnitude = 0.0f64;
-        for (o, k) in out.iter_mut().zip(self.components.clone()) {
-            let (value, scale) = match k {
-                0 => (v * dx, vm * dx),
-                1 => (u * v * dx, um * vm * dx),
-                _ => (0.5 * v * v * dx, 0.5 * vm * vm * dx),
-            };
-            *o = value;
-            magnitude = magnitude.max(scale.abs().max(value.abs()));
+        let (at, sizes) = (self.local.eval(t), self.local.sizes());
+        let (b, mut magnitude) = integrand::<B>(at, sizes);
+        out[B] = b;
+        if self.moments {
+            let (mx, mx_magnitude) = integrand::<MX>(at, sizes);
+            let (my, my_magnitude) = integrand::<MY>(at, sizes);
+            (out[MX], out[MY]) = (mx, my);
+            magnitude = magnitude.max(mx_magnitude).max(my_magnitude);
         }
         magnitude
     }
 }
 
-/// A piece in a cell's local coordinates, `u = x - x_c`, `v = y - y_r` (its homogeneous
-/// coefficients `w_i (x_i - x_c)`, `w_i (y_i - y_r)`, `w_i`), so that the integrands are
-/// computed in the cell's coordinates.
-struct Local {
-    piece: BezierPiece,
-    /// The largest `|x_i - x_c|` and `|y_i - y_r|`: the size of the terms `u` and `v` are
-    /// sums of (their rounding scale for the adaptive rule).
-    u_size: f64,
-    v_size: f64,
+/// Integrand `M` of [`PartIntegrals`] alone: what the adaptive rule integrates, each integral
+/// on its own (to its own tolerance).
+struct CellMoment<'a, const M: usize> {
+    local: &'a Local<'a>,
 }
 
-impl Local {
-    fn new(arc: &Arc, corner: Point) -> Self {
+impl<const M: usize> CellMoment<'_, M> {
+    /// Adds its integral over `range` to `sum` by the adaptive rule to `abs_tol`.
+    fn integrate(local: &Local<'_>, range: (f64, f64), abs_tol: f64, sum: &mut f64) {
+        let rule = PieceRule::Adaptive { abs_tol };
+        let mut one = [*sum];
+        integrate_piece(
+            &mut CellMoment::<M> { local },
+            range,
+            rule,
+            Jacobian::OnTheSum,
+            &mut one,
+        );
+        *sum = one[0];
+    }
+}
+
+impl<const M: usize> PieceIntegrand for CellMoment<'_, M> {
+    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
+        let (value, _) = integrand::<M>(self.local.eval(t), self.local.sizes());
+        sum[0] += weight * value;
+    }
+
+    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
+        let (value, magnitude) = integrand::<M>(self.local.eval(t), self.local.sizes());
+        out[0] = value;
+        magnitude
+    }
+}
+
+/// A piece in a cell's local coordinates, `u = x - x_c`, `v = y - y_r`
+/// ([`rs_boxes::BezierPiece::relative_to`] the cell's corner), so that the integrands are computed in
+/// the cell's coordinates.
+struct Local<'a> {
+    piece: RelativePiece<'a>,
+    /// The largest `|x_i - x_c|` and `|y_i - y_r|`: the size of the terms `u` and `v` are
+    /// sums of (their rounding scale for the adaptive rule).
+    sizes: (f64, f64),
+}
+
+impl<'a> Local<'a> {
+    fn new(arc: &'a Arc, corner: Point) -> Self {
         let piece = arc.piece.piece().relative_to(corner);
-        let largest = |c: &[f64]| c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         Self {
-            u_size: largest(piece.xs()),
-            v_size: largest(piece.ys()),
+            sizes: piece.extent(),
             piece,
         }
     }
 
     /// `(u(t), v(t), x'(t))`: the local coordinates and the derivative of `x`
-    /// ([`BezierPiece::point_and_x_derivative`]).
+    /// ([`RelativePiece::point_and_x_derivative`]).
+    #[inline]
     fn eval(&self, t: f64) -> (f64, f64, f64) {
         self.piece.point_and_x_derivative(t)
+    }
+
+    /// `(u_size, v_size)`.
+    #[inline]
+    fn sizes(&self) -> (f64, f64) {
+        self.sizes
     }
 }
 

@@ -14,10 +14,10 @@
 //! The integrand ([`PieceIntegrand`]) evaluates the piece itself: the kernel only picks the
 //! parameters and weights and sums. An exact rule's sum is rounded in the order the caller
 //! asks for ([`Jacobian`]), so each caller keeps the bits its results have always had.
+//!
+//! [`integrate_adaptive_vector`]: crate::quadrature::integrate_adaptive_vector
 
-use smallvec::SmallVec;
-
-use crate::quadrature::{GaussRule, gauss_rule_exact_for, integrate_adaptive_vector};
+use crate::quadrature::{GaussRule, gauss_rule_exact_for, integrate_adaptive_into};
 
 /// The quadrature of one piece's integral: [`PieceRule::for_piece`]'s choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,7 +27,7 @@ pub enum PieceRule {
     /// The adaptive rule, to the absolute tolerance `abs_tol` over the whole piece (a rational
     /// piece, or a polynomial integrand whose exact rule has too many nodes).
     Adaptive {
-        /// The absolute tolerance of [`integrate_adaptive_vector`].
+        /// The absolute tolerance of the adaptive rule.
         abs_tol: f64,
     },
 }
@@ -40,6 +40,7 @@ impl PieceRule {
     ///
     /// For `P x' + Q y'` on a piece of degree `p`, with `P`, `Q` of degree `k`, the degree is
     /// `p k + p - 1` (`x'` has degree `p - 1`).
+    #[inline]
     pub fn for_piece(
         polynomial: bool,
         integrand_degree: usize,
@@ -66,6 +67,8 @@ pub trait PieceIntegrand {
     /// The adaptive rule's view: writes `g(t)` into `out` and returns the rounding magnitude
     /// of the values (at least the size of the terms each is a sum of; see
     /// [`integrate_adaptive_vector`]).
+    ///
+    /// [`integrate_adaptive_vector`]: crate::quadrature::integrate_adaptive_vector
     fn values(&mut self, t: f64, out: &mut [f64]) -> f64;
 }
 
@@ -91,8 +94,7 @@ pub struct PieceAccuracy {
     pub converged: bool,
 }
 
-/// Most components an exact rule with [`Jacobian::OnTheSum`] sums on the stack (more
-/// allocate).
+/// Most components whose rule sums [`integrate_piece`] keeps on the stack (more allocate).
 const STACK_COMPONENTS: usize = 4;
 
 /// `integral_{t0}^{t1} g(t) dt` along one piece, added to `sum` (one entry per component of
@@ -128,17 +130,19 @@ pub fn integrate_piece(
     jacobian: Jacobian,
     sum: &mut [f64],
 ) -> PieceAccuracy {
+    // The rule's own sum where it needs one: on the stack for a few components.
+    let (mut stack, mut heap) = ([0.0; STACK_COMPONENTS], Vec::new());
+    let dim = sum.len();
     match rule {
         PieceRule::Exact(gauss) => {
             let (half, nodes) = gauss.on(t0, t1);
             match jacobian {
                 Jacobian::OnTheSum => {
-                    let mut rule_sum: SmallVec<[f64; STACK_COMPONENTS]> =
-                        SmallVec::from_elem(0.0, sum.len());
+                    let rule_sum = zeroed(&mut stack, &mut heap, dim);
                     for (t, w) in nodes {
-                        integrand.add_node(t, w, &mut rule_sum);
+                        integrand.add_node(t, w, rule_sum);
                     }
-                    for (s, r) in sum.iter_mut().zip(&rule_sum) {
+                    for (s, r) in sum.iter_mut().zip(rule_sum.iter()) {
                         *s += half * r;
                     }
                 }
@@ -154,21 +158,28 @@ pub fn integrate_piece(
             }
         }
         PieceRule::Adaptive { abs_tol } => {
-            let got = integrate_adaptive_vector(
-                |t, out| integrand.values(t, out),
-                sum.len(),
-                t0,
-                t1,
-                abs_tol,
-            );
-            for (s, v) in sum.iter_mut().zip(&got.values) {
+            let values = zeroed(&mut stack, &mut heap, dim);
+            let (error, converged) =
+                integrate_adaptive_into(|t, out| integrand.values(t, out), t0, t1, abs_tol, values);
+            for (s, v) in sum.iter_mut().zip(values.iter()) {
                 *s += v;
             }
-            PieceAccuracy {
-                error: got.error,
-                converged: got.converged,
-            }
+            PieceAccuracy { error, converged }
         }
+    }
+}
+
+/// `len` zeros: in `stack` when they fit, else in `heap`.
+fn zeroed<'a>(
+    stack: &'a mut [f64; STACK_COMPONENTS],
+    heap: &'a mut Vec<f64>,
+    len: usize,
+) -> &'a mut [f64] {
+    if len <= STACK_COMPONENTS {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, 0.0);
+        heap
     }
 }
 

@@ -2,7 +2,7 @@
 
 use smallvec::SmallVec;
 
-use super::gauss::fixed_gauss_rule;
+use super::gauss::{GaussRule, fixed_gauss_rule};
 
 /// Per-component scratch of the adaptive rule.
 type Scratch = SmallVec<[f64; 4]>;
@@ -72,18 +72,31 @@ pub struct VectorIntegral {
     pub converged: bool,
 }
 
-/// The 16-point rule on `[a, b]` for the `out.len()` components of `f`, written to `out`;
+/// The 16-point `rule` on `[a, b]` for the `out.len()` components of `f`, written to `out`;
 /// returns the integral of the rounding magnitude `f` returns.
 fn fixed_into(
+    rule: &GaussRule,
     f: &mut impl FnMut(f64, &mut [f64]) -> f64,
     a: f64,
     b: f64,
     at: &mut [f64],
     out: &mut [f64],
 ) -> f64 {
-    let (h, nodes) = fixed_gauss_rule::<ORDER>().on(a, b);
-    out.fill(0.0);
+    let (h, nodes) = rule.on(a, b);
     let mut abs = 0.0;
+    if let ([one], [_]) = (&mut *out, &*at) {
+        // One component (scalar integrals, coverage's moments): the same sums without the
+        // loops over components.
+        let mut sum = 0.0;
+        for (t, wi) in nodes {
+            let scale = f(t, at);
+            sum += wi * at[0];
+            abs += wi * scale;
+        }
+        *one = sum * h;
+        return h.abs() * abs;
+    }
+    out.fill(0.0);
     for (t, wi) in nodes {
         let scale = f(t, at);
         for (o, &v) in out.iter_mut().zip(at.iter()) {
@@ -131,20 +144,37 @@ fn fixed_into(
 /// assert!((got.values[1] - 0.25).abs() < 1e-15);
 /// ```
 pub fn integrate_adaptive_vector(
-    mut f: impl FnMut(f64, &mut [f64]) -> f64,
+    f: impl FnMut(f64, &mut [f64]) -> f64,
     dim: usize,
     a: f64,
     b: f64,
     abs_tol: f64,
 ) -> VectorIntegral {
+    let mut values = vec![0.0; dim];
+    let (error, converged) = integrate_adaptive_into(f, a, b, abs_tol, &mut values);
+    VectorIntegral {
+        values,
+        error,
+        converged,
+    }
+}
+
+/// [`integrate_adaptive_vector`] with the values written into `values` (overwritten; its
+/// length is the number of components), for callers that keep them on the stack: the error
+/// estimate and whether it converged.
+pub(crate) fn integrate_adaptive_into(
+    mut f: impl FnMut(f64, &mut [f64]) -> f64,
+    a: f64,
+    b: f64,
+    abs_tol: f64,
+    values: &mut [f64],
+) -> (f64, bool) {
+    let dim = values.len();
     let total = b - a;
-    let mut out = VectorIntegral {
-        values: vec![0.0; dim],
-        error: 0.0,
-        converged: true,
-    };
+    values.fill(0.0);
+    let (mut error, mut converged) = (0.0, true);
     // Scratch on the stack for a few components (the scalar rule and small moment vectors
-    // allocate nothing more than `out`).
+    // allocate nothing).
     let zeros = || Scratch::from_elem(0.0, dim);
     let (mut at, mut left, mut right) = (zeros(), zeros(), zeros());
     // The intervals still to examine, a stack; `wholes` holds their rule estimates, `dim`
@@ -152,14 +182,15 @@ pub fn integrate_adaptive_vector(
     let mut stack: SmallVec<[(f64, f64, u32); 16]> = SmallVec::new();
     stack.push((a, b, 0u32));
     let mut wholes: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, dim);
-    fixed_into(&mut f, a, b, &mut at, &mut wholes);
+    let rule = fixed_gauss_rule::<ORDER>();
+    fixed_into(rule, &mut f, a, b, &mut at, &mut wholes);
     let mut examined = 0usize;
     while let Some((lo, hi, depth)) = stack.pop() {
         examined += 1;
         let whole_at = wholes.len() - dim;
         let mid = 0.5 * (lo + hi);
-        let left_abs = fixed_into(&mut f, lo, mid, &mut at, &mut left);
-        let right_abs = fixed_into(&mut f, mid, hi, &mut at, &mut right);
+        let left_abs = fixed_into(rule, &mut f, lo, mid, &mut at, &mut left);
+        let right_abs = fixed_into(rule, &mut f, mid, hi, &mut at, &mut right);
         let share = if total != 0.0 { (hi - lo) / total } else { 1.0 };
         let noise = 256.0 * f64::EPSILON * (left_abs + right_abs);
         // The largest difference over the components; a NaN stays (it never meets the test).
@@ -174,11 +205,11 @@ pub fn integrate_adaptive_vector(
         if met || depth >= MAX_DEPTH || examined + stack.len() >= MAX_INTERVALS || !diff.is_finite()
         {
             wholes.truncate(whole_at);
-            for ((o, l), r) in out.values.iter_mut().zip(&left).zip(&right) {
+            for ((o, l), r) in values.iter_mut().zip(&left).zip(&right) {
                 *o += l + r;
             }
-            out.error += diff;
-            out.converged &= met;
+            error += diff;
+            converged &= met;
         } else {
             wholes.truncate(whole_at);
             stack.push((mid, hi, depth + 1));
@@ -187,7 +218,7 @@ pub fn integrate_adaptive_vector(
             wholes.extend_from_slice(&left);
         }
     }
-    out
+    (error, converged)
 }
 
 /// `integral_a^b f` by adaptive 16-point Gauss-Legendre ([`integrate_adaptive_vector`] with

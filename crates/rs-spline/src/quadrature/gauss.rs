@@ -25,11 +25,13 @@ pub struct GaussRule {
 
 impl GaussRule {
     /// The nodes `x_1 < ... < x_n` in `(-1, 1)`.
+    #[inline]
     pub fn nodes(&self) -> &[f64] {
         &self.nodes
     }
 
     /// The weights `w_i > 0` (summing to 2).
+    #[inline]
     pub fn weights(&self) -> &[f64] {
         &self.weights
     }
@@ -38,6 +40,7 @@ impl GaussRule {
     /// with `t_i = (a + b) / 2 + h x_i`, so that `integral_a^b f ~ h sum_i w_i f(t_i)`.
     /// Every user maps the nodes through this one formula (so a rule on `[0, 1]` puts its
     /// nodes at the same `f64` values for all of them).
+    #[inline]
     pub fn on(&self, a: f64, b: f64) -> (f64, impl Iterator<Item = (f64, f64)> + '_) {
         let (half, mid) = (0.5 * (b - a), 0.5 * (a + b));
         let pairs = self
@@ -64,6 +67,7 @@ impl GaussRule {
 /// assert!(std::ptr::eq(rule, gauss_rule(3).unwrap()));
 /// assert!(gauss_rule(0).is_none());
 /// ```
+#[inline]
 pub fn gauss_rule(n: usize) -> Option<&'static GaussRule> {
     let cell = RULES.get(n.checked_sub(1)?)?;
     Some(cell.get_or_init(|| gauss_legendre(n)))
@@ -71,6 +75,7 @@ pub fn gauss_rule(n: usize) -> Option<&'static GaussRule> {
 
 /// [`gauss_rule`] for a number of nodes fixed at compile time, checked there to be in
 /// `1 ..= MAX_GAUSS_NODES` (so there is no `None` to handle).
+#[inline]
 pub fn fixed_gauss_rule<const N: usize>() -> &'static GaussRule {
     const { assert!(N >= 1 && N <= MAX_GAUSS_NODES) };
     RULES[N - 1].get_or_init(|| gauss_legendre(N))
@@ -78,6 +83,7 @@ pub fn fixed_gauss_rule<const N: usize>() -> &'static GaussRule {
 
 /// The rule with the fewest nodes that is exact for polynomials of degree `degree`:
 /// `ceil((degree + 1) / 2)` nodes (at least one), `None` beyond [`MAX_GAUSS_NODES`].
+#[inline]
 pub fn gauss_rule_exact_for(degree: usize) -> Option<&'static GaussRule> {
     gauss_rule((degree + 1).div_ceil(2).max(1))
 }

@@ -6,6 +6,7 @@
 mod adaptive;
 mod gauss;
 
+pub(crate) use adaptive::integrate_adaptive_into;
 pub use adaptive::{
     Integral, MAX_INTERVALS, VectorIntegral, integrate_adaptive, integrate_adaptive_vector,
 };
