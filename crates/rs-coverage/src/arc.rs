@@ -1,8 +1,8 @@
 //! One monotone piece of the boundary, with the integrals over its parts in cells.
 
 use rs_boxes::{MonotoneBox, Monotonicity, RelativePiece};
-use rs_spline::Point;
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
+use rs_spline::{Axis, Point};
 
 /// The most nodes of the fixed Gauss-Legendre rule of a polynomial part (degree 16, or 10
 /// with moments): higher degrees take the adaptive rule.
@@ -70,37 +70,37 @@ impl Arc {
         if y == b.end.y {
             return (1.0, b.end.x);
         }
-        // A monotone piece whose end ordinates bracket `y` has one root; without a sign change
-        // (impossible between the ends) fall back on the nearer end.
-        let (t, x) = self.piece.at_y(y).unwrap_or_else(|| {
-            if (y - b.start.y).abs() <= (y - b.end.y).abs() {
-                (0.0, b.start.x)
-            } else {
-                (1.0, b.end.x)
-            }
-        });
-        if self.piece.x_dir == Monotonicity::Constant {
-            (t, b.start.x)
-        } else {
-            (t, x)
-        }
+        self.on_line(Axis::Y, y, self.piece.at_y(y))
     }
 
     /// Where the piece meets the vertical line at abscissa `x` (strictly between its end
     /// abscissas): its parameter and ordinate (see [`Arc::at_y`]).
     pub(crate) fn at_x(&self, x: f64) -> (f64, f64) {
+        self.on_line(Axis::X, x, self.piece.at_x(x))
+    }
+
+    /// The parameter and other coordinate where the piece meets the line on which the `axis`
+    /// coordinate is `c`, from the solve's answer `solved`. A monotone piece whose ends
+    /// bracket `c` has one root; without a sign change (impossible between the ends) the
+    /// nearer end stands in. A piece constant in the other coordinate gives its own.
+    fn on_line(&self, axis: Axis, c: f64, solved: Option<(f64, f64)>) -> (f64, f64) {
         let b = &self.piece.band;
-        let (t, y) = self.piece.at_x(x).unwrap_or_else(|| {
-            if (x - b.start.x).abs() <= (x - b.end.x).abs() {
-                (0.0, b.start.y)
+        let other = |p: Point| p.coord(axis.other());
+        let (t, v) = solved.unwrap_or_else(|| {
+            if (c - b.start.coord(axis)).abs() <= (c - b.end.coord(axis)).abs() {
+                (0.0, other(b.start))
             } else {
-                (1.0, b.end.y)
+                (1.0, other(b.end))
             }
         });
-        if self.piece.y_dir == Monotonicity::Constant {
-            (t, b.start.y)
+        let other_dir = match axis {
+            Axis::X => self.piece.y_dir,
+            Axis::Y => self.piece.x_dir,
+        };
+        if other_dir == Monotonicity::Constant {
+            (t, other(b.start))
         } else {
-            (t, y)
+            (t, v)
         }
     }
 
