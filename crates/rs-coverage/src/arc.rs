@@ -126,6 +126,8 @@ impl Arc {
         let area = width * height;
         // b alone, or b and the moments.
         let count = if moments { 3 } else { 1 };
+        // The kernel adds to `sum`: from +0.0 that is its result bit for bit (never -0.0, as
+        // t1 > t0 and its own sums start at +0.0).
         let mut sum = [0.0; 3];
         match PieceRule::for_piece(self.polynomial, degree, MAX_RULE, RELATIVE_TOLERANCE * area) {
             exact @ PieceRule::Exact(_) => {

@@ -3,7 +3,7 @@
 //!
 //! Green's theorem turns an integral over a region into one over its boundary, and that into
 //! a sum over the boundary's pieces `C(t) = (x(t), y(t))`, `t` in `[t0, t1]`:
-//! `oint_C P dx + Q dy = sum over pieces of integral_{t0}^{t1} (P(C(t)) x'(t) + Q(C(t)) y'(t)) dt`.
+//! `oint P dx + Q dy = sum_pieces integral_{t0}^{t1} (P(C(t)) x'(t) + Q(C(t)) y'(t)) dt`.
 //! On a polynomial piece (all weights equal) with polynomial `P` and `Q` the integrand is a
 //! polynomial in `t` of a degree the caller knows, integrated exactly (up to rounding) by the
 //! Gauss-Legendre rule with the fewest nodes exact for it ([`gauss_rule_exact_for`]); on a
