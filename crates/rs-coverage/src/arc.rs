@@ -249,8 +249,8 @@ impl<const M: usize> PieceIntegrand for CellMoment<'_, M> {
 }
 
 /// A piece in a cell's local coordinates, `u = x - x_c`, `v = y - y_r`
-/// ([`rs_boxes::BezierPiece::relative_to`] the cell's corner), so that the integrands are computed in
-/// the cell's coordinates.
+/// ([`rs_boxes::BezierPiece::relative_to`] the cell's corner), so that the integrands are
+/// computed in the cell's coordinates.
 struct Local<'a> {
     piece: RelativePiece<'a>,
     /// The largest `|x_i - x_c|` and `|y_i - y_r|`: the size of the terms `u` and `v` are
