@@ -7,8 +7,12 @@
 //! the boundary without crossing it are collected for the containment layer.
 //!
 //! - [`MonotoneBoxes`]: construction, global bounding box, critical abscissas/ordinates.
-//! - [`MonotoneBox`]: one box, with its piece (private storage of a rational Bezier piece as
-//!   homogeneous Bernstein coefficients), directions, ray crossings and a boundary-distance test.
+//! - [`MonotoneBox`]: one box, with its piece, directions, ray crossings and a
+//!   boundary-distance test.
+//! - [`BezierPiece`]: **the** homogeneous Bezier piece, a rational Bezier piece stored as
+//!   homogeneous Bernstein coefficients beside its Cartesian control points (exact end points,
+//!   monotone solves, splits) and, relative to an origin, the evaluation cell coverage
+//!   integrates with ([`RelativePiece`]).
 //! - [`ChordBand`]: the band round a piece's chord (or a part of it) that decides most
 //!   containment queries without a solve.
 //! - [`BoxGrid`]: a uniform grid finding the boxes that can be near a point.
@@ -28,4 +32,4 @@ pub use chord_band::ChordBand;
 pub use error::{BoxError, PieceError};
 pub use grid::BoxGrid;
 pub use monotone_box::{MonotoneBox, Monotonicity};
-pub(crate) use piece::BezierPiece;
+pub use piece::{BezierPiece, RelativePiece};

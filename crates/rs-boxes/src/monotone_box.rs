@@ -44,8 +44,8 @@ impl Monotonicity {
 /// and a vertical (horizontal) line meets the piece at most once.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MonotoneBox {
-    /// The piece of boundary (private storage: read it through [`MonotoneBox::point_at`],
-    /// [`MonotoneBox::at_x`] and [`MonotoneBox::at_y`]).
+    /// The piece of boundary (read it through [`MonotoneBox::piece`]: private so that it stays
+    /// the one the band was made from).
     piece: BezierPiece,
     /// Index of the domain curve it comes from.
     pub curve: usize,
@@ -215,8 +215,10 @@ impl MonotoneBox {
         }
     }
 
-    /// The stored piece.
-    pub(crate) fn piece(&self) -> &BezierPiece {
+    /// The piece (its control points `P_0` and `P_n` are the band's `start` and `end` bit for
+    /// bit): the rational Bezier curve that [`MonotoneBox::point_at`], [`MonotoneBox::at_x`]
+    /// and [`MonotoneBox::at_y`] evaluate, for callers that integrate along it.
+    pub fn piece(&self) -> &BezierPiece {
         &self.piece
     }
 
@@ -225,19 +227,6 @@ impl MonotoneBox {
     /// `u0 + t (u1 - u0)` with `(u0, u1) = param_range`.
     pub fn point_at(&self, t: f64) -> Point {
         self.piece.point_at(t)
-    }
-
-    /// The piece's control points `P_0 .. P_n` (Cartesian; `P_0` and `P_n` are the band's
-    /// `start` and `end` bit for bit): with [`MonotoneBox::weights`], the rational Bezier
-    /// curve that [`MonotoneBox::point_at`], [`MonotoneBox::at_x`] and [`MonotoneBox::at_y`]
-    /// evaluate, for callers that integrate along it.
-    pub fn control_points(&self) -> impl ExactSizeIterator<Item = Point> + '_ {
-        (0..self.piece.degree() + 1).map(|i| self.piece.control_point(i))
-    }
-
-    /// The piece's weights `w_0 .. w_n` (all > 0; see [`MonotoneBox::control_points`]).
-    pub fn weights(&self) -> &[f64] {
-        self.piece.weights()
     }
 
     /// Where the piece meets the vertical line at abscissa `x`: its local parameter `t` and

@@ -1,15 +1,21 @@
-//! A rational Bezier piece stored as homogeneous Bernstein coefficients, with the fast
-//! evaluations and monotone solves the containment tests need.
+//! **The** homogeneous Bezier piece: a rational Bezier piece stored as homogeneous Bernstein
+//! coefficients `(w x, w y, w)` beside its Cartesian control points, with the fast evaluations
+//! and monotone solves the containment tests need, and the evaluation cell coverage integrates
+//! with ([`BezierPiece::relative_to`], [`RelativePiece::point_and_x_derivative`]).
 
 use rs_roots::{
-    bernstein_sign_change_root, de_casteljau, de_casteljau_split, rational_derivative_numerator,
+    bernstein_sign_change_root, de_casteljau, de_casteljau_split, de_casteljau_with_derivative,
+    rational_derivative_numerator,
 };
 use smallvec::SmallVec;
 
 use rs_spline::{Axis, Point, RationalBezier, SplineError};
 
+/// Coefficients kept on the stack (degree <= 7).
+const INLINE_COEFFS: usize = 8;
+
 /// Coefficient storage: degree <= 7 stays on the stack.
-pub(crate) type Coeffs = SmallVec<[f64; 8]>;
+pub(crate) type Coeffs = SmallVec<[f64; INLINE_COEFFS]>;
 
 /// A rational Bezier piece `C(t) = (X(t), Y(t)) / W(t)` on `[0, 1]`, kept as Cartesian control
 /// coordinates `x_i`, `y_i`, weights `w_i > 0` and the homogeneous Bernstein coefficients
@@ -18,8 +24,9 @@ pub(crate) type Coeffs = SmallVec<[f64; 8]>;
 /// The end points are the stored Cartesian `(x_0, y_0)` and `(x_n, y_n)`, returned exactly by
 /// every evaluation at `t = 0` and `t = 1`, and solves use the coefficients `w_i (x_i - v)`, so
 /// the sign of a solve's end coefficient always agrees with comparing `v` to the end point.
+/// Degree <= 7 stays on the stack.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) struct BezierPiece {
+pub struct BezierPiece {
     x: Coeffs,
     y: Coeffs,
     w: Coeffs,
@@ -29,7 +36,7 @@ pub(crate) struct BezierPiece {
 
 impl BezierPiece {
     /// The piece of a rational Bezier curve.
-    pub(crate) fn from_bezier(b: &RationalBezier) -> Self {
+    pub fn from_bezier(b: &RationalBezier) -> Self {
         let w: Coeffs = b.weights().iter().copied().collect();
         let x = b.control_points().iter().map(|p| p.x).collect();
         let y = b.control_points().iter().map(|p| p.y).collect();
@@ -48,28 +55,85 @@ impl BezierPiece {
         Self { x, y, w, hx, hy }
     }
 
+    /// The piece in coordinates relative to `origin` (control points `P_i - origin`), as the
+    /// homogeneous coefficients an integrand evaluates in a cell's own coordinates.
+    #[inline]
+    pub fn relative_to(&self, origin: Point) -> RelativePiece<'_> {
+        let n = self.w.len();
+        if n > INLINE_COEFFS {
+            let u: Coeffs = self.x.iter().map(|x| x - origin.x).collect();
+            let v: Coeffs = self.y.iter().map(|y| y - origin.y).collect();
+            return RelativePiece {
+                extent: (largest_magnitude(&u), largest_magnitude(&v)),
+                hx: u.iter().zip(&self.w).map(|(u, w)| w * u).collect(),
+                hy: v.iter().zip(&self.w).map(|(v, w)| w * v).collect(),
+                w: &self.w,
+            };
+        }
+        // Per cell part in coverage: one pass on the stack.
+        let (mut hx, mut hy) = ([0.0; INLINE_COEFFS], [0.0; INLINE_COEFFS]);
+        let (mut ue, mut ve) = (0.0f64, 0.0f64);
+        for i in 0..n {
+            let (u, v, w) = (self.x[i] - origin.x, self.y[i] - origin.y, self.w[i]);
+            ue = ue.max(u.abs());
+            ve = ve.max(v.abs());
+            hx[i] = w * u;
+            hy[i] = w * v;
+        }
+        RelativePiece {
+            hx: Coeffs::from_buf_and_len(hx, n),
+            hy: Coeffs::from_buf_and_len(hy, n),
+            w: &self.w,
+            extent: (ue, ve),
+        }
+    }
+
     /// Degree `n`.
-    pub(crate) fn degree(&self) -> usize {
+    #[inline]
+    pub fn degree(&self) -> usize {
         self.w.len() - 1
     }
 
     /// Control point `i` in Cartesian coordinates.
-    pub(crate) fn control_point(&self, i: usize) -> Point {
+    ///
+    /// # Panics
+    /// If `i > n`.
+    #[inline]
+    pub fn control_point(&self, i: usize) -> Point {
         Point::new(self.x[i], self.y[i])
     }
 
+    /// The control points' abscissas `x_0 .. x_n`.
+    #[inline]
+    pub fn xs(&self) -> &[f64] {
+        &self.x
+    }
+
+    /// The control points' ordinates `y_0 .. y_n`.
+    #[inline]
+    pub fn ys(&self) -> &[f64] {
+        &self.y
+    }
+
     /// The weights `w_i` (all > 0).
-    pub(crate) fn weights(&self) -> &[f64] {
+    #[inline]
+    pub fn weights(&self) -> &[f64] {
         &self.w
     }
 
+    /// All weights equal: `x(t)`, `y(t)` are polynomials of the piece's degree.
+    #[inline]
+    pub fn is_polynomial(&self) -> bool {
+        self.w.iter().all(|&v| v == self.w[0])
+    }
+
     /// `C(0)`.
-    pub(crate) fn start(&self) -> Point {
+    pub fn start(&self) -> Point {
         self.control_point(0)
     }
 
     /// `C(1)`.
-    pub(crate) fn end(&self) -> Point {
+    pub fn end(&self) -> Point {
         self.control_point(self.degree())
     }
 
@@ -108,17 +172,17 @@ impl BezierPiece {
     }
 
     /// `C(t)` by de Casteljau in homogeneous coordinates (the stored end points at `t = 0, 1`).
-    pub(crate) fn point_at(&self, t: f64) -> Point {
+    pub fn point_at(&self, t: f64) -> Point {
         Point::new(self.x_at(t), self.y_at(t))
     }
 
-    /// `x(t)`.
-    pub(crate) fn x_at(&self, t: f64) -> f64 {
+    /// `x(t) = X(t) / W(t)`.
+    pub fn x_at(&self, t: f64) -> f64 {
         rational_at(&self.x, &self.hx, &self.w, t)
     }
 
-    /// `y(t)`.
-    pub(crate) fn y_at(&self, t: f64) -> f64 {
+    /// `y(t) = Y(t) / W(t)`.
+    pub fn y_at(&self, t: f64) -> f64 {
         rational_at(&self.y, &self.hy, &self.w, t)
     }
 
@@ -176,9 +240,43 @@ impl BezierPiece {
     ///
     /// # Errors
     /// Only if the coefficients were corrupted (subdivision keeps weights positive).
-    pub(crate) fn to_bezier(&self) -> Result<RationalBezier, SplineError> {
+    pub fn to_bezier(&self) -> Result<RationalBezier, SplineError> {
         let pts = (0..self.w.len()).map(|i| self.control_point(i)).collect();
         RationalBezier::new(pts, self.w.to_vec())
+    }
+}
+
+/// A [`BezierPiece`] in coordinates relative to an origin `o` ([`BezierPiece::relative_to`]):
+/// its homogeneous coefficients `w_i (x_i - o_x)`, `w_i (y_i - o_y)` (each one rounded
+/// subtraction and one product) and its weights, so that values are computed in the origin's
+/// coordinates (a cell's, for coverage) without the rounding of the absolute ones.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RelativePiece<'a> {
+    hx: Coeffs,
+    hy: Coeffs,
+    w: &'a [f64],
+    extent: (f64, f64),
+}
+
+impl RelativePiece<'_> {
+    /// `(max_i |x_i - o_x|, max_i |y_i - o_y|)`: the size of the terms the relative coordinates
+    /// are sums of (their rounding scale).
+    #[inline]
+    pub fn extent(&self) -> (f64, f64) {
+        self.extent
+    }
+
+    /// `(x(t) - o_x, y(t) - o_y, x'(t))`, what a Green's-theorem integral `integral P dx`
+    /// evaluates: one de Casteljau pass for each of `X`, `Y`, `W` (with the derivatives of `X`
+    /// and `W`), one division `r = 1 / W`, then `x = X r`, `y = Y r` and the quotient rule
+    /// `x' = (X' W - X W') r^2`. The end points are computed too, not the stored ones.
+    #[inline]
+    pub fn point_and_x_derivative(&self, t: f64) -> (f64, f64, f64) {
+        let (x, dx) = de_casteljau_with_derivative(&self.hx, t);
+        let (w, dw) = de_casteljau_with_derivative(self.w, t);
+        let y = de_casteljau(&self.hy, t);
+        let inv = 1.0 / w;
+        (x * inv, y * inv, (dx * w - x * dw) * inv * inv)
     }
 }
 
@@ -292,6 +390,11 @@ impl HalvedPiece {
         right.y[0] = left.y[n - 1];
         right
     }
+}
+
+/// `max_i |c_i|`.
+fn largest_magnitude(c: &[f64]) -> f64 {
+    c.iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
 /// `X(t) / W(t)`, exact at the ends.

@@ -105,7 +105,7 @@ pub fn boundary_crossing(domain: &Domain) -> Result<Option<BoundaryCrossing>, Bo
 
 /// The rational Bezier curve of a monotone piece (local parameter `[0, 1]`).
 fn bezier_of(b: &MonotoneBox) -> Option<RationalBezier> {
-    RationalBezier::new(b.control_points().collect(), b.weights().to_vec()).ok()
+    b.piece().to_bezier().ok()
 }
 
 /// For each piece, the next piece along its loop when they join (its end is the next one's

@@ -14,7 +14,7 @@ use std::ops::Range;
 use rs_boxes::Monotonicity;
 use rs_spline::Point;
 
-use crate::arc::{Arc, PartIntegrals, Rules};
+use crate::arc::{Arc, PartIntegrals};
 use crate::lines::add_covered;
 
 /// Where a band writes its results: row-major slices of the caller's arrays, the fractions
@@ -41,7 +41,6 @@ pub(crate) struct Band<'a> {
     pub(crate) rows: Range<usize>,
     pub(crate) moments: bool,
     pub(crate) apertures: bool,
-    pub(crate) rules: &'a Rules,
 }
 
 /// What the walk over the pieces collects, and its per-piece scratch.
@@ -298,7 +297,7 @@ impl Band<'_> {
             }
         } else {
             let size = (self.xs[i + 1] - self.xs[i], self.ys[j + 1] - self.ys[j]);
-            arc.integrals((t0, t1), corner, size, self.moments, self.rules)
+            arc.integrals((t0, t1), corner, size, self.moments)
         };
         let idx = (j - j0) * nx + i;
         parts.push((

@@ -6,7 +6,7 @@ use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::{FillRule, fill_nesting};
 use rs_spline::Domain;
 
-use crate::arc::{Arc, Rules};
+use crate::arc::Arc;
 use crate::band::{Band, BandOut};
 use crate::{CellGrid, CoverageError};
 
@@ -192,7 +192,6 @@ fn filled<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, Covera
 pub struct GridCoverage {
     grid: CellGrid,
     arcs: Vec<Arc>,
-    rules: Rules,
 }
 
 impl GridCoverage {
@@ -253,11 +252,7 @@ impl GridCoverage {
             .filter(|p| signs[p.boundary_loop] != 0)
             .map(|p| Arc::new(p.clone(), signs[p.boundary_loop] as f64))
             .collect();
-        Ok(Self {
-            grid,
-            arcs,
-            rules: Rules::new(),
-        })
+        Ok(Self { grid, arcs })
     }
 
     /// The grid.
@@ -328,7 +323,6 @@ impl GridCoverage {
             rows,
             moments: options.centroids,
             apertures: options.apertures,
-            rules: &self.rules,
         }
     }
 

@@ -20,8 +20,8 @@
 //! `int int y dA = -oint min(y, Y)^2 / 2 dx` the same way. The parts are found by one
 //! bracketed solve per crossing of a monotone piece with a grid line (the lines it crosses by
 //! binary search); the integrals over a part are Gauss-Legendre (exact) on polynomial pieces
-//! and the bounded adaptive rule of `rs-spline` on rational ones, in coordinates local to the
-//! cell. The work is `O(cells + crossings)`; a band of rows needs only its own crossings.
+//! and the bounded adaptive rule on rational ones (`rs_spline::green`, the Green's-theorem
+//! kernel cubature moments use too), in coordinates local to the cell. The work is `O(cells + crossings)`; a band of rows needs only its own crossings.
 //!
 //! # Semantics
 //! - **Fill rule**: even-odd by default ([`GridCoverage::new`], [`cell_coverage`]), nonzero

@@ -17,9 +17,8 @@
 //!   [`rs_contain::LoopNesting::boundary_sign`]): holes and several loops are handled,
 //!   whatever the loops' orientation; loops that cross are refused. Polynomial pieces of degree
 //!   `p`: Gauss-Legendre with `ceil(p (n + 2) / 2)` nodes, exact. Rational pieces: adaptive
-//!   Gauss-Legendre with an error estimate and bounded work
-//!   ([`rs_spline::quadrature::integrate_adaptive_vector`]); a piece that does not converge is
-//!   an error.
+//!   Gauss-Legendre with an error estimate and bounded work; a piece that does not converge is
+//!   an error. Both by [`rs_spline::green`], the Green's-theorem kernel cell coverage uses too.
 //! - **Candidates.** Halton points in the bounding box kept when the grid locator classifies
 //!   them [`Location::Inside`](rs_contain::Location::Inside) (farther than the boundary
 //!   tolerance, `1e-12` of the box's diagonal, from the boundary):

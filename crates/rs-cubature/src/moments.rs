@@ -8,13 +8,15 @@
 //! On a polynomial piece of degree `p` (all weights equal) the integrand `F(C(t)) y'(t)` of a
 //! basis of total degree `n` is a polynomial of degree at most `p (n + 1) + p - 1`, integrated
 //! exactly by Gauss-Legendre with `ceil(p (n + 2) / 2)` nodes. A rational piece is integrated
-//! by the adaptive rule of `rs_spline::quadrature` (all components at once, bounded work); a
-//! piece that does not converge is an error.
+//! by the adaptive rule (all components at once, bounded work); a piece that does not converge
+//! is an error. Both through `rs_spline::green`, the Green's-theorem kernel cell coverage
+//! integrates with too.
 
 use rs_contain::{FillRule, curve_boundary_signs};
+use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 use rs_spline::prelude::*;
-use rs_spline::quadrature::{gauss_legendre, integrate_adaptive_vector};
-use rs_spline::{BoundingBox, Domain, Point};
+use rs_spline::quadrature::MAX_GAUSS_NODES;
+use rs_spline::{BoundingBox, Domain, Point, RationalBezier};
 
 use crate::basis::{LegendreBasis, dim_polynomials, graded_index};
 use crate::{CubatureError, MAX_DEGREE};
@@ -27,7 +29,7 @@ const RELATIVE_QUADRATURE_TOLERANCE: f64 = 1e-15;
 /// `integral F_k(C(t)) y'(t) dt` over the boundary of the set `domain` fills under `rule`
 /// for the `dim` functions `F_k` that `antiderivatives(p, out)` writes at `p` (returning
 /// `max_k |F_k(p)|`), `F_k` of total degree at most `degree + 1`; `abs_tol` for rational
-/// pieces.
+/// pieces. One running sum over all the pieces ([`Jacobian::OnEachWeight`]).
 fn green_integrals(
     domain: &Domain,
     rule: FillRule,
@@ -40,8 +42,6 @@ fn green_integrals(
     let curve_sign = curve_boundary_signs(domain, rule).map_err(CubatureError::Nesting)?;
     let mut total = vec![0.0; dim];
     let mut at = vec![0.0; dim];
-    // Gauss-Legendre rules by number of nodes, made once per call.
-    let mut rules: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
     for (curve, piece) in domain.bezier_pieces() {
         let sign = curve_sign[curve] as f64;
         if sign == 0.0 {
@@ -49,55 +49,66 @@ fn green_integrals(
         }
         let p = piece.degree();
         let w0 = piece.weights()[0];
-        if piece.weights().iter().all(|&w| w == w0) {
-            let nodes = (p * (degree + 2)).div_ceil(2).max(1);
-            let at_rule = match rules.iter().position(|r| r.0 == nodes) {
-                Some(i) => i,
-                None => {
-                    let (x, w) = gauss_legendre(nodes);
-                    rules.push((nodes, x, w));
-                    rules.len() - 1
-                }
-            };
-            let (_, xs, ws) = &rules[at_rule];
-            for (&x, &w) in xs.iter().zip(ws) {
-                // [-1, 1] -> [0, 1]: t = (x + 1) / 2, dt = dx / 2.
-                let (pt, tangent) = piece.point_and_tangent(0.5 * (x + 1.0));
-                antiderivatives(pt, &mut at);
-                let factor = sign * 0.5 * w * tangent.y;
-                for (t, a) in total.iter_mut().zip(&at) {
-                    *t += factor * a;
-                }
-            }
-        } else {
-            let per_parameter = 2.0 * p as f64;
-            let got = integrate_adaptive_vector(
-                |t, out| {
-                    let (pt, tangent) = piece.point_and_tangent(t);
-                    let largest = antiderivatives(pt, out);
-                    for o in out.iter_mut() {
-                        *o *= tangent.y;
-                    }
-                    // The rounding of y' is about eps 2p |y| (differences of coordinates).
-                    largest * (tangent.y.abs() + per_parameter * pt.y.abs())
-                },
-                dim,
-                0.0,
-                1.0,
-                abs_tol,
-            );
-            if !got.converged {
-                return Err(CubatureError::MomentsNotConverged {
-                    curve,
-                    error: got.error,
-                });
-            }
-            for (t, v) in total.iter_mut().zip(&got.values) {
-                *t += sign * v;
-            }
+        let polynomial = piece.weights().iter().all(|&w| w == w0);
+        // F_k(C(t)) y'(t): degree p (degree + 1) + p - 1.
+        let quadrature =
+            PieceRule::for_piece(polynomial, p * (degree + 2) - 1, MAX_GAUSS_NODES, abs_tol);
+        let mut integrand = MomentIntegrand {
+            piece: &piece,
+            sign,
+            per_parameter: 2.0 * p as f64,
+            antiderivatives: &mut *antiderivatives,
+            at: &mut at,
+        };
+        let got = integrate_piece(
+            &mut integrand,
+            (0.0, 1.0),
+            quadrature,
+            Jacobian::OnEachWeight,
+            &mut total,
+        );
+        if !got.converged {
+            return Err(CubatureError::MomentsNotConverged {
+                curve,
+                error: got.error,
+            });
         }
     }
     Ok(total)
+}
+
+/// `sign F_k(C(t)) y'(t)` along one Bezier piece of a loop whose boundary sign is `sign`.
+struct MomentIntegrand<'a> {
+    piece: &'a RationalBezier,
+    sign: f64,
+    /// `2 p` for a piece of degree `p`: the rounding of `y'` is about `eps 2 p |y|`
+    /// (differences of coordinates).
+    per_parameter: f64,
+    antiderivatives: &'a mut dyn FnMut(Point, &mut [f64]) -> f64,
+    /// Scratch for the `F_k` at a node.
+    at: &'a mut [f64],
+}
+
+impl PieceIntegrand for MomentIntegrand<'_> {
+    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
+        let (pt, tangent) = self.piece.point_and_tangent(t);
+        (self.antiderivatives)(pt, self.at);
+        let factor = self.sign * weight * tangent.y;
+        for (s, a) in sum.iter_mut().zip(self.at.iter()) {
+            *s += factor * a;
+        }
+    }
+
+    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
+        let (pt, tangent) = self.piece.point_and_tangent(t);
+        let largest = (self.antiderivatives)(pt, out);
+        // The sign is exact: the adaptive rule's values are the unsigned ones negated.
+        let dy = self.sign * tangent.y;
+        for o in out.iter_mut() {
+            *o *= dy;
+        }
+        largest * (tangent.y.abs() + self.per_parameter * pt.y.abs())
+    }
 }
 
 /// The area of `bbox` (at least the smallest positive number).

@@ -23,6 +23,9 @@
 //! - [`Domain`]: curves grouped into boundary loops, orientation, signed area, bounding box;
 //!   [`NearestBoundary`]: the nearest boundary point of a point, exactly.
 //!   (The JSON domain file is read and written by `rs-io`.)
+//! - [`quadrature`]: the one cache of Gauss-Legendre rules and the adaptive rule with an error
+//!   estimate and bounded work; [`green`]: **the** Green's-theorem integral along a boundary
+//!   piece (exact rules on polynomial pieces, the adaptive rule on rational ones).
 //!
 //! Polynomial coefficients follow `rs-roots`: ascending power basis.
 //!
@@ -56,6 +59,7 @@ mod crossing;
 mod curve;
 mod domain;
 mod error;
+pub mod green;
 pub mod grid;
 mod homogeneous;
 mod insertion;

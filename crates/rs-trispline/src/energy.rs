@@ -15,7 +15,7 @@
 use std::collections::HashMap;
 
 use rs_mesh::CurvedTriangulation;
-use rs_spline::quadrature::gauss_legendre;
+use rs_spline::quadrature::gauss_rule;
 
 use crate::bb::{Jet, Order, Triangle, coefficient_count, evaluate};
 use crate::hermite::{C1Space, macro_triangles, powell_sabin_element, sub_triangles};
@@ -38,13 +38,17 @@ pub fn energy(s: &Spline) -> f64 {
     if d < 2 {
         return 0.0;
     }
-    let (nodes, weights) = gauss_legendre(d);
+    // d <= MAX_DEGREE = 12, far below the cache's bound: the rule is always there.
+    let Some(gauss) = gauss_rule(d) else {
+        return f64::NAN;
+    };
+    let (nodes, weights) = (gauss.nodes(), gauss.weights());
     let rule: Vec<(f64, f64, f64)> = nodes
         .iter()
-        .zip(&weights)
+        .zip(weights)
         .flat_map(|(&x, &wx)| {
             let (a, wa) = (0.5 * (x + 1.0), 0.5 * wx);
-            nodes.iter().zip(&weights).map(move |(&y, &wy)| {
+            nodes.iter().zip(weights).map(move |(&y, &wy)| {
                 let (b, wb) = (0.5 * (y + 1.0), 0.5 * wy);
                 // b1 = a, b2 = (1 - a) b, Jacobian (1 - a) times twice the area.
                 (a, (1.0 - a) * b, wa * wb * (1.0 - a))

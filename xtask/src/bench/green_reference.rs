@@ -10,7 +10,7 @@
 
 use inrs::contain::{FillRule, curve_boundary_signs};
 use inrs::prelude::*;
-use inrs::spline::quadrature::{gauss_legendre, integrate_adaptive};
+use inrs::spline::quadrature::{fixed_gauss_rule, integrate_adaptive};
 use inrs::{BoundingBox, Domain, Point};
 
 /// Inner panels per bounding-box width: a panel spans at most 1/16 of the width.
@@ -82,7 +82,10 @@ pub(super) fn green_integral(
 ) -> Result<(f64, f64), String> {
     let b = d.bounding_box();
     let sign = curve_boundary_signs(d, FillRule::EvenOdd).map_err(|e| e.to_string())?;
-    let (xs, ws) = gauss_legendre(NODES);
+    let (xs, ws) = {
+        let rule = fixed_gauss_rule::<NODES>();
+        (rule.nodes(), rule.weights())
+    };
     let panel = b.width() / PANELS;
     // F(x, y) and the sum of |terms| (its rounding scale).
     let inner = |p: Point| -> (f64, f64) {
@@ -92,7 +95,7 @@ pub(super) fn green_integral(
         let (mut sum, mut size) = (0.0, 0.0);
         for k in 0..panels as usize {
             let lo = b.min.x + k as f64 * step;
-            for (&x, &w) in xs.iter().zip(&ws) {
+            for (&x, &w) in xs.iter().zip(ws) {
                 let v = f(Point::new(lo + 0.5 * (x + 1.0) * step, p.y)) * w * 0.5 * step;
                 sum += v;
                 size += v.abs();

@@ -1,8 +1,8 @@
-//! Gauss-Legendre quadrature, fixed and adaptive.
-
-use std::sync::OnceLock;
+//! Adaptive Gauss-Legendre quadrature with an error estimate and bounded work.
 
 use smallvec::SmallVec;
+
+use super::gauss::{GaussRule, fixed_gauss_rule};
 
 /// Per-component scratch of the adaptive rule.
 type Scratch = SmallVec<[f64; 4]>;
@@ -12,57 +12,6 @@ type Scratch = SmallVec<[f64; 4]>;
 const ORDER: usize = 16;
 /// Recursion depth limit of [`integrate_adaptive`] (intervals of `2^-40` of the start).
 const MAX_DEPTH: u32 = 40;
-
-/// Nodes and weights of the `n`-point Gauss-Legendre rule on `[-1, 1]`, computed by Newton's
-/// method on the Legendre polynomial `P_n` (nodes ascending).
-pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut nodes = vec![0.0; n];
-    let mut weights = vec![0.0; n];
-    for i in 0..n.div_ceil(2) {
-        // Chebyshev-like initial guess for the i-th largest root.
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
-            let (p, d) = legendre(n, x);
-            dp = d;
-            let dx = p / d;
-            x -= dx;
-            if dx.abs() <= 1e-16 {
-                break;
-            }
-        }
-        let (_, d) = legendre(n, x);
-        if d.is_finite() {
-            dp = d;
-        }
-        let w = 2.0 / ((1.0 - x * x) * dp * dp);
-        nodes[i] = -x;
-        nodes[n - 1 - i] = x;
-        weights[i] = w;
-        weights[n - 1 - i] = w;
-    }
-    (nodes, weights)
-}
-
-/// `(P_n(x), P_n'(x))` by the three-term recurrence.
-fn legendre(n: usize, x: f64) -> (f64, f64) {
-    let (mut p0, mut p1) = (1.0, x);
-    if n == 0 {
-        return (1.0, 0.0);
-    }
-    for k in 2..=n {
-        let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-        p0 = p1;
-        p1 = p2;
-    }
-    let d = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-    (p1, d)
-}
-
-fn rule() -> &'static (Vec<f64>, Vec<f64>) {
-    static RULE: OnceLock<(Vec<f64>, Vec<f64>)> = OnceLock::new();
-    RULE.get_or_init(|| gauss_legendre(ORDER))
-}
 
 /// Most intervals [`integrate_adaptive`] examines for one integral (each costs two 16-point
 /// rules); past it the remaining intervals are accepted as they are and the result says so.
@@ -123,21 +72,33 @@ pub struct VectorIntegral {
     pub converged: bool,
 }
 
-/// The 16-point rule on `[a, b]` for the `out.len()` components of `f`, written to `out`;
+/// The 16-point `rule` on `[a, b]` for the `out.len()` components of `f`, written to `out`;
 /// returns the integral of the rounding magnitude `f` returns.
 fn fixed_into(
+    rule: &GaussRule,
     f: &mut impl FnMut(f64, &mut [f64]) -> f64,
     a: f64,
     b: f64,
     at: &mut [f64],
     out: &mut [f64],
 ) -> f64 {
-    let (x, w) = rule();
-    let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
-    out.fill(0.0);
+    let (h, nodes) = rule.on(a, b);
     let mut abs = 0.0;
-    for (&xi, &wi) in x.iter().zip(w) {
-        let scale = f(m + h * xi, at);
+    if let ([one], [_]) = (&mut *out, &*at) {
+        // One component (scalar integrals, coverage's moments): the same sums without the
+        // loops over components.
+        let mut sum = 0.0;
+        for (t, wi) in nodes {
+            let scale = f(t, at);
+            sum += wi * at[0];
+            abs += wi * scale;
+        }
+        *one = sum * h;
+        return h.abs() * abs;
+    }
+    out.fill(0.0);
+    for (t, wi) in nodes {
+        let scale = f(t, at);
         for (o, &v) in out.iter_mut().zip(at.iter()) {
             *o += wi * v;
         }
@@ -183,20 +144,37 @@ fn fixed_into(
 /// assert!((got.values[1] - 0.25).abs() < 1e-15);
 /// ```
 pub fn integrate_adaptive_vector(
-    mut f: impl FnMut(f64, &mut [f64]) -> f64,
+    f: impl FnMut(f64, &mut [f64]) -> f64,
     dim: usize,
     a: f64,
     b: f64,
     abs_tol: f64,
 ) -> VectorIntegral {
+    let mut values = vec![0.0; dim];
+    let (error, converged) = integrate_adaptive_into(f, a, b, abs_tol, &mut values);
+    VectorIntegral {
+        values,
+        error,
+        converged,
+    }
+}
+
+/// [`integrate_adaptive_vector`] with the values written into `values` (overwritten; its
+/// length is the number of components), for callers that keep them on the stack: the error
+/// estimate and whether it converged.
+pub(crate) fn integrate_adaptive_into(
+    mut f: impl FnMut(f64, &mut [f64]) -> f64,
+    a: f64,
+    b: f64,
+    abs_tol: f64,
+    values: &mut [f64],
+) -> (f64, bool) {
+    let dim = values.len();
     let total = b - a;
-    let mut out = VectorIntegral {
-        values: vec![0.0; dim],
-        error: 0.0,
-        converged: true,
-    };
+    values.fill(0.0);
+    let (mut error, mut converged) = (0.0, true);
     // Scratch on the stack for a few components (the scalar rule and small moment vectors
-    // allocate nothing more than `out`).
+    // allocate nothing).
     let zeros = || Scratch::from_elem(0.0, dim);
     let (mut at, mut left, mut right) = (zeros(), zeros(), zeros());
     // The intervals still to examine, a stack; `wholes` holds their rule estimates, `dim`
@@ -204,14 +182,15 @@ pub fn integrate_adaptive_vector(
     let mut stack: SmallVec<[(f64, f64, u32); 16]> = SmallVec::new();
     stack.push((a, b, 0u32));
     let mut wholes: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, dim);
-    fixed_into(&mut f, a, b, &mut at, &mut wholes);
+    let rule = fixed_gauss_rule::<ORDER>();
+    fixed_into(rule, &mut f, a, b, &mut at, &mut wholes);
     let mut examined = 0usize;
     while let Some((lo, hi, depth)) = stack.pop() {
         examined += 1;
         let whole_at = wholes.len() - dim;
         let mid = 0.5 * (lo + hi);
-        let left_abs = fixed_into(&mut f, lo, mid, &mut at, &mut left);
-        let right_abs = fixed_into(&mut f, mid, hi, &mut at, &mut right);
+        let left_abs = fixed_into(rule, &mut f, lo, mid, &mut at, &mut left);
+        let right_abs = fixed_into(rule, &mut f, mid, hi, &mut at, &mut right);
         let share = if total != 0.0 { (hi - lo) / total } else { 1.0 };
         let noise = 256.0 * f64::EPSILON * (left_abs + right_abs);
         // The largest difference over the components; a NaN stays (it never meets the test).
@@ -226,11 +205,11 @@ pub fn integrate_adaptive_vector(
         if met || depth >= MAX_DEPTH || examined + stack.len() >= MAX_INTERVALS || !diff.is_finite()
         {
             wholes.truncate(whole_at);
-            for ((o, l), r) in out.values.iter_mut().zip(&left).zip(&right) {
+            for ((o, l), r) in values.iter_mut().zip(&left).zip(&right) {
                 *o += l + r;
             }
-            out.error += diff;
-            out.converged &= met;
+            error += diff;
+            converged &= met;
         } else {
             wholes.truncate(whole_at);
             stack.push((mid, hi, depth + 1));
@@ -239,7 +218,7 @@ pub fn integrate_adaptive_vector(
             wholes.extend_from_slice(&left);
         }
     }
-    out
+    (error, converged)
 }
 
 /// `integral_a^b f` by adaptive 16-point Gauss-Legendre ([`integrate_adaptive_vector`] with
@@ -270,15 +249,6 @@ pub fn integrate_adaptive(f: impl Fn(f64) -> (f64, f64), a: f64, b: f64, abs_tol
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rule_is_exact_for_polynomials() {
-        let (x, w) = gauss_legendre(16);
-        assert!((w.iter().sum::<f64>() - 2.0).abs() < 1e-14);
-        let i30: f64 = x.iter().zip(&w).map(|(xi, wi)| wi * xi.powi(30)).sum();
-        assert!((i30 - 2.0 / 31.0).abs() < 1e-14);
-        assert!(x.windows(2).all(|p| p[0] < p[1]));
-    }
 
     #[test]
     fn adaptive_handles_peaks() {
