@@ -75,8 +75,11 @@ mod band;
 mod coverage;
 mod error;
 mod grid;
+mod in_order;
 mod lines;
 
-pub use coverage::{Coverage, CoverageOptions, GridCoverage, MAX_CELLS, cell_coverage};
+pub use coverage::{
+    BAND_BYTES, Bands, Coverage, CoverageOptions, GridCoverage, MAX_CELLS, band_rows, cell_coverage,
+};
 pub use error::CoverageError;
 pub use grid::{CellGrid, MAX_EDGES};
