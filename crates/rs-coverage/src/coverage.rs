@@ -13,7 +13,8 @@ use crate::in_order::{InOrder, in_order};
 use crate::{CellGrid, CoverageError};
 
 /// Most cells one call computes ([`GridCoverage::all`], [`GridCoverage::rows`],
-/// [`cell_coverage`]): `2^28`, 2 GiB of fractions. Larger grids are computed in row bands.
+/// [`cell_coverage`]): `2^28`, 2 GiB of fractions. Larger grids are computed in row bands
+/// ([`GridCoverage::bands`]).
 pub const MAX_CELLS: usize = 1 << 28;
 
 /// What to compute besides the fractions: [`CoverageOptions::DEFAULT`] (fractions only) and
@@ -199,7 +200,8 @@ fn filled<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, Covera
 
 /// A domain prepared for coverage on a grid: its boundary cut into monotone pieces, each with
 /// the orientation of its loop that puts the filled set (even-odd or nonzero) on its left. Build once, then ask for the whole grid
-/// ([`GridCoverage::all`]) or for bands of rows ([`GridCoverage::rows`]) from any thread.
+/// ([`GridCoverage::all`]), for a band of rows ([`GridCoverage::rows`]) from any thread, or
+/// for every band in order ([`GridCoverage::bands`]).
 ///
 /// # Examples
 ///
