@@ -339,8 +339,9 @@ impl GridCoverage {
     /// [`GridCoverage::rows`]`(rows, options)` gives it. Returns what `consume` returns.
     ///
     /// The bands are computed on the calling thread and rayon's pool while `consume` takes
-    /// them, at most `2 x threads` of them ahead of the one it takes next, so memory holds a
-    /// few bands whatever the grid's size: stream a grid larger than [`MAX_CELLS`] (or than
+    /// them, at most `2 x threads` of them ahead of the one it takes next (fewer for bands of
+    /// more than [`BAND_BYTES`], so that those ahead hold at most `2 x threads x BAND_BYTES`;
+    /// at least one), so memory holds a few bands whatever the grid's size: stream a grid larger than [`MAX_CELLS`] (or than
     /// memory) to a file band by band. The bands' values are those of one band, or of
     /// [`GridCoverage::all`], bit for bit (but see [`GridCoverage::rows`] for a curved boundary
     /// through a grid vertex). When `consume` returns early (dropping the
@@ -379,13 +380,20 @@ impl GridCoverage {
         options: CoverageOptions,
         consume: impl FnOnce(Bands<'_>) -> T,
     ) -> T {
-        let ny = self.grid.ny();
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
         let band_rows = band_rows.clamp(1, ny);
         let compute = |k: usize| {
             let rows = band_range(k, band_rows, ny);
             (rows.clone(), self.rows(rows, options))
         };
-        in_order(ny.div_ceil(band_rows), 2 * threads(), &compute, |items| {
+        // Two bands a thread ahead, and no more than that many bands of `BAND_BYTES` hold
+        // (rows longer than a band's bytes: fewer bands ahead).
+        let ahead = 2 * threads();
+        let band_bytes = band_rows
+            .saturating_mul(nx)
+            .saturating_mul(bytes_per_cell(options));
+        let window = ahead.min(ahead.saturating_mul(BAND_BYTES) / band_bytes.max(1));
+        in_order(ny.div_ceil(band_rows), window, &compute, |items| {
             consume(Bands { items })
         })
     }
@@ -492,11 +500,14 @@ pub const BAND_BYTES: usize = 8 << 20;
 /// assert_eq!(band_rows(1024, 1024, fractions, 4), 64); // four bands a thread
 /// ```
 pub fn band_rows(nx: usize, ny: usize, options: CoverageOptions, threads: usize) -> usize {
-    let bytes_per_cell =
-        8 + if options.centroids { 16 } else { 0 } + if options.apertures { 16 } else { 0 };
-    let by_size = BAND_BYTES / bytes_per_cell / nx.max(1);
+    let by_size = BAND_BYTES / bytes_per_cell(options) / nx.max(1);
     let by_threads = ny.div_ceil(threads.max(1).saturating_mul(4));
     by_size.min(by_threads).max(1)
+}
+
+/// Output bytes per cell: 8 for the fraction, 16 for the centroid, about 16 for the faces.
+fn bytes_per_cell(options: CoverageOptions) -> usize {
+    8 + if options.centroids { 16 } else { 0 } + if options.apertures { 16 } else { 0 }
 }
 
 /// Band `k` of the bands of `band_rows` rows (at least one) of a grid of `ny` rows: the one
