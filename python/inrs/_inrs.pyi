@@ -216,6 +216,12 @@ def cell_coverage(
     x_apertures (R, nx + 1) or None, y_apertures (R + 1, nx) or None)`` for ``R`` rows."""
     ...
 
+def coverage_band_rows(nx: int, ny: int, centroids: bool, apertures: bool) -> int:
+    """The rows of each band the library cuts a grid of ``nx`` x ``ny`` cells into
+    (``inrs::coverage::band_rows`` on this process's threads): about 8 MiB of output a band,
+    at least one row, at least four bands a thread when the grid has the rows."""
+    ...
+
 class CubatureRule:
     """A positive interior cubature rule of a domain (``inrs.cubature``, ``Domain.integrate``)."""
 

@@ -10,10 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import DEFAULT_TOLERANCE, Domain, _edges
-
-#: Cells per block of :func:`cell_fractions` by default: ``2**22`` (32 MiB of float64).
-DEFAULT_BLOCK_CELLS = 1 << 22
+from . import DEFAULT_TOLERANCE, Domain, _edges, _inrs
 
 
 def _classify_block(block: np.ndarray, domain: Domain, method: str, tol: float) -> np.ndarray:
@@ -44,7 +41,8 @@ def _fraction_rows(
     domain: Domain, x_edges: np.ndarray, y_edges: np.ndarray, fill_rule: str, j0: int, j1: int
 ) -> np.ndarray:
     # One band of rows on this task's thread: the library prepares the domain for the grid
-    # (a cost independent of the band's size) and covers only the rows j0 .. j1.
+    # (a cost independent of the band's size) and covers only the rows j0 .. j1, as its
+    # band iterator (``GridCoverage::bands``) computes a band.
     return domain._coverage(x_edges, y_edges, (j0, j1), False, False, fill_rule, 1)
 
 
@@ -53,11 +51,14 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rul
     (row ``j``, column ``i`` is the cell ``[x_i, x_{i+1}] x [y_j, y_{j+1}]``), for grids
     larger than memory or than :data:`inrs.MAX_CELLS` cells.
 
-    Each block holds ``row_chunk`` rows (default: about ``DEFAULT_BLOCK_CELLS`` cells, at
-    least one row) and is one task that covers only its rows (the library's
-    ``GridCoverage::rows``), so no task ever holds the whole grid; write the result block by
+    Each block holds ``row_chunk`` rows (default: the library's band height,
+    ``GridCoverage::band_rows`` on this process's threads: about ``2**20`` cells (8 MiB), at
+    least one row, at least four blocks a thread when the grid has the rows) and is one task
+    that covers only its rows (the library's ``GridCoverage::rows``, a band as its band
+    iterator computes it), so no task ever holds the whole grid; write the result block by
     block (``dask.array.to_zarr``, ``store``) or reduce it. The values are those of the eager
-    call, bit for bit (a cell's value does not depend on the band it is computed in). Each
+    call, bit for bit (a cell's value does not depend on the band it is computed in, but for
+    a few units in the last place at a grid vertex a curved boundary passes through). Each
     task prepares the domain for the grid again, a cost of the order of covering one row of a
     few thousand cells per block. ``fill_rule`` (``even-odd`` or ``nonzero``) is that of
     :meth:`Domain.cell_fractions`.
@@ -79,7 +80,7 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rul
     domain._coverage(x, y, (0, 1), False, False, fill_rule, 1)
     nx, ny = len(x) - 1, len(y) - 1
     if row_chunk is None:
-        row_chunk = max(1, DEFAULT_BLOCK_CELLS // nx)
+        row_chunk = _inrs.coverage_band_rows(nx, ny, False, False)
     elif isinstance(row_chunk, bool) or not isinstance(row_chunk, (int, np.integer)) or row_chunk < 1:
         raise ValueError(f"row_chunk must be an integer >= 1, got {row_chunk!r}")
     row_chunk = int(min(row_chunk, ny))

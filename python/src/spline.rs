@@ -4,14 +4,14 @@
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
-use inrs::Point;
+use inrs::PointQuery;
 use inrs::trispline::bb::Order;
 use inrs::trispline::{C1Space, QuasiInterpolation, Spline, TriSplineError};
 
 use crate::domain::NativeDomain;
 use crate::errors::value_error;
 use crate::mesh::triangulation;
-use crate::points::{columns, pairs};
+use crate::points::{columns, pairs, with_point_source};
 use crate::threads::with_threads;
 
 /// A quasi-interpolation waiting for the function's values (`inrs.fit` fills them in, calling
@@ -158,11 +158,17 @@ impl NativeSpline {
         } else {
             Order::Value
         };
+        // The library's evaluator is the query, reading the arrays in place as classify does.
         let jets = py.detach(|| {
             with_threads(threads, || {
-                let eval = self.spline.evaluator().map_err(value_error)?;
-                let pts: Vec<Point> = pts.to_vec();
-                Ok::<_, PyErr>(eval.evaluate_all(&pts, order))
+                let eval = self
+                    .spline
+                    .evaluator()
+                    .map_err(value_error)?
+                    .with_order(order);
+                let mut jets = vec![None; pts.len()];
+                with_point_source!(pts, |points| eval.par_values_into(&points, &mut jets));
+                Ok::<_, PyErr>(jets)
             })
         })??;
         if derivatives {

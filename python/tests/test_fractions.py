@@ -257,6 +257,24 @@ def test_dask_blocks_equal_the_eager_array_bit_for_bit():
         assert np.array_equal(inrs.dask.cell_fractions(disc, xs, ys, row_chunk=chunk).compute(), want)
 
 
+def test_dask_blocks_default_to_the_librarys_bands():
+    require("dask")
+    import inrs.dask
+    from inrs import _inrs
+
+    # The library's one rule (``band_rows``): about 2**20 cells a band, at least four a thread.
+    threads_rows = _inrs.coverage_band_rows(300, 202, False, False)
+    assert 1 <= threads_rows <= -(-202 // 4)
+    assert _inrs.coverage_band_rows(4096, 1 << 20, False, False) == 256
+    assert _inrs.coverage_band_rows(4096, 1 << 20, True, True) == (1 << 20) // 5 // 4096
+    disc = inrs.Domain.from_json(DISC)
+    xs, ys = np.linspace(-1.03, 0.97, 301), np.linspace(-1.1, 1.05, 203)
+    lazy = inrs.dask.cell_fractions(disc, xs, ys)
+    rows = threads_rows
+    assert lazy.chunks[0] == (rows,) * (202 // rows) + ((202 % rows,) if 202 % rows else ())
+    assert np.array_equal(lazy.compute(), disc.cell_fractions(xs, ys))
+
+
 def test_dask_blocks_take_the_fill_rule():
     require("dask")
     import inrs.dask

@@ -12,7 +12,6 @@ use std::path::Path;
 use std::time::Instant;
 
 use inrs::mesh::{CurvedTriangulation, well_spaced_points};
-use inrs::trispline::bb::Order;
 use inrs::trispline::{C1Space, Spline, interpolate_on, quasi_interpolate};
 use inrs::{Domain, Point};
 
@@ -87,7 +86,7 @@ fn measure(d: &Domain, degree: usize, ny: usize, check: &[Point]) -> Result<Row,
 /// Max and RMS error of `s` against `f` at the `check` points in its domain.
 fn errors(s: &Spline, f: &dyn Fn(Point) -> f64, check: &[Point]) -> Result<(f64, f64), String> {
     let eval = s.evaluator().map_err(|e| e.to_string())?;
-    let values = eval.evaluate_all(check, Order::Value);
+    let values = eval.evaluate_all(check);
     let (mut emax, mut sum, mut n) = (0.0f64, 0.0, 0usize);
     for (v, &p) in values.iter().zip(check) {
         let Some(v) = v else { continue };

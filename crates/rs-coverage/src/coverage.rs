@@ -1,6 +1,7 @@
 //! The coverage of a domain on a grid: preparation, row bands and whole grids.
 
 use std::ops::Range;
+use std::sync::{Mutex, PoisonError};
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::{FillRule, fill_nesting};
@@ -8,10 +9,12 @@ use rs_spline::Domain;
 
 use crate::arc::Arc;
 use crate::band::{Band, BandOut};
+use crate::in_order::{InOrder, in_order};
 use crate::{CellGrid, CoverageError};
 
 /// Most cells one call computes ([`GridCoverage::all`], [`GridCoverage::rows`],
-/// [`cell_coverage`]): `2^28`, 2 GiB of fractions. Larger grids are computed in row bands.
+/// [`cell_coverage`]): `2^28`, 2 GiB of fractions. Larger grids are computed in row bands
+/// ([`GridCoverage::bands`]).
 pub const MAX_CELLS: usize = 1 << 28;
 
 /// What to compute besides the fractions: [`CoverageOptions::DEFAULT`] (fractions only) and
@@ -115,24 +118,48 @@ impl Coverage {
         })
     }
 
-    /// The whole arrays as one band's output.
-    fn as_band_out(&mut self) -> BandOut<'_> {
-        let nx = self.nx;
-        let rows = self.rows.len();
-        let (y_apertures, y_top) = match self.y_apertures.as_deref_mut() {
+    /// The arrays cut into the outputs of bands of `band_rows` rows (at least one), the last
+    /// band lower and writing the top line's faces: those of [`band_range`]`(k, band_rows,
+    /// rows)`.
+    fn band_outs(&mut self, band_rows: usize) -> Vec<BandOut<'_>> {
+        let (nx, ny) = (self.nx, self.rows.len());
+        let band_rows = band_rows.clamp(1, ny.max(1));
+        let mut fractions = self.fractions.chunks_mut(band_rows * nx);
+        let mut centroids = self
+            .centroids
+            .as_deref_mut()
+            .map(|c| c.chunks_mut(band_rows * nx));
+        let mut x_apertures = self
+            .x_apertures
+            .as_deref_mut()
+            .map(|x| x.chunks_mut(band_rows * (nx + 1)));
+        let (mut y_lines, mut y_top) = match self.y_apertures.as_deref_mut() {
             Some(y) => {
-                let (lines, top) = y.split_at_mut(rows * nx);
-                (Some(lines), Some(top))
+                let (lines, top) = y.split_at_mut(ny * nx);
+                (Some(lines.chunks_mut(band_rows * nx)), Some(top))
             }
             None => (None, None),
         };
-        BandOut {
-            fractions: &mut self.fractions,
-            centroids: self.centroids.as_deref_mut(),
-            x_apertures: self.x_apertures.as_deref_mut(),
-            y_apertures,
-            y_top,
+        let bands = ny.div_ceil(band_rows);
+        let mut outs = Vec::with_capacity(bands);
+        for k in 0..bands {
+            let (Some(f), c, x, y) = (
+                fractions.next(),
+                centroids.as_mut().and_then(Iterator::next),
+                x_apertures.as_mut().and_then(Iterator::next),
+                y_lines.as_mut().and_then(Iterator::next),
+            ) else {
+                break;
+            };
+            outs.push(BandOut {
+                fractions: f,
+                centroids: c,
+                x_apertures: x,
+                y_apertures: y,
+                y_top: if k + 1 == bands { y_top.take() } else { None },
+            });
         }
+        outs
     }
 }
 
@@ -173,7 +200,8 @@ fn filled<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, Covera
 
 /// A domain prepared for coverage on a grid: its boundary cut into monotone pieces, each with
 /// the orientation of its loop that puts the filled set (even-odd or nonzero) on its left. Build once, then ask for the whole grid
-/// ([`GridCoverage::all`]) or for bands of rows ([`GridCoverage::rows`]) from any thread.
+/// ([`GridCoverage::all`]), for a band of rows ([`GridCoverage::rows`]) from any thread, or
+/// for every band in order ([`GridCoverage::bands`]).
 ///
 /// # Examples
 ///
@@ -264,7 +292,9 @@ impl GridCoverage {
     /// lines `j0 ..= j1`. The work is `O(pieces + crossings of the boundary with the band's
     /// lines + cells of the band)`; the memory beyond the output is that of the band's
     /// crossings and one row. The values of a cell do not depend on the band it is computed
-    /// in (up to the last bit where the boundary passes through a grid vertex).
+    /// in, except where a curved boundary passes through a grid vertex within rounding: the
+    /// cells and faces at that vertex may then differ by a few units in the last place with
+    /// the band's first and last lines.
     ///
     /// # Errors
     /// [`CoverageError::BadRows`] for an empty range or one beyond the grid;
@@ -285,22 +315,116 @@ impl GridCoverage {
         }
         self.check_cells(rows.len())?;
         let mut out = Coverage::zeroed(rows.clone(), self.grid.nx(), options)?;
-        self.band(rows, options)
-            .cover(&self.arcs, out.as_band_out());
+        // One band: the whole arrays.
+        if let Some(whole) = out.band_outs(rows.len()).pop() {
+            self.cover(rows, options, whole);
+        }
         Ok(out)
     }
 
-    /// The coverage of the whole grid. With the `parallel` feature, bands of rows are
-    /// computed on rayon's threads (the same values as one band).
+    /// The rows of a band of [`GridCoverage::bands`] and [`GridCoverage::all`] with
+    /// `options`: [`band_rows`] for this grid and rayon's threads (one thread without the
+    /// `parallel` feature).
+    pub fn band_rows(&self, options: CoverageOptions) -> usize {
+        band_rows(self.grid.nx(), self.grid.ny(), options, threads())
+    }
+
+    /// Runs `consume` with the grid's bands of `band_rows` rows (the last one lower; 0 is
+    /// taken as 1), in row order: `(rows, coverage)` with `coverage` as
+    /// [`GridCoverage::rows`]`(rows, options)` gives it. Returns what `consume` returns.
+    ///
+    /// The bands are computed on the calling thread and rayon's pool while `consume` takes
+    /// them, at most `2 x threads` of them ahead of the one it takes next (fewer for bands of
+    /// more than [`BAND_BYTES`], so that those ahead hold at most `2 x threads x BAND_BYTES`;
+    /// at least one), so memory holds a few bands whatever the grid's size: stream a grid larger than [`MAX_CELLS`] (or than
+    /// memory) to a file band by band. The bands' values are those of one band, or of
+    /// [`GridCoverage::all`], bit for bit (but see [`GridCoverage::rows`] for a curved boundary
+    /// through a grid vertex). When `consume` returns early (dropping the
+    /// iterator), the bands being computed are finished and no more are started. The
+    /// iterator lives in `consume` because the bands are computed by rayon jobs that borrow
+    /// the coverage (as `std::thread::scope` lends its scope).
+    ///
+    /// A band's error ([`CoverageError::TooManyCells`] for bands of more than [`MAX_CELLS`]
+    /// cells, [`CoverageError::OutOfMemory`]) comes in its place; the bands after it are still
+    /// computed if `consume` asks for them.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_coverage::{CellGrid, CoverageOptions, GridCoverage};
+    /// use rs_spline::{circle, Domain, Point};
+    /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+    /// let grid = CellGrid::uniform(-1.0, 1.0, 64, -1.0, 1.0, 50).unwrap();
+    /// let cover = GridCoverage::new(&d, grid).unwrap();
+    /// let options = CoverageOptions::DEFAULT;
+    /// let mut fractions = Vec::new();
+    /// let rows = cover.bands(16, options, |bands| {
+    ///     let mut rows = Vec::new();
+    ///     for (range, band) in bands {
+    ///         fractions.extend(band.unwrap().fractions); // or write it to a file
+    ///         rows.push(range);
+    ///     }
+    ///     rows
+    /// });
+    /// assert_eq!(rows, [0..16, 16..32, 32..48, 48..50]);
+    /// assert_eq!(fractions, cover.all(options).unwrap().fractions);
+    /// ```
+    pub fn bands<T>(
+        &self,
+        band_rows: usize,
+        options: CoverageOptions,
+        consume: impl FnOnce(Bands<'_>) -> T,
+    ) -> T {
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
+        let band_rows = band_rows.clamp(1, ny);
+        let compute = |k: usize| {
+            let rows = band_range(k, band_rows, ny);
+            (rows.clone(), self.rows(rows, options))
+        };
+        // Two bands a thread ahead, and no more than that many bands of `BAND_BYTES` hold
+        // (rows longer than a band's bytes: fewer bands ahead).
+        let ahead = 2 * threads();
+        let band_bytes = band_rows
+            .saturating_mul(nx)
+            .saturating_mul(bytes_per_cell(options));
+        let window = ahead.min(ahead.saturating_mul(BAND_BYTES) / band_bytes.max(1));
+        in_order(ny.div_ceil(band_rows), window, &compute, |items| {
+            consume(Bands { items })
+        })
+    }
+
+    /// The coverage of the whole grid: its bands of [`GridCoverage::band_rows`] rows, each
+    /// computed as [`GridCoverage::rows`] computes it, in place, on the calling thread and
+    /// rayon's pool (the scheduler of [`GridCoverage::bands`]): the values of
+    /// [`GridCoverage::bands`] with [`GridCoverage::band_rows`] rows, bit for bit.
     ///
     /// # Errors
-    /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`] (use [`GridCoverage::rows`]);
+    /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`] (use [`GridCoverage::bands`]);
     /// [`CoverageError::OutOfMemory`].
     pub fn all(&self, options: CoverageOptions) -> Result<Coverage, CoverageError> {
         let ny = self.grid.ny();
         self.check_cells(ny)?;
         let mut out = Coverage::zeroed(0..ny, self.grid.nx(), options)?;
-        self.cover_in_bands(&mut out, options);
+        let band_rows = self.band_rows(options);
+        let outs: Vec<Mutex<Option<BandOut<'_>>>> = out
+            .band_outs(band_rows)
+            .into_iter()
+            .map(|o| Mutex::new(Some(o)))
+            .collect();
+        let compute = |k: usize| {
+            // Each band's output is taken once: the lock is never contended.
+            let taken = outs
+                .get(k)
+                .and_then(|o| o.lock().unwrap_or_else(PoisonError::into_inner).take());
+            if let Some(o) = taken {
+                self.cover(band_range(k, band_rows, ny), options, o);
+            }
+        };
+        // In place: every band may be computed ahead of the caller.
+        in_order(outs.len(), outs.len(), &compute, |bands| {
+            bands.for_each(drop)
+        });
+        drop(outs);
         Ok(out)
     }
 
@@ -316,7 +440,9 @@ impl GridCoverage {
         Ok(())
     }
 
-    fn band(&self, rows: Range<usize>, options: CoverageOptions) -> Band<'_> {
+    /// The one computation of a band: the rows `rows` with `options` into `out` (see
+    /// [`BandOut`] for its values on entry).
+    fn cover(&self, rows: Range<usize>, options: CoverageOptions, out: BandOut<'_>) {
         Band {
             xs: self.grid.x_edges(),
             ys: self.grid.y_edges(),
@@ -324,73 +450,73 @@ impl GridCoverage {
             moments: options.centroids,
             apertures: options.apertures,
         }
+        .cover(&self.arcs, out);
+    }
+}
+
+/// The bands of a grid in row order, from [`GridCoverage::bands`]: `(rows, coverage)`.
+pub struct Bands<'a> {
+    items: InOrder<'a, (Range<usize>, Result<Coverage, CoverageError>)>,
+}
+
+impl Iterator for Bands<'_> {
+    type Item = (Range<usize>, Result<Coverage, CoverageError>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        self.items.next()
     }
 
-    #[cfg(not(feature = "parallel"))]
-    fn cover_in_bands(&self, out: &mut Coverage, options: CoverageOptions) {
-        let rows = out.rows.clone();
-        self.band(rows, options)
-            .cover(&self.arcs, out.as_band_out());
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.items.size_hint()
     }
+}
 
-    /// Splits the rows into about four bands per thread (each band walks every piece, so
-    /// more bands cost more) and covers them on rayon's pool.
+impl ExactSizeIterator for Bands<'_> {}
+
+/// Output bytes a band holds ([`band_rows`]): 8 MiB, `2^20` cells of fractions alone.
+pub const BAND_BYTES: usize = 8 << 20;
+
+/// The rows of each band of a grid of `nx` columns and `ny` rows computed with `options` on
+/// `threads` threads: the one rule by which [`GridCoverage::all`], [`GridCoverage::bands`]
+/// and the front ends (`inrs fractions`, the blocks of `inrs.dask.cell_fractions`) cut a grid.
+///
+/// Rows of about [`BAND_BYTES`] of output (8 bytes a cell for the fraction, 16 more for the
+/// centroid, about 16 more for the faces), at least one, and no more than
+/// `ceil(ny / (4 threads))`, so that every thread has about four bands to take when the grid
+/// has the rows (each band walks every piece of the boundary, so more bands cost more).
+///
+/// # Examples
+///
+/// ```
+/// use rs_coverage::{CoverageOptions, band_rows};
+/// let fractions = CoverageOptions::DEFAULT;
+/// assert_eq!(band_rows(4096, 4096, fractions, 2), 256); // 2^20 cells
+/// assert_eq!(band_rows(1024, 1024, fractions, 4), 64); // four bands a thread
+/// ```
+pub fn band_rows(nx: usize, ny: usize, options: CoverageOptions, threads: usize) -> usize {
+    let by_size = BAND_BYTES / bytes_per_cell(options) / nx.max(1);
+    let by_threads = ny.div_ceil(threads.max(1).saturating_mul(4));
+    by_size.min(by_threads).max(1)
+}
+
+/// Output bytes per cell: 8 for the fraction, 16 for the centroid, about 16 for the faces.
+fn bytes_per_cell(options: CoverageOptions) -> usize {
+    8 + if options.centroids { 16 } else { 0 } + if options.apertures { 16 } else { 0 }
+}
+
+/// Band `k` of the bands of `band_rows` rows (at least one) of a grid of `ny` rows: the one
+/// way the grid is cut.
+fn band_range(k: usize, band_rows: usize, ny: usize) -> Range<usize> {
+    let j0 = k.saturating_mul(band_rows).min(ny);
+    j0..j0.saturating_add(band_rows).min(ny)
+}
+
+/// The threads bands are computed on: rayon's, or one without the `parallel` feature.
+fn threads() -> usize {
     #[cfg(feature = "parallel")]
-    fn cover_in_bands(&self, out: &mut Coverage, options: CoverageOptions) {
-        use rayon::prelude::*;
-        let (nx, ny) = (out.nx, out.rows.len());
-        let threads = rayon::current_num_threads();
-        if threads <= 1 || ny < 2 {
-            let rows = out.rows.clone();
-            self.band(rows, options)
-                .cover(&self.arcs, out.as_band_out());
-            return;
-        }
-        let per_band = ny.div_ceil(4 * threads).max(1);
-        let mut bands: Vec<(Range<usize>, BandOut<'_>)> = Vec::new();
-        let mut fractions = out.fractions.chunks_mut(per_band * nx);
-        let mut centroids = out
-            .centroids
-            .as_deref_mut()
-            .map(|c| c.chunks_mut(per_band * nx));
-        let mut x_apertures = out
-            .x_apertures
-            .as_deref_mut()
-            .map(|x| x.chunks_mut(per_band * (nx + 1)));
-        let (mut y_lines, mut y_top) = match out.y_apertures.as_deref_mut() {
-            Some(y) => {
-                let (lines, top) = y.split_at_mut(ny * nx);
-                (Some(lines.chunks_mut(per_band * nx)), Some(top))
-            }
-            None => (None, None),
-        };
-        let mut j0 = 0;
-        while j0 < ny {
-            let j1 = (j0 + per_band).min(ny);
-            let (Some(f), c, x, y) = (
-                fractions.next(),
-                centroids.as_mut().and_then(Iterator::next),
-                x_apertures.as_mut().and_then(Iterator::next),
-                y_lines.as_mut().and_then(Iterator::next),
-            ) else {
-                break;
-            };
-            bands.push((
-                j0..j1,
-                BandOut {
-                    fractions: f,
-                    centroids: c,
-                    x_apertures: x,
-                    y_apertures: y,
-                    y_top: if j1 == ny { y_top.take() } else { None },
-                },
-            ));
-            j0 = j1;
-        }
-        bands
-            .into_par_iter()
-            .for_each(|(rows, band_out)| self.band(rows, options).cover(&self.arcs, band_out));
-    }
+    return rayon::current_num_threads();
+    #[cfg(not(feature = "parallel"))]
+    1
 }
 
 /// The coverage of the whole `grid` by `domain` (even-odd fill): [`GridCoverage::new`] then

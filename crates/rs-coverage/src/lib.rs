@@ -53,8 +53,12 @@
 //! - **Grids** need not cover the domain: cells outside it are 0, the domain outside the
 //!   grid is ignored.
 //! - **Limits**: at most [`MAX_EDGES`] edges per axis and [`MAX_CELLS`] cells per call
-//!   ([`GridCoverage::rows`] streams larger grids by row bands); bad grids, open boundaries
-//!   and undecidable nestings are [`CoverageError`]s, never panics.
+//!   ([`GridCoverage::bands`] streams larger grids by row bands, in order, on all cores, with
+//!   a few bands in memory); bad grids, open boundaries and undecidable nestings are
+//!   [`CoverageError`]s, never panics.
+//! - **Bands**: one rule ([`band_rows`]) cuts a grid into bands of rows, for
+//!   [`GridCoverage::all`], [`GridCoverage::bands`] and the front ends; every band is computed
+//!   as [`GridCoverage::rows`] computes it.
 //!
 //! # Examples
 //!
@@ -75,8 +79,11 @@ mod band;
 mod coverage;
 mod error;
 mod grid;
+mod in_order;
 mod lines;
 
-pub use coverage::{Coverage, CoverageOptions, GridCoverage, MAX_CELLS, cell_coverage};
+pub use coverage::{
+    BAND_BYTES, Bands, Coverage, CoverageOptions, GridCoverage, MAX_CELLS, band_rows, cell_coverage,
+};
 pub use error::CoverageError;
 pub use grid::{CellGrid, MAX_EDGES};

@@ -10,7 +10,6 @@ use rs_contain::baselines::halton_points;
 use rs_contain::{Classifier, ContainOptions, Locate, Location};
 use rs_mesh::{CurvedTriangulation, well_spaced_points};
 use rs_spline::Point;
-use rs_trispline::bb::Order;
 use rs_trispline::quasi_interpolate;
 
 fn f(p: Point) -> f64 {
@@ -41,7 +40,7 @@ fn splines(c: &mut Criterion) {
         .count();
     group.bench_function("evaluate 1e6 points", |b| {
         b.iter(|| {
-            let v = eval.evaluate_all(black_box(&pts), Order::Value);
+            let v = eval.evaluate_all(black_box(&pts));
             assert_eq!(v.iter().filter(|j| j.is_some()).count(), inside);
             v
         })

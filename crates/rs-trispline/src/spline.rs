@@ -1,6 +1,7 @@
 //! A spline on a curved triangulation: per triangle, the Bernstein–Bézier coefficients of the
 //! polynomial on its companion triangle; evaluated anywhere in the domain (Section 5.2).
 
+use rs_contain::PointQuery;
 use rs_mesh::{CurvedLocator, CurvedTriangulation};
 use rs_spline::Point;
 
@@ -159,7 +160,9 @@ impl Spline {
         )
     }
 
-    /// An evaluator: the spline anywhere in the domain.
+    /// An evaluator of the spline's values anywhere in the domain (of more of its jet with
+    /// [`SplineEvaluator::with_order`]): a [`PointQuery`] of `Option<Jet>`, `None` outside
+    /// the domain.
     ///
     /// # Errors
     /// Containment errors (never for a triangulation built by rs-mesh).
@@ -167,19 +170,58 @@ impl Spline {
         Ok(SplineEvaluator {
             spline: self,
             locator: CurvedLocator::new(&self.mesh)?,
+            order: Order::Value,
         })
     }
 }
 
 /// Evaluates a [`Spline`] at points of its domain: the curved triangle holding the point
 /// (exactly, slivers between a boundary arc and its chord included), then its polynomial.
+///
+/// A [`PointQuery`] of `Option<Jet>` (up to its [`SplineEvaluator::order`]; `None` outside
+/// the domain): batches of points from any [`rs_contain::PointSource`] go through
+/// [`PointQuery::values_into`] and, on all threads, [`PointQuery::par_values_into`], as
+/// every query of the workspace does.
+///
+/// # Examples
+///
+/// ```
+/// use rs_contain::PointQuery;
+/// use rs_mesh::{CurvedTriangulation, well_spaced_points};
+/// use rs_spline::{circle, Domain, Point};
+/// use rs_trispline::{bb::Order, quasi_interpolate};
+///
+/// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+/// let mesh = CurvedTriangulation::new(&d, &well_spaced_points(&d, 4).unwrap()).unwrap();
+/// let s = quasi_interpolate(mesh, 2, &|p: Point| p.x * p.y).unwrap();
+/// let eval = s.evaluator().unwrap().with_order(Order::Gradient);
+/// let points = [Point::new(0.5, 0.25), Point::new(2.0, 0.0)];
+/// let mut jets = [None; 2];
+/// eval.par_values_into(&points[..], &mut jets);
+/// let j = jets[0].unwrap();
+/// assert!((j.value - 0.125).abs() < 1e-12 && (j.gradient[0] - 0.25).abs() < 1e-12);
+/// assert!(jets[1].is_none()); // outside the domain
+/// ```
 #[derive(Debug)]
 pub struct SplineEvaluator<'a> {
     spline: &'a Spline,
     locator: CurvedLocator<'a>,
+    order: Order,
 }
 
 impl SplineEvaluator<'_> {
+    /// The evaluator of the jet up to `order` (the value only by default).
+    #[must_use]
+    pub fn with_order(mut self, order: Order) -> Self {
+        self.order = order;
+        self
+    }
+
+    /// How much of the jet [`PointQuery::value`] computes.
+    pub fn order(&self) -> Order {
+        self.order
+    }
+
     /// The spline's value and derivatives up to `order` at `p`, `None` outside the domain.
     pub fn evaluate(&self, p: Point, order: Order) -> Option<Jet> {
         self.locator
@@ -187,18 +229,24 @@ impl SplineEvaluator<'_> {
             .map(|t| self.spline.evaluate_on(t, p, order))
     }
 
-    /// [`SplineEvaluator::evaluate`] at every point, in order, on all threads.
-    pub fn evaluate_all(&self, points: &[Point], order: Order) -> Vec<Option<Jet>> {
-        use rayon::prelude::*;
-        points
-            .par_iter()
-            .with_min_len(1024)
-            .map(|&p| self.evaluate(p, order))
-            .collect()
+    /// The query's values (the jet up to [`SplineEvaluator::order`]) at every point, in
+    /// order, on all threads: [`PointQuery::par_values_into`] into a new vector.
+    pub fn evaluate_all(&self, points: &[Point]) -> Vec<Option<Jet>> {
+        let mut out = vec![None; points.len()];
+        self.par_values_into(points, &mut out);
+        out
     }
 
     /// The curved triangle holding `p`.
     pub fn triangle_at(&self, p: Point) -> Option<usize> {
         self.locator.triangle_at(p)
+    }
+}
+
+impl PointQuery<Option<Jet>> for SplineEvaluator<'_> {
+    /// The jet up to [`SplineEvaluator::order`] at `p`, `None` outside the domain.
+    #[inline]
+    fn value(&self, p: Point) -> Option<Jet> {
+        self.evaluate(p, self.order)
     }
 }

@@ -75,7 +75,7 @@ fn max_error(s: &Spline, f: &dyn Fn(Point) -> f64) -> f64 {
         .filter(|&p| inside.locate(p) != Location::Outside)
         .collect();
     let mut worst = 0.0f64;
-    for (p, v) in pts.iter().zip(eval.evaluate_all(&pts, Order::Value)) {
+    for (p, v) in pts.iter().zip(eval.evaluate_all(&pts)) {
         let v = v.unwrap_or_else(|| panic!("{p:?} is in no triangle"));
         worst = worst.max((v.value - f(*p)).abs());
     }

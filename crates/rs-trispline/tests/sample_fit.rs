@@ -20,7 +20,6 @@ use rs_contain::{Classifier, ContainOptions, Locate, Location};
 use rs_mesh::well_spaced_points;
 use rs_spline::{Domain, NurbsCurve, Point};
 use rs_testkit::XorShift64;
-use rs_trispline::bb::Order;
 use rs_trispline::{C1Space, TriSplineError, interpolate_scattered};
 
 const SPACES: [C1Space; 4] = [
@@ -169,7 +168,7 @@ fn fit_reproduces(
         .iter()
         .copied()
         .chain(sampled.between.iter().map(|&p| f(p)));
-    let got = eval.evaluate_all(&probes, Order::Value);
+    let got = eval.evaluate_all(&probes);
     for ((p, z), v) in probes.iter().zip(truth).zip(got) {
         let v = v
             .unwrap_or_else(|| panic!("{name} ny {ny} {space:?}: {p:?} is in no triangle"))

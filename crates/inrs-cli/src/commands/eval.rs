@@ -1,22 +1,21 @@
 //! `inrs eval`: a spline file's values at the points of a points file.
 
 use std::path::PathBuf;
-
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use clap::Args;
-use inrs::contain::PointSource;
+use inrs::NpyType;
 use inrs::trispline::bb::{Jet, Order};
-use inrs::trispline::{SplineEvaluator, load_spline};
-use inrs::{NpyType, Point, PointQuery};
+use inrs::trispline::load_spline;
 
 use crate::cli::error::CliError;
 use crate::stream::{Column, PointsInput, stream_points, write_f64};
 
 /// The spline's columns: the value, and with `gradient` also `dx,dy` (CSV only: `.npy` holds
-/// the value); NaN outside the domain.
+/// the value); NaN outside the domain, counted as they are written.
 struct Jets {
     gradient: bool,
+    outside: AtomicUsize,
 }
 
 /// A jet with NaN everywhere: the value of a point outside the domain.
@@ -38,6 +37,8 @@ impl Column<Option<Jet>> for Jets {
         None
     }
     fn csv(&self, value: Option<Jet>, out: &mut Vec<u8>) {
+        self.outside
+            .fetch_add(usize::from(value.is_none()), Ordering::Relaxed);
         let j = value.unwrap_or(OUTSIDE);
         write_f64(j.value, out);
         if self.gradient {
@@ -51,6 +52,8 @@ impl Column<Option<Jet>> for Jets {
         NpyType::F64
     }
     fn npy(&self, values: &[Option<Jet>], out: &mut Vec<u8>) {
+        let outside = values.iter().filter(|j| j.is_none()).count();
+        self.outside.fetch_add(outside, Ordering::Relaxed);
         out.extend(
             values
                 .iter()
@@ -92,48 +95,21 @@ impl EvalArgs {
         } else {
             Order::Value
         };
-        let values = Values {
-            eval: &eval,
-            order,
+        // The library's evaluator is the query, streamed as classify streams its engine.
+        let column = Jets {
+            gradient: self.derivatives,
             outside: AtomicUsize::new(0),
         };
         stream_points(
             input,
             self.output.as_deref(),
-            &Jets {
-                gradient: self.derivatives,
-            },
-            &values,
+            &column,
+            &eval.with_order(order),
         )?;
-        let outside = values.outside.into_inner();
+        let outside = column.outside.into_inner();
         if outside > 0 {
             eprintln!("{outside} points outside the domain: their values are nan");
         }
         Ok(())
-    }
-}
-
-/// The spline's value (and gradient) at each point, counting the points outside the domain.
-struct Values<'a> {
-    eval: &'a SplineEvaluator<'a>,
-    order: Order,
-    outside: AtomicUsize,
-}
-
-impl PointQuery<Option<Jet>> for Values<'_> {
-    fn value(&self, p: Point) -> Option<Jet> {
-        let v = self.eval.evaluate(p, self.order);
-        self.outside
-            .fetch_add(usize::from(v.is_none()), Ordering::Relaxed);
-        v
-    }
-
-    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Option<Jet>]) {
-        let mut missed = 0;
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.eval.evaluate(points.point(i), self.order);
-            missed += usize::from(o.is_none());
-        }
-        self.outside.fetch_add(missed, Ordering::Relaxed);
     }
 }
