@@ -55,7 +55,7 @@ pub fn certain_crossing(p: &[Point], q: &[Point], margin: f64) -> Option<Point> 
 
 /// Where two curves that certainly cross ([`certain_crossing`] of their control points, with
 /// `margin`) meet, closed in on by halving: each step halves both curves and keeps the first
-/// pair of parts, searched down to [`CLOSING_DEPTH`] more halvings (parts whose control boxes
+/// pair of parts, searched down to three more halvings (parts whose control boxes
 /// part are skipped), that still certainly crosses; at most `halvings` halvings in all. It stops
 /// where no such pair is found (the crossing is then tangent-like at that scale), and the
 /// point returned, where the last certain pair's chords cross, lies within that pair's size of
