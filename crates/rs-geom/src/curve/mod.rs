@@ -89,6 +89,16 @@ impl<P: Vector + std::ops::Div<f64, Output = P>> Curve<P> {
         }
     }
 
+    /// The period in which an edge's or trim's parameter window wraps: a whole ellipse's
+    /// `2 pi`, a closed B-spline's domain ([`Curve::period`]); a trimmed curve is its window and
+    /// does not wrap.
+    pub fn window_period(&self) -> Option<f64> {
+        match self {
+            Curve::Trimmed { .. } => None,
+            _ => self.period(),
+        }
+    }
+
     /// The pieces of the curve's parameter range that `[lo, hi]` (increasing) covers when its
     /// parameter repeats with `period`: an unbounded curve (line, conic) or one without a
     /// period takes `[lo, hi]` as it is; a bounded one takes it translated by whole periods

@@ -323,17 +323,10 @@ pub fn pcurve(
     Ok(out)
 }
 
-/// The pieces of `[lo, hi]` (increasing) within the edge's own parameter domain, in order:
-/// lines, conics and trimmed curves (whose window is their range) take it whole; a closed
-/// B-spline takes it translated by whole periods into its range, and where it then runs past
-/// the range's end (an interval across the seam) two pieces, `[lo, b]` and `[a, hi - p]`.
-/// (These are the STEP reader's pieces of planar faces' edges.)
+/// The pieces of `[lo, hi]` (increasing) within the edge's own parameter domain, in order
+/// ([`Curve::pieces_in_range`] in its [`Curve::window_period`]).
 pub(crate) fn domain_pieces(edge: &Curve<Point3>, lo: f64, hi: f64) -> Vec<(f64, f64)> {
-    let period = match edge {
-        Curve::Trimmed { .. } => None,
-        _ => edge.period(),
-    };
-    edge.pieces_in_range(lo, hi, period)
+    edge.pieces_in_range(lo, hi, edge.window_period())
 }
 
 /// A stretch of the edge from its parameter `ta` to `tb` (either order), parameterised by

@@ -320,7 +320,7 @@ fn curve_depth<P: Space>(
             };
             let t0 = trim(2, "trim_1")?;
             let mut t1 = trim(3, "trim_2")?;
-            if let Some(p) = window_period(&basis)
+            if let Some(p) = basis.window_period()
                 && t1 <= t0
             {
                 t1 += p * ((t0 - t1) / p).floor() + p;
@@ -338,15 +338,6 @@ fn curve_depth<P: Space>(
             role: "curve",
             name: other.to_string(),
         }),
-    }
-}
-
-/// The period in which an edge's or trim's parameter window wraps: a whole ellipse's `2 pi`, a
-/// closed B-spline's domain; a trimmed curve is its window and does not wrap.
-pub(crate) fn window_period<P: Space>(c: &Curve<P>) -> Option<f64> {
-    match c {
-        Curve::Trimmed { .. } => None,
-        _ => c.period(),
     }
 }
 

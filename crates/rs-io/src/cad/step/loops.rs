@@ -43,7 +43,7 @@ use rs_spline::NurbsCurve;
 use rs_spline::prelude::*;
 
 use super::error::{Result, StepError};
-use super::geometry::{self, Space, window_period};
+use super::geometry::{self, Space};
 use super::graph::{Graph, Instance};
 use super::surface::FaceSurface;
 
@@ -529,7 +529,7 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
             // On a plane the edge's image in the plane's coordinates, exactly.
             check_in_plane(&c3, lo, hi, surface, gap, &what)?;
             let mut option = Vec::new();
-            for (a3, b3) in c3.pieces_in_range(lo, hi, window_period(&c3)) {
+            for (a3, b3) in c3.pieces_in_range(lo, hi, c3.window_period()) {
                 option.push(planar(c3.to_bspline_mapped(&map, a3, b3), &what)?);
             }
             options.push(option);
@@ -572,9 +572,9 @@ fn edge_use(cx: &FaceContext<'_>, label: u64, from: &str) -> Result<EdgeUse> {
                 Some(m) => {
                     let r = edge_range(&c2, m.point(vs), m.point(ve), same_sense, closed, &what)
                         .map_err(in_context)?;
-                    (r, window_period(&c2))
+                    (r, c2.window_period())
                 }
-                None => ((lo, hi), window_period(&c3)),
+                None => ((lo, hi), c3.window_period()),
             };
             let mut cuts = c2.pieces_in_range(range.0, range.1, period);
             cuts = clamped(&c2, cuts);
@@ -722,7 +722,7 @@ fn edge_range<P: Space>(
 ) -> Result<(f64, f64)> {
     let (ts, te) = (c.closest_parameter(vs, None), c.closest_parameter(ve, None));
     let (lo, mut hi) = if same_sense { (ts, te) } else { (te, ts) };
-    if let Some(p) = window_period(c) {
+    if let Some(p) = c.window_period() {
         // Bring hi into (lo, lo + p]; a closed edge is the whole period.
         let eps = WRAP_RELATIVE * p;
         let d = (hi - lo).rem_euclid(p);
