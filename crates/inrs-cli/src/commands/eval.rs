@@ -27,7 +27,7 @@ const OUTSIDE: Jet = Jet {
 };
 
 impl Column<Option<Jet>> for Jets {
-    fn header(&self) -> &'static str {
+    fn header(&self) -> &str {
         if self.gradient {
             "x,y,value,dx,dy"
         } else {
@@ -86,7 +86,7 @@ impl EvalArgs {
         let eval = s
             .evaluator()
             .map_err(|e| CliError::Message(format!("{}: {e}", self.spline.display())))?;
-        let input = PointsInput::open(&self.points)?;
+        let input = PointsInput::open(&self.points, 1)?;
         let order = if self.derivatives {
             Order::Gradient
         } else {
@@ -103,7 +103,7 @@ impl EvalArgs {
             &Jets {
                 gradient: self.derivatives,
             },
-            &values,
+            std::slice::from_ref(&values),
         )?;
         let outside = values.outside.into_inner();
         if outside > 0 {
