@@ -15,23 +15,25 @@ pub(crate) struct PointsInput {
     pub(super) total_bytes: u64,
 }
 
-/// The fewest bytes of CSV and points of `.npy` in a run however many columns it is
-/// computed for.
-const MIN_RUN: RunSizes = RunSizes {
-    csv_bytes: 1 << 12,
-    npy_points: 1 << 8,
-};
+/// Values a run may hold (points times columns) before its points are cut down, to at most
+/// [`MIN_RUN_POINTS`]: with many columns (many domains) a run's rows are that much longer.
+const RUN_VALUES: usize = 1 << 21;
+
+/// The fewest points a run is cut down to however many columns: every query then answers
+/// thousands of points at a time, while its index is in the cache (runs of a hundred points
+/// made 73 faces of a part three times slower than the whole batch per face).
+const MIN_RUN_POINTS: usize = 1 << 12;
 
 impl PointsInput {
-    /// Opens `path`, by its extension, in runs for `columns` values a point: with one, runs of
-    /// the default sizes (256 KiB of CSV, 16 384 `.npy` points); with more, runs as many times
-    /// shorter (down to [`MIN_RUN`]), so that a run's values and rows stay about as large.
+    /// Opens `path`, by its extension, in runs for `columns` values a point: runs of the
+    /// default sizes (256 KiB of CSV, 16 384 `.npy` points) up to [`RUN_VALUES`] values a run,
+    /// shorter beyond (down to [`MIN_RUN_POINTS`] points, or 16 bytes of CSV a point).
     pub(crate) fn open(path: &Path, columns: usize) -> Result<Self, CliError> {
-        let columns = columns.max(1);
         let full = RunSizes::default();
+        let points = (RUN_VALUES / columns.max(1)).clamp(MIN_RUN_POINTS, full.npy_points);
         let sizes = RunSizes {
-            csv_bytes: (full.csv_bytes / columns).max(MIN_RUN.csv_bytes),
-            npy_points: (full.npy_points / columns).max(MIN_RUN.npy_points),
+            csv_bytes: full.csv_bytes / full.npy_points * points,
+            npy_points: points,
         };
         let reader = open_points(path, sizes).map_err(|e| input_error(path, e))?;
         Ok(Self {
