@@ -86,12 +86,9 @@ impl PointRun {
     pub fn points(&self) -> RunPoints<'_> {
         match self.content {
             Content::Npy(ty) => RunPoints::Npy(EncodedPoints::from_checked(ty, &self.bytes)),
+            // Empty: no points (see `start` and `fail`).
             Content::Csv | Content::Empty => RunPoints::Csv(CsvPoints {
-                points: if self.content == Content::Csv {
-                    &self.points
-                } else {
-                    &[]
-                },
+                points: &self.points,
                 text: &self.bytes,
                 fields: &self.fields,
             }),
@@ -107,9 +104,11 @@ impl PointRun {
         self.fields.clear();
     }
 
-    /// Marks the run empty (after a failed read).
+    /// Empties the run after a failed read, and hands the error on.
     pub(super) fn fail(&mut self, e: PointsError) -> PointsError {
         self.content = Content::Empty;
+        self.points.clear();
+        self.fields.clear();
         e
     }
 }
