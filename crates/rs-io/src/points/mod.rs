@@ -27,6 +27,7 @@
 //! ```
 
 mod csv;
+mod encoded;
 mod grammar;
 mod npy;
 mod run;
@@ -37,8 +38,9 @@ use rs_spline::Point;
 use thiserror::Error;
 
 pub use csv::CsvReader;
-pub use npy::{EncodedPoints, MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyReader, NpyType, npy_header};
-pub use run::{CsvPoints, PointRun, PointsReader, RunPoints, RunSizes, open_points};
+pub use encoded::{EncodedPoints, NpyType};
+pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyReader, npy_header};
+pub use run::{CsvPoints, PointRun, PointsReader, RunPoints, RunSizes};
 
 /// The longest line a points file may have, in bytes, without its end (`\n` or `\r\n`): a
 /// file without line breaks is an error, not an unbounded allocation.
@@ -82,6 +84,27 @@ pub enum PointsError {
         /// What is wrong.
         message: String,
     },
+}
+
+/// Opens the points file `path` in runs of `sizes`: `.npy` ([`NpyReader::open`]) if its name
+/// ends so, CSV ([`CsvReader::open`]) otherwise.
+///
+/// # Errors
+/// [`PointsError::Io`] if it cannot be opened; for `.npy`, a bad header; for CSV, a first line
+/// too long.
+pub fn open_points(
+    path: impl AsRef<Path>,
+    sizes: RunSizes,
+) -> Result<Box<dyn PointsReader>, PointsError> {
+    let path = path.as_ref();
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
+    {
+        Ok(Box::new(NpyReader::open(path, sizes)?))
+    } else {
+        Ok(Box::new(CsvReader::open(path, sizes)?))
+    }
 }
 
 /// Parses a whole points text (the format of [`CsvReader`]).

@@ -1,14 +1,13 @@
 //! Points files as numbered runs of points: the one [`PointsReader`] trait, for CSV and `.npy`
 //! alike, and the [`PointRun`] it fills.
 
-use std::path::Path;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 
 use rs_spline::Point;
 
-use super::npy::NpyType;
-use super::{CsvReader, EncodedPoints, NpyReader, PointRecord, PointsError};
+use super::encoded::{EncodedPoints, NpyType};
+use super::{PointRecord, PointsError};
 
 /// How a points file is cut into runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -205,7 +204,7 @@ impl<'a> CsvPoints<'a> {
     }
 }
 
-/// A points file, CSV ([`CsvReader`]) or `.npy` ([`NpyReader`]), as runs of points numbered
+/// A points file, CSV ([`CsvReader`](super::CsvReader)) or `.npy` ([`NpyReader`](super::NpyReader)), as runs of points numbered
 /// 0, 1, ... in file order, for threads that each take the next run
 /// ([`PointsReader::next_run`]) and compute on it. Memory is the runs in hand, whatever the
 /// file's length.
@@ -259,27 +258,6 @@ pub trait PointsReader: Sync {
 
     /// Whether the runs are read by position (any number at once), rather than in order.
     fn by_position(&self) -> bool;
-}
-
-/// Opens the points file `path` in runs of `sizes`: `.npy` ([`NpyReader::open`]) if its name
-/// ends so, CSV ([`CsvReader::open`]) otherwise.
-///
-/// # Errors
-/// [`PointsError::Io`] if it cannot be opened; for `.npy`, a bad header; for CSV, a first line
-/// too long.
-pub fn open_points(
-    path: impl AsRef<Path>,
-    sizes: RunSizes,
-) -> Result<Box<dyn PointsReader>, PointsError> {
-    let path = path.as_ref();
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
-    {
-        Ok(Box::new(NpyReader::open(path, sizes)?))
-    } else {
-        Ok(Box::new(CsvReader::open(path, sizes)?))
-    }
 }
 
 /// Runs read in order, one at a time: the reader behind a lock, whether it has ended, and the
@@ -383,7 +361,7 @@ impl Claims {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::points::{npy_header, parse_points};
+    use crate::points::{CsvReader, NpyReader, npy_header, open_points, parse_points};
 
     /// A point and its fields as written (empty for `.npy`).
     type Record = (Point, String, String);
