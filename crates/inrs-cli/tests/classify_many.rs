@@ -199,3 +199,177 @@ fn bad_domains_fail_or_are_skipped() {
     ]);
     assert!(!out.status.success());
 }
+
+/// Point `i` of the long streams below: over `[-1.5, 1.5]^2`, as `x,y`.
+fn long_line(i: usize) -> String {
+    let t = i as f64 * 0.618_033_988_749_895;
+    format!("{},{}", 1.5 * t.sin(), 1.5 * (t * 1.7).cos())
+}
+
+/// Several domains stream as one does: a long file read in runs gives each column the
+/// single-domain answers in input order, to a file or as `.npy`; a bad line far into it fails
+/// the run naming that line, and leaves no output.
+#[test]
+fn long_streams_keep_their_order_and_fail_at_the_right_line() {
+    let n = 120_000;
+    let mut text = String::from("x,y\n");
+    for i in 0..n {
+        text += &long_line(i);
+        text.push('\n');
+    }
+    let points = temp_file("long.csv", &text);
+    let (circle, lune) = (
+        fixture("inrs-paper/circle.json"),
+        fixture("inrs-paper/s5_lune.json"),
+    );
+    let both = ["--domain", &circle, "--domain", &lune, "--points", &points];
+    let many = inrs_ok(&[&["classify"][..], &both].concat());
+    let (header, cols) = columns(&many);
+    assert_eq!(header, ["circle.json", "s5_lune.json"]);
+    for (d, col) in [&circle, &lune].into_iter().zip(&cols) {
+        let one = inrs_ok(&["classify", "--domain", d, "--points", &points]);
+        assert_eq!(&last_column(&one), col, "{d}");
+    }
+    for (i, row) in many.lines().skip(1).enumerate() {
+        assert!(
+            row.starts_with(&format!("{},", long_line(i))),
+            "row {i}: {row}"
+        );
+    }
+    // `.npy` out: int8 of shape (points, domains), row by row.
+    let out = temp_file("long-out.npy", "");
+    inrs_ok(&[&["classify"][..], &both, &["--output", &out]].concat());
+    let bytes = std::fs::read(&out).unwrap();
+    let header = String::from_utf8_lossy(&bytes[..inrs::NPY_HEADER_BYTES]).into_owned();
+    assert!(header.contains(&format!("'shape': ({n}, 2)")), "{header}");
+    let code = |w: &str| {
+        ["outside", "inside", "boundary"]
+            .iter()
+            .position(|c| *c == w)
+    };
+    let want: Vec<u8> = (0..n)
+        .flat_map(|i| cols.iter().map(move |c| code(&c[i]).unwrap() as u8))
+        .collect();
+    assert!(bytes[inrs::NPY_HEADER_BYTES..] == want[..], "npy data");
+    // Line 100 001 (point 100 000) spoiled.
+    let spoiled = text.replacen(&format!("\n{}\n", long_line(99_999)), "\n0.5,oops\n", 1);
+    assert_ne!(spoiled, text);
+    let bad = temp_file("long-bad.csv", &spoiled);
+    for output in ["long-bad-out.csv", "long-bad-out.npy"] {
+        let out = temp_file(output, "");
+        std::fs::remove_file(&out).unwrap();
+        let run = inrs(&[
+            "classify", "--domain", &circle, "--domain", &lune, "--points", &bad, "--output", &out,
+        ]);
+        assert!(!run.status.success());
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(
+            err.contains("line 100001: \"oops\" is not a number"),
+            "{err}"
+        );
+        assert!(
+            !std::path::Path::new(&out).exists(),
+            "a failed run left {out}"
+        );
+    }
+}
+
+/// `.npy` points against several domains: each column is the single-domain answer, the
+/// coordinates written as the single-domain run writes them (shortest round trip).
+#[test]
+fn npy_points_stream_against_several_domains() {
+    let n = 40_000;
+    let mut bytes = inrs::npy_header(inrs::NpyType::F64, &[n, 2]);
+    let mut csv = String::from("x,y\n");
+    for i in 0..n {
+        let t = i as f64 * 0.618_033_988_749_895;
+        let (x, y) = (1.5 * t.sin(), 1.5 * (t * 1.7).cos());
+        bytes.extend(x.to_le_bytes().into_iter().chain(y.to_le_bytes()));
+        csv += &format!("{x},{y}\n");
+    }
+    let npy = temp_file("pts-many.npy", "");
+    std::fs::write(&npy, &bytes).unwrap();
+    let domains: Vec<String> = PAPER.iter().map(|d| fixture(d)).collect();
+    let mut args = vec!["classify", "--points", &npy];
+    for d in &domains {
+        args.extend(["--domain", d]);
+    }
+    let many = inrs_ok(&args);
+    let (_, cols) = columns(&many);
+    assert_eq!(cols.len(), PAPER.len());
+    let csv_points = temp_file("pts-many.csv", &csv);
+    for (d, col) in domains.iter().zip(&cols) {
+        let one = inrs_ok(&["classify", "--domain", d, "--points", &npy]);
+        assert_eq!(&last_column(&one), col, "{d}");
+        let from_csv = inrs_ok(&["classify", "--domain", d, "--points", &csv_points]);
+        assert_eq!(&last_column(&from_csv), col, "{d} from CSV");
+        let xy = |text: &str| -> Vec<String> {
+            text.lines()
+                .skip(1)
+                .map(|l| l.splitn(3, ',').take(2).collect::<Vec<_>>().join(","))
+                .collect()
+        };
+        assert_eq!(xy(&one), xy(&many));
+    }
+}
+
+/// The peak resident memory of process `pid` so far, in KiB (Linux).
+#[cfg(target_os = "linux")]
+fn peak_kib(pid: u32) -> u64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap();
+    let line = status.lines().find(|l| l.starts_with("VmHWM:")).unwrap();
+    line.split_whitespace().nth(1).unwrap().parse().unwrap()
+}
+
+/// Several domains, points from a pipe: the peak memory after a million more points is what
+/// it was after the first hundred thousand (holding them would take some 100 MB), and every
+/// row comes out.
+#[cfg(target_os = "linux")]
+#[test]
+fn several_domains_stream_a_pipe_in_bounded_memory() {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let (circle, lune) = (
+        fixture("inrs-paper/circle.json"),
+        fixture("inrs-paper/s5_lune.json"),
+    );
+    let out = temp_file("piped-out.npy", "");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_inrs"))
+        .args(["classify", "--domain", &circle, "--domain", &lune])
+        .args(["--points", "/dev/stdin", "--output", &out])
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut write = |from: usize, to: usize| {
+        let mut block = String::new();
+        for i in from..to {
+            block += &long_line(i);
+            block.push('\n');
+            if block.len() > 1 << 16 || i + 1 == to {
+                stdin.write_all(block.as_bytes()).unwrap();
+                block.clear();
+            }
+        }
+    };
+    let (first, all) = (100_000, 1_100_000);
+    write(0, first);
+    // The reader is at most a pipe's buffer and its runs behind the writer.
+    let early = peak_kib(child.id());
+    write(first, all);
+    let late = peak_kib(child.id());
+    drop(stdin);
+    let run = child.wait_with_output().unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(
+        late < early + 16 * 1024,
+        "peak memory grew from {early} KiB to {late} KiB over a million points"
+    );
+    let bytes = std::fs::metadata(&out).unwrap().len() as usize;
+    assert_eq!(bytes, inrs::NPY_HEADER_BYTES + 2 * all);
+}

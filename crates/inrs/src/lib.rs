@@ -30,8 +30,8 @@
 //!   curvature or torsion.
 //! - [`io`] (`rs-io`): domains from JSON domain files, SVG paths and files,
 //!   TrueType/OpenType glyphs and (feature `dxf`, on by default) DXF drawings; the points
-//!   files (`io::points`: CSV and `.npy`, streamed), whose readers are re-exported here
-//!   ([`parse_points`], [`PointReader`], [`CsvBlocks`], [`NpyPoints`], ...).
+//!   files (`io::points`: CSV and `.npy`, streamed in runs of points), whose readers are
+//!   re-exported here ([`CsvReader`], [`NpyReader`], [`PointsReader`], [`parse_points`], ...).
 //!
 //! Plus, from `rs-contain`, the domain summary printed by `inrs info` ([`DomainSummary`]).
 //! Containment: build a [`Classifier`] and ask it through [`Locate`] (or [`Containment`] for
@@ -77,7 +77,7 @@ pub use rs_trispline as trispline;
 
 pub use rs_contain::{
     Classifier, ContainError, ContainOptions, Containment, Locate, Location, Method, PointQuery,
-    locate_each, locate_many,
+    engines_many, locate_each, locate_many, prepare_many,
 };
 pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, RationalBezier};
 
@@ -85,12 +85,10 @@ pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, Rationa
 // where the command line has them.
 pub use rs_contain::{DomainSummary, LoopSummary, significant};
 pub use rs_io::points::{
-    CsvBlock, CsvBlocks, EncodedPoints, MAX_LINE_BYTES, MAX_NPY_POINTS, NPY_HEADER_BYTES,
-    NpyPoints, NpyType, ParsedBlock, PointReader, PointRecord, PointsError, npy_header,
-    open_npy_points, open_points, open_points_blocks, parse_points, read_points,
+    CsvPoints, CsvReader, EncodedPoints, MAX_LINE_BYTES, MAX_NPY_POINTS, NPY_HEADER_BYTES,
+    NpyReader, NpyType, PointRecord, PointRun, PointsError, PointsReader, RunPoints, RunSizes,
+    npy_header, open_points, parse_points, read_points,
 };
-#[cfg(unix)]
-pub use rs_io::points::{CsvPointsFile, NpyPointsFile};
 
 /// The traits most code wants in scope: the curve vocabulary of `rs-spline` and the queries
 /// ([`Locate`], [`PointQuery`]).

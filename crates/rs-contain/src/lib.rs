@@ -76,7 +76,7 @@ pub use gwn::{
 };
 pub use location::{Decision, FAST_METHOD_MIN_POINTS, Location, Method, fast_uses_locator};
 pub use locator::{DEFAULT_GRID_CELLS, LocatorIndex, LocatorOptions, PointLocator};
-pub use many::{DomainLocations, locate_each, locate_many};
+pub use many::{DomainLocations, engines_many, locate_each, locate_many, prepare_many};
 pub use query::{Locate, PointQuery};
 /// Points read by index (from `rs-spline`, re-exported beside the queries that read them).
 pub use rs_spline::{PointSource, PointsFn, points_from_fn};

@@ -9,7 +9,7 @@ use std::borrow::Borrow;
 
 use rs_spline::Domain;
 
-use crate::{ContainError, ContainOptions, Containment, Location, PointQuery, PointSource};
+use crate::{ContainError, ContainOptions, Containment, Engine, Location, PointQuery, PointSource};
 
 /// One domain's answers in [`locate_many`] and [`locate_each`]: the locations of its points
 /// in input order, or why the domain could not be prepared.
@@ -77,6 +77,29 @@ where
     })
 }
 
+/// Every domain of `domains` prepared with `options`, in order, the domains spread over the
+/// pool as [`locate_many`] spreads them: `result[k]` is `Containment::new(&domains[k], options)`.
+/// For a caller that streams points through many domains itself (then [`engines_many`]).
+///
+/// # Errors
+/// One result per domain: a domain that cannot be prepared gets its own `Err`.
+pub fn prepare_many<D>(
+    domains: &[D],
+    options: ContainOptions,
+) -> Vec<Result<Containment, ContainError>>
+where
+    D: Borrow<Domain> + Sync,
+{
+    map_in_order(domains, |d| Containment::new(d.borrow(), options))
+}
+
+/// The engine of every prepared domain for a stream of about `n` points
+/// ([`Containment::engine`]), in order, built over the pool (a grid locator's build is a
+/// domain's largest cost after its preparation).
+pub fn engines_many(prepared: &[Containment], n: usize) -> Vec<Engine<'_>> {
+    map_in_order(prepared, |c| c.engine(n))
+}
+
 /// One domain's batch: prepared, the engine picked for the batch's size, then answered on
 /// this thread, or split over the pool when the batch is longer than one parallel task.
 fn locate_one<P: PointSource + Sync + ?Sized>(
@@ -98,7 +121,10 @@ fn locate_one<P: PointSource + Sync + ?Sized>(
 
 /// `f` of every item, in the items' order: on rayon's pool with the `parallel` feature, one
 /// item per task (a domain's preparation dwarfs a task's cost), else in a loop.
-fn map_in_order<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync + Send) -> Vec<R> {
+fn map_in_order<'a, T: Sync, R: Send>(
+    items: &'a [T],
+    f: impl Fn(&'a T) -> R + Sync + Send,
+) -> Vec<R> {
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
@@ -263,6 +289,28 @@ mod tests {
         let found = locate_many(&domains, &pts[..], bad);
         assert_eq!(found.len(), 3);
         assert!(found.iter().all(Result::is_err));
+    }
+
+    /// Preparing many domains and building their engines for a stream answers each point as
+    /// `locate_many` does, with the open domain's error in its place; the grid locators of a
+    /// long stream's engines are built (the engine for a long stream is the grid).
+    #[test]
+    fn prepared_engines_answer_as_locate_many() {
+        let domains = [disc(0.0, 1.0), open_segment(), annulus(0.5, 0.5, 2.0)];
+        let pts: Vec<Point> = (0..200)
+            .map(|i| Point::new(-3.0 + 0.03 * f64::from(i), 0.01 * f64::from(i % 7)))
+            .collect();
+        let prepared = prepare_many(&domains, ContainOptions::DEFAULT);
+        assert!(matches!(prepared[1], Err(ContainError::Domain(_))));
+        let found = locate_many(&domains, &pts[..], ContainOptions::DEFAULT);
+        let kept: Vec<Containment> = prepared.into_iter().flatten().collect();
+        let engines = engines_many(&kept, FAST_METHOD_MIN_POINTS * 10);
+        assert!(engines.iter().all(|e| matches!(e, Engine::Grid(_))));
+        for (engine, want) in engines.iter().zip([&found[0], &found[2]]) {
+            let mut out = vec![Location::Outside; pts.len()];
+            engine.values_into(&pts[..], &mut out);
+            assert_eq!(&out, want.as_ref().unwrap());
+        }
     }
 
     /// Per-domain batches of different lengths (an empty one too) each get their own answers.

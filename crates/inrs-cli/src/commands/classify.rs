@@ -1,16 +1,18 @@
 //! `inrs classify`: inside, outside or boundary for every point of a points file, against one
-//! domain (streamed) or several ([`super::classify_many`]).
+//! domain or several ([`super::classify_many`] reads and prepares them), streamed alike.
 
 use std::path::PathBuf;
 
 use clap::Args;
 use inrs::boxes::DEFAULT_SUBDIVISIONS;
-use inrs::{ContainOptions, Containment, Location, NpyType};
+use inrs::{ContainOptions, Containment, Location, NpyType, engines_many};
 
 use crate::args::{DomainsArg, FillRuleArg, MethodArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
 use crate::stream::{Column, PointsInput, stream_points};
+
+use super::classify_many;
 
 /// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order
 /// (with several domains, `x,y` and one column per domain).
@@ -48,13 +50,40 @@ pub(crate) struct ClassifyArgs {
     pub(super) skip_unreadable: bool,
 }
 
-/// The `location` column: CSV labels, `.npy` int8 codes (0 outside, 1 inside, 2 boundary,
-/// as the Python package returns them).
-struct Locations;
+/// The location columns: CSV labels, `.npy` int8 codes (0 outside, 1 inside, 2 boundary, as
+/// the Python package returns them). One column `location` (a 1-D `.npy` array), or one per
+/// domain, headed by its label (`.npy` of shape (points, domains), row by row).
+struct Locations {
+    header: String,
+    per_domain: bool,
+}
+
+impl Locations {
+    /// The one column of a single domain.
+    fn one() -> Self {
+        Self {
+            header: "x,y,location".into(),
+            per_domain: false,
+        }
+    }
+
+    /// A column per domain, headed by `labels`.
+    fn per_domain<'a>(labels: impl IntoIterator<Item = &'a str>) -> Self {
+        let mut header = String::from("x,y");
+        for l in labels {
+            header.push(',');
+            header.push_str(&csv_field(l));
+        }
+        Self {
+            header,
+            per_domain: true,
+        }
+    }
+}
 
 impl Column<Location> for Locations {
-    fn header(&self) -> &'static str {
-        "x,y,location"
+    fn header(&self) -> &str {
+        &self.header
     }
     fn initial(&self) -> Location {
         Location::Outside
@@ -69,34 +98,69 @@ impl Column<Location> for Locations {
     fn npy(&self, values: &[Location], out: &mut Vec<u8>) {
         out.extend(values.iter().map(|l| l.code() as u8));
     }
+    fn npy_shape(&self, points: usize, queries: usize) -> Vec<usize> {
+        if self.per_domain {
+            vec![points, queries]
+        } else {
+            vec![points]
+        }
+    }
+}
+
+/// `s` as a CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
 }
 
 impl ClassifyArgs {
+    /// Classifies the points against the domain, or against each domain (a column each): the
+    /// domains are prepared first, then the points streamed through them.
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let Some(domain) = self.domains.single() else {
-            return super::classify_many::run(super::classify_many::ManyDomains {
-                domains: &self.domains,
-                points: &self.points,
-                output: self.output.as_deref(),
-                skip_unreadable: self.skip_unreadable,
-                options: self.options(),
-            });
-        };
-        let d = domain.load()?;
-        let input = PointsInput::open(&self.points)?;
         let options = self.options();
-        let containment = Containment::new(&d, options).map_err(|e| domain.error(e))?;
-        // The library picks the algorithm for the whole stream's size.
-        let engine = containment.engine(input.estimated_points());
-        stream_points(input, self.output.as_deref(), &Locations, &engine)
+        let output = self.output.as_deref();
+        if let Some(domain) = self.domains.single() {
+            let d = domain.load()?;
+            let input = PointsInput::open(&self.points, 1)?;
+            let containment = Containment::new(&d, options).map_err(|e| domain.error(e))?;
+            // The library picks the algorithm for the whole stream's size.
+            let engine = containment.engine(input.estimated_points());
+            return stream_points(input, output, &Locations::one(), &[engine]);
+        }
+        let skip = self.skip_unreadable;
+        let domains = classify_many::read(&self.domains, skip)?;
+        let input = PointsInput::open(&self.points, domains.len())?;
+        let (labels, prepared) = classify_many::prepare(domains, options, skip)?;
+        let engines = engines_many(&prepared, input.estimated_points());
+        let columns = Locations::per_domain(labels.iter().map(String::as_str));
+        stream_points(input, output, &columns, &engines)
     }
 
     /// The options of every domain.
-    pub(super) fn options(&self) -> ContainOptions {
+    fn options(&self) -> ContainOptions {
         ContainOptions::DEFAULT
             .with_relative_tolerance(self.tol)
             .with_subdivisions(self.subdivisions)
             .with_method(self.method.into())
             .with_fill_rule(self.fill_rule.into())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_with_commas_or_quotes_are_quoted() {
+        assert_eq!(csv_field("face:3"), "face:3");
+        assert_eq!(csv_field("a,b.json"), "\"a,b.json\"");
+        assert_eq!(csv_field("say \"x\".json"), "\"say \"\"x\"\".json\"");
+        let columns = Locations::per_domain(["a.json", "b,c.json"]);
+        assert_eq!(columns.header(), "x,y,a.json,\"b,c.json\"");
+        assert_eq!(columns.npy_shape(7, 2), [7, 2]);
+        assert_eq!(Locations::one().npy_shape(7, 1), [7]);
     }
 }

@@ -26,7 +26,7 @@ const OUTSIDE: Jet = Jet {
 };
 
 impl Column<Option<Jet>> for Jets {
-    fn header(&self) -> &'static str {
+    fn header(&self) -> &str {
         if self.gradient {
             "x,y,value,dx,dy"
         } else {
@@ -89,7 +89,7 @@ impl EvalArgs {
         let eval = s
             .evaluator()
             .map_err(|e| CliError::Message(format!("{}: {e}", self.spline.display())))?;
-        let input = PointsInput::open(&self.points)?;
+        let input = PointsInput::open(&self.points, 1)?;
         let order = if self.derivatives {
             Order::Gradient
         } else {
@@ -104,7 +104,7 @@ impl EvalArgs {
             input,
             self.output.as_deref(),
             &column,
-            &eval.with_order(order),
+            std::slice::from_ref(&eval.with_order(order)),
         )?;
         let outside = column.outside.into_inner();
         if outside > 0 {

@@ -43,7 +43,7 @@ pub(crate) struct WindingArgs {
 struct Windings;
 
 impl Column<f64> for Windings {
-    fn header(&self) -> &'static str {
+    fn header(&self) -> &str {
         "x,y,winding"
     }
     fn initial(&self) -> f64 {
@@ -64,9 +64,9 @@ impl Column<f64> for Windings {
 impl WindingArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let d = self.domain.load()?;
-        let input = PointsInput::open(&self.points)?;
+        let input = PointsInput::open(&self.points, 1)?;
         let field = WindingField::new(&d, self.tol).map_err(|e| self.domain.error(e))?;
         let numbers = field.winding_numbers_by(self.algorithm.into());
-        stream_points(input, self.output.as_deref(), &Windings, &numbers)
+        stream_points(input, self.output.as_deref(), &Windings, &[numbers])
     }
 }

@@ -1,18 +1,18 @@
-//! The output: CSV rows `x,y,value` or a 1-D `.npy` array of the values, one [`Column`] of
-//! values per command.
+//! The output: CSV rows `x,y,value,...` or a `.npy` array of the values, one [`Column`] of
+//! values per query (several queries give a row several columns).
 
 use std::path::Path;
 
-use inrs::{CsvBlock, NpyType, Point};
+use inrs::{CsvPoints, NpyType, Point};
 
 use super::spares::Spares;
 
 /// An output column: its CSV header and how its values are written as CSV text and in
-/// `.npy`. Implemented by a unit type per column, so that writing a value compiles into the
+/// `.npy`. Implemented by a type per column, so that writing a value compiles into the
 /// streaming loop (a function pointer per value: 2% more instructions in a CSV run).
 pub(crate) trait Column<T>: Sync {
-    /// The CSV header line (`x,y,location`).
-    fn header(&self) -> &'static str;
+    /// The CSV header line (`x,y,location`; with several queries, a field per query).
+    fn header(&self) -> &str;
     /// A value to fill buffers with before they are computed.
     fn initial(&self) -> T;
     /// Appends a value as CSV text.
@@ -22,14 +22,20 @@ pub(crate) trait Column<T>: Sync {
     /// Appends the `.npy` bytes of a run of values (one call per run: a call per value cost a
     /// tenth of a fast run).
     fn npy(&self, values: &[T], out: &mut Vec<u8>);
+    /// The shape of the `.npy` output of `points` points and `queries` queries: `(points,)`
+    /// unless the column says otherwise (`(points, queries)`, row by row).
+    fn npy_shape(&self, points: usize, queries: usize) -> Vec<usize> {
+        let _ = queries;
+        vec![points]
+    }
 }
 
 /// The output's format.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub(super) enum Format {
-    /// CSV rows `x,y,value`.
+    /// CSV rows `x,y,value,...`.
     Csv,
-    /// A 1-D `.npy` array of the values.
+    /// A `.npy` array of the values.
     Npy,
 }
 
@@ -44,64 +50,94 @@ impl Format {
     }
 }
 
-/// Appends to `bytes` the values of points parsed from CSV, whose fields `fields` stand in
-/// `block`'s text: as `.npy` data, or as CSV rows `x,y,value` with the coordinates as written.
+/// Appends to `bytes` the values of `points`, parsed from CSV: `values` holds the values of
+/// each query in turn (`values.len() / points` queries). As `.npy` data, or as CSV rows
+/// `x,y,value,...` with the coordinates as written.
 pub(super) fn format_csv_values<T: Copy, C: Column<T>>(
     values: &[T],
-    block: &CsvBlock,
-    fields: &[[u32; 4]],
+    points: &CsvPoints<'_>,
     format: Format,
     column: &C,
     bytes: &mut Vec<u8>,
 ) {
     if format == Format::Npy {
-        return npy_values(values, column, bytes);
+        return npy_values(values, points.points.len(), column, bytes);
     }
-    bytes.reserve(block.text.len() + 16 * values.len());
-    for (f, &v) in fields.iter().zip(values) {
-        if block.field(f[1], f[2]) == b"," {
-            // `x,y` as written, in one copy.
-            bytes.extend_from_slice(block.field(f[0], f[3]));
-        } else {
-            bytes.extend_from_slice(block.field(f[0], f[1]));
-            bytes.push(b',');
-            bytes.extend_from_slice(block.field(f[2], f[3]));
-        }
-        bytes.push(b',');
-        column.csv(v, bytes);
-        bytes.push(b'\n');
-    }
+    bytes.reserve(points.text_len() + 16 * values.len());
+    rows(values, points.points.len(), column, bytes, |i, bytes| {
+        points.echo_into(i, bytes);
+    });
 }
 
-/// Appends to `bytes` the values of points read from `.npy`: as `.npy` data, or as CSV rows
-/// `x,y,value` with the coordinates `point(i)` in shortest round-trip form.
+/// Appends to `bytes` the values of points read from `.npy` (`point(i)`, `n` of them; values
+/// as for [`format_csv_values`]): as `.npy` data, or as CSV rows `x,y,value,...` with the
+/// coordinates in shortest round-trip form.
 pub(super) fn format_values<T: Copy, C: Column<T>>(
     values: &[T],
+    n: usize,
     format: Format,
     column: &C,
     point: impl Fn(usize) -> Point,
     bytes: &mut Vec<u8>,
 ) {
     if format == Format::Npy {
-        return npy_values(values, column, bytes);
+        return npy_values(values, n, column, bytes);
     }
-    bytes.reserve(values.len() * 48);
+    bytes.reserve(n * 32 + 16 * values.len());
     let mut digits = zmij::Buffer::new();
-    for (i, &v) in values.iter().enumerate() {
+    rows(values, n, column, bytes, |i, bytes| {
         let p = point(i);
         bytes.extend_from_slice(digits.format_finite(p.x).as_bytes());
         bytes.push(b',');
         bytes.extend_from_slice(digits.format_finite(p.y).as_bytes());
-        bytes.push(b',');
-        column.csv(v, bytes);
+    });
+}
+
+/// The CSV rows of `n` points: each echoed by `echo`, then its value of each query (`values`
+/// holds the values of each query in turn).
+#[inline(always)]
+fn rows<T: Copy, C: Column<T>>(
+    values: &[T],
+    n: usize,
+    column: &C,
+    bytes: &mut Vec<u8>,
+    mut echo: impl FnMut(usize, &mut Vec<u8>),
+) {
+    if n == 0 {
+        return;
+    }
+    if values.len() == n {
+        // One query: its values in order.
+        for (i, &v) in values.iter().enumerate() {
+            echo(i, bytes);
+            bytes.push(b',');
+            column.csv(v, bytes);
+            bytes.push(b'\n');
+        }
+        return;
+    }
+    for i in 0..n {
+        echo(i, bytes);
+        for &v in values[i..].iter().step_by(n) {
+            bytes.push(b',');
+            column.csv(v, bytes);
+        }
         bytes.push(b'\n');
     }
 }
 
-/// Appends the values to `bytes` as `.npy` data.
-fn npy_values<T: Copy, C: Column<T>>(values: &[T], column: &C, bytes: &mut Vec<u8>) {
+/// Appends to `bytes` the values of `n` points as `.npy` data, row by row (`values` holds the
+/// values of each query in turn).
+fn npy_values<T: Copy, C: Column<T>>(values: &[T], n: usize, column: &C, bytes: &mut Vec<u8>) {
     bytes.reserve(values.len() * column.npy_type().size());
-    column.npy(values, bytes);
+    if values.len() == n {
+        return column.npy(values, bytes);
+    }
+    for i in 0..n {
+        for v in values[i..].iter().step_by(n) {
+            column.npy(std::slice::from_ref(v), bytes);
+        }
+    }
 }
 
 /// Appends `v` in shortest round-trip form (`zmij`); `nan`, `inf` and `-inf` for the
@@ -124,16 +160,15 @@ pub(super) fn has_extension(path: &Path, ext: &str) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }
 
-/// A chunk's results, formatted, and how many points it held.
+/// A run's results, formatted, and how many points it held.
 pub(super) type Formatted = (Vec<u8>, usize);
 
-/// What a worker needs to turn a chunk into formatted results.
+/// What a worker needs to turn a run into formatted results.
 pub(super) struct Stage<'a, C, K> {
     pub(super) format: Format,
     pub(super) column: &'a C,
-    pub(super) kernel: &'a K,
-    /// Where the buffers of chunks read in order go back to once computed.
-    pub(super) texts: &'a Spares,
+    /// The queries: one value each per point.
+    pub(super) queries: &'a [K],
     /// Where result buffers come from.
     pub(super) results: &'a Spares,
 }

@@ -1,4 +1,4 @@
-//! The ordered writing stage, run by the workers, and the bound it puts on the chunks in flight.
+//! The ordered writing stage, run by the workers, and the bound it puts on the runs in flight.
 
 use std::path::Path;
 use std::sync::{Condvar, Mutex, MutexGuard};
@@ -9,7 +9,7 @@ use super::format::{Column, Format, Formatted, Stage};
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
 
-/// Why the writing stopped early: a chunk's input was bad (reported with the input's name), or
+/// Why the writing stopped early: a run's input was bad (reported with the input's name), or
 /// the output failed, or a worker panicked.
 pub(super) enum WriteFailure {
     Input(PointsError),
@@ -22,15 +22,15 @@ impl From<CliError> for WriteFailure {
     }
 }
 
-/// The ordered writing: a chunk's results are written by the worker that computed them if
-/// every earlier chunk's are written, else they wait for the worker that writes the chunk
+/// The ordered writing: a run's results are written by the worker that computed them if
+/// every earlier run's are written, else they wait for the worker that writes the run
 /// before them (which then writes them too). The bytes are mostly written from the cache of
 /// the core that formatted them, and no thread waits to write. Memory is bounded here too: a
-/// chunk is taken (read, or claimed by position) only while fewer than `in_flight` chunks
-/// before it are unwritten ([`InOrder::wait_for_room`]).
+/// run taken is computed only while fewer than `in_flight` runs before it are unwritten
+/// ([`InOrder::wait_for_room`]).
 pub(super) struct InOrder {
     state: Mutex<State>,
-    /// Signalled when a chunk is written or the run fails.
+    /// Signalled when a run is written or the stream fails.
     room: Condvar,
     /// The output, used by the one worker that is writing (see [`State::writing`]).
     out: Mutex<Output>,
@@ -38,9 +38,9 @@ pub(super) struct InOrder {
 }
 
 struct State {
-    /// Results that came before an earlier chunk's: fewer than the chunks in flight.
+    /// Results that came before an earlier run's: fewer than the runs in flight.
     waiting: std::collections::BTreeMap<usize, Result<Formatted, PointsError>>,
-    /// The next chunk to write.
+    /// The next run to write.
     next: usize,
     /// Points written.
     points: usize,
@@ -54,7 +54,7 @@ struct State {
 
 impl InOrder {
     /// Opens the output and writes the header (for `.npy`, one without the count yet); at
-    /// most `in_flight` chunks will be taken and not yet written.
+    /// most `in_flight` runs will be taken and not yet written.
     pub(super) fn start<T, C: Column<T>, K>(
         output: Option<&Path>,
         stage: &Stage<'_, C, K>,
@@ -63,7 +63,8 @@ impl InOrder {
         let column = stage.column;
         let mut out = Output::create(output)?;
         if stage.format == Format::Npy {
-            out.write_bytes(&inrs::npy_header(column.npy_type(), &[0]))?;
+            let shape = column.npy_shape(0, stage.queries.len());
+            out.write_bytes(&inrs::npy_header(column.npy_type(), &shape))?;
         } else {
             out.write_str(column.header())?;
             out.write_str("\n")?;
@@ -87,9 +88,9 @@ impl InOrder {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Waits until chunk `seq` may be taken: fewer than the chunks in flight before it are
-    /// unwritten. False if the run has failed (take nothing more). The chunk that is written
-    /// next never waits, so neither does the run as a whole.
+    /// Waits until run `seq` may be computed: fewer than the runs in flight before it are
+    /// unwritten. False if the stream has failed (compute nothing more). The run that is written
+    /// next never waits, so neither does the stream as a whole.
     pub(super) fn wait_for_room(&self, seq: usize) -> bool {
         let mut state = self.lock();
         while state.failure.is_none() && seq >= state.next + self.in_flight {
@@ -100,9 +101,9 @@ impl InOrder {
         state.failure.is_none()
     }
 
-    /// Hands in chunk `seq`'s results; writes them and the waiting ones after them if they
+    /// Hands in run `seq`'s results; writes them and the waiting ones after them if they
     /// come next and no other worker is writing, giving each buffer written to the pool.
-    /// False once a chunk (this or an earlier one) has failed.
+    /// False once a run (this or an earlier one) has failed.
     pub(super) fn hand_in<C, K>(
         &self,
         seq: usize,
@@ -150,7 +151,7 @@ impl InOrder {
         }
     }
 
-    /// Fails the run (unless it failed before): nothing more is taken or written.
+    /// Fails the stream (unless it failed before): nothing more is taken or written.
     pub(super) fn fail(&self, failure: WriteFailure) {
         let mut state = self.lock();
         state.failure.get_or_insert(failure);
@@ -158,7 +159,7 @@ impl InOrder {
     }
 
     /// Once every worker has finished: the output (for `.npy`, with the final header), to be
-    /// committed once the run is known complete, and the number of chunks written; or the
+    /// committed once the stream is known complete, and the number of runs written; or the
     /// first failure.
     pub(super) fn finish<T, C: Column<T>, K>(
         self,
@@ -170,7 +171,8 @@ impl InOrder {
         }
         let mut out = self.out.into_inner().unwrap_or_else(|e| e.into_inner());
         if stage.format == Format::Npy {
-            out.rewrite_start(&inrs::npy_header(stage.column.npy_type(), &[state.points]))?;
+            let shape = stage.column.npy_shape(state.points, stage.queries.len());
+            out.rewrite_start(&inrs::npy_header(stage.column.npy_type(), &shape))?;
         }
         Ok((out, state.next))
     }
@@ -185,7 +187,7 @@ mod tests {
     struct Bytes;
 
     impl Column<u8> for Bytes {
-        fn header(&self) -> &'static str {
+        fn header(&self) -> &str {
             "x,y,b"
         }
         fn initial(&self) -> u8 {
@@ -209,19 +211,18 @@ mod tests {
             std::thread::current().id()
         ));
         std::fs::create_dir_all(&dir).unwrap();
-        let (texts, results) = (Spares::new(4), Spares::new(4));
+        let results = Spares::new(4);
         let stage = Stage {
             format: Format::Csv,
             column: &Bytes,
-            kernel: &(),
-            texts: &texts,
+            queries: &[(); 1],
             results: &results,
         };
         test(&stage, &dir.join("out.csv"));
         std::fs::remove_dir_all(&dir).unwrap_or_default();
     }
 
-    fn chunk(text: &str) -> Result<Formatted, PointsError> {
+    fn run(text: &str) -> Result<Formatted, PointsError> {
         Ok((text.as_bytes().to_vec(), 1))
     }
 
@@ -230,7 +231,7 @@ mod tests {
         with_stage(|stage, path| {
             let w = InOrder::start(Some(path), stage, 4).unwrap();
             for seq in [2, 0, 3, 1] {
-                assert!(w.hand_in(seq, chunk(&format!("{seq}\n")), stage));
+                assert!(w.hand_in(seq, run(&format!("{seq}\n")), stage));
             }
             let (out, count) = w.finish(stage).ok().unwrap();
             out.finish().unwrap();
@@ -243,7 +244,7 @@ mod tests {
     }
 
     #[test]
-    fn a_chunk_waits_for_room_until_an_earlier_one_is_written() {
+    fn a_run_waits_for_room_until_an_earlier_one_is_written() {
         with_stage(|stage, path| {
             let w = InOrder::start(Some(path), stage, 2).unwrap();
             assert!(w.wait_for_room(0) && w.wait_for_room(1), "within the bound");
@@ -251,11 +252,11 @@ mod tests {
                 let (tx, rx) = std::sync::mpsc::channel();
                 let w = &w;
                 s.spawn(move || tx.send(w.wait_for_room(2)).unwrap());
-                // Chunk 1 written first changes nothing: chunk 0 is still unwritten.
-                assert!(w.hand_in(1, chunk("1\n"), stage));
+                // Run 1 written first changes nothing: run 0 is still unwritten.
+                assert!(w.hand_in(1, run("1\n"), stage));
                 let short = std::time::Duration::from_millis(50);
-                assert!(rx.recv_timeout(short).is_err(), "chunk 2 was let in early");
-                assert!(w.hand_in(0, chunk("0\n"), stage));
+                assert!(rx.recv_timeout(short).is_err(), "run 2 was let in early");
+                assert!(w.hand_in(0, run("0\n"), stage));
                 let long = std::time::Duration::from_secs(10);
                 assert_eq!(rx.recv_timeout(long), Ok(true));
             });
@@ -263,7 +264,7 @@ mod tests {
     }
 
     #[test]
-    fn a_bad_chunk_stops_the_run_and_wakes_the_waiting() {
+    fn a_bad_run_stops_the_run_and_wakes_the_waiting() {
         with_stage(|stage, path| {
             let w = InOrder::start(Some(path), stage, 1).unwrap();
             std::thread::scope(|s| {
@@ -274,13 +275,13 @@ mod tests {
                     line: 7,
                     message: "bad".into(),
                 };
-                assert!(w.hand_in(1, chunk("1\n"), stage), "waits for chunk 0");
+                assert!(w.hand_in(1, run("1\n"), stage), "waits for run 0");
                 assert!(!w.hand_in(0, Err(bad), stage));
                 let long = std::time::Duration::from_secs(10);
                 assert_eq!(rx.recv_timeout(long), Ok(false));
             });
             assert!(!w.wait_for_room(0));
-            assert!(!w.hand_in(2, chunk("2\n"), stage));
+            assert!(!w.hand_in(2, run("2\n"), stage));
             match w.finish(stage) {
                 Err(WriteFailure::Input(PointsError::Line { line: 7, .. })) => {}
                 _ => panic!("the bad line is the failure"),

@@ -112,7 +112,7 @@ impl Progress {
 
 /// `(12.3 MiB/s, 4 s left)` (`M cells/s` for cells): the average rate of the whole run so far
 /// and the time the rest takes at that rate (the bar's own estimate follows the bursts in
-/// which chunks are written).
+/// which runs are written).
 fn rate_and_time_left(done: u64, total: u64, elapsed: Duration, unit: Unit) -> String {
     let seconds = elapsed.as_secs_f64();
     if done == 0 || seconds <= 0.0 {

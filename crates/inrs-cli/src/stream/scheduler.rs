@@ -1,13 +1,10 @@
-//! The scheduler: the workers that take chunks of the points file, compute and format them,
+//! The scheduler: the workers that take runs of the points file, compute and format them,
 //! and hand them to the ordered writing.
 
 use std::path::Path;
-use std::sync::Mutex;
-use std::sync::mpsc::{Receiver, Sender};
 use std::time::Duration;
 
-use inrs::io::points::{Chunk, ChunkPoints, ChunkScratch, ChunkSource};
-use inrs::{PointQuery, PointsError};
+use inrs::{PointQuery, PointRun, PointsReader, RunPoints};
 
 use super::format::{Column, Format, Formatted, Stage, format_csv_values, format_values};
 use super::in_order::{InOrder, WriteFailure};
@@ -16,53 +13,43 @@ use super::source::{PointsInput, input_error};
 use super::spares::Spares;
 use crate::cli::error::CliError;
 
-/// Streams `input` through the query `kernel` (one value per point, in order) and writes `x,y,value`
-/// CSV rows (the coordinates echoed as written), or, when `output` ends in `.npy`, the values
-/// as a 1-D `.npy` array.
+/// Streams `input` through the `queries` (one value each per point, in order) and writes
+/// `x,y,value,...` CSV rows (the coordinates echoed as written, a value per query), or, when
+/// `output` ends in `.npy`, the values as a `.npy` array (of the column's shape).
 ///
-/// The workers ([`worker_count`]) each take the next chunk, parse it (CSV), compute and format
-/// it, and write the results in input order ([`InOrder`]: a chunk's results wait only if an
-/// earlier chunk's are not yet written, and the worker that writes that one writes them too).
-/// A regular file is cut by position and each worker reads the chunks it takes; other inputs
-/// are read in order by a reading thread. The calling thread only updates the progress bar.
-/// No stage waits for a whole group of chunks: a worker that finishes takes the next chunk at
-/// once. Memory is bounded: a chunk is taken only while fewer than [`chunks_in_flight`]
-/// chunks before it are unwritten. The byte buffers (chunks read, results formatted) go back to
-/// two bounded pools once used.
+/// The workers ([`worker_count`]) each take the next run of points from the reader (read by
+/// position, or in order, one at a time, and parsed on the worker), compute and format it,
+/// and write the results in input order ([`InOrder`]: a run's results wait only if an earlier
+/// run's are not yet written, and the worker that writes that one writes them too). The
+/// calling thread only updates the progress bar. No stage waits for a whole group of runs: a
+/// worker that finishes takes the next run at once. Memory is bounded: a worker computes a
+/// run only while fewer than [`runs_in_flight`] runs before it are unwritten, and holds one
+/// run at a time. The formatted results go back to a bounded pool once written.
 pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointQuery<T>>(
     input: PointsInput,
     output: Option<&Path>,
     column: &C,
-    kernel: &K,
+    queries: &[K],
 ) -> Result<(), CliError> {
     let workers = worker_count();
-    let in_flight = chunks_in_flight(workers);
+    let in_flight = runs_in_flight(workers);
     let PointsInput {
-        source,
+        reader,
         path,
         total_bytes,
     } = input;
-    let source = &*source;
+    let reader = &*reader;
     let path = Path::new(&path).to_path_buf();
-    let (texts, results) = (Spares::new(in_flight), Spares::new(in_flight));
+    let results = Spares::new(in_flight);
     let stage = Stage {
         format: Format::of(output),
         column,
-        kernel,
-        texts: &texts,
+        queries,
         results: &results,
     };
     let in_order = InOrder::start(output, &stage, in_flight)?;
-    let (sequential, tasks) = if source.in_order() {
-        let (tx, rx) = std::sync::mpsc::channel();
-        (Some(tx), Tasks::Sent(Mutex::new(rx)))
-    } else {
-        (None, Tasks::Taken)
-    };
     let all_ok = std::thread::scope(|scope| {
-        let (stage, in_order, tasks) = (&stage, &in_order, &tasks);
-        let reader = sequential
-            .map(|tx| scope.spawn(move || read_in_order(source, &tx, in_order, stage.texts)));
+        let (stage, in_order) = (&stage, &in_order);
         // Each worker holds a sender; the channel closes when the last one has finished.
         let (alive_tx, alive_rx) = std::sync::mpsc::channel::<()>();
         let handles: Vec<_> = (0..workers)
@@ -71,7 +58,7 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointQuery<T
                 scope.spawn(move || {
                     // A worker that panics fails the run, so that the others finish.
                     let _failing = FailOnPanic(in_order);
-                    work(source, tasks, stage, in_order);
+                    work(reader, stage, in_order);
                     drop(alive);
                 })
             })
@@ -81,33 +68,22 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointQuery<T
         while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
             alive_rx.recv_timeout(Duration::from_millis(100))
         {
-            progress.update(source.bytes_read());
+            progress.update(reader.bytes_read());
         }
         progress.finish();
-        let workers_ok = handles.into_iter().all(|h| h.join().is_ok());
-        // The reader has stopped: the workers took every chunk, or the run failed.
-        let reader_ok = reader.is_none_or(|reader| reader.join().is_ok());
-        workers_ok && reader_ok
+        handles.into_iter().all(|h| h.join().is_ok())
     });
     let (written, count) = match in_order.finish(&stage) {
         Ok(w) => w,
         Err(WriteFailure::Input(e)) => return Err(input_error(&path, e)),
         Err(WriteFailure::Output(e)) => return Err(e),
     };
-    if all_ok && source.chunks_taken() == count {
+    if all_ok && reader.runs_taken() == count {
         written.finish()
     } else {
-        // A chunk taken was never written: a stage failed; the output is dropped (removed).
+        // A run taken was never written: a stage failed; the output is dropped (removed).
         Err(CliError::Message("a streaming thread failed".into()))
     }
-}
-
-/// Where the workers take their chunks from.
-enum Tasks {
-    /// Sent by the reading thread, numbered.
-    Sent(Mutex<Receiver<Numbered>>),
-    /// Taken from the source by each worker (read by position).
-    Taken,
 }
 
 /// How many workers a stream runs: `RAYON_NUM_THREADS` if it is set to a positive number (the
@@ -127,70 +103,37 @@ fn workers_for(setting: Option<&str>, cores: usize) -> usize {
         .max(1)
 }
 
-/// How many chunks may be read and not yet written: enough for every worker to have one in
-/// hand, one queued and two results waiting for an earlier one to be written.
-fn chunks_in_flight(workers: usize) -> usize {
+/// How many runs may be taken and not yet written (beyond the one each worker holds):
+/// enough for every worker to have one in hand, one queued and two results waiting for an
+/// earlier one to be written.
+fn runs_in_flight(workers: usize) -> usize {
     4 * workers
 }
 
-/// A chunk read in order: its place in the input, whether it was read, and the chunk.
-type Numbered = (usize, Result<(), PointsError>, Chunk);
-
-/// A worker's buffers, kept from chunk to chunk (fresh ones cost a page fault per 4 KiB and
-/// zero-filling): the chunk it reads by position, the points parsed or read, and the values.
-struct Scratch<T> {
-    chunk: Chunk,
-    points: ChunkScratch,
-    values: Vec<T>,
-}
-
-/// A worker: takes the next chunk, computes and formats it, and hands the result to the
-/// ordered writing (writing it, and any that came before it and waited, if it is next), until
-/// the chunks run out or the run fails.
+/// A worker: takes the next run, computes and formats it once there is room for it, and
+/// hands the result to the ordered writing (writing it, and any that came before it and
+/// waited, if it is next), until the runs run out or the stream fails. Its run and values are
+/// kept from run to run (fresh buffers cost a page fault per 4 KiB and zero-filling).
 fn work<T: Copy, C: Column<T>, K: PointQuery<T>>(
-    source: &dyn ChunkSource,
-    tasks: &Tasks,
+    reader: &dyn PointsReader,
     stage: &Stage<'_, C, K>,
     in_order: &InOrder,
 ) {
-    let mut scratch = Scratch {
-        chunk: Chunk::default(),
-        points: ChunkScratch::default(),
-        values: Vec::new(),
-    };
-    loop {
-        let (seq, result) = match tasks {
-            Tasks::Sent(rx) => {
-                // The lock is held only while waiting for the next chunk.
-                let next = match rx.lock() {
-                    Ok(rx) => rx.recv(),
-                    Err(_) => return,
-                };
-                // An error: the reader has stopped and every chunk is taken.
-                let Ok((seq, read, chunk)) = next else { return };
-                let result = read.and_then(|()| compute(source, &chunk, stage, &mut scratch));
-                stage.texts.give(chunk.into_buffer());
-                (seq, result)
-            }
-            Tasks::Taken => {
-                let mut admit = |k| in_order.wait_for_room(k);
-                let Some((seq, read)) = source.next_chunk(&mut scratch.chunk, &mut admit) else {
-                    return;
-                };
-                let chunk = std::mem::take(&mut scratch.chunk);
-                let result = read.and_then(|()| compute(source, &chunk, stage, &mut scratch));
-                scratch.chunk = chunk;
-                (seq, result)
-            }
-        };
+    let mut run = PointRun::default();
+    let mut values = Vec::new();
+    while let Some((seq, read)) = reader.next_run(&mut run) {
+        if !in_order.wait_for_room(seq) {
+            return;
+        }
+        let result = read.map(|()| compute(&run, stage, &mut values));
         if !in_order.hand_in(seq, result, stage) {
             return;
         }
     }
 }
 
-/// Fails the run if dropped while its thread panics: the other threads then stop taking
-/// chunks.
+/// Fails the stream if dropped while its thread panics: the other threads then stop taking
+/// runs.
 struct FailOnPanic<'a>(&'a InOrder);
 
 impl Drop for FailOnPanic<'_> {
@@ -203,62 +146,42 @@ impl Drop for FailOnPanic<'_> {
     }
 }
 
-/// Computes and formats the points of `chunk`, run by run; returns the bytes (from the
-/// stage's pool) and the number of points.
+/// Computes the values of `run`'s points, query by query into `values`, and formats them;
+/// returns the bytes (from the stage's pool) and the number of points.
 fn compute<T: Copy, C: Column<T>, K: PointQuery<T>>(
-    source: &dyn ChunkSource,
-    chunk: &Chunk,
+    run: &PointRun,
     stage: &Stage<'_, C, K>,
-    scratch: &mut Scratch<T>,
-) -> Result<Formatted, PointsError> {
+    values: &mut Vec<T>,
+) -> Formatted {
     let Stage {
         format,
         column,
-        kernel,
+        queries,
         results,
-        ..
     } = *stage;
-    let Scratch { points, values, .. } = scratch;
+    let n = run.len();
+    values.clear();
+    values.resize(n * queries.len(), column.initial());
     let mut bytes = results.take();
-    let mut count = 0;
-    source.read_points(chunk, points, &mut |run| {
-        values.clear();
-        values.resize(run.len(), column.initial());
-        count += run.len();
-        match run {
-            ChunkPoints::Csv { block, parsed } => {
-                kernel.values_into(&parsed.points, values);
-                format_csv_values(values, block, &parsed.fields, format, column, &mut bytes);
+    if n == 0 {
+        return (bytes, 0);
+    }
+    match run.points() {
+        RunPoints::Csv(points) => {
+            for (query, out) in queries.iter().zip(values.chunks_exact_mut(n)) {
+                query.values_into(points.points, out);
             }
-            ChunkPoints::Npy(encoded) => {
-                // Read by index from the file's bytes: never copied into points.
-                kernel.values_into(&encoded, values);
-                format_values(values, format, column, |i| encoded.point(i), &mut bytes);
-            }
+            format_csv_values(values, &points, format, column, &mut bytes);
         }
-    })?;
-    Ok((bytes, count))
-}
-
-/// The reading thread for a source read in order: takes its chunks (reading each into a
-/// buffer from `spares` once there is room for it) and sends them to the workers, numbered,
-/// until the source runs out or fails, or the run fails.
-fn read_in_order(
-    source: &dyn ChunkSource,
-    tx: &Sender<Numbered>,
-    in_order: &InOrder,
-    spares: &Spares,
-) {
-    loop {
-        let mut chunk = Chunk::with_buffer(spares.take());
-        let Some((seq, read)) = source.next_chunk(&mut chunk, &mut |k| in_order.wait_for_room(k))
-        else {
-            return;
-        };
-        if tx.send((seq, read, chunk)).is_err() {
-            return;
+        RunPoints::Npy(encoded) => {
+            // Read by index from the file's bytes: never copied into points.
+            for (query, out) in queries.iter().zip(values.chunks_exact_mut(n)) {
+                query.values_into(&encoded, out);
+            }
+            format_values(values, n, format, column, |i| encoded.point(i), &mut bytes);
         }
     }
+    (bytes, n)
 }
 
 #[cfg(test)]

@@ -1,191 +1,187 @@
-//! The CSV points file: records one by one ([`PointReader`]), or blocks of whole lines read in
-//! order ([`CsvBlocks`]) or by position ([`CsvPointsFile`]) and parsed on any thread
-//! ([`CsvBlock::parse_into`]).
+//! The CSV points file: [`CsvReader`], which cuts it into runs of whole lines (by byte
+//! position from a regular file, or in order from any input) and parses each run on the
+//! thread that takes it.
 
 use std::io::Read;
-#[cfg(unix)]
 use std::path::Path;
 
-use rs_spline::Point;
-
-#[cfg(test)]
-use super::grammar::read_line;
 use super::grammar::{Kind, find_data, header_as_data, line_at, read_text, scan, too_long};
-use super::{MAX_LINE_BYTES, PointRecord, PointsError};
+use super::run::Claims;
+use super::run::{Content, InOrder, PointRun, PointsReader, RunSizes, Source};
+use super::{MAX_LINE_BYTES, PointsError, open_file};
 
-/// A streaming reader of a points file: one point per line, `x,y` separated by a comma or white
-/// space; further columns are allowed and ignored (so the `x,y,kind` files of `inrs sample` and
-/// the `x,y,location` files of `inrs classify` read back); an optional header line whose first
-/// two fields are `x` and `y`; blank lines and `#` comment lines ignored; a UTF-8 byte-order
-/// mark at the start (Excel's "CSV UTF-8") skipped; Windows line ends accepted. Numbers are
-/// parsed exactly as written (shortest round-trip `f64`); NaN and infinities are rejected.
+/// The CSV points file: one point per line, `x,y` separated by a comma or white space;
+/// further columns are allowed and ignored (so the `x,y,kind` files of `inrs sample` and the
+/// `x,y,location` files of `inrs classify` read back); an optional header line whose first two
+/// fields are `x` and `y`; blank lines and `#` comment lines ignored; a UTF-8 byte-order mark
+/// at the start (Excel's "CSV UTF-8") skipped; Windows line ends accepted. Numbers are parsed
+/// exactly as written (shortest round-trip `f64`); NaN and infinities are rejected.
 ///
-/// Memory is a block of lines at a time (about 64 KiB; a line at most [`MAX_LINE_BYTES`]),
-/// whatever the file's size: the reader hands out the points of [`CsvBlocks`] one by one.
+/// The [`PointsReader`] of CSV: runs of whole lines, each parsed on the thread that takes it,
+/// the fields' text kept to echo the numbers as written. Memory is the runs in hand (a line at
+/// most [`MAX_LINE_BYTES`]), whatever the file's length. [`CsvReader::open`] reads a regular
+/// file by position (Unix); [`CsvReader::new`] reads any input in order.
 ///
 /// # Examples
 ///
 /// ```
-/// use rs_io::points::PointReader;
-/// let text = "\u{feff}x,y,kind\n# a comment\n0.5, 1, boundary\n2 3e-1\n";
-/// let pts: Vec<_> = PointReader::new(text.as_bytes()).collect::<Result<_, _>>().unwrap();
-/// assert_eq!(pts.len(), 2);
+/// use rs_io::points::{CsvReader, PointRun, PointsReader, RunPoints, RunSizes};
+/// let text = "\u{feff}x,y,kind\n# a comment\n0.5, 1, boundary\n2 3e-1\n1;2\n";
+/// let reader = CsvReader::new(text.as_bytes(), "input", RunSizes::default());
+/// let mut run = PointRun::default();
+/// let (k, read) = reader.next_run(&mut run).unwrap();
+/// assert_eq!(k, 0);
+/// assert_eq!(
+///     read.unwrap_err().to_string(),
+///     "line 5: expected at least two numbers \"x,y\", got \"1;2\""
+/// );
+/// let pts = rs_io::points::parse_points(&text[..text.len() - 4]).unwrap();
 /// assert_eq!(pts[1].point, rs_spline::Point::new(2.0, 0.3));
 /// assert_eq!(pts[1].y_text, "3e-1");
 /// ```
 #[derive(Debug)]
-pub struct PointReader<R> {
-    blocks: CsvBlocks<R>,
-    block: CsvBlock,
-    parsed: ParsedBlock,
-    /// The next point of `parsed` to hand out.
-    next: usize,
-    /// The error after the points of `parsed` (its block's first bad line).
-    error: Option<PointsError>,
-    /// Whether the input has ended or failed.
-    done: bool,
+pub struct CsvReader<R> {
+    source: Source<Blocks<R>, CsvFile>,
 }
 
-/// Bytes [`PointReader`] reads at a time.
-const READER_BLOCK_BYTES: usize = 1 << 16;
-
-impl<R: Read> PointReader<R> {
-    /// Reads points from `input`.
-    pub fn new(input: R) -> Self {
-        Self::named(input, "input")
-    }
-
-    /// Reads points from `input`, naming it `path` in I/O errors.
-    pub fn named(input: R, path: impl Into<String>) -> Self {
+impl<R: Read> CsvReader<R> {
+    /// Reads `input` in order, in runs of whole lines of about `sizes.csv_bytes` (at least
+    /// one line), naming it `name` in I/O errors.
+    pub fn new(input: R, name: impl Into<String>, sizes: RunSizes) -> Self {
+        let blocks = Blocks::new(input, name, sizes.csv_bytes);
         Self {
-            blocks: CsvBlocks::new(input, path, READER_BLOCK_BYTES),
-            block: CsvBlock::default(),
-            parsed: ParsedBlock::default(),
-            next: 0,
-            error: None,
-            done: false,
+            source: Source::InOrder(InOrder::new(blocks)),
         }
     }
 }
 
-impl<R: Read> Iterator for PointReader<R> {
-    type Item = Result<PointRecord, PointsError>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        loop {
-            if let (Some(&point), Some(f)) = (
-                self.parsed.points.get(self.next),
-                self.parsed.fields.get(self.next),
-            ) {
-                self.next += 1;
-                let text = |start, end| String::from_utf8_lossy(self.block.field(start, end));
-                return Some(Ok(PointRecord {
-                    point,
-                    x_text: text(f[0], f[1]).into_owned(),
-                    y_text: text(f[2], f[3]).into_owned(),
-                }));
-            }
-            if let Some(e) = self.error.take() {
-                self.done = true;
-                return Some(Err(e));
-            }
-            if self.done {
-                return None;
-            }
-            self.blocks.recycle(std::mem::take(&mut self.block.text));
-            match self.blocks.next_block() {
-                Ok(Some(block)) => {
-                    self.block = block;
-                    self.next = 0;
-                    // On an error, the points of the lines before it are handed out first.
-                    self.error = self.block.parse_into(&mut self.parsed).err();
-                }
-                Ok(None) => self.done = true,
-                Err(e) => {
-                    self.done = true;
-                    return Some(Err(e));
-                }
-            }
-        }
-    }
-}
-
-/// A run of whole lines of a points file, cut by [`CsvBlocks`] (or read by
-/// [`CsvPointsFile::read_block`]), ready to be parsed on any thread with
-/// [`CsvBlock::parse_into`].
-#[derive(Clone, Debug, Default)]
-pub struct CsvBlock {
-    /// The lines, each with its `\n` (the file's last line may lack it).
-    pub text: Vec<u8>,
-    /// The 1-based number of the first line.
-    pub first_line: usize,
-    /// Bytes before this offset hold no data: the byte-order mark, blank lines, comments and
-    /// the header.
-    pub(super) data_from: usize,
-    /// The number of lines (0 if not known).
-    pub(super) lines: usize,
-}
-
-/// The points of a [`CsvBlock`], with where their fields stand in its text.
-#[derive(Clone, Debug, Default)]
-pub struct ParsedBlock {
-    /// The points, in order.
-    pub points: Vec<Point>,
-    /// Per point, the byte ranges `[x_start, x_end, y_start, y_end]` of its two fields in the
-    /// block's text (echo them to reproduce the numbers exactly as written).
-    pub fields: Vec<[u32; 4]>,
-}
-
-impl CsvBlock {
-    /// Parses the block's points into `out` (cleared first).
+impl CsvReader<std::fs::File> {
+    /// Opens `path`: read by position if it is a regular file whose first run holds data
+    /// (Unix), in order otherwise (a named pipe cannot be read by position, and a file that
+    /// opens with a run's worth of comments has its data found by reading on).
     ///
     /// # Errors
-    /// [`PointsError::Line`] for the first bad line, with its number in the file; `out` then
-    /// holds the points of the lines before it.
-    pub fn parse_into(&self, out: &mut ParsedBlock) -> Result<(), PointsError> {
-        out.points.clear();
-        out.fields.clear();
-        out.points.reserve(self.lines);
-        out.fields.reserve(self.lines);
-        let text = &self.text[..];
-        let mut line_no = self.first_line + count_lines(&text[..self.data_from]);
-        let mut start = self.data_from;
-        let at = |i: usize| i as u32;
-        while start < text.len() {
-            // `read_line` in its two halves, the points the scan reads pushed at once: its
-            // result then stays in registers (a tenth of the instructions of a CSV run).
-            let (line, next) = match scan(text, start) {
-                Some((line, next)) if line.kind == Kind::Point => {
-                    out.points.push(line.point);
-                    out.fields.push(line.fields.map(at));
-                    (start, line_no) = (next, line_no + 1);
-                    continue;
-                }
-                Some(blank) => blank,
-                None => read_text(text, start, line_no)?,
-            };
-            match line.kind {
-                Kind::Blank => {}
-                Kind::Header => {
-                    let (end, _) = line_at(text, start);
-                    return Err(header_as_data(&text[start..end], line_no));
-                }
-                Kind::Point => {
-                    out.points.push(line.point);
-                    out.fields.push(line.fields.map(at));
-                }
-            }
-            start = next;
-            line_no += 1;
+    /// [`PointsError::Io`] if it cannot be opened; [`PointsError::Line`] for a first line too
+    /// long.
+    pub fn open(path: impl AsRef<Path>, sizes: RunSizes) -> Result<Self, PointsError> {
+        let path = path.as_ref();
+        // Only a regular file is opened twice (a pipe's data would go with the first opening).
+        #[cfg(unix)]
+        if std::fs::metadata(path).is_ok_and(|m| m.is_file())
+            && let Some(file) = CsvFile::open(path, sizes.csv_bytes)?
+        {
+            return Ok(Self {
+                source: Source::ByPosition(Claims::new(file.blocks()), file),
+            });
         }
-        Ok(())
+        let name = path.display().to_string();
+        Ok(Self::new(open_file(path)?, name, sizes))
+    }
+}
+
+impl<R: Read + Send> PointsReader for CsvReader<R> {
+    fn next_run(&self, run: &mut PointRun) -> Option<(usize, Result<(), PointsError>)> {
+        let (k, read) = match &self.source {
+            Source::InOrder(blocks) => {
+                // Read under the lock, parsed outside it.
+                let (k, read) =
+                    blocks.next(|b| b.next_block(&mut run.bytes), Blocks::bytes_read)?;
+                run.start(k, Content::Csv);
+                (k, read.and_then(|lines| parse_lines(&lines, run)))
+            }
+            #[cfg(not(unix))]
+            Source::ByPosition(_, never) => match *never {},
+            #[cfg(unix)]
+            Source::ByPosition(claims, file) => {
+                let k = claims.claim(|k| file.offset_of_block(k + 1))?;
+                run.start(k, Content::Csv);
+                let read = file
+                    .read_block(k, &mut run.bytes)
+                    .and_then(|lines| file.parse_block(k, &lines, run));
+                (k, read)
+            }
+        };
+        Some((k, read.map_err(|e| run.fail(e))))
     }
 
-    /// The bytes of a field range of [`ParsedBlock::fields`].
-    #[inline]
-    pub fn field(&self, start: u32, end: u32) -> &[u8] {
-        &self.text[start as usize..end as usize]
+    fn runs_taken(&self) -> usize {
+        self.source.runs_taken()
     }
+
+    fn bytes_read(&self) -> u64 {
+        self.source.bytes_read()
+    }
+
+    fn points(&self) -> Option<usize> {
+        None
+    }
+
+    fn by_position(&self) -> bool {
+        self.source.by_position()
+    }
+}
+
+/// Where a run of whole lines stands in its file.
+#[derive(Clone, Copy, Debug, Default)]
+struct Lines {
+    /// The 1-based number of the first line.
+    first_line: usize,
+    /// Bytes before this offset hold no data: the byte-order mark, blank lines, comments and
+    /// the header.
+    data_from: usize,
+    /// The number of lines (0 if not known).
+    lines: usize,
+}
+
+/// Parses the lines `text` (placed in the file by `at`) into `run`'s points and fields
+/// (cleared first).
+///
+/// # Errors
+/// [`PointsError::Line`] for the first bad line, with its number in the file; the run then
+/// holds the points of the lines before it.
+fn parse_lines(at: &Lines, run: &mut PointRun) -> Result<(), PointsError> {
+    let PointRun {
+        bytes: text,
+        points,
+        fields,
+        ..
+    } = run;
+    points.clear();
+    fields.clear();
+    points.reserve(at.lines);
+    fields.reserve(at.lines);
+    let text = &text[..];
+    let mut line_no = at.first_line + count_lines(&text[..at.data_from]);
+    let mut start = at.data_from;
+    let field = |i: usize| i as u32;
+    while start < text.len() {
+        // `read_line` in its two halves, the points the scan reads pushed at once: its
+        // result then stays in registers (a tenth of the instructions of a CSV run).
+        let (line, next) = match scan(text, start) {
+            Some((line, next)) if line.kind == Kind::Point => {
+                points.push(line.point);
+                fields.push(line.fields.map(field));
+                (start, line_no) = (next, line_no + 1);
+                continue;
+            }
+            Some(blank) => blank,
+            None => read_text(text, start, line_no)?,
+        };
+        match line.kind {
+            Kind::Blank => {}
+            Kind::Header => {
+                let (end, _) = line_at(text, start);
+                return Err(header_as_data(&text[start..end], line_no));
+            }
+            Kind::Point => {
+                points.push(line.point);
+                fields.push(line.fields.map(field));
+            }
+        }
+        start = next;
+        line_no += 1;
+    }
+    Ok(())
 }
 
 /// The number of `\n` in `bytes`.
@@ -193,36 +189,21 @@ fn count_lines(bytes: &[u8]) -> usize {
     memchr::memchr_iter(b'\n', bytes).count()
 }
 
-/// A points file cut into [`CsvBlock`]s of whole lines (about `block_bytes` each), read in
-/// order, for parsing in parallel: the format of [`PointReader`], the byte-order mark, comments
-/// and the header before the data found here, memory bounded by the block size whatever the
-/// file's length.
-///
-/// # Examples
-///
-/// ```
-/// use rs_io::points::{CsvBlocks, ParsedBlock};
-/// let text = "x,y\n1,2\n# note\n3 4\n5,6";
-/// let mut blocks = CsvBlocks::new(text.as_bytes(), "input", 4);
-/// let mut parsed = ParsedBlock::default();
-/// let mut xs = Vec::new();
-/// while let Some(b) = blocks.next_block().unwrap() {
-///     b.parse_into(&mut parsed).unwrap();
-///     for (p, f) in parsed.points.iter().zip(&parsed.fields) {
-///         xs.push((p.x, String::from_utf8_lossy(b.field(f[0], f[1])).into_owned()));
-///     }
-/// }
-/// assert_eq!(xs, [(1.0, "1".into()), (3.0, "3".into()), (5.0, "5".into())]);
-/// ```
+/// The most bytes a CSV run may span (whatever the sizes asked for): the fields' offsets in a
+/// run are 32-bit.
+const MAX_RUN_BYTES: usize = 1 << 30;
+
+/// A points file cut into runs of whole lines (about `block_bytes` each), read in order: the
+/// byte-order mark, comments and the header before the data found here, memory bounded by the
+/// block size whatever the file's length.
 #[derive(Debug)]
-pub struct CsvBlocks<R> {
+struct Blocks<R> {
     input: R,
     path: String,
     block_bytes: usize,
-    /// Bytes read but not yet handed out (a partial last line).
+    /// Bytes read but not yet handed out (the lines after the last block, and a partial
+    /// line).
     pending: Vec<u8>,
-    /// A buffer given back by [`CsvBlocks::recycle`], for the bytes after the next block.
-    spare: Vec<u8>,
     /// Lines handed out so far.
     lines: usize,
     /// Whether a data line (or the header) has been found in the blocks handed out so far.
@@ -232,16 +213,15 @@ pub struct CsvBlocks<R> {
     consumed: u64,
 }
 
-impl<R: Read> CsvBlocks<R> {
+impl<R: Read> Blocks<R> {
     /// Blocks of about `block_bytes` (at least one line) from `input`, naming it `path` in I/O
     /// errors.
-    pub fn new(input: R, path: impl Into<String>, block_bytes: usize) -> Self {
+    fn new(input: R, path: impl Into<String>, block_bytes: usize) -> Self {
         Self {
             input,
             path: path.into(),
-            block_bytes: block_bytes.max(1),
+            block_bytes: block_bytes.clamp(1, MAX_RUN_BYTES),
             pending: Vec::new(),
-            spare: Vec::new(),
             lines: 0,
             seen_data: false,
             eof: false,
@@ -250,56 +230,52 @@ impl<R: Read> CsvBlocks<R> {
     }
 
     /// Bytes read from the input so far (for progress reports).
-    pub fn bytes_read(&self) -> u64 {
+    fn bytes_read(&self) -> u64 {
         self.consumed
     }
 
-    /// Gives back a block's text (or any buffer) for reading the following blocks into, so
+    /// Puts the next block into `text` and says where it stands; `None` at the end. The
+    /// buffer `text` held (its contents discarded) takes the bytes read past the block, so
     /// that a long run reuses a few buffers instead of allocating (and page-faulting) a fresh
-    /// one per block. Its contents are discarded; one buffer is kept, the larger.
-    pub fn recycle(&mut self, buffer: Vec<u8>) {
-        if buffer.capacity() > self.spare.capacity() {
-            self.spare = buffer;
-        }
-    }
-
-    /// The next block, `None` at the end.
+    /// one per block.
     ///
     /// # Errors
     /// [`PointsError::Io`]; [`PointsError::Line`] for a line longer than [`MAX_LINE_BYTES`].
-    pub fn next_block(&mut self) -> Result<Option<CsvBlock>, PointsError> {
+    fn next_block(&mut self, text: &mut Vec<u8>) -> Result<Option<Lines>, PointsError> {
         self.fill()?;
         if self.pending.is_empty() {
             return Ok(None);
         }
-        // Whole lines only, unless the input has ended.
-        let cut = if self.eof {
-            self.pending.len()
-        } else {
-            match memchr::memrchr(b'\n', &self.pending) {
+        // Whole lines only, unless the input has ended: up to the first line end at or past
+        // the block's size (the lines after it wait for the next block), else the last one.
+        let past = self.block_bytes.min(self.pending.len()) - 1;
+        let cut = match memchr::memchr(b'\n', &self.pending[past..]) {
+            Some(i) => past + i + 1,
+            None if self.eof => self.pending.len(),
+            None => match memchr::memrchr(b'\n', &self.pending[..past]) {
                 Some(i) => i + 1,
                 None => return Err(too_long(self.lines + 1)),
-            }
+            },
         };
-        // The bytes after the cut move to the spare buffer, which becomes `pending`.
-        let mut rest = std::mem::take(&mut self.spare);
+        // The bytes after the cut move to the buffer given, which becomes `pending`.
+        let mut rest = std::mem::take(text);
         rest.clear();
         rest.extend_from_slice(&self.pending[cut..]);
         self.pending.truncate(cut);
-        let text = std::mem::replace(&mut self.pending, rest);
+        *text = std::mem::replace(&mut self.pending, rest);
         let first_line = self.lines + 1;
-        let lines = count_lines(&text) + usize::from(self.eof && !text.ends_with(b"\n"));
+        // Only the input's last block can end without a line end.
+        let lines = count_lines(text) + usize::from(self.eof && !text.ends_with(b"\n"));
         self.lines += lines;
         let data_from = if self.seen_data {
             0
-        } else if let Some(at) = find_data(&text, first_line == 1) {
+        } else if let Some(at) = find_data(text, first_line == 1) {
             self.seen_data = true;
             at
         } else {
             text.len()
         };
-        Ok(Some(CsvBlock {
-            text,
+        Ok(Some(Lines {
             first_line,
             data_from,
             lines,
@@ -324,7 +300,7 @@ impl<R: Read> CsvBlocks<R> {
             }
             let want = (self.block_bytes.saturating_sub(self.pending.len())).max(1 << 16);
             // Room for a whole block and one more read at once: every block then fits a
-            // buffer of that size (see `recycle`) without growing it.
+            // buffer of that size without growing it.
             self.pending.reserve(
                 (self.block_bytes + (2 << 16)).max(self.pending.len() + want) - self.pending.len(),
             );
@@ -346,37 +322,20 @@ impl<R: Read> CsvBlocks<R> {
     }
 }
 
+/// Reading by position exists on Unix only.
+#[cfg(not(unix))]
+type CsvFile = std::convert::Infallible;
+
 /// A regular CSV points file cut into blocks by byte position, for threads that each read and
 /// parse whole blocks (no thread reads ahead for them, and the bytes a thread reads are still
 /// in its cache when it parses them). Block `k` holds the lines that *start* in its byte
 /// range: its first bytes, up to a line end, belong to the line before, and its last line runs
-/// on to its end. The format is that of [`PointReader`]; the byte-order mark, comments before
+/// on to its end. The format is that of [`CsvReader`]; the byte-order mark, comments before
 /// the data and the header are found once, when the file is opened, and the blocks cover the
 /// file's length at that time (lines appended later are not read). Unix only.
-///
-/// # Examples
-///
-/// ```
-/// # #[cfg(unix)] {
-/// use rs_io::points::{CsvBlock, CsvPointsFile, ParsedBlock};
-/// let path = std::env::temp_dir().join(format!("rs-io-doc-csvfile-{}.csv", std::process::id()));
-/// std::fs::write(&path, "x,y\n1,2\n3,4\n5,6\n").unwrap();
-/// // Blocks of 3 bytes: "1,2\n" starts in the first, "3,4\n" and "5,6\n" in the next ones.
-/// let f = CsvPointsFile::open(&path, 3).unwrap().expect("data in the first block");
-/// let (mut block, mut parsed) = (CsvBlock::default(), ParsedBlock::default());
-/// let mut xs = Vec::new();
-/// for k in 0..f.blocks() {
-///     f.read_block(k, &mut block).unwrap();
-///     f.parse_block(k, &block, &mut parsed).unwrap();
-///     xs.extend(parsed.points.iter().map(|p| p.x));
-/// }
-/// assert_eq!(xs, [1.0, 3.0, 5.0]);
-/// # std::fs::remove_file(&path).unwrap();
-/// # }
-/// ```
 #[cfg(unix)]
 #[derive(Debug)]
-pub struct CsvPointsFile {
+struct CsvFile {
     file: std::fs::File,
     path: String,
     len: u64,
@@ -390,15 +349,15 @@ pub struct CsvPointsFile {
 const LINE_END_READ: usize = 4096;
 
 #[cfg(unix)]
-impl CsvPointsFile {
+impl CsvFile {
     /// Opens `path` and finds where its data start, reading its first block of about
-    /// `block_bytes` as [`CsvBlocks`] does. `None` if it is not a regular file, or if no data
+    /// `block_bytes` as [`Blocks`] does. `None` if it is not a regular file, or if no data
     /// line starts in that block (a file that opens with that many bytes of comments): read it
-    /// in order with [`CsvBlocks`] then.
+    /// in order with [`Blocks`] then.
     ///
     /// # Errors
     /// [`PointsError::Io`]; [`PointsError::Line`] for a first line too long.
-    pub fn open(path: impl AsRef<Path>, block_bytes: usize) -> Result<Option<Self>, PointsError> {
+    fn open(path: impl AsRef<Path>, block_bytes: usize) -> Result<Option<Self>, PointsError> {
         let path = path.as_ref();
         let name = path.display().to_string();
         let file = super::open_file(path)?;
@@ -409,45 +368,46 @@ impl CsvPointsFile {
         if !meta.is_file() {
             return Ok(None);
         }
-        let mut blocks = CsvBlocks::new(&file, name.clone(), block_bytes);
-        let Some(first) = blocks.next_block()? else {
+        let mut blocks = Blocks::new(&file, name.clone(), block_bytes);
+        let Some(first) = blocks.next_block(&mut Vec::new())? else {
             return Ok(None);
         };
         if !blocks.seen_data {
             return Ok(None);
         }
+        let block_bytes = blocks.block_bytes as u64;
+        drop(blocks);
         Ok(Some(Self {
             file,
             path: name,
             len: meta.len(),
-            block_bytes: block_bytes.max(1) as u64,
+            block_bytes,
             data_from: first.data_from as u64,
         }))
     }
 
     /// The number of blocks.
-    pub fn blocks(&self) -> usize {
+    fn blocks(&self) -> usize {
         (self.len.saturating_sub(self.data_from)).div_ceil(self.block_bytes) as usize
     }
 
     /// Where block `k`'s byte range starts (the file's length past the last block).
-    pub fn offset_of_block(&self, k: usize) -> u64 {
+    fn offset_of_block(&self, k: usize) -> u64 {
         (self.data_from)
             .saturating_add((k as u64).saturating_mul(self.block_bytes))
             .min(self.len)
     }
 
-    /// Reads block `k` into `block`, reusing its buffer: from one byte before its range (to
+    /// Reads block `k` into `text`, reusing its buffer: from one byte before its range (to
     /// see whether a line starts at the range) to the end of its last line, at most
     /// [`MAX_LINE_BYTES`] past the range (a longer line is then reported by
-    /// [`CsvPointsFile::parse_block`]).
+    /// [`CsvFile::parse_block`]).
     ///
     /// # Errors
     /// [`PointsError::Io`].
-    pub fn read_block(&self, k: usize, block: &mut CsvBlock) -> Result<(), PointsError> {
+    fn read_block(&self, k: usize, text: &mut Vec<u8>) -> Result<Lines, PointsError> {
         let (start, end) = (self.offset_of_block(k), self.offset_of_block(k + 1));
         let from = if k == 0 { start } else { start - 1 };
-        let text = &mut block.text;
         let got = self.read_into(from, (end - from) as usize, text, 0)?;
         text.truncate(got);
         // The bytes up to the first line end belong to the line before (unless a line ends
@@ -474,25 +434,21 @@ impl CsvPointsFile {
             }
         }
         // Lines are numbered from 1 at the text's start; their count is not known.
-        block.data_from = skip;
-        block.first_line = 1;
-        block.lines = 0;
-        Ok(())
+        Ok(Lines {
+            first_line: 1,
+            data_from: skip,
+            lines: 0,
+        })
     }
 
-    /// Parses block `k`, read into `block` by [`CsvPointsFile::read_block`], into `out`;
-    /// errors name the line's number in the file.
+    /// Parses block `k`, read into `run` by [`CsvFile::read_block`] (which said where it
+    /// stands: `lines`); errors name the line's number in the file.
     ///
     /// # Errors
     /// [`PointsError::Line`] for the block's first bad line; [`PointsError::Io`] if the
     /// lines before it cannot be counted.
-    pub fn parse_block(
-        &self,
-        k: usize,
-        block: &CsvBlock,
-        out: &mut ParsedBlock,
-    ) -> Result<(), PointsError> {
-        block.parse_into(out).map_err(|e| match e {
+    fn parse_block(&self, k: usize, lines: &Lines, run: &mut PointRun) -> Result<(), PointsError> {
+        parse_lines(lines, run).map_err(|e| match e {
             PointsError::Line { line, message } => {
                 // Numbered from 1 at the block's text, which starts one byte before its range.
                 let text_start = self.offset_of_block(k).saturating_sub(u64::from(k > 0));
@@ -562,7 +518,43 @@ impl CsvPointsFile {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::points::parse_points;
+    use crate::points::grammar::read_line;
+    use crate::points::{PointRecord, RunPoints, parse_points, records};
+    use rs_spline::Point;
+
+    /// Every record of `text` read in order in runs of about `block_bytes`, or the first
+    /// error; with `stale`, the run's buffer holds stale bytes before each read.
+    fn read_in_blocks(
+        text: &[u8],
+        block_bytes: usize,
+        stale: bool,
+    ) -> Result<Vec<PointRecord>, PointsError> {
+        let sizes = RunSizes {
+            csv_bytes: block_bytes,
+            ..RunSizes::default()
+        };
+        if !stale {
+            return records(&CsvReader::new(text, "t", sizes));
+        }
+        let reader = CsvReader::new(text, "t", sizes);
+        let (mut run, mut got) = (PointRun::default(), Vec::new());
+        loop {
+            run.bytes.extend_from_slice(b"9,9\nbad\n");
+            let Some((_, read)) = reader.next_run(&mut run) else {
+                return Ok(got);
+            };
+            read?;
+            got.extend(csv_records(&run));
+        }
+    }
+
+    /// The records of a CSV run.
+    fn csv_records(run: &PointRun) -> Vec<PointRecord> {
+        match run.points() {
+            RunPoints::Csv(points) => (0..points.points.len()).map(|i| points.record(i)).collect(),
+            RunPoints::Npy(_) => panic!("a CSV run"),
+        }
+    }
 
     #[test]
     fn files_the_tool_writes_read_back() {
@@ -592,9 +584,7 @@ mod tests {
             assert!(e.starts_with(&format!("line {line}:")), "{text:?}: {e}");
         }
         let invalid_utf8: &[u8] = b"1,2\n\xff\xfe,3\n";
-        let e = PointReader::new(invalid_utf8)
-            .collect::<Result<Vec<_>, _>>()
-            .unwrap_err();
+        let e = read_in_blocks(invalid_utf8, 1 << 18, false).unwrap_err();
         assert!(e.to_string().contains("line 2: not UTF-8"), "{e}");
     }
 
@@ -619,35 +609,6 @@ mod tests {
                 assert_eq!(e.to_string(), want);
             }
         }
-    }
-
-    /// Every record of `text` read through [`CsvBlocks`] of `block_bytes`, or the first error;
-    /// with `recycle`, each block's text is given back (with stale bytes in it) for reading
-    /// the next ones.
-    fn read_in_blocks(
-        text: &[u8],
-        block_bytes: usize,
-        recycle: bool,
-    ) -> Result<Vec<PointRecord>, PointsError> {
-        let mut blocks = CsvBlocks::new(text, "t", block_bytes);
-        let mut parsed = ParsedBlock::default();
-        let mut got = Vec::new();
-        while let Some(b) = blocks.next_block()? {
-            b.parse_into(&mut parsed)?;
-            for (p, f) in parsed.points.iter().zip(&parsed.fields) {
-                got.push(PointRecord {
-                    point: *p,
-                    x_text: String::from_utf8_lossy(b.field(f[0], f[1])).into(),
-                    y_text: String::from_utf8_lossy(b.field(f[2], f[3])).into(),
-                });
-            }
-            if recycle {
-                let mut stale = b.text;
-                stale.extend_from_slice(b"9,9\nbad\n");
-                blocks.recycle(stale);
-            }
-        }
-        Ok(got)
     }
 
     /// The format read the plain way, as the reference for the readers: the text split at
@@ -683,9 +644,8 @@ mod tests {
         Ok(got)
     }
 
-    /// The record reader and the block reader give what the reference gives, whatever the
-    /// block size, and the same first error; also when each block's text is given back (with
-    /// stale bytes in it) for reading the next ones.
+    /// The reader gives what the reference gives, whatever the block size, and the same first
+    /// error; also when the run's buffer holds stale bytes before each read.
     #[test]
     fn the_readers_agree_with_the_reference() {
         let texts: [&[u8]; 12] = [
@@ -704,8 +664,6 @@ mod tests {
         ];
         for text in texts {
             let want = reference(text).map_err(|e| e.to_string());
-            let lines: Result<Vec<PointRecord>, _> = PointReader::new(text).collect();
-            assert_eq!(lines.map_err(|e| e.to_string()), want, "{text:?}");
             for (block_bytes, recycle) in [1, 3, 7, 64, 1 << 20]
                 .into_iter()
                 .flat_map(|b| [(b, false), (b, true)])
@@ -736,8 +694,8 @@ mod tests {
                             .map_err(|e| e.to_string())
                     };
                     let want = points(reference(text.as_bytes()));
-                    let mut results = vec![points(PointReader::new(text.as_bytes()).collect())];
-                    for block_bytes in [1024, 1 << 20] {
+                    let mut results = Vec::new();
+                    for block_bytes in [1024, 1 << 18, 1 << 20] {
                         results.push(points(read_in_blocks(text.as_bytes(), block_bytes, false)));
                     }
                     for got in results {
@@ -766,46 +724,79 @@ mod tests {
     #[test]
     fn blocks_bound_a_file_without_line_breaks() {
         let long = "1".repeat(MAX_LINE_BYTES * 3);
-        let mut blocks = CsvBlocks::new(long.as_bytes(), "t", 1024);
-        let e = blocks.next_block().unwrap_err().to_string();
+        let mut blocks = Blocks::new(long.as_bytes(), "t", 1024);
+        let e = blocks.next_block(&mut Vec::new()).unwrap_err().to_string();
         assert!(e.contains("longer than"), "{e}");
     }
 
+    /// Runs in order are numbered 0, 1, ...; a run that fails to parse fails alone (the
+    /// caller stops at the first failure in file order), a read that fails ends the runs.
     #[test]
-    fn reading_stops_after_the_first_error() {
-        let mut r = PointReader::new("1,2\nbad\n3,4\n".as_bytes());
-        assert!(r.next().unwrap().is_ok());
-        assert!(r.next().unwrap().is_err());
-        assert!(r.next().is_none());
+    fn a_bad_line_fails_its_run_and_a_failed_read_ends_the_runs() {
+        let sizes = RunSizes {
+            csv_bytes: 1,
+            ..RunSizes::default()
+        };
+        let reader = CsvReader::new("1,2\nbad\n3,4\n".as_bytes(), "t", sizes);
+        let mut run = PointRun::default();
+        let (k, read) = reader.next_run(&mut run).unwrap();
+        assert!(k == 0 && read.is_ok() && run.len() == 1);
+        let (k, read) = reader.next_run(&mut run).unwrap();
+        assert!(k == 1 && read.is_err() && run.is_empty());
+        let (k, read) = reader.next_run(&mut run).unwrap();
+        assert!(k == 2 && read.is_ok() && run.len() == 1);
+        assert!(reader.next_run(&mut run).is_none());
+        assert_eq!(reader.runs_taken(), 3);
+        let long = format!("1,2\n{}\n3,4\n", "5".repeat(MAX_LINE_BYTES + 10));
+        let reader = CsvReader::new(long.as_bytes(), "t", sizes);
+        assert!(reader.next_run(&mut run).unwrap().1.is_ok());
+        let e = reader.next_run(&mut run).unwrap().1.unwrap_err();
+        assert!(e.to_string().starts_with("line 2: line longer than"), "{e}");
+        /// An input whose reads fail.
+        struct Failing;
+        impl Read for Failing {
+            fn read(&mut self, _: &mut [u8]) -> std::io::Result<usize> {
+                Err(std::io::Error::other("gone"))
+            }
+        }
+        let reader = CsvReader::new(Failing, "pipe", sizes);
+        let e = reader.next_run(&mut run).unwrap().1.unwrap_err();
+        assert_eq!(e.to_string(), "pipe: gone");
+        assert!(reader.next_run(&mut run).is_none());
+        assert_eq!(reader.runs_taken(), 1);
     }
 
     /// Points and their fields as written, or the error message: by blocks in order
-    /// ([`CsvBlocks`], the reference) or by position.
+    /// (the reference) or by position.
     #[cfg(unix)]
     type Parsed = Result<Vec<(f64, f64, Vec<u8>, Vec<u8>)>, String>;
 
     #[cfg(unix)]
     fn in_order(path: &Path, block_bytes: usize) -> Parsed {
-        let mut blocks =
-            crate::points::open_points_blocks(path, block_bytes).map_err(|e| e.to_string())?;
-        let mut parsed = ParsedBlock::default();
-        let mut all = Vec::new();
-        while let Some(b) = blocks.next_block().map_err(|e| e.to_string())? {
-            b.parse_into(&mut parsed).map_err(|e| e.to_string())?;
-            collect(&b, &parsed, &mut all);
+        let file = open_file(path).map_err(|e| e.to_string())?;
+        let sizes = RunSizes {
+            csv_bytes: block_bytes,
+            ..RunSizes::default()
+        };
+        let reader = CsvReader::new(file, "t", sizes);
+        let (mut run, mut all) = (PointRun::default(), Vec::new());
+        while let Some((_, read)) = reader.next_run(&mut run) {
+            read.map_err(|e| e.to_string())?;
+            collect(&run, &mut all);
         }
         Ok(all)
     }
 
     #[cfg(unix)]
-    fn by_position(f: &CsvPointsFile) -> Parsed {
-        let (mut block, mut parsed) = (CsvBlock::default(), ParsedBlock::default());
+    fn by_position(f: &CsvFile) -> Parsed {
+        let mut run = PointRun::default();
         let mut all = Vec::new();
         for k in 0..f.blocks() {
-            f.read_block(k, &mut block).map_err(|e| e.to_string())?;
-            f.parse_block(k, &block, &mut parsed)
+            let lines = f.read_block(k, &mut run.bytes).map_err(|e| e.to_string())?;
+            f.parse_block(k, &lines, &mut run)
                 .map_err(|e| e.to_string())?;
-            collect(&block, &parsed, &mut all);
+            run.content = Content::Csv;
+            collect(&run, &mut all);
         }
         Ok(all)
     }
@@ -820,14 +811,12 @@ mod tests {
     }
 
     #[cfg(unix)]
-    fn collect(b: &CsvBlock, parsed: &ParsedBlock, all: &mut Vec<(f64, f64, Vec<u8>, Vec<u8>)>) {
-        for (p, f) in parsed.points.iter().zip(&parsed.fields) {
-            all.push((
-                p.x,
-                p.y,
-                b.field(f[0], f[1]).to_vec(),
-                b.field(f[2], f[3]).to_vec(),
-            ));
+    fn collect(run: &PointRun, all: &mut Vec<(f64, f64, Vec<u8>, Vec<u8>)>) {
+        let RunPoints::Csv(points) = run.points() else {
+            panic!("a CSV run")
+        };
+        for (i, p) in points.points.iter().enumerate() {
+            all.push((p.x, p.y, points.x(i).to_vec(), points.y(i).to_vec()));
         }
     }
 
@@ -872,7 +861,7 @@ mod tests {
             std::fs::write(&path, &text).unwrap();
             for block_bytes in [1, 2, 5, 16, 37, 200, 1 << 16] {
                 let want = in_order(&path, block_bytes);
-                match CsvPointsFile::open(&path, block_bytes) {
+                match CsvFile::open(&path, block_bytes) {
                     Ok(Some(f)) => {
                         files += 1;
                         failures += usize::from(want.is_err());
@@ -905,7 +894,7 @@ mod tests {
         text.extend_from_slice(b",1\n6,7\n");
         std::fs::write(&path, &text).unwrap();
         for block_bytes in [3, 1000, 1 << 18] {
-            let f = CsvPointsFile::open(&path, block_bytes).unwrap().unwrap();
+            let f = CsvFile::open(&path, block_bytes).unwrap().unwrap();
             let err = by_position(&f).unwrap_err();
             assert_eq!(err, in_order(&path, block_bytes).unwrap_err());
             assert!(err.starts_with("line 3: line longer than"), "{err}");
@@ -921,12 +910,12 @@ mod tests {
         let mut text = "# a comment of twenty bytes\n".repeat(7000);
         text.push_str("\n1,2\n");
         std::fs::write(&path, &text).unwrap();
-        assert!(CsvPointsFile::open(&path, 4).unwrap().is_none());
-        let f = CsvPointsFile::open(&path, 1 << 20).unwrap().unwrap();
+        assert!(CsvFile::open(&path, 4).unwrap().is_none());
+        let f = CsvFile::open(&path, 1 << 20).unwrap().unwrap();
         assert_eq!(by_position(&f).unwrap().len(), 1);
         std::fs::write(&path, "").unwrap();
-        assert!(CsvPointsFile::open(&path, 4).unwrap().is_none());
-        assert!(CsvPointsFile::open(&dir, 4).map_or(true, |f| f.is_none()));
+        assert!(CsvFile::open(&path, 4).unwrap().is_none());
+        assert!(CsvFile::open(&dir, 4).map_or(true, |f| f.is_none()));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

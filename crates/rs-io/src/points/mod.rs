@@ -1,54 +1,46 @@
 //! Points files: the CSV text and the `NumPy` `.npy` arrays the `inrs` tools read points from,
 //! streamed in bounded memory whatever their length.
 //!
-//! - The CSV format ([`PointReader`] describes it): read record by record ([`PointReader`],
-//!   [`parse_points`], [`read_points`]), or in blocks of whole lines parsed on any thread
-//!   ([`CsvBlocks`], read in order; [`CsvPointsFile`], read by position). One grammar serves
-//!   them all: one line splitter, one parser of a line and one finder of the first data line
-//!   (after the byte-order mark, comments and header).
-//! - `.npy` arrays of shape `(N, 2)`, float64 or float32: read in order ([`NpyPoints`]) or by
-//!   position ([`NpyPointsFile`]), the points handed over as stored ([`EncodedPoints`]); and the
-//!   header of the arrays results are written as ([`npy_header`]).
-//! - Either format as numbered chunks for parallel work ([`ChunkSource`]): read in order by one
-//!   thread at a time ([`Sequential`]) or by position by any number at once ([`Positional`],
-//!   Unix); [`open_chunks`] chooses.
+//! One reader per format, behind one trait ([`PointsReader`]): [`CsvReader`] (the CSV format
+//! and its one grammar: one line splitter, one parser of a line and one finder of the first
+//! data line, after the byte-order mark, comments and header) and [`NpyReader`] (arrays of
+//! shape `(N, 2)`, float64 or float32). Each hands the file out as numbered runs of points
+//! ([`PointRun`]: the points, and for CSV the text they were written as) to any number of
+//! threads at once: a regular file is read by position (Unix), any other input in order, one
+//! run at a time, each run parsed on the thread that took it. [`open_points`] chooses the
+//! reader by the file's name.
+//!
+//! Also: a whole CSV text or file as records ([`parse_points`], [`read_points`]), and the
+//! header of the `.npy` arrays results are written as ([`npy_header`]).
 //!
 //! # Examples
 //!
 //! ```
-//! use rs_io::points::{PointReader, parse_points};
+//! use rs_io::points::parse_points;
 //! let pts = parse_points("x,y\n# a comment\n0.5, 1\n2 3e-1\n").unwrap();
 //! assert_eq!(pts.len(), 2);
 //! assert_eq!(pts[1].y_text, "3e-1");
-//! let mut r = PointReader::new("1,2\n3;4\n".as_bytes());
-//! assert!(r.next().unwrap().is_ok());
 //! assert_eq!(
-//!     r.next().unwrap().unwrap_err().to_string(),
+//!     parse_points("1,2\n3;4\n").unwrap_err().to_string(),
 //!     "line 2: expected at least two numbers \"x,y\", got \"3;4\""
 //! );
 //! ```
 
 mod csv;
+mod encoded;
 mod grammar;
 mod npy;
-mod source;
+mod run;
 
 use std::path::Path;
 
 use rs_spline::Point;
 use thiserror::Error;
 
-#[cfg(unix)]
-pub use csv::CsvPointsFile;
-pub use csv::{CsvBlock, CsvBlocks, ParsedBlock, PointReader};
-#[cfg(unix)]
-pub use npy::NpyPointsFile;
-pub use npy::{EncodedPoints, MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyPoints, NpyType, npy_header};
-#[cfg(unix)]
-pub use source::Positional;
-pub use source::{
-    Chunk, ChunkPoints, ChunkScratch, ChunkSizes, ChunkSource, Sequential, open_chunks,
-};
+pub use csv::CsvReader;
+pub use encoded::{EncodedPoints, NpyType};
+pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyReader, npy_header};
+pub use run::{CsvPoints, PointRun, PointsReader, RunPoints, RunSizes};
 
 /// The longest line a points file may have, in bytes, without its end (`\n` or `\r\n`): a
 /// file without line breaks is an error, not an unbounded allocation.
@@ -94,7 +86,28 @@ pub enum PointsError {
     },
 }
 
-/// Parses a whole points text (see [`PointReader`] for the format).
+/// Opens the points file `path` in runs of `sizes`: `.npy` ([`NpyReader::open`]) if its name
+/// ends so, CSV ([`CsvReader::open`]) otherwise.
+///
+/// # Errors
+/// [`PointsError::Io`] if it cannot be opened; for `.npy`, a bad header; for CSV, a first line
+/// too long.
+pub fn open_points(
+    path: impl AsRef<Path>,
+    sizes: RunSizes,
+) -> Result<Box<dyn PointsReader>, PointsError> {
+    let path = path.as_ref();
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
+    {
+        Ok(Box::new(NpyReader::open(path, sizes)?))
+    } else {
+        Ok(Box::new(CsvReader::open(path, sizes)?))
+    }
+}
+
+/// Parses a whole points text (the format of [`CsvReader`]).
 ///
 /// # Errors
 /// [`PointsError::Line`] with the line number of the first bad line.
@@ -110,57 +123,32 @@ pub enum PointsError {
 /// assert!(e.to_string().starts_with("line 2:"));
 /// ```
 pub fn parse_points(text: &str) -> Result<Vec<PointRecord>, PointsError> {
-    PointReader::new(text.as_bytes()).collect()
-}
-
-/// Opens a points file for streaming, record by record.
-///
-/// # Errors
-/// [`PointsError::Io`] if it cannot be opened.
-pub fn open_points(path: impl AsRef<Path>) -> Result<PointReader<std::fs::File>, PointsError> {
-    let path = path.as_ref();
-    Ok(PointReader::named(
-        open_file(path)?,
-        path.display().to_string(),
+    records(&CsvReader::new(
+        text.as_bytes(),
+        "input",
+        RunSizes::default(),
     ))
 }
 
-/// Reads and parses a whole points file into memory (use [`open_points`] to stream).
+/// Reads and parses a whole CSV points file into memory (to stream one, read its runs:
+/// [`CsvReader::open`]).
 ///
 /// # Errors
 /// [`PointsError::Io`] or as [`parse_points`].
 pub fn read_points(path: impl AsRef<Path>) -> Result<Vec<PointRecord>, PointsError> {
-    open_points(path)?.collect()
+    records(&CsvReader::open(path, RunSizes::default())?)
 }
 
-/// Opens a points file for block-wise parsing (see [`CsvBlocks`]).
-///
-/// # Errors
-/// [`PointsError::Io`] if it cannot be opened.
-pub fn open_points_blocks(
-    path: impl AsRef<Path>,
-    block_bytes: usize,
-) -> Result<CsvBlocks<std::fs::File>, PointsError> {
-    let path = path.as_ref();
-    Ok(CsvBlocks::new(
-        open_file(path)?,
-        path.display().to_string(),
-        block_bytes,
-    ))
-}
-
-/// Opens a `.npy` points file to read in order (see [`NpyPoints`]).
-///
-/// # Errors
-/// As [`NpyPoints::new`], and [`PointsError::Io`] if it cannot be opened.
-pub fn open_npy_points(
-    path: impl AsRef<Path>,
-) -> Result<NpyPoints<std::io::BufReader<std::fs::File>>, PointsError> {
-    let path = path.as_ref();
-    NpyPoints::new(
-        std::io::BufReader::with_capacity(1 << 20, open_file(path)?),
-        path.display().to_string(),
-    )
+/// Every point of a CSV reader's runs, with its text.
+fn records(reader: &dyn PointsReader) -> Result<Vec<PointRecord>, PointsError> {
+    let (mut run, mut all) = (PointRun::default(), Vec::new());
+    while let Some((_, read)) = reader.next_run(&mut run) {
+        read?;
+        if let RunPoints::Csv(points) = run.points() {
+            all.extend((0..points.points.len()).map(|i| points.record(i)));
+        }
+    }
+    Ok(all)
 }
 
 /// Opens the points file `path` ([`PointsError::Io`] naming it if it cannot be opened).

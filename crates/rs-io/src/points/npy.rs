@@ -1,5 +1,5 @@
-//! `NumPy` `.npy` files: points in as a float64 array of shape `(N, 2)`, results out as a 1-D
-//! array, both streamed.
+//! `NumPy` `.npy` files: points in as a float64 (or float32) array of shape `(N, 2)`
+//! ([`NpyReader`]), results out as arrays of any shape ([`npy_header`]), both streamed.
 //!
 //! The format (`NumPy`'s `numpy.lib.format`, versions 1.0 to 3.0): the magic `\x93NUMPY`, two
 //! version bytes, the header length (2 bytes little-endian in version 1, 4 in versions 2 and
@@ -7,12 +7,12 @@
 //! padded with spaces to a multiple of 64 bytes and ended by a newline, then the data.
 
 use std::io::Read;
-#[cfg(unix)]
 use std::path::Path;
 
-use rs_spline::Point;
-
-use super::PointsError;
+use super::encoded::{EncodedPoints, NpyType};
+use super::run::Claims;
+use super::run::{Content, InOrder, PointRun, PointsReader, RunSizes, Source};
+use super::{PointsError, open_file};
 
 /// The most points a `.npy` header may announce: larger shapes are refused before anything
 /// is read (the data are streamed, so this only guards the arithmetic).
@@ -21,37 +21,6 @@ pub const MAX_NPY_POINTS: u64 = 1 << 48;
 /// The length of the headers [`npy_header`] writes: 128 bytes, room for any shape up to
 /// [`MAX_NPY_POINTS`], so a header written before the count is known can be rewritten in place.
 pub const NPY_HEADER_BYTES: usize = 128;
-
-/// The element types read and written.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum NpyType {
-    /// `<f8`: little-endian float64.
-    F64,
-    /// `<f4`: little-endian float32 (read only; converted exactly to float64).
-    F32,
-    /// `|i1`: int8.
-    I8,
-}
-
-impl NpyType {
-    /// The `descr` string.
-    pub fn descr(self) -> &'static str {
-        match self {
-            NpyType::F64 => "<f8",
-            NpyType::F32 => "<f4",
-            NpyType::I8 => "|i1",
-        }
-    }
-
-    /// Bytes per element.
-    pub fn size(self) -> usize {
-        match self {
-            NpyType::F64 => 8,
-            NpyType::F32 => 4,
-            NpyType::I8 => 1,
-        }
-    }
-}
 
 /// A `.npy` header of exactly [`NPY_HEADER_BYTES`] bytes (version 1.0) for a C-order array of
 /// `ty` with `shape`.
@@ -84,40 +53,25 @@ pub fn npy_header(ty: NpyType, shape: &[usize]) -> Vec<u8> {
     h
 }
 
-/// A stream of points from a `.npy` file holding a C-order float64 (or float32) array of shape
-/// `(N, 2)`.
-///
-/// # Examples
-///
-/// ```
-/// let mut bytes = rs_io::points::npy_header(rs_io::points::NpyType::F64, &[2, 2]);
-/// for v in [0.5f64, 1.0, -2.0, 3.25] {
-///     bytes.extend_from_slice(&v.to_le_bytes());
-/// }
-/// let mut r = rs_io::points::NpyPoints::new(&bytes[..], "mem").unwrap();
-/// assert_eq!(r.len(), 2);
-/// let mut pts = Vec::new();
-/// r.read_block(10, &mut pts).unwrap();
-/// assert_eq!(pts, [rs_spline::Point::new(0.5, 1.0), rs_spline::Point::new(-2.0, 3.25)]);
-/// ```
+/// The points of a `.npy` file holding a C-order float64 (or float32) array of shape
+/// `(N, 2)`, read in order.
 #[derive(Debug)]
-pub struct NpyPoints<R> {
+struct NpyStream<R> {
     input: R,
     path: String,
     ty: NpyType,
     len: usize,
     remaining: usize,
     consumed: u64,
-    buf: Vec<u8>,
 }
 
-impl<R: Read> NpyPoints<R> {
+impl<R: Read> NpyStream<R> {
     /// Reads the header of `input` (named `path` in errors).
     ///
     /// # Errors
     /// [`PointsError::Npy`] for a file that is not a `.npy` array of shape `(N, 2)` of
     /// float64 or float32 in C order; [`PointsError::Io`].
-    pub fn new(mut input: R, path: impl Into<String>) -> Result<Self, PointsError> {
+    fn new(mut input: R, path: impl Into<String>) -> Result<Self, PointsError> {
         let path = path.into();
         let fail = |message: String| PointsError::Npy {
             path: path.clone(),
@@ -163,51 +117,26 @@ impl<R: Read> NpyPoints<R> {
             len,
             remaining: len,
             consumed: (8 + if magic[6] == 1 { 2 } else { 4 } + header_len) as u64,
-            buf: Vec::new(),
         })
     }
 
-    /// The number of points the header announces.
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    /// True if the array has no points.
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
     /// Bytes read so far (for progress reports).
-    pub fn bytes_read(&self) -> u64 {
+    fn bytes_read(&self) -> u64 {
         self.consumed
     }
 
-    /// Appends up to `max` more points to `out`; returns how many (0 at the end).
+    /// The next (up to) `max` points as stored, read into `buf` and checked finite (none at
+    /// the end).
     ///
     /// # Errors
     /// [`PointsError::Npy`] if the file ends early or holds a non-finite coordinate (naming
     /// the point's index); [`PointsError::Io`].
-    pub fn read_block(&mut self, max: usize, out: &mut Vec<Point>) -> Result<usize, PointsError> {
-        let mut buf = std::mem::take(&mut self.buf);
-        let read = self.read_encoded(max, &mut buf).map(|points| {
-            points.append_to(out);
-            points.len()
-        });
-        self.buf = buf;
-        read
-    }
-
-    /// The next (up to) `max` points as stored, read into `buf` and checked finite (none at
-    /// the end): [`NpyPoints::read_block`] without the copy into points.
-    ///
-    /// # Errors
-    /// As [`NpyPoints::read_block`].
-    pub fn read_encoded<'b>(
+    fn read_encoded<'b>(
         &mut self,
         max: usize,
         buf: &'b mut Vec<u8>,
     ) -> Result<EncodedPoints<'b>, PointsError> {
-        let (first, n) = (self.position(), max.min(self.remaining));
+        let (first, n) = (self.len - self.remaining, max.min(self.remaining));
         self.remaining -= n;
         let (input, consumed) = (&mut self.input, &mut self.consumed);
         read_run(self.ty, &self.path, self.len, first, n, buf, |bytes| {
@@ -215,16 +144,6 @@ impl<R: Read> NpyPoints<R> {
             *consumed += bytes.len() as u64;
             Ok(())
         })
-    }
-
-    /// The number of the next point to be read.
-    fn position(&self) -> usize {
-        self.len - self.remaining
-    }
-
-    /// The element type.
-    pub(super) fn element_type(&self) -> NpyType {
-        self.ty
     }
 }
 
@@ -253,189 +172,67 @@ fn data_cut_short(path: &str, len: usize, e: &std::io::Error) -> PointsError {
     }
 }
 
-/// Points as a `.npy` array stores them: pairs of `f64` or `f32`, little-endian, every
-/// coordinate checked finite. Read one at a time by [`EncodedPoints::point`] (for instance by a
-/// locator's indexed query), so that they need not be copied into a `Vec<Point>` first.
+/// The `.npy` points file: a C-order float64 (or float32, converted exactly) array of shape
+/// `(N, 2)`, `NumPy`'s format versions 1.0 to 3.0, every coordinate checked finite.
+///
+/// The [`PointsReader`] of `.npy`: runs of `sizes.npy_points` points handed over as stored
+/// ([`crate::points::RunPoints::Npy`], read by index, never copied). [`NpyReader::open`] reads
+/// a regular file by position (Unix: any number of threads at once, `pread`; the copies out of
+/// the operating system's cache, which dominate a fast computation on many points, then run on
+/// every core); [`NpyReader::new`] reads any input in order.
 ///
 /// # Examples
 ///
 /// ```
-/// # #[cfg(unix)] {
-/// let path = std::env::temp_dir().join("rs-io-doc-encoded-points.npy");
-/// let mut bytes = rs_io::points::npy_header(rs_io::points::NpyType::F32, &[2, 2]);
-/// for v in [0.5f32, 1.0, -2.0, 3.25] {
-///     bytes.extend_from_slice(&v.to_le_bytes());
-/// }
-/// std::fs::write(&path, &bytes).unwrap();
-/// let f = rs_io::points::NpyPointsFile::open(&path).unwrap();
-/// let mut scratch = Vec::new();
-/// let pts = f.read_encoded(0, 2, &mut scratch).unwrap();
-/// assert_eq!(pts.len(), 2);
-/// assert_eq!(pts.point(1), rs_spline::Point::new(-2.0, 3.25));
-/// # std::fs::remove_file(&path).unwrap();
-/// # }
-/// ```
-#[derive(Clone, Copy, Debug)]
-pub struct EncodedPoints<'a> {
-    ty: NpyType,
-    bytes: &'a [u8],
-}
-
-/// Whether every little-endian `ty` number in `bytes` is finite: no exponent field all ones,
-/// tested for all of them without a branch (the compiler vectorises it; the search for the
-/// first bad point runs only if there is one).
-fn all_finite(ty: NpyType, bytes: &[u8]) -> bool {
-    fn none_all_ones<const N: usize>(
-        bytes: &[u8],
-        exponent: u64,
-        bits: impl Fn([u8; N]) -> u64,
-    ) -> bool {
-        let mut bad = 0u64;
-        for c in bytes.chunks_exact(N) {
-            let mut a = [0u8; N];
-            a.copy_from_slice(c);
-            bad |= u64::from(bits(a) & exponent == exponent);
-        }
-        bad == 0
-    }
-    if ty == NpyType::F32 {
-        none_all_ones::<4>(bytes, 0x7f80_0000, |b| u64::from(u32::from_le_bytes(b)))
-    } else {
-        none_all_ones::<8>(bytes, 0x7ff0_0000_0000_0000, u64::from_le_bytes)
-    }
-}
-
-impl<'a> EncodedPoints<'a> {
-    /// The points encoded in `bytes` (pairs of `ty`, a whole number of them), the first being
-    /// point `first` of the file `path` (for the error naming a non-finite coordinate).
-    fn checked(
-        ty: NpyType,
-        bytes: &'a [u8],
-        first: usize,
-        path: &str,
-    ) -> Result<Self, PointsError> {
-        let points = Self { ty, bytes };
-        if all_finite(ty, bytes) {
-            return Ok(points);
-        }
-        if let Some(i) = (0..points.len()).find(|&i| {
-            let p = points.point(i);
-            !(p.x.is_finite() && p.y.is_finite())
-        }) {
-            return Err(PointsError::Npy {
-                path: path.to_string(),
-                message: format!("point {} is not finite: {:?}", first + i, points.point(i)),
-            });
-        }
-        Ok(points)
-    }
-
-    /// The points encoded in `bytes` (pairs of `ty`, a whole number of them), already checked
-    /// finite by [`EncodedPoints::checked`].
-    pub(super) fn from_checked(ty: NpyType, bytes: &'a [u8]) -> Self {
-        Self { ty, bytes }
-    }
-
-    /// The number of points.
-    #[inline]
-    pub fn len(&self) -> usize {
-        self.bytes.len() / (2 * self.ty.size())
-    }
-
-    /// True if there are none.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Point `i` (`float32` coordinates converted exactly).
-    ///
-    /// # Panics
-    /// If `i >= self.len()`.
-    #[inline]
-    pub fn point(&self, i: usize) -> Point {
-        if self.ty == NpyType::F32 {
-            let c = &self.bytes[8 * i..8 * i + 8];
-            let v = |b: &[u8]| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]));
-            Point::new(v(&c[..4]), v(&c[4..]))
-        } else {
-            let c = &self.bytes[16 * i..16 * i + 16];
-            let v = |b: &[u8]| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]);
-            Point::new(v(&c[..8]), v(&c[8..]))
-        }
-    }
-
-    /// Appends the points to `out`.
-    pub fn append_to(&self, out: &mut Vec<Point>) {
-        out.extend((0..self.len()).map(|i| self.point(i)));
-    }
-}
-
-/// Queries read the points by index straight from the bytes.
-impl rs_spline::PointSource for EncodedPoints<'_> {
-    #[inline]
-    fn len(&self) -> usize {
-        EncodedPoints::len(self)
-    }
-    #[inline]
-    fn point(&self, i: usize) -> Point {
-        EncodedPoints::point(self, i)
-    }
-}
-
-/// A `.npy` points file (as [`NpyPoints`] reads it) whose blocks are read by position, from
-/// any number of threads at once (`pread`): the copies of the file's data out of the
-/// operating system's cache, which dominate a fast computation on many points, then run on
-/// every core instead of one. Unix only.
-///
-/// # Examples
-///
-/// ```
-/// # #[cfg(unix)] {
-/// let path = std::env::temp_dir().join("rs-io-doc-npy-points-file.npy");
-/// let mut bytes = rs_io::points::npy_header(rs_io::points::NpyType::F64, &[3, 2]);
+/// use rs_io::points::{NpyReader, NpyType, PointRun, PointsReader, RunPoints, RunSizes, npy_header};
+/// let mut bytes = npy_header(NpyType::F64, &[3, 2]);
 /// for v in [0.5f64, 1.0, -2.0, 3.25, 4.0, 5.0] {
 ///     bytes.extend_from_slice(&v.to_le_bytes());
 /// }
-/// std::fs::write(&path, &bytes).unwrap();
-/// let f = rs_io::points::NpyPointsFile::open(&path).unwrap();
-/// assert_eq!(f.len(), 3);
-/// let (mut scratch, mut pts) = (Vec::new(), Vec::new());
-/// f.read_points(1, 2, &mut scratch, &mut pts).unwrap();
-/// assert_eq!(pts, [rs_spline::Point::new(-2.0, 3.25), rs_spline::Point::new(4.0, 5.0)]);
-/// # std::fs::remove_file(&path).unwrap();
-/// # }
+/// let sizes = RunSizes { npy_points: 2, ..RunSizes::default() };
+/// let reader = NpyReader::new(&bytes[..], "mem", sizes).unwrap();
+/// assert_eq!(reader.len(), 3);
+/// let (mut run, mut xs) = (PointRun::default(), Vec::new());
+/// while let Some((k, read)) = reader.next_run(&mut run) {
+///     read.unwrap();
+///     if let RunPoints::Npy(pts) = run.points() {
+///         xs.extend((0..pts.len()).map(|i| (k, pts.point(i).x)));
+///     }
+/// }
+/// assert_eq!(xs, [(0, 0.5), (0, -2.0), (1, 4.0)]);
 /// ```
-#[cfg(unix)]
 #[derive(Debug)]
-pub struct NpyPointsFile {
-    file: std::fs::File,
-    path: String,
+pub struct NpyReader<R> {
+    source: Source<NpyStream<R>, NpyFile>,
     ty: NpyType,
     len: usize,
-    /// Where the data start (after the header).
-    data_offset: u64,
+    /// Points per run.
+    per_run: usize,
 }
 
-#[cfg(unix)]
-impl NpyPointsFile {
-    /// Opens `path` and reads its header.
+/// The most points of a run (whatever the sizes asked for): 1 GiB of float64 pairs.
+const MAX_RUN_POINTS: usize = 1 << 26;
+
+impl<R: Read> NpyReader<R> {
+    /// Reads the header of `input` (named `name` in errors); the points are read in order, in
+    /// runs of `sizes.npy_points`.
     ///
     /// # Errors
-    /// As [`super::open_npy_points`].
-    pub fn open(path: impl AsRef<Path>) -> Result<Self, PointsError> {
-        let path = path.as_ref();
-        let file = super::open_file(path)?;
-        // The header by a few small reads (no read-ahead: the data are read by position).
-        let header = NpyPoints::new(file, path.display().to_string())?;
+    /// [`PointsError::Npy`] for a file that is not a `.npy` array of shape `(N, 2)` of
+    /// float64 or float32 in C order; [`PointsError::Io`].
+    pub fn new(input: R, name: impl Into<String>, sizes: RunSizes) -> Result<Self, PointsError> {
+        let stream = NpyStream::new(input, name)?;
+        let (ty, len) = (stream.ty, stream.len);
         Ok(Self {
-            file: header.input,
-            path: header.path,
-            ty: header.ty,
-            len: header.len,
-            data_offset: header.consumed,
+            source: Source::InOrder(InOrder::new(stream)),
+            ty,
+            len,
+            per_run: sizes.npy_points.clamp(1, MAX_RUN_POINTS),
         })
     }
+}
 
+impl<R> NpyReader<R> {
     /// The number of points the header announces.
     pub fn len(&self) -> usize {
         self.len
@@ -446,34 +243,129 @@ impl NpyPointsFile {
         self.len == 0
     }
 
-    /// The offset of point `i`'s data in the file.
-    pub fn offset_of(&self, i: usize) -> u64 {
-        self.data_offset + (2 * self.ty.size() * i) as u64
+    /// The element type of the array.
+    pub fn element_type(&self) -> NpyType {
+        self.ty
     }
+}
 
-    /// Appends points `first..first + n` (cut at the end of the array) to `out`, reading their
-    /// bytes into `scratch`; returns how many.
+impl NpyReader<std::io::BufReader<std::fs::File>> {
+    /// Opens `path` and reads its header: read by position if it is a regular file (Unix), in
+    /// order otherwise (a named pipe cannot be read by position).
     ///
     /// # Errors
-    /// As [`NpyPoints::read_block`].
-    pub fn read_points(
-        &self,
-        first: usize,
-        n: usize,
-        scratch: &mut Vec<u8>,
-        out: &mut Vec<Point>,
-    ) -> Result<usize, PointsError> {
-        let points = self.read_encoded(first, n, scratch)?;
-        points.append_to(out);
-        Ok(points.len())
+    /// As [`NpyReader::new`], and [`PointsError::Io`] if it cannot be opened.
+    pub fn open(path: impl AsRef<Path>, sizes: RunSizes) -> Result<Self, PointsError> {
+        let path = path.as_ref();
+        let per_run = sizes.npy_points.clamp(1, MAX_RUN_POINTS);
+        #[cfg(unix)]
+        if std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+            let file = NpyFile::open(path)?;
+            let (ty, len) = (file.ty, file.len);
+            return Ok(Self {
+                source: Source::ByPosition(Claims::new(len.div_ceil(per_run)), file),
+                ty,
+                len,
+                per_run,
+            });
+        }
+        let input = std::io::BufReader::with_capacity(1 << 20, open_file(path)?);
+        Self::new(input, path.display().to_string(), sizes)
+    }
+}
+
+impl<R: Read + Send> PointsReader for NpyReader<R> {
+    fn next_run(&self, run: &mut PointRun) -> Option<(usize, Result<(), PointsError>)> {
+        let (k, read) = match &self.source {
+            Source::InOrder(stream) => stream.next(
+                |s| {
+                    s.read_encoded(self.per_run, &mut run.bytes)
+                        .map(|points| (!points.is_empty()).then_some(()))
+                },
+                NpyStream::bytes_read,
+            )?,
+            #[cfg(not(unix))]
+            Source::ByPosition(_, never) => match *never {},
+            #[cfg(unix)]
+            Source::ByPosition(claims, file) => {
+                let k = claims.claim(|k| file.offset_of((k + 1).saturating_mul(self.per_run)))?;
+                let first = k * self.per_run;
+                (
+                    k,
+                    file.read_encoded(first, self.per_run, &mut run.bytes)
+                        .map(drop),
+                )
+            }
+        };
+        run.start(k, Content::Npy(self.ty));
+        Some((k, read.map_err(|e| run.fail(e))))
+    }
+
+    fn runs_taken(&self) -> usize {
+        self.source.runs_taken()
+    }
+
+    fn bytes_read(&self) -> u64 {
+        self.source.bytes_read()
+    }
+
+    fn points(&self) -> Option<usize> {
+        Some(self.len)
+    }
+
+    fn by_position(&self) -> bool {
+        self.source.by_position()
+    }
+}
+
+/// Reading by position exists on Unix only.
+#[cfg(not(unix))]
+type NpyFile = std::convert::Infallible;
+
+/// A `.npy` points file read by position, from any number of threads at once (`pread`).
+/// Unix only.
+#[cfg(unix)]
+#[derive(Debug)]
+struct NpyFile {
+    file: std::fs::File,
+    path: String,
+    ty: NpyType,
+    len: usize,
+    /// Where the data start (after the header).
+    data_offset: u64,
+}
+
+#[cfg(unix)]
+impl NpyFile {
+    /// Opens `path` and reads its header.
+    ///
+    /// # Errors
+    /// As [`NpyReader::open`].
+    fn open(path: &Path) -> Result<Self, PointsError> {
+        let file = open_file(path)?;
+        // The header by a few small reads (no read-ahead: the data are read by position).
+        let header = NpyStream::new(file, path.display().to_string())?;
+        Ok(Self {
+            file: header.input,
+            path: header.path,
+            ty: header.ty,
+            len: header.len,
+            data_offset: header.consumed,
+        })
+    }
+
+    /// The offset of point `i`'s data in the file (the end of the data past the last point).
+    fn offset_of(&self, i: usize) -> u64 {
+        let i = i.min(self.len) as u64;
+        self.data_offset + 2 * self.ty.size() as u64 * i
     }
 
     /// Points `first..first + n` (cut at the end of the array) as stored, read into `scratch`
-    /// and checked finite: [`NpyPointsFile::read_points`] without the copy into points.
+    /// and checked finite.
     ///
     /// # Errors
-    /// As [`NpyPoints::read_block`].
-    pub fn read_encoded<'s>(
+    /// As [`NpyStream::read_encoded`].
+    fn read_encoded<'s>(
         &self,
         first: usize,
         n: usize,
@@ -542,45 +434,7 @@ fn parse_points_header(text: &str) -> Result<(NpyType, usize), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The branch-free scan says what `is_finite` says of every number, wherever the bad one
-    /// stands, for both widths (including the largest, the smallest normal and subnormal
-    /// values, and NaN of either sign).
-    #[test]
-    fn the_finiteness_scan_agrees_with_is_finite() {
-        let specials = [
-            0.0,
-            -0.0,
-            1.5,
-            f64::MAX,
-            f64::MIN_POSITIVE,
-            5e-324,
-            3.4e38,
-            f64::NAN,
-            -f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        for v in specials {
-            for at in 0..7 {
-                let mut xs = [1.0f64; 7];
-                xs[at] = v;
-                let wide: Vec<u8> = xs.iter().flat_map(|x| x.to_le_bytes()).collect();
-                assert_eq!(
-                    all_finite(NpyType::F64, &wide),
-                    v.is_finite(),
-                    "{v} at {at}"
-                );
-                let narrow: Vec<u8> = xs.iter().flat_map(|&x| (x as f32).to_le_bytes()).collect();
-                let v32 = v as f32;
-                assert_eq!(
-                    all_finite(NpyType::F32, &narrow),
-                    v32.is_finite(),
-                    "{v32} at {at}"
-                );
-            }
-        }
-    }
+    use rs_spline::Point;
 
     fn file(ty: NpyType, shape: &[usize], values: &[f64]) -> Vec<u8> {
         let mut bytes = npy_header(ty, shape);
@@ -593,91 +447,86 @@ mod tests {
         bytes
     }
 
-    #[test]
-    fn points_stream_in_blocks() {
-        let values: Vec<f64> = (0..14).map(|i| i as f64 * 0.25).collect();
-        for ty in [NpyType::F64, NpyType::F32] {
-            let bytes = file(ty, &[7, 2], &values);
-            let mut r = NpyPoints::new(&bytes[..], "t").unwrap();
-            let mut pts = Vec::new();
-            while r.read_block(3, &mut pts).unwrap() > 0 {}
-            assert_eq!(pts.len(), 7);
-            assert_eq!(pts[6], Point::new(3.0, 3.25));
-            assert_eq!(r.bytes_read(), bytes.len() as u64);
+    /// Runs of `n` points: every point of `reader` with its run's number, or the first error.
+    fn drain_runs(reader: &dyn PointsReader) -> Result<Vec<(usize, Point)>, PointsError> {
+        let (mut run, mut all) = (PointRun::default(), Vec::new());
+        while let Some((k, read)) = reader.next_run(&mut run) {
+            read?;
+            let crate::points::RunPoints::Npy(points) = run.points() else {
+                panic!("a .npy run")
+            };
+            all.extend((0..points.len()).map(|i| (k, points.point(i))));
+        }
+        Ok(all)
+    }
+
+    fn runs_of(n: usize) -> RunSizes {
+        RunSizes {
+            npy_points: n,
+            ..RunSizes::default()
         }
     }
 
-    /// Ranges read by position, in any order and from two threads, give the points the
-    /// stream gives; a file cut short and a non-finite coordinate are errors naming them.
+    #[test]
+    fn points_stream_in_runs() {
+        let values: Vec<f64> = (0..14).map(|i| i as f64 * 0.25).collect();
+        for ty in [NpyType::F64, NpyType::F32] {
+            let bytes = file(ty, &[7, 2], &values);
+            let r = NpyReader::new(&bytes[..], "t", runs_of(3)).unwrap();
+            assert_eq!((r.len(), r.element_type(), r.by_position()), (7, ty, false));
+            let pts = drain_runs(&r).unwrap();
+            assert_eq!(pts.len(), 7);
+            assert_eq!(pts[6], (2, Point::new(3.0, 3.25)));
+            assert_eq!(r.bytes_read(), bytes.len() as u64);
+            assert_eq!(r.runs_taken(), 3);
+        }
+    }
+
+    /// Runs read by position, taken by three threads at once, give the points the stream
+    /// gives; a file cut short and a non-finite coordinate are errors naming them.
     #[cfg(unix)]
     #[test]
-    fn ranges_read_by_position_match_the_stream() {
+    fn runs_read_by_position_match_the_stream() {
         let values: Vec<f64> = (0..22).map(|i| i as f64 * 0.375 - 2.0).collect();
+        let path = std::env::temp_dir().join(format!("inrs-npy-runs-{}.npy", std::process::id()));
         for ty in [NpyType::F64, NpyType::F32] {
             let bytes = file(ty, &[11, 2], &values);
-            let path = std::env::temp_dir().join(format!(
-                "inrs-npy-ranges-{}-{}.npy",
-                ty.descr().replace(['<', '|'], ""),
-                std::process::id()
-            ));
             std::fs::write(&path, &bytes).unwrap();
-            let mut stream = Vec::new();
-            NpyPoints::new(&bytes[..], "t")
-                .unwrap()
-                .read_block(100, &mut stream)
-                .unwrap();
-            let f = NpyPointsFile::open(&path).unwrap();
+            let stream = drain_runs(&NpyReader::new(&bytes[..], "t", runs_of(4)).unwrap());
+            let f = NpyReader::open(&path, runs_of(4)).unwrap();
+            assert!(f.by_position());
             assert_eq!(f.len(), 11);
-            let ranges = [(8usize, 5usize), (0, 4), (4, 4)]; // the last one cut at the end
-            let read: Vec<Vec<Point>> = std::thread::scope(|s| {
-                let handles: Vec<_> = ranges
-                    .iter()
-                    .map(|&(first, n)| {
-                        let f = &f;
-                        s.spawn(move || {
-                            let (mut scratch, mut pts) = (Vec::new(), Vec::new());
-                            let got = f.read_points(first, n, &mut scratch, &mut pts).unwrap();
-                            assert_eq!(got, pts.len());
-                            pts
-                        })
-                    })
-                    .collect();
-                handles.into_iter().map(|h| h.join().unwrap()).collect()
+            let taken = std::sync::Mutex::new(Vec::new());
+            std::thread::scope(|s| {
+                for _ in 0..3 {
+                    s.spawn(|| {
+                        let mut run = PointRun::default();
+                        while let Some((k, read)) = f.next_run(&mut run) {
+                            read.unwrap();
+                            let crate::points::RunPoints::Npy(p) = run.points() else {
+                                panic!("a .npy run")
+                            };
+                            let pts: Vec<_> = (0..p.len()).map(|i| (k, p.point(i))).collect();
+                            taken.lock().unwrap().push((k, pts));
+                        }
+                    });
+                }
             });
-            assert_eq!(read[0], stream[8..]);
-            assert_eq!([&read[1][..], &read[2][..]].concat(), stream[..8]);
-            std::fs::remove_file(&path).unwrap();
+            let mut taken = taken.into_inner().unwrap();
+            taken.sort_by_key(|t| t.0);
+            let read: Vec<_> = taken.into_iter().flat_map(|t| t.1).collect();
+            assert_eq!(Ok(read), stream.map_err(|e| e.to_string()));
+            assert_eq!((f.runs_taken(), f.bytes_read()), (3, bytes.len() as u64));
         }
-        let path = std::env::temp_dir().join(format!("inrs-npy-bad-{}.npy", std::process::id()));
         std::fs::write(&path, file(NpyType::F64, &[5, 2], &[0.5; 6])).unwrap();
-        let (mut scratch, mut pts) = (Vec::new(), Vec::new());
-        let short = NpyPointsFile::open(&path)
-            .unwrap()
-            .read_points(0, 5, &mut scratch, &mut pts);
-        assert!(
-            short
-                .unwrap_err()
-                .to_string()
-                .contains("data end before the 5 points"),
-            "cut short"
-        );
-        std::fs::write(
-            &path,
-            file(
-                NpyType::F64,
-                &[3, 2],
-                &[0.0, 1.0, 2.0, 3.0, f64::INFINITY, 5.0],
-            ),
-        )
-        .unwrap();
-        let bad = NpyPointsFile::open(&path)
-            .unwrap()
-            .read_points(1, 2, &mut scratch, &mut pts);
-        assert!(
-            bad.unwrap_err()
-                .to_string()
-                .contains("point 2 is not finite")
-        );
+        let short = drain_runs(&NpyReader::open(&path, runs_of(2)).unwrap());
+        let e = short.unwrap_err().to_string();
+        assert!(e.contains("data end before the 5 points"), "{e}");
+        let bad = [0.0, 1.0, 2.0, 3.0, f64::INFINITY, 5.0];
+        std::fs::write(&path, file(NpyType::F64, &[3, 2], &bad)).unwrap();
+        let bad = drain_runs(&NpyReader::open(&path, runs_of(2)).unwrap());
+        let e = bad.unwrap_err().to_string();
+        assert!(e.contains("point 2 is not finite"), "{e}");
         std::fs::remove_file(&path).unwrap();
     }
 
@@ -704,10 +553,8 @@ mod tests {
             ),
         ];
         for (bytes, expected) in cases {
-            let e = NpyPoints::new(&bytes[..], "t").and_then(|mut r| {
-                let mut pts = Vec::new();
-                r.read_block(100, &mut pts).map(|_| ())
-            });
+            let e = NpyReader::new(&bytes[..], "t", RunSizes::default())
+                .and_then(|r| drain_runs(&r).map(drop));
             let e = e.unwrap_err().to_string();
             assert!(e.contains(expected), "{e} (expected {expected:?})");
         }
