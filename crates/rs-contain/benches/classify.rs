@@ -4,8 +4,11 @@
 
 use std::hint::black_box;
 
+mod paper;
+
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use rs_contain::baselines::{FlattenedPolygon, halton_points};
+use paper::{PaperCase, paper_cases};
+use rs_contain::baselines::FlattenedPolygon;
 use rs_contain::{Classifier, ContainOptions, Location, Method};
 
 /// Halton points per domain; the fixture files record the reference inside count for it.
@@ -14,12 +17,14 @@ const N: usize = 10_000;
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("classify");
     group.sample_size(20);
-    for name in rs_testkit::PAPER_DOMAINS {
-        let meta = rs_testkit::inrs_fixture(name);
-        let expected = meta.inside_count(N).expect("reference count");
-        let domain = meta.domain;
-        let pts = halton_points(N, meta.reference_box.expect("reference box"));
-        let classifier = Classifier::new(&domain, ContainOptions::default()).expect("closed");
+    for PaperCase {
+        name,
+        domain,
+        points: pts,
+        inside: expected,
+        classifier,
+    } in paper_cases(N)
+    {
         for method in Method::ALL {
             group.bench_with_input(BenchmarkId::new(method.name(), name), &pts, |bch, pts| {
                 bch.iter(|| {

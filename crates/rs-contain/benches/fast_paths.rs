@@ -5,12 +5,12 @@
 use rs_contain::Locate;
 use std::hint::black_box;
 
+mod paper;
+
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use paper::{PaperCase, paper_cases};
 use rs_contain::baselines::halton_points;
-use rs_contain::{
-    Classifier, ContainOptions, FastWindingField, Location, LocatorOptions, Method, PointLocator,
-    WindingField,
-};
+use rs_contain::{FastWindingField, Location, LocatorOptions, Method, PointLocator, WindingField};
 
 /// Halton points per domain; the fixture files record the reference inside count for it.
 const N: usize = 100_000;
@@ -22,12 +22,14 @@ fn inside(v: &[Location]) -> usize {
 fn locator(c: &mut Criterion) {
     let mut group = c.benchmark_group("fast");
     group.sample_size(10);
-    for name in rs_testkit::PAPER_DOMAINS {
-        let meta = rs_testkit::inrs_fixture(name);
-        let expected = meta.inside_count(N).expect("reference count");
-        let domain = meta.domain;
-        let pts = halton_points(N, meta.reference_box.expect("reference box"));
-        let classifier = Classifier::new(&domain, ContainOptions::default()).expect("closed");
+    for PaperCase {
+        name,
+        points: pts,
+        inside: expected,
+        classifier,
+        ..
+    } in paper_cases(N)
+    {
         group.bench_with_input(BenchmarkId::new("inrs2", name), &pts, |bch, pts| {
             bch.iter(|| {
                 assert_eq!(

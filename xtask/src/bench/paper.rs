@@ -115,12 +115,7 @@ impl PaperTimings {
             md,
             "CPU time for N Halton points of each domain's bounding box; speed-up = inRS1 / inRS2.\n"
         );
-        table.header(md);
-        for &n in sizes {
-            table.time_row(md, n, "inRS1", "inrs1");
-            table.time_row(md, n, "inRS2", "inrs2");
-            table.ratio_row(md, n, "speed-up", "inrs1", "inrs2");
-        }
+        table.versus(md, sizes, ("inRS1", "inrs1"), ("inRS2", "inrs2"));
         let _ = writeln!(
             md,
             "\n### Table 2: inRS2 and a polygon within 1e-10 (paper Table 2)\n"
@@ -133,12 +128,7 @@ impl PaperTimings {
              speed-up = polygon / inRS2.\n",
             sides.join(", ")
         );
-        table.header(md);
-        for &n in sizes {
-            table.time_row(md, n, "polygon", "polygon");
-            table.time_row(md, n, "inRS2", "inrs2");
-            table.ratio_row(md, n, "speed-up", "polygon", "inrs2");
-        }
+        table.versus(md, sizes, ("polygon", "polygon"), ("inRS2", "inrs2"));
         let _ = writeln!(
             md,
             "\n### Table 3: fast paths and generalized winding numbers\n"
@@ -169,6 +159,23 @@ struct Table<'a> {
 }
 
 impl Table<'_> {
+    /// A table of the times of two algorithms `(label, path)` at every size, each size's rows
+    /// followed by the speed-up of `b` over `a` (time of `a` / time of `b`).
+    fn versus(
+        &self,
+        md: &mut String,
+        sizes: &[usize],
+        (a_label, a): (&str, &'static str),
+        (b_label, b): (&str, &'static str),
+    ) {
+        self.header(md);
+        for &n in sizes {
+            self.time_row(md, n, a_label, a);
+            self.time_row(md, n, b_label, b);
+            self.ratio_row(md, n, "speed-up", a, b);
+        }
+    }
+
     fn header(&self, md: &mut String) {
         let _ = writeln!(md, "| N | algorithm | {} |", self.names.join(" | "));
         let _ = writeln!(md, "| ---: | --- |{}", " ---: |".repeat(self.names.len()));

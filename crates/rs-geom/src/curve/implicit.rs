@@ -112,17 +112,31 @@ impl Conic<Point> {
             return Err(GeomError::ClosedOpenConicArc(kind));
         }
         match kind {
-            ConicKind::Ellipse => ellipse(&coefficients, start, end),
-            ConicKind::Hyperbola => hyperbola(&coefficients, start, end),
+            ConicKind::Ellipse => ellipse(&central(&coefficients), start, end),
+            ConicKind::Hyperbola => hyperbola(&central(&coefficients), start, end),
             ConicKind::Parabola => parabola(&coefficients, start, end),
         }
     }
 }
 
-/// The centre (where the gradient vanishes), the conic's value there, and the rotation
-/// `(sin, cos)` of `theta = atan2(B, A - C) / 2` with the quadratic form's values `a1`, `c1`
-/// along the rotated axes `(cos, sin)`, `(-sin, cos)`.
-fn centre_and_axes(c: &[f64; 6]) -> (Point, f64, (f64, f64), (f64, f64)) {
+/// A central conic (ellipse or hyperbola) in its own axes: `x'^2 / rx2 + y'^2 / ry2 = 1` in
+/// the coordinates `x' = (p - centre) . e1`, `y' = (p - centre) . e2`.
+#[derive(Clone, Copy)]
+struct Central {
+    /// Where the gradient vanishes.
+    centre: Point,
+    /// The unit axes `(cos, sin)`, `(-sin, cos)` of `theta = atan2(B, A - C) / 2`.
+    e1: Point,
+    e2: Point,
+    /// The squared semi-axes `-f0 / a1`, `-f0 / c1`, from the conic's value `f0` at the centre
+    /// and the quadratic form's values `a1`, `c1` along the axes (negative along a
+    /// hyperbola's conjugate axis).
+    rx2: f64,
+    ry2: f64,
+}
+
+/// The conic `c` about its centre and axes.
+fn central(c: &[f64; 6]) -> Central {
     let [a, b, cc, d, e, _] = *c;
     let det = 4.0 * a * cc - b * b;
     let centre = Point::new((b * e - 2.0 * cc * d) / det, (b * d - 2.0 * a * e) / det);
@@ -131,16 +145,18 @@ fn centre_and_axes(c: &[f64; 6]) -> (Point, f64, (f64, f64), (f64, f64)) {
     let (s, co) = theta.sin_cos();
     let a1 = a * co * co + b * co * s + cc * s * s;
     let c1 = a * s * s - b * co * s + cc * co * co;
-    (centre, f0, (s, co), (a1, c1))
+    Central {
+        centre,
+        e1: Point::new(co, s),
+        e2: Point::new(-s, co),
+        rx2: -f0 / a1,
+        ry2: -f0 / c1,
+    }
 }
 
-fn ellipse(
-    c: &[f64; 6],
-    start: Point,
-    end: Point,
-) -> Result<(Conic<Point>, (f64, f64)), GeomError> {
-    let (centre, f0, (s, co), (a1, c1)) = centre_and_axes(c);
-    let (rx2, ry2) = (-f0 / a1, -f0 / c1);
+fn ellipse(k: &Central, start: Point, end: Point) -> Result<(Conic<Point>, (f64, f64)), GeomError> {
+    let (centre, e1, e2) = (k.centre, k.e1, k.e2);
+    let (rx2, ry2) = (k.rx2, k.ry2);
     if !(rx2 > 0.0 && ry2 > 0.0 && rx2.is_finite() && ry2.is_finite()) {
         return Err(GeomError::NoRealConic(ConicKind::Ellipse));
     }
@@ -148,8 +164,8 @@ fn ellipse(
     let conic = Conic {
         kind: ConicKind::Ellipse,
         center: centre,
-        u: Point::new(co, s) * rx,
-        v: Point::new(-s, co) * ry,
+        u: e1 * rx,
+        v: e2 * ry,
     };
     let t0 = conic.parameter_of(start);
     let sweep = if start == end {
@@ -162,13 +178,12 @@ fn ellipse(
 }
 
 fn hyperbola(
-    c: &[f64; 6],
+    k: &Central,
     start: Point,
     end: Point,
 ) -> Result<(Conic<Point>, (f64, f64)), GeomError> {
-    let (centre, f0, (s, co), (a1, c1)) = centre_and_axes(c);
-    let (rx2, ry2) = (-f0 / a1, -f0 / c1);
-    let (e1, e2) = (Point::new(co, s), Point::new(-s, co));
+    let (centre, e1, e2) = (k.centre, k.e1, k.e2);
+    let (rx2, ry2) = (k.rx2, k.ry2);
     // x'^2 / rx2 + y'^2 / ry2 = 1 with one of rx2, ry2 negative; the positive one is the
     // transverse axis.
     let (transverse, conjugate, ra2, rb2) = if rx2 > 0.0 {

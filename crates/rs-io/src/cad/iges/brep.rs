@@ -19,7 +19,7 @@
 
 use std::rc::Rc;
 
-use rs_geom::brep::{Edge, Face};
+use rs_geom::brep::Face;
 use rs_spline::NurbsCurve;
 use rs_spline::prelude::*;
 
@@ -27,6 +27,7 @@ use super::Iges;
 use super::curves::{Piece, leaf_edges};
 use super::directory::DirEntry;
 use super::error::IgesError;
+use super::faces::OuterFlag;
 use super::surfaces::SurfaceInfo;
 
 /// An entry of a 504 edge list: the model curve's pointer (its vertices are not needed: the
@@ -44,43 +45,15 @@ impl Iges<'_> {
         e: &DirEntry,
         face: &mut Face,
     ) -> Result<Vec<Vec<NurbsCurve>>, IgesError> {
-        let who = self.who(e);
         let mut p = self.params(e)?;
         let surf = p.pointer("SURF")?;
         let n = p.count("N")?;
-        let outer = p.int("OF")?;
-        let ptrs = p.pointers("N", n, "LOOP")?;
-        let (s, info) = self.face_surface(e, surf, face)?;
-        let mut loops = Vec::with_capacity(n + 1);
-        match outer {
-            1 => {}
-            0 => {
-                loops.push(self.rectangle(s, &info, "OF = 0")?);
-                face.edges.push(Vec::new());
-                face.natural_bounds = n == 0;
-            }
-            f => {
-                return Err(IgesError::Flag {
-                    who,
-                    name: "outer loop flag".into(),
-                    value: f,
-                    expected: "0 or 1",
-                });
-            }
-        }
-        for ptr in ptrs {
-            loops.push(self.brep_loop(
-                e,
-                ptr,
-                &info,
-                &mut face.edges,
-                &mut face.pcurve_deviation,
-            )?);
-        }
-        if loops.is_empty() {
-            return Err(IgesError::Nothing { who, what: "loops" });
-        }
-        Ok(loops)
+        let outer = OuterFlag {
+            name: "OF",
+            value: p.int("OF")?,
+        };
+        let loops = p.pointers("N", n, "LOOP")?;
+        self.face_loops(e, face, surf, outer, loops, Self::brep_loop)
     }
 
     /// Entry `ndx` (1-based) of the 504 edge list at `list`. Lists are read once (a shell's
@@ -120,17 +93,21 @@ impl Iges<'_> {
             })
     }
 
-    /// The loop of the 508 at `ptr`, of face `face` on surface `s`; its 3-D edges appended to
-    /// `edges`.
+    /// The loop of the 508 at `ptr` of face entry `entry` on the surface `info`; its 3-D edges
+    /// and pcurve bound recorded in `face`.
     fn brep_loop(
         &self,
-        face: &DirEntry,
+        entry: &DirEntry,
         ptr: usize,
         info: &SurfaceInfo,
-        edges: &mut Vec<Vec<Edge>>,
-        deviation: &mut Option<f64>,
+        face: &mut Face,
     ) -> Result<Vec<NurbsCurve>, IgesError> {
-        let l = self.entry_of(ptr, &format!("{}: loop", self.who(face)), 508, "a 508 loop")?;
+        let l = self.entry_of(
+            ptr,
+            &format!("{}: loop", self.who(entry)),
+            508,
+            "a 508 loop",
+        )?;
         let who = self.who(l);
         let mut p = self.params(l)?;
         let n = p.count("N")?;
@@ -170,8 +147,13 @@ impl Iges<'_> {
                     let leaves = self.curve_leaves(entry.curve, &format!("{from}: model curve"));
                     if these.is_empty() {
                         let near = pieces.last().map(|p| p.curve.end_point());
-                        these =
-                            self.model_pieces(&leaves.clone()?, reversed, info, near, deviation)?;
+                        these = self.model_pieces(
+                            &leaves.clone()?,
+                            reversed,
+                            info,
+                            near,
+                            &mut face.pcurve_deviation,
+                        )?;
                     }
                     if let Ok(leaves) = leaves {
                         loop_edges.extend(leaf_edges(&leaves, reversed));
@@ -192,7 +174,7 @@ impl Iges<'_> {
             return Err(IgesError::Nothing { who, what: "edges" });
         }
         let closed = self.close_loop(l.de, l.de, pieces, &mut loop_edges, info);
-        edges.push(loop_edges);
+        face.edges.push(loop_edges);
         closed
     }
 }

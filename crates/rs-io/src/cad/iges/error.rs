@@ -369,7 +369,7 @@ pub enum IgesError {
     Flag {
         /// The entity.
         who: String,
-        /// The flag (`outer loop flag`, `N1 =`).
+        /// The flag (`N1`, `OF`).
         name: String,
         /// Its value.
         value: i64,
@@ -434,14 +434,14 @@ pub enum IgesError {
     },
     /// A face bounded by its surface's parameter range where that range is not finite.
     #[error(
-        "{who}: the outer boundary is the surface's parameter range ({flag}), which is not \
+        "{who}: the outer boundary is the surface's parameter range ({flag} = 0), which is not \
          bounded for a {kind} {}",
         super::type_name(*kind)
     )]
     NoNaturalBounds {
         /// The surface entity.
         who: String,
-        /// The face's flag that asks for it (`N1 = 0`, `OF = 0`).
+        /// The face's flag whose value 0 asks for it (`N1` or `OF`).
         flag: &'static str,
         /// The surface's type.
         kind: i64,

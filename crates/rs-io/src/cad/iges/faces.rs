@@ -188,6 +188,18 @@ impl Walk {
     }
 }
 
+/// A face entity's outer-loop flag (144's `N1`, 510's `OF`): 0 when the surface's natural
+/// rectangle is the outer loop, 1 when the face's first loop is.
+pub(super) struct OuterFlag {
+    /// The parameter's name in the standard, for errors.
+    pub(super) name: &'static str,
+    /// Its value as written.
+    pub(super) value: i64,
+}
+
+/// A loop's `(u, v)` curves, or why it cannot be read.
+type LoopCurves = Result<Vec<NurbsCurve>, IgesError>;
+
 impl Iges<'_> {
     /// The members of a 402 group, 186 solid or 514 shell, or `None` if its record cannot be
     /// read (then it holds nothing).
@@ -306,62 +318,79 @@ impl Iges<'_> {
         e: &DirEntry,
         face: &mut Face,
     ) -> Result<Vec<Vec<NurbsCurve>>, IgesError> {
-        let who = self.who(e);
         let mut p = self.params(e)?;
         let pts = p.pointer("PTS")?;
         let n1 = p.int("N1")?;
         let n2 = p.count("N2")?;
         let pto = p.pointer("PTO")?;
         let inner = p.pointers("N2", n2, "PTI")?;
-        let (s, info) = self.face_surface(e, pts, face)?;
-        let mut loops = Vec::with_capacity(n2 + 1);
-        match n1 {
+        let loops = (n1 == 1).then_some(pto).into_iter().chain(inner);
+        let outer = OuterFlag {
+            name: "N1",
+            value: n1,
+        };
+        self.face_loops(e, face, pts, outer, loops, Self::curve_on_surface)
+    }
+
+    /// The loops of face `e` (a 144 or a 510) on the surface at `surf`, each at a pointer of
+    /// `loops` read by `read_loop` (`(face entry, loop pointer, surface, face)` to the loop's
+    /// `(u, v)` curves, its 3-D edges and pcurve bound recorded in the face). With
+    /// the outer flag 0 the surface's natural rectangle is the outer loop (the face has
+    /// natural bounds when no loop follows); with 1 the first loop is the outer one.
+    ///
+    /// # Errors
+    /// Another outer flag, no loop at all, or the errors of the surface and of `read_loop`.
+    pub(super) fn face_loops(
+        &self,
+        e: &DirEntry,
+        face: &mut Face,
+        surf: usize,
+        outer: OuterFlag,
+        loops: impl IntoIterator<Item = usize>,
+        read_loop: fn(&Self, &DirEntry, usize, &SurfaceInfo, &mut Face) -> LoopCurves,
+    ) -> Result<Vec<Vec<NurbsCurve>>, IgesError> {
+        let who = self.who(e);
+        let (s, info) = self.face_surface(e, surf, face)?;
+        let mut read = Vec::new();
+        match outer.value {
             0 => {
-                loops.push(self.rectangle(s, &info, "N1 = 0")?);
+                read.push(self.rectangle(s, &info, outer.name)?);
                 face.edges.push(Vec::new());
-                face.natural_bounds = n2 == 0;
             }
-            1 => loops.push(self.curve_on_surface(
-                e,
-                pto,
-                &info,
-                &mut face.edges,
-                &mut face.pcurve_deviation,
-            )?),
-            _ => {
+            1 => {}
+            value => {
                 return Err(IgesError::Flag {
                     who,
-                    name: "N1".into(),
-                    value: n1,
+                    name: outer.name.into(),
+                    value,
                     expected: "0 or 1",
                 });
             }
         }
-        for ptr in inner {
-            loops.push(self.curve_on_surface(
-                e,
-                ptr,
-                &info,
-                &mut face.edges,
-                &mut face.pcurve_deviation,
-            )?);
+        let natural = read.len();
+        for ptr in loops {
+            read.push(read_loop(self, e, ptr, &info, face)?);
         }
-        Ok(loops)
+        face.natural_bounds = natural == 1 && read.len() == 1;
+        if read.is_empty() {
+            return Err(IgesError::Nothing { who, what: "loops" });
+        }
+        Ok(read)
     }
 
-    /// The loop of the 142 at `ptr`, a boundary of face `face` on surface `s`; its 3-D edges
-    /// (from the model-space curve, if it reads) are appended to `edges`.
+    /// The loop of the 142 at `ptr`, a boundary of face entry `entry` on the surface `info`;
+    /// its 3-D edges (from the model-space curve, if it reads) and pcurve bound recorded in
+    /// `face`.
     fn curve_on_surface(
         &self,
-        face: &DirEntry,
+        entry: &DirEntry,
         ptr: usize,
         info: &SurfaceInfo,
-        edges: &mut Vec<Vec<Edge>>,
-        deviation: &mut Option<f64>,
+        face: &mut Face,
     ) -> Result<Vec<NurbsCurve>, IgesError> {
         let c = self.entry_of(
             ptr,
-            &format!("{}: boundary", self.who(face)),
+            &format!("{}: boundary", self.who(entry)),
             142,
             "a 142 curve on a parametric surface",
         )?;
@@ -392,11 +421,11 @@ impl Iges<'_> {
                 Some(m) => m?,
                 None => self.curve_leaves(cptr, &format!("{who}: model-space curve"))?,
             };
-            self.model_pieces(&leaves, false, info, None, deviation)?
+            self.model_pieces(&leaves, false, info, None, &mut face.pcurve_deviation)?
         };
         let named = if bptr != 0 { bptr } else { c.de };
         let closed = self.close_loop(named, c.de, pieces, &mut loop_edges, info);
-        edges.push(loop_edges);
+        face.edges.push(loop_edges);
         closed
     }
 
