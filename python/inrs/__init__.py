@@ -91,19 +91,31 @@ _METHODS = ("fast", "inrs1", "inrs2", "gwn")
 ArrayLike = Any
 
 
-def _points(x: ArrayLike, y: Optional[ArrayLike]) -> Tuple[Optional[np.ndarray], np.ndarray, np.ndarray, tuple]:
-    """Float64 views of the points: ``(xy, None, None, shape)`` for ``(N, 2)`` points or
-    ``(None, x, y, shape)`` for two arrays of one shape. Float64 input of any memory layout is
-    passed as it is (the native code reads strides); other types are converted."""
+def _points(x: ArrayLike, y: Optional[ArrayLike]) -> Tuple[Any, tuple]:
+    """The points as the native queries take them, and the shape of one value per point:
+    ``(xy, (N,))`` for ``(N, 2)`` points, ``((x, y), shape)`` for two arrays of one shape
+    (flattened). Float64 input of any memory layout is passed as it is (the native code reads
+    strides); other types are converted."""
     if y is None:
         xy = np.asarray(x, dtype=np.float64)
         if xy.ndim != 2 or xy.shape[1] != 2:
             raise ValueError(f"points must have shape (N, 2), got {xy.shape}")
-        return xy, None, None, (xy.shape[0],)
+        return xy, (xy.shape[0],)
     xa, ya = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
     if xa.shape != ya.shape:
         raise ValueError(f"x and y must have the same shape, got {xa.shape} and {ya.shape}")
-    return None, xa.reshape(-1), ya.reshape(-1), xa.shape
+    return (xa.reshape(-1), ya.reshape(-1)), xa.shape
+
+
+def _non_negative_int(value: Any, what: str) -> int:
+    """``value`` as an ``int`` >= 0, else a ``ValueError`` naming it ``what``."""
+    try:
+        value = operator.index(value)
+    except TypeError:
+        raise ValueError(f"{what} must be an integer, got {value!r}") from None
+    if value < 0:
+        raise ValueError(f"{what} must be an integer >= 0, got {value}")
+    return value
 
 
 def _threads(threads: Optional[int]) -> int:
@@ -181,12 +193,7 @@ def _curve_arrays(i: int, curve: Any) -> tuple:
             f"curve {i}: expected a dict or a tuple (degree, knots, control_points[, weights])"
         )
     degree, knots, points, weights = parts
-    try:
-        degree = operator.index(degree)
-    except TypeError:
-        raise ValueError(f"curve {i}: degree must be an integer, got {degree!r}") from None
-    if degree < 0:
-        raise ValueError(f"curve {i}: degree must be an integer >= 0, got {degree}")
+    degree = _non_negative_int(degree, f"curve {i}: degree")
 
     def array(what: str, value: Any, ndim: int) -> np.ndarray:
         try:
@@ -381,11 +388,10 @@ class Domain:
         """
         if method not in _METHODS:
             raise ValueError(f"unknown method {method!r} (one of {', '.join(_METHODS)})")
-        xy, xs, ys, shape = _points(x, y)
-        args = (method, float(tol), fill_rule, _threads(threads))
-        if xy is not None:
-            return self._native.classify_pairs(xy, *args)
-        return self._native.classify_columns(xs, ys, *args).reshape(shape)
+        points, shape = _points(x, y)
+        return self._native.classify(
+            points, method, float(tol), fill_rule, _threads(threads)
+        ).reshape(shape)
 
     def contains_xy(self, x: ArrayLike, y: Optional[ArrayLike] = None, **kwargs) -> np.ndarray:
         """True strictly inside, boundary excluded (as ``shapely.contains_xy``)."""
@@ -414,12 +420,8 @@ class Domain:
         the paper's adaptive algorithm, accelerated), or the GWN paper's ray-casting baselines
         ``"binary-search"`` and ``"bezier-clipping"`` (for comparisons; slower, the same values
         up to rounding)."""
-        xy, xs, ys, shape = _points(x, y)
-        if xy is not None:
-            xs, ys = xy[:, 0], xy[:, 1]
-        return self._native.winding_columns(
-            xs, ys, float(tol), _threads(threads), algorithm
-        ).reshape(shape)
+        points, shape = _points(x, y)
+        return self._native.winding(points, float(tol), _threads(threads), algorithm).reshape(shape)
 
     def cell_fractions(
         self,
@@ -500,12 +502,7 @@ class Domain:
     def _cubature_rule(self, degree: int, fill_rule: str = "even-odd") -> "_inrs.CubatureRule":
         """The cubature rule of degree ``degree`` on the set the domain fills under
         ``fill_rule``, built once (GIL released) and kept."""
-        try:
-            degree = operator.index(degree)
-        except TypeError:
-            raise ValueError(f"degree must be an integer, got {degree!r}") from None
-        if degree < 0:
-            raise ValueError(f"degree must be an integer >= 0, got {degree}")
+        degree = _non_negative_int(degree, "degree")
         key = (degree, str(fill_rule))
         rule = self._rules.get(key)
         if rule is None:
@@ -684,10 +681,8 @@ class Spline:
     ) -> np.ndarray:
         """Values anywhere in the domain (NaN outside); with ``derivatives``, an array of shape
         ``(..., 3)``: value, d/dx, d/dy."""
-        xy, xs, ys, shape = _points(x, y)
-        if xy is not None:
-            xs, ys = xy[:, 0], xy[:, 1]
-        out = self._native.evaluate_columns(xs, ys, bool(derivatives), _threads(threads))
+        points, shape = _points(x, y)
+        out = self._native.evaluate(points, bool(derivatives), _threads(threads))
         return out.reshape(shape + ((3,) if derivatives else ()))
 
 
@@ -933,15 +928,19 @@ class CadFace:
     def points(self, uv) -> np.ndarray:
         """The surface's points ``S(u, v)`` at the rows of ``uv`` (``(n, 2)``): an ``(n, 3)``
         array in the file's length unit (placed in the assembly, for a component)."""
-        uv = np.ascontiguousarray(uv, dtype=np.float64)
-        return self._need_model().points(self.index, uv.reshape(-1, 2) if uv.size == 0 else uv)
+        return self._surface_at(uv, normals=False)
 
     def normals(self, uv) -> np.ndarray:
         """The face's outward unit normals at the rows of ``uv`` (``(n, 2)``): the surface's
         ``S_u x S_v`` normalised, reversed when the face is; NaN rows where the normal is
         undefined (a cone's apex)."""
+        return self._surface_at(uv, normals=True)
+
+    def _surface_at(self, uv, normals: bool) -> np.ndarray:
         uv = np.ascontiguousarray(uv, dtype=np.float64)
-        return self._need_model().normals(self.index, uv.reshape(-1, 2) if uv.size == 0 else uv)
+        return self._need_model().surface_at(
+            self.index, uv.reshape(-1, 2) if uv.size == 0 else uv, normals
+        )
 
     @property
     def edges(self) -> "list[list[CadEdge]]":

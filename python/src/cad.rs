@@ -232,34 +232,27 @@ impl NativeCadModel {
         ))
     }
 
-    /// The points `S(u, v)` of face `face`'s surface at the rows of `uv` (`(n, 2)`), as an
-    /// `(n, 3)` array.
-    fn points<'py>(
+    /// At the rows of `uv` (`(n, 2)`), as an `(n, 3)` array: the points `S(u, v)` of face
+    /// `face`'s surface, or with `normals` the face's outward unit normals (the surface's
+    /// `S_u x S_v` normalised, reversed where the face's sense is; NaN where the normal is
+    /// undefined).
+    fn surface_at<'py>(
         &self,
         py: Python<'py>,
         face: usize,
         uv: PyReadonlyArray2<'py, f64>,
+        normals: bool,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let s = self.surface(face)?;
         let uv = pairs_of(&uv)?;
-        points3(py, uv.len(), |i| s.point(uv[i]).to_array())
-    }
-
-    /// The face's outward unit normals at the rows of `uv` (the surface's `S_u x S_v`
-    /// normalised, reversed where the face's sense is), NaN where the normal is undefined.
-    fn normals<'py>(
-        &self,
-        py: Python<'py>,
-        face: usize,
-        uv: PyReadonlyArray2<'py, f64>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let s = self.surface(face)?;
+        if !normals {
+            return points3(py, uv.len(), |i| s.point(uv[i]).to_array());
+        }
         let sign = if self.face(face)?.same_sense {
             1.0
         } else {
             -1.0
         };
-        let uv = pairs_of(&uv)?;
         points3(py, uv.len(), |i| {
             s.normal(uv[i])
                 .map_or([f64::NAN; 3], |n| (n * sign).to_array())

@@ -16,7 +16,7 @@ use inrs::spline::limits::NonNegative;
 use inrs::{ContainOptions, Containment, Domain, Location, Method, NurbsCurve, Point, PointQuery};
 
 use crate::errors::{io_error, value_error};
-use crate::points::{Points, columns, pairs, with_point_source};
+use crate::points::{PointArrays, pairs, with_point_source};
 use crate::summary::DomainSummary;
 use crate::threads::with_threads;
 
@@ -59,50 +59,6 @@ impl NativeDomain {
         check_tolerance(tol)?;
         cached(&self.fields, tol.to_bits(), "winding-field", || {
             WindingField::new(&self.domain, tol).map_err(value_error)
-        })
-    }
-
-    /// Classification codes of `pts` (0 outside, 1 inside, 2 boundary): the library's
-    /// [`Containment`] for the options picks the algorithm for `pts.len()` points.
-    fn classify_points(
-        &self,
-        py: Python<'_>,
-        pts: Points<'_>,
-        method: &str,
-        tol: f64,
-        fill_rule: &str,
-        threads: usize,
-    ) -> PyResult<Vec<i8>> {
-        let containment = self.containment(contain_options(tol, method, fill_rule)?)?;
-        py.detach(|| {
-            with_threads(threads, || {
-                let engine = containment.engine(pts.len());
-                let mut locations = vec![Location::Outside; pts.len()];
-                with_point_source!(pts, |points| engine
-                    .par_values_into(&points, &mut locations));
-                locations.iter().map(|l| l.code()).collect()
-            })
-        })
-    }
-
-    /// Winding numbers of `pts` with `algorithm`, as `inrs winding --algorithm` computes them
-    /// ([`WindingField::winding_numbers_by`]), on all threads of the pool.
-    fn winding_points(
-        &self,
-        py: Python<'_>,
-        pts: Points<'_>,
-        tol: f64,
-        algorithm: WindingAlgorithm,
-        threads: usize,
-    ) -> PyResult<Vec<f64>> {
-        let field = self.field(tol)?;
-        py.detach(|| {
-            with_threads(threads, || {
-                let numbers = field.winding_numbers_by(algorithm);
-                let mut out = vec![0.0; pts.len()];
-                with_point_source!(pts, |points| numbers.par_values_into(&points, &mut out));
-                out
-            })
         })
     }
 }
@@ -251,59 +207,58 @@ impl NativeDomain {
         inrs::contain::filled_area(&self.domain, rule).map_err(value_error)
     }
 
-    /// Codes for an `(N, 2)` float64 array (any layout).
-    fn classify_pairs<'py>(
+    /// Codes for the points (an `(N, 2)` array or a tuple `(x, y)` of 1-D ones, float64 in any
+    /// layout).
+    fn classify<'py>(
         &self,
         py: Python<'py>,
-        xy: PyReadonlyArray2<'py, f64>,
+        points: PointArrays<'py>,
         method: &str,
         tol: f64,
         fill_rule: &str,
         threads: usize,
     ) -> PyResult<Bound<'py, PyArray1<i8>>> {
-        let pts = pairs(&xy)?;
-        Ok(self
-            .classify_points(py, pts, method, tol, fill_rule, threads)?
-            .into_pyarray(py))
+        // The library's `Containment` for the options picks the algorithm for the batch.
+        let containment = self.containment(contain_options(tol, method, fill_rule)?)?;
+        let pts = points.points()?;
+        let codes: Vec<i8> = py.detach(|| {
+            with_threads(threads, || {
+                let engine = containment.engine(pts.len());
+                let mut locations = vec![Location::Outside; pts.len()];
+                with_point_source!(pts, |points| engine
+                    .par_values_into(&points, &mut locations));
+                locations.iter().map(|l| l.code()).collect()
+            })
+        })?;
+        Ok(codes.into_pyarray(py))
     }
 
-    /// Codes for two 1-D float64 arrays (any layout).
-    #[allow(clippy::too_many_arguments)]
-    fn classify_columns<'py>(
+    /// Generalized winding numbers at the points (as [`NativeDomain::classify`] takes them);
+    /// points within `tol` (relative) of a curve get the average across the jump. `algorithm`
+    /// is a name of `inrs winding --algorithm`: `adaptive` (the accelerated field),
+    /// `binary-search` or `bezier-clipping` (the GWN paper's ray-casting baselines).
+    #[pyo3(signature = (points, tol, threads, algorithm = "adaptive"))]
+    fn winding<'py>(
         &self,
         py: Python<'py>,
-        x: PyReadonlyArray1<'py, f64>,
-        y: PyReadonlyArray1<'py, f64>,
-        method: &str,
-        tol: f64,
-        fill_rule: &str,
-        threads: usize,
-    ) -> PyResult<Bound<'py, PyArray1<i8>>> {
-        let pts = columns(&x, &y)?;
-        Ok(self
-            .classify_points(py, pts, method, tol, fill_rule, threads)?
-            .into_pyarray(py))
-    }
-
-    /// Generalized winding numbers for two 1-D float64 arrays (any layout); points within
-    /// `tol` (relative) of a curve get the average across the jump. `algorithm` is a name of
-    /// `inrs winding --algorithm`: `adaptive` (the accelerated field), `binary-search` or
-    /// `bezier-clipping` (the GWN paper's ray-casting baselines).
-    #[pyo3(signature = (x, y, tol, threads, algorithm = "adaptive"))]
-    fn winding_columns<'py>(
-        &self,
-        py: Python<'py>,
-        x: PyReadonlyArray1<'py, f64>,
-        y: PyReadonlyArray1<'py, f64>,
+        points: PointArrays<'py>,
         tol: f64,
         threads: usize,
         algorithm: &str,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let algorithm: WindingAlgorithm = algorithm.parse().map_err(value_error)?;
-        let pts = columns(&x, &y)?;
-        Ok(self
-            .winding_points(py, pts, tol, algorithm, threads)?
-            .into_pyarray(py))
+        // As `inrs winding --algorithm` computes them (`WindingField::winding_numbers_by`).
+        let field = self.field(tol)?;
+        let pts = points.points()?;
+        let out = py.detach(|| {
+            with_threads(threads, || {
+                let numbers = field.winding_numbers_by(algorithm);
+                let mut out = vec![0.0; pts.len()];
+                with_point_source!(pts, |points| numbers.par_values_into(&points, &mut out));
+                out
+            })
+        })?;
+        Ok(out.into_pyarray(py))
     }
 
     /// The boundary flattened: per loop, an `(M, 2)` array of a closed polyline within

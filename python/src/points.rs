@@ -3,7 +3,7 @@
 
 use numpy::ndarray::{ArrayView1, ArrayView2};
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::PyResult;
+use pyo3::{FromPyObject, PyResult};
 
 use inrs::Point;
 
@@ -75,6 +75,24 @@ impl Points<'_> {
     /// A copy as points, for the kernels that take a slice.
     pub(crate) fn to_vec(self) -> Vec<Point> {
         with_point_accessor!(self, |at| (0..self.len()).map(at).collect())
+    }
+}
+
+/// Points as the Python layer passes them to a query: an `(N, 2)` float64 array, or a tuple
+/// `(x, y)` of two 1-D float64 arrays of one length.
+#[derive(FromPyObject)]
+pub(crate) enum PointArrays<'py> {
+    Pairs(PyReadonlyArray2<'py, f64>),
+    Columns(PyReadonlyArray1<'py, f64>, PyReadonlyArray1<'py, f64>),
+}
+
+impl PointArrays<'_> {
+    /// The points, read in place.
+    pub(crate) fn points(&self) -> PyResult<Points<'_>> {
+        match self {
+            PointArrays::Pairs(xy) => pairs(xy),
+            PointArrays::Columns(x, y) => columns(x, y),
+        }
     }
 }
 

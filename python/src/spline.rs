@@ -11,7 +11,7 @@ use inrs::trispline::{C1Space, QuasiInterpolation, Spline, TriSplineError};
 use crate::domain::NativeDomain;
 use crate::errors::value_error;
 use crate::mesh::triangulation;
-use crate::points::{columns, pairs, with_point_source};
+use crate::points::{PointArrays, pairs, with_point_source};
 use crate::threads::with_threads;
 
 /// A quasi-interpolation waiting for the function's values (`inrs.fit` fills them in, calling
@@ -144,15 +144,14 @@ impl NativeSpline {
 
     /// Values (and gradients if `derivatives`) at the points; NaN outside the domain. Returns
     /// an `(N, 3)` array `value, dx, dy` with `derivatives`, else an `(N,)` one.
-    fn evaluate_columns<'py>(
+    fn evaluate<'py>(
         &self,
         py: Python<'py>,
-        x: PyReadonlyArray1<'py, f64>,
-        y: PyReadonlyArray1<'py, f64>,
+        points: PointArrays<'py>,
         derivatives: bool,
         threads: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let pts = columns(&x, &y)?;
+        let pts = points.points()?;
         let order = if derivatives {
             Order::Gradient
         } else {

@@ -649,25 +649,28 @@ fn collect_critical(
             // The free end of an open chain is critical both ways.
             None => (true, true),
         };
-        if vt || x_turn {
-            out.push(CriticalPoint {
-                point: b.band.start,
-                kind: if vt {
-                    CriticalKind::VerticalTangent
-                } else {
-                    CriticalKind::XTurningVertex
-                },
-            });
-        }
-        if ht || y_turn {
-            out.push(CriticalPoint {
-                point: b.band.start,
-                kind: if ht {
-                    CriticalKind::HorizontalTangent
-                } else {
-                    CriticalKind::YTurningVertex
-                },
-            });
+        // A tangent names the point where there is one, else the turn does; x before y.
+        for (tangent, turn, kinds) in [
+            (
+                vt,
+                x_turn,
+                (CriticalKind::VerticalTangent, CriticalKind::XTurningVertex),
+            ),
+            (
+                ht,
+                y_turn,
+                (
+                    CriticalKind::HorizontalTangent,
+                    CriticalKind::YTurningVertex,
+                ),
+            ),
+        ] {
+            if tangent || turn {
+                out.push(CriticalPoint {
+                    point: b.band.start,
+                    kind: if tangent { kinds.0 } else { kinds.1 },
+                });
+            }
         }
         if !closed && i + 1 == n {
             for kind in [CriticalKind::XTurningVertex, CriticalKind::YTurningVertex] {

@@ -13,7 +13,7 @@ use spade::Triangulation as _;
 use super::arcs::{attach_arcs, chord_arc};
 use super::cdt::{Vertices, constrain_chords, faces_inside, stray_interior};
 use super::crossing::{check_no_crossing, where_arcs_meet};
-use super::curved::{CurvedTriangulation, Refinement};
+use super::curved::{CurvedTriangulation, Parts, Refinement};
 use super::insertion::{curve_corners, refine_loops};
 use super::refine::refine;
 use crate::MeshError;
@@ -235,12 +235,14 @@ fn build(
         return Ok(Attempt::Refine(failing));
     }
     Ok(Attempt::Done(Box::new(CurvedTriangulation::assemble(
-        domain.clone(),
-        v.points,
-        v.boundary,
-        triangles,
-        edges,
-        arcs,
-        loop_vertices.iter().map(Vec::len).collect(),
+        Parts {
+            domain: domain.clone(),
+            vertices: v.points,
+            boundary_vertex: v.boundary,
+            triangles,
+            edges,
+            arcs,
+            loop_lengths: loop_vertices.iter().map(Vec::len).collect(),
+        },
     ))))
 }

@@ -1,6 +1,6 @@
 //! The curved triangulation: its edges, its boundary arcs, how it was refined, and what can
 //! be read from it. Its fields are private to this module: every constructor goes through
-//! [`CurvedTriangulation::assemble`] and every reader through the accessors, so the modules
+//! [`CurvedTriangulation::assemble`] (from its [`Parts`]) and every reader through the accessors, so the modules
 //! that build or refine a triangulation depend on this one and never the reverse.
 
 use rs_spline::prelude::*;
@@ -95,15 +95,7 @@ impl std::str::FromStr for Refinement {
 /// of one ([`CurvedTriangulation::new_refined`]).
 #[derive(Clone, Debug)]
 pub struct CurvedTriangulation {
-    domain: Domain,
-    vertices: Vec<Point>,
-    boundary_vertex: Vec<Option<BoundaryPoint>>,
-    triangles: Vec<[usize; 3]>,
-    edges: Vec<[EdgeKind; 3]>,
-    arcs: Vec<BoundaryArc>,
-    /// Number of boundary vertices of each loop (arc `i` joins the `k`-th and `(k+1)`-th
-    /// vertices of its loop, arcs listed loop by loop in that order).
-    loop_lengths: Vec<usize>,
+    parts: Parts,
     /// For a refinement: how, and the triangle of the unrefined triangulation each triangle
     /// lies in.
     refinement: Option<(Refinement, Vec<usize>)>,
@@ -111,34 +103,35 @@ pub struct CurvedTriangulation {
     dropped_interior_points: usize,
 }
 
+/// What a curved triangulation is made of, as its builders hand it to
+/// [`CurvedTriangulation::assemble`]. The builders keep its invariants: triangles
+/// counter-clockwise with vertex indices in range, `boundary_vertex` one entry per vertex,
+/// `edges` one entry per triangle, edge `k` of triangle `t` `Curved(i)` exactly when arc `i`
+/// joins that edge's vertices and names `t`, and `loop_lengths` the number of boundary
+/// vertices of each loop, which places arcs listed loop by loop
+/// ([`CurvedTriangulation::arc_position`]; a refinement keeps the unrefined one's).
+#[derive(Clone, Debug)]
+pub(crate) struct Parts {
+    pub(crate) domain: Domain,
+    pub(crate) vertices: Vec<Point>,
+    pub(crate) boundary_vertex: Vec<Option<BoundaryPoint>>,
+    pub(crate) triangles: Vec<[usize; 3]>,
+    pub(crate) edges: Vec<[EdgeKind; 3]>,
+    pub(crate) arcs: Vec<BoundaryArc>,
+    /// Number of boundary vertices of each loop (arc `i` joins the `k`-th and `(k+1)`-th
+    /// vertices of its loop, arcs listed loop by loop in that order).
+    pub(crate) loop_lengths: Vec<usize>,
+}
+
 impl CurvedTriangulation {
-    /// A curved triangulation from parts that fit together, unchecked: every constructor of
-    /// the crate ends here (the checked one for parts read from a file is
-    /// [`CurvedTriangulation::from_parts`]). The callers keep its invariants: triangles
-    /// counter-clockwise with vertex indices in range, `boundary_vertex` one entry per vertex,
-    /// `edges` one entry per triangle, edge `k` of triangle `t` `Curved(i)` exactly when arc
-    /// `i` joins that edge's vertices and names `t`, and `loop_lengths` the number of boundary
-    /// vertices of each loop, which places arcs listed loop by loop
-    /// ([`CurvedTriangulation::arc_position`]; a refinement keeps the unrefined one's). Not a
-    /// refinement, no boundary point inserted, no interior point dropped (see
+    /// A curved triangulation from parts that fit together (the [`Parts`] invariants),
+    /// unchecked: every constructor of the crate ends here (the checked one for parts read
+    /// from a file is [`CurvedTriangulation::from_parts`]). Not a refinement, no boundary
+    /// point inserted, no interior point dropped (see
     /// [`CurvedTriangulation::into_refinement`] and [`CurvedTriangulation::with_counts`]).
-    pub(crate) fn assemble(
-        domain: Domain,
-        vertices: Vec<Point>,
-        boundary_vertex: Vec<Option<BoundaryPoint>>,
-        triangles: Vec<[usize; 3]>,
-        edges: Vec<[EdgeKind; 3]>,
-        arcs: Vec<BoundaryArc>,
-        loop_lengths: Vec<usize>,
-    ) -> Self {
+    pub(crate) fn assemble(parts: Parts) -> Self {
         Self {
-            domain,
-            vertices,
-            boundary_vertex,
-            triangles,
-            edges,
-            arcs,
-            loop_lengths,
+            parts,
             refinement: None,
             inserted_boundary_points: 0,
             dropped_interior_points: 0,
@@ -162,43 +155,43 @@ impl CurvedTriangulation {
 
     /// The domain.
     pub fn domain(&self) -> &Domain {
-        &self.domain
+        &self.parts.domain
     }
 
     /// Vertex coordinates.
     pub fn vertices(&self) -> &[Point] {
-        &self.vertices
+        &self.parts.vertices
     }
 
     /// For each vertex: where it lies on the boundary, or `None` for an interior vertex.
     pub fn boundary_vertex(&self, v: usize) -> Option<&BoundaryPoint> {
-        self.boundary_vertex[v].as_ref()
+        self.parts.boundary_vertex[v].as_ref()
     }
 
     /// Triangles as counter-clockwise vertex triples (the companion triangles).
     pub fn triangles(&self) -> &[[usize; 3]] {
-        &self.triangles
+        &self.parts.triangles
     }
 
     /// Kinds of the three edges of triangle `t`; edge `k` joins vertex `k` to vertex `k + 1`.
     pub fn edge_kinds(&self, t: usize) -> [EdgeKind; 3] {
-        self.edges[t]
+        self.parts.edges[t]
     }
 
     /// The boundary arcs (one per boundary edge of the inscribed triangulation).
     pub fn arcs(&self) -> &[BoundaryArc] {
-        &self.arcs
+        &self.parts.arcs
     }
 
     /// For each vertex: where it lies on the boundary, or `None` for an interior vertex.
     pub(crate) fn boundary_vertices(&self) -> &[Option<BoundaryPoint>] {
-        &self.boundary_vertex
+        &self.parts.boundary_vertex
     }
 
     /// Number of boundary vertices of each loop, in loop order (see
     /// [`CurvedTriangulation::arc_position`]).
     pub(crate) fn loop_lengths(&self) -> &[usize] {
-        &self.loop_lengths
+        &self.parts.loop_lengths
     }
 
     /// For a refinement: how it was refined.
@@ -216,13 +209,13 @@ impl CurvedTriangulation {
     /// boundary vertices of that loop.
     pub(crate) fn arc_position(&self, i: usize) -> (usize, usize) {
         let mut k = i;
-        for (j, &n) in self.loop_lengths.iter().enumerate() {
+        for (j, &n) in self.parts.loop_lengths.iter().enumerate() {
             if k < n {
                 return (j, k);
             }
             k -= n;
         }
-        (self.loop_lengths.len().saturating_sub(1), k)
+        (self.parts.loop_lengths.len().saturating_sub(1), k)
     }
 
     /// Boundary points inserted to make the triangulation convertible.
@@ -241,24 +234,24 @@ impl CurvedTriangulation {
     /// [`MeshError::Spline`] if the parameters fall outside the curve (never for arcs built
     /// here).
     pub fn arc_curve(&self, arc: &BoundaryArc) -> Result<NurbsCurve, MeshError> {
-        Ok(self.domain.curves()[arc.curve].subsegment((arc.u0, arc.u1))?)
+        Ok(self.parts.domain.curves()[arc.curve].subsegment((arc.u0, arc.u1))?)
     }
 
     /// Signed area of curved triangle `t` by Green's theorem, `1/2 closed-integral(x dy - y dx)`:
     /// the shoelace terms for straight edges, adaptive Gauss-Legendre on each knot span of a
     /// curved edge (orientation taken from the triangle).
     pub fn triangle_area(&self, t: usize) -> f64 {
-        let tri = self.triangles[t];
+        let tri = self.parts.triangles[t];
         let mut area = 0.0;
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            match self.edges[t][k] {
+            match self.parts.edges[t][k] {
                 EdgeKind::Straight => {
-                    area += 0.5 * self.vertices[a].cross(self.vertices[b]);
+                    area += 0.5 * self.parts.vertices[a].cross(self.parts.vertices[b]);
                 }
                 EdgeKind::Curved(i) => {
-                    let arc = &self.arcs[i];
-                    let c = &self.domain.curves()[arc.curve];
+                    let arc = &self.parts.arcs[i];
+                    let c = &self.parts.domain.curves()[arc.curve];
                     let sign = if arc.from == a { 1.0 } else { -1.0 };
                     area += sign * c.area_integral_on(arc.u0, arc.u1).value;
                 }

@@ -4,7 +4,7 @@
 use rs_spline::prelude::*;
 use rs_spline::{Domain, Point};
 
-use super::curved::{BoundaryArc, CurvedTriangulation, EdgeKind};
+use super::curved::{BoundaryArc, CurvedTriangulation, EdgeKind, Parts};
 use crate::MeshError;
 use crate::boundary::BoundaryPoint;
 use crate::limits::MAX_MESH_VERTICES;
@@ -93,7 +93,7 @@ impl CurvedTriangulation {
             });
             loop_lengths[a.loop_index] += 1;
         }
-        Ok(Self::assemble(
+        Ok(Self::assemble(Parts {
             domain,
             vertices,
             boundary_vertex,
@@ -101,6 +101,6 @@ impl CurvedTriangulation {
             edges,
             arcs,
             loop_lengths,
-        ))
+        }))
     }
 }

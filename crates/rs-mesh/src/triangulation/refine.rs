@@ -8,7 +8,7 @@ use rs_spline::Point;
 use rs_spline::prelude::*;
 
 use super::convertible::{EdgeGrid, arc_is_clear};
-use super::curved::{BoundaryArc, CurvedTriangulation, EdgeKind, Refinement};
+use super::curved::{BoundaryArc, CurvedTriangulation, EdgeKind, Parts, Refinement};
 use crate::boundary::BoundaryPoint;
 
 /// The refinement of `t` (an unrefined triangulation), or the places `(loop, k)` of the arcs
@@ -28,15 +28,15 @@ pub(super) fn refine(
     if !failing.is_empty() {
         return Err(failing);
     }
-    Ok(CurvedTriangulation::assemble(
-        t.domain().clone(),
-        r.vertices,
-        r.boundary_vertex,
-        r.triangles,
-        r.edges,
-        r.arcs,
-        t.loop_lengths().to_vec(),
-    )
+    Ok(CurvedTriangulation::assemble(Parts {
+        domain: t.domain().clone(),
+        vertices: r.vertices,
+        boundary_vertex: r.boundary_vertex,
+        triangles: r.triangles,
+        edges: r.edges,
+        arcs: r.arcs,
+        loop_lengths: t.loop_lengths().to_vec(),
+    })
     .into_refinement(how, r.parent)
     .with_counts(t.inserted_boundary_points(), t.dropped_interior_points()))
 }

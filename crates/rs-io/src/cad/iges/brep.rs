@@ -27,7 +27,7 @@ use super::Iges;
 use super::curves::{Piece, leaf_edges};
 use super::directory::DirEntry;
 use super::error::IgesError;
-use super::faces::OuterFlag;
+use super::faces::{FaceLayout, LoopCurves};
 use super::surfaces::SurfaceInfo;
 
 /// An entry of a 504 edge list: the model curve's pointer (its vertices are not needed: the
@@ -48,12 +48,13 @@ impl Iges<'_> {
         let mut p = self.params(e)?;
         let surf = p.pointer("SURF")?;
         let n = p.count("N")?;
-        let outer = OuterFlag {
-            name: "OF",
-            value: p.int("OF")?,
+        let layout = FaceLayout {
+            flag: "OF",
+            outer: p.int("OF")?,
+            loop_entity: (508, "loop", "a 508 loop"),
         };
         let loops = p.pointers("N", n, "LOOP")?;
-        self.face_loops(e, face, surf, outer, loops, Self::brep_loop)
+        self.face_loops(e, face, surf, &layout, loops, Self::brep_loop)
     }
 
     /// Entry `ndx` (1-based) of the 504 edge list at `list`. Lists are read once (a shell's
@@ -93,21 +94,9 @@ impl Iges<'_> {
             })
     }
 
-    /// The loop of the 508 at `ptr` of face entry `entry` on the surface `info`; its 3-D edges
-    /// and pcurve bound recorded in `face`.
-    fn brep_loop(
-        &self,
-        entry: &DirEntry,
-        ptr: usize,
-        info: &SurfaceInfo,
-        face: &mut Face,
-    ) -> Result<Vec<NurbsCurve>, IgesError> {
-        let l = self.entry_of(
-            ptr,
-            &format!("{}: loop", self.who(entry)),
-            508,
-            "a 508 loop",
-        )?;
+    /// The loop of the 508 `l` of a face on the surface `info`; its 3-D edges and pcurve bound
+    /// recorded in `face`.
+    fn brep_loop(&self, l: &DirEntry, info: &SurfaceInfo, face: &mut Face) -> LoopCurves {
         let who = self.who(l);
         let mut p = self.params(l)?;
         let n = p.count("N")?;

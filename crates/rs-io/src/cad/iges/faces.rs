@@ -188,17 +188,21 @@ impl Walk {
     }
 }
 
-/// A face entity's outer-loop flag (144's `N1`, 510's `OF`): 0 when the surface's natural
-/// rectangle is the outer loop, 1 when the face's first loop is.
-pub(super) struct OuterFlag {
-    /// The parameter's name in the standard, for errors.
-    pub(super) name: &'static str,
+/// How a face entity (144 or 510) lists its loops: its outer-loop flag (144's `N1`, 510's
+/// `OF`: 0 when the surface's natural rectangle is the outer loop, 1 when the face's first
+/// loop is) and the entity each loop pointer points at.
+pub(super) struct FaceLayout {
+    /// The flag's name in the standard, for errors.
+    pub(super) flag: &'static str,
     /// Its value as written.
-    pub(super) value: i64,
+    pub(super) outer: i64,
+    /// The loops' entity type (142 or 508), what a loop is called in errors, and what an
+    /// entry of that type is.
+    pub(super) loop_entity: (i64, &'static str, &'static str),
 }
 
 /// A loop's `(u, v)` curves, or why it cannot be read.
-type LoopCurves = Result<Vec<NurbsCurve>, IgesError>;
+pub(super) type LoopCurves = Result<Vec<NurbsCurve>, IgesError>;
 
 impl Iges<'_> {
     /// The members of a 402 group, 186 solid or 514 shell, or `None` if its record cannot be
@@ -325,16 +329,17 @@ impl Iges<'_> {
         let pto = p.pointer("PTO")?;
         let inner = p.pointers("N2", n2, "PTI")?;
         let loops = (n1 == 1).then_some(pto).into_iter().chain(inner);
-        let outer = OuterFlag {
-            name: "N1",
-            value: n1,
+        let layout = FaceLayout {
+            flag: "N1",
+            outer: n1,
+            loop_entity: (142, "boundary", "a 142 curve on a parametric surface"),
         };
-        self.face_loops(e, face, pts, outer, loops, Self::curve_on_surface)
+        self.face_loops(e, face, pts, &layout, loops, Self::curve_on_surface)
     }
 
     /// The loops of face `e` (a 144 or a 510) on the surface at `surf`, each at a pointer of
-    /// `loops` read by `read_loop` (`(face entry, loop pointer, surface, face)` to the loop's
-    /// `(u, v)` curves, its 3-D edges and pcurve bound recorded in the face). With
+    /// `loops` (of the layout's loop entity) read by `read_loop` (`(loop entry, surface, face)`
+    /// to the loop's `(u, v)` curves, its 3-D edges and pcurve bound recorded in the face). With
     /// the outer flag 0 the surface's natural rectangle is the outer loop (the face has
     /// natural bounds when no loop follows); with 1 the first loop is the outer one.
     ///
@@ -345,31 +350,33 @@ impl Iges<'_> {
         e: &DirEntry,
         face: &mut Face,
         surf: usize,
-        outer: OuterFlag,
+        layout: &FaceLayout,
         loops: impl IntoIterator<Item = usize>,
-        read_loop: fn(&Self, &DirEntry, usize, &SurfaceInfo, &mut Face) -> LoopCurves,
+        read_loop: fn(&Self, &DirEntry, &SurfaceInfo, &mut Face) -> LoopCurves,
     ) -> Result<Vec<Vec<NurbsCurve>>, IgesError> {
         let who = self.who(e);
         let (s, info) = self.face_surface(e, surf, face)?;
         let mut read = Vec::new();
-        match outer.value {
+        match layout.outer {
             0 => {
-                read.push(self.rectangle(s, &info, outer.name)?);
+                read.push(self.rectangle(s, &info, layout.flag)?);
                 face.edges.push(Vec::new());
             }
             1 => {}
             value => {
                 return Err(IgesError::Flag {
                     who,
-                    name: outer.name.into(),
+                    name: layout.flag.into(),
                     value,
                     expected: "0 or 1",
                 });
             }
         }
         let natural = read.len();
+        let (kind, role, what) = layout.loop_entity;
         for ptr in loops {
-            read.push(read_loop(self, e, ptr, &info, face)?);
+            let l = self.entry_of(ptr, &format!("{who}: {role}"), kind, what)?;
+            read.push(read_loop(self, l, &info, face)?);
         }
         face.natural_bounds = natural == 1 && read.len() == 1;
         if read.is_empty() {
@@ -378,22 +385,9 @@ impl Iges<'_> {
         Ok(read)
     }
 
-    /// The loop of the 142 at `ptr`, a boundary of face entry `entry` on the surface `info`;
-    /// its 3-D edges (from the model-space curve, if it reads) and pcurve bound recorded in
-    /// `face`.
-    fn curve_on_surface(
-        &self,
-        entry: &DirEntry,
-        ptr: usize,
-        info: &SurfaceInfo,
-        face: &mut Face,
-    ) -> Result<Vec<NurbsCurve>, IgesError> {
-        let c = self.entry_of(
-            ptr,
-            &format!("{}: boundary", self.who(entry)),
-            142,
-            "a 142 curve on a parametric surface",
-        )?;
+    /// The loop of the 142 `c`, a boundary of a face on the surface `info`; its 3-D edges (from
+    /// the model-space curve, if it reads) and pcurve bound recorded in `face`.
+    fn curve_on_surface(&self, c: &DirEntry, info: &SurfaceInfo, face: &mut Face) -> LoopCurves {
         let who = self.who(c);
         let mut p = self.params(c)?;
         let _crtn = p.int("CRTN")?;

@@ -5,6 +5,7 @@
 use std::collections::{HashMap, HashSet};
 
 use rs_geom::Affine3;
+use rs_geom::brep::{Shell, Solid};
 
 use super::error::{Result, StepError};
 use super::geometry;
@@ -46,6 +47,15 @@ impl ShellUse {
     pub(crate) fn closed(&self) -> bool {
         self.closed_claim && !self.free_edges
     }
+
+    /// The model's shell: named `#entity`, closed as [`ShellUse::closed`] says.
+    pub(crate) fn to_shell(&self) -> Shell {
+        Shell {
+            entity: format!("#{}", self.entity),
+            faces: self.faces.clone(),
+            closed: self.closed(),
+        }
+    }
 }
 
 /// One use of a solid: its entity and its shells (the outer one, then the voids), indices
@@ -54,6 +64,16 @@ impl ShellUse {
 pub(crate) struct SolidUse {
     pub(crate) entity: u64,
     pub(crate) shells: Vec<usize>,
+}
+
+impl SolidUse {
+    /// The model's solid, named `#entity`.
+    pub(crate) fn to_solid(&self) -> Solid {
+        Solid {
+            entity: format!("#{}", self.entity),
+            shells: self.shells.clone(),
+        }
+    }
 }
 
 /// The topology of a file in explorer order.

@@ -118,13 +118,13 @@ mod units;
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 
-use rs_geom::brep::{Edge, Face, FaceError, LengthUnit, Model, ReadError, Shell, Solid};
+use rs_geom::brep::{Edge, Face, FaceError, LengthUnit, Model, ReadError};
 use rs_geom::{Affine3, Surface, Tolerance};
 
 use super::{CadFormat, CadModel};
 use crate::IoError;
 pub use error::StepError;
-use faces::FaceUse;
+use faces::{FaceUse, ShellUse, SolidUse};
 use graph::Graph;
 use loops::{FaceContext, FaceLoops};
 use surface::FaceSurface;
@@ -241,23 +241,8 @@ pub fn read_step(text: &[u8]) -> Result<CadModel, IoError> {
         };
         faces.push(r.placed(u, placement));
     }
-    let shells = structure
-        .shells
-        .iter()
-        .map(|s| Shell {
-            entity: format!("#{}", s.entity),
-            faces: s.faces.clone(),
-            closed: s.closed(),
-        })
-        .collect();
-    let solids = structure
-        .solids
-        .iter()
-        .map(|s| Solid {
-            entity: format!("#{}", s.entity),
-            shells: s.shells.clone(),
-        })
-        .collect();
+    let shells = structure.shells.iter().map(ShellUse::to_shell).collect();
+    let solids = structure.solids.iter().map(SolidUse::to_solid).collect();
     Ok(CadModel {
         format: CadFormat::Step,
         model: Model {
