@@ -1,7 +1,6 @@
 //! The coverage of a domain on a grid: preparation, row bands and whole grids.
 
 use std::ops::Range;
-use std::sync::{Mutex, PoisonError};
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::{FillRule, fill_nesting};
@@ -394,9 +393,10 @@ impl GridCoverage {
     }
 
     /// The coverage of the whole grid: its bands of [`GridCoverage::band_rows`] rows, each
-    /// computed as [`GridCoverage::rows`] computes it, in place, on the calling thread and
-    /// rayon's pool (the scheduler of [`GridCoverage::bands`]): the values of
-    /// [`GridCoverage::bands`] with [`GridCoverage::band_rows`] rows, bit for bit.
+    /// computed as [`GridCoverage::rows`] computes it, in place, on rayon's pool: the values
+    /// of [`GridCoverage::bands`] with [`GridCoverage::band_rows`] rows, bit for bit. In place
+    /// the bands need no order, so the pool's work stealing balances them (bands differ in
+    /// cost: [`GridCoverage::bands`]' in-order claiming left up to one band's time idle).
     ///
     /// # Errors
     /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`] (use [`GridCoverage::bands`]);
@@ -406,25 +406,22 @@ impl GridCoverage {
         self.check_cells(ny)?;
         let mut out = Coverage::zeroed(0..ny, self.grid.nx(), options)?;
         let band_rows = self.band_rows(options);
-        let outs: Vec<Mutex<Option<BandOut<'_>>>> = out
-            .band_outs(band_rows)
-            .into_iter()
-            .map(|o| Mutex::new(Some(o)))
-            .collect();
-        let compute = |k: usize| {
-            // Each band's output is taken once: the lock is never contended.
-            let taken = outs
-                .get(k)
-                .and_then(|o| o.lock().unwrap_or_else(PoisonError::into_inner).take());
-            if let Some(o) = taken {
-                self.cover(band_range(k, band_rows, ny), options, o);
-            }
+        let bands = out.band_outs(band_rows).into_iter().enumerate();
+        let compute = |(k, o): (usize, BandOut<'_>)| {
+            self.cover(band_range(k, band_rows, ny), options, o);
         };
-        // In place: every band may be computed ahead of the caller.
-        in_order(outs.len(), outs.len(), &compute, |bands| {
-            bands.for_each(drop)
-        });
-        drop(outs);
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            // One band per task: a band's cost dwarfs a task's.
+            bands
+                .collect::<Vec<_>>()
+                .into_par_iter()
+                .with_max_len(1)
+                .for_each(compute);
+        }
+        #[cfg(not(feature = "parallel"))]
+        bands.for_each(compute);
         Ok(out)
     }
 

@@ -1,7 +1,7 @@
 //! Items `0 .. n` computed on the calling thread and rayon's pool and handed to the caller in
-//! order, with at most a window of them computed ahead: the scheduler of row bands
-//! ([`GridCoverage::bands`](crate::GridCoverage::bands) and
-//! [`GridCoverage::all`](crate::GridCoverage::all)).
+//! order, with at most a window of them computed ahead: the scheduler of the row bands of
+//! [`GridCoverage::bands`](crate::GridCoverage::bands) (a whole grid in place needs no order:
+//! [`GridCoverage::all`](crate::GridCoverage::all) hands its bands to rayon's pool).
 //!
 //! Workers are rayon jobs of a scope that the caller's closure runs in, so the items may
 //! borrow from the caller; with the caller they are as many as rayon's threads. A worker
