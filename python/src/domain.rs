@@ -240,12 +240,12 @@ impl NativeDomain {
     #[pyo3(signature = (points, tol, threads, algorithm = "adaptive"))]
     fn winding<'py>(
         &self,
-        py: Python<'py>,
         points: PointArrays<'py>,
         tol: f64,
         threads: usize,
         algorithm: &str,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let py = points.py();
         let algorithm: WindingAlgorithm = algorithm.parse().map_err(value_error)?;
         // As `inrs winding --algorithm` computes them (`WindingField::winding_numbers_by`).
         let field = self.field(tol)?;

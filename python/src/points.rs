@@ -3,7 +3,7 @@
 
 use numpy::ndarray::{ArrayView1, ArrayView2};
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::{FromPyObject, PyResult};
+use pyo3::{FromPyObject, PyResult, Python};
 
 use inrs::Point;
 
@@ -86,7 +86,15 @@ pub(crate) enum PointArrays<'py> {
     Columns(PyReadonlyArray1<'py, f64>, PyReadonlyArray1<'py, f64>),
 }
 
-impl PointArrays<'_> {
+impl<'py> PointArrays<'py> {
+    /// The interpreter the arrays belong to.
+    pub(crate) fn py(&self) -> Python<'py> {
+        match self {
+            PointArrays::Pairs(xy) => xy.py(),
+            PointArrays::Columns(x, _) => x.py(),
+        }
+    }
+
     /// The points, read in place.
     pub(crate) fn points(&self) -> PyResult<Points<'_>> {
         match self {

@@ -146,11 +146,11 @@ impl NativeSpline {
     /// an `(N, 3)` array `value, dx, dy` with `derivatives`, else an `(N,)` one.
     fn evaluate<'py>(
         &self,
-        py: Python<'py>,
         points: PointArrays<'py>,
         derivatives: bool,
         threads: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let py = points.py();
         let pts = points.points()?;
         let order = if derivatives {
             Order::Gradient

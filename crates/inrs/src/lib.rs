@@ -86,8 +86,8 @@ pub use rs_spline::{BoundingBox, Domain, DomainError, NurbsCurve, Point, Rationa
 pub use rs_contain::{DomainSummary, LoopSummary, significant};
 pub use rs_io::points::{
     CsvPoints, CsvReader, EncodedPoints, MAX_LINE_BYTES, MAX_NPY_POINTS, NPY_HEADER_BYTES,
-    NpyReader, NpyType, PointRecord, PointRun, PointsError, PointsReader, RunPoints, RunSizes,
-    npy_header, open_points, parse_points, read_points,
+    NpyReader, NpyType, PointRecord, PointRun, PointsError, PointsReader, ReadProgress, RunPoints,
+    RunSizes, npy_header, open_points, parse_points, read_points,
 };
 
 /// The traits most code wants in scope: the curve vocabulary of `rs-spline` and the queries

@@ -68,7 +68,7 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointQuery<T
         while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
             alive_rx.recv_timeout(Duration::from_millis(100))
         {
-            progress.update(reader.bytes_read());
+            progress.update(reader.progress().bytes_read);
         }
         progress.finish();
         handles.into_iter().all(|h| h.join().is_ok())
@@ -78,7 +78,7 @@ pub(crate) fn stream_points<T: Copy + Send + Sync, C: Column<T>, K: PointQuery<T
         Err(WriteFailure::Input(e)) => return Err(input_error(&path, e)),
         Err(WriteFailure::Output(e)) => return Err(e),
     };
-    if all_ok && reader.runs_taken() == count {
+    if all_ok && reader.progress().runs_taken == count {
         written.finish()
     } else {
         // A run taken was never written: a stage failed; the output is dropped (removed).

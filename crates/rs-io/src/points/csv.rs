@@ -7,7 +7,7 @@ use std::path::Path;
 
 use super::grammar::{Kind, find_data, header_as_data, line_at, read_text, scan, too_long};
 use super::run::Claims;
-use super::run::{Content, InOrder, PointRun, PointsReader, RunSizes, Source};
+use super::run::{Content, InOrder, PointRun, PointsReader, ReadProgress, RunSizes, Source};
 use super::{MAX_LINE_BYTES, PointsError, open_file};
 
 /// The CSV points file: one point per line, `x,y` separated by a comma or white space;
@@ -104,20 +104,12 @@ impl<R: Read + Send> PointsReader for CsvReader<R> {
         Some((k, read.map_err(|e| run.fail(e))))
     }
 
-    fn runs_taken(&self) -> usize {
-        self.source.runs_taken()
-    }
-
-    fn bytes_read(&self) -> u64 {
-        self.source.bytes_read()
-    }
-
     fn points(&self) -> Option<usize> {
         None
     }
 
-    fn by_position(&self) -> bool {
-        self.source.by_position()
+    fn progress(&self) -> ReadProgress {
+        self.source.progress()
     }
 }
 
@@ -746,7 +738,7 @@ mod tests {
         let (k, read) = reader.next_run(&mut run).unwrap();
         assert!(k == 2 && read.is_ok() && run.len() == 1);
         assert!(reader.next_run(&mut run).is_none());
-        assert_eq!(reader.runs_taken(), 3);
+        assert_eq!(reader.progress().runs_taken, 3);
         let long = format!("1,2\n{}\n3,4\n", "5".repeat(MAX_LINE_BYTES + 10));
         let reader = CsvReader::new(long.as_bytes(), "t", sizes);
         assert!(reader.next_run(&mut run).unwrap().1.is_ok());
@@ -763,7 +755,7 @@ mod tests {
         let e = reader.next_run(&mut run).unwrap().1.unwrap_err();
         assert_eq!(e.to_string(), "pipe: gone");
         assert!(reader.next_run(&mut run).is_none());
-        assert_eq!(reader.runs_taken(), 1);
+        assert_eq!(reader.progress().runs_taken, 1);
     }
 
     /// Points and their fields as written, or the error message: by blocks in order

@@ -40,7 +40,7 @@ use thiserror::Error;
 pub use csv::CsvReader;
 pub use encoded::{EncodedPoints, NpyType};
 pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyReader, npy_header};
-pub use run::{CsvPoints, PointRun, PointsReader, RunPoints, RunSizes};
+pub use run::{CsvPoints, PointRun, PointsReader, ReadProgress, RunPoints, RunSizes};
 
 /// The longest line a points file may have, in bytes, without its end (`\n` or `\r\n`): a
 /// file without line breaks is an error, not an unbounded allocation.

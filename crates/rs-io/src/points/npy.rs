@@ -11,7 +11,7 @@ use std::path::Path;
 
 use super::encoded::{EncodedPoints, NpyType};
 use super::run::Claims;
-use super::run::{Content, InOrder, PointRun, PointsReader, RunSizes, Source};
+use super::run::{Content, InOrder, PointRun, PointsReader, ReadProgress, RunSizes, Source};
 use super::{PointsError, open_file};
 
 /// The most points a `.npy` header may announce: larger shapes are refused before anything
@@ -301,20 +301,12 @@ impl<R: Read + Send> PointsReader for NpyReader<R> {
         Some((k, read.map_err(|e| run.fail(e))))
     }
 
-    fn runs_taken(&self) -> usize {
-        self.source.runs_taken()
-    }
-
-    fn bytes_read(&self) -> u64 {
-        self.source.bytes_read()
-    }
-
     fn points(&self) -> Option<usize> {
         Some(self.len)
     }
 
-    fn by_position(&self) -> bool {
-        self.source.by_position()
+    fn progress(&self) -> ReadProgress {
+        self.source.progress()
     }
 }
 
@@ -473,12 +465,15 @@ mod tests {
         for ty in [NpyType::F64, NpyType::F32] {
             let bytes = file(ty, &[7, 2], &values);
             let r = NpyReader::new(&bytes[..], "t", runs_of(3)).unwrap();
-            assert_eq!((r.len(), r.element_type(), r.by_position()), (7, ty, false));
+            assert_eq!(
+                (r.len(), r.element_type(), r.progress().by_position),
+                (7, ty, false)
+            );
             let pts = drain_runs(&r).unwrap();
             assert_eq!(pts.len(), 7);
             assert_eq!(pts[6], (2, Point::new(3.0, 3.25)));
-            assert_eq!(r.bytes_read(), bytes.len() as u64);
-            assert_eq!(r.runs_taken(), 3);
+            assert_eq!(r.progress().bytes_read, bytes.len() as u64);
+            assert_eq!(r.progress().runs_taken, 3);
         }
     }
 
@@ -494,7 +489,7 @@ mod tests {
             std::fs::write(&path, &bytes).unwrap();
             let stream = drain_runs(&NpyReader::new(&bytes[..], "t", runs_of(4)).unwrap());
             let f = NpyReader::open(&path, runs_of(4)).unwrap();
-            assert!(f.by_position());
+            assert!(f.progress().by_position);
             assert_eq!(f.len(), 11);
             let taken = std::sync::Mutex::new(Vec::new());
             std::thread::scope(|s| {
@@ -516,7 +511,10 @@ mod tests {
             taken.sort_by_key(|t| t.0);
             let read: Vec<_> = taken.into_iter().flat_map(|t| t.1).collect();
             assert_eq!(Ok(read), stream.map_err(|e| e.to_string()));
-            assert_eq!((f.runs_taken(), f.bytes_read()), (3, bytes.len() as u64));
+            assert_eq!(
+                (f.progress().runs_taken, f.progress().bytes_read),
+                (3, bytes.len() as u64)
+            );
         }
         std::fs::write(&path, file(NpyType::F64, &[5, 2], &[0.5; 6])).unwrap();
         let short = drain_runs(&NpyReader::open(&path, runs_of(2)).unwrap());

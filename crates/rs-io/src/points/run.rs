@@ -231,7 +231,7 @@ impl<'a> CsvPoints<'a> {
 ///     }
 /// }
 /// assert_eq!(rows, [(0, 1.0, "1,2".to_string()), (0, 3.0, "3,4".to_string())]);
-/// assert_eq!(reader.runs_taken(), 1);
+/// assert_eq!(reader.progress().runs_taken, 1);
 /// ```
 pub trait PointsReader: Sync {
     /// Reads the next run into `run`, reusing its buffers, and numbers it `k` (0, 1, ... in
@@ -246,18 +246,23 @@ pub trait PointsReader: Sync {
     /// [`PointsError::Npy`] for a `.npy` file cut short or holding a non-finite coordinate.
     fn next_run(&self, run: &mut PointRun) -> Option<(usize, Result<(), PointsError>)>;
 
-    /// How many runs have been taken (the failed one included): all of them once
-    /// [`PointsReader::next_run`] has run out.
-    fn runs_taken(&self) -> usize;
-
-    /// Bytes of the file read so far, or covered by the runs taken (for progress reports).
-    fn bytes_read(&self) -> u64;
-
     /// The number of points, if known before reading (`.npy`).
     fn points(&self) -> Option<usize>;
 
+    /// How far the reading has come, and how it reads.
+    fn progress(&self) -> ReadProgress;
+}
+
+/// How far a [`PointsReader`] has come ([`PointsReader::progress`]), and how it reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReadProgress {
+    /// How many runs have been taken (the failed one included): all of them once
+    /// [`PointsReader::next_run`] has run out.
+    pub runs_taken: usize,
+    /// Bytes of the file read so far, or covered by the runs taken (for progress reports).
+    pub bytes_read: u64,
     /// Whether the runs are read by position (any number at once), rather than in order.
-    fn by_position(&self) -> bool;
+    pub by_position: bool,
 }
 
 /// How a reader reads: in order through its stream `S`, or by position in its file `F`.
@@ -270,25 +275,17 @@ pub(super) enum Source<S, F> {
 }
 
 impl<S, F> Source<S, F> {
-    /// Runs taken so far ([`PointsReader::runs_taken`]).
-    pub(super) fn runs_taken(&self) -> usize {
-        match self {
-            Source::InOrder(stream) => stream.taken(),
-            Source::ByPosition(claims, _) => claims.taken(),
+    /// How far the reading has come ([`PointsReader::progress`]).
+    pub(super) fn progress(&self) -> ReadProgress {
+        let (runs_taken, bytes_read) = match self {
+            Source::InOrder(stream) => (stream.taken(), stream.bytes_read()),
+            Source::ByPosition(claims, _) => (claims.taken(), claims.bytes_read()),
+        };
+        ReadProgress {
+            runs_taken,
+            bytes_read,
+            by_position: matches!(self, Source::ByPosition(..)),
         }
-    }
-
-    /// Bytes read so far ([`PointsReader::bytes_read`]).
-    pub(super) fn bytes_read(&self) -> u64 {
-        match self {
-            Source::InOrder(stream) => stream.bytes_read(),
-            Source::ByPosition(claims, _) => claims.bytes_read(),
-        }
-    }
-
-    /// Whether the runs are read by position ([`PointsReader::by_position`]).
-    pub(super) fn by_position(&self) -> bool {
-        !matches!(self, Source::InOrder(_))
     }
 }
 
@@ -433,7 +430,7 @@ mod tests {
             runs.iter().enumerate().all(|(i, c)| c.0 == i),
             "numbered in order"
         );
-        assert_eq!(reader.runs_taken(), runs.len());
+        assert_eq!(reader.progress().runs_taken, runs.len());
         let mut all = Vec::new();
         for (_, c) in runs {
             all.extend(c?);
@@ -511,7 +508,10 @@ mod tests {
                     let by_position = CsvReader::open(&path, small(csv_bytes)).unwrap();
                     // Runs of 7 bytes: the first holds only the comment, so the file is read in
                     // order.
-                    assert_eq!(by_position.by_position(), cfg!(unix) && csv_bytes > 7);
+                    assert_eq!(
+                        by_position.progress().by_position,
+                        cfg!(unix) && csv_bytes > 7
+                    );
                     let readers: [&dyn PointsReader; 2] = [&in_order, &by_position];
                     for reader in readers {
                         assert_eq!(drain(reader, threads), want, "runs of {csv_bytes}");
@@ -573,8 +573,12 @@ mod tests {
                     points.text_len()
                 );
             }
-            assert!(reader.bytes_read() >= 3000, "{}", reader.bytes_read());
-            assert!(reader.bytes_read() < text.len() as u64);
+            assert!(
+                reader.progress().bytes_read >= 3000,
+                "{}",
+                reader.progress().bytes_read
+            );
+            assert!(reader.progress().bytes_read < text.len() as u64);
         }
         std::fs::remove_file(&path).unwrap();
     }
@@ -587,10 +591,18 @@ mod tests {
         let comments = scratch_file("comments.csv", "# comment\n".repeat(100).as_bytes());
         let npy = scratch_file("open.NPY", &npy_bytes(NpyType::F64, 3, 3, None));
         let sizes = small(16);
-        assert_eq!(open_points(&csv, sizes).unwrap().by_position(), cfg!(unix));
-        assert!(!open_points(&comments, sizes).unwrap().by_position());
+        assert_eq!(
+            open_points(&csv, sizes).unwrap().progress().by_position,
+            cfg!(unix)
+        );
+        assert!(
+            !open_points(&comments, sizes)
+                .unwrap()
+                .progress()
+                .by_position
+        );
         let reader = open_points(&npy, sizes).unwrap();
-        assert_eq!(reader.by_position(), cfg!(unix));
+        assert_eq!(reader.progress().by_position, cfg!(unix));
         assert_eq!(reader.points(), Some(3));
         let e = open_points(csv.with_extension("missing"), sizes)
             .err()
