@@ -25,6 +25,7 @@ mod error;
 mod frame;
 mod map;
 pub mod pcurve;
+pub mod properties;
 pub mod surface;
 mod tolerance;
 
