@@ -89,6 +89,20 @@ impl<P: Vector + std::ops::Div<f64, Output = P>> Curve<P> {
         }
     }
 
+    /// The parameters strictly inside the curve's range where it is only piecewise smooth (a
+    /// B-spline's distinct interior knots), ascending; none for lines and conics.
+    pub fn breaks(&self) -> Vec<f64> {
+        match self {
+            Curve::BSpline(b) => b.knots().interior_breaks(),
+            Curve::Trimmed { basis, range } => basis
+                .breaks()
+                .into_iter()
+                .filter(|&t| range.0 < t && t < range.1)
+                .collect(),
+            Curve::Line { .. } | Curve::Conic(_) => Vec::new(),
+        }
+    }
+
     /// The period in which an edge's or trim's parameter window wraps: a whole ellipse's
     /// `2 pi`, a closed B-spline's domain ([`Curve::period`]); a trimmed curve is its window and
     /// does not wrap.

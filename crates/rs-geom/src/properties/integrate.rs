@@ -1,19 +1,23 @@
 //! Integrals over a trimmed face: `int int_D g(u, v) du dv` over the face's `(u, v)` domain
 //! `D`, by Green's theorem on its loops.
 //!
-//! With `G(u, v) = int_a^u g(s, v) ds` (`a` the domain's least `u`), `dG/du = g`, so
+//! Along `u`: with `G(u, v) = int_a^u g(s, v) ds` (`a` the domain's least `u`), `dG/du = g`, so
 //! `int int_D g du dv = oint_{dD} G dv` along the loops (outer ones counter-clockwise, holes
-//! clockwise: the orientation `Model::face_domain` gives them). Both integrals are adaptive
-//! Gauss-Legendre ([`integrate_adaptive_vector`]): the outer one along each Bezier piece of the
-//! loops, the inner one along `u` at each of its nodes. Each stops when halving an interval
-//! changes no component by more than the rounding noise of the integrand's magnitude, or at
-//! the depth and interval limits (bounded work); polynomial integrands of degree up to 31 in
-//! the parameter are exact at the first level (a plane's, and a polynomial B-spline surface's
+//! clockwise: the orientation `Model::face_domain` gives them). Along `v` likewise, with
+//! `H(u, v) = int_b^v g(u, s) ds` and `int int_D g = -oint_{dD} H du`. The inner integral runs
+//! along the parameter with fewer knot lines inside the domain (it is split at each). Both
+//! integrals are adaptive Gauss-Legendre ([`integrate_adaptive_vector`]): the outer one along
+//! each Bezier piece of the loops, split where the piece crosses a knot line, the inner one at
+//! each of its nodes. Each stops when halving an interval changes no component by more than
+//! its tolerance or the rounding noise of the integrand's magnitude, or at the depth and
+//! interval limits (bounded work); polynomial integrands of degree up to 31 in the parameter
+//! are exact at the first level (a plane's volume terms, and a polynomial B-spline surface's
 //! within a knot span).
 
+use rs_roots::{Bernstein, bernstein_roots};
 use rs_spline::prelude::*;
-use rs_spline::quadrature::integrate_adaptive_vector;
-use rs_spline::{Domain, Point};
+use rs_spline::quadrature::{VectorIntegral, integrate_adaptive_vector};
+use rs_spline::{BoundingBox, Domain, Point, RationalBezier};
 
 /// An integral of a vector-valued integrand over a face's domain, with how far it can be
 /// trusted.
@@ -22,35 +26,65 @@ pub(crate) struct DomainIntegral {
     /// The integral of each component.
     pub(crate) values: Vec<f64>,
     /// An estimate of the absolute error of the worst component: the outer rule's estimate
-    /// plus the inner rules' largest estimate times the loops' total variation in `v`.
+    /// plus the inner rules' largest estimate times the loops' total variation across.
     pub(crate) error: f64,
     /// Whether every adaptive rule met its tolerance within its bounded work.
     pub(crate) converged: bool,
 }
 
+/// The relative tolerance of the integrals, against the integrand's size times the box.
+const TOLERANCE: f64 = 16.0 * f64::EPSILON;
+
 /// `int int_D g(u, v) du dv` of the `dim` components `g` writes into its output (returning
 /// their magnitude, the size of the terms they are sums of, for the rounding test) over the
-/// domain `domain`. `None` where an integrand value is not finite.
+/// domain `domain`, split at the surface's knot lines (`[u values, v values]`), each
+/// component to about `16 eps` of the integrand's size over the domain's box, or to
+/// `abs_floor` where that is larger. `None` where an integrand value is not finite.
 pub(crate) fn integrate_over_domain(
     domain: &Domain,
+    lines: [&[f64]; 2],
+    abs_floor: f64,
     dim: usize,
     g: &dyn Fn([f64; 2], &mut [f64]) -> f64,
 ) -> Option<DomainIntegral> {
     let b = domain.bounding_box();
-    let a = b.min.x;
+    let (lo, hi) = ([b.min.x, b.min.y], [b.max.x, b.max.y]);
+    let inside = |k: usize| lines[k].iter().filter(|&&l| lo[k] < l && l < hi[k]).count();
+    // The inner integral along the parameter with fewer knot lines: it runs at every node of
+    // the outer one.
+    let inner = usize::from(inside(1) < inside(0));
+    let outer_axis = 1 - inner;
+    // Absolute tolerances from the integrand's size over the domain's box, so that a stretch
+    // where the integrand is tiny (a piece grazing a knot line) is not refined to its own
+    // rounding noise: the outer integral's over the box's area, and never below the caller's
+    // floor (a sliver's integrals cancel far below what the whole model can resolve); the
+    // inner one's over the box's width along it, in the same proportion.
+    let span = [hi[0] - lo[0], hi[1] - lo[1]];
+    let size = integrand_size(&b, dim, g);
+    let outer_tol = (TOLERANCE * size * span[0] * span[1]).max(abs_floor);
+    let inner_tol = if span[outer_axis] > 0.0 {
+        outer_tol / span[outer_axis]
+    } else {
+        outer_tol
+    };
+    // Green's theorem: `+oint G dv` along u, `-oint H du` along v.
+    let sign = if inner == 0 { 1.0 } else { -1.0 };
     let mut values = vec![0.0; dim];
-    let (mut outer_error, mut inner_error, mut converged) = (0.0f64, 0.0f64, true);
-    let mut v_variation = 0.0;
+    let (mut outer_error, mut inner_error) = (0.0f64, 0.0f64);
+    let (mut converged, mut inner_converged) = (true, true);
+    let mut variation = 0.0;
     let mut finite = true;
     for (_, piece) in domain.bezier_pieces() {
         let mut outer = |t: f64, out: &mut [f64]| -> f64 {
             let (p, d) = piece.point_and_tangent(t);
-            let inner = inner_integral(a, p, dim, g);
-            inner_error = inner_error.max(inner.error);
-            converged &= inner.converged;
+            let (p, d) = ([p.x, p.y], [d.x, d.y]);
+            let along = inner_integral(lo[inner], p, inner, lines[inner], inner_tol, dim, g);
+            inner_error = inner_error.max(along.error);
+            inner_converged &= along.converged;
+            let factor = sign * d[outer_axis];
             let mut magnitude = 0.0f64;
-            for (o, &gi) in out.iter_mut().zip(&inner.values) {
-                *o = gi * d.y;
+            for (o, &gi) in out.iter_mut().zip(&along.values) {
+                *o = gi * factor;
                 finite &= o.is_finite();
                 magnitude = magnitude.max(o.abs());
             }
@@ -59,36 +93,118 @@ pub(crate) fn integrate_over_domain(
             }
             magnitude
         };
-        let along = integrate_adaptive_vector(&mut outer, dim, 0.0, 1.0, 0.0);
-        for (v, s) in values.iter_mut().zip(&along.values) {
-            *v += s;
+        // Split where the piece crosses a knot line: the inner integral is only piecewise
+        // smooth across it.
+        let mut cuts = crossings(&piece, 0, lines[0]);
+        cuts.extend(crossings(&piece, 1, lines[1]));
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        let mut from = 0.0;
+        for to in cuts.into_iter().chain(std::iter::once(1.0)) {
+            let part =
+                integrate_adaptive_vector(&mut outer, dim, from, to, outer_tol * (to - from));
+            for (v, s) in values.iter_mut().zip(&part.values) {
+                *v += s;
+            }
+            outer_error += part.error;
+            converged &= part.converged;
+            from = to;
         }
-        outer_error += along.error;
-        converged &= along.converged;
-        v_variation += piece_v_variation(&piece);
+        variation += control_variation(&piece, outer_axis);
     }
     finite.then_some(DomainIntegral {
         values,
-        error: outer_error + inner_error * v_variation,
-        converged,
+        error: outer_error + inner_error * variation,
+        converged: converged && inner_converged,
     })
 }
 
-/// `G(u, v) = int_a^u g(s, v) ds` at `p = (u, v)`.
+/// The integral of `g` along parameter `axis` from `start` to `p`'s coordinate, the other
+/// parameter at `p`'s, split at the knot lines `breaks` (ascending) between them.
 fn inner_integral(
-    a: f64,
-    p: Point,
+    start: f64,
+    p: [f64; 2],
+    axis: usize,
+    breaks: &[f64],
+    tol: f64,
     dim: usize,
     g: &dyn Fn([f64; 2], &mut [f64]) -> f64,
-) -> rs_spline::quadrature::VectorIntegral {
-    integrate_adaptive_vector(|s, out| g([s, p.y], out), dim, a, p.x, 0.0)
+) -> VectorIntegral {
+    let end = p[axis];
+    let inside = breaks.iter().copied().filter(|&b| start < b && b < end);
+    let mut from = start;
+    let mut sum = VectorIntegral {
+        values: vec![0.0; dim],
+        error: 0.0,
+        converged: true,
+    };
+    let at = |s: f64| {
+        let mut q = p;
+        q[axis] = s;
+        q
+    };
+    for to in inside.chain(std::iter::once(end)) {
+        let part = integrate_adaptive_vector(|s, out| g(at(s), out), dim, from, to, tol);
+        for (s, v) in sum.values.iter_mut().zip(&part.values) {
+            *s += v;
+        }
+        sum.error += part.error;
+        sum.converged &= part.converged;
+        from = to;
+    }
+    sum
 }
 
-/// The total variation of `v` along a piece, from its control polygon (an upper bound).
-fn piece_v_variation(piece: &rs_spline::RationalBezier) -> f64 {
-    piece
-        .control_points()
-        .windows(2)
-        .map(|w| (w[1].y - w[0].y).abs())
-        .sum()
+/// The largest magnitude `g` returns on a 9 x 9 grid over the box `b` (at least the smallest
+/// positive normal number, so that tolerances are never zero).
+fn integrand_size(b: &BoundingBox, dim: usize, g: &dyn Fn([f64; 2], &mut [f64]) -> f64) -> f64 {
+    const GRID: usize = 9;
+    let mut out = vec![0.0; dim];
+    let at = |i: usize, lo: f64, hi: f64| lo + (hi - lo) * i as f64 / (GRID - 1) as f64;
+    (0..GRID * GRID)
+        .map(|k| {
+            let uv = [
+                at(k % GRID, b.min.x, b.max.x),
+                at(k / GRID, b.min.y, b.max.y),
+            ];
+            g(uv, &mut out)
+        })
+        .filter(|m| m.is_finite())
+        .fold(f64::MIN_POSITIVE, f64::max)
+}
+
+/// Coordinate `axis` (0: `u`, 1: `v`) of the piece's control points.
+fn control_coordinates(piece: &RationalBezier, axis: usize) -> Vec<f64> {
+    let coordinate = |p: &Point| if axis == 0 { p.x } else { p.y };
+    piece.control_points().iter().map(coordinate).collect()
+}
+
+/// The total variation of coordinate `axis` along a piece, from its control polygon (an
+/// upper bound).
+fn control_variation(piece: &RationalBezier, axis: usize) -> f64 {
+    let c = control_coordinates(piece, axis);
+    c.windows(2).map(|w| (w[1] - w[0]).abs()).sum()
+}
+
+/// The parameters in `(0, 1)` where coordinate `axis` of the piece equals one of `lines`:
+/// the roots of `sum w_i (c_i - line) B_i(t)`.
+fn crossings(piece: &RationalBezier, axis: usize, lines: &[f64]) -> Vec<f64> {
+    let coords = control_coordinates(piece, axis);
+    let (lo, hi) = coords
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &c| {
+            (a.min(c), b.max(c))
+        });
+    let mut out = Vec::new();
+    for &line in lines.iter().filter(|&&l| lo < l && l < hi) {
+        let c: Vec<f64> = coords
+            .iter()
+            .zip(piece.weights())
+            .map(|(&x, &w)| w * (x - line))
+            .collect();
+        if let Ok(roots) = bernstein_roots(&Bernstein::new(c)) {
+            out.extend(roots.into_iter().filter(|&t| 0.0 < t && t < 1.0));
+        }
+    }
+    out
 }

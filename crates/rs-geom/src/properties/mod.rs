@@ -142,6 +142,11 @@ struct FaceIntegrals {
 }
 
 const COMPONENTS: usize = 20;
+
+/// The absolute error a face's integrals may have in the model's normalised coordinates
+/// (where the model's integrals are of order one): far below the `1e-12` relative the results
+/// promise, summed over thousands of faces.
+const FACE_FLOOR: f64 = 1e-16;
 /// Index of the area.
 const AREA: usize = 0;
 /// Index of `int q dA`.
@@ -227,9 +232,7 @@ impl Model {
     /// Every face's and every solid's properties, each face integrated once.
     pub fn properties(&self) -> ModelProperties {
         let frame = Frame::of(self);
-        let integrals: Vec<Result<FaceIntegrals, PropertiesError>> = (0..self.faces.len())
-            .map(|k| self.face_integrals(k, frame))
-            .collect();
+        let integrals = self.all_face_integrals(frame);
         let solids = (0..self.solids.len())
             .map(|k| self.solid_from_faces(k, frame, &mut |face| integrals[face].clone()))
             .collect();
@@ -240,6 +243,43 @@ impl Model {
                 .collect(),
             solids,
         }
+    }
+
+    /// Every face's integrals, the faces handed out one at a time to as many threads as the
+    /// machine runs at once (`std::thread::available_parallelism`).
+    fn all_face_integrals(&self, frame: Frame) -> Vec<Result<FaceIntegrals, PropertiesError>> {
+        use std::sync::Mutex;
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let n = self.faces.len();
+        let threads = std::thread::available_parallelism()
+            .map_or(1, usize::from)
+            .min(n);
+        if threads <= 1 {
+            return (0..n).map(|k| self.face_integrals(k, frame)).collect();
+        }
+        let next = AtomicUsize::new(0);
+        let done = Mutex::new(Vec::with_capacity(n));
+        std::thread::scope(|scope| {
+            for _ in 0..threads {
+                scope.spawn(|| {
+                    loop {
+                        let k = next.fetch_add(1, Ordering::Relaxed);
+                        if k >= n {
+                            break;
+                        }
+                        let f = self.face_integrals(k, frame);
+                        done.lock()
+                            .unwrap_or_else(std::sync::PoisonError::into_inner)
+                            .push((k, f));
+                    }
+                });
+            }
+        });
+        let mut done = done
+            .into_inner()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        done.sort_by_key(|(k, _)| *k);
+        done.into_iter().map(|(_, f)| f).collect()
     }
 
     /// Solid `index`'s properties from its faces' integrals (`face(k)` for face `k`).
@@ -313,12 +353,15 @@ impl Model {
             })?;
         let sense = if face.same_sense { 1.0 } else { -1.0 };
         let g = |uv: [f64; 2], out: &mut [f64]| integrand(surface, frame, sense, uv, out);
-        let got = integrate_over_domain(&domain, COMPONENTS, &g).ok_or_else(|| {
-            PropertiesError::NotFinite {
-                index,
-                entity: face.entity.clone(),
-            }
-        })?;
+        let [u_lines, v_lines] = surface.knot_lines();
+        let lines = [u_lines.as_slice(), v_lines.as_slice()];
+        let got =
+            integrate_over_domain(&domain, lines, FACE_FLOOR, COMPONENTS, &g).ok_or_else(|| {
+                PropertiesError::NotFinite {
+                    index,
+                    entity: face.entity.clone(),
+                }
+            })?;
         let mut values = [0.0; COMPONENTS];
         values.copy_from_slice(&got.values);
         Ok(FaceIntegrals {

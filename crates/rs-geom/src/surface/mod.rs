@@ -308,6 +308,42 @@ impl Surface {
         }
     }
 
+    /// The parameter lines where the surface is only piecewise smooth, `[u values, v values]`
+    /// ascending: a B-spline surface's distinct interior knots, a swept curve's breaks, a
+    /// base surface's carried through an offset or reparameterisation; none for elementary
+    /// surfaces. Integrals split there stay exact on piecewise polynomial integrands.
+    pub fn knot_lines(&self) -> [Vec<f64>; 2] {
+        match self {
+            Surface::BSpline(b) => b.knots().each_ref().map(|k| k.interior_breaks()),
+            Surface::Revolution(r) => [Vec::new(), r.curve().breaks()],
+            Surface::Extrusion(e) => [e.curve().breaks(), Vec::new()],
+            Surface::Offset(o) => o.base().knot_lines(),
+            Surface::Reparam(r) => {
+                let base = r.base().knot_lines();
+                let mut ours: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+                for (k, lines) in base.iter().enumerate() {
+                    // Base parameter k is ours scaled and shifted: ours = (t - offset) / scale.
+                    let mine = usize::from(r.swap()) ^ k;
+                    ours[mine] = lines
+                        .iter()
+                        .map(|&t| {
+                            let mut st = [0.0; 2];
+                            st[k] = t;
+                            r.from_base(st)[mine]
+                        })
+                        .collect();
+                    ours[mine].sort_by(f64::total_cmp);
+                }
+                ours
+            }
+            Surface::Plane(_)
+            | Surface::Cylinder(_)
+            | Surface::Cone(_)
+            | Surface::Sphere(_)
+            | Surface::Torus(_) => [Vec::new(), Vec::new()],
+        }
+    }
+
     /// The image of the surface under the affine map `m`, in the same parameters: the point
     /// of the image at `(u, v)` is `m` applied to this surface's point at `(u, v)`.
     ///
