@@ -473,3 +473,6 @@ fn solid_properties(f: &FaceIntegrals, frame: Frame) -> SolidProperties {
         converged: f.converged,
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,236 @@
+//! Closed forms: a sphere, a tilted torus and a closed cylinder (three faces), each a solid
+//! built from its surfaces and `(u, v)` loops; an open shell; a face turned inside out.
+
+use std::f64::consts::{PI, TAU};
+
+use rs_spline::{NurbsCurve, Point, circle, polyline};
+
+use super::*;
+use crate::brep::{Face, Shell, Solid};
+use crate::surface::{Cylinder, Plane, Sphere, Torus};
+use crate::{Frame, Tolerance};
+
+/// A face of `surface` bounded by `loops`, outward along `S_u x S_v` when `same_sense`.
+fn face(surface: Surface, loops: Vec<Vec<NurbsCurve>>, same_sense: bool) -> Face {
+    Face {
+        entity: "#1".into(),
+        surface_name: surface.kind_name().into(),
+        surface: Some(surface),
+        surface_error: None,
+        same_sense,
+        loops: Ok(loops),
+        edges: Vec::new(),
+        pcurve_deviation: None,
+        natural_bounds: false,
+    }
+}
+
+/// The rectangle `[u0, u1] x [v0, v1]` as one loop.
+fn rectangle(u0: f64, u1: f64, v0: f64, v1: f64) -> Vec<NurbsCurve> {
+    let p = [(u0, v0), (u1, v0), (u1, v1), (u0, v1), (u0, v0)].map(|(u, v)| Point::new(u, v));
+    vec![polyline(&p).unwrap()]
+}
+
+/// One solid of `faces` in one shell (closed unless `open`).
+fn solid(faces: Vec<Face>, open: bool) -> Model {
+    let n = faces.len();
+    Model {
+        faces,
+        shells: vec![Shell {
+            entity: "#2".into(),
+            faces: (0..n).collect(),
+            closed: !open,
+        }],
+        solids: vec![Solid {
+            entity: "#3".into(),
+            shells: vec![0],
+        }],
+        tolerance: Tolerance::new(None).unwrap(),
+        length_unit: None,
+    }
+}
+
+fn close(got: f64, want: f64, what: &str) {
+    assert!(
+        (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+        "{what}: {got} vs {want} ({:e} relative)",
+        (got - want).abs() / want.abs()
+    );
+}
+
+/// The frame at `origin` with the axis tilted off every coordinate axis.
+fn tilted(origin: Point3) -> Frame {
+    Frame::new(
+        origin,
+        Some(Point3::new(1.0, 2.0, 2.0)),
+        Some(Point3::new(2.0, -1.0, 0.5)),
+    )
+    .unwrap()
+}
+
+/// The inertia tensor `a I + b (axis axis^T)` for a unit `axis`: moments `a + b` about the
+/// axis and `a` across it.
+fn axial_inertia(axis: Point3, across: f64, about: f64) -> [[f64; 3]; 3] {
+    let d = [axis.x, axis.y, axis.z];
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let delta = if i == j { across } else { 0.0 };
+            delta + (about - across) * d[i] * d[j]
+        })
+    })
+}
+
+fn close_matrix(got: &[[f64; 3]; 3], want: &[[f64; 3]; 3], scale: f64, what: &str) {
+    for i in 0..3 {
+        for j in 0..3 {
+            assert!(
+                (got[i][j] - want[i][j]).abs() <= 1e-12 * scale,
+                "{what}[{i}][{j}]: {} vs {}",
+                got[i][j],
+                want[i][j]
+            );
+        }
+    }
+}
+
+#[test]
+fn a_sphere_its_volume_area_centroid_and_inertia() {
+    let (r, c) = (2.0, Point3::new(1.0, 2.0, 3.0));
+    let sphere = Surface::Sphere(Sphere::new(tilted(c), r).unwrap());
+    let m = solid(
+        vec![face(
+            sphere,
+            vec![rectangle(0.0, TAU, -PI / 2.0, PI / 2.0)],
+            true,
+        )],
+        false,
+    );
+    let s = m.solid_properties(0).unwrap();
+    let volume = 4.0 / 3.0 * PI * r * r * r;
+    close(s.volume, volume, "volume");
+    close(s.area, 4.0 * PI * r * r, "area");
+    assert!((s.centroid - c).length() <= 1e-12 * r, "{:?}", s.centroid);
+    let i = 0.4 * volume * r * r;
+    close_matrix(&s.inertia, &axial_inertia(Point3::Z, i, i), i, "inertia");
+    for m in s.principal_moments {
+        close(m, i, "principal moment");
+    }
+    assert!(s.converged);
+    // The face alone: its area and centroid (the centre: the sphere is symmetric).
+    let f = m.face_properties(0).unwrap();
+    close(f.area, 4.0 * PI * r * r, "face area");
+    assert!((f.centroid - c).length() <= 1e-12 * r);
+    // Second moments of a spherical shell: (area r^2 / 3) about every axis through its centre.
+    let k = f.area * r * r / 3.0;
+    close_matrix(
+        &f.second_moments,
+        &axial_inertia(Point3::Z, k, k),
+        k,
+        "second moments",
+    );
+}
+
+#[test]
+fn a_tilted_torus() {
+    let (big, small, c) = (3.0, 1.0, Point3::new(0.5, -1.0, 2.0));
+    let frame = tilted(c);
+    let torus = Surface::Torus(Torus::new(frame, big, small).unwrap());
+    let m = solid(
+        vec![face(torus, vec![rectangle(0.0, TAU, 0.0, TAU)], true)],
+        false,
+    );
+    let s = m.solid_properties(0).unwrap();
+    let volume = 2.0 * PI * PI * big * small * small;
+    close(s.volume, volume, "volume");
+    close(s.area, 4.0 * PI * PI * big * small, "area");
+    assert!((s.centroid - c).length() <= 1e-12 * big, "{:?}", s.centroid);
+    // About the axis M (R^2 + 3/4 r^2), across it M (R^2 / 2 + 5/8 r^2).
+    let about = volume * (big * big + 0.75 * small * small);
+    let across = volume * (0.5 * big * big + 0.625 * small * small);
+    close_matrix(
+        &s.inertia,
+        &axial_inertia(frame.z, across, about),
+        about,
+        "inertia",
+    );
+    close(s.principal_moments[2], about, "largest principal moment");
+    let axis = s.principal_axes[2];
+    close(
+        axis.dot(frame.z).abs(),
+        1.0,
+        "principal axis along the torus's axis",
+    );
+}
+
+/// A cylinder of radius `r` from `z = 0` to `z = h` about a tilted axis: its side and two caps
+/// (the bottom one facing against its plane's normal).
+fn closed_cylinder(r: f64, h: f64, origin: Point3) -> Model {
+    let frame = tilted(origin);
+    let top = Frame::new(origin + frame.z * h, Some(frame.z), Some(frame.x)).unwrap();
+    let disc = || vec![vec![circle(Point::new(0.0, 0.0), r).unwrap()]];
+    solid(
+        vec![
+            face(
+                Surface::Cylinder(Cylinder::new(frame, r).unwrap()),
+                vec![rectangle(0.0, TAU, 0.0, h)],
+                true,
+            ),
+            face(Surface::Plane(Plane::new(frame)), disc(), false),
+            face(Surface::Plane(Plane::new(top)), disc(), true),
+        ],
+        false,
+    )
+}
+
+#[test]
+fn a_closed_cylinder() {
+    let (r, h, o) = (1.5, 4.0, Point3::new(-2.0, 1.0, 0.25));
+    let m = closed_cylinder(r, h, o);
+    let s = m.solid_properties(0).unwrap();
+    let volume = PI * r * r * h;
+    close(s.volume, volume, "volume");
+    close(s.area, TAU * r * h + 2.0 * PI * r * r, "area");
+    let axis = tilted(o).z;
+    assert!((s.centroid - (o + axis * (h / 2.0))).length() <= 1e-12 * h);
+    let about = volume * r * r / 2.0;
+    let across = volume * (3.0 * r * r + h * h) / 12.0;
+    close_matrix(
+        &s.inertia,
+        &axial_inertia(axis, across, about),
+        across,
+        "inertia",
+    );
+    // Every property of the whole model at once agrees.
+    let all = m.properties();
+    assert_eq!(all.faces.len(), 3);
+    assert_eq!(all.solids[0].as_ref().unwrap(), &s);
+}
+
+/// Faces turned against their surfaces' normals give the negative volume (the senses are
+/// honoured, not guessed), and the same area.
+#[test]
+fn senses_are_honoured() {
+    let mut m = closed_cylinder(1.0, 2.0, Point3::new(0.0, 0.0, 0.0));
+    for f in &mut m.faces {
+        f.same_sense = !f.same_sense;
+    }
+    let s = m.solid_properties(0).unwrap();
+    close(s.volume, -2.0 * PI, "volume");
+    close(s.area, 4.0 * PI + 2.0 * PI, "area");
+}
+
+#[test]
+fn an_open_shell_has_no_volume() {
+    let mut m = closed_cylinder(1.0, 2.0, Point3::new(0.0, 0.0, 0.0));
+    m.shells[0].closed = false;
+    m.shells[0].faces.pop();
+    let e = m.solid_properties(0).unwrap_err();
+    assert!(matches!(e, PropertiesError::OpenShell { .. }), "{e}");
+    assert!(e.to_string().contains("is open"), "{e}");
+    // Its faces still have areas.
+    close(m.face_properties(1).unwrap().area, PI, "cap area");
+    assert!(matches!(
+        m.solid_properties(1),
+        Err(PropertiesError::Model(ModelError::NoSolid { .. }))
+    ));
+}
