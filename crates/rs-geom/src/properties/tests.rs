@@ -234,3 +234,97 @@ fn an_open_shell_has_no_volume() {
         Err(PropertiesError::Model(ModelError::NoSolid { .. }))
     ));
 }
+
+/// A bicubic polynomial patch over `[0, 1]^2` with knots at `interior` in both parameters
+/// (control points on a bumpy height field).
+fn bumpy_patch(interior: &[f64]) -> Surface {
+    use rs_spline::KnotVector;
+    let mut knots = vec![0.0; 4];
+    knots.extend_from_slice(interior);
+    knots.extend([1.0; 4]);
+    let n = 4 + interior.len();
+    let kv = KnotVector::new(knots, 3, n).unwrap();
+    let points = (0..n * n)
+        .map(|k| {
+            let (i, j) = ((k / n) as f64, (k % n) as f64);
+            Point3::new(
+                3.0 * i / (n - 1) as f64,
+                2.0 * j / (n - 1) as f64,
+                (i * 1.3).sin() * (j * 0.7).cos(),
+            )
+        })
+        .collect();
+    Surface::BSpline(crate::surface::BSplineSurface::new([kv.clone(), kv], points, None).unwrap())
+}
+
+/// `|S_u x S_v|` at `uv`.
+fn area_element(s: &Surface, uv: [f64; 2]) -> f64 {
+    let d = s.derivatives(uv);
+    d.du.cross(d.dv).length()
+}
+
+/// A polynomial B-spline face trimmed to a disc: its area against an independent rule, Gauss-
+/// Legendre in polar coordinates about the disc's centre (96 x 96 nodes; the area element is
+/// analytic there).
+#[test]
+fn a_polynomial_patch_trimmed_to_a_disc() {
+    let s = bumpy_patch(&[]);
+    let (c, r) = (Point::new(0.45, 0.55), 0.3);
+    let m = solid(
+        vec![face(s.clone(), vec![vec![circle(c, r).unwrap()]], true)],
+        true,
+    );
+    let got = m.face_properties(0).unwrap().area;
+    let rule = rs_spline::quadrature::gauss_rule(96).unwrap();
+    let (h_theta, thetas) = rule.on(0.0, TAU);
+    let thetas: Vec<(f64, f64)> = thetas.collect();
+    let (h_rho, rhos) = rule.on(0.0, r);
+    let rhos: Vec<(f64, f64)> = rhos.collect();
+    let mut want = 0.0;
+    for &(t, wt) in &thetas {
+        for &(p, wp) in &rhos {
+            let uv = [c.x + p * t.cos(), c.y + p * t.sin()];
+            want += wt * wp * p * area_element(&s, uv);
+        }
+    }
+    want *= h_theta * h_rho;
+    close(got, want, "area of the trimmed patch");
+}
+
+/// A patch with interior knots, on a rectangle the knot lines cross: its area against tensor
+/// Gauss-Legendre split at the knots (the area element is smooth within each span).
+#[test]
+fn a_patch_with_knots_on_a_rectangle() {
+    let knots = [0.3, 0.5, 0.8];
+    let s = bumpy_patch(&knots);
+    let (u0, u1, v0, v1) = (0.1, 0.9, 0.2, 0.95);
+    let m = solid(
+        vec![face(s.clone(), vec![rectangle(u0, u1, v0, v1)], true)],
+        true,
+    );
+    let got = m.face_properties(0).unwrap().area;
+    let rule = rs_spline::quadrature::gauss_rule(48).unwrap();
+    let spans = |a: f64, b: f64| {
+        let mut cuts = vec![a];
+        cuts.extend(knots.iter().copied().filter(|&k| a < k && k < b));
+        cuts.push(b);
+        cuts.windows(2).map(|w| (w[0], w[1])).collect::<Vec<_>>()
+    };
+    let mut want = 0.0;
+    for (ua, ub) in spans(u0, u1) {
+        let (hu, us) = rule.on(ua, ub);
+        let us: Vec<(f64, f64)> = us.collect();
+        for (va, vb) in spans(v0, v1) {
+            let (hv, vs) = rule.on(va, vb);
+            let vs: Vec<(f64, f64)> = vs.collect();
+            let mut sum = 0.0;
+            for &(u, wu) in &us {
+                for &(v, wv) in &vs {
+                    sum += wu * wv * area_element(&s, [u, v]);
+                }
+            }
+            want += hu * hv * sum;
+        }
+    }
+    close(got, want, "area of the patch");
+}
