@@ -15,7 +15,8 @@
 //! So `-x^2` is `-(x^2)`, `2^-1` is `0.5`, `x*y/3` is `(x*y)/3`, and `1e-3`, `2.5E+4` and
 //! `x*1e-3` are numbers as in Rust, Python or C. White space is ignored between tokens.
 //!
-//! Names: the variables `x` and `y`; the constants `pi`, `e`, `tau` (also `PI`, `E`, `TAU`,
+//! Names: the variables `x` and `y` (and `z` in a formula over a surface in space,
+//! [`Formula::parse_xyz`]); the constants `pi`, `e`, `tau` (also `PI`, `E`, `TAU`,
 //! `π`, `τ`); the functions of one argument `abs`, `signum`, `sqrt`, `cbrt`, `exp`, `ln`,
 //! `log` (natural), `log2`, `log10`, `sin`, `cos`, `tan`, `asin`, `acos`, `atan`, `sinh`,
 //! `cosh`, `tanh`, `asinh`, `acosh`, `atanh`, `floor`, `ceil`, `round`, `trunc`, `fract`, and
@@ -61,6 +62,7 @@ enum Op {
     Number(f64),
     X,
     Y,
+    Z,
     Neg,
     Add,
     Sub,
@@ -104,6 +106,19 @@ impl Formula {
     /// parenthesis, a number out of range, a formula longer than [`MAX_FORMULA_BYTES`] or
     /// nested more than 256 deep, an empty formula.
     pub fn parse(text: &str) -> Result<Self, FormulaError> {
+        Self::parse_with(text, false)
+    }
+
+    /// Parses `text` as a formula in `x`, `y` and `z` (over a surface in space, such as
+    /// `inrs integrate --over surface`); evaluate it with [`Formula::at_xyz`].
+    ///
+    /// # Errors
+    /// As [`Formula::parse`].
+    pub fn parse_xyz(text: &str) -> Result<Self, FormulaError> {
+        Self::parse_with(text, true)
+    }
+
+    fn parse_with(text: &str, space: bool) -> Result<Self, FormulaError> {
         let whole = |message: String| FormulaError {
             text: text.to_string(),
             column: 0,
@@ -123,6 +138,7 @@ impl Formula {
         }
         let mut parser = Parser {
             text,
+            space,
             pos: 0,
             nesting: 0,
             program: Vec::new(),
@@ -155,12 +171,19 @@ impl Formula {
 
     /// The value at `p` (NaN, infinite or finite as the `f64` operations give it).
     pub fn at(&self, p: Point) -> f64 {
+        self.at_xyz(p.x, p.y, f64::NAN)
+    }
+
+    /// The value at `(x, y, z)` (`z` is a variable only in a formula read by
+    /// [`Formula::parse_xyz`]).
+    pub fn at_xyz(&self, x: f64, y: f64, z: f64) -> f64 {
         let mut stack: Vec<f64> = Vec::with_capacity(self.depth);
         for op in &self.program {
             let v = match *op {
                 Op::Number(v) => v,
-                Op::X => p.x,
-                Op::Y => p.y,
+                Op::X => x,
+                Op::Y => y,
+                Op::Z => z,
                 Op::Neg => {
                     let a = stack.pop().unwrap_or(f64::NAN);
                     -a
@@ -207,7 +230,7 @@ fn stack_depth(program: &[Op]) -> usize {
     let (mut now, mut most) = (0usize, 0usize);
     for op in program {
         match op {
-            Op::Number(_) | Op::X | Op::Y => now += 1,
+            Op::Number(_) | Op::X | Op::Y | Op::Z => now += 1,
             Op::Neg | Op::Unary(_) => {}
             _ => now = now.saturating_sub(1),
         }
@@ -273,6 +296,8 @@ fn binary(name: &str) -> Option<fn(f64, f64) -> f64> {
 /// The recursive-descent parser of the module's grammar, writing the program as it goes.
 struct Parser<'a> {
     text: &'a str,
+    /// Whether `z` is a variable (formulas over a surface in space).
+    space: bool,
     /// Byte offset of the next character.
     pos: usize,
     nesting: usize,
@@ -496,12 +521,25 @@ impl Parser<'_> {
             self.program.push(Op::X);
         } else if name == "y" {
             self.program.push(Op::Y);
+        } else if name == "z" && self.space {
+            self.program.push(Op::Z);
         } else if unary(name).is_some() || binary(name).is_some() {
             return Err(self.error(format!("expected \"(\" after the function {name:?}")));
         } else {
             return Err(self.error_at(
                 start,
-                format!("unknown name {name:?} (the variables are x and y; constants pi, e, tau)"),
+                if self.space {
+                    format!(
+                        "unknown name {name:?} (the variables are x, y and z; constants pi, e, tau)"
+                    )
+                } else if name == "z" {
+                    "unknown name \"z\" (the variables are x and y; z only over a surface in space)"
+                        .to_string()
+                } else {
+                    format!(
+                        "unknown name {name:?} (the variables are x and y; constants pi, e, tau)"
+                    )
+                },
             ));
         }
         Ok(())
@@ -618,7 +656,7 @@ mod tests {
             ),
             (
                 "z + 1",
-                "column 1: unknown name \"z\" (the variables are x and y; constants pi, e, tau)",
+                "column 1: unknown name \"z\" (the variables are x and y; z only over a surface in space)",
             ),
             ("sin(", "at its end: expected a number, a name or \"(\""),
             (
@@ -669,5 +707,15 @@ mod tests {
         assert!(e.contains("nested more than 256 deep"), "{e}");
         let e = Formula::parse(&"-".repeat(1000)).unwrap_err().to_string();
         assert!(e.contains("nested more than 256 deep"), "{e}");
+    }
+
+    #[test]
+    fn z_is_a_variable_only_over_a_surface() {
+        let f = Formula::parse_xyz("x*z + y^2 - z").unwrap();
+        assert_eq!(f.at_xyz(2.0, 3.0, 4.0), 8.0 + 9.0 - 4.0);
+        let e = Formula::parse("x*z").unwrap_err().to_string();
+        assert!(e.contains("z only over a surface in space"), "{e}");
+        let e = Formula::parse_xyz("w").unwrap_err().to_string();
+        assert!(e.contains("the variables are x, y and z"), "{e}");
     }
 }

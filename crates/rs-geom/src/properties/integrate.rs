@@ -35,6 +35,12 @@ pub(crate) struct DomainIntegral {
 /// The relative tolerance of the integrals, against the integrand's size times the box.
 const TOLERANCE: f64 = 16.0 * f64::EPSILON;
 
+/// The most evaluations of the integrand for one face: the adaptive rules nest (an inner
+/// integral at every node of the outer one), so their own interval limits alone would allow
+/// hours on a singular integrand. Past it the integrand reads as zero and the integral is
+/// reported as not converged. Real faces take a few hundred thousand.
+pub(crate) const MAX_EVALUATIONS: usize = 20_000_000;
+
 /// `int int_D g(u, v) du dv` of the `dim` components `g` writes into its output (returning
 /// their magnitude, the size of the terms they are sums of, for the rounding test) over the
 /// domain `domain`, split at the surface's knot lines (`[u values, v values]`), each
@@ -47,6 +53,17 @@ pub(crate) fn integrate_over_domain(
     dim: usize,
     g: &dyn Fn([f64; 2], &mut [f64]) -> f64,
 ) -> Option<DomainIntegral> {
+    let evaluations = std::cell::Cell::new(0usize);
+    let budgeted = |uv: [f64; 2], out: &mut [f64]| -> f64 {
+        let n = evaluations.get();
+        if n >= MAX_EVALUATIONS {
+            out.fill(0.0);
+            return 0.0;
+        }
+        evaluations.set(n + 1);
+        g(uv, out)
+    };
+    let g: &dyn Fn([f64; 2], &mut [f64]) -> f64 = &budgeted;
     let b = domain.bounding_box();
     let (lo, hi) = ([b.min.x, b.min.y], [b.max.x, b.max.y]);
     let inside = |k: usize| lines[k].iter().filter(|&&l| lo[k] < l && l < hi[k]).count();
@@ -115,7 +132,7 @@ pub(crate) fn integrate_over_domain(
     finite.then_some(DomainIntegral {
         values,
         error: outer_error + inner_error * variation,
-        converged: converged && inner_converged,
+        converged: converged && inner_converged && evaluations.get() < MAX_EVALUATIONS,
     })
 }
 

@@ -20,6 +20,9 @@
 //! ([`FaceProperties::error`], relative to the model's size).
 
 mod integrate;
+mod surface_integral;
+
+pub use surface_integral::SurfaceIntegral;
 
 use nalgebra::{Matrix3, SymmetricEigen};
 use thiserror::Error;
@@ -104,6 +107,16 @@ pub enum PropertiesError {
         index: usize,
         /// Its entity.
         entity: String,
+    },
+    /// A function integrated over a face that is not finite at a point of the face.
+    #[error("face {index} ({entity}): the function is not finite at ({}, {}, {})", at[0], at[1], at[2])]
+    FunctionNotFinite {
+        /// The face's index.
+        index: usize,
+        /// Its entity.
+        entity: String,
+        /// The first point found where it is not.
+        at: [f64; 3],
     },
     /// A solid with an open shell: its volume is not defined.
     #[error(
@@ -336,8 +349,11 @@ impl Model {
             .collect()
     }
 
-    /// The integrals of face `index` in `frame`'s coordinates.
-    fn face_integrals(&self, index: usize, frame: Frame) -> Result<FaceIntegrals, PropertiesError> {
+    /// Face `index`'s domain, the face and its surface.
+    fn face_parts(
+        &self,
+        index: usize,
+    ) -> Result<(rs_spline::Domain, &crate::brep::Face, &Surface), PropertiesError> {
         let domain = self.face_domain(index, None)?;
         let face = &self.faces[index];
         let surface = face
@@ -351,6 +367,12 @@ impl Model {
                     .as_ref()
                     .map_or_else(|| "not read".to_string(), FaceError::to_string),
             })?;
+        Ok((domain, face, surface))
+    }
+
+    /// The integrals of face `index` in `frame`'s coordinates.
+    fn face_integrals(&self, index: usize, frame: Frame) -> Result<FaceIntegrals, PropertiesError> {
+        let (domain, face, surface) = self.face_parts(index)?;
         let sense = if face.same_sense { 1.0 } else { -1.0 };
         let g = |uv: [f64; 2], out: &mut [f64]| integrand(surface, frame, sense, uv, out);
         let [u_lines, v_lines] = surface.knot_lines();

@@ -328,3 +328,38 @@ fn a_patch_with_knots_on_a_rectangle() {
     }
     close(got, want, "area of the patch");
 }
+
+/// `int z^2 dA` over a sphere about `c`: `4 pi r^2 c_z^2 + r^2 (4 pi r^2 / 3)`; a function
+/// that is not finite on the face is an error naming a point.
+#[test]
+fn a_surface_integral_over_a_sphere() {
+    let (r, c) = (2.0, Point3::new(1.0, 2.0, 3.0));
+    let sphere = Surface::Sphere(Sphere::new(tilted(c), r).unwrap());
+    let m = solid(
+        vec![face(
+            sphere,
+            vec![rectangle(0.0, TAU, -PI / 2.0, PI / 2.0)],
+            true,
+        )],
+        false,
+    );
+    let got = m.surface_integral(0, &|p| p.z * p.z).unwrap();
+    let area = 4.0 * PI * r * r;
+    close(
+        got.value,
+        area * c.z * c.z + r * r * area / 3.0,
+        "int z^2 dA",
+    );
+    assert!(got.converged);
+    close(
+        m.surface_integral(0, &|_| 1.0).unwrap().value,
+        area,
+        "int 1 dA",
+    );
+    let e = m.surface_integral(0, &|p| (p.z - c.z).sqrt()).unwrap_err();
+    assert!(
+        matches!(e, PropertiesError::FunctionNotFinite { .. })
+            || e.to_string().contains("not finite"),
+        "{e}"
+    );
+}
