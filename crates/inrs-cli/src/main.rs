@@ -14,7 +14,7 @@ use clap::{Parser, Subcommand};
 use cli::error::CliError;
 use commands::{
     classify, convert, convex_domain, cubature, eval, fit, fractions, info, integrate, mesh,
-    sample, winding,
+    properties, sample, winding,
 };
 
 /// Exact point containment for planar domains bounded by NURBS curves.
@@ -44,6 +44,7 @@ enum Command {
     Fractions(fractions::FractionsArgs),
     Cubature(cubature::CubatureArgs),
     Integrate(integrate::IntegrateArgs),
+    Properties(properties::PropertiesArgs),
 }
 
 impl Command {
@@ -61,6 +62,7 @@ impl Command {
             Command::Fractions(a) => a.run(),
             Command::Cubature(a) => a.run(),
             Command::Integrate(a) => a.run(),
+            Command::Properties(a) => a.run(),
         }
     }
 }

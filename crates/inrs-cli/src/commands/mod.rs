@@ -11,5 +11,6 @@ pub(crate) mod fractions;
 pub(crate) mod info;
 pub(crate) mod integrate;
 pub(crate) mod mesh;
+pub(crate) mod properties;
 pub(crate) mod sample;
 pub(crate) mod winding;
