@@ -91,10 +91,10 @@ impl PropertiesArgs {
         };
         report.require_some(file)?;
         report.warn_unconverged(&spec);
-        let unit = model
-            .length_unit
-            .as_ref()
-            .map(|u| u.name.to_ascii_lowercase());
+        let unit = model.length_unit.as_ref().map(|u| {
+            u.symbol()
+                .map_or_else(|| u.name.to_ascii_lowercase(), str::to_string)
+        });
         let text = if self.json {
             report.json(unit.as_deref())
         } else {

@@ -40,6 +40,39 @@ pub struct LengthUnit {
     pub millimetres: f64,
 }
 
+impl LengthUnit {
+    /// The unit's usual symbol (`mm`, `cm`, `m`, `km`, `um`, `nm`, `in`, `ft`, `yd`, `mi`,
+    /// `mil`, `uin`), from its length in millimetres; `None` for another length.
+    ///
+    /// ```
+    /// use rs_geom::brep::LengthUnit;
+    /// let unit = |name: &str, millimetres| LengthUnit { name: name.into(), millimetres };
+    /// assert_eq!(unit("MILLIMETRE", 1.0).symbol(), Some("mm"));
+    /// assert_eq!(unit("INCH", 25.4).symbol(), Some("in"));
+    /// assert_eq!(unit("FURLONG", 201_168.0).symbol(), None);
+    /// ```
+    pub fn symbol(&self) -> Option<&'static str> {
+        const SYMBOLS: [(f64, &str); 12] = [
+            (1.0, "mm"),
+            (10.0, "cm"),
+            (1000.0, "m"),
+            (1e6, "km"),
+            (1e-3, "um"),
+            (1e-6, "nm"),
+            (25.4, "in"),
+            (304.8, "ft"),
+            (914.4, "yd"),
+            (1_609_344.0, "mi"),
+            (0.0254, "mil"),
+            (2.54e-5, "uin"),
+        ];
+        SYMBOLS
+            .iter()
+            .find(|(mm, _)| (self.millimetres - mm).abs() <= 1e-12 * mm)
+            .map(|&(_, s)| s)
+    }
+}
+
 /// One face: a patch of a surface bounded by trimming loops in the surface's `(u, v)`.
 #[derive(Clone, Debug)]
 pub struct Face {
