@@ -436,3 +436,81 @@ fn json_is_the_librarys_numbers_bit_for_bit() {
         }
     }
 }
+
+/// `inrs integrate --over surface`: `int f(x, y, z) dA` over a face in space. On the unit
+/// spherical void of `box_void.step` (face 6): `int 1 = 4 pi`, `int z^2 = 4 pi / 3`,
+/// `int x z = 0`; over a 4 x 4 face of the box at x = -2: `int x dA = -32`. Options of the
+/// parameter-space rule and selections other than one face are refused in one line.
+#[test]
+fn integrate_over_a_face_in_space() {
+    let sphere = fixture("cad/box_void.step#face:6");
+    let over = |spec: &str, function: &str| -> f64 {
+        let text = inrs_ok(&[
+            "integrate",
+            "--domain",
+            spec,
+            "--function",
+            function,
+            "--over",
+            "surface",
+        ]);
+        text.trim().parse().unwrap()
+    };
+    assert!(close(over(&sphere, "1"), 4.0 * PI, 1e-13));
+    assert!(close(over(&sphere, "z^2"), 4.0 * PI / 3.0, 1e-13));
+    assert!(over(&sphere, "x*z").abs() < 1e-13);
+    assert!(close(
+        over(&fixture("cad/box_void.step#face:0"), "x"),
+        -32.0,
+        1e-13
+    ));
+    // The parameter-space meaning stays the default: the (u, v) area of a 4 x 4 plane face.
+    let text = inrs_ok(&[
+        "integrate",
+        "--domain",
+        &fixture("cad/box_void.step#face:0"),
+        "--function",
+        "1",
+    ]);
+    assert!(close(text.trim().parse().unwrap(), 16.0, 1e-12));
+    for (args, says) in [
+        (
+            vec!["--over", "surface", "--degree", "4"],
+            "do not apply to --over surface",
+        ),
+        (
+            vec!["--over", "surface", "--fill-rule", "nonzero"],
+            "do not apply to --over surface",
+        ),
+    ] {
+        let mut all = vec!["integrate", "--domain", &sphere, "--function", "1"];
+        all.extend(args);
+        let (code, _, err) = failure(&all);
+        assert_eq!(code, Some(1));
+        assert!(
+            err.contains(says) && err.trim().lines().count() == 1,
+            "{err}"
+        );
+    }
+    let whole = fixture("cad/box_void.step");
+    let (_, _, err) = failure(&[
+        "integrate",
+        "--domain",
+        &whole,
+        "--function",
+        "1",
+        "--over",
+        "surface",
+    ]);
+    assert!(err.contains("give --domain part.step#face:K"), "{err}");
+    let (_, _, err) = failure(&[
+        "integrate",
+        "--domain",
+        &sphere,
+        "--function",
+        "z",
+        "--degree",
+        "4",
+    ]);
+    assert!(err.contains("z only over a surface in space"), "{err}");
+}
