@@ -11,6 +11,7 @@ mod locator;
 mod paper;
 mod peers;
 mod plots;
+mod properties;
 
 use std::path::Path;
 use std::time::Instant;
@@ -32,8 +33,16 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 8] = [
-    "paper", "locator", "gwn", "shapes", "build", "cli", "coverage", "cubature",
+const SECTIONS: [&str; 9] = [
+    "paper",
+    "locator",
+    "gwn",
+    "shapes",
+    "build",
+    "cli",
+    "coverage",
+    "cubature",
+    "properties",
 ];
 
 fn names(list: &[&str]) -> Vec<String> {
@@ -266,6 +275,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
             })
             .collect::<Result<Vec<_>, String>>()?;
         cubature::section(&mut md, &paper, o)?;
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("properties") {
+        properties::section(&mut md, root, o)?;
     }
     write_report(root, o, &md, &csv, true)
 }
