@@ -2,13 +2,14 @@
 //! and `inrs.cad_faces(path)` (the faces as `inrs info part.step` lists them), from the
 //! library's `CadModel`.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
 use inrs::geom::ParamSurface;
 use inrs::geom::brep::Edge;
+use inrs::geom::properties::{FaceProperties, ModelProperties, SolidProperties};
 use inrs::io::cad::{CadFaceSummary, CadModel};
 
 use crate::domain::{NativeDomain, check_closure_tol};
@@ -125,6 +126,58 @@ fn read(py: Python<'_>, path: &str, closure_tol: Option<f64>) -> PyResult<ReadMo
 pub(crate) struct NativeCadModel {
     model: Arc<CadModel>,
     faces: Vec<(Py<CadFace>, Option<Py<NativeDomain>>)>,
+    /// `Model::properties()`, computed on first use (once, whichever thread asks first).
+    properties: OnceLock<ModelProperties>,
+}
+
+/// A face's properties as Python sees them: `(area, centroid, second_moments, error,
+/// converged)`.
+type FaceRow = (f64, [f64; 3], [[f64; 3]; 3], f64, bool);
+
+/// A solid's properties as Python sees them: `(volume, area, centroid, inertia,
+/// principal_moments, principal_axes, error, converged)`.
+type SolidRow = (
+    f64,
+    f64,
+    [f64; 3],
+    [[f64; 3]; 3],
+    [f64; 3],
+    [[f64; 3]; 3],
+    f64,
+    bool,
+);
+
+/// One face's or solid's properties: the row, or the library's message.
+type Row<T> = (Option<T>, Option<String>);
+
+fn face_row(p: &FaceProperties) -> FaceRow {
+    (
+        p.area,
+        p.centroid.to_array(),
+        p.second_moments,
+        p.error,
+        p.converged,
+    )
+}
+
+fn solid_row(p: &SolidProperties) -> SolidRow {
+    (
+        p.volume,
+        p.area,
+        p.centroid.to_array(),
+        p.inertia,
+        p.principal_moments,
+        p.principal_axes.map(|a| a.to_array()),
+        p.error,
+        p.converged,
+    )
+}
+
+fn row<P, T>(r: &Result<P, impl ToString>, f: impl Fn(&P) -> T) -> Row<T> {
+    match r {
+        Ok(p) => (Some(f(p)), None),
+        Err(e) => (None, Some(e.to_string())),
+    }
 }
 
 impl NativeCadModel {
@@ -174,7 +227,19 @@ impl NativeCadModel {
         Ok(Self {
             model: Arc::new(model),
             faces,
+            properties: OnceLock::new(),
         })
+    }
+
+    /// Every face's and every solid's properties (`Model::properties()`, computed once with
+    /// the GIL released and kept): `(faces, solids)`, each a list of `(row, message)` with
+    /// one of the two `None`.
+    fn properties(&self, py: Python<'_>) -> (Vec<Row<FaceRow>>, Vec<Row<SolidRow>>) {
+        let p = self.computed(py);
+        (
+            p.faces.iter().map(|r| row(r, face_row)).collect(),
+            p.solids.iter().map(|r| row(r, solid_row)).collect(),
+        )
     }
 
     /// `"STEP"` or `"IGES"`.
@@ -307,6 +372,15 @@ impl NativeCadModel {
 }
 
 impl NativeCadModel {
+    /// The model's properties, computed on first use with the GIL released (a second thread
+    /// asking meanwhile waits for the first's, also without the GIL).
+    fn computed(&self, py: Python<'_>) -> &ModelProperties {
+        if let Some(p) = self.properties.get() {
+            return p;
+        }
+        py.detach(|| self.properties.get_or_init(|| self.model.properties()))
+    }
+
     fn surface(&self, face: usize) -> PyResult<&inrs::geom::Surface> {
         let f = self.face(face)?;
         f.surface.as_ref().ok_or_else(|| {

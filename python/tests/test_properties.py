@@ -1,0 +1,539 @@
+"""Mass properties of CAD faces and solids (``CadModel.properties``) against closed forms and
+against OpenCASCADE's ``BRepGProp``.
+
+(a) Parts OCC makes (sphere, tilted torus, tilted cylinder, cone frustum, box with a
+cylindrical hole, a revolved polygon, box with a spherical void), written to STEP: volume, area,
+centroid and inertia within 1e-12 of their closed forms. (b) Every face and solid of the test
+parts of ``cad_parts`` (STEP, IGES faces mode, IGES B-rep mode) and of the real files of
+``test_cad_occ`` (freecad-common's IDF library, gmsh-doc's demos): area, volume, centroid and
+inertia within 1e-7 of ``BRepGProp`` at ``eps = 1e-9`` (relative to the quantity; centroids to
+the part's size; tensors to their largest component). (c) Where a closed form exists, ours is
+no farther from it than ``BRepGProp``'s at ``eps = 1e-9`` (or within 1e-15 of it).
+
+Also the Python API: the native call made once, errors as ``ValueError``, threads, pickling.
+Without OCP or the files the OCC tests skip with a message, and fail instead under
+``INRS_REQUIRE_SYSTEM_FILES=1``. ``pytest -s`` prints the worst differences seen.
+"""
+
+from __future__ import annotations
+
+import math
+import pathlib
+import pickle
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import inrs
+
+import cad_files
+
+try:
+    cad_files.load_ocp()
+    OCP_ERROR = None
+except ImportError as e:
+    OCP_ERROR = f"OCP is not installed (pip install cadquery-ocp-novtk): {e}"
+
+FIXTURES = pathlib.Path(__file__).resolve().parents[2] / "fixtures" / "cad"
+
+#: ``BRepGProp``'s relative accuracy in (b) and (c).
+OCC_EPS = 1e-9
+#: Agreement with ``BRepGProp`` (b).
+OCC_REL = 1e-7
+#: Agreement with the closed forms (a).
+CLOSED_REL = 1e-12
+#: Below this relative difference (c) calls ours and OCC's equal.
+EQUAL_REL = 1e-15
+
+#: The worst relative differences from OCC seen, per quantity: ``(value, where)``.
+WORST: dict = {}
+
+
+def unavailable(message: str) -> None:
+    """Skips with ``message``, or fails where the system files are required."""
+    if cad_files.require_system_files():
+        pytest.fail(f"{message} (INRS_REQUIRE_SYSTEM_FILES=1)", pytrace=False)
+    pytest.skip(message)
+
+
+def need_ocp() -> None:
+    if OCP_ERROR is not None:
+        unavailable(OCP_ERROR)
+
+
+@pytest.fixture(scope="module", autouse=True)
+def report_worst():
+    yield
+    if WORST:
+        print("\nWorst relative differences from BRepGProp (eps %g):" % OCC_EPS)
+        for what, (value, where) in sorted(WORST.items()):
+            print(f"  {what:>22}: {value:.2e}  ({where})")
+
+
+# --- the API (no OCP) ------------------------------------------------------------------------
+
+
+def box_void() -> inrs.CadModel:
+    return inrs.cad_model(FIXTURES / "box_void.step")
+
+
+def test_properties_of_a_solid_with_a_void():
+    m = box_void()
+    p = m.properties()
+    assert isinstance(p, inrs.CadProperties)
+    assert len(p.faces) == len(m.faces) and len(p.solids) == len(m.solids) == 1
+    assert p.face_errors == [None] * len(m.faces) and p.solid_errors == [None]
+    s = m.solids[0]
+    volume = 64 - 4 / 3 * math.pi
+    assert s.volume == pytest.approx(volume, rel=1e-13)
+    assert s.area == pytest.approx(96 + 4 * math.pi, rel=1e-13)
+    assert s.centroid.shape == (3,) and np.abs(s.centroid).max() < 1e-13
+    inertia = 64 * 32 / 12 - 2 / 5 * (4 / 3 * math.pi)
+    assert s.inertia.shape == (3, 3)
+    np.testing.assert_allclose(s.inertia, inertia * np.eye(3), rtol=0, atol=1e-12 * inertia)
+    np.testing.assert_allclose(s.principal_moments, [inertia] * 3, rtol=1e-12)
+    axes = s.principal_axes
+    np.testing.assert_allclose(axes @ axes.T, np.eye(3), atol=1e-12)
+    # The attributes read the cached properties: one native call, the same objects.
+    assert m.properties() is p and s.properties is p.solids[0]
+    assert m.faces[3].properties is p.faces[3] and m.faces[3].centroid is p.faces[3].centroid
+    assert sum(f.surface_area for f in m.faces) == pytest.approx(s.area, rel=1e-14)
+    # The arrays are shared, so read-only.
+    with pytest.raises(ValueError):
+        s.centroid[0] = 1.0
+    # A face's second moments: the sphere's (the void, face 6), r^2 A / 3 I about its centre.
+    sphere = m.faces[6]
+    assert sphere.surface_area == pytest.approx(4 * math.pi, rel=1e-13)
+    np.testing.assert_allclose(sphere.second_moments, 4 * math.pi / 3 * np.eye(3), atol=1e-12)
+
+
+def test_properties_pickle_and_solids_without_their_model():
+    m = box_void()
+    p = m.properties()
+    q = pickle.loads(pickle.dumps(p))
+    assert q.solids[0].volume == p.solids[0].volume
+    np.testing.assert_array_equal(q.solids[0].inertia, p.solids[0].inertia)
+    s = pickle.loads(pickle.dumps(m.solids[0]))
+    assert s == m.solids[0] and tuple(s) == tuple(m.solids[0]) and len(s) == 3
+    with pytest.raises(ValueError, match="no model"):
+        s.volume
+
+
+def test_faces_without_a_model_have_no_properties():
+    face = inrs.cad_faces(FIXTURES / "box_void.step")[0]
+    with pytest.raises(ValueError, match="cad_model"):
+        face.centroid
+
+
+def test_threads_share_one_computation():
+    m = box_void()
+    results, barrier = [], threading.Barrier(8)
+
+    def work():
+        barrier.wait()
+        results.append(m.properties())
+
+    threads = [threading.Thread(target=work) for _ in range(8)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 8 and all(r is results[0] for r in results)
+
+
+# --- OCC's properties --------------------------------------------------------------------------
+
+
+def occ_props(shape, volume: bool, eps: float = OCC_EPS):
+    """``BRepGProp``'s volume (``volume``) or surface properties of ``shape`` at ``eps``:
+    ``(mass, centroid, inertia about the centroid)``."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    props = GProp_GProps()
+    if volume:
+        BRepGProp.VolumeProperties_s(shape, props, eps)
+    else:
+        BRepGProp.SurfaceProperties_s(shape, props, eps)
+    c = props.CentreOfMass()
+    m = props.MatrixOfInertia()
+    inertia = np.array([[m.Value(i, j) for j in (1, 2, 3)] for i in (1, 2, 3)])
+    return props.Mass(), np.array([c.X(), c.Y(), c.Z()]), inertia
+
+
+def face_inertia(second_moments: np.ndarray) -> np.ndarray:
+    """A face's inertia tensor (OCC's ``MatrixOfInertia`` of an area) from its second moments
+    about its centroid: ``tr(S) I - S``."""
+    return np.trace(second_moments) * np.eye(3) - second_moments
+
+
+def note(what: str, value: float, where: str) -> None:
+    if value > WORST.get(what, (-1.0, ""))[0]:
+        WORST[what] = (value, where)
+
+
+def compare(what: str, where: str, ours, theirs, size: float, power: int, problems: list) -> None:
+    """Records and checks ``ours`` against OCC's ``(mass, centroid, inertia)``: the mass
+    relative to itself, the centroid to ``size``, the inertia to its largest component
+    (``power``: the mass's dimension, for the zero-mass case)."""
+    mass, centroid, inertia = ours
+    m, c, i = theirs
+    scale = max(abs(m), 1e-300)
+    d_mass = abs(mass - m) / scale
+    d_centroid = np.abs(centroid - c).max() / size
+    d_inertia = np.abs(inertia - i).max() / max(np.abs(i).max(), size ** (power + 2) * 1e-300)
+    for q, d in ((what, d_mass), (f"{what} centroid", d_centroid), (f"{what} inertia", d_inertia)):
+        note(q, d, where)
+        if not d <= OCC_REL:
+            problems.append(f"{where}: {q} differs by {d:.2e} (ours {mass!r}, OCC {m!r})")
+
+
+def check_against_occ(path: pathlib.Path, name: str) -> None:
+    """Every face (area, centroid, inertia of the area) and solid (volume, centroid, inertia,
+    and boundary area) of ``path`` against ``BRepGProp``, faces in OCC's explorer order."""
+    from OCP.TopAbs import TopAbs_SOLID
+
+    import cad_parts
+
+    occ = cad_files.OccFile.read(path)
+    shape = cad_parts.read_shape(path)
+    model = inrs.cad_model(path, **cad_files.closure_kwargs())
+    props = model.properties()
+    assert len(props.faces) == len(occ.faces), f"{name}: {len(props.faces)} faces, OCC {len(occ.faces)}"
+    mm = occ.mm_per_unit  # OCC's lengths are millimetres, ours the file's unit
+    size = occ.size / mm
+    problems = [f"{name}: face {k}: {e}" for k, e in enumerate(props.face_errors) if e is not None]
+    for k, (ours, face) in enumerate(zip(props.faces, occ.faces)):
+        if ours is None:
+            continue
+        m, c, i = occ_props(face, volume=False)
+        theirs = (m / mm**2, c / mm, i / mm**4)
+        mine = (ours.area, ours.centroid, face_inertia(ours.second_moments))
+        compare("face area", f"{name} face {k}", mine, theirs, size, 2, problems)
+    solids = cad_parts._explore(shape, TopAbs_SOLID)
+    assert len(props.solids) == len(solids), f"{name}: {len(props.solids)} solids, OCC {len(solids)}"
+    for k, (ours, solid) in enumerate(zip(props.solids, solids)):
+        if ours is None:
+            problems.append(f"{name}: solid {k}: {props.solid_errors[k]}")
+            continue
+        m, c, i = occ_props(solid, volume=True)
+        theirs = (m / mm**3, c / mm, i / mm**5)
+        compare("volume", f"{name} solid {k}", (ours.volume, ours.centroid, ours.inertia), theirs, size, 3, problems)
+        a = occ_props(solid, volume=False)[0] / mm**2
+        d = abs(ours.area - a) / a
+        note("solid area", d, f"{name} solid {k}")
+        if not d <= OCC_REL:
+            problems.append(f"{name}: solid {k}: boundary area differs by {d:.2e}")
+    known = OCC_WRONG.get(name)
+    if known is not None:
+        assert problems, f"{name}: agrees with OCC now: remove it from OCC_WRONG"
+        pytest.xfail(f"{name}: {known}: " + "; ".join(problems))
+    assert not problems, "\n".join(problems)
+
+
+_IGES_REVOLUTION = (
+    "BRepGProp at eps 1e-9 integrates the faces that IGES faces mode writes as surfaces of "
+    "revolution (sphere, torus, cylinder and cone pieces) coarsely: the sphere's centroid off "
+    "by 9.4e-7 and its inertia by 7.1e-4 of the closed form (ours 4.5e-11, 4.3e-11, the file's "
+    "rounding); at eps 1e-12 OCC's inertia comes within 1.9e-6 of ours"
+)
+#: Files where BRepGProp at eps 1e-9 is wrong, not us (closed forms, and OCC converging
+#: to our values at eps 1e-12; measured, see the reasons).
+OCC_WRONG = {
+    "sphere.igs": _IGES_REVOLUTION,
+    "torus.igs": _IGES_REVOLUTION,
+    "cone_minus_sphere.igs": _IGES_REVOLUTION,
+    "fused_cylinders.igs": _IGES_REVOLUTION,
+    "filleted_plate.igs": _IGES_REVOLUTION,
+    "box_void.igs": _IGES_REVOLUTION,
+    "torus.step": "BRepGProp's inertia of the torus is 1.1e-7 off its closed form (ours 1.4e-13)",
+    "torus_brep.igs": "BRepGProp's inertia of the torus is 1.1e-7 off its closed form (ours 1.4e-13)",
+    **{
+        name: "BRepGProp at eps 1e-9 is off on the surface of revolution: volume 2.2e-7 from the "
+        "closed form (cad_parts), centroid 3.6e-4 off the axis, I_xx != I_yy by 1%; at eps 1e-12 "
+        "3.3e-11, 9.4e-7; ours 2.8e-14, 5.5e-14, I_xx = I_yy"
+        for name in ("revolved_bspline.step", "revolved_bspline.igs", "revolved_bspline_brep.igs")
+    },
+    **{
+        name: "BRepGProp at eps 1e-9 is off on the rational B-spline hole: area 2.1e-7 from 4 pi "
+        "(1.1e-9 at eps 1e-12), the solid's inertia 3.0e-7 from the closed form; ours 1.4e-13, 2.3e-14"
+        for name in ("bspline_box_hole.step", "bspline_box_hole.igs", "bspline_box_hole_brep.igs")
+    },
+}
+
+
+# --- (b) the test parts and the real files against BRepGProp ---------------------------------
+
+
+@pytest.fixture(scope="module")
+def parts(tmp_path_factory):
+    need_ocp()
+    import cad_parts
+
+    cad_parts.quiet()
+    return cad_parts.write_parts(tmp_path_factory.mktemp("parts"))
+
+
+def _part_names():
+    try:
+        import cad_parts
+
+        return list(cad_parts.PARTS)
+    except ImportError:  # pragma: no cover
+        return []
+
+
+@pytest.mark.parametrize("kind", ["step", "iges", "iges_brep"])
+@pytest.mark.parametrize("name", _part_names())
+def test_parts_agree_with_occ(name, kind, parts):
+    path = parts[name].files()[kind]
+    check_against_occ(path, path.name)
+
+
+@pytest.fixture(scope="module")
+def scratch(tmp_path_factory):
+    return tmp_path_factory.mktemp("real")
+
+
+@pytest.mark.parametrize("name", [n for n, _ in cad_files.all_files()])
+def test_real_files_agree_with_occ(name, scratch):
+    need_ocp()
+    source = dict(cad_files.all_files())[name]
+    if not source.exists():
+        unavailable(cad_files.missing_message(source))
+    check_against_occ(cad_files.materialize(source, scratch), name)
+
+
+# --- (a), (c) closed forms -------------------------------------------------------------------
+
+
+def _ax2(origin, axis):
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+
+    return gp_Ax2(gp_Pnt(*origin), gp_Dir(*axis))
+
+
+def _about_axis(axial: float, transverse: float, axis) -> np.ndarray:
+    """The inertia tensor with moment ``axial`` about the unit direction of ``axis`` and
+    ``transverse`` about every perpendicular one."""
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    return axial * np.outer(a, a) + transverse * (np.eye(3) - np.outer(a, a))
+
+
+def _box(lo, size):
+    """Volume, centroid and inertia (about the centroid) of the box at ``lo`` of ``size``."""
+    a, b, c = size
+    v = a * b * c
+    return v, np.asarray(lo, float) + np.asarray(size) / 2, np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) * v / 12
+
+
+def _shifted(v, centroid, inertia, to) -> np.ndarray:
+    """Parallel axes: ``inertia`` (about ``centroid``) about the point ``to``."""
+    d = np.asarray(centroid, float) - np.asarray(to, float)
+    return inertia + v * (d @ d * np.eye(3) - np.outer(d, d))
+
+
+def sphere_part():
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeSphere
+    from OCP.gp import gp_Pnt
+
+    c, r = (1.0, 2.0, 3.0), 2.0
+    v = 4 / 3 * math.pi * r**3
+    return BRepPrimAPI_MakeSphere(gp_Pnt(*c), r).Shape(), (v, 4 * math.pi * r * r, c, 2 / 5 * v * r * r * np.eye(3))
+
+
+def torus_part():
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeTorus
+
+    c, axis, big, small = (0.5, -1.0, 2.0), (1.0, 1.0, 1.0), 3.0, 1.0
+    v = 2 * math.pi**2 * big * small**2
+    inertia = _about_axis(v * (big**2 + 3 / 4 * small**2), v * (big**2 / 2 + 5 / 8 * small**2), axis)
+    return BRepPrimAPI_MakeTorus(_ax2(c, axis), big, small).Shape(), (v, 4 * math.pi**2 * big * small, c, inertia)
+
+
+def cylinder_part():
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
+
+    base, axis, r, h = (1.0, -2.0, 0.5), (1.0, 2.0, -2.0), 1.5, 4.0
+    a = np.asarray(axis) / 3.0
+    v = math.pi * r * r * h
+    inertia = _about_axis(v * r * r / 2, v * (3 * r * r + h * h) / 12, axis)
+    area = 2 * math.pi * r * h + 2 * math.pi * r * r
+    return BRepPrimAPI_MakeCylinder(_ax2(base, axis), r, h).Shape(), (v, area, np.asarray(base) + h / 2 * a, inertia)
+
+
+def frustum_part():
+    """A cone frustum of radii 2 (base) and 0.5 (top), height 3, tilted: its properties from
+    the discs' integrals (polynomials in z, exact)."""
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCone
+
+    base, axis, r1, r2, h = (0.0, 1.0, -1.0), (0.0, 3.0, 4.0), 2.0, 0.5, 3.0
+    a = np.asarray(axis) / 5.0
+    radius = np.polynomial.Polynomial([r1, (r2 - r1) / h])
+    z = np.polynomial.Polynomial([0.0, 1.0])
+
+    def integral(p):
+        q = p.integ()
+        return q(h) - q(0)
+
+    v = integral(math.pi * radius**2)
+    zc = integral(math.pi * radius**2 * z) / v
+    axial = integral(math.pi * radius**4 / 2)
+    transverse = integral(math.pi * radius**4 / 4 + math.pi * radius**2 * z**2) - v * zc * zc
+    area = math.pi * (r1 + r2) * math.hypot(r1 - r2, h) + math.pi * (r1 * r1 + r2 * r2)
+    inertia = _about_axis(axial, transverse, axis)
+    return BRepPrimAPI_MakeCone(_ax2(base, axis), r1, r2, h).Shape(), (v, area, np.asarray(base) + zc * a, inertia)
+
+
+def holed_box_part():
+    """The box [0, 5] x [0, 4] x [0, 2] less a vertical cylinder of radius 1 about (3, 1.5)."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
+
+    size, (hx, hy, r) = (5.0, 4.0, 2.0), (3.0, 1.5, 1.0)
+    box = BRepPrimAPI_MakeBox(*size).Shape()
+    drill = BRepPrimAPI_MakeCylinder(_ax2((hx, hy, -1.0), (0, 0, 1)), r, size[2] + 2).Shape()
+    cut = BRepAlgoAPI_Cut(box, drill)
+    cut.Build()
+    vb, cb, ib = _box((0, 0, 0), size)
+    h = size[2]
+    vh, ch = math.pi * r * r * h, np.array([hx, hy, h / 2])
+    ih = _about_axis(vh * r * r / 2, vh * (3 * r * r + h * h) / 12, (0, 0, 1))
+    v = vb - vh
+    c = (vb * cb - vh * ch) / v
+    inertia = _shifted(vb, cb, ib, c) - _shifted(vh, ch, ih, c)
+    area = 2 * (size[0] * size[1] + size[1] * size[2] + size[0] * size[2]) - 2 * math.pi * r * r + 2 * math.pi * r * h
+    return cut.Shape(), (v, area, c, inertia)
+
+
+#: The revolved polygon, in the (x, z) half plane: (radius, height) corners.
+PROFILE = [(1.0, 0.0), (3.0, 0.5), (2.5, 2.0), (1.5, 1.5)]
+
+
+def revolved_part():
+    """The polygon :data:`PROFILE` revolved a full turn about z: Pappus's volume (2 pi times
+    its area times its centroid's radius) and area (2 pi times each edge's length times its
+    midpoint's radius); the centroid on the axis at ``int z x dA / int x dA``."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeRevol
+    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt
+
+    poly = BRepBuilderAPI_MakePolygon()
+    for x, z in PROFILE:
+        poly.Add(gp_Pnt(x, 0.0, z))
+    poly.Close()
+    face = BRepBuilderAPI_MakeFace(poly.Wire()).Face()
+    shape = BRepPrimAPI_MakeRevol(face, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2 * math.pi).Shape()
+    pts = PROFILE + PROFILE[:1]
+    volume = 2 * math.pi * _polygon_integral(lambda x, z: x * x / 2)  # 2 pi int x dA
+    surface = sum(2 * math.pi * math.dist(p, q) * (p[0] + q[0]) / 2 for p, q in zip(pts, pts[1:]))
+    zc = 2 * math.pi * _polygon_integral(lambda x, z: x * x * z / 2) / volume  # int x z dA
+    # About z: int r^2 dV = 2 pi int x^3 dA; about a transverse axis through the centroid:
+    # int y^2 dV = pi int x^3 dA, int z^2 dV = 2 pi int z^2 x dA.
+    x3 = _polygon_integral(lambda x, z: x**4 / 4)
+    z2x = _polygon_integral(lambda x, z: z * z * x * x / 2)
+    axial = 2 * math.pi * x3
+    transverse = math.pi * x3 + 2 * math.pi * z2x - volume * zc * zc
+    return shape, (volume, surface, (0.0, 0.0, zc), _about_axis(axial, transverse, (0, 0, 1)))
+
+
+def _polygon_integral(antiderivative) -> float:
+    """``int f dA`` over :data:`PROFILE` (counter-clockwise in (x, z)) by Green's theorem,
+    ``oint F dz`` with ``F`` the antiderivative of ``f`` in ``x``: a polynomial of degree <= 7
+    along each edge, which 4-point Gauss-Legendre integrates exactly."""
+    t, w = np.polynomial.legendre.leggauss(4)
+    t, w = (t + 1) / 2, w / 2
+    pts = PROFILE + PROFILE[:1]
+    total = 0.0
+    for (x0, z0), (x1, z1) in zip(pts, pts[1:]):
+        x, z = x0 + t * (x1 - x0), z0 + t * (z1 - z0)
+        total += math.fsum(w * antiderivative(x, z)) * (z1 - z0)
+    return total
+
+
+def void_part():
+    import cad_parts
+
+    v = 64 - 4 / 3 * math.pi
+    inertia = (64 * 32 / 12 - 2 / 5 * 4 / 3 * math.pi) * np.eye(3)
+    return cad_parts.box_with_void(), (v, 96 + 4 * math.pi, (0.0, 0.0, 0.0), inertia)
+
+
+CLOSED_FORMS = {
+    "sphere": sphere_part,
+    "torus": torus_part,
+    "cylinder": cylinder_part,
+    "frustum": frustum_part,
+    "holed_box": holed_box_part,
+    "revolved": revolved_part,
+    "box_void": void_part,
+}
+
+
+def relative_errors(volume, area, centroid, inertia, truth, size):
+    v, a, c, i = truth
+    return {
+        "volume": abs(volume - v) / v,
+        "area": abs(area - a) / a,
+        "centroid": np.abs(np.asarray(centroid) - c).max() / size,
+        "inertia": np.abs(np.asarray(inertia) - i).max() / np.abs(i).max(),
+    }
+
+
+@pytest.mark.parametrize("name", list(CLOSED_FORMS))
+def test_closed_forms(name, tmp_path):
+    need_ocp()
+    import cad_parts
+
+    cad_parts.quiet()
+    shape, truth = CLOSED_FORMS[name]()
+    path = cad_parts.write_step(shape, tmp_path / f"{name}.step")
+    m = inrs.cad_model(path)
+    assert len(m.solids) == 1
+    s = m.solids[0]
+    size = cad_files.OccFile.read(path).size
+    ours = relative_errors(s.volume, s.area, s.centroid, s.inertia, truth, size)
+    shape = cad_parts.read_shape(path)
+    v, c, i = occ_props(shape, volume=True)
+    a = occ_props(shape, volume=False)[0]
+    theirs = relative_errors(v, a, c, i, truth, size)
+    print(f"\n{name}: ours {ours}\n{' ' * len(name)}  OCC  {theirs}")
+    for what, d in ours.items():
+        # (a) the closed form
+        assert d <= CLOSED_REL, f"{name}: {what} off its closed form by {d:.2e}"
+    # (c) no farther from it than OCC at eps 1e-9, or within 1e-15 of it
+    worse = {what for what, d in ours.items() if not d <= max(theirs[what], EQUAL_REL)}
+    detail = ", ".join(f"{w} {ours[w]:.1e} (OCC {theirs[w]:.1e})" for w in sorted(worse))
+    assert worse == OCC_CLOSER.get(name, set()), f"{name}: farther from the closed form than OCC: {detail or 'none'}"
+    if worse:
+        pytest.xfail(f"{name}: OCC closer to the closed form than inrs: {detail}")
+
+
+#: Where (c) does not hold, measured: OCC's ``BRepGProp`` at eps 1e-9 is closer to the closed
+#: form than we are (its volumes and areas of analytic faces to ~1e-16; ours stop at ~1e-13 on
+#: the torus, ~5e-15 on planes and cylinders). Ours are still within 1e-12 (a), and OCC's
+#: inertia is the worse by 1e-9 to 1e-7 on every part but ``box_void``. Listed so that a change
+#: either way fails the test.
+OCC_CLOSER = {
+    "torus": {"volume", "area", "centroid"},  # ours 1.5e-13, 7.7e-14, 1.5e-14; OCC 6e-16, 0, 1e-16
+    "cylinder": {"centroid"},  # ours 1.0e-13, OCC 8.9e-14 (both: the STEP file's rounding?)
+    "holed_box": {"volume", "area", "centroid"},  # ours 5.7e-15, 5.5e-15, 2.2e-15; OCC ~2e-16
+    "box_void": {"inertia"},  # ours 1.5e-15, OCC 1.7e-16
+}
+
+
+def test_largest_file_timing(scratch):
+    """``properties()`` on the largest real file, timed (printed with ``-s``)."""
+    need_ocp()
+    sources = [p for _, p in cad_files.all_files() if p.exists()]
+    if not sources:
+        unavailable(cad_files.missing_message(cad_files.all_files()[0][1]))
+    path = max((cad_files.materialize(p, scratch) for p in sources), key=lambda p: p.stat().st_size)
+    m = inrs.cad_model(path, **cad_files.closure_kwargs())
+    start = time.perf_counter()
+    p = m.properties()
+    elapsed = time.perf_counter() - start
+    print(f"\nproperties() of {path.name} ({len(m.faces)} faces, {len(m.solids)} solids): {elapsed:.3f} s")
+    assert len(p.faces) == len(m.faces)
