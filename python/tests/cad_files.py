@@ -86,6 +86,16 @@ def require_system_files() -> bool:
     return os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1"
 
 
+def unavailable(message: str) -> None:
+    """Skips the calling test with ``message``, or fails it where the system files are required
+    (``INRS_REQUIRE_SYSTEM_FILES=1``, as CI sets)."""
+    import pytest
+
+    if require_system_files():
+        pytest.fail(f"{message} (INRS_REQUIRE_SYSTEM_FILES=1)", pytrace=False)
+    pytest.skip(message)
+
+
 def all_files() -> List[Tuple[str, pathlib.Path]]:
     """``(name, path)`` of every real file, present or not (the name is the test id)."""
     return [(n, IDF / n) for n in IDF_FILES] + [(pathlib.Path(g).name[: -len(".gz")], GMSH / g) for g in GMSH_FILES]

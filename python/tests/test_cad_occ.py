@@ -42,11 +42,7 @@ except ImportError as e:
 FILES = cad_files.all_files()
 
 
-def unavailable(message: str) -> None:
-    """Skips with ``message``, or fails where the system files are required."""
-    if cad_files.require_system_files():
-        pytest.fail(f"{message} (INRS_REQUIRE_SYSTEM_FILES=1)", pytrace=False)
-    pytest.skip(message)
+unavailable = cad_files.unavailable
 
 
 def need_ocp() -> None:

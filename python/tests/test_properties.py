@@ -51,11 +51,7 @@ EQUAL_REL = 1e-15
 WORST: dict = {}
 
 
-def unavailable(message: str) -> None:
-    """Skips with ``message``, or fails where the system files are required."""
-    if cad_files.require_system_files():
-        pytest.fail(f"{message} (INRS_REQUIRE_SYSTEM_FILES=1)", pytrace=False)
-    pytest.skip(message)
+unavailable = cad_files.unavailable
 
 
 def need_ocp() -> None:

@@ -93,18 +93,17 @@ fn close_matrix(got: &[[f64; 3]; 3], want: &[[f64; 3]; 3], scale: f64, what: &st
     }
 }
 
+/// The ball of radius `r` about `c` (a tilted frame): one spherical face on its natural box.
+fn sphere_solid(r: f64, c: Point3) -> Model {
+    let sphere = Surface::Sphere(Sphere::new(tilted(c), r).unwrap());
+    let natural = vec![rectangle(0.0, TAU, -PI / 2.0, PI / 2.0)];
+    solid(vec![face(sphere, natural, true)], false)
+}
+
 #[test]
 fn a_sphere_its_volume_area_centroid_and_inertia() {
     let (r, c) = (2.0, Point3::new(1.0, 2.0, 3.0));
-    let sphere = Surface::Sphere(Sphere::new(tilted(c), r).unwrap());
-    let m = solid(
-        vec![face(
-            sphere,
-            vec![rectangle(0.0, TAU, -PI / 2.0, PI / 2.0)],
-            true,
-        )],
-        false,
-    );
+    let m = sphere_solid(r, c);
     let s = m.solid_properties(0).unwrap();
     let volume = 4.0 / 3.0 * PI * r * r * r;
     close(s.volume, volume, "volume");
@@ -334,15 +333,7 @@ fn a_patch_with_knots_on_a_rectangle() {
 #[test]
 fn a_surface_integral_over_a_sphere() {
     let (r, c) = (2.0, Point3::new(1.0, 2.0, 3.0));
-    let sphere = Surface::Sphere(Sphere::new(tilted(c), r).unwrap());
-    let m = solid(
-        vec![face(
-            sphere,
-            vec![rectangle(0.0, TAU, -PI / 2.0, PI / 2.0)],
-            true,
-        )],
-        false,
-    );
+    let m = sphere_solid(r, c);
     let got = m.surface_integral(0, &|p| p.z * p.z).unwrap();
     let area = 4.0 * PI * r * r;
     close(
