@@ -238,7 +238,8 @@ _UNEXPLAINED = (
 #: until it is removed). Measured 2026-12-05: SMB_DO_214AA.stp and SMC_DO_214AB.stp volumes
 #: 1.9e-6 and 7.2e-7 (every face area within 3.4e-10 of OCC's at eps 1e-12, and OCC's volume
 #: the same at 1e-9 and 1e-12); CAP_50SGV_8_10.stp a face's second moments 1.5e-7; SOD_323
-#: face areas up to 7.7e-7 (its slivers).
+#: face areas up to 7.7e-7 (its slivers). SMB_DO_214AA traced: the file's pcurves on five plane
+#: faces are straight where their 3-D edges bow by up to 4.4e-3 (docs/CAD.md, Mass properties).
 UNEXPLAINED = {
     name: _UNEXPLAINED
     for name in (
