@@ -86,9 +86,8 @@ pub(crate) fn integrate_over_domain(
     };
     // Green's theorem: `+oint G dv` along u, `-oint H du` along v.
     let sign = if inner == 0 { 1.0 } else { -1.0 };
-    let mut values = vec![0.0; dim];
-    let (mut outer_error, mut inner_error) = (0.0f64, 0.0f64);
-    let (mut converged, mut inner_converged) = (true, true);
+    let mut sum = zero(dim);
+    let (mut inner_error, mut inner_converged) = (0.0f64, true);
     let mut variation = 0.0;
     let mut finite = true;
     for (_, piece) in domain.bezier_pieces() {
@@ -116,23 +115,15 @@ pub(crate) fn integrate_over_domain(
         cuts.extend(crossings(&piece, 1, lines[1]));
         cuts.sort_by(f64::total_cmp);
         cuts.dedup();
-        let mut from = 0.0;
-        for to in cuts.into_iter().chain(std::iter::once(1.0)) {
-            let part =
-                integrate_adaptive_vector(&mut outer, dim, from, to, outer_tol * (to - from));
-            for (v, s) in values.iter_mut().zip(&part.values) {
-                *v += s;
-            }
-            outer_error += part.error;
-            converged &= part.converged;
-            from = to;
-        }
+        add_between(&mut sum, &mut outer, (0.0, 1.0), cuts, |from, to| {
+            outer_tol * (to - from)
+        });
         variation += control_variation(&piece, outer_axis);
     }
     finite.then_some(DomainIntegral {
-        values,
-        error: outer_error + inner_error * variation,
-        converged: converged && inner_converged && evaluations.get() < MAX_EVALUATIONS,
+        values: sum.values,
+        error: sum.error + inner_error * variation,
+        converged: sum.converged && inner_converged && evaluations.get() < MAX_EVALUATIONS,
     })
 }
 
@@ -149,19 +140,44 @@ fn inner_integral(
 ) -> VectorIntegral {
     let end = p[axis];
     let inside = breaks.iter().copied().filter(|&b| start < b && b < end);
-    let mut from = start;
-    let mut sum = VectorIntegral {
-        values: vec![0.0; dim],
-        error: 0.0,
-        converged: true,
-    };
     let at = |s: f64| {
         let mut q = p;
         q[axis] = s;
         q
     };
-    for to in inside.chain(std::iter::once(end)) {
-        let part = integrate_adaptive_vector(|s, out| g(at(s), out), dim, from, to, tol);
+    let mut sum = zero(dim);
+    add_between(
+        &mut sum,
+        |s, out| g(at(s), out),
+        (start, end),
+        inside,
+        |_, _| tol,
+    );
+    sum
+}
+
+/// An integral of `dim` components with nothing added yet.
+fn zero(dim: usize) -> VectorIntegral {
+    VectorIntegral {
+        values: vec![0.0; dim],
+        error: 0.0,
+        converged: true,
+    }
+}
+
+/// Adds to `sum` the integral of `f` over `range` split at `cuts` (ascending, inside it),
+/// each part by [`integrate_adaptive_vector`] to the tolerance `tol(from, to)`: values and
+/// error estimates summed part by part, convergence of every part.
+fn add_between(
+    sum: &mut VectorIntegral,
+    mut f: impl FnMut(f64, &mut [f64]) -> f64,
+    (start, end): (f64, f64),
+    cuts: impl IntoIterator<Item = f64>,
+    tol: impl Fn(f64, f64) -> f64,
+) {
+    let mut from = start;
+    for to in cuts.into_iter().chain(std::iter::once(end)) {
+        let part = integrate_adaptive_vector(&mut f, sum.values.len(), from, to, tol(from, to));
         for (s, v) in sum.values.iter_mut().zip(&part.values) {
             *s += v;
         }
@@ -169,25 +185,29 @@ fn inner_integral(
         sum.converged &= part.converged;
         from = to;
     }
-    sum
 }
 
-/// The largest magnitude `g` returns on a 9 x 9 grid over the box `b` (at least the smallest
+/// The largest magnitude `g` returns on the [`grid`] over the box `b` (at least the smallest
 /// positive normal number, so that tolerances are never zero).
 fn integrand_size(b: &BoundingBox, dim: usize, g: &dyn Fn([f64; 2], &mut [f64]) -> f64) -> f64 {
-    const GRID: usize = 9;
     let mut out = vec![0.0; dim];
-    let at = |i: usize, lo: f64, hi: f64| lo + (hi - lo) * i as f64 / (GRID - 1) as f64;
-    (0..GRID * GRID)
-        .map(|k| {
-            let uv = [
-                at(k % GRID, b.min.x, b.max.x),
-                at(k / GRID, b.min.y, b.max.y),
-            ];
-            g(uv, &mut out)
-        })
+    grid(b)
+        .map(|uv| g(uv, &mut out))
         .filter(|m| m.is_finite())
         .fold(f64::MIN_POSITIVE, f64::max)
+}
+
+/// The 9 x 9 grid of parameters over the box `b`, corners included, `u` fastest: where a
+/// face's surface is sampled for its size (the model's frame, the integrand's magnitude).
+pub(crate) fn grid(b: &BoundingBox) -> impl Iterator<Item = [f64; 2]> + '_ {
+    const GRID: usize = 9;
+    let at = |i: usize, lo: f64, hi: f64| lo + (hi - lo) * i as f64 / (GRID - 1) as f64;
+    (0..GRID * GRID).map(move |k| {
+        [
+            at(k % GRID, b.min.x, b.max.x),
+            at(k / GRID, b.min.y, b.max.y),
+        ]
+    })
 }
 
 /// Coordinate `axis` (0: `u`, 1: `v`) of the piece's control points.

@@ -27,11 +27,11 @@ pub use surface_integral::SurfaceIntegral;
 use nalgebra::{Matrix3, SymmetricEigen};
 use thiserror::Error;
 
-use crate::brep::{FaceError, Model, ModelError};
+use crate::brep::{Face, FaceError, Model, ModelError};
 use crate::surface::ParamSurface;
 use crate::{Point3, Surface};
 
-use integrate::integrate_over_domain;
+use integrate::{DomainIntegral, grid, integrate_over_domain};
 
 /// A face's area, centroid and second moments.
 #[derive(Clone, Debug, PartialEq)]
@@ -175,6 +175,10 @@ const VOLUME_SQUARES: usize = 14;
 /// Index of `int (xy, yz, xz) dV`.
 const VOLUME_PRODUCTS: usize = 17;
 
+/// An integrand over a face's `(u, v)`, given the face and its surface: writes its components
+/// at `uv` and returns their magnitude (see `integrate_over_domain`).
+type FaceIntegrand<'a> = dyn Fn(&Face, &Surface, [f64; 2], &mut [f64]) -> f64 + 'a;
+
 /// The model's normalised coordinates: `q = (p - centre) / size`.
 #[derive(Clone, Copy, Debug)]
 struct Frame {
@@ -183,22 +187,13 @@ struct Frame {
 }
 
 impl Frame {
-    /// The box of the faces' points on a 9 x 9 grid over each face's `(u, v)` box (the
+    /// The box of the faces' points on the [`grid`] over each face's `(u, v)` box (the
     /// loops' control points alone can all map to one point: a torus's natural box).
     fn of(model: &Model) -> Frame {
-        const GRID: usize = 9;
         let points = model.faces.iter().filter_map(|f| {
             let s = f.surface.as_ref()?;
             let b = f.loops_box()?;
-            let at = |i: usize, lo: f64, hi: f64| lo + (hi - lo) * i as f64 / (GRID - 1) as f64;
-            Some(
-                (0..GRID * GRID)
-                    .map(|k| {
-                        let (i, j) = (k % GRID, k / GRID);
-                        s.point([at(i, b.min.x, b.max.x), at(j, b.min.y, b.max.y)])
-                    })
-                    .collect::<Vec<_>>(),
-            )
+            Some(grid(&b).map(|uv| s.point(uv)).collect::<Vec<_>>())
         });
         match Point3::bounds(points.flatten().filter(|p| p.is_finite())) {
             Some((lo, hi)) => {
@@ -349,11 +344,14 @@ impl Model {
             .collect()
     }
 
-    /// Face `index`'s domain, the face and its surface.
-    fn face_parts(
+    /// `int int g` over face `index`'s trimmed `(u, v)` domain, `g` given the face and its
+    /// surface, split at the surface's knot lines ([`integrate_over_domain`]).
+    fn integrate_face(
         &self,
         index: usize,
-    ) -> Result<(rs_spline::Domain, &crate::brep::Face, &Surface), PropertiesError> {
+        dim: usize,
+        g: &FaceIntegrand<'_>,
+    ) -> Result<DomainIntegral, PropertiesError> {
         let domain = self.face_domain(index, None)?;
         let face = &self.faces[index];
         let surface = face
@@ -367,23 +365,22 @@ impl Model {
                     .as_ref()
                     .map_or_else(|| "not read".to_string(), FaceError::to_string),
             })?;
-        Ok((domain, face, surface))
+        let [u_lines, v_lines] = surface.knot_lines();
+        let at = |uv: [f64; 2], out: &mut [f64]| g(face, surface, uv, out);
+        integrate_over_domain(&domain, [&u_lines, &v_lines], FACE_FLOOR, dim, &at).ok_or_else(
+            || PropertiesError::NotFinite {
+                index,
+                entity: face.entity.clone(),
+            },
+        )
     }
 
     /// The integrals of face `index` in `frame`'s coordinates.
     fn face_integrals(&self, index: usize, frame: Frame) -> Result<FaceIntegrals, PropertiesError> {
-        let (domain, face, surface) = self.face_parts(index)?;
-        let sense = if face.same_sense { 1.0 } else { -1.0 };
-        let g = |uv: [f64; 2], out: &mut [f64]| integrand(surface, frame, sense, uv, out);
-        let [u_lines, v_lines] = surface.knot_lines();
-        let lines = [u_lines.as_slice(), v_lines.as_slice()];
-        let got =
-            integrate_over_domain(&domain, lines, FACE_FLOOR, COMPONENTS, &g).ok_or_else(|| {
-                PropertiesError::NotFinite {
-                    index,
-                    entity: face.entity.clone(),
-                }
-            })?;
+        let got = self.integrate_face(index, COMPONENTS, &|face, surface, uv, out| {
+            let sense = if face.same_sense { 1.0 } else { -1.0 };
+            integrand(surface, frame, sense, uv, out)
+        })?;
         let mut values = [0.0; COMPONENTS];
         values.copy_from_slice(&got.values);
         Ok(FaceIntegrals {

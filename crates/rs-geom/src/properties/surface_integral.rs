@@ -1,7 +1,8 @@
 //! Integrals of a function of the point over a face in space: `int_F f(p) dA`.
 
-use super::integrate::integrate_over_domain;
-use super::{FACE_FLOOR, PropertiesError};
+use std::cell::Cell;
+
+use super::PropertiesError;
 use crate::Point3;
 use crate::brep::Model;
 use crate::surface::ParamSurface;
@@ -30,40 +31,27 @@ impl Model {
     pub fn surface_integral(
         &self,
         index: usize,
-        f: &(dyn Fn(Point3) -> f64 + Sync),
+        f: &dyn Fn(Point3) -> f64,
     ) -> Result<SurfaceIntegral, PropertiesError> {
-        let (domain, face, surface) = self.face_parts(index)?;
-        let bad = std::sync::Mutex::new(None);
-        let g = |uv: [f64; 2], out: &mut [f64]| {
+        // The first point where `f` is not finite (the rules run on this thread).
+        let bad = Cell::new(None);
+        let got = self.integrate_face(index, 1, &|_, surface, uv, out| {
             let d = surface.derivatives(uv);
-            let da = d.du.cross(d.dv).length();
             let v = f(d.point);
-            if !v.is_finite() {
-                let mut b = bad
-                    .lock()
-                    .unwrap_or_else(std::sync::PoisonError::into_inner);
-                b.get_or_insert(d.point);
+            if !v.is_finite() && bad.get().is_none() {
+                bad.set(Some(d.point));
             }
-            out[0] = v * da;
+            out[0] = v * d.du.cross(d.dv).length();
             out[0].abs()
-        };
-        let [u_lines, v_lines] = surface.knot_lines();
-        let lines = [u_lines.as_slice(), v_lines.as_slice()];
-        let got = integrate_over_domain(&domain, lines, FACE_FLOOR, 1, &g);
-        let bad = bad
-            .into_inner()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        if let Some(at) = bad {
+        });
+        if let Some(at) = bad.get() {
             return Err(PropertiesError::FunctionNotFinite {
                 index,
-                entity: face.entity.clone(),
+                entity: self.faces[index].entity.clone(),
                 at: [at.x, at.y, at.z],
             });
         }
-        let got = got.ok_or_else(|| PropertiesError::NotFinite {
-            index,
-            entity: face.entity.clone(),
-        })?;
+        let got = got?;
         Ok(SurfaceIntegral {
             value: got.values[0],
             error: got.error,
