@@ -195,48 +195,28 @@ impl Report {
                 .as_bytes(),
         );
         out.extend_from_slice(b", \"faces\": [");
-        for (i, (k, r)) in self.faces.iter().enumerate() {
-            if i > 0 {
-                out.extend_from_slice(b", ");
-            }
-            out.extend_from_slice(format!("{{\"index\": {k}, ").as_bytes());
-            match r {
-                Ok(p) => {
-                    out.extend_from_slice(b"\"area\": ");
-                    json_number(p.area, &mut out);
-                    out.extend_from_slice(b", \"centroid\": ");
-                    json_array(&point(p.centroid), &mut out);
-                }
-                Err(e) => json_error(e, &mut out),
-            }
-            out.push(b'}');
-        }
+        json_entries(&self.faces, &mut out, |p, out| {
+            out.extend_from_slice(b"\"area\": ");
+            json_number(p.area, out);
+            out.extend_from_slice(b", \"centroid\": ");
+            json_array(&point(p.centroid), out);
+        });
         out.extend_from_slice(b"], \"solids\": [");
-        for (i, (k, r)) in self.solids.iter().enumerate() {
-            if i > 0 {
-                out.extend_from_slice(b", ");
-            }
-            out.extend_from_slice(format!("{{\"index\": {k}, ").as_bytes());
-            match r {
-                Ok(p) => {
-                    out.extend_from_slice(b"\"volume\": ");
-                    json_number(p.volume, &mut out);
-                    out.extend_from_slice(b", \"area\": ");
-                    json_number(p.area, &mut out);
-                    out.extend_from_slice(b", \"centroid\": ");
-                    json_array(&point(p.centroid), &mut out);
-                    out.extend_from_slice(b", \"inertia\": ");
-                    json_matrix(&p.inertia, &mut out);
-                    out.extend_from_slice(b", \"principal\": {\"moments\": ");
-                    json_array(&p.principal_moments, &mut out);
-                    out.extend_from_slice(b", \"axes\": ");
-                    json_matrix(&p.principal_axes.map(point), &mut out);
-                    out.push(b'}');
-                }
-                Err(e) => json_error(e, &mut out),
-            }
+        json_entries(&self.solids, &mut out, |p, out| {
+            out.extend_from_slice(b"\"volume\": ");
+            json_number(p.volume, out);
+            out.extend_from_slice(b", \"area\": ");
+            json_number(p.area, out);
+            out.extend_from_slice(b", \"centroid\": ");
+            json_array(&point(p.centroid), out);
+            out.extend_from_slice(b", \"inertia\": ");
+            json_matrix(&p.inertia, out);
+            out.extend_from_slice(b", \"principal\": {\"moments\": ");
+            json_array(&p.principal_moments, out);
+            out.extend_from_slice(b", \"axes\": ");
+            json_matrix(&p.principal_axes.map(point), out);
             out.push(b'}');
-        }
+        });
         out.extend_from_slice(b"]}\n");
         String::from_utf8(out).expect("JSON text is UTF-8")
     }
@@ -342,6 +322,26 @@ fn columns(header: &[&str], rows: Vec<Vec<String>>) -> String {
         text.push_str(&line(row));
     }
     text
+}
+
+/// The entries `{"index": K, ...}` of `entries`, comma-separated: `write` gives the fields of
+/// one computed, [`json_error`] those of one that could not be.
+fn json_entries<T>(
+    entries: &[(usize, Result<T, String>)],
+    out: &mut Vec<u8>,
+    write: impl Fn(&T, &mut Vec<u8>),
+) {
+    for (i, (k, r)) in entries.iter().enumerate() {
+        if i > 0 {
+            out.extend_from_slice(b", ");
+        }
+        out.extend_from_slice(format!("{{\"index\": {k}, ").as_bytes());
+        match r {
+            Ok(p) => write(p, out),
+            Err(e) => json_error(e, out),
+        }
+        out.push(b'}');
+    }
 }
 
 /// A number in shortest round-trip form; `null` for one that is not finite (JSON has none).
