@@ -538,13 +538,13 @@ def test_closed_forms(name, tmp_path):
 #: Where (c) does not hold, measured: OCC's ``BRepGProp`` at eps 1e-9 is closer to the closed
 #: form than we are (its volumes and areas of analytic faces to ~1e-16; ours stop at ~1e-13 on
 #: the torus, ~5e-15 on planes and cylinders). Ours are still within 1e-12 (a), and OCC's
-#: inertia is the worse by 1e-9 to 1e-7 on every part but ``box_void``. Listed so that a change
+#: inertia is the worse by 1e-9 to 1e-7 on every part but ``box_void`` (where both are within
+#: 1e-15). Listed so that a change
 #: either way fails the test.
 OCC_CLOSER = {
     "torus": {"volume", "area", "centroid"},  # ours 1.5e-13, 7.7e-14, 1.5e-14; OCC 6e-16, 0, 1e-16
     "cylinder": {"centroid"},  # ours 1.0e-13, OCC 8.9e-14 (both: the STEP file's rounding?)
     "holed_box": {"volume", "area", "centroid"},  # ours 5.7e-15, 5.5e-15, 2.2e-15; OCC ~2e-16
-    "box_void": {"inertia"},  # ours 1.5e-15, OCC 1.7e-16
 }
 
 

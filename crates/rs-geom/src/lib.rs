@@ -35,5 +35,5 @@ pub use error::GeomError;
 pub use frame::Frame;
 pub use map::{AffineMap, AffinePlaneCoordinates, PlaneCoordinates};
 pub use rs_spline::{Point, Point3, Vector};
-pub use surface::{ParamSurface, Surface};
+pub use surface::{ParamSurface, PolynomialDegree, Surface};
 pub use tolerance::{CHAIN_FACTOR, DEFAULT_MODEL_TOLERANCE, PRINTED_DIGITS, Tolerance};

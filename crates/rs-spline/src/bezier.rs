@@ -113,6 +113,11 @@ impl RationalBezier {
         &self.weights
     }
 
+    /// Whether the piece is a polynomial curve: all its weights are equal (so they cancel).
+    pub fn is_polynomial(&self) -> bool {
+        self.weights.iter().all(|&w| w == self.weights[0])
+    }
+
     /// The knot span `[u0, u1]` of the NURBS this piece was extracted from (`[0, 1]` for a
     /// piece built directly); local `t` corresponds to `u0 + t (u1 - u0)`.
     pub fn knot_span(&self) -> (f64, f64) {

@@ -5,18 +5,23 @@
 //! `int int_D g du dv = oint_{dD} G dv` along the loops (outer ones counter-clockwise, holes
 //! clockwise: the orientation `Model::face_domain` gives them). Along `v` likewise, with
 //! `H(u, v) = int_b^v g(u, s) ds` and `int int_D g = -oint_{dD} H du`. The inner integral runs
-//! along the parameter with fewer knot lines inside the domain (it is split at each). Both
-//! integrals are adaptive Gauss-Legendre ([`integrate_adaptive_vector`]): the outer one along
-//! each Bezier piece of the loops, split where the piece crosses a knot line, the inner one at
-//! each of its nodes. Each stops when halving an interval changes no component by more than
-//! its tolerance or the rounding noise of the integrand's magnitude, or at the depth and
-//! interval limits (bounded work); polynomial integrands of degree up to 31 in the parameter
-//! are exact at the first level (a plane's volume terms, and a polynomial B-spline surface's
-//! within a knot span).
+//! along a parameter in which the integrand is a polynomial where there is one (the straight
+//! lines of a plane, cylinder, cone or extrusion), else along the one with fewer knot lines
+//! inside the domain; it is split at each knot line. The outer integral runs along each
+//! Bezier piece of the loops, split where the piece crosses a knot line.
+//!
+//! Both are Green's-theorem piece integrals ([`integrate_piece`]): a polynomial integrand of
+//! known degree (the caller's `degrees`) is integrated exactly, up to rounding, by the Gauss
+//! rule with the fewest nodes exact for it (inner: the integrand's degree in its parameter;
+//! outer: a polynomial piece on a surface polynomial in both parameters, a plane); any other
+//! by adaptive Gauss-Legendre, stopping when halving an interval changes no component by more
+//! than its tolerance or the rounding noise of the integrand's magnitude, or at the depth and
+//! interval limits (bounded work), with an error estimate.
 
 use rs_roots::{Bernstein, bernstein_roots};
+use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 use rs_spline::prelude::*;
-use rs_spline::quadrature::{VectorIntegral, integrate_adaptive_vector};
+use rs_spline::quadrature::{MAX_GAUSS_NODES, VectorIntegral};
 use rs_spline::{BoundingBox, Domain, Point, RationalBezier};
 
 /// An integral of a vector-valued integrand over a face's domain, with how far it can be
@@ -26,7 +31,8 @@ pub(crate) struct DomainIntegral {
     /// The integral of each component.
     pub(crate) values: Vec<f64>,
     /// An estimate of the absolute error of the worst component: the outer rule's estimate
-    /// plus the inner rules' largest estimate times the loops' total variation across.
+    /// plus the inner rules' largest estimate times the loops' total variation across (0 where
+    /// both rules are exact).
     pub(crate) error: f64,
     /// Whether every adaptive rule met its tolerance within its bounded work.
     pub(crate) converged: bool,
@@ -43,12 +49,15 @@ pub(crate) const MAX_EVALUATIONS: usize = 20_000_000;
 
 /// `int int_D g(u, v) du dv` of the `dim` components `g` writes into its output (returning
 /// their magnitude, the size of the terms they are sums of, for the rounding test) over the
-/// domain `domain`, split at the surface's knot lines (`[u values, v values]`), each
-/// component to about `16 eps` of the integrand's size over the domain's box, or to
-/// `abs_floor` where that is larger. `None` where an integrand value is not finite.
+/// domain `domain`, split at the surface's knot lines (`[u values, v values]`). `degrees[k]`
+/// is the integrand's degree in parameter `k` where it is a polynomial in it (between knot
+/// lines), `None` where it is not. Where a rule is adaptive, each component to about `16 eps`
+/// of the integrand's size over the domain's box, or to `abs_floor` where that is larger.
+/// `None` where an integrand value is not finite.
 pub(crate) fn integrate_over_domain(
     domain: &Domain,
     lines: [&[f64]; 2],
+    degrees: [Option<usize>; 2],
     abs_floor: f64,
     dim: usize,
     g: &dyn Fn([f64; 2], &mut [f64]) -> f64,
@@ -67,9 +76,13 @@ pub(crate) fn integrate_over_domain(
     let b = domain.bounding_box();
     let (lo, hi) = ([b.min.x, b.min.y], [b.max.x, b.max.y]);
     let inside = |k: usize| lines[k].iter().filter(|&&l| lo[k] < l && l < hi[k]).count();
-    // The inner integral along the parameter with fewer knot lines: it runs at every node of
-    // the outer one.
-    let inner = usize::from(inside(1) < inside(0));
+    // The inner integral runs at every node of the outer one: along a parameter where it is
+    // exact, else along the one with fewer knot lines.
+    let inner = match degrees {
+        [Some(_), None] => 0,
+        [None, Some(_)] => 1,
+        _ => usize::from(inside(1) < inside(0)),
+    };
     let outer_axis = 1 - inner;
     // Absolute tolerances from the integrand's size over the domain's box, so that a stretch
     // where the integrand is tiny (a piece grazing a knot line) is not refined to its own
@@ -84,9 +97,23 @@ pub(crate) fn integrate_over_domain(
     } else {
         outer_tol
     };
+    let inner_rule = PieceRule::for_piece(
+        degrees[inner].is_some(),
+        degrees[inner].unwrap_or(0),
+        MAX_GAUSS_NODES,
+        inner_tol,
+    );
+    // `G` has degree `degrees[inner] + 1` in the inner parameter, so at most the sum plus one
+    // in both; along a polynomial piece of degree `p`, `G(C(t)) C'(t)` has degree
+    // `p (sum + 1) + p - 1`.
+    let joint = match degrees {
+        [Some(a), Some(b)] => Some(a + b + 1),
+        _ => None,
+    };
     // Green's theorem: `+oint G dv` along u, `-oint H du` along v.
     let sign = if inner == 0 { 1.0 } else { -1.0 };
-    let mut sum = zero(dim);
+    let mut sum = vec![0.0; dim];
+    let (mut outer_error, mut outer_converged) = (0.0f64, true);
     let (mut inner_error, mut inner_converged) = (0.0f64, true);
     let mut variation = 0.0;
     let mut finite = true;
@@ -94,7 +121,7 @@ pub(crate) fn integrate_over_domain(
         let mut outer = |t: f64, out: &mut [f64]| -> f64 {
             let (p, d) = piece.point_and_tangent(t);
             let (p, d) = ([p.x, p.y], [d.x, d.y]);
-            let along = inner_integral(lo[inner], p, inner, lines[inner], inner_tol, dim, g);
+            let along = inner_integral(lo[inner], p, inner, lines[inner], inner_rule, dim, g);
             inner_error = inner_error.max(along.error);
             inner_converged &= along.converged;
             let factor = sign * d[outer_axis];
@@ -109,32 +136,38 @@ pub(crate) fn integrate_over_domain(
             }
             magnitude
         };
+        let p = piece.degree();
+        let polynomial = piece.is_polynomial() && joint.is_some();
+        let degree = joint.map_or(0, |k| p * k + p.saturating_sub(1));
         // Split where the piece crosses a knot line: the inner integral is only piecewise
         // smooth across it.
         let mut cuts = crossings(&piece, 0, lines[0]);
         cuts.extend(crossings(&piece, 1, lines[1]));
         cuts.sort_by(f64::total_cmp);
         cuts.dedup();
-        add_between(&mut sum, &mut outer, (0.0, 1.0), cuts, |from, to| {
-            outer_tol * (to - from)
+        let along = add_between(&mut sum, &mut outer, (0.0, 1.0), cuts, |from, to| {
+            PieceRule::for_piece(polynomial, degree, MAX_GAUSS_NODES, outer_tol * (to - from))
         });
+        outer_error += along.error;
+        outer_converged &= along.converged;
         variation += control_variation(&piece, outer_axis);
     }
     finite.then_some(DomainIntegral {
-        values: sum.values,
-        error: sum.error + inner_error * variation,
-        converged: sum.converged && inner_converged && evaluations.get() < MAX_EVALUATIONS,
+        values: sum,
+        error: outer_error + inner_error * variation,
+        converged: outer_converged && inner_converged && evaluations.get() < MAX_EVALUATIONS,
     })
 }
 
 /// The integral of `g` along parameter `axis` from `start` to `p`'s coordinate, the other
-/// parameter at `p`'s, split at the knot lines `breaks` (ascending) between them.
+/// parameter at `p`'s, split at the knot lines `breaks` (ascending) between them, each part
+/// by `rule`.
 fn inner_integral(
     start: f64,
     p: [f64; 2],
     axis: usize,
     breaks: &[f64],
-    tol: f64,
+    rule: PieceRule,
     dim: usize,
     g: &dyn Fn([f64; 2], &mut [f64]) -> f64,
 ) -> VectorIntegral {
@@ -145,45 +178,78 @@ fn inner_integral(
         q[axis] = s;
         q
     };
-    let mut sum = zero(dim);
-    add_between(
-        &mut sum,
+    let mut values = vec![0.0; dim];
+    let accuracy = add_between(
+        &mut values,
         |s, out| g(at(s), out),
         (start, end),
         inside,
-        |_, _| tol,
+        |_, _| rule,
     );
-    sum
-}
-
-/// An integral of `dim` components with nothing added yet.
-fn zero(dim: usize) -> VectorIntegral {
     VectorIntegral {
-        values: vec![0.0; dim],
-        error: 0.0,
-        converged: true,
+        values,
+        error: accuracy.error,
+        converged: accuracy.converged,
     }
 }
 
+/// How far a sum of piece integrals can be trusted: the summed error estimates, and whether
+/// every part converged.
+struct Accuracy {
+    error: f64,
+    converged: bool,
+}
+
 /// Adds to `sum` the integral of `f` over `range` split at `cuts` (ascending, inside it),
-/// each part by [`integrate_adaptive_vector`] to the tolerance `tol(from, to)`: values and
-/// error estimates summed part by part, convergence of every part.
+/// each part `[from, to]` by [`integrate_piece`] with the rule `rule(from, to)`.
 fn add_between(
-    sum: &mut VectorIntegral,
-    mut f: impl FnMut(f64, &mut [f64]) -> f64,
+    sum: &mut [f64],
+    f: impl FnMut(f64, &mut [f64]) -> f64,
     (start, end): (f64, f64),
     cuts: impl IntoIterator<Item = f64>,
-    tol: impl Fn(f64, f64) -> f64,
-) {
+    rule: impl Fn(f64, f64) -> PieceRule,
+) -> Accuracy {
+    let mut integrand = Along {
+        f,
+        scratch: vec![0.0; sum.len()],
+    };
+    let mut accuracy = Accuracy {
+        error: 0.0,
+        converged: true,
+    };
     let mut from = start;
     for to in cuts.into_iter().chain(std::iter::once(end)) {
-        let part = integrate_adaptive_vector(&mut f, sum.values.len(), from, to, tol(from, to));
-        for (s, v) in sum.values.iter_mut().zip(&part.values) {
-            *s += v;
-        }
-        sum.error += part.error;
-        sum.converged &= part.converged;
+        let part = integrate_piece(
+            &mut integrand,
+            (from, to),
+            rule(from, to),
+            Jacobian::OnTheSum,
+            sum,
+        );
+        accuracy.error += part.error;
+        accuracy.converged &= part.converged;
         from = to;
+    }
+    accuracy
+}
+
+/// A function of one parameter as a piece integrand: `f(t, out)` writes its components and
+/// returns their rounding magnitude.
+struct Along<F> {
+    f: F,
+    scratch: Vec<f64>,
+}
+
+impl<F: FnMut(f64, &mut [f64]) -> f64> PieceIntegrand for Along<F> {
+    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
+        (self.f)(t, &mut self.scratch);
+        for (s, v) in sum.iter_mut().zip(&self.scratch) {
+            *s += weight * v;
+        }
+    }
+
+    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
+        (self.f)(t, out)
     }
 }
 

@@ -11,12 +11,14 @@
 //! normalised normal), so they stay finite at poles and apexes, where the area element
 //! vanishes.
 //!
-//! The integrals over `(u, v)` are computed by Green's theorem on the loops, adaptive
-//! Gauss-Legendre along each loop piece and along `u` (`integrate.rs`), in coordinates
-//! centred on the model and scaled by its size so that every component is of order one.
-//! Polynomial integrands (planes; polynomial B-spline surfaces within a knot span) are exact
-//! to rounding; others (rational surfaces, cylinders, cones, spheres, tori, revolutions) stop
-//! at the rounding noise of the integrand, with an error estimate reported
+//! The integrals over `(u, v)` are computed by Green's theorem on the loops (`integrate.rs`),
+//! in coordinates centred on the model and scaled by its size so that every component is of
+//! order one. Where the integrand is a polynomial in a parameter
+//! ([`Surface::polynomial_degrees`]: a plane in both, a cylinder, cone or extrusion along its
+//! straight lines) a Gauss rule of exactly the needed degree integrates along it, and on a
+//! plane the loops' polynomial pieces too: exact to rounding, no adaptivity. Elsewhere
+//! (angles, rational surfaces, B-spline area elements) adaptive Gauss-Legendre stops at the
+//! rounding noise of the integrand, with an error estimate reported
 //! ([`FaceProperties::error`], relative to the model's size).
 
 mod integrate;
@@ -345,11 +347,13 @@ impl Model {
     }
 
     /// `int int g` over face `index`'s trimmed `(u, v)` domain, `g` given the face and its
-    /// surface, split at the surface's knot lines ([`integrate_over_domain`]).
+    /// surface, split at the surface's knot lines ([`integrate_over_domain`]); `degrees(s)` is
+    /// `g`'s degree in each parameter on the surface `s` where it is a polynomial in it.
     fn integrate_face(
         &self,
         index: usize,
         dim: usize,
+        degrees: impl Fn(&Surface) -> [Option<usize>; 2],
         g: &FaceIntegrand<'_>,
     ) -> Result<DomainIntegral, PropertiesError> {
         let domain = self.face_domain(index, None)?;
@@ -367,20 +371,25 @@ impl Model {
             })?;
         let [u_lines, v_lines] = surface.knot_lines();
         let at = |uv: [f64; 2], out: &mut [f64]| g(face, surface, uv, out);
-        integrate_over_domain(&domain, [&u_lines, &v_lines], FACE_FLOOR, dim, &at).ok_or_else(
-            || PropertiesError::NotFinite {
+        let degrees = degrees(surface);
+        integrate_over_domain(&domain, [&u_lines, &v_lines], degrees, FACE_FLOOR, dim, &at)
+            .ok_or_else(|| PropertiesError::NotFinite {
                 index,
                 entity: face.entity.clone(),
-            },
-        )
+            })
     }
 
     /// The integrals of face `index` in `frame`'s coordinates.
     fn face_integrals(&self, index: usize, frame: Frame) -> Result<FaceIntegrals, PropertiesError> {
-        let got = self.integrate_face(index, COMPONENTS, &|face, surface, uv, out| {
-            let sense = if face.same_sense { 1.0 } else { -1.0 };
-            integrand(surface, frame, sense, uv, out)
-        })?;
+        let got = self.integrate_face(
+            index,
+            COMPONENTS,
+            integrand_degrees,
+            &|face, surface, uv, out| {
+                let sense = if face.same_sense { 1.0 } else { -1.0 };
+                integrand(surface, frame, sense, uv, out)
+            },
+        )?;
         let mut values = [0.0; COMPONENTS];
         values.copy_from_slice(&got.values);
         Ok(FaceIntegrals {
@@ -389,6 +398,14 @@ impl Model {
             converged: got.converged,
         })
     }
+}
+
+/// The degree of the [`integrand`] in each parameter where the surface is a polynomial in it:
+/// `q^3` times the area vector (the volume terms) is the highest.
+fn integrand_degrees(surface: &Surface) -> [Option<usize>; 2] {
+    surface
+        .polynomial_degrees()
+        .map(|d| d.map(|d| 3 * d.point + d.area))
 }
 
 /// The integrands at `uv` in `frame`'s coordinates (see [`FaceIntegrals`]); returns their

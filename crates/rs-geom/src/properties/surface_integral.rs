@@ -35,7 +35,8 @@ impl Model {
     ) -> Result<SurfaceIntegral, PropertiesError> {
         // The first point where `f` is not finite (the rules run on this thread).
         let bad = Cell::new(None);
-        let got = self.integrate_face(index, 1, &|_, surface, uv, out| {
+        // `f` is any function: no degree is known, every rule is adaptive.
+        let got = self.integrate_face(index, 1, |_| [None, None], &|_, surface, uv, out| {
             let d = surface.derivatives(uv);
             let v = f(d.point);
             if !v.is_finite() && bad.get().is_none() {

@@ -7,7 +7,7 @@ use rs_spline::{NurbsCurve, Point, circle, polyline};
 
 use super::*;
 use crate::brep::{Face, Shell, Solid};
-use crate::surface::{Cylinder, Plane, Sphere, Torus};
+use crate::surface::{Cone, Cylinder, Plane, Sphere, Torus};
 use crate::{Frame, Tolerance};
 
 /// A face of `surface` bounded by `loops`, outward along `S_u x S_v` when `same_sense`.
@@ -203,6 +203,24 @@ fn a_closed_cylinder() {
     let all = m.properties();
     assert_eq!(all.faces.len(), 3);
     assert_eq!(all.solids[0].as_ref().unwrap(), &s);
+}
+
+/// A cone face over both nappes, `v` in `[-1, 2]` about its apex at `v = 0`: its area element
+/// `|v| tan a / cos a` is linear on each side, exact only when the rule is split at the apex
+/// (the cone's knot line). Area `5 pi tan a / cos a`, centroid on the axis at
+/// `int v |v| / int |v| = 14 / 15`.
+#[test]
+fn a_cone_face_across_its_apex() {
+    let a: f64 = 0.4;
+    let frame = tilted(Point3::new(0.5, -1.0, 2.0));
+    let cone = Surface::Cone(Cone::new(frame, 0.0, a).unwrap());
+    assert_eq!(cone.knot_lines()[1], vec![0.0]);
+    let m = solid(vec![face(cone, vec![rectangle(0.0, TAU, -1.0, 2.0)], true)], true);
+    let f = m.face_properties(0).unwrap();
+    close(f.area, 5.0 * PI * a.tan() / a.cos(), "area");
+    let want = frame.origin + frame.z * (14.0 / 15.0);
+    assert!((f.centroid - want).length() <= 1e-12, "{:?}", f.centroid);
+    assert!(f.converged && f.error <= 1e-12, "{f:?}");
 }
 
 /// Faces turned against their surfaces' normals give the negative volume (the senses are

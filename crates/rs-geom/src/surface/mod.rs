@@ -100,6 +100,18 @@ use rs_spline::Point3;
 
 use crate::{Affine3, Frame, GeomError};
 
+/// How a surface depends on one parameter where it is a polynomial in it
+/// ([`Surface::polynomial_degrees`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PolynomialDegree {
+    /// The degree of the point `S` in the parameter.
+    pub point: usize,
+    /// The degree of the area vector `S_u x S_v` in it, which is also that of its length (the
+    /// area element): the vector is a polynomial of this degree times a vector that does not
+    /// depend on the parameter.
+    pub area: usize,
+}
+
 /// A point of a surface with its first and second partial derivatives.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SurfaceDerivatives {
@@ -308,10 +320,46 @@ impl Surface {
         }
     }
 
+    /// In each parameter, how the surface depends on it where its point and its area element
+    /// are polynomials in it with the other parameter fixed (`None` where they are not): a
+    /// plane in both, a cylinder, cone or extrusion along its straight lines (`v`), carried
+    /// through a reparameterisation. A sphere, torus, revolution, offset or B-spline surface
+    /// reports `None` (an angle, or an area element `|S_u x S_v|` that is a square root).
+    /// Integrands built from the point and the area vector are then polynomials of known
+    /// degree in that parameter, integrated exactly by a fixed Gauss rule.
+    pub fn polynomial_degrees(&self) -> [Option<PolynomialDegree>; 2] {
+        const LINE: PolynomialDegree = PolynomialDegree { point: 1, area: 0 };
+        match self {
+            Surface::Plane(_) => [Some(LINE), Some(LINE)],
+            // S = o + r rho(u) + v z: S_u x S_v = r rho'(u) x z, free of v.
+            Surface::Cylinder(_) => [None, Some(LINE)],
+            // S = o + (r + v tan a) rho(u) + v z: S_u x S_v = (r + v tan a) (rho'(u) x (tan a
+            // rho(u) + z)), whose length is linear in v on each side of the apex (a knot
+            // line).
+            Surface::Cone(_) => [None, Some(PolynomialDegree { point: 1, area: 1 })],
+            // S = C(u) + v D: S_u x S_v = C'(u) x D, free of v.
+            Surface::Extrusion(_) => [None, Some(LINE)],
+            Surface::Reparam(r) => {
+                // An affine map of each parameter keeps the degrees; a swap exchanges them.
+                let mut base = r.base().polynomial_degrees();
+                if r.swap() {
+                    base.swap(0, 1);
+                }
+                base
+            }
+            Surface::Sphere(_)
+            | Surface::Torus(_)
+            | Surface::Revolution(_)
+            | Surface::Offset(_)
+            | Surface::BSpline(_) => [None, None],
+        }
+    }
+
     /// The parameter lines where the surface is only piecewise smooth, `[u values, v values]`
     /// ascending: a B-spline surface's distinct interior knots, a swept curve's breaks, a
-    /// base surface's carried through an offset or reparameterisation; none for elementary
-    /// surfaces. Integrals split there stay exact on piecewise polynomial integrands.
+    /// cone's apex, a base surface's carried through an offset or reparameterisation; none for
+    /// the other elementary surfaces. Integrals split there stay exact on piecewise
+    /// polynomial integrands.
     pub fn knot_lines(&self) -> [Vec<f64>; 2] {
         match self {
             Surface::BSpline(b) => b.knots().each_ref().map(|k| k.interior_breaks()),
@@ -336,11 +384,11 @@ impl Surface {
                 }
                 ours
             }
-            Surface::Plane(_)
-            | Surface::Cylinder(_)
-            | Surface::Cone(_)
-            | Surface::Sphere(_)
-            | Surface::Torus(_) => [Vec::new(), Vec::new()],
+            // The apex, where the area element `|r + v tan a| |...|` has its kink.
+            Surface::Cone(c) => [Vec::new(), vec![c.apex_v()]],
+            Surface::Plane(_) | Surface::Cylinder(_) | Surface::Sphere(_) | Surface::Torus(_) => {
+                [Vec::new(), Vec::new()]
+            }
         }
     }
 
