@@ -1077,6 +1077,13 @@ class CadSolid(_CadSolidFields):
         return self.properties.area
 
     @property
+    def leak_area(self) -> float:
+        """The length of the net area vector ``oint n dA`` over its boundary: rounding for a
+        watertight one, else about the area of the gaps between its faces (see
+        :class:`SolidProperties`)."""
+        return self.properties.leak_area
+
+    @property
     def centroid(self) -> np.ndarray:
         """The centre of its volume, shape ``(3,)``."""
         return self.properties.centroid
@@ -1130,7 +1137,10 @@ class SolidProperties(NamedTuple):
     (``(3,)``), ``inertia`` (``(3, 3)`` about the centroid: ``I_xx = int (y^2 + z^2) dV``,
     ``I_xy = -int x y dV``), ``principal_moments`` (``(3,)``, ascending),
     ``principal_axes`` (``(3, 3)``, row ``k`` the unit axis of moment ``k``), ``error`` (the
-    worst of its faces') and ``converged``. The arrays are read-only."""
+    worst of its faces'), ``converged`` and ``leak_area`` (the length of the net area vector
+    ``oint n dA`` over its boundary: rounding for a watertight one, else about the area of
+    the gaps between its faces, so that the volume and moments are defined only to about
+    ``leak_area`` times the part's size). The arrays are read-only."""
 
     volume: float
     area: float
@@ -1140,10 +1150,11 @@ class SolidProperties(NamedTuple):
     principal_axes: np.ndarray
     error: float
     converged: bool
+    leak_area: float
 
     @classmethod
     def _of(cls, row) -> "SolidProperties":
-        volume, area, centroid, inertia, moments, axes, error, converged = row
+        volume, area, centroid, inertia, moments, axes, error, converged, leak_area = row
         return cls(
             volume,
             area,
@@ -1153,6 +1164,7 @@ class SolidProperties(NamedTuple):
             _frozen(axes, (3, 3)),
             error,
             converged,
+            leak_area,
         )
 
 

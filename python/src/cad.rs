@@ -135,7 +135,7 @@ pub(crate) struct NativeCadModel {
 type FaceRow = (f64, [f64; 3], [[f64; 3]; 3], f64, bool);
 
 /// A solid's properties as Python sees them: `(volume, area, centroid, inertia,
-/// principal_moments, principal_axes, error, converged)`.
+/// principal_moments, principal_axes, error, converged, leak_area)`.
 type SolidRow = (
     f64,
     f64,
@@ -145,6 +145,7 @@ type SolidRow = (
     [[f64; 3]; 3],
     f64,
     bool,
+    f64,
 );
 
 /// One face's or solid's properties: the row, or the library's message.
@@ -170,6 +171,7 @@ fn solid_row(p: &SolidProperties) -> SolidRow {
         p.principal_axes.map(|a| a.to_array()),
         p.error,
         p.converged,
+        p.leak_area,
     )
 }
 

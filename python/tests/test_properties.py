@@ -170,20 +170,40 @@ def note(what: str, value: float, where: str) -> None:
         WORST[what] = (value, where)
 
 
-def compare(what: str, where: str, ours, theirs, size: float, power: int, problems: list) -> None:
+def compare(what: str, where: str, ours, theirs, size: float, power: int, problems: list, allow=(0.0, 0.0, 0.0)) -> None:
     """Records and checks ``ours`` against OCC's ``(mass, centroid, inertia)``: the mass
     relative to itself, the centroid to ``size``, the inertia to its largest component
-    (``power``: the mass's dimension, for the zero-mass case)."""
+    (``power``: the mass's dimension, for the zero-mass case). ``allow``: absolute
+    differences of the mass, the centroid and the inertia that the file itself leaves open
+    (see :func:`leak_allowance`); a difference within it is not a problem."""
     mass, centroid, inertia = ours
     m, c, i = theirs
     scale = max(abs(m), 1e-300)
     d_mass = abs(mass - m) / scale
     d_centroid = np.abs(centroid - c).max() / size
     d_inertia = np.abs(inertia - i).max() / max(np.abs(i).max(), size ** (power + 2) * 1e-300)
-    for q, d in ((what, d_mass), (f"{what} centroid", d_centroid), (f"{what} inertia", d_inertia)):
+    absolute = (abs(mass - m), np.abs(centroid - c).max(), np.abs(inertia - i).max())
+    for q, d, a, limit in zip((what, f"{what} centroid", f"{what} inertia"), (d_mass, d_centroid, d_inertia), absolute, allow):
         note(q, d, where)
-        if not d <= OCC_REL:
+        if not (d <= OCC_REL or a <= limit):
             problems.append(f"{where}: {q} differs by {d:.2e} (ours {mass!r}, OCC {m!r})")
+
+
+#: A solid whose leak area is above this fraction of its boundary's area leaves gaps between
+#: its faces (a watertight one's is rounding, ~1e-16).
+LEAK = 1e-9
+
+
+def leak_allowance(solid, size: float):
+    """What a leaky boundary leaves open: the divergence theorem's volume changes by
+    ``(p1 - p0) . N / 3`` between reference points ``p0`` and ``p1`` (``N`` the net area
+    vector, ``|N|`` the leak area), its first moments by up to ``|N| R^2`` and its second by
+    ``|N| R^3``, ``R`` the farthest the reference points are apart: ours is the centre of the
+    model's box, OCC's the origin, so ``R <= |centroid| + size``. The allowances of the
+    volume, the centroid (first moments over the volume) and the inertia."""
+    r = float(np.linalg.norm(solid.centroid)) + size
+    leak = solid.leak_area
+    return leak * r, 2.0 * leak * r**2 / abs(solid.volume), 2.0 * leak * r**3
 
 
 def check_against_occ(path: pathlib.Path, name: str) -> None:
@@ -216,7 +236,10 @@ def check_against_occ(path: pathlib.Path, name: str) -> None:
             continue
         m, c, i = occ_props(solid, volume=True)
         theirs = (m / mm**3, c / mm, i / mm**5)
-        compare("volume", f"{name} solid {k}", (ours.volume, ours.centroid, ours.inertia), theirs, size, 3, problems)
+        leaky = ours.leak_area > LEAK * ours.area
+        assert leaky == (name in LEAKY), f"{name} solid {k}: leak area {ours.leak_area:.2e} of boundary area {ours.area:.4g}"
+        allow = leak_allowance(ours, size) if leaky else (0.0, 0.0, 0.0)
+        compare("volume", f"{name} solid {k}", (ours.volume, ours.centroid, ours.inertia), theirs, size, 3, problems, allow)
         a = occ_props(solid, volume=False)[0] / mm**2
         d = abs(ours.area - a) / a
         note("solid area", d, f"{name} solid {k}")
@@ -229,23 +252,36 @@ def check_against_occ(path: pathlib.Path, name: str) -> None:
     assert not problems, "\n".join(problems)
 
 
+#: Real files whose solids' faces leave gaps (leak area above ``LEAK`` of the boundary's
+#: area), measured: their volumes and moments are defined only up to ``leak_allowance``, and
+#: ours and OCC's differ within it (each takes another reference point). SMB_DO_214AA and
+#: SMC_DO_214AB: five plane faces bounded by straight pcurves where their neighbours follow
+#: 3-D edges that bow off the planes by up to 5e-3 mm (25 times the file's uncertainty), leak
+#: 5.2e-4 mm^2 (volumes 1.9e-6 and 7.2e-7 apart). CAP_50SGV_8_10: leak 2.0e-4 mm^2.
+#: component8.step and t20_data.step (one part): no pcurves, edges up to 4e-4 mm off their
+#: surfaces, pcurves fitted to the file's uncertainty (0.074 mm), leak 1.2e-2 mm^2.
+LEAKY = {
+    "SMB_DO_214AA.stp",
+    "SMC_DO_214AB.stp",
+    "CAP_50SGV_8_10.stp",
+    "component8.step",
+    "t20_data.step",
+}
+
 _UNEXPLAINED = (
     "NOT YET EXPLAINED (issue 49 open): ours and BRepGProp at eps 1e-9 differ by more than 1e-7 "
     "and neither side has been shown right yet"
 )
 #: Real files where ours and BRepGProp disagree beyond 1e-7 and the cause is not known yet:
 #: a known gap, listed so that it cannot grow unseen (a file that starts agreeing fails here
-#: until it is removed). Measured 2026-12-05: SMB_DO_214AA.stp and SMC_DO_214AB.stp volumes
-#: 1.9e-6 and 7.2e-7 (every face area within 3.4e-10 of OCC's at eps 1e-12, and OCC's volume
-#: the same at 1e-9 and 1e-12); CAP_50SGV_8_10.stp a face's second moments 1.5e-7; SOD_323
-#: face areas up to 7.7e-7 (its slivers). SMB_DO_214AA traced: the file's pcurves on five plane
-#: faces are straight where their 3-D edges bow by up to 4.4e-3 (docs/CAD.md, Mass properties).
+#: until it is removed). Measured 2026-12-05: CAP_50SGV_8_10.stp a face's second moments
+#: 1.5e-7; SOD_323 face areas up to 9.2e-5; SOT23 three face areas 2.5e-7; SOT404 a solid's
+#: inertia 1.2e-7 and (IGES) a face's second moments; component8.step / t20_data.step face
+#: areas up to 1.1e-4 (pcurves fitted to the file's 0.074 mm uncertainty).
 UNEXPLAINED = {
     name: _UNEXPLAINED
     for name in (
         "CAP_50SGV_8_10.stp",
-        "SMB_DO_214AA.stp",
-        "SMC_DO_214AB.stp",
         "SOD_323.stp",
         "SOD_323.igs",
         "SOT23.stp",

@@ -91,6 +91,7 @@ impl PropertiesArgs {
         };
         report.require_some(file)?;
         report.warn_unconverged(&spec);
+        report.warn_leaks(&spec);
         let unit = model.length_unit.as_ref().map(|u| {
             u.symbol()
                 .map_or_else(|| u.name.to_ascii_lowercase(), str::to_string)
@@ -105,6 +106,10 @@ impl PropertiesArgs {
         out.finish()
     }
 }
+
+/// The leak area, as a fraction of a solid's boundary area, above which `inrs properties`
+/// warns: a watertight boundary's is rounding, some `1e-16`.
+const LEAK_WARNING: f64 = 1e-9;
 
 /// A result with its error as one line.
 fn with_one_line_error<T>(r: Result<T, PropertiesError>) -> Result<T, String> {
@@ -176,6 +181,27 @@ impl Report {
         );
     }
 
+    /// One warning line on standard error per solid whose faces leave gaps (a leak area above
+    /// [`LEAK_WARNING`] of its boundary's area): its volume and moments are then defined only
+    /// to about the leak area times the part's size.
+    fn warn_leaks(&self, spec: &str) {
+        for (k, p) in self
+            .solids
+            .iter()
+            .filter_map(|(k, r)| Some((k, r.as_ref().ok()?)))
+        {
+            if p.leak_area > LEAK_WARNING * p.area.abs() {
+                eprintln!(
+                    "inrs: warning: {spec}: solid {k}: its faces leave gaps (net area vector of \
+                     length {:.3e}, {:.1e} of its boundary's area): its volume and moments \
+                     depend on the reference point by up to that times the part's size",
+                    p.leak_area,
+                    p.leak_area / p.area.abs()
+                );
+            }
+        }
+    }
+
     /// The largest error estimate of what was computed.
     fn largest_error(&self) -> f64 {
         let faces = self.faces.iter().filter_map(|(_, r)| r.as_ref().ok());
@@ -215,7 +241,8 @@ impl Report {
             json_array(&p.principal_moments, out);
             out.extend_from_slice(b", \"axes\": ");
             json_matrix(&p.principal_axes.map(point), out);
-            out.push(b'}');
+            out.extend_from_slice(b"}, \"leak_area\": ");
+            json_number(p.leak_area, out);
         });
         out.extend_from_slice(b"]}\n");
         String::from_utf8(out).expect("JSON text is UTF-8")

@@ -72,6 +72,13 @@ pub struct SolidProperties {
     pub error: f64,
     /// Whether every integral met its tolerance.
     pub converged: bool,
+    /// The length of the net area vector `N = oint n dA` over its shells: zero (to rounding)
+    /// for a watertight boundary, else about the area of the gaps between its faces as seen
+    /// along `N` (a file whose faces' loops miss their neighbours'). The divergence theorem's
+    /// volume then depends on the reference point `p0` by `(p0 . N) / 3`, so `volume` (taken
+    /// about the centre of the model's box) is defined only to about `leak_area` times the
+    /// distance between two reference points over 3; the moments likewise.
+    pub leak_area: f64,
 }
 
 /// The properties of every face and every solid of a model ([`Model::properties`]), in the
@@ -148,7 +155,8 @@ fn free_edges_text(edges: &[String]) -> String {
 
 /// The integrals of one face, in the model's normalised coordinates `q = (p - centre) / size`
 /// (see [`Frame`]): `[area, int q dA (3), int q q^T dA (6: xx, yy, zz, xy, yz, xz),
-/// volume terms: V, int q dV (3), int q_i^2 dV (3), int xy, yz, xz dV (3)]`.
+/// volume terms: V, int q dV (3), int q_i^2 dV (3), int xy, yz, xz dV (3), the area vector
+/// int n dA (3)]`.
 #[derive(Clone, Debug, PartialEq)]
 struct FaceIntegrals {
     values: [f64; COMPONENTS],
@@ -156,7 +164,7 @@ struct FaceIntegrals {
     converged: bool,
 }
 
-const COMPONENTS: usize = 20;
+const COMPONENTS: usize = 23;
 
 /// The absolute error a face's integrals may have in the model's normalised coordinates
 /// (where the model's integrals are of order one): far below the `1e-12` relative the results
@@ -176,6 +184,8 @@ const VOLUME_FIRST: usize = 11;
 const VOLUME_SQUARES: usize = 14;
 /// Index of `int (xy, yz, xz) dV`.
 const VOLUME_PRODUCTS: usize = 17;
+/// Index of the area vector `int n dA` (zero summed over a closed shell).
+const AREA_VECTOR: usize = 20;
 
 /// An integrand over a face's `(u, v)`, given the face and its surface: writes its components
 /// at `uv` and returns their magnitude (see `integrate_over_domain`).
@@ -439,6 +449,9 @@ fn integrand(surface: &Surface, frame: Frame, sense: f64, uv: [f64; 2], out: &mu
     out[VOLUME_PRODUCTS] = 0.5 * x * x * y * n.x;
     out[VOLUME_PRODUCTS + 1] = 0.5 * y * y * z * n.y;
     out[VOLUME_PRODUCTS + 2] = 0.5 * z * z * x * n.z;
+    out[AREA_VECTOR] = n.x;
+    out[AREA_VECTOR + 1] = n.y;
+    out[AREA_VECTOR + 2] = n.z;
     out.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(da)
 }
 
@@ -507,6 +520,9 @@ fn solid_properties(f: &FaceIntegrals, frame: Frame) -> SolidProperties {
         }),
         error: f.error,
         converged: f.converged,
+        leak_area: Point3::new(v[AREA_VECTOR], v[AREA_VECTOR + 1], v[AREA_VECTOR + 2]).length()
+            * s
+            * s,
     }
 }
 

@@ -215,12 +215,28 @@ fn a_cone_face_across_its_apex() {
     let frame = tilted(Point3::new(0.5, -1.0, 2.0));
     let cone = Surface::Cone(Cone::new(frame, 0.0, a).unwrap());
     assert_eq!(cone.knot_lines()[1], vec![0.0]);
-    let m = solid(vec![face(cone, vec![rectangle(0.0, TAU, -1.0, 2.0)], true)], true);
+    let m = solid(
+        vec![face(cone, vec![rectangle(0.0, TAU, -1.0, 2.0)], true)],
+        true,
+    );
     let f = m.face_properties(0).unwrap();
     close(f.area, 5.0 * PI * a.tan() / a.cos(), "area");
     let want = frame.origin + frame.z * (14.0 / 15.0);
     assert!((f.centroid - want).length() <= 1e-12, "{:?}", f.centroid);
     assert!(f.converged && f.error <= 1e-12, "{f:?}");
+}
+
+/// A watertight boundary has no leak; a cap that misses the wall by a ring (its disc of
+/// radius `0.9 r`) leaks the ring's area, `pi (r^2 - (0.9 r)^2)`, along the axis.
+#[test]
+fn a_gap_in_the_boundary_is_its_leak_area() {
+    let (r, h) = (1.5, 4.0);
+    let mut m = closed_cylinder(r, h, Point3::new(3.0, -2.0, 1.0));
+    let s = m.solid_properties(0).unwrap();
+    assert!(s.leak_area <= 1e-13 * r * r, "{}", s.leak_area);
+    m.faces[2].loops = Ok(vec![vec![circle(Point::new(0.0, 0.0), 0.9 * r).unwrap()]]);
+    let s = m.solid_properties(0).unwrap();
+    close(s.leak_area, PI * r * r * (1.0 - 0.81), "leak area");
 }
 
 /// Faces turned against their surfaces' normals give the negative volume (the senses are
