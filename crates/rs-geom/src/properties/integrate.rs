@@ -13,15 +13,19 @@
 //! Both are Green's-theorem piece integrals ([`integrate_piece`]): a polynomial integrand of
 //! known degree (the caller's `degrees`) is integrated exactly, up to rounding, by the Gauss
 //! rule with the fewest nodes exact for it (inner: the integrand's degree in its parameter;
-//! outer: a polynomial piece on a surface polynomial in both parameters, a plane); any other
-//! by adaptive Gauss-Legendre, stopping when halving an interval changes no component by more
-//! than its tolerance or the rounding noise of the integrand's magnitude, or at the depth and
-//! interval limits (bounded work), with an error estimate.
+//! outer: a polynomial piece on a surface polynomial in both parameters, a plane). Where no
+//! degree is known the whole face is integrated twice with fixed Gauss-Legendre rules of 16
+//! and 20 nodes on every part: where the two agree within the tolerance the second is taken
+//! (as an adaptive rule accepts an interval whose halves agree with it, at a third of the
+//! cost; the difference is the error estimate); else adaptive Gauss-Legendre decides,
+//! stopping when halving an interval changes no component by more than its tolerance or the
+//! rounding noise of the integrand's magnitude, or at the depth and interval limits (bounded
+//! work), with an error estimate.
 
 use rs_roots::{Bernstein, bernstein_roots};
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 use rs_spline::prelude::*;
-use rs_spline::quadrature::{MAX_GAUSS_NODES, VectorIntegral};
+use rs_spline::quadrature::{GaussRule, MAX_GAUSS_NODES, VectorIntegral, fixed_gauss_rule};
 use rs_spline::{BoundingBox, Domain, Point, RationalBezier};
 
 /// An integral of a vector-valued integrand over a face's domain, with how far it can be
@@ -97,12 +101,6 @@ pub(crate) fn integrate_over_domain(
     } else {
         outer_tol
     };
-    let inner_rule = PieceRule::for_piece(
-        degrees[inner].is_some(),
-        degrees[inner].unwrap_or(0),
-        MAX_GAUSS_NODES,
-        inner_tol,
-    );
     // `G` has degree `degrees[inner] + 1` in the inner parameter, so at most the sum plus one
     // in both; along a polynomial piece of degree `p`, `G(C(t)) C'(t)` has degree
     // `p (sum + 1) + p - 1`.
@@ -110,53 +108,174 @@ pub(crate) fn integrate_over_domain(
         [Some(a), Some(b)] => Some(a + b + 1),
         _ => None,
     };
-    // Green's theorem: `+oint G dv` along u, `-oint H du` along v.
-    let sign = if inner == 0 { 1.0 } else { -1.0 };
-    let mut sum = vec![0.0; dim];
-    let (mut outer_error, mut outer_converged) = (0.0f64, true);
-    let (mut inner_error, mut inner_converged) = (0.0f64, true);
-    let mut variation = 0.0;
-    let mut finite = true;
-    for (_, piece) in domain.bezier_pieces() {
-        let mut outer = |t: f64, out: &mut [f64]| -> f64 {
-            let (p, d) = piece.point_and_tangent(t);
-            let (p, d) = ([p.x, p.y], [d.x, d.y]);
-            let along = inner_integral(lo[inner], p, inner, lines[inner], inner_rule, dim, g);
-            inner_error = inner_error.max(along.error);
-            inner_converged &= along.converged;
-            let factor = sign * d[outer_axis];
-            let mut magnitude = 0.0f64;
-            for (o, &gi) in out.iter_mut().zip(&along.values) {
-                *o = gi * factor;
-                finite &= o.is_finite();
-                magnitude = magnitude.max(o.abs());
+    let pieces: Vec<LoopPiece> = domain
+        .bezier_pieces()
+        .into_iter()
+        .map(|(_, piece)| {
+            let p = piece.degree();
+            // Split where the piece crosses a knot line: the inner integral is only
+            // piecewise smooth across it.
+            let mut cuts = crossings(&piece, 0, lines[0]);
+            cuts.extend(crossings(&piece, 1, lines[1]));
+            cuts.sort_by(f64::total_cmp);
+            cuts.dedup();
+            LoopPiece {
+                exact_degree: joint
+                    .filter(|_| piece.is_polynomial())
+                    .map(|k| p * k + p.saturating_sub(1)),
+                variation: control_variation(&piece, outer_axis),
+                piece,
+                cuts,
             }
-            if !finite {
-                out.fill(0.0);
-            }
-            magnitude
-        };
-        let p = piece.degree();
-        let polynomial = piece.is_polynomial() && joint.is_some();
-        let degree = joint.map_or(0, |k| p * k + p.saturating_sub(1));
-        // Split where the piece crosses a knot line: the inner integral is only piecewise
-        // smooth across it.
-        let mut cuts = crossings(&piece, 0, lines[0]);
-        cuts.extend(crossings(&piece, 1, lines[1]));
-        cuts.sort_by(f64::total_cmp);
-        cuts.dedup();
-        let along = add_between(&mut sum, &mut outer, (0.0, 1.0), cuts, |from, to| {
-            PieceRule::for_piece(polynomial, degree, MAX_GAUSS_NODES, outer_tol * (to - from))
-        });
-        outer_error += along.error;
-        outer_converged &= along.converged;
-        variation += control_variation(&piece, outer_axis);
+        })
+        .collect();
+    let green = Green {
+        pieces: &pieces,
+        lines,
+        start: lo[inner],
+        inner,
+        inner_degree: degrees[inner],
+        dim,
+        tolerances: [inner_tol, outer_tol],
+    };
+    // Past the budget the integrand reads as zero: not converged, whatever the rules say.
+    let within_budget = |r: Option<DomainIntegral>| {
+        r.map(|mut r| {
+            r.converged &= evaluations.get() < MAX_EVALUATIONS;
+            r
+        })
+    };
+    if joint.is_some() {
+        // A plane: exact everywhere but along rational pieces.
+        return within_budget(green.sum(Rules::Adaptive, g));
     }
-    finite.then_some(DomainIntegral {
-        values: sum,
-        error: outer_error + inner_error * variation,
-        converged: outer_converged && inner_converged && evaluations.get() < MAX_EVALUATIONS,
-    })
+    // Two fixed rules of different orders where no degree is known: where they agree within
+    // the tolerance both have converged (as the adaptive rule accepts an interval whose
+    // halves agree with it), at a third of its cost; else the adaptive rule decides.
+    let low = green.sum(Rules::Fixed(fixed_gauss_rule::<FIXED_LOW>()), g);
+    let high = green.sum(Rules::Fixed(fixed_gauss_rule::<FIXED_HIGH>()), g);
+    if let (Some(low), Some(high)) = (&low, &high) {
+        let diff = low
+            .values
+            .iter()
+            .zip(&high.values)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        if diff <= outer_tol {
+            return Some(DomainIntegral {
+                values: high.values.clone(),
+                error: diff,
+                converged: evaluations.get() < MAX_EVALUATIONS,
+            });
+        }
+    }
+    within_budget(green.sum(Rules::Adaptive, g))
+}
+
+/// Nodes of the two fixed Gauss-Legendre rules tried first where the integrand's degree is
+/// not known.
+const FIXED_LOW: usize = 16;
+/// See [`FIXED_LOW`].
+const FIXED_HIGH: usize = 20;
+
+/// One Bezier piece of a face's loops, split where it crosses knot lines.
+struct LoopPiece {
+    piece: RationalBezier,
+    /// Its parameters in `(0, 1)` where it crosses a knot line, ascending.
+    cuts: Vec<f64>,
+    /// The degree in its parameter of the outer integrand where that is a polynomial.
+    exact_degree: Option<usize>,
+    /// The total variation of its outer coordinate (a bound from the control polygon).
+    variation: f64,
+}
+
+/// The rules of one pass where the integrand's degree is not known.
+#[derive(Clone, Copy)]
+enum Rules {
+    /// Adaptive Gauss-Legendre to the tolerances.
+    Adaptive,
+    /// One fixed Gauss-Legendre rule on every part.
+    Fixed(&'static GaussRule),
+}
+
+/// Green's theorem over a face's loops: `oint G d(outer)` with `G` the integral along
+/// `inner` from `start`.
+struct Green<'a> {
+    pieces: &'a [LoopPiece],
+    lines: [&'a [f64]; 2],
+    start: f64,
+    inner: usize,
+    /// The integrand's degree along `inner` where it is a polynomial in it.
+    inner_degree: Option<usize>,
+    dim: usize,
+    /// The adaptive rules' absolute tolerances: `[inner, outer]`.
+    tolerances: [f64; 2],
+}
+
+impl Green<'_> {
+    /// The integral with `rules` where no exact rule applies; `None` where an integrand
+    /// value is not finite.
+    fn sum(&self, rules: Rules, g: &dyn Fn([f64; 2], &mut [f64]) -> f64) -> Option<DomainIntegral> {
+        let (inner, outer_axis) = (self.inner, 1 - self.inner);
+        let [inner_tol, outer_tol] = self.tolerances;
+        let inner_rule = match (self.inner_degree, rules) {
+            (Some(d), _) => PieceRule::for_piece(true, d, MAX_GAUSS_NODES, inner_tol),
+            (None, Rules::Adaptive) => PieceRule::Adaptive { abs_tol: inner_tol },
+            (None, Rules::Fixed(rule)) => PieceRule::Exact(rule),
+        };
+        // Green's theorem: `+oint G dv` along u, `-oint H du` along v.
+        let sign = if inner == 0 { 1.0 } else { -1.0 };
+        let mut sum = vec![0.0; self.dim];
+        let (mut outer_error, mut outer_converged) = (0.0f64, true);
+        let (mut inner_error, mut inner_converged) = (0.0f64, true);
+        let mut variation = 0.0;
+        let mut finite = true;
+        for lp in self.pieces {
+            let mut outer = |t: f64, out: &mut [f64]| -> f64 {
+                let (p, d) = lp.piece.point_and_tangent(t);
+                let (p, d) = ([p.x, p.y], [d.x, d.y]);
+                let along = inner_integral(
+                    self.start,
+                    p,
+                    inner,
+                    self.lines[inner],
+                    inner_rule,
+                    self.dim,
+                    g,
+                );
+                inner_error = inner_error.max(along.error);
+                inner_converged &= along.converged;
+                let factor = sign * d[outer_axis];
+                let mut magnitude = 0.0f64;
+                for (o, &gi) in out.iter_mut().zip(&along.values) {
+                    *o = gi * factor;
+                    finite &= o.is_finite();
+                    magnitude = magnitude.max(o.abs());
+                }
+                if !finite {
+                    out.fill(0.0);
+                }
+                magnitude
+            };
+            let cuts = lp.cuts.iter().copied();
+            let along = add_between(&mut sum, &mut outer, (0.0, 1.0), cuts, |from, to| {
+                match (lp.exact_degree, rules) {
+                    (Some(d), _) => PieceRule::for_piece(true, d, MAX_GAUSS_NODES, 0.0),
+                    (None, Rules::Adaptive) => PieceRule::Adaptive {
+                        abs_tol: outer_tol * (to - from),
+                    },
+                    (None, Rules::Fixed(rule)) => PieceRule::Exact(rule),
+                }
+            });
+            outer_error += along.error;
+            outer_converged &= along.converged;
+            variation += lp.variation;
+        }
+        finite.then_some(DomainIntegral {
+            values: sum,
+            error: outer_error + inner_error * variation,
+            converged: outer_converged && inner_converged,
+        })
+    }
 }
 
 /// The integral of `g` along parameter `axis` from `start` to `p`'s coordinate, the other
@@ -253,27 +372,26 @@ impl<F: FnMut(f64, &mut [f64]) -> f64> PieceIntegrand for Along<F> {
     }
 }
 
+/// Points per side of the [`grid`] on which an integrand's size is sampled.
+const SIZE_GRID: usize = 9;
+
 /// The largest magnitude `g` returns on the [`grid`] over the box `b` (at least the smallest
 /// positive normal number, so that tolerances are never zero).
 fn integrand_size(b: &BoundingBox, dim: usize, g: &dyn Fn([f64; 2], &mut [f64]) -> f64) -> f64 {
     let mut out = vec![0.0; dim];
-    grid(b)
+    grid(b, SIZE_GRID)
         .map(|uv| g(uv, &mut out))
         .filter(|m| m.is_finite())
         .fold(f64::MIN_POSITIVE, f64::max)
 }
 
-/// The 9 x 9 grid of parameters over the box `b`, corners included, `u` fastest: where a
-/// face's surface is sampled for its size (the model's frame, the integrand's magnitude).
-pub(crate) fn grid(b: &BoundingBox) -> impl Iterator<Item = [f64; 2]> + '_ {
-    const GRID: usize = 9;
-    let at = |i: usize, lo: f64, hi: f64| lo + (hi - lo) * i as f64 / (GRID - 1) as f64;
-    (0..GRID * GRID).map(move |k| {
-        [
-            at(k % GRID, b.min.x, b.max.x),
-            at(k / GRID, b.min.y, b.max.y),
-        ]
-    })
+/// The `n x n` grid of parameters over the box `b` (`n >= 2`), corners included, `u` fastest:
+/// where a face's surface is sampled for its size (the model's frame, the integrand's
+/// magnitude).
+pub(crate) fn grid(b: &BoundingBox, n: usize) -> impl Iterator<Item = [f64; 2]> + '_ {
+    let n = n.max(2);
+    let at = move |i: usize, lo: f64, hi: f64| lo + (hi - lo) * i as f64 / (n - 1) as f64;
+    (0..n * n).map(move |k| [at(k % n, b.min.x, b.max.x), at(k / n, b.min.y, b.max.y)])
 }
 
 /// Coordinate `axis` (0: `u`, 1: `v`) of the piece's control points.

@@ -32,6 +32,7 @@ use thiserror::Error;
 use crate::brep::{Face, FaceError, Model, ModelError};
 use crate::surface::ParamSurface;
 use crate::{Point3, Surface};
+use rs_spline::BoundingBox;
 
 use integrate::{DomainIntegral, grid, integrate_over_domain};
 
@@ -191,6 +192,12 @@ const AREA_VECTOR: usize = 20;
 /// at `uv` and returns their magnitude (see `integrate_over_domain`).
 type FaceIntegrand<'a> = dyn Fn(&Face, &Surface, [f64; 2], &mut [f64]) -> f64 + 'a;
 
+/// Points per side of the [`grid`] over each face's `(u, v)` box that give the model's frame:
+/// quarter periods of a full angle (a torus's natural box reaches its extremes in both
+/// directions), and few, since every `face_properties` call computes the frame anew. The
+/// frame only conditions the sums; any box of the model's size would do.
+const FRAME_GRID: usize = 5;
+
 /// The model's normalised coordinates: `q = (p - centre) / size`.
 #[derive(Clone, Copy, Debug)]
 struct Frame {
@@ -199,13 +206,23 @@ struct Frame {
 }
 
 impl Frame {
-    /// The box of the faces' points on the [`grid`] over each face's `(u, v)` box (the
-    /// loops' control points alone can all map to one point: a torus's natural box).
+    /// The box of the faces' points on the [`grid`] over the box of each face's loops'
+    /// control points (which contains the loops, and costs no more than reading them; the
+    /// control points alone can all map to one point: a torus's natural box).
     fn of(model: &Model) -> Frame {
         let points = model.faces.iter().filter_map(|f| {
             let s = f.surface.as_ref()?;
-            let b = f.loops_box()?;
-            Some(grid(&b).map(|uv| s.point(uv)).collect::<Vec<_>>())
+            let loops = f.loops.as_ref().ok()?;
+            let control = loops
+                .iter()
+                .flatten()
+                .flat_map(|c| c.control_points().iter().copied());
+            let b = BoundingBox::from_points(control)?;
+            Some(
+                grid(&b, FRAME_GRID)
+                    .map(|uv| s.point(uv))
+                    .collect::<Vec<_>>(),
+            )
         });
         match Point3::bounds(points.flatten().filter(|p| p.is_finite())) {
             Some((lo, hi)) => {
