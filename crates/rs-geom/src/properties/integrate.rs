@@ -14,10 +14,11 @@
 //! known degree (the caller's `degrees`) is integrated exactly, up to rounding, by the Gauss
 //! rule with the fewest nodes exact for it (inner: the integrand's degree in its parameter;
 //! outer: a polynomial piece on a surface polynomial in both parameters, a plane). Where no
-//! degree is known the whole face is integrated twice with fixed Gauss-Legendre rules of 16
-//! and 20 nodes on every part: where the two agree within the tolerance the second is taken
-//! (as an adaptive rule accepts an interval whose halves agree with it, at a third of the
-//! cost; the difference is the error estimate); else adaptive Gauss-Legendre decides,
+//! degree is known the whole face is integrated twice with fixed Gauss-Legendre rules of 8
+//! and 12 nodes on every part: where the two agree within the tolerance (or the rounding of
+//! the sums) the second is taken, as an adaptive rule accepts an interval whose halves agree
+//! with it, at a fraction of the cost, with the difference as the error estimate; else
+//! adaptive Gauss-Legendre decides,
 //! stopping when halving an interval changes no component by more than its tolerance or the
 //! rounding noise of the integrand's magnitude, or at the depth and interval limits (bounded
 //! work), with an error estimate.
@@ -25,7 +26,7 @@
 use rs_roots::{Bernstein, bernstein_roots};
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 use rs_spline::prelude::*;
-use rs_spline::quadrature::{GaussRule, MAX_GAUSS_NODES, VectorIntegral, fixed_gauss_rule};
+use rs_spline::quadrature::{GaussRule, MAX_GAUSS_NODES, fixed_gauss_rule};
 use rs_spline::{BoundingBox, Domain, Point, RationalBezier};
 
 /// An integral of a vector-valued integrand over a face's domain, with how far it can be
@@ -40,6 +41,9 @@ pub(crate) struct DomainIntegral {
     pub(crate) error: f64,
     /// Whether every adaptive rule met its tolerance within its bounded work.
     pub(crate) converged: bool,
+    /// The rounding scale of the values: the integral of the integrands' magnitudes (the size
+    /// of the terms the values are sums of).
+    pub(crate) scale: f64,
 }
 
 /// The relative tolerance of the integrals, against the integrand's size times the box.
@@ -160,22 +164,29 @@ pub(crate) fn integrate_over_domain(
             .iter()
             .zip(&high.values)
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        if diff <= outer_tol {
+        // Within the tolerance, or within the rounding of the sums (as the adaptive rule's
+        // noise test: a small face far from the frame's centre sums large terms).
+        let noise = NOISE * low.scale.max(high.scale);
+        if diff <= outer_tol.max(noise) {
             return Some(DomainIntegral {
                 values: high.values.clone(),
                 error: diff,
                 converged: evaluations.get() < MAX_EVALUATIONS,
+                scale: high.scale,
             });
         }
     }
     within_budget(green.sum(Rules::Adaptive, g))
 }
 
+/// The rounding noise of a sum relative to its scale (the adaptive rule's).
+const NOISE: f64 = 256.0 * f64::EPSILON;
+
 /// Nodes of the two fixed Gauss-Legendre rules tried first where the integrand's degree is
 /// not known.
-const FIXED_LOW: usize = 16;
+const FIXED_LOW: usize = 8;
 /// See [`FIXED_LOW`].
-const FIXED_HIGH: usize = 20;
+const FIXED_HIGH: usize = 12;
 
 /// One Bezier piece of a face's loops, split where it crosses knot lines.
 struct LoopPiece {
@@ -228,6 +239,7 @@ impl Green<'_> {
         let (mut outer_error, mut outer_converged) = (0.0f64, true);
         let (mut inner_error, mut inner_converged) = (0.0f64, true);
         let mut variation = 0.0;
+        let mut scale = 0.0;
         let mut finite = true;
         for lp in self.pieces {
             let mut outer = |t: f64, out: &mut [f64]| -> f64 {
@@ -242,10 +254,10 @@ impl Green<'_> {
                     self.dim,
                     g,
                 );
-                inner_error = inner_error.max(along.error);
-                inner_converged &= along.converged;
+                inner_error = inner_error.max(along.accuracy.error);
+                inner_converged &= along.accuracy.converged;
                 let factor = sign * d[outer_axis];
-                let mut magnitude = 0.0f64;
+                let mut magnitude = factor.abs() * along.accuracy.scale;
                 for (o, &gi) in out.iter_mut().zip(&along.values) {
                     *o = gi * factor;
                     finite &= o.is_finite();
@@ -268,14 +280,22 @@ impl Green<'_> {
             });
             outer_error += along.error;
             outer_converged &= along.converged;
+            scale += along.scale;
             variation += lp.variation;
         }
         finite.then_some(DomainIntegral {
             values: sum,
             error: outer_error + inner_error * variation,
             converged: outer_converged && inner_converged,
+            scale,
         })
     }
+}
+
+/// An integral along one parameter and how far it can be trusted.
+struct LineIntegral {
+    values: Vec<f64>,
+    accuracy: Accuracy,
 }
 
 /// The integral of `g` along parameter `axis` from `start` to `p`'s coordinate, the other
@@ -289,7 +309,7 @@ fn inner_integral(
     rule: PieceRule,
     dim: usize,
     g: &dyn Fn([f64; 2], &mut [f64]) -> f64,
-) -> VectorIntegral {
+) -> LineIntegral {
     let end = p[axis];
     let inside = breaks.iter().copied().filter(|&b| start < b && b < end);
     let at = |s: f64| {
@@ -305,18 +325,16 @@ fn inner_integral(
         inside,
         |_, _| rule,
     );
-    VectorIntegral {
-        values,
-        error: accuracy.error,
-        converged: accuracy.converged,
-    }
+    LineIntegral { values, accuracy }
 }
 
-/// How far a sum of piece integrals can be trusted: the summed error estimates, and whether
-/// every part converged.
+/// How far a sum of piece integrals can be trusted: the summed error estimates, whether every
+/// part converged, and the rounding scale (each part's length times the largest magnitude
+/// its integrand returned).
 struct Accuracy {
     error: f64,
     converged: bool,
+    scale: f64,
 }
 
 /// Adds to `sum` the integral of `f` over `range` split at `cuts` (ascending, inside it),
@@ -331,10 +349,12 @@ fn add_between(
     let mut integrand = Along {
         f,
         scratch: vec![0.0; sum.len()],
+        peak: 0.0,
     };
     let mut accuracy = Accuracy {
         error: 0.0,
         converged: true,
+        scale: 0.0,
     };
     let mut from = start;
     for to in cuts.into_iter().chain(std::iter::once(end)) {
@@ -347,6 +367,8 @@ fn add_between(
         );
         accuracy.error += part.error;
         accuracy.converged &= part.converged;
+        accuracy.scale += (to - from).abs() * integrand.peak;
+        integrand.peak = 0.0;
         from = to;
     }
     accuracy
@@ -357,18 +379,23 @@ fn add_between(
 struct Along<F> {
     f: F,
     scratch: Vec<f64>,
+    /// The largest magnitude returned since it was last reset.
+    peak: f64,
 }
 
 impl<F: FnMut(f64, &mut [f64]) -> f64> PieceIntegrand for Along<F> {
     fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
-        (self.f)(t, &mut self.scratch);
+        let magnitude = (self.f)(t, &mut self.scratch);
+        self.peak = self.peak.max(magnitude);
         for (s, v) in sum.iter_mut().zip(&self.scratch) {
             *s += weight * v;
         }
     }
 
     fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
-        (self.f)(t, out)
+        let magnitude = (self.f)(t, out);
+        self.peak = self.peak.max(magnitude);
+        magnitude
     }
 }
 
