@@ -14,11 +14,11 @@
 //! known degree (the caller's `degrees`) is integrated exactly, up to rounding, by the Gauss
 //! rule with the fewest nodes exact for it (inner: the integrand's degree in its parameter;
 //! outer: a polynomial piece on a surface polynomial in both parameters, a plane). Where no
-//! degree is known the whole face is integrated twice with fixed Gauss-Legendre rules of 8
-//! and 12 nodes on every part: where the two agree within the tolerance (or the rounding of
-//! the sums) the second is taken, as an adaptive rule accepts an interval whose halves agree
-//! with it, at a fraction of the cost, with the difference as the error estimate; else
-//! adaptive Gauss-Legendre decides,
+//! degree is known each loop piece's share is integrated twice with fixed Gauss-Legendre
+//! rules of 8 and 12 nodes on every part (inner and outer): where the two agree within the
+//! tolerance (or the rounding of the sums) the second is taken, as an adaptive rule accepts
+//! an interval whose halves agree with it, at a fraction of the cost, with the difference as
+//! the error estimate; else adaptive Gauss-Legendre decides for that piece,
 //! stopping when halving an interval changes no component by more than its tolerance or the
 //! rounding noise of the integrand's magnitude, or at the depth and interval limits (bounded
 //! work), with an error estimate.
@@ -134,7 +134,6 @@ pub(crate) fn integrate_over_domain(
         })
         .collect();
     let green = Green {
-        pieces: &pieces,
         lines,
         start: lo[inner],
         inner,
@@ -142,41 +141,26 @@ pub(crate) fn integrate_over_domain(
         dim,
         tolerances: [inner_tol, outer_tol],
     };
-    // Past the budget the integrand reads as zero: not converged, whatever the rules say.
-    let within_budget = |r: Option<DomainIntegral>| {
-        r.map(|mut r| {
-            r.converged &= evaluations.get() < MAX_EVALUATIONS;
-            r
-        })
+    let mut sum = DomainIntegral {
+        values: vec![0.0; dim],
+        error: 0.0,
+        converged: true,
+        scale: 0.0,
     };
-    if joint.is_some() {
-        // A plane: exact everywhere but along rational pieces.
-        return within_budget(green.sum(Rules::Adaptive, g));
-    }
-    // Two fixed rules of different orders where no degree is known: where they agree within
-    // the tolerance both have converged (as the adaptive rule accepts an interval whose
-    // halves agree with it), at a third of its cost; else the adaptive rule decides.
-    let low = green.sum(Rules::Fixed(fixed_gauss_rule::<FIXED_LOW>()), g);
-    let high = green.sum(Rules::Fixed(fixed_gauss_rule::<FIXED_HIGH>()), g);
-    if let (Some(low), Some(high)) = (&low, &high) {
-        let diff = low
-            .values
-            .iter()
-            .zip(&high.values)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        // Within the tolerance, or within the rounding of the sums (as the adaptive rule's
-        // noise test: a small face far from the frame's centre sums large terms).
-        let noise = NOISE * low.scale.max(high.scale);
-        if diff <= outer_tol.max(noise) {
-            return Some(DomainIntegral {
-                values: high.values.clone(),
-                error: diff,
-                converged: evaluations.get() < MAX_EVALUATIONS,
-                scale: high.scale,
-            });
+    for lp in &pieces {
+        let piece = green.piece(lp, g)?;
+        for (s, v) in sum.values.iter_mut().zip(&piece.values) {
+            *s += v;
         }
+        // The inner rules' worst error, integrated along the piece: at most times its
+        // variation across.
+        sum.error += piece.outer.error + piece.inner.error * lp.variation;
+        sum.converged &= piece.outer.converged && piece.inner.converged;
+        sum.scale += piece.outer.scale;
     }
-    within_budget(green.sum(Rules::Adaptive, g))
+    // Past the budget the integrand reads as zero: not converged, whatever the rules say.
+    sum.converged &= evaluations.get() < MAX_EVALUATIONS;
+    Some(sum)
 }
 
 /// The rounding noise of a sum relative to its scale (the adaptive rule's).
@@ -199,7 +183,7 @@ struct LoopPiece {
     variation: f64,
 }
 
-/// The rules of one pass where the integrand's degree is not known.
+/// The rules of a piece where the integrand's degree is not known.
 #[derive(Clone, Copy)]
 enum Rules {
     /// Adaptive Gauss-Legendre to the tolerances.
@@ -211,7 +195,6 @@ enum Rules {
 /// Green's theorem over a face's loops: `oint G d(outer)` with `G` the integral along
 /// `inner` from `start`.
 struct Green<'a> {
-    pieces: &'a [LoopPiece],
     lines: [&'a [f64]; 2],
     start: f64,
     inner: usize,
@@ -222,10 +205,49 @@ struct Green<'a> {
     tolerances: [f64; 2],
 }
 
+/// One piece's share of the outer integral: its values, the outer rule's accuracy and the
+/// worst of the inner rules' (its error the largest estimate, to be scaled by the piece's
+/// variation).
+struct PieceSum {
+    values: Vec<f64>,
+    outer: Accuracy,
+    inner: Accuracy,
+}
+
 impl Green<'_> {
-    /// The integral with `rules` where no exact rule applies; `None` where an integrand
+    /// A piece's share of `oint G d(outer)`: exact where the degrees are known; elsewhere
+    /// two fixed rules of different orders, taken where they agree within the tolerance or
+    /// the rounding of their sums (as the adaptive rule accepts an interval whose halves agree
+    /// with it), else the adaptive rule. `None` where an integrand value is not finite.
+    fn piece(&self, lp: &LoopPiece, g: &dyn Fn([f64; 2], &mut [f64]) -> f64) -> Option<PieceSum> {
+        if lp.exact_degree.is_some() && self.inner_degree.is_some() {
+            return self.piece_with(lp, Rules::Adaptive, g);
+        }
+        let low = self.piece_with(lp, Rules::Fixed(fixed_gauss_rule::<FIXED_LOW>()), g);
+        let high = self.piece_with(lp, Rules::Fixed(fixed_gauss_rule::<FIXED_HIGH>()), g);
+        if let (Some(low), Some(mut high)) = (low, high) {
+            let diff = low
+                .values
+                .iter()
+                .zip(&high.values)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            let noise = NOISE * low.outer.scale.max(high.outer.scale);
+            if diff <= self.tolerances[1].max(noise) {
+                high.outer.error = diff;
+                return Some(high);
+            }
+        }
+        self.piece_with(lp, Rules::Adaptive, g)
+    }
+
+    /// A piece's share with `rules` where no exact rule applies; `None` where an integrand
     /// value is not finite.
-    fn sum(&self, rules: Rules, g: &dyn Fn([f64; 2], &mut [f64]) -> f64) -> Option<DomainIntegral> {
+    fn piece_with(
+        &self,
+        lp: &LoopPiece,
+        rules: Rules,
+        g: &dyn Fn([f64; 2], &mut [f64]) -> f64,
+    ) -> Option<PieceSum> {
         let (inner, outer_axis) = (self.inner, 1 - self.inner);
         let [inner_tol, outer_tol] = self.tolerances;
         let inner_rule = match (self.inner_degree, rules) {
@@ -235,59 +257,58 @@ impl Green<'_> {
         };
         // Green's theorem: `+oint G dv` along u, `-oint H du` along v.
         let sign = if inner == 0 { 1.0 } else { -1.0 };
-        let mut sum = vec![0.0; self.dim];
-        let (mut outer_error, mut outer_converged) = (0.0f64, true);
-        let (mut inner_error, mut inner_converged) = (0.0f64, true);
-        let mut variation = 0.0;
-        let mut scale = 0.0;
+        let mut values = vec![0.0; self.dim];
+        let mut inner_accuracy = Accuracy {
+            error: 0.0,
+            converged: true,
+            scale: 0.0,
+        };
         let mut finite = true;
-        for lp in self.pieces {
-            let mut outer = |t: f64, out: &mut [f64]| -> f64 {
-                let (p, d) = lp.piece.point_and_tangent(t);
-                let (p, d) = ([p.x, p.y], [d.x, d.y]);
-                let along = inner_integral(
-                    self.start,
-                    p,
-                    inner,
-                    self.lines[inner],
-                    inner_rule,
-                    self.dim,
-                    g,
-                );
-                inner_error = inner_error.max(along.accuracy.error);
-                inner_converged &= along.accuracy.converged;
-                let factor = sign * d[outer_axis];
-                let mut magnitude = factor.abs() * along.accuracy.scale;
-                for (o, &gi) in out.iter_mut().zip(&along.values) {
-                    *o = gi * factor;
-                    finite &= o.is_finite();
-                    magnitude = magnitude.max(o.abs());
-                }
-                if !finite {
-                    out.fill(0.0);
-                }
-                magnitude
-            };
-            let cuts = lp.cuts.iter().copied();
-            let along = add_between(&mut sum, &mut outer, (0.0, 1.0), cuts, |from, to| {
-                match (lp.exact_degree, rules) {
+        let mut outer = |t: f64, out: &mut [f64]| -> f64 {
+            let (p, d) = lp.piece.point_and_tangent(t);
+            let (p, d) = ([p.x, p.y], [d.x, d.y]);
+            let along = inner_integral(
+                self.start,
+                p,
+                inner,
+                self.lines[inner],
+                inner_rule,
+                self.dim,
+                g,
+            );
+            inner_accuracy.error = inner_accuracy.error.max(along.accuracy.error);
+            inner_accuracy.converged &= along.accuracy.converged;
+            let factor = sign * d[outer_axis];
+            let mut magnitude = factor.abs() * along.accuracy.scale;
+            for (o, &gi) in out.iter_mut().zip(&along.values) {
+                *o = gi * factor;
+                finite &= o.is_finite();
+                magnitude = magnitude.max(o.abs());
+            }
+            if !finite {
+                out.fill(0.0);
+            }
+            magnitude
+        };
+        let cuts = lp.cuts.iter().copied();
+        let outer_accuracy =
+            add_between(
+                &mut values,
+                &mut outer,
+                (0.0, 1.0),
+                cuts,
+                |from, to| match (lp.exact_degree, rules) {
                     (Some(d), _) => PieceRule::for_piece(true, d, MAX_GAUSS_NODES, 0.0),
                     (None, Rules::Adaptive) => PieceRule::Adaptive {
                         abs_tol: outer_tol * (to - from),
                     },
                     (None, Rules::Fixed(rule)) => PieceRule::Exact(rule),
-                }
-            });
-            outer_error += along.error;
-            outer_converged &= along.converged;
-            scale += along.scale;
-            variation += lp.variation;
-        }
-        finite.then_some(DomainIntegral {
-            values: sum,
-            error: outer_error + inner_error * variation,
-            converged: outer_converged && inner_converged,
-            scale,
+                },
+            );
+        finite.then_some(PieceSum {
+            values,
+            outer: outer_accuracy,
+            inner: inner_accuracy,
         })
     }
 }
