@@ -282,41 +282,23 @@ impl Model {
         }
     }
 
-    /// Every face's integrals, the faces handed out one at a time to as many threads as the
-    /// machine runs at once (`std::thread::available_parallelism`).
+    /// Every face's integrals: on rayon's pool with the `parallel` feature (the default),
+    /// faces handed out by work stealing; in order on this thread without it.
     fn all_face_integrals(&self, frame: Frame) -> Vec<Result<FaceIntegrals, PropertiesError>> {
-        use std::sync::Mutex;
-        use std::sync::atomic::{AtomicUsize, Ordering};
-        let n = self.faces.len();
-        let threads = std::thread::available_parallelism()
-            .map_or(1, usize::from)
-            .min(n);
-        if threads <= 1 {
-            return (0..n).map(|k| self.face_integrals(k, frame)).collect();
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            (0..self.faces.len())
+                .into_par_iter()
+                .map(|k| self.face_integrals(k, frame))
+                .collect()
         }
-        let next = AtomicUsize::new(0);
-        let done = Mutex::new(Vec::with_capacity(n));
-        std::thread::scope(|scope| {
-            for _ in 0..threads {
-                scope.spawn(|| {
-                    loop {
-                        let k = next.fetch_add(1, Ordering::Relaxed);
-                        if k >= n {
-                            break;
-                        }
-                        let f = self.face_integrals(k, frame);
-                        done.lock()
-                            .unwrap_or_else(std::sync::PoisonError::into_inner)
-                            .push((k, f));
-                    }
-                });
-            }
-        });
-        let mut done = done
-            .into_inner()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        done.sort_by_key(|(k, _)| *k);
-        done.into_iter().map(|(_, f)| f).collect()
+        #[cfg(not(feature = "parallel"))]
+        {
+            (0..self.faces.len())
+                .map(|k| self.face_integrals(k, frame))
+                .collect()
+        }
     }
 
     /// Solid `index`'s properties from its faces' integrals (`face(k)` for face `k`).
