@@ -41,6 +41,61 @@ pub fn rational_sums<P: Blend>(
     })
 }
 
+/// The homogeneous sums of a tensor-product surface at `(u, v)` (each clamped into its
+/// knot domain): `out[du][dv]` is `(sum w N_i^(du)(u) M_j^(dv)(v) P_ij, sum w N^(du) M^(dv))`
+/// for `du + dv <= nd` (at most 2; the rest zero), over the `(p + 1)(q + 1)` control points
+/// `points[i * nv + j]` (row `i` along `u`, `nv` points a row) non-zero there.
+///
+/// Each row's sums along `v` are [`rational_sums`]' terms in its order, combined along `u` in
+/// the order of the basis functions; each direction's basis functions are worked out once
+/// (on the stack), not once per row.
+pub fn tensor_rational_sums<P: Blend>(
+    knots: [&KnotVector; 2],
+    points: &[P],
+    weights: Option<&[f64]>,
+    uv: [f64; 2],
+    nd: usize,
+) -> [[(P, f64); 3]; 3] {
+    let [ku, kv] = knots;
+    let nd = nd.min(2);
+    let (a, b) = ku.domain();
+    let u = uv[0].clamp(a, b);
+    let (c, d) = kv.domain();
+    let v = uv[1].clamp(c, d);
+    let (p, q) = (ku.degree(), kv.degree());
+    let (k, l) = (ku.span(u), kv.span(v));
+    let nv = kv.n_control();
+    ku.with_basis_derivatives(k, u, nd, |bu| {
+        kv.with_basis_derivatives(l, v, nd, |bv| {
+            let mut h = [[(P::default(), 0.0); 3]; 3];
+            for r in 0..=p {
+                let i = k - p + r;
+                let row = &points[i * nv..(i + 1) * nv];
+                let row_weights = weights.map(|w| &w[i * nv..(i + 1) * nv]);
+                // The row's sums along v, as `rational_sums` forms them.
+                let mut along = [(P::default(), 0.0); 3];
+                for (slot, basis) in along.iter_mut().zip(bv.chunks_exact(q + 1)) {
+                    for (j, &m) in basis.iter().enumerate() {
+                        let jj = l - q + j;
+                        let w = row_weights.map_or(1.0, |w| w[jj]);
+                        slot.0 = slot.0 + row[jj] * w * m;
+                        slot.1 += w * m;
+                    }
+                }
+                for (du, basis) in bu.chunks_exact(p + 1).enumerate() {
+                    let n = basis[r];
+                    for dv in 0..=nd - du {
+                        let (ref mut pt, ref mut w) = h[du][dv];
+                        *pt = *pt + along[dv].0 * n;
+                        *w += along[dv].1 * n;
+                    }
+                }
+            }
+            h
+        })
+    })
+}
+
 /// The quotient rule for `C = A / w` from homogeneous sums `[A, A', A'']` with their weights:
 /// `C = A / w`, `C' = (A' - w' C) / w`, `C'' = (A'' - 2 w' C' - w'' C) / w`.
 pub fn rational_quotient<P: Blend + std::ops::Div<f64, Output = P>>(h: [(P, f64); 3]) -> [P; 3] {

@@ -420,11 +420,11 @@ fn integrand_degrees(surface: &Surface) -> [Option<usize>; 2] {
 /// The integrands at `uv` in `frame`'s coordinates (see [`FaceIntegrals`]); returns their
 /// magnitude (the largest).
 fn integrand(surface: &Surface, frame: Frame, sense: f64, uv: [f64; 2], out: &mut [f64]) -> f64 {
-    let d = surface.derivatives(uv);
+    let [point, du, dv] = surface.first_derivatives(uv);
     let inv = 1.0 / frame.size;
-    let q = (d.point - frame.centre) * inv;
+    let q = (point - frame.centre) * inv;
     // The area vector in normalised coordinates: S_u x S_v scaled by 1 / size^2.
-    let n = d.du.cross(d.dv) * (inv * inv);
+    let n = du.cross(dv) * (inv * inv);
     let da = n.length();
     let n = n * sense;
     let (x, y, z) = (q.x, q.y, q.z);

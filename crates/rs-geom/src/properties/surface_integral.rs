@@ -37,12 +37,12 @@ impl Model {
         let bad = Cell::new(None);
         // `f` is any function: no degree is known, every rule is adaptive.
         let got = self.integrate_face(index, 1, |_| [None, None], &|_, surface, uv, out| {
-            let d = surface.derivatives(uv);
-            let v = f(d.point);
+            let [point, du, dv] = surface.first_derivatives(uv);
+            let v = f(point);
             if !v.is_finite() && bad.get().is_none() {
-                bad.set(Some(d.point));
+                bad.set(Some(point));
             }
-            out[0] = v * d.du.cross(d.dv).length();
+            out[0] = v * du.cross(dv).length();
             out[0].abs()
         });
         if let Some(at) = bad.get() {

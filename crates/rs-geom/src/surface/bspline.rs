@@ -2,7 +2,7 @@
 //! `RATIONAL_B_SPLINE_SURFACE`, IGES 128; `OpenCASCADE`'s `Geom_BSplineSurface` alike), on
 //! `rs-spline`'s knot vectors and evaluation kernel.
 
-use rs_spline::{KnotVector, Point3, RationalBSpline, rational_sums};
+use rs_spline::{KnotVector, Point3, RationalBSpline, tensor_rational_sums};
 
 use super::invert::{MAX_GRID_SIDE, closest, sample_params};
 use super::{
@@ -21,9 +21,9 @@ const SAMPLES_PER_SPAN: usize = 3;
 /// domains; parameters outside are clamped, except in a closed direction, where they are taken
 /// modulo the domain's length.
 ///
-/// Evaluation goes through [`rs_spline::rational_sums`] (each row's homogeneous sums in `v`)
-/// and [`KnotVector::basis_derivatives`] (their combination in `u`), then the tensor-product
-/// quotient rule.
+/// Evaluation goes through [`rs_spline::tensor_rational_sums`] (each row's homogeneous sums
+/// in `v` as [`rs_spline::rational_sums`] forms them, combined in `u`), then the
+/// tensor-product quotient rule.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BSplineSurface {
     knots: [KnotVector; 2],
@@ -157,32 +157,11 @@ impl BSplineSurface {
         }
     }
 
-    /// The homogeneous sums with derivatives up to order `nd` (0 or 2) at `uv`.
+    /// The homogeneous sums with derivatives up to order `nd` (0, 1 or 2) at `uv`.
     fn sums(&self, uv: [f64; 2], nd: usize) -> Sums {
         let [ku, kv] = &self.knots;
-        let (a, b) = ku.domain();
-        let u = self.param(0, uv[0]).clamp(a, b);
-        let v = self.param(1, uv[1]);
-        let p = ku.degree();
-        let k = ku.span(u);
-        let basis = ku.basis_derivatives(k, u, nd);
-        let nv = kv.n_control();
-        let mut h: Sums = [[(Point3::ORIGIN, 0.0); 3]; 3];
-        for c in 0..=p {
-            let i = k - p + c;
-            let row = &self.points[i * nv..(i + 1) * nv];
-            let weights = self.weights.as_ref().map(|w| &w[i * nv..(i + 1) * nv]);
-            let along_v = rational_sums(kv, row, weights, v, nd);
-            for (du, nu) in basis.iter().enumerate() {
-                let n = nu[c];
-                for dv in 0..=nd - du {
-                    let (ref mut pt, ref mut w) = h[du][dv];
-                    *pt = *pt + along_v[dv].0 * n;
-                    *w += along_v[dv].1 * n;
-                }
-            }
-        }
-        h
+        let uv = [self.param(0, uv[0]), self.param(1, uv[1])];
+        tensor_rational_sums([ku, kv], &self.points, self.weights.as_deref(), uv, nd)
     }
 
     /// The control net of the iso-curve `u = t` (`dir = 0`) or `v = t` (`dir = 1`) as
@@ -272,6 +251,16 @@ impl ParamSurface for BSplineSurface {
             duv: (h[1][1].0 - point * h[1][1].1 - dv * wu - du * wv) * inv,
             dvv: (h[0][2].0 - dv * (2.0 * wv) - point * h[0][2].1) * inv,
         }
+    }
+
+    /// The quotient rule on the sums of order 1 only.
+    fn first_derivatives(&self, uv: [f64; 2]) -> [Point3; 3] {
+        let h = self.sums(uv, 1);
+        let inv = 1.0 / h[0][0].1;
+        let point = h[0][0].0 * inv;
+        let du = (h[1][0].0 - point * h[1][0].1) * inv;
+        let dv = (h[0][1].0 - point * h[0][1].1) * inv;
+        [point, du, dv]
     }
 
     /// The unit `S_u x S_v`; on a pole line (a boundary row of coincident control points) its

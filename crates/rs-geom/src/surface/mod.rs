@@ -202,6 +202,14 @@ pub trait ParamSurface {
     /// module documentation for an offset's second derivatives).
     fn derivatives(&self, uv: [f64; 2]) -> SurfaceDerivatives;
 
+    /// The point and its first partial derivatives `[S, S_u, S_v]` at `uv`: those of
+    /// [`ParamSurface::derivatives`], for callers that need no second ones (integrals of the
+    /// area element), cheaper where a surface can skip them (B-spline surfaces).
+    fn first_derivatives(&self, uv: [f64; 2]) -> [Point3; 3] {
+        let d = self.derivatives(uv);
+        [d.point, d.du, d.dv]
+    }
+
     /// The unit normal along `S_u x S_v`: a closed form where the surface has one (a sphere's
     /// at its poles, a B-spline surface's or surface of revolution's at a pole as the limit
     /// from inside the parameter box); `None` where it is truly undefined (a cone's apex, a
@@ -276,6 +284,10 @@ impl ParamSurface for Surface {
 
     fn derivatives(&self, uv: [f64; 2]) -> SurfaceDerivatives {
         dispatch!(self, s => s.derivatives(uv))
+    }
+
+    fn first_derivatives(&self, uv: [f64; 2]) -> [Point3; 3] {
+        dispatch!(self, s => s.first_derivatives(uv))
     }
 
     fn normal(&self, uv: [f64; 2]) -> Option<Point3> {

@@ -81,6 +81,8 @@ pub(crate) fn check_derivatives<S: ParamSurface + ?Sized>(s: &S, uv: [f64; 2], p
         d.point,
         s.point(uv)
     );
+    // The first derivatives alone are the same numbers, bit for bit.
+    assert_eq!(s.first_derivatives(uv), [d.point, d.du, d.dv], "at {uv:?}");
     let (du, duu) = richardson(|t| s.point([t, uv[1]]), uv[0], h);
     let (dv, dvv) = richardson(|t| s.point([uv[0], t]), uv[1], h);
     let mixed = |h: f64| {
