@@ -416,6 +416,38 @@ def test_real_files_agree_with_occ(name, scratch):
     check_against_occ(cad_files.materialize(source, scratch), name)
 
 
+def test_parts_volumes_against_closed_forms_and_occ_default(parts):
+    """Every solid test part with a closed-form volume (``cad_parts.VOLUMES``), STEP and IGES
+    B-rep: ours within 1e-10 of it; and where ``BRepGProp``'s default rule (what OCC users get
+    without an ``eps``) is off by more than 1e-9, ours is at least 1000 times closer (measured
+    2026-12-05: fused cylinders 4.5e-6, the revolved B-spline 4.8e-6, the rational B-spline hole
+    1.6e-3 against ours 1.4e-11, 2.8e-14 and 6.9e-14 in STEP). ``pytest -s`` prints the table."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    import cad_parts
+
+    compared = 0
+    for name, part in parts.items():
+        truth = cad_parts.VOLUMES.get(name)
+        if truth is None:
+            continue
+        for kind, path in part.files().items():
+            solids = inrs.cad_model(path).solids
+            if not solids:
+                continue  # IGES faces mode: no solids
+            ours = abs(sum(s.volume for s in solids) - truth) / truth
+            props = GProp_GProps()
+            BRepGProp.VolumeProperties_s(cad_parts.read_shape(path), props)
+            theirs = abs(props.Mass() - truth) / truth
+            print(f"{name:18s} {kind:9s} ours {ours:.1e}  BRepGProp default {theirs:.1e}")
+            assert ours <= 1e-10, (name, kind, ours)
+            if theirs > 1e-9:
+                assert 1000.0 * ours <= theirs, (name, kind, ours, theirs)
+            compared += 1
+    assert compared >= 16, compared
+
+
 def _real_file(name: str) -> pathlib.Path:
     need_ocp()
     source = dict(cad_files.all_files())[name]
