@@ -169,13 +169,15 @@ pub(crate) fn fit(ctx: &Context<'_>, arc: &Arc, start: &Start) -> Result<ArcPcur
             arc,
             &curve,
             &samples,
-            GAP_SHARE * ctx.target.max(floor),
+            GAP_SHARE * ctx.fit_target.max(floor),
         );
-        let done = check.bound <= ctx.target;
+        let done = check.bound <= ctx.fit_target;
         let refine: Vec<f64> = check
             .spans
             .iter()
-            .filter(|sp| sp.bound > ctx.target && sp.excess > FIT_SHARE * ctx.target.max(sp.floor))
+            .filter(|sp| {
+                sp.bound > ctx.fit_target && sp.excess > FIT_SHARE * ctx.fit_target.max(sp.floor)
+            })
             .map(|sp| 0.5 * (sp.a + sp.b))
             .collect();
         if best
@@ -193,8 +195,8 @@ pub(crate) fn fit(ctx: &Context<'_>, arc: &Arc, start: &Start) -> Result<ArcPcur
     let (curve, mut check) = best.expect("at least one round");
     // The gap term was sized to the target; sized to the deviation found it is tighter, for
     // a few more evaluations (both bounds hold).
-    let tight = GAP_SHARE * check.largest.max(TIGHT_FLOOR * ctx.target);
-    if tight < GAP_SHARE * ctx.target {
+    let tight = GAP_SHARE * check.largest.max(TIGHT_FLOOR * ctx.fit_target);
+    if tight < GAP_SHARE * ctx.fit_target {
         let again = self::check(ctx, arc, &curve, &samples, tight);
         if again.bound < check.bound {
             check = again;
