@@ -49,6 +49,10 @@ pub fn rational_sums<P: Blend>(
 /// Each row's sums along `v` are [`rational_sums`]' terms in its order, combined along `u` in
 /// the order of the basis functions; each direction's basis functions are worked out once
 /// (on the stack), not once per row.
+///
+/// # Panics
+/// If `points` (or `weights`) holds fewer than `n_u * n_v` entries, the knot vectors' numbers
+/// of control points (a surface checks this when it is built).
 pub fn tensor_rational_sums<P: Blend>(
     knots: [&KnotVector; 2],
     points: &[P],

@@ -107,8 +107,8 @@ impl PropertiesArgs {
     }
 }
 
-/// The leak area, as a fraction of a solid's boundary area, above which `inrs properties`
-/// warns: a watertight boundary's is rounding, some `1e-16`.
+/// How much of a solid's volume its leak may leave open before `inrs properties` warns (a
+/// watertight boundary's leak is rounding, some `1e-16` of its area).
 const LEAK_WARNING: f64 = 1e-9;
 
 /// A result with its error as one line.
@@ -181,20 +181,23 @@ impl Report {
         );
     }
 
-    /// One warning line on standard error per solid whose faces leave gaps (a leak area above
-    /// [`LEAK_WARNING`] of its boundary's area): its volume and moments are then defined only
-    /// to about the leak area times the part's size.
+    /// One warning line on standard error per solid whose faces leave gaps enough to matter:
+    /// the volume depends on the divergence theorem's reference point by up to the leak area
+    /// times the distance between two such points over 3; with the part's size taken as the
+    /// square root of its boundary's area, warned where that is above [`LEAK_WARNING`] of the
+    /// volume.
     fn warn_leaks(&self, spec: &str) {
         for (k, p) in self
             .solids
             .iter()
             .filter_map(|(k, r)| Some((k, r.as_ref().ok()?)))
         {
-            if p.leak_area > LEAK_WARNING * p.area.abs() {
+            let spread = p.leak_area * p.area.abs().sqrt() / 3.0 / p.volume.abs();
+            if spread > LEAK_WARNING {
                 eprintln!(
                     "inrs: warning: {spec}: solid {k}: its faces leave gaps (net area vector of \
-                     length {:.3e}, {:.1e} of its boundary's area): its volume and moments \
-                     depend on the reference point by up to that times the part's size",
+                     length {:.3e}, {:.1e} of its boundary's area): its volume depends on the \
+                     reference point by about {spread:.1e} of itself, its moments likewise",
                     p.leak_area,
                     p.leak_area / p.area.abs()
                 );

@@ -107,7 +107,9 @@ pub const ISO_RELATIVE: f64 = 1e-11;
 /// that (a caller's tolerance of zero would otherwise make every fit run to its work limit).
 pub const FIT_FLOOR_RELATIVE: f64 = 1e-12;
 
-/// The most deviation a fit aims at, as a fraction of `size`, however loose the caller's
+/// The most deviation a fit aims at, as a fraction of `size` (the largest coordinate of the
+/// edge's points: the aim follows the coordinates' rounding, so it loosens as a part lies
+/// farther from the origin), however loose the caller's
 /// tolerance: a face's area is exact for its pcurves, so a pcurve fitted to a file's loose
 /// uncertainty (`component8.step`: 0.074 mm on a 30 mm part) would make its area that loose
 /// (1e-4 there); at `1e-7` fits cost about three times as much and the areas agree with the

@@ -41,9 +41,6 @@ pub(crate) struct DomainIntegral {
     pub(crate) error: f64,
     /// Whether every adaptive rule met its tolerance within its bounded work.
     pub(crate) converged: bool,
-    /// The rounding scale of the values: the integral of the integrands' magnitudes (the size
-    /// of the terms the values are sums of).
-    pub(crate) scale: f64,
 }
 
 /// The relative tolerance of the integrals, against the integrand's size times the box.
@@ -145,7 +142,6 @@ pub(crate) fn integrate_over_domain(
         values: vec![0.0; dim],
         error: 0.0,
         converged: true,
-        scale: 0.0,
     };
     for lp in &pieces {
         let piece = green.piece(lp, g)?;
@@ -156,7 +152,6 @@ pub(crate) fn integrate_over_domain(
         // variation across.
         sum.error += piece.outer.error + piece.inner.error * lp.variation;
         sum.converged &= piece.outer.converged && piece.inner.converged;
-        sum.scale += piece.outer.scale;
     }
     // Past the budget the integrand reads as zero: not converged, whatever the rules say.
     sum.converged &= evaluations.get() < MAX_EVALUATIONS;
@@ -231,6 +226,11 @@ impl Green<'_> {
                 .iter()
                 .zip(&high.values)
                 .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            // A weaker test than the adaptive rule's (16 nodes against two halves of 16): the
+            // two rules share no nodes, so their agreement within the tolerance means both
+            // resolve the piece (a kink or an unresolved peak leaves them apart); the noise
+            // allowance is each part's length times its integrand's peak magnitude, an upper
+            // bound of the terms' size, as the adaptive rule's.
             let noise = NOISE * low.outer.scale.max(high.outer.scale);
             if diff <= self.tolerances[1].max(noise) {
                 high.outer.error = diff;
@@ -298,7 +298,10 @@ impl Green<'_> {
                 (0.0, 1.0),
                 cuts,
                 |from, to| match (lp.exact_degree, rules) {
-                    (Some(d), _) => PieceRule::for_piece(true, d, MAX_GAUSS_NODES, 0.0),
+                    // Adaptive to the outer tolerance only if the exact rule had too many nodes.
+                    (Some(d), _) => {
+                        PieceRule::for_piece(true, d, MAX_GAUSS_NODES, outer_tol * (to - from))
+                    }
                     (None, Rules::Adaptive) => PieceRule::Adaptive {
                         abs_tol: outer_tol * (to - from),
                     },

@@ -338,7 +338,9 @@ impl Surface {
     /// through a reparameterisation. A sphere, torus, revolution, offset or B-spline surface
     /// reports `None` (an angle, or an area element `|S_u x S_v|` that is a square root).
     /// Integrands built from the point and the area vector are then polynomials of known
-    /// degree in that parameter, integrated exactly by a fixed Gauss rule.
+    /// degree in that parameter, integrated exactly by a fixed Gauss rule. Where the area
+    /// vector's polynomial factor changes sign (a cone's apex) its length is only piecewise a
+    /// polynomial: that parameter value must be one of [`Surface::knot_lines`].
     pub fn polynomial_degrees(&self) -> [Option<PolynomialDegree>; 2] {
         const LINE: PolynomialDegree = PolynomialDegree { point: 1, area: 0 };
         match self {
