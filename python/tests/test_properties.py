@@ -194,7 +194,9 @@ def compare(what: str, where: str, ours, theirs, size: float, power: int, proble
     floor = size ** (power + 2) * DEGENERATE if degenerate else 1e-300
     d_inertia = np.abs(inertia - i).max() / max(np.abs(i).max(), floor)
     absolute = (abs(mass - m), np.abs(centroid - c).max(), np.abs(inertia - i).max())
-    for q, d, a, limit in zip((what, f"{what} centroid", f"{what} inertia"), (d_mass, d_centroid, d_inertia), absolute, allow):
+    checks = list(zip((what, f"{what} centroid", f"{what} inertia"), (d_mass, d_centroid, d_inertia), absolute, allow))
+    # A degenerate face has no centroid (its moments over a zero area): its mass alone.
+    for q, d, a, limit in checks[:1] if degenerate else checks:
         note(q, d, where)
         if not (d <= OCC_REL or a <= limit):
             problems.append(f"{where}: {q} differs by {d:.2e} (ours {mass!r}, OCC {m!r})")
@@ -264,8 +266,12 @@ def check_against_occ(path: pathlib.Path, name: str) -> None:
     where = sorted({re.search(r"(face|solid) \d+", p).group(0) for p in problems})
     if name in OCC_WRONG or name in FILE_INCONSISTENT:
         reason, expected = OCC_WRONG.get(name) or FILE_INCONSISTENT[name]
-        # Exactly the faces and solids measured: one more, or one fewer, fails.
+        # Exactly the faces and solids measured: one more, or one fewer, fails; and no
+        # difference grows past three times the largest measured.
         assert where == sorted(expected), f"{name}: differs from OCC at {where}, measured at {sorted(expected)}: " + "; ".join(problems)
+        largest = max(float(d) for d in re.findall(r"differs by ([0-9.e+-]+)", " ".join(problems)))
+        print(f"\n{name}: largest difference {largest:.2e}")
+        assert largest <= 3.0 * LARGEST[name], f"{name}: a difference of {largest:.2e}, measured at most {LARGEST[name]:.2e}"
         pytest.xfail(f"{name}: {reason}: " + "; ".join(problems))
     assert not problems, "\n".join(problems)
 
@@ -364,12 +370,13 @@ _SOD_323 = (
     "its STEP reader shifts line #1060 through its vertices, OCCT #25415, its IGES reader does "
     "not, and its two readings of face 8 differ by 1.8e-4): on faces 29 to 74 (traced on 29 "
     "and 62) it is 2.2e-7 to "
-    "6.9e-7 from the file's loops. Faces 15, 20, 21, 26 and 27 (14 and 17 in IGES) are slivers "
-    "narrower than the closure tolerance, areas 0 to 2.6e-6 mm^2 (ours and OCC's at most "
-    "2.5e-8 mm^2 apart; IGES face 14: OCC's re-made pcurves leave 1.7e-11 gaps, ours is the "
-    "file's loop to 4e-11)"
+    "6.9e-7 from the file's loops. Faces 20, 21 and 27 (and 14 and 17 in IGES) are slivers "
+    "narrower than the closure tolerance, areas 6.8e-8 to 2.6e-6 mm^2 (ours and OCC's at most "
+    "2.5e-8 mm^2 apart, up to 0.38 of the sliver's area; IGES face 14: OCC's re-made pcurves "
+    "leave 1.7e-11 gaps, ours is the file's loop to 4e-11); faces 15 and 26 have no area "
+    "(both agree)"
 )
-_SOD_323_FACES = [4, 8, 9, 11, 15, 20, 21, 26, 27, 29, 31, 34, 41, 44, 45, 48, 49, 52, 53, 54, 55, 58, 62, 71, 74]
+_SOD_323_FACES = [4, 8, 9, 11, 20, 21, 27, 29, 31, 34, 41, 44, 45, 48, 49, 52, 53, 54, 55, 58, 62, 71, 74]
 _COMPONENT8 = (
     "no pcurves, and 3-D edges up to 1.03e-3 mm off their surfaces (face 1; the stated "
     "uncertainty is 0.074 mm): a face's area is defined only to about its perimeter times its "
@@ -387,6 +394,33 @@ FILE_INCONSISTENT = {
     "t20_data.step": (_COMPONENT8, _COMPONENT8_WHERE),
 }
 
+
+#: The largest relative difference measured (2026-12-05) on each file of ``OCC_WRONG`` and
+#: ``FILE_INCONSISTENT``; one more than three times it fails.
+LARGEST = {
+    "CAP_50SGV_8_10.stp": 1.50e-07,
+    "SOD_323.igs": 3.77e-01,
+    "SOD_323.stp": 3.77e-01,
+    "SOT23.stp": 6.89e-07,
+    "SOT404.igs": 7.11e-04,
+    "SOT404.stp": 1.19e-07,
+    "box_void.igs": 7.11e-04,
+    "bspline_box_hole.igs": 2.13e-07,
+    "bspline_box_hole.step": 2.96e-07,
+    "bspline_box_hole_brep.igs": 2.96e-07,
+    "component8.step": 9.21e-04,
+    "cone_minus_sphere.igs": 7.11e-04,
+    "filleted_plate.igs": 7.11e-04,
+    "fused_cylinders.igs": 5.81e-04,
+    "revolved_bspline.igs": 7.11e-04,
+    "revolved_bspline.step": 8.39e-03,
+    "revolved_bspline_brep.igs": 8.39e-03,
+    "sphere.igs": 7.11e-04,
+    "t20_data.step": 9.21e-04,
+    "torus.igs": 6.79e-04,
+    "torus.step": 1.10e-07,
+    "torus_brep.igs": 1.10e-07,
+}
 
 # --- (b) the test parts and the real files against BRepGProp ---------------------------------
 
