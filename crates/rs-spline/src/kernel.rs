@@ -27,18 +27,29 @@ pub fn rational_sums<P: Blend>(
     let p = knots.degree();
     let k = knots.span(u);
     let nd = nd.min(2);
-    knots.with_basis_derivatives(k, u, nd, |basis| {
-        let mut out = [(P::default(), 0.0); 3];
-        for (slot, row) in out.iter_mut().zip(basis.chunks_exact(p + 1)) {
-            for (j, &n) in row.iter().enumerate() {
-                let i = k - p + j;
-                let w = weights.map_or(1.0, |w| w[i]);
-                slot.0 = slot.0 + points[i] * w * n;
-                slot.1 += w * n;
-            }
+    knots.with_basis_derivatives(k, u, nd, |basis| span_sums(basis, p, k, points, weights))
+}
+
+/// The sums of [`rational_sums`] from the basis table `basis` (row `d` the `p + 1` basis
+/// functions' `d`-th derivatives on span `k`): `(sum w N^(d) P, sum w N^(d))` for each row,
+/// each term `(w P) N` and `w N` in the order of the basis functions.
+fn span_sums<P: Blend>(
+    basis: &[f64],
+    p: usize,
+    k: usize,
+    points: &[P],
+    weights: Option<&[f64]>,
+) -> [(P, f64); 3] {
+    let mut out = [(P::default(), 0.0); 3];
+    for (slot, row) in out.iter_mut().zip(basis.chunks_exact(p + 1)) {
+        for (j, &n) in row.iter().enumerate() {
+            let i = k - p + j;
+            let w = weights.map_or(1.0, |w| w[i]);
+            slot.0 = slot.0 + points[i] * w * n;
+            slot.1 += w * n;
         }
-        out
-    })
+    }
+    out
 }
 
 /// The homogeneous sums of a tensor-product surface at `(u, v)` (each clamped into its
@@ -77,15 +88,7 @@ pub fn tensor_rational_sums<P: Blend>(
                 let row = &points[i * nv..(i + 1) * nv];
                 let row_weights = weights.map(|w| &w[i * nv..(i + 1) * nv]);
                 // The row's sums along v, as `rational_sums` forms them.
-                let mut along = [(P::default(), 0.0); 3];
-                for (slot, basis) in along.iter_mut().zip(bv.chunks_exact(q + 1)) {
-                    for (j, &m) in basis.iter().enumerate() {
-                        let jj = l - q + j;
-                        let w = row_weights.map_or(1.0, |w| w[jj]);
-                        slot.0 = slot.0 + row[jj] * w * m;
-                        slot.1 += w * m;
-                    }
-                }
+                let along = span_sums(bv, q, l, row, row_weights);
                 for (du, basis) in bu.chunks_exact(p + 1).enumerate() {
                     let n = basis[r];
                     for dv in 0..=nd - du {
