@@ -264,38 +264,26 @@ impl Report {
             self.largest_error(),
         );
         if !self.faces.is_empty() {
-            let rows = self
-                .faces
-                .iter()
-                .map(|(k, r)| match r {
-                    Ok(p) => vec![
-                        k.to_string(),
-                        significant(p.area),
-                        triple(point(p.centroid), p.area.sqrt()),
-                    ],
-                    Err(e) => vec![k.to_string(), format!("error: {e}")],
-                })
-                .collect();
+            let rows = table_rows(&self.faces, |p| {
+                vec![
+                    significant(p.area),
+                    triple(point(p.centroid), p.area.sqrt()),
+                ]
+            });
             text.push_str(&columns(&["face", "area", "centroid"], rows));
         }
         if !self.solids.is_empty() {
             if !self.faces.is_empty() {
                 text.push('\n');
             }
-            let rows = self
-                .solids
-                .iter()
-                .map(|(k, r)| match r {
-                    Ok(p) => vec![
-                        k.to_string(),
-                        significant(p.volume),
-                        significant(p.area),
-                        triple(point(p.centroid), p.area.sqrt()),
-                        triple(p.principal_moments, 0.0),
-                    ],
-                    Err(e) => vec![k.to_string(), format!("error: {e}")],
-                })
-                .collect();
+            let rows = table_rows(&self.solids, |p| {
+                vec![
+                    significant(p.volume),
+                    significant(p.area),
+                    triple(point(p.centroid), p.area.sqrt()),
+                    triple(p.principal_moments, 0.0),
+                ]
+            });
             text.push_str(&columns(
                 &["solid", "volume", "area", "centroid", "principal moments"],
                 rows,
@@ -352,6 +340,24 @@ fn columns(header: &[&str], rows: Vec<Vec<String>>) -> String {
         text.push_str(&line(row));
     }
     text
+}
+
+/// The table rows of `entries`: the index, then `cells` of one computed, or `error: ...` for
+/// one that could not be (the table's counterpart of [`json_entries`]).
+fn table_rows<T>(
+    entries: &[(usize, Result<T, String>)],
+    cells: impl Fn(&T) -> Vec<String>,
+) -> Vec<Vec<String>> {
+    entries
+        .iter()
+        .map(|(k, r)| {
+            let rest = match r {
+                Ok(p) => cells(p),
+                Err(e) => vec![format!("error: {e}")],
+            };
+            std::iter::once(k.to_string()).chain(rest).collect()
+        })
+        .collect()
 }
 
 /// The entries `{"index": K, ...}` of `entries`, comma-separated: `write` gives the fields of
