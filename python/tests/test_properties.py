@@ -455,13 +455,17 @@ def scratch(tmp_path_factory):
     return tmp_path_factory.mktemp("real")
 
 
-@pytest.mark.parametrize("name", [n for n, _ in cad_files.all_files()])
-def test_real_files_agree_with_occ(name, scratch):
+def _real_file(name: str) -> pathlib.Path:
     need_ocp()
     source = dict(cad_files.all_files())[name]
     if not source.exists():
         unavailable(cad_files.missing_message(source))
-    check_against_occ(cad_files.materialize(source, scratch), name)
+    return source
+
+
+@pytest.mark.parametrize("name", [n for n, _ in cad_files.all_files()])
+def test_real_files_agree_with_occ(name, scratch):
+    check_against_occ(cad_files.materialize(_real_file(name), scratch), name)
 
 
 def test_parts_volumes_against_closed_forms_and_occ_default(parts):
@@ -494,14 +498,6 @@ def test_parts_volumes_against_closed_forms_and_occ_default(parts):
                 assert 1000.0 * ours <= theirs, (name, kind, ours, theirs)
             compared += 1
     assert compared >= 16, compared
-
-
-def _real_file(name: str) -> pathlib.Path:
-    need_ocp()
-    source = dict(cad_files.all_files())[name]
-    if not source.exists():
-        unavailable(cad_files.missing_message(source))
-    return source
 
 
 def test_sot23_spherical_triangles_against_their_closed_form():
