@@ -124,7 +124,7 @@ impl BezierPiece {
     /// All weights equal: `x(t)`, `y(t)` are polynomials of the piece's degree.
     #[inline]
     pub fn is_polynomial(&self) -> bool {
-        self.w.iter().all(|&v| v == self.w[0])
+        rs_spline::weights_are_equal(&self.w)
     }
 
     /// `C(0)`.

@@ -48,8 +48,7 @@ fn green_integrals(
             continue;
         }
         let p = piece.degree();
-        let w0 = piece.weights()[0];
-        let polynomial = piece.weights().iter().all(|&w| w == w0);
+        let polynomial = piece.is_polynomial();
         // F_k(C(t)) y'(t): degree p (degree + 1) + p - 1.
         let quadrature =
             PieceRule::for_piece(polynomial, p * (degree + 2) - 1, MAX_GAUSS_NODES, abs_tol);

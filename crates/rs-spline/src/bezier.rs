@@ -115,7 +115,7 @@ impl RationalBezier {
 
     /// Whether the piece is a polynomial curve: all its weights are equal (so they cancel).
     pub fn is_polynomial(&self) -> bool {
-        self.weights.iter().all(|&w| w == self.weights[0])
+        crate::weights_are_equal(&self.weights)
     }
 
     /// The knot span `[u0, u1]` of the NURBS this piece was extracted from (`[0, 1]` for a

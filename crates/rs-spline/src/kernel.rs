@@ -6,6 +6,13 @@ use rs_roots::Blend;
 
 use crate::KnotVector;
 
+/// Whether the weights `w_0 .. w_n` are all equal (true for none), so that they cancel in
+/// `sum w_j B_j P_j / sum w_j B_j` and the rational curve is the polynomial one with the same
+/// control points. Exact comparison: a weight off by one ulp makes the curve rational.
+pub fn weights_are_equal(weights: &[f64]) -> bool {
+    weights.iter().all(|&w| w == weights[0])
+}
+
 /// Homogeneous sums at `u` (clamped into the domain) on the knot span holding it: for each
 /// derivative order `d <= nd` (at most 2), `(sum_j w_j N_j^(d)(u) P_j, sum_j w_j N_j^(d)(u))`
 /// over the `p + 1` basis functions non-zero there; entries past `nd` are zero. Without

@@ -87,7 +87,7 @@ pub use curve::{
 pub use domain::{BoundaryLoop, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};
 pub use homogeneous::{CurveDerivatives, Hpoint};
-pub use kernel::{rational_quotient, rational_sums, tensor_rational_sums};
+pub use kernel::{rational_quotient, rational_sums, tensor_rational_sums, weights_are_equal};
 pub use knots::KnotVector;
 pub use line::{polyline, segment};
 pub use nearest::{NearestBoundary, NearestPoint};

@@ -162,7 +162,7 @@ impl NurbsCurve {
 
     /// True if every weight equals the first (the curve is then polynomial).
     pub fn is_polynomial(&self) -> bool {
-        self.weights.iter().all(|&w| w == self.weights[0])
+        crate::weights_are_equal(&self.weights)
     }
 
     /// Inserts the knot `u` `times` times (Boehm's algorithm, in homogeneous coordinates). The
