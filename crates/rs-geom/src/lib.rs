@@ -26,6 +26,7 @@ mod frame;
 mod map;
 pub mod pcurve;
 pub mod properties;
+pub mod solid;
 pub mod surface;
 mod tolerance;
 

@@ -1,0 +1,188 @@
+//! A bounding-volume hierarchy of patch boxes: which patches a ray may cross, which boxes
+//! hold a point.
+
+use rs_spline::Point3;
+
+/// Boxes per leaf node.
+const LEAF: usize = 4;
+
+/// A node: its box and either two children or a run of items.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    lo: Point3,
+    hi: Point3,
+    /// Leaf: `first .. first + count` of the item order; inner: `first` is the right child
+    /// (the left one follows the node).
+    first: u32,
+    count: u32,
+}
+
+/// A hierarchy over boxes `(lo, hi)` given by index.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Bvh {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+impl Bvh {
+    /// The hierarchy of `boxes`: halved at the median of the boxes' centres along the widest
+    /// side of their centres' box.
+    pub(super) fn new(boxes: &[(Point3, Point3)]) -> Bvh {
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1),
+            order: (0..boxes.len() as u32).collect(),
+        };
+        if !boxes.is_empty() {
+            let mut order = std::mem::take(&mut bvh.order);
+            bvh.build(boxes, &mut order, 0);
+            bvh.order = order;
+        }
+        bvh
+    }
+
+    fn build(&mut self, boxes: &[(Point3, Point3)], items: &mut [u32], first: usize) -> usize {
+        let (lo, hi) = Point3::bounds(items.iter().flat_map(|&i| {
+            let (a, b) = boxes[i as usize];
+            [a, b]
+        }))
+        .unwrap_or_default();
+        let me = self.nodes.len();
+        self.nodes.push(Node {
+            lo,
+            hi,
+            first: first as u32,
+            count: items.len() as u32,
+        });
+        if items.len() <= LEAF {
+            return me;
+        }
+        let centre = |i: u32| {
+            let (a, b) = boxes[i as usize];
+            (a + b) * 0.5
+        };
+        let (clo, chi) = Point3::bounds(items.iter().map(|&i| centre(i))).unwrap_or_default();
+        let span = chi - clo;
+        let axis = if span.x >= span.y && span.x >= span.z {
+            0
+        } else if span.y >= span.z {
+            1
+        } else {
+            2
+        };
+        let mid = items.len() / 2;
+        items.select_nth_unstable_by(mid, |&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+        let (left, right) = items.split_at_mut(mid);
+        self.build(boxes, left, first);
+        let r = self.build(boxes, right, first + mid);
+        self.nodes[me].first = r as u32;
+        self.nodes[me].count = 0;
+        me
+    }
+
+    /// Calls `f(item)` for every box the ray `o + t d`, `t >= t0`, meets (`inv` is `1 / d`
+    /// componentwise).
+    pub(super) fn along_ray(&self, o: Point3, inv: Point3, t0: f64, mut f: impl FnMut(u32)) {
+        self.visit(|lo, hi| ray_meets_box(o, inv, t0, lo, hi), &mut f);
+    }
+
+    /// Calls `f(item)` for every box holding `p`.
+    pub(super) fn holding(&self, p: Point3, mut f: impl FnMut(u32)) {
+        self.visit(
+            |lo, hi| {
+                (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k])
+            },
+            &mut f,
+        );
+    }
+
+    fn visit(&self, meets: impl Fn(Point3, Point3) -> bool, f: &mut impl FnMut(u32)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut stack = vec![0usize];
+        while let Some(k) = stack.pop() {
+            let n = self.nodes[k];
+            if !meets(n.lo, n.hi) {
+                continue;
+            }
+            if n.count > 0 {
+                let s = n.first as usize;
+                for &i in &self.order[s..s + n.count as usize] {
+                    f(i);
+                }
+            } else {
+                stack.push(n.first as usize);
+                stack.push(k + 1);
+            }
+        }
+    }
+}
+
+/// Whether the ray `o + t d` (`inv = 1 / d`), `t >= t0`, meets the box `[lo, hi]` (the slab
+/// test; a box the ray only touches counts).
+pub(super) fn ray_meets_box(o: Point3, inv: Point3, t0: f64, lo: Point3, hi: Point3) -> bool {
+    let mut near = t0;
+    let mut far = f64::INFINITY;
+    for k in 0..3 {
+        let a = (lo[k] - o[k]) * inv[k];
+        let b = (hi[k] - o[k]) * inv[k];
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        near = near.max(a);
+        far = far.min(b);
+        if near > far {
+            return false;
+        }
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every box a ray meets (by the slab test on each box alone) and every box holding a
+    /// point is visited, and no other.
+    #[test]
+    fn the_hierarchy_visits_exactly_the_boxes_met() {
+        let mut seed = 7u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let boxes: Vec<(Point3, Point3)> = (0..500)
+            .map(|_| {
+                let c = Point3::new(next(), next(), next()) * 10.0;
+                let h = Point3::new(next(), next(), next()) * 0.5;
+                (c - h, c + h)
+            })
+            .collect();
+        let bvh = Bvh::new(&boxes);
+        for _ in 0..200 {
+            let o = Point3::new(next(), next(), next()) * 10.0;
+            let d = Point3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+            let inv = Point3::new(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+            let mut got = Vec::new();
+            bvh.along_ray(o, inv, 0.0, |i| got.push(i));
+            got.sort_unstable();
+            let want: Vec<u32> = (0..boxes.len() as u32)
+                .filter(|&i| {
+                    let (lo, hi) = boxes[i as usize];
+                    ray_meets_box(o, inv, 0.0, lo, hi)
+                })
+                .collect();
+            assert_eq!(got, want);
+            let mut got = Vec::new();
+            bvh.holding(o, |i| got.push(i));
+            got.sort_unstable();
+            let want: Vec<u32> = (0..boxes.len() as u32)
+                .filter(|&i| {
+                    let (lo, hi) = boxes[i as usize];
+                    (0..3).all(|k| o[k] >= lo[k] && o[k] <= hi[k])
+                })
+                .collect();
+            assert_eq!(got, want);
+        }
+    }
+}

@@ -1,0 +1,550 @@
+//! Point in a solid: whether a point of space is inside, outside or on the boundary of a B-rep
+//! solid, by the signed crossings of a ray with its trimmed faces.
+//!
+//! # Method
+//!
+//! A [`SolidClassifier`] is built once per solid: each face's surface is cut into patches
+//! (its `(u, v)` box cut at the surface's knot lines, then halved while the normals of a piece
+//! spread more than 20 degrees), each with a box in space that holds it, all in one
+//! bounding-volume hierarchy; each face keeps its trimming loops as an exact 2-D classifier.
+//!
+//! For a point `p`:
+//!
+//! 1. **Boundary.** `p` is [`Location::Boundary`] when it lies within the tolerance `T` of a
+//!    face: the foot of `p` on a patch whose box holds it is within `T` and lies on the face
+//!    (the face's 2-D test in `(u, v)`, its band included), or a 3-D edge of such a face is
+//!    within `T`.
+//! 2. **Ray.** Otherwise a ray `p + t d`, `t > 0`, is cast: every patch whose box it meets is
+//!    solved by Newton's method on `S(u, v) = p + t d` from the patch's centre. A patch whose
+//!    normals all stay more than 0.1 radians from the ray's normal plane is crossed at most
+//!    once; patches the ray grazes are quartered again (six times at most). Each crossing is
+//!    kept when its `(u, v)` is inside the face by the exact 2-D test and counted with its sign
+//!    (`+1` leaving the solid, where the ray runs along the face's outward normal).
+//! 3. **Answer.** On a closed, consistently oriented solid the signed count is `1` inside and
+//!    `0` outside. A ray is shot again in another direction (16 fixed directions, none along
+//!    an axis) when it is **degenerate**: a crossing in a face's boundary band (through an edge
+//!    or a vertex, or a gap between faces the file's tolerance allows), a patch still grazed at
+//!    the finest split, a Newton iteration that does not settle, or a count other than `0` or
+//!    `1`. A point all 16 rays find degenerate is reported [`Location::Boundary`].
+//!
+//! # Tolerance
+//!
+//! `T = max(stated, relative x size)`: `stated` the file's own tolerance, `size` the diagonal of
+//! the solid's box, `relative` [`DEFAULT_RELATIVE_TOLERANCE`] (`1e-8`: CAD files print about
+//! ten significant digits, so faces meet to that) unless given. Each face's 2-D band is `T`
+//! divided by the smallest speed `min(|S_u|, |S_v|)` of its surface sampled on its patches.
+//! Inside and outside are exact for points farther than `T` from every face, up to the
+//! rounding of Newton's method (to `64 eps` of the size).
+//!
+//! # Limits
+//!
+//! The solid must be closed (every shell closed: an open one is an error naming its free
+//! edges) and consistently oriented (its volume positive and its faces' net area vector
+//! `|sum n dA|` at most `1e-3` of its area, else an error). Patch boxes are the box of `5 x 5`
+//! samples grown by 1.5 times the error of linear interpolation with the largest sampled
+//! second derivatives: a surface whose curvature changes wildly between samples could leave
+//! its box (real files' surfaces do not).
+
+mod bvh;
+mod patches;
+mod roots;
+
+use std::f64::consts::TAU;
+
+use rs_contain::{ContainOptions, Locate};
+pub use rs_contain::{Classifier, Location};
+use rs_spline::{Point, Point3};
+use thiserror::Error;
+
+use crate::brep::{Edge, Model, ModelError};
+use crate::properties::PropertiesError;
+use crate::surface::{ParamSurface, Surface};
+use crate::PRINTED_DIGITS;
+use bvh::{Bvh, ray_meets_box};
+use patches::{Cell, Patch, face_patches, knot_cells};
+use roots::{Crossing, foot, ray_crossing};
+
+/// The default boundary tolerance relative to the diagonal of a solid's box (the file's own
+/// tolerance when larger): CAD files print about ten significant digits.
+pub const DEFAULT_RELATIVE_TOLERANCE: f64 = PRINTED_DIGITS;
+
+/// Rays shot at most for one point.
+pub const MAX_RAYS: usize = 16;
+
+/// How many times a patch grazed by a ray is quartered at most.
+const QUERY_SPLITS: usize = 6;
+
+/// A crossing is degenerate when the ray makes a smaller cosine with the normal there.
+const MIN_COSINE: f64 = 1e-3;
+
+/// The largest net area vector `|sum n dA|` of a consistently oriented solid, relative to its
+/// area.
+pub const MAX_RELATIVE_LEAK: f64 = 1e-3;
+
+/// The widest 2-D boundary band of a face, relative to its `(u, v)` diagonal.
+const MAX_RELATIVE_BAND: f64 = 1e-2;
+
+/// Why a solid cannot be classified against.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum SolidError {
+    /// No such solid, or a face that cannot be read.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// An open shell (naming its free edges), a face without surface: the checks of
+    /// [`Model::solid_properties`].
+    #[error(transparent)]
+    Properties(#[from] PropertiesError),
+    /// The faces are not consistently oriented: the volume they bound is not positive, or
+    /// their net area vector is more than [`MAX_RELATIVE_LEAK`] of their area.
+    #[error(
+        "solid {solid}: its faces are not consistently oriented (volume {volume:.6e}, net area \
+         vector {leak:.3e} of area {area:.6e}); a point-in-solid test needs outward normals"
+    )]
+    Orientation {
+        /// The solid.
+        solid: usize,
+        /// The volume its faces bound.
+        volume: f64,
+        /// The length of the net area vector.
+        leak: f64,
+        /// The area.
+        area: f64,
+    },
+    /// A face whose trimming loops cannot be made a 2-D classifier.
+    #[error("face {index}: {error}")]
+    Trim {
+        /// The face's index.
+        index: usize,
+        /// Why.
+        error: String,
+    },
+    /// A relative tolerance that is negative or not finite.
+    #[error("the relative tolerance must be a finite number >= 0, not {0}")]
+    InvalidTolerance(f64),
+}
+
+/// One face of the solid: its surface, outward sense, trimming test and edges.
+struct SolidFace {
+    surface: Surface,
+    /// `+1` where the outward normal is `S_u x S_v`, `-1` otherwise.
+    sense: f64,
+    /// The face's trimming test (set once the tolerance is known).
+    trim: Option<Classifier>,
+    edges: Vec<Edge>,
+}
+
+/// A solid prepared for point queries (see the module documentation). `Send + Sync`: one
+/// classifier answers from many threads.
+///
+/// ```no_run
+/// # fn model() -> rs_geom::brep::Model { unimplemented!() }
+/// use rs_geom::Point3;
+/// use rs_geom::solid::{Location, SolidClassifier};
+/// let model = model(); // read from a STEP or IGES file by rs-io
+/// let solid = SolidClassifier::new(&model, 0).unwrap();
+/// let where_ = solid.locate(Point3::new(0.0, 0.0, 0.0));
+/// assert!(matches!(where_, Location::Inside | Location::Outside | Location::Boundary));
+/// ```
+pub struct SolidClassifier {
+    faces: Vec<SolidFace>,
+    /// Model face index of each face.
+    face_indices: Vec<usize>,
+    patches: Vec<Patch>,
+    bvh: Bvh,
+    lo: Point3,
+    hi: Point3,
+    size: f64,
+    tolerance: f64,
+}
+
+impl SolidClassifier {
+    /// Solid `index` of `model` with the [`DEFAULT_RELATIVE_TOLERANCE`].
+    ///
+    /// # Errors
+    /// See [`SolidClassifier::with_relative_tolerance`].
+    pub fn new(model: &Model, index: usize) -> Result<Self, SolidError> {
+        Self::with_relative_tolerance(model, index, DEFAULT_RELATIVE_TOLERANCE)
+    }
+
+    /// Solid `index` of `model`, points within `max(stated, relative x size)` of a face
+    /// being [`Location::Boundary`].
+    ///
+    /// # Errors
+    /// [`SolidError::InvalidTolerance`]; [`ModelError::NoSolid`]; an open shell or a face
+    /// without surface or loops ([`SolidError::Properties`], [`SolidError::Model`]);
+    /// [`SolidError::Orientation`].
+    pub fn with_relative_tolerance(
+        model: &Model,
+        index: usize,
+        relative: f64,
+    ) -> Result<Self, SolidError> {
+        if !(relative >= 0.0 && relative.is_finite()) {
+            return Err(SolidError::InvalidTolerance(relative));
+        }
+        let props = model.solid_properties(index)?;
+        if !(props.volume > 0.0) || !(props.leak_area <= MAX_RELATIVE_LEAK * props.area) {
+            return Err(SolidError::Orientation {
+                solid: index,
+                volume: props.volume,
+                leak: props.leak_area,
+                area: props.area,
+            });
+        }
+        let solid = &model.solids[index];
+        let mut face_indices: Vec<usize> = Vec::new();
+        for &s in &solid.shells {
+            for &f in &model.shells[s].faces {
+                if !face_indices.contains(&f) {
+                    face_indices.push(f);
+                }
+            }
+        }
+        // Each face's patches first (their boxes give the size, the size the tolerance, the
+        // tolerance each face's 2-D band).
+        let mut read = Vec::with_capacity(face_indices.len());
+        let mut patches = Vec::new();
+        for (k, &f) in face_indices.iter().enumerate() {
+            let domain = model.face_domain(f, None)?;
+            let face = &model.faces[f];
+            let Some(surface) = face.surface.clone() else {
+                // solid_properties has checked that every face has a surface.
+                continue;
+            };
+            let bbox = domain.bounding_box();
+            let cells = face_cells(&surface, (bbox.min.x, bbox.max.x), (bbox.min.y, bbox.max.y));
+            let mine = face_patches(k as u32, &surface, &cells, 0.0);
+            let slowest = slowest_speed(&mine);
+            patches.extend(mine);
+            read.push(ReadFace {
+                index: f,
+                domain,
+                speed: slowest,
+                face: SolidFace {
+                    surface,
+                    sense: if face.same_sense { 1.0 } else { -1.0 },
+                    trim: None,
+                    edges: face.edges.iter().flatten().cloned().collect(),
+                },
+            });
+        }
+        let (lo, hi) =
+            Point3::bounds(patches.iter().flat_map(|p| [p.lo, p.hi])).unwrap_or_default();
+        let size = (hi - lo).length();
+        let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
+        let tolerance = model.tolerance.stated().unwrap_or(0.0).max(relative * size);
+        let grow = Point3::new(tolerance, tolerance, tolerance);
+        for p in &mut patches {
+            p.lo = p.lo - grow;
+            p.hi = p.hi + grow;
+        }
+        let mut faces = Vec::with_capacity(read.len());
+        let mut indices = Vec::with_capacity(read.len());
+        for r in read {
+            let diagonal = r.domain.bounding_box().diagonal();
+            let band = if r.speed > 0.0 && r.speed.is_finite() && diagonal > 0.0 {
+                (tolerance / r.speed / diagonal).min(MAX_RELATIVE_BAND)
+            } else {
+                MAX_RELATIVE_BAND
+            };
+            let trim =
+                Classifier::new(&r.domain, ContainOptions::DEFAULT.with_relative_tolerance(band))
+                    .map_err(|error| SolidError::Trim {
+                        index: r.index,
+                        error: error.to_string(),
+                    })?;
+            faces.push(SolidFace {
+                trim: Some(trim),
+                ..r.face
+            });
+            indices.push(r.index);
+        }
+        let boxes: Vec<(Point3, Point3)> = patches.iter().map(|p| (p.lo, p.hi)).collect();
+        Ok(SolidClassifier {
+            bvh: Bvh::new(&boxes),
+            faces,
+            face_indices: indices,
+            patches,
+            lo: lo - grow,
+            hi: hi + grow,
+            size,
+            tolerance,
+        })
+    }
+
+    /// The boundary tolerance `T` (model units).
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// The box of the solid, grown by the tolerance: `(lower, upper)` corners.
+    pub fn bounds(&self) -> (Point3, Point3) {
+        (self.lo, self.hi)
+    }
+
+    /// The model's indices of the solid's faces.
+    pub fn faces(&self) -> &[usize] {
+        &self.face_indices
+    }
+
+    /// How many patches the faces were cut into.
+    pub fn patch_count(&self) -> usize {
+        self.patches.len()
+    }
+
+    /// Where `p` lies (see the module documentation). A point with a coordinate that is not
+    /// finite is [`Location::Outside`].
+    pub fn locate(&self, p: Point3) -> Location {
+        if !(0..3).all(|k| p[k] >= self.lo[k] && p[k] <= self.hi[k]) {
+            return Location::Outside;
+        }
+        if self.near_boundary(p) {
+            return Location::Boundary;
+        }
+        for k in 0..MAX_RAYS {
+            match self.cast(p, ray_direction(k)) {
+                Cast::Count(0) => return Location::Outside,
+                Cast::Count(_) => return Location::Inside,
+                Cast::OnFace => return Location::Boundary,
+                Cast::Degenerate => {}
+            }
+        }
+        Location::Boundary
+    }
+
+    /// The locations of `points`, in order, on this thread.
+    pub fn locate_all(&self, points: &[Point3]) -> Vec<Location> {
+        points.iter().map(|&p| self.locate(p)).collect()
+    }
+
+    /// Writes the location of `points[i]` to `out[i]`, on this thread and rayon's pool (with
+    /// the `parallel` feature; on this thread without it).
+    ///
+    /// # Panics
+    /// If `out` is not as long as `points`.
+    pub fn locate_into(&self, points: &[Point3], out: &mut [Location]) {
+        assert_eq!(points.len(), out.len(), "one location per point");
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            const CHUNK: usize = 256;
+            out.par_chunks_mut(CHUNK)
+                .zip(points.par_chunks(CHUNK))
+                .for_each(|(o, p)| {
+                    for (o, &p) in o.iter_mut().zip(p) {
+                        *o = self.locate(p);
+                    }
+                });
+        }
+        #[cfg(not(feature = "parallel"))]
+        for (o, &p) in out.iter_mut().zip(points) {
+            *o = self.locate(p);
+        }
+    }
+
+    /// Whether `p` is within the tolerance of a face.
+    fn near_boundary(&self, p: Point3) -> bool {
+        let mut near = false;
+        let mut edges_seen: Vec<u32> = Vec::new();
+        self.bvh.holding(p, |i| {
+            if near {
+                return;
+            }
+            let patch = &self.patches[i as usize];
+            let face = &self.faces[patch.face as usize];
+            let (uv, distance) = foot(&face.surface, patch.cell, p);
+            if distance <= self.tolerance && face.on_face(uv) {
+                near = true;
+                return;
+            }
+            if !edges_seen.contains(&patch.face) {
+                edges_seen.push(patch.face);
+                near = face.edges.iter().any(|e| {
+                    let t = e.curve.closest_parameter(p, Some(e.range));
+                    e.curve.point(t).distance(p) <= self.tolerance
+                });
+            }
+        });
+        near
+    }
+
+    /// The signed count of the crossings of the ray `p + t d`, `t > 0`.
+    fn cast(&self, p: Point3, d: Point3) -> Cast {
+        let inv = Point3::new(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+        let mut ray = Ray {
+            p,
+            d,
+            inv,
+            hits: Vec::new(),
+            outcome: None,
+        };
+        self.bvh.along_ray(p, inv, -self.tolerance, |i| {
+            if ray.outcome.is_none() {
+                self.patch_crossings(&mut ray, &self.patches[i as usize], QUERY_SPLITS);
+            }
+        });
+        if let Some(outcome) = ray.outcome {
+            return outcome;
+        }
+        // The same crossing found from two neighbouring patches counts once.
+        let hits = &mut ray.hits;
+        hits.sort_by(|a, b| a.face.cmp(&b.face).then(a.t.total_cmp(&b.t)));
+        let same = 1e-9 * self.size;
+        let mut count = 0i64;
+        let mut last: Option<Hit> = None;
+        for &h in hits.iter() {
+            if last.is_some_and(|l| l.face == h.face && h.t - l.t <= same) {
+                continue;
+            }
+            count += h.sign;
+            last = Some(h);
+        }
+        match count {
+            0 | 1 => Cast::Count(count),
+            _ => Cast::Degenerate,
+        }
+    }
+
+    /// The crossings of `ray` with `patch` (quartered `splits` more times at most where the
+    /// ray grazes it), recorded in `ray`.
+    fn patch_crossings(&self, ray: &mut Ray, patch: &Patch, splits: usize) {
+        let face = &self.faces[patch.face as usize];
+        if !patch.is_transversal(ray.d) {
+            if splits == 0 {
+                ray.outcome = Some(Cast::Degenerate);
+                return;
+            }
+            for q in patch.split(&face.surface, self.tolerance) {
+                if ray.outcome.is_none() && ray_meets_box(ray.p, ray.inv, -self.tolerance, q.lo, q.hi)
+                {
+                    self.patch_crossings(ray, &q, splits - 1);
+                }
+            }
+            return;
+        }
+        let (uv, t) = match ray_crossing(&face.surface, patch.cell, ray.p, ray.d, self.size) {
+            Crossing::None => return,
+            Crossing::Unsettled => {
+                ray.outcome = Some(Cast::Degenerate);
+                return;
+            }
+            Crossing::At { uv, t } => (uv, t),
+        };
+        if t < -self.tolerance {
+            return;
+        }
+        let trim = face.trim();
+        match trim.locate(Point::new(uv[0], uv[1])) {
+            Location::Outside => {}
+            Location::Boundary => ray.outcome = Some(Cast::Degenerate),
+            Location::Inside if t <= self.tolerance => ray.outcome = Some(Cast::OnFace),
+            Location::Inside => match face.surface.normal(uv) {
+                Some(n) => {
+                    let c = ray.d.dot(n) * face.sense;
+                    if c.abs() < MIN_COSINE {
+                        ray.outcome = Some(Cast::Degenerate);
+                    } else {
+                        ray.hits.push(Hit {
+                            face: patch.face,
+                            t,
+                            sign: if c > 0.0 { 1 } else { -1 },
+                        });
+                    }
+                }
+                None => ray.outcome = Some(Cast::Degenerate),
+            },
+        }
+    }
+}
+
+/// A face as read, before the tolerance is known.
+struct ReadFace {
+    index: usize,
+    domain: rs_spline::Domain,
+    speed: f64,
+    face: SolidFace,
+}
+
+impl SolidFace {
+    /// The face's 2-D test (built with the classifier).
+    fn trim(&self) -> &Classifier {
+        self.trim.as_ref().expect("built with the classifier")
+    }
+
+    /// Whether `uv` is on the face (inside it or in its boundary band).
+    fn on_face(&self, uv: [f64; 2]) -> bool {
+        self.trim().locate(Point::new(uv[0], uv[1])) != Location::Outside
+    }
+}
+
+/// What one ray found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Cast {
+    /// The signed count of its crossings: `1` inside, `0` outside.
+    Count(i64),
+    /// The point lies on a face (within the tolerance along the ray).
+    OnFace,
+    /// The ray cannot tell: shoot another.
+    Degenerate,
+}
+
+/// A crossing of a ray with a face.
+#[derive(Clone, Copy, Debug)]
+struct Hit {
+    face: u32,
+    t: f64,
+    /// `+1` leaving the solid, `-1` entering it.
+    sign: i64,
+}
+
+/// A ray being cast.
+struct Ray {
+    p: Point3,
+    d: Point3,
+    inv: Point3,
+    hits: Vec<Hit>,
+    outcome: Option<Cast>,
+}
+
+/// A face's `(u, v)` box `u x v` cut at its surface's knot lines; non-periodic parameters held
+/// in the surface's parameter box (a pcurve may stray past a B-spline's by rounding).
+fn face_cells(surface: &Surface, u: (f64, f64), v: (f64, f64)) -> Vec<Cell> {
+    let pbox = surface.param_box();
+    let periods = surface.periods();
+    let range = |i: usize, (lo, hi): (f64, f64)| {
+        let (a, b) = pbox.range(i);
+        if periods[i].is_some() || a.max(lo) >= b.min(hi) {
+            (lo, hi)
+        } else {
+            (a.max(lo), b.min(hi))
+        }
+    };
+    knot_cells(range(0, u), range(1, v), &surface.knot_lines())
+}
+
+/// The smallest sampled speed of a face's patches, leaving out those below `1e-3` of the
+/// largest (at a pole, where the speed is zero whatever the tolerance).
+fn slowest_speed(patches: &[Patch]) -> f64 {
+    let fastest = patches.iter().map(|p| p.speed).fold(0.0, f64::max);
+    patches
+        .iter()
+        .map(|p| p.speed)
+        .filter(|&s| s > 1e-3 * fastest)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Ray direction `k` of [`MAX_RAYS`]: points of a golden-angle spiral on the sphere, turned
+/// so that no component is near zero (no ray runs along an axis or in a coordinate plane,
+/// where the faces of real parts lie).
+fn ray_direction(k: usize) -> Point3 {
+    let n = MAX_RAYS as f64;
+    let z = 1.0 - (2.0 * k as f64 + 1.0) / n;
+    let r = (1.0 - z * z).sqrt();
+    let a = k as f64 * TAU * 0.381_966_011_250_105_1 + 0.577_215_664_901_532_9;
+    let d = Point3::new(r * a.cos(), r * a.sin(), z);
+    // A fixed rotation about (1, 2, 3) by 1 radian.
+    let axis = Point3::new(1.0, 2.0, 3.0) * (1.0 / 14f64.sqrt());
+    let (s, c) = 1f64.sin_cos();
+    let d = d * c + axis.cross(d) * s + axis * (axis.dot(d) * (1.0 - c));
+    d * (1.0 / d.length())
+}
