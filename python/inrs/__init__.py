@@ -1053,6 +1053,40 @@ class CadSolid(_CadSolidFields):
     def __getstate__(self):
         return None  # the model stays behind
 
+    def __reduce__(self):
+        path = getattr(self, "_path", None)
+        if path is None:
+            return super().__reduce__()
+        # Unpickled, the solid reads its file again (the model is not pickled).
+        return (_solid_of_file, (path, self.index))
+
+    def classify(self, xyz) -> np.ndarray:
+        """Where the points ``xyz`` (an ``(n, 3)`` array, or one ``(x, y, z)``) lie: an int8
+        array (``0`` outside, ``1`` inside, ``2`` boundary, the codes of :meth:`Domain.classify`),
+        exact away from the boundary: the signed crossings of a ray with the trimmed faces,
+        each crossing checked by the face's exact 2-D test (see docs/SEMANTICS.md, "Point in a
+        solid"). ``boundary`` means within ``max(file tolerance, 1e-8 x the solid's box
+        diagonal)`` of a face. The solid's classifier is built on the first call and kept;
+        points are classified on all cores with the GIL released; thread-safe. Raises
+        ``ValueError`` for an open shell (naming its free edges), inconsistent orientation, or
+        points not of shape ``(n, 3)``."""
+        native = getattr(self, "_native", None)
+        if native is None:
+            raise ValueError("this solid was unpickled without its model: read the file again")
+        a = np.asarray(xyz, dtype=np.float64)
+        one = a.ndim == 1
+        if one:
+            a = a.reshape(1, -1)
+        if a.ndim != 2 or a.shape[1] != 3:
+            raise ValueError(f"points for a solid must have shape (n, 3) (x, y, z), got {np.shape(xyz)}")
+        codes = native.classify_solid(self.index, np.ascontiguousarray(a))
+        return codes[0] if one else codes
+
+    def contains_xyz(self, xyz) -> np.ndarray:
+        """Whether the points ``xyz`` (``(n, 3)``) are inside the solid (boundary points are
+        not): a boolean array, :meth:`classify` ``== 1``."""
+        return self.classify(xyz) == 1
+
     @property
     def faces(self) -> "list[int]":
         """The faces of all its shells, in shell order."""
@@ -1230,7 +1264,7 @@ class CadModel:
 
     __slots__ = ("_native", "_properties", "faces", "shells", "solids")
 
-    def __init__(self, native: "_inrs.NativeCadModel") -> None:
+    def __init__(self, native: "_inrs.NativeCadModel", path: Optional[str] = None) -> None:
         self._native = native
         self._properties = _ModelProperties(native)
         self.faces = [
@@ -1244,6 +1278,9 @@ class CadModel:
             CadSolid(k, entity, [self.shells[s] for s in shells], self._properties)
             for k, (entity, shells) in enumerate(native.solids())
         ]
+        for solid in self.solids:
+            solid._native = native
+            solid._path = path
 
     format = property(lambda self: self._native.format())
     tolerance = property(lambda self: self._native.tolerance())
@@ -1281,7 +1318,13 @@ def cad_model(path: Union[str, os.PathLike], closure_tol: Optional[float] = None
     >>> m = inrs.cad_model("fixtures/cad/plate.step")  # doctest: +SKIP
     >>> m.faces[0].points(np.array([[1.0, 2.0]]))  # doctest: +SKIP
     """
-    return CadModel(_inrs.NativeCadModel(os.fspath(path), closure_tol))
+    path = os.fspath(path)
+    return CadModel(_inrs.NativeCadModel(path, closure_tol), None if closure_tol is not None else os.path.abspath(path))
+
+
+def _solid_of_file(path: str, index: int) -> "CadSolid":
+    """Solid ``index`` of the file ``path`` read again (how a pickled solid comes back)."""
+    return cad_model(path).solids[index]
 
 
 def cad_faces(path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "list[CadFace]":

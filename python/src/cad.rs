@@ -4,12 +4,14 @@
 
 use std::sync::{Arc, OnceLock};
 
-use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
 use inrs::geom::ParamSurface;
+use inrs::geom::Point3;
 use inrs::geom::brep::Edge;
 use inrs::geom::properties::{FaceProperties, ModelProperties, SolidProperties};
+use inrs::geom::solid::{Location, SolidClassifier};
 use inrs::io::cad::{CadFaceSummary, CadModel};
 
 use crate::domain::{NativeDomain, check_closure_tol};
@@ -128,6 +130,8 @@ pub(crate) struct NativeCadModel {
     faces: Vec<(Py<CadFace>, Option<Py<NativeDomain>>)>,
     /// `Model::properties()`, computed on first use (once, whichever thread asks first).
     properties: OnceLock<ModelProperties>,
+    /// Each solid's classifier (or why it cannot be built), built on first use.
+    classifiers: Vec<OnceLock<Result<SolidClassifier, String>>>,
 }
 
 /// A face's properties as Python sees them: `(area, centroid, second_moments, error,
@@ -226,10 +230,12 @@ impl NativeCadModel {
             .into_iter()
             .map(|(f, d)| Ok((Py::new(py, f)?, d.map(|d| Py::new(py, d)).transpose()?)))
             .collect::<PyResult<_>>()?;
+        let classifiers = (0..model.solids.len()).map(|_| OnceLock::new()).collect();
         Ok(Self {
             model: Arc::new(model),
             faces,
             properties: OnceLock::new(),
+            classifiers,
         })
     }
 
@@ -324,6 +330,45 @@ impl NativeCadModel {
             s.normal(uv[i])
                 .map_or([f64::NAN; 3], |n| (n * sign).to_array())
         })
+    }
+
+    /// Where the rows of `xyz` (`(n, 3)`) lie against solid `solid`: an int8 array (0
+    /// outside, 1 inside, 2 boundary). The solid's classifier is built on first use (with the
+    /// GIL released) and kept; the points are classified on all cores.
+    fn classify_solid<'py>(
+        &self,
+        py: Python<'py>,
+        solid: usize,
+        xyz: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<i8>>> {
+        let a = xyz.as_array();
+        if a.ncols() != 3 {
+            return Err(value_error(format!(
+                "points for a solid must have shape (n, 3) (x, y, z), got {:?}",
+                a.shape()
+            )));
+        }
+        let points: Vec<Point3> = a
+            .rows()
+            .into_iter()
+            .map(|r| Point3::new(r[0], r[1], r[2]))
+            .collect();
+        let cell = self.classifiers.get(solid).ok_or_else(|| {
+            value_error(format!(
+                "solid {solid} does not exist (the file has {} solids)",
+                self.classifiers.len()
+            ))
+        })?;
+        let codes = py.detach(|| {
+            let c = cell
+                .get_or_init(|| SolidClassifier::new(&self.model, solid).map_err(|e| e.to_string()))
+                .as_ref()
+                .map_err(Clone::clone)?;
+            let mut out = vec![Location::Outside; points.len()];
+            c.locate_into(&points, &mut out);
+            Ok::<_, String>(out.into_iter().map(Location::code).collect::<Vec<i8>>())
+        });
+        Ok(codes.map_err(value_error)?.into_pyarray(py))
     }
 
     /// The 3-D edges of face `face`, loop by loop: `(entity, t0, t1, reversed)` each.

@@ -12,10 +12,13 @@ use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
 use crate::stream::{Column, PointsInput, stream_points};
 
-use super::classify_many;
+use super::{classify_many, classify_solid};
 
 /// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order
-/// (with several domains, `x,y` and one column per domain).
+/// (with several domains, `x,y` and one column per domain). For a solid of a STEP or IGES part
+/// (`--domain part.step#solid:K`, or `part.step` for every solid), the points are `x,y,z`
+/// (CSV, or `.npy` of shape (N, 3)) and the output `x,y,z,location` (a column `solid:K` per
+/// solid for a whole file).
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct ClassifyArgs {
@@ -122,6 +125,11 @@ impl ClassifyArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let options = self.options();
         let output = self.output.as_deref();
+        if let [spec] = self.domains.domain.as_slice()
+            && let Some((file, solid)) = classify_solid::solid_spec(&spec.to_string_lossy())
+        {
+            return classify_solid::run(file, solid, &self.points, output);
+        }
         if let Some(domain) = self.domains.single() {
             let d = domain.load()?;
             let input = PointsInput::open(&self.points, 1)?;

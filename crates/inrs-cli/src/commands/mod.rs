@@ -2,6 +2,7 @@
 
 pub(crate) mod classify;
 pub(crate) mod classify_many;
+pub(crate) mod classify_solid;
 pub(crate) mod convert;
 pub(crate) mod convex_domain;
 pub(crate) mod cubature;

@@ -79,18 +79,23 @@ impl Bvh {
         me
     }
 
-    /// Calls `f(item)` for every box the ray `o + t d`, `t >= t0`, meets (`inv` is `1 / d`
-    /// componentwise).
-    pub(super) fn along_ray(&self, o: Point3, inv: Point3, t0: f64, mut f: impl FnMut(u32)) {
-        self.visit(|lo, hi| ray_meets_box(o, inv, t0, lo, hi), &mut f);
+    /// Calls `f(item)` for every box the ray `o + t d`, `t0 <= t <= t1`, meets (`inv` is
+    /// `1 / d` componentwise).
+    pub(super) fn along_ray(
+        &self,
+        o: Point3,
+        inv: Point3,
+        t0: f64,
+        t1: f64,
+        mut f: impl FnMut(u32),
+    ) {
+        self.visit(|lo, hi| ray_meets_box(o, inv, t0, t1, lo, hi), &mut f);
     }
 
     /// Calls `f(item)` for every box holding `p`.
     pub(super) fn holding(&self, p: Point3, mut f: impl FnMut(u32)) {
         self.visit(
-            |lo, hi| {
-                (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k])
-            },
+            |lo, hi| (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k]),
             &mut f,
         );
     }
@@ -118,11 +123,18 @@ impl Bvh {
     }
 }
 
-/// Whether the ray `o + t d` (`inv = 1 / d`), `t >= t0`, meets the box `[lo, hi]` (the slab
-/// test; a box the ray only touches counts).
-pub(super) fn ray_meets_box(o: Point3, inv: Point3, t0: f64, lo: Point3, hi: Point3) -> bool {
+/// Whether the ray `o + t d` (`inv = 1 / d`), `t0 <= t <= t1`, meets the box `[lo, hi]` (the
+/// slab test; a box the ray only touches counts).
+pub(super) fn ray_meets_box(
+    o: Point3,
+    inv: Point3,
+    t0: f64,
+    t1: f64,
+    lo: Point3,
+    hi: Point3,
+) -> bool {
     let mut near = t0;
-    let mut far = f64::INFINITY;
+    let mut far = t1;
     for k in 0..3 {
         let a = (lo[k] - o[k]) * inv[k];
         let b = (hi[k] - o[k]) * inv[k];
@@ -164,12 +176,12 @@ mod tests {
             let d = Point3::new(next() - 0.5, next() - 0.5, next() - 0.5);
             let inv = Point3::new(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
             let mut got = Vec::new();
-            bvh.along_ray(o, inv, 0.0, |i| got.push(i));
+            bvh.along_ray(o, inv, 0.0, f64::INFINITY, |i| got.push(i));
             got.sort_unstable();
             let want: Vec<u32> = (0..boxes.len() as u32)
                 .filter(|&i| {
                     let (lo, hi) = boxes[i as usize];
-                    ray_meets_box(o, inv, 0.0, lo, hi)
+                    ray_meets_box(o, inv, 0.0, f64::INFINITY, lo, hi)
                 })
                 .collect();
             assert_eq!(got, want);

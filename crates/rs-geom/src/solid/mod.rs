@@ -5,27 +5,34 @@
 //!
 //! A [`SolidClassifier`] is built once per solid: each face's surface is cut into patches
 //! (its `(u, v)` box cut at the surface's knot lines, then halved while the normals of a piece
-//! spread more than 20 degrees), each with a box in space that holds it, all in one
-//! bounding-volume hierarchy; each face keeps its trimming loops as an exact 2-D classifier.
+//! spread more than 0.2 radians from its centre's), each with a box in space that holds it, all
+//! in one bounding-volume hierarchy; each face keeps its trimming loops as an exact 2-D
+//! classifier. A grid of about 2^18 cells over the solid's box marks the cells the patch boxes
+//! reach (patches quartered until a box reaches at most 8 cells); each connected set of the
+//! other cells lies wholly inside or wholly outside (no face passes between two of them), and
+//! one ray from one of its cells decides it. Each marked cell keeps the nearest decided cell.
 //!
-//! For a point `p`:
+//! For a point `p` in an unmarked cell the answer is the cell's. Otherwise:
 //!
 //! 1. **Boundary.** `p` is [`Location::Boundary`] when it lies within the tolerance `T` of a
 //!    face: the foot of `p` on a patch whose box holds it is within `T` and lies on the face
 //!    (the face's 2-D test in `(u, v)`, its band included), or a 3-D edge of such a face is
 //!    within `T`.
-//! 2. **Ray.** Otherwise a ray `p + t d`, `t > 0`, is cast: every patch whose box it meets is
-//!    solved by Newton's method on `S(u, v) = p + t d` from the patch's centre. A patch whose
-//!    normals all stay more than 0.1 radians from the ray's normal plane is crossed at most
+//! 2. **Segment.** The segment from `p` to the centre `q` of its cell's nearest decided cell
+//!    is cast: every patch whose box it meets is solved by Newton's method on
+//!    `S(u, v) = p + t d` from the patch's centre. A patch whose normals (the sampled cone
+//!    widened by 1.25 and 0.05 radians) all stay off the ray's normal plane is crossed at most
 //!    once; patches the ray grazes are quartered again (six times at most). Each crossing is
 //!    kept when its `(u, v)` is inside the face by the exact 2-D test and counted with its sign
-//!    (`+1` leaving the solid, where the ray runs along the face's outward normal).
-//! 3. **Answer.** On a closed, consistently oriented solid the signed count is `1` inside and
-//!    `0` outside. A ray is shot again in another direction (16 fixed directions, none along
-//!    an axis) when it is **degenerate**: a crossing in a face's boundary band (through an edge
-//!    or a vertex, or a gap between faces the file's tolerance allows), a patch still grazed at
-//!    the finest split, a Newton iteration that does not settle, or a count other than `0` or
-//!    `1`. A point all 16 rays find degenerate is reported [`Location::Boundary`].
+//!    (`+1` leaving the solid, where the ray runs along the face's outward normal); `p` is
+//!    inside when `q`'s state plus the signed count is `1`, outside when it is `0`.
+//! 3. **Rays.** Where the segment is degenerate, rays to infinity in 16 fixed directions (none
+//!    along an axis) are cast in turn, the first clean one deciding (a signed count of `1`
+//!    inside, `0` outside). A segment or ray is **degenerate** when it meets a crossing in a
+//!    face's boundary band (through an edge or a vertex, or a gap between faces the file's
+//!    tolerance allows), a patch still grazed at the finest split, a Newton iteration that
+//!    does not settle, or a count other than `0` or `1`. A point all 16 rays find degenerate
+//!    is reported [`Location::Boundary`].
 //!
 //! # Tolerance
 //!
@@ -41,26 +48,29 @@
 //! The solid must be closed (every shell closed: an open one is an error naming its free
 //! edges) and consistently oriented (its volume positive and its faces' net area vector
 //! `|sum n dA|` at most `1e-3` of its area, else an error). Patch boxes are the box of `5 x 5`
-//! samples grown by 1.5 times the error of linear interpolation with the largest sampled
+//! samples grown by 1.25 times the error of linear interpolation with the largest sampled
 //! second derivatives: a surface whose curvature changes wildly between samples could leave
-//! its box (real files' surfaces do not).
+//! its box (real files' surfaces do not), and a connected set of grid cells is decided by one
+//! ray on the strength of those boxes.
 
 mod bvh;
+mod grid;
 mod patches;
 mod roots;
 
 use std::f64::consts::TAU;
 
-use rs_contain::{ContainOptions, Locate};
 pub use rs_contain::{Classifier, Location};
+use rs_contain::{ContainOptions, Locate};
 use rs_spline::{Point, Point3};
 use thiserror::Error;
 
+use crate::PRINTED_DIGITS;
 use crate::brep::{Edge, Model, ModelError};
 use crate::properties::PropertiesError;
 use crate::surface::{ParamSurface, Surface};
-use crate::PRINTED_DIGITS;
 use bvh::{Bvh, ray_meets_box};
+use grid::{CellState, Grid};
 use patches::{Cell, Patch, face_patches, knot_cells};
 use roots::{Crossing, foot, ray_crossing};
 
@@ -70,6 +80,9 @@ pub const DEFAULT_RELATIVE_TOLERANCE: f64 = PRINTED_DIGITS;
 
 /// Rays shot at most for one point.
 pub const MAX_RAYS: usize = 16;
+
+/// How many times a patch is quartered at most to mark the grid cells it passes through.
+const MARK_SPLITS: usize = 10;
 
 /// How many times a patch grazed by a ray is quartered at most.
 const QUERY_SPLITS: usize = 6;
@@ -152,6 +165,7 @@ pub struct SolidClassifier {
     face_indices: Vec<usize>,
     patches: Vec<Patch>,
     bvh: Bvh,
+    grid: Grid,
     lo: Point3,
     hi: Point3,
     size: f64,
@@ -183,7 +197,8 @@ impl SolidClassifier {
             return Err(SolidError::InvalidTolerance(relative));
         }
         let props = model.solid_properties(index)?;
-        if !(props.volume > 0.0) || !(props.leak_area <= MAX_RELATIVE_LEAK * props.area) {
+        let oriented = props.volume > 0.0 && props.leak_area <= MAX_RELATIVE_LEAK * props.area;
+        if !oriented {
             return Err(SolidError::Orientation {
                 solid: index,
                 volume: props.volume,
@@ -231,7 +246,11 @@ impl SolidClassifier {
         let (lo, hi) =
             Point3::bounds(patches.iter().flat_map(|p| [p.lo, p.hi])).unwrap_or_default();
         let size = (hi - lo).length();
-        let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
+        let size = if size > 0.0 && size.is_finite() {
+            size
+        } else {
+            1.0
+        };
         let tolerance = model.tolerance.stated().unwrap_or(0.0).max(relative * size);
         let grow = Point3::new(tolerance, tolerance, tolerance);
         for p in &mut patches {
@@ -247,12 +266,14 @@ impl SolidClassifier {
             } else {
                 MAX_RELATIVE_BAND
             };
-            let trim =
-                Classifier::new(&r.domain, ContainOptions::DEFAULT.with_relative_tolerance(band))
-                    .map_err(|error| SolidError::Trim {
-                        index: r.index,
-                        error: error.to_string(),
-                    })?;
+            let trim = Classifier::new(
+                &r.domain,
+                ContainOptions::DEFAULT.with_relative_tolerance(band),
+            )
+            .map_err(|error| SolidError::Trim {
+                index: r.index,
+                error: error.to_string(),
+            })?;
             faces.push(SolidFace {
                 trim: Some(trim),
                 ..r.face
@@ -260,8 +281,9 @@ impl SolidClassifier {
             indices.push(r.index);
         }
         let boxes: Vec<(Point3, Point3)> = patches.iter().map(|p| (p.lo, p.hi)).collect();
-        Ok(SolidClassifier {
+        let mut me = SolidClassifier {
             bvh: Bvh::new(&boxes),
+            grid: Grid::single(lo - grow, hi + grow),
             faces,
             face_indices: indices,
             patches,
@@ -269,7 +291,39 @@ impl SolidClassifier {
             hi: hi + grow,
             size,
             tolerance,
-        })
+        };
+        me.grid = Grid::new(
+            me.lo,
+            me.hi,
+            |grid, mixed| {
+                for patch in &me.patches {
+                    me.mark(grid, patch, MARK_SPLITS, mixed);
+                }
+            },
+            |p| me.by_rays(p).map(|l| l == Location::Inside),
+        );
+        Ok(me)
+    }
+
+    /// Marks the cells `patch` may pass through, quartering it (at most `splits` times) while
+    /// its box reaches more than 8 cells.
+    fn mark(&self, grid: &Grid, patch: &Patch, splits: usize, mixed: &mut [bool]) {
+        let r = grid.ranges(patch.lo, patch.hi);
+        let count: usize = r.iter().map(|(a, b)| b - a + 1).product();
+        if count <= 8 || splits == 0 {
+            for i in r[0].0..=r[0].1 {
+                for j in r[1].0..=r[1].1 {
+                    for k in r[2].0..=r[2].1 {
+                        mixed[grid.linear([i, j, k])] = true;
+                    }
+                }
+            }
+            return;
+        }
+        let surface = &self.faces[patch.face as usize].surface;
+        for q in patch.split(surface, self.tolerance) {
+            self.mark(grid, &q, splits - 1, mixed);
+        }
     }
 
     /// The boundary tolerance `T` (model units).
@@ -298,18 +352,53 @@ impl SolidClassifier {
         if !(0..3).all(|k| p[k] >= self.lo[k] && p[k] <= self.hi[k]) {
             return Location::Outside;
         }
+        let reference = match self.grid.state(p) {
+            CellState::Inside => return Location::Inside,
+            CellState::Outside => return Location::Outside,
+            CellState::Mixed(reference) => reference,
+        };
         if self.near_boundary(p) {
             return Location::Boundary;
         }
-        for k in 0..MAX_RAYS {
-            match self.cast(p, ray_direction(k)) {
-                Cast::Count(0) => return Location::Outside,
-                Cast::Count(_) => return Location::Inside,
-                Cast::OnFace => return Location::Boundary,
-                Cast::Degenerate => {}
+        if let Some(r) = reference {
+            let inside = self.grid.state_of(r) == CellState::Inside;
+            if let Some(l) = self.by_segment(p, self.grid.centre(r as usize), inside) {
+                return l;
             }
         }
-        Location::Boundary
+        self.by_rays(p).unwrap_or(Location::Boundary)
+    }
+
+    /// Where `p` lies by the crossings of the segment to `q`, a point `inside` or not, far
+    /// from every face; `None` where the segment is degenerate.
+    fn by_segment(&self, p: Point3, q: Point3, inside: bool) -> Option<Location> {
+        let d = q - p;
+        let length = d.length();
+        let d = d * (1.0 / length);
+        let usable = length > 0.0 && d.is_finite() && d.x != 0.0 && d.y != 0.0 && d.z != 0.0;
+        if !usable {
+            return None;
+        }
+        match self.cast(p, d, length) {
+            Cast::Count(s) => match i64::from(inside) + s {
+                0 => Some(Location::Outside),
+                1 => Some(Location::Inside),
+                _ => None,
+            },
+            Cast::OnFace => Some(Location::Boundary),
+            Cast::Degenerate => None,
+        }
+    }
+
+    /// Where `p` (not within the tolerance of a face) lies by the crossings of rays to
+    /// infinity in the fixed directions, the first that is not degenerate; `None` if all are.
+    fn by_rays(&self, p: Point3) -> Option<Location> {
+        (0..MAX_RAYS).find_map(|k| match self.cast(p, ray_direction(k), f64::INFINITY) {
+            Cast::Count(0) => Some(Location::Outside),
+            Cast::Count(1) => Some(Location::Inside),
+            Cast::OnFace => Some(Location::Boundary),
+            Cast::Count(_) | Cast::Degenerate => None,
+        })
     }
 
     /// The locations of `points`, in order, on this thread.
@@ -353,6 +442,10 @@ impl SolidClassifier {
             let patch = &self.patches[i as usize];
             let face = &self.faces[patch.face as usize];
             let (uv, distance) = foot(&face.surface, patch.cell, p);
+            if distance > 2.0 * self.tolerance {
+                // An edge within T lies within T + the file's tolerance (<= T) of the surface.
+                return;
+            }
             if distance <= self.tolerance && face.on_face(uv) {
                 near = true;
                 return;
@@ -368,17 +461,18 @@ impl SolidClassifier {
         near
     }
 
-    /// The signed count of the crossings of the ray `p + t d`, `t > 0`.
-    fn cast(&self, p: Point3, d: Point3) -> Cast {
+    /// The signed count of the crossings of the ray `p + t d`, `0 < t < length`.
+    fn cast(&self, p: Point3, d: Point3, length: f64) -> Cast {
         let inv = Point3::new(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
         let mut ray = Ray {
             p,
             d,
             inv,
+            length,
             hits: Vec::new(),
             outcome: None,
         };
-        self.bvh.along_ray(p, inv, -self.tolerance, |i| {
+        self.bvh.along_ray(p, inv, -self.tolerance, length, |i| {
             if ray.outcome.is_none() {
                 self.patch_crossings(&mut ray, &self.patches[i as usize], QUERY_SPLITS);
             }
@@ -399,10 +493,7 @@ impl SolidClassifier {
             count += h.sign;
             last = Some(h);
         }
-        match count {
-            0 | 1 => Cast::Count(count),
-            _ => Cast::Degenerate,
-        }
+        Cast::Count(count)
     }
 
     /// The crossings of `ray` with `patch` (quartered `splits` more times at most where the
@@ -415,7 +506,8 @@ impl SolidClassifier {
                 return;
             }
             for q in patch.split(&face.surface, self.tolerance) {
-                if ray.outcome.is_none() && ray_meets_box(ray.p, ray.inv, -self.tolerance, q.lo, q.hi)
+                if ray.outcome.is_none()
+                    && ray_meets_box(ray.p, ray.inv, -self.tolerance, ray.length, q.lo, q.hi)
                 {
                     self.patch_crossings(ray, &q, splits - 1);
                 }
@@ -430,7 +522,7 @@ impl SolidClassifier {
             }
             Crossing::At { uv, t } => (uv, t),
         };
-        if t < -self.tolerance {
+        if t < -self.tolerance || t > ray.length {
             return;
         }
         let trim = face.trim();
@@ -502,6 +594,7 @@ struct Ray {
     p: Point3,
     d: Point3,
     inv: Point3,
+    length: f64,
     hits: Vec<Hit>,
     outcome: Option<Cast>,
 }

@@ -15,7 +15,7 @@ const SAMPLES: usize = 5;
 
 /// The widest normal cone (half angle, radians) of a patch made while building; wider ones
 /// are halved.
-const MAX_CONE: f64 = 0.35;
+const MAX_CONE: f64 = 0.2;
 
 /// The most halvings of one knot cell while building.
 const MAX_BUILD_SPLITS: usize = 12;
@@ -26,10 +26,10 @@ pub(super) const MAX_PATCHES_PER_FACE: usize = 4096;
 
 /// How far a ray's direction must stay from a patch's tangent planes (radians) for the patch
 /// to be crossed at most once.
-const CLEARANCE: f64 = 0.1;
+const CLEARANCE: f64 = 0.05;
 
 /// Safety factor on sampled normal cones and on the second-derivative margin of boxes.
-const SAFETY: f64 = 1.5;
+const SAFETY: f64 = 1.25;
 
 /// A rectangle of a surface's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,7 +65,10 @@ impl Cell {
 
     /// `uv` clamped into the cell.
     pub(super) fn clamp(&self, uv: [f64; 2]) -> [f64; 2] {
-        [uv[0].clamp(self.u.0, self.u.1), uv[1].clamp(self.v.0, self.v.1)]
+        [
+            uv[0].clamp(self.u.0, self.u.1),
+            uv[1].clamp(self.v.0, self.v.1),
+        ]
     }
 
     /// The halves across parameter `axis`.
@@ -166,7 +169,9 @@ impl Samples {
                 suv = suv.max(d.duv.length());
                 svv = svv.max(d.dvv.length());
                 speed = speed.min(d.du.length().min(d.dv.length()));
-                normals.push(surface.normal(uv));
+                // The closed form where S_u x S_v vanishes (a pole).
+                let n = d.du.cross(d.dv).normalized();
+                normals.push(n.or_else(|| surface.normal(uv)));
             }
         }
         let centre = cell.centre();

@@ -69,8 +69,8 @@ pub(super) fn ray_crossing(
         uv = clamped;
         t += dt;
         let [a, b] = cell.sides();
-        let tiny_step = du.abs() <= 1e-14 * a.max(uv[0].abs())
-            && dv.abs() <= 1e-14 * b.max(uv[1].abs());
+        let tiny_step =
+            du.abs() <= 1e-14 * a.max(uv[0].abs()) && dv.abs() <= 1e-14 * b.max(uv[1].abs());
         if f.length() <= small || tiny_step {
             let residual = (surface.point(uv) - p - d * t).length();
             if residual > 1e-9 * scale {

@@ -31,6 +31,7 @@ mod encoded;
 mod grammar;
 mod npy;
 mod run;
+mod xyz;
 
 use std::path::Path;
 
@@ -41,6 +42,7 @@ pub use csv::CsvReader;
 pub use encoded::{EncodedPoints, NpyType};
 pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyReader, npy_header};
 pub use run::{CsvPoints, PointRun, PointsReader, ReadProgress, RunPoints, RunSizes};
+pub use xyz::{XyzReader, XyzRun};
 
 /// The longest line a points file may have, in bytes, without its end (`\n` or `\r\n`): a
 /// file without line breaks is an error, not an unbounded allocation.

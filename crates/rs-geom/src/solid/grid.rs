@@ -1,0 +1,226 @@
+//! A grid of cells over a solid's box: cells no patch box reaches are wholly inside or wholly
+//! outside (no face passes through them), found once by flood fill and one ray per connected
+//! set; a cell the faces pass through keeps the nearest such cell as a reference, so a point
+//! there is decided by the crossings of a short segment to the reference's centre.
+
+use std::collections::VecDeque;
+
+use rs_spline::Point3;
+
+/// A cell's state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum CellState {
+    /// Wholly outside the solid.
+    Outside,
+    /// Wholly inside.
+    Inside,
+    /// A patch box reaches it: its points are decided one by one, from the reference cell
+    /// (an index into the grid's cells) when it has one.
+    Mixed(Option<u32>),
+}
+
+/// Cells of the grid at most (each a byte of state and four of reference).
+pub(super) const MAX_CELLS: usize = 1 << 18;
+
+/// The grid over a box.
+#[derive(Clone, Debug)]
+pub(super) struct Grid {
+    lo: Point3,
+    step: Point3,
+    n: [usize; 3],
+    cells: Vec<CellState>,
+}
+
+/// A cell not yet decided while the grid is built.
+const UNSEEN: u8 = 0;
+const MIXED: u8 = 1;
+
+impl Grid {
+    /// The grid over `[lo, hi]` with about [`MAX_CELLS`] cells, cubes as near as the box
+    /// allows; `mark(grid, mixed)` sets `mixed[i] = true` for every cell a face may pass
+    /// through; `decide(p)` says whether a point far from every face is inside (`None`
+    /// where it cannot tell: that connected set of cells stays mixed).
+    pub(super) fn new(
+        lo: Point3,
+        hi: Point3,
+        mark: impl FnOnce(&Grid, &mut [bool]),
+        mut decide: impl FnMut(Point3) -> Option<bool>,
+    ) -> Grid {
+        let extent = hi - lo;
+        let volume = extent.x.max(0.0) * extent.y.max(0.0) * extent.z.max(0.0);
+        let h = if volume > 0.0 {
+            (volume / MAX_CELLS as f64).cbrt()
+        } else {
+            extent.max_abs().max(f64::MIN_POSITIVE)
+        };
+        let n =
+            [extent.x, extent.y, extent.z].map(|e| ((e / h).floor() as usize).clamp(1, 1 << 12));
+        let step = Point3::new(
+            extent.x / n[0] as f64,
+            extent.y / n[1] as f64,
+            extent.z / n[2] as f64,
+        );
+        let mut grid = Grid {
+            lo,
+            step,
+            n,
+            cells: Vec::new(),
+        };
+        let total = n[0] * n[1] * n[2];
+        let mut mixed = vec![false; total];
+        mark(&grid, &mut mixed);
+        let mut seen: Vec<u8> = mixed
+            .iter()
+            .map(|&m| if m { MIXED } else { UNSEEN })
+            .collect();
+        let mut cells = vec![CellState::Mixed(None); total];
+        // Connected sets of unmarked cells: no face passes between two of them.
+        let mut queue = VecDeque::new();
+        let mut members = Vec::new();
+        for start in 0..total {
+            if seen[start] != UNSEEN {
+                continue;
+            }
+            members.clear();
+            seen[start] = 2;
+            queue.push_back(start);
+            while let Some(c) = queue.pop_front() {
+                members.push(c);
+                grid.for_neighbours(c, |m| {
+                    if seen[m] == UNSEEN {
+                        seen[m] = 2;
+                        queue.push_back(m);
+                    }
+                });
+            }
+            // The first member whose centre the rays decide decides the set.
+            let state = members
+                .iter()
+                .take(8)
+                .find_map(|&c| decide(grid.centre(c)))
+                .map(|inside| {
+                    if inside {
+                        CellState::Inside
+                    } else {
+                        CellState::Outside
+                    }
+                });
+            if let Some(state) = state {
+                for &c in &members {
+                    cells[c] = state;
+                }
+            }
+        }
+        // Each mixed cell's nearest decided cell (breadth first from all decided cells).
+        let mut reference: Vec<Option<u32>> = vec![None; total];
+        for (c, s) in cells.iter().enumerate() {
+            if !matches!(s, CellState::Mixed(_)) {
+                reference[c] = Some(c as u32);
+                queue.push_back(c);
+            }
+        }
+        while let Some(c) = queue.pop_front() {
+            let r = reference[c];
+            grid.for_neighbours(c, |m| {
+                if reference[m].is_none() {
+                    reference[m] = r;
+                    queue.push_back(m);
+                }
+            });
+        }
+        for (c, s) in cells.iter_mut().enumerate() {
+            if let CellState::Mixed(r) = s {
+                *r = reference[c];
+            }
+        }
+        grid.cells = cells;
+        grid
+    }
+
+    /// One mixed cell over `[lo, hi]` (every point decided on its own).
+    pub(super) fn single(lo: Point3, hi: Point3) -> Grid {
+        Grid {
+            lo,
+            step: hi - lo,
+            n: [1, 1, 1],
+            cells: vec![CellState::Mixed(None)],
+        }
+    }
+
+    /// The state of the cell holding `p` (a point in the box).
+    pub(super) fn state(&self, p: Point3) -> CellState {
+        self.cells[self.index(p)]
+    }
+
+    /// The state of cell `c`.
+    pub(super) fn state_of(&self, c: u32) -> CellState {
+        self.cells[c as usize]
+    }
+
+    /// The cell holding `p` (clamped into the grid).
+    pub(super) fn index(&self, p: Point3) -> usize {
+        let [i, j, k] = self.coordinates(p);
+        (i * self.n[1] + j) * self.n[2] + k
+    }
+
+    /// The cell coordinates of `p`, clamped into the grid.
+    fn coordinates(&self, p: Point3) -> [usize; 3] {
+        std::array::from_fn(|a| {
+            let x = ((p[a] - self.lo[a]) / self.step[a]).floor();
+            if x >= 0.0 {
+                (x as usize).min(self.n[a] - 1)
+            } else {
+                0
+            }
+        })
+    }
+
+    /// The ranges of cell coordinates the box `[lo, hi]` reaches, per axis.
+    pub(super) fn ranges(&self, lo: Point3, hi: Point3) -> [(usize, usize); 3] {
+        let a = self.coordinates(lo);
+        let b = self.coordinates(hi);
+        std::array::from_fn(|k| (a[k], b[k]))
+    }
+
+    /// The linear index of cell `[i, j, k]`.
+    pub(super) fn linear(&self, [i, j, k]: [usize; 3]) -> usize {
+        (i * self.n[1] + j) * self.n[2] + k
+    }
+
+    /// The centre of cell `c`.
+    pub(super) fn centre(&self, c: usize) -> Point3 {
+        let k = c % self.n[2];
+        let j = (c / self.n[2]) % self.n[1];
+        let i = c / (self.n[1] * self.n[2]);
+        Point3::new(
+            self.lo.x + (i as f64 + 0.5) * self.step.x,
+            self.lo.y + (j as f64 + 0.5) * self.step.y,
+            self.lo.z + (k as f64 + 0.5) * self.step.z,
+        )
+    }
+
+    fn for_neighbours(&self, c: usize, mut f: impl FnMut(usize)) {
+        let [n0, n1, n2] = self.n;
+        let k = c % n2;
+        let j = (c / n2) % n1;
+        let i = c / (n1 * n2);
+        if i > 0 {
+            f(c - n1 * n2);
+        }
+        if i + 1 < n0 {
+            f(c + n1 * n2);
+        }
+        if j > 0 {
+            f(c - n2);
+        }
+        if j + 1 < n1 {
+            f(c + n2);
+        }
+        if k > 0 {
+            f(c - 1);
+        }
+        if k + 1 < n2 {
+            f(c + 1);
+        }
+    }
+}
