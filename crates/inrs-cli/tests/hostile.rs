@@ -659,11 +659,30 @@ fn hostile_step_and_iges_files_fail_cleanly() {
         Expect::Error("write #face:K or #solid:K"),
         20,
     );
-    // A solid is not a planar domain: commands that take one say so.
+    // A solid is not a planar domain: commands that take one say so (classify takes solids:
+    // this file has none).
+    check(
+        &d,
+        &["info", "--domain", &format!("{f}#solid:0")],
+        Expect::Error("solid 0 does not exist"),
+        20,
+    );
     check(
         &d,
         &[
             "classify",
+            "--domain",
+            &format!("{f}#solid:0"),
+            "--points",
+            &pts,
+        ],
+        Expect::Error("solid 0 does not exist: the file has no solids"),
+        20,
+    );
+    check(
+        &d,
+        &[
+            "winding",
             "--domain",
             &format!("{f}#solid:0"),
             "--points",

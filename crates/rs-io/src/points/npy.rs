@@ -73,50 +73,14 @@ impl<R: Read> NpyStream<R> {
     /// float64 or float32 in C order; [`PointsError::Io`].
     fn new(mut input: R, path: impl Into<String>) -> Result<Self, PointsError> {
         let path = path.into();
-        let fail = |message: String| PointsError::Npy {
-            path: path.clone(),
-            message,
-        };
-        let io = |source: std::io::Error| PointsError::Io {
-            path: path.clone(),
-            source,
-        };
-        let mut magic = [0u8; 8];
-        input
-            .read_exact(&mut magic)
-            .map_err(|_| fail("not a .npy file (too short)".into()))?;
-        if &magic[..6] != b"\x93NUMPY" {
-            return Err(fail("not a .npy file (no \\x93NUMPY magic)".into()));
-        }
-        let header_len = match magic[6] {
-            1 => {
-                let mut b = [0u8; 2];
-                input.read_exact(&mut b).map_err(io)?;
-                usize::from(u16::from_le_bytes(b))
-            }
-            2 | 3 => {
-                let mut b = [0u8; 4];
-                input.read_exact(&mut b).map_err(io)?;
-                u32::from_le_bytes(b) as usize
-            }
-            v => return Err(fail(format!("unsupported .npy version {v}"))),
-        };
-        if header_len > 1 << 20 {
-            return Err(fail(format!("header of {header_len} bytes")));
-        }
-        let mut text = vec![0u8; header_len];
-        input
-            .read_exact(&mut text)
-            .map_err(|_| fail("header cut short".into()))?;
-        let text = String::from_utf8_lossy(&text);
-        let (ty, len) = parse_points_header(&text).map_err(fail)?;
+        let (ty, len, consumed) = read_header(&mut input, &path, 2)?;
         Ok(Self {
             input,
             path,
             ty,
             len,
             remaining: len,
-            consumed: (8 + if magic[6] == 1 { 2 } else { 4 } + header_len) as u64,
+            consumed,
         })
     }
 
@@ -145,6 +109,61 @@ impl<R: Read> NpyStream<R> {
             Ok(())
         })
     }
+}
+
+/// Reads the header of a `.npy` array of points with `columns` coordinates each (named
+/// `path` in errors): its element type, its number of points and the bytes read.
+///
+/// # Errors
+/// [`PointsError::Npy`] for a file that is not a `.npy` array of shape `(N, columns)` of
+/// float64 or float32 in C order; [`PointsError::Io`].
+pub(super) fn read_header(
+    input: &mut impl Read,
+    path: &str,
+    columns: usize,
+) -> Result<(NpyType, usize, u64), PointsError> {
+    let fail = |message: String| PointsError::Npy {
+        path: path.to_string(),
+        message,
+    };
+    let io = |source: std::io::Error| PointsError::Io {
+        path: path.to_string(),
+        source,
+    };
+    let mut magic = [0u8; 8];
+    input
+        .read_exact(&mut magic)
+        .map_err(|_| fail("not a .npy file (too short)".into()))?;
+    if &magic[..6] != b"\x93NUMPY" {
+        return Err(fail("not a .npy file (no \\x93NUMPY magic)".into()));
+    }
+    let header_len = match magic[6] {
+        1 => {
+            let mut b = [0u8; 2];
+            input.read_exact(&mut b).map_err(io)?;
+            usize::from(u16::from_le_bytes(b))
+        }
+        2 | 3 => {
+            let mut b = [0u8; 4];
+            input.read_exact(&mut b).map_err(io)?;
+            u32::from_le_bytes(b) as usize
+        }
+        v => return Err(fail(format!("unsupported .npy version {v}"))),
+    };
+    if header_len > 1 << 20 {
+        return Err(fail(format!("header of {header_len} bytes")));
+    }
+    let mut text = vec![0u8; header_len];
+    input
+        .read_exact(&mut text)
+        .map_err(|_| fail("header cut short".into()))?;
+    let text = String::from_utf8_lossy(&text);
+    let (ty, len) = parse_points_header(&text, columns).map_err(fail)?;
+    Ok((
+        ty,
+        len,
+        (8 + if magic[6] == 1 { 2 } else { 4 } + header_len) as u64,
+    ))
 }
 
 /// Reads the bytes of points `first..first + n` of a file of `len` points of `ty` (named
@@ -373,7 +392,7 @@ impl NpyFile {
 }
 
 /// The element type and the number of points of a header dict for an `(N, 2)` array.
-fn parse_points_header(text: &str) -> Result<(NpyType, usize), String> {
+fn parse_points_header(text: &str, columns: usize) -> Result<(NpyType, usize), String> {
     let value = |key: &str| -> Result<&str, String> {
         let k = format!("'{key}':");
         let at = text
@@ -415,10 +434,12 @@ fn parse_points_header(text: &str) -> Result<(NpyType, usize), String> {
         })
         .collect::<Result<_, _>>()?;
     match dims[..] {
-        [n, 2] if n <= MAX_NPY_POINTS => Ok((ty, n as usize)),
-        [n, 2] => Err(format!("{n} points: more than the limit {MAX_NPY_POINTS}")),
+        [n, c] if c == columns as u64 && n <= MAX_NPY_POINTS => Ok((ty, n as usize)),
+        [n, c] if c == columns as u64 => {
+            Err(format!("{n} points: more than the limit {MAX_NPY_POINTS}"))
+        }
         _ => Err(format!(
-            "shape ({inner}): points must be an array of shape (N, 2)"
+            "shape ({inner}): points must be an array of shape (N, {columns})"
         )),
     }
 }

@@ -7,7 +7,8 @@ use std::path::Path;
 
 use rs_spline::Point3;
 
-use super::{MAX_LINE_BYTES, PointsError};
+use super::npy::read_header;
+use super::{MAX_LINE_BYTES, NpyType, PointsError};
 
 /// A run of points of space, with the text of each as written (CSV: the line's first three
 /// fields joined by commas; `.npy`: the shortest round-trip form).
@@ -58,10 +59,10 @@ impl XyzReader {
             .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
         let source = if is_npy {
             let mut input = BufReader::new(file);
-            let (f32, remaining) = npy_header(&mut input, &name)?;
+            let (ty, remaining, _) = read_header(&mut input, &name, 3)?;
             Source::Npy {
                 input,
-                f32,
+                f32: ty == NpyType::F32,
                 remaining,
             }
         } else {
@@ -197,74 +198,6 @@ fn shorten(s: &str) -> String {
     }
 }
 
-/// Reads a `.npy` header for points of space: `(float32?, rows)`.
-fn npy_header(input: &mut impl Read, path: &str) -> Result<(bool, usize), PointsError> {
-    let fail = |message: String| PointsError::Npy {
-        path: path.to_string(),
-        message,
-    };
-    let mut magic = [0u8; 8];
-    input
-        .read_exact(&mut magic)
-        .map_err(|_| fail("not a .npy file (too short)".into()))?;
-    if &magic[..6] != b"\x93NUMPY" {
-        return Err(fail("not a .npy file (no \\x93NUMPY magic)".into()));
-    }
-    let len = match magic[6] {
-        1 => {
-            let mut b = [0u8; 2];
-            input
-                .read_exact(&mut b)
-                .map_err(|_| fail("header cut short".into()))?;
-            usize::from(u16::from_le_bytes(b))
-        }
-        2 | 3 => {
-            let mut b = [0u8; 4];
-            input
-                .read_exact(&mut b)
-                .map_err(|_| fail("header cut short".into()))?;
-            u32::from_le_bytes(b) as usize
-        }
-        v => return Err(fail(format!("unsupported .npy version {v}"))),
-    };
-    if len > 1 << 20 {
-        return Err(fail(format!("header of {len} bytes")));
-    }
-    let mut text = vec![0u8; len];
-    input
-        .read_exact(&mut text)
-        .map_err(|_| fail("header cut short".into()))?;
-    let text = String::from_utf8_lossy(&text).replace(' ', "");
-    let f32 = if text.contains("'descr':'<f8'") {
-        false
-    } else if text.contains("'descr':'<f4'") {
-        true
-    } else {
-        return Err(fail(
-            "points must be float64 or float32 (little-endian)".into(),
-        ));
-    };
-    if text.contains("'fortran_order':True") {
-        return Err(fail("points must be in C order".into()));
-    }
-    let shape = text
-        .split("'shape':(")
-        .nth(1)
-        .and_then(|s| s.split(')').next())
-        .ok_or_else(|| fail("no shape in the header".into()))?;
-    let dims: Vec<Option<usize>> = shape
-        .split(',')
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse().ok())
-        .collect();
-    match dims.as_slice() {
-        [Some(n), Some(3)] => Ok((f32, *n)),
-        _ => Err(fail(format!(
-            "points for a solid must have shape (N, 3), got ({shape})"
-        ))),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -311,7 +244,7 @@ mod tests {
         let p = write("b.npy", &bytes);
         let e = XyzReader::open(&p).err().unwrap().to_string();
         assert!(
-            e.ends_with("points for a solid must have shape (N, 3), got (3,2)"),
+            e.ends_with("shape (3, 2): points must be an array of shape (N, 3)"),
             "{e}"
         );
     }
