@@ -306,3 +306,63 @@ fn bad_solids_and_bad_points_files_are_one_line_errors() {
     ]);
     assert!(e.contains("solid 3 does not exist"), "{e}");
 }
+
+/// The B-spline profile `C` of `revolved_bspline.step` in (r, z) at its parameter `t` in
+/// `[0, 1]` (poles (1, 0), (2, 0.5), (1.5, 1.5), (2.5, 2.5), (1, 3), knots 0, 0.5, 1, cubic).
+fn profile(t: f64) -> (f64, f64) {
+    let poles = [(1.0, 0.0), (2.0, 0.5), (1.5, 1.5), (2.5, 2.5), (1.0, 3.0)];
+    let knots = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
+    // de Boor on the span holding t.
+    let k = if t < 0.5 { 3 } else { 4 };
+    let mut d: Vec<(f64, f64)> = (0..4).map(|j| poles[j + k - 3]).collect();
+    for r in 1..=3 {
+        for j in (r..=3).rev() {
+            let i = j + k - 3;
+            let a = (t - knots[i]) / (knots[i + 4 - r] - knots[i]);
+            d[j] = (
+                (1.0 - a) * d[j - 1].0 + a * d[j].0,
+                (1.0 - a) * d[j - 1].1 + a * d[j].1,
+            );
+        }
+    }
+    d[3]
+}
+
+/// Under the overhang at the rims of the revolved B-spline (the profile leaves the discs'
+/// rims outwards): points just outside, where a crossing lies near the end of the surface's
+/// parameter range, were once called inside (Newton's iterate left the range, where the
+/// surface is evaluated at its end, and stalled).
+#[test]
+fn points_under_the_overhang_of_a_revolved_bspline_are_outside() {
+    let c = classifier("cad/revolved_bspline.step");
+    assert_eq!(c.locate(Point3::new(1.0001, 0.0, -1e-4)), Location::Outside);
+    let mut next = uniform(17);
+    let mut checked = 0;
+    for _ in 0..2000 {
+        // Just off the profile, on either side, near the rims.
+        let t = if next() < 0.5 {
+            0.02 * next()
+        } else {
+            1.0 - 0.02 * next()
+        };
+        let (r, z) = profile(t);
+        let h = 1e-5;
+        let (r1, z1) = profile((t + h).min(1.0));
+        let (r0, z0) = profile((t - h).max(0.0));
+        let (tr, tz) = (r1 - r0, z1 - z0);
+        let len = tr.hypot(tz);
+        // The outward normal of the profile (it runs from the bottom rim up).
+        let (nr, nz) = (tz / len, -tr / len);
+        let a = std::f64::consts::TAU * next();
+        for (off, want) in [(1e-4, Location::Outside), (-1e-4, Location::Inside)] {
+            let (pr, pz) = (r + off * nr, z + off * nz);
+            if !(0.0..=3.0).contains(&pz) && want == Location::Inside {
+                continue;
+            }
+            let p = Point3::new(pr * a.cos(), pr * a.sin(), pz);
+            assert_eq!(c.locate(p), want, "t {t} offset {off}: {p:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 3000, "{checked}");
+}

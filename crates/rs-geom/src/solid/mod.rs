@@ -20,8 +20,9 @@
 //!    within `T`.
 //! 2. **Segment.** The segment from `p` to the centre `q` of its cell's nearest decided cell
 //!    is cast: every patch whose box it meets is solved by Newton's method on
-//!    `S(u, v) = p + t d` from the patch's centre. A patch whose normals (the sampled cone
-//!    widened by 1.25 and 0.05 radians) all stay off the ray's normal plane is crossed at most
+//!    `S(u, v) = p + t d` from the patch's centre, the iterates held within the surface's
+//!    parameter range (past it a bounded surface is evaluated at its end). A patch whose normals (the sampled cone
+//!    widened by 1.25 and 0.002 radians) all stay off the ray's normal plane is crossed at most
 //!    once; patches the ray grazes are quartered again (six times at most). Each crossing is
 //!    kept when its `(u, v)` is inside the face by the exact 2-D test and counted with its sign
 //!    (`+1` leaving the solid, where the ray runs along the face's outward normal); `p` is
@@ -142,6 +143,8 @@ struct SolidFace {
     surface: Surface,
     /// `+1` where the outward normal is `S_u x S_v`, `-1` otherwise.
     sense: f64,
+    /// The parameters the surface is evaluated at without clamping.
+    domain: Cell,
     /// The face's trimming test (set once the tolerance is known).
     trim: Option<Classifier>,
     edges: Vec<Edge>,
@@ -236,6 +239,7 @@ impl SolidClassifier {
                 domain,
                 speed: slowest,
                 face: SolidFace {
+                    domain: Cell::domain_of(&surface),
                     surface,
                     sense: if face.same_sense { 1.0 } else { -1.0 },
                     trim: None,
@@ -514,7 +518,15 @@ impl SolidClassifier {
             }
             return;
         }
-        let (uv, t) = match ray_crossing(&face.surface, patch.cell, ray.p, ray.d, self.size) {
+        let got = ray_crossing(
+            &face.surface,
+            patch.cell,
+            face.domain,
+            ray.p,
+            ray.d,
+            self.size,
+        );
+        let (uv, t) = match got {
             Crossing::None => return,
             Crossing::Unsettled => {
                 ray.outcome = Some(Cast::Degenerate);

@@ -24,9 +24,10 @@ const MAX_BUILD_SPLITS: usize = 12;
 /// them halves them while it is cast).
 pub(super) const MAX_PATCHES_PER_FACE: usize = 4096;
 
-/// How far a ray's direction must stay from a patch's tangent planes (radians) for the patch
-/// to be crossed at most once.
-const CLEARANCE: f64 = 0.05;
+/// How far a ray's direction must stay from a patch's tangent planes (radians), beyond the
+/// widened cone, for the patch to be crossed at most once and its crossing to be well
+/// conditioned (a plane's cone is exact: this alone).
+const CLEARANCE: f64 = 2e-3;
 
 /// Safety factor on sampled normal cones and on the second-derivative margin of boxes.
 const SAFETY: f64 = 1.25;
@@ -61,6 +62,35 @@ impl Cell {
     /// Whether `uv` lies in the cell (ends included).
     pub(super) fn contains(&self, uv: [f64; 2]) -> bool {
         uv[0] >= self.u.0 && uv[0] <= self.u.1 && uv[1] >= self.v.0 && uv[1] <= self.v.1
+    }
+
+    /// The cell's part in `other` (`self` where they do not meet).
+    pub(super) fn intersection(&self, other: &Cell) -> Cell {
+        let u = (self.u.0.max(other.u.0), self.u.1.min(other.u.1));
+        let v = (self.v.0.max(other.v.0), self.v.1.min(other.v.1));
+        if u.0 <= u.1 && v.0 <= v.1 {
+            Cell { u, v }
+        } else {
+            *self
+        }
+    }
+
+    /// The parameters a surface is evaluated at without clamping: its parameter box, infinite
+    /// in a periodic parameter.
+    pub(super) fn domain_of(surface: &Surface) -> Cell {
+        let b = surface.param_box();
+        let p = surface.periods();
+        let range = |i: usize| {
+            if p[i].is_some() {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            } else {
+                b.range(i)
+            }
+        };
+        Cell {
+            u: range(0),
+            v: range(1),
+        }
     }
 
     /// `uv` clamped into the cell.

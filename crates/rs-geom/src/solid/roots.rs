@@ -30,15 +30,18 @@ pub(super) enum Crossing {
 
 /// The crossing of the ray `p + t d` with `surface` over `cell`: Newton's method on
 /// `S(u, v) - p - t d = 0` from the cell's centre, the parameters held within the cell grown
-/// by [`ROOM`]. `scale` is the size of the part (convergence is to rounding of it).
+/// by [`ROOM`] and within `domain` (the surface's parameter box, infinite where periodic). `scale` is the size of the part (convergence is to rounding of it).
 pub(super) fn ray_crossing(
     surface: &Surface,
     cell: Cell,
+    domain: Cell,
     p: Point3,
     d: Point3,
     scale: f64,
 ) -> Crossing {
-    let room = cell.grown(ROOM);
+    // Held in the surface's own parameter range too: past it a bounded surface is evaluated
+    // at its end (clamped), where Newton's step would stall.
+    let room = cell.grown(ROOM).intersection(&domain);
     let mut uv = cell.centre();
     let mut t = (surface.point(uv) - p).dot(d);
     let small = 64.0 * f64::EPSILON * scale;
