@@ -22,6 +22,8 @@ struct Node {
 pub(super) struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
+    /// The items' boxes, in leaf order (`boxes[j]` is item `order[j]`'s).
+    boxes: Vec<(Point3, Point3)>,
 }
 
 impl Bvh {
@@ -31,12 +33,14 @@ impl Bvh {
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1),
             order: (0..boxes.len() as u32).collect(),
+            boxes: Vec::new(),
         };
         if !boxes.is_empty() {
             let mut order = std::mem::take(&mut bvh.order);
             bvh.build(boxes, &mut order, 0);
             bvh.order = order;
         }
+        bvh.boxes = bvh.order.iter().map(|&i| boxes[i as usize]).collect();
         bvh
     }
 
@@ -92,7 +96,7 @@ impl Bvh {
         self.visit(|lo, hi| ray_meets_box(o, inv, t0, t1, lo, hi), &mut f);
     }
 
-    /// Calls `f(item)` for every box holding `p`.
+    /// Calls `f(item)` for every box holding `p` (ends included).
     pub(super) fn holding(&self, p: Point3, mut f: impl FnMut(u32)) {
         self.visit(
             |lo, hi| (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k]),
@@ -112,8 +116,11 @@ impl Bvh {
             }
             if n.count > 0 {
                 let s = n.first as usize;
-                for &i in &self.order[s..s + n.count as usize] {
-                    f(i);
+                let e = s + n.count as usize;
+                for (&i, &(lo, hi)) in self.order[s..e].iter().zip(&self.boxes[s..e]) {
+                    if meets(lo, hi) {
+                        f(i);
+                    }
                 }
             } else {
                 stack.push(n.first as usize);
