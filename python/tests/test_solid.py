@@ -986,15 +986,6 @@ def _iges_open_voids(tmp_path) -> Dict[str, pathlib.Path]:
     return out
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="IGES: a 514 shell is taken as closed when the file says so (form 1; OCC writes form 1 "
-    "for open shells too), its free edges are not checked: the open box void is refused for its "
-    "orientation ('not consistently oriented ... net area vector 4.000e0 of area 1.160000e2'), "
-    "not as open, and the slab void missing a 0.02 mm^2 end face (2e-4 of the area) is not refused "
-    "at all",
-)
 @pytest.mark.parametrize("void", ["box", "slab"])
 def test_an_open_iges_void_shell_is_refused_naming_its_free_edges(void, tmp_path):
     need_ocp()

@@ -30,6 +30,24 @@ pub struct Model {
     pub length_unit: Option<LengthUnit>,
 }
 
+impl Model {
+    /// The entities of the edges that only one of `faces` (indices into [`Model::faces`])
+    /// uses, sorted: the free edges of a shell of those faces (none for a closed shell). Edges
+    /// are told apart by their entity (`#123`, `DE 57`); faces without 3-D edges add none.
+    pub fn free_edges(&self, faces: &[usize]) -> Vec<String> {
+        let mut uses = std::collections::BTreeMap::<&str, usize>::new();
+        for &f in faces {
+            for e in self.faces[f].edges.iter().flatten() {
+                *uses.entry(e.entity.as_str()).or_default() += 1;
+            }
+        }
+        uses.into_iter()
+            .filter(|&(_, n)| n == 1)
+            .map(|(e, _)| e.to_string())
+            .collect()
+    }
+}
+
 /// The length unit of a model's coordinates.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LengthUnit {

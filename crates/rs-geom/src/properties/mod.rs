@@ -341,20 +341,6 @@ impl Model {
         Ok(solid_properties(&sum, frame))
     }
 
-    /// The entities of the edges that only one of `faces` uses.
-    fn free_edges(&self, faces: &[usize]) -> Vec<String> {
-        let mut uses = std::collections::BTreeMap::<&str, usize>::new();
-        for &f in faces {
-            for e in self.faces[f].edges.iter().flatten() {
-                *uses.entry(e.entity.as_str()).or_default() += 1;
-            }
-        }
-        uses.into_iter()
-            .filter(|&(_, n)| n == 1)
-            .map(|(e, _)| e.to_string())
-            .collect()
-    }
-
     /// `int int g` over face `index`'s trimmed `(u, v)` domain, `g` given the face and its
     /// surface, split at the surface's knot lines ([`integrate_over_domain`]); `degrees(s)` is
     /// `g`'s degree in each parameter on the surface `s` where it is a polynomial in it.

@@ -336,14 +336,22 @@ pub fn read_iges(bytes: &[u8]) -> Result<CadModel, IoError> {
         surfaces: RefCell::default(),
     };
     let (faces, shells, solids) = faces::model(&iges);
+    let mut model = rs_geom::brep::Model {
+        faces,
+        shells,
+        solids,
+        tolerance,
+        length_unit,
+    };
+    // A 514 of form 1 says it is closed (OpenCASCADE writes form 1 for open shells too): an
+    // edge only one of its faces uses makes it open, as a STEP CLOSED_SHELL's does.
+    for k in 0..model.shells.len() {
+        if model.shells[k].closed && !model.free_edges(&model.shells[k].faces).is_empty() {
+            model.shells[k].closed = false;
+        }
+    }
     Ok(CadModel {
         format: CadFormat::Iges,
-        model: rs_geom::brep::Model {
-            faces,
-            shells,
-            solids,
-            tolerance,
-            length_unit,
-        },
+        model,
     })
 }
