@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import hashlib
 import operator
+import functools
 import os
 import threading
 import warnings
@@ -1322,9 +1323,16 @@ def cad_model(path: Union[str, os.PathLike], closure_tol: Optional[float] = None
     return CadModel(_inrs.NativeCadModel(path, closure_tol), None if closure_tol is not None else os.path.abspath(path))
 
 
+@functools.lru_cache(maxsize=8)
+def _model_of_file(path: str) -> CadModel:
+    """The file ``path`` read once per process (the models of unpickled solids)."""
+    return cad_model(path)
+
+
 def _solid_of_file(path: str, index: int) -> "CadSolid":
-    """Solid ``index`` of the file ``path`` read again (how a pickled solid comes back)."""
-    return cad_model(path).solids[index]
+    """Solid ``index`` of the file ``path`` (how a pickled solid comes back: a process reads
+    each file once, and the solid's classifier is built once)."""
+    return _model_of_file(path).solids[index]
 
 
 def cad_faces(path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "list[CadFace]":

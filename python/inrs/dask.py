@@ -1,28 +1,41 @@
-"""Dask front ends: ``inrs.dask.classify(domain, xy)`` classifies chunked arrays of points;
+"""Dask front ends: ``inrs.dask.classify(domain, xy)`` classifies chunked arrays of points (a
+:class:`~inrs.CadSolid` for points of space, ``(N, 3)``);
 ``inrs.dask.cell_fractions(domain, x_edges, y_edges)`` computes the cell fractions of grids
 larger than memory by blocks of rows.
 
 The domain travels to the workers by pickle (its JSON form); each worker process builds its
-index once and reuses it for all its chunks.
+index once and reuses it for all its chunks. A solid travels as its file and index, and each
+worker process reads the file once.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from . import DEFAULT_TOLERANCE, Domain, _edges, _inrs
+from . import DEFAULT_TOLERANCE, CadSolid, Domain, _edges, _inrs
 
 
 def _classify_block(block: np.ndarray, domain: Domain, method: str, tol: float) -> np.ndarray:
     return domain.classify(block, method=method, tol=tol, threads=1)
 
 
-def classify(domain: Domain, xy, *, method: str = "fast", tol: float = DEFAULT_TOLERANCE):
+def _classify_solid_block(block: np.ndarray, solid: CadSolid) -> np.ndarray:
+    return solid.classify(block)
+
+
+def classify(domain: "Domain | CadSolid", xy, *, method: str = "fast", tol: float = DEFAULT_TOLERANCE):
     """Lazy int8 codes (``inrs.OUTSIDE``, ``INSIDE``, ``BOUNDARY``) of a ``dask.array`` of
-    shape ``(N, 2)``, chunked along its rows: one task per chunk (``map_blocks``)."""
+    shape ``(N, 2)`` (or ``(N, 3)`` against a :class:`~inrs.CadSolid`, whose ``method`` and
+    ``tol`` are its own), chunked along its rows: one task per chunk (``map_blocks``)."""
     import dask.array as da
 
     xy = da.asarray(xy)
+    if isinstance(domain, CadSolid):
+        if xy.ndim != 2 or xy.shape[1] != 3:
+            raise ValueError(f"points for a solid must have shape (N, 3), got {xy.shape}")
+        if len(xy.chunks[1]) != 1:
+            xy = xy.rechunk({1: 3})
+        return xy.map_blocks(_classify_solid_block, domain, drop_axis=1, dtype=np.int8)
     if xy.ndim != 2 or xy.shape[1] != 2:
         raise ValueError(f"points must have shape (N, 2), got {xy.shape}")
     if len(xy.chunks[1]) != 1:

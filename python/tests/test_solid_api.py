@@ -1,6 +1,7 @@
 """CadSolid.classify / contains_xyz on the box with a spherical void (fixtures/cad/box_void.step):
 the closed form on random points, the boundary, pickling, threads and the shape error."""
 
+import os
 import pathlib
 import pickle
 from concurrent.futures import ThreadPoolExecutor
@@ -44,3 +45,20 @@ def test_points_of_the_wrong_width_are_refused():
     solid = inrs.cad_model(BOX_VOID).solids[0]
     with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
         solid.classify(np.zeros((4, 2)))
+
+
+def test_dask_classifies_chunked_points_of_space_as_in_process():
+    try:
+        import dask.array as da
+    except ImportError:  # CI installs dask: only a local run without it may skip
+        if os.environ.get("INRS_REQUIRE_SYSTEM_FILES"):
+            raise
+        pytest.skip("dask is not installed")
+    import inrs.dask
+
+    solid = inrs.cad_model(BOX_VOID).solids[0]
+    xyz = np.random.default_rng(5).uniform(-2.5, 2.5, size=(9000, 3))
+    lazy = inrs.dask.classify(solid, da.from_array(xyz, chunks=(1000, 3)))
+    assert np.array_equal(lazy.compute(scheduler="processes"), solid.classify(xyz))
+    with pytest.raises(ValueError, match=r"shape \(N, 3\)"):
+        inrs.dask.classify(solid, da.zeros((10, 2), chunks=5))
