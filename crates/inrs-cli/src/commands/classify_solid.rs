@@ -1,15 +1,16 @@
 //! `inrs classify --domain part.step#solid:K` (or `part.step`, every solid): inside, outside or
 //! boundary of B-rep solids for points of space, read and written in runs.
 
-use std::io::Write;
 use std::path::Path;
 
-use inrs::NpyType;
 use inrs::geom::solid::{Location, SolidClassifier};
 use inrs::io::cad::{CadModel, CadSelection, split_cad_spec};
 use inrs::io::points::XyzReader;
 
+use inrs::{NpyType, npy_header};
+
 use crate::cli::error::CliError;
+use crate::cli::output::Output;
 
 /// Points per run.
 const RUN: usize = 1 << 16;
@@ -26,7 +27,8 @@ pub(super) fn solid_spec(spec: &str) -> Option<(&str, Option<usize>)> {
 
 /// Classifies the points of `points` against the solids, writing CSV `x,y,z,location` (a
 /// column per solid, headed `solid:K`, for a whole file) or, for an output ending in `.npy`,
-/// int8 codes of shape `(points,)` or `(points, solids)`.
+/// int8 codes of shape `(points,)` or `(points, solids)`, run by run (bounded memory); a file
+/// output appears only when the run succeeds.
 pub(super) fn run(
     file: &str,
     solid: Option<usize>,
@@ -51,37 +53,33 @@ pub(super) fn run(
         .collect::<Result<Vec<_>, _>>()?;
     let mut reader = XyzReader::open(points).map_err(|e| CliError::Message(e.to_string()))?;
     let npy = output.is_some_and(|o| o.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")));
-    let sink: Box<dyn Write> = match output {
-        Some(o) => Box::new(
-            std::fs::File::create(o)
-                .map_err(|e| CliError::Message(format!("{}: {e}", o.display())))?,
-        ),
-        None => Box::new(std::io::stdout().lock()),
-    };
-    let mut out = std::io::BufWriter::new(sink);
-    let write_err = |e: std::io::Error| {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            CliError::ClosedPipe
+    let shape = |count: usize| {
+        if solid.is_some() {
+            vec![count]
         } else {
-            CliError::Message(format!("writing the output: {e}"))
+            vec![count, classifiers.len()]
         }
     };
-    if !npy {
-        let header = if solid.is_some() {
-            "x,y,z,location".to_string()
+    let mut out = Output::create(output)?;
+    if npy {
+        // The count is written once known (a header of fixed length).
+        out.write_bytes(&npy_header(NpyType::I8, &shape(0)))?;
+    } else {
+        let mut header = "x,y,z".to_string();
+        if solid.is_some() {
+            header.push_str(",location");
         } else {
-            let mut h = "x,y,z".to_string();
             for k in &indices {
-                h.push_str(&format!(",solid:{k}"));
+                header.push_str(&format!(",solid:{k}"));
             }
-            h
-        };
-        writeln!(out, "{header}").map_err(write_err)?;
+        }
+        out.write_str(&header)?;
+        out.write_str("\n")?;
     }
-    // .npy: the codes (one byte a point and solid) are kept until the count is known.
-    let mut codes: Vec<u8> = Vec::new();
     let mut count = 0usize;
     let mut columns = vec![Vec::new(); classifiers.len()];
+    let mut buffer = String::new();
+    let mut codes: Vec<u8> = Vec::new();
     loop {
         let run = reader
             .next_run(RUN)
@@ -94,28 +92,28 @@ pub(super) fn run(
             col.resize(run.points.len(), Location::Outside);
             c.locate_into(&run.points, col);
         }
-        for (i, text) in run.texts.iter().enumerate() {
-            if npy {
+        if npy {
+            codes.clear();
+            for i in 0..run.points.len() {
                 codes.extend(columns.iter().map(|col| col[i].code() as u8));
-            } else {
-                write!(out, "{text}").map_err(write_err)?;
-                for col in &columns {
-                    write!(out, ",{}", col[i].as_str()).map_err(write_err)?;
-                }
-                writeln!(out).map_err(write_err)?;
             }
+            out.write_bytes(&codes)?;
+        } else {
+            buffer.clear();
+            for (i, text) in run.texts.iter().enumerate() {
+                buffer.push_str(text);
+                for col in &columns {
+                    buffer.push(',');
+                    buffer.push_str(col[i].as_str());
+                }
+                buffer.push('\n');
+            }
+            out.write_str(&buffer)?;
         }
         count += run.points.len();
     }
     if npy {
-        let shape = if solid.is_some() {
-            vec![count]
-        } else {
-            vec![count, classifiers.len()]
-        };
-        out.write_all(&inrs::io::points::npy_header(NpyType::I8, &shape))
-            .map_err(write_err)?;
-        out.write_all(&codes).map_err(write_err)?;
+        out.rewrite_start(&npy_header(NpyType::I8, &shape(count)))?;
     }
-    out.flush().map_err(write_err)
+    out.finish()
 }
