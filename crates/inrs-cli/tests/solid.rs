@@ -260,6 +260,18 @@ fn bad_solids_and_bad_points_files_are_one_line_errors() {
         e.contains("line 2: expected three numbers \"x,y,z\""),
         "{e}"
     );
+    // A failed run leaves no output file.
+    let out = dir.join("never.npy");
+    error_of(&[
+        "classify",
+        "--domain",
+        &spec,
+        "--points",
+        two.to_str().unwrap(),
+        "--output",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!out.exists());
     let text = std::fs::read_to_string(fixture("cad/box_void.step")).unwrap();
     // An open void shell: named with its free edges.
     let open = dir.join("open.step");
