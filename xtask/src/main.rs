@@ -47,7 +47,11 @@ Commands:
                           coverage (exact cell coverage at 1024^2 and 4096^2 beside
                           exactextract; --quick: 64^2 and 256^2), cubature (positive
                           interior rules of degree 5-30 on S3, S4, S5 on one thread, and
-                          their errors on smooth integrands beside QMC with 100x the points)
+                          their errors on smooth integrands beside QMC with 100x the points),
+                          properties (mass properties of the Idf parts beside OCC), solid
+                          (point in a solid on every solid of the Idf parts and the OCC test
+                          parts beside OCC's BRepClass3d_SolidClassifier)
+      --solid-points N    points per solid of the solid section (default 20000; --quick: 2000)
   splines [--quick]       The curved-triangulation paper's convergence experiments: the
                           quasi-interpolant of sin(10x) + sin(10y) in S_d^0 (d = 5, 6) on
                           three domains, ny = 5..65; writes target/bench-report/splines.{md,csv}.

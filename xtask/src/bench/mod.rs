@@ -12,6 +12,7 @@ mod paper;
 mod peers;
 mod plots;
 mod properties;
+mod solid;
 
 use std::path::Path;
 use std::time::Instant;
@@ -30,10 +31,12 @@ pub(crate) struct BenchOptions {
     pub(crate) full: bool,
     /// The sections to run (all when empty).
     pub(crate) only: Vec<String>,
+    /// Points per solid of the `solid` section (default 20000, 2000 with `--quick`).
+    pub(crate) solid_points: Option<usize>,
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 9] = [
+const SECTIONS: [&str; 10] = [
     "paper",
     "locator",
     "gwn",
@@ -43,6 +46,7 @@ const SECTIONS: [&str; 9] = [
     "coverage",
     "cubature",
     "properties",
+    "solid",
 ];
 
 fn names(list: &[&str]) -> Vec<String> {
@@ -59,6 +63,7 @@ impl BenchOptions {
             quick: false,
             full: false,
             only: Vec::new(),
+            solid_points: None,
         };
         let mut it = args.iter();
         while let Some(a) = it.next() {
@@ -83,6 +88,15 @@ impl BenchOptions {
                         .collect::<Result<_, _>>()?
                 }
                 "--reps" => o.reps = value()?.parse().map_err(|_| "bad --reps".to_string())?,
+                "--solid-points" => {
+                    o.solid_points = Some(
+                        value()?
+                            .parse()
+                            .ok()
+                            .filter(|&n| n > 0)
+                            .ok_or("bad --solid-points")?,
+                    )
+                }
                 "--sweep" => o.sweep = true,
                 "--full" => o.full = true,
                 "--only" => {
@@ -279,6 +293,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("properties") {
         properties::section(&mut md, root, o)?;
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("solid") {
+        solid::section(&mut md, root, o)?;
     }
     write_report(root, o, &md, &csv, true)
 }
