@@ -272,6 +272,17 @@ fn bad_solids_and_bad_points_files_are_one_line_errors() {
         out.to_str().unwrap(),
     ]);
     assert!(!out.exists());
+    // Points of space for a face: refused by their header.
+    let xyz = dir.join("xyz.csv");
+    std::fs::write(&xyz, "x,y,z\n1,2,3\n").unwrap();
+    let e = error_of(&[
+        "classify",
+        "--domain",
+        &format!("{}#face:0", fixture("cad/box_void.step")),
+        "--points",
+        xyz.to_str().unwrap(),
+    ]);
+    assert!(e.contains("the header names x, y and z"), "{e}");
     let text = std::fs::read_to_string(fixture("cad/box_void.step")).unwrap();
     // An open void shell: named with its free edges.
     let open = dir.join("open.step");

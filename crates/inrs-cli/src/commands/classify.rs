@@ -130,6 +130,7 @@ impl ClassifyArgs {
         {
             return classify_solid::run(file, solid, &self.points, output);
         }
+        self.refuse_points_of_space()?;
         if let Some(domain) = self.domains.single() {
             let d = domain.load()?;
             let input = PointsInput::open(&self.points, 1)?;
@@ -145,6 +146,28 @@ impl ClassifyArgs {
         let engines = engines_many(&prepared, input.estimated_points());
         let columns = Locations::per_domain(labels.iter().map(String::as_str));
         stream_points(input, output, &columns, &engines)
+    }
+
+    /// An error for a CSV points file whose header names a third coordinate `z`: points of
+    /// space are classified against a solid (a planar domain would take their `x, y`).
+    fn refuse_points_of_space(&self) -> Result<(), CliError> {
+        let npy = self
+            .points
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+        if npy || !self.points.is_file() {
+            return Ok(());
+        }
+        let header = inrs::io::points::csv_header(&self.points)
+            .map_err(|e| CliError::Message(e.to_string()))?;
+        if header.is_some_and(|h| h.len() >= 3 && h[2].eq_ignore_ascii_case("z")) {
+            return Err(CliError::Message(format!(
+                "{}: the header names x, y and z: points of space go with a solid (--domain \
+                 part.step#solid:K); a planar domain takes x,y",
+                self.points.display()
+            )));
+        }
+        Ok(())
     }
 
     /// The options of every domain.

@@ -141,6 +141,54 @@ pub fn read_points(path: impl AsRef<Path>) -> Result<Vec<PointRecord>, PointsErr
     records(&CsvReader::open(path, RunSizes::default())?)
 }
 
+/// The fields of a CSV points file's header (its first line that is neither blank nor a `#`
+/// comment, when that line's first field is not a number), `None` without one. Reads only as
+/// far as that line (at most [`MAX_LINE_BYTES`] a line).
+///
+/// ```
+/// # let dir = std::env::temp_dir().join(format!("rs-io-header-{}", std::process::id()));
+/// # std::fs::create_dir_all(&dir).unwrap();
+/// let p = dir.join("p.csv");
+/// std::fs::write(&p, "# points\nx,y,z\n1,2,3\n").unwrap();
+/// assert_eq!(rs_io::points::csv_header(&p).unwrap().unwrap(), ["x", "y", "z"]);
+/// std::fs::write(&p, "1,2\n").unwrap();
+/// assert!(rs_io::points::csv_header(&p).unwrap().is_none());
+/// ```
+///
+/// # Errors
+/// [`PointsError::Io`].
+pub fn csv_header(path: impl AsRef<Path>) -> Result<Option<Vec<String>>, PointsError> {
+    use std::io::{BufRead, Read};
+    let path = path.as_ref();
+    let io = |source| PointsError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let mut lines = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
+    let mut line = String::new();
+    loop {
+        line.clear();
+        let n = (&mut lines)
+            .take(MAX_LINE_BYTES as u64 + 2)
+            .read_line(&mut line)
+            .map_err(io)?;
+        if n == 0 {
+            return Ok(None);
+        }
+        let text = line.trim_start_matches('\u{feff}').trim();
+        if text.is_empty() || text.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<String> = text
+            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .map(str::to_string)
+            .collect();
+        let numeric = fields.first().is_some_and(|f| f.parse::<f64>().is_ok());
+        return Ok(if numeric { None } else { Some(fields) });
+    }
+}
+
 /// Every point of a CSV reader's runs, with its text.
 fn records(reader: &dyn PointsReader) -> Result<Vec<PointRecord>, PointsError> {
     let (mut run, mut all) = (PointRun::default(), Vec::new());
