@@ -165,16 +165,20 @@ pub fn csv_header(path: impl AsRef<Path>) -> Result<Option<Vec<String>>, PointsE
         source,
     };
     let mut lines = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
-    let mut line = String::new();
+    let mut bytes = Vec::new();
     loop {
-        line.clear();
+        bytes.clear();
         let n = (&mut lines)
             .take(MAX_LINE_BYTES as u64 + 2)
-            .read_line(&mut line)
+            .read_until(b'\n', &mut bytes)
             .map_err(io)?;
         if n == 0 {
             return Ok(None);
         }
+        // A line that is not text is for the points reader to report.
+        let Ok(line) = std::str::from_utf8(&bytes) else {
+            return Ok(None);
+        };
         let text = line.trim_start_matches('\u{feff}').trim();
         if text.is_empty() || text.starts_with('#') {
             continue;
