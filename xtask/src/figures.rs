@@ -32,7 +32,7 @@ pub(crate) fn png_beside(svg: &Path) -> Option<PathBuf> {
 }
 
 /// Pixel width of a figure's plot area.
-const SIZE: f64 = 560.0;
+pub(crate) const SIZE: f64 = 560.0;
 
 /// The boundary curves drawn on top of a figure.
 fn draw_boundary(fig: &mut Figure, d: &Domain) {
@@ -66,7 +66,7 @@ fn boxes_figure(d: &Domain, subdivisions: usize, caption: &str) -> Result<Figure
 }
 
 /// Each point as a dot coloured by its location (inside green, outside red, boundary black).
-fn mark_locations(fig: &mut Figure, pts: &[Point], loc: &[Location]) {
+pub(crate) fn mark_locations(fig: &mut Figure, pts: &[Point], loc: &[Location]) {
     let dot = |color: &str, label: &str| {
         Style::fill(color)
             .with_marker(Marker::Dot(1.6))

@@ -18,6 +18,7 @@ mod figures;
 mod frontends;
 #[cfg(test)]
 mod imports;
+mod solid_figure;
 mod splines;
 
 const HELP: &str = "\
@@ -257,6 +258,7 @@ fn demo(dir: &Path) -> Result<(), String> {
     }
     figures_written.extend(coverage_files);
     figures_written.extend(cubature_figure::write(&figures_dir, &workspace_root())?);
+    figures_written.extend(solid_figure::write(&figures_dir, &workspace_root())?);
     println!("figures written to {}:", figures_dir.display());
     for f in &figures_written {
         println!(
