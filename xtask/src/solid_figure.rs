@@ -1,5 +1,5 @@
 //! The point-in-solid figure of `cargo xtask demo`: the section y = 0 of
-//! fixtures/cad/revolved_bspline.step (a cubic B-spline profile revolved about z between two
+//! `fixtures/cad/revolved_bspline.step` (a cubic B-spline profile revolved about z between two
 //! discs), a grid of points in it classified by `inrs::geom::solid::SolidClassifier`, and
 //! points on the surface of revolution (which it must call boundary), written as SVG and, where
 //! `rsvg-convert` is installed, as PNG.
