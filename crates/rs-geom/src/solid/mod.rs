@@ -72,7 +72,7 @@ use crate::properties::PropertiesError;
 use crate::surface::{ParamSurface, Surface};
 use bvh::{Bvh, ray_meets_box};
 use grid::{CellState, Grid};
-use patches::{Cell, Patch, face_patches, knot_cells};
+use patches::{Cell, Patch, face_patches, knot_cells, part_box};
 use roots::{Crossing, foot, ray_crossing};
 
 /// The default boundary tolerance relative to the diagonal of a solid's box (the file's own
@@ -301,7 +301,8 @@ impl SolidClassifier {
             me.hi,
             |grid, mixed| {
                 for patch in &me.patches {
-                    me.mark(grid, patch, MARK_SPLITS, mixed);
+                    // The patch's own box first: it holds the part boxes' parts.
+                    me.mark(grid, patch.face, patch.cell, patch.bend, MARK_SPLITS, mixed);
                 }
             },
             |p| me.by_rays(p).map(|l| l == Location::Inside),
@@ -309,10 +310,21 @@ impl SolidClassifier {
         Ok(me)
     }
 
-    /// Marks the cells `patch` may pass through, quartering it (at most `splits` times) while
-    /// its box reaches more than 8 cells.
-    fn mark(&self, grid: &Grid, patch: &Patch, splits: usize, mixed: &mut [bool]) {
-        let r = grid.ranges(patch.lo, patch.hi);
+    /// Marks the cells the part `cell` of a patch (of `face`, second derivatives `bend`) may
+    /// pass through, quartering it (at most `splits` times) while its box reaches more than 8
+    /// cells.
+    fn mark(
+        &self,
+        grid: &Grid,
+        face: u32,
+        cell: Cell,
+        bend: [f64; 3],
+        splits: usize,
+        mixed: &mut [bool],
+    ) {
+        let surface = &self.faces[face as usize].surface;
+        let (lo, hi) = part_box(surface, cell, bend, self.tolerance);
+        let r = grid.ranges(lo, hi);
         let count: usize = r.iter().map(|(a, b)| b - a + 1).product();
         if count <= 8 || splits == 0 {
             for i in r[0].0..=r[0].1 {
@@ -324,9 +336,8 @@ impl SolidClassifier {
             }
             return;
         }
-        let surface = &self.faces[patch.face as usize].surface;
-        for q in patch.split(surface, self.tolerance) {
-            self.mark(grid, &q, splits - 1, mixed);
+        for q in cell.quarters() {
+            self.mark(grid, face, q, bend, splits - 1, mixed);
         }
     }
 

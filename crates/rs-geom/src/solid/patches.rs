@@ -93,6 +93,14 @@ impl Cell {
         }
     }
 
+    /// The four quarters.
+    pub(super) fn quarters(&self) -> [Cell; 4] {
+        let [a, b] = self.halves(0);
+        let [a0, a1] = a.halves(1);
+        let [b0, b1] = b.halves(1);
+        [a0, a1, b0, b1]
+    }
+
     /// `uv` clamped into the cell.
     pub(super) fn clamp(&self, uv: [f64; 2]) -> [f64; 2] {
         [
@@ -102,7 +110,7 @@ impl Cell {
     }
 
     /// The halves across parameter `axis`.
-    fn halves(&self, axis: usize) -> [Cell; 2] {
+    pub(super) fn halves(&self, axis: usize) -> [Cell; 2] {
         let [mu, mv] = self.centre();
         if axis == 0 {
             [
@@ -148,6 +156,9 @@ pub(super) struct Patch {
     pub(super) graze: f64,
     /// The smallest parameter speed `min(|S_u|, |S_v|)` sampled (zero at a pole).
     pub(super) speed: f64,
+    /// The largest second derivatives `|S_uu|`, `|S_uv|`, `|S_vv|` sampled: they bound how
+    /// far the surface leaves the box of points of any part of the patch.
+    pub(super) bend: [f64; 3],
 }
 
 impl Patch {
@@ -164,11 +175,37 @@ impl Patch {
 
     /// The four quarters of the patch, sampled again.
     pub(super) fn split(&self, surface: &Surface, grow: f64) -> [Patch; 4] {
-        let [a, b] = self.cell.halves(0);
-        let [a0, a1] = a.halves(1);
-        let [b0, b1] = b.halves(1);
-        [a0, a1, b0, b1].map(|c| Patch::new(self.face, surface, c, grow))
+        self.cell
+            .quarters()
+            .map(|c| Patch::new(self.face, surface, c, grow))
     }
+}
+
+/// A box holding `surface` over `cell`, a part of a patch whose largest second derivatives
+/// are `bend`: the box of `3 x 3` points grown by the error of linear interpolation between
+/// them (times [`SAFETY`]) and by `grow`. Nine points, no derivatives: what marking grid
+/// cells needs.
+pub(super) fn part_box(
+    surface: &Surface,
+    cell: Cell,
+    bend: [f64; 3],
+    grow: f64,
+) -> (Point3, Point3) {
+    let [hu, hv] = cell.sides().map(|s| s / 2.0);
+    let mut lo = Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let mut hi = -lo;
+    for i in 0..3 {
+        for j in 0..3 {
+            let p = surface.point([cell.u.0 + i as f64 * hu, cell.v.0 + j as f64 * hv]);
+            lo = Point3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+            hi = Point3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+        }
+    }
+    let [suu, suv, svv] = bend;
+    let margin = SAFETY * (hu * hu * suu + 2.0 * hu * hv * suv + hv * hv * svv) / 8.0;
+    let g = if margin.is_finite() { margin } else { 0.0 } + grow;
+    let g = Point3::new(g, g, g);
+    (lo - g, hi + g)
 }
 
 /// The surface sampled on a cell: box, normal cone, speeds.
@@ -179,6 +216,7 @@ struct Samples {
     cone: f64,
     margin: f64,
     speed: f64,
+    bend: [f64; 3],
     /// `|S_u| du` and `|S_v| dv` at the centre: the cell's extent in space along each side.
     extent: [f64; 2],
 }
@@ -230,6 +268,7 @@ impl Samples {
             cone,
             margin: if margin.is_finite() { margin } else { 0.0 },
             speed: if speed.is_finite() { speed } else { 0.0 },
+            bend: [suu, suv, svv],
             extent: [
                 c.du.length() * cell.sides()[0],
                 c.dv.length() * cell.sides()[1],
@@ -255,6 +294,7 @@ impl Samples {
             normal: self.normal.unwrap_or(Point3::new(0.0, 0.0, 0.0)),
             graze,
             speed: self.speed,
+            bend: self.bend,
         }
     }
 }
