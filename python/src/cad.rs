@@ -11,7 +11,7 @@ use inrs::geom::ParamSurface;
 use inrs::geom::Point3;
 use inrs::geom::brep::Edge;
 use inrs::geom::properties::{FaceProperties, ModelProperties, SolidProperties};
-use inrs::geom::solid::{Location, SolidClassifier};
+use inrs::geom::solid::{Location, PointQuery, SolidClassifier};
 use inrs::io::cad::{CadFaceSummary, CadModel};
 
 use crate::domain::{NativeDomain, check_closure_tol};
@@ -365,7 +365,7 @@ impl NativeCadModel {
                 .as_ref()
                 .map_err(Clone::clone)?;
             let mut out = vec![Location::Outside; points.len()];
-            c.locate_into(&points, &mut out);
+            c.par_values_into(&points[..], &mut out);
             Ok::<_, String>(out.into_iter().map(Location::code).collect::<Vec<i8>>())
         });
         Ok(codes.map_err(value_error)?.into_pyarray(py))

@@ -7,7 +7,7 @@
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-use inrs::geom::solid::{Location, SolidClassifier};
+use inrs::geom::solid::{Location, PointQuery, SolidClassifier};
 use inrs::geom::{ParamSurface, Point3};
 use inrs::io::cad::CadModel;
 use inrs::{BoundingBox, Point};
@@ -50,8 +50,8 @@ pub(crate) fn section(root: &Path) -> Result<Section, String> {
         .collect();
     let space = |p: &Point| Point3::new(p.x, 0.0, p.y);
     let mut locations = vec![Location::Outside; points.len()];
-    solid.locate_into(
-        &points.iter().map(space).collect::<Vec<_>>(),
+    solid.par_values_into(
+        &points.iter().map(space).collect::<Vec<_>>()[..],
         &mut locations,
     );
     // The surface of revolution's meridians at angles 0 and pi (the plane y = 0).
@@ -76,8 +76,8 @@ pub(crate) fn section(root: &Path) -> Result<Section, String> {
         })
         .collect();
     let mut surface_locations = vec![Location::Outside; surface.len()];
-    solid.locate_into(
-        &surface.iter().map(space).collect::<Vec<_>>(),
+    solid.par_values_into(
+        &surface.iter().map(space).collect::<Vec<_>>()[..],
         &mut surface_locations,
     );
     Ok(Section {

@@ -10,7 +10,7 @@ mod common;
 use common::{fixture, inrs, inrs_ok, scratch};
 
 use inrs::geom::Point3;
-use inrs::geom::solid::{Location, SolidClassifier};
+use inrs::geom::solid::{Locate, Location, PointQuery, SolidClassifier};
 use inrs::io::cad::CadModel;
 
 /// A small deterministic generator in `[0, 1)`.
@@ -73,7 +73,7 @@ fn random_points_agree_with_the_closed_forms() {
             })
             .collect();
         let mut got = vec![Location::Outside; points.len()];
-        c.locate_into(&points, &mut got);
+        c.par_values_into(&points[..], &mut got);
         let mut checked = 0;
         for (p, l) in points.iter().zip(&got) {
             assert_eq!(*l, c.locate(*p), "parallel and one by one differ at {p:?}");

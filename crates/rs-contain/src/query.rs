@@ -19,18 +19,19 @@ struct Window<'a, P: ?Sized> {
 }
 
 #[cfg(feature = "parallel")]
-impl<P: PointSource + ?Sized> PointSource for Window<'_, P> {
+impl<Q, P: PointSource<Q> + ?Sized> PointSource<Q> for Window<'_, P> {
     #[inline]
     fn len(&self) -> usize {
         self.len
     }
     #[inline]
-    fn point(&self, i: usize) -> Point {
+    fn point(&self, i: usize) -> Q {
         self.points.point(self.first + i)
     }
 }
 
-/// One value of type `T` per point.
+/// One value of type `T` per point of type `Q` (a [`Point`] of the plane unless said otherwise;
+/// `rs-geom`'s solid classifier answers points of space).
 ///
 /// Implementors give [`PointQuery::value`] and, where a batch is cheaper than its points one
 /// by one (sorting, a shared grid, vector instructions), [`PointQuery::values_into`]; the
@@ -39,15 +40,15 @@ impl<P: PointSource + ?Sized> PointSource for Window<'_, P> {
 ///
 /// A type may answer several queries (a winding field gives locations and winding numbers);
 /// the output slice's type picks the one.
-pub trait PointQuery<T: Copy>: Sync {
+pub trait PointQuery<T: Copy, Q: Copy = Point>: Sync {
     /// The value at one point.
-    fn value(&self, p: Point) -> T;
+    fn value(&self, p: Q) -> T;
 
     /// Writes the value of `points.point(i)` to `out[i]`, on the current thread.
     ///
     /// # Panics
     /// If `out` is not as long as `points`.
-    fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [T]) {
+    fn values_into<P: PointSource<Q> + ?Sized>(&self, points: &P, out: &mut [T]) {
         assert_eq!(points.len(), out.len(), "one value per point");
         for (i, o) in out.iter_mut().enumerate() {
             *o = self.value(points.point(i));
@@ -65,9 +66,10 @@ pub trait PointQuery<T: Copy>: Sync {
     ///
     /// # Panics
     /// If `out` is not as long as `points`.
-    fn par_values_into<P: PointSource + Sync + ?Sized>(&self, points: &P, out: &mut [T])
+    fn par_values_into<P: PointSource<Q> + Sync + ?Sized>(&self, points: &P, out: &mut [T])
     where
         T: Send,
+        Q: Sync,
     {
         in_tasks(self, points, out, self.parallel_chunk());
     }
@@ -75,11 +77,12 @@ pub trait PointQuery<T: Copy>: Sync {
 
 /// [`PointQuery::values_into`] on tasks of `chunk` points, on the calling thread and rayon's
 /// pool together (with the `parallel` feature; otherwise on the current thread in one go).
-pub(crate) fn in_tasks<T, Q, P>(query: &Q, points: &P, out: &mut [T], chunk: usize)
+pub(crate) fn in_tasks<T, Q, X, P>(query: &X, points: &P, out: &mut [T], chunk: usize)
 where
     T: Copy + Send,
-    Q: PointQuery<T> + ?Sized,
-    P: PointSource + Sync + ?Sized,
+    Q: Copy + Sync,
+    X: PointQuery<T, Q> + ?Sized,
+    P: PointSource<Q> + Sync + ?Sized,
 {
     assert_eq!(points.len(), out.len(), "one value per point");
     #[cfg(feature = "parallel")]
@@ -114,14 +117,14 @@ pub(crate) const PARALLEL_CHUNK: usize = 4096;
 /// fill rule they were built with), and by the curved-triangulation locator of `rs-mesh`.
 /// The options that change answers (tolerance, fill rule, method) live in the value, so code
 /// written against `impl Locate` gives the same answers whichever one it is handed.
-pub trait Locate: PointQuery<Location> {
+pub trait Locate<Q: Copy = Point>: PointQuery<Location, Q> {
     /// The location of one point.
-    fn locate(&self, p: Point) -> Location {
+    fn locate(&self, p: Q) -> Location {
         self.value(p)
     }
 
     /// The locations of `points`, in input order, on the current thread.
-    fn locate_all(&self, points: &[Point]) -> Vec<Location> {
+    fn locate_all(&self, points: &[Q]) -> Vec<Location> {
         let mut out = vec![Location::Outside; points.len()];
         self.values_into(points, &mut out);
         out
@@ -129,14 +132,17 @@ pub trait Locate: PointQuery<Location> {
 
     /// As [`Locate::locate_all`], on the calling thread and rayon's pool
     /// ([`PointQuery::par_values_into`]).
-    fn locate_all_parallel(&self, points: &[Point]) -> Vec<Location> {
+    fn locate_all_parallel(&self, points: &[Q]) -> Vec<Location>
+    where
+        Q: Sync,
+    {
         let mut out = vec![Location::Outside; points.len()];
         self.par_values_into(points, &mut out);
         out
     }
 }
 
-impl<Q: PointQuery<Location> + ?Sized> Locate for Q {}
+impl<Q: Copy, X: PointQuery<Location, Q> + ?Sized> Locate<Q> for X {}
 
 /// Runs `f(first, piece)` on the `chunk`-long pieces of `out` (`first` the index of a piece's
 /// first element) on the calling thread and rayon's pool together. A shared counter hands the

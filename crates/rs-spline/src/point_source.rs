@@ -3,17 +3,18 @@
 
 use crate::Point;
 
-/// Points read by index: `point(0), ..., point(len() - 1)`.
+/// Points read by index: `point(0), ..., point(len() - 1)`, of the plane ([`Point`], the
+/// default) or of another space (`Q`: [`crate::Point3`] for points of space).
 ///
-/// Implemented by slices and vectors of [`Point`] and by [`points_from_fn`] (any layout
-/// through an accessor); `rs-io` implements it for a `.npy` file's bytes. A query
+/// Implemented by slices and vectors of points and by [`points_from_fn`] (any layout through
+/// an accessor); `rs-io` implements it for a `.npy` file's bytes. A query
 /// monomorphises over the source, so an accessor inlines into its loop.
-pub trait PointSource {
+pub trait PointSource<Q = Point> {
     /// The number of points.
     fn len(&self) -> usize;
 
     /// Point `i` (`i < len()`; an implementation may panic otherwise).
-    fn point(&self, i: usize) -> Point;
+    fn point(&self, i: usize) -> Q;
 
     /// Whether there are no points.
     fn is_empty(&self) -> bool {
@@ -22,35 +23,35 @@ pub trait PointSource {
 
     /// The points as a slice, when they are held as one: a parallel query then hands each
     /// task a sub-slice rather than an offset accessor.
-    fn as_slice(&self) -> Option<&[Point]> {
+    fn as_slice(&self) -> Option<&[Q]> {
         None
     }
 }
 
-impl PointSource for [Point] {
+impl<Q: Copy> PointSource<Q> for [Q] {
     #[inline]
     fn len(&self) -> usize {
-        <[Point]>::len(self)
+        <[Q]>::len(self)
     }
     #[inline]
-    fn point(&self, i: usize) -> Point {
+    fn point(&self, i: usize) -> Q {
         self[i]
     }
-    fn as_slice(&self) -> Option<&[Point]> {
+    fn as_slice(&self) -> Option<&[Q]> {
         Some(self)
     }
 }
 
-impl PointSource for Vec<Point> {
+impl<Q: Copy> PointSource<Q> for Vec<Q> {
     #[inline]
     fn len(&self) -> usize {
         Vec::len(self)
     }
     #[inline]
-    fn point(&self, i: usize) -> Point {
+    fn point(&self, i: usize) -> Q {
         self[i]
     }
-    fn as_slice(&self) -> Option<&[Point]> {
+    fn as_slice(&self) -> Option<&[Q]> {
         Some(self)
     }
 }
@@ -72,17 +73,17 @@ pub struct PointsFn<F> {
 /// let pts = points_from_fn(2, |i| Point::new(x[i], y[i]));
 /// assert_eq!(pts.point(1), Point::new(1.0, 3.0));
 /// ```
-pub fn points_from_fn<F: Fn(usize) -> Point>(len: usize, f: F) -> PointsFn<F> {
+pub fn points_from_fn<Q, F: Fn(usize) -> Q>(len: usize, f: F) -> PointsFn<F> {
     PointsFn { len, f }
 }
 
-impl<F: Fn(usize) -> Point> PointSource for PointsFn<F> {
+impl<Q, F: Fn(usize) -> Q> PointSource<Q> for PointsFn<F> {
     #[inline]
     fn len(&self) -> usize {
         self.len
     }
     #[inline]
-    fn point(&self, i: usize) -> Point {
+    fn point(&self, i: usize) -> Q {
         (self.f)(i)
     }
 }

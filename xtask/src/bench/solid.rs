@@ -1,5 +1,5 @@
 //! Point in a solid (issue 50): `SolidClassifier` (build, then `locate` on one thread and
-//! `locate_into` on all) on every solid of freecad-common's Idf parts and of the `OpenCASCADE`
+//! `par_values_into` on all) on every solid of freecad-common's Idf parts and of the `OpenCASCADE`
 //! test parts of `python/tests/cad_parts.py`, beside `OpenCASCADE`'s
 //! `BRepClass3d_SolidClassifier` (through OCP) on the same uniform random points of each solid's box, in the same run. Every
 //! point where one says inside and the other outside is listed.
@@ -9,7 +9,7 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use inrs::geom::solid::{Location, SolidClassifier};
+use inrs::geom::solid::{Locate, Location, PointQuery, SolidClassifier};
 use inrs::io::cad::CadModel;
 use inrs::spline::Point3;
 
@@ -222,7 +222,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             });
             let mut parallel = vec![Location::Outside; n];
             let parallel_s = median_time(reps, || {
-                classifier.locate_into(black_box(&points), &mut parallel);
+                classifier.par_values_into(black_box(&points[..]), &mut parallel);
                 black_box(&parallel);
             });
             let differ = locations
@@ -232,7 +232,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
                 .count();
             if differ > 0 {
                 problems.push(format!(
-                    "{name} solid {k}: locate_into differs from locate on {differ} points"
+                    "{name} solid {k}: par_values_into differs from locate on {differ} points"
                 ));
             }
             ours.push(Ours {
@@ -377,7 +377,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
     let _ = writeln!(
         md,
         "\nPoint in a solid (`SolidClassifier`: build, then `locate` on one thread and \
-         `locate_into` on {threads}) on every solid of freecad-common's Idf parts and of the \
+         `par_values_into` on {threads}) on every solid of freecad-common's Idf parts and of the \
          OpenCASCADE test parts (`python/tests/cad_parts.py`, STEP and IGES B-rep mode), beside \
          OpenCASCADE's `BRepClass3d_SolidClassifier` (built once per solid, then `Perform(p, \
          {OCC_TOL:e})` and `State()` per point, through OCP) on the same {n} uniform random \

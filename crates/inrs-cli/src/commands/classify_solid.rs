@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use inrs::geom::solid::{Location, SolidClassifier};
+use inrs::geom::solid::{Location, PointQuery, SolidClassifier};
 use inrs::io::cad::{CadModel, CadSelection, split_cad_spec};
 use inrs::io::points::XyzReader;
 
@@ -90,7 +90,7 @@ pub(super) fn run(
         for (c, col) in classifiers.iter().zip(&mut columns) {
             col.clear();
             col.resize(run.points.len(), Location::Outside);
-            c.locate_into(&run.points, col);
+            c.par_values_into(&run.points[..], col);
         }
         if npy {
             codes.clear();
