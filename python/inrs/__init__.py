@@ -1042,8 +1042,11 @@ class CadSolid(_CadSolidFields):
     :class:`SolidProperties`), ``volume``, ``area`` (of its boundary), ``centroid``,
     ``inertia``, ``principal_moments`` and ``principal_axes``. These raise ``ValueError`` with
     the library's one-line reason for a solid whose properties cannot be computed (an open
-    shell, a face that cannot be integrated), and for a solid unpickled without its model (a
-    solid pickles as its three fields).
+    shell, a face that cannot be integrated), and for a solid unpickled without its model.
+
+    :meth:`classify` says where points of space lie. A solid pickles as its file and index and
+    comes back with its model (each process reads a file once); one of a model read with a
+    ``closure_tol`` pickles as its three fields, without its model.
     """
 
     def __new__(cls, index: int, entity: str, shells: "list[CadShell]", properties=None):

@@ -119,10 +119,15 @@ def test_properties_pickle_and_solids_without_their_model():
     q = pickle.loads(pickle.dumps(p))
     assert q.solids[0].volume == p.solids[0].volume
     np.testing.assert_array_equal(q.solids[0].inertia, p.solids[0].inertia)
+    # A solid pickles as its file and index: it comes back with its model.
     s = pickle.loads(pickle.dumps(m.solids[0]))
     assert s == m.solids[0] and tuple(s) == tuple(m.solids[0]) and len(s) == 3
+    assert s.volume == m.solids[0].volume
+    # Read with a closure tolerance, it pickles as its three fields, without its model.
+    t = pickle.loads(pickle.dumps(inrs.cad_model(FIXTURES / "box_void.step", closure_tol=1e-9).solids[0]))
+    assert tuple(t) == tuple(m.solids[0])
     with pytest.raises(ValueError, match="no model"):
-        s.volume
+        t.volume
 
 
 def test_faces_without_a_model_have_no_properties():
