@@ -1044,9 +1044,9 @@ class CadSolid(_CadSolidFields):
     the library's one-line reason for a solid whose properties cannot be computed (an open
     shell, a face that cannot be integrated), and for a solid unpickled without its model.
 
-    :meth:`classify` says where points of space lie. A solid pickles as its file and index and
-    comes back with its model (each process reads a file once); one of a model read with a
-    ``closure_tol`` pickles as its three fields, without its model.
+    :meth:`classify` says where points of space lie. A solid of :func:`cad_model` pickles as its
+    file, closure tolerance and index, and comes back with its model (each process reads a file
+    once); a solid made by hand has no model.
     """
 
     def __new__(cls, index: int, entity: str, shells: "list[CadShell]", properties=None):
@@ -1058,11 +1058,12 @@ class CadSolid(_CadSolidFields):
         return None  # the model stays behind
 
     def __reduce__(self):
-        path = getattr(self, "_path", None)
-        if path is None:
+        source = getattr(self, "_source", None)
+        if source is None:
             return super().__reduce__()
         # Unpickled, the solid reads its file again (the model is not pickled).
-        return (_solid_of_file, (path, self.index))
+        path, closure_tol = source
+        return (_solid_of_file, (path, closure_tol, self.index))
 
     def classify(self, xyz) -> np.ndarray:
         """Where the points ``xyz`` (an ``(n, 3)`` array, or one ``(x, y, z)``) lie: an int8
@@ -1268,7 +1269,9 @@ class CadModel:
 
     __slots__ = ("_native", "_properties", "faces", "shells", "solids")
 
-    def __init__(self, native: "_inrs.NativeCadModel", path: Optional[str] = None) -> None:
+    def __init__(
+        self, native: "_inrs.NativeCadModel", source: "Optional[Tuple[str, Optional[float]]]" = None
+    ) -> None:
         self._native = native
         self._properties = _ModelProperties(native)
         self.faces = [
@@ -1284,7 +1287,7 @@ class CadModel:
         ]
         for solid in self.solids:
             solid._native = native
-            solid._path = path
+            solid._source = source
 
     format = property(lambda self: self._native.format())
     tolerance = property(lambda self: self._native.tolerance())
@@ -1323,19 +1326,19 @@ def cad_model(path: Union[str, os.PathLike], closure_tol: Optional[float] = None
     >>> m.faces[0].points(np.array([[1.0, 2.0]]))  # doctest: +SKIP
     """
     path = os.fspath(path)
-    return CadModel(_inrs.NativeCadModel(path, closure_tol), None if closure_tol is not None else os.path.abspath(path))
+    return CadModel(_inrs.NativeCadModel(path, closure_tol), (os.path.abspath(path), closure_tol))
 
 
 @functools.lru_cache(maxsize=8)
-def _model_of_file(path: str) -> CadModel:
+def _model_of_file(path: str, closure_tol: Optional[float]) -> CadModel:
     """The file ``path`` read once per process (the models of unpickled solids)."""
-    return cad_model(path)
+    return cad_model(path, closure_tol)
 
 
-def _solid_of_file(path: str, index: int) -> "CadSolid":
-    """Solid ``index`` of the file ``path`` (how a pickled solid comes back: a process reads
-    each file once, and the solid's classifier is built once)."""
-    return _model_of_file(path).solids[index]
+def _solid_of_file(path: str, closure_tol: Optional[float], index: int) -> "CadSolid":
+    """Solid ``index`` of the file ``path`` read with ``closure_tol`` (how a pickled solid comes
+    back: a process reads each file once, and the solid's classifier is built once)."""
+    return _model_of_file(path, closure_tol).solids[index]
 
 
 def cad_faces(path: Union[str, os.PathLike], closure_tol: Optional[float] = None) -> "list[CadFace]":
