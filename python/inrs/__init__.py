@@ -1077,7 +1077,7 @@ class CadSolid(_CadSolidFields):
         points not of shape ``(n, 3)``."""
         native = getattr(self, "_native", None)
         if native is None:
-            raise ValueError("this solid was unpickled without its model: read the file again")
+            raise ValueError("this solid has no model (built by hand): read the file with cad_model()")
         a = np.asarray(xyz, dtype=np.float64)
         one = a.ndim == 1
         if one:
@@ -1102,7 +1102,7 @@ class CadSolid(_CadSolidFields):
         """The solid's :class:`SolidProperties` (``ValueError`` when they cannot be computed)."""
         cache = getattr(self, "_properties", None)
         if cache is None:
-            raise ValueError("this solid has no model (unpickled or built by hand): read the file with cad_model()")
+            raise ValueError("this solid has no model (built by hand): read the file with cad_model()")
         return cache.solid(self.index)
 
     @property
