@@ -1042,7 +1042,7 @@ class CadSolid(_CadSolidFields):
     :class:`SolidProperties`), ``volume``, ``area`` (of its boundary), ``centroid``,
     ``inertia``, ``principal_moments`` and ``principal_axes``. These raise ``ValueError`` with
     the library's one-line reason for a solid whose properties cannot be computed (an open
-    shell, a face that cannot be integrated), and for a solid unpickled without its model.
+    shell, a face that cannot be integrated), and for a solid built by hand (without its model).
 
     :meth:`classify` says where points of space lie. A solid of :func:`cad_model` pickles as its
     file, closure tolerance and index, and comes back with its model (each process reads a file
