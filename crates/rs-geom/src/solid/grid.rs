@@ -48,13 +48,21 @@ impl Grid {
     ) -> Grid {
         let extent = hi - lo;
         let volume = extent.x.max(0.0) * extent.y.max(0.0) * extent.z.max(0.0);
-        let h = if volume > 0.0 {
+        let mut h = if volume > 0.0 {
             (volume / MAX_CELLS as f64).cbrt()
         } else {
             extent.max_abs().max(f64::MIN_POSITIVE)
         };
-        let n =
-            [extent.x, extent.y, extent.z].map(|e| ((e / h).floor() as usize).clamp(1, 1 << 12));
+        let cells =
+            |h: f64| [extent.x, extent.y, extent.z].map(|e| ((e / h).floor() as usize).max(1));
+        // A flat box (a thin plate) has sides of one cell: widen the cells until the grid has
+        // at most MAX_CELLS (each step 1.25 times; a few dozen steps from any finite box).
+        let mut n = cells(h);
+        let count = |n: [usize; 3]| n.iter().fold(1usize, |a, &b| a.saturating_mul(b));
+        while count(n) > MAX_CELLS && h.is_finite() {
+            h *= 1.25;
+            n = cells(h);
+        }
         let step = Point3::new(
             extent.x / n[0] as f64,
             extent.y / n[1] as f64,
@@ -221,6 +229,34 @@ impl Grid {
         }
         if k + 1 < n2 {
             f(c + 1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Boxes of any shape get at most MAX_CELLS cells: a cube, a thin plate, a needle, a box
+    /// flat in one direction.
+    #[test]
+    fn grids_stay_within_their_cell_budget() {
+        for extent in [
+            Point3::new(1.0, 1.0, 1.0),
+            Point3::new(1.0, 1.0, 1e-9),
+            Point3::new(1e-9, 1e-9, 1.0),
+            Point3::new(1.0, 1.0, 0.0),
+            Point3::new(1e300, 1.0, 1e-300),
+        ] {
+            let mut cells = 0;
+            let g = Grid::new(
+                Point3::new(0.0, 0.0, 0.0),
+                extent,
+                |_, mixed| cells = mixed.len(),
+                |_| Some(false),
+            );
+            assert!(cells <= MAX_CELLS, "{extent:?}: {cells}");
+            assert_eq!(g.state(extent * 0.5), CellState::Outside);
         }
     }
 }
