@@ -56,7 +56,7 @@ impl Grid {
         let cells =
             |h: f64| [extent.x, extent.y, extent.z].map(|e| ((e / h).floor() as usize).max(1));
         // A flat box (a thin plate) has sides of one cell: widen the cells until the grid has
-        // at most MAX_CELLS (each step 1.25 times; a few dozen steps from any finite box).
+        // at most `MAX_CELLS` (each step 1.25 times; a few dozen steps from any finite box).
         let mut n = cells(h);
         let count = |n: [usize; 3]| n.iter().fold(1usize, |a, &b| a.saturating_mul(b));
         while count(n) > MAX_CELLS && h.is_finite() {
@@ -237,7 +237,7 @@ impl Grid {
 mod tests {
     use super::*;
 
-    /// Boxes of any shape get at most MAX_CELLS cells: a cube, a thin plate, a needle, a box
+    /// Boxes of any shape get at most `MAX_CELLS` cells: a cube, a thin plate, a needle, a box
     /// flat in one direction.
     #[test]
     fn grids_stay_within_their_cell_budget() {
