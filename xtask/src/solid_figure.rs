@@ -1,8 +1,9 @@
-//! The point-in-solid figure of `cargo xtask demo`: the section y = 0 of
+//! The point-in-solid figures of `cargo xtask demo`: sections of two solids read from STEP, a
+//! grid of points in each classified by `inrs::geom::solid::SolidClassifier`:
 //! `fixtures/cad/revolved_bspline.step` (a cubic B-spline profile revolved about z between two
-//! discs), a grid of points in it classified by `inrs::geom::solid::SolidClassifier`, and
-//! points on the surface of revolution (which it must call boundary), written as SVG and, where
-//! `rsvg-convert` is installed, as PNG.
+//! discs) at y = 0 with points on the surface of revolution (which it must call boundary), and
+//! a real part, FreeCAD's `CAP_50SGV_8_10.stp` (an electrolytic capacitor), through its middle.
+//! Written as SVG and, where `rsvg-convert` is installed, as PNG.
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -21,6 +22,9 @@ const ON_SURFACE: usize = 60;
 
 /// The section: the grid's points and locations, the surface points and theirs, the tolerance.
 pub(crate) struct Section {
+    pub(crate) file: String,
+    pub(crate) y0: f64,
+    pub(crate) faces: usize,
     pub(crate) points: Vec<Point>,
     pub(crate) locations: Vec<Location>,
     pub(crate) surface: Vec<Point>,
@@ -29,12 +33,14 @@ pub(crate) struct Section {
     pub(crate) bounds: BoundingBox,
 }
 
-/// Classifies the section's points (the plane y = 0, in `(x, z)`).
-pub(crate) fn section(root: &Path) -> Result<Section, String> {
-    let path = root.join("fixtures/cad/revolved_bspline.step");
+/// The solid of `path` (relative to the workspace root) classified on a grid of the plane
+/// `y = y0` (`None`: the middle of its box), in `(x, z)`.
+fn grid_section(root: &Path, rel: &str, y0: Option<f64>) -> Result<(CadModel, Section), String> {
+    let path = root.join(rel);
     let model = CadModel::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let solid = SolidClassifier::new(&model, 0).map_err(|e| format!("{}: {e}", path.display()))?;
     let (lo, hi) = solid.bounds();
+    let y0 = y0.unwrap_or(0.5 * (lo.y + hi.y));
     let bounds = BoundingBox::from_points([Point::new(lo.x, lo.z), Point::new(hi.x, hi.z)])
         .ok_or("an empty solid")?;
     let [nx, nz] = GRID;
@@ -48,12 +54,27 @@ pub(crate) fn section(root: &Path) -> Result<Section, String> {
             })
         })
         .collect();
-    let space = |p: &Point| Point3::new(p.x, 0.0, p.y);
     let mut locations = vec![Location::Outside; points.len()];
-    solid.par_values_into(
-        &points.iter().map(space).collect::<Vec<_>>()[..],
-        &mut locations,
-    );
+    let space: Vec<Point3> = points.iter().map(|p| Point3::new(p.x, y0, p.y)).collect();
+    solid.par_values_into(&space[..], &mut locations);
+    let section = Section {
+        file: rel.rsplit('/').next().unwrap_or(rel).to_string(),
+        y0,
+        faces: solid.faces().len(),
+        points,
+        locations,
+        surface: Vec::new(),
+        surface_locations: Vec::new(),
+        tolerance: solid.tolerance(),
+        bounds,
+    };
+    Ok((model, section))
+}
+
+/// The section y = 0 of the revolved B-spline, with points on its surface of revolution.
+pub(crate) fn section(root: &Path) -> Result<Section, String> {
+    let (model, mut section) = grid_section(root, "fixtures/cad/revolved_bspline.step", Some(0.0))?;
+    let solid = SolidClassifier::new(&model, 0).map_err(|e| e.to_string())?;
     // The surface of revolution's meridians at angles 0 and pi (the plane y = 0).
     let revolution = model
         .faces
@@ -76,18 +97,16 @@ pub(crate) fn section(root: &Path) -> Result<Section, String> {
         })
         .collect();
     let mut surface_locations = vec![Location::Outside; surface.len()];
-    solid.par_values_into(
-        &surface.iter().map(space).collect::<Vec<_>>()[..],
-        &mut surface_locations,
-    );
-    Ok(Section {
-        points,
-        locations,
-        surface,
-        surface_locations,
-        tolerance: solid.tolerance(),
-        bounds,
-    })
+    let space: Vec<Point3> = surface.iter().map(|p| Point3::new(p.x, 0.0, p.y)).collect();
+    solid.par_values_into(&space[..], &mut surface_locations);
+    section.surface = surface;
+    section.surface_locations = surface_locations;
+    Ok(section)
+}
+
+/// The section through the middle of a real part, FreeCAD's capacitor.
+pub(crate) fn real_section(root: &Path) -> Result<Section, String> {
+    Ok(grid_section(root, "fixtures/cad/freecad-idf/CAP_50SGV_8_10.stp", None)?.1)
 }
 
 /// The figure of a section.
@@ -110,35 +129,52 @@ pub(crate) fn section_figure(s: &Section) -> Figure {
         .collect();
     crate::figures::mark_locations(&mut fig, &all, &locations);
     let count = |l: Location| s.locations.iter().filter(|&&x| x == l).count();
+    let surface = if s.surface.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; and {} points on the surface of revolution's two meridians in this plane, all on \
+             the boundary",
+            s.surface.len()
+        )
+    };
     fig.caption(&format!(
-        "Point in a solid: the section y = 0 of fixtures/cad/revolved_bspline.step (a cubic \
-         B-spline profile revolved about the z axis, closed by discs at z = 0 and z = 3; read \
-         from STEP). A {} x {} grid of points classified by inrs::geom::solid::SolidClassifier \
-         (signed ray crossings with the trimmed faces, each crossing checked by the face's exact \
-         2-D test): {} inside, {} outside; and {} points on the surface of revolution's two \
-         meridians in this plane, all on the boundary (within T = {:.1e}).",
+        "Point in a solid: the section y = {:.4} of {} ({} faces, read from STEP). A {} x {} grid \
+         of points classified by inrs::geom::solid::SolidClassifier (signed ray crossings with \
+         the trimmed faces, each crossing checked by the face's exact 2-D test): {} inside, {} \
+         outside, {} on the boundary (within T = {:.1e}){surface}.",
+        s.y0,
+        s.file,
+        s.faces,
         GRID[0],
         GRID[1],
         count(Location::Inside),
         count(Location::Outside),
-        s.surface.len(),
+        count(Location::Boundary),
         s.tolerance
     ));
     fig
 }
 
-/// Writes `solid_section.svg` (and `.png` if `rsvg-convert` is on the path) into `dir`.
+/// Writes `solid_section.svg` (the revolved B-spline) and `solid_section_capacitor.svg` (the
+/// real part), and `.png`s beside them if `rsvg-convert` is on the path, into `dir`.
 pub(crate) fn write(dir: &Path, root: &Path) -> Result<Vec<PathBuf>, String> {
     let s = section(root)?;
     if s.surface_locations.iter().any(|&l| l != Location::Boundary) {
         return Err("revolved_bspline.step: a point on the surface is not on the boundary".into());
     }
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let svg = dir.join("solid_section.svg");
-    std::fs::write(&svg, section_figure(&s).to_svg())
-        .map_err(|e| format!("{}: {e}", svg.display()))?;
-    let mut written = vec![svg.clone()];
-    written.extend(crate::figures::png_beside(&svg));
+    let mut written = Vec::new();
+    for (name, s) in [
+        ("solid_section.svg", s),
+        ("solid_section_capacitor.svg", real_section(root)?),
+    ] {
+        let svg = dir.join(name);
+        std::fs::write(&svg, section_figure(&s).to_svg())
+            .map_err(|e| format!("{}: {e}", svg.display()))?;
+        written.push(svg.clone());
+        written.extend(crate::figures::png_beside(&svg));
+    }
     Ok(written)
 }
 
