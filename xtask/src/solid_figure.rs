@@ -2,7 +2,7 @@
 //! grid of points in each classified by `inrs::geom::solid::SolidClassifier`:
 //! `fixtures/cad/revolved_bspline.step` (a cubic B-spline profile revolved about z between two
 //! discs) at y = 0 with points on the surface of revolution (which it must call boundary), and
-//! a real part, FreeCAD's `CAP_50SGV_8_10.stp` (an electrolytic capacitor), through its middle.
+//! a real part, `FreeCAD`'s `CAP_50SGV_8_10.stp` (an electrolytic capacitor), through its middle.
 //! Written as SVG and, where `rsvg-convert` is installed, as PNG.
 
 use std::f64::consts::PI;
@@ -104,7 +104,7 @@ pub(crate) fn section(root: &Path) -> Result<Section, String> {
     Ok(section)
 }
 
-/// The section through the middle of a real part, FreeCAD's capacitor.
+/// The section through the middle of a real part, `FreeCAD`'s capacitor.
 pub(crate) fn real_section(root: &Path) -> Result<Section, String> {
     Ok(grid_section(root, "fixtures/cad/freecad-idf/CAP_50SGV_8_10.stp", None)?.1)
 }
