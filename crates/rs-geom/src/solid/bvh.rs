@@ -108,9 +108,14 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
-        let mut stack = vec![0usize];
-        while let Some(k) = stack.pop() {
-            let n = self.nodes[k];
+        // The tree is balanced (median splits): its depth is about log2(n / LEAF), far below
+        // the stack's 64 slots for any number of boxes a u32 can count.
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let k = stack[top] as usize;
+            let n = &self.nodes[k];
             if !meets(n.lo, n.hi) {
                 continue;
             }
@@ -123,8 +128,9 @@ impl Bvh {
                     }
                 }
             } else {
-                stack.push(n.first as usize);
-                stack.push(k + 1);
+                stack[top] = n.first;
+                stack[top + 1] = k as u32 + 1;
+                top += 2;
             }
         }
     }
@@ -140,19 +146,17 @@ pub(super) fn ray_meets_box(
     lo: Point3,
     hi: Point3,
 ) -> bool {
-    let mut near = t0;
-    let mut far = t1;
-    for k in 0..3 {
-        let a = (lo[k] - o[k]) * inv[k];
-        let b = (hi[k] - o[k]) * inv[k];
-        let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        near = near.max(a);
-        far = far.min(b);
-        if near > far {
-            return false;
-        }
-    }
-    true
+    let slab = |o: f64, inv: f64, lo: f64, hi: f64| {
+        let a = (lo - o) * inv;
+        let b = (hi - o) * inv;
+        if a <= b { (a, b) } else { (b, a) }
+    };
+    let (ax, bx) = slab(o.x, inv.x, lo.x, hi.x);
+    let (ay, by) = slab(o.y, inv.y, lo.y, hi.y);
+    let (az, bz) = slab(o.z, inv.z, lo.z, hi.z);
+    let near = t0.max(ax).max(ay).max(az);
+    let far = t1.min(bx).min(by).min(bz);
+    near <= far
 }
 
 #[cfg(test)]

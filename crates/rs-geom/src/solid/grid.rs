@@ -173,14 +173,14 @@ impl Grid {
 
     /// The cell coordinates of `p`, clamped into the grid.
     fn coordinates(&self, p: Point3) -> [usize; 3] {
-        std::array::from_fn(|a| {
-            let x = ((p[a] - self.lo[a]) / self.step[a]).floor();
-            if x >= 0.0 {
-                (x as usize).min(self.n[a] - 1)
-            } else {
-                0
-            }
-        })
+        // `as usize` truncates towards zero and sends NaN and negatives to 0: the floor of
+        // the non-negative values, clamped below for free.
+        let at = |x: f64, lo: f64, step: f64, n: usize| (((x - lo) / step) as usize).min(n - 1);
+        [
+            at(p.x, self.lo.x, self.step.x, self.n[0]),
+            at(p.y, self.lo.y, self.step.y, self.n[1]),
+            at(p.z, self.lo.z, self.step.z, self.n[2]),
+        ]
     }
 
     /// The ranges of cell coordinates the box `[lo, hi]` reaches, per axis.

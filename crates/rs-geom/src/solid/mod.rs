@@ -363,7 +363,10 @@ impl SolidClassifier {
 
     /// Where `p` lies (see the module documentation); [`PointQuery::value`].
     fn location(&self, p: Point3) -> Location {
-        if !(0..3).all(|k| p[k] >= self.lo[k] && p[k] <= self.hi[k]) {
+        let (lo, hi) = (self.lo, self.hi);
+        let in_box =
+            p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+        if !in_box {
             return Location::Outside;
         }
         let reference = match self.grid.state(p) {
@@ -424,6 +427,9 @@ impl SolidClassifier {
                 return;
             }
             let patch = &self.patches[i as usize];
+            if !patch.may_reach(p, 2.0 * self.tolerance) {
+                return;
+            }
             let face = &self.faces[patch.face as usize];
             let (uv, distance) = foot(&face.surface, patch.cell, p);
             if distance > 2.0 * self.tolerance {

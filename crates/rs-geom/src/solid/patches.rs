@@ -159,6 +159,19 @@ pub(super) struct Patch {
     /// The largest second derivatives `|S_uu|`, `|S_uv|`, `|S_vv|` sampled: they bound how
     /// far the surface leaves the box of points of any part of the patch.
     pub(super) bend: [f64; 3],
+    /// The point at the centre of the cell.
+    pub(super) centre: Point3,
+    /// The patch lies within this distance of the plane through `centre` normal to `normal`
+    /// (the samples' farthest, grown as the box is; infinite without a normal).
+    pub(super) thickness: f64,
+}
+
+impl Patch {
+    /// Whether `p` may lie within `reach` of the patch: within `thickness + reach` of its
+    /// centre's tangent plane.
+    pub(super) fn may_reach(&self, p: Point3, reach: f64) -> bool {
+        (p - self.centre).dot(self.normal).abs() <= self.thickness + reach
+    }
 }
 
 impl Patch {
@@ -217,6 +230,8 @@ struct Samples {
     margin: f64,
     speed: f64,
     bend: [f64; 3],
+    centre: Point3,
+    thickness: f64,
     /// `|S_u| du` and `|S_v| dv` at the centre: the cell's extent in space along each side.
     extent: [f64; 2],
 }
@@ -259,16 +274,34 @@ impl Samples {
         // `(h_u^2 |S_uu| + 2 h_u h_v |S_uv| + h_v^2 |S_vv|) / 8` (the error of linear
         // interpolation), with the largest second derivatives sampled.
         let margin = SAFETY * (hu * hu * suu + 2.0 * hu * hv * suv + hv * hv * svv) / 8.0;
+        let margin = if margin.is_finite() { margin } else { 0.0 };
         let (lo, hi) = Point3::bounds(points.iter().copied().filter(|p| p.is_finite()))
             .unwrap_or((c.point, c.point));
+        let thickness = match normal {
+            Some(n) => {
+                points
+                    .iter()
+                    .map(|&q| (q - c.point).dot(n).abs())
+                    .fold(0.0, f64::max)
+                    + margin
+            }
+            None => f64::INFINITY,
+        };
+        let thickness = if thickness.is_finite() || normal.is_none() {
+            thickness
+        } else {
+            f64::INFINITY
+        };
         Samples {
             lo,
             hi,
             normal,
             cone,
-            margin: if margin.is_finite() { margin } else { 0.0 },
+            margin,
             speed: if speed.is_finite() { speed } else { 0.0 },
             bend: [suu, suv, svv],
+            centre: c.point,
+            thickness,
             extent: [
                 c.du.length() * cell.sides()[0],
                 c.dv.length() * cell.sides()[1],
@@ -295,6 +328,8 @@ impl Samples {
             graze,
             speed: self.speed,
             bend: self.bend,
+            centre: self.centre,
+            thickness: self.thickness,
         }
     }
 }
