@@ -22,6 +22,10 @@ pub(super) enum CellState {
 /// Cells of the grid at most (each a byte of state and four of reference).
 pub(super) const MAX_CELLS: usize = 1 << 18;
 
+/// The most (cell, patch) pairs kept; past it the cells keep no lists of their patches (the
+/// hierarchy finds them instead).
+const MAX_MEMBERS: usize = 1 << 22;
+
 /// The grid over a box.
 #[derive(Clone, Debug)]
 pub(super) struct Grid {
@@ -29,6 +33,9 @@ pub(super) struct Grid {
     step: Point3,
     n: [usize; 3],
     cells: Vec<CellState>,
+    /// For each cell, the patches that may pass within the tolerance of it: `patches[
+    /// offsets[c] .. offsets[c + 1]]` (`None` when there were too many pairs to keep).
+    members: Option<(Vec<u32>, Vec<u32>)>,
 }
 
 /// A cell not yet decided while the grid is built.
@@ -37,13 +44,13 @@ const MIXED: u8 = 1;
 
 impl Grid {
     /// The grid over `[lo, hi]` with about [`MAX_CELLS`] cells, cubes as near as the box
-    /// allows; `mark(grid, mixed)` sets `mixed[i] = true` for every cell a face may pass
-    /// through; `decide(p)` says whether a point far from every face is inside (`None`
-    /// where it cannot tell: that connected set of cells stays mixed).
+    /// allows; `mark(grid, visit)` calls `visit(cell, patch)` for every cell a patch may pass
+    /// within the tolerance of; `decide(p)` says whether a point far from every face is inside
+    /// (`None` where it cannot tell: that connected set of cells stays mixed).
     pub(super) fn new(
         lo: Point3,
         hi: Point3,
-        mark: impl FnOnce(&Grid, &mut [bool]),
+        mark: impl FnOnce(&Grid, &mut dyn FnMut(usize, u32)),
         mut decide: impl FnMut(Point3) -> Option<bool>,
     ) -> Grid {
         let extent = hi - lo;
@@ -73,10 +80,35 @@ impl Grid {
             step,
             n,
             cells: Vec::new(),
+            members: None,
         };
         let total = n[0] * n[1] * n[2];
         let mut mixed = vec![false; total];
-        mark(&grid, &mut mixed);
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let mut kept = true;
+        mark(&grid, &mut |cell, patch| {
+            mixed[cell] = true;
+            if kept {
+                if pairs.len() < MAX_MEMBERS {
+                    pairs.push((cell as u32, patch));
+                } else {
+                    kept = false;
+                    pairs = Vec::new();
+                }
+            }
+        });
+        if kept {
+            pairs.sort_unstable();
+            pairs.dedup();
+            let mut offsets = vec![0u32; total + 1];
+            for &(c, _) in &pairs {
+                offsets[c as usize + 1] += 1;
+            }
+            for c in 0..total {
+                offsets[c + 1] += offsets[c];
+            }
+            grid.members = Some((offsets, pairs.into_iter().map(|(_, p)| p).collect()));
+        }
         let mut seen: Vec<u8> = mixed
             .iter()
             .map(|&m| if m { MIXED } else { UNSEEN })
@@ -152,7 +184,14 @@ impl Grid {
             step: hi - lo,
             n: [1, 1, 1],
             cells: vec![CellState::Mixed(None)],
+            members: None,
         }
+    }
+
+    /// The patches that may pass within the tolerance of cell `c`, if kept.
+    pub(super) fn members(&self, c: usize) -> Option<&[u32]> {
+        let (offsets, patches) = self.members.as_ref()?;
+        Some(&patches[offsets[c] as usize..offsets[c + 1] as usize])
     }
 
     /// The state of the cell holding `p` (a point in the box).
@@ -252,7 +291,7 @@ mod tests {
             let g = Grid::new(
                 Point3::new(0.0, 0.0, 0.0),
                 extent,
-                |_, mixed| cells = mixed.len(),
+                |g, _| cells = g.n.iter().product(),
                 |_| Some(false),
             );
             assert!(cells <= MAX_CELLS, "{extent:?}: {cells}");

@@ -64,6 +64,7 @@ use std::f64::consts::TAU;
 use rs_contain::{Classifier, ContainOptions};
 pub use rs_contain::{Locate, Location, PointQuery};
 use rs_spline::{Point, Point3};
+use smallvec::SmallVec;
 use thiserror::Error;
 
 use crate::PRINTED_DIGITS;
@@ -299,10 +300,10 @@ impl SolidClassifier {
         me.grid = Grid::new(
             me.lo,
             me.hi,
-            |grid, mixed| {
-                for patch in &me.patches {
-                    // The patch's own box first: it holds the part boxes' parts.
-                    me.mark(grid, patch.face, patch.cell, patch.bend, MARK_SPLITS, mixed);
+            |grid, visit| {
+                for (k, patch) in me.patches.iter().enumerate() {
+                    let (face, cell, bend) = (patch.face, patch.cell, patch.bend);
+                    me.mark(grid, face, cell, bend, MARK_SPLITS, k as u32, visit);
                 }
             },
             |p| me.by_rays(p).map(|l| l == Location::Inside),
@@ -320,7 +321,8 @@ impl SolidClassifier {
         cell: Cell,
         bend: [f64; 3],
         splits: usize,
-        mixed: &mut [bool],
+        patch: u32,
+        visit: &mut dyn FnMut(usize, u32),
     ) {
         let surface = &self.faces[face as usize].surface;
         let (lo, hi) = part_box(surface, cell, bend, self.tolerance);
@@ -330,14 +332,14 @@ impl SolidClassifier {
             for i in r[0].0..=r[0].1 {
                 for j in r[1].0..=r[1].1 {
                     for k in r[2].0..=r[2].1 {
-                        mixed[grid.linear([i, j, k])] = true;
+                        visit(grid.linear([i, j, k]), patch);
                     }
                 }
             }
             return;
         }
         for q in cell.quarters() {
-            self.mark(grid, face, q, bend, splits - 1, mixed);
+            self.mark(grid, face, q, bend, splits - 1, patch, visit);
         }
     }
 
@@ -422,7 +424,7 @@ impl SolidClassifier {
     fn near_boundary(&self, p: Point3) -> bool {
         let mut near = false;
         let mut edges_seen: Vec<u32> = Vec::new();
-        self.bvh.holding(p, |i| {
+        let mut visit = |i: u32| {
             if near {
                 return;
             }
@@ -447,7 +449,12 @@ impl SolidClassifier {
                     e.curve.point(t).distance(p) <= self.tolerance
                 });
             }
-        });
+        };
+        // The patches that marked the point's cell are those that may pass within T of it.
+        match self.grid.members(self.grid.index(p)) {
+            Some(list) => list.iter().for_each(|&i| visit(i)),
+            None => self.bvh.holding(p, visit),
+        }
         near
     }
 
@@ -459,7 +466,7 @@ impl SolidClassifier {
             d,
             inv,
             length,
-            hits: Vec::new(),
+            hits: SmallVec::new(),
             outcome: None,
         };
         self.bvh.along_ray(p, inv, -self.tolerance, length, |i| {
@@ -608,7 +615,8 @@ struct Ray {
     d: Point3,
     inv: Point3,
     length: f64,
-    hits: Vec<Hit>,
+    /// A ray crosses a few faces: on the stack.
+    hits: SmallVec<[Hit; 16]>,
     outcome: Option<Cast>,
 }
 
