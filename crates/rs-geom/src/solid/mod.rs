@@ -302,8 +302,7 @@ impl SolidClassifier {
             me.hi,
             |grid, visit| {
                 for (k, patch) in me.patches.iter().enumerate() {
-                    let (face, cell, bend) = (patch.face, patch.cell, patch.bend);
-                    me.mark(grid, face, cell, bend, MARK_SPLITS, k as u32, visit);
+                    me.mark(grid, k as u32, patch.cell, MARK_SPLITS, visit);
                 }
             },
             |p| me.by_rays(p).map(|l| l == Location::Inside),
@@ -311,21 +310,20 @@ impl SolidClassifier {
         Ok(me)
     }
 
-    /// Marks the cells the part `cell` of a patch (of `face`, second derivatives `bend`) may
-    /// pass through, quartering it (at most `splits` times) while its box reaches more than 8
-    /// cells.
+    /// Calls `visit(cell, patch)` for the cells the part `cell` of patch `patch` may pass
+    /// within the tolerance of, quartering the part (at most `splits` times) while its box
+    /// reaches more than 8 cells.
     fn mark(
         &self,
         grid: &Grid,
-        face: u32,
-        cell: Cell,
-        bend: [f64; 3],
-        splits: usize,
         patch: u32,
+        cell: Cell,
+        splits: usize,
         visit: &mut dyn FnMut(usize, u32),
     ) {
-        let surface = &self.faces[face as usize].surface;
-        let (lo, hi) = part_box(surface, cell, bend, self.tolerance);
+        let p = &self.patches[patch as usize];
+        let surface = &self.faces[p.face as usize].surface;
+        let (lo, hi) = part_box(surface, cell, p.bend, self.tolerance);
         let r = grid.ranges(lo, hi);
         let count: usize = r.iter().map(|(a, b)| b - a + 1).product();
         if count <= 8 || splits == 0 {
@@ -339,7 +337,7 @@ impl SolidClassifier {
             return;
         }
         for q in cell.quarters() {
-            self.mark(grid, face, q, bend, splits - 1, patch, visit);
+            self.mark(grid, patch, q, splits - 1, visit);
         }
     }
 
