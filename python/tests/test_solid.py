@@ -1071,11 +1071,13 @@ def test_pickled_solids_classify_the_same():
     t = pickle.loads(pickle.dumps(s))
     assert t == s and t.index == 0
     assert np.array_equal(t.classify(pts), codes)
-    # A solid of a model read with a closure tolerance pickles as its fields alone.
+    # A solid of a model read with a closure tolerance comes back read with it.
     u = pickle.loads(pickle.dumps(inrs.cad_model(FIXTURES / "box_void.step", closure_tol=1e-6).solids[0]))
     assert u == s
-    with pytest.raises(ValueError, match="without its model"):
-        u.classify(pts)
+    assert np.array_equal(u.classify(pts), codes)
+    # A solid made by hand has no model.
+    with pytest.raises(ValueError, match="no model"):
+        inrs.CadSolid(*tuple(s)).classify(pts)
 
 
 def test_threads_classify_alike():
