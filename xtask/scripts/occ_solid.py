@@ -25,6 +25,10 @@ import pathlib
 import sys
 import time
 
+# The one reader of a STEP or IGES file into an OCC shape: occ_properties.py's, beside this one.
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from occ_properties import read  # noqa: E402
+
 
 def quiet():
     """Silences OpenCASCADE's messages below failures (its readers print to standard output)."""
@@ -32,20 +36,6 @@ def quiet():
 
     for printer in Message.DefaultMessenger_s().Printers():
         printer.SetTraceLevel(Message_Gravity.Message_Fail)
-
-
-def read(path: str):
-    from OCP.IFSelect import IFSelect_RetDone
-
-    if path.lower().endswith((".igs", ".iges")):
-        from OCP.IGESControl import IGESControl_Reader as Reader
-    else:
-        from OCP.STEPControl import STEPControl_Reader as Reader
-    reader = Reader()
-    if reader.ReadFile(path) != IFSelect_RetDone:
-        raise RuntimeError(f"{path}: OCC cannot read it")
-    reader.TransferRoots()
-    return reader.OneShape()
 
 
 def solids(shape) -> list:

@@ -83,10 +83,7 @@ pub(crate) fn write(dir: &Path, root: &Path) -> Result<(Vec<PathBuf>, f64), Stri
     let (grid, c, rel) = butterfly_fractions(&d)?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let svg = dir.join("coverage_fractions_butterfly.svg");
-    std::fs::write(&svg, fractions_figure(&d, &grid, &c, rel).to_svg())
-        .map_err(|e| format!("{}: {e}", svg.display()))?;
-    let mut written = vec![svg.clone()];
-    written.extend(crate::figures::png_beside(&svg));
+    let written = crate::figures::write_figure(&svg, &fractions_figure(&d, &grid, &c, rel))?;
     Ok((written, rel))
 }
 

@@ -121,10 +121,10 @@ pub(crate) fn write(dir: &Path, root: &Path) -> Result<Vec<PathBuf>, String> {
             .map_err(|e| format!("{}: {e}", path.display()))?;
         let rules = rules(&d).map_err(|e| format!("{stem}: {e}"))?;
         let svg = dir.join(format!("cubature_nodes_{stem}.svg"));
-        std::fs::write(&svg, nodes_figure(&d, title, &source, &rules).to_svg())
-            .map_err(|e| format!("{}: {e}", svg.display()))?;
-        written.push(svg.clone());
-        written.extend(crate::figures::png_beside(&svg));
+        written.extend(crate::figures::write_figure(
+            &svg,
+            &nodes_figure(&d, title, &source, &rules),
+        )?);
     }
     Ok(written)
 }

@@ -8,6 +8,15 @@ use inrs::contain::{FastWindingField, WindingField};
 use inrs::{BoundingBox, Domain, Location, Point};
 use rs_figure::{ChartAxis, FieldImage, Figure, Marker, Style};
 
+/// Writes `fig` as the SVG file `svg` and, where `rsvg-convert` is installed, a PNG beside it:
+/// the files written.
+pub(crate) fn write_figure(svg: &Path, fig: &Figure) -> Result<Vec<PathBuf>, String> {
+    std::fs::write(svg, fig.to_svg()).map_err(|e| format!("{}: {e}", svg.display()))?;
+    let mut written = vec![svg.to_path_buf()];
+    written.extend(png_beside(svg));
+    Ok(written)
+}
+
 /// Renders `svg` to a PNG beside it (`rsvg-convert`, white background) and returns its path;
 /// `None` (and a note on standard output) where the tool is missing or fails. The PNG is a
 /// convenience for viewers without SVG support; its absence is not an error.

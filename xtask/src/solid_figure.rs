@@ -169,11 +169,10 @@ pub(crate) fn write(dir: &Path, root: &Path) -> Result<Vec<PathBuf>, String> {
         ("solid_section.svg", s),
         ("solid_section_capacitor.svg", real_section(root)?),
     ] {
-        let svg = dir.join(name);
-        std::fs::write(&svg, section_figure(&s).to_svg())
-            .map_err(|e| format!("{}: {e}", svg.display()))?;
-        written.push(svg.clone());
-        written.extend(crate::figures::png_beside(&svg));
+        written.extend(crate::figures::write_figure(
+            &dir.join(name),
+            &section_figure(&s),
+        )?);
     }
     Ok(written)
 }

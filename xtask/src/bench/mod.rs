@@ -14,7 +14,7 @@ mod plots;
 mod properties;
 mod solid;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use inrs::{Domain, Location};
@@ -354,4 +354,37 @@ fn machine_line() -> String {
         .unwrap_or_else(|| "unknown CPU".into());
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     format!("{cpu}, {cores} cores")
+}
+
+/// `FreeCAD`'s Idf library (Debian's freecad-common): real STEP and IGES parts.
+pub(super) const IDF: &str = "/usr/share/freecad/Mod/Idf/Idflibs";
+
+/// The Idf parts (`.stp`, `.igs`), sorted, the first 4 with `quick`; `None` when the library
+/// is not installed.
+pub(super) fn idf_parts(quick: bool) -> Option<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(IDF)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| {
+            let name = p.to_string_lossy().to_ascii_lowercase();
+            name.ends_with(".stp") || name.ends_with(".igs")
+        })
+        .collect();
+    files.sort();
+    if quick {
+        files.truncate(4);
+    }
+    Some(files)
+}
+
+/// The Python that runs `OpenCASCADE`: the CI's virtual environment when it exists, else
+/// `python3`.
+pub(super) fn occ_python(root: &Path) -> PathBuf {
+    let python = root.join("target/ci-venv/bin/python");
+    if python.is_file() {
+        python
+    } else {
+        PathBuf::from("python3")
+    }
 }

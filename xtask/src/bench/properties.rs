@@ -11,10 +11,7 @@ use std::time::Instant;
 
 use inrs::io::cad::CadModel;
 
-use super::{BenchOptions, median};
-
-/// The Idf library of Debian's freecad-common.
-const IDF: &str = "/usr/share/freecad/Mod/Idf/Idflibs";
+use super::{BenchOptions, IDF, idf_parts, median, occ_python};
 
 /// The OCC script, relative to the workspace root.
 const SCRIPT: &str = "xtask/scripts/occ_properties.py";
@@ -29,16 +26,9 @@ struct Occ {
 
 /// The section: one row per Idf part.
 pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), String> {
-    let mut files: Vec<PathBuf> = match std::fs::read_dir(IDF) {
-        Ok(dir) => dir
-            .filter_map(Result::ok)
-            .map(|e| e.path())
-            .filter(|p| {
-                let name = p.to_string_lossy().to_ascii_lowercase();
-                name.ends_with(".stp") || name.ends_with(".igs")
-            })
-            .collect(),
-        Err(_) => {
+    let files = match idf_parts(o.quick) {
+        Some(files) => files,
+        None => {
             let _ = writeln!(
                 md,
                 "\nMass properties: not run ({IDF} is missing: install Debian's freecad-common).\n"
@@ -46,17 +36,8 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             return Ok(());
         }
     };
-    files.sort();
-    if o.quick {
-        files.truncate(4);
-    }
     let reps = o.reps.clamp(1, 3);
-    let python = root.join("target/ci-venv/bin/python");
-    let python = if python.is_file() {
-        python
-    } else {
-        PathBuf::from("python3")
-    };
+    let python = occ_python(root);
     let occ = occ_rows(&python, root, &files, reps);
     let _ = writeln!(
         md,

@@ -13,10 +13,7 @@ use inrs::geom::solid::{Locate, Location, PointQuery, SolidClassifier};
 use inrs::io::cad::CadModel;
 use inrs::spline::Point3;
 
-use super::{BenchOptions, median_time};
-
-/// The Idf library of Debian's freecad-common.
-const IDF: &str = "/usr/share/freecad/Mod/Idf/Idflibs";
+use super::{BenchOptions, IDF, idf_parts, median_time, occ_python};
 
 /// The OCC script, relative to the workspace root.
 const SCRIPT: &str = "xtask/scripts/occ_solid.py";
@@ -97,16 +94,9 @@ struct Totals {
 
 /// The section: one row per solid.
 pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<(), String> {
-    let mut files: Vec<PathBuf> = match std::fs::read_dir(IDF) {
-        Ok(dir) => dir
-            .filter_map(Result::ok)
-            .map(|e| e.path())
-            .filter(|p| {
-                let name = p.to_string_lossy().to_ascii_lowercase();
-                name.ends_with(".stp") || name.ends_with(".igs")
-            })
-            .collect(),
-        Err(_) => {
+    let mut files = match idf_parts(o.quick) {
+        Some(files) => files,
+        None => {
             let _ = writeln!(
                 md,
                 "\nPoint in a solid: the Idf parts are missing ({IDF}: install Debian's \
@@ -115,16 +105,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             Vec::new()
         }
     };
-    files.sort();
-    if o.quick {
-        files.truncate(4);
-    }
-    let python = root.join("target/ci-venv/bin/python");
-    let python = if python.is_file() {
-        python
-    } else {
-        PathBuf::from("python3")
-    };
+    let python = occ_python(root);
     let (parts, parts_note) = match write_parts(&python, root) {
         Ok(p) => (p, None),
         Err(e) => (
