@@ -388,3 +388,23 @@ pub(super) fn occ_python(root: &Path) -> PathBuf {
         PathBuf::from("python3")
     }
 }
+
+/// Runs the script `script` (relative to the workspace root) with `python` and `args`: its
+/// standard output, or the last line of its standard error when it fails.
+pub(super) fn run_script(
+    python: &Path,
+    root: &Path,
+    script: &str,
+    args: &[&std::ffi::OsStr],
+) -> Result<String, String> {
+    let out = std::process::Command::new(python)
+        .arg(root.join(script))
+        .args(args)
+        .output()
+        .map_err(|e| format!("{}: {e}", python.display()))?;
+    if !out.status.success() {
+        let err = String::from_utf8_lossy(&out.stderr);
+        return Err(err.lines().last().unwrap_or("failed").to_string());
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}

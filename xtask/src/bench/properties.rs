@@ -6,12 +6,11 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
 use inrs::io::cad::CadModel;
 
-use super::{BenchOptions, IDF, idf_parts, median, occ_python};
+use super::{BenchOptions, IDF, idf_parts, median, occ_python, run_script};
 
 /// The OCC script, relative to the workspace root.
 const SCRIPT: &str = "xtask/scripts/occ_properties.py";
@@ -128,18 +127,10 @@ fn occ_rows(
     files: &[PathBuf],
     reps: usize,
 ) -> Result<Vec<Option<Occ>>, String> {
-    let out = Command::new(python)
-        .arg(root.join(SCRIPT))
-        .arg("--reps")
-        .arg(reps.to_string())
-        .args(files)
-        .output()
-        .map_err(|e| format!("{}: {e}", python.display()))?;
-    if !out.status.success() {
-        let err = String::from_utf8_lossy(&out.stderr);
-        return Err(err.lines().last().unwrap_or("failed").to_string());
-    }
-    let text = String::from_utf8_lossy(&out.stdout);
+    let reps = reps.to_string();
+    let mut args: Vec<&std::ffi::OsStr> = vec!["--reps".as_ref(), reps.as_ref()];
+    args.extend(files.iter().map(|f| f.as_os_str()));
+    let text = run_script(python, root, SCRIPT, &args)?;
     let rows: Vec<Option<Occ>> = text
         .lines()
         .filter(|l| l.starts_with("ok ") || l.starts_with("error"))

@@ -7,13 +7,12 @@
 use std::fmt::Write as _;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use inrs::geom::solid::{Locate, Location, PointQuery, SolidClassifier};
 use inrs::io::cad::CadModel;
 use inrs::spline::Point3;
 
-use super::{BenchOptions, IDF, idf_parts, median_time, occ_python};
+use super::{BenchOptions, IDF, idf_parts, median_time, occ_python, run_script};
 
 /// The OCC script, relative to the workspace root.
 const SCRIPT: &str = "xtask/scripts/occ_solid.py";
@@ -471,17 +470,12 @@ fn solid_faces(model: &inrs::geom::brep::Model, k: usize) -> usize {
 /// Writes the OCC test parts with the script; their paths.
 fn write_parts(python: &Path, root: &Path) -> Result<Vec<PathBuf>, String> {
     let dir = root.join(PARTS_DIR);
-    let out = Command::new(python)
-        .arg(root.join(SCRIPT))
-        .arg("--write-parts")
-        .arg(&dir)
-        .output()
-        .map_err(|e| format!("{}: {e}", python.display()))?;
-    if !out.status.success() {
-        let err = String::from_utf8_lossy(&out.stderr);
-        return Err(err.lines().last().unwrap_or("failed").to_string());
-    }
-    let text = String::from_utf8_lossy(&out.stdout);
+    let text = run_script(
+        python,
+        root,
+        SCRIPT,
+        &["--write-parts".as_ref(), dir.as_os_str()],
+    )?;
     Ok(text
         .lines()
         .map(str::trim)
@@ -508,20 +502,16 @@ fn occ_file(
         }
     }
     std::fs::write(&points_path, text).map_err(|e| format!("{}: {e}", points_path.display()))?;
-    let out = Command::new(python)
-        .arg(root.join(SCRIPT))
-        .arg("--tol")
-        .arg(OCC_TOL.to_string())
-        .arg(file)
-        .arg(&points_path)
-        .output();
+    let tol = OCC_TOL.to_string();
+    let args = [
+        "--tol".as_ref(),
+        tol.as_ref(),
+        file.as_os_str(),
+        points_path.as_os_str(),
+    ];
+    let text = run_script(python, root, SCRIPT, &args);
     let _ = std::fs::remove_file(&points_path);
-    let out = out.map_err(|e| format!("{}: {e}", python.display()))?;
-    if !out.status.success() {
-        let err = String::from_utf8_lossy(&out.stderr);
-        return Err(err.lines().last().unwrap_or("failed").to_string());
-    }
-    let text = String::from_utf8_lossy(&out.stdout);
+    let text = text?;
     let mut result = OccFile {
         solids: 0,
         overhead_s: 0.0,
