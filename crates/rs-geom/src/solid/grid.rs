@@ -133,18 +133,24 @@ impl Grid {
                     }
                 });
             }
-            // The first member whose centre the rays decide decides the set.
-            let state = members
+            // The first member whose centre the rays decide decides the set, checked by the
+            // last one (breadth first, the farthest): where they disagree, a face passes between
+            // them unmarked (a box that missed its surface) and the set stays mixed, its points
+            // decided one by one.
+            let first = members.iter().take(8).find_map(|&c| decide(grid.centre(c)));
+            let last = members
                 .iter()
+                .rev()
                 .take(8)
-                .find_map(|&c| decide(grid.centre(c)))
-                .map(|inside| {
-                    if inside {
-                        CellState::Inside
-                    } else {
-                        CellState::Outside
-                    }
-                });
+                .find_map(|&c| decide(grid.centre(c)));
+            let state = match (first, last) {
+                (Some(a), Some(b)) if a == b => Some(if a {
+                    CellState::Inside
+                } else {
+                    CellState::Outside
+                }),
+                _ => None,
+            };
             if let Some(state) = state {
                 for &c in &members {
                     cells[c] = state;
@@ -275,6 +281,18 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A connected set of unmarked cells whose far ends the rays decide differently (a face
+    /// passing between them unmarked) is not decided: its points are left to the rays.
+    #[test]
+    fn a_set_whose_ends_disagree_stays_mixed() {
+        let one = Point3::new(1.0, 1.0, 1.0);
+        let origin = Point3::new(0.0, 0.0, 0.0);
+        let g = Grid::new(origin, one, |_, _| {}, |p| Some(p.x < 0.5));
+        assert_eq!(g.state(one * 0.25), CellState::Mixed(None));
+        let g = Grid::new(origin, one, |_, _| {}, |_| Some(true));
+        assert_eq!(g.state(one * 0.25), CellState::Inside);
+    }
 
     /// Boxes of any shape get at most `MAX_CELLS` cells: a cube, a thin plate, a needle, a box
     /// flat in one direction.
