@@ -22,6 +22,9 @@ pub(super) enum CellState {
 /// Cells of the grid at most (each a byte of state and four of reference).
 pub(super) const MAX_CELLS: usize = 1 << 18;
 
+/// The fewest cells along a side of the grid (where the box has that side).
+const MIN_SIDE: usize = 16;
+
 /// The most (cell, patch) pairs kept; past it the cells keep no lists of their patches (the
 /// hierarchy finds them instead).
 const MAX_MEMBERS: usize = 1 << 22;
@@ -60,8 +63,14 @@ impl Grid {
         } else {
             extent.max_abs().max(f64::MIN_POSITIVE)
         };
-        let cells =
-            |h: f64| [extent.x, extent.y, extent.z].map(|e| ((e / h).floor() as usize).max(1));
+        // At least MIN_SIDE cells a side where the box has any thickness: a thin plate's cells
+        // are flat, so that its middle lies in cells no face reaches.
+        let cells = |h: f64| {
+            [extent.x, extent.y, extent.z].map(|e| {
+                let n = (e / h).floor() as usize;
+                if e > 0.0 { n.max(MIN_SIDE) } else { 1 }
+            })
+        };
         // A flat box (a thin plate) has sides of one cell: widen the cells until the grid has
         // at most `MAX_CELLS` (each step 1.25 times; a few dozen steps from any finite box).
         let mut n = cells(h);

@@ -7,10 +7,11 @@
 //! (its `(u, v)` box cut at the surface's knot lines, then halved while the normals of a piece
 //! spread more than 0.2 radians from its centre's), each with a box in space that holds it, all
 //! in one bounding-volume hierarchy; each face keeps its trimming loops as an exact 2-D
-//! classifier. A grid of about 2^18 cells over the solid's box marks the cells the patch boxes
-//! reach (patches quartered until a box reaches at most 8 cells); each connected set of the
-//! other cells lies wholly inside or wholly outside (no face passes between two of them), and
-//! one ray from one of its cells decides it. Each marked cell keeps the nearest decided cell.
+//! classifier. A grid of at most 2^18 cells (at least 16 a side) over the solid's box marks
+//! the cells the patch boxes reach (patches quartered until a box reaches at most 8 cells);
+//! each connected set of the other cells lies wholly inside or wholly outside (no face passes
+//! between two of them), and rays from its first and last cells decide it (where they agree).
+//! Each marked cell keeps the patches that marked it and the nearest decided cell.
 //!
 //! For a point `p` in an unmarked cell the answer is the cell's. Otherwise:
 //!
