@@ -147,22 +147,24 @@ struct SolidFace {
     sense: f64,
     /// The parameters the surface is evaluated at without clamping.
     domain: Cell,
-    /// The face's trimming test (set once the tolerance is known).
-    trim: Option<Classifier>,
+    /// The face's trimming test.
+    trim: Classifier,
     edges: Vec<Edge>,
 }
 
 /// A solid prepared for point queries (see the module documentation). `Send + Sync`: one
 /// classifier answers from many threads.
 ///
-/// ```no_run
-/// # fn model() -> rs_geom::brep::Model { unimplemented!() }
-/// use rs_geom::Point3;
-/// use rs_geom::solid::{Locate, Location, SolidClassifier};
-/// let model = model(); // read from a STEP or IGES file by rs-io
-/// let solid = SolidClassifier::new(&model, 0).unwrap();
-/// let where_ = solid.locate(Point3::new(0.0, 0.0, 0.0));
-/// assert!(matches!(where_, Location::Inside | Location::Outside | Location::Boundary));
+/// A model comes from a STEP or IGES file (`rs_io::cad::CadModel::read`); then
+/// `SolidClassifier::new(&model, k)?.locate(point)` says where a point lies, and
+/// `par_values_into(&points[..], &mut out)` where many do. A solid index the model does not
+/// have is an error:
+///
+/// ```
+/// use rs_geom::brep::Model;
+/// use rs_geom::solid::SolidClassifier;
+/// let e = SolidClassifier::new(&Model::default(), 0).err().unwrap();
+/// assert_eq!(e.to_string(), "solid 0 does not exist: the file has no solids");
 /// ```
 pub struct SolidClassifier {
     faces: Vec<SolidFace>,
@@ -240,13 +242,9 @@ impl SolidClassifier {
                 index: f,
                 domain,
                 speed: slowest,
-                face: SolidFace {
-                    domain: Cell::domain_of(&surface),
-                    surface,
-                    sense: if face.same_sense { 1.0 } else { -1.0 },
-                    trim: None,
-                    edges: face.edges.iter().flatten().cloned().collect(),
-                },
+                surface,
+                same_sense: face.same_sense,
+                edges: face.edges.iter().flatten().cloned().collect(),
             });
         }
         let (lo, hi) =
@@ -281,8 +279,11 @@ impl SolidClassifier {
                 error: error.to_string(),
             })?;
             faces.push(SolidFace {
-                trim: Some(trim),
-                ..r.face
+                domain: Cell::domain_of(&r.surface),
+                surface: r.surface,
+                sense: if r.same_sense { 1.0 } else { -1.0 },
+                trim,
+                edges: r.edges,
             });
             indices.push(r.index);
         }
@@ -397,25 +398,16 @@ impl SolidClassifier {
         if !usable {
             return None;
         }
-        match self.cast(p, d, length) {
-            Cast::Count(s) => match i64::from(inside) + s {
-                0 => Some(Location::Outside),
-                1 => Some(Location::Inside),
-                _ => None,
-            },
-            Cast::OnFace => Some(Location::Boundary),
-            Cast::Degenerate => None,
-        }
+        self.cast(p, d, length).location(inside)
     }
 
     /// Where `p` (not within the tolerance of a face) lies by the crossings of rays to
     /// infinity in the fixed directions, the first that is not degenerate; `None` if all are.
     fn by_rays(&self, p: Point3) -> Option<Location> {
-        (0..MAX_RAYS).find_map(|k| match self.cast(p, ray_direction(k), f64::INFINITY) {
-            Cast::Count(0) => Some(Location::Outside),
-            Cast::Count(1) => Some(Location::Inside),
-            Cast::OnFace => Some(Location::Boundary),
-            Cast::Count(_) | Cast::Degenerate => None,
+        // Infinity is outside.
+        (0..MAX_RAYS).find_map(|k| {
+            self.cast(p, ray_direction(k), f64::INFINITY)
+                .location(false)
         })
     }
 
@@ -529,7 +521,7 @@ impl SolidClassifier {
         if t < -self.tolerance || t > ray.length {
             return;
         }
-        let trim = face.trim();
+        let trim = &face.trim;
         match trim.locate(Point::new(uv[0], uv[1])) {
             Location::Outside => {}
             Location::Boundary => ray.outcome = Some(Cast::Degenerate),
@@ -573,18 +565,15 @@ struct ReadFace {
     index: usize,
     domain: rs_spline::Domain,
     speed: f64,
-    face: SolidFace,
+    surface: Surface,
+    same_sense: bool,
+    edges: Vec<Edge>,
 }
 
 impl SolidFace {
-    /// The face's 2-D test (built with the classifier).
-    fn trim(&self) -> &Classifier {
-        self.trim.as_ref().expect("built with the classifier")
-    }
-
     /// Whether `uv` is on the face (inside it or in its boundary band).
     fn on_face(&self, uv: [f64; 2]) -> bool {
-        self.trim().locate(Point::new(uv[0], uv[1])) != Location::Outside
+        self.trim.locate(Point::new(uv[0], uv[1])) != Location::Outside
     }
 }
 
@@ -597,6 +586,23 @@ enum Cast {
     OnFace,
     /// The ray cannot tell: shoot another.
     Degenerate,
+}
+
+impl Cast {
+    /// Where the start of a segment or ray lies whose end is `inside` or not: its end's state
+    /// plus the signed count (`+1` for each crossing leaving the solid), when that is `0` or
+    /// `1`; `None` where the cast cannot tell.
+    fn location(self, inside: bool) -> Option<Location> {
+        match self {
+            Cast::Count(s) => match i64::from(inside) + s {
+                0 => Some(Location::Outside),
+                1 => Some(Location::Inside),
+                _ => None,
+            },
+            Cast::OnFace => Some(Location::Boundary),
+            Cast::Degenerate => None,
+        }
+    }
 }
 
 /// A crossing of a ray with a face.
@@ -622,17 +628,8 @@ struct Ray {
 /// A face's `(u, v)` box `u x v` cut at its surface's knot lines; non-periodic parameters held
 /// in the surface's parameter box (a pcurve may stray past a B-spline's by rounding).
 fn face_cells(surface: &Surface, u: (f64, f64), v: (f64, f64)) -> Vec<Cell> {
-    let pbox = surface.param_box();
-    let periods = surface.periods();
-    let range = |i: usize, (lo, hi): (f64, f64)| {
-        let (a, b) = pbox.range(i);
-        if periods[i].is_some() || a.max(lo) >= b.min(hi) {
-            (lo, hi)
-        } else {
-            (a.max(lo), b.min(hi))
-        }
-    };
-    knot_cells(range(0, u), range(1, v), &surface.knot_lines())
+    let held = Cell { u, v }.intersection(&Cell::domain_of(surface));
+    knot_cells(held.u, held.v, &surface.knot_lines())
 }
 
 /// The smallest sampled speed of a face's patches, leaving out those below `1e-3` of the

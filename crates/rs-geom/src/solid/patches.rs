@@ -64,14 +64,20 @@ impl Cell {
         uv[0] >= self.u.0 && uv[0] <= self.u.1 && uv[1] >= self.v.0 && uv[1] <= self.v.1
     }
 
-    /// The cell's part in `other` (`self` where they do not meet).
+    /// The cell held in `other`, each parameter apart: its range's part in `other`'s, or its
+    /// own range where the two share no interval (a face's box beside a surface's parameter
+    /// box by rounding keeps its own).
     pub(super) fn intersection(&self, other: &Cell) -> Cell {
-        let u = (self.u.0.max(other.u.0), self.u.1.min(other.u.1));
-        let v = (self.v.0.max(other.v.0), self.v.1.min(other.v.1));
-        if u.0 <= u.1 && v.0 <= v.1 {
-            Cell { u, v }
-        } else {
-            *self
+        let within = |(a, b): (f64, f64), (lo, hi): (f64, f64)| {
+            if a.max(lo) < b.min(hi) {
+                (a.max(lo), b.min(hi))
+            } else {
+                (a, b)
+            }
+        };
+        Cell {
+            u: within(self.u, other.u),
+            v: within(self.v, other.v),
         }
     }
 
