@@ -153,7 +153,7 @@ pub(super) fn too_long(line: usize) -> PointsError {
 /// number.
 pub(super) fn header_as_data(line: &[u8], line_no: usize) -> PointsError {
     let text = String::from_utf8_lossy(line);
-    let (fields, _) = first_two_fields(text.trim());
+    let (fields, _) = first_fields::<2>(text.trim());
     PointsError::Line {
         line: line_no,
         message: format!("{:?} is not a number", shorten(fields[0])),
@@ -311,11 +311,10 @@ fn parse_text(bytes: &[u8], line_no: usize) -> Result<Line, PointsError> {
     };
     let text = std::str::from_utf8(bytes)
         .map_err(|e| err(format!("not UTF-8 text (byte {})", e.valid_up_to() + 1)))?;
-    let line = text.trim();
-    if line.is_empty() || line.starts_with('#') {
+    let Some(line) = content(text) else {
         return Ok(Line::of(Kind::Blank));
-    }
-    let (fields, count) = first_two_fields(line);
+    };
+    let (fields, count) = first_fields::<2>(line);
     if count >= 2 && fields[0].eq_ignore_ascii_case("x") && fields[1].eq_ignore_ascii_case("y") {
         return Ok(Line::of(Kind::Header));
     }
@@ -342,31 +341,41 @@ fn parse_text(bytes: &[u8], line_no: usize) -> Result<Line, PointsError> {
 
 /// A decimal number as Rust's `f64` parser reads it (sign, digits, optional fraction and
 /// exponent, `inf`, `nan`), correctly rounded, by the `fast-float2` algorithm.
-fn parse_number(s: &str) -> Option<f64> {
+pub(super) fn parse_number(s: &str) -> Option<f64> {
     // fast-float2 accepts the same grammar as `str::parse::<f64>` except a leading `+` on
     // "inf"/"nan" spellings, which both reject as non-finite anyway.
     fast_float2::parse::<f64, _>(s).ok()
 }
 
-/// The first two fields of a line (comma-separated if it has a comma, else white-space
-/// separated) and how many fields it has (counting stops at 2).
-fn first_two_fields(line: &str) -> ([&str; 2], usize) {
-    fn two<'a>(mut it: impl Iterator<Item = &'a str>) -> ([&'a str; 2], usize) {
-        match (it.next(), it.next()) {
-            (Some(a), Some(b)) => ([a, b], 2),
-            (Some(a), None) => ([a, ""], 1),
-            _ => (["", ""], 0),
+/// A line's text (without its end) as the grammar reads it: trimmed, `None` for a blank line
+/// or a `#` comment.
+pub(super) fn content(line: &str) -> Option<&str> {
+    let line = line.trim();
+    (!line.is_empty() && !line.starts_with('#')).then_some(line)
+}
+
+/// The first `N` fields of a line and how many it has (up to `N`): split at commas when the
+/// line has one (each field trimmed), else at white space. The one field rule of points files,
+/// in the plane (`N = 2`) and in space (`N = 3`).
+pub(super) fn first_fields<const N: usize>(line: &str) -> ([&str; N], usize) {
+    fn take<'a, const N: usize>(it: impl Iterator<Item = &'a str>) -> ([&'a str; N], usize) {
+        let mut fields = [""; N];
+        let mut count = 0;
+        for (slot, f) in fields.iter_mut().zip(it) {
+            *slot = f;
+            count += 1;
         }
+        (fields, count)
     }
     if line.contains(',') {
-        two(line.split(',').map(str::trim))
+        take(line.split(',').map(str::trim))
     } else {
-        two(line.split_whitespace())
+        take(line.split_whitespace())
     }
 }
 
 /// At most 60 characters of `s`, for error messages.
-fn shorten(s: &str) -> String {
+pub(super) fn shorten(s: &str) -> String {
     if s.chars().count() <= 60 {
         s.to_string()
     } else {

@@ -141,8 +141,9 @@ pub fn read_points(path: impl AsRef<Path>) -> Result<Vec<PointRecord>, PointsErr
     records(&CsvReader::open(path, RunSizes::default())?)
 }
 
-/// The fields of a CSV points file's header (its first line that is neither blank nor a `#`
-/// comment, when that line's first field is not a number), `None` without one. Reads only as
+/// The first three fields of a CSV points file's header (its first line that is neither blank
+/// nor a `#` comment, when that line's first field is not a number; fields as the points'
+/// grammar splits them), `None` without one. Reads only as
 /// far as that line (at most [`MAX_LINE_BYTES`] a line).
 ///
 /// ```
@@ -179,17 +180,12 @@ pub fn csv_header(path: impl AsRef<Path>) -> Result<Option<Vec<String>>, PointsE
         let Ok(line) = std::str::from_utf8(&bytes) else {
             return Ok(None);
         };
-        let text = line.trim_start_matches('\u{feff}').trim();
-        if text.is_empty() || text.starts_with('#') {
+        let Some(text) = grammar::content(line.trim_start_matches('\u{feff}')) else {
             continue;
-        }
-        let fields: Vec<String> = text
-            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
-            .filter(|f| !f.is_empty())
-            .map(str::to_string)
-            .collect();
-        let numeric = fields.first().is_some_and(|f| f.parse::<f64>().is_ok());
-        return Ok(if numeric { None } else { Some(fields) });
+        };
+        let (fields, count) = grammar::first_fields::<3>(text);
+        let numeric = count > 0 && grammar::parse_number(fields[0]).is_some();
+        return Ok((!numeric).then(|| fields[..count].iter().map(|f| f.to_string()).collect()));
     }
 }
 

@@ -7,6 +7,7 @@ use std::path::Path;
 
 use rs_spline::Point3;
 
+use super::grammar::{content, first_fields, parse_number, shorten, too_long};
 use super::npy::read_header;
 use super::{MAX_LINE_BYTES, NpyType, PointsError};
 
@@ -41,7 +42,8 @@ enum Source {
 
 impl XyzReader {
     /// Opens `path`: `.npy` (float64 or float32, C order, shape `(N, 3)`) by its extension,
-    /// CSV otherwise (`x,y,z` per line, comma or white space between fields, extra fields
+    /// CSV otherwise (`x,y,z` per line, split as 2-D points files are: at commas where the line
+    /// has one, else at white space; extra fields
     /// ignored; blank lines, `#` comments and one header line `x,y,z` skipped).
     ///
     /// # Errors
@@ -106,20 +108,17 @@ impl XyzReader {
                     }
                     *line_no += 1;
                     if n > MAX_LINE_BYTES + 1 && !line.ends_with('\n') {
-                        return Err(line_error(*line_no, "a line longer than 65536 bytes"));
+                        return Err(too_long(*line_no));
                     }
-                    let text = line.trim_start_matches('\u{feff}').trim();
-                    if text.is_empty() || text.starts_with('#') {
+                    // The 2-D files' grammar: blank lines and comments, the field rule, the
+                    // numbers.
+                    let Some(text) = content(line.trim_start_matches('\u{feff}')) else {
                         continue;
-                    }
-                    let fields: Vec<&str> = text
-                        .split(|c: char| c == ',' || c.is_whitespace())
-                        .filter(|f| !f.is_empty())
-                        .collect();
-                    let numbers: Vec<Option<f64>> = fields
+                    };
+                    let (fields, count) = first_fields::<3>(text);
+                    let numbers: Vec<Option<f64>> = fields[..count]
                         .iter()
-                        .take(3)
-                        .map(|f| f.parse::<f64>().ok().filter(|x| x.is_finite()))
+                        .map(|f| parse_number(f).filter(|x| x.is_finite()))
                         .collect();
                     if !*seen_data && numbers.first() == Some(&None) {
                         *seen_data = true; // a header line
@@ -129,16 +128,16 @@ impl XyzReader {
                     match numbers.as_slice() {
                         [Some(x), Some(y), Some(z)] => {
                             run.points.push(Point3::new(*x, *y, *z));
-                            run.texts.push(fields[..3].join(","));
+                            run.texts.push(fields.join(","));
                         }
                         _ => {
-                            return Err(line_error(
-                                *line_no,
-                                &format!(
-                                    "expected three numbers \"x,y,z\" (a solid's points), got \"{}\"",
+                            return Err(PointsError::Line {
+                                line: *line_no,
+                                message: format!(
+                                    "expected three numbers \"x,y,z\" (a solid's points), got {:?}",
                                     shorten(text)
                                 ),
-                            ));
+                            });
                         }
                     }
                 }
@@ -180,21 +179,6 @@ impl XyzReader {
             }
         }
         Ok(run)
-    }
-}
-
-fn line_error(line: usize, message: &str) -> PointsError {
-    PointsError::Line {
-        line,
-        message: message.to_string(),
-    }
-}
-
-/// At most 60 characters of `s`.
-fn shorten(s: &str) -> String {
-    match s.char_indices().nth(60) {
-        Some((i, _)) => format!("{}...", &s[..i]),
-        None => s.to_string(),
     }
 }
 
