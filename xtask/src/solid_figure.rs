@@ -33,9 +33,14 @@ pub(crate) struct Section {
     pub(crate) bounds: BoundingBox,
 }
 
-/// The solid of `path` (relative to the workspace root) classified on a grid of the plane
-/// `y = y0` (`None`: the middle of its box), in `(x, z)`.
-fn grid_section(root: &Path, rel: &str, y0: Option<f64>) -> Result<(CadModel, Section), String> {
+/// Solid 0 of `rel` (relative to the workspace root) classified on a grid of the plane
+/// `y = y0` (`None`: the middle of its box), in `(x, z)`: the model, its classifier and the
+/// section.
+fn grid_section(
+    root: &Path,
+    rel: &str,
+    y0: Option<f64>,
+) -> Result<(CadModel, SolidClassifier, Section), String> {
     let path = root.join(rel);
     let model = CadModel::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let solid = SolidClassifier::new(&model, 0).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -68,13 +73,13 @@ fn grid_section(root: &Path, rel: &str, y0: Option<f64>) -> Result<(CadModel, Se
         tolerance: solid.tolerance(),
         bounds,
     };
-    Ok((model, section))
+    Ok((model, solid, section))
 }
 
 /// The section y = 0 of the revolved B-spline, with points on its surface of revolution.
 pub(crate) fn section(root: &Path) -> Result<Section, String> {
-    let (model, mut section) = grid_section(root, "fixtures/cad/revolved_bspline.step", Some(0.0))?;
-    let solid = SolidClassifier::new(&model, 0).map_err(|e| e.to_string())?;
+    let (model, solid, mut section) =
+        grid_section(root, "fixtures/cad/revolved_bspline.step", Some(0.0))?;
     // The surface of revolution's meridians at angles 0 and pi (the plane y = 0).
     let revolution = model
         .faces
@@ -106,7 +111,7 @@ pub(crate) fn section(root: &Path) -> Result<Section, String> {
 
 /// The section through the middle of a real part, `FreeCAD`'s capacitor.
 pub(crate) fn real_section(root: &Path) -> Result<Section, String> {
-    Ok(grid_section(root, "fixtures/cad/freecad-idf/CAP_50SGV_8_10.stp", None)?.1)
+    Ok(grid_section(root, "fixtures/cad/freecad-idf/CAP_50SGV_8_10.stp", None)?.2)
 }
 
 /// The figure of a section.
