@@ -278,6 +278,24 @@ impl RelativePiece<'_> {
         let inv = 1.0 / w;
         (x * inv, y * inv, (dx * w - x * dw) * inv * inv)
     }
+
+    /// `(x(t) - o_x, y(t) - o_y, x'(t), y'(t))`: [`RelativePiece::point_and_x_derivative`]
+    /// with `y' = (Y' W - Y W') r^2` too, what an integral along the arc length
+    /// (`ds = |(x', y')| dt`) evaluates.
+    #[inline]
+    pub fn point_and_derivatives(&self, t: f64) -> (f64, f64, f64, f64) {
+        let (x, dx) = de_casteljau_with_derivative(&self.hx, t);
+        let (y, dy) = de_casteljau_with_derivative(&self.hy, t);
+        let (w, dw) = de_casteljau_with_derivative(self.w, t);
+        let inv = 1.0 / w;
+        let inv2 = inv * inv;
+        (
+            x * inv,
+            y * inv,
+            (dx * w - x * dw) * inv2,
+            (dy * w - y * dw) * inv2,
+        )
+    }
 }
 
 /// Most coefficients of a [`HalvedPiece`]: degree <= 7 (larger degrees halve through

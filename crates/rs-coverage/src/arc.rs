@@ -12,15 +12,39 @@ const MAX_RULE: usize = 16;
 /// area (or its first moments): well below the `1e-12` the fractions promise.
 const RELATIVE_TOLERANCE: f64 = 1e-15;
 
-/// Integrals over a part of the boundary, in coordinates local to a cell's lower-left corner
-/// `(x_c, y_r)`, with `u = x - x_c`, `v = y - y_r`: `b = int v dx`, `mx = int u v dx`,
-/// `my = int v^2 / 2 dx` (the moments are 0 unless asked for).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct PartIntegrals {
-    pub(crate) b: f64,
-    pub(crate) mx: f64,
-    pub(crate) my: f64,
+/// The moments of the covered area a cell's integrals give ([`Arc::integrals`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Moments {
+    /// The area alone: `b`.
+    Area,
+    /// With the first moments: `b`, `mx`, `my`.
+    First,
+    /// With the second moments too: `muu`, `muv`, `mvv`.
+    Second,
 }
+
+impl Moments {
+    /// The integrals computed: 1, 3 or 6.
+    fn count(self) -> usize {
+        match self {
+            Moments::Area => 1,
+            Moments::First => 3,
+            Moments::Second => 6,
+        }
+    }
+}
+
+/// Integrals over a part of the boundary, in coordinates local to a cell's lower-left corner
+/// `(x_c, y_r)`, with `u = x - x_c`, `v = y - y_r`: `[b, mx, my, muu, muv, mvv]` =
+/// `int v dx`, `int u v dx`, `int v^2 / 2 dx`, `int u^2 v dx`, `int u v^2 / 2 dx`,
+/// `int v^3 / 3 dx` (those beyond the [`Moments`] asked for are 0). With
+/// `G_k(v) = int_0^v s^k ds` clamped at the cell's height `h`, Green's theorem on a column's
+/// strip gives `int int u^m v^k dA = h-terms of the top line - int u^m G_k(v) dx`.
+pub(crate) type PartIntegrals = [f64; 6];
+
+/// Integrals along the arc length of a part, in the cell's local coordinates:
+/// `[int ds, int u ds, int v ds]`.
+pub(crate) type ArcLengthIntegrals = [f64; 3];
 
 /// A monotone piece of a closed boundary loop (a [`MonotoneBox`] with one box), with its loop's
 /// orientation factor.
@@ -118,17 +142,21 @@ impl Arc {
         range: (f64, f64),
         corner: Point,
         (width, height): (f64, f64),
-        moments: bool,
+        moments: Moments,
     ) -> PartIntegrals {
         let local = Local::new(self, corner);
         let n = self.degree();
-        let degree = if moments { 3 * n } else { 2 * n }.saturating_sub(1);
+        let degree = match moments {
+            Moments::Area => 2 * n,
+            Moments::First => 3 * n,
+            Moments::Second => 4 * n,
+        }
+        .saturating_sub(1);
         let area = width * height;
-        // b alone, or b and the moments.
-        let count = if moments { 3 } else { 1 };
+        let count = moments.count();
         // The kernel adds to `sum`: from +0.0 that is its result bit for bit (never -0.0, as
         // t1 > t0 and its own sums start at +0.0).
-        let mut sum = [0.0; 3];
+        let mut sum = [0.0; 6];
         match PieceRule::for_piece(self.polynomial, degree, MAX_RULE, RELATIVE_TOLERANCE * area) {
             exact @ PieceRule::Exact(_) => {
                 let mut all = CellMoments {
@@ -145,17 +173,74 @@ impl Arc {
             }
             PieceRule::Adaptive { abs_tol } => {
                 CellMoment::<B>::integrate(&local, range, abs_tol, &mut sum[B]);
-                if moments {
+                if moments >= Moments::First {
                     CellMoment::<MX>::integrate(&local, range, abs_tol * width, &mut sum[MX]);
                     CellMoment::<MY>::integrate(&local, range, abs_tol * height, &mut sum[MY]);
                 }
+                if moments == Moments::Second {
+                    let (w2, wh, h2) = (width * width, width * height, height * height);
+                    CellMoment::<MUU>::integrate(&local, range, abs_tol * w2, &mut sum[MUU]);
+                    CellMoment::<MUV>::integrate(&local, range, abs_tol * wh, &mut sum[MUV]);
+                    CellMoment::<MVV>::integrate(&local, range, abs_tol * h2, &mut sum[MVV]);
+                }
             }
         }
-        PartIntegrals {
-            b: sum[B],
-            mx: sum[MX],
-            my: sum[MY],
+        sum
+    }
+
+    /// The integrals of [`ArcLengthIntegrals`] over the parameters `[t0, t1]`, relative to
+    /// the cell corner `corner` of a cell `width` by `height`: the bounded adaptive rule (the
+    /// speed `|(x', y')|` is not a polynomial) on `ds`, `(u / width) ds` and
+    /// `(v / height) ds` (one scale for the three), to `1e-15` of the cell's half perimeter.
+    pub(crate) fn arc_length_integrals(
+        &self,
+        range: (f64, f64),
+        corner: Point,
+        (width, height): (f64, f64),
+    ) -> ArcLengthIntegrals {
+        let piece = self.piece.piece().relative_to(corner);
+        let (su, sv) = (1.0 / width, 1.0 / height);
+        let mut speed = ArcLength {
+            piece: &piece,
+            scale: (su, sv),
+        };
+        let mut sum = [0.0; 3];
+        integrate_piece(
+            &mut speed,
+            range,
+            PieceRule::Adaptive {
+                abs_tol: RELATIVE_TOLERANCE * (width + height),
+            },
+            Jacobian::OnTheSum,
+            &mut sum,
+        );
+        [sum[0], sum[1] * width, sum[2] * height]
+    }
+}
+
+/// The integrands of [`ArcLengthIntegrals`], the local coordinates scaled by `scale`
+/// (`1 / width`, `1 / height`) so that the three have the size of the length.
+struct ArcLength<'a> {
+    piece: &'a RelativePiece<'a>,
+    scale: (f64, f64),
+}
+
+impl PieceIntegrand for ArcLength<'_> {
+    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
+        let mut v = [0.0; 3];
+        self.values(t, &mut v);
+        for (s, v) in sum.iter_mut().zip(v) {
+            *s += weight * v;
         }
+    }
+
+    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
+        let (u, v, dx, dy) = self.piece.point_and_derivatives(t);
+        let ds = dx.hypot(dy);
+        out[0] = ds;
+        out[1] = u * self.scale.0 * ds;
+        out[2] = v * self.scale.1 * ds;
+        ds
     }
 }
 
@@ -165,6 +250,12 @@ const B: usize = 0;
 const MX: usize = 1;
 /// Index of `my = int v^2 / 2 dx`.
 const MY: usize = 2;
+/// Index of `muu = int u^2 v dx`.
+const MUU: usize = 3;
+/// Index of `muv = int u v^2 / 2 dx`.
+const MUV: usize = 4;
+/// Index of `mvv = int v^3 / 3 dx`.
+const MVV: usize = 5;
 
 /// Integrand `M` of [`PartIntegrals`] ([`B`], [`MX`] or [`MY`]) at `(u, v)` with `x' = dx`,
 /// and its rounding magnitude: the integrand with `u`, `v` replaced by the sizes `um`, `vm` of
@@ -175,16 +266,19 @@ fn integrand<const M: usize>((u, v, dx): (f64, f64, f64), (um, vm): (f64, f64)) 
     let (value, scale) = match M {
         B => (v * dx, vm * dx),
         MX => (u * v * dx, um * vm * dx),
-        _ => (0.5 * v * v * dx, 0.5 * vm * vm * dx),
+        MY => (0.5 * v * v * dx, 0.5 * vm * vm * dx),
+        MUU => (u * u * v * dx, um * um * vm * dx),
+        MUV => (0.5 * u * v * v * dx, 0.5 * um * vm * vm * dx),
+        _ => (v * v * v * dx / 3.0, vm * vm * vm * dx / 3.0),
     };
     (value, scale.abs().max(value.abs()))
 }
 
-/// The integrands of [`PartIntegrals`] all at once (`b` alone unless `moments`): what the
-/// exact rule sums, one evaluation of the piece per node.
+/// The integrands of [`PartIntegrals`] all at once (those of `moments`): what the exact rule
+/// sums, one evaluation of the piece per node.
 struct CellMoments<'a> {
     local: &'a Local<'a>,
-    moments: bool,
+    moments: Moments,
 }
 
 impl PieceIntegrand for CellMoments<'_> {
@@ -193,9 +287,14 @@ impl PieceIntegrand for CellMoments<'_> {
         let (u, v, dx) = self.local.eval(t);
         let f = weight * dx * v;
         sum[B] += f;
-        if self.moments {
+        if self.moments >= Moments::First {
             sum[MX] += f * u;
             sum[MY] += 0.5 * f * v;
+        }
+        if self.moments == Moments::Second {
+            sum[MUU] += f * u * u;
+            sum[MUV] += 0.5 * f * u * v;
+            sum[MVV] += f * v * v / 3.0;
         }
     }
 
@@ -203,11 +302,21 @@ impl PieceIntegrand for CellMoments<'_> {
         let (at, sizes) = (self.local.eval(t), self.local.sizes());
         let (b, mut magnitude) = integrand::<B>(at, sizes);
         out[B] = b;
-        if self.moments {
+        if self.moments >= Moments::First {
             let (mx, mx_magnitude) = integrand::<MX>(at, sizes);
             let (my, my_magnitude) = integrand::<MY>(at, sizes);
             (out[MX], out[MY]) = (mx, my);
             magnitude = magnitude.max(mx_magnitude).max(my_magnitude);
+        }
+        if self.moments == Moments::Second {
+            for (k, m) in [
+                (MUU, integrand::<MUU>(at, sizes)),
+                (MUV, integrand::<MUV>(at, sizes)),
+                (MVV, integrand::<MVV>(at, sizes)),
+            ] {
+                out[k] = m.0;
+                magnitude = magnitude.max(m.1);
+            }
         }
         magnitude
     }
@@ -304,17 +413,40 @@ mod tests {
     fn whole_loop_integrals_are_the_area_and_moments() {
         let (cx, cy, r) = (1.0, -0.5, 2.0);
         let d = Domain::new(vec![circle(Point::new(cx, cy), r).unwrap()]).unwrap();
-        let mut total = PartIntegrals::default();
+        let mut total = [0.0; 6];
+        let mut arc_length = [0.0; 3];
         for a in arcs(&d) {
-            let p = a.integrals((0.0, 1.0), Point::new(0.0, 0.0), (1.0, 1.0), true);
-            total.b += p.b;
-            total.mx += p.mx;
-            total.my += p.my;
+            let p = a.integrals(
+                (0.0, 1.0),
+                Point::new(0.0, 0.0),
+                (1.0, 1.0),
+                Moments::Second,
+            );
+            for (t, p) in total.iter_mut().zip(p) {
+                *t += p;
+            }
+            let l = a.arc_length_integrals((0.0, 1.0), Point::new(0.0, 0.0), (1.0, 2.0));
+            for (t, l) in arc_length.iter_mut().zip(l) {
+                *t += l;
+            }
         }
         let area = std::f64::consts::PI * r * r;
-        assert!((-total.b - area).abs() < 1e-14 * area, "{total:?}");
-        assert!((-total.mx - area * cx).abs() < 1e-14 * area, "{total:?}");
-        assert!((-total.my - area * cy).abs() < 1e-14 * area, "{total:?}");
+        let close = |got: f64, want: f64| (got - want).abs() < 1e-14 * area * (1.0 + want.abs());
+        assert!(close(-total[B], area), "{total:?}");
+        assert!(close(-total[MX], area * cx), "{total:?}");
+        assert!(close(-total[MY], area * cy), "{total:?}");
+        // int int x^2 dA = pi r^4 / 4 + A cx^2, int int x y dA = A cx cy, likewise y^2.
+        let quarter = std::f64::consts::PI * r.powi(4) / 4.0;
+        assert!(close(-total[MUU], quarter + area * cx * cx), "{total:?}");
+        assert!(close(-total[MUV], area * cx * cy), "{total:?}");
+        assert!(close(-total[MVV], quarter + area * cy * cy), "{total:?}");
+        // The length 2 pi r, its first moments 2 pi r times the centre (the loop's sign is
+        // not applied: the length is unsigned).
+        let length = 2.0 * std::f64::consts::PI * r;
+        let near = |got: f64, want: f64| (got - want).abs() < 1e-14 * length * 4.0;
+        assert!(near(arc_length[0], length), "{arc_length:?}");
+        assert!(near(arc_length[1], length * cx), "{arc_length:?}");
+        assert!(near(arc_length[2], length * cy), "{arc_length:?}");
     }
 
     /// The Gauss-Legendre path is exact on polynomial pieces: a triangle's area and moments.
@@ -324,18 +456,26 @@ mod tests {
         let pts: Vec<Point> = pts.iter().map(|&(x, y)| Point::new(x, y)).collect();
         let d = Domain::new(vec![polyline(&pts).unwrap()]).unwrap();
         let corner = Point::new(0.5, 0.25);
-        let mut total = PartIntegrals::default();
+        let mut total = [0.0; 6];
         for a in arcs(&d) {
             assert!(a.polynomial);
-            let p = a.integrals((0.0, 1.0), corner, (1.0, 1.0), true);
-            total.b += p.b;
-            total.mx += p.mx;
-            total.my += p.my;
+            let p = a.integrals((0.0, 1.0), corner, (1.0, 1.0), Moments::Second);
+            for (t, p) in total.iter_mut().zip(p) {
+                *t += p;
+            }
         }
-        // Area 3, centroid (1, 2/3).
-        assert!((-total.b - 3.0).abs() < 1e-15);
-        assert!((-total.mx - 3.0 * (1.0 - 0.5)).abs() < 1e-15);
-        assert!((-total.my - 3.0 * (2.0 / 3.0 - 0.25)).abs() < 1e-15);
+        // Area 3, centroid (1, 2/3); about the corner (0.5, 0.25) the second moments of the
+        // triangle (0,0), (3,0), (0,2): int x^2 = 4.5, int x y = 1.5, int y^2 = 2.
+        let (cx, cy) = (0.5, 0.25);
+        assert!((-total[B] - 3.0).abs() < 1e-15);
+        assert!((-total[MX] - 3.0 * (1.0 - cx)).abs() < 1e-15);
+        assert!((-total[MY] - 3.0 * (2.0 / 3.0 - cy)).abs() < 1e-15);
+        let uu = 4.5 - 2.0 * cx * 3.0 + cx * cx * 3.0;
+        let uv = 1.5 - cx * 2.0 - cy * 3.0 + cx * cy * 3.0;
+        let vv = 2.0 - 2.0 * cy * 2.0 + cy * cy * 3.0;
+        assert!((-total[MUU] - uu).abs() < 1e-14, "{total:?}");
+        assert!((-total[MUV] - uv).abs() < 1e-14, "{total:?}");
+        assert!((-total[MVV] - vv).abs() < 1e-14, "{total:?}");
     }
 
     #[test]

@@ -12,10 +12,10 @@
 use std::ops::Range;
 
 use rs_boxes::Monotonicity;
-use rs_spline::Point;
+use rs_spline::{Axis, Point};
 
-use crate::arc::{Arc, PartIntegrals};
-use crate::lines::add_covered;
+use crate::arc::{Arc, Moments, PartIntegrals};
+use crate::lines::{LineSums, add_covered};
 
 /// Where a band writes its results: row-major slices of the caller's arrays, the fractions
 /// zeroed and the centroids `NaN` on entry. Only the cells the covered set reaches are
@@ -32,6 +32,24 @@ pub(crate) struct BandOut<'a> {
     pub(crate) y_apertures: Option<&'a mut [f64]>,
     /// `(nx)`: the faces of the band's top line `j1`, when this band writes them.
     pub(crate) y_top: Option<&'a mut [f64]>,
+    /// `(rows, nx)` each: the boundary's length, centroid and unit normal in each cell (0,
+    /// `NaN`, `NaN` on entry).
+    pub(crate) boundary: Option<BoundaryOut<'a>>,
+    /// `(rows, nx + 1)`: the centroid `y` of each vertical face's covered part (`NaN` on
+    /// entry).
+    pub(crate) x_face_centroids: Option<&'a mut [f64]>,
+    /// `(rows, nx)` and the top line's `(nx)`, as the horizontal apertures: the centroid `x`
+    /// of each horizontal face's covered part (`NaN` on entry).
+    pub(crate) y_face_centroids: Option<&'a mut [f64]>,
+    /// The top line's, when this band writes them.
+    pub(crate) y_top_centroids: Option<&'a mut [f64]>,
+}
+
+/// Where a band writes the boundary's geometry in its cells.
+pub(crate) struct BoundaryOut<'a> {
+    pub(crate) lengths: &'a mut [f64],
+    pub(crate) centroids: &'a mut [[f64; 2]],
+    pub(crate) normals: &'a mut [[f64; 2]],
 }
 
 /// A band of rows of a grid and what to compute there.
@@ -39,8 +57,16 @@ pub(crate) struct Band<'a> {
     pub(crate) xs: &'a [f64],
     pub(crate) ys: &'a [f64],
     pub(crate) rows: Range<usize>,
-    pub(crate) moments: bool,
-    pub(crate) apertures: bool,
+    /// The area moments the cells need: first ones for centroids or a revolved volume,
+    /// second ones for a revolved volume's centroid.
+    pub(crate) moments: Moments,
+    /// The vertical lines' crossings are collected (apertures or face centroids).
+    pub(crate) vertical_faces: bool,
+    /// The boundary's length, centroid and normal in each cell.
+    pub(crate) boundary: bool,
+    /// The axis the domain revolves about, if any: fractions, centroids and the faces across
+    /// the axis are then weighted by the distance to it.
+    pub(crate) axis: Option<Axis>,
 }
 
 /// What the walk over the pieces collects, and its per-piece scratch.
@@ -59,13 +85,16 @@ struct Crossings {
     vertical: Vec<(u32, f64)>,
     /// The current piece's crossings with the band's lines: `(line, t, x)`, ascending lines.
     local: Vec<(usize, f64, f64)>,
-    /// Its crossings with vertical lines strictly inside its band part: `(t, i)`, by `t`.
-    v_events: Vec<(f64, usize)>,
-    /// Its crossings with horizontal lines strictly inside its band part: `(t, x)`, by `t`.
-    h_events: Vec<(f64, f64)>,
-    /// `(cell, [b, mx, my])`: the signed integrals of every part, by the cell's index in the
+    /// Its crossings with vertical lines strictly inside its band part: `(t, i, y)`, by `t`.
+    v_events: Vec<(f64, usize, f64)>,
+    /// Its crossings with horizontal lines strictly inside its band part: `(t, x, y)`, by `t`.
+    h_events: Vec<(f64, f64, f64)>,
+    /// `(cell, integrals)`: the signed integrals of every part, by the cell's index in the
     /// band, in the order the walk found them (summed per cell in that order).
-    parts: Vec<(usize, [f64; 3])>,
+    parts: Vec<(usize, PartIntegrals)>,
+    /// `(cell, [length, int u ds, int v ds, n_x, n_y])`: the boundary's parts (with
+    /// [`Band::boundary`]), `n` the integral of the outward normal, `(dy, -dx)` signed.
+    boundary: Vec<(usize, [f64; 5])>,
 }
 
 impl Band<'_> {
@@ -78,6 +107,10 @@ impl Band<'_> {
             x_apertures,
             y_apertures,
             y_top,
+            boundary,
+            x_face_centroids,
+            y_face_centroids,
+            y_top_centroids,
         } = out;
         let mut c = Crossings::default();
         for arc in arcs {
@@ -88,13 +121,23 @@ impl Band<'_> {
         self.finish_rows(
             (&hx, &starts),
             &cells,
-            fractions,
-            centroids,
-            y_apertures,
-            y_top,
+            (fractions, centroids),
+            YFaces {
+                apertures: y_apertures,
+                top: y_top,
+                centroids: y_face_centroids,
+                top_centroids: y_top_centroids,
+            },
         );
-        if let Some(xa) = x_apertures {
-            self.finish_x_apertures(&hx[starts[0]..starts[1]], &mut c.vertical, xa);
+        if x_apertures.is_some() || x_face_centroids.is_some() {
+            self.finish_x_faces(
+                &hx[starts[0]..starts[1]],
+                &mut c.vertical,
+                (x_apertures, x_face_centroids),
+            );
+        }
+        if let Some(out) = boundary {
+            finish_boundary(self.xs, &self.ys[self.rows.start..], &mut c.boundary, out);
         }
     }
 
@@ -124,8 +167,15 @@ impl Band<'_> {
                 c.local.push((k, t, x));
             }
         }
-        // A vertical piece has `dx = 0` (no area, no moment) and no crossing with `x_i + 0`.
-        if left_of_grid || x_dir == Monotonicity::Constant {
+        // A vertical piece has `dx = 0` (no area, no moment) and no crossing with `x_i + 0`;
+        // it is boundary, though.
+        if left_of_grid {
+            return;
+        }
+        if x_dir == Monotonicity::Constant {
+            if self.boundary {
+                self.vertical_boundary(arc, &mut c.boundary);
+            }
             return;
         }
         let Some(((ta, pa), (tb, pb))) = self.band_part(arc, &c.local) else {
@@ -145,10 +195,11 @@ impl Band<'_> {
                 if pa.x == bx0 { pa.y } else { pb.y }
             } else {
                 let (t, y) = arc.at_x(x);
-                c.v_events.push((t.clamp(ta, tb), i));
-                y.clamp(ylow, yhigh)
+                let y = y.clamp(ylow, yhigh);
+                c.v_events.push((t.clamp(ta, tb), i, y));
+                y
             };
-            if self.apertures {
+            if self.vertical_faces {
                 c.vertical.push((i as u32, y));
             }
         }
@@ -160,7 +211,7 @@ impl Band<'_> {
             c.local
                 .iter()
                 .filter(|l| ylow < ys[l.0] && ys[l.0] < yhigh)
-                .map(|l| (l.1.clamp(ta, tb), l.2)),
+                .map(|l| (l.1.clamp(ta, tb), l.2, ys[l.0])),
         );
         if y_dir == Monotonicity::Decreasing {
             c.h_events.reverse();
@@ -198,7 +249,7 @@ impl Band<'_> {
             Monotonicity::Decreasing => -1,
             Monotonicity::Constant => 0,
         };
-        let (mut t_prev, mut x_prev) = (ta, pa.x);
+        let (mut t_prev, mut p_prev) = (ta, pa);
         let (mut hi, mut vi) = (0, 0);
         loop {
             let vertical = match (c.h_events.get(hi), c.v_events.get(vi)) {
@@ -207,13 +258,14 @@ impl Band<'_> {
                 (None, Some(_)) => true,
                 (Some(_), None) => false,
             };
-            let (t, x) = if vertical {
-                let (t, i) = c.v_events[vi];
-                (t, xs[i])
+            let (t, p) = if vertical {
+                let (t, i, y) = c.v_events[vi];
+                (t, Point::new(xs[i], y))
             } else {
-                c.h_events[hi]
+                let (t, x, y) = c.h_events[hi];
+                (t, Point::new(x, y))
             };
-            self.add_part(arc, (col, row), (t_prev, t), (x_prev, x), &mut c.parts);
+            self.add_part(arc, (col, row), (t_prev, t), (p_prev, p), c);
             if vertical {
                 col += dcol;
                 vi += 1;
@@ -221,9 +273,45 @@ impl Band<'_> {
                 row += drow;
                 hi += 1;
             }
-            (t_prev, x_prev) = (t, x);
+            (t_prev, p_prev) = (t, p);
         }
-        self.add_part(arc, (col, row), (t_prev, tb), (x_prev, pb.x), &mut c.parts);
+        self.add_part(arc, (col, row), (t_prev, tb), (p_prev, pb), c);
+    }
+
+    /// The boundary's parts of a vertical piece, cut at the band's horizontal lines: each
+    /// belongs to the column whose right edge it may lie on (`x_i < x <= x_{i+1}`, as a face
+    /// the boundary runs on takes the value just to its right) and to the row it spans.
+    fn vertical_boundary(&self, arc: &Arc, boundary: &mut Vec<(usize, [f64; 5])>) {
+        let (xs, ys) = (self.xs, self.ys);
+        let nx = xs.len() - 1;
+        let b = &arc.piece.band;
+        let x = b.start.x;
+        let Some(i) = xs.partition_point(|&e| e < x).checked_sub(1) else {
+            return;
+        };
+        if i >= nx {
+            return;
+        }
+        let (j0, j1) = (self.rows.start, self.rows.end);
+        let up = if arc.piece.y_dir == Monotonicity::Decreasing {
+            -1.0
+        } else {
+            1.0
+        };
+        let first = j0.max(ys.partition_point(|&y| y <= b.ymin).saturating_sub(1));
+        for j in first..j1 {
+            let (lo, hi) = (b.ymin.max(ys[j]), b.ymax.min(ys[j + 1]));
+            if ys[j] >= b.ymax {
+                break;
+            }
+            if hi <= lo {
+                continue;
+            }
+            let len = hi - lo;
+            let (u, v) = (x - xs[i], 0.5 * (lo + hi) - ys[j]);
+            let idx = (j - j0) * nx + i;
+            boundary.push((idx, [len, len * u, len * v, arc.sign * up * len, 0.0]));
+        }
     }
 
     /// The piece's part in the band, `((ta, pa), (tb, pb))` in the piece's order: clipped at
@@ -269,16 +357,19 @@ impl Band<'_> {
         })
     }
 
-    /// Records the integrals of the piece's part over `[t0, t1]` (abscissas `x0`, `x1`) for
-    /// the cell `(col, row)` when that cell is one of the band's.
+    /// Records the integrals of the piece's part over `[t0, t1]` (from `p0` to `p1`) for
+    /// the cell `(col, row)` when that cell is one of the band's: its area integrals, and
+    /// with [`Band::boundary`] its arc-length integrals and the integral of its outward
+    /// normal, `sign (y1 - y0, x0 - x1)` (the filled set on the part's left).
     fn add_part(
         &self,
         arc: &Arc,
         (col, row): (isize, isize),
         (t0, t1): (f64, f64),
-        (x0, x1): (f64, f64),
-        parts: &mut Vec<(usize, [f64; 3])>,
+        (p0, p1): (Point, Point),
+        c: &mut Crossings,
     ) {
+        let (x0, x1) = (p0.x, p1.x);
         let nx = self.xs.len() - 1;
         let (j0, j1) = (self.rows.start, self.rows.end);
         if col < 0 || col as usize >= nx || row < j0 as isize || row as usize >= j1 || t1 <= t0 {
@@ -286,24 +377,37 @@ impl Band<'_> {
         }
         let (i, j) = (col as usize, row as usize);
         let corner = Point::new(self.xs[i], self.ys[j]);
-        let part = if arc.piece.y_dir == Monotonicity::Constant {
+        let size = (self.xs[i + 1] - self.xs[i], self.ys[j + 1] - self.ys[j]);
+        let horizontal = arc.piece.y_dir == Monotonicity::Constant;
+        let part = if horizontal {
             // A horizontal part: closed forms on its exact end abscissas.
             let v = arc.piece.band.start.y - corner.y;
             let (u0, u1) = (x0 - corner.x, x1 - corner.x);
-            PartIntegrals {
-                b: v * (x1 - x0),
-                mx: 0.5 * v * (u1 * u1 - u0 * u0),
-                my: 0.5 * v * v * (x1 - x0),
-            }
+            let dx = x1 - x0;
+            [
+                v * dx,
+                0.5 * v * (u1 * u1 - u0 * u0),
+                0.5 * v * v * dx,
+                v * (u1 * u1 * u1 - u0 * u0 * u0) / 3.0,
+                0.25 * v * v * (u1 * u1 - u0 * u0),
+                v * v * v * dx / 3.0,
+            ]
         } else {
-            let size = (self.xs[i + 1] - self.xs[i], self.ys[j + 1] - self.ys[j]);
             arc.integrals((t0, t1), corner, size, self.moments)
         };
         let idx = (j - j0) * nx + i;
-        parts.push((
-            idx,
-            [arc.sign * part.b, arc.sign * part.mx, arc.sign * part.my],
-        ));
+        c.parts.push((idx, part.map(|p| arc.sign * p)));
+        if self.boundary {
+            let [len, lu, lv] = if horizontal {
+                let len = (x1 - x0).abs();
+                let v = arc.piece.band.start.y - corner.y;
+                [len, len * (0.5 * (x0 + x1) - corner.x), len * v]
+            } else {
+                arc.arc_length_integrals((t0, t1), corner, size)
+            };
+            let normal = [arc.sign * (p1.y - p0.y), arc.sign * (x0 - x1)];
+            c.boundary.push((idx, [len, lu, lv, normal[0], normal[1]]));
+        }
     }
 
     /// Sorts the horizontal crossings by line and abscissa: their abscissas, and where each
@@ -322,7 +426,7 @@ impl Band<'_> {
     }
 
     /// The fractions and centroids of every row, from the covered lengths of its top line and
-    /// the parts' integrals `cells` (by cell, ascending), and the horizontal apertures. Only
+    /// the parts' integrals `cells` (by cell, ascending), and the horizontal faces. Only
     /// the cells of the line's covered intervals and those the boundary passes through are
     /// written; a cell covered from side to side that the boundary misses is exactly 1
     /// (`h w / (h w)`, which [`CellGrid`](crate::CellGrid) keeps finite and nonzero) without a
@@ -330,47 +434,66 @@ impl Band<'_> {
     fn finish_rows(
         &self,
         (hx, starts): (&[f64], &[usize]),
-        cells: &[(usize, [f64; 3])],
-        fractions: &mut [f64],
-        mut centroids: Option<&mut [[f64; 2]]>,
-        mut y_apertures: Option<&mut [f64]>,
-        mut y_top: Option<&mut [f64]>,
+        cells: &[(usize, PartIntegrals)],
+        (fractions, mut centroids): (&mut [f64], Option<&mut [[f64; 2]]>),
+        mut faces: YFaces<'_>,
     ) {
         let (xs, ys) = (self.xs, self.ys);
         let nx = xs.len() - 1;
         let (j0, rows) = (self.rows.start, self.rows.len());
+        let with_first = self.moments >= Moments::First || faces.centroids.is_some();
+        let with_second = self.moments == Moments::Second && self.axis == Some(Axis::Y);
         let mut len = vec![0.0; nx];
-        let mut first = vec![0.0; if centroids.is_some() { nx } else { 0 }];
+        let mut first = vec![0.0; if with_first { nx } else { 0 }];
+        let mut second = vec![0.0; if with_second { nx } else { 0 }];
         let mut touched: Vec<Range<usize>> = Vec::new();
         let mut next_cell = 0;
         for k in 0..=rows {
-            let faces = if k < rows {
-                y_apertures
-                    .as_deref_mut()
-                    .map(|y| &mut y[k * nx..(k + 1) * nx])
-            } else {
-                y_top.as_deref_mut()
-            };
+            let (line_faces, line_centroids) = faces.line(k, rows, nx);
             // The bottom line's lengths only give its own faces.
-            if k == 0 && faces.is_none() {
+            if k == 0 && line_faces.is_none() && line_centroids.is_none() {
                 continue;
             }
             for r in touched.drain(..) {
                 len[r.clone()].fill(0.0);
-                if let Some(f) = first.get_mut(r) {
+                if let Some(f) = first.get_mut(r.clone()) {
                     f.fill(0.0);
                 }
+                if let Some(s) = second.get_mut(r) {
+                    s.fill(0.0);
+                }
             }
-            let moments = centroids.is_some().then_some(&mut first[..]);
+            let mut sums = LineSums {
+                len: &mut len,
+                first: with_first.then_some(&mut first[..]),
+                second: with_second.then_some(&mut second[..]),
+            };
             add_covered(
                 xs,
                 &hx[starts[k]..starts[k + 1]],
-                (false, &mut len, moments),
+                false,
+                &mut sums,
                 &mut touched,
             );
-            if let Some(faces) = faces {
-                for (i, f) in faces.iter_mut().enumerate() {
-                    *f = (len[i] / (xs[i + 1] - xs[i])).clamp(0.0, 1.0);
+            if let Some(line_faces) = line_faces {
+                for (i, f) in line_faces.iter_mut().enumerate() {
+                    let w = xs[i + 1] - xs[i];
+                    *f = match self.axis {
+                        // An annulus about the y axis: weighted by the radius |x|.
+                        Some(Axis::Y) => {
+                            let x0 = xs[i];
+                            (x0 * len[i] + first[i]) / (w * (x0 + 0.5 * w))
+                        }
+                        _ => len[i] / w,
+                    }
+                    .clamp(0.0, 1.0);
+                }
+            }
+            if let Some(line_centroids) = line_centroids {
+                for (i, c) in line_centroids.iter_mut().enumerate() {
+                    if len[i] > 0.0 {
+                        *c = (xs[i] + first[i] / len[i]).clamp(xs[i], xs[i + 1]);
+                    }
                 }
             }
             if k == 0 {
@@ -382,6 +505,8 @@ impl Band<'_> {
                 y: (ys[j], ys[j + 1]),
                 len: &len,
                 first: &first,
+                second: &second,
+                axis: self.axis,
             };
             let fractions = &mut fractions[r * nx..(r + 1) * nx];
             let mut centroids = centroids
@@ -414,7 +539,7 @@ impl Band<'_> {
                     for c in i..run_end {
                         match centroids.as_deref_mut() {
                             None if len[c] == xs[c + 1] - xs[c] => fractions[c] = 1.0,
-                            m => row.set(c, [0.0; 3], fractions, m),
+                            m => row.set(c, [0.0; 6], fractions, m),
                         }
                     }
                     if let Some((c, acc)) = cut {
@@ -430,11 +555,17 @@ impl Band<'_> {
         }
     }
 
-    /// The vertical apertures: each line `x_i + 0` starts the band with the status the
-    /// bottom line's crossings give it (the parity of those at or left of `x_i`) and flips
-    /// at its crossings inside the band. Rows are written one after the other (each row's
-    /// faces are contiguous), every line keeping its place in its crossings.
-    fn finish_x_apertures(&self, bottom: &[f64], vertical: &mut [(u32, f64)], out: &mut [f64]) {
+    /// The vertical faces' apertures and centroids: each line `x_i + 0` starts the band with
+    /// the status the bottom line's crossings give it (the parity of those at or left of
+    /// `x_i`) and flips at its crossings inside the band. Rows are written one after the
+    /// other (each row's faces are contiguous), every line keeping its place in its
+    /// crossings. About the x axis a face is an annulus: its aperture is weighted by `|y|`.
+    fn finish_x_faces(
+        &self,
+        bottom: &[f64],
+        vertical: &mut [(u32, f64)],
+        (mut apertures, mut centroids): (Option<&mut [f64]>, Option<&mut [f64]>),
+    ) {
         let xs = self.xs;
         let lines = xs.len();
         let edges = &self.ys[self.rows.start..=self.rows.end];
@@ -455,23 +586,42 @@ impl Band<'_> {
             }
             end[i] = v;
         }
-        for (r, row) in out.chunks_exact_mut(lines).enumerate() {
+        let rows = edges.len() - 1;
+        for r in 0..rows {
             let (e0, e1) = (edges[r], edges[r + 1]);
-            for (i, face) in row.iter_mut().enumerate() {
-                let (mut at, mut len, mut ins) = (e0, 0.0, inside[i]);
+            let h = e1 - e0;
+            for i in 0..lines {
+                // The covered length and its first moment about `e0`.
+                let (mut at, mut len, mut first, mut ins) = (e0, 0.0, 0.0, inside[i]);
+                let mut add = |a: f64, b: f64| {
+                    len += b - a;
+                    let (v0, v1) = (a - e0, b - e0);
+                    first += 0.5 * (v1 * v1 - v0 * v0);
+                };
                 while next[i] < end[i] && vertical[next[i]].1 < e1 {
                     let y = vertical[next[i]].1.clamp(e0, e1);
                     if ins {
-                        len += y - at;
+                        add(at, y);
                     }
                     (at, ins) = (y, !ins);
                     next[i] += 1;
                 }
                 if ins {
-                    len += e1 - at;
+                    add(at, e1);
                 }
                 inside[i] = ins;
-                *face = (len / (e1 - e0)).clamp(0.0, 1.0);
+                if let Some(a) = apertures.as_deref_mut() {
+                    a[r * lines + i] = match self.axis {
+                        Some(Axis::X) => (e0 * len + first) / (h * (e0 + 0.5 * h)),
+                        _ => len / h,
+                    }
+                    .clamp(0.0, 1.0);
+                }
+                if let Some(c) = centroids.as_deref_mut() {
+                    if len > 0.0 {
+                        c[r * lines + i] = (e0 + first / len).clamp(e0, e1);
+                    }
+                }
             }
         }
     }
@@ -479,10 +629,10 @@ impl Band<'_> {
 
 /// Sums the parts' integrals per cell, in the order they were found (so each cell's sums are
 /// those of adding its parts one by one from zero), ascending by cell.
-fn sum_by_cell(parts: &mut [(usize, [f64; 3])]) -> Vec<(usize, [f64; 3])> {
+fn sum_by_cell<const N: usize>(parts: &mut [(usize, [f64; N])]) -> Vec<(usize, [f64; N])> {
     // Stable: the parts of one cell keep their order.
     parts.sort_by_key(|p| p.0);
-    let mut cells: Vec<(usize, [f64; 3])> = Vec::with_capacity(parts.len());
+    let mut cells: Vec<(usize, [f64; N])> = Vec::with_capacity(parts.len());
     for &(idx, v) in parts.iter() {
         match cells.last_mut() {
             Some((last, acc)) if *last == idx => {
@@ -490,10 +640,71 @@ fn sum_by_cell(parts: &mut [(usize, [f64; 3])]) -> Vec<(usize, [f64; 3])> {
                     *a += v;
                 }
             }
-            _ => cells.push((idx, [0.0 + v[0], 0.0 + v[1], 0.0 + v[2]])),
+            _ => cells.push((idx, v.map(|v| 0.0 + v))),
         }
     }
     cells
+}
+
+/// The boundary's length, centroid and unit normal in each cell of a band from its parts
+/// (`edges`: the band's row edges from its first row on): the sums of the parts' lengths,
+/// arc-length moments and normal integrals per cell, in the order found. A cell without
+/// boundary keeps 0 and `NaN`; a normal integral of zero (the boundary leaves the cell
+/// where it entered, in equal and opposite measure) is `NaN`.
+fn finish_boundary(
+    xs: &[f64],
+    edges: &[f64],
+    parts: &mut [(usize, [f64; 5])],
+    out: BoundaryOut<'_>,
+) {
+    let nx = xs.len() - 1;
+    for (idx, [len, lu, lv, n_x, n_y]) in sum_by_cell(parts) {
+        let (i, r) = (idx % nx, idx / nx);
+        if len <= 0.0 {
+            continue;
+        }
+        out.lengths[idx] = len;
+        let (x0, y0) = (xs[i], edges[r]);
+        out.centroids[idx] = [
+            (x0 + lu / len).clamp(x0, xs[i + 1]),
+            (y0 + lv / len).clamp(y0, edges[r + 1]),
+        ];
+        let norm = n_x.hypot(n_y);
+        if norm > 0.0 {
+            out.normals[idx] = [n_x / norm, n_y / norm];
+        }
+    }
+}
+
+/// The horizontal faces' outputs of a band: the lines `j0 .. j1` and the top line `j1`
+/// (written by the last band only).
+struct YFaces<'a> {
+    apertures: Option<&'a mut [f64]>,
+    top: Option<&'a mut [f64]>,
+    centroids: Option<&'a mut [f64]>,
+    top_centroids: Option<&'a mut [f64]>,
+}
+
+impl YFaces<'_> {
+    /// The apertures and centroids of line `k` of a band of `rows` rows (`k = rows`: the top
+    /// line), each `nx` faces.
+    #[allow(clippy::type_complexity)]
+    fn line(
+        &mut self,
+        k: usize,
+        rows: usize,
+        nx: usize,
+    ) -> (Option<&mut [f64]>, Option<&mut [f64]>) {
+        if k < rows {
+            let at = k * nx..(k + 1) * nx;
+            (
+                self.apertures.as_deref_mut().map(|a| &mut a[at.clone()]),
+                self.centroids.as_deref_mut().map(|c| &mut c[at]),
+            )
+        } else {
+            (self.top.as_deref_mut(), self.top_centroids.as_deref_mut())
+        }
+    }
 }
 
 /// One row of cells: its top line's covered lengths (and their first moments, with
@@ -504,36 +715,70 @@ struct Row<'a> {
     y: (f64, f64),
     len: &'a [f64],
     first: &'a [f64],
+    /// The top line's covered second moments (a revolved volume's centroid about `y`).
+    second: &'a [f64],
+    /// The axis of revolution, if any.
+    axis: Option<Axis>,
 }
 
 impl Row<'_> {
-    /// Writes the fraction (and centroid) of column `i` from the sums `acc = [b, mx, my]` of
-    /// its parts: the covered area is `h L - b`, its first moments `h F - mx` and
-    /// `h^2 L / 2 - my` about the cell's corner (`L`, `F`: the top line's covered length in
-    /// the column and its first moment).
+    /// Writes the fraction (and centroid) of column `i` from the sums `acc` of its parts
+    /// ([`PartIntegrals`]): the covered area is `A = h L - b`, its first moments about the
+    /// cell's corner `Mu = h F - mx` and `Mv = h^2 L / 2 - my` (`L`, `F`: the top line's
+    /// covered length in the column and its first moment). Revolved about the y axis the
+    /// volume fraction is `int int x dA / int int_cell x dA = (x0 A + Mu) / (h w (x0 + w / 2))`
+    /// and the centroid `(x0 + (x0 Mu + Muu) / V, y0 + (x0 Mv + Muv) / V)`, `V = x0 A + Mu`,
+    /// with `Muu = h S - muu`, `Muv = h^2 F / 2 - muv` (`S`: the line's second moment);
+    /// about the x axis likewise with the roles of `x` and `y` exchanged
+    /// (`Mvv = h^3 L / 3 - mvv`).
     #[inline]
     fn set(
         &self,
         i: usize,
-        acc: [f64; 3],
+        acc: PartIntegrals,
         fractions: &mut [f64],
         centroids: Option<&mut [[f64; 2]]>,
     ) {
         let (xs, (y0, y1)) = (self.xs, self.y);
         let (h, w) = (y1 - y0, xs[i + 1] - xs[i]);
+        let x0 = xs[i];
         let len = self.len[i];
         let area = h * len - acc[0];
-        let fraction = (area / (h * w)).clamp(0.0, 1.0);
+        let first_u = || h * self.first[i] - acc[1];
+        let first_v = || 0.5 * h * h * len - acc[2];
+        let (volume, fraction) = match self.axis {
+            None => (area, area / (h * w)),
+            Some(Axis::Y) => {
+                let v = x0 * area + first_u();
+                (v, v / (h * w * (x0 + 0.5 * w)))
+            }
+            Some(Axis::X) => {
+                let v = y0 * area + first_v();
+                (v, v / (w * h * (y0 + 0.5 * h)))
+            }
+        };
+        let fraction = fraction.clamp(0.0, 1.0);
         fractions[i] = fraction;
         if let Some(m) = centroids {
             m[i] = if fraction == 0.0 {
                 [f64::NAN; 2]
             } else {
-                let mx = h * self.first[i] - acc[1];
-                let my = 0.5 * h * h * len - acc[2];
+                let (mu, mv) = match self.axis {
+                    None => (first_u(), first_v()),
+                    Some(Axis::Y) => {
+                        let muu = h * self.second[i] - acc[3];
+                        let muv = 0.5 * h * h * self.first[i] - acc[4];
+                        (x0 * first_u() + muu, x0 * first_v() + muv)
+                    }
+                    Some(Axis::X) => {
+                        let muv = 0.5 * h * h * self.first[i] - acc[4];
+                        let mvv = h * h * h * len / 3.0 - acc[5];
+                        (y0 * first_u() + muv, y0 * first_v() + mvv)
+                    }
+                };
                 [
-                    (xs[i] + mx / area).clamp(xs[i], xs[i + 1]),
-                    (y0 + my / area).clamp(y0, y1),
+                    (x0 + mu / volume).clamp(x0, xs[i + 1]),
+                    (y0 + mv / volume).clamp(y0, y1),
                 ]
             };
         }

@@ -4,10 +4,10 @@ use std::ops::Range;
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::{FillRule, fill_nesting};
-use rs_spline::Domain;
+use rs_spline::{Axis, BoundingBox, Domain};
 
-use crate::arc::Arc;
-use crate::band::{Band, BandOut};
+use crate::arc::{Arc, Moments};
+use crate::band::{Band, BandOut, BoundaryOut};
 use crate::in_order::{InOrder, in_order};
 use crate::{CellGrid, CoverageError};
 
@@ -25,6 +25,16 @@ pub struct CoverageOptions {
     pub centroids: bool,
     /// The covered fraction of each cell face.
     pub apertures: bool,
+    /// The boundary's length, centroid and unit outward normal in each cell (the embedded
+    /// boundary of a cut cell). Planar only: refused with [`CoverageOptions::axisymmetric`].
+    pub boundary: bool,
+    /// The centroid of each cell face's covered part. Planar only.
+    pub face_centroids: bool,
+    /// The axis the domain revolves about (`Axis::Y`: the radius is `|x|`; `Axis::X`: `|y|`),
+    /// for the revolved cells' volume fractions: every value is then weighted by the
+    /// distance to the axis (see [`Coverage`]). The domain and the grid must each lie on one
+    /// side of the axis (touching it is fine).
+    pub axisymmetric: Option<Axis>,
 }
 
 impl CoverageOptions {
@@ -32,6 +42,9 @@ impl CoverageOptions {
     pub const DEFAULT: CoverageOptions = CoverageOptions {
         centroids: false,
         apertures: false,
+        boundary: false,
+        face_centroids: false,
+        axisymmetric: None,
     };
 
     /// With or without the centroids.
@@ -45,6 +58,33 @@ impl CoverageOptions {
         self.apertures = apertures;
         self
     }
+
+    /// With or without the boundary's geometry in each cell.
+    pub const fn with_boundary(mut self, boundary: bool) -> Self {
+        self.boundary = boundary;
+        self
+    }
+
+    /// With or without the faces' centroids.
+    pub const fn with_face_centroids(mut self, face_centroids: bool) -> Self {
+        self.face_centroids = face_centroids;
+        self
+    }
+
+    /// Revolved about `axis` (`None`: planar).
+    pub const fn with_axisymmetric(mut self, axis: Option<Axis>) -> Self {
+        self.axisymmetric = axis;
+        self
+    }
+
+    /// The area moments the cells need.
+    fn moments(self) -> Moments {
+        match (self.axisymmetric.is_some(), self.centroids) {
+            (true, true) => Moments::Second,
+            (false, false) => Moments::Area,
+            _ => Moments::First,
+        }
+    }
 }
 
 impl Default for CoverageOptions {
@@ -56,6 +96,14 @@ impl Default for CoverageOptions {
 /// The coverage of a band of rows `rows` of a grid with `nx` columns (all rows for a whole
 /// grid). Arrays are row-major, the band's first row first: entry `(r, i)` is column `i` of
 /// row `rows.start + r`, the cell `[x_i, x_{i+1}] x [y_j, y_{j+1}]` with `j = rows.start + r`.
+///
+/// Revolved ([`CoverageOptions::axisymmetric`], radius `r = |x|` about the y axis, `|y|`
+/// about the x axis), a cell stands for the ring it sweeps: its fraction is the covered
+/// volume of the ring over the ring's volume, `int int r dA / int int_cell r dA`; its
+/// centroid the covered part's centroid weighted by `r` (`int int x r dA / int int r dA`,
+/// likewise `y`: the meridian-plane centroid of the revolved part); a face parallel to the
+/// axis sweeps a cylinder (its aperture is the covered fraction of its length, as planar),
+/// a face across the axis an annulus (the covered fraction of its area, weighted by `r`).
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Coverage {
@@ -76,6 +124,26 @@ pub struct Coverage {
     /// first and last line with the bands below and above); with
     /// [`CoverageOptions::apertures`].
     pub y_apertures: Option<Vec<f64>>,
+    /// `(rows, nx)`: the length of the boundary inside each cell, 0 where there is none;
+    /// with [`CoverageOptions::boundary`]. A boundary running on a cell face belongs to
+    /// the cell left of it (vertical faces) or below it (horizontal faces), as a face takes
+    /// the value just to its right or above it.
+    pub boundary_lengths: Option<Vec<f64>>,
+    /// `(rows, nx)`: the centroid `[x, y]` of the boundary inside each cell (its arc
+    /// length's), `[NaN, NaN]` where there is none; with [`CoverageOptions::boundary`].
+    pub boundary_centroids: Option<Vec<[f64; 2]>>,
+    /// `(rows, nx)`: the unit vector along the integral of the outward normal over the
+    /// boundary inside each cell (`integral of n ds = (dy, -dx)` summed over its parts,
+    /// AMReX's `bnorm` up to sign convention: outward from the covered part), `[NaN, NaN]`
+    /// where there is none or the integral is 0; with [`CoverageOptions::boundary`].
+    pub boundary_normals: Option<Vec<[f64; 2]>>,
+    /// `(rows, nx + 1)`: the centroid `y` of each vertical face's covered part, `NaN` where
+    /// it is empty; with [`CoverageOptions::face_centroids`].
+    pub x_face_centroids: Option<Vec<f64>>,
+    /// `(rows + 1, nx)`: the centroid `x` of each horizontal face's covered part, `NaN`
+    /// where it is empty (lines as [`Coverage::y_apertures`]); with
+    /// [`CoverageOptions::face_centroids`].
+    pub y_face_centroids: Option<Vec<f64>>,
 }
 
 impl Coverage {
@@ -104,14 +172,18 @@ impl Coverage {
     ) -> Result<Self, CoverageError> {
         let n = rows.len();
         let cells = n * nx;
+        let nan_pairs = |on: bool| on.then(|| filled(cells, [f64::NAN; 2])).transpose();
+        let faces = options.face_centroids;
         Ok(Self {
             fractions: zeros(cells)?,
-            centroids: options
-                .centroids
-                .then(|| filled(cells, [f64::NAN; 2]))
-                .transpose()?,
+            centroids: nan_pairs(options.centroids)?,
             x_apertures: options.apertures.then(|| zeros(n * (nx + 1))).transpose()?,
             y_apertures: options.apertures.then(|| zeros((n + 1) * nx)).transpose()?,
+            boundary_lengths: options.boundary.then(|| zeros(cells)).transpose()?,
+            boundary_centroids: nan_pairs(options.boundary)?,
+            boundary_normals: nan_pairs(options.boundary)?,
+            x_face_centroids: faces.then(|| filled(n * (nx + 1), f64::NAN)).transpose()?,
+            y_face_centroids: faces.then(|| filled((n + 1) * nx, f64::NAN)).transpose()?,
             rows,
             nx,
         })
@@ -132,12 +204,42 @@ impl Coverage {
             .x_apertures
             .as_deref_mut()
             .map(|x| x.chunks_mut(band_rows * (nx + 1)));
-        let (mut y_lines, mut y_top) = match self.y_apertures.as_deref_mut() {
-            Some(y) => {
-                let (lines, top) = y.split_at_mut(ny * nx);
-                (Some(lines.chunks_mut(band_rows * nx)), Some(top))
+        // Horizontal faces: the lines of each band's rows, and the grid's top line.
+        fn y_faces(
+            y: Option<&mut [f64]>,
+            lines: usize,
+            chunk: usize,
+        ) -> (Option<std::slice::ChunksMut<'_, f64>>, Option<&mut [f64]>) {
+            match y {
+                Some(y) => {
+                    let (lines, top) = y.split_at_mut(lines);
+                    (Some(lines.chunks_mut(chunk)), Some(top))
+                }
+                None => (None, None),
             }
-            None => (None, None),
+        }
+        let (mut y_lines, mut y_top) =
+            y_faces(self.y_apertures.as_deref_mut(), ny * nx, band_rows * nx);
+        let (mut yc_lines, mut yc_top) = y_faces(
+            self.y_face_centroids.as_deref_mut(),
+            ny * nx,
+            band_rows * nx,
+        );
+        let mut x_centroids = self
+            .x_face_centroids
+            .as_deref_mut()
+            .map(|x| x.chunks_mut(band_rows * (nx + 1)));
+        let mut boundary = match (
+            self.boundary_lengths.as_deref_mut(),
+            self.boundary_centroids.as_deref_mut(),
+            self.boundary_normals.as_deref_mut(),
+        ) {
+            (Some(l), Some(c), Some(n)) => Some((
+                l.chunks_mut(band_rows * nx),
+                c.chunks_mut(band_rows * nx),
+                n.chunks_mut(band_rows * nx),
+            )),
+            _ => None,
         };
         let bands = ny.div_ceil(band_rows);
         let mut outs = Vec::with_capacity(bands);
@@ -150,12 +252,23 @@ impl Coverage {
             ) else {
                 break;
             };
+            let last = k + 1 == bands;
             outs.push(BandOut {
                 fractions: f,
                 centroids: c,
                 x_apertures: x,
                 y_apertures: y,
-                y_top: if k + 1 == bands { y_top.take() } else { None },
+                y_top: if last { y_top.take() } else { None },
+                boundary: boundary.as_mut().and_then(|(l, c, n)| {
+                    Some(BoundaryOut {
+                        lengths: l.next()?,
+                        centroids: c.next()?,
+                        normals: n.next()?,
+                    })
+                }),
+                x_face_centroids: x_centroids.as_mut().and_then(Iterator::next),
+                y_face_centroids: yc_lines.as_mut().and_then(Iterator::next),
+                y_top_centroids: if last { yc_top.take() } else { None },
             });
         }
         outs
@@ -219,6 +332,9 @@ fn filled<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, Covera
 pub struct GridCoverage {
     grid: CellGrid,
     arcs: Vec<Arc>,
+    /// The bounding box of the pieces kept (`None` without any): which side of an axis of
+    /// revolution the domain lies on.
+    extent: Option<BoundingBox>,
 }
 
 impl GridCoverage {
@@ -273,13 +389,67 @@ impl GridCoverage {
         // Outer boundaries counter-clockwise, holes clockwise: the filled set on the left.
         let signs: Vec<i64> = nesting.iter().map(|n| n.boundary_sign(rule)).collect();
         let boxes = MonotoneBoxes::new(domain, BoxOptions::DEFAULT.with_subdivisions(1))?;
-        let arcs = boxes
+        let arcs: Vec<Arc> = boxes
             .pieces()
             .iter()
             .filter(|p| signs[p.boundary_loop] != 0)
             .map(|p| Arc::new(p.clone(), signs[p.boundary_loop] as f64))
             .collect();
-        Ok(Self { grid, arcs })
+        let extent = arcs
+            .iter()
+            .map(|a| {
+                let b = &a.piece.band;
+                BoundingBox {
+                    min: rs_spline::Point::new(b.xmin, b.ymin),
+                    max: rs_spline::Point::new(b.xmax, b.ymax),
+                }
+            })
+            .reduce(BoundingBox::union);
+        Ok(Self { grid, arcs, extent })
+    }
+
+    /// Checks that `options` can be computed: revolved, the domain and the grid each on one
+    /// side of the axis, and neither boundary geometry nor face centroids (planar only).
+    ///
+    /// # Errors
+    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`].
+    pub fn check_options(&self, options: CoverageOptions) -> Result<(), CoverageError> {
+        let Some(axis) = options.axisymmetric else {
+            return Ok(());
+        };
+        if options.boundary || options.face_centroids {
+            return Err(CoverageError::PlanarOnly {
+                what: if options.boundary {
+                    "the boundary's lengths, centroids and normals"
+                } else {
+                    "face centroids"
+                },
+            });
+        }
+        // The coordinate that is the radius.
+        let radius = axis.other();
+        let grid = self.grid.bounding_box();
+        let span = |b: &BoundingBox| (b.min.coord(radius), b.max.coord(radius));
+        let (g0, g1) = span(&grid);
+        if g0 < 0.0 && g1 > 0.0 {
+            return Err(CoverageError::AcrossAxis {
+                what: "grid",
+                axis,
+                low: g0,
+                high: g1,
+            });
+        }
+        if let Some((d0, d1)) = self.extent.as_ref().map(span) {
+            if d0 < 0.0 && d1 > 0.0 {
+                return Err(CoverageError::AcrossAxis {
+                    what: "domain",
+                    axis,
+                    low: d0,
+                    high: d1,
+                });
+            }
+        }
+        Ok(())
     }
 
     /// The grid.
@@ -313,6 +483,7 @@ impl GridCoverage {
             });
         }
         self.check_cells(rows.len())?;
+        self.check_options(options)?;
         let mut out = Coverage::zeroed(rows.clone(), self.grid.nx(), options)?;
         // One band: the whole arrays.
         if let Some(whole) = out.band_outs(rows.len()).pop() {
@@ -404,6 +575,7 @@ impl GridCoverage {
     pub fn all(&self, options: CoverageOptions) -> Result<Coverage, CoverageError> {
         let ny = self.grid.ny();
         self.check_cells(ny)?;
+        self.check_options(options)?;
         let mut out = Coverage::zeroed(0..ny, self.grid.nx(), options)?;
         let band_rows = self.band_rows(options);
         let bands = out.band_outs(band_rows).into_iter().enumerate();
@@ -444,8 +616,10 @@ impl GridCoverage {
             xs: self.grid.x_edges(),
             ys: self.grid.y_edges(),
             rows,
-            moments: options.centroids,
-            apertures: options.apertures,
+            moments: options.moments(),
+            vertical_faces: options.apertures || options.face_centroids,
+            boundary: options.boundary,
+            axis: options.axisymmetric,
         }
         .cover(&self.arcs, out);
     }
@@ -496,9 +670,14 @@ pub fn band_rows(nx: usize, ny: usize, options: CoverageOptions, threads: usize)
     by_size.min(by_threads).max(1)
 }
 
-/// Output bytes per cell: 8 for the fraction, 16 for the centroid, about 16 for the faces.
+/// Output bytes per cell: 8 for the fraction, 16 for the centroid, about 16 for the faces'
+/// apertures and 16 for their centroids, 40 for the boundary.
 fn bytes_per_cell(options: CoverageOptions) -> usize {
-    8 + if options.centroids { 16 } else { 0 } + if options.apertures { 16 } else { 0 }
+    let on = |b: bool, bytes: usize| if b { bytes } else { 0 };
+    8 + on(options.centroids, 16)
+        + on(options.apertures, 16)
+        + on(options.face_centroids, 16)
+        + on(options.boundary, 40)
 }
 
 /// Band `k` of the bands of `band_rows` rows (at least one) of a grid of `ny` rows: the one

@@ -96,6 +96,28 @@ pub enum CoverageError {
     /// The boundary could not be cut into monotone pieces.
     #[error("monotone pieces: {0}")]
     Boxes(#[from] BoxError),
+    /// Revolved about an axis, the domain or the grid lies on both sides of it: a revolved
+    /// cell or region would overlap its mirror image.
+    #[error(
+        "the {what} crosses the axis of revolution ({axis:?} axis): its {} runs from {low:e} to {high:e}; it must lie on one side (touching is fine)",
+        match axis { rs_spline::Axis::X => "y", rs_spline::Axis::Y => "x" }
+    )]
+    AcrossAxis {
+        /// `"domain"` or `"grid"`.
+        what: &'static str,
+        /// The axis of revolution.
+        axis: rs_spline::Axis,
+        /// The smallest radius coordinate.
+        low: f64,
+        /// The largest.
+        high: f64,
+    },
+    /// An output defined for planar cells only was asked for revolved ones.
+    #[error("{what} are computed for planar cells only, not with an axis of revolution")]
+    PlanarOnly {
+        /// The output.
+        what: &'static str,
+    },
     /// The output could not be allocated.
     #[error("cannot allocate {bytes} bytes for the output: compute the grid in smaller row bands")]
     OutOfMemory {

@@ -2,11 +2,19 @@
 
 use std::ops::Range;
 
-/// Adds to `len[c]` the length of the covered part of `[edges[c], edges[c + 1]]` on a line
-/// whose status is `inside` before its first crossing and flips at each crossing
-/// (`crossings` sorted ascending; an odd count leaves the line covered to `+inf`). With
-/// `first`, also adds `int (s - edges[c]) ds` over that covered part to `first[c]` (the
-/// covered part's first moment about the interval's start).
+/// Per column of a line: the covered length and, when asked for, its first and second
+/// moments about the column's start, `int (s - edges[c]) ds` and `int (s - edges[c])^2 ds`
+/// over the covered part.
+pub(crate) struct LineSums<'a> {
+    pub(crate) len: &'a mut [f64],
+    pub(crate) first: Option<&'a mut [f64]>,
+    pub(crate) second: Option<&'a mut [f64]>,
+}
+
+/// Adds to `sums.len[c]` the length of the covered part of `[edges[c], edges[c + 1]]` on a
+/// line whose status is `inside` before its first crossing and flips at each crossing
+/// (`crossings` sorted ascending; an odd count leaves the line covered to `+inf`), and to
+/// `first` and `second` that part's moments ([`LineSums`]).
 ///
 /// A column covered from edge to edge gets exactly `edges[c + 1] - edges[c]`. The columns
 /// each covered interval meets are pushed to `touched` as a range (ascending; consecutive
@@ -15,20 +23,21 @@ use std::ops::Range;
 pub(crate) fn add_covered(
     edges: &[f64],
     crossings: &[f64],
-    (mut inside, len, mut first): (bool, &mut [f64], Option<&mut [f64]>),
+    mut inside: bool,
+    sums: &mut LineSums<'_>,
     touched: &mut Vec<Range<usize>>,
 ) {
     let mut start = f64::NEG_INFINITY;
     for &c in crossings {
         if inside {
-            add_interval(edges, (start, c), (len, first.as_deref_mut()), touched);
+            add_interval(edges, (start, c), sums, touched);
         } else {
             start = c;
         }
         inside = !inside;
     }
     if inside {
-        add_interval(edges, (start, f64::INFINITY), (len, first), touched);
+        add_interval(edges, (start, f64::INFINITY), sums, touched);
     }
 }
 
@@ -36,9 +45,10 @@ pub(crate) fn add_covered(
 fn add_interval(
     edges: &[f64],
     (a, b): (f64, f64),
-    (len, mut first): (&mut [f64], Option<&mut [f64]>),
+    sums: &mut LineSums<'_>,
     touched: &mut Vec<Range<usize>>,
 ) {
+    let LineSums { len, first, second } = sums;
     let last = edges.len() - 1;
     if b <= a || b.is_nan() || b <= edges[0] || a >= edges[last] {
         return;
@@ -52,9 +62,12 @@ fn add_interval(
         let (lo, hi) = (a.max(e0), b.min(e1));
         if hi > lo {
             len[c] += hi - lo;
+            let (u0, u1) = (lo - e0, hi - e0);
             if let Some(f) = first.as_deref_mut() {
-                let (u0, u1) = (lo - e0, hi - e0);
                 f[c] += 0.5 * (u1 * u1 - u0 * u0);
+            }
+            if let Some(s) = second.as_deref_mut() {
+                s[c] += (u1 * u1 * u1 - u0 * u0 * u0) / 3.0;
             }
         }
     };
@@ -72,9 +85,14 @@ fn add_interval(
         for (l, w) in len[lo..hi].iter_mut().zip(widths()) {
             *l += w;
         }
-        if let Some(f) = first {
+        if let Some(f) = first.as_deref_mut() {
             for (f, w) in f[lo..hi].iter_mut().zip(widths()) {
                 *f += 0.5 * (w * w);
+            }
+        }
+        if let Some(s) = second.as_deref_mut() {
+            for (s, w) in s[lo..hi].iter_mut().zip(widths()) {
+                *s += w * w * w / 3.0;
             }
         }
     }
@@ -90,34 +108,65 @@ mod tests {
         let edges = [0.0, 1.0, 2.0, 4.0];
         let mut len = [0.0; 3];
         let mut first = [0.0; 3];
+        let mut second = [0.0; 3];
         // Covered on [-1, 0.5] and [1.5, 3] and from 3.5 on.
         let mut touched = Vec::new();
+        let mut sums = LineSums {
+            len: &mut len,
+            first: Some(&mut first),
+            second: Some(&mut second),
+        };
         add_covered(
             &edges,
             &[-1.0, 0.5, 1.5, 3.0, 3.5],
-            (false, &mut len, Some(&mut first)),
+            false,
+            &mut sums,
             &mut touched,
         );
         assert_eq!(len, [0.5, 0.5, 1.5]);
+        // int s^2 ds from the column's start: [0, 0.5]; [0.5, 1]; [0, 1] and [1.5, 2].
+        let cube = |a: f64, b: f64| (b * b * b - a * a * a) / 3.0;
+        assert_eq!(
+            second,
+            [
+                cube(0.0, 0.5),
+                cube(0.5, 1.0),
+                cube(0.0, 1.0) + cube(1.5, 2.0)
+            ]
+        );
         // [-1, 0.5] meets column 0, [1.5, 3] columns 1 and 2, [3.5, inf) column 2.
         assert_eq!(touched, [0..1, 1..3, 2..3]);
         assert_eq!(first, [0.125, 0.5 * (1.0 - 0.25), 0.5 * (1.0 + 4.0 - 2.25)]);
         // Inside before the first crossing: covered up to 0.25, then from 3 on.
+        fn plain(len: &mut [f64; 3]) -> LineSums<'_> {
+            LineSums {
+                len,
+                first: None,
+                second: None,
+            }
+        }
         let mut len = [0.0; 3];
         add_covered(
             &edges,
             &[0.25, 3.0],
-            (true, &mut len, None),
+            true,
+            &mut plain(&mut len),
             &mut Vec::new(),
         );
         assert_eq!(len, [0.25, 0.0, 1.0]);
         // Two crossings at one point (a tangency) change nothing.
         let mut len = [0.0; 3];
-        add_covered(&edges, &[1.5, 1.5], (true, &mut len, None), &mut Vec::new());
+        add_covered(
+            &edges,
+            &[1.5, 1.5],
+            true,
+            &mut plain(&mut len),
+            &mut Vec::new(),
+        );
         assert_eq!(len, [1.0, 1.0, 2.0]);
         // Nothing when the line is outside throughout.
         let (mut len, mut touched) = ([0.0; 3], Vec::new());
-        add_covered(&edges, &[], (false, &mut len, None), &mut touched);
+        add_covered(&edges, &[], false, &mut plain(&mut len), &mut touched);
         assert_eq!(len, [0.0; 3]);
         assert!(touched.is_empty());
     }

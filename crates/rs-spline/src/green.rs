@@ -95,7 +95,7 @@ pub struct PieceAccuracy {
 }
 
 /// Most components whose rule sums [`integrate_piece`] keeps on the stack (more allocate).
-const STACK_COMPONENTS: usize = 4;
+const STACK_COMPONENTS: usize = 6;
 
 /// `integral_{t0}^{t1} g(t) dt` along one piece, added to `sum` (one entry per component of
 /// `integrand`), by `rule`: the exact rule's nodes mapped onto `[t0, t1]` (rounded as
