@@ -63,6 +63,7 @@ pub mod green;
 pub mod grid;
 mod homogeneous;
 mod insertion;
+pub mod intersect;
 mod kernel;
 mod knots;
 pub mod limits;
@@ -87,6 +88,9 @@ pub use curve::{
 pub use domain::{BoundaryLoop, DEFAULT_RELATIVE_CLOSURE_TOLERANCE, Domain, Orientation};
 pub use error::{DomainError, SplineError};
 pub use homogeneous::{CurveDerivatives, Hpoint};
+pub use intersect::{
+    CurveHit, CurveOverlap, IntersectError, IntersectOptions, Intersections, intersect,
+};
 pub use kernel::{rational_quotient, rational_sums, tensor_rational_sums, weights_are_equal};
 pub use knots::KnotVector;
 pub use line::{polyline, segment};
