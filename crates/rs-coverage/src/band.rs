@@ -617,10 +617,10 @@ impl Band<'_> {
                     }
                     .clamp(0.0, 1.0);
                 }
-                if let Some(c) = centroids.as_deref_mut() {
-                    if len > 0.0 {
-                        c[r * lines + i] = (e0 + first / len).clamp(e0, e1);
-                    }
+                if let Some(c) = centroids.as_deref_mut()
+                    && len > 0.0
+                {
+                    c[r * lines + i] = (e0 + first / len).clamp(e0, e1);
                 }
             }
         }

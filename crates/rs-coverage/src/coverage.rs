@@ -133,8 +133,8 @@ pub struct Coverage {
     /// length's), `[NaN, NaN]` where there is none; with [`CoverageOptions::boundary`].
     pub boundary_centroids: Option<Vec<[f64; 2]>>,
     /// `(rows, nx)`: the unit vector along the integral of the outward normal over the
-    /// boundary inside each cell (`integral of n ds = (dy, -dx)` summed over its parts,
-    /// AMReX's `bnorm` up to sign convention: outward from the covered part), `[NaN, NaN]`
+    /// boundary inside each cell (`integral of n ds = (dy, -dx)` summed over its parts),
+    /// pointing out of the covered part (into the body, as `AMReX`'s `bnorm`), `[NaN, NaN]`
     /// where there is none or the integral is 0; with [`CoverageOptions::boundary`].
     pub boundary_normals: Option<Vec<[f64; 2]>>,
     /// `(rows, nx + 1)`: the centroid `y` of each vertical face's covered part, `NaN` where
@@ -439,15 +439,16 @@ impl GridCoverage {
                 high: g1,
             });
         }
-        if let Some((d0, d1)) = self.extent.as_ref().map(span) {
-            if d0 < 0.0 && d1 > 0.0 {
-                return Err(CoverageError::AcrossAxis {
-                    what: "domain",
-                    axis,
-                    low: d0,
-                    high: d1,
-                });
-            }
+        if let Some((d0, d1)) = self.extent.as_ref().map(span)
+            && d0 < 0.0
+            && d1 > 0.0
+        {
+            return Err(CoverageError::AcrossAxis {
+                what: "domain",
+                axis,
+                low: d0,
+                high: d1,
+            });
         }
         Ok(())
     }
