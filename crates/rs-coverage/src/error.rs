@@ -118,6 +118,34 @@ pub enum CoverageError {
         /// The output.
         what: &'static str,
     },
+    /// More pairs of boundary pieces of different materials meet than
+    /// [`crate::MAX_PIECE_PAIRS`].
+    #[error(
+        "{pairs} pairs of boundary pieces of different materials meet, more than the limit of {limit}"
+    )]
+    TooManyPiecePairs {
+        /// The pairs whose control boxes meet (counted up to one past the limit).
+        pairs: usize,
+        /// The limit.
+        limit: usize,
+    },
+    /// Two materials' boundary pieces whose intersections were not found within the budget.
+    #[error("material boundaries: {0}")]
+    Intersection(#[from] rs_spline::IntersectError),
+    /// A split boundary piece could not be built (non-finite points).
+    #[error("material boundaries: {0}")]
+    Curve(#[from] rs_spline::SplineError),
+    /// A material's domain could not be classified against.
+    #[error("material boundaries: {0}")]
+    Contain(#[from] rs_contain::ContainError),
+    /// The kept boundary pieces of a material do not close into loops.
+    #[error(
+        "the boundary of material {material} does not close into loops (an intersection was missed)"
+    )]
+    Unchained {
+        /// The material (index of its domain).
+        material: usize,
+    },
     /// The output could not be allocated.
     #[error("cannot allocate {bytes} bytes for the output: compute the grid in smaller row bands")]
     OutOfMemory {

@@ -81,9 +81,11 @@ mod error;
 mod grid;
 mod in_order;
 mod lines;
+mod materials;
 
 pub use coverage::{
     BAND_BYTES, Bands, Coverage, CoverageOptions, GridCoverage, MAX_CELLS, band_rows, cell_coverage,
 };
 pub use error::CoverageError;
 pub use grid::{CellGrid, MAX_EDGES};
+pub use materials::{MAX_PIECE_PAIRS, material_domains};
