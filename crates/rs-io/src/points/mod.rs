@@ -40,7 +40,7 @@ use thiserror::Error;
 
 pub use csv::CsvReader;
 pub use encoded::{EncodedPoints, NpyType};
-pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyReader, npy_header};
+pub use npy::{MAX_NPY_POINTS, NPY_HEADER_BYTES, NpyReader, npy_header, read_npy_vector};
 pub use run::{CsvPoints, PointRun, PointsReader, ReadProgress, RunPoints, RunSizes};
 pub use xyz::{XyzReader, XyzRun};
 

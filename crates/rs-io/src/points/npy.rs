@@ -122,6 +122,37 @@ pub(super) fn read_header(
     path: &str,
     columns: usize,
 ) -> Result<(NpyType, usize, u64), PointsError> {
+    let text = read_header_text(input, path)?;
+    let (ty, len) = parse_points_header(&text, columns).map_err(|message| PointsError::Npy {
+        path: path.to_string(),
+        message,
+    })?;
+    // The magic and version (8 bytes), the header's length (2 bytes in version 1, else 4).
+    let length_bytes = if text.version == 1 { 2 } else { 4 };
+    Ok((ty, len, (8 + length_bytes + text.len) as u64))
+}
+
+/// A header dict as read, with the format version and its length in bytes.
+struct HeaderText {
+    text: String,
+    version: u8,
+    len: usize,
+}
+
+impl std::ops::Deref for HeaderText {
+    type Target = str;
+    fn deref(&self) -> &str {
+        &self.text
+    }
+}
+
+/// Reads the magic, the version and the header dict of a `.npy` file (named `path` in
+/// errors), leaving `input` at the data.
+///
+/// # Errors
+/// [`PointsError::Npy`] for a file that is not a `.npy` file (versions 1.0 to 3.0, a header
+/// of at most 1 MiB); [`PointsError::Io`].
+fn read_header_text(input: &mut impl Read, path: &str) -> Result<HeaderText, PointsError> {
     let fail = |message: String| PointsError::Npy {
         path: path.to_string(),
         message,
@@ -157,13 +188,11 @@ pub(super) fn read_header(
     input
         .read_exact(&mut text)
         .map_err(|_| fail("header cut short".into()))?;
-    let text = String::from_utf8_lossy(&text);
-    let (ty, len) = parse_points_header(&text, columns).map_err(fail)?;
-    Ok((
-        ty,
-        len,
-        (8 + if magic[6] == 1 { 2 } else { 4 } + header_len) as u64,
-    ))
+    Ok(HeaderText {
+        text: String::from_utf8_lossy(&text).into_owned(),
+        version: magic[6],
+        len: header_len,
+    })
 }
 
 /// Reads the bytes of points `first..first + n` of a file of `len` points of `ty` (named
@@ -393,6 +422,43 @@ impl NpyFile {
 
 /// The element type and the number of points of a header dict for an `(N, 2)` array.
 fn parse_points_header(text: &str, columns: usize) -> Result<(NpyType, usize), String> {
+    let (descr, dims) = parse_dict(text)?;
+    let ty = match descr {
+        "<f8" | "=f8" | "f8" => NpyType::F64,
+        "<f4" | "=f4" | "f4" => NpyType::F32,
+        other => {
+            return Err(format!(
+                "element type {other:?}: points must be float64 ('<f8') or float32 ('<f4'), little-endian"
+            ));
+        }
+    };
+    let inner = shape_text(&dims);
+    match dims[..] {
+        [n, c] if c == columns as u64 && n <= MAX_NPY_POINTS => Ok((ty, n as usize)),
+        [n, c] if c == columns as u64 => {
+            Err(format!("{n} points: more than the limit {MAX_NPY_POINTS}"))
+        }
+        _ => Err(format!(
+            "shape ({inner}): points must be an array of shape (N, {columns})"
+        )),
+    }
+}
+
+/// The shape's sizes as the header writes them, `3, 2` (`3,` for one).
+fn shape_text(dims: &[u64]) -> String {
+    match dims {
+        [n] => format!("{n},"),
+        _ => dims
+            .iter()
+            .map(u64::to_string)
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
+}
+
+/// The element type (`descr`) and the shape of a header dict in C order (a Fortran-order
+/// array is refused).
+fn parse_dict(text: &str) -> Result<(&str, Vec<u64>), String> {
     let value = |key: &str| -> Result<&str, String> {
         let k = format!("'{key}':");
         let at = text
@@ -405,26 +471,15 @@ fn parse_points_header(text: &str, columns: usize) -> Result<(NpyType, usize), S
         .strip_prefix('\'')
         .and_then(|d| d.split('\'').next())
         .ok_or("header 'descr' is not a string")?;
-    let ty = match descr {
-        "<f8" | "=f8" | "f8" => NpyType::F64,
-        "<f4" | "=f4" | "f4" => NpyType::F32,
-        other => {
-            return Err(format!(
-                "element type {other:?}: points must be float64 ('<f8') or float32 ('<f4'), little-endian"
-            ));
-        }
-    };
     if value("fortran_order")?.starts_with("True") {
-        return Err(
-            "Fortran-order array: write points in C order (numpy.ascontiguousarray)".into(),
-        );
+        return Err("Fortran-order array: write it in C order (numpy.ascontiguousarray)".into());
     }
     let shape = value("shape")?;
     let inner = shape
         .strip_prefix('(')
         .and_then(|s| s.split(')').next())
         .ok_or("header 'shape' is not a tuple")?;
-    let dims: Vec<u64> = inner
+    let dims = inner
         .split(',')
         .map(str::trim)
         .filter(|s| !s.is_empty())
@@ -433,21 +488,104 @@ fn parse_points_header(text: &str, columns: usize) -> Result<(NpyType, usize), S
                 .map_err(|_| format!("shape ({inner}) is not a tuple of sizes"))
         })
         .collect::<Result<_, _>>()?;
-    match dims[..] {
-        [n, c] if c == columns as u64 && n <= MAX_NPY_POINTS => Ok((ty, n as usize)),
-        [n, c] if c == columns as u64 => {
-            Err(format!("{n} points: more than the limit {MAX_NPY_POINTS}"))
-        }
-        _ => Err(format!(
-            "shape ({inner}): points must be an array of shape (N, {columns})"
-        )),
+    Ok((descr, dims))
+}
+
+/// The values of a `.npy` file holding a 1-D array of float64 (little-endian, `'<f8'`) of at
+/// most `max_len` values, as stored (grid edges: the caller checks the values). Read whole:
+/// `max_len` bounds the memory.
+///
+/// # Errors
+/// [`PointsError::Io`] if the file cannot be opened or read; [`PointsError::Npy`] for a file
+/// that is not a `.npy` array, another element type, another shape than `(N,)`, more than
+/// `max_len` values, or data that end early.
+///
+/// # Examples
+///
+/// ```
+/// use rs_io::points::{NpyType, npy_header, read_npy_vector};
+/// let path = std::env::temp_dir().join(format!("rs_io_doc_edges_{}.npy", std::process::id()));
+/// let mut bytes = npy_header(NpyType::F64, &[3]);
+/// for v in [0.0f64, 0.5, 2.0] {
+///     bytes.extend_from_slice(&v.to_le_bytes());
+/// }
+/// std::fs::write(&path, &bytes).unwrap();
+/// assert_eq!(read_npy_vector(&path, 10).unwrap(), [0.0, 0.5, 2.0]);
+/// let too_many = read_npy_vector(&path, 2).unwrap_err().to_string();
+/// assert!(too_many.ends_with("3 values: more than the limit of 2"), "{too_many}");
+/// std::fs::remove_file(&path).unwrap();
+/// ```
+pub fn read_npy_vector(path: impl AsRef<Path>, max_len: usize) -> Result<Vec<f64>, PointsError> {
+    let path = path.as_ref();
+    let name = path.display().to_string();
+    let fail = |message: String| PointsError::Npy {
+        path: name.clone(),
+        message,
+    };
+    let mut input = std::io::BufReader::new(open_file(path)?);
+    let text = read_header_text(&mut input, &name)?;
+    let (descr, dims) = parse_dict(&text).map_err(fail)?;
+    if !matches!(descr, "<f8" | "=f8" | "f8") {
+        return Err(fail(format!(
+            "element type {descr:?}: expected float64 ('<f8'), little-endian"
+        )));
     }
+    let [len] = dims[..] else {
+        return Err(fail(format!(
+            "shape ({}): expected a 1-D array, shape (N,)",
+            shape_text(&dims)
+        )));
+    };
+    if len > max_len as u64 {
+        return Err(fail(format!(
+            "{len} values: more than the limit of {max_len}"
+        )));
+    }
+    let len = len as usize;
+    let mut bytes = vec![0u8; len * 8];
+    input.read_exact(&mut bytes).map_err(|e| {
+        fail(format!(
+            "the data end before the {len} values the header announces ({e})"
+        ))
+    })?;
+    Ok(bytes
+        .chunks_exact(8)
+        .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]))
+        .collect())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use rs_spline::Point;
+
+    #[test]
+    fn a_vector_is_read_whole_and_bad_ones_get_one_line() {
+        let dir = std::env::temp_dir().join(format!("rs_io_npy_vector_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let put = |name: &str, bytes: &[u8]| {
+            let p = dir.join(name);
+            std::fs::write(&p, bytes).unwrap();
+            p
+        };
+        let ok = put("ok.npy", &file(NpyType::F64, &[4], &[-1.0, 0.25, 0.5, 7.0]));
+        assert_eq!(read_npy_vector(&ok, 4).unwrap(), [-1.0, 0.25, 0.5, 7.0]);
+        let err = |p: &Path, max: usize| read_npy_vector(p, max).unwrap_err().to_string();
+        assert!(err(&ok, 3).ends_with("4 values: more than the limit of 3"));
+        let f32 = put("f32.npy", &file(NpyType::F32, &[2], &[0.0, 1.0]));
+        assert!(err(&f32, 9).contains("element type \"<f4\": expected float64"));
+        let two_d = put("2d.npy", &file(NpyType::F64, &[2, 2], &[0.0; 4]));
+        assert!(err(&two_d, 9).contains("shape (2, 2): expected a 1-D array"));
+        let short = put("short.npy", &file(NpyType::F64, &[3], &[0.0, 1.0]));
+        assert!(err(&short, 9).contains("the data end before the 3 values"));
+        let text = put("text.npy", b"0,1,2\n");
+        assert!(err(&text, 9).contains("not a .npy file"));
+        assert!(err(&dir.join("missing.npy"), 9).contains("missing.npy"));
+        for e in [err(&f32, 9), err(&text, 9), err(&dir.join("missing.npy"), 9)] {
+            assert_eq!(e.lines().count(), 1, "{e}");
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
 
     fn file(ty: NpyType, shape: &[usize], values: &[f64]) -> Vec<u8> {
         let mut bytes = npy_header(ty, shape);
