@@ -85,10 +85,13 @@ struct Crossings {
     vertical: Vec<(u32, f64)>,
     /// The current piece's crossings with the band's lines: `(line, t, x)`, ascending lines.
     local: Vec<(usize, f64, f64)>,
-    /// Its crossings with vertical lines strictly inside its band part: `(t, i, y)`, by `t`.
-    v_events: Vec<(f64, usize, f64)>,
+    /// Its crossings with vertical lines strictly inside its band part: `(t, i, y, m)`, by
+    /// `t`, `m` the first of `anchors` at or beyond it along the piece.
+    v_events: Vec<(f64, usize, f64, usize)>,
     /// Its crossings with horizontal lines strictly inside its band part: `(t, x, y)`, by `t`.
     h_events: Vec<(f64, f64, f64)>,
+    /// Its band part's start, `h_events` and end: `(t, x, y)` in the piece's order.
+    anchors: Vec<(f64, f64, f64)>,
     /// `(cell, integrals)`: the signed integrals of every part, by the cell's index in the
     /// band, in the order the walk found them (summed per cell in that order).
     parts: Vec<(usize, PartIntegrals)>,
@@ -183,6 +186,25 @@ impl Band<'_> {
         };
         let (bx0, bx1) = (pa.x.min(pb.x), pa.x.max(pb.x));
         let (ylow, yhigh) = (pa.y.min(pb.y), pa.y.max(pb.y));
+        c.h_events.clear();
+        c.h_events.extend(
+            c.local
+                .iter()
+                .filter(|l| ylow < ys[l.0] && ys[l.0] < yhigh)
+                .map(|l| (l.1.clamp(ta, tb), l.2, ys[l.0])),
+        );
+        if y_dir == Monotonicity::Decreasing {
+            c.h_events.reverse();
+        }
+        // The part's crossings with horizontal lines and its ends, in its order: what a
+        // vertical line's crossing is held between, so that it falls in the same place
+        // whether a horizontal line is one of the band's own or its first or last (the
+        // values of a cell do not depend on the band it is computed in).
+        c.anchors.clear();
+        c.anchors.push((ta, pa.x, pa.y));
+        c.anchors.extend(c.h_events.iter().copied());
+        c.anchors.push((tb, pb.x, pb.y));
+        let forward = x_dir == Monotonicity::Increasing;
         // Vertical lines with x_i in [bx0, bx1) cross the part (half-open, as the lines
         // `x_i + 0`); those strictly inside split it.
         c.v_events.clear();
@@ -194,9 +216,25 @@ impl Band<'_> {
             let y = if x == bx0 {
                 if pa.x == bx0 { pa.y } else { pb.y }
             } else {
-                let (t, y) = arc.at_x(x);
-                let y = y.clamp(ylow, yhigh);
-                c.v_events.push((t.clamp(ta, tb), i, y));
+                // The first anchor at or beyond `x` along the part: a crossing through the
+                // grid vertex is that anchor's, else the solve is held between the two.
+                let m = if forward {
+                    c.anchors.partition_point(|a| a.1 < x)
+                } else {
+                    c.anchors.partition_point(|a| a.1 > x)
+                }
+                .clamp(1, c.anchors.len() - 1);
+                let (before, after) = (c.anchors[m - 1], c.anchors[m]);
+                let (t, y) = if after.1 == x {
+                    (after.0, after.2)
+                } else {
+                    let (t, y) = arc.at_x(x);
+                    (
+                        t.clamp(before.0, after.0.max(before.0)),
+                        y.clamp(before.2.min(after.2), before.2.max(after.2)),
+                    )
+                };
+                c.v_events.push((t, i, y, m));
                 y
             };
             if self.vertical_faces {
@@ -205,16 +243,6 @@ impl Band<'_> {
         }
         if x_dir == Monotonicity::Decreasing {
             c.v_events.reverse();
-        }
-        c.h_events.clear();
-        c.h_events.extend(
-            c.local
-                .iter()
-                .filter(|l| ylow < ys[l.0] && ys[l.0] < yhigh)
-                .map(|l| (l.1.clamp(ta, tb), l.2, ys[l.0])),
-        );
-        if y_dir == Monotonicity::Decreasing {
-            c.h_events.reverse();
         }
         // Separate solves may disagree in the last bit near a grid vertex: keep each list in
         // order along the piece.
@@ -252,14 +280,16 @@ impl Band<'_> {
         let (mut t_prev, mut p_prev) = (ta, pa);
         let (mut hi, mut vi) = (0, 0);
         loop {
+            // In the order of the anchors (`h_events[hi]` is `anchors[hi + 1]`), so that a
+            // crossing's place does not hang on the last bits of two solves.
             let vertical = match (c.h_events.get(hi), c.v_events.get(vi)) {
                 (None, None) => break,
-                (Some(h), Some(v)) => v.0 <= h.0,
+                (Some(_), Some(v)) => v.3 <= hi + 1,
                 (None, Some(_)) => true,
                 (Some(_), None) => false,
             };
             let (t, p) = if vertical {
-                let (t, i, y) = c.v_events[vi];
+                let (t, i, y, _) = c.v_events[vi];
                 (t, Point::new(xs[i], y))
             } else {
                 let (t, x, y) = c.h_events[hi];

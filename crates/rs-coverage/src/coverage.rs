@@ -462,9 +462,10 @@ impl GridCoverage {
     /// lines `j0 ..= j1`. The work is `O(pieces + crossings of the boundary with the band's
     /// lines + cells of the band)`; the memory beyond the output is that of the band's
     /// crossings and one row. The values of a cell do not depend on the band it is computed
-    /// in, except where a curved boundary passes through a grid vertex within rounding: the
-    /// cells and faces at that vertex may then differ by a few units in the last place with
-    /// the band's first and last lines.
+    /// in, bit for bit, also where the boundary passes through a grid vertex: a crossing with
+    /// a vertical line is held between the piece's crossings with the horizontal lines on
+    /// either side of it (its own when it passes through the vertex), which are the same
+    /// solves in every band, and the walk takes the crossings in that order.
     ///
     /// # Errors
     /// [`CoverageError::BadRows`] for an empty range or one beyond the grid;
@@ -509,8 +510,8 @@ impl GridCoverage {
     /// more than [`BAND_BYTES`], so that those ahead hold at most `2 x threads x BAND_BYTES`;
     /// at least one), so memory holds a few bands whatever the grid's size: stream a grid larger than [`MAX_CELLS`] (or than
     /// memory) to a file band by band. The bands' values are those of one band, or of
-    /// [`GridCoverage::all`], bit for bit (but see [`GridCoverage::rows`] for a curved boundary
-    /// through a grid vertex). When `consume` returns early (dropping the
+    /// [`GridCoverage::all`], bit for bit, whatever the bands' height. When `consume` returns
+    /// early (dropping the
     /// iterator), the bands being computed are finished and no more are started. The
     /// iterator lives in `consume` because the bands are computed by rayon jobs that borrow
     /// the coverage (as `std::thread::scope` lends its scope).

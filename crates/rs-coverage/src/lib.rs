@@ -58,7 +58,20 @@
 //!   [`CoverageError`]s, never panics.
 //! - **Bands**: one rule ([`band_rows`]) cuts a grid into bands of rows, for
 //!   [`GridCoverage::all`], [`GridCoverage::bands`] and the front ends; every band is computed
-//!   as [`GridCoverage::rows`] computes it.
+//!   as [`GridCoverage::rows`] computes it, and a cell's values do not depend on the band: any
+//!   cutting into bands gives the one-shot grid's arrays bit for bit.
+//! - **Revolved cells** ([`CoverageOptions::axisymmetric`]): each cell stands for the ring it
+//!   sweeps about the axis; fractions are volume fractions `int int r dA / int int_cell r dA`
+//!   (by Pappus the revolved volume is `2 pi int int r dA`: the first moment the centroids
+//!   already use), centroids and the apertures of faces across the axis are weighted by `r`
+//!   (second moments from `int u^2 v dx`, `int u v^2 / 2 dx`, `int v^3 / 3 dx` on the parts).
+//! - **Embedded boundary** ([`CoverageOptions::boundary`]): per cell the boundary's length
+//!   and centroid (arc-length integrals by the bounded adaptive rule, to `1e-15` of the
+//!   cell's half perimeter) and the unit vector along the integral of its outward normal,
+//!   `sum (dy, -dx)` over its parts from the same crossing points the apertures use, so the
+//!   divergence theorem holds per cell to rounding: that integral plus the covered faces'
+//!   outward lengths (apertures times face lengths) is 0. Face centroids
+//!   ([`CoverageOptions::face_centroids`]) are the centroids of the faces' covered parts.
 //!
 //! # Examples
 //!
