@@ -165,7 +165,7 @@ impl Coverage {
 
     /// The arrays for `rows` of `nx` columns as a band expects them: zeros, the centroids
     /// `NaN` (see `BandOut`).
-    fn zeroed(
+    pub(crate) fn zeroed(
         rows: Range<usize>,
         nx: usize,
         options: CoverageOptions,
@@ -600,15 +600,7 @@ impl GridCoverage {
     }
 
     fn check_cells(&self, rows: usize) -> Result<(), CoverageError> {
-        let columns = self.grid.nx();
-        if rows.checked_mul(columns).is_none_or(|c| c > MAX_CELLS) {
-            return Err(CoverageError::TooManyCells {
-                rows,
-                columns,
-                limit: MAX_CELLS,
-            });
-        }
-        Ok(())
+        check_cells(&self.grid, rows)
     }
 
     /// The one computation of a band: the rows `rows` with `options` into `out` (see
@@ -645,6 +637,19 @@ impl Iterator for Bands<'_> {
 }
 
 impl ExactSizeIterator for Bands<'_> {}
+
+/// [`CoverageError::TooManyCells`] for `rows` rows of `grid` beyond [`MAX_CELLS`].
+pub(crate) fn check_cells(grid: &CellGrid, rows: usize) -> Result<(), CoverageError> {
+    let columns = grid.nx();
+    if rows.checked_mul(columns).is_none_or(|c| c > MAX_CELLS) {
+        return Err(CoverageError::TooManyCells {
+            rows,
+            columns,
+            limit: MAX_CELLS,
+        });
+    }
+    Ok(())
+}
 
 /// Output bytes a band holds ([`band_rows`]): 8 MiB, `2^20` cells of fractions alone.
 pub const BAND_BYTES: usize = 8 << 20;
@@ -690,7 +695,7 @@ fn band_range(k: usize, band_rows: usize, ny: usize) -> Range<usize> {
 }
 
 /// The threads bands are computed on: rayon's, or one without the `parallel` feature.
-fn threads() -> usize {
+pub(crate) fn threads() -> usize {
     #[cfg(feature = "parallel")]
     return rayon::current_num_threads();
     #[cfg(not(feature = "parallel"))]

@@ -94,6 +94,7 @@ mod error;
 mod grid;
 mod in_order;
 mod lines;
+mod material_coverage;
 mod materials;
 
 pub use coverage::{
@@ -101,4 +102,5 @@ pub use coverage::{
 };
 pub use error::CoverageError;
 pub use grid::{CellGrid, MAX_EDGES};
+pub use material_coverage::{MaterialBands, MaterialCoverage};
 pub use materials::{MAX_PIECE_PAIRS, material_domains};
