@@ -64,7 +64,7 @@ fn overlapping_discs_replace_and_overlap_as_closed_forms_say() {
     assert!(same_bits(&p[0], &a_alone));
     assert!((total(&p[0].fractions, &grid) - PI).abs() < 1e-12);
     // Bands of every height give the whole grid's values.
-    for k in 0..2 {
+    for (k, whole) in c.iter().enumerate() {
         for rows in [1, 5, 48] {
             let mut got = Vec::new();
             replaced.bands(k, rows, options, |bands| {
@@ -72,7 +72,7 @@ fn overlapping_discs_replace_and_overlap_as_closed_forms_say() {
                     got.extend(band.unwrap().fractions);
                 }
             });
-            assert_eq!(got, c[k].fractions, "material {k}, {rows} rows");
+            assert_eq!(got, whole.fractions, "material {k}, {rows} rows");
         }
     }
 }
