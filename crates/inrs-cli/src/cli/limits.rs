@@ -24,7 +24,8 @@ Limits (inputs beyond them are errors, never a crash or a hang):
   boundary pieces for mesh, fit, sample --ny    10^4 Bezier pieces (a piece costs about 0.25 ms)
   fit --degree / formula length                 12 / 4096 bytes; spline files 1 GiB
   convex-domain --box coordinates / --max-level 1e100 / 20
-  fractions --grid                              nx, ny 1..67108863; nx x ny <= 2^32 cells,
+  fractions --grid, --x-edges / --y-edges       nx, ny 1..67108863 (edges files: 2..2^26
+                                                float64 values); nx x ny <= 2^32 cells,
                                                 computed and written in bands of 8 MiB
   cubature / integrate --degree                 0..40 (at most 861 nodes; the work grows
                                                 like degree^6: seconds at 40)";

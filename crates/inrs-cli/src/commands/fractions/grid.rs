@@ -1,4 +1,5 @@
-//! `--grid x0,x1,nx,y0,y1,ny`: a uniform grid, checked before anything is read.
+//! `--grid x0,x1,nx,y0,y1,ny`: a uniform grid, checked before anything is read; the cell
+//! limit of every grid.
 
 use inrs::coverage::{CellGrid, CoverageError, MAX_EDGES};
 
@@ -31,11 +32,6 @@ impl GridSpec {
     pub(crate) fn cell_grid(&self) -> Result<CellGrid, CoverageError> {
         CellGrid::uniform(self.x0, self.x1, self.nx, self.y0, self.y1, self.ny)
     }
-
-    /// `nx ny`.
-    pub(crate) fn cells(&self) -> u64 {
-        self.nx as u64 * self.ny as u64
-    }
 }
 
 /// Parses `x0,x1,nx,y0,y1,ny`, with a one-line message naming the value at fault.
@@ -62,15 +58,19 @@ pub(crate) fn parse_grid(s: &str) -> Result<GridSpec, String> {
     if g.y0 >= g.y1 {
         return Err(format!("y0 = {:?} must be below y1 = {:?}", g.y0, g.y1));
     }
-    if g.cells() > MAX_GRID_CELLS {
+    check_cells(g.nx, g.ny)?;
+    Ok(g)
+}
+
+/// `nx x ny` at most [`MAX_GRID_CELLS`].
+pub(crate) fn check_cells(nx: usize, ny: usize) -> Result<(), String> {
+    let cells = nx as u64 * ny as u64;
+    if cells > MAX_GRID_CELLS {
         return Err(format!(
-            "{} x {} = {} cells exceed the limit of 2^32 ({MAX_GRID_CELLS}) cells",
-            g.nx,
-            g.ny,
-            g.cells()
+            "{nx} x {ny} = {cells} cells exceed the limit of 2^32 ({MAX_GRID_CELLS}) cells"
         ));
     }
-    Ok(g)
+    Ok(())
 }
 
 /// A finite bound.

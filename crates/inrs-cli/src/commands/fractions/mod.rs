@@ -1,48 +1,98 @@
-//! `inrs fractions`: the exact covered fraction of every cell of a uniform grid, streamed band
-//! by band into `.npy` files (with centroids and face apertures on request).
+//! `inrs fractions`: the exact covered fraction of every cell of a uniform or rectilinear
+//! grid, streamed band by band into `.npy` files (with centroids, face apertures, the
+//! boundary's geometry and face centroids on request; revolved about an axis on request).
 
 mod bands;
 mod grid;
 
 use std::path::{Path, PathBuf};
 
-use clap::Args;
-use inrs::coverage::{CoverageOptions, GridCoverage};
+use clap::{ArgGroup, Args, ValueEnum};
+use inrs::coverage::{CellGrid, CoverageOptions, GridCoverage, MAX_EDGES};
+use inrs::spline::Axis;
 
 use crate::args::{DomainArg, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::limits;
 
+use bands::Array;
 use grid::{GridSpec, parse_grid};
 #[cfg(test)]
 pub(crate) use grid::{MAX_CELLS_PER_AXIS, MAX_GRID_CELLS};
 
-/// Exact covered fraction of every cell of a uniform grid (even-odd or nonzero fill of closed
-/// loops); writes float64 `.npy` arrays.
+/// `--axisymmetric`: the coordinate axis the domain revolves about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum AxisArg {
+    /// About the x axis: the radius is |y|.
+    X,
+    /// About the y axis: the radius is |x| (r-z coordinates with x = r, y = z).
+    Y,
+}
+
+impl From<AxisArg> for Axis {
+    fn from(a: AxisArg) -> Self {
+        match a {
+            AxisArg::X => Axis::X,
+            AxisArg::Y => Axis::Y,
+        }
+    }
+}
+
+/// Exact covered fraction of every cell of a grid, planar or revolved; writes float64 .npy arrays
 ///
-/// `F.npy` has shape (ny, nx): row j, column i is the cell `[x_i, x_i+1] x [y_j, y_j+1]` with
-/// `x_i = x0 + i (x1 - x0) / nx` and `y_j` likewise (y increases with the row). --centroids
-/// adds `F.centroids.npy` (ny, nx, 2): the [x, y] centroid of each cell's covered part, NaN
-/// where the cell is empty. --apertures adds `F.x_apertures.npy` (ny, nx + 1), the covered
-/// fraction of each vertical face `x = x_i`, and `F.y_apertures.npy` (ny + 1, nx), of each
-/// horizontal face `y = y_j`.
-/// The grid is computed in row bands on all cores and written as it goes: memory stays a few
-/// bands whatever the grid (at most 2^32 cells). The boundary must be closed (an open one is
-/// an error: `inrs winding` handles open curves). Files appear only when the run succeeds.
+/// The closed loops are filled by the even-odd or the nonzero rule; the grid is uniform (--grid)
+/// or rectilinear (--x-edges, --y-edges).
+///
+/// `F.npy` has shape (ny, nx): row j, column i is the cell `[x_i, x_i+1] x [y_j, y_j+1]`
+/// (y increases with the row), with `x_i = x0 + i (x1 - x0) / nx` for --grid, or the edges of
+/// --x-edges / --y-edges. Extra files beside it, `F.<name>.npy` (NaN where a value does not
+/// exist):
+///   --centroids       `centroids` (ny, nx, 2): [x, y] of each cell's covered part (NaN: empty)
+///   --apertures       `x_apertures` (ny, nx + 1): covered fraction of each vertical face
+///                     `x = x_i`; `y_apertures` (ny + 1, nx): of each horizontal face `y = y_j`
+///   --boundary        `boundary_lengths` (ny, nx): length of the boundary in each cell (0: none);
+///                     `boundary_centroids` (ny, nx, 2): its [x, y] centroid (NaN: none);
+///                     `boundary_normals` (ny, nx, 2): unit integral of its normal, pointing out
+///                     of the covered part (NaN: none, or an integral of 0)
+///   --face-centroids  `x_face_centroids` (ny, nx + 1): y of the centroid of each vertical
+///                     face's covered part; `y_face_centroids` (ny + 1, nx): x of each
+///                     horizontal face's (NaN: not covered)
+/// With --axisymmetric a cell stands for the ring it sweeps about the axis: F holds the
+/// covered fraction of the ring's volume, the centroids are weighted by the radius, the
+/// apertures of faces across the axis are fractions of annuli (--boundary and
+/// --face-centroids are planar only). The grid is computed in row bands on all cores and
+/// written as it goes: memory stays a few bands whatever the grid (at most 2^32 cells). The
+/// boundary must be closed (`inrs winding` handles open curves). Files appear only when the
+/// run succeeds. `docs/CLI.md` maps the files to embedded-boundary names (`volfrac`, `vcent`, ...).
 #[derive(Args, Debug)]
-#[command(after_help = limits::AFTER_HELP)]
+#[command(after_help = limits::AFTER_HELP, verbatim_doc_comment)]
+#[command(group(ArgGroup::new("grid_form").required(true).args(["grid", "x_edges"])))]
 pub(crate) struct FractionsArgs {
     #[command(flatten)]
     domain: DomainArg,
-    /// The grid: x0,x1,nx,y0,y1,ny (x0 < x1, y0 < y1 finite; nx, ny whole numbers >= 1; at
-    /// most 2^32 cells). Negative bounds are fine: --grid -1,1,64,-1,1,64.
+    /// A uniform grid: x0,x1,nx,y0,y1,ny (x0 < x1, y0 < y1 finite; nx, ny whole numbers >= 1;
+    /// at most 2^32 cells). Negative bounds are fine: --grid -1,1,64,-1,1,64. Or --x-edges and
+    /// --y-edges.
     #[arg(
         long,
         value_name = "X0,X1,NX,Y0,Y1,NY",
         value_parser = parse_grid,
         allow_hyphen_values = true
     )]
-    grid: GridSpec,
+    grid: Option<GridSpec>,
+    /// A rectilinear grid's column edges `x_0 < ... < x_nx`: a .npy file of a 1-D float64 array
+    /// (numpy.save), at least 2 and at most 2^26 finite values; with --y-edges, instead of
+    /// --grid.
+    #[arg(long, value_name = "EDGES.npy", requires = "y_edges")]
+    x_edges: Option<PathBuf>,
+    /// The row edges `y_0 < ... < y_ny`, as --x-edges.
+    #[arg(
+        long,
+        value_name = "EDGES.npy",
+        requires = "x_edges",
+        conflicts_with = "grid"
+    )]
+    y_edges: Option<PathBuf>,
     /// Also write `F.centroids.npy` (ny, nx, 2): the covered part's centroid, NaN where empty.
     #[arg(long)]
     centroids: bool,
@@ -50,6 +100,25 @@ pub(crate) struct FractionsArgs {
     /// covered fraction of each vertical and horizontal cell face.
     #[arg(long)]
     apertures: bool,
+    /// Also write the boundary inside each cell: `F.boundary_lengths.npy` (ny, nx), its
+    /// length, 0 where there is none; `F.boundary_centroids.npy` (ny, nx, 2), the [x, y]
+    /// centroid of its length; `F.boundary_normals.npy` (ny, nx, 2), the unit vector along
+    /// the integral of its normal (dy, -dx), out of the covered part; NaN where there is none.
+    /// Planar only.
+    #[arg(long)]
+    boundary: bool,
+    /// Also write `F.x_face_centroids.npy` (ny, nx + 1), the y of the centroid of each
+    /// vertical face's covered part, and `F.y_face_centroids.npy` (ny + 1, nx), the x of each
+    /// horizontal face's; NaN where the face is not covered. Planar only.
+    #[arg(long)]
+    face_centroids: bool,
+    /// Revolve the domain about this coordinate axis: `y` (the radius is x: r-z coordinates)
+    /// or `x` (the radius is y). F.npy then holds the covered fraction of each ring's volume
+    /// (int int r dA over the ring's), --centroids the r-weighted centroids, --apertures the
+    /// covered fractions of the cylinders and annuli the faces sweep. The domain and the grid
+    /// must each lie on one side of the axis (touching it is fine).
+    #[arg(long, value_enum, value_name = "AXIS")]
+    axisymmetric: Option<AxisArg>,
     /// Which winding numbers are inside. Under either rule the loops must not cross each other
     /// or themselves (their fill is then decided by their nesting): a domain whose loops cross
     /// is refused, naming the crossing (`classify` takes any loops).
@@ -84,33 +153,87 @@ fn beside(path: &Path, stem: &str, what: &str) -> PathBuf {
     path.with_file_name(format!("{stem}.{what}.npy"))
 }
 
+/// A rectilinear grid's edges from `path` (`--x-edges`, `--y-edges`: `flag`), at most the
+/// library's [`MAX_EDGES`]; the library checks their values.
+fn read_edges(flag: &str, path: &Path) -> Result<Vec<f64>, CliError> {
+    inrs::io::points::read_npy_vector(path, MAX_EDGES)
+        .map_err(|e| CliError::Message(format!("--{flag}: {e}")))
+}
+
 impl FractionsArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let grid = self
-            .grid
-            .cell_grid()
-            .map_err(|e| CliError::Message(format!("--grid: {e}")))?;
+        let grid = self.cell_grid()?;
         let d = self.domain.load()?;
         let cover = GridCoverage::with_fill_rule(&d, grid, self.fill_rule.into())
             .map_err(|e| self.domain.error(e))?;
-        let options = CoverageOptions::DEFAULT
-            .with_centroids(self.centroids)
-            .with_apertures(self.apertures);
-        bands::write_coverage(&cover, options, &self.paths()?, |e| self.domain.error(e))
+        let options = self.options();
+        // Refused options (an axis the domain or the grid crosses, planar-only outputs
+        // revolved) before any file is created.
+        cover.check_options(options).map_err(|e| {
+            let flag = match self.axisymmetric {
+                Some(AxisArg::X) => "--axisymmetric x",
+                Some(AxisArg::Y) => "--axisymmetric y",
+                None => "fractions",
+            };
+            CliError::Message(format!("{flag}: {e}"))
+        })?;
+        bands::write_coverage(&cover, options, &self.paths(options)?, |e| {
+            self.domain.error(e)
+        })
     }
 
-    /// The fractions file and the extra files asked for.
-    fn paths(&self) -> Result<bands::OutputPaths, CliError> {
+    /// The library's options for the flags.
+    fn options(&self) -> CoverageOptions {
+        CoverageOptions::DEFAULT
+            .with_centroids(self.centroids)
+            .with_apertures(self.apertures)
+            .with_boundary(self.boundary)
+            .with_face_centroids(self.face_centroids)
+            .with_axisymmetric(self.axisymmetric.map(Axis::from))
+    }
+
+    /// The grid of `--grid`, or of `--x-edges` and `--y-edges` (clap requires one form),
+    /// checked by the library, with at most [`MAX_GRID_CELLS`](grid::MAX_GRID_CELLS) cells.
+    fn cell_grid(&self) -> Result<CellGrid, CliError> {
+        let grid = match (&self.grid, &self.x_edges, &self.y_edges) {
+            (Some(g), _, _) => g
+                .cell_grid()
+                .map_err(|e| CliError::Message(format!("--grid: {e}")))?,
+            (None, Some(x), Some(y)) => {
+                let (xs, ys) = (read_edges("x-edges", x)?, read_edges("y-edges", y)?);
+                let grid = CellGrid::new(xs, ys)
+                    .map_err(|e| CliError::Message(format!("--x-edges, --y-edges: {e}")))?;
+                grid::check_cells(grid.nx(), grid.ny())
+                    .map_err(|e| CliError::Message(format!("--x-edges, --y-edges: {e}")))?;
+                grid
+            }
+            _ => {
+                return Err(CliError::Message(
+                    "give --grid, or --x-edges and --y-edges".into(),
+                ));
+            }
+        };
+        Ok(grid)
+    }
+
+    /// The fractions file and the extra files `options` compute, beside it.
+    fn paths(&self, options: CoverageOptions) -> Result<bands::OutputPaths, CliError> {
         let out = &self.output;
         let stem = npy_stem(out)
             .ok_or_else(|| CliError::Message(format!("{}: not a file name", out.display())))?;
-        let extra = |on: bool, what: &str| on.then(|| beside(out, &stem, what));
-        Ok(bands::OutputPaths {
-            fractions: out.clone(),
-            centroids: extra(self.centroids, "centroids"),
-            x_apertures: extra(self.apertures, "x_apertures"),
-            y_apertures: extra(self.apertures, "y_apertures"),
-        })
+        Ok(bands::OutputPaths(
+            Array::ALL
+                .into_iter()
+                .filter(|a| a.computed(options))
+                .map(|a| {
+                    let path = match a.name() {
+                        None => out.clone(),
+                        Some(name) => beside(out, &stem, name),
+                    };
+                    (a, path)
+                })
+                .collect(),
+        ))
     }
 }
 
