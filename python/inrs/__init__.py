@@ -53,6 +53,8 @@ __all__ = [
     "SolidProperties",
     "classify_many",
     "CellCoverage",
+    "EBCoverage",
+    "to_xarray",
     "cubature",
     "MAX_CUBATURE_DEGREE",
     "MAX_CELLS",
@@ -135,7 +137,8 @@ class CellCoverage(NamedTuple):
     float64 arrays, ``None`` for the parts not asked for. Row ``j``, column ``i`` is the cell
     ``[x_i, x_{i+1}] x [y_j, y_{j+1}]``."""
 
-    #: ``(ny, nx)``: the covered fraction of each cell's area, in ``[0, 1]``.
+    #: ``(ny, nx)``: the covered fraction of each cell's area (revolved: of its ring's
+    #: volume), in ``[0, 1]``.
     fractions: np.ndarray
     #: ``(ny, nx, 2)``: the centroid ``(x, y)`` of each cell's covered part (inside the cell),
     #: ``NaN`` where the fraction is 0 (with ``centroids=True``).
@@ -146,6 +149,124 @@ class CellCoverage(NamedTuple):
     #: ``(ny + 1, nx)``: the covered fraction of each horizontal face ``y = y_j``, ``x`` in
     #: ``[x_i, x_{i+1}]`` (with ``apertures=True``).
     y_apertures: Optional[np.ndarray]
+
+    def to_xarray(self, x_edges: ArrayLike, y_edges: ArrayLike) -> Any:
+        """:func:`inrs.to_xarray` of this result: an ``xarray.Dataset``."""
+        return to_xarray(self, x_edges, y_edges)
+
+
+class EBCoverage(NamedTuple):
+    """What :meth:`Domain.cell_fractions` returns when the boundary's geometry or the face
+    centroids are asked for: the fields of :class:`CellCoverage` first (so that code reading
+    those by position still works), then the embedded boundary's. Float64 arrays, ``None``
+    for the parts not asked for; ``NaN`` where a value does not exist."""
+
+    #: ``(ny, nx)``: as :attr:`CellCoverage.fractions`.
+    fractions: np.ndarray
+    #: ``(ny, nx, 2)``: as :attr:`CellCoverage.centroids`.
+    centroids: Optional[np.ndarray]
+    #: ``(ny, nx + 1)``: as :attr:`CellCoverage.x_apertures`.
+    x_apertures: Optional[np.ndarray]
+    #: ``(ny + 1, nx)``: as :attr:`CellCoverage.y_apertures`.
+    y_apertures: Optional[np.ndarray]
+    #: ``(ny, nx)``: the length of the boundary inside each cell, 0 where there is none (a
+    #: boundary running on a face counts in the cell left of it or below it) (with
+    #: ``boundary=True``).
+    boundary_lengths: Optional[np.ndarray] = None
+    #: ``(ny, nx, 2)``: the centroid ``(x, y)`` of the boundary's length inside each cell,
+    #: ``NaN`` where there is none (with ``boundary=True``).
+    boundary_centroids: Optional[np.ndarray] = None
+    #: ``(ny, nx, 2)``: the unit vector along the integral of the boundary's normal over its
+    #: part in each cell, pointing out of the covered part (AMReX's ``bnorm``); ``NaN`` where
+    #: there is no boundary or the integral is 0 (with ``boundary=True``).
+    boundary_normals: Optional[np.ndarray] = None
+    #: ``(ny, nx + 1)``: the ``y`` of the centroid of each vertical face's covered part,
+    #: ``NaN`` where it is not covered (with ``face_centroids=True``).
+    x_face_centroids: Optional[np.ndarray] = None
+    #: ``(ny + 1, nx)``: the ``x`` of the centroid of each horizontal face's covered part,
+    #: ``NaN`` where it is not covered (with ``face_centroids=True``).
+    y_face_centroids: Optional[np.ndarray] = None
+
+    def to_xarray(self, x_edges: ArrayLike, y_edges: ArrayLike) -> Any:
+        """:func:`inrs.to_xarray` of this result: an ``xarray.Dataset``."""
+        return to_xarray(self, x_edges, y_edges)
+
+
+#: The dimensions of each array of a coverage in :func:`to_xarray`.
+_XARRAY_DIMS = {
+    "fractions": ("y", "x"),
+    "centroids": ("y", "x", "component"),
+    "x_apertures": ("y", "x_face"),
+    "y_apertures": ("y_face", "x"),
+    "boundary_lengths": ("y", "x"),
+    "boundary_centroids": ("y", "x", "component"),
+    "boundary_normals": ("y", "x", "component"),
+    "x_face_centroids": ("y", "x_face"),
+    "y_face_centroids": ("y_face", "x"),
+}
+
+
+def to_xarray(result: Any, x_edges: ArrayLike, y_edges: ArrayLike) -> Any:
+    """A result of :meth:`Domain.cell_fractions` (or :func:`inrs.dask.cell_fractions`) on the
+    grid of ``x_edges``, ``y_edges`` as an xarray object (xarray is not a dependency of inrs:
+    ``pip install xarray``).
+
+    The fractions alone (a NumPy or a dask array of shape ``(ny, nx)``) give a ``DataArray``
+    named ``fractions`` on the dimensions ``('y', 'x')``; a :class:`CellCoverage` or
+    :class:`EBCoverage` gives a ``Dataset`` of the arrays it holds (those not asked for are
+    left out). Coordinates: ``x``, ``y`` the cell centres (``(x_i + x_{i+1}) / 2``), and for
+    the faces' arrays ``x_face``, ``y_face`` the edges themselves: vertical faces are on
+    ``('y', 'x_face')``, horizontal faces on ``('y_face', 'x')``; centroids and normals have
+    a last dimension ``component`` with coordinates ``['x', 'y']``. A dask array is wrapped
+    as it is (lazily, nothing is computed). ``ValueError`` when the arrays' shapes do not
+    match the edges; ``ImportError`` without xarray.
+
+    >>> d = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
+    >>> xs = ys = np.linspace(-1, 1, 5)
+    >>> da = to_xarray(d.cell_fractions(xs, ys), xs, ys)  # doctest: +SKIP
+    >>> da.dims, da.x.values                                # doctest: +SKIP
+    (('y', 'x'), array([-0.75, -0.25,  0.25,  0.75]))
+    """
+    try:
+        import xarray
+    except ImportError:
+        raise ImportError("inrs.to_xarray needs xarray, which is not installed: pip install xarray") from None
+    x = _edges("x_edges", x_edges)
+    y = _edges("y_edges", y_edges)
+    nx, ny = len(x) - 1, len(y) - 1
+    coords: dict = {
+        "x": ("x", 0.5 * (x[:-1] + x[1:])),
+        "y": ("y", 0.5 * (y[:-1] + y[1:])),
+        "x_face": ("x_face", x),
+        "y_face": ("y_face", y),
+        "component": ("component", np.array(["x", "y"])),
+    }
+    sizes = {"x": nx, "y": ny, "x_face": nx + 1, "y_face": ny + 1, "component": 2}
+
+    def checked(name: str, array: Any) -> Any:
+        dims = _XARRAY_DIMS[name]
+        want = tuple(sizes[d] for d in dims)
+        if tuple(array.shape) != want:
+            raise ValueError(
+                f"{name} has shape {tuple(array.shape)}, but the edges give {want} on {dims}"
+            )
+        return array
+
+    if isinstance(result, (CellCoverage, EBCoverage)):
+        arrays = {k: v for k, v in result._asdict().items() if v is not None}
+        used = {d for k in arrays for d in _XARRAY_DIMS[k]}
+        return xarray.Dataset(
+            {k: (_XARRAY_DIMS[k], checked(k, v)) for k, v in arrays.items()},
+            coords={d: c for d, c in coords.items() if d in used},
+        )
+    if not hasattr(result, "shape"):
+        result = np.asarray(result, dtype=np.float64)
+    return xarray.DataArray(
+        checked("fractions", result),
+        dims=("y", "x"),
+        coords={"x": coords["x"], "y": coords["y"]},
+        name="fractions",
+    )
 
 
 def _edges(name: str, edges: ArrayLike) -> np.ndarray:
@@ -434,20 +555,44 @@ class Domain:
         centroids: bool = False,
         apertures: bool = False,
         *,
+        boundary: bool = False,
+        face_centroids: bool = False,
+        axisymmetric: Optional[str] = None,
         fill_rule: str = "even-odd",
         threads: Optional[int] = None,
-    ) -> Union[np.ndarray, CellCoverage]:
+    ) -> Union[np.ndarray, CellCoverage, EBCoverage]:
         """The exact covered fraction of every cell of a rectilinear grid (volume fractions of
-        cut-cell methods), optionally the covered parts' centroids and the faces' apertures.
+        cut-cell and embedded-boundary methods), optionally the covered parts' centroids, the
+        faces' apertures, the boundary's length, centroid and normal in each cell and the
+        faces' centroids; planar, or revolved about an axis.
 
         ``x_edges`` (``nx + 1`` values) and ``y_edges`` (``ny + 1``) are 1-D arrays of strictly
         increasing finite edges, uniform or not: row ``j``, column ``i`` is the cell ``[x_i,
-        x_{i+1}] x [y_j, y_{j+1}]``, ``y`` increasing with the row. Without ``centroids`` and
-        ``apertures`` the result is the float64 array of fractions, shape ``(ny, nx)``; with
-        either, a :class:`CellCoverage` named tuple ``(fractions, centroids, x_apertures,
-        y_apertures)`` whose parts not asked for are ``None``: ``centroids`` ``(ny, nx, 2)``
-        (``NaN`` where a cell is empty), ``x_apertures`` ``(ny, nx + 1)`` (the covered fraction of
-        each vertical face), ``y_apertures`` ``(ny + 1, nx)`` (each horizontal face).
+        x_{i+1}] x [y_j, y_{j+1}]``, ``y`` increasing with the row. Without any of the extra
+        outputs the result is the float64 array of fractions, shape ``(ny, nx)``. With
+        ``centroids`` or ``apertures`` alone, a :class:`CellCoverage` named tuple
+        ``(fractions, centroids, x_apertures, y_apertures)`` whose parts not asked for are
+        ``None``: ``centroids`` ``(ny, nx, 2)`` (``NaN`` where a cell is empty),
+        ``x_apertures`` ``(ny, nx + 1)`` (the covered fraction of each vertical face),
+        ``y_apertures`` ``(ny + 1, nx)`` (each horizontal face). With ``boundary`` or
+        ``face_centroids``, an :class:`EBCoverage`: those four, then ``boundary_lengths``
+        ``(ny, nx)`` (the boundary's length in each cell, 0 where there is none),
+        ``boundary_centroids`` and ``boundary_normals`` ``(ny, nx, 2)`` (the centroid of that
+        length, and the unit integral of the normal pointing out of the covered part; ``NaN``
+        where there is none), ``x_face_centroids`` ``(ny, nx + 1)`` (the ``y`` of the centroid
+        of each vertical face's covered part) and ``y_face_centroids`` ``(ny + 1, nx)`` (the
+        ``x`` of each horizontal face's; ``NaN`` where a face is not covered).
+        :func:`inrs.to_xarray` (or the tuples' ``to_xarray``) labels any of them for xarray;
+        ``docs/CLI.md`` maps them to AMReX's EB2 names (``volfrac``, ``vcent``, ``barea``,
+        ``bcent``, ``bnorm``, ``apx``, ``fcx``).
+
+        ``axisymmetric`` (``'x'`` or ``'y'``) revolves the domain about that coordinate axis
+        (``'y'``: the radius is ``x``, r-z coordinates; ``'x'``: the radius is ``y``): a cell
+        stands for the ring it sweeps, its fraction is the covered fraction of the ring's
+        volume (``int int r dA`` over the ring's), the centroids are weighted by ``r``, the
+        apertures of faces across the axis are fractions of annuli. The domain and the grid
+        must each lie on one side of the axis (touching it is fine), and ``boundary`` and
+        ``face_centroids`` are planar only: ``ValueError`` otherwise.
 
         ``fill_rule`` is ``even-odd`` (the default) or ``nonzero`` (filled where the winding
         number is not zero, from the loops' orientations: two nested counter-clockwise circles
@@ -472,9 +617,21 @@ class Domain:
         >>> f = d.cell_fractions([-1, 0, 1], [-1, 0, 1])   # four quarter discs
         >>> bool(np.allclose(f, np.pi / 4, rtol=0, atol=1e-15)), f.shape
         (True, (2, 2))
+        >>> eb = d.cell_fractions([-1, 0, 1], [-1, 0, 1], boundary=True)
+        >>> bool(np.isclose(eb.boundary_lengths.sum(), 2 * np.pi, rtol=1e-14))
+        True
         """
         return self._coverage(
-            x_edges, y_edges, None, centroids, apertures, fill_rule, _threads(threads)
+            x_edges,
+            y_edges,
+            None,
+            centroids,
+            apertures,
+            fill_rule,
+            _threads(threads),
+            boundary=boundary,
+            face_centroids=face_centroids,
+            axisymmetric=axisymmetric,
         )
 
     def _coverage(
@@ -486,10 +643,14 @@ class Domain:
         apertures: bool,
         fill_rule: str,
         threads: int,
-    ) -> Union[np.ndarray, CellCoverage]:
+        *,
+        boundary: bool = False,
+        face_centroids: bool = False,
+        axisymmetric: Optional[str] = None,
+    ) -> Union[np.ndarray, CellCoverage, EBCoverage]:
         """:meth:`cell_fractions` on the whole grid (``rows`` ``None``) or on its rows
         ``j0 .. j1`` (``rows = (j0, j1)``, one band on the calling thread)."""
-        fractions, c, xa, ya = _inrs.cell_coverage(
+        arrays = _inrs.cell_coverage(
             self._native,
             _edges("x_edges", x_edges),
             _edges("y_edges", y_edges),
@@ -498,10 +659,15 @@ class Domain:
             bool(apertures),
             str(fill_rule),
             threads,
+            bool(boundary),
+            bool(face_centroids),
+            None if axisymmetric is None else str(axisymmetric),
         )
-        if not (centroids or apertures):
-            return fractions
-        return CellCoverage(fractions, c, xa, ya)
+        if boundary or face_centroids:
+            return EBCoverage(*arrays)
+        if centroids or apertures:
+            return CellCoverage(*arrays[:4])
+        return arrays[0]
 
     def _cubature_rule(self, degree: int, fill_rule: str = "even-odd") -> "_inrs.CubatureRule":
         """The cubature rule of degree ``degree`` on the set the domain fills under

@@ -205,19 +205,37 @@ def cell_coverage(
     apertures: bool,
     fill_rule: str,
     threads: int,
+    boundary: bool = False,
+    face_centroids: bool = False,
+    axisymmetric: Optional[str] = None,
 ) -> Tuple[
     npt.NDArray[np.float64],
     Optional[npt.NDArray[np.float64]],
     Optional[npt.NDArray[np.float64]],
     Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
 ]:
     """Exact cell coverage of the grid ``x_edges`` x ``y_edges`` (the whole grid, or the rows
-    ``j0 .. j1`` when ``rows = (j0, j1)``) under ``fill_rule`` (``even-odd`` or ``nonzero``):
-    ``(fractions (R, nx), centroids (R, nx, 2) or None,
-    x_apertures (R, nx + 1) or None, y_apertures (R + 1, nx) or None)`` for ``R`` rows."""
+    ``j0 .. j1`` when ``rows = (j0, j1)``) under ``fill_rule`` (``even-odd`` or ``nonzero``),
+    revolved about ``axisymmetric`` (``None``, ``'x'`` or ``'y'``): ``(fractions (R, nx),
+    centroids (R, nx, 2), x_apertures (R, nx + 1), y_apertures (R + 1, nx), boundary_lengths
+    (R, nx), boundary_centroids (R, nx, 2), boundary_normals (R, nx, 2), x_face_centroids
+    (R, nx + 1), y_face_centroids (R + 1, nx))`` for ``R`` rows, ``None`` for those not asked
+    for."""
     ...
 
-def coverage_band_rows(nx: int, ny: int, centroids: bool, apertures: bool) -> int:
+def coverage_band_rows(
+    nx: int,
+    ny: int,
+    centroids: bool,
+    apertures: bool,
+    boundary: bool = False,
+    face_centroids: bool = False,
+) -> int:
     """The rows of each band the library cuts a grid of ``nx`` x ``ny`` cells into
     (``inrs::coverage::band_rows`` on this process's threads): about 8 MiB of output a band,
     at least one row, at least four bands a thread when the grid has the rows."""

@@ -51,15 +51,25 @@ def classify(domain: "Domain | CadSolid", xy, *, method: str = "fast", tol: floa
 
 
 def _fraction_rows(
-    domain: Domain, x_edges: np.ndarray, y_edges: np.ndarray, fill_rule: str, j0: int, j1: int
+    domain: Domain,
+    x_edges: np.ndarray,
+    y_edges: np.ndarray,
+    fill_rule: str,
+    axisymmetric,
+    j0: int,
+    j1: int,
 ) -> np.ndarray:
     # One band of rows on this task's thread: the library prepares the domain for the grid
     # (a cost independent of the band's size) and covers only the rows j0 .. j1, as its
     # band iterator (``GridCoverage::bands``) computes a band.
-    return domain._coverage(x_edges, y_edges, (j0, j1), False, False, fill_rule, 1)
+    return domain._coverage(
+        x_edges, y_edges, (j0, j1), False, False, fill_rule, 1, axisymmetric=axisymmetric
+    )
 
 
-def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rule="even-odd"):
+def cell_fractions(
+    domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rule="even-odd", axisymmetric=None
+):
     """Lazy :meth:`Domain.cell_fractions`: a float64 ``dask.array`` of shape ``(ny, nx)``
     (row ``j``, column ``i`` is the cell ``[x_i, x_{i+1}] x [y_j, y_{j+1}]``), for grids
     larger than memory or than :data:`inrs.MAX_CELLS` cells.
@@ -73,12 +83,13 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rul
     call, bit for bit (a cell's value does not depend on the band it is computed in, but for
     a few units in the last place at a grid vertex a curved boundary passes through). Each
     task prepares the domain for the grid again, a cost of the order of covering one row of a
-    few thousand cells per block. ``fill_rule`` (``even-odd`` or ``nonzero``) is that of
-    :meth:`Domain.cell_fractions`.
+    few thousand cells per block. ``fill_rule`` (``even-odd`` or ``nonzero``) and
+    ``axisymmetric`` (``None``, ``'x'`` or ``'y'``: revolved volume fractions) are those of
+    :meth:`Domain.cell_fractions`. :func:`inrs.to_xarray` wraps the result lazily.
 
     The grid and the domain are checked now, by covering the first row: bad edges (as
-    :meth:`Domain.cell_fractions` lists them), an open boundary, an unknown ``fill_rule`` or a
-    bad ``row_chunk`` raise
+    :meth:`Domain.cell_fractions` lists them), an open boundary, an unknown ``fill_rule`` or
+    ``axisymmetric``, an axis the domain or the grid crosses, or a bad ``row_chunk`` raise
     ``ValueError`` here rather than at ``compute()``.
     """
     import dask
@@ -90,7 +101,8 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rul
         raise TypeError(f"domain is a {type(domain).__name__}, not an inrs.Domain")
     # Checks the edges and the domain with the library's messages (one row of one band).
     fill_rule = str(fill_rule)
-    domain._coverage(x, y, (0, 1), False, False, fill_rule, 1)
+    axisymmetric = None if axisymmetric is None else str(axisymmetric)
+    domain._coverage(x, y, (0, 1), False, False, fill_rule, 1, axisymmetric=axisymmetric)
     nx, ny = len(x) - 1, len(y) - 1
     if row_chunk is None:
         row_chunk = _inrs.coverage_band_rows(nx, ny, False, False)
@@ -98,7 +110,7 @@ def cell_fractions(domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rul
         raise ValueError(f"row_chunk must be an integer >= 1, got {row_chunk!r}")
     row_chunk = int(min(row_chunk, ny))
     # The domain and the edges are one node each of the graph, shared by every block.
-    shared = [dask.delayed(v, pure=True) for v in (domain, x, y)] + [fill_rule]
+    shared = [dask.delayed(v, pure=True) for v in (domain, x, y)] + [fill_rule, axisymmetric]
     blocks = [
         da.from_delayed(
             dask.delayed(_fraction_rows, pure=True)(*shared, j0, min(j0 + row_chunk, ny)),
