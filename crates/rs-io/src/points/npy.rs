@@ -581,7 +581,11 @@ mod tests {
         let text = put("text.npy", b"0,1,2\n");
         assert!(err(&text, 9).contains("not a .npy file"));
         assert!(err(&dir.join("missing.npy"), 9).contains("missing.npy"));
-        for e in [err(&f32, 9), err(&text, 9), err(&dir.join("missing.npy"), 9)] {
+        for e in [
+            err(&f32, 9),
+            err(&text, 9),
+            err(&dir.join("missing.npy"), 9),
+        ] {
             assert_eq!(e.lines().count(), 1, "{e}");
         }
         std::fs::remove_dir_all(&dir).ok();
