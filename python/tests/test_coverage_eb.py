@@ -91,6 +91,24 @@ def test_the_boundary_normals_point_out_of_the_covered_part():
     assert np.allclose(eb.boundary_lengths, math.pi / 2, rtol=1e-14)
 
 
+def test_the_normals_are_amrex_bnorm_from_the_apertures():
+    # AMReX (AMReX_EB2_2D_C.cpp) takes the normal from the apertures: int n ds over the
+    # boundary in a cell = ((axm - axp) dy, (aym - ayp) dx) by the divergence theorem; its
+    # |.| is at most the boundary's length (equal for a straight boundary).
+    d = circle(0.1, 0.05, 1.0)
+    xs, ys = np.linspace(-1.3, 1.2, 11), np.linspace(-1.2, 1.4, 9)
+    e = d.cell_fractions(xs, ys, True, True, boundary=True)
+    dx, dy = np.diff(xs)[None, :], np.diff(ys)[:, None]
+    n_x = (e.x_apertures[:, :-1] - e.x_apertures[:, 1:]) * dy
+    n_y = (e.y_apertures[:-1] - e.y_apertures[1:]) * dx
+    size = np.hypot(n_x, n_y)
+    cut = e.boundary_lengths > 0
+    assert np.allclose(e.boundary_normals[..., 0][cut], n_x[cut] / size[cut], rtol=0, atol=1e-15)
+    assert np.allclose(e.boundary_normals[..., 1][cut], n_y[cut] / size[cut], rtol=0, atol=1e-15)
+    assert np.all(e.boundary_lengths[cut] >= size[cut] * (1 - 1e-14))
+    assert np.all(size[~cut] == 0)
+
+
 @pytest.mark.parametrize("axis", ["y", "x"])
 def test_a_revolved_disc_is_a_torus(axis):
     r, big_r, zc = 0.5, 2.0, 0.3
