@@ -188,6 +188,40 @@ impl Arc {
         sum
     }
 
+    /// The integral a revolved cell's volume takes from a part, over the parameters
+    /// `[t0, t1]` in the cell's coordinates: about the y axis `int x v dx` (`x = x_c + u`),
+    /// about the x axis `int (y_r + v / 2) v dx`, the combinations `x_c b + mx` and
+    /// `y_r b + my` of [`PartIntegrals`] as one integrand (one evaluation of the piece per
+    /// node, one adaptive run on a rational piece). Rules as [`Arc::integrals`], the
+    /// tolerance scaled by the distance to the axis.
+    pub(crate) fn volume_integral(
+        &self,
+        range: (f64, f64),
+        corner: Point,
+        (width, height): (f64, f64),
+        axis: Axis,
+    ) -> f64 {
+        let local = Local::new(self, corner);
+        let degree = (3 * self.degree()).saturating_sub(1);
+        let radius = match axis {
+            Axis::Y => corner.x.abs() + width,
+            Axis::X => corner.y.abs() + height,
+        };
+        let tol = RELATIVE_TOLERANCE * width * height * radius;
+        let mut integrand = Volume {
+            local: &local,
+            axis,
+            origin: match axis {
+                Axis::Y => corner.x,
+                Axis::X => corner.y,
+            },
+        };
+        let mut sum = [0.0];
+        let rule = PieceRule::for_piece(self.polynomial, degree, MAX_RULE, tol);
+        integrate_piece(&mut integrand, range, rule, Jacobian::OnTheSum, &mut sum);
+        sum[0]
+    }
+
     /// The integrals of [`ArcLengthIntegrals`] over the parameters `[t0, t1]`, relative to
     /// the cell corner `corner` of a cell `width` by `height`: the bounded adaptive rule (the
     /// speed `|(x', y')|` is not a polynomial) on `ds`, `(u / width) ds` and
@@ -218,6 +252,41 @@ impl Arc {
     }
 }
 
+/// The integrand of [`Arc::volume_integral`]: `g v x'` with `g = x_c + u` about the y axis,
+/// `y_r + v / 2` about the x axis (`origin`: `x_c` or `y_r`).
+struct Volume<'a> {
+    local: &'a Local<'a>,
+    axis: Axis,
+    origin: f64,
+}
+
+impl Volume<'_> {
+    /// The value at `t` and its rounding magnitude.
+    #[inline]
+    fn at(&self, t: f64) -> (f64, f64) {
+        let (u, v, dx) = self.local.eval(t);
+        let (um, vm) = self.local.sizes();
+        let (g, gm) = match self.axis {
+            Axis::Y => (self.origin + u, self.origin.abs() + um),
+            Axis::X => (self.origin + 0.5 * v, self.origin.abs() + 0.5 * vm),
+        };
+        let value = g * v * dx;
+        (value, (gm * vm * dx).abs().max(value.abs()))
+    }
+}
+
+impl PieceIntegrand for Volume<'_> {
+    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
+        sum[0] += weight * self.at(t).0;
+    }
+
+    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
+        let (value, magnitude) = self.at(t);
+        out[0] = value;
+        magnitude
+    }
+}
+
 /// The integrands of [`ArcLengthIntegrals`], the local coordinates scaled by `scale`
 /// (`1 / width`, `1 / height`) so that the three have the size of the length.
 struct ArcLength<'a> {
@@ -236,7 +305,8 @@ impl PieceIntegrand for ArcLength<'_> {
 
     fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
         let (u, v, dx, dy) = self.piece.point_and_derivatives(t);
-        let ds = dx.hypot(dy);
+        // No overflow: derivatives of coordinates within `MAX_COORDINATE`.
+        let ds = (dx * dx + dy * dy).sqrt();
         out[0] = ds;
         out[1] = u * self.scale.0 * ds;
         out[2] = v * self.scale.1 * ds;

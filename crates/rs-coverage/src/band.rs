@@ -15,7 +15,7 @@ use rs_boxes::Monotonicity;
 use rs_spline::{Axis, Point};
 
 use crate::arc::{Arc, Moments, PartIntegrals};
-use crate::lines::{LineSums, add_covered};
+use crate::lines::{LineSums, add_covered, full_column_moments};
 
 /// Where a band writes its results: row-major slices of the caller's arrays, the fractions
 /// zeroed and the centroids `NaN` on entry. Only the cells the covered set reaches are
@@ -308,6 +308,12 @@ impl Band<'_> {
         self.add_part(arc, (col, row), (t_prev, tb), (p_prev, pb), c);
     }
 
+    /// Revolved fractions without centroids: each part's integrals are the one volume
+    /// integral (`Arc::volume_integral`).
+    fn volume_only(&self) -> bool {
+        self.axis.is_some() && self.moments == Moments::Area
+    }
+
     /// The boundary's parts of a vertical piece, cut at the band's horizontal lines: each
     /// belongs to the column whose right edge it may lie on (`x_i < x <= x_{i+1}`, as a face
     /// the boundary runs on takes the value just to its right) and to the row it spans.
@@ -409,7 +415,20 @@ impl Band<'_> {
         let corner = Point::new(self.xs[i], self.ys[j]);
         let size = (self.xs[i + 1] - self.xs[i], self.ys[j + 1] - self.ys[j]);
         let horizontal = arc.piece.y_dir == Monotonicity::Constant;
-        let part = if horizontal {
+        let part = if let (true, Some(axis)) = (self.volume_only(), self.axis) {
+            // Revolved fractions alone: the volume integral (closed form on a horizontal part).
+            let volume = if horizontal {
+                let v = arc.piece.band.start.y - corner.y;
+                let (u0, u1) = (x0 - corner.x, x1 - corner.x);
+                match axis {
+                    Axis::Y => v * (corner.x * (u1 - u0) + 0.5 * (u1 * u1 - u0 * u0)),
+                    Axis::X => (corner.y + 0.5 * v) * v * (x1 - x0),
+                }
+            } else {
+                arc.volume_integral((t0, t1), corner, size, axis)
+            };
+            [volume, 0.0, 0.0, 0.0, 0.0, 0.0]
+        } else if horizontal {
             // A horizontal part: closed forms on its exact end abscissas.
             let v = arc.piece.band.start.y - corner.y;
             let (u0, u1) = (x0 - corner.x, x1 - corner.x);
@@ -471,7 +490,9 @@ impl Band<'_> {
         let (xs, ys) = (self.xs, self.ys);
         let nx = xs.len() - 1;
         let (j0, rows) = (self.rows.start, self.rows.len());
-        let with_first = self.moments >= Moments::First || faces.centroids.is_some();
+        let with_first = self.moments >= Moments::First
+            || faces.centroids.is_some()
+            || self.axis == Some(Axis::Y);
         let with_second = self.moments == Moments::Second && self.axis == Some(Axis::Y);
         let mut len = vec![0.0; nx];
         let mut first = vec![0.0; if with_first { nx } else { 0 }];
@@ -493,10 +514,13 @@ impl Band<'_> {
                     s.fill(0.0);
                 }
             }
+            // Revolved, a full column's moments are read as such (the planar centroids keep
+            // the sums they always had).
             let mut sums = LineSums {
                 len: &mut len,
                 first: with_first.then_some(&mut first[..]),
                 second: with_second.then_some(&mut second[..]),
+                full_columns: self.axis.is_none(),
             };
             add_covered(
                 xs,
@@ -512,13 +536,19 @@ impl Band<'_> {
                         // An annulus about the y axis: weighted by the radius |x|.
                         Some(Axis::Y) => {
                             let x0 = xs[i];
-                            (x0 * len[i] + first[i]) / (w * (x0 + 0.5 * w))
+                            let f = if len[i] == w {
+                                full_column_moments(w).0
+                            } else {
+                                first[i]
+                            };
+                            (x0 * len[i] + f) / (w * (x0 + 0.5 * w))
                         }
                         _ => len[i] / w,
                     }
                     .clamp(0.0, 1.0);
                 }
             }
+            // (Face centroids are planar only: `first` holds every column's moments.)
             if let Some(line_centroids) = line_centroids {
                 for (i, c) in line_centroids.iter_mut().enumerate() {
                     if len[i] > 0.0 {
@@ -537,6 +567,7 @@ impl Band<'_> {
                 first: &first,
                 second: &second,
                 axis: self.axis,
+                volume_only: self.volume_only(),
             };
             let fractions = &mut fractions[r * nx..(r + 1) * nx];
             let mut centroids = centroids
@@ -749,6 +780,9 @@ struct Row<'a> {
     second: &'a [f64],
     /// The axis of revolution, if any.
     axis: Option<Axis>,
+    /// The parts' integrals are the volume integral alone (revolved fractions without
+    /// centroids): `acc[0]` is `int x v dx` (about y) or `int (y0 + v / 2) v dx` (about x).
+    volume_only: bool,
 }
 
 impl Row<'_> {
@@ -774,16 +808,33 @@ impl Row<'_> {
         let x0 = xs[i];
         let len = self.len[i];
         let area = h * len - acc[0];
-        let first_u = || h * self.first[i] - acc[1];
+        // The top line's moments in the column (a full column's by their closed forms when
+        // revolved: see `LineSums::full_columns`).
+        let (line_first, line_second) = match self.axis {
+            Some(_) if len == w => full_column_moments(w),
+            _ => (
+                self.first.get(i).copied().unwrap_or(0.0),
+                self.second.get(i).copied().unwrap_or(0.0),
+            ),
+        };
+        let first_u = || h * line_first - acc[1];
         let first_v = || 0.5 * h * h * len - acc[2];
-        let (volume, fraction) = match self.axis {
-            None => (area, area / (h * w)),
-            Some(Axis::Y) => {
-                let v = x0 * area + first_u();
+        let (volume, fraction) = match (self.axis, self.volume_only) {
+            (None, _) => (area, area / (h * w)),
+            (Some(Axis::Y), only) => {
+                let v = if only {
+                    h * (x0 * len + line_first) - acc[0]
+                } else {
+                    x0 * area + first_u()
+                };
                 (v, v / (h * w * (x0 + 0.5 * w)))
             }
-            Some(Axis::X) => {
-                let v = y0 * area + first_v();
+            (Some(Axis::X), only) => {
+                let v = if only {
+                    h * len * (y0 + 0.5 * h) - acc[0]
+                } else {
+                    y0 * area + first_v()
+                };
                 (v, v / (w * h * (y0 + 0.5 * h)))
             }
         };
@@ -796,12 +847,12 @@ impl Row<'_> {
                 let (mu, mv) = match self.axis {
                     None => (first_u(), first_v()),
                     Some(Axis::Y) => {
-                        let muu = h * self.second[i] - acc[3];
-                        let muv = 0.5 * h * h * self.first[i] - acc[4];
+                        let muu = h * line_second - acc[3];
+                        let muv = 0.5 * h * h * line_first - acc[4];
                         (x0 * first_u() + muu, x0 * first_v() + muv)
                     }
                     Some(Axis::X) => {
-                        let muv = 0.5 * h * h * self.first[i] - acc[4];
+                        let muv = 0.5 * h * h * line_first - acc[4];
                         let mvv = h * h * h * len / 3.0 - acc[5];
                         (y0 * first_u() + muv, y0 * first_v() + mvv)
                     }

@@ -78,11 +78,13 @@ impl CoverageOptions {
     }
 
     /// The area moments the cells need.
+    /// Revolved fractions alone take one integral per part (the cell's volume integral, see
+    /// `Arc::volume_integral`) and so count as `Area`.
     fn moments(self) -> Moments {
-        match (self.axisymmetric.is_some(), self.centroids) {
+        match (self.centroids, self.axisymmetric.is_some()) {
             (true, true) => Moments::Second,
-            (false, false) => Moments::Area,
-            _ => Moments::First,
+            (true, false) => Moments::First,
+            (false, _) => Moments::Area,
         }
     }
 }

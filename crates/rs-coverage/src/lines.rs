@@ -9,6 +9,17 @@ pub(crate) struct LineSums<'a> {
     pub(crate) len: &'a mut [f64],
     pub(crate) first: Option<&'a mut [f64]>,
     pub(crate) second: Option<&'a mut [f64]>,
+    /// The moments of the columns an interval covers from edge to edge are added too; if
+    /// not, they are left alone and their reader takes `w^2 / 2` and `w^3 / 3` wherever the
+    /// length is the width `w` ([`full_column_moments`]).
+    pub(crate) full_columns: bool,
+}
+
+/// The moments `(w^2 / 2, w^3 / 3)` of a column of width `w` covered from edge to edge: what
+/// [`LineSums`] adds for such a column (or leaves to its reader).
+#[inline]
+pub(crate) fn full_column_moments(w: f64) -> (f64, f64) {
+    (0.5 * (w * w), w * w * w / 3.0)
 }
 
 /// Adds to `sums.len[c]` the length of the covered part of `[edges[c], edges[c + 1]]` on a
@@ -48,7 +59,12 @@ fn add_interval(
     sums: &mut LineSums<'_>,
     touched: &mut Vec<Range<usize>>,
 ) {
-    let LineSums { len, first, second } = sums;
+    let LineSums {
+        len,
+        first,
+        second,
+        full_columns,
+    } = sums;
     let last = edges.len() - 1;
     if b <= a || b.is_nan() || b <= edges[0] || a >= edges[last] {
         return;
@@ -85,14 +101,18 @@ fn add_interval(
         for (l, w) in len[lo..hi].iter_mut().zip(widths()) {
             *l += w;
         }
+        if !*full_columns {
+            touched.push(c_first..c_end);
+            return;
+        }
         if let Some(f) = first.as_deref_mut() {
             for (f, w) in f[lo..hi].iter_mut().zip(widths()) {
-                *f += 0.5 * (w * w);
+                *f += full_column_moments(w).0;
             }
         }
         if let Some(s) = second.as_deref_mut() {
             for (s, w) in s[lo..hi].iter_mut().zip(widths()) {
-                *s += w * w * w / 3.0;
+                *s += full_column_moments(w).1;
             }
         }
     }
@@ -115,6 +135,7 @@ mod tests {
             len: &mut len,
             first: Some(&mut first),
             second: Some(&mut second),
+            full_columns: true,
         };
         add_covered(
             &edges,
@@ -143,6 +164,7 @@ mod tests {
                 len,
                 first: None,
                 second: None,
+                full_columns: true,
             }
         }
         let mut len = [0.0; 3];

@@ -4,6 +4,7 @@
 mod build;
 mod cli;
 mod coverage;
+mod cut_cells;
 mod cubature;
 mod green_reference;
 mod gwn;
@@ -36,7 +37,7 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 10] = [
+const SECTIONS: [&str; 11] = [
     "paper",
     "locator",
     "gwn",
@@ -44,6 +45,7 @@ const SECTIONS: [&str; 10] = [
     "build",
     "cli",
     "coverage",
+    "cut_cells",
     "cubature",
     "properties",
     "solid",
@@ -276,6 +278,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("coverage") {
         coverage::section(&mut md, root, o)?;
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("cut_cells") {
+        cut_cells::section(&mut md, root, o)?;
         write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("cubature") {
