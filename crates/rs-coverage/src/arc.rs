@@ -2,7 +2,11 @@
 
 use rs_boxes::{MonotoneBox, Monotonicity, RelativePiece};
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
+use std::sync::OnceLock;
+
 use rs_spline::{Axis, Point};
+
+use crate::arc_length::ArcLengthTable;
 
 /// The most nodes of the fixed Gauss-Legendre rule of a polynomial part (degree 16, or 10
 /// with moments): higher degrees take the adaptive rule.
@@ -56,6 +60,9 @@ pub(crate) struct Arc {
     pub(crate) sign: f64,
     /// All weights equal: `x(t)`, `y(t)` are polynomials of the piece's degree.
     polynomial: bool,
+    /// Its cumulative arc-length integrals, built the first time a band asks for the
+    /// boundary's geometry (the same table from whichever thread builds it).
+    arc_length: OnceLock<ArcLengthTable>,
 }
 
 impl Arc {
@@ -65,6 +72,7 @@ impl Arc {
             piece,
             sign,
             polynomial,
+            arc_length: OnceLock::new(),
         }
     }
 
@@ -223,32 +231,16 @@ impl Arc {
     }
 
     /// The integrals of [`ArcLengthIntegrals`] over the parameters `[t0, t1]`, relative to
-    /// the cell corner `corner` of a cell `width` by `height`: the bounded adaptive rule (the
-    /// speed `|(x', y')|` is not a polynomial) on `ds`, `(u / width) ds` and
-    /// `(v / height) ds` (one scale for the three), to `1e-15` of the cell's half perimeter.
+    /// the cell corner `corner`: differences of the piece's cumulative arc-length integrals
+    /// ([`ArcLengthTable`]).
     pub(crate) fn arc_length_integrals(
         &self,
         range: (f64, f64),
         corner: Point,
-        (width, height): (f64, f64),
     ) -> ArcLengthIntegrals {
-        let piece = self.piece.piece().relative_to(corner);
-        let (su, sv) = (1.0 / width, 1.0 / height);
-        let mut speed = ArcLength {
-            piece: &piece,
-            scale: (su, sv),
-        };
-        let mut sum = [0.0; 3];
-        integrate_piece(
-            &mut speed,
-            range,
-            PieceRule::Adaptive {
-                abs_tol: RELATIVE_TOLERANCE * (width + height),
-            },
-            Jacobian::OnTheSum,
-            &mut sum,
-        );
-        [sum[0], sum[1] * width, sum[2] * height]
+        self.arc_length
+            .get_or_init(|| ArcLengthTable::new(self.piece.piece()))
+            .integrals(range, corner)
     }
 }
 
@@ -284,33 +276,6 @@ impl PieceIntegrand for Volume<'_> {
         let (value, magnitude) = self.at(t);
         out[0] = value;
         magnitude
-    }
-}
-
-/// The integrands of [`ArcLengthIntegrals`], the local coordinates scaled by `scale`
-/// (`1 / width`, `1 / height`) so that the three have the size of the length.
-struct ArcLength<'a> {
-    piece: &'a RelativePiece<'a>,
-    scale: (f64, f64),
-}
-
-impl PieceIntegrand for ArcLength<'_> {
-    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
-        let mut v = [0.0; 3];
-        self.values(t, &mut v);
-        for (s, v) in sum.iter_mut().zip(v) {
-            *s += weight * v;
-        }
-    }
-
-    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
-        let (u, v, dx, dy) = self.piece.point_and_derivatives(t);
-        // No overflow: derivatives of coordinates within `MAX_COORDINATE`.
-        let ds = (dx * dx + dy * dy).sqrt();
-        out[0] = ds;
-        out[1] = u * self.scale.0 * ds;
-        out[2] = v * self.scale.1 * ds;
-        ds
     }
 }
 
@@ -495,7 +460,7 @@ mod tests {
             for (t, p) in total.iter_mut().zip(p) {
                 *t += p;
             }
-            let l = a.arc_length_integrals((0.0, 1.0), Point::new(0.0, 0.0), (1.0, 2.0));
+            let l = a.arc_length_integrals((0.0, 1.0), Point::new(0.0, 0.0));
             for (t, l) in arc_length.iter_mut().zip(l) {
                 *t += l;
             }

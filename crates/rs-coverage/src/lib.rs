@@ -66,8 +66,9 @@
 //!   already use), centroids and the apertures of faces across the axis are weighted by `r`
 //!   (second moments from `int u^2 v dx`, `int u v^2 / 2 dx`, `int v^3 / 3 dx` on the parts).
 //! - **Embedded boundary** ([`CoverageOptions::boundary`]): per cell the boundary's length
-//!   and centroid (arc-length integrals by the bounded adaptive rule, to `1e-15` of the
-//!   cell's half perimeter) and the unit vector along the integral of its outward normal,
+//!   and centroid (differences of each piece's cumulative arc-length integrals, piecewise
+//!   Chebyshev series converged to rounding) and the unit vector along the integral of its
+//!   outward normal,
 //!   `sum (dy, -dx)` over its parts from the same crossing points the apertures use, so the
 //!   divergence theorem holds per cell to rounding: that integral plus the covered faces'
 //!   outward lengths (apertures times face lengths) is 0. Face centroids
@@ -88,6 +89,7 @@
 //! ```
 
 mod arc;
+mod arc_length;
 mod band;
 mod coverage;
 mod error;
