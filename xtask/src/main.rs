@@ -14,6 +14,7 @@ mod architecture;
 mod bench;
 mod coverage_figure;
 mod cubature_figure;
+mod cut_cells_figure;
 mod figures;
 mod frontends;
 #[cfg(test)]
@@ -33,7 +34,8 @@ Commands:
                           triangulations of S(4) and of a disc with an elliptic hole, the face of
                           fixtures/cad/plate.step in its (u, v), the exact covered fractions
                           of the butterfly on a 64 x 64 grid, the nodes of the positive
-                          interior cubature rules of degree 10 and 20 on S3 and S5).
+                          interior cubature rules of degree 10 and 20 on S3 and S5, the cut
+                          cells of two materials with boundary centroids and normals).
   bench [OPTIONS]         The papers' comparisons in one process (medians of repeated runs):
                           Tables 1-2 (inRS1, inRS2, polygon within 1e-10), the fast paths and
                           GWN, evaluation histograms and linearisation errors of the GWN paper;
@@ -258,6 +260,19 @@ fn demo(dir: &Path) -> Result<(), String> {
     }
     figures_written.extend(coverage_files);
     figures_written.extend(cubature_figure::write(&figures_dir, &workspace_root())?);
+    let (cut_cells_files, cut, relative) = cut_cells_figure::write(&figures_dir)?;
+    println!(
+        "cut cells: {cut} cells of material 1 cut on a {nx} x {ny} grid; each material's \
+         fractions add up to its area within {relative:.1e} (relative)",
+        nx = cut_cells_figure::CELLS[0],
+        ny = cut_cells_figure::CELLS[1]
+    );
+    if relative > 1e-12 {
+        failures.push(format!(
+            "cut cells: materials' fractions add up to their areas only within {relative:e}"
+        ));
+    }
+    figures_written.extend(cut_cells_files);
     figures_written.extend(solid_figure::write(&figures_dir, &workspace_root())?);
     println!("figures written to {}:", figures_dir.display());
     for f in &figures_written {
