@@ -1,10 +1,12 @@
 //! The coverage of a grid written band by band, in order, into `.npy` files whose headers
-//! carry the whole grid's shape: memory holds a few bands, whatever the grid.
+//! carry the whole grid's shape: memory holds a few bands, whatever the grid. Several
+//! materials are written one after the other (material 0's whole grid, then material 1's,
+//! ...), each band by band, under a leading axis: the files' C order.
 
 use std::path::{Path, PathBuf};
 
 use inrs::NpyType;
-use inrs::coverage::{Coverage, CoverageError, CoverageOptions, GridCoverage};
+use inrs::coverage::{Coverage, CoverageError, CoverageOptions, MaterialCoverage};
 
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
@@ -128,12 +130,20 @@ fn npy_file(path: &Path, shape: &[usize]) -> Result<Output, CliError> {
 
 impl Outputs {
     /// Every file with its header for a grid of `nx` columns and `ny` rows
-    /// ([`Array::shape`]).
-    fn create(paths: &OutputPaths, nx: usize, ny: usize) -> Result<Self, CliError> {
+    /// ([`Array::shape`]), under a leading axis of `leading` materials if given.
+    fn create(
+        paths: &OutputPaths,
+        leading: Option<usize>,
+        nx: usize,
+        ny: usize,
+    ) -> Result<Self, CliError> {
         let files = paths
             .0
             .iter()
-            .map(|(array, path)| Ok((*array, npy_file(path, &array.shape(nx, ny))?)))
+            .map(|(array, path)| {
+                let shape: Vec<usize> = leading.into_iter().chain(array.shape(nx, ny)).collect();
+                Ok((*array, npy_file(path, &shape)?))
+            })
             .collect::<Result<_, CliError>>()?;
         Ok(Self {
             files,
@@ -172,26 +182,35 @@ fn put(out: &mut Output, bytes: &mut Vec<u8>, values: &[f64]) -> Result<(), CliE
     out.write_bytes(bytes)
 }
 
-/// Computes the coverage of `cover`'s grid with `options` and writes it to `paths`: the
-/// library's bands ([`GridCoverage::bands`], of [`GridCoverage::band_rows`] rows), computed on
-/// all cores a few ahead of the one written, so memory holds a few bands whatever the grid. A
-/// failure (the library's, or a write's) stops the run and removes every file.
-pub(super) fn write_coverage(
-    cover: &GridCoverage,
+/// Computes the coverage of `cover`'s grid by each of its materials with `options` and
+/// writes it to `paths`, under a leading axis of `leading` materials if given (`None`: one
+/// material, the grid's own shapes): material 0's whole grid, then material 1's, ..., each in
+/// the library's bands ([`MaterialCoverage::bands`], of [`MaterialCoverage::band_rows`] rows),
+/// computed on all cores a few ahead of the one written, so memory holds a few bands whatever
+/// the grid. A failure (the library's, named by `material_error` with its material, or a
+/// write's) stops the run and removes every file.
+pub(super) fn write_materials(
+    cover: &MaterialCoverage,
     options: CoverageOptions,
     paths: &OutputPaths,
-    domain_error: impl Fn(CoverageError) -> CliError,
+    leading: Option<usize>,
+    material_error: impl Fn(usize, CoverageError) -> CliError,
 ) -> Result<(), CliError> {
     let (nx, ny) = (cover.grid().nx(), cover.grid().ny());
-    let mut outputs = Outputs::create(paths, nx, ny)?;
-    let mut progress = Progress::cells(nx as u64 * ny as u64);
-    cover.bands(cover.band_rows(options), options, |bands| {
-        for (rows, band) in bands {
-            outputs.write(&band.map_err(&domain_error)?, ny)?;
-            progress.update(rows.end as u64 * nx as u64);
-        }
-        Ok::<(), CliError>(())
-    })?;
+    let mut outputs = Outputs::create(paths, leading, nx, ny)?;
+    let cells = nx as u64 * ny as u64;
+    let mut progress = Progress::cells(cells.saturating_mul(cover.len() as u64));
+    let band_rows = cover.band_rows(options);
+    for k in 0..cover.len() {
+        let done = cells.saturating_mul(k as u64);
+        cover.bands(k, band_rows, options, |bands| {
+            for (rows, band) in bands {
+                outputs.write(&band.map_err(|e| material_error(k, e))?, ny)?;
+                progress.update(done + rows.end as u64 * nx as u64);
+            }
+            Ok::<(), CliError>(())
+        })?;
+    }
     progress.finish();
     outputs.finish()
 }

@@ -1,6 +1,8 @@
 //! `inrs fractions`: the exact covered fraction of every cell of a uniform or rectilinear
 //! grid, streamed band by band into `.npy` files (with centroids, face apertures, the
 //! boundary's geometry and face centroids on request; revolved about an axis on request).
+//! Several `--domain`s are several materials on the grid (the library's `MaterialCoverage`):
+//! every file then has a leading axis, one slice per material.
 
 mod bands;
 mod grid;
@@ -8,7 +10,9 @@ mod grid;
 use std::path::{Path, PathBuf};
 
 use clap::{ArgGroup, Args, ValueEnum};
-use inrs::coverage::{CellGrid, CoverageOptions, GridCoverage, MAX_EDGES};
+use inrs::Domain;
+use inrs::contain::FillRule;
+use inrs::coverage::{CellGrid, CoverageError, CoverageOptions, MAX_EDGES, MaterialCoverage};
 use inrs::spline::Axis;
 
 use crate::args::{DomainArg, FillRuleArg};
@@ -46,7 +50,7 @@ impl From<AxisArg> for Axis {
 /// `F.npy` has shape (ny, nx): row j, column i is the cell `[x_i, x_i+1] x [y_j, y_j+1]`
 /// (y increases with the row), with `x_i = x0 + i (x1 - x0) / nx` for --grid, or the edges of
 /// --x-edges / --y-edges. Extra files beside it, `F.<name>.npy` (NaN where a value does not
-/// exist):
+/// exist; shapes for one --domain):
 ///   --centroids       `centroids` (ny, nx, 2): [x, y] of each cell's covered part (NaN: empty)
 ///   --apertures       `x_apertures` (ny, nx + 1): covered fraction of each vertical face
 ///                     `x = x_i`; `y_apertures` (ny + 1, nx): of each horizontal face `y = y_j`
@@ -60,16 +64,42 @@ impl From<AxisArg> for Axis {
 /// With --axisymmetric a cell stands for the ring it sweeps about the axis: F holds the
 /// covered fraction of the ring's volume, the centroids are weighted by the radius, the
 /// apertures of faces across the axis are fractions of annuli (--boundary and
-/// --face-centroids are planar only). The grid is computed in row bands on all cores and
-/// written as it goes: memory stays a few bands whatever the grid (at most 2^32 cells). The
+/// --face-centroids are planar only).
+///
+/// Several materials: give --domain k >= 2 times and every file gets a leading axis of k, one
+/// slice per domain in the order given (`F.npy` (k, ny, nx), `F.centroids.npy`
+/// (k, ny, nx, 2), ...). A later domain replaces the earlier ones where it lies (material m
+/// holds its domain minus the domains after it; a cell's fractions sum to at most 1); with
+/// --no-replace each slice is its domain's own coverage (overlaps counted in each), equal to a
+/// run with that domain alone. One --fill-rule and --closure-tol apply to every domain. Errors
+/// name the domain: `--domain b.json (material 1): ...`.
+///
+/// The grid is computed in row bands on all cores and written as it goes (material after
+/// material): memory stays a few bands whatever the grid (at most 2^32 cells). The
 /// boundary must be closed (`inrs winding` handles open curves). Files appear only when the
 /// run succeeds. `docs/CLI.md` maps the files to embedded-boundary names (`volfrac`, `vcent`, ...).
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP, verbatim_doc_comment)]
 #[command(group(ArgGroup::new("grid_form").required(true).args(["grid", "x_edges"])))]
 pub(crate) struct FractionsArgs {
-    #[command(flatten)]
-    domain: DomainArg,
+    /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, a font
+    /// glyph (`font.ttf#B`, `#U+0040`, `#gid:37`), or a face of a STEP/IGES part in its (u, v)
+    /// (`part.step#face:3`; `inrs info part.step` lists the faces). Repeat it for several
+    /// materials on one grid (material m is the m-th --domain, from 0): every file then has a
+    /// leading axis, one slice per material; later domains replace earlier ones (see
+    /// --no-replace).
+    #[arg(long, required = true, value_name = "DOMAIN")]
+    domain: Vec<PathBuf>,
+    /// Closure tolerance, relative to the diagonal of the domain's bounding box: consecutive
+    /// curves whose end and start are at most this far apart meet [default: 1e-9; for a CAD
+    /// face the larger of it and the file's own tolerance]. For every --domain.
+    #[arg(long, value_name = "REL")]
+    closure_tol: Option<f64>,
+    /// With several --domain: keep plain overlaps, each material's slice its domain's own
+    /// coverage, instead of a later domain replacing the earlier ones where it lies. No effect
+    /// with one --domain.
+    #[arg(long)]
+    no_replace: bool,
     /// A uniform grid: x0,x1,nx,y0,y1,ny (x0 < x1, y0 < y1 finite; nx, ny whole numbers >= 1;
     /// at most 2^32 cells). Negative bounds are fine: --grid -1,1,64,-1,1,64. Or --x-edges and
     /// --y-edges.
@@ -121,10 +151,12 @@ pub(crate) struct FractionsArgs {
     axisymmetric: Option<AxisArg>,
     /// Which winding numbers are inside. Under either rule the loops must not cross each other
     /// or themselves (their fill is then decided by their nesting): a domain whose loops cross
-    /// is refused, naming the crossing (`classify` takes any loops).
+    /// is refused, naming the crossing (`classify` takes any loops). One rule for every
+    /// --domain.
     #[arg(long, value_enum, default_value_t = FillRuleArg::EvenOdd)]
     fill_rule: FillRuleArg,
-    /// The fractions file `F.npy` (float64, shape (ny, nx)); its name must end in .npy.
+    /// The fractions file `F.npy` (float64, shape (ny, nx), or (k, ny, nx) for k --domain);
+    /// its name must end in .npy.
     #[arg(long, value_parser = parse_npy_path)]
     output: PathBuf,
 }
@@ -163,23 +195,120 @@ fn read_edges(flag: &str, path: &Path) -> Result<Vec<f64>, CliError> {
 impl FractionsArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let grid = self.cell_grid()?;
-        let d = self.domain.load()?;
-        let cover = GridCoverage::with_fill_rule(&d, grid, self.fill_rule.into())
-            .map_err(|e| self.domain.error(e))?;
+        let domains = (0..self.domain.len())
+            .map(|k| self.load(k))
+            .collect::<Result<Vec<_>, _>>()?;
+        let rule: FillRule = self.fill_rule.into();
+        let materials: Vec<(&Domain, FillRule)> = domains.iter().map(|d| (d, rule)).collect();
+        let cover = MaterialCoverage::new(&materials, grid.clone(), !self.no_replace)
+            .map_err(|e| self.preparation_error(&materials, &grid, e))?;
         let options = self.options();
-        // Refused options (an axis the domain or the grid crosses, planar-only outputs
+        // Refused options (an axis a domain or the grid crosses, planar-only outputs
         // revolved) before any file is created.
-        cover.check_options(options).map_err(|e| {
-            let flag = match self.axisymmetric {
-                Some(AxisArg::X) => "--axisymmetric x",
-                Some(AxisArg::Y) => "--axisymmetric y",
-                None => "fractions",
-            };
-            CliError::Message(format!("{flag}: {e}"))
-        })?;
-        bands::write_coverage(&cover, options, &self.paths(options)?, |e| {
-            self.domain.error(e)
+        cover
+            .check_options(options)
+            .map_err(|e| self.options_error(&cover, options, e))?;
+        let leading = (self.domain.len() > 1).then_some(self.domain.len());
+        bands::write_materials(&cover, options, &self.paths(options)?, leading, |k, e| {
+            self.domain_error(k, e)
         })
+    }
+
+    /// The `k`-th `--domain`, read.
+    fn load(&self, k: usize) -> Result<Domain, CliError> {
+        let one = self.domain_arg(k);
+        one.load().map_err(|e| match e {
+            CliError::Message(m) if self.domain.len() > 1 => {
+                // The reader's message names the file already: name it once, with the flag.
+                let spec = format!("{}: ", one.domain.to_string_lossy());
+                self.domain_error(k, m.strip_prefix(&spec).unwrap_or(&m))
+            }
+            other => other,
+        })
+    }
+
+    /// The `k`-th `--domain` as the one-domain argument (its file and `--closure-tol`).
+    fn domain_arg(&self, k: usize) -> DomainArg {
+        DomainArg {
+            domain: self.domain.get(k).cloned().unwrap_or_default(),
+            closure_tol: self.closure_tol,
+        }
+    }
+
+    /// An error about the `k`-th domain: `<file>: <e>` for one domain (as every command
+    /// names it), `--domain <file> (material k): <e>` for several.
+    fn domain_error(&self, k: usize, e: impl std::fmt::Display) -> CliError {
+        let one = self.domain_arg(k);
+        if self.domain.len() > 1 {
+            CliError::Message(format!(
+                "--domain {} (material {k}): {e}",
+                one.domain.display()
+            ))
+        } else {
+            one.error(e)
+        }
+    }
+
+    /// The library's refusal to prepare the materials, naming the domain at fault: the
+    /// material it names (a region that does not chain), else the first domain the library
+    /// refuses alone (open or crossing loops, ...), else every domain (their boundaries
+    /// together: too many pairs, an intersection not found).
+    fn preparation_error(
+        &self,
+        materials: &[(&Domain, FillRule)],
+        grid: &CellGrid,
+        e: CoverageError,
+    ) -> CliError {
+        if let CoverageError::Unchained { material } = e {
+            return self.domain_error(material, e);
+        }
+        if materials.len() == 1 {
+            return self.domain_error(0, e);
+        }
+        // Only on failure: each domain through the same entry point, alone.
+        let alone = (0..materials.len()).find_map(|k| {
+            let one = materials.get(k..=k)?;
+            MaterialCoverage::new(one, grid.clone(), false)
+                .err()
+                .map(|e| (k, e))
+        });
+        match alone {
+            Some((k, e)) => self.domain_error(k, e),
+            None => {
+                let all: Vec<String> = self
+                    .domain
+                    .iter()
+                    .map(|d| format!("--domain {}", d.display()))
+                    .collect();
+                CliError::Message(format!("{}: {e}", all.join(" ")))
+            }
+        }
+    }
+
+    /// The library's refusal of the options: `--axisymmetric <axis>: <e>`, naming the
+    /// material the library refuses (with several) when a domain crosses the axis.
+    fn options_error(
+        &self,
+        cover: &MaterialCoverage,
+        options: CoverageOptions,
+        e: CoverageError,
+    ) -> CliError {
+        let flag = match self.axisymmetric {
+            Some(AxisArg::X) => "--axisymmetric x",
+            Some(AxisArg::Y) => "--axisymmetric y",
+            None => "fractions",
+        };
+        let domain_at_fault =
+            matches!(e, CoverageError::AcrossAxis { what: "domain", .. }) && cover.len() > 1;
+        let refused = (0..cover.len()).find(|&k| {
+            cover
+                .material(k)
+                .is_some_and(|m| m.check_options(options).is_err())
+        });
+        match refused {
+            Some(k) if domain_at_fault => self.domain_error(k, format!("{flag}: {e}")),
+            _ => CliError::Message(format!("{flag}: {e}")),
+        }
     }
 
     /// The library's options for the flags.
