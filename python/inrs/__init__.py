@@ -54,6 +54,7 @@ __all__ = [
     "classify_many",
     "CellCoverage",
     "EBCoverage",
+    "cell_fractions",
     "to_xarray",
     "cubature",
     "MAX_CUBATURE_DEGREE",
@@ -207,9 +208,9 @@ _XARRAY_DIMS = {
 
 
 def to_xarray(result: Any, x_edges: ArrayLike, y_edges: ArrayLike) -> Any:
-    """A result of :meth:`Domain.cell_fractions` (or :func:`inrs.dask.cell_fractions`) on the
-    grid of ``x_edges``, ``y_edges`` as an xarray object (xarray is not a dependency of inrs:
-    ``pip install xarray``).
+    """A result of :meth:`Domain.cell_fractions`, :func:`inrs.cell_fractions` (or
+    :func:`inrs.dask.cell_fractions`) on the grid of ``x_edges``, ``y_edges`` as an xarray
+    object (xarray is not a dependency of inrs: ``pip install xarray``).
 
     The fractions alone (a NumPy or a dask array of shape ``(ny, nx)``) give a ``DataArray``
     named ``fractions`` on the dimensions ``('y', 'x')``; a :class:`CellCoverage` or
@@ -217,9 +218,12 @@ def to_xarray(result: Any, x_edges: ArrayLike, y_edges: ArrayLike) -> Any:
     left out). Coordinates: ``x``, ``y`` the cell centres (``(x_i + x_{i+1}) / 2``), and for
     the faces' arrays ``x_face``, ``y_face`` the edges themselves: vertical faces are on
     ``('y', 'x_face')``, horizontal faces on ``('y_face', 'x')``; centroids and normals have
-    a last dimension ``component`` with coordinates ``['x', 'y']``. A dask array is wrapped
-    as it is (lazily, nothing is computed). ``ValueError`` when the arrays' shapes do not
-    match the edges; ``ImportError`` without xarray.
+    a last dimension ``component`` with coordinates ``['x', 'y']``. Several materials'
+    results (:func:`inrs.cell_fractions` with a sequence of domains: fractions of shape
+    ``(k, ny, nx)``) have a leading dimension ``material`` on every array, with coordinates
+    ``0 .. k - 1`` (the domains' order). A dask array is wrapped as it is (lazily, nothing is
+    computed). ``ValueError`` when the arrays' shapes do not match the edges; ``ImportError``
+    without xarray.
 
     >>> d = Domain.from_json('{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}')
     >>> xs = ys = np.linspace(-1, 1, 5)
@@ -234,39 +238,146 @@ def to_xarray(result: Any, x_edges: ArrayLike, y_edges: ArrayLike) -> Any:
     x = _edges("x_edges", x_edges)
     y = _edges("y_edges", y_edges)
     nx, ny = len(x) - 1, len(y) - 1
+    is_tuple = isinstance(result, (CellCoverage, EBCoverage))
+    if not is_tuple and not hasattr(result, "shape"):
+        result = np.asarray(result, dtype=np.float64)
+    fractions = result.fractions if is_tuple else result
+    # Several materials: a leading axis on every array.
+    lead: tuple = ("material",) if len(getattr(fractions, "shape", ())) == 3 else ()
+    k = fractions.shape[0] if lead else 0
     coords: dict = {
+        "material": ("material", np.arange(k)),
         "x": ("x", 0.5 * (x[:-1] + x[1:])),
         "y": ("y", 0.5 * (y[:-1] + y[1:])),
         "x_face": ("x_face", x),
         "y_face": ("y_face", y),
         "component": ("component", np.array(["x", "y"])),
     }
-    sizes = {"x": nx, "y": ny, "x_face": nx + 1, "y_face": ny + 1, "component": 2}
+    sizes = {"material": k, "x": nx, "y": ny, "x_face": nx + 1, "y_face": ny + 1, "component": 2}
+
+    def dims(name: str) -> tuple:
+        return lead + _XARRAY_DIMS[name]
 
     def checked(name: str, array: Any) -> Any:
-        dims = _XARRAY_DIMS[name]
-        want = tuple(sizes[d] for d in dims)
+        want = tuple(sizes[d] for d in dims(name))
         if tuple(array.shape) != want:
             raise ValueError(
-                f"{name} has shape {tuple(array.shape)}, but the edges give {want} on {dims}"
+                f"{name} has shape {tuple(array.shape)}, but the edges give {want} on {dims(name)}"
             )
         return array
 
-    if isinstance(result, (CellCoverage, EBCoverage)):
+    if is_tuple:
         arrays = {k: v for k, v in result._asdict().items() if v is not None}
-        used = {d for k in arrays for d in _XARRAY_DIMS[k]}
+        used = {d for name in arrays for d in dims(name)}
         return xarray.Dataset(
-            {k: (_XARRAY_DIMS[k], checked(k, v)) for k, v in arrays.items()},
+            {name: (dims(name), checked(name, v)) for name, v in arrays.items()},
             coords={d: c for d, c in coords.items() if d in used},
         )
-    if not hasattr(result, "shape"):
-        result = np.asarray(result, dtype=np.float64)
     return xarray.DataArray(
         checked("fractions", result),
-        dims=("y", "x"),
-        coords={"x": coords["x"], "y": coords["y"]},
+        dims=dims("fractions"),
+        coords={d: coords[d] for d in dims("fractions")},
         name="fractions",
     )
+
+
+def cell_fractions(
+    domains: Union["Domain", Sequence["Domain"]],
+    x_edges: ArrayLike,
+    y_edges: ArrayLike,
+    centroids: bool = False,
+    apertures: bool = False,
+    *,
+    boundary: bool = False,
+    face_centroids: bool = False,
+    axisymmetric: Optional[str] = None,
+    replace: bool = True,
+    fill_rule: str = "even-odd",
+    threads: Optional[int] = None,
+) -> Union[np.ndarray, CellCoverage, EBCoverage]:
+    """Several materials on one grid: the exact coverage of every cell by each of ``domains``
+    (a sequence of :class:`Domain`, the materials in that order), as
+    :meth:`Domain.cell_fractions` gives it for one domain, every array with a leading axis of
+    ``k = len(domains)``: fractions ``(k, ny, nx)``, centroids ``(k, ny, nx, 2)``,
+    ``x_apertures`` ``(k, ny, nx + 1)``, and so on, in the same result types (the bare array
+    of fractions, a :class:`CellCoverage` with ``centroids`` or ``apertures``, an
+    :class:`EBCoverage` with ``boundary`` or ``face_centroids``). Material ``m`` is index
+    ``m``: ``result.fractions[m]``.
+
+    With ``replace`` (the default) a later domain replaces the earlier ones where it lies
+    (Axom's shaping rule): material ``m`` holds its domain minus the domains after it, so a
+    cell's fractions sum to at most 1 (up to rounding), the last material is its domain's own
+    coverage bit for bit, and a material replaced everywhere is zeros (``NaN`` centroids).
+    With ``replace=False`` each material is its domain's own coverage (overlaps counted in
+    each), equal to :meth:`Domain.cell_fractions` bit for bit. ``fill_rule`` applies to every
+    domain; ``axisymmetric``, ``boundary``, ``face_centroids`` and the edges are those of
+    :meth:`Domain.cell_fractions`. One call of the library (``MaterialCoverage``, which
+    decides the regions) with the GIL released, on all cores (``threads`` limits them); each
+    material's grid is limited to :data:`MAX_CELLS` cells (:func:`inrs.dask.cell_fractions`
+    takes several domains too, by blocks of rows). :func:`inrs.to_xarray` labels the leading
+    axis ``material``.
+
+    A single :class:`Domain` (not in a sequence) gives :meth:`Domain.cell_fractions`'s result,
+    without the leading axis. An empty sequence is a ``ValueError``; anything but a
+    :class:`Domain` in it a ``TypeError`` naming its index. The library's errors (those of
+    :meth:`Domain.cell_fractions`, and boundaries of different domains whose intersections
+    are not found) are ``ValueError`` with its one-line message.
+
+    >>> disc = lambda x: Domain.from_json(
+    ...     '{"curves": [{"circle": {"center": [%r, 0], "radius": 1}}]}' % x)
+    >>> f = cell_fractions([disc(-0.5), disc(0.5)], [-2, 2], [-2, 2])  # one cell: 16 x fraction
+    >>> lens = 2 * np.pi / 3 - np.sqrt(3) / 2
+    >>> f.shape, bool(np.allclose(16 * f[:, 0, 0], [np.pi - lens, np.pi], rtol=0, atol=1e-12))
+    ((2, 1, 1), True)
+    """
+    if isinstance(domains, Domain):
+        return domains.cell_fractions(
+            x_edges,
+            y_edges,
+            centroids,
+            apertures,
+            boundary=boundary,
+            face_centroids=face_centroids,
+            axisymmetric=axisymmetric,
+            fill_rule=fill_rule,
+            threads=threads,
+        )
+    natives = _natives(domains)
+    arrays = _inrs.material_coverage(
+        natives,
+        _edges("x_edges", x_edges),
+        _edges("y_edges", y_edges),
+        bool(replace),
+        bool(centroids),
+        bool(apertures),
+        str(fill_rule),
+        _threads(threads),
+        bool(boundary),
+        bool(face_centroids),
+        None if axisymmetric is None else str(axisymmetric),
+    )
+    if boundary or face_centroids:
+        return EBCoverage(*arrays)
+    if centroids or apertures:
+        return CellCoverage(*arrays[:4])
+    return arrays[0]
+
+
+def _natives(domains: Any) -> "list[_inrs.NativeDomain]":
+    """The native domains of a non-empty sequence of :class:`Domain`: ``TypeError`` for
+    anything else (naming the index of an element that is not a Domain), ``ValueError`` for
+    an empty sequence."""
+    if isinstance(domains, (str, bytes, Mapping)) or not isinstance(domains, (Sequence, np.ndarray)):
+        raise TypeError(
+            f"domains must be an inrs.Domain or a sequence of them, got a {type(domains).__name__}"
+        )
+    domains = list(domains)
+    if not domains:
+        raise ValueError("domains is empty: give at least one inrs.Domain")
+    for i, d in enumerate(domains):
+        if not isinstance(d, Domain):
+            raise TypeError(f"domains[{i}] is a {type(d).__name__}, not an inrs.Domain")
+    return [d._native for d in domains]
 
 
 def _edges(name: str, edges: ArrayLike) -> np.ndarray:

@@ -1,6 +1,6 @@
 """Type stubs of the native module (the public API is in ``inrs``)."""
 
-from typing import Optional, Tuple
+from typing import List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -227,6 +227,57 @@ def cell_coverage(
     (R, nx + 1), y_face_centroids (R + 1, nx))`` for ``R`` rows, ``None`` for those not asked
     for."""
     ...
+
+def material_coverage(
+    domains: List[NativeDomain],
+    x_edges: npt.NDArray[np.float64],
+    y_edges: npt.NDArray[np.float64],
+    replace: bool,
+    centroids: bool,
+    apertures: bool,
+    fill_rule: str,
+    threads: int,
+    boundary: bool = False,
+    face_centroids: bool = False,
+    axisymmetric: Optional[str] = None,
+) -> Tuple[
+    npt.NDArray[np.float64],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+    Optional[npt.NDArray[np.float64]],
+]:
+    """Several materials on one grid (``MaterialCoverage::new`` then ``all``, the GIL
+    released): the arrays of :func:`cell_coverage`, each with a leading axis of
+    ``len(domains)``; with ``replace`` later domains replace earlier ones. ``ValueError`` with
+    the library's message (and for an empty list)."""
+    ...
+
+class NativeMaterials:
+    """Several materials prepared on one grid (``MaterialCoverage::new``), whose bands of rows
+    are computed one material at a time (the blocks of ``inrs.dask.cell_fractions``)."""
+
+    def __init__(
+        self,
+        domains: List[NativeDomain],
+        x_edges: npt.NDArray[np.float64],
+        y_edges: npt.NDArray[np.float64],
+        fill_rule: str,
+        replace: bool,
+    ) -> None: ...
+    def __len__(self) -> int:
+        """The number of materials."""
+        ...
+    def rows(
+        self, k: int, j0: int, j1: int, axisymmetric: Optional[str] = None
+    ) -> npt.NDArray[np.float64]:
+        """Material ``k``'s fractions of the rows ``j0 .. j1``, shape ``(j1 - j0, nx)``, on the
+        calling thread (``MaterialCoverage::rows``), the GIL released."""
+        ...
 
 def coverage_band_rows(
     nx: int,

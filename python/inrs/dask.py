@@ -1,18 +1,22 @@
 """Dask front ends: ``inrs.dask.classify(domain, xy)`` classifies chunked arrays of points (a
 :class:`~inrs.CadSolid` for points of space, ``(N, 3)``);
 ``inrs.dask.cell_fractions(domain, x_edges, y_edges)`` computes the cell fractions of grids
-larger than memory by blocks of rows.
+larger than memory by blocks of rows (of several materials: a sequence of domains).
 
 The domain travels to the workers by pickle (its JSON form); each worker process builds its
-index once and reuses it for all its chunks. A solid travels as its file and index, and each
-worker process reads the file once.
+index once and reuses it for all its chunks. Several materials are prepared once per worker
+process (the library's ``MaterialCoverage``) and reused for all their blocks. A solid travels
+as its file and index, and each worker process reads the file once.
 """
 
 from __future__ import annotations
 
+import hashlib
+import threading
+
 import numpy as np
 
-from . import DEFAULT_TOLERANCE, CadSolid, Domain, _edges, _inrs
+from . import DEFAULT_TOLERANCE, CadSolid, Domain, _edges, _inrs, _natives
 
 
 def _classify_block(block: np.ndarray, domain: Domain, method: str, tol: float) -> np.ndarray:
@@ -68,11 +72,24 @@ def _fraction_rows(
 
 
 def cell_fractions(
-    domain: Domain, x_edges, y_edges, *, row_chunk=None, fill_rule="even-odd", axisymmetric=None
+    domain,
+    x_edges,
+    y_edges,
+    *,
+    row_chunk=None,
+    fill_rule="even-odd",
+    axisymmetric=None,
+    replace=True,
 ):
     """Lazy :meth:`Domain.cell_fractions`: a float64 ``dask.array`` of shape ``(ny, nx)``
     (row ``j``, column ``i`` is the cell ``[x_i, x_{i+1}] x [y_j, y_{j+1}]``), for grids
-    larger than memory or than :data:`inrs.MAX_CELLS` cells.
+    larger than memory or than :data:`inrs.MAX_CELLS` cells. With a sequence of ``k``
+    domains, lazy :func:`inrs.cell_fractions`: the materials' fractions, shape ``(k, ny,
+    nx)``, ``replace`` as there (later domains replace earlier ones; ``False``: plain
+    overlaps), one task per material and block of rows (the library's
+    ``MaterialCoverage::rows``); each worker process prepares the materials once (the
+    regions and their indexes) and reuses them for all its tasks. The values are those of
+    the eager :func:`inrs.cell_fractions`, bit for bit (with the exception below).
 
     Each block holds ``row_chunk`` rows (default: the library's band height,
     ``GridCoverage::band_rows`` on this process's threads: about ``2**20`` cells (8 MiB), at
@@ -98,17 +115,13 @@ def cell_fractions(
     x = _edges("x_edges", x_edges)
     y = _edges("y_edges", y_edges)
     if not isinstance(domain, Domain):
-        raise TypeError(f"domain is a {type(domain).__name__}, not an inrs.Domain")
+        return _material_fractions(domain, x, y, row_chunk, str(fill_rule), axisymmetric, bool(replace))
     # Checks the edges and the domain with the library's messages (one row of one band).
     fill_rule = str(fill_rule)
     axisymmetric = None if axisymmetric is None else str(axisymmetric)
     domain._coverage(x, y, (0, 1), False, False, fill_rule, 1, axisymmetric=axisymmetric)
     nx, ny = len(x) - 1, len(y) - 1
-    if row_chunk is None:
-        row_chunk = _inrs.coverage_band_rows(nx, ny, False, False)
-    elif isinstance(row_chunk, bool) or not isinstance(row_chunk, (int, np.integer)) or row_chunk < 1:
-        raise ValueError(f"row_chunk must be an integer >= 1, got {row_chunk!r}")
-    row_chunk = int(min(row_chunk, ny))
+    row_chunk = _row_chunk(row_chunk, nx, ny)
     # The domain and the edges are one node each of the graph, shared by every block.
     shared = [dask.delayed(v, pure=True) for v in (domain, x, y)] + [fill_rule, axisymmetric]
     blocks = [
@@ -121,3 +134,82 @@ def cell_fractions(
         for j0 in range(0, ny, row_chunk)
     ]
     return blocks[0] if len(blocks) == 1 else da.concatenate(blocks, axis=0)
+
+
+def _row_chunk(row_chunk, nx: int, ny: int) -> int:
+    """The rows of a block: the library's band height by default, else ``row_chunk`` checked
+    (an integer >= 1), at most ``ny``."""
+    if row_chunk is None:
+        row_chunk = _inrs.coverage_band_rows(nx, ny, False, False)
+    elif isinstance(row_chunk, bool) or not isinstance(row_chunk, (int, np.integer)) or row_chunk < 1:
+        raise ValueError(f"row_chunk must be an integer >= 1, got {row_chunk!r}")
+    return int(min(row_chunk, ny))
+
+
+# Materials prepared in this process, by the key of their domains, grid, fill rule and
+# replacement: the tasks of a worker prepare them once.
+_MATERIALS: "dict[str, _inrs.NativeMaterials]" = {}
+_MATERIALS_LOCK = threading.Lock()
+
+
+def _materials_key(domains, x: np.ndarray, y: np.ndarray, fill_rule: str, replace: bool) -> str:
+    h = hashlib.sha256()
+    for d in domains:
+        text = d.to_json().encode()
+        h.update(len(text).to_bytes(8, "little"))
+        h.update(text)
+    for edges in (x, y):
+        h.update(len(edges).to_bytes(8, "little"))
+        h.update(np.ascontiguousarray(edges, dtype="<f8").tobytes())
+    h.update(f"{fill_rule}\0{bool(replace)}".encode())
+    return h.hexdigest()
+
+
+def _materials(key: str, domains, x, y, fill_rule: str, replace: bool) -> "_inrs.NativeMaterials":
+    """The materials of ``key``, prepared on first use in this process and kept."""
+    with _MATERIALS_LOCK:
+        m = _MATERIALS.get(key)
+        if m is None:
+            m = _inrs.NativeMaterials([d._native for d in domains], x, y, fill_rule, replace)
+            if len(_MATERIALS) > 8:
+                _MATERIALS.clear()
+            _MATERIALS[key] = m
+    return m
+
+
+def _material_rows(key, domains, x, y, fill_rule, replace, axisymmetric, k, j0, j1) -> np.ndarray:
+    # One band of one material on this task's thread, the materials prepared once a process.
+    return _materials(key, domains, x, y, fill_rule, replace).rows(k, j0, j1, axisymmetric)
+
+
+def _material_fractions(domains, x, y, row_chunk, fill_rule, axisymmetric, replace):
+    """:func:`cell_fractions` for a sequence of domains: ``(k, ny, nx)``."""
+    import dask
+    import dask.array as da
+
+    _natives(domains)  # TypeError / ValueError for what is not a non-empty list of Domains
+    domains = tuple(domains)
+    axisymmetric = None if axisymmetric is None else str(axisymmetric)
+    key = _materials_key(domains, x, y, fill_rule, replace)
+    # Prepared here (the library's errors now, not at compute()), and kept for the tasks of
+    # this process; every material's first row checks the options.
+    m = _materials(key, domains, x, y, fill_rule, replace)
+    for k in range(len(domains)):
+        m.rows(k, 0, 1, axisymmetric)
+    nx, ny = len(x) - 1, len(y) - 1
+    row_chunk = _row_chunk(row_chunk, nx, ny)
+    shared = [key] + [dask.delayed(v, pure=True) for v in (domains, x, y)]
+    shared += [fill_rule, replace, axisymmetric]
+    materials = []
+    for k in range(len(domains)):
+        blocks = [
+            da.from_delayed(
+                dask.delayed(_material_rows, pure=True)(*shared, k, j0, min(j0 + row_chunk, ny)),
+                shape=(min(j0 + row_chunk, ny) - j0, nx),
+                dtype=np.float64,
+                meta=np.empty((0, 0), dtype=np.float64),
+            )
+            for j0 in range(0, ny, row_chunk)
+        ]
+        materials.append(blocks[0] if len(blocks) == 1 else da.concatenate(blocks, axis=0))
+    return da.stack(materials, axis=0)

@@ -2,13 +2,19 @@
 //! area (or revolved volume) fractions, centroids of the covered parts, face apertures, the
 //! boundary's length, centroid and normal in each cell and face centroids, for the whole grid or
 //! for one band of rows (the blocks of `inrs.dask.cell_fractions`, whose height is the
-//! library's [`coverage_band_rows`]).
+//! library's [`coverage_band_rows`]); several materials on one grid through the library's one
+//! entry point [`MaterialCoverage`]: [`material_coverage`] (the whole grid, a leading material
+//! axis) and [`NativeMaterials`] (prepared once, then bands of rows of one material: the blocks
+//! of `inrs.dask.cell_fractions` for several domains).
 
-use numpy::{IntoPyArray, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
+use inrs::Domain;
 use inrs::contain::FillRule;
-use inrs::coverage::{CellGrid, CoverageOptions, GridCoverage, band_rows};
+use inrs::coverage::{
+    CellGrid, Coverage, CoverageOptions, GridCoverage, MaterialCoverage, band_rows,
+};
 use inrs::spline::Axis;
 
 use crate::domain::NativeDomain;
@@ -152,4 +158,211 @@ pub(crate) fn cell_coverage<'py>(
         cells(coverage.x_face_centroids, nx + 1, n)?,
         cells(coverage.y_face_centroids, nx, n + 1)?,
     ))
+}
+
+/// An array of any shape, or `None`.
+type Stacked<'py> = Option<Bound<'py, PyArrayDyn<f64>>>;
+
+/// The arrays of several materials' coverages of a grid of `ny` rows and `nx` columns, each
+/// with a leading axis of `k` materials: fractions `(k, ny, nx)`, then, when asked for, the
+/// other arrays of [`CoverageArrays`] each with the same leading axis.
+type MaterialArrays<'py> = (
+    Bound<'py, PyArrayDyn<f64>>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+);
+
+/// The values `take` moves out of each coverage, one after the other (each coverage's part is
+/// freed once copied); `None` when the coverages do not hold them.
+fn stack(
+    covers: &mut [Coverage],
+    take: impl Fn(&mut Coverage) -> Option<Vec<f64>>,
+) -> Option<Vec<f64>> {
+    let k = covers.len();
+    let mut out: Option<Vec<f64>> = None;
+    for c in covers.iter_mut() {
+        let v = take(c)?;
+        match &mut out {
+            None => {
+                let mut first = v;
+                first.reserve_exact(first.len().saturating_mul(k.saturating_sub(1)));
+                out = Some(first);
+            }
+            Some(o) => o.extend_from_slice(&v),
+        }
+    }
+    out
+}
+
+/// The domains of a Python list of `NativeDomain`s, each with `fill_rule`.
+fn with_rule<'a>(
+    domains: &'a [Bound<'_, NativeDomain>],
+    fill_rule: FillRule,
+) -> Vec<(&'a Domain, FillRule)> {
+    domains
+        .iter()
+        .map(|d| (&d.get().domain, fill_rule))
+        .collect()
+}
+
+/// The coverage of the grid with edges `x_edges`, `y_edges` by the materials `domains` (in
+/// the order given, each under `fill_rule`), later domains replacing earlier ones with
+/// `replace` (else plain overlaps): [`MaterialCoverage::new`], then
+/// [`MaterialCoverage::all`] on `threads` threads (0 for all), the GIL released. Each array
+/// has a leading axis of `len(domains)`, material `k` first at index `k`. The library's
+/// errors (bad edges, an open boundary, crossing loops, boundaries whose intersections are
+/// not found, too many cells, an axis a domain or the grid crosses, planar-only outputs
+/// revolved) are `ValueError`s with its one-line message.
+#[pyfunction]
+#[pyo3(signature = (
+    domains, x_edges, y_edges, replace, centroids, apertures, fill_rule, threads,
+    boundary=false, face_centroids=false, axisymmetric=None
+))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn material_coverage<'py>(
+    py: Python<'py>,
+    domains: Vec<Bound<'py, NativeDomain>>,
+    x_edges: PyReadonlyArray1<'py, f64>,
+    y_edges: PyReadonlyArray1<'py, f64>,
+    replace: bool,
+    centroids: bool,
+    apertures: bool,
+    fill_rule: &str,
+    threads: usize,
+    boundary: bool,
+    face_centroids: bool,
+    axisymmetric: Option<&str>,
+) -> PyResult<MaterialArrays<'py>> {
+    if domains.is_empty() {
+        return Err(value_error("domains is empty: give at least one domain"));
+    }
+    let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
+    let options = coverage_options(centroids, apertures, boundary, face_centroids, axisymmetric)?;
+    let grid = CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec())
+        .map_err(value_error)?;
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let materials = with_rule(&domains, fill_rule);
+    let mut covers = py
+        .detach(|| {
+            with_threads(threads, || {
+                MaterialCoverage::new(&materials, grid, replace)?.all(options)
+            })
+        })?
+        .map_err(value_error)?;
+    let k = covers.len();
+    let array = |v: Option<Vec<f64>>, shape: &[usize]| {
+        v.map(|a| a.into_pyarray(py).reshape(shape.to_vec()))
+            .transpose()
+    };
+    let pairs = |c: Option<Vec<[f64; 2]>>| c.map(<Vec<[f64; 2]>>::into_flattened);
+    let fractions =
+        stack(&mut covers, |c| Some(std::mem::take(&mut c.fractions))).unwrap_or_default();
+    Ok((
+        fractions.into_pyarray(py).reshape(vec![k, ny, nx])?,
+        array(
+            stack(&mut covers, |c| pairs(c.centroids.take())),
+            &[k, ny, nx, 2],
+        )?,
+        array(
+            stack(&mut covers, |c| c.x_apertures.take()),
+            &[k, ny, nx + 1],
+        )?,
+        array(
+            stack(&mut covers, |c| c.y_apertures.take()),
+            &[k, ny + 1, nx],
+        )?,
+        array(
+            stack(&mut covers, |c| c.boundary_lengths.take()),
+            &[k, ny, nx],
+        )?,
+        array(
+            stack(&mut covers, |c| pairs(c.boundary_centroids.take())),
+            &[k, ny, nx, 2],
+        )?,
+        array(
+            stack(&mut covers, |c| pairs(c.boundary_normals.take())),
+            &[k, ny, nx, 2],
+        )?,
+        array(
+            stack(&mut covers, |c| c.x_face_centroids.take()),
+            &[k, ny, nx + 1],
+        )?,
+        array(
+            stack(&mut covers, |c| c.y_face_centroids.take()),
+            &[k, ny + 1, nx],
+        )?,
+    ))
+}
+
+/// Several materials prepared on one grid ([`MaterialCoverage::new`]: the regions with
+/// replacement and each one's index, built once), whose bands of rows are then computed one
+/// material at a time: the per-process object behind the blocks of
+/// `inrs.dask.cell_fractions` for several domains.
+#[pyclass(module = "inrs._inrs", name = "NativeMaterials", frozen)]
+pub(crate) struct NativeMaterials {
+    cover: MaterialCoverage,
+}
+
+#[pymethods]
+impl NativeMaterials {
+    /// Prepares the materials `domains` (each under `fill_rule`) on the grid of `x_edges`,
+    /// `y_edges`, later ones replacing earlier ones with `replace`; the GIL released.
+    /// `ValueError` with the library's message.
+    #[new]
+    #[pyo3(signature = (domains, x_edges, y_edges, fill_rule, replace))]
+    fn new<'py>(
+        py: Python<'py>,
+        domains: Vec<Bound<'py, NativeDomain>>,
+        x_edges: PyReadonlyArray1<'py, f64>,
+        y_edges: PyReadonlyArray1<'py, f64>,
+        fill_rule: &str,
+        replace: bool,
+    ) -> PyResult<Self> {
+        if domains.is_empty() {
+            return Err(value_error("domains is empty: give at least one domain"));
+        }
+        let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
+        let grid = CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec())
+            .map_err(value_error)?;
+        let materials = with_rule(&domains, fill_rule);
+        let cover = py
+            .detach(|| MaterialCoverage::new(&materials, grid, replace))
+            .map_err(value_error)?;
+        Ok(Self { cover })
+    }
+
+    /// The number of materials.
+    fn __len__(&self) -> usize {
+        self.cover.len()
+    }
+
+    /// Material `k`'s fractions of the rows `j0 .. j1`, shape `(j1 - j0, nx)`, revolved about
+    /// `axisymmetric` (`None`, `"x"` or `"y"`): [`MaterialCoverage::rows`] on the calling
+    /// thread, the GIL released (one band as the library's band iterator computes it).
+    #[pyo3(signature = (k, j0, j1, axisymmetric=None))]
+    fn rows<'py>(
+        &self,
+        py: Python<'py>,
+        k: usize,
+        j0: usize,
+        j1: usize,
+        axisymmetric: Option<&str>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let options = coverage_options(false, false, false, false, axisymmetric)?;
+        let cover = &self.cover;
+        let band = py
+            .detach(|| {
+                cover.check_options(options)?;
+                cover.rows(k, j0..j1, options)
+            })
+            .map_err(value_error)?;
+        let (n, nx) = (band.ny(), cover.grid().nx());
+        band.fractions.into_pyarray(py).reshape([n, nx])
+    }
 }

@@ -11,7 +11,8 @@
 //! - [`mesh`]: `sample`, `sample_halton`, `mesh`; [`spline`]: `FitPlan`, `interpolate`, `NativeSpline`;
 //! - [`convex`]: `convex_domain`; [`halton`]: `halton_points`;
 //! - [`coverage`]: `cell_coverage` (area fractions, centroids and apertures on a grid),
-//!   `coverage_band_rows` (the library's band height);
+//!   `coverage_band_rows` (the library's band height), `material_coverage` and
+//!   `NativeMaterials` (several materials on one grid);
 //! - [`cubature`]: `CubatureRule` (positive interior cubature: nodes, weights, integrals);
 //! - [`formula`]: `Formula` (the command line's formulas, evaluated on arrays);
 //! - [`threads`], [`errors`]: thread pools and exceptions.
@@ -57,6 +58,8 @@ fn _inrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(convex::convex_domain, m)?)?;
     m.add_function(wrap_pyfunction!(coverage::cell_coverage, m)?)?;
     m.add_function(wrap_pyfunction!(coverage::coverage_band_rows, m)?)?;
+    m.add_function(wrap_pyfunction!(coverage::material_coverage, m)?)?;
+    m.add_class::<coverage::NativeMaterials>()?;
     m.add_class::<cubature::NativeCubatureRule>()?;
     m.add_class::<formula::NativeFormula>()?;
     m.add("MAX_CUBATURE_DEGREE", inrs::cubature::MAX_DEGREE)?;
