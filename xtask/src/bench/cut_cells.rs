@@ -46,8 +46,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
     .map_err(|e| e.to_string())?;
     let butterfly = root.join("fixtures/axom-contours/butterfly.svg");
     let butterfly = butterfly.to_string_lossy();
-    let butterfly =
-        inrs::io::load_domain(&butterfly).map_err(|e| format!("{butterfly}: {e}"))?;
+    let butterfly = inrs::io::load_domain(&butterfly).map_err(|e| format!("{butterfly}: {e}"))?;
     let domains = [
         ("unit disc", right_of_the_axis(&disc)?),
         ("butterfly", right_of_the_axis(&butterfly)?),
@@ -88,7 +87,10 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
                     }) as Box<dyn FnMut() + '_>
                 })
                 .collect();
-            let mut refs: Vec<&mut dyn FnMut()> = runs.iter_mut().map(|f| &mut **f as &mut dyn FnMut()).collect();
+            let mut refs: Vec<&mut dyn FnMut()> = runs
+                .iter_mut()
+                .map(|f| &mut **f as &mut dyn FnMut())
+                .collect();
             let t = interleaved_times(reps, &mut refs);
             let base = t[0].median;
             let ratio = |k: usize| format!("{:.2}x", t[k].median / base);

@@ -4,8 +4,8 @@
 mod build;
 mod cli;
 mod coverage;
-mod cut_cells;
 mod cubature;
+mod cut_cells;
 mod green_reference;
 mod gwn;
 mod locator;
