@@ -89,7 +89,7 @@ def cell_fractions(
     overlaps), one task per material and block of rows (the library's
     ``MaterialCoverage::rows``); each worker process prepares the materials once (the
     regions and their indexes) and reuses them for all its tasks. The values are those of
-    the eager :func:`inrs.cell_fractions`, bit for bit (with the exception below).
+    the eager :func:`inrs.cell_fractions`, bit for bit.
 
     Each block holds ``row_chunk`` rows (default: the library's band height,
     ``GridCoverage::band_rows`` on this process's threads: about ``2**20`` cells (8 MiB), at
@@ -97,8 +97,8 @@ def cell_fractions(
     that covers only its rows (the library's ``GridCoverage::rows``, a band as its band
     iterator computes it), so no task ever holds the whole grid; write the result block by
     block (``dask.array.to_zarr``, ``store``) or reduce it. The values are those of the eager
-    call, bit for bit (a cell's value does not depend on the band it is computed in, but for
-    a few units in the last place at a grid vertex a curved boundary passes through). Each
+    call, bit for bit, for any ``row_chunk`` (a cell's value does not depend on the band it is
+    computed in, also where the boundary passes through or touches a grid vertex). Each
     task prepares the domain for the grid again, a cost of the order of covering one row of a
     few thousand cells per block. ``fill_rule`` (``even-odd`` or ``nonzero``) and
     ``axisymmetric`` (``None``, ``'x'`` or ``'y'``: revolved volume fractions) are those of

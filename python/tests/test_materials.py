@@ -145,6 +145,20 @@ def test_dask_blocks_equal_the_eager_call_bit_for_bit(row_chunk, replace):
     assert np.array_equal(lazy.compute(), eager, equal_nan=True)
 
 
+@pytest.mark.parametrize("row_chunk", [1, 3, 7, None])
+def test_dask_blocks_equal_the_eager_call_at_a_tangent_through_a_grid_vertex(row_chunk):
+    # The unit circle about (0, 0.6) on 48 cells over [-1.6, 1.6]: its leftmost point
+    # (-1, 0.6) is the grid vertex (x_9, y_33) within rounding (y_33 = 0.6000000000000001).
+    require("dask")
+    import inrs.dask
+
+    edges = np.array([-1.6 + 3.2 * k / 48 for k in range(48)] + [1.6])
+    ds = discs() + [circle(0.0, 0.6, 1.0)]
+    eager = inrs.cell_fractions(ds, edges, edges)
+    lazy = inrs.dask.cell_fractions(ds, edges, edges, row_chunk=row_chunk)
+    assert np.array_equal(lazy.compute(), eager, equal_nan=True)
+
+
 def test_dask_revolved_and_a_single_domain_unchanged():
     require("dask")
     import inrs.dask

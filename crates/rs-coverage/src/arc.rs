@@ -132,7 +132,13 @@ impl Arc {
         if other_dir == Monotonicity::Constant {
             (t, other(b.start))
         } else {
-            (t, v)
+            // Within the piece's own range: a solve a rounding beyond the piece's end (a
+            // tangent to the line at the end) must not place the crossing outside it.
+            let (lo, hi) = match axis {
+                Axis::X => (b.ymin, b.ymax),
+                Axis::Y => (b.xmin, b.xmax),
+            };
+            (t, v.clamp(lo, hi))
         }
     }
 

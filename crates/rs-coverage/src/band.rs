@@ -206,37 +206,38 @@ impl Band<'_> {
         c.anchors.push((tb, pb.x, pb.y));
         let forward = x_dir == Monotonicity::Increasing;
         // Vertical lines with x_i in [bx0, bx1) cross the part (half-open, as the lines
-        // `x_i + 0`); those strictly inside split it.
+        // `x_i + 0`: consecutive band parts share their clip's abscissa, so each line falls
+        // in one of them); those strictly inside split it. Each crossing is placed by the
+        // anchors: the anchor's own point where one has the line's abscissa (a grid vertex,
+        // or the part's end), else the solve held between the two anchors about it; so its
+        // point does not depend on the band.
         c.v_events.clear();
         let (i_lo, i_hi) = (
             xs.partition_point(|&x| x < bx0),
             xs.partition_point(|&x| x < bx1),
         );
         for (i, &x) in xs.iter().enumerate().take(i_hi).skip(i_lo) {
-            let y = if x == bx0 {
-                if pa.x == bx0 { pa.y } else { pb.y }
+            // The first anchor at or beyond `x` along the part.
+            let m = if forward {
+                c.anchors.partition_point(|a| a.1 < x)
             } else {
-                // The first anchor at or beyond `x` along the part: a crossing through the
-                // grid vertex is that anchor's, else the solve is held between the two.
-                let m = if forward {
-                    c.anchors.partition_point(|a| a.1 < x)
-                } else {
-                    c.anchors.partition_point(|a| a.1 > x)
-                }
-                .clamp(1, c.anchors.len() - 1);
-                let (before, after) = (c.anchors[m - 1], c.anchors[m]);
-                let (t, y) = if after.1 == x {
-                    (after.0, after.2)
-                } else {
-                    let (t, y) = arc.at_x(x);
-                    (
-                        t.clamp(before.0, after.0.max(before.0)),
-                        y.clamp(before.2.min(after.2), before.2.max(after.2)),
-                    )
-                };
-                c.v_events.push((t, i, y, m));
-                y
+                c.anchors.partition_point(|a| a.1 > x)
+            }
+            .min(c.anchors.len() - 1);
+            let after = c.anchors[m];
+            let (t, y) = if after.1 == x {
+                (after.0, after.2)
+            } else {
+                let before = c.anchors[m.saturating_sub(1)];
+                let (t, y) = arc.at_x(x);
+                (
+                    t.clamp(before.0, after.0.max(before.0)),
+                    y.clamp(before.2.min(after.2), before.2.max(after.2)),
+                )
             };
+            if x != bx0 {
+                c.v_events.push((t, i, y, m.max(1)));
+            }
             if self.vertical_faces {
                 c.vertical.push((i as u32, y));
             }
@@ -269,7 +270,14 @@ impl Band<'_> {
             n as isize - 1
         };
         let increasing = |d: Monotonicity| d == Monotonicity::Increasing;
-        let mut col = below(xs, pa.x, increasing(x_dir));
+        // Within the columns the piece spans (from the one right of its least abscissa to
+        // the one left of its greatest): a crossing solved a rounding beyond the piece's end
+        // (a vertical tangent at a grid vertex) must not start the part in a column the
+        // piece never enters, which the walk from the piece's start would not.
+        let mut col = below(xs, pa.x, increasing(x_dir)).clamp(
+            below(xs, b.xmin, true),
+            below(xs, b.xmax, false).max(below(xs, b.xmin, true)),
+        );
         let mut row = below(ys, pa.y, increasing(y_dir));
         let dcol = if increasing(x_dir) { 1 } else { -1 };
         let drow = match y_dir {

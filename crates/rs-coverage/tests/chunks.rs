@@ -192,6 +192,41 @@ fn rectilinear_grids_through_points_of_the_curve_give_the_same_bits_in_every_ban
 }
 
 #[test]
+fn tangents_at_grid_vertices_give_the_same_bits_in_every_band() {
+    // The unit circle about (0, 0.6) on 48 cells over [-1.6, 1.6]: its leftmost point
+    // (-1, 0.6) is the vertex (x_9, y_33) within rounding (y_33 = 0.6000000000000001), a
+    // vertical tangent whose crossing with y_33 is solved a rounding left of x = -1.
+    let d = Domain::new(vec![circle(Point::new(0.0, 0.6), 1.0).unwrap()]).unwrap();
+    check(
+        "vertical tangent at a vertex",
+        &d,
+        CellGrid::uniform(-1.6, 1.6, 48, -1.6, 1.6, 48).unwrap(),
+    );
+    // Circles whose extreme points (left, right, top, bottom) sit on grid vertices of
+    // uniform grids, within the rounding of the grid's edges.
+    let mut seed = 11;
+    for trial in 0..24 {
+        let n = 8 + (lcg(&mut seed) * 40.0) as usize;
+        let (x0, step) = (-2.0 + lcg(&mut seed), 4.0 / n as f64);
+        let grid = CellGrid::uniform(x0, x0 + 4.0, n, x0, x0 + 4.0, n).unwrap();
+        let (i, j) = (
+            1 + (lcg(&mut seed) * (n as f64 / 2.0)) as usize,
+            1 + (lcg(&mut seed) * (n as f64 - 2.0)) as usize,
+        );
+        let r = step * (1 + (lcg(&mut seed) * 4.0) as usize) as f64 * 0.999_999_999;
+        let (vx, vy) = (grid.x_edges()[i], grid.y_edges()[j]);
+        let centre = match trial % 4 {
+            0 => Point::new(vx + r, vy),
+            1 => Point::new(vx - r, vy),
+            2 => Point::new(vx, vy - r),
+            _ => Point::new(vx, vy + r),
+        };
+        let d = Domain::new(vec![circle(centre, r).unwrap()]).unwrap();
+        check(&format!("tangent trial {trial}"), &d, grid);
+    }
+}
+
+#[test]
 fn axom_contours_give_the_same_bits_in_every_band() {
     for name in ["butterfly", "rose", "fish"] {
         let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
