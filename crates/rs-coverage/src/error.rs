@@ -146,10 +146,28 @@ pub enum CoverageError {
         /// The material (index of its domain).
         material: usize,
     },
+    /// One material's domain could not be prepared: the domain's own error.
+    #[error("material {material}: {source}")]
+    Material {
+        /// The material (index of its domain).
+        material: usize,
+        /// Why.
+        source: Box<CoverageError>,
+    },
     /// The output could not be allocated.
     #[error("cannot allocate {bytes} bytes for the output: compute the grid in smaller row bands")]
     OutOfMemory {
         /// The bytes asked for.
         bytes: usize,
     },
+}
+
+impl CoverageError {
+    /// `e` as material `k`'s error ([`CoverageError::Material`]).
+    pub(crate) fn in_material(material: usize, e: CoverageError) -> Self {
+        CoverageError::Material {
+            material,
+            source: Box::new(e),
+        }
+    }
 }

@@ -44,15 +44,19 @@ impl MaterialCoverage {
     /// Prepares the materials `domains` (each with its fill rule) on `grid`, replacing or not.
     ///
     /// # Errors
-    /// As [`GridCoverage::with_fill_rule`] for each domain, and as [`material_domains`] with
-    /// `replace` (intersections of the boundaries, chaining of the regions).
+    /// A domain's own refusal (open or crossing loops: as [`GridCoverage::with_fill_rule`])
+    /// as [`CoverageError::Material`] naming it; as [`material_domains`] with `replace` for
+    /// the boundaries together (too many pairs of pieces, an intersection not found, a
+    /// region that does not chain: [`CoverageError::Unchained`] names its material).
     pub fn new(
         domains: &[(&Domain, FillRule)],
         grid: CellGrid,
         replace: bool,
     ) -> Result<Self, CoverageError> {
-        let as_given = |(d, rule): &(&Domain, FillRule)| {
-            GridCoverage::with_fill_rule(d, grid.clone(), *rule).map(Some)
+        let as_given = |k: usize, (d, rule): &(&Domain, FillRule)| {
+            GridCoverage::with_fill_rule(d, grid.clone(), *rule)
+                .map(Some)
+                .map_err(|e| CoverageError::in_material(k, e))
         };
         let materials = match domains.split_last() {
             Some((last, earlier)) if replace && !earlier.is_empty() => {
@@ -60,16 +64,22 @@ impl MaterialCoverage {
                 let mut m = regions
                     .iter()
                     .take(earlier.len())
-                    .map(|r| {
+                    .enumerate()
+                    .map(|(k, r)| {
                         r.as_ref()
                             .map(|d| GridCoverage::new(d, grid.clone()))
                             .transpose()
+                            .map_err(|e| CoverageError::in_material(k, e))
                     })
                     .collect::<Result<Vec<_>, _>>()?;
-                m.push(as_given(last)?);
+                m.push(as_given(earlier.len(), last)?);
                 m
             }
-            _ => domains.iter().map(as_given).collect::<Result<_, _>>()?,
+            _ => domains
+                .iter()
+                .enumerate()
+                .map(|(k, d)| as_given(k, d))
+                .collect::<Result<_, _>>()?,
         };
         Ok(Self { grid, materials })
     }
@@ -97,12 +107,21 @@ impl MaterialCoverage {
     /// Checks `options` for every material ([`GridCoverage::check_options`]).
     ///
     /// # Errors
-    /// As [`GridCoverage::check_options`].
+    /// As [`GridCoverage::check_options`]; a domain across the axis of revolution as
+    /// [`CoverageError::Material`] naming it.
     pub fn check_options(&self, options: CoverageOptions) -> Result<(), CoverageError> {
         self.materials
             .iter()
-            .flatten()
-            .try_for_each(|m| m.check_options(options))
+            .enumerate()
+            .filter_map(|(k, m)| Some((k, m.as_ref()?)))
+            .try_for_each(|(k, m)| {
+                m.check_options(options).map_err(|e| match e {
+                    CoverageError::AcrossAxis { what: "domain", .. } => {
+                        CoverageError::in_material(k, e)
+                    }
+                    e => e,
+                })
+            })
     }
 
     /// Material `k`'s coverage of the rows `rows` ([`GridCoverage::rows`]; zeros and `NaN`s

@@ -72,12 +72,14 @@ pub fn material_domains(
     replace: bool,
 ) -> Result<Vec<Option<Domain>>, CoverageError> {
     let mut oriented = Vec::with_capacity(domains.len());
-    for &(d, rule) in domains {
+    for (k, &(d, rule)) in domains.iter().enumerate() {
         if !replace && rule == FillRule::EvenOdd {
             oriented.push(None);
             continue;
         }
-        oriented.push(Some(Oriented::new(d, rule)?));
+        oriented.push(Some(
+            Oriented::new(d, rule).map_err(|e| CoverageError::in_material(k, e))?,
+        ));
     }
     if !replace {
         return Ok(domains
@@ -102,6 +104,8 @@ struct Oriented {
 
 impl Oriented {
     fn new(d: &Domain, rule: FillRule) -> Result<Self, CoverageError> {
+        // An open boundary in the words `GridCoverage` uses.
+        d.require_closed()?;
         let nesting = fill_nesting(d).map_err(CoverageError::Nesting)?;
         let mut curves: Vec<NurbsCurve> = Vec::new();
         for (l, n) in d.loops().iter().zip(&nesting) {

@@ -201,13 +201,13 @@ impl FractionsArgs {
         let rule: FillRule = self.fill_rule.into();
         let materials: Vec<(&Domain, FillRule)> = domains.iter().map(|d| (d, rule)).collect();
         let cover = MaterialCoverage::new(&materials, grid.clone(), !self.no_replace)
-            .map_err(|e| self.preparation_error(&materials, &grid, e))?;
+            .map_err(|e| self.preparation_error(e))?;
         let options = self.options();
         // Refused options (an axis a domain or the grid crosses, planar-only outputs
         // revolved) before any file is created.
         cover
             .check_options(options)
-            .map_err(|e| self.options_error(&cover, options, e))?;
+            .map_err(|e| self.options_error(e))?;
         let leading = (self.domain.len() > 1).then_some(self.domain.len());
         bands::write_materials(&cover, options, &self.paths(options)?, leading, |k, e| {
             self.domain_error(k, e)
@@ -249,32 +249,15 @@ impl FractionsArgs {
         }
     }
 
-    /// The library's refusal to prepare the materials, naming the domain at fault: the
-    /// material it names (a region that does not chain), else the first domain the library
-    /// refuses alone (open or crossing loops, ...), else every domain (their boundaries
-    /// together: too many pairs, an intersection not found).
-    fn preparation_error(
-        &self,
-        materials: &[(&Domain, FillRule)],
-        grid: &CellGrid,
-        e: CoverageError,
-    ) -> CliError {
-        if let CoverageError::Unchained { material } = e {
-            return self.domain_error(material, e);
-        }
-        if materials.len() == 1 {
-            return self.domain_error(0, e);
-        }
-        // Only on failure: each domain through the same entry point, alone.
-        let alone = (0..materials.len()).find_map(|k| {
-            let one = materials.get(k..=k)?;
-            MaterialCoverage::new(one, grid.clone(), false)
-                .err()
-                .map(|e| (k, e))
-        });
-        match alone {
-            Some((k, e)) => self.domain_error(k, e),
-            None => {
+    /// The library's refusal to prepare the materials: naming the domain the library names
+    /// (its own refusal, or a region that does not chain), else every domain (their
+    /// boundaries together: too many pairs of pieces, an intersection not found).
+    fn preparation_error(&self, e: CoverageError) -> CliError {
+        match e {
+            CoverageError::Material { material, source } => self.domain_error(material, source),
+            CoverageError::Unchained { material } => self.domain_error(material, e),
+            e if self.domain.len() == 1 => self.domain_error(0, e),
+            e => {
                 let all: Vec<String> = self
                     .domain
                     .iter()
@@ -285,29 +268,22 @@ impl FractionsArgs {
         }
     }
 
-    /// The library's refusal of the options: `--axisymmetric <axis>: <e>`, naming the
-    /// material the library refuses (with several) when a domain crosses the axis.
-    fn options_error(
-        &self,
-        cover: &MaterialCoverage,
-        options: CoverageOptions,
-        e: CoverageError,
-    ) -> CliError {
+    /// The library's refusal of the options: `--axisymmetric <axis>: <e>`, with several
+    /// domains naming the one the library names (a domain across the axis).
+    fn options_error(&self, e: CoverageError) -> CliError {
         let flag = match self.axisymmetric {
             Some(AxisArg::X) => "--axisymmetric x",
             Some(AxisArg::Y) => "--axisymmetric y",
             None => "fractions",
         };
-        let domain_at_fault =
-            matches!(e, CoverageError::AcrossAxis { what: "domain", .. }) && cover.len() > 1;
-        let refused = (0..cover.len()).find(|&k| {
-            cover
-                .material(k)
-                .is_some_and(|m| m.check_options(options).is_err())
-        });
-        match refused {
-            Some(k) if domain_at_fault => self.domain_error(k, format!("{flag}: {e}")),
-            _ => CliError::Message(format!("{flag}: {e}")),
+        match e {
+            CoverageError::Material { material, source } if self.domain.len() > 1 => {
+                self.domain_error(material, format!("{flag}: {source}"))
+            }
+            CoverageError::Material { source, .. } => {
+                CliError::Message(format!("{flag}: {source}"))
+            }
+            e => CliError::Message(format!("{flag}: {e}")),
         }
     }
 
