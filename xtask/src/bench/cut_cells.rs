@@ -58,14 +58,21 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
          for plain fractions, and each output's time over theirs in the same interleaved \
          rounds (medians of {reps}): *RZ* revolved about the y axis (`--axisymmetric y`: volume \
          fractions), *RZ + centroids* (second moments), *boundary* (`--boundary`: length, \
-         centroid and normal per cell), *faces* (`--apertures --face-centroids`).\n",
+         centroid and normal per cell), *faces* (`--apertures --face-centroids`). *Output \
+         floor*: plain fractions plus what filling the boundary's arrays alone takes (the same \
+         call on the same grid with the domain moved off it: 40 bytes a cell, centroids and \
+         normals `NaN`), and *boundary over floor*: the boundary's time over that floor, what \
+         its computation adds beyond writing its output.\n",
         rayon::current_num_threads(),
     );
     let _ = writeln!(
         md,
-        "| domain | cells | fractions ms | RZ | RZ + centroids | boundary | apertures + face centroids |"
+        "| domain | cells | fractions ms | RZ | RZ + centroids | boundary | apertures + face centroids | output floor ms | boundary over floor |"
     );
-    let _ = writeln!(md, "| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+    let _ = writeln!(
+        md,
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    );
     let plain = CoverageOptions::DEFAULT;
     let rz = plain.with_axisymmetric(Some(Axis::Y));
     let options = [
@@ -77,11 +84,27 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
     ];
     for (name, d) in &domains {
         for &n in sizes {
-            let cover = GridCoverage::new(d, grid_over(d, n)?).map_err(|e| e.to_string())?;
+            let grid = grid_over(d, n)?;
+            let cover = GridCoverage::new(d, grid.clone()).map_err(|e| e.to_string())?;
+            // The same grid with the domain moved off it: the outputs' allocation and fill.
+            let away = {
+                let b = d.bounding_box();
+                let shift = Affine::translate(0.0, 3.0 * b.height());
+                let curves = d
+                    .curves()
+                    .iter()
+                    .map(|c| shift.apply_to_curve(c))
+                    .collect::<Result<Vec<_>, _>>()
+                    .map_err(|e| e.to_string())?;
+                let moved = Domain::new(curves).map_err(|e| e.to_string())?;
+                GridCoverage::new(&moved, grid).map_err(|e| e.to_string())?
+            };
+            let covers = [&cover; 5];
             let mut runs: Vec<Box<dyn FnMut() + '_>> = options
                 .iter()
-                .map(|&opt| {
-                    let cover = &cover;
+                .zip(covers)
+                .chain([(&options[3], &away), (&options[0], &away)])
+                .map(|(&opt, cover)| {
                     Box::new(move || {
                         std::hint::black_box(cover.all(opt).ok());
                     }) as Box<dyn FnMut() + '_>
@@ -94,14 +117,17 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             let t = interleaved_times(reps, &mut refs);
             let base = t[0].median;
             let ratio = |k: usize| format!("{:.2}x", t[k].median / base);
+            let floor = base + (t[5].median - t[6].median).max(0.0);
             let _ = writeln!(
                 md,
-                "| {name} | {n}^2 | {:.1} | {} | {} | {} | {} |",
+                "| {name} | {n}^2 | {:.1} | {} | {} | {} | {} | {:.1} | {:.2}x |",
                 base * 1e3,
                 ratio(1),
                 ratio(2),
                 ratio(3),
-                ratio(4)
+                ratio(4),
+                floor * 1e3,
+                t[3].median / floor
             );
         }
     }
