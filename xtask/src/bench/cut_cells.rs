@@ -62,16 +62,19 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
          floor*: plain fractions plus what filling the boundary's arrays alone takes (the same \
          call on the same grid with the domain moved off it: 40 bytes a cell, centroids and \
          normals `NaN`), and *boundary over floor*: the boundary's time over that floor, what \
-         its computation adds beyond writing its output.\n",
+         its computation adds beyond writing its output. *Streamed*: the same outputs band by \
+         band as `inrs fractions` computes them (`GridCoverage::bands`, each band dropped \
+         when taken: the arrays of a band reused from the allocator, no file written), the \
+         boundary and RZ over streamed fractions.\n",
         rayon::current_num_threads(),
     );
     let _ = writeln!(
         md,
-        "| domain | cells | fractions ms | RZ | RZ + centroids | boundary | apertures + face centroids | output floor ms | boundary over floor |"
+        "| domain | cells | fractions ms | RZ | RZ + centroids | boundary | apertures + face centroids | output floor ms | boundary over floor | streamed fractions ms | streamed boundary | streamed RZ |"
     );
     let _ = writeln!(
         md,
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     );
     let plain = CoverageOptions::DEFAULT;
     let rz = plain.with_axisymmetric(Some(Axis::Y));
@@ -110,6 +113,17 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
                     }) as Box<dyn FnMut() + '_>
                 })
                 .collect();
+            // Streamed as the CLI streams (bands of `band_rows`, each dropped when taken).
+            for opt in [options[0], options[3], options[1]] {
+                let cover = &cover;
+                runs.push(Box::new(move || {
+                    cover.bands(cover.band_rows(opt), opt, |bands| {
+                        for (_, band) in bands {
+                            std::hint::black_box(band.ok());
+                        }
+                    });
+                }));
+            }
             let mut refs: Vec<&mut dyn FnMut()> = runs
                 .iter_mut()
                 .map(|f| &mut **f as &mut dyn FnMut())
@@ -120,14 +134,17 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             let floor = base + (t[5].median - t[6].median).max(0.0);
             let _ = writeln!(
                 md,
-                "| {name} | {n}^2 | {:.1} | {} | {} | {} | {} | {:.1} | {:.2}x |",
+                "| {name} | {n}^2 | {:.1} | {} | {} | {} | {} | {:.1} | {:.2}x | {:.1} | {:.2}x | {:.2}x |",
                 base * 1e3,
                 ratio(1),
                 ratio(2),
                 ratio(3),
                 ratio(4),
                 floor * 1e3,
-                t[3].median / floor
+                t[3].median / floor,
+                t[7].median * 1e3,
+                t[8].median / t[7].median,
+                t[9].median / t[7].median,
             );
         }
     }
