@@ -11,6 +11,8 @@ as its file and index, and each worker process reads the file once.
 
 from __future__ import annotations
 
+import collections
+
 import hashlib
 import threading
 
@@ -148,8 +150,10 @@ def _row_chunk(row_chunk, nx: int, ny: int) -> int:
 
 # Materials prepared in this process, by the key of their domains, grid, fill rule and
 # replacement: the tasks of a worker prepare them once.
-_MATERIALS: "dict[str, _inrs.NativeMaterials]" = {}
+_MATERIALS: "collections.OrderedDict[str, _inrs.NativeMaterials]" = collections.OrderedDict()
 _MATERIALS_LOCK = threading.Lock()
+# Most prepared material sets a process keeps (the least recently used goes first).
+_MATERIALS_KEPT = 8
 
 
 def _materials_key(domains, x: np.ndarray, y: np.ndarray, fill_rule: str, replace: bool) -> str:
@@ -166,14 +170,21 @@ def _materials_key(domains, x: np.ndarray, y: np.ndarray, fill_rule: str, replac
 
 
 def _materials(key: str, domains, x, y, fill_rule: str, replace: bool) -> "_inrs.NativeMaterials":
-    """The materials of ``key``, prepared on first use in this process and kept."""
+    """The materials of ``key``, prepared on first use in this process and kept (the
+    :data:`_MATERIALS_KEPT` most recently used). The preparation (intersections of the
+    boundaries) runs outside the lock, so other material sets are not held up; two tasks that
+    prepare the same set at once keep the first."""
     with _MATERIALS_LOCK:
         m = _MATERIALS.get(key)
-        if m is None:
-            m = _inrs.NativeMaterials([d._native for d in domains], x, y, fill_rule, replace)
-            if len(_MATERIALS) > 8:
-                _MATERIALS.clear()
-            _MATERIALS[key] = m
+        if m is not None:
+            _MATERIALS.move_to_end(key)
+            return m
+    m = _inrs.NativeMaterials([d._native for d in domains], x, y, fill_rule, replace)
+    with _MATERIALS_LOCK:
+        m = _MATERIALS.setdefault(key, m)
+        _MATERIALS.move_to_end(key)
+        while len(_MATERIALS) > _MATERIALS_KEPT:
+            _MATERIALS.popitem(last=False)
     return m
 
 

@@ -61,8 +61,10 @@ pub(crate) struct Arc {
     /// All weights equal: `x(t)`, `y(t)` are polynomials of the piece's degree.
     polynomial: bool,
     /// Its cumulative arc-length integrals, built the first time a band asks for the
-    /// boundary's geometry (the same table from whichever thread builds it).
-    arc_length: OnceLock<ArcLengthTable>,
+    /// boundary's geometry (the same table from whichever thread builds it); `None` for a
+    /// piece whose series would need too many sub-intervals (its parts take the adaptive
+    /// rule).
+    arc_length: OnceLock<Option<ArcLengthTable>>,
 }
 
 impl Arc {
@@ -237,16 +239,39 @@ impl Arc {
     }
 
     /// The integrals of [`ArcLengthIntegrals`] over the parameters `[t0, t1]`, relative to
-    /// the cell corner `corner`: differences of the piece's cumulative arc-length integrals
-    /// ([`ArcLengthTable`]).
+    /// the cell corner `corner` of a cell `width` by `height`: differences of the piece's
+    /// cumulative arc-length integrals ([`ArcLengthTable`]), or, for a piece without a table
+    /// (strong weights whose rounding the series cannot resolve within its bound), the
+    /// bounded adaptive rule on `ds`, `(u / width) ds`, `(v / height) ds` to `1e-15` of the
+    /// cell's half perimeter.
     pub(crate) fn arc_length_integrals(
         &self,
         range: (f64, f64),
         corner: Point,
+        (width, height): (f64, f64),
     ) -> ArcLengthIntegrals {
-        self.arc_length
-            .get_or_init(|| ArcLengthTable::new(self.piece.piece()))
-            .integrals(range, corner)
+        let table = self
+            .arc_length
+            .get_or_init(|| ArcLengthTable::new(self.piece.piece()));
+        if let Some(table) = table {
+            return table.integrals(range, corner);
+        }
+        let piece = self.piece.piece().relative_to(corner);
+        let mut speed = ArcLength {
+            piece: &piece,
+            scale: (1.0 / width, 1.0 / height),
+        };
+        let mut sum = [0.0; 3];
+        integrate_piece(
+            &mut speed,
+            range,
+            PieceRule::Adaptive {
+                abs_tol: RELATIVE_TOLERANCE * (width + height),
+            },
+            Jacobian::OnTheSum,
+            &mut sum,
+        );
+        [sum[0], sum[1] * width, sum[2] * height]
     }
 }
 
@@ -282,6 +307,34 @@ impl PieceIntegrand for Volume<'_> {
         let (value, magnitude) = self.at(t);
         out[0] = value;
         magnitude
+    }
+}
+
+/// The integrands of [`ArcLengthIntegrals`] for the adaptive rule, the local coordinates
+/// scaled by `scale` (`1 / width`, `1 / height`) so that the three have the size of the
+/// length.
+struct ArcLength<'a> {
+    piece: &'a RelativePiece<'a>,
+    scale: (f64, f64),
+}
+
+impl PieceIntegrand for ArcLength<'_> {
+    fn add_node(&mut self, t: f64, weight: f64, sum: &mut [f64]) {
+        let mut v = [0.0; 3];
+        self.values(t, &mut v);
+        for (s, v) in sum.iter_mut().zip(v) {
+            *s += weight * v;
+        }
+    }
+
+    fn values(&mut self, t: f64, out: &mut [f64]) -> f64 {
+        let (u, v, dx, dy) = self.piece.point_and_derivatives(t);
+        // No overflow: derivatives of coordinates within `MAX_COORDINATE`.
+        let ds = (dx * dx + dy * dy).sqrt();
+        out[0] = ds;
+        out[1] = u * self.scale.0 * ds;
+        out[2] = v * self.scale.1 * ds;
+        ds
     }
 }
 
@@ -466,7 +519,7 @@ mod tests {
             for (t, p) in total.iter_mut().zip(p) {
                 *t += p;
             }
-            let l = a.arc_length_integrals((0.0, 1.0), Point::new(0.0, 0.0));
+            let l = a.arc_length_integrals((0.0, 1.0), Point::new(0.0, 0.0), (1.0, 2.0));
             for (t, l) in arc_length.iter_mut().zip(l) {
                 *t += l;
             }

@@ -6,12 +6,20 @@
 //! cusp: `x'` and `y'` keep their signs). With a reference point `r` (the piece's first control
 //! point), `S(t) = int_0^t [1, x - r_x, y - r_y] s dt`. Each component is interpolated at the
 //! 33 Chebyshev points of a sub-interval, the interval halved while the last three
-//! coefficients exceed `4 eps` of the largest (at most [`MAX_DEPTH`] halvings), and the series
-//! integrated exactly (`int T_k = (T_{k+1} / (k + 1) - T_{k-1} / (k - 1)) / 2`). A part's
+//! coefficients exceed the values' rounding (`4 eps` of the largest coefficient, times the
+//! piece's weight ratio: a rational piece's speed carries the rounding of its quotient rule,
+//! which grows with it), and the series integrated exactly
+//! (`int T_k = (T_{k+1} / (k + 1) - T_{k-1} / (k - 1)) / 2`). Strong weights concentrate the
+//! speed near the ends (a middle weight of `1e8` puts most of the length in `1e-8` of the
+//! parameters): the halving follows it there, where one adaptive quadrature over a part can
+//! miss it. A piece that needs more than [`MAX_SPANS`] sub-intervals has no table
+//! ([`ArcLengthTable::new`] is `None`): its parts take the bounded adaptive rule instead
+//! (`Arc::arc_length_integrals`). A part's
 //! length is then `S_0(t1) - S_0(t0)`, its moment about a cell corner `c`
 //! `S_1(t1) - S_1(t0) + (r_x - c_x) length`: rounding of about `eps` times the piece's own
-//! length and size, far below the `1e-12` of a cell the outputs promise on grids up to `10^5`
-//! cells a side.
+//! length and size (times the weight ratio for a rational piece: the rounding of its speed),
+//! far below the `1e-12` of a cell the outputs promise on grids up to `10^5` cells a side for
+//! polynomial pieces and circles.
 
 use std::sync::OnceLock;
 
@@ -21,8 +29,9 @@ use rs_spline::Point;
 /// Chebyshev points per sub-interval minus one.
 const N: usize = 32;
 
-/// Most halvings of `[0, 1]` (a sub-interval of `2^-24`).
-const MAX_DEPTH: u32 = 24;
+/// Most sub-intervals of one piece's table (about 210 KB): beyond it the piece's parts take
+/// the adaptive rule.
+pub(crate) const MAX_SPANS: usize = 256;
 
 /// `cos(pi m / N)` for `m` in `0 .. 2N`.
 fn cosines() -> &'static [f64; 2 * N] {
@@ -47,8 +56,9 @@ pub(crate) struct ArcLengthTable {
 }
 
 impl ArcLengthTable {
-    /// The table of `piece` on `[0, 1]`.
-    pub(crate) fn new(piece: &BezierPiece) -> Self {
+    /// The table of `piece` on `[0, 1]`, or `None` if it needs more than [`MAX_SPANS`]
+    /// sub-intervals.
+    pub(crate) fn new(piece: &BezierPiece) -> Option<Self> {
         let reference = piece.control_point(0);
         let relative = piece.relative_to(reference);
         let f = |t: f64| {
@@ -56,16 +66,28 @@ impl ArcLengthTable {
             let ds = (dx * dx + dy * dy).sqrt();
             [ds, u * ds, v * ds]
         };
+        // The rounding the speed's values carry, relative to their size.
+        let weights = piece.weights();
+        let (wmin, wmax) = weights
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| {
+                (lo.min(w), hi.max(w))
+            });
+        let noise = 4.0 * f64::EPSILON * (wmax / wmin).max(1.0);
         let mut spans = Vec::new();
-        let mut stack = vec![(0.0, 1.0, 0u32)];
+        let mut stack = vec![(0.0, 1.0)];
         let mut start = [0.0; 3];
-        // Left to right: the stack holds the right halves still to do.
-        while let Some((a, b, depth)) = stack.pop() {
-            let (coeffs, converged) = interpolate(&f, a, b);
-            if !converged && depth < MAX_DEPTH {
+        // Left to right: the stack holds the right halves still to do; every halving adds
+        // one sub-interval, so the work is bounded by `MAX_SPANS`.
+        while let Some((a, b)) = stack.pop() {
+            let (coeffs, converged) = interpolate(&f, a, b, noise);
+            if !converged {
+                if spans.len() + stack.len() + 2 > MAX_SPANS {
+                    return None;
+                }
                 let m = 0.5 * (a + b);
-                stack.push((m, b, depth + 1));
-                stack.push((a, m, depth + 1));
+                stack.push((m, b));
+                stack.push((a, m));
                 continue;
             }
             let half = 0.5 * (b - a);
@@ -82,7 +104,7 @@ impl ArcLengthTable {
             }
             spans.push(span);
         }
-        Self { reference, spans }
+        Some(Self { reference, spans })
     }
 
     /// `S(t)` ([module docs](self)), `t` clamped into `[0, 1]`.
@@ -111,8 +133,13 @@ impl ArcLengthTable {
 
 /// The Chebyshev coefficients (first kind, `a_0` whole) of the three components of `f` on
 /// `[a, b]` from its values at the `N + 1` Chebyshev points, and whether every component's
-/// last three coefficients are below `4 eps` of its largest.
-fn interpolate(f: &impl Fn(f64) -> [f64; 3], a: f64, b: f64) -> ([[f64; N + 1]; 3], bool) {
+/// last three coefficients are below `noise` times its largest.
+fn interpolate(
+    f: &impl Fn(f64) -> [f64; 3],
+    a: f64,
+    b: f64,
+    noise: f64,
+) -> ([[f64; N + 1]; 3], bool) {
     let cos = cosines();
     let values: Vec<[f64; 3]> = (0..=N)
         .map(|j| f(0.5 * (a + b) + 0.5 * (b - a) * cos[j]))
@@ -134,7 +161,7 @@ fn interpolate(f: &impl Fn(f64) -> [f64; 3], a: f64, b: f64) -> ([[f64; N + 1]; 
         }
         let largest = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let tail = c[N - 2..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        converged &= tail <= 4.0 * f64::EPSILON * largest;
+        converged &= tail <= noise * largest;
     }
     (coeffs, converged)
 }
@@ -169,6 +196,37 @@ fn clenshaw(c: &[f64], x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rs_boxes::{BoxOptions, MonotoneBoxes};
+    use rs_spline::{Domain, NurbsCurve, polyline};
+
+    /// The tables of the monotone pieces of the quadratic `(0,0), (1,0), (1,1)` with middle
+    /// weight `w`, closed by its chord: their sub-interval counts.
+    fn spans(w: f64) -> Vec<Option<usize>> {
+        let pts = vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+        ];
+        let q = NurbsCurve::bezier(pts, Some(vec![1.0, w, 1.0])).unwrap();
+        let chord = polyline(&[Point::new(1.0, 1.0), Point::new(0.0, 0.0)]).unwrap();
+        let d = Domain::new(vec![q, chord]).unwrap();
+        let boxes = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(1)).unwrap();
+        boxes
+            .pieces()
+            .iter()
+            .map(|p| ArcLengthTable::new(p.piece()).map(|t| t.spans.len()))
+            .collect()
+    }
+
+    #[test]
+    fn strong_weights_are_followed_to_the_ends_within_the_bound() {
+        for w in [1.0, 1e4, 1e8, 1e12] {
+            for n in spans(w) {
+                let n = n.unwrap_or_else(|| panic!("weight {w}: no table"));
+                assert!(n <= 128, "weight {w}: {n} sub-intervals");
+            }
+        }
+    }
 
     #[test]
     fn chebyshev_antiderivatives_are_exact_on_polynomials() {

@@ -460,7 +460,7 @@ impl Band<'_> {
                 let v = arc.piece.band.start.y - corner.y;
                 [len, len * (0.5 * (x0 + x1) - corner.x), len * v]
             } else {
-                arc.arc_length_integrals((t0, t1), corner)
+                arc.arc_length_integrals((t0, t1), corner, size)
             };
             let normal = [arc.sign * (p1.y - p0.y), arc.sign * (x0 - x1)];
             c.boundary.push((idx, [len, lu, lv, normal[0], normal[1]]));

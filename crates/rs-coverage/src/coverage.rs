@@ -416,43 +416,7 @@ impl GridCoverage {
     /// # Errors
     /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`].
     pub fn check_options(&self, options: CoverageOptions) -> Result<(), CoverageError> {
-        let Some(axis) = options.axisymmetric else {
-            return Ok(());
-        };
-        if options.boundary || options.face_centroids {
-            return Err(CoverageError::PlanarOnly {
-                what: if options.boundary {
-                    "the boundary's lengths, centroids and normals"
-                } else {
-                    "face centroids"
-                },
-            });
-        }
-        // The coordinate that is the radius.
-        let radius = axis.other();
-        let grid = self.grid.bounding_box();
-        let span = |b: &BoundingBox| (b.min.coord(radius), b.max.coord(radius));
-        let (g0, g1) = span(&grid);
-        if g0 < 0.0 && g1 > 0.0 {
-            return Err(CoverageError::AcrossAxis {
-                what: "grid",
-                axis,
-                low: g0,
-                high: g1,
-            });
-        }
-        if let Some((d0, d1)) = self.extent.as_ref().map(span)
-            && d0 < 0.0
-            && d1 > 0.0
-        {
-            return Err(CoverageError::AcrossAxis {
-                what: "domain",
-                axis,
-                low: d0,
-                high: d1,
-            });
-        }
-        Ok(())
+        check_options(&self.grid, self.extent.as_ref(), options)
     }
 
     /// The grid.
@@ -472,7 +436,8 @@ impl GridCoverage {
     /// # Errors
     /// [`CoverageError::BadRows`] for an empty range or one beyond the grid;
     /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`];
-    /// [`CoverageError::OutOfMemory`].
+    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`]
+    /// ([`GridCoverage::check_options`]); [`CoverageError::OutOfMemory`].
     pub fn rows(
         &self,
         rows: Range<usize>,
@@ -575,7 +540,8 @@ impl GridCoverage {
     ///
     /// # Errors
     /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`] (use [`GridCoverage::bands`]);
-    /// [`CoverageError::OutOfMemory`].
+    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`]
+    /// ([`GridCoverage::check_options`]); [`CoverageError::OutOfMemory`].
     pub fn all(&self, options: CoverageOptions) -> Result<Coverage, CoverageError> {
         let ny = self.grid.ny();
         self.check_cells(ny)?;
@@ -639,6 +605,51 @@ impl Iterator for Bands<'_> {
 }
 
 impl ExactSizeIterator for Bands<'_> {}
+
+/// [`GridCoverage::check_options`] for a domain whose pieces span `extent` (`None`: no
+/// piece, an empty region) on `grid`.
+pub(crate) fn check_options(
+    grid: &CellGrid,
+    extent: Option<&BoundingBox>,
+    options: CoverageOptions,
+) -> Result<(), CoverageError> {
+    let Some(axis) = options.axisymmetric else {
+        return Ok(());
+    };
+    if options.boundary || options.face_centroids {
+        return Err(CoverageError::PlanarOnly {
+            what: if options.boundary {
+                "the boundary's lengths, centroids and normals"
+            } else {
+                "face centroids"
+            },
+        });
+    }
+    // The coordinate that is the radius.
+    let radius = axis.other();
+    let span = |b: &BoundingBox| (b.min.coord(radius), b.max.coord(radius));
+    let (g0, g1) = span(&grid.bounding_box());
+    if g0 < 0.0 && g1 > 0.0 {
+        return Err(CoverageError::AcrossAxis {
+            what: "grid",
+            axis,
+            low: g0,
+            high: g1,
+        });
+    }
+    if let Some((d0, d1)) = extent.map(span)
+        && d0 < 0.0
+        && d1 > 0.0
+    {
+        return Err(CoverageError::AcrossAxis {
+            what: "domain",
+            axis,
+            low: d0,
+            high: d1,
+        });
+    }
+    Ok(())
+}
 
 /// [`CoverageError::TooManyCells`] for `rows` rows of `grid` beyond [`MAX_CELLS`].
 pub(crate) fn check_cells(grid: &CellGrid, rows: usize) -> Result<(), CoverageError> {

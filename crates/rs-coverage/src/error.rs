@@ -138,14 +138,10 @@ pub enum CoverageError {
     /// A material's domain could not be classified against.
     #[error("material boundaries: {0}")]
     Contain(#[from] rs_contain::ContainError),
-    /// The kept boundary pieces of a material do not close into loops.
-    #[error(
-        "the boundary of material {material} does not close into loops (an intersection was missed)"
-    )]
-    Unchained {
-        /// The material (index of its domain).
-        material: usize,
-    },
+    /// The kept boundary pieces of a material's region do not close into loops (it comes
+    /// as [`CoverageError::Material`] naming the material).
+    #[error("its region's boundary does not close into loops (an intersection was missed)")]
+    Unchained,
     /// One material's domain could not be prepared: the domain's own error.
     #[error("material {material}: {source}")]
     Material {

@@ -7,7 +7,7 @@ use rs_contain::FillRule;
 use rs_spline::Domain;
 
 use crate::coverage::{
-    Bands, Coverage, CoverageOptions, GridCoverage, band_rows, check_cells, threads,
+    Bands, Coverage, CoverageOptions, GridCoverage, band_rows, check_cells, check_options, threads,
 };
 use crate::{CellGrid, CoverageError, material_domains};
 
@@ -47,7 +47,7 @@ impl MaterialCoverage {
     /// A domain's own refusal (open or crossing loops: as [`GridCoverage::with_fill_rule`])
     /// as [`CoverageError::Material`] naming it; as [`material_domains`] with `replace` for
     /// the boundaries together (too many pairs of pieces, an intersection not found, a
-    /// region that does not chain: [`CoverageError::Unchained`] names its material).
+    /// region that does not chain: [`CoverageError::Unchained`], as the material's).
     pub fn new(
         domains: &[(&Domain, FillRule)],
         grid: CellGrid,
@@ -128,7 +128,8 @@ impl MaterialCoverage {
     /// for an empty region).
     ///
     /// # Errors
-    /// As [`GridCoverage::rows`]; [`CoverageError::BadRows`] also for `k` out of range.
+    /// As [`GridCoverage::rows`] (an empty region refuses the options a grid refuses);
+    /// [`CoverageError::BadRows`] also for `k` out of range.
     pub fn rows(
         &self,
         k: usize,
@@ -139,6 +140,7 @@ impl MaterialCoverage {
         match self.materials.get(k) {
             Some(Some(m)) => m.rows(rows, options),
             Some(None) if rows.start < rows.end && rows.end <= ny => {
+                check_options(&self.grid, None, options)?;
                 Coverage::zeroed(rows, self.grid.nx(), options)
             }
             _ => Err(CoverageError::BadRows {
@@ -152,7 +154,7 @@ impl MaterialCoverage {
     /// Every material's coverage of the whole grid ([`GridCoverage::all`]).
     ///
     /// # Errors
-    /// As [`GridCoverage::all`].
+    /// As [`GridCoverage::all`] and [`MaterialCoverage::check_options`].
     pub fn all(&self, options: CoverageOptions) -> Result<Vec<Coverage>, CoverageError> {
         self.check_options(options)?;
         self.materials
@@ -173,7 +175,8 @@ impl MaterialCoverage {
     }
 
     /// Runs `consume` with material `k`'s bands of `band_rows` rows in row order
-    /// ([`GridCoverage::bands`]); an empty region's bands are zeros made as they are taken.
+    /// ([`GridCoverage::bands`]); an empty region's bands are zeros made as they are taken
+    /// (each band carries a refusal of the options on the grid, as a region's do).
     pub fn bands<T>(
         &self,
         k: usize,
@@ -191,6 +194,7 @@ impl MaterialCoverage {
                 let (nx, ny) = (self.grid.nx(), self.grid.ny());
                 consume(MaterialBands {
                     inner: Inner::Empty {
+                        materials: self,
                         next: 0,
                         band_rows: band_rows.clamp(1, ny),
                         nx,
@@ -211,8 +215,10 @@ pub struct MaterialBands<'a> {
 enum Inner<'a> {
     /// A region's bands, computed on all cores.
     Bands(Bands<'a>),
-    /// An empty region's: zeros, band `next` the next one.
+    /// An empty region's: zeros (or the options' refusal, as every material's bands carry
+    /// it), band `next` the next one.
     Empty {
+        materials: &'a MaterialCoverage,
         next: usize,
         band_rows: usize,
         nx: usize,
@@ -228,6 +234,7 @@ impl Iterator for MaterialBands<'_> {
         match &mut self.inner {
             Inner::Bands(b) => b.next(),
             Inner::Empty {
+                materials,
                 next,
                 band_rows,
                 nx,
@@ -240,7 +247,9 @@ impl Iterator for MaterialBands<'_> {
                 }
                 *next += 1;
                 let rows = j0..j0.saturating_add(*band_rows).min(*ny);
-                Some((rows.clone(), Coverage::zeroed(rows, *nx, *options)))
+                let band = check_options(&materials.grid, None, *options)
+                    .and_then(|()| Coverage::zeroed(rows.clone(), *nx, *options));
+                Some((rows, band))
             }
         }
     }

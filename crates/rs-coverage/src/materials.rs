@@ -407,14 +407,14 @@ fn direction_from(v: Point, points: impl Iterator<Item = Point>) -> Point {
 
 /// Chains `arcs` into closed loops: ends within `snap` are one vertex (the first end seen
 /// there, which every arc ending there then takes exactly); at a vertex the walk leaves by the
-/// arc that turns left the most. [`CoverageError::Unchained`] (for material `material`) when
-/// some vertex has more arcs in than out.
+/// arc that turns left the most. [`CoverageError::Unchained`] as material `material`'s
+/// ([`CoverageError::Material`]) when some vertex has more arcs in than out.
 fn chain(
     arcs: Vec<RationalBezier>,
     snap: f64,
     material: usize,
 ) -> Result<Option<Domain>, CoverageError> {
-    let unchained = || CoverageError::Unchained { material };
+    let unchained = || CoverageError::in_material(material, CoverageError::Unchained);
     let cell = 2.0 * snap.max(f64::MIN_POSITIVE);
     let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
     let mut vertices: Vec<Point> = Vec::new();

@@ -6,7 +6,8 @@
 use std::f64::consts::TAU;
 
 use rs_coverage::{CellGrid, Coverage, CoverageOptions, GridCoverage};
-use rs_spline::{Domain, Point, circle, polyline};
+use rs_spline::prelude::*;
+use rs_spline::{Domain, NurbsCurve, Point, circle, polyline};
 
 fn eb() -> CoverageOptions {
     CoverageOptions::DEFAULT
@@ -62,6 +63,12 @@ fn circle_by_cells(grid: &CellGrid, (cx, cy, r): (f64, f64, f64)) -> Vec<[f64; 5
 /// the cell is minus the covered faces' outward lengths; the unit normal must point along it,
 /// and where the faces balance the boundary has no normal.
 fn assert_divergence(grid: &CellGrid, c: &Coverage) {
+    assert_divergence_within(grid, c, 1e-12);
+}
+
+/// [`assert_divergence`] with the length at least `|int n ds|` to `tol` relative (the
+/// rounding of a strongly weighted curve's speed is about its weight ratio times `eps`).
+fn assert_divergence_within(grid: &CellGrid, c: &Coverage, tol: f64) {
     let (xs, ys, nx) = (grid.x_edges(), grid.y_edges(), grid.nx());
     let (ax, ay) = (
         c.x_apertures.as_ref().unwrap(),
@@ -83,8 +90,9 @@ fn assert_divergence(grid: &CellGrid, c: &Coverage) {
             let n = normals[k];
             if size > 1e-9 * (w + h) {
                 assert!(
-                    lengths[k] >= size * (1.0 - 1e-12),
-                    "cell ({i}, {j}): |int n ds| > length"
+                    lengths[k] >= size * (1.0 - tol),
+                    "cell ({i}, {j}): |int n ds| {size} > length {}",
+                    lengths[k]
                 );
                 assert!(
                     (n[0] + flux[0] / size).abs() < 1e-12 && (n[1] + flux[1] / size).abs() < 1e-12,
@@ -277,6 +285,73 @@ fn face_centroids_are_the_covered_chords_midpoints() {
                 assert!(got.is_nan(), "y face ({i}, {j}): {got}");
             }
         }
+    }
+}
+
+#[test]
+fn strongly_weighted_pieces_get_their_lengths_in_bounded_work() {
+    // Weights up to 1e8 (the speed's rounding grows with the weight ratio) and a degree-15
+    // piece with weights 1e3 and 1e-3: every cell's length adds up to the curves' length.
+    let quadratic = |w: f64| {
+        let pts = vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+        ];
+        NurbsCurve::bezier(pts, Some(vec![1.0, w, 1.0])).unwrap()
+    };
+    let wavy = {
+        let pts: Vec<Point> = (0..=15)
+            .map(|k| Point::new(k as f64 / 15.0, if k % 2 == 0 { 0.0 } else { 0.3 }))
+            .collect();
+        let w: Vec<f64> = (0..=15)
+            .map(|k| if k % 3 == 0 { 1e3 } else { 1e-3 })
+            .collect();
+        NurbsCurve::bezier(pts, Some(w)).unwrap()
+    };
+    // The loops' lengths (the curve closed by a segment) by 40-digit quadrature (mpmath,
+    // the speed by central differences of step 1e-25, the parameters split down to 1e-14 at
+    // both ends where strong weights put the length).
+    for (name, curve, ratio, want) in [
+        ("weight 1e4", quadratic(1e4), 1e4, 3.414_128_851_063_517),
+        ("weight 1e8", quadratic(1e8), 1e8, 3.414_213_553_900_964),
+        (
+            "degree 15",
+            wavy,
+            1e6,
+            1.310_449_648_953_833 + 0.8 + 1.0 + 0.5,
+        ),
+    ] {
+        let (t0, t1) = curve.knots().domain();
+        let (a, b) = (curve.point_at(t1), curve.point_at(t0));
+        // The quadratics close by their chord; the wavy curve from below (its chord crosses it).
+        let closing = if a.y > 0.5 {
+            vec![a, b]
+        } else {
+            vec![a, Point::new(1.0, -0.5), Point::new(0.0, -0.5), b]
+        };
+        let d = Domain::new(vec![curve, polyline(&closing).unwrap()]).unwrap();
+        let bb = d.bounding_box();
+        let grid = CellGrid::uniform(
+            bb.min.x - 0.05,
+            bb.max.x + 0.05,
+            13,
+            bb.min.y - 0.05,
+            bb.max.y + 0.05,
+            11,
+        )
+        .unwrap();
+        let c = GridCoverage::new(&d, grid.clone())
+            .unwrap()
+            .all(eb())
+            .unwrap();
+        let total: f64 = c.boundary_lengths.as_ref().unwrap().iter().sum();
+        let tol = 16.0 * f64::EPSILON * ratio;
+        assert!(
+            (total - want).abs() < tol * want,
+            "{name}: {total} vs {want}"
+        );
+        assert_divergence_within(&grid, &c, 16.0 * f64::EPSILON * ratio);
     }
 }
 

@@ -132,6 +132,18 @@ fn a_material_replaced_everywhere_is_zero_with_nan_centroids() {
     assert!(band.fractions.iter().all(|&f| f < 1e-14));
     assert!(m.rows(2, 0..1, options).is_err());
     assert!(m.rows(0, 0..9, options).is_err());
+    // An empty region refuses what a region refuses: the boundary revolved.
+    let revolved = options.with_axisymmetric(Some(rs_spline::Axis::Y));
+    let e = m.rows(0, 0..2, revolved).unwrap_err();
+    assert!(
+        matches!(e, rs_coverage::CoverageError::PlanarOnly { .. }),
+        "{e}"
+    );
+    m.bands(0, 3, revolved, |bands| {
+        for (_, band) in bands {
+            assert!(band.is_err());
+        }
+    });
 }
 
 #[test]

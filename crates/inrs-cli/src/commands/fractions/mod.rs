@@ -255,7 +255,6 @@ impl FractionsArgs {
     fn preparation_error(&self, e: CoverageError) -> CliError {
         match e {
             CoverageError::Material { material, source } => self.domain_error(material, source),
-            CoverageError::Unchained { material } => self.domain_error(material, e),
             e if self.domain.len() == 1 => self.domain_error(0, e),
             e => {
                 let all: Vec<String> = self
