@@ -334,7 +334,7 @@ fn filled<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>, Covera
 pub struct GridCoverage {
     grid: CellGrid,
     arcs: Vec<Arc>,
-    /// The bounding box of the pieces kept (`None` without any): which side of an axis of
+    /// The boundary's tight box (`None` without pieces kept): which side of an axis of
     /// revolution the domain lies on.
     extent: Option<BoundingBox>,
 }
@@ -397,16 +397,9 @@ impl GridCoverage {
             .filter(|p| signs[p.boundary_loop] != 0)
             .map(|p| Arc::new(p.clone(), signs[p.boundary_loop] as f64))
             .collect();
-        let extent = arcs
-            .iter()
-            .map(|a| {
-                let b = &a.piece.band;
-                BoundingBox {
-                    min: rs_spline::Point::new(b.xmin, b.ymin),
-                    max: rs_spline::Point::new(b.xmax, b.ymax),
-                }
-            })
-            .reduce(BoundingBox::union);
+        // The pieces' tight box; a loop left out (sign 0) lies inside the filled set, within
+        // the box of the loops kept.
+        let extent = (!arcs.is_empty()).then(|| boxes.bounding_box());
         Ok(Self { grid, arcs, extent })
     }
 
