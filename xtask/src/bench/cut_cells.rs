@@ -13,11 +13,9 @@ use inrs::{Domain, Point};
 
 use super::{BenchOptions, interleaved_times};
 
-/// `d` moved right so that its bounding box starts at `x = 0.25` of its width: a profile
-/// revolved about the y axis.
-fn right_of_the_axis(d: &Domain) -> Result<Domain, String> {
-    let b = d.bounding_box();
-    let shift = Affine::translate(0.25 * b.width() - b.min.x, 0.0);
+/// `d` moved by `(dx, dy)`.
+fn translated(d: &Domain, dx: f64, dy: f64) -> Result<Domain, String> {
+    let shift = Affine::translate(dx, dy);
     let curves = d
         .curves()
         .iter()
@@ -27,11 +25,17 @@ fn right_of_the_axis(d: &Domain) -> Result<Domain, String> {
     Domain::new(curves).map_err(|e| e.to_string())
 }
 
+/// `d` moved right so that its bounding box starts at `x = 0.25` of its width: a profile
+/// revolved about the y axis.
+fn right_of_the_axis(d: &Domain) -> Result<Domain, String> {
+    let b = d.bounding_box();
+    translated(d, 0.25 * b.width() - b.min.x, 0.0)
+}
+
 /// The square grid of `n x n` cells over `d`'s bounding box grown by 1% of its diagonal.
 fn grid_over(d: &Domain, n: usize) -> Result<CellGrid, String> {
-    let b = d
-        .bounding_box()
-        .grown_by(0.01 * d.bounding_box().diagonal());
+    let b = d.bounding_box();
+    let b = b.grown_by(0.01 * b.diagonal());
     CellGrid::uniform(b.min.x, b.max.x, n, b.min.y, b.max.y, n).map_err(|e| e.to_string())
 }
 
@@ -90,22 +94,11 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             let grid = grid_over(d, n)?;
             let cover = GridCoverage::new(d, grid.clone()).map_err(|e| e.to_string())?;
             // The same grid with the domain moved off it: the outputs' allocation and fill.
-            let away = {
-                let b = d.bounding_box();
-                let shift = Affine::translate(0.0, 3.0 * b.height());
-                let curves = d
-                    .curves()
-                    .iter()
-                    .map(|c| shift.apply_to_curve(c))
-                    .collect::<Result<Vec<_>, _>>()
-                    .map_err(|e| e.to_string())?;
-                let moved = Domain::new(curves).map_err(|e| e.to_string())?;
-                GridCoverage::new(&moved, grid).map_err(|e| e.to_string())?
-            };
-            let covers = [&cover; 5];
+            let moved = translated(d, 0.0, 3.0 * d.bounding_box().height())?;
+            let away = GridCoverage::new(&moved, grid).map_err(|e| e.to_string())?;
             let mut runs: Vec<Box<dyn FnMut() + '_>> = options
                 .iter()
-                .zip(covers)
+                .map(|opt| (opt, &cover))
                 .chain([(&options[3], &away), (&options[0], &away)])
                 .map(|(&opt, cover)| {
                     Box::new(move || {
@@ -154,17 +147,11 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
 /// Two and three overlapping discs with replacement (`MaterialCoverage`, preparation
 /// included: intersections and regions) beside one `GridCoverage` run per domain.
 fn materials(md: &mut String, disc: &Domain, sizes: &[usize], reps: usize) -> Result<(), String> {
-    let moved = |x: f64, y: f64| -> Result<Domain, String> {
-        let shift = Affine::translate(x, y);
-        let curves = disc
-            .curves()
-            .iter()
-            .map(|c| shift.apply_to_curve(c))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| e.to_string())?;
-        Domain::new(curves).map_err(|e| e.to_string())
-    };
-    let discs = [moved(-0.5, 0.0)?, moved(0.5, 0.0)?, moved(0.0, 0.6)?];
+    let discs = [
+        translated(disc, -0.5, 0.0)?,
+        translated(disc, 0.5, 0.0)?,
+        translated(disc, 0.0, 0.6)?,
+    ];
     let _ = writeln!(
         md,
         "\nSeveral materials (`MaterialCoverage::new` then `all`, later discs replacing earlier \
