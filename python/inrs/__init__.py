@@ -356,9 +356,16 @@ def cell_fractions(
         bool(face_centroids),
         None if axisymmetric is None else str(axisymmetric),
     )
-    if boundary or face_centroids:
+    return _coverage_result(arrays, centroids or apertures, boundary or face_centroids)
+
+
+def _coverage_result(arrays: tuple, cell: Any, eb: Any) -> Union[np.ndarray, CellCoverage, EBCoverage]:
+    """The arrays of one coverage call as the result type the outputs asked for: an
+    :class:`EBCoverage` with the boundary or face centroids (``eb``), a :class:`CellCoverage`
+    with centroids or apertures (``cell``), else the fractions alone."""
+    if eb:
         return EBCoverage(*arrays)
-    if centroids or apertures:
+    if cell:
         return CellCoverage(*arrays[:4])
     return arrays[0]
 
@@ -774,11 +781,7 @@ class Domain:
             bool(face_centroids),
             None if axisymmetric is None else str(axisymmetric),
         )
-        if boundary or face_centroids:
-            return EBCoverage(*arrays)
-        if centroids or apertures:
-            return CellCoverage(*arrays[:4])
-        return arrays[0]
+        return _coverage_result(arrays, centroids or apertures, boundary or face_centroids)
 
     def _cubature_rule(self, degree: int, fill_rule: str = "even-odd") -> "_inrs.CubatureRule":
         """The cubature rule of degree ``degree`` on the set the domain fills under

@@ -50,6 +50,15 @@ fn coverage_options(
         .with_axisymmetric(axis(axisymmetric)?))
 }
 
+/// The grid of the edges `x_edges`, `y_edges`, as the library checks them (`ValueError` with
+/// its message).
+fn grid_of(
+    x_edges: &PyReadonlyArray1<'_, f64>,
+    y_edges: &PyReadonlyArray1<'_, f64>,
+) -> PyResult<CellGrid> {
+    CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec()).map_err(value_error)
+}
+
 /// The rows of each band the library cuts a grid of `nx` columns and `ny` rows into for these
 /// outputs on rayon's threads ([`band_rows`], the rule of `GridCoverage::all` and `bands`):
 /// the default height of the blocks of `inrs.dask.cell_fractions`.
@@ -123,8 +132,7 @@ pub(crate) fn cell_coverage<'py>(
 ) -> PyResult<CoverageArrays<'py>> {
     let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
     let options = coverage_options(centroids, apertures, boundary, face_centroids, axisymmetric)?;
-    let grid = CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec())
-        .map_err(value_error)?;
+    let grid = grid_of(&x_edges, &y_edges)?;
     let nx = grid.nx();
     let d = &domain.domain;
     let coverage = py
@@ -200,15 +208,20 @@ fn stack(
     out
 }
 
-/// The domains of a Python list of `NativeDomain`s, each with `fill_rule`.
+/// The domains of a Python list of `NativeDomain`s, each with `fill_rule` (as
+/// `Domain.classify` parses it); `ValueError` for an empty list or an unknown rule.
 fn with_rule<'a>(
     domains: &'a [Bound<'_, NativeDomain>],
-    fill_rule: FillRule,
-) -> Vec<(&'a Domain, FillRule)> {
-    domains
+    fill_rule: &str,
+) -> PyResult<Vec<(&'a Domain, FillRule)>> {
+    if domains.is_empty() {
+        return Err(value_error("domains is empty: give at least one domain"));
+    }
+    let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
+    Ok(domains
         .iter()
         .map(|d| (&d.get().domain, fill_rule))
-        .collect()
+        .collect())
 }
 
 /// The coverage of the grid with edges `x_edges`, `y_edges` by the materials `domains` (in
@@ -239,15 +252,10 @@ pub(crate) fn material_coverage<'py>(
     face_centroids: bool,
     axisymmetric: Option<&str>,
 ) -> PyResult<MaterialArrays<'py>> {
-    if domains.is_empty() {
-        return Err(value_error("domains is empty: give at least one domain"));
-    }
-    let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
+    let materials = with_rule(&domains, fill_rule)?;
     let options = coverage_options(centroids, apertures, boundary, face_centroids, axisymmetric)?;
-    let grid = CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec())
-        .map_err(value_error)?;
+    let grid = grid_of(&x_edges, &y_edges)?;
     let (nx, ny) = (grid.nx(), grid.ny());
-    let materials = with_rule(&domains, fill_rule);
     let mut covers = py
         .detach(|| {
             with_threads(threads, || {
@@ -324,13 +332,8 @@ impl NativeMaterials {
         fill_rule: &str,
         replace: bool,
     ) -> PyResult<Self> {
-        if domains.is_empty() {
-            return Err(value_error("domains is empty: give at least one domain"));
-        }
-        let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
-        let grid = CellGrid::new(x_edges.as_array().to_vec(), y_edges.as_array().to_vec())
-            .map_err(value_error)?;
-        let materials = with_rule(&domains, fill_rule);
+        let materials = with_rule(&domains, fill_rule)?;
+        let grid = grid_of(&x_edges, &y_edges)?;
         let cover = py
             .detach(|| MaterialCoverage::new(&materials, grid, replace))
             .map_err(value_error)?;
