@@ -24,6 +24,24 @@ def halton(n: int, box) -> np.ndarray:
     return inrs.halton_points(n, (xmin, ymin, xmax, ymax))
 
 
+def require(module: str):
+    """``module``, imported; CI installs the optional ones tests need (dask, distributed,
+    xarray: ``.ci/run``), so there (with ``INRS_REQUIRE_SYSTEM_FILES=1``) a missing one fails,
+    elsewhere it skips only the tests that need it."""
+    if os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1":
+        return __import__(module)
+    return pytest.importorskip(module)
+
+
+def circle(cx: float, cy: float, r: float):
+    """The disc of radius ``r`` about ``(cx, cy)`` as an ``inrs.Domain`` (the JSON circle)."""
+    import inrs
+
+    return inrs.Domain.from_json(
+        f'{{"curves": [{{"circle": {{"center": [{cx}, {cy}], "radius": {r}}}}}]}}'
+    )
+
+
 def fixture_meta(name: str) -> dict:
     return json.loads((FIXTURES / "inrs-paper" / f"{name}.json").read_text())
 

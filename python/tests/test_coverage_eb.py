@@ -6,28 +6,13 @@ vertices, the fixture domains), planar and revolved."""
 
 import json
 import math
-import os
 import sys
 
 import numpy as np
 import pytest
 
 import inrs
-from conftest import FIXTURES, PAPER
-
-
-def require(module: str):
-    """``module``, imported; CI installs dask and xarray (``.ci/run``), so there (with
-    ``INRS_REQUIRE_SYSTEM_FILES=1``) a missing one fails instead of skipping."""
-    if os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1":
-        return __import__(module)
-    return pytest.importorskip(module)
-
-
-def circle(cx: float, cy: float, r: float) -> inrs.Domain:
-    return inrs.Domain.from_json(
-        f'{{"curves": [{{"circle": {{"center": [{cx}, {cy}], "radius": {r}}}}}]}}'
-    )
+from conftest import FIXTURES, PAPER, circle, require
 
 
 def ring_volumes(xs: np.ndarray, ys: np.ndarray, axis: str) -> np.ndarray:

@@ -2,7 +2,6 @@
 forms: circle segments on the unit disc, the annulus' area, rectangles' overlaps with cells."""
 
 import math
-import os
 import threading
 import time
 
@@ -10,16 +9,7 @@ import numpy as np
 import pytest
 
 import inrs
-from conftest import FIXTURES
-
-
-def require(module: str):
-    """``module``, imported; CI installs dask and distributed, so there (with
-    ``INRS_REQUIRE_SYSTEM_FILES=1``) a missing one fails, elsewhere it skips only the tests that
-    need it."""
-    if os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1":
-        return __import__(module)
-    return pytest.importorskip(module)
+from conftest import FIXTURES, require
 
 
 DISC = '{"curves": [{"circle": {"center": [0, 0], "radius": 1}}]}'

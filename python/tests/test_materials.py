@@ -5,32 +5,18 @@ lazy ``inrs.dask.cell_fractions`` against the eager call bit for bit, ``inrs.to_
 ``material`` dimension, the command line's files, and bad input."""
 
 import math
-import os
 import subprocess
 
 import numpy as np
 import pytest
 
 import inrs
+from conftest import circle, require
 
 LENS = 2 * math.pi / 3 - math.sqrt(3) / 2
 XS = np.linspace(-2.0, 2.0, 41)
 YS = np.linspace(-1.5, 1.5, 31)
 CELL = 0.1 * 0.1
-
-
-def require(module: str):
-    """``module``, imported; CI installs dask and xarray, so there (with
-    ``INRS_REQUIRE_SYSTEM_FILES=1``) a missing one fails instead of skipping."""
-    if os.environ.get("INRS_REQUIRE_SYSTEM_FILES") == "1":
-        return __import__(module)
-    return pytest.importorskip(module)
-
-
-def circle(cx: float, cy: float, r: float) -> inrs.Domain:
-    return inrs.Domain.from_json(
-        f'{{"curves": [{{"circle": {{"center": [{cx}, {cy}], "radius": {r}}}}}]}}'
-    )
 
 
 def discs():
