@@ -351,7 +351,7 @@ fn strongly_weighted_pieces_get_their_lengths_in_bounded_work() {
             (total - want).abs() < tol * want,
             "{name}: {total} vs {want}"
         );
-        assert_divergence_within(&grid, &c, 16.0 * f64::EPSILON * ratio);
+        assert_divergence_within(&grid, &c, tol);
     }
 }
 

@@ -3,12 +3,13 @@
 //! disc's chords integrated in the angle `x = R + sin(theta)`, piecewise smooth between the
 //! cells' edges), spheres from half discs on the axis, Pappus' volume of NURBS profiles.
 
+mod common;
+
 use std::f64::consts::PI;
 
 use rs_contain::FillRule;
 use rs_coverage::{CellGrid, CoverageError, CoverageOptions, GridCoverage};
 use rs_spline::prelude::*;
-use rs_spline::quadrature::integrate_adaptive;
 use rs_spline::{Affine, Axis, Domain, Point, circle, circular_arc, segment};
 
 /// Gauss-Legendre nodes and weights on `[-1, 1]` (Golub-Welsch free: Newton on `P_n`).
@@ -228,7 +229,8 @@ fn half_discs_on_the_axis_make_spheres() {
 #[test]
 fn pappus_gives_the_volume_of_nurbs_profiles() {
     // The paper's fixtures moved right of the y axis: the revolved volume over 2 pi is the
-    // first moment int int x dA = oint x^2 / 2 dy, integrated here on the whole loops.
+    // first moment int int x dA = oint x^2 / 2 dy, integrated on the whole loops
+    // (`common::domain_moments`).
     let mut checked = 0;
     for name in rs_testkit::INRS_FIXTURES {
         let path = rs_testkit::fixture_path(&format!("inrs-paper/{name}.json"));
@@ -241,9 +243,6 @@ fn pappus_gives_the_volume_of_nurbs_profiles() {
             .map(|c| shift.apply_to_curve(c).unwrap())
             .collect();
         let d = Domain::new(curves).unwrap();
-        let Some(nesting) = rs_contain::loop_nesting(&d) else {
-            continue;
-        };
         let b = d.bounding_box();
         let grid =
             CellGrid::uniform(0.0, b.max.x * 1.01, 53, b.min.y - 0.1, b.max.y + 0.1, 47).unwrap();
@@ -257,25 +256,7 @@ fn pappus_gives_the_volume_of_nurbs_profiles() {
                 total += c.fractions[j * grid.nx() + i] * ring(&grid, i, j);
             }
         }
-        let tol = 1e-16 * b.diagonal().powi(3);
-        let mut want = 0.0;
-        for (l, n) in d.loops().iter().zip(&nesting) {
-            let s = n.boundary_sign(FillRule::EvenOdd) as f64;
-            for k in l.curves() {
-                for bz in d.curves()[k].to_bezier() {
-                    let f = integrate_adaptive(
-                        |t| {
-                            let (p, v) = bz.point_and_tangent(t);
-                            (0.5 * p.x * p.x * v.y, 0.5 * p.x * p.x * v.y.abs())
-                        },
-                        0.0,
-                        1.0,
-                        tol,
-                    );
-                    want += s * f.value;
-                }
-            }
-        }
+        let (_, want, _) = common::domain_moments(&d, FillRule::EvenOdd);
         assert!(
             (total - want).abs() < 1e-12 * want.abs(),
             "{name}: {total} vs {want}"
