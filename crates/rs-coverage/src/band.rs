@@ -15,7 +15,7 @@ use rs_boxes::Monotonicity;
 use rs_spline::{Axis, Point};
 
 use crate::arc::{Arc, Moments, PartIntegrals};
-use crate::lines::{LineSums, add_covered, full_column_moments};
+use crate::lines::{LineSums, add_covered, annulus_fraction, column_moments};
 
 /// Where a band writes its results: row-major slices of the caller's arrays, the fractions
 /// zeroed and the centroids `NaN` on entry. Only the cells the covered set reaches are
@@ -524,11 +524,12 @@ impl Band<'_> {
             }
             // Revolved, a full column's moments are read as such (the planar centroids keep
             // the sums they always had).
+            let full_columns = self.axis.is_none();
             let mut sums = LineSums {
                 len: &mut len,
                 first: with_first.then_some(&mut first[..]),
                 second: with_second.then_some(&mut second[..]),
-                full_columns: self.axis.is_none(),
+                full_columns,
             };
             add_covered(
                 xs,
@@ -543,13 +544,9 @@ impl Band<'_> {
                     *f = match self.axis {
                         // An annulus about the y axis: weighted by the radius |x|.
                         Some(Axis::Y) => {
-                            let x0 = xs[i];
-                            let f = if len[i] == w {
-                                full_column_moments(w).0
-                            } else {
-                                first[i]
-                            };
-                            (x0 * len[i] + f) / (w * (x0 + 0.5 * w))
+                            let (f, _) =
+                                column_moments((&first, &[]), i, (len[i], w), full_columns);
+                            annulus_fraction(xs[i], w, len[i], f)
                         }
                         _ => len[i] / w,
                     }
@@ -574,6 +571,7 @@ impl Band<'_> {
                 len: &len,
                 first: &first,
                 second: &second,
+                full_columns,
                 axis: self.axis,
                 volume_only: self.volume_only(),
             };
@@ -681,7 +679,7 @@ impl Band<'_> {
                 inside[i] = ins;
                 if let Some(a) = apertures.as_deref_mut() {
                     a[r * lines + i] = match self.axis {
-                        Some(Axis::X) => (e0 * len + first) / (h * (e0 + 0.5 * h)),
+                        Some(Axis::X) => annulus_fraction(e0, h, len, first),
                         _ => len / h,
                     }
                     .clamp(0.0, 1.0);
@@ -786,6 +784,8 @@ struct Row<'a> {
     first: &'a [f64],
     /// The top line's covered second moments (a revolved volume's centroid about `y`).
     second: &'a [f64],
+    /// Whether `first` and `second` hold full columns' moments (see `LineSums`).
+    full_columns: bool,
     /// The axis of revolution, if any.
     axis: Option<Axis>,
     /// The parts' integrals are the volume integral alone (revolved fractions without
@@ -816,15 +816,8 @@ impl Row<'_> {
         let x0 = xs[i];
         let len = self.len[i];
         let area = h * len - acc[0];
-        // The top line's moments in the column (a full column's by their closed forms when
-        // revolved: see `LineSums::full_columns`).
-        let (line_first, line_second) = match self.axis {
-            Some(_) if len == w => full_column_moments(w),
-            _ => (
-                self.first.get(i).copied().unwrap_or(0.0),
-                self.second.get(i).copied().unwrap_or(0.0),
-            ),
-        };
+        let (line_first, line_second) =
+            column_moments((self.first, self.second), i, (len, w), self.full_columns);
         let first_u = || h * line_first - acc[1];
         let first_v = || 0.5 * h * h * len - acc[2];
         let (volume, fraction) = match (self.axis, self.volume_only) {

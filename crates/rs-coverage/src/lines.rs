@@ -22,6 +22,34 @@ pub(crate) fn full_column_moments(w: f64) -> (f64, f64) {
     (0.5 * (w * w), w * w * w / 3.0)
 }
 
+/// The first and second moments of column `i` (width `w`, covered length `len`) of a line
+/// summed into `first` and `second` (empty when not summed: 0) by [`add_covered`], with
+/// `full_columns` as it was there: without, a column covered from edge to edge takes
+/// [`full_column_moments`].
+#[inline]
+pub(crate) fn column_moments(
+    (first, second): (&[f64], &[f64]),
+    i: usize,
+    (len, w): (f64, f64),
+    full_columns: bool,
+) -> (f64, f64) {
+    if !full_columns && len == w {
+        return full_column_moments(w);
+    }
+    (
+        first.get(i).copied().unwrap_or(0.0),
+        second.get(i).copied().unwrap_or(0.0),
+    )
+}
+
+/// The covered fraction of an annulus face swept about an axis by an interval of length
+/// `width` starting at the radius `r0`, from its covered length `len` and that part's first
+/// moment `first` about `r0`: `int r dr` over the covered part over the interval's.
+#[inline]
+pub(crate) fn annulus_fraction(r0: f64, width: f64, len: f64, first: f64) -> f64 {
+    (r0 * len + first) / (width * (r0 + 0.5 * width))
+}
+
 /// Adds to `sums.len[c]` the length of the covered part of `[edges[c], edges[c + 1]]` on a
 /// line whose status is `inside` before its first crossing and flips at each crossing
 /// (`crossings` sorted ascending; an odd count leaves the line covered to `+inf`), and to
