@@ -7,13 +7,13 @@
 //! axis) and [`NativeMaterials`] (prepared once, then bands of rows of one material: the blocks
 //! of `inrs.dask.cell_fractions` for several domains).
 
-use numpy::{IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
 use inrs::Domain;
 use inrs::contain::FillRule;
 use inrs::coverage::{
-    CellGrid, Coverage, CoverageOptions, GridCoverage, MaterialCoverage, band_rows,
+    CellGrid, Coverage, CoverageArray, CoverageOptions, GridCoverage, MaterialCoverage, band_rows,
 };
 use inrs::spline::Axis;
 
@@ -80,27 +80,39 @@ pub(crate) fn coverage_band_rows(
     ))
 }
 
-/// An array of `rows` x `columns` values, or `None`.
-type Grid2<'py> = Option<Bound<'py, PyArray2<f64>>>;
-/// An array of `rows` x `columns` pairs, or `None`.
-type Grid3<'py> = Option<Bound<'py, PyArray3<f64>>>;
+/// An array of any shape, or `None`.
+type Stacked<'py> = Option<Bound<'py, PyArrayDyn<f64>>>;
 
-/// The arrays of one coverage of `rows` rows and `nx` columns: fractions `(rows, nx)`, then,
-/// when asked for, centroids `(rows, nx, 2)`, vertical-face apertures `(rows, nx + 1)`,
-/// horizontal-face apertures `(rows + 1, nx)`, boundary lengths `(rows, nx)`, boundary
-/// centroids and normals `(rows, nx, 2)`, vertical-face centroids `(rows, nx + 1)` and
-/// horizontal-face centroids `(rows + 1, nx)`.
+/// The arrays of a coverage in the library's order ([`CoverageArray::ALL`]): the fractions,
+/// then, when asked for, the others (`None` for those not asked for), each of the shape
+/// [`CoverageArray::shape`] gives, under a leading axis of materials for several.
 type CoverageArrays<'py> = (
-    Bound<'py, PyArray2<f64>>,
-    Grid3<'py>,
-    Grid2<'py>,
-    Grid2<'py>,
-    Grid2<'py>,
-    Grid3<'py>,
-    Grid3<'py>,
-    Grid2<'py>,
-    Grid2<'py>,
+    Bound<'py, PyArrayDyn<f64>>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
+    Stacked<'py>,
 );
+
+/// The arrays `values(a)` gives for each of [`CoverageArray::ALL`], shaped by `shape(a)`, as
+/// [`CoverageArrays`].
+fn coverage_arrays<'py>(
+    py: Python<'py>,
+    mut values: impl FnMut(CoverageArray) -> Option<Vec<f64>>,
+    shape: impl Fn(CoverageArray) -> Vec<usize>,
+) -> PyResult<CoverageArrays<'py>> {
+    let [f, c, xa, ya, bl, bc, bn, xf, yf] = CoverageArray::ALL.map(|a| {
+        values(a)
+            .map(|v| v.into_pyarray(py).reshape(shape(a)))
+            .transpose()
+    });
+    let fractions = f?.ok_or_else(|| value_error("internal error: no fractions"))?;
+    Ok((fractions, c?, xa?, ya?, bl?, bc?, bn?, xf?, yf?))
+}
 
 /// The coverage of the grid with edges `x_edges`, `y_edges` by `domain` under `fill_rule`
 /// (`even-odd` or `nonzero`, as `Domain.classify` parses it), revolved about `axisymmetric`
@@ -135,7 +147,7 @@ pub(crate) fn cell_coverage<'py>(
     let grid = grid_of(&x_edges, &y_edges)?;
     let nx = grid.nx();
     let d = &domain.domain;
-    let coverage = py
+    let mut coverage = py
         .detach(|| {
             with_threads(threads, || {
                 let cover = GridCoverage::with_fill_rule(d, grid, fill_rule)?;
@@ -147,55 +159,16 @@ pub(crate) fn cell_coverage<'py>(
         })?
         .map_err(value_error)?;
     let n = coverage.ny();
-    let cells = |v: Option<Vec<f64>>, columns: usize, lines: usize| {
-        v.map(|a| a.into_pyarray(py).reshape([lines, columns]))
-            .transpose()
-    };
-    let pairs = |v: Option<Vec<[f64; 2]>>| {
-        v.map(|c| c.into_flattened().into_pyarray(py).reshape([n, nx, 2]))
-            .transpose()
-    };
-    Ok((
-        coverage.fractions.into_pyarray(py).reshape([n, nx])?,
-        pairs(coverage.centroids)?,
-        cells(coverage.x_apertures, nx + 1, n)?,
-        cells(coverage.y_apertures, nx, n + 1)?,
-        cells(coverage.boundary_lengths, nx, n)?,
-        pairs(coverage.boundary_centroids)?,
-        pairs(coverage.boundary_normals)?,
-        cells(coverage.x_face_centroids, nx + 1, n)?,
-        cells(coverage.y_face_centroids, nx, n + 1)?,
-    ))
+    coverage_arrays(py, |a| coverage.take_values(a), |a| a.shape(nx, n))
 }
 
-/// An array of any shape, or `None`.
-type Stacked<'py> = Option<Bound<'py, PyArrayDyn<f64>>>;
-
-/// The arrays of several materials' coverages of a grid of `ny` rows and `nx` columns, each
-/// with a leading axis of `k` materials: fractions `(k, ny, nx)`, then, when asked for, the
-/// other arrays of [`CoverageArrays`] each with the same leading axis.
-type MaterialArrays<'py> = (
-    Bound<'py, PyArrayDyn<f64>>,
-    Stacked<'py>,
-    Stacked<'py>,
-    Stacked<'py>,
-    Stacked<'py>,
-    Stacked<'py>,
-    Stacked<'py>,
-    Stacked<'py>,
-    Stacked<'py>,
-);
-
-/// The values `take` moves out of each coverage, one after the other (each coverage's part is
+/// The values of `array` moved out of each coverage, one after the other (each coverage's part is
 /// freed once copied); `None` when the coverages do not hold them.
-fn stack(
-    covers: &mut [Coverage],
-    take: impl Fn(&mut Coverage) -> Option<Vec<f64>>,
-) -> Option<Vec<f64>> {
+fn stack(covers: &mut [Coverage], array: CoverageArray) -> Option<Vec<f64>> {
     let k = covers.len();
     let mut out: Option<Vec<f64>> = None;
     for c in covers.iter_mut() {
-        let v = take(c)?;
+        let v = c.take_values(array)?;
         match &mut out {
             None => {
                 let mut first = v;
@@ -251,7 +224,7 @@ pub(crate) fn material_coverage<'py>(
     boundary: bool,
     face_centroids: bool,
     axisymmetric: Option<&str>,
-) -> PyResult<MaterialArrays<'py>> {
+) -> PyResult<CoverageArrays<'py>> {
     let materials = with_rule(&domains, fill_rule)?;
     let options = coverage_options(centroids, apertures, boundary, face_centroids, axisymmetric)?;
     let grid = grid_of(&x_edges, &y_edges)?;
@@ -264,48 +237,11 @@ pub(crate) fn material_coverage<'py>(
         })?
         .map_err(value_error)?;
     let k = covers.len();
-    let array = |v: Option<Vec<f64>>, shape: &[usize]| {
-        v.map(|a| a.into_pyarray(py).reshape(shape.to_vec()))
-            .transpose()
-    };
-    let pairs = |c: Option<Vec<[f64; 2]>>| c.map(<Vec<[f64; 2]>>::into_flattened);
-    let fractions =
-        stack(&mut covers, |c| Some(std::mem::take(&mut c.fractions))).unwrap_or_default();
-    Ok((
-        fractions.into_pyarray(py).reshape(vec![k, ny, nx])?,
-        array(
-            stack(&mut covers, |c| pairs(c.centroids.take())),
-            &[k, ny, nx, 2],
-        )?,
-        array(
-            stack(&mut covers, |c| c.x_apertures.take()),
-            &[k, ny, nx + 1],
-        )?,
-        array(
-            stack(&mut covers, |c| c.y_apertures.take()),
-            &[k, ny + 1, nx],
-        )?,
-        array(
-            stack(&mut covers, |c| c.boundary_lengths.take()),
-            &[k, ny, nx],
-        )?,
-        array(
-            stack(&mut covers, |c| pairs(c.boundary_centroids.take())),
-            &[k, ny, nx, 2],
-        )?,
-        array(
-            stack(&mut covers, |c| pairs(c.boundary_normals.take())),
-            &[k, ny, nx, 2],
-        )?,
-        array(
-            stack(&mut covers, |c| c.x_face_centroids.take()),
-            &[k, ny, nx + 1],
-        )?,
-        array(
-            stack(&mut covers, |c| c.y_face_centroids.take()),
-            &[k, ny + 1, nx],
-        )?,
-    ))
+    coverage_arrays(
+        py,
+        |a| stack(&mut covers, a),
+        |a| [k].into_iter().chain(a.shape(nx, ny)).collect(),
+    )
 }
 
 /// Several materials prepared on one grid ([`MaterialCoverage::new`]: the regions with

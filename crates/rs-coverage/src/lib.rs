@@ -90,6 +90,7 @@
 
 mod arc;
 mod arc_length;
+mod arrays;
 mod band;
 mod coverage;
 mod error;
@@ -99,6 +100,7 @@ mod lines;
 mod material_coverage;
 mod materials;
 
+pub use arrays::CoverageArray;
 pub use coverage::{
     BAND_BYTES, Bands, Coverage, CoverageOptions, GridCoverage, MAX_CELLS, band_rows, cell_coverage,
 };

@@ -6,117 +6,31 @@
 use std::path::{Path, PathBuf};
 
 use inrs::NpyType;
-use inrs::coverage::{Coverage, CoverageError, CoverageOptions, MaterialCoverage};
+use inrs::coverage::{Coverage, CoverageArray, CoverageError, CoverageOptions, MaterialCoverage};
 
 use crate::cli::error::CliError;
 use crate::cli::output::Output;
 use crate::stream::Progress;
 
-/// One array a run writes: the fractions `F.npy`, or one beside it, `F.<name>.npy`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Array {
-    /// `(ny, nx)`.
-    Fractions,
-    /// `(ny, nx, 2)`.
-    Centroids,
-    /// `(ny, nx + 1)`.
-    XApertures,
-    /// `(ny + 1, nx)`.
-    YApertures,
-    /// `(ny, nx)`.
-    BoundaryLengths,
-    /// `(ny, nx, 2)`.
-    BoundaryCentroids,
-    /// `(ny, nx, 2)`.
-    BoundaryNormals,
-    /// `(ny, nx + 1)`.
-    XFaceCentroids,
-    /// `(ny + 1, nx)`.
-    YFaceCentroids,
-}
-
-impl Array {
-    /// Every array, in the order the files are written and listed.
-    pub(super) const ALL: [Array; 9] = [
-        Array::Fractions,
-        Array::Centroids,
-        Array::XApertures,
-        Array::YApertures,
-        Array::BoundaryLengths,
-        Array::BoundaryCentroids,
-        Array::BoundaryNormals,
-        Array::XFaceCentroids,
-        Array::YFaceCentroids,
-    ];
-
-    /// `<name>` of `F.<name>.npy`; `None` for the fractions, `F.npy` itself.
-    pub(super) fn name(self) -> Option<&'static str> {
-        match self {
-            Array::Fractions => None,
-            Array::Centroids => Some("centroids"),
-            Array::XApertures => Some("x_apertures"),
-            Array::YApertures => Some("y_apertures"),
-            Array::BoundaryLengths => Some("boundary_lengths"),
-            Array::BoundaryCentroids => Some("boundary_centroids"),
-            Array::BoundaryNormals => Some("boundary_normals"),
-            Array::XFaceCentroids => Some("x_face_centroids"),
-            Array::YFaceCentroids => Some("y_face_centroids"),
-        }
+/// The values of `array` in `band` (of a grid of `ny` rows) to append to its file, `None`
+/// when the band does not hold it: a band holds the horizontal faces of its bottom and top
+/// lines; the top line is the next band's bottom one, so it is written by the last band only.
+fn band_values(array: CoverageArray, band: &Coverage, ny: usize) -> Option<&[f64]> {
+    let values = band.values(array)?;
+    if !array.on_horizontal_faces() {
+        return Some(values);
     }
-
-    /// Whether the library computes it with `options`.
-    pub(super) fn computed(self, options: CoverageOptions) -> bool {
-        match self {
-            Array::Fractions => true,
-            Array::Centroids => options.centroids,
-            Array::XApertures | Array::YApertures => options.apertures,
-            Array::BoundaryLengths | Array::BoundaryCentroids | Array::BoundaryNormals => {
-                options.boundary
-            }
-            Array::XFaceCentroids | Array::YFaceCentroids => options.face_centroids,
-        }
-    }
-
-    /// Its shape on a grid of `nx` columns and `ny` rows: cells `(ny, nx)` (pairs `(ny, nx,
-    /// 2)`), vertical faces `(ny, nx + 1)`, horizontal faces `(ny + 1, nx)`.
-    fn shape(self, nx: usize, ny: usize) -> Vec<usize> {
-        match self {
-            Array::Fractions | Array::BoundaryLengths => vec![ny, nx],
-            Array::Centroids | Array::BoundaryCentroids | Array::BoundaryNormals => {
-                vec![ny, nx, 2]
-            }
-            Array::XApertures | Array::XFaceCentroids => vec![ny, nx + 1],
-            Array::YApertures | Array::YFaceCentroids => vec![ny + 1, nx],
-        }
-    }
-
-    /// The values of `band` (of a grid of `ny` rows) to append to its file, `None` when the
-    /// band does not hold it. A band holds the horizontal faces of its bottom and top lines;
-    /// the top line is the next band's bottom one, so it is written by the last band only.
-    fn band_values<'a>(self, band: &'a Coverage, ny: usize) -> Option<&'a [f64]> {
-        let lines = band.ny() + usize::from(band.rows.end == ny);
-        let horizontal = |y: Option<&'a [f64]>| y.and_then(|y| y.get(..lines * band.nx));
-        match self {
-            Array::Fractions => Some(&band.fractions),
-            Array::Centroids => band.centroids.as_deref().map(<[_]>::as_flattened),
-            Array::XApertures => band.x_apertures.as_deref(),
-            Array::YApertures => horizontal(band.y_apertures.as_deref()),
-            Array::BoundaryLengths => band.boundary_lengths.as_deref(),
-            Array::BoundaryCentroids => band.boundary_centroids.as_deref().map(<[_]>::as_flattened),
-            Array::BoundaryNormals => band.boundary_normals.as_deref().map(<[_]>::as_flattened),
-            Array::XFaceCentroids => band.x_face_centroids.as_deref(),
-            Array::YFaceCentroids => horizontal(band.y_face_centroids.as_deref()),
-        }
-    }
+    let lines = band.ny() + usize::from(band.rows.end == ny);
+    values.get(..lines * band.nx)
 }
 
 /// The files of a run: each array written and its file, the fractions first.
-pub(super) struct OutputPaths(pub(super) Vec<(Array, PathBuf)>);
+pub(super) struct OutputPaths(pub(super) Vec<(CoverageArray, PathBuf)>);
 
 /// The open outputs, each under a temporary name until [`Outputs::finish`]; dropped (on any
 /// error) they leave nothing behind.
 struct Outputs {
-    files: Vec<(Array, Output)>,
+    files: Vec<(CoverageArray, Output)>,
     /// Reused for the bytes of each array of a band.
     bytes: Vec<u8>,
 }
@@ -130,7 +44,7 @@ fn npy_file(path: &Path, shape: &[usize]) -> Result<Output, CliError> {
 
 impl Outputs {
     /// Every file with its header for a grid of `nx` columns and `ny` rows
-    /// ([`Array::shape`]), under a leading axis of `leading` materials if given.
+    /// ([`CoverageArray::shape`]), under a leading axis of `leading` materials if given.
     fn create(
         paths: &OutputPaths,
         leading: Option<usize>,
@@ -154,11 +68,11 @@ impl Outputs {
     /// Appends a band of a grid of `ny` rows to every file.
     fn write(&mut self, band: &Coverage, ny: usize) -> Result<(), CliError> {
         for (array, out) in &mut self.files {
-            let values = array.band_values(band, ny).ok_or_else(|| {
+            let values = band_values(*array, band, ny).ok_or_else(|| {
                 CliError::Message(format!(
                     "internal error: the library's band of rows {:?} has no {}",
                     band.rows,
-                    array.name().unwrap_or("fractions")
+                    array.name()
                 ))
             })?;
             put(out, &mut self.bytes, values)?;

@@ -12,14 +12,15 @@ use std::path::{Path, PathBuf};
 use clap::{ArgGroup, Args, ValueEnum};
 use inrs::Domain;
 use inrs::contain::FillRule;
-use inrs::coverage::{CellGrid, CoverageError, CoverageOptions, MAX_EDGES, MaterialCoverage};
+use inrs::coverage::{
+    CellGrid, CoverageArray, CoverageError, CoverageOptions, MAX_EDGES, MaterialCoverage,
+};
 use inrs::spline::Axis;
 
 use crate::args::{DomainArg, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::limits;
 
-use bands::Array;
 use grid::{GridSpec, parse_grid};
 #[cfg(test)]
 pub(crate) use grid::{MAX_CELLS_PER_AXIS, MAX_GRID_CELLS};
@@ -326,13 +327,14 @@ impl FractionsArgs {
         let stem = npy_stem(out)
             .ok_or_else(|| CliError::Message(format!("{}: not a file name", out.display())))?;
         Ok(bands::OutputPaths(
-            Array::ALL
+            CoverageArray::ALL
                 .into_iter()
                 .filter(|a| a.computed(options))
                 .map(|a| {
-                    let path = match a.name() {
-                        None => out.clone(),
-                        Some(name) => beside(out, &stem, name),
+                    // The fractions are `F.npy` itself, every other array `F.<name>.npy`.
+                    let path = match a {
+                        CoverageArray::Fractions => out.clone(),
+                        a => beside(out, &stem, a.name()),
                     };
                     (a, path)
                 })
