@@ -695,7 +695,7 @@ fn bytes_per_cell(options: CoverageOptions) -> usize {
 
 /// Band `k` of the bands of `band_rows` rows (at least one) of a grid of `ny` rows: the one
 /// way the grid is cut.
-fn band_range(k: usize, band_rows: usize, ny: usize) -> Range<usize> {
+pub(crate) fn band_range(k: usize, band_rows: usize, ny: usize) -> Range<usize> {
     let j0 = k.saturating_mul(band_rows).min(ny);
     j0..j0.saturating_add(band_rows).min(ny)
 }

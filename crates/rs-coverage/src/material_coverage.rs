@@ -7,7 +7,8 @@ use rs_contain::FillRule;
 use rs_spline::Domain;
 
 use crate::coverage::{
-    Bands, Coverage, CoverageOptions, GridCoverage, band_rows, check_cells, check_options, threads,
+    Bands, Coverage, CoverageOptions, GridCoverage, band_range, band_rows, check_cells,
+    check_options, threads,
 };
 use crate::{CellGrid, CoverageError, material_domains};
 
@@ -241,12 +242,11 @@ impl Iterator for MaterialBands<'_> {
                 ny,
                 options,
             } => {
-                let j0 = next.saturating_mul(*band_rows);
-                if j0 >= *ny {
+                let rows = band_range(*next, *band_rows, *ny);
+                if rows.is_empty() {
                     return None;
                 }
                 *next += 1;
-                let rows = j0..j0.saturating_add(*band_rows).min(*ny);
                 let band = check_options(&materials.grid, None, *options)
                     .and_then(|()| Coverage::zeroed(rows.clone(), *nx, *options));
                 Some((rows, band))
