@@ -12,6 +12,8 @@ mod locator;
 mod paper;
 mod peers;
 mod plots;
+#[allow(dead_code)] // used by the speed rows of issue 52 as they land
+mod point_sets;
 mod properties;
 mod solid;
 
