@@ -226,6 +226,7 @@ fn with_scratch<T: Blend, R>(c: &[T], f: impl FnOnce(&mut [T]) -> R) -> R {
 /// `i < len - levels` holds the level-`levels` blend `(1 - s) a + s b` of its neighbours.
 /// This loop is the one de Casteljau kernel of the workspace; every evaluation, split and
 /// derivative of a Bernstein form (scalar or rational curve) goes through it.
+#[inline(always)]
 fn reduce<T: Blend>(work: &mut [T], s: f64, levels: usize) {
     let r = 1.0 - s;
     let n = work.len();
@@ -240,10 +241,27 @@ fn reduce<T: Blend>(work: &mut [T], s: f64, levels: usize) {
 /// Casteljau's algorithm (`(1 - s) a + s b` at every step; no allocation for up to 16
 /// coefficients). An empty slice gives `T::default()`.
 pub fn de_casteljau<T: Blend>(c: &[T], s: f64) -> T {
+    // Lines, quadratics and cubics on a copy of fixed size: the same steps, unrolled, without
+    // the scratch array's set-up (which cost as much as the blends at these degrees).
+    match c.len() {
+        2 => return value_fixed::<T, 2>(c, s),
+        3 => return value_fixed::<T, 3>(c, s),
+        4 => return value_fixed::<T, 4>(c, s),
+        _ => {}
+    }
     with_scratch(c, |work| {
         reduce(work, s, work.len());
         work.first().copied().unwrap_or_default()
     })
+}
+
+/// [`de_casteljau`] of `N` coefficients (`c.len() == N`) on a fixed-size copy.
+#[inline(always)]
+fn value_fixed<T: Blend, const N: usize>(c: &[T], s: f64) -> T {
+    let mut work = [T::default(); N];
+    work.copy_from_slice(c);
+    reduce(&mut work, s, N);
+    work[0]
 }
 
 /// Value and first derivative at `s` of the Bernstein form `c` of degree `n = c.len() - 1`:
@@ -251,14 +269,34 @@ pub fn de_casteljau<T: Blend>(c: &[T], s: f64) -> T {
 /// `b(s) = (1 - s) a + s b` and `b'(s) = n (b - a)`.
 pub fn de_casteljau_with_derivative<T: Blend>(c: &[T], s: f64) -> (T, T) {
     let n = c.len();
-    if n <= 1 {
-        return (c.first().copied().unwrap_or_default(), T::default());
+    match n {
+        0 | 1 => return (c.first().copied().unwrap_or_default(), T::default()),
+        // As in `de_casteljau`: the common degrees unrolled, the same steps.
+        2 => return with_derivative_fixed::<T, 2>(c, s),
+        3 => return with_derivative_fixed::<T, 3>(c, s),
+        4 => return with_derivative_fixed::<T, 4>(c, s),
+        _ => {}
     }
-    with_scratch(c, |work| {
-        reduce(work, s, n - 2);
-        let (a, b) = (work[0], work[1]);
-        (a * (1.0 - s) + b * s, (b - a) * (n - 1) as f64)
-    })
+    with_scratch(c, |work| last_level(work, s))
+}
+
+/// [`de_casteljau_with_derivative`] of `N >= 2` coefficients (`c.len() == N`) on a
+/// fixed-size copy.
+#[inline(always)]
+fn with_derivative_fixed<T: Blend, const N: usize>(c: &[T], s: f64) -> (T, T) {
+    let mut work = [T::default(); N];
+    work.copy_from_slice(c);
+    last_level(&mut work, s)
+}
+
+/// The value and derivative from `work` (at least two coefficients, reduced in place to the
+/// last level's pair `a`, `b`): `(1 - s) a + s b` and `n (b - a)`.
+#[inline(always)]
+fn last_level<T: Blend>(work: &mut [T], s: f64) -> (T, T) {
+    let n = work.len();
+    reduce(work, s, n - 2);
+    let (a, b) = (work[0], work[1]);
+    (a * (1.0 - s) + b * s, (b - a) * (n - 1) as f64)
 }
 
 /// Splits the Bernstein coefficients `c` at `s` (de Casteljau): `left` and `right` (each as
