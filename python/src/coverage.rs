@@ -7,13 +7,16 @@
 //! axis) and [`NativeMaterials`] (prepared once, then bands of rows of one material: the blocks
 //! of `inrs.dask.cell_fractions` for several domains).
 
-use numpy::{IntoPyArray, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArray1};
+use numpy::{
+    IntoPyArray, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadwriteArrayDyn,
+};
 use pyo3::prelude::*;
 
 use inrs::Domain;
 use inrs::contain::FillRule;
 use inrs::coverage::{
-    CellGrid, Coverage, CoverageArray, CoverageOptions, GridCoverage, MaterialCoverage, band_rows,
+    CellGrid, Coverage, CoverageArray, CoverageOptions, CoverageSlices, GridCoverage,
+    MaterialCoverage, band_rows,
 };
 use inrs::spline::Axis;
 
@@ -145,18 +148,41 @@ pub(crate) fn cell_coverage<'py>(
     let fill_rule: FillRule = fill_rule.parse().map_err(value_error)?;
     let options = coverage_options(centroids, apertures, boundary, face_centroids, axisymmetric)?;
     let grid = grid_of(&x_edges, &y_edges)?;
-    let nx = grid.nx();
+    let (nx, ny) = (grid.nx(), grid.ny());
     let d = &domain.domain;
+    let cover = py
+        .detach(|| GridCoverage::with_fill_rule(d, grid, fill_rule))
+        .map_err(value_error)?;
+    let Some((j0, j1)) = rows else {
+        // The whole grid into NumPy's own arrays (zeroed by `calloc`, on huge pages where the
+        // system has them): the values are written once, where they stay.
+        cover.check_all(options).map_err(value_error)?;
+        let arrays = CoverageArray::ALL.map(|a| {
+            a.computed(options)
+                .then(|| PyArrayDyn::<f64>::zeros(py, a.shape(nx, ny), false))
+        });
+        {
+            let mut views: Vec<(CoverageArray, PyReadwriteArrayDyn<'_, f64>)> = CoverageArray::ALL
+                .into_iter()
+                .zip(&arrays)
+                .filter_map(|(a, v)| Some((a, v.as_ref()?.readwrite())))
+                .collect();
+            let mut slices = CoverageSlices::fractions(&mut []);
+            for (a, v) in &mut views {
+                let values = v
+                    .as_slice_mut()
+                    .map_err(|_| value_error("internal error: a new array is not contiguous"))?;
+                slices = slices.with(*a, values);
+            }
+            py.detach(|| with_threads(threads, || cover.all_into(options, slices)))?
+                .map_err(value_error)?;
+        }
+        let [f, c, xa, ya, bl, bc, bn, xf, yf] = arrays;
+        let fractions = f.ok_or_else(|| value_error("internal error: no fractions"))?;
+        return Ok((fractions, c, xa, ya, bl, bc, bn, xf, yf));
+    };
     let mut coverage = py
-        .detach(|| {
-            with_threads(threads, || {
-                let cover = GridCoverage::with_fill_rule(d, grid, fill_rule)?;
-                match rows {
-                    Some((j0, j1)) => cover.rows(j0..j1, options),
-                    None => cover.all(options),
-                }
-            })
-        })?
+        .detach(|| with_threads(threads, || cover.rows(j0..j1, options)))?
         .map_err(value_error)?;
     let n = coverage.ny();
     coverage_arrays(py, |a| coverage.take_values(a), |a| a.shape(nx, n))

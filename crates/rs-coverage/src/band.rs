@@ -17,10 +17,12 @@ use rs_spline::{Axis, Point};
 use crate::arc::{Arc, Moments, PartIntegrals};
 use crate::lines::{LineSums, add_covered, annulus_fraction, column_moments};
 
-/// Where a band writes its results: row-major slices of the caller's arrays, the fractions
-/// zeroed and the centroids `NaN` on entry. Only the cells the covered set reaches are
-/// written: the others keep those values (a zeroed page the band never writes is never
-/// touched).
+/// Where a band writes its results: row-major slices of the caller's arrays, whose entry
+/// values are zeros (fractions, apertures, boundary lengths) and `NaN` (centroids). Fresh
+/// arrays hold them already, and only the cells the covered set reaches are written (a zeroed
+/// page the band never writes is never touched); otherwise the band sets them itself: each
+/// row's fractions and centroids just before the row is written (while it is in cache), the
+/// other arrays first.
 pub(crate) struct BandOut<'a> {
     /// `(rows, nx)`.
     pub(crate) fractions: &'a mut [f64],
@@ -43,6 +45,40 @@ pub(crate) struct BandOut<'a> {
     pub(crate) y_face_centroids: Option<&'a mut [f64]>,
     /// The top line's, when this band writes them.
     pub(crate) y_top_centroids: Option<&'a mut [f64]>,
+    /// Whether the arrays hold the entry values already.
+    pub(crate) fresh: bool,
+}
+
+impl BandOut<'_> {
+    /// Sets the entry values of the arrays the band writes outside its rows' loop (all but
+    /// the fractions and centroids).
+    fn reset_faces_and_boundary(&mut self) {
+        for zeros in [
+            &mut self.x_apertures,
+            &mut self.y_apertures,
+            &mut self.y_top,
+        ]
+        .into_iter()
+        .flatten()
+        {
+            zeros.fill(0.0);
+        }
+        for nan in [
+            &mut self.x_face_centroids,
+            &mut self.y_face_centroids,
+            &mut self.y_top_centroids,
+        ]
+        .into_iter()
+        .flatten()
+        {
+            nan.fill(f64::NAN);
+        }
+        if let Some(b) = &mut self.boundary {
+            b.lengths.fill(0.0);
+            b.centroids.fill([f64::NAN; 2]);
+            b.normals.fill([f64::NAN; 2]);
+        }
+    }
 }
 
 /// Where a band writes the boundary's geometry in its cells.
@@ -103,7 +139,10 @@ struct Crossings {
 impl Band<'_> {
     /// Computes the band's results into `out` (see [`BandOut`] for its values on entry), from
     /// every piece of the boundary.
-    pub(crate) fn cover(&self, arcs: &[Arc], out: BandOut<'_>) {
+    pub(crate) fn cover(&self, arcs: &[Arc], mut out: BandOut<'_>) {
+        if !out.fresh {
+            out.reset_faces_and_boundary();
+        }
         let BandOut {
             fractions,
             centroids,
@@ -114,6 +153,7 @@ impl Band<'_> {
             x_face_centroids,
             y_face_centroids,
             y_top_centroids,
+            fresh,
         } = out;
         let mut c = Crossings::default();
         for arc in arcs {
@@ -124,7 +164,7 @@ impl Band<'_> {
         self.finish_rows(
             (&hx, &starts),
             &cells,
-            (fractions, centroids),
+            (fractions, centroids, fresh),
             YFaces {
                 apertures: y_apertures,
                 top: y_top,
@@ -492,7 +532,7 @@ impl Band<'_> {
         &self,
         (hx, starts): (&[f64], &[usize]),
         cells: &[(usize, PartIntegrals)],
-        (fractions, mut centroids): (&mut [f64], Option<&mut [[f64; 2]]>),
+        (fractions, mut centroids, fresh): (&mut [f64], Option<&mut [[f64; 2]]>, bool),
         mut faces: YFaces<'_>,
     ) {
         let (xs, ys) = (self.xs, self.ys);
@@ -579,6 +619,12 @@ impl Band<'_> {
             let mut centroids = centroids
                 .as_deref_mut()
                 .map(|m| &mut m[r * nx..(r + 1) * nx]);
+            if !fresh {
+                fractions.fill(0.0);
+                if let Some(m) = centroids.as_deref_mut() {
+                    m.fill([f64::NAN; 2]);
+                }
+            }
             // This row's cells the boundary passes through, as columns.
             let row_cells = cells[next_cell..].partition_point(|c| c.0 < (r + 1) * nx);
             let mut cuts = cells[next_cell..next_cell + row_cells]

@@ -9,7 +9,7 @@ use rs_spline::{Axis, BoundingBox, Domain};
 use crate::arc::{Arc, Moments};
 use crate::band::{Band, BandOut, BoundaryOut};
 use crate::in_order::{InOrder, in_order};
-use crate::{CellGrid, CoverageError};
+use crate::{CellGrid, CoverageArray, CoverageError};
 
 /// Most cells one call computes ([`GridCoverage::all`], [`GridCoverage::rows`],
 /// [`cell_coverage`]): `2^28`, 2 GiB of fractions. Larger grids are computed in row bands
@@ -191,56 +191,163 @@ impl Coverage {
         })
     }
 
+    /// The arrays, borrowed as [`CoverageSlices`] (pairs flattened).
+    fn slices(&mut self) -> CoverageSlices<'_> {
+        fn pairs(v: &mut Option<Vec<[f64; 2]>>) -> Option<&mut [f64]> {
+            v.as_deref_mut().map(|p| p.as_flattened_mut())
+        }
+        CoverageSlices {
+            fractions: &mut self.fractions,
+            centroids: pairs(&mut self.centroids),
+            x_apertures: self.x_apertures.as_deref_mut(),
+            y_apertures: self.y_apertures.as_deref_mut(),
+            boundary_lengths: self.boundary_lengths.as_deref_mut(),
+            boundary_centroids: pairs(&mut self.boundary_centroids),
+            boundary_normals: pairs(&mut self.boundary_normals),
+            x_face_centroids: self.x_face_centroids.as_deref_mut(),
+            y_face_centroids: self.y_face_centroids.as_deref_mut(),
+        }
+    }
+}
+
+/// A whole grid's output arrays in the caller's memory, for [`GridCoverage::all_into`]: the
+/// fields of [`Coverage`] borrowed, row-major, pairs `[x, y]` flattened (`(rows, nx, 2)` as
+/// `2 x rows x nx` values), so that a `NumPy` array or a reused buffer receives the values
+/// where they stay. Their contents on entry do not matter: every value is written.
+#[derive(Debug)]
+#[non_exhaustive]
+pub struct CoverageSlices<'a> {
+    /// `(ny, nx)`.
+    pub fractions: &'a mut [f64],
+    /// `(ny, nx, 2)`, with [`CoverageOptions::centroids`].
+    pub centroids: Option<&'a mut [f64]>,
+    /// `(ny, nx + 1)`, with [`CoverageOptions::apertures`].
+    pub x_apertures: Option<&'a mut [f64]>,
+    /// `(ny + 1, nx)`, with [`CoverageOptions::apertures`].
+    pub y_apertures: Option<&'a mut [f64]>,
+    /// `(ny, nx)`, with [`CoverageOptions::boundary`].
+    pub boundary_lengths: Option<&'a mut [f64]>,
+    /// `(ny, nx, 2)`, with [`CoverageOptions::boundary`].
+    pub boundary_centroids: Option<&'a mut [f64]>,
+    /// `(ny, nx, 2)`, with [`CoverageOptions::boundary`].
+    pub boundary_normals: Option<&'a mut [f64]>,
+    /// `(ny, nx + 1)`, with [`CoverageOptions::face_centroids`].
+    pub x_face_centroids: Option<&'a mut [f64]>,
+    /// `(ny + 1, nx)`, with [`CoverageOptions::face_centroids`].
+    pub y_face_centroids: Option<&'a mut [f64]>,
+}
+
+impl<'a> CoverageSlices<'a> {
+    /// The fractions alone.
+    pub fn fractions(fractions: &'a mut [f64]) -> Self {
+        Self {
+            fractions,
+            centroids: None,
+            x_apertures: None,
+            y_apertures: None,
+            boundary_lengths: None,
+            boundary_centroids: None,
+            boundary_normals: None,
+            x_face_centroids: None,
+            y_face_centroids: None,
+        }
+    }
+
+    /// With `values` as `array`'s slice (the fractions' replaced).
+    pub fn with(mut self, array: CoverageArray, values: &'a mut [f64]) -> Self {
+        match array {
+            CoverageArray::Fractions => self.fractions = values,
+            CoverageArray::Centroids => self.centroids = Some(values),
+            CoverageArray::XApertures => self.x_apertures = Some(values),
+            CoverageArray::YApertures => self.y_apertures = Some(values),
+            CoverageArray::BoundaryLengths => self.boundary_lengths = Some(values),
+            CoverageArray::BoundaryCentroids => self.boundary_centroids = Some(values),
+            CoverageArray::BoundaryNormals => self.boundary_normals = Some(values),
+            CoverageArray::XFaceCentroids => self.x_face_centroids = Some(values),
+            CoverageArray::YFaceCentroids => self.y_face_centroids = Some(values),
+        }
+        self
+    }
+
+    /// The slice of `array`, if given.
+    pub fn get_mut(&mut self, array: CoverageArray) -> Option<&mut [f64]> {
+        match array {
+            CoverageArray::Fractions => Some(&mut *self.fractions),
+            CoverageArray::Centroids => self.centroids.as_deref_mut(),
+            CoverageArray::XApertures => self.x_apertures.as_deref_mut(),
+            CoverageArray::YApertures => self.y_apertures.as_deref_mut(),
+            CoverageArray::BoundaryLengths => self.boundary_lengths.as_deref_mut(),
+            CoverageArray::BoundaryCentroids => self.boundary_centroids.as_deref_mut(),
+            CoverageArray::BoundaryNormals => self.boundary_normals.as_deref_mut(),
+            CoverageArray::XFaceCentroids => self.x_face_centroids.as_deref_mut(),
+            CoverageArray::YFaceCentroids => self.y_face_centroids.as_deref_mut(),
+        }
+    }
+
+    /// [`CoverageError::Output`] unless each array `options` asks for is given with the
+    /// length of its shape for `ny` rows of `nx` columns, and no other is given.
+    fn check(
+        &mut self,
+        nx: usize,
+        ny: usize,
+        options: CoverageOptions,
+    ) -> Result<(), CoverageError> {
+        for array in CoverageArray::ALL {
+            let expected: usize = array.shape(nx, ny).iter().product();
+            let wanted = array.computed(options);
+            match (self.get_mut(array).map(|s| s.len()), wanted) {
+                (Some(got), true) if got == expected => {}
+                (None, false) => {}
+                (got, _) => {
+                    return Err(CoverageError::Output {
+                        array: array.name(),
+                        expected: wanted.then_some(expected),
+                        got,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The arrays cut into the outputs of bands of `band_rows` rows (at least one), the last
     /// band lower and writing the top line's faces: those of [`band_range`]`(k, band_rows,
     /// rows)`.
-    fn band_outs(&mut self, band_rows: usize) -> Vec<BandOut<'_>> {
-        let (nx, ny) = (self.nx, self.rows.len());
+    /// The arrays cut into the outputs of bands of `band_rows` rows (at least one) of a grid
+    /// of `ny` rows and `nx` columns, the last band lower and writing the top line's faces:
+    /// those of [`band_range`]`(k, band_rows, ny)`. `fresh`: the arrays hold the bands'
+    /// entry values (see [`BandOut`]).
+    fn band_outs(
+        self,
+        (nx, ny): (usize, usize),
+        band_rows: usize,
+        fresh: bool,
+    ) -> Vec<BandOut<'a>> {
         let band_rows = band_rows.clamp(1, ny.max(1));
-        let mut fractions = self.fractions.chunks_mut(band_rows * nx);
-        let mut centroids = self
-            .centroids
-            .as_deref_mut()
-            .map(|c| c.chunks_mut(band_rows * nx));
-        let mut x_apertures = self
-            .x_apertures
-            .as_deref_mut()
-            .map(|x| x.chunks_mut(band_rows * (nx + 1)));
+        let cells = band_rows * nx;
+        let faces = band_rows * (nx + 1);
+        let pairs =
+            |p: Option<&'a mut [f64]>| p.map(|p| p.as_chunks_mut::<2>().0.chunks_mut(cells));
+        let mut fractions = self.fractions.chunks_mut(cells);
+        let mut centroids = pairs(self.centroids);
+        let mut x_apertures = self.x_apertures.map(|x| x.chunks_mut(faces));
         // Horizontal faces: the lines of each band's rows, and the grid's top line.
-        fn y_faces(
-            y: Option<&mut [f64]>,
-            lines: usize,
-            chunk: usize,
-        ) -> (Option<std::slice::ChunksMut<'_, f64>>, Option<&mut [f64]>) {
-            match y {
-                Some(y) => {
-                    let (lines, top) = y.split_at_mut(lines);
-                    (Some(lines.chunks_mut(chunk)), Some(top))
-                }
-                None => (None, None),
+        let y_faces = |y: Option<&'a mut [f64]>| match y {
+            Some(y) => {
+                let (lines, top) = y.split_at_mut((ny * nx).min(y.len()));
+                (Some(lines.chunks_mut(cells)), Some(top))
             }
-        }
-        let (mut y_lines, mut y_top) =
-            y_faces(self.y_apertures.as_deref_mut(), ny * nx, band_rows * nx);
-        let (mut yc_lines, mut yc_top) = y_faces(
-            self.y_face_centroids.as_deref_mut(),
-            ny * nx,
-            band_rows * nx,
-        );
-        let mut x_centroids = self
-            .x_face_centroids
-            .as_deref_mut()
-            .map(|x| x.chunks_mut(band_rows * (nx + 1)));
+            None => (None, None),
+        };
+        let (mut y_lines, mut y_top) = y_faces(self.y_apertures);
+        let (mut yc_lines, mut yc_top) = y_faces(self.y_face_centroids);
+        let mut x_centroids = self.x_face_centroids.map(|x| x.chunks_mut(faces));
         let mut boundary = match (
-            self.boundary_lengths.as_deref_mut(),
-            self.boundary_centroids.as_deref_mut(),
-            self.boundary_normals.as_deref_mut(),
+            self.boundary_lengths,
+            pairs(self.boundary_centroids),
+            pairs(self.boundary_normals),
         ) {
-            (Some(l), Some(c), Some(n)) => Some((
-                l.chunks_mut(band_rows * nx),
-                c.chunks_mut(band_rows * nx),
-                n.chunks_mut(band_rows * nx),
-            )),
+            (Some(l), Some(c), Some(n)) => Some((l.chunks_mut(cells), c, n)),
             _ => None,
         };
         let bands = ny.div_ceil(band_rows);
@@ -271,6 +378,7 @@ impl Coverage {
                 x_face_centroids: x_centroids.as_mut().and_then(Iterator::next),
                 y_face_centroids: yc_lines.as_mut().and_then(Iterator::next),
                 y_top_centroids: if last { yc_top.take() } else { None },
+                fresh,
             });
         }
         outs
@@ -448,7 +556,8 @@ impl GridCoverage {
         self.check_options(options)?;
         let mut out = Coverage::zeroed(rows.clone(), self.grid.nx(), options)?;
         // One band: the whole arrays.
-        if let Some(whole) = out.band_outs(rows.len()).pop() {
+        let shape = (self.grid.nx(), rows.len());
+        if let Some(whole) = out.slices().band_outs(shape, rows.len(), true).pop() {
             self.cover(rows, options, whole);
         }
         Ok(out)
@@ -537,11 +646,56 @@ impl GridCoverage {
     /// ([`GridCoverage::check_options`]); [`CoverageError::OutOfMemory`].
     pub fn all(&self, options: CoverageOptions) -> Result<Coverage, CoverageError> {
         let ny = self.grid.ny();
-        self.check_cells(ny)?;
-        self.check_options(options)?;
+        self.check_all(options)?;
         let mut out = Coverage::zeroed(0..ny, self.grid.nx(), options)?;
+        self.cover_grid(options, out.slices(), true);
+        Ok(out)
+    }
+
+    /// [`GridCoverage::all`] into the caller's arrays: the same values, bit for bit, written
+    /// where they stay (a `NumPy` array, a reused buffer), each row's values set while the
+    /// row is in cache instead of the whole array zeroed first. What the arrays hold on entry
+    /// does not matter.
+    ///
+    /// # Errors
+    /// [`CoverageError::Output`] unless `out` holds exactly the arrays `options` asks for,
+    /// each of the length of its shape ([`CoverageArray::shape`] for the grid's `ny` rows);
+    /// otherwise as [`GridCoverage::all`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use rs_coverage::{CellGrid, CoverageOptions, CoverageSlices, GridCoverage};
+    /// use rs_spline::{circle, Domain, Point};
+    /// let d = Domain::new(vec![circle(Point::new(0.0, 0.0), 1.0).unwrap()]).unwrap();
+    /// let grid = CellGrid::uniform(-1.0, 1.0, 64, -1.0, 1.0, 50).unwrap();
+    /// let cover = GridCoverage::new(&d, grid).unwrap();
+    /// let mut fractions = vec![f64::NAN; 64 * 50];
+    /// let options = CoverageOptions::DEFAULT;
+    /// cover.all_into(options, CoverageSlices::fractions(&mut fractions)).unwrap();
+    /// assert_eq!(fractions, cover.all(options).unwrap().fractions);
+    /// ```
+    pub fn all_into(
+        &self,
+        options: CoverageOptions,
+        mut out: CoverageSlices<'_>,
+    ) -> Result<(), CoverageError> {
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
+        self.check_all(options)?;
+        out.check(nx, ny, options)?;
+        self.cover_grid(options, out, false);
+        Ok(())
+    }
+
+    /// The whole grid's bands into `out` (checked), on rayon's pool; `fresh`: the arrays hold
+    /// the bands' entry values (see [`BandOut`]).
+    fn cover_grid(&self, options: CoverageOptions, out: CoverageSlices<'_>, fresh: bool) {
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
         let band_rows = self.band_rows(options);
-        let bands = out.band_outs(band_rows).into_iter().enumerate();
+        let bands = out
+            .band_outs((nx, ny), band_rows, fresh)
+            .into_iter()
+            .enumerate();
         let compute = |(k, o): (usize, BandOut<'_>)| {
             self.cover(band_range(k, band_rows, ny), options, o);
         };
@@ -557,7 +711,17 @@ impl GridCoverage {
         }
         #[cfg(not(feature = "parallel"))]
         bands.for_each(compute);
-        Ok(out)
+    }
+
+    /// Whether the whole grid can be computed with `options` ([`GridCoverage::all`]'s
+    /// checks, before any array is made): a front end allocating the arrays itself asks first.
+    ///
+    /// # Errors
+    /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`]; [`CoverageError::AcrossAxis`],
+    /// [`CoverageError::PlanarOnly`] ([`GridCoverage::check_options`]).
+    pub fn check_all(&self, options: CoverageOptions) -> Result<(), CoverageError> {
+        self.check_cells(self.grid.ny())?;
+        self.check_options(options)
     }
 
     fn check_cells(&self, rows: usize) -> Result<(), CoverageError> {

@@ -76,6 +76,21 @@ pub enum CoverageError {
         /// The limit on `rows * columns`.
         limit: usize,
     },
+    /// Output arrays that do not match the options and the grid
+    /// ([`crate::GridCoverage::all_into`]).
+    #[error("output {array}: {}", match (expected, got) {
+        (Some(e), Some(g)) => format!("{g} values given, the grid needs {e}"),
+        (Some(e), None) => format!("not given, the options ask for it ({e} values)"),
+        (None, _) => "given, but the options do not ask for it".to_string(),
+    })]
+    Output {
+        /// The array's name ([`crate::CoverageArray::name`]).
+        array: &'static str,
+        /// The values it needs, `None` when the options do not ask for it.
+        expected: Option<usize>,
+        /// The values given, `None` when it was not given.
+        got: Option<usize>,
+    },
     /// A row range that is empty or outside the grid.
     #[error("rows {start}..{end} are not a non-empty range of the grid's {rows} rows")]
     BadRows {

@@ -102,7 +102,8 @@ mod materials;
 
 pub use arrays::CoverageArray;
 pub use coverage::{
-    BAND_BYTES, Bands, Coverage, CoverageOptions, GridCoverage, MAX_CELLS, band_rows, cell_coverage,
+    BAND_BYTES, Bands, Coverage, CoverageOptions, CoverageSlices, GridCoverage, MAX_CELLS,
+    band_rows, cell_coverage,
 };
 pub use error::CoverageError;
 pub use grid::{CellGrid, MAX_EDGES};
