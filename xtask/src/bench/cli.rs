@@ -12,7 +12,7 @@ use inrs::contain::baselines::halton_points;
 use super::{BenchOptions, median};
 
 /// Builds the release binary and returns its path.
-fn release_binary(root: &Path) -> Result<PathBuf, String> {
+pub(super) fn release_binary(root: &Path) -> Result<PathBuf, String> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = Command::new(cargo)
         .args(["build", "--release", "--quiet", "-p", "inrs-cli"])

@@ -177,7 +177,7 @@ fn cell_centres(b: &BoundingBox, n: usize) -> Vec<Point> {
 /// The boundary flattened within [`FLATTEN_RELATIVE`] of the diagonal as one `GeoJSON` feature
 /// (a MultiPolygon): each loop of even depth a shell, each loop of odd depth a hole of the
 /// loop one level up that holds its first vertex (even-odd nesting, as the coverage fills).
-fn flattened_geojson(d: &Domain) -> Result<String, String> {
+pub(super) fn flattened_geojson(d: &Domain) -> Result<String, String> {
     let depths = loop_depths(d).map_err(|e| e.to_string())?;
     let accuracy = FLATTEN_RELATIVE * d.bounding_box().diagonal();
     let rings: Vec<Vec<Point>> = (0..d.loops().len())
@@ -241,7 +241,7 @@ fn crosses_odd(ring: &[Point], p: Point) -> bool {
 
 /// A Python that imports exactextract (the venv under `target/` that `bench` docs describe,
 /// else `python3`) and exactextract's version; `Err` with a one-line reason otherwise.
-fn peer_python(root: &Path) -> Result<(PathBuf, String), String> {
+pub(super) fn peer_python(root: &Path) -> Result<(PathBuf, String), String> {
     let venv = root.join("target/cov-venv/bin/python");
     let python = if venv.is_file() {
         venv
@@ -266,7 +266,7 @@ fn peer_python(root: &Path) -> Result<(PathBuf, String), String> {
 }
 
 /// exactextract's median seconds and relative area error on the `n x n` grid over `b`.
-fn exactextract(
+pub(super) fn exactextract(
     python: &Path,
     root: &Path,
     geojson: &Path,

@@ -16,6 +16,7 @@ mod plots;
 mod point_sets;
 mod properties;
 mod solid;
+mod speed;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -39,7 +40,7 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 11] = [
+const SECTIONS: [&str; 12] = [
     "paper",
     "locator",
     "gwn",
@@ -51,6 +52,7 @@ const SECTIONS: [&str; 11] = [
     "cubature",
     "properties",
     "solid",
+    "speed",
 ];
 
 fn names(list: &[&str]) -> Vec<String> {
@@ -305,6 +307,9 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("solid") {
         solid::section(&mut md, root, o)?;
+    }
+    if o.runs("speed") {
+        speed::section(&mut md, root, o)?;
     }
     write_report(root, o, &md, &csv, true)
 }
