@@ -112,6 +112,21 @@ impl Output {
         self.sink.write_all(bytes).map_err(|e| self.failure(e))
     }
 
+    /// Writes `values` as little-endian float64 (`.npy` data): on a little-endian machine their
+    /// own bytes, without a copy; elsewhere through `scratch`.
+    pub(crate) fn write_f64s(
+        &mut self,
+        values: &[f64],
+        scratch: &mut Vec<u8>,
+    ) -> Result<(), CliError> {
+        if cfg!(target_endian = "little") {
+            return self.write_bytes(bytemuck::cast_slice(values));
+        }
+        scratch.clear();
+        scratch.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+        self.write_bytes(scratch)
+    }
+
     /// Overwrites the first bytes of a file output with `bytes` (a header written before the
     /// count it holds was known); nothing for standard output.
     pub(crate) fn rewrite_start(&mut self, bytes: &[u8]) -> Result<(), CliError> {

@@ -31,7 +31,7 @@ pub(super) struct OutputPaths(pub(super) Vec<(CoverageArray, PathBuf)>);
 /// error) they leave nothing behind.
 struct Outputs {
     files: Vec<(CoverageArray, Output)>,
-    /// Reused for the bytes of each array of a band.
+    /// Reused for the bytes of each array of a band (big-endian machines only).
     bytes: Vec<u8>,
 }
 
@@ -75,7 +75,7 @@ impl Outputs {
                     array.name()
                 ))
             })?;
-            put(out, &mut self.bytes, values)?;
+            out.write_f64s(values, &mut self.bytes)?;
         }
         Ok(())
     }
@@ -87,13 +87,6 @@ impl Outputs {
         }
         Ok(())
     }
-}
-
-/// Writes `values` as little-endian float64 through the buffer `bytes`.
-fn put(out: &mut Output, bytes: &mut Vec<u8>, values: &[f64]) -> Result<(), CliError> {
-    bytes.clear();
-    bytes.extend(values.iter().flat_map(|v| v.to_le_bytes()));
-    out.write_bytes(bytes)
 }
 
 /// Computes the coverage of `cover`'s grid by each of its materials with `options` and
