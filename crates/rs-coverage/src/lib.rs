@@ -103,7 +103,7 @@ mod materials;
 pub use arrays::CoverageArray;
 pub use coverage::{
     BAND_BYTES, Bands, Coverage, CoverageOptions, CoverageSlices, GridCoverage, MAX_CELLS,
-    band_rows, cell_coverage,
+    STREAM_BAND_BYTES, band_rows, cell_coverage, stream_band_rows,
 };
 pub use error::CoverageError;
 pub use grid::{CellGrid, MAX_EDGES};

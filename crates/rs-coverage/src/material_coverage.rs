@@ -8,7 +8,7 @@ use rs_spline::Domain;
 
 use crate::coverage::{
     Bands, Coverage, CoverageOptions, GridCoverage, band_range, band_rows, check_cells,
-    check_options, threads,
+    check_options, stream_band_rows, threads,
 };
 use crate::{CellGrid, CoverageError, material_domains};
 
@@ -175,6 +175,11 @@ impl MaterialCoverage {
         band_rows(self.grid.nx(), self.grid.ny(), options, threads())
     }
 
+    /// The rows of a band streamed to a file ([`GridCoverage::stream_band_rows`]).
+    pub fn stream_band_rows(&self, options: CoverageOptions) -> usize {
+        stream_band_rows(self.grid.nx(), self.grid.ny(), options, threads())
+    }
+
     /// Runs `consume` with material `k`'s bands of `band_rows` rows in row order
     /// ([`GridCoverage::bands`]); an empty region's bands are zeros made as they are taken
     /// (each band carries a refusal of the options on the grid, as a region's do).
@@ -226,6 +231,15 @@ enum Inner<'a> {
         ny: usize,
         options: CoverageOptions,
     },
+}
+
+impl MaterialBands<'_> {
+    /// Hands a band back once consumed ([`Bands::recycle`]); nothing for an empty region.
+    pub fn recycle(&self, band: Coverage) {
+        if let Inner::Bands(b) = &self.inner {
+            b.recycle(band);
+        }
+    }
 }
 
 impl Iterator for MaterialBands<'_> {

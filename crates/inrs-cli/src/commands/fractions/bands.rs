@@ -92,7 +92,8 @@ impl Outputs {
 /// Computes the coverage of `cover`'s grid by each of its materials with `options` and
 /// writes it to `paths`, under a leading axis of `leading` materials if given (`None`: one
 /// material, the grid's own shapes): material 0's whole grid, then material 1's, ..., each in
-/// the library's bands ([`MaterialCoverage::bands`], of [`MaterialCoverage::band_rows`] rows),
+/// the library's bands ([`MaterialCoverage::bands`], of [`MaterialCoverage::stream_band_rows`]
+/// rows, each handed back once written),
 /// computed on all cores a few ahead of the one written, so memory holds a few bands whatever
 /// the grid. A failure (the library's, named by `material_error` with its material, or a
 /// write's) stops the run and removes every file.
@@ -107,12 +108,15 @@ pub(super) fn write_materials(
     let mut outputs = Outputs::create(paths, leading, nx, ny)?;
     let cells = nx as u64 * ny as u64;
     let mut progress = Progress::cells(cells.saturating_mul(cover.len() as u64));
-    let band_rows = cover.band_rows(options);
+    let band_rows = cover.stream_band_rows(options);
     for k in 0..cover.len() {
         let done = cells.saturating_mul(k as u64);
-        cover.bands(k, band_rows, options, |bands| {
-            for (rows, band) in bands {
-                outputs.write(&band.map_err(|e| material_error(k, e))?, ny)?;
+        cover.bands(k, band_rows, options, |mut bands| {
+            while let Some((rows, band)) = bands.next() {
+                let band = band.map_err(|e| material_error(k, e))?;
+                outputs.write(&band, ny)?;
+                // Its memory holds a band still to come.
+                bands.recycle(band);
                 progress.update(done + rows.end as u64 * nx as u64);
             }
             Ok::<(), CliError>(())
