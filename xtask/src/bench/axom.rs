@@ -376,6 +376,11 @@ fn write_values(path: &Path, values: &[f64]) -> std::io::Result<()> {
 /// The shape's polynomial pieces, one a line: degree, control points `x y`, weights (`f64`'s
 /// shortest round-trip decimal form, so the driver reads the same numbers).
 fn write_curves(path: &Path, d: &Domain) -> std::io::Result<()> {
+    std::fs::write(path, curves_text(d))
+}
+
+/// [`write_curves`]'s text.
+fn curves_text(d: &Domain) -> String {
     let mut text = String::new();
     for (_, b) in d.bezier_pieces() {
         let _ = write!(text, "{}", b.degree());
@@ -387,12 +392,42 @@ fn write_curves(path: &Path, d: &Domain) -> std::io::Result<()> {
         }
         text.push('\n');
     }
-    std::fs::write(path, text)
+    text
 }
 
 #[cfg(test)]
 mod tests {
-    use super::json_number;
+    use super::{curves_text, json_number};
+    use inrs::{Domain, Point};
+
+    /// The driver reads back every piece's degree, control points and weights bit for bit
+    /// (a circle: rational pieces, weights other than 1).
+    #[test]
+    fn curves_text_round_trips_every_piece() {
+        let circle = inrs::spline::circle(Point::new(0.1, -0.3), 1.0 / 3.0).expect("a circle");
+        let d = Domain::new(vec![circle]).expect("a domain");
+        let pieces = d.bezier_pieces();
+        let text = curves_text(&d);
+        assert_eq!(text.lines().count(), pieces.len());
+        for ((_, b), line) in pieces.iter().zip(text.lines()) {
+            let v: Vec<f64> = line
+                .split(' ')
+                .map(|x| x.parse().expect("a number"))
+                .collect();
+            let n = b.degree() + 1;
+            assert_eq!(v.len(), 1 + 3 * n);
+            assert_eq!(v[0], b.degree() as f64);
+            for (i, p) in b.control_points().iter().enumerate() {
+                assert_eq!((v[1 + 2 * i], v[2 + 2 * i]), (p.x, p.y));
+            }
+            assert_eq!(&v[1 + 2 * n..], b.weights());
+        }
+        assert!(
+            pieces
+                .iter()
+                .any(|(_, b)| b.weights().iter().any(|&w| w != 1.0))
+        );
+    }
 
     #[test]
     fn json_numbers_are_read_by_key() {
