@@ -23,6 +23,16 @@
 //! input and output excluded). The cold pass is the comparable one: inrs's field has no cache
 //! to fill, and the warm pass asks the same points twice.
 //!
+//! The driver measured for issue 52 replays `quest::NURBSCurveGWNQuery::preprocess` and
+//! `::query` (Axom's `GWNMethods.hpp`, which takes its points from an mfem mesh) on points read
+//! from the file: `subdivide_curves(.., 2.0)`, a `spin::BVH` of the pieces' boxes,
+//! `GWNMomentData<double, 2, 2>` reduced up the tree, `NURBSCurveCacheManager`, then
+//! `fast_approximate_winding_number` or `primal::winding_number` with the default
+//! `WindingTolerances`, `SEQ_EXEC`. It was built from Axom at `bdec72c` (PR #1838's head) with
+//! `g++ -O3 -DNDEBUG -std=c++17` (no `-march`, as inrs's release build): core's and slic's
+//! `.cpp` files, the rest being headers, with the configuration headers `CMake` would write for
+//! a serial CPU build.
+//!
 //! The runs alternate, in rounds, between the driver and inrs (so a noisy spell on the machine
 //! slows both alike); the table shows the medians over the rounds.
 
