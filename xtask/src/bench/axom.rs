@@ -95,8 +95,8 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
         "\nWinding numbers against LLNL Axom (`{DRIVER_VAR}` = `{}`), one thread each: inrs \
          `FastWindingField::winding_numbers` against Axom's fast approximation of PR #1838 \
          (Taylor order 2, memoized, beta 2; the first pass over the points after building, \
-         caches filling: *cold*; a second pass: *warm*) and Axom's exact GWN (memoized, on \
-         every k-th point, about {EXACT_POINTS}). Points: uniform random in the box grown by \
+         caches filling: *cold*; a second pass: *warm*) and Axom's exact GWN (memoized, one \
+         cold pass on every k-th point, about {EXACT_POINTS}). Points: uniform random in the box grown by \
          5%, and near the curves at 1e-2..1e-10 of the diagonal (log-uniform), seed {SEED}. \
          Microseconds per point, medians of {rounds} rounds (each the median of {reps} runs), \
          the runs of inrs and Axom alternating; setup in ms (inrs: `WindingField::new` + \
