@@ -81,7 +81,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
             "Axom comparison skipped: set {DRIVER_VAR} to a driver built against LLNL Axom \
              (PR #1838) outside this repository; its interface is in xtask/src/bench/axom.rs."
         );
-        println!("{line}");
+        // Printed with the report.
         let _ = writeln!(md, "\n{line}");
         return Ok(());
     };
