@@ -1,6 +1,7 @@
 //! `cargo xtask bench`: the papers' comparisons, measured in one process (medians of repeated
 //! runs), printed and written as Markdown and CSV under `target/bench-report/`.
 
+mod axom;
 mod build;
 mod cli;
 mod coverage;
@@ -12,7 +13,6 @@ mod locator;
 mod paper;
 mod peers;
 mod plots;
-#[allow(dead_code)] // used by the speed rows of issue 52 as they land
 mod point_sets;
 mod properties;
 mod solid;
@@ -40,11 +40,12 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 12] = [
+const SECTIONS: &[&str] = &[
     "paper",
     "locator",
     "gwn",
     "shapes",
+    "axom",
     "build",
     "cli",
     "coverage",
@@ -270,6 +271,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
         if let Some(fig) = plots::shapes_speedups_figure(&ratios) {
             list_plots(&mut md, &[plots::save(&dir, "speedups_shapes.svg", &fig)?]);
         }
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("axom") {
+        axom::section(&mut md, root, o)?;
         write_report(root, o, &md, &csv, false)?;
     }
     if o.runs("build") {
