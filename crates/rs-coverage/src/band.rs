@@ -648,11 +648,28 @@ impl Band<'_> {
                         continue;
                     }
                     // Columns without parts: whole ones are 1 (no moments asked) or take
-                    // the general formula with no parts.
-                    for c in i..run_end {
-                        match centroids.as_deref_mut() {
-                            None if len[c] == xs[c + 1] - xs[c] => fractions[c] = 1.0,
-                            m => row.set(c, [0.0; 6], fractions, m),
+                    // the general formula with no parts. The interval's inner columns are
+                    // whole (`add_covered` gives each exactly its width): one fill.
+                    match centroids.as_deref_mut() {
+                        None => {
+                            let inner_start = (range.start + 1).clamp(i, run_end);
+                            let inner_end = range.end.saturating_sub(1).clamp(inner_start, run_end);
+                            for c in (i..inner_start).chain(inner_end..run_end) {
+                                if len[c] == xs[c + 1] - xs[c] {
+                                    fractions[c] = 1.0;
+                                } else {
+                                    row.set(c, [0.0; 6], fractions, None);
+                                }
+                            }
+                            debug_assert!(
+                                (inner_start..inner_end).all(|c| len[c] == xs[c + 1] - xs[c])
+                            );
+                            fractions[inner_start..inner_end].fill(1.0);
+                        }
+                        Some(m) => {
+                            for c in i..run_end {
+                                row.set(c, [0.0; 6], fractions, Some(&mut *m));
+                            }
                         }
                     }
                     if let Some((c, acc)) = cut {
