@@ -35,12 +35,14 @@ impl Orthonormal {
     /// `max_k |(R^T r)_k|`: for `r = b - Q^T w`, the largest error of the moments,
     /// `max_k |m_k - sum_i w_i phi_k(x_i)|` (as `R^T (b - Q^T w) = m - V^T w`).
     pub(crate) fn moment_error(&self, r: &[f64]) -> f64 {
-        // R^T is lower triangular: row k has entries in columns 0..=k only.
+        // R^T is lower triangular: column k has entries in rows k.. only. Column slices of the
+        // column-major storage (a strided iterator was 10% of the whole rule at degree 30).
         let n = self.rt.nrows();
+        let rt = self.rt.as_slice();
         let mut sums = vec![0.0; n];
         for (k, &rk) in r.iter().enumerate() {
-            let column = self.rt.column(k);
-            for (s, &l) in sums[k..].iter_mut().zip(column.iter().skip(k)) {
+            let column = &rt[k * n + k..(k + 1) * n];
+            for (s, &l) in sums[k..].iter_mut().zip(column) {
                 *s += l * rk;
             }
         }
