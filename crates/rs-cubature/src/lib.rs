@@ -31,12 +31,15 @@
 //!   shifted pass when the Gram matrix is numerically singular; each pass applies its factor
 //!   by a blocked triangular solve, backward stable where multiplying by the factor's inverse
 //!   is not: matrix products at `gemm` speed), and the moments carried along:
-//!   `Q^T w = R^{-T} m` is `V^T w = m`.
+//!   `Q^T w = R^{-T} m` is `V^T w = m`. After three shifted passes one more, unshifted, pass
+//!   makes `Q` orthonormal when that keeps the moments consistent with the candidates (the
+//!   shift leaves `Q` regularised, and the NNLS on it takes several times the iterations).
 //! - **Compression.** Non-negative least squares on `min ||Q^T w - R^{-T} m||`, `w >= 0`:
 //!   Lawson-Hanson's active-set method with the deviation-maximisation choice of entering
 //!   columns (LHDM, Dessole, Marcuzzi and Vianello: several nearly orthogonal columns with
 //!   large gradients enter at once) and the passive set's QR factorisation updated column by
-//!   column; at most `dim P_n` weights are positive. An attempt whose moments are out of reach
+//!   column; between full passes over all the candidates' gradients (every fourth iteration)
+//!   only the `dim P_n` with the largest are scored; at most `dim P_n` weights are positive. An attempt whose moments are out of reach
 //!   fails fast: the NNLS stops when the largest error of the moments of its iterate has not
 //!   halved over the last `max(dim P_n / 4, 50)` iterations while above the target (a stall:
 //!   the residual then converges to the distance from the moments to the cone of the
@@ -112,10 +115,11 @@ pub use rule::{
 /// `M N^2` with `N = dim P_n` and `M` candidates, `12 N` up to degree 20 and `12 N n / 20`
 /// beyond) and its memory like `n^4` (the candidates' Vandermonde matrix, up to
 /// `20 000 x 861` values, 138 MB, with the default cap). Measured on one core on the inRS
-/// paper's three domains with the default options: degree 20 in 40-52 ms, degree 30 in
-/// 0.44-1.9 s, degree 40 in 4.5-14 s (one attempt of 20 000 candidates, the default cap; the
-/// box-scaled Legendre basis is then so ill-conditioned on these domains that the
-/// orthonormalisation needs three shifted Cholesky passes). A domain on which positive weights
+/// paper's three domains with the default options (CPU time): degree 20 in about 30 ms,
+/// degree 30 in 0.27-0.74 s, degree 40 in 2.3-5.3 s (one attempt of 20 000 candidates, the
+/// default cap; the box-scaled Legendre basis is then so ill-conditioned on two of these
+/// domains that the orthonormalisation needs three shifted Cholesky passes, and `Q` stays
+/// regularised). A domain on which positive weights
 /// need more candidates than the cap gets an error (`ResidualNotReached`), not a wrong rule.
 /// Moments alone ([`monomial_moments`]) are cheap at any degree up to it.
 pub const MAX_DEGREE: usize = 40;

@@ -179,6 +179,11 @@ pub(crate) struct NnlsOptions {
     pub(crate) gradient_fraction: f64,
     /// ... and the cosine of its angle with each column entering with it is at most this.
     pub(crate) max_cosine: f64,
+    /// Columns scored between full passes (`0`: every column, every iteration): see
+    /// [`nnls`]'s working set.
+    pub(crate) working_set: usize,
+    /// Outer iterations from one full pass over the gradients to the next (at least 1).
+    pub(crate) full_pass_every: usize,
 }
 
 /// The solution of [`nnls`]: the passive columns with their values, and the factorisation of
@@ -228,6 +233,15 @@ impl NnlsSolution {
 /// `stalled(r)` (called with the residual `r = b - A x` before each outer iteration) says
 /// so, or after `3 n + 100` outer iterations (each with at most `2 n` inner steps): the work
 /// is bounded.
+///
+/// **Working set.** The gradients `A^T r` of all `m` columns cost `m n` per iteration, most
+/// of the iteration's work when `m` is many times `n`. A full pass every
+/// `options.full_pass_every` iterations scores every column and keeps the
+/// `options.working_set` with the largest gradients; the iterations in between score only
+/// those. Any column with a positive gradient may enter (Lawson and Hanson's convergence
+/// needs no more), so this changes which columns enter, not what the method converges to.
+/// Optimality (no gradient above rounding) is only ever declared after a full pass: when the
+/// working set offers no column, a full pass is made at once.
 pub(crate) fn nnls(
     a: &[f64],
     n: usize,
@@ -253,6 +267,11 @@ pub(crate) fn nnls(
     let mut g = vec![0.0; m];
     let mut order: Vec<usize> = Vec::new();
     let mut entering: Vec<usize> = Vec::new();
+    // The columns scored this iteration: all of them after a full pass, else the working set.
+    let mut scored: Vec<usize> = Vec::with_capacity(m);
+    let mut working: Vec<usize> = Vec::new();
+    let all_columns = options.working_set == 0 || options.working_set >= m;
+    let mut since_full = usize::MAX;
     let cap = 3 * n + 100;
     let mut iterations = 0;
     while iterations < cap {
@@ -267,17 +286,39 @@ pub(crate) fn nnls(
                 stalled: true,
             };
         }
-        for (j, gj) in g.iter_mut().enumerate() {
-            *gj = if passive[j] || blocked[j] {
-                f64::NEG_INFINITY
+        let mut full = all_columns || since_full >= options.full_pass_every.max(1);
+        // At most two rounds: the working set's, then (if it offers nothing) a full pass.
+        let (best, g_best) = loop {
+            scored.clear();
+            if full {
+                scored.extend(0..m);
+                since_full = 0;
             } else {
-                dot(column(j), &r)
-            };
-        }
-        let Some((best, &g_best)) = g.iter().enumerate().max_by(|p, q| p.1.total_cmp(q.1)) else {
-            break;
+                scored.extend_from_slice(&working);
+            }
+            let mut best = (usize::MAX, f64::NEG_INFINITY);
+            for &j in &scored {
+                let gj = if passive[j] || blocked[j] {
+                    f64::NEG_INFINITY
+                } else {
+                    dot(column(j), &r)
+                };
+                g[j] = gj;
+                // The last of equal maxima, as `Iterator::max_by` picks.
+                if gj.total_cmp(&best.1).is_ge() {
+                    best = (j, gj);
+                }
+            }
+            if full && !all_columns {
+                keep_largest(&mut working, &g, options.working_set, gradient_floor);
+            }
+            if full || (best.1 > gradient_floor && !best.1.is_nan()) {
+                break best;
+            }
+            full = true;
         };
-        if g_best.is_nan() || g_best <= gradient_floor {
+        since_full = since_full.saturating_add(1);
+        if best == usize::MAX || g_best.is_nan() || g_best <= gradient_floor {
             break;
         }
         // The entering columns: the best, then (LHDM) others with a large gradient nearly
@@ -289,7 +330,10 @@ pub(crate) fn nnls(
             let threshold = options.gradient_fraction * g_best;
             order.clear();
             order.extend(
-                (0..m).filter(|&j| j != best && g[j] >= threshold && g[j] > gradient_floor),
+                scored
+                    .iter()
+                    .copied()
+                    .filter(|&j| j != best && g[j] >= threshold && g[j] > gradient_floor),
             );
             order.sort_unstable_by(|&p, &q| g[q].total_cmp(&g[p]));
             for &j in order.iter() {
@@ -388,6 +432,17 @@ pub(crate) fn nnls(
     }
 }
 
+/// `working <-` the (at most) `size` indices `j` with the largest `g[j] > floor`, in no
+/// particular order.
+fn keep_largest(working: &mut Vec<usize>, g: &[f64], size: usize, floor: f64) {
+    working.clear();
+    working.extend((0..g.len()).filter(|&j| g[j] > floor));
+    if working.len() > size {
+        working.select_nth_unstable_by(size - 1, |&p, &q| g[q].total_cmp(&g[p]));
+        working.truncate(size);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -397,12 +452,22 @@ mod tests {
         max_entering: 1,
         gradient_fraction: 1.0,
         max_cosine: 0.0,
+        working_set: 0,
+        full_pass_every: 1,
     };
     const LHDM: NnlsOptions = NnlsOptions {
         residual_tolerance: 1e-14,
         max_entering: 3,
         gradient_fraction: 0.1,
         max_cosine: 0.9,
+        working_set: 0,
+        full_pass_every: 1,
+    };
+    /// LHDM scoring a working set of one column between full passes every third iteration.
+    const WORKING: NnlsOptions = NnlsOptions {
+        working_set: 1,
+        full_pass_every: 3,
+        ..LHDM
     };
 
     /// A right-hand side made from known non-negative weights is reached exactly.
@@ -422,7 +487,7 @@ mod tests {
         for (j, &xj) in xs.iter().enumerate() {
             axpy(xj, &a[3 * j..3 * j + 3], &mut b);
         }
-        for options in [LH, LHDM] {
+        for options in [LH, LHDM, WORKING] {
             let s = nnls(&a, 3, &b, options, |_| false);
             assert!(s.columns().len() <= 3);
             assert!(s.values().iter().all(|&v| v > 0.0));
@@ -440,10 +505,49 @@ mod tests {
     fn an_unreachable_right_hand_side_gets_the_nearest_point_of_the_cone() {
         // Columns e1 and e2 in R^2, b = (1, -1): the best x >= 0 is (1, 0).
         let a = [1.0, 0.0, 0.0, 1.0];
-        for options in [LH, LHDM] {
+        for options in [LH, LHDM, WORKING] {
             let s = nnls(&a, 2, &[1.0, -1.0], options, |_| false);
             assert_eq!(s.columns(), [0]);
             assert!((s.values()[0] - 1.0).abs() < 1e-15);
+        }
+    }
+
+    /// With a working set smaller than the columns the solution needs, the full passes still
+    /// bring them in: a consistent problem with five positive weights among forty columns is
+    /// matched, and optimality is declared only after a full pass.
+    #[test]
+    fn a_small_working_set_still_reaches_the_solution() {
+        let (n, m) = (6, 40);
+        let a: Vec<f64> = (0..n * m)
+            .map(|i| {
+                (((i * 53 + 7) % 29) as f64 - 14.0) / 14.0 + if i % n == 0 { 2.0 } else { 0.0 }
+            })
+            .collect();
+        let mut b = vec![0.0; n];
+        for (j, xj) in [(3, 0.5), (11, 1.25), (19, 0.75), (27, 2.0), (38, 0.3)] {
+            axpy(xj, &a[j * n..(j + 1) * n], &mut b);
+        }
+        for options in [
+            LHDM,
+            WORKING,
+            NnlsOptions {
+                working_set: 2,
+                full_pass_every: 100,
+                ..LH
+            },
+        ] {
+            let s = nnls(&a, n, &b, options, |_| false);
+            assert!(s.values().iter().all(|&v| v > 0.0));
+            let mut got = vec![0.0; n];
+            for (&j, &v) in s.columns().iter().zip(s.values()) {
+                axpy(v, &a[j * n..(j + 1) * n], &mut got);
+            }
+            let err = got
+                .iter()
+                .zip(&b)
+                .map(|(g, b)| (g - b).abs())
+                .fold(0.0, f64::max);
+            assert!(err < 1e-12, "{options:?}: {got:?} vs {b:?}");
         }
     }
 
