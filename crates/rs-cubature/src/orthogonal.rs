@@ -171,6 +171,12 @@ const SOLVE_BLOCK: usize = 64;
 /// `s4_disk_ellipse_segment`: the substitution was 21% of the rule's time.
 const INNER_SOLVE_BLOCK: usize = 16;
 
+/// Bases up to this size (`dim P_20`) keep the rules they had before the high-degree paths
+/// (the inner blocks of [`solve_lower_blocked`] and the NNLS's working set): those paths regroup
+/// the arithmetic and so move nodes and weights by rounding, and at these degrees a rule takes
+/// tens of milliseconds anyway; a user's rule of degree 20 or less is the same bit for bit.
+pub(crate) const HIGH_DEGREE_BASIS: usize = 231;
+
 /// `x <- L^{-1} x` for a lower triangular `L` (`N x N`) and `x` (`N x M`), by blocks of rows:
 /// each diagonal block solved (itself by blocks of [`INNER_SOLVE_BLOCK`] rows, then by forward
 /// substitution), the rows below it updated by one matrix product. Backward stable like
@@ -182,7 +188,7 @@ fn solve_lower_blocked(l: &DMatrix<f64>, x: &mut DMatrix<f64>) -> bool {
 }
 
 /// [`solve_lower_blocked`] with diagonal blocks of `block` rows (solved by blocks of
-/// [`INNER_SOLVE_BLOCK`] rows when larger).
+/// [`INNER_SOLVE_BLOCK`] rows when larger, for `L` of more than [`HIGH_DEGREE_BASIS`] rows).
 fn solve_lower_by_blocks(
     l: DMatrixView<'_, f64>,
     mut x: DMatrixViewMut<'_, f64>,
@@ -195,7 +201,7 @@ fn solve_lower_by_blocks(
         let end = start + size;
         let (mut top, mut below) = x.rows_range_pair_mut(start..end, end..);
         let diagonal = l.view((start, start), (size, size));
-        let solved = if size > INNER_SOLVE_BLOCK {
+        let solved = if size > INNER_SOLVE_BLOCK && n > HIGH_DEGREE_BASIS {
             solve_lower_by_blocks(diagonal, top.as_view_mut(), INNER_SOLVE_BLOCK)
         } else {
             diagonal.solve_lower_triangular_mut(&mut top)

@@ -9,7 +9,7 @@ use crate::basis::LegendreBasis;
 use crate::candidates::Candidates;
 use crate::moments::basis_moments;
 use crate::nnls::{NnlsOptions, dot, nnls};
-use crate::orthogonal::orthonormalise;
+use crate::orthogonal::{HIGH_DEGREE_BASIS, orthonormalise};
 use crate::{CubatureError, MAX_DEGREE};
 
 /// Default of [`CubatureOptions::candidates_per_polynomial`].
@@ -400,7 +400,8 @@ fn compress(
         max_entering: n.div_ceil(20),
         gradient_fraction: 0.5,
         max_cosine: 0.2,
-        working_set: n,
+        // Above degree 20 only (see `HIGH_DEGREE_BASIS`).
+        working_set: if n > HIGH_DEGREE_BASIS { n } else { 0 },
         full_pass_every: FULL_GRADIENT_PASS_EVERY,
     };
     let scale = moments.iter().fold(0.0f64, |a, m| a.max(m.abs()));
