@@ -38,8 +38,10 @@
 //!   Lawson-Hanson's active-set method with the deviation-maximisation choice of entering
 //!   columns (LHDM, Dessole, Marcuzzi and Vianello: several nearly orthogonal columns with
 //!   large gradients enter at once) and the passive set's QR factorisation updated column by
-//!   column; between full passes over all the candidates' gradients (every fourth iteration)
-//!   only the `dim P_n` with the largest are scored; at most `dim P_n` weights are positive. An attempt whose moments are out of reach
+//!   column; above degree 20, between full passes over all the candidates' gradients (every
+//!   fourth iteration) only the `dim P_n` with the largest are scored (up to degree 20 every
+//!   pass is full: those rules are unchanged bit for bit); at most `dim P_n` weights are
+//!   positive. An attempt whose moments are out of reach
 //!   fails fast: the NNLS stops when the largest error of the moments of its iterate has not
 //!   halved over the last `max(dim P_n / 4, 50)` iterations while above the target (a stall:
 //!   the residual then converges to the distance from the moments to the cone of the
