@@ -5,6 +5,7 @@ use rs_spline::{Axis, BoundingBox, Domain, Point};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use crate::piece::HalvedPiece;
 use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 
 /// Default most sub-boxes a monotone piece is cut into (Remark 2.1), chosen by
@@ -411,10 +412,32 @@ fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
     }
     let ((t_prev, t), (u0, u1)) = (r.t, r.span);
     let param = |t: f64| u0 + t * (u1 - u0);
-    let mut part = b.piece().clone();
-    for j in 0..k {
+    let range = |j: usize| {
         let a = t_prev + (t - t_prev) * j as f64 / k as f64;
         let e = t_prev + (t - t_prev) * (j + 1) as f64 / k as f64;
+        (param(a), param(e))
+    };
+    // Degree <= 7 (every piece in practice): the cuts on fixed-size arrays, bit for bit
+    // `BezierPiece::split`'s, without its SmallVec copies and moves.
+    if let Some(mut part) = HalvedPiece::of(b.piece()) {
+        for j in 0..k {
+            let sub = if j + 1 < k {
+                let right = part.split_at(1.0 / (k - j) as f64);
+                std::mem::replace(&mut part, right)
+            } else {
+                part
+            };
+            push(MonotoneBox::new(
+                sub.to_piece(),
+                b.curve,
+                b.boundary_loop,
+                range(j),
+            ));
+        }
+        return;
+    }
+    let mut part = b.piece().clone();
+    for j in 0..k {
         let sub = if j + 1 < k {
             let (left, right) = part.split(1.0 / (k - j) as f64);
             part = right;
@@ -422,12 +445,7 @@ fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
         } else {
             part.clone()
         };
-        push(MonotoneBox::new(
-            sub,
-            b.curve,
-            b.boundary_loop,
-            (param(a), param(e)),
-        ));
+        push(MonotoneBox::new(sub, b.curve, b.boundary_loop, range(j)));
     }
 }
 
