@@ -487,6 +487,9 @@ fn monotone_pieces(
             pieces[0].2.set_start(end);
         }
         let first = boxes.len();
+        // At least one monotone piece per Bezier piece: grown once, not box by box.
+        boxes.reserve(pieces.len());
+        refinement.reserve(pieces.len());
         start_flags.clear();
         let mut pending_end: EndFlags = (false, false);
         for (ci, span, piece) in pieces.drain(..) {
@@ -498,7 +501,7 @@ fn monotone_pieces(
                 })?;
             let idx = boxes.len() - first;
             split_piece(
-                &piece,
+                piece,
                 ci,
                 li,
                 span,
@@ -586,7 +589,7 @@ fn or(a: EndFlags, b: EndFlags) -> EndFlags {
 /// record (count still to be set) and the tangency flags at its start.
 #[allow(clippy::too_many_arguments)]
 fn split_piece(
-    piece: &BezierPiece,
+    piece: BezierPiece,
     curve: usize,
     loop_index: usize,
     (u0, u1): (f64, f64),
@@ -596,21 +599,7 @@ fn split_piece(
     start_flags: &mut Vec<EndFlags>,
 ) {
     let param = |t: f64| u0 + t * (u1 - u0);
-    let mut rest = piece.clone();
-    let mut t_prev = 0.0;
-    let mut flags_prev: EndFlags = (false, false);
-    let ends = splits
-        .iter()
-        .copied()
-        .chain(std::iter::once((1.0, (false, false))));
-    for (t, flags) in ends {
-        let monotone = if t < 1.0 {
-            let (left, right) = rest.split((t - t_prev) / (1.0 - t_prev));
-            rest = right;
-            left
-        } else {
-            rest.clone()
-        };
+    let mut push = |monotone: BezierPiece, (t_prev, t): (f64, f64), flags_prev: EndFlags| {
         // The parameter range a refinement into one box gives (`refine`'s formula with
         // k = 1), so that a piece left whole is bit for bit its own refined box.
         let range = (
@@ -625,9 +614,20 @@ fn split_piece(
             first: 0,
         });
         start_flags.push(flags_prev);
+    };
+    // Every split lies in (0, 1) (roots at the ends mark tangencies instead); the piece is
+    // moved, not copied, into its last part (the whole piece when it has no split).
+    let mut rest = piece;
+    let mut t_prev = 0.0;
+    let mut flags_prev: EndFlags = (false, false);
+    for &(t, flags) in splits {
+        let (left, right) = rest.split((t - t_prev) / (1.0 - t_prev));
+        rest = right;
+        push(left, (t_prev, t), flags_prev);
         t_prev = t;
         flags_prev = flags;
     }
+    push(rest, (t_prev, 1.0), flags_prev);
 }
 
 /// Critical points of one loop's boxes.
