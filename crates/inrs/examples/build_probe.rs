@@ -130,7 +130,41 @@ fn cad_faces(paths: &[String]) -> Result<(), String> {
     });
     println!("cad_faces\t{}", faces.len());
     println!("cad_per_face\t{:e}", t / faces.len().max(1) as f64);
+    first_and_warm(&faces, options);
     Ok(())
+}
+
+/// The "first classify / warm classify" of the faces: per face, a fresh `Containment`
+/// and its first batch (which builds what the batch needs), then the same batch again on the
+/// warm value; each the sum over the faces, the median of a few rounds.
+fn first_and_warm(faces: &[(Domain, Vec<Point>)], options: ContainOptions) {
+    let (mut firsts, mut warms) = (Vec::new(), Vec::new());
+    for _ in 0..5 {
+        let (mut first, mut warm) = (0.0, 0.0);
+        for (d, pts) in faces {
+            let mut out = vec![Location::Outside; pts.len()];
+            let start = Instant::now();
+            let Ok(c) = Containment::new(d, options) else {
+                continue;
+            };
+            c.engine(pts.len()).par_values_into(&pts[..], &mut out);
+            let built = Instant::now();
+            c.engine(pts.len()).par_values_into(&pts[..], &mut out);
+            let end = Instant::now();
+            first += (built - start).as_secs_f64();
+            warm += (end - built).as_secs_f64();
+            std::hint::black_box(&out);
+        }
+        firsts.push(first);
+        warms.push(warm);
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let n = faces.len().max(1) as f64;
+    println!("cad_first_per_face\t{:e}", median(firsts) / n);
+    println!("cad_warm_per_face\t{:e}", median(warms) / n);
 }
 
 fn main() -> Result<(), String> {

@@ -5,6 +5,7 @@ use rs_spline::{Axis, BoundingBox, Domain, Point};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use crate::piece::HalvedPiece;
 use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 
 /// Default most sub-boxes a monotone piece is cut into (Remark 2.1), chosen by
@@ -411,10 +412,32 @@ fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
     }
     let ((t_prev, t), (u0, u1)) = (r.t, r.span);
     let param = |t: f64| u0 + t * (u1 - u0);
-    let mut part = b.piece().clone();
-    for j in 0..k {
+    let range = |j: usize| {
         let a = t_prev + (t - t_prev) * j as f64 / k as f64;
         let e = t_prev + (t - t_prev) * (j + 1) as f64 / k as f64;
+        (param(a), param(e))
+    };
+    // Degree <= 7 (every piece in practice): the cuts on fixed-size arrays, bit for bit
+    // `BezierPiece::split`'s, without its SmallVec copies and moves.
+    if let Some(mut part) = HalvedPiece::of(b.piece()) {
+        for j in 0..k {
+            let sub = if j + 1 < k {
+                let right = part.split_at(1.0 / (k - j) as f64);
+                std::mem::replace(&mut part, right)
+            } else {
+                part
+            };
+            push(MonotoneBox::new(
+                sub.to_piece(),
+                b.curve,
+                b.boundary_loop,
+                range(j),
+            ));
+        }
+        return;
+    }
+    let mut part = b.piece().clone();
+    for j in 0..k {
         let sub = if j + 1 < k {
             let (left, right) = part.split(1.0 / (k - j) as f64);
             part = right;
@@ -422,12 +445,7 @@ fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
         } else {
             part.clone()
         };
-        push(MonotoneBox::new(
-            sub,
-            b.curve,
-            b.boundary_loop,
-            (param(a), param(e)),
-        ));
+        push(MonotoneBox::new(sub, b.curve, b.boundary_loop, range(j)));
     }
 }
 
@@ -469,6 +487,9 @@ fn monotone_pieces(
             pieces[0].2.set_start(end);
         }
         let first = boxes.len();
+        // At least one monotone piece per Bezier piece: grown once, not box by box.
+        boxes.reserve(pieces.len());
+        refinement.reserve(pieces.len());
         start_flags.clear();
         let mut pending_end: EndFlags = (false, false);
         for (ci, span, piece) in pieces.drain(..) {
@@ -480,7 +501,7 @@ fn monotone_pieces(
                 })?;
             let idx = boxes.len() - first;
             split_piece(
-                &piece,
+                piece,
                 ci,
                 li,
                 span,
@@ -568,7 +589,7 @@ fn or(a: EndFlags, b: EndFlags) -> EndFlags {
 /// record (count still to be set) and the tangency flags at its start.
 #[allow(clippy::too_many_arguments)]
 fn split_piece(
-    piece: &BezierPiece,
+    piece: BezierPiece,
     curve: usize,
     loop_index: usize,
     (u0, u1): (f64, f64),
@@ -578,21 +599,7 @@ fn split_piece(
     start_flags: &mut Vec<EndFlags>,
 ) {
     let param = |t: f64| u0 + t * (u1 - u0);
-    let mut rest = piece.clone();
-    let mut t_prev = 0.0;
-    let mut flags_prev: EndFlags = (false, false);
-    let ends = splits
-        .iter()
-        .copied()
-        .chain(std::iter::once((1.0, (false, false))));
-    for (t, flags) in ends {
-        let monotone = if t < 1.0 {
-            let (left, right) = rest.split((t - t_prev) / (1.0 - t_prev));
-            rest = right;
-            left
-        } else {
-            rest.clone()
-        };
+    let mut push = |monotone: BezierPiece, (t_prev, t): (f64, f64), flags_prev: EndFlags| {
         // The parameter range a refinement into one box gives (`refine`'s formula with
         // k = 1), so that a piece left whole is bit for bit its own refined box.
         let range = (
@@ -607,9 +614,20 @@ fn split_piece(
             first: 0,
         });
         start_flags.push(flags_prev);
+    };
+    // Every split lies in (0, 1) (roots at the ends mark tangencies instead); the piece is
+    // moved, not copied, into its last part (the whole piece when it has no split).
+    let mut rest = piece;
+    let mut t_prev = 0.0;
+    let mut flags_prev: EndFlags = (false, false);
+    for &(t, flags) in splits {
+        let (left, right) = rest.split((t - t_prev) / (1.0 - t_prev));
+        rest = right;
+        push(left, (t_prev, t), flags_prev);
         t_prev = t;
         flags_prev = flags;
     }
+    push(rest, (t_prev, 1.0), flags_prev);
 }
 
 /// Critical points of one loop's boxes.

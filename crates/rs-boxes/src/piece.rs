@@ -303,8 +303,9 @@ impl RelativePiece<'_> {
 pub(crate) const HALVED_COEFFS: usize = 8;
 
 /// A piece of degree at most 7 in fixed-size arrays, for the repeated halvings of
-/// [`MonotoneBox::for_grid_parts`](crate::MonotoneBox::for_grid_parts): [`HalvedPiece::halve`]
-/// gives, bit for bit, the control points and weights of [`BezierPiece::split`] at `t = 0.5`
+/// [`MonotoneBox::for_grid_parts`](crate::MonotoneBox::for_grid_parts) and the cuts of the
+/// refined boxes: [`HalvedPiece::split_at`] (and [`HalvedPiece::halve`], at `t = 0.5`) gives,
+/// bit for bit, the control points and weights of [`BezierPiece::split`] at the same `t`
 /// (the same de Casteljau blends `a * (1 - s) + b * s` in the same order, the same divisions,
 /// the same fix-ups of constant coordinates and of the shared point), without the `SmallVec`
 /// copies and moves.
@@ -342,6 +343,18 @@ impl HalvedPiece {
         Some(out)
     }
 
+    /// The piece as a [`BezierPiece`] (the same coefficients).
+    pub(crate) fn to_piece(self) -> BezierPiece {
+        let n = self.len;
+        BezierPiece {
+            x: Coeffs::from_slice(&self.x[..n]),
+            y: Coeffs::from_slice(&self.y[..n]),
+            w: Coeffs::from_slice(&self.w[..n]),
+            hx: Coeffs::from_slice(&self.hx[..n]),
+            hy: Coeffs::from_slice(&self.hy[..n]),
+        }
+    }
+
     /// The control points' abscissas.
     pub(crate) fn xs(&self) -> &[f64] {
         &self.x[..self.len]
@@ -366,7 +379,13 @@ impl HalvedPiece {
     /// is returned, both equal bit for bit to [`BezierPiece::split`]`(0.5)`'s (one copy of the
     /// arrays per halving).
     pub(crate) fn halve(&mut self) -> Self {
-        const S: f64 = 0.5;
+        self.split_at(0.5)
+    }
+
+    /// Splits the piece in place at `s`: it becomes the part on `[0, s]` and the part on
+    /// `[s, 1]` is returned, both equal bit for bit to [`BezierPiece::split`]`(s)`'s (the
+    /// refinement of [`MonotoneBoxes`](crate::MonotoneBoxes) cuts its boxes off with it).
+    pub(crate) fn split_at(&mut self, s: f64) -> Self {
         let n = self.len;
         // Constancy of the piece being split, as `split` tests it.
         let (x0, y0) = (self.x[0], self.y[0]);
@@ -376,9 +395,9 @@ impl HalvedPiece {
         let left = self;
         // The one de Casteljau kernel, as `split` calls it, on the arrays in place.
         let (hx, hy, w) = (left.hx, left.hy, left.w);
-        de_casteljau_split(&hx[..n], S, &mut left.hx[..n], &mut right.hx[..n]);
-        de_casteljau_split(&hy[..n], S, &mut left.hy[..n], &mut right.hy[..n]);
-        de_casteljau_split(&w[..n], S, &mut left.w[..n], &mut right.w[..n]);
+        de_casteljau_split(&hx[..n], s, &mut left.hx[..n], &mut right.hx[..n]);
+        de_casteljau_split(&hy[..n], s, &mut left.hy[..n], &mut right.hy[..n]);
+        de_casteljau_split(&w[..n], s, &mut left.w[..n], &mut right.w[..n]);
         // from_homogeneous.
         for half in [&mut *left, &mut right] {
             for i in 0..n {
@@ -546,12 +565,20 @@ mod tests {
                 assert_eq!(&h.hy[..h.len], &p.hy[..]);
                 assert_eq!((h.start(), h.end()), (p.start(), p.end()));
                 compared += 1;
+                assert_eq!(h.to_piece(), p);
                 if depth < 4 {
                     let (l, r) = p.split(0.5);
                     let mut hl = h;
                     let hr = hl.halve();
                     stack.push((l, hl, depth + 1));
                     stack.push((r, hr, depth + 1));
+                }
+                // The refinement's cuts: at 1 / k for k parts still to cut.
+                for k in [2.0, 3.0, 7.0, 32.0] {
+                    let (l, r) = p.split(1.0 / k);
+                    let mut hl = h;
+                    let hr = hl.split_at(1.0 / k);
+                    assert_eq!((hl.to_piece(), hr.to_piece()), (l, r), "1/{k}");
                 }
             }
         }

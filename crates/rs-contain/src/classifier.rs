@@ -144,9 +144,9 @@ impl Default for ContainOptions {
 /// answers; [`Classifier::engine`] says which algorithm answers a batch).
 /// [`Classifier::new`] builds only the monotone pieces, their critical points and bounding box
 /// and the tolerance ([`MonotoneBoxes::new`]): what one point needs. Built on first use and
-/// kept (thread-safe, once): the refined boxes ([`MonotoneBoxes::boxes`], for inRS2, the rows
-/// of the fallback, the grid and the winding field; a point answered one by one before they
-/// exist computes the refined boxes of only the pieces it is near), the rows of the fallback,
+/// kept (thread-safe, once): the refined boxes ([`MonotoneBoxes::boxes`], for the rows of the
+/// fallback, the grid and the winding field; inRS1 and inRS2 before they exist compute the
+/// refined boxes of only the pieces their points are near), the rows of the fallback,
 /// the winding-number field and the grid of [`Method::Fast`].
 /// See the crate documentation for the exact semantics.
 ///
@@ -389,14 +389,22 @@ impl Classifier {
         }
     }
 
-    /// inRS2: the points that need the vertical ray are sorted by abscissa; each box finds the
-    /// points in its x-range (grown by the tolerance) by binary search and adds its signed
-    /// crossings to their winding numbers. Points on critical abscissas take the fallbacks one
-    /// by one.
+    /// inRS2: the points that need the vertical ray are sorted by abscissa; each monotone
+    /// piece finds the points in its abscissas (grown by `reach`) by binary search. Those
+    /// above its end-point rectangle by more than `reach` take the piece's signed crossing
+    /// when its half-open abscissas `[xmin, xmax)` hold them, those below it nothing (the
+    /// argument of [`Classifier::vertical_winding`]: what every refined box would add); only
+    /// the points within `reach` of the rectangle meet the piece's refined boxes
+    /// ([`MonotoneBoxes::for_each_box_of_piece`], computed on the fly while the refinement is
+    /// not built), each box finding its points among them by binary search as it did among
+    /// all. So a first batch refines only the pieces its points come near, with no allocation
+    /// per piece. Points on critical abscissas take the fallbacks one by one.
     pub(crate) fn sorted_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
         assert_eq!(points.len(), out.len(), "one value per point");
         out.fill(Location::Outside);
-        let mut order: Vec<usize> = Vec::with_capacity(points.len());
+        // The points with their indexes, sorted by abscissa (in any order among equal ones:
+        // each point's answer depends on its own tests only).
+        let mut order: Vec<(Point, usize)> = Vec::with_capacity(points.len());
         for (i, o) in out.iter_mut().enumerate() {
             let p = points.point(i);
             if !self.outer.contains(p) {
@@ -405,30 +413,54 @@ impl Classifier {
             if self.boxes().is_critical_x(p.x, self.tol) {
                 *o = self.location(self.fallback(p).0);
             } else {
-                order.push(i);
+                order.push((p, i));
             }
         }
-        order.sort_by(|&a, &b| points.point(a).x.total_cmp(&points.point(b).x));
-        let xs: Vec<f64> = order.iter().map(|&i| points.point(i).x).collect();
+        order.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x));
+        let sorted: Vec<Point> = order.iter().map(|&(p, _)| p).collect();
         let mut windings = vec![0_i64; order.len()];
         let mut on_boundary = vec![false; order.len()];
-        let tol = self.tol;
-        for b in self.boxes().boxes() {
-            let lo = xs.partition_point(|&x| x < b.band.xmin - tol);
-            let hi = xs.partition_point(|&x| x <= b.band.xmax + tol);
-            for j in lo..hi {
-                let p = points.point(order[j]);
-                if on_boundary[j] || p.y < b.band.ymin - tol {
+        let (boxes, tol, reach) = (self.boxes(), self.tol, self.reach);
+        // The indexes (into `sorted`, in abscissa order) of the points near the current
+        // piece: one buffer for every piece.
+        let mut near: Vec<usize> = Vec::new();
+        for (i, piece) in boxes.pieces().iter().enumerate() {
+            let band = &piece.band;
+            let lo = sorted.partition_point(|p| p.x < band.xmin - reach);
+            let hi = sorted.partition_point(|p| p.x <= band.xmax + reach);
+            near.clear();
+            for (j, p) in sorted.iter().enumerate().take(hi).skip(lo) {
+                if p.y < band.ymin - reach {
                     continue;
                 }
-                match vertical(b, p, tol) {
-                    Hit::Boundary => on_boundary[j] = true,
-                    Hit::Cross(s) => windings[j] += s,
-                    Hit::Miss => {}
+                if p.y > band.ymax + reach {
+                    if !band.vertical && band.xmin <= p.x && p.x < band.xmax {
+                        windings[j] += downward_sign(piece);
+                    }
+                    continue;
                 }
+                near.push(j);
             }
+            if near.is_empty() {
+                continue;
+            }
+            boxes.for_each_box_of_piece(i, |b| {
+                let first = near.partition_point(|&j| sorted[j].x < b.band.xmin - tol);
+                let last = near.partition_point(|&j| sorted[j].x <= b.band.xmax + tol);
+                for &j in &near[first..last] {
+                    let p = sorted[j];
+                    if on_boundary[j] || p.y < b.band.ymin - tol {
+                        continue;
+                    }
+                    match vertical(b, p, tol) {
+                        Hit::Boundary => on_boundary[j] = true,
+                        Hit::Cross(s) => windings[j] += s,
+                        Hit::Miss => {}
+                    }
+                }
+            });
         }
-        for (j, &i) in order.iter().enumerate() {
+        for (j, &(_, i)) in order.iter().enumerate() {
             out[i] = self.location((!on_boundary[j]).then_some(windings[j]));
         }
     }

@@ -78,7 +78,8 @@ impl Containment {
 pub enum Engine<'a> {
     /// inRS1: each point against each candidate box.
     OneByOne(&'a Classifier),
-    /// inRS2: the points sorted by abscissa, each box finding its points by binary search.
+    /// inRS2: the points sorted by abscissa, each monotone piece finding its points by binary
+    /// search, and each refined box of a piece they come near finding its own among them.
     Sorted(&'a Classifier),
     /// The grid locator ([`Method::Fast`] on a batch large enough to pay for its grid).
     Grid(PointLocator<'a>),
@@ -324,6 +325,68 @@ mod tests {
         assert!(matches!(c.engine(Method::InRS1, 1000), Engine::OneByOne(_)));
         assert!(c.boxes().is_refined());
         assert!(matches!(c.engine(Method::Fast, 1), Engine::Sorted(_)));
+    }
+
+    /// inRS2 on a classifier whose refined boxes are not built (each piece's boxes computed on
+    /// the fly, only for the pieces the points come near) gives every point, on, near and away
+    /// from the boundary, the answer it gives once they are built, and inRS1's; a batch in a
+    /// corner of the domain leaves most pieces unrefined.
+    #[test]
+    fn a_first_sorted_batch_refines_only_what_its_points_touch_and_answers_alike() {
+        for case in rs_testkit::fixtures() {
+            let (name, d) = (case.name, case.domain);
+            let built = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+            built.boxes().boxes();
+            let tol = built.abs_tol();
+            let mut pts = Vec::new();
+            for (_, b) in d.bezier_pieces() {
+                for i in 0..=6 {
+                    let p = b.point_at(i as f64 / 6.0);
+                    pts.push(p);
+                    for s in [0.5, 1.0, 2.0, 3.0, 1e6] {
+                        for (dx, dy) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+                            pts.push(Point::new(p.x + dx * s * tol, p.y + dy * s * tol));
+                        }
+                    }
+                }
+            }
+            let bb = d.bounding_box();
+            pts.extend(crate::baselines::halton_points(
+                2000,
+                bb.grown_by(0.05 * bb.diagonal()),
+            ));
+            let want = built.locate_all_with(Method::InRS2, &pts);
+            assert_eq!(built.locate_all_with(Method::InRS1, &pts), want, "{name}");
+            let lazy = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+            assert_eq!(lazy.locate_all_with(Method::InRS2, &pts), want, "{name}");
+            // In batches of 100 (the pieces refined on the fly, then built once that adds up).
+            let lazy = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+            for (chunk, w) in pts.chunks(100).zip(want.chunks(100)) {
+                assert!(matches!(
+                    lazy.engine(Method::Fast, chunk.len()),
+                    Engine::Sorted(_)
+                ));
+                assert_eq!(lazy.locate_all_with(Method::InRS2, chunk), w, "{name}");
+            }
+            // Points in a corner of the box (clear of its sides, whose abscissas may be
+            // critical: those points take the fallback, which builds every refined box).
+            let corner = crate::baselines::halton_points(
+                400,
+                rs_spline::BoundingBox {
+                    min: Point::new(bb.min.x + bb.width() / 32.0, bb.min.y + bb.height() / 32.0),
+                    max: Point::new(bb.min.x + bb.width() / 16.0, bb.min.y + bb.height() / 16.0),
+                },
+            );
+            let lazy = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
+            let got = lazy.locate_all_with(Method::InRS2, &corner);
+            assert_eq!(got, built.locate_all_with(Method::InRS2, &corner), "{name}");
+            if lazy.boxes().box_count() > 4 * lazy.boxes().pieces().len() {
+                assert!(
+                    !lazy.boxes().is_refined(),
+                    "{name}: a corner refines everything"
+                );
+            }
+        }
     }
 
     /// `Method::Gwn` takes the fill rule of the options: the annulus's two circles have one

@@ -274,6 +274,7 @@ fn report(
             b * 1e6,
             a / b
         );
+        first_and_warm_row(md, old, new);
         if let Some(c) = all_cores {
             let _ = writeln!(
                 md,
@@ -284,6 +285,39 @@ fn report(
             );
         }
     }
+}
+
+/// The goal of the issue's row: a face's first classify (its `Containment` and whatever the
+/// first batch builds) at most this many times the same batch on the warm value.
+const FIRST_OVER_WARM_GOAL: f64 = 2.5;
+
+/// The row "many CAD faces: first classify / warm classify" from the probe's sums over the
+/// faces (`cad_first_per_face`, `cad_warm_per_face`), before and after.
+fn first_and_warm_row(md: &mut String, old: &Samples, new: &Samples) {
+    let cell = |m: &Samples| -> Option<String> {
+        let (first, warm) = (
+            median_of(m, "cad_first_per_face")?,
+            median_of(m, "cad_warm_per_face")?,
+        );
+        Some(format!(
+            "{:.2} ({:.1} us / {:.1} us)",
+            first / warm,
+            first * 1e6,
+            warm * 1e6
+        ))
+    };
+    let Some(after) = cell(new) else {
+        return;
+    };
+    let before = cell(old).unwrap_or_else(|| "-".into());
+    let _ = writeln!(
+        md,
+        "
+| workload (first / warm, first us / warm us a face) | before | after | goal |
+         |---|---|---|---|
+         | many CAD faces: first classify / warm classify | {before} | {after} | <= \
+         {FIRST_OVER_WARM_GOAL} |"
+    );
 }
 
 #[cfg(test)]
@@ -306,6 +340,8 @@ mod tests {
             ("classifier_locator/butterfly", 25e-3),
             ("locator_query/butterfly", 10e-9),
             ("cad_per_face", 400e-6),
+            ("cad_first_per_face", 102e-6),
+            ("cad_warm_per_face", 20e-6),
         ]);
         let new = sample(&[
             ("pieces/butterfly", 500.0),
@@ -314,6 +350,8 @@ mod tests {
             ("locator_query/butterfly", 10.2e-9),
             ("cad_per_face", 200e-6),
             ("cad_faces", 3000.0),
+            ("cad_first_per_face", 40e-6),
+            ("cad_warm_per_face", 20e-6),
         ]);
         let mut md = String::new();
         report(&mut md, &old, &new, 2, 32, Some(100e-6));
@@ -329,6 +367,13 @@ mod tests {
             "{md}"
         );
         assert!(md.contains("100.0 us a face, 4.0x"), "{md}");
+        assert!(
+            md.contains(
+                "| many CAD faces: first classify / warm classify | 5.10 (102.0 us / 20.0 us) \
+                 | 2.00 (40.0 us / 20.0 us) | <= 2.5 |"
+            ),
+            "{md}"
+        );
         assert!(
             !md.contains("| rose |"),
             "shapes the probe did not report are left out"

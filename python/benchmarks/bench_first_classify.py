@@ -1,0 +1,97 @@
+"""Many CAD faces: what the first ``Domain.classify`` of a face costs against the same call on
+the warm domain (its indexes built by the first call).
+
+    python python/benchmarks/bench_first_classify.py [FILE ...] [--points 400] [--rounds 5]
+        [--threads 1] [--dump FILE]
+
+Every face of the FreeCAD IDF parts (or the files given) that reads and classifies, 400
+uniform random points in the face's (u, v) bounding box. Per round, per face: a fresh domain
+(read afresh, nothing built), ``classify`` timed once (first), then again on the same domain
+(warm); the sums over the faces are the round's figures. Prints the medians over the rounds
+and first / warm (the issue's row "many CAD faces: first classify / warm classify", goal
+<= 2.5). ``--dump`` writes every face's codes (int8, the faces in order) to compare trees.
+"""
+
+from __future__ import annotations
+
+import argparse
+import glob
+import statistics
+import time
+
+import numpy as np
+
+import inrs
+
+IDF = "/usr/share/freecad/Mod/Idf/Idflibs"
+
+
+def workload(files, n_points, seed=1):
+    """(file, face index) and points of every face that reads and classifies."""
+    rng = np.random.default_rng(seed)
+    keep, points = [], []
+    for path in files:
+        for face in inrs.cad_faces(path):
+            if face.domain is None:
+                continue
+            u0, v0, u1, v1 = face.bbox
+            pts = np.column_stack([rng.uniform(u0, u1, n_points), rng.uniform(v0, v1, n_points)])
+            try:
+                face.domain.classify(pts[:1])
+            except ValueError:
+                continue
+            keep.append((path, face.index))
+            points.append(pts)
+    return keep, points
+
+
+def one_round(files, keep, points, threads):
+    faces = {f: inrs.cad_faces(f) for f in files}
+    domains = [faces[f][k].domain for f, k in keep]
+    first = warm = 0.0
+    codes = []
+    clock = time.perf_counter
+    for d, p in zip(domains, points):
+        t0 = clock()
+        a = d.classify(p, threads=threads)
+        t1 = clock()
+        b = d.classify(p, threads=threads)
+        t2 = clock()
+        first += t1 - t0
+        warm += t2 - t1
+        if not np.array_equal(a, b):
+            raise SystemExit("first and warm classify disagree")
+        codes.append(a)
+    return first, warm, codes
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("files", nargs="*")
+    ap.add_argument("--points", type=int, default=400)
+    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--threads", type=int, default=None, help="cores (default all)")
+    ap.add_argument("--dump", default=None)
+    a = ap.parse_args()
+    files = a.files or sorted(glob.glob(f"{IDF}/*.stp") + glob.glob(f"{IDF}/*.igs"))
+    if not files:
+        raise SystemExit(f"no files (give some, or install freecad-common for {IDF})")
+    keep, points = workload(files, a.points)
+    n = len(keep)
+    print(f"{len(files)} files, {n} faces, {a.points} points per face, threads={a.threads or 'all'}")
+    firsts, warms, ratios = [], [], []
+    codes = None
+    for _ in range(a.rounds):
+        f, w, codes = one_round(files, keep, points, a.threads)
+        firsts.append(f)
+        warms.append(w)
+        ratios.append(f / w)
+    mf, mw = statistics.median(firsts), statistics.median(warms)
+    print(f"first classify: {1e6 * mf / n:.2f} us/face, warm: {1e6 * mw / n:.2f} us/face")
+    print(f"first / warm: {mf / mw:.2f} (median of rounds' ratios {statistics.median(ratios):.2f})")
+    if a.dump:
+        np.concatenate(codes).astype(np.int8).tofile(a.dump)
+
+
+if __name__ == "__main__":
+    main()
