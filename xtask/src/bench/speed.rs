@@ -53,6 +53,50 @@ fn in_process(python: &Path, root: &Path, n: usize, reps: usize) -> Result<(f64,
     }
 }
 
+/// The many-faces script (first classify of a CAD face against the warm one).
+const FACES_SCRIPT: &str = "python/benchmarks/bench_first_classify.py";
+
+/// `(first us/face, warm us/face, faces)` from the many-faces script, or a one-line reason.
+fn first_classify(python: &Path, root: &Path, rounds: usize) -> Result<(f64, f64, usize), String> {
+    let out = Command::new(python)
+        .arg(root.join(FACES_SCRIPT))
+        .args(["--rounds", &rounds.to_string()])
+        .output()
+        .map_err(|e| format!("{}: {e}", python.display()))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    let number = |line: &str, after: &str| -> Option<f64> {
+        line.split(after)
+            .nth(1)?
+            .split_whitespace()
+            .next()?
+            .parse()
+            .ok()
+    };
+    let faces = text.lines().next().and_then(|l| {
+        l.split(", ")
+            .nth(1)?
+            .split_whitespace()
+            .next()?
+            .parse()
+            .ok()
+    });
+    let times = text
+        .lines()
+        .find(|l| l.starts_with("first classify:"))
+        .and_then(|l| Some((number(l, "first classify:")?, number(l, "warm:")?)));
+    match (out.status.success(), times, faces) {
+        (true, Some((first, warm)), Some(faces)) => Ok((first, warm, faces)),
+        _ => Err(format!(
+            "the many-faces row was not run: {} {FACES_SCRIPT}: {}",
+            python.display(),
+            String::from_utf8_lossy(&out.stderr)
+                .lines()
+                .last()
+                .unwrap_or("failed")
+        )),
+    }
+}
+
 /// Median wall seconds of `inrs fractions` on the disc's `n x n` grid, each run writing a new
 /// file (the previous one removed outside the timing).
 fn cli_fractions(bin: &Path, dir: &Path, n: usize, reps: usize) -> Result<f64, String> {
@@ -113,6 +157,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
     let bin = super::cli::release_binary(root)?;
     let ours_cli = cli_fractions(&bin, &dir, n_cli, reps)?;
     let peer_cli = peer(n_cli, 3);
+    let faces = first_classify(&python, root, if o.quick { 1 } else { 5 });
     let _ = writeln!(
         md,
         "\nFractions at memory speed (issue 52): the unit disc on square grids over \
@@ -121,7 +166,9 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
          write) and exactextract (one thread, in process: the boundary flattened within 1e-10, \
          per-cell coverage scattered into a dense array). *Whole process*: `inrs fractions` \
          writing `F.npy` (a new file each run) against exactextract in process. Medians of \
-         {reps} runs (exactextract at 4096^2: one).\n",
+         {reps} runs (exactextract at 4096^2: one). *Many CAD faces*: every face of the FreeCAD \
+         IDF parts, 400 random points in its (u, v) box, a fresh domain's first `classify` \
+         against a second call on the warm domain (`{FACES_SCRIPT}`, medians of rounds).\n",
         python.display(),
         rayon::current_num_threads(),
     );
@@ -180,6 +227,16 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
         faster,
         ">= 20x faster",
     );
+    match faces {
+        Ok((first, warm, n)) => {
+            let _ = writeln!(
+                md,
+                "| many CAD faces ({n}, 400 points each, Python): first classify us/face | {first:.1} | warm classify us/face | {warm:.1} | {:.2} | <= 2.5 |",
+                first / warm
+            );
+        }
+        Err(e) => notes.push(e),
+    }
     for n in notes {
         let _ = writeln!(md, "\n{n}");
     }
