@@ -16,6 +16,7 @@ mod plots;
 mod point_sets;
 mod properties;
 mod solid;
+mod winding_near;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -39,7 +40,7 @@ pub(crate) struct BenchOptions {
 }
 
 /// The report's sections, in order.
-const SECTIONS: [&str; 11] = [
+const SECTIONS: [&str; 12] = [
     "paper",
     "locator",
     "gwn",
@@ -51,6 +52,7 @@ const SECTIONS: [&str; 11] = [
     "cubature",
     "properties",
     "solid",
+    "winding_near",
 ];
 
 fn names(list: &[&str]) -> Vec<String> {
@@ -305,6 +307,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("solid") {
         solid::section(&mut md, root, o)?;
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("winding_near") {
+        winding_near::section(&mut md, root, o)?;
     }
     write_report(root, o, &md, &csv, true)
 }

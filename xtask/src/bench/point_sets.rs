@@ -59,7 +59,7 @@ pub(crate) fn near_points(d: &Domain, n: usize, seed: u64) -> Vec<Point> {
         let t = t0 + rng.unit() * (t1 - t0);
         let (p, tangent) = piece.point_and_tangent(t);
         let length = tangent.x.hypot(tangent.y);
-        if !(length > 0.0) || !length.is_finite() {
+        if length.is_nan() || length <= 0.0 || length.is_infinite() {
             continue;
         }
         let distance = diagonal * 10f64.powf(-(2.0 + 8.0 * rng.unit()));
