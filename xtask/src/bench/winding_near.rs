@@ -85,20 +85,32 @@ fn thread_cpu_seconds() -> Option<f64> {
     Some(ns as f64 * 1e-9)
 }
 
-/// The median over `reps` runs of `f` (after one untimed run) of the seconds the thread spent
-/// on a CPU running it, or of the wall time where that is not reported. On a shared machine the
-/// wall time of a single-threaded run counts the spells other processes hold the core; its CPU
-/// time does not.
+/// A timed run repeats the task until it takes at least this many seconds: the kernel may count
+/// a thread's CPU time by the scheduler's tick (4 ms here), so short runs would read 0 or 4 ms.
+const MIN_RUN: f64 = 0.25;
+
+/// The median over `reps` runs of `f` of the seconds per call of `f` the thread spent on a CPU
+/// (each run calls `f` enough times to last [`MIN_RUN`], after untimed calls as long), or of the
+/// wall time where that is not reported. On a shared machine the wall time of a
+/// single-threaded run counts the spells other processes hold the core; its CPU time does not.
 fn median_cpu_time(reps: usize, mut f: impl FnMut()) -> f64 {
-    f();
+    let start = std::time::Instant::now();
+    let mut calls = 0usize;
+    while calls == 0 || start.elapsed().as_secs_f64() < MIN_RUN {
+        f();
+        calls += 1;
+    }
     let mut t: Vec<f64> = (0..reps.max(1))
         .map(|_| {
             let (wall, cpu) = (std::time::Instant::now(), thread_cpu_seconds());
-            f();
-            match (cpu, thread_cpu_seconds()) {
+            for _ in 0..calls {
+                f();
+            }
+            let seconds = match (cpu, thread_cpu_seconds()) {
                 (Some(a), Some(b)) => b - a,
                 _ => wall.elapsed().as_secs_f64(),
-            }
+            };
+            seconds / calls as f64
         })
         .collect();
     t.sort_by(f64::total_cmp);
@@ -124,7 +136,7 @@ pub(super) fn section(md: &mut String, root: &Path, o: &BenchOptions) -> Result<
         md,
         "\n### Winding field near the curves against far from them (`fixtures/axom-contours/`)\n\n\
          Microseconds per point of `FastWindingField::winding_numbers` on one thread, warm field \
-         (hierarchies built), median of {reps} runs of the thread's time on a CPU \
+         (hierarchies built), median of {reps} runs (each of 0.25 s at least) of the thread's time on a CPU \
          (`/proc/thread-self/schedstat`; wall time where not reported). Near: `near_points(d, {POINTS}, {SEED})` \
          (1e-2..1e-10 of the diagonal from the curves); far: the first {POINTS} points of \
          `random_points(d, {}, {SEED})` at least {FAR} of the diagonal from every piece's \
