@@ -446,6 +446,8 @@ pub(crate) struct SmallPolynomial {
 
 /// Control points of a [`SmallPolynomial`] at most (cubics).
 pub(crate) const SMALL: usize = 4;
+// `SmallPolynomial::with_ends` spells out the four points.
+const _: () = assert!(SMALL == 4);
 
 impl SmallPolynomial {
     /// `c` by value, if it is polynomial (no homogeneous points) and of degree below [`SMALL`].
@@ -467,16 +469,18 @@ impl SmallPolynomial {
         Some(Self { pts, len: p.len() })
     }
 
-    /// The sub-curve with control points `start`, `inner`, `end` (`inner` at most
-    /// [`SMALL`]` - 2` points).
+    /// The sub-curve of `len` control points (2 to [`SMALL`]): `start`, the first `len - 2` of
+    /// `inner`, `end`. (Fixed-size copies: a copy of `len - 2` points would be a call.)
     #[inline(always)]
-    pub(crate) fn with_ends(start: Point, inner: &[Point], end: Point) -> Self {
-        let n = inner.len() + 2;
-        let mut pts = [Point::default(); SMALL];
-        pts[0] = start;
-        pts[1..n - 1].copy_from_slice(inner);
-        pts[n - 1] = end;
-        Self { pts, len: n }
+    pub(crate) fn with_ends(
+        start: Point,
+        inner: &[Point; SMALL - 2],
+        end: Point,
+        len: usize,
+    ) -> Self {
+        let mut pts = [start, inner[0], inner[1], end];
+        pts[len - 1] = end;
+        Self { pts, len }
     }
 
     /// Its control points.
@@ -547,7 +551,7 @@ impl SubCurves for OnTheFlySmall {
 /// one pending right half per level (on the stack for any query not within `2^-32` of the
 /// piece's size from it).
 #[inline(always)]
-fn walk<S: SubCurves, K: ChordSink>(
+pub(crate) fn walk<S: SubCurves, K: ChordSink>(
     source: &S,
     c: S::Node,
     depth: u32,

@@ -88,23 +88,28 @@ struct SmallTests {
 }
 
 impl SmallTests {
-    /// `node`'s tests, if its curve is a polynomial of at least 2 and at most [`SMALL`]
-    /// control points.
-    fn of(node: &SubNode) -> Option<Self> {
-        let small = SmallPolynomial::of(&node.curve)?;
-        let p = small.points();
-        if p.len() < 2 {
-            return None;
-        }
+    /// The box and the tests of sub-curve `c` (at least 2 control points), simple and convex
+    /// if its parent is, as [`SubNode::new`] computes them.
+    fn of(c: &SmallPolynomial, parent_convex: bool) -> (BoxNode, Self) {
+        let p = c.points();
+        let n = p.len();
+        let (lo, hi) = control_box(p);
         let mut inner = [Point::default(); SMALL - 2];
-        inner[..p.len() - 2].copy_from_slice(&p[1..p.len() - 1]);
-        Some(Self {
+        inner[..n - 2].copy_from_slice(&p[1..n - 1]);
+        let tests = Self {
             inner,
-            area: node.area,
-            len: p.len() as u8,
-            convex: node.convex,
-            linear: node.linear,
-        })
+            area: polygon_area(p),
+            len: n as u8,
+            convex: parent_convex || is_simple_convex(p),
+            linear: is_linear(p),
+        };
+        let ends = BoxNode {
+            lo,
+            hi,
+            start: p[0],
+            end: p[n - 1],
+        };
+        (ends, tests)
     }
 }
 
@@ -138,9 +143,63 @@ enum Tests {
 impl CurveHierarchy {
     /// Precomputes the hierarchy of `curve`.
     pub fn new(curve: &RationalBezier) -> Self {
+        let root = SubCurve::of(curve);
+        match SmallPolynomial::of(&root).filter(|c| c.points().len() >= 2) {
+            Some(small) => Self::small(small),
+            None => Self::general(root),
+        }
+    }
+
+    /// The hierarchy of a polynomial piece of 2 to [`SMALL`] control points, halved by value
+    /// ([`SmallPolynomial`]'s halves are [`SubCurve::halves`], bit for bit).
+    fn small(root: SmallPolynomial) -> Self {
+        let total = (2usize << HIERARCHY_DEPTH) - 1;
+        let (mut curves, mut boxes, mut tests) = (
+            Vec::with_capacity(total),
+            Vec::with_capacity(total),
+            Vec::with_capacity(total),
+        );
+        let push = |c: SmallPolynomial,
+                    parent_convex: bool,
+                    curves: &mut Vec<SmallPolynomial>,
+                    boxes: &mut Vec<BoxNode>,
+                    tests: &mut Vec<SmallTests>| {
+            let (b, t) = SmallTests::of(&c, parent_convex);
+            curves.push(c);
+            boxes.push(b);
+            tests.push(t);
+        };
+        push(root, false, &mut curves, &mut boxes, &mut tests);
+        // Halving the sub-curves in index order appends the halves of `i` at `2i + 1, 2i + 2`.
+        for i in 0..INNER_SUB_CURVES as usize {
+            let (l, r) = curves[i].halves();
+            let parent_convex = tests[i].convex;
+            push(l, parent_convex, &mut curves, &mut boxes, &mut tests);
+            push(r, parent_convex, &mut curves, &mut boxes, &mut tests);
+        }
+        Self {
+            boxes,
+            tests: Tests::Small(tests),
+        }
+    }
+
+    /// Is it the compact hierarchy of a small polynomial piece? (A probe for the tests.)
+    #[cfg(test)]
+    pub(super) fn is_compact(&self) -> bool {
+        matches!(self.tests, Tests::Small(_))
+    }
+
+    /// The general hierarchy of any piece, small polynomial or not. (For the tests.)
+    #[cfg(test)]
+    pub(super) fn general_of(curve: &RationalBezier) -> Self {
+        Self::general(SubCurve::of(curve))
+    }
+
+    /// The hierarchy of any other piece.
+    fn general(root: SubCurve) -> Self {
         let total = (2usize << HIERARCHY_DEPTH) - 1;
         let mut nodes = Vec::with_capacity(total);
-        nodes.push(SubNode::new(SubCurve::of(curve), false));
+        nodes.push(SubNode::new(root, false));
         // Halving the sub-curves in index order appends the halves of `i` at `2i + 1, 2i + 2`.
         for i in 0..INNER_SUB_CURVES as usize {
             let (l, r) = nodes[i].curve.halves();
@@ -148,13 +207,10 @@ impl CurveHierarchy {
             nodes.push(SubNode::new(l, parent_convex));
             nodes.push(SubNode::new(r, parent_convex));
         }
-        let boxes = nodes.iter().map(SubNode::box_node).collect();
-        let small: Option<Vec<SmallTests>> = nodes.iter().map(SmallTests::of).collect();
-        let tests = match small {
-            Some(small) => Tests::Small(small),
-            None => Tests::General(nodes),
-        };
-        Self { boxes, tests }
+        Self {
+            boxes: nodes.iter().map(SubNode::box_node).collect(),
+            tests: Tests::General(nodes),
+        }
     }
 
     /// The adaptive algorithm on the piece, through the cached sub-curves (handles of four
@@ -162,7 +218,7 @@ impl CurveHierarchy {
     /// `curve::refine` on the piece itself. Its caller has found `q` in the piece's box (the
     /// leaf's), so there is no far-field shortcut to take first; the whole piece's tests
     /// ([`settle`]) give its chord for a `q` outside it anyway.
-    fn refine<K: ChordSink>(&self, q: Point, sink: &mut K, stats: &mut QueryStats) {
+    pub(super) fn refine<K: ChordSink>(&self, q: Point, sink: &mut K, stats: &mut QueryStats) {
         match &self.tests {
             Tests::Small(tests) => walk_hierarchy(
                 &SmallView {
@@ -244,7 +300,7 @@ impl SubCurves for SmallView<'_> {
     #[inline(always)]
     fn points<'s>(&'s self, i: &'s u32) -> SmallPolynomial {
         let (b, t) = (&self.boxes[*i as usize], &self.tests[*i as usize]);
-        SmallPolynomial::with_ends(b.start, &t.inner[..usize::from(t.len) - 2], b.end)
+        SmallPolynomial::with_ends(b.start, &t.inner, b.end, usize::from(t.len))
     }
     #[inline(always)]
     fn ends(&self, i: &u32) -> (Point, Point) {
