@@ -446,8 +446,6 @@ pub(crate) struct SmallPolynomial {
 
 /// Control points of a [`SmallPolynomial`] at most (cubics).
 pub(crate) const SMALL: usize = 4;
-// `SmallPolynomial::with_ends` spells out the four points.
-const _: () = assert!(SMALL == 4);
 
 impl SmallPolynomial {
     /// `c` by value, if it is polynomial (no homogeneous points) and of degree below [`SMALL`].
@@ -469,17 +467,10 @@ impl SmallPolynomial {
         Some(Self { pts, len: p.len() })
     }
 
-    /// The sub-curve of `len` control points (2 to [`SMALL`]): `start`, the first `len - 2` of
-    /// `inner`, `end`. (Fixed-size copies: a copy of `len - 2` points would be a call.)
+    /// The sub-curve with the first `len` of `pts` as control points (`len` from 1 to
+    /// [`SMALL`]).
     #[inline(always)]
-    pub(crate) fn with_ends(
-        start: Point,
-        inner: &[Point; SMALL - 2],
-        end: Point,
-        len: usize,
-    ) -> Self {
-        let mut pts = [start, inner[0], inner[1], end];
-        pts[len - 1] = end;
+    pub(crate) fn from_array(pts: [Point; SMALL], len: usize) -> Self {
         Self { pts, len }
     }
 

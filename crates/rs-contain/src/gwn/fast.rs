@@ -73,13 +73,12 @@ impl SubNode {
 }
 
 /// The tests of one sub-curve of a [`CurveHierarchy`] of a polynomial piece of at most
-/// [`SMALL`] control points, past the box test: its inner control points (the ends are its
-/// [`BoxNode`]'s), convexity, straightness and area. One cache line, read only for the
-/// sub-curves holding the query.
+/// [`SMALL`] control points, past the box test: its control points, convexity, straightness
+/// and area, in 80 bytes, read only for the sub-curves holding the query.
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
 struct SmallTests {
-    inner: [Point; SMALL - 2],
+    /// Its control points, the first `len`.
+    pts: [Point; SMALL],
     area: f64,
     /// Its control points (2 to [`SMALL`]).
     len: u8,
@@ -94,10 +93,10 @@ impl SmallTests {
         let p = c.points();
         let n = p.len();
         let (lo, hi) = control_box(p);
-        let mut inner = [Point::default(); SMALL - 2];
-        inner[..n - 2].copy_from_slice(&p[1..n - 1]);
+        let mut pts = [Point::default(); SMALL];
+        pts[..n].copy_from_slice(p);
         let tests = Self {
-            inner,
+            pts,
             area: polygon_area(p),
             len: n as u8,
             convex: parent_convex || is_simple_convex(p),
@@ -111,6 +110,12 @@ impl SmallTests {
         };
         (ends, tests)
     }
+
+    /// Its control points.
+    #[inline(always)]
+    fn points(&self) -> &[Point] {
+        &self.pts[..usize::from(self.len)]
+    }
 }
 
 /// Sub-curves of a [`CurveHierarchy`] above its last level (the others are its leaves).
@@ -123,8 +128,8 @@ const INNER_SUB_CURVES: u32 = (1 << HIERARCHY_DEPTH) - 1;
 ///
 /// The sub-curves are stored level by level (heap order: the halves of sub-curve `i` are
 /// `2i + 1` and `2i + 2`, side by side), their boxes and ends apart from the rest, in one
-/// cache line each; the rest of a polynomial piece's sub-curves (the common case) in one cache
-/// line each too.
+/// cache line each; the rest of a polynomial piece's sub-curves (the common case) in 80 bytes
+/// each.
 #[derive(Clone, Debug)]
 pub struct CurveHierarchy {
     boxes: Vec<BoxNode>,
@@ -294,13 +299,12 @@ struct SmallView<'h> {
 impl SubCurves for SmallView<'_> {
     type Node = u32;
     type Points<'s>
-        = SmallPolynomial
+        = &'s [Point]
     where
         Self: 's;
     #[inline(always)]
-    fn points<'s>(&'s self, i: &'s u32) -> SmallPolynomial {
-        let (b, t) = (&self.boxes[*i as usize], &self.tests[*i as usize]);
-        SmallPolynomial::with_ends(b.start, &t.inner, b.end, usize::from(t.len))
+    fn points<'s>(&'s self, i: &'s u32) -> &'s [Point] {
+        self.tests[*i as usize].points()
     }
     #[inline(always)]
     fn ends(&self, i: &u32) -> (Point, Point) {
@@ -338,7 +342,8 @@ impl Hierarchy for SmallView<'_> {
         sink: &mut K,
         stats: &mut QueryStats,
     ) {
-        let (l, r) = self.points(&i).halves();
+        let t = &self.tests[i as usize];
+        let (l, r) = SmallPolynomial::from_array(t.pts, usize::from(t.len)).halves();
         stats.subdivisions += 1;
         refine_below_small(l, depth + 1, convex, q, sink, stats);
         refine_below_small(r, depth + 1, convex, q, sink, stats);
