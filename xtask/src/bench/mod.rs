@@ -17,6 +17,7 @@ mod point_sets;
 mod properties;
 mod solid;
 mod speed;
+mod winding_near;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -54,6 +55,7 @@ const SECTIONS: &[&str] = &[
     "properties",
     "solid",
     "speed",
+    "winding_near",
 ];
 
 fn names(list: &[&str]) -> Vec<String> {
@@ -312,6 +314,10 @@ pub(crate) fn run(root: &Path, o: &BenchOptions) -> Result<(), String> {
     }
     if o.runs("solid") {
         solid::section(&mut md, root, o)?;
+        write_report(root, o, &md, &csv, false)?;
+    }
+    if o.runs("winding_near") {
+        winding_near::section(&mut md, root, o)?;
     }
     if o.runs("speed") {
         speed::section(&mut md, root, o)?;

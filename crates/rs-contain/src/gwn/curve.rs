@@ -339,21 +339,30 @@ impl SubCurve {
 pub(crate) trait SubCurves {
     /// A handle to one sub-curve.
     type Node;
+    /// Its control points, borrowed or (from a compact store) copied out.
+    type Points<'s>: std::ops::Deref<Target = [Point]>
+    where
+        Self: 's;
     /// Its control points.
-    fn points<'s>(&'s self, node: &'s Self::Node) -> &'s [Point];
+    fn points<'s>(&'s self, node: &'s Self::Node) -> Self::Points<'s>;
+    /// Its first and last control points (its ends).
+    fn ends(&self, node: &Self::Node) -> (Point, Point) {
+        let p = self.points(node);
+        (p[0], p[p.len() - 1])
+    }
     /// Its simple-convex flag, given whether its parent was simple and convex.
     fn convex(&self, node: &Self::Node, parent_convex: bool) -> bool;
     /// Is it exactly straight ([`is_linear`])?
     fn linear(&self, node: &Self::Node) -> bool {
-        is_linear(self.points(node))
+        is_linear(&self.points(node))
     }
     /// Twice the signed area of its control polygon ([`polygon_area`]).
     fn area(&self, node: &Self::Node) -> f64 {
-        polygon_area(self.points(node))
+        polygon_area(&self.points(node))
     }
     /// Where `q` lies against its control bounding box, with `reach` (see [`Outside`]).
     fn outside_box(&self, node: &Self::Node, q: Point, reach: f64) -> Outside {
-        let (lo, hi) = control_box(self.points(node));
+        let (lo, hi) = control_box(&self.points(node));
         outside_box_reach(lo, hi, q, reach)
     }
 }
@@ -363,6 +372,7 @@ pub(crate) struct OnTheFly;
 
 impl SubCurves for OnTheFly {
     type Node = SubCurve;
+    type Points<'s> = &'s [Point];
     fn points<'s>(&'s self, node: &'s SubCurve) -> &'s [Point] {
         node.points()
     }
@@ -419,20 +429,143 @@ pub(crate) fn refine_below<K: ChordSink>(
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
-    // Depth-first: at most one pending right half per level, on the stack for any query not
-    // within 2^-32 of the piece's size from it.
-    let mut stack: SmallVec<[(SubCurve, u32, bool); 32]> = SmallVec::new();
-    stack.push((c, depth, parent_convex));
-    while let Some((c, depth, parent_convex)) = stack.pop() {
+    match SmallPolynomial::of(&c) {
+        Some(small) => walk(&OnTheFlySmall, small, depth, parent_convex, q, sink, stats),
+        None => walk(&OnTheFly, c, depth, parent_convex, q, sink, stats),
+    }
+}
+
+/// A polynomial sub-curve of at most [`SMALL`] control points, held by value: the walk on the
+/// fly moves these instead of [`SubCurve`]s (whose two small vectors, the homogeneous one
+/// unused, make every push and pop of the walk's stack a call to copy about 180 bytes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SmallPolynomial {
+    pts: [Point; SMALL],
+    len: usize,
+}
+
+/// Control points of a [`SmallPolynomial`] at most (cubics).
+pub(crate) const SMALL: usize = 4;
+
+impl SmallPolynomial {
+    /// `c` by value, if it is polynomial (no homogeneous points) and of degree below [`SMALL`].
+    pub(crate) fn of(c: &SubCurve) -> Option<Self> {
+        if !c.h.is_empty() {
+            return None;
+        }
+        Self::from_points(c.points())
+    }
+
+    /// The polynomial sub-curve with control points `p`, if they are at most [`SMALL`] (and
+    /// at least one).
+    pub(crate) fn from_points(p: &[Point]) -> Option<Self> {
+        if p.is_empty() || p.len() > SMALL {
+            return None;
+        }
+        let mut pts = [Point::default(); SMALL];
+        pts[..p.len()].copy_from_slice(p);
+        Some(Self { pts, len: p.len() })
+    }
+
+    /// The sub-curve with the first `len` of `pts` as control points (`len` from 1 to
+    /// [`SMALL`]).
+    #[inline(always)]
+    pub(crate) fn from_array(pts: [Point; SMALL], len: usize) -> Self {
+        Self { pts, len }
+    }
+
+    /// Its control points.
+    pub(crate) fn points(&self) -> &[Point] {
+        &self.pts[..self.len]
+    }
+}
+
+impl std::ops::Deref for SmallPolynomial {
+    type Target = [Point];
+    fn deref(&self) -> &[Point] {
+        self.points()
+    }
+}
+
+/// The adaptive algorithm from the small polynomial sub-curve `c` (at `depth`, its parent
+/// simple and convex or not) down: [`refine_below`] on the same sub-curve.
+pub(crate) fn refine_below_small<K: ChordSink>(
+    c: SmallPolynomial,
+    depth: u32,
+    parent_convex: bool,
+    q: Point,
+    sink: &mut K,
+    stats: &mut QueryStats,
+) {
+    walk(&OnTheFlySmall, c, depth, parent_convex, q, sink, stats);
+}
+
+/// A sub-curve the walk on the fly can halve.
+pub(crate) trait Halve: Sized {
+    /// Its halves by de Casteljau at `1/2`.
+    fn halves(&self) -> (Self, Self);
+}
+
+impl Halve for SubCurve {
+    fn halves(&self) -> (Self, Self) {
+        SubCurve::halves(self)
+    }
+}
+
+impl Halve for SmallPolynomial {
+    /// The same split as [`SubCurve::split`] of a polynomial sub-curve at `1/2` (the same
+    /// [`de_casteljau_split`] on the same points: the same halves, bit for bit).
+    #[inline(always)]
+    fn halves(&self) -> (Self, Self) {
+        let n = self.len;
+        let (mut l, mut r) = ([Point::default(); SMALL], [Point::default(); SMALL]);
+        de_casteljau_split(&self.pts[..n], 0.5, &mut l[..n], &mut r[..n]);
+        (Self { pts: l, len: n }, Self { pts: r, len: n })
+    }
+}
+
+/// [`OnTheFly`] on [`SmallPolynomial`]s.
+pub(crate) struct OnTheFlySmall;
+
+impl SubCurves for OnTheFlySmall {
+    type Node = SmallPolynomial;
+    type Points<'s> = &'s [Point];
+    fn points<'s>(&'s self, node: &'s SmallPolynomial) -> &'s [Point] {
+        node.points()
+    }
+    fn convex(&self, node: &SmallPolynomial, parent_convex: bool) -> bool {
+        parent_convex || is_simple_convex(node.points())
+    }
+}
+
+/// The adaptive algorithm from `c` down on the fly: depth-first, the left half first, at most
+/// one pending right half per level (on the stack for any query not within `2^-32` of the
+/// piece's size from it).
+#[inline(always)]
+pub(crate) fn walk<S: SubCurves, K: ChordSink>(
+    source: &S,
+    c: S::Node,
+    depth: u32,
+    parent_convex: bool,
+    q: Point,
+    sink: &mut K,
+    stats: &mut QueryStats,
+) where
+    S::Node: Halve,
+{
+    let mut stack: SmallVec<[(S::Node, u32, bool); 32]> = SmallVec::new();
+    let mut next = Some((c, depth, parent_convex));
+    while let Some((c, depth, parent_convex)) = next.take().or_else(|| stack.pop()) {
         if depth > 0 {
             stats.curve_evaluations += 1;
         }
-        if let Some(convex) = settle(&OnTheFly, &c, q, depth, parent_convex, sink) {
+        if let Some(convex) = settle(source, &c, q, depth, parent_convex, sink) {
             let (l, r) = c.halves();
             stats.subdivisions += 1;
             // Sub-curves of a simple convex curve are simple and convex (paper, section 5).
+            // The left half next, the right one after all of the left's sub-curves.
             stack.push((r, depth + 1, convex));
-            stack.push((l, depth + 1, convex));
+            next = Some((l, depth + 1, convex));
         }
     }
 }
@@ -452,7 +585,28 @@ pub(crate) fn settle<S: SubCurves, K: ChordSink>(
 ) -> Option<bool> {
     // Every exit but the last tells `sink` whether `q` may be near the sub-curve: only then
     // may `q` be in a boundary band round the curve.
+    //
+    // The tests in the paper's order are: straight (the chord; near if `near_line`), `q` at an
+    // end of a simple convex sub-curve, outside the box (the chord; near if within the
+    // reach). A `q` outside the box is at neither end (both lie in it), and `near_line` is
+    // false for a `q` outside the box grown by the reach; so for such a `q` every order sends
+    // the same chord and the same mark, and the box, the cheapest test, goes first: the
+    // sub-curves it settles (most of a walk's) skip the straightness and convexity tests, and
+    // need only their ends besides the box.
+    let outside = source.outside_box(c, q, sink.reach());
+    if outside != Outside::No {
+        if K::TRACKS_NEAR
+            && outside == Outside::Near
+            && (!source.linear(c) || near_line(&source.points(c), q, sink.reach()))
+        {
+            sink.mark_near();
+        }
+        let (a, b) = source.ends(c);
+        sink.chord(a, b);
+        return None;
+    }
     let p = source.points(c);
+    let p: &[Point] = &p;
     let (a, b) = (p[0], p[p.len() - 1]);
     if source.linear(c) {
         if K::TRACKS_NEAR && near_line(p, q, sink.reach()) {
@@ -467,16 +621,15 @@ pub(crate) fn settle<S: SubCurves, K: ChordSink>(
         sink.special(convex_endpoint_winding(p, q), a, b);
         return None;
     }
-    let mut outside = source.outside_box(c, q, sink.reach());
-    if outside == Outside::No && convex {
-        outside = outside_convex(p, source.area(c), q, sink.reach());
-    }
-    if outside != Outside::No {
-        if K::TRACKS_NEAR && outside == Outside::Near {
-            sink.mark_near();
+    if convex {
+        let hull = outside_convex(p, source.area(c), q, sink.reach());
+        if hull != Outside::No {
+            if K::TRACKS_NEAR && hull == Outside::Near {
+                sink.mark_near();
+            }
+            sink.chord(a, b);
+            return None;
         }
-        sink.chord(a, b);
-        return None;
     }
     if depth >= MAX_DEPTH {
         // q is within rounding of this tiny piece: coincident, average 0 over the piece.

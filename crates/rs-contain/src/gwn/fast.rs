@@ -11,8 +11,9 @@ use rs_spline::{Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::curve::{
-    Outside, SubCurve, SubCurves, control_box, is_linear, is_simple_convex, misses_cut,
-    outside_box_reach, polygon_area, refine_below, settle,
+    Halve, Outside, SMALL, SmallPolynomial, SubCurve, SubCurves, control_box, is_linear,
+    is_simple_convex, misses_cut, outside_box_reach, polygon_area, refine_below,
+    refine_below_small, settle,
 };
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
@@ -22,73 +23,351 @@ use crate::{Location, PointQuery, PointSource};
 /// Levels of each piece's precomputed subdivision hierarchy (`2^(d+1) - 1` sub-curves).
 pub const HIERARCHY_DEPTH: u32 = 6;
 
-/// One sub-curve of a [`CurveHierarchy`], with the tests the adaptive algorithm asks of it.
+/// What the adaptive algorithm reads of every sub-curve of a [`CurveHierarchy`] it visits:
+/// the control box, for the test that settles most of them, and the ends, whose chord is then
+/// the sub-curve's contribution. One cache line: a walk reads it for both halves of every
+/// sub-curve it opens, and the rest of the sub-curve ([`SubNode`]) only for the one holding
+/// the query.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct BoxNode {
+    lo: Point,
+    hi: Point,
+    start: Point,
+    end: Point,
+}
+
+/// One sub-curve of a [`CurveHierarchy`], with the tests the adaptive algorithm asks of it
+/// past the box test.
 #[derive(Clone, Debug)]
 struct SubNode {
     curve: SubCurve,
-    lo: Point,
-    hi: Point,
     /// Simple and convex, with the parent's flag inherited as the adaptive algorithm does.
     convex: bool,
     /// Twice its control polygon's signed area ([`polygon_area`]).
     area: f64,
     linear: bool,
-    children: Option<(u32, u32)>,
 }
 
 impl SubNode {
     fn new(curve: SubCurve, parent_convex: bool) -> Self {
         let p = curve.points();
-        let (lo, hi) = control_box(p);
         Self {
             convex: parent_convex || is_simple_convex(p),
             area: polygon_area(p),
             linear: is_linear(p),
+            curve,
+        }
+    }
+
+    fn box_node(&self) -> BoxNode {
+        let p = self.curve.points();
+        let (lo, hi) = control_box(p);
+        BoxNode {
             lo,
             hi,
-            curve,
-            children: None,
+            start: p[0],
+            end: p[p.len() - 1],
         }
     }
 }
+
+/// The tests of one sub-curve of a [`CurveHierarchy`] of a polynomial piece of at most
+/// [`SMALL`] control points, past the box test: its control points, convexity, straightness
+/// and area, in 80 bytes, read only for the sub-curves holding the query.
+#[derive(Clone, Copy, Debug)]
+struct SmallTests {
+    /// Its control points, the first `len`.
+    pts: [Point; SMALL],
+    area: f64,
+    /// Its control points (2 to [`SMALL`]).
+    len: u8,
+    convex: bool,
+    linear: bool,
+}
+
+impl SmallTests {
+    /// The box and the tests of sub-curve `c` (at least 2 control points), simple and convex
+    /// if its parent is, as [`SubNode::new`] computes them.
+    fn of(c: &SmallPolynomial, parent_convex: bool) -> (BoxNode, Self) {
+        let p = c.points();
+        let n = p.len();
+        let (lo, hi) = control_box(p);
+        let mut pts = [Point::default(); SMALL];
+        pts[..n].copy_from_slice(p);
+        let tests = Self {
+            pts,
+            area: polygon_area(p),
+            len: n as u8,
+            convex: parent_convex || is_simple_convex(p),
+            linear: is_linear(p),
+        };
+        let ends = BoxNode {
+            lo,
+            hi,
+            start: p[0],
+            end: p[n - 1],
+        };
+        (ends, tests)
+    }
+
+    /// Its control points.
+    #[inline(always)]
+    fn points(&self) -> &[Point] {
+        &self.pts[..usize::from(self.len)]
+    }
+}
+
+/// Sub-curves of a [`CurveHierarchy`] above its last level (the others are its leaves).
+const INNER_SUB_CURVES: u32 = (1 << HIERARCHY_DEPTH) - 1;
 
 /// The subdivision hierarchy of one piece, computed once and shared, immutable, by all queries:
 /// the first [`HIERARCHY_DEPTH`] levels of halving, each sub-curve with its control box,
 /// convexity and straightness; deeper levels (queries within `2^-6` of the piece's size from
 /// it) are computed on the fly.
+///
+/// The sub-curves are stored level by level (heap order: the halves of sub-curve `i` are
+/// `2i + 1` and `2i + 2`, side by side), their boxes and ends apart from the rest, in one
+/// cache line each; the rest of a polynomial piece's sub-curves (the common case) in 80 bytes
+/// each.
 #[derive(Clone, Debug)]
 pub struct CurveHierarchy {
-    nodes: Vec<SubNode>,
+    boxes: Vec<BoxNode>,
+    tests: Tests,
+}
+
+/// The tests past the box test of a [`CurveHierarchy`]'s sub-curves.
+#[derive(Clone, Debug)]
+enum Tests {
+    /// A polynomial piece of at most [`SMALL`] control points.
+    Small(Vec<SmallTests>),
+    /// Any other piece.
+    General(Vec<SubNode>),
 }
 
 impl CurveHierarchy {
     /// Precomputes the hierarchy of `curve`.
     pub fn new(curve: &RationalBezier) -> Self {
-        let mut nodes = Vec::with_capacity((2 << HIERARCHY_DEPTH) - 1);
-        nodes.push(SubNode::new(SubCurve::of(curve), false));
-        let mut frontier = vec![(0usize, 0u32)];
-        while let Some((i, depth)) = frontier.pop() {
-            if depth >= HIERARCHY_DEPTH {
-                continue;
-            }
+        let root = SubCurve::of(curve);
+        match SmallPolynomial::of(&root).filter(|c| c.points().len() >= 2) {
+            Some(small) => Self::small(small),
+            None => Self::general(root),
+        }
+    }
+
+    /// The hierarchy of a polynomial piece of 2 to [`SMALL`] control points, halved by value
+    /// ([`SmallPolynomial`]'s halves are [`SubCurve::halves`], bit for bit).
+    fn small(root: SmallPolynomial) -> Self {
+        let total = (2usize << HIERARCHY_DEPTH) - 1;
+        let (mut curves, mut boxes, mut tests) = (
+            Vec::with_capacity(total),
+            Vec::with_capacity(total),
+            Vec::with_capacity(total),
+        );
+        let push = |c: SmallPolynomial,
+                    parent_convex: bool,
+                    curves: &mut Vec<SmallPolynomial>,
+                    boxes: &mut Vec<BoxNode>,
+                    tests: &mut Vec<SmallTests>| {
+            let (b, t) = SmallTests::of(&c, parent_convex);
+            curves.push(c);
+            boxes.push(b);
+            tests.push(t);
+        };
+        push(root, false, &mut curves, &mut boxes, &mut tests);
+        // Halving the sub-curves in index order appends the halves of `i` at `2i + 1, 2i + 2`.
+        for i in 0..INNER_SUB_CURVES as usize {
+            let (l, r) = curves[i].halves();
+            let parent_convex = tests[i].convex;
+            push(l, parent_convex, &mut curves, &mut boxes, &mut tests);
+            push(r, parent_convex, &mut curves, &mut boxes, &mut tests);
+        }
+        Self {
+            boxes,
+            tests: Tests::Small(tests),
+        }
+    }
+
+    /// Is it the compact hierarchy of a small polynomial piece? (A probe for the tests.)
+    #[cfg(test)]
+    pub(super) fn is_compact(&self) -> bool {
+        matches!(self.tests, Tests::Small(_))
+    }
+
+    /// The general hierarchy of any piece, small polynomial or not. (For the tests.)
+    #[cfg(test)]
+    pub(super) fn general_of(curve: &RationalBezier) -> Self {
+        Self::general(SubCurve::of(curve))
+    }
+
+    /// The hierarchy of any other piece.
+    fn general(root: SubCurve) -> Self {
+        let total = (2usize << HIERARCHY_DEPTH) - 1;
+        let mut nodes = Vec::with_capacity(total);
+        nodes.push(SubNode::new(root, false));
+        // Halving the sub-curves in index order appends the halves of `i` at `2i + 1, 2i + 2`.
+        for i in 0..INNER_SUB_CURVES as usize {
             let (l, r) = nodes[i].curve.halves();
             let parent_convex = nodes[i].convex;
-            let li = nodes.len();
             nodes.push(SubNode::new(l, parent_convex));
             nodes.push(SubNode::new(r, parent_convex));
-            nodes[i].children = Some((li as u32, li as u32 + 1));
-            frontier.push((li, depth + 1));
-            frontier.push((li + 1, depth + 1));
         }
-        Self { nodes }
+        Self {
+            boxes: nodes.iter().map(SubNode::box_node).collect(),
+            tests: Tests::General(nodes),
+        }
+    }
+
+    /// The adaptive algorithm on the piece, through the cached sub-curves (handles of four
+    /// bytes on the walk's stack) and on the fly past them, with the same tests as
+    /// `curve::refine` on the piece itself. Its caller has found `q` in the piece's box (the
+    /// leaf's), so there is no far-field shortcut to take first; the whole piece's tests
+    /// ([`settle`]) give its chord for a `q` outside it anyway.
+    pub(super) fn refine<K: ChordSink>(&self, q: Point, sink: &mut K, stats: &mut QueryStats) {
+        match &self.tests {
+            Tests::Small(tests) => walk_hierarchy(
+                &SmallView {
+                    boxes: &self.boxes,
+                    tests,
+                },
+                q,
+                sink,
+                stats,
+            ),
+            Tests::General(nodes) => walk_hierarchy(
+                &GeneralView {
+                    boxes: &self.boxes,
+                    nodes,
+                },
+                q,
+                sink,
+                stats,
+            ),
+        }
     }
 }
 
-/// The cached sub-curves, by index in the hierarchy.
-impl SubCurves for CurveHierarchy {
+/// A [`CurveHierarchy`]'s sub-curves, by index, and the walk on the fly below its leaves.
+trait Hierarchy: SubCurves<Node = u32> {
+    /// The adaptive algorithm below leaf `i` (at `depth`, simple and convex or not): its
+    /// halves, each walked on the fly.
+    fn below<K: ChordSink>(
+        &self,
+        i: u32,
+        depth: u32,
+        convex: bool,
+        q: Point,
+        sink: &mut K,
+        stats: &mut QueryStats,
+    );
+}
+
+/// The walk of [`CurveHierarchy::refine`].
+#[inline(always)]
+fn walk_hierarchy<H: Hierarchy, K: ChordSink>(
+    h: &H,
+    q: Point,
+    sink: &mut K,
+    stats: &mut QueryStats,
+) {
+    stats.curve_evaluations += 1;
+    // At most one pending right half per cached level.
+    let mut stack: SmallVec<[(u32, u32, bool); 16]> = SmallVec::new();
+    stack.push((0, 0, false));
+    while let Some((i, depth, parent_convex)) = stack.pop() {
+        if depth > 0 {
+            stats.curve_evaluations += 1;
+        }
+        let Some(convex) = settle(h, &i, q, depth, parent_convex, sink) else {
+            continue;
+        };
+        if i < INNER_SUB_CURVES {
+            stack.push((2 * i + 2, depth + 1, convex));
+            stack.push((2 * i + 1, depth + 1, convex));
+        } else {
+            h.below(i, depth, convex, q, sink, stats);
+        }
+    }
+}
+
+/// A polynomial piece's hierarchy.
+struct SmallView<'h> {
+    boxes: &'h [BoxNode],
+    tests: &'h [SmallTests],
+}
+
+impl SubCurves for SmallView<'_> {
     type Node = u32;
+    type Points<'s>
+        = &'s [Point]
+    where
+        Self: 's;
+    #[inline(always)]
+    fn points<'s>(&'s self, i: &'s u32) -> &'s [Point] {
+        self.tests[*i as usize].points()
+    }
+    #[inline(always)]
+    fn ends(&self, i: &u32) -> (Point, Point) {
+        let b = &self.boxes[*i as usize];
+        (b.start, b.end)
+    }
+    #[inline(always)]
+    fn convex(&self, i: &u32, _parent_convex: bool) -> bool {
+        self.tests[*i as usize].convex
+    }
+    #[inline(always)]
+    fn linear(&self, i: &u32) -> bool {
+        self.tests[*i as usize].linear
+    }
+    #[inline(always)]
+    fn area(&self, i: &u32) -> f64 {
+        self.tests[*i as usize].area
+    }
+    #[inline(always)]
+    fn outside_box(&self, i: &u32, q: Point, reach: f64) -> Outside {
+        let b = &self.boxes[*i as usize];
+        outside_box_reach(b.lo, b.hi, q, reach)
+    }
+}
+
+impl Hierarchy for SmallView<'_> {
+    /// The same halves as [`SubCurve::halves`] of the leaf (the same de Casteljau split of the
+    /// same points), walked as [`refine_below`] walks them.
+    fn below<K: ChordSink>(
+        &self,
+        i: u32,
+        depth: u32,
+        convex: bool,
+        q: Point,
+        sink: &mut K,
+        stats: &mut QueryStats,
+    ) {
+        let t = &self.tests[i as usize];
+        let (l, r) = SmallPolynomial::from_array(t.pts, usize::from(t.len)).halves();
+        stats.subdivisions += 1;
+        refine_below_small(l, depth + 1, convex, q, sink, stats);
+        refine_below_small(r, depth + 1, convex, q, sink, stats);
+    }
+}
+
+/// Any other piece's hierarchy.
+struct GeneralView<'h> {
+    boxes: &'h [BoxNode],
+    nodes: &'h [SubNode],
+}
+
+impl SubCurves for GeneralView<'_> {
+    type Node = u32;
+    type Points<'s>
+        = &'s [Point]
+    where
+        Self: 's;
     fn points<'s>(&'s self, i: &'s u32) -> &'s [Point] {
         self.nodes[*i as usize].curve.points()
+    }
+    fn ends(&self, i: &u32) -> (Point, Point) {
+        let b = &self.boxes[*i as usize];
+        (b.start, b.end)
     }
     fn convex(&self, i: &u32, _parent_convex: bool) -> bool {
         self.nodes[*i as usize].convex
@@ -100,40 +379,25 @@ impl SubCurves for CurveHierarchy {
         self.nodes[*i as usize].area
     }
     fn outside_box(&self, i: &u32, q: Point, reach: f64) -> Outside {
-        let n = &self.nodes[*i as usize];
-        outside_box_reach(n.lo, n.hi, q, reach)
+        let b = &self.boxes[*i as usize];
+        outside_box_reach(b.lo, b.hi, q, reach)
     }
 }
 
-impl CurveHierarchy {
-    /// The adaptive algorithm on the piece, through the cached sub-curves (handles of four
-    /// bytes on the walk's stack) and on the fly past them, with the same tests as
-    /// `curve::refine` on the piece itself. Its caller has found `q` in the piece's box (the
-    /// leaf's), so there is no far-field shortcut to take first; the whole piece's tests
-    /// ([`settle`]) give its chord for a `q` outside it anyway.
-    fn refine<K: ChordSink>(&self, q: Point, sink: &mut K, stats: &mut QueryStats) {
-        stats.curve_evaluations += 1;
-        // At most one pending right half per cached level.
-        let mut stack: SmallVec<[(u32, u32, bool); 16]> = SmallVec::new();
-        stack.push((0, 0, false));
-        while let Some((i, depth, parent_convex)) = stack.pop() {
-            if depth > 0 {
-                stats.curve_evaluations += 1;
-            }
-            let Some(convex) = settle(self, &i, q, depth, parent_convex, sink) else {
-                continue;
-            };
-            let node = &self.nodes[i as usize];
-            if let Some((l, r)) = node.children {
-                stack.push((r, depth + 1, convex));
-                stack.push((l, depth + 1, convex));
-            } else {
-                let (l, r) = node.curve.halves();
-                stats.subdivisions += 1;
-                refine_below(l, depth + 1, convex, q, sink, stats);
-                refine_below(r, depth + 1, convex, q, sink, stats);
-            }
-        }
+impl Hierarchy for GeneralView<'_> {
+    fn below<K: ChordSink>(
+        &self,
+        i: u32,
+        depth: u32,
+        convex: bool,
+        q: Point,
+        sink: &mut K,
+        stats: &mut QueryStats,
+    ) {
+        let (l, r) = self.nodes[i as usize].curve.halves();
+        stats.subdivisions += 1;
+        refine_below(l, depth + 1, convex, q, sink, stats);
+        refine_below(r, depth + 1, convex, q, sink, stats);
     }
 }
 

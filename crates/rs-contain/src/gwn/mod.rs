@@ -1,6 +1,8 @@
 //! Generalized winding numbers for collections of rational Bezier and NURBS curves
 //! (Spainhour, Gunderman and Weiss 2024).
 
+#[cfg(test)]
+mod compact_tests;
 mod curve;
 mod fast;
 #[cfg(test)]
