@@ -1,29 +1,29 @@
 //! The output arrays of a coverage by name, shape and values: the one table the front ends
 //! write their files and `NumPy` arrays from.
 
-use crate::{Coverage, CoverageOptions};
+use crate::{CoverageError, CoverageOptions};
 
-/// One output array of a [`Coverage`], in the order front ends list them ([`CoverageArray::ALL`]).
+/// One output array of a [`Coverage`](crate::Coverage), in the order front ends list them ([`CoverageArray::ALL`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum CoverageArray {
-    /// [`Coverage::fractions`], `(rows, nx)`.
+    /// [`Coverage::fractions`](crate::Coverage::fractions), `(rows, nx)`.
     Fractions,
-    /// [`Coverage::centroids`], `(rows, nx, 2)`.
+    /// [`Coverage::centroids`](crate::Coverage::centroids), `(rows, nx, 2)`.
     Centroids,
-    /// [`Coverage::x_apertures`], `(rows, nx + 1)`.
+    /// [`Coverage::x_apertures`](crate::Coverage::x_apertures), `(rows, nx + 1)`.
     XApertures,
-    /// [`Coverage::y_apertures`], `(rows + 1, nx)`.
+    /// [`Coverage::y_apertures`](crate::Coverage::y_apertures), `(rows + 1, nx)`.
     YApertures,
-    /// [`Coverage::boundary_lengths`], `(rows, nx)`.
+    /// [`Coverage::boundary_lengths`](crate::Coverage::boundary_lengths), `(rows, nx)`.
     BoundaryLengths,
-    /// [`Coverage::boundary_centroids`], `(rows, nx, 2)`.
+    /// [`Coverage::boundary_centroids`](crate::Coverage::boundary_centroids), `(rows, nx, 2)`.
     BoundaryCentroids,
-    /// [`Coverage::boundary_normals`], `(rows, nx, 2)`.
+    /// [`Coverage::boundary_normals`](crate::Coverage::boundary_normals), `(rows, nx, 2)`.
     BoundaryNormals,
-    /// [`Coverage::x_face_centroids`], `(rows, nx + 1)`.
+    /// [`Coverage::x_face_centroids`](crate::Coverage::x_face_centroids), `(rows, nx + 1)`.
     XFaceCentroids,
-    /// [`Coverage::y_face_centroids`], `(rows + 1, nx)`.
+    /// [`Coverage::y_face_centroids`](crate::Coverage::y_face_centroids), `(rows + 1, nx)`.
     YFaceCentroids,
 }
 
@@ -42,7 +42,7 @@ impl CoverageArray {
         CoverageArray::YFaceCentroids,
     ];
 
-    /// The name of its field in [`Coverage`] (`"fractions"`, `"x_apertures"`, ...).
+    /// The name of its field in [`Coverage`](crate::Coverage) (`"fractions"`, `"x_apertures"`, ...).
     pub fn name(self) -> &'static str {
         match self {
             CoverageArray::Fractions => "fractions",
@@ -93,42 +93,104 @@ impl CoverageArray {
     }
 }
 
-impl Coverage {
-    /// The values of `array` in row-major order (pairs flattened), `None` where this
-    /// coverage does not hold it.
-    pub fn values(&self, array: CoverageArray) -> Option<&[f64]> {
-        match array {
-            CoverageArray::Fractions => Some(&self.fractions),
-            CoverageArray::Centroids => self.centroids.as_deref().map(<[_]>::as_flattened),
-            CoverageArray::XApertures => self.x_apertures.as_deref(),
-            CoverageArray::YApertures => self.y_apertures.as_deref(),
-            CoverageArray::BoundaryLengths => self.boundary_lengths.as_deref(),
-            CoverageArray::BoundaryCentroids => {
-                self.boundary_centroids.as_deref().map(<[_]>::as_flattened)
-            }
-            CoverageArray::BoundaryNormals => {
-                self.boundary_normals.as_deref().map(<[_]>::as_flattened)
-            }
-            CoverageArray::XFaceCentroids => self.x_face_centroids.as_deref(),
-            CoverageArray::YFaceCentroids => self.y_face_centroids.as_deref(),
+/// A whole grid's output arrays in the caller's memory, for [`GridCoverage::all_into`](crate::GridCoverage::all_into): the
+/// fields of [`Coverage`](crate::Coverage) borrowed, row-major, pairs `[x, y]` flattened (`(rows, nx, 2)` as
+/// `2 x rows x nx` values), so that a `NumPy` array or a reused buffer receives the values
+/// where they stay. Their contents on entry do not matter: every value is written.
+#[derive(Debug)]
+#[non_exhaustive]
+pub struct CoverageSlices<'a> {
+    /// `(ny, nx)`.
+    pub fractions: &'a mut [f64],
+    /// `(ny, nx, 2)`, with [`CoverageOptions::centroids`].
+    pub centroids: Option<&'a mut [f64]>,
+    /// `(ny, nx + 1)`, with [`CoverageOptions::apertures`].
+    pub x_apertures: Option<&'a mut [f64]>,
+    /// `(ny + 1, nx)`, with [`CoverageOptions::apertures`].
+    pub y_apertures: Option<&'a mut [f64]>,
+    /// `(ny, nx)`, with [`CoverageOptions::boundary`].
+    pub boundary_lengths: Option<&'a mut [f64]>,
+    /// `(ny, nx, 2)`, with [`CoverageOptions::boundary`].
+    pub boundary_centroids: Option<&'a mut [f64]>,
+    /// `(ny, nx, 2)`, with [`CoverageOptions::boundary`].
+    pub boundary_normals: Option<&'a mut [f64]>,
+    /// `(ny, nx + 1)`, with [`CoverageOptions::face_centroids`].
+    pub x_face_centroids: Option<&'a mut [f64]>,
+    /// `(ny + 1, nx)`, with [`CoverageOptions::face_centroids`].
+    pub y_face_centroids: Option<&'a mut [f64]>,
+}
+
+impl<'a> CoverageSlices<'a> {
+    /// The fractions alone.
+    pub fn fractions(fractions: &'a mut [f64]) -> Self {
+        Self {
+            fractions,
+            centroids: None,
+            x_apertures: None,
+            y_apertures: None,
+            boundary_lengths: None,
+            boundary_centroids: None,
+            boundary_normals: None,
+            x_face_centroids: None,
+            y_face_centroids: None,
         }
     }
 
-    /// The values of `array` moved out of this coverage (pairs flattened; the fractions
-    /// leave an empty vector), `None` where it does not hold them.
-    pub fn take_values(&mut self, array: CoverageArray) -> Option<Vec<f64>> {
-        let pairs = |v: Option<Vec<[f64; 2]>>| v.map(Vec::into_flattened);
+    /// With `values` as `array`'s slice (the fractions' replaced).
+    pub fn with(mut self, array: CoverageArray, values: &'a mut [f64]) -> Self {
         match array {
-            CoverageArray::Fractions => Some(std::mem::take(&mut self.fractions)),
-            CoverageArray::Centroids => pairs(self.centroids.take()),
-            CoverageArray::XApertures => self.x_apertures.take(),
-            CoverageArray::YApertures => self.y_apertures.take(),
-            CoverageArray::BoundaryLengths => self.boundary_lengths.take(),
-            CoverageArray::BoundaryCentroids => pairs(self.boundary_centroids.take()),
-            CoverageArray::BoundaryNormals => pairs(self.boundary_normals.take()),
-            CoverageArray::XFaceCentroids => self.x_face_centroids.take(),
-            CoverageArray::YFaceCentroids => self.y_face_centroids.take(),
+            CoverageArray::Fractions => self.fractions = values,
+            CoverageArray::Centroids => self.centroids = Some(values),
+            CoverageArray::XApertures => self.x_apertures = Some(values),
+            CoverageArray::YApertures => self.y_apertures = Some(values),
+            CoverageArray::BoundaryLengths => self.boundary_lengths = Some(values),
+            CoverageArray::BoundaryCentroids => self.boundary_centroids = Some(values),
+            CoverageArray::BoundaryNormals => self.boundary_normals = Some(values),
+            CoverageArray::XFaceCentroids => self.x_face_centroids = Some(values),
+            CoverageArray::YFaceCentroids => self.y_face_centroids = Some(values),
         }
+        self
+    }
+
+    /// The slice of `array`, if given.
+    pub fn get_mut(&mut self, array: CoverageArray) -> Option<&mut [f64]> {
+        match array {
+            CoverageArray::Fractions => Some(&mut *self.fractions),
+            CoverageArray::Centroids => self.centroids.as_deref_mut(),
+            CoverageArray::XApertures => self.x_apertures.as_deref_mut(),
+            CoverageArray::YApertures => self.y_apertures.as_deref_mut(),
+            CoverageArray::BoundaryLengths => self.boundary_lengths.as_deref_mut(),
+            CoverageArray::BoundaryCentroids => self.boundary_centroids.as_deref_mut(),
+            CoverageArray::BoundaryNormals => self.boundary_normals.as_deref_mut(),
+            CoverageArray::XFaceCentroids => self.x_face_centroids.as_deref_mut(),
+            CoverageArray::YFaceCentroids => self.y_face_centroids.as_deref_mut(),
+        }
+    }
+
+    /// [`CoverageError::Output`] unless each array `options` asks for is given with the
+    /// length of its shape for `ny` rows of `nx` columns, and no other is given.
+    pub(crate) fn check(
+        &mut self,
+        nx: usize,
+        ny: usize,
+        options: CoverageOptions,
+    ) -> Result<(), CoverageError> {
+        for array in CoverageArray::ALL {
+            let expected: usize = array.shape(nx, ny).iter().product();
+            let wanted = array.computed(options);
+            match (self.get_mut(array).map(|s| s.len()), wanted) {
+                (Some(got), true) if got == expected => {}
+                (None, false) => {}
+                (got, _) => {
+                    return Err(CoverageError::Output {
+                        array: array.name(),
+                        expected: wanted.then_some(expected),
+                        got,
+                    });
+                }
+            }
+        }
+        Ok(())
     }
 }
 

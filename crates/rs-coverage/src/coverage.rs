@@ -5,96 +5,17 @@ use std::sync::Mutex;
 
 use rs_boxes::{BoxOptions, MonotoneBoxes};
 use rs_contain::{FillRule, fill_nesting};
-use rs_spline::{Axis, BoundingBox, Domain};
+use rs_spline::{BoundingBox, Domain};
 
-use crate::arc::{Arc, Moments};
+use crate::arc::Arc;
 use crate::band::{Band, BandOut, BoundaryOut};
 use crate::in_order::{InOrder, in_order};
-use crate::{CellGrid, CoverageArray, CoverageError};
+use crate::{CellGrid, CoverageArray, CoverageError, CoverageOptions, CoverageSlices};
 
 /// Most cells one call computes ([`GridCoverage::all`], [`GridCoverage::rows`],
 /// [`cell_coverage`]): `2^28`, 2 GiB of fractions. Larger grids are computed in row bands
 /// ([`GridCoverage::bands`]).
 pub const MAX_CELLS: usize = 1 << 28;
-
-/// What to compute besides the fractions: [`CoverageOptions::DEFAULT`] (fractions only) and
-/// `with_*` setters.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub struct CoverageOptions {
-    /// The centroid of each cell's covered part.
-    pub centroids: bool,
-    /// The covered fraction of each cell face.
-    pub apertures: bool,
-    /// The boundary's length, centroid and unit outward normal in each cell (the embedded
-    /// boundary of a cut cell). Planar only: refused with [`CoverageOptions::axisymmetric`].
-    pub boundary: bool,
-    /// The centroid of each cell face's covered part. Planar only.
-    pub face_centroids: bool,
-    /// The axis the domain revolves about (`Axis::Y`: the radius is `|x|`; `Axis::X`: `|y|`),
-    /// for the revolved cells' volume fractions: every value is then weighted by the
-    /// distance to the axis (see [`Coverage`]). The domain and the grid must each lie on one
-    /// side of the axis (touching it is fine).
-    pub axisymmetric: Option<Axis>,
-}
-
-impl CoverageOptions {
-    /// Fractions only.
-    pub const DEFAULT: CoverageOptions = CoverageOptions {
-        centroids: false,
-        apertures: false,
-        boundary: false,
-        face_centroids: false,
-        axisymmetric: None,
-    };
-
-    /// With or without the centroids.
-    pub const fn with_centroids(mut self, centroids: bool) -> Self {
-        self.centroids = centroids;
-        self
-    }
-
-    /// With or without the apertures.
-    pub const fn with_apertures(mut self, apertures: bool) -> Self {
-        self.apertures = apertures;
-        self
-    }
-
-    /// With or without the boundary's geometry in each cell.
-    pub const fn with_boundary(mut self, boundary: bool) -> Self {
-        self.boundary = boundary;
-        self
-    }
-
-    /// With or without the faces' centroids.
-    pub const fn with_face_centroids(mut self, face_centroids: bool) -> Self {
-        self.face_centroids = face_centroids;
-        self
-    }
-
-    /// Revolved about `axis` (`None`: planar).
-    pub const fn with_axisymmetric(mut self, axis: Option<Axis>) -> Self {
-        self.axisymmetric = axis;
-        self
-    }
-
-    /// The area moments the cells need.
-    /// Revolved fractions alone take one integral per part (the cell's volume integral, see
-    /// `Arc::volume_integral`) and so count as `Area`.
-    fn moments(self) -> Moments {
-        match (self.centroids, self.axisymmetric.is_some()) {
-            (true, true) => Moments::Second,
-            (true, false) => Moments::First,
-            (false, _) => Moments::Area,
-        }
-    }
-}
-
-impl Default for CoverageOptions {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
 
 /// The coverage of a band of rows `rows` of a grid with `nx` columns (all rows for a whole
 /// grid). Arrays are row-major, the band's first row first: entry `(r, i)` is column `i` of
@@ -264,109 +185,46 @@ impl Coverage {
     }
 }
 
-/// A whole grid's output arrays in the caller's memory, for [`GridCoverage::all_into`]: the
-/// fields of [`Coverage`] borrowed, row-major, pairs `[x, y]` flattened (`(rows, nx, 2)` as
-/// `2 x rows x nx` values), so that a `NumPy` array or a reused buffer receives the values
-/// where they stay. Their contents on entry do not matter: every value is written.
-#[derive(Debug)]
-#[non_exhaustive]
-pub struct CoverageSlices<'a> {
-    /// `(ny, nx)`.
-    pub fractions: &'a mut [f64],
-    /// `(ny, nx, 2)`, with [`CoverageOptions::centroids`].
-    pub centroids: Option<&'a mut [f64]>,
-    /// `(ny, nx + 1)`, with [`CoverageOptions::apertures`].
-    pub x_apertures: Option<&'a mut [f64]>,
-    /// `(ny + 1, nx)`, with [`CoverageOptions::apertures`].
-    pub y_apertures: Option<&'a mut [f64]>,
-    /// `(ny, nx)`, with [`CoverageOptions::boundary`].
-    pub boundary_lengths: Option<&'a mut [f64]>,
-    /// `(ny, nx, 2)`, with [`CoverageOptions::boundary`].
-    pub boundary_centroids: Option<&'a mut [f64]>,
-    /// `(ny, nx, 2)`, with [`CoverageOptions::boundary`].
-    pub boundary_normals: Option<&'a mut [f64]>,
-    /// `(ny, nx + 1)`, with [`CoverageOptions::face_centroids`].
-    pub x_face_centroids: Option<&'a mut [f64]>,
-    /// `(ny + 1, nx)`, with [`CoverageOptions::face_centroids`].
-    pub y_face_centroids: Option<&'a mut [f64]>,
+impl Coverage {
+    /// The values of `array` in row-major order (pairs flattened), `None` where this
+    /// coverage does not hold it.
+    pub fn values(&self, array: CoverageArray) -> Option<&[f64]> {
+        match array {
+            CoverageArray::Fractions => Some(&self.fractions),
+            CoverageArray::Centroids => self.centroids.as_deref().map(<[_]>::as_flattened),
+            CoverageArray::XApertures => self.x_apertures.as_deref(),
+            CoverageArray::YApertures => self.y_apertures.as_deref(),
+            CoverageArray::BoundaryLengths => self.boundary_lengths.as_deref(),
+            CoverageArray::BoundaryCentroids => {
+                self.boundary_centroids.as_deref().map(<[_]>::as_flattened)
+            }
+            CoverageArray::BoundaryNormals => {
+                self.boundary_normals.as_deref().map(<[_]>::as_flattened)
+            }
+            CoverageArray::XFaceCentroids => self.x_face_centroids.as_deref(),
+            CoverageArray::YFaceCentroids => self.y_face_centroids.as_deref(),
+        }
+    }
+
+    /// The values of `array` moved out of this coverage (pairs flattened; the fractions
+    /// leave an empty vector), `None` where it does not hold them.
+    pub fn take_values(&mut self, array: CoverageArray) -> Option<Vec<f64>> {
+        let pairs = |v: Option<Vec<[f64; 2]>>| v.map(Vec::into_flattened);
+        match array {
+            CoverageArray::Fractions => Some(std::mem::take(&mut self.fractions)),
+            CoverageArray::Centroids => pairs(self.centroids.take()),
+            CoverageArray::XApertures => self.x_apertures.take(),
+            CoverageArray::YApertures => self.y_apertures.take(),
+            CoverageArray::BoundaryLengths => self.boundary_lengths.take(),
+            CoverageArray::BoundaryCentroids => pairs(self.boundary_centroids.take()),
+            CoverageArray::BoundaryNormals => pairs(self.boundary_normals.take()),
+            CoverageArray::XFaceCentroids => self.x_face_centroids.take(),
+            CoverageArray::YFaceCentroids => self.y_face_centroids.take(),
+        }
+    }
 }
 
 impl<'a> CoverageSlices<'a> {
-    /// The fractions alone.
-    pub fn fractions(fractions: &'a mut [f64]) -> Self {
-        Self {
-            fractions,
-            centroids: None,
-            x_apertures: None,
-            y_apertures: None,
-            boundary_lengths: None,
-            boundary_centroids: None,
-            boundary_normals: None,
-            x_face_centroids: None,
-            y_face_centroids: None,
-        }
-    }
-
-    /// With `values` as `array`'s slice (the fractions' replaced).
-    pub fn with(mut self, array: CoverageArray, values: &'a mut [f64]) -> Self {
-        match array {
-            CoverageArray::Fractions => self.fractions = values,
-            CoverageArray::Centroids => self.centroids = Some(values),
-            CoverageArray::XApertures => self.x_apertures = Some(values),
-            CoverageArray::YApertures => self.y_apertures = Some(values),
-            CoverageArray::BoundaryLengths => self.boundary_lengths = Some(values),
-            CoverageArray::BoundaryCentroids => self.boundary_centroids = Some(values),
-            CoverageArray::BoundaryNormals => self.boundary_normals = Some(values),
-            CoverageArray::XFaceCentroids => self.x_face_centroids = Some(values),
-            CoverageArray::YFaceCentroids => self.y_face_centroids = Some(values),
-        }
-        self
-    }
-
-    /// The slice of `array`, if given.
-    pub fn get_mut(&mut self, array: CoverageArray) -> Option<&mut [f64]> {
-        match array {
-            CoverageArray::Fractions => Some(&mut *self.fractions),
-            CoverageArray::Centroids => self.centroids.as_deref_mut(),
-            CoverageArray::XApertures => self.x_apertures.as_deref_mut(),
-            CoverageArray::YApertures => self.y_apertures.as_deref_mut(),
-            CoverageArray::BoundaryLengths => self.boundary_lengths.as_deref_mut(),
-            CoverageArray::BoundaryCentroids => self.boundary_centroids.as_deref_mut(),
-            CoverageArray::BoundaryNormals => self.boundary_normals.as_deref_mut(),
-            CoverageArray::XFaceCentroids => self.x_face_centroids.as_deref_mut(),
-            CoverageArray::YFaceCentroids => self.y_face_centroids.as_deref_mut(),
-        }
-    }
-
-    /// [`CoverageError::Output`] unless each array `options` asks for is given with the
-    /// length of its shape for `ny` rows of `nx` columns, and no other is given.
-    fn check(
-        &mut self,
-        nx: usize,
-        ny: usize,
-        options: CoverageOptions,
-    ) -> Result<(), CoverageError> {
-        for array in CoverageArray::ALL {
-            let expected: usize = array.shape(nx, ny).iter().product();
-            let wanted = array.computed(options);
-            match (self.get_mut(array).map(|s| s.len()), wanted) {
-                (Some(got), true) if got == expected => {}
-                (None, false) => {}
-                (got, _) => {
-                    return Err(CoverageError::Output {
-                        array: array.name(),
-                        expected: wanted.then_some(expected),
-                        got,
-                    });
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// The arrays cut into the outputs of bands of `band_rows` rows (at least one), the last
-    /// band lower and writing the top line's faces: those of [`band_range`]`(k, band_rows,
-    /// rows)`.
     /// The arrays cut into the outputs of bands of `band_rows` rows (at least one) of a grid
     /// of `ny` rows and `nx` columns, the last band lower and writing the top line's faces:
     /// those of [`band_range`]`(k, band_rows, ny)`. `fresh`: the arrays hold the bands'

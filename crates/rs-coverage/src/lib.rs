@@ -99,13 +99,15 @@ mod in_order;
 mod lines;
 mod material_coverage;
 mod materials;
+mod options;
 
-pub use arrays::CoverageArray;
+pub use arrays::{CoverageArray, CoverageSlices};
 pub use coverage::{
-    BAND_BYTES, Bands, Coverage, CoverageOptions, CoverageSlices, GridCoverage, MAX_CELLS,
-    STREAM_BAND_BYTES, band_rows, cell_coverage, stream_band_rows,
+    BAND_BYTES, Bands, Coverage, GridCoverage, MAX_CELLS, STREAM_BAND_BYTES, band_rows,
+    cell_coverage, stream_band_rows,
 };
 pub use error::CoverageError;
 pub use grid::{CellGrid, MAX_EDGES};
 pub use material_coverage::{MaterialBands, MaterialCoverage};
 pub use materials::{MAX_PIECE_PAIRS, material_domains};
+pub use options::CoverageOptions;

@@ -7,10 +7,10 @@ use rs_contain::FillRule;
 use rs_spline::Domain;
 
 use crate::coverage::{
-    Bands, Coverage, CoverageOptions, GridCoverage, band_range, band_rows, check_cells,
-    check_options, stream_band_rows, threads,
+    Bands, Coverage, GridCoverage, band_range, band_rows, check_cells, check_options,
+    stream_band_rows, threads,
 };
-use crate::{CellGrid, CoverageError, material_domains};
+use crate::{CellGrid, CoverageError, CoverageOptions, material_domains};
 
 /// The coverage of a grid by several materials, in the order given: with replacement,
 /// material `k` holds `D_k \ (D_{k+1} u ... u D_{n-1})` (a later domain replaces the earlier
