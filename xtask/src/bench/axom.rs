@@ -13,7 +13,7 @@
 //!   `quest_winding_number_2d`) or `direct` (exact, memoized);
 //! - `CURVES`: one rational Bezier curve a line, its degree `d`, then its `d + 1` control
 //!   points `x y`, then its `d + 1` weights ([`write_curves`]);
-//! - `POINTS`: the query points, little-endian `f64` pairs ([`point_sets::write_points`]);
+//! - `POINTS`: the query points, little-endian `f64` pairs ([`point_sets::write_points`](super::point_sets::write_points));
 //! - `OUT`: the driver writes the winding numbers there, one little-endian `f64` a point;
 //! - `REPS`: repetitions (after an untimed one), each of which builds Axom's query structure from the curves
 //!   (`setup`), queries every point once (`cold`: the memoization caches fill, as in Axom's
