@@ -15,39 +15,17 @@ and first / warm (the issue's row "many CAD faces: first classify / warm classif
 from __future__ import annotations
 
 import argparse
-import glob
 import statistics
 import time
 
 import numpy as np
 
-import inrs
-
-IDF = "/usr/share/freecad/Mod/Idf/Idflibs"
-
-
-def workload(files, n_points, seed=1):
-    """(file, face index) and points of every face that reads and classifies."""
-    rng = np.random.default_rng(seed)
-    keep, points = [], []
-    for path in files:
-        for face in inrs.cad_faces(path):
-            if face.domain is None:
-                continue
-            u0, v0, u1, v1 = face.bbox
-            pts = np.column_stack([rng.uniform(u0, u1, n_points), rng.uniform(v0, v1, n_points)])
-            try:
-                face.domain.classify(pts[:1])
-            except ValueError:
-                continue
-            keep.append((path, face.index))
-            points.append(pts)
-    return keep, points
+# The many-faces workload (the same faces and points), from the script beside this one.
+from many_faces_bench import files_or_idf, fresh_domains, workload
 
 
 def one_round(files, keep, points, threads):
-    faces = {f: inrs.cad_faces(f) for f in files}
-    domains = [faces[f][k].domain for f, k in keep]
+    domains = fresh_domains(files, keep)
     first = warm = 0.0
     codes = []
     clock = time.perf_counter
@@ -73,9 +51,7 @@ def main() -> None:
     ap.add_argument("--threads", type=int, default=None, help="cores (default all)")
     ap.add_argument("--dump", default=None)
     a = ap.parse_args()
-    files = a.files or sorted(glob.glob(f"{IDF}/*.stp") + glob.glob(f"{IDF}/*.igs"))
-    if not files:
-        raise SystemExit(f"no files (give some, or install freecad-common for {IDF})")
+    files = files_or_idf(a.files)
     keep, points = workload(files, a.points)
     n = len(keep)
     print(f"{len(files)} files, {n} faces, {a.points} points per face, threads={a.threads or 'all'}")

@@ -3,9 +3,9 @@ given), 400 uniform random points in each face's bounding box, classified per fa
 of ``Domain.classify`` on fresh domains (the build is what is measured) against one call of
 ``inrs.classify_many`` on the same faces and points; alternated, the same run.
 
-    python python/tests/many_faces_bench.py [FILE ...] [--points 400] [--rounds 5] [--threads N]
+    python python/benchmarks/many_faces_bench.py [FILE ...] [--points 400] [--rounds 5] [--threads N]
 
-Not a test (pytest does not collect it). Prints ms per face for each way (median over the
+Prints ms per face for each way (median over the
 rounds; wall and process CPU time), their ratios, and checks that both give the same answers.
 """
 
@@ -21,6 +21,14 @@ import numpy as np
 import inrs
 
 IDF = "/usr/share/freecad/Mod/Idf/Idflibs"
+
+
+def files_or_idf(files):
+    """The files given, else FreeCAD's IDF parts; exits with one line if there are none."""
+    files = files or sorted(glob.glob(f"{IDF}/*.stp") + glob.glob(f"{IDF}/*.igs"))
+    if not files:
+        raise SystemExit(f"no files (give some, or install freecad-common for {IDF})")
+    return files
 
 
 def fresh_domains(files, keep):
@@ -70,9 +78,7 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--threads", type=int, default=None, help="cores (default all)")
     a = ap.parse_args()
-    files = a.files or sorted(glob.glob(f"{IDF}/*.stp") + glob.glob(f"{IDF}/*.igs"))
-    if not files:
-        raise SystemExit(f"no files (give some, or install freecad-common for {IDF})")
+    files = files_or_idf(a.files)
     keep, points = workload(files, a.points)
     n = len(keep)
     print(f"{len(files)} files, {n} faces, {a.points} points per face, threads={a.threads or 'all'}")
