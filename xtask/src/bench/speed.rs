@@ -26,30 +26,44 @@ fn inrs_python(root: &Path) -> PathBuf {
         .unwrap_or_else(|| root.join("target/ci-venv/bin/python"))
 }
 
-/// `(cell_fractions, ones)` median seconds from the script, or a one-line reason.
-fn in_process(python: &Path, root: &Path, n: usize, reps: usize) -> Result<(f64, f64), String> {
+/// The standard output of `python script args` (the script under `root`), or `Err`: `row`
+/// was not run, with the command and the last line of its standard error.
+fn script_output(
+    python: &Path,
+    root: &Path,
+    script: &str,
+    args: &[String],
+    row: &str,
+) -> Result<String, String> {
     let out = Command::new(python)
-        .arg(root.join(SCRIPT))
-        .args([n, reps].map(|v| v.to_string()))
+        .arg(root.join(script))
+        .args(args)
         .output()
         .map_err(|e| format!("{}: {e}", python.display()))?;
-    let text = String::from_utf8_lossy(&out.stdout);
-    let words: Vec<&str> = text.split_whitespace().collect();
-    match (out.status.success(), words.as_slice()) {
-        (true, ["cell_fractions", ours, "ones", ones, "sum", _]) => Ok((
-            ours.parse()
-                .map_err(|_| format!("script printed {text:?}"))?,
-            ones.parse()
-                .map_err(|_| format!("script printed {text:?}"))?,
-        )),
-        _ => Err(format!(
-            "the Python row was not run: {} {SCRIPT}: {} (set INRS_BENCH_PYTHON to a Python with this tree's inrs)",
+    if !out.status.success() {
+        return Err(format!(
+            "{row} was not run: {} {script}: {} (INRS_BENCH_PYTHON names the Python whose inrs is timed)",
             python.display(),
             String::from_utf8_lossy(&out.stderr)
                 .lines()
                 .last()
                 .unwrap_or("failed")
+        ));
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// `(cell_fractions, ones)` median seconds from the script, or a one-line reason.
+fn in_process(python: &Path, root: &Path, n: usize, reps: usize) -> Result<(f64, f64), String> {
+    let args = [n, reps].map(|v| v.to_string());
+    let text = script_output(python, root, SCRIPT, &args, "the Python row")?;
+    let bad = || format!("{SCRIPT} printed {text:?}");
+    match text.split_whitespace().collect::<Vec<_>>().as_slice() {
+        ["cell_fractions", ours, "ones", ones, "sum", _] => Ok((
+            ours.parse().map_err(|_| bad())?,
+            ones.parse().map_err(|_| bad())?,
         )),
+        _ => Err(bad()),
     }
 }
 
@@ -58,12 +72,9 @@ const FACES_SCRIPT: &str = "python/benchmarks/bench_first_classify.py";
 
 /// `(first us/face, warm us/face, faces)` from the many-faces script, or a one-line reason.
 fn first_classify(python: &Path, root: &Path, rounds: usize) -> Result<(f64, f64, usize), String> {
-    let out = Command::new(python)
-        .arg(root.join(FACES_SCRIPT))
-        .args(["--rounds", &rounds.to_string()])
-        .output()
-        .map_err(|e| format!("{}: {e}", python.display()))?;
-    let text = String::from_utf8_lossy(&out.stdout);
+    let args = ["--rounds".to_string(), rounds.to_string()];
+    let text = script_output(python, root, FACES_SCRIPT, &args, "the many-faces row")?;
+    // The number after `after` on `line`.
     let number = |line: &str, after: &str| -> Option<f64> {
         line.split(after)
             .nth(1)?
@@ -72,6 +83,7 @@ fn first_classify(python: &Path, root: &Path, rounds: usize) -> Result<(f64, f64
             .parse()
             .ok()
     };
+    // "32 files, 3119 faces, ...": the second field's number.
     let faces = text.lines().next().and_then(|l| {
         l.split(", ")
             .nth(1)?
@@ -84,16 +96,9 @@ fn first_classify(python: &Path, root: &Path, rounds: usize) -> Result<(f64, f64
         .lines()
         .find(|l| l.starts_with("first classify:"))
         .and_then(|l| Some((number(l, "first classify:")?, number(l, "warm:")?)));
-    match (out.status.success(), times, faces) {
-        (true, Some((first, warm)), Some(faces)) => Ok((first, warm, faces)),
-        _ => Err(format!(
-            "the many-faces row was not run: {} {FACES_SCRIPT}: {}",
-            python.display(),
-            String::from_utf8_lossy(&out.stderr)
-                .lines()
-                .last()
-                .unwrap_or("failed")
-        )),
+    match (times, faces) {
+        (Some((first, warm)), Some(faces)) => Ok((first, warm, faces)),
+        _ => Err(format!("{FACES_SCRIPT} printed {text:?}")),
     }
 }
 
