@@ -265,6 +265,24 @@ mod tests {
     /// A tiny batch with `Method::Fast` is answered one by one without building the refined
     /// boxes (unless a point needs the fallback's rows), and every answer, on, near and away
     /// from the boundary, is the one the refined boxes give (inRS1 and inRS2 after the build).
+    /// Seven points on each piece (`t = i / 6`), each also moved by `s x tol` for every `s`
+    /// of `scales` in the four axis directions.
+    fn near_pieces(d: &Domain, tol: f64, scales: &[f64]) -> Vec<Point> {
+        let mut pts = Vec::new();
+        for (_, b) in d.bezier_pieces() {
+            for i in 0..=6 {
+                let p = b.point_at(i as f64 / 6.0);
+                pts.push(p);
+                for s in scales {
+                    for (dx, dy) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+                        pts.push(Point::new(p.x + dx * s * tol, p.y + dy * s * tol));
+                    }
+                }
+            }
+        }
+        pts
+    }
+
     #[test]
     fn a_tiny_batch_builds_no_refined_boxes_and_answers_alike() {
         let mut cases: Vec<(String, Domain)> = rs_testkit::fixtures()
@@ -279,18 +297,7 @@ mod tests {
             let tol = eager.abs_tol();
             // Points on the curves, moved by fractions and multiples of the tolerance, and a
             // grid over the bounding box.
-            let mut pts = Vec::new();
-            for (_, b) in d.bezier_pieces() {
-                for i in 0..=6 {
-                    let p = b.point_at(i as f64 / 6.0);
-                    pts.push(p);
-                    for s in [0.5, 0.7, 1.0, 1.4, 3.0] {
-                        for (dx, dy) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
-                            pts.push(Point::new(p.x + dx * s * tol, p.y + dy * s * tol));
-                        }
-                    }
-                }
-            }
+            let mut pts = near_pieces(&d, tol, &[0.5, 0.7, 1.0, 1.4, 3.0]);
             let bb = d.bounding_box();
             for i in 0..=20 {
                 for j in 0..=20 {
@@ -338,18 +345,7 @@ mod tests {
             let built = Classifier::new(&d, ContainOptions::DEFAULT).unwrap();
             built.boxes().boxes();
             let tol = built.abs_tol();
-            let mut pts = Vec::new();
-            for (_, b) in d.bezier_pieces() {
-                for i in 0..=6 {
-                    let p = b.point_at(i as f64 / 6.0);
-                    pts.push(p);
-                    for s in [0.5, 1.0, 2.0, 3.0, 1e6] {
-                        for (dx, dy) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
-                            pts.push(Point::new(p.x + dx * s * tol, p.y + dy * s * tol));
-                        }
-                    }
-                }
-            }
+            let mut pts = near_pieces(&d, tol, &[0.5, 1.0, 2.0, 3.0, 1e6]);
             let bb = d.bounding_box();
             pts.extend(crate::baselines::halton_points(
                 2000,
