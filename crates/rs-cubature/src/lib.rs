@@ -19,13 +19,23 @@
 //!   `p`: Gauss-Legendre with `ceil(p (n + 2) / 2)` nodes, exact. Rational pieces: adaptive
 //!   Gauss-Legendre with an error estimate and bounded work; a piece that does not converge is
 //!   an error. Both by [`rs_spline::green`], the Green's-theorem kernel cell coverage uses too.
-//! - **Candidates.** Halton points in the bounding box kept when the grid locator classifies
-//!   them [`Location::Inside`](rs_contain::Location::Inside) (farther than the boundary
-//!   tolerance, `1e-12` of the box's diagonal, from the boundary):
-//!   `k x dim P_n` of them in the first attempt, `k` the
-//!   [`CubatureOptions::candidates_per_polynomial`] up to degree 20 and `k n / 20` beyond
-//!   (positive weights need more candidates per polynomial as the degree grows), at most 256
-//!   Halton points tried per candidate wanted.
+//! - **Candidates.** Points kept when the grid locator classifies them
+//!   [`Location::Inside`](rs_contain::Location::Inside) (farther than the boundary
+//!   tolerance, `1e-12` of the box's diagonal, from the boundary). Up to degree 20: Halton
+//!   points in the bounding box, `k x dim P_n` of them in the first attempt, `k` the
+//!   [`CubatureOptions::candidates_per_polynomial`], at most 256 Halton points tried per
+//!   candidate wanted. Above degree 20 (where `k` is not used): `dim P_n` Halton points and
+//!   **boundary layers**, because positive rules of high degree cluster their nodes towards
+//!   the boundary (Gauss-like, about `1 / n^2` of the width from it) and uniform points
+//!   under-sample it (they needed `18 dim P_n` at degree 30 and `24 dim P_n` at 40). Every
+//!   Bezier piece is sampled by arc length (about `2.5 (n + 1)` points per bounding-box
+//!   diagonal, clustered like Chebyshev points towards the piece's ends that are corners) and
+//!   each sample offset along both normals by `K = ceil(1.5 (n + 2) / 4)` distances
+//!   `w (1 - cos theta_k)`, `theta_k = (k - 1/2) pi / (2 K)`, `w = 2 area / boundary length`
+//!   (spaced as Gauss points are across the width, one and a half times as dense). That is
+//!   `4.9-8.3 dim P_n` candidates in all on the paper's domains at degrees 30 and 40. Each
+//!   retry doubles the Halton points and the layers' points (`sqrt 2` more along the boundary
+//!   and across).
 //! - **Orthonormal basis.** The Vandermonde matrix `V` at the candidates is orthonormalised,
 //!   `V = Q R`, by Cholesky QR (a second pass when the first factor is ill-conditioned, a
 //!   shifted pass when the Gram matrix is numerically singular; each pass applies its factor
@@ -114,14 +124,15 @@ pub use rule::{
 
 /// The highest degree of exactness a rule or a moment vector may have: 40, `dim P_40 = 861`
 /// basis polynomials. The work of a rule grows like `n^6` (the orthonormalisation costs
-/// `M N^2` with `N = dim P_n` and `M` candidates, `12 N` up to degree 20 and `12 N n / 20`
-/// beyond) and its memory like `n^4` (the candidates' Vandermonde matrix, up to
-/// `20 000 x 861` values, 138 MB, with the default cap). Measured on one core on the inRS
-/// paper's three domains with the default options (CPU time): degree 20 in about 30 ms,
-/// degree 30 in 0.27-0.74 s, degree 40 in 2.3-5.3 s (one attempt of 20 000 candidates, the
-/// default cap; the box-scaled Legendre basis is then so ill-conditioned on two of these
-/// domains that the orthonormalisation needs three shifted Cholesky passes, and `Q` stays
-/// regularised). A domain on which positive weights
-/// need more candidates than the cap gets an error (`ResidualNotReached`), not a wrong rule.
-/// Moments alone ([`monomial_moments`]) are cheap at any degree up to it.
+/// `M N^2` with `N = dim P_n` and `M` candidates, `12 N` up to degree 20 and about `5-8 N`
+/// beyond, with the boundary layers) and its memory like `n^4` (the candidates' Vandermonde
+/// matrix, `7 000 x 861` values, 49 MB, at degree 40 on the paper's M-shaped domain; at most
+/// `20 000 x 861`, 138 MB, with the default cap). Measured on one core on the inRS paper's
+/// three domains with the default options: degree 20 in about 40-55 ms, degree 30 in
+/// 0.14-0.21 s, degree 40 in 1.2-1.9 s (the box-scaled Legendre basis is so ill-conditioned
+/// on two of these domains that the orthonormalisation needs three shifted Cholesky passes and
+/// `Q` stays regularised at degree 40, where the NNLS then takes most of the time). A domain
+/// on which positive weights need more candidates than the cap gets an error
+/// (`ResidualNotReached`), not a wrong rule. Moments alone ([`monomial_moments`]) are cheap at
+/// any degree up to it.
 pub const MAX_DEGREE: usize = 40;

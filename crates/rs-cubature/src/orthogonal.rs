@@ -63,8 +63,10 @@ impl Orthonormal {
 }
 
 /// The orthonormalisation of `vt = V^T` (`N x M`, one column per candidate), or `None` if the
-/// candidates do not resolve the basis (a factor not invertible).
-pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64]) -> Option<Orthonormal> {
+/// candidates do not resolve the basis (a factor not invertible). The first `uniform`
+/// candidates are quasi-uniform (Halton points; all of them up to degree 20): the
+/// [`normalising_pass`]'s consistency test takes equal weights on them as its reference rule.
+pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64], uniform: usize) -> Option<Orthonormal> {
     let n = vt.nrows();
     let mut qt = vt;
     let mut rt = DMatrix::<f64>::identity(n, n);
@@ -85,7 +87,7 @@ pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64]) -> Option<Orthonormal>
             break;
         }
     }
-    if regularised && !normalising_pass(&mut qt, &mut rt, m) {
+    if regularised && !normalising_pass(&mut qt, &mut rt, m, uniform) {
         return None;
     }
     // A factor with a zero or non-finite diagonal entry: the candidates do not resolve the
@@ -106,7 +108,9 @@ pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64]) -> Option<Orthonormal>
 ///    and when it is not theirs was in none of the cases measured);
 /// 2. the Gram matrix of all the candidates has one (not the shifted one);
 /// 3. the moments stay consistent with the candidates: with the pass's factor `L`,
-///    `rho = ||L^{-1} (b - Q^T w)|| / ||L^{-1} Q^T w||` for the equal weights `w = area / M`
+///    `rho = ||L^{-1} (b - Q^T w)|| / ||L^{-1} Q^T w||` for the equal weights `w = area / U` on
+///    the first `U = uniform` candidates, the Halton points (all `M` of them up to degree 20;
+///    above, the boundary layers that follow them are not uniform and get no weight)
 ///    (a quasi-Monte Carlo rule: `rho` is its error in the new orthonormal basis) is at most
 ///    [`MAX_MOMENT_INCONSISTENCY`]. Normalising directions the shift had damped also scales
 ///    up the moments' rounding errors in them; `rho` then grows far beyond the rule's error.
@@ -121,7 +125,12 @@ pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64]) -> Option<Orthonormal>
 ///
 /// `false` if the pass made a non-finite or zero factor (then the candidates do not resolve
 /// the basis).
-fn normalising_pass(qt: &mut DMatrix<f64>, rt: &mut DMatrix<f64>, m: &[f64]) -> bool {
+fn normalising_pass(
+    qt: &mut DMatrix<f64>,
+    rt: &mut DMatrix<f64>,
+    m: &[f64],
+    uniform: usize,
+) -> bool {
     let (n, cols) = qt.shape();
     let prefix = qt.columns(0, (PREFIX_PER_POLYNOMIAL * n).min(cols));
     if Cholesky::new(prefix * prefix.transpose()).is_none() {
@@ -131,7 +140,12 @@ fn normalising_pass(qt: &mut DMatrix<f64>, rt: &mut DMatrix<f64>, m: &[f64]) -> 
         return true;
     };
     let area = m.first().copied().unwrap_or(0.0);
-    let qw: DVector<f64> = qt.column_sum() * (area / cols as f64);
+    let qw: DVector<f64> = if uniform >= cols {
+        qt.column_sum() * (area / cols as f64)
+    } else {
+        let uniform = uniform.max(1);
+        qt.columns(0, uniform).column_sum() * (area / uniform as f64)
+    };
     let consistent = rt
         .solve_lower_triangular(&DVector::from_column_slice(m))
         .and_then(|b| {
@@ -273,13 +287,23 @@ mod tests {
         let area = 2.5;
         let moments = &v * DVector::from_element(m, area / m as f64);
         let (mut qt, mut rt) = (v.clone(), DMatrix::identity(n, n));
-        assert!(normalising_pass(&mut qt, &mut rt, moments.as_slice()));
+        assert!(normalising_pass(
+            &mut qt,
+            &mut rt,
+            moments.as_slice(),
+            usize::MAX
+        ));
         assert!((&qt * qt.transpose() - DMatrix::<f64>::identity(n, n)).amax() < 1e-12);
         assert!((&rt * &qt - &v).amax() < 1e-12 * v.amax());
         let mut far = moments.clone();
         far[n - 1] += 100.0 * moments.amax();
         let (mut qt, mut rt) = (v.clone(), DMatrix::identity(n, n));
-        assert!(normalising_pass(&mut qt, &mut rt, far.as_slice()));
+        assert!(normalising_pass(
+            &mut qt,
+            &mut rt,
+            far.as_slice(),
+            usize::MAX
+        ));
         assert_eq!(qt, v);
         assert_eq!(rt, DMatrix::identity(n, n));
     }

@@ -6,7 +6,7 @@ use rs_contain::{Classifier, ContainOptions, FillRule};
 use rs_spline::{Domain, Point};
 
 use crate::basis::LegendreBasis;
-use crate::candidates::Candidates;
+use crate::candidates::{Candidates, LayerDensity, boundary_layers};
 use crate::moments::basis_moments;
 use crate::nnls::{NnlsOptions, dot, nnls};
 use crate::orthogonal::{HIGH_DEGREE_BASIS, orthonormalise};
@@ -39,9 +39,10 @@ pub const MAX_RETRIES: usize = 10;
 pub struct CubatureOptions {
     /// The degree of exactness `n`, at most [`MAX_DEGREE`].
     pub degree: usize,
-    /// `k` (`1..=1000`): the first attempt wants `k x dim P_n` candidates inside the domain
-    /// up to degree 20 and `(k n / 20) x dim P_n` at a degree `n > 20` (rounded down); each
-    /// retry doubles it.
+    /// `k` (`1..=1000`): the first attempt wants `k x dim P_n` Halton candidates inside the
+    /// domain up to degree 20; each retry doubles it. Above degree 20 the candidates are
+    /// `dim P_n` Halton points and boundary layers (see the crate documentation) and `k` is not
+    /// used.
     pub candidates_per_polynomial: usize,
     /// Retries after the first attempt (at most [`MAX_RETRIES`]), each with twice the
     /// candidates, up to `max_candidates`.
@@ -198,8 +199,9 @@ impl CubatureRule {
     /// The rule of degree `options.degree`.
     ///
     /// Exact moments of the scaled Legendre basis (Green's theorem); then, attempt by attempt
-    /// (the first with `candidates_per_polynomial x dim P_n` candidates, times `n / 20` above
-    /// degree 20, each retry with twice as many, up to `max_candidates`): Halton candidates strictly inside, a discrete
+    /// (the first with `candidates_per_polynomial x dim P_n` Halton candidates up to degree
+    /// 20, `dim P_n` and boundary layers above, each retry with twice as many, up to
+    /// `max_candidates`): candidates strictly inside, a discrete
     /// orthonormal basis at them, Lawson-Hanson NNLS for non-negative weights matching the
     /// moments, and the residual computed afresh from the nodes and weights; the first rule
     /// whose residual is at most `target_residual` is returned.
@@ -229,13 +231,31 @@ impl CubatureRule {
         let dim = basis.len();
         let mut error = None;
         let mut best_residual = f64::INFINITY;
+        let layered = degree > CANDIDATES_GROWTH_DEGREE;
+        let mut with_layers = Vec::new();
         for attempt in 0..=options.max_retries {
-            let wanted = first_attempt_candidates(options.candidates_per_polynomial, degree)
-                .saturating_mul(dim)
-                .saturating_mul(1 << attempt)
-                .min(options.max_candidates);
-            candidates.grow_to(wanted);
-            let points = candidates.points();
+            let (wanted, points, uniform) = if layered {
+                // Halton points, then the boundary layers (see `layered_candidates`).
+                let halton = (dim << attempt).min(options.max_candidates / 2).max(1);
+                candidates.grow_to(halton);
+                with_layers.clear();
+                with_layers.extend_from_slice(candidates.points());
+                let room = options.max_candidates - with_layers.len();
+                let density = layer_density(attempt);
+                let mut layers = boundary_layers(domain, &classifier, degree, area, density, room);
+                layers.truncate(room);
+                with_layers.extend(layers);
+                let uniform = candidates.points().len();
+                (with_layers.len(), with_layers.as_slice(), uniform)
+            } else {
+                let wanted = options
+                    .candidates_per_polynomial
+                    .saturating_mul(dim)
+                    .saturating_mul(1 << attempt)
+                    .min(options.max_candidates);
+                candidates.grow_to(wanted);
+                (wanted, candidates.points(), usize::MAX)
+            };
             let too_few = |reason| CubatureError::TooFewCandidates {
                 found: points.len(),
                 generated: candidates.generated(),
@@ -245,7 +265,7 @@ impl CubatureRule {
             if points.len() < dim {
                 error = Some(too_few("fewer than dim P_n"));
             } else {
-                match compress(&basis, points, &moments, options.target_residual) {
+                match compress(&basis, points, uniform, &moments, options.target_residual) {
                     None => {
                         error = Some(too_few("they do not resolve the polynomials of the degree"))
                     }
@@ -272,10 +292,15 @@ impl CubatureRule {
                 break;
             }
         }
+        let tried = if layered {
+            with_layers.len()
+        } else {
+            candidates.points().len()
+        };
         Err(error.unwrap_or(CubatureError::ResidualNotReached {
             residual: best_residual,
             target: options.target_residual,
-            candidates: candidates.points().len(),
+            candidates: tried,
         }))
     }
 
@@ -345,18 +370,27 @@ impl CubatureRule {
     }
 }
 
-/// From this degree on the first attempt's candidates per polynomial grow in proportion to
-/// the degree (see [`first_attempt_candidates`]).
+/// Above this degree the candidates are `dim P_n` Halton points and boundary layers
+/// ([`boundary_layers`]) instead of `k x dim P_n` Halton points. Halton points alone needed
+/// more per polynomial as the degree grew (degree 20 succeeded with `12 N`, degree 30 needed
+/// `16-18 N` and degree 40 about `22 N`): a positive rule of high degree has nodes near the
+/// boundary that uniform points reach only in large numbers.
 const CANDIDATES_GROWTH_DEGREE: usize = 20;
 
-/// Candidates per polynomial of the first attempt: `k` up to degree 20, `k n / 20` beyond
-/// (rounded down). Positive weights on the candidates matching the moments need more candidates
-/// per polynomial as the degree grows: measured on the paper's domains with the default
-/// `k = 12`, degree 20 succeeds with `12`, degree 30 needs about `16` (`12` fails on all
-/// three, `16` succeeds on all three) and degree 40 about `22`; a failed attempt costs a full
-/// orthonormalisation and the stall test's window of NNLS iterations.
-fn first_attempt_candidates(k: usize, degree: usize) -> usize {
-    k * degree.max(CANDIDATES_GROWTH_DEGREE) / CANDIDATES_GROWTH_DEGREE
+/// The density of the boundary layers of attempt `attempt` above degree 20 (see
+/// [`boundary_layers`]): `1.5` times the Gauss points' density across the domain, `2.5 (n + 1)`
+/// points per diagonal along the boundary, both times `sqrt 2` per retry (twice the points).
+/// Measured at degree 30 on the paper's domains (with `dim P_n` Halton points besides): normal
+/// density 1 and along 2 fail on `s4_disk_ellipse_segment` and `s5_lune` (about `2.6 N`
+/// candidates), 0.5 and 3 on all three; 1.5 and 2.5 succeed on them, the disc, the L shape, the
+/// cubic leaf and the nested fill-rule fixtures with `5-8 N`, the disc fails with 1 and 2 and
+/// `3 N` Halton points.
+fn layer_density(attempt: usize) -> LayerDensity {
+    let growth = std::f64::consts::SQRT_2.powi(attempt.min(MAX_RETRIES) as i32);
+    LayerDensity {
+        normal: 1.5 * growth,
+        along: 2.5 * growth,
+    }
 }
 
 /// Outer NNLS iterations from one full pass over the candidates' gradients to the next; in
@@ -374,11 +408,12 @@ const FULL_GRADIENT_PASS_EVERY: usize = 4;
 /// factorisation, `O(N^2)`); one or two bring the residual to rounding on the paper's domains.
 const MAX_REFINEMENTS: usize = 3;
 
-/// The rule from the candidates `points` (at least `dim P_n` of them), or `None` if they do
-/// not resolve the basis.
+/// The rule from the candidates `points` (at least `dim P_n` of them, the first `uniform` of
+/// them Halton points), or `None` if they do not resolve the basis.
 fn compress(
     basis: &LegendreBasis,
     points: &[Point],
+    uniform: usize,
     moments: &[f64],
     target_residual: f64,
 ) -> Option<Attempt> {
@@ -388,7 +423,7 @@ fn compress(
     for (p, column) in points.iter().zip(vt.as_mut_slice().chunks_exact_mut(n)) {
         basis.values_into(*p, &mut scratch, column);
     }
-    let orthonormal = orthonormalise(vt, moments)?;
+    let orthonormal = orthonormalise(vt, moments, uniform)?;
     let b = orthonormal.b.as_slice();
     // LHDM: up to N / 20 columns enter at once, those within half the best gradient whose
     // mutual cosines are at most 0.2. Measured at degree 20 on the paper's domains: about 30
@@ -583,14 +618,5 @@ mod tests {
             (0..1000).position(|_| t.stalled(1.0)),
             Some(STALL_MIN_WINDOW)
         );
-    }
-
-    #[test]
-    fn first_attempt_candidates_grow_from_degree_20() {
-        assert_eq!(first_attempt_candidates(12, 5), 12);
-        assert_eq!(first_attempt_candidates(12, 20), 12);
-        assert_eq!(first_attempt_candidates(12, 30), 18);
-        assert_eq!(first_attempt_candidates(12, 40), 24);
-        assert_eq!(first_attempt_candidates(1, 21), 1);
     }
 }

@@ -160,3 +160,50 @@ fn fill_rule_fixtures_get_their_rules_rule_or_are_refused() {
         }
     }
 }
+
+/// `(a - 1)!!`-style closed form: the integral of `x^a y^b` over the disc of radius `r` centred
+/// at the origin, `r^(a+b+2) / (a+b+2) * 2 pi (a-1)!! (b-1)!! / (a+b)!!` for even `a`, `b`, else 0.
+fn disc_monomial(r: f64, a: usize, b: usize) -> f64 {
+    if a % 2 == 1 || b % 2 == 1 {
+        return 0.0;
+    }
+    let double_factorial = |k: usize| (1..=k).rev().step_by(2).map(|i| i as f64).product::<f64>();
+    let angular = 2.0
+        * std::f64::consts::PI
+        * double_factorial(a.saturating_sub(1))
+        * double_factorial(b.saturating_sub(1))
+        / double_factorial(a + b);
+    r.powi((a + b + 2) as i32) / (a + b + 2) as f64 * angular
+}
+
+/// Degree 30 on a disc (the boundary-layer candidates): every monomial `x^a y^b`, `a + b <= 30`,
+/// integrated within `1e-12` of its closed form relative to `area r^(a+b)`, and the rule's
+/// properties (every node `Inside` by inRS2, weights `> 0`, at most `dim P_30` nodes).
+#[test]
+fn a_rule_of_degree_30_on_a_disc_integrates_monomials_exactly() {
+    let r = 1.25;
+    let disc = Domain::new(vec![circle(Point::new(0.0, 0.0), r).unwrap()]).unwrap();
+    check_rule("disc", &disc, 30);
+    let rule = CubatureRule::new(&disc, 30).unwrap();
+    let area = std::f64::consts::PI * r * r;
+    for total in 0..=30 {
+        for b in 0..=total {
+            let a = total - b;
+            let got = rule
+                .integrate(|p: Point| p.x.powi(a as i32) * p.y.powi(b as i32))
+                .unwrap();
+            let exact = disc_monomial(r, a, b);
+            let err = (got - exact).abs() / (area * r.powi(total as i32));
+            assert!(err <= 1e-12, "x^{a} y^{b}: {got} vs {exact} ({err:e})");
+        }
+    }
+}
+
+/// Degree 40 (861 polynomials) on the cubic leaf (a cusp-like tip): the rule's properties
+/// and every monomial against the exact moments (see `check_rule`).
+#[test]
+fn a_rule_of_degree_40_on_the_cubic_leaf() {
+    let path = rs_testkit::fixture_path("inrs-paper/leaf_cubic.json");
+    let d = rs_io::json::domain_from_json_file(&path).unwrap();
+    check_rule("leaf_cubic", &d, 40);
+}
