@@ -7,7 +7,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use rs_contain::baselines::halton_points_from;
 use rs_contain::{Classifier, Locate, Location};
 use rs_spline::prelude::*;
-use rs_spline::{Domain, Point, RationalBezier};
+use rs_spline::{ArcLengthTable, Domain, Point, RationalBezier};
 
 /// Most Halton points generated per candidate wanted: a domain that fills less than
 /// `1 / 256` of its bounding box gets fewer candidates than wanted and an error, rather
@@ -82,9 +82,9 @@ pub(crate) struct LayerDensity {
     pub(crate) along: f64,
 }
 
-/// Chord samples per Bezier piece of the arc-length table (the candidates need spreading, not
-/// accurate lengths).
-const ARC_SAMPLES: usize = 64;
+/// Panels per Bezier piece of its arc-length table (the candidates need spreading, not
+/// accurate lengths: between the panels' ends the table is linear).
+const ARC_PANELS: usize = 8;
 
 /// A piece's end is a corner when its tangent turns by more than this (radians) into the next
 /// piece's: points along the piece then cluster towards that end.
@@ -101,7 +101,7 @@ const CORNER_ANGLE: f64 = 0.0175; // 1 degree
 ///   density of the `n / 2 + 1` Gauss-Legendre points a product rule of degree `n` has across
 ///   it).
 /// - **Along the boundary.** On every Bezier piece `ceil(along (n + 1) l / D)` points by arc
-///   length `l` (a chord table of [`ARC_SAMPLES`] points), evenly spaced, or spaced as
+///   length `l` (an [`ArcLengthTable`] of [`ARC_PANELS`] panels), evenly spaced, or spaced as
 ///   Chebyshev points towards an end that is a corner (the tangent turns by more than
 ///   [`CORNER_ANGLE`]), so that corners get the tensor-product clustering of Gauss rules;
 ///   `along` and `normal` are scaled down together if the points would exceed
@@ -121,11 +121,14 @@ pub(crate) fn boundary_layers(
     density: LayerDensity,
     max_points: usize,
 ) -> Vec<Point> {
-    let pieces: Vec<RationalBezier> = domain.bezier_pieces().into_iter().map(|p| p.1).collect();
-    let owners: Vec<usize> = domain.bezier_pieces().into_iter().map(|p| p.0).collect();
+    let (owners, pieces): (Vec<usize>, Vec<RationalBezier>) =
+        domain.bezier_pieces().into_iter().unzip();
     let diagonal = domain.bounding_box().diagonal();
-    let tables: Vec<Vec<f64>> = pieces.iter().map(arc_table).collect();
-    let total: f64 = tables.iter().map(|t| t[ARC_SAMPLES]).sum();
+    let tables: Vec<ArcLengthTable> = pieces
+        .iter()
+        .map(|p| ArcLengthTable::new(p, ARC_PANELS))
+        .collect();
+    let total: f64 = tables.iter().map(ArcLengthTable::length).sum();
     if !(total > 0.0 && total.is_finite() && diagonal > 0.0 && area > 0.0) {
         return Vec::new();
     }
@@ -155,7 +158,7 @@ pub(crate) fn boundary_layers(
     let rate = along * (n + 1.0) / diagonal;
     let mut points = Vec::new();
     for (i, (piece, table)) in pieces.iter().zip(&tables).enumerate() {
-        let length = table[ARC_SAMPLES];
+        let length = table.length();
         if length.is_nan() || length <= 0.0 {
             continue;
         }
@@ -168,7 +171,7 @@ pub(crate) fn boundary_layers(
                 (false, true) => (FRAC_PI_2 * x).sin(),
                 (false, false) => x,
             };
-            let (p, tangent) = piece.point_and_tangent(parameter_at(table, fraction * length));
+            let (p, tangent) = piece.point_and_tangent(table.u_at(fraction * length));
             let size = tangent.length();
             if !(size > 0.0 && size.is_finite() && p.is_finite()) {
                 continue;
@@ -187,34 +190,6 @@ pub(crate) fn boundary_layers(
         .filter(|(_, l)| *l == Location::Inside)
         .map(|(p, _)| p)
         .collect()
-}
-
-/// Cumulative chord lengths at `t = j / ARC_SAMPLES`, `j = 0..=ARC_SAMPLES`.
-fn arc_table(piece: &RationalBezier) -> Vec<f64> {
-    let mut table = Vec::with_capacity(ARC_SAMPLES + 1);
-    let mut length = 0.0;
-    let mut previous = piece.start_point();
-    table.push(0.0);
-    for j in 1..=ARC_SAMPLES {
-        let p = piece.point_at(j as f64 / ARC_SAMPLES as f64);
-        let chord = p.distance(previous);
-        length += if chord.is_finite() { chord } else { 0.0 };
-        previous = p;
-        table.push(length);
-    }
-    table
-}
-
-/// The parameter `t` at arc length `s` by the table (linear between its samples).
-fn parameter_at(table: &[f64], s: f64) -> f64 {
-    let k = table.partition_point(|&v| v < s).clamp(1, ARC_SAMPLES);
-    let (s0, s1) = (table[k - 1], table[k]);
-    let fraction = if s1 > s0 {
-        ((s - s0) / (s1 - s0)).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((k - 1) as f64 + fraction) / ARC_SAMPLES as f64
 }
 
 /// For every piece, whether its start and its end are corners: the tangent directions (from
