@@ -61,8 +61,9 @@ fn timings(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) {
     let _ = writeln!(
         md,
         "\nPositive interior cubature (`CubatureRule::new`, default options: candidates \
-         {DEFAULT_CANDIDATES_PER_POLYNOMIAL} x dim P_n Halton points inside up to degree 20, \
-         {DEFAULT_CANDIDATES_PER_POLYNOMIAL} n / 20 x dim P_n above, doubled on a retry; \
+         {DEFAULT_CANDIDATES_PER_POLYNOMIAL} x dim P_n Halton points inside up to degree 20; \
+         above, dim P_n Halton points and layers of points offset inward from the boundary; \
+         doubled on a retry; \
          target residual {DEFAULT_TARGET_RESIDUAL:.0e}) on one thread \
          (inside a one-thread rayon pool; the library uses none): *nodes* (at most dim P_n), \
          *candidates* of the attempt that made the rule, *residual* (`CubatureRule::residual`: \
