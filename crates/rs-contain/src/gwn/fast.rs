@@ -262,7 +262,12 @@ trait Hierarchy: SubCurves<Node = u32> {
     );
 }
 
-/// The walk of [`CurveHierarchy::refine`].
+/// The walk of [`CurveHierarchy::refine`]: depth-first, the left half next and the right one
+/// pending until all of the left's sub-curves are done (the order [`refine_below`] takes).
+///
+/// A cached sub-curve above the leaves leaves at most one pending right half per level below
+/// the root, so a fixed stack of [`HIERARCHY_DEPTH`] entries holds them (the walk below the
+/// leaves keeps its own).
 #[inline(always)]
 fn walk_hierarchy<H: Hierarchy, K: ChordSink>(
     h: &H,
@@ -270,20 +275,26 @@ fn walk_hierarchy<H: Hierarchy, K: ChordSink>(
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
-    stats.curve_evaluations += 1;
-    // At most one pending right half per cached level.
-    let mut stack: SmallVec<[(u32, u32, bool); 16]> = SmallVec::new();
-    stack.push((0, 0, false));
-    while let Some((i, depth, parent_convex)) = stack.pop() {
-        if depth > 0 {
-            stats.curve_evaluations += 1;
-        }
+    let mut pending = [(0u32, 0u32, false); HIERARCHY_DEPTH as usize];
+    let mut len = 0;
+    let mut next = Some((0u32, 0u32, false));
+    loop {
+        let (i, depth, parent_convex) = match next.take() {
+            Some(n) => n,
+            None if len > 0 => {
+                len -= 1;
+                pending[len]
+            }
+            None => break,
+        };
+        stats.curve_evaluations += 1;
         let Some(convex) = settle(h, &i, q, depth, parent_convex, sink) else {
             continue;
         };
         if i < INNER_SUB_CURVES {
-            stack.push((2 * i + 2, depth + 1, convex));
-            stack.push((2 * i + 1, depth + 1, convex));
+            pending[len] = (2 * i + 2, depth + 1, convex);
+            len += 1;
+            next = Some((2 * i + 1, depth + 1, convex));
         } else {
             h.below(i, depth, convex, q, sink, stats);
         }
