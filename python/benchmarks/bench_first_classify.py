@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 # The many-faces workload (the same faces and points), from the script beside this one.
-from many_faces_bench import files_or_idf, fresh_domains, workload
+from many_faces_bench import fresh_domains, workload_from_args
 
 
 def one_round(files, keep, points, threads):
@@ -45,16 +45,9 @@ def one_round(files, keep, points, threads):
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("files", nargs="*")
-    ap.add_argument("--points", type=int, default=400)
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--threads", type=int, default=None, help="cores (default all)")
     ap.add_argument("--dump", default=None)
-    a = ap.parse_args()
-    files = files_or_idf(a.files)
-    keep, points = workload(files, a.points)
+    a, files, keep, points = workload_from_args(ap)
     n = len(keep)
-    print(f"{len(files)} files, {n} faces, {a.points} points per face, threads={a.threads or 'all'}")
     firsts, warms, ratios = [], [], []
     codes = None
     for _ in range(a.rounds):

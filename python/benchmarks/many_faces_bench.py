@@ -59,6 +59,22 @@ def workload(files, n_points, seed=1):
     return keep, points
 
 
+def workload_from_args(ap):
+    """Adds the workload's options (files, ``--points``, ``--rounds``, ``--threads``) to the
+    parser `ap`, parses the command line, prints the workload's line and returns the arguments,
+    the files, the faces kept and their points (see `workload`)."""
+    ap.add_argument("files", nargs="*")
+    ap.add_argument("--points", type=int, default=400)
+    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--threads", type=int, default=None, help="cores (default all)")
+    a = ap.parse_args()
+    files = files_or_idf(a.files)
+    keep, points = workload(files, a.points)
+    threads = a.threads or "all"
+    print(f"{len(files)} files, {len(keep)} faces, {a.points} points per face, threads={threads}")
+    return a, files, keep, points
+
+
 def loop(domains, points, threads):
     start, cpu = time.perf_counter(), time.process_time()
     out = [d.classify(p, threads=threads) for d, p in zip(domains, points)]
@@ -73,15 +89,8 @@ def many(domains, points, threads):
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("files", nargs="*")
-    ap.add_argument("--points", type=int, default=400)
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--threads", type=int, default=None, help="cores (default all)")
-    a = ap.parse_args()
-    files = files_or_idf(a.files)
-    keep, points = workload(files, a.points)
+    a, files, keep, points = workload_from_args(ap)
     n = len(keep)
-    print(f"{len(files)} files, {n} faces, {a.points} points per face, threads={a.threads or 'all'}")
     t_loop, t_many = [], []
     for r in range(a.rounds):
         # Alternated, the order flipped every round.
