@@ -140,12 +140,8 @@ fn normalising_pass(
         return true;
     };
     let area = m.first().copied().unwrap_or(0.0);
-    let qw: DVector<f64> = if uniform >= cols {
-        qt.column_sum() * (area / cols as f64)
-    } else {
-        let uniform = uniform.max(1);
-        qt.columns(0, uniform).column_sum() * (area / uniform as f64)
-    };
+    let uniform = uniform.clamp(1, cols);
+    let qw: DVector<f64> = qt.columns(0, uniform).column_sum() * (area / uniform as f64);
     let consistent = rt
         .solve_lower_triangular(&DVector::from_column_slice(m))
         .and_then(|b| {

@@ -235,7 +235,7 @@ impl CubatureRule {
         let mut with_layers = Vec::new();
         for attempt in 0..=options.max_retries {
             let (wanted, points, uniform) = if layered {
-                // Halton points, then the boundary layers (see `layered_candidates`).
+                // Halton points, then the boundary layers (see `boundary_layers`).
                 let halton = (dim << attempt).min(options.max_candidates / 2).max(1);
                 candidates.grow_to(halton);
                 with_layers.clear();
