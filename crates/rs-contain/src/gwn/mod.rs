@@ -158,8 +158,10 @@ impl std::str::FromStr for FillRule {
 ///   the first query that may be in the band: a query the adaptive walk finds within the
 ///   band's reach of a piece ([`WindingField::is_on_boundary`], the average across the jump,
 ///   [`WindingField::monotone_boxes`]). It is built once, by whichever thread needs it first
-///   (`OnceLock`), and shared. A query farther than the reach from every piece (the reach is
-///   about `1e-9` of the domain's size plus twice the tolerance) never builds it.
+///   (`OnceLock`), and shared. A query farther than the reach from every piece never builds
+///   it. The reach is twice the tolerance plus a bound on the rounding of the pieces' splits,
+///   which grows with their degree, their weight ratio and the boxes per monotone piece: about
+///   `4e-12` of the largest coordinate for cubic polynomial pieces.
 /// - A field made by a [`crate::Classifier`] ([`crate::Classifier::winding_field`]) shares the
 ///   classifier's monotone boxes instead of building its own; only their grid is built on
 ///   first need.
@@ -232,20 +234,64 @@ struct BoundaryIndex {
     rounding: f64,
 }
 
+/// The band's own rounding margin, in units of `f64::EPSILON` times the boxes' coordinate
+/// scale (see [`BoundaryIndex::rounding`]).
+const BAND_ROUNDING_ULPS: f64 = 256.0;
+
+/// The factor by which [`relative_band_margin`] exceeds the error bound it covers: for the
+/// rounding of the few operations that compute the bound and the reach, and for the
+/// second-order terms the bound leaves out.
+const MARGIN_SAFETY: f64 = 8.0;
+
 /// The relative margin (times the pieces' coordinate scale) that covers every rounding between
-/// the pieces' control points and the points the monotone boxes hold, and the rounding margin
-/// of the band (`256 eps` of the scale).
+/// the exact pieces and the curves the band and the walk test: the monotone boxes' curves (the
+/// band) and the adaptive walk's sub-curves (the near mark), plus the band's own rounding
+/// margin ([`BAND_ROUNDING_ULPS`]). Computed per field from the pieces' largest degree `d`,
+/// their largest weight ratio `rho = max w / min w` (1 for polynomial pieces) and the most
+/// refined boxes per monotone piece, `subdivisions`.
 ///
-/// A box's points come from the watertight piece (its first control point moved onto the
-/// previous piece's end) by at most `2 MAX_DEGREE + MAX_SUBDIVISIONS` de Casteljau splits in
-/// homogeneous coordinates (the roots of `x'` and `y'`, then the sub-boxes), and a projection.
-/// The weights being positive, each step of a split is a convex combination whose rounding is
-/// a few ulps of the largest coordinate of the piece split, so after all of them a point is
-/// within `(64 + 4096) * 64 * 2 eps < 1.2e-10` of the scale from the exact curve; the band's own
-/// rounding margin is `256 eps < 6e-14` of it, and the tolerance's solve rounds far less.
-/// `2^-30 > 9.3e-10` covers both with a factor of seven to spare (and the rounding of the few
-/// operations that compute the bound).
-const BAND_ROUNDING: f64 = 1.0 / (1u64 << 30) as f64;
+/// Why it covers them: a box's curve comes from its watertight piece (the joint gap, counted
+/// apart) by at most `S = (4d - 4) + (subdivisions - 1)` de Casteljau splits in homogeneous
+/// coordinates, each applied to the part the previous one left: the roots of the numerators of
+/// `x'` and `y'` (degree `2d - 2` each), then the sub-boxes cut off one by one. A walk's
+/// sub-curve comes from its piece by at most `MAX_DEPTH` halvings. One split at `s` of `d + 1`
+/// coefficients rounds each level's blend `a (1 - s) + b s` by at most `3 u max(|a|, |b|)`
+/// (`u = eps / 2`: `1 - s`, two products and a sum), and the blends of the later levels, convex
+/// combinations, do not grow the earlier levels' errors; so a split moves each coefficient by
+/// at most `3 d u M`, `M` the largest magnitude of the coefficients split, which no split grows
+/// (its coefficients are convex combinations). The exact split being a convex combination too,
+/// the errors of consecutive splits add: after `S` of them the homogeneous coefficients are
+/// within `3 d S u M` of the exact sub-curve's, `M <= w_max scale` for the coordinates and
+/// `w_max` for the weights. A point `H(t) / W(t)` then moves by at most
+/// `(dH + |x| dW) / W(t) <= 6 d S u rho scale` (`W(t) >= w_min`), and the projection of the
+/// control points rounds by `u scale` more. With the walk's halvings on top (the band's point
+/// and the walk's sub-curve both within their bound of the exact piece), the margin covers
+/// `6 d (S + MAX_DEPTH) rho + 1 + BAND_ROUNDING_ULPS` units of `eps scale` (each `u` counted as a
+/// whole `eps`), times [`MARGIN_SAFETY`].
+///
+/// On cubic polynomial pieces with the default 32 boxes per monotone piece that is about
+/// `3.8e-12` of the scale. (One fixed margin of `2^-30` of the scale for every field sent each
+/// query between this and `1e-9` of the scale through the band's root solves: a quarter of the
+/// work on points near the curves.)
+fn relative_band_margin(pieces: &[RationalBezier], subdivisions: usize) -> f64 {
+    let degree = pieces.iter().map(|b| b.degree()).max().unwrap_or(0);
+    let weight_ratio = pieces
+        .iter()
+        .map(|b| {
+            let (lo, hi) = b
+                .weights()
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| {
+                    (lo.min(w), hi.max(w))
+                });
+            hi / lo
+        })
+        .fold(1.0f64, f64::max);
+    let splits = (4 * degree).saturating_sub(4) + subdivisions.saturating_sub(1);
+    let walk = splits + curve::MAX_DEPTH as usize;
+    let ulps = 6.0 * degree as f64 * walk as f64 * weight_ratio + 1.0 + BAND_ROUNDING_ULPS;
+    MARGIN_SAFETY * ulps * f64::EPSILON
+}
 
 /// The far-field bounds of the band, computed from the pieces alone (the boxes and their exact
 /// tolerance come later).
@@ -254,7 +300,7 @@ struct BandReach {
     /// How far from a piece's control box a query may be and still be in the band of one of
     /// its boxes: `2 tol' + margin + joint_gap`, where `tol' >= tol` is the relative tolerance
     /// times the diagonal of the pieces' control box grown by the joint gap and the margin,
-    /// and `margin = BAND_ROUNDING * scale`.
+    /// and `margin` is [`relative_band_margin`] times the scale.
     reach: f64,
 }
 
@@ -267,24 +313,33 @@ impl BandReach {
     /// curve with positive weights by at most `d` (the rational basis functions are `>= 0` and
     /// add up to 1), and every point of a piece lies in its control box, so every point of a
     /// box's curve lies within `joint_gap` of its piece's control box, plus the splits'
-    /// rounding (below `BAND_ROUNDING * scale`, see there). The boxes' bounding box therefore
-    /// lies in `[lo, hi]` grown by `joint_gap + margin`, so its diagonal, and with it the
-    /// exact tolerance `tol`, is at most the bound's (`hypot` and the products are monotone,
-    /// and the margin dwarfs their rounding). A point in the band of a box is within `tol` of
-    /// the box's curve, measured vertically, horizontally or from an end, up to the solve's
-    /// rounding; so it lies within `tol + joint_gap + margin <= reach` of its piece's control
-    /// box. `reach` is also at least the band's old reach, `2 tol + rounding + joint_gap`
-    /// (the rounding margin `256 eps` of a scale below the bound's).
-    fn of(lo: Point, hi: Point, joint_gap: f64, relative_tolerance: f64) -> Self {
+    /// rounding (below `relative_margin * scale`, see [`relative_band_margin`]). The boxes'
+    /// bounding box therefore lies in `[lo, hi]` grown by `joint_gap + margin`, so its
+    /// diagonal, and with it the exact tolerance `tol`, is at most the bound's (`hypot` and
+    /// the products are monotone, and the margin dwarfs their rounding). A point in the band
+    /// of a box is within `tol` of the box's curve, measured vertically, horizontally or from
+    /// an end, up to the solve's rounding; so it lies within `tol + joint_gap + margin <=
+    /// reach` of its piece's control box. `reach` is also at least the band's own reach,
+    /// `2 tol + rounding + joint_gap` (the margin holds the rounding margin,
+    /// [`BAND_ROUNDING_ULPS`], at a scale below the bound's). The walk's sub-curves lie within
+    /// the margin of the exact piece too, so a query in the band comes within the reach of a
+    /// sub-curve the walk settles.
+    fn of(
+        lo: Point,
+        hi: Point,
+        joint_gap: f64,
+        relative_tolerance: f64,
+        relative_margin: f64,
+    ) -> Self {
         let scale = coordinate_scale(rs_spline::BoundingBox { min: lo, max: hi });
-        let margin = BAND_ROUNDING * scale;
+        let margin = relative_margin * scale;
         let grow = joint_gap + margin;
         let diagonal = rs_spline::BoundingBox { min: lo, max: hi }
             .grown_by(grow)
             .diagonal();
         let tol = relative_tolerance * diagonal;
         // The margin is taken at the grown scale, which may exceed `scale` by `grow`.
-        let margin = BAND_ROUNDING * (scale + 4.0 * grow);
+        let margin = relative_margin * (scale + 4.0 * grow);
         Self {
             reach: 2.0 * tol + margin + joint_gap,
         }
@@ -339,7 +394,12 @@ impl WindingField {
             })
             .reduce(rs_spline::BoundingBox::union)
             .unwrap_or(rs_spline::BoundingBox::from_point(Point::default()));
-        let reach = BandReach::of(lo, hi, joint_gap, relative_tolerance).reach;
+        let subdivisions = match &source {
+            BoxSource::Given(boxes) => boxes.subdivisions(),
+            BoxSource::Domain(_) => BoxOptions::default().subdivisions,
+        };
+        let relative_margin = relative_band_margin(&pieces, subdivisions);
+        let reach = BandReach::of(lo, hi, joint_gap, relative_tolerance, relative_margin).reach;
         for f in &mut frames {
             f.grow(reach);
         }
@@ -377,7 +437,7 @@ impl WindingField {
                 };
                 let bbox = boxes.bounding_box();
                 let tol = self.relative_tolerance * bbox.diagonal();
-                let rounding = 256.0 * f64::EPSILON * coordinate_scale(bbox);
+                let rounding = BAND_ROUNDING_ULPS * f64::EPSILON * coordinate_scale(bbox);
                 Ok(BoundaryIndex {
                     box_pieces: pieces_of_boxes(&self.piece_curves, &self.pieces, &boxes),
                     grid: BoxGrid::new(boxes.boxes(), tol),
@@ -734,7 +794,116 @@ pub(crate) fn chains(pieces: &[RationalBezier]) -> Vec<std::ops::Range<usize>> {
 
 #[cfg(test)]
 mod tests {
-    use super::{FillRule, WindingAlgorithm};
+    use super::{
+        BoxSource, FillRule, MARGIN_SAFETY, WindingAlgorithm, WindingField, coordinate_scale,
+        relative_band_margin,
+    };
+    use rs_boxes::{BoxOptions, MonotoneBoxes};
+    use rs_spline::{Domain, NurbsCurve, Point};
+    use std::sync::Arc;
+
+    /// A closed loop of two rational quadratics bulging far to either side (weight ratio
+    /// `w`) and a cubic closing loop: weight ratios the paper's domains do not have.
+    fn heavy_weights(w: f64) -> Domain {
+        let upper = NurbsCurve::bezier(
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 3.0),
+                Point::new(2.0, 0.0),
+            ],
+            Some(vec![1.0, w, 1.0]),
+        )
+        .unwrap();
+        let lower = NurbsCurve::bezier(
+            vec![
+                Point::new(2.0, 0.0),
+                Point::new(1.5, -1.0),
+                Point::new(0.5, -2.0),
+                Point::new(0.0, 0.0),
+            ],
+            Some(vec![1.0, 1.0 / w, w, 1.0]),
+        )
+        .unwrap();
+        Domain::new(vec![upper, lower]).unwrap()
+    }
+
+    /// The premise of the band's reach, measured: every monotone box's control points (whose
+    /// hull holds the box's curve) lie within the joint gap plus the rounding bound of
+    /// [`relative_band_margin`] *before* its safety factor (the split part of it alone would
+    /// do) of its piece's control box; on the paper's domains, the GWN shapes, rational pieces
+    /// of weight ratio up to 1e6, and boxes refined up to 4096 times, shared as a classifier
+    /// shares them.
+    #[test]
+    fn band_margin_covers_the_boxes_rounding() {
+        let mut domains: Vec<(String, Domain)> = rs_testkit::all_cases()
+            .into_iter()
+            .map(|c| (c.name, c.domain))
+            .collect();
+        for name in ["butterfly", "rose", "fish", "bubble", "twirl"] {
+            let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
+            let d = rs_io::svg::domain_from_svg_file_with(&path, rs_io::svg::OpenSubpaths::Keep)
+                .unwrap();
+            domains.push((name.to_string(), d));
+        }
+        for w in [10.0, 1e3, 1e6] {
+            domains.push((format!("weights {w}"), heavy_weights(w)));
+        }
+        let mut checked = 0;
+        for (name, d) in &domains {
+            for subdivisions in [BoxOptions::default().subdivisions, 4096] {
+                let boxes = Arc::new(
+                    MonotoneBoxes::new(d, BoxOptions::default().with_subdivisions(subdivisions))
+                        .unwrap(),
+                );
+                let field = WindingField::build(d, BoxSource::Given(Arc::clone(&boxes)), 1e-12);
+                let index = field.boundary_index().unwrap();
+                let scale = coordinate_scale(boxes.bounding_box());
+                let bound = relative_band_margin(field.pieces(), boxes.subdivisions())
+                    / MARGIN_SAFETY
+                    * scale
+                    + field.joint_gap;
+                assert!(
+                    bound < field.reach,
+                    "{name}: {bound} vs reach {}",
+                    field.reach
+                );
+                for (b, &p) in boxes.boxes().iter().zip(&index.box_pieces) {
+                    let (lo, hi) = super::control_box(field.pieces()[p as usize].control_points());
+                    for i in 0..=b.piece().degree() {
+                        let c = b.piece().control_point(i);
+                        let out = (lo.x - c.x).max(c.x - hi.x).max(lo.y - c.y).max(c.y - hi.y);
+                        assert!(
+                            out <= bound,
+                            "{name} ({subdivisions}): {c:?} {out} > {bound}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked} control points checked");
+    }
+
+    /// The margin is per field: a few `1e-12` of the scale for cubic polynomial pieces (not the
+    /// worst case of every input the limits allow), larger for larger weight ratios.
+    #[test]
+    fn band_margin_grows_with_degree_weights_and_boxes() {
+        let cubic = heavy_weights(1.0);
+        let m = relative_band_margin(
+            &cubic
+                .bezier_pieces()
+                .into_iter()
+                .map(|(_, b)| b)
+                .collect::<Vec<_>>(),
+            32,
+        );
+        assert!(m > 1e-12 && m < 5e-12, "{m}");
+        let heavy = heavy_weights(1e3);
+        let pieces: Vec<_> = heavy.bezier_pieces().into_iter().map(|(_, b)| b).collect();
+        let w = relative_band_margin(&pieces, 32);
+        assert!(w > 900.0 * m, "{w} vs {m}");
+        assert!(relative_band_margin(&pieces, 4096) > 10.0 * w);
+    }
 
     #[test]
     fn fill_rules_parse_from_their_names() {
