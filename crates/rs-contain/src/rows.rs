@@ -75,9 +75,10 @@ impl Rows {
         self
     }
 
-    /// The row of height `y`, clamped to the rows (row 0 for NaN).
+    /// The row of height `y`, clamped to the rows (row 0 for NaN). Monotone in `y`, rounding
+    /// included: a height in a higher row is higher.
     #[inline]
-    fn row(&self, y: f64) -> usize {
+    pub(crate) fn row(&self, y: f64) -> usize {
         let last = self.start.len() - 2;
         if last == 0 {
             return 0;
@@ -99,16 +100,20 @@ impl Rows {
         &self.items[self.start[r] as usize..self.start[r + 1] as usize]
     }
 
+    /// The items of row `r`, in the order they were given.
+    pub(crate) fn items_of(&self, r: usize) -> &[u32] {
+        &self.items[self.start[r] as usize..self.start[r + 1] as usize]
+    }
+
+    /// The number of rows.
+    pub(crate) fn len(&self) -> usize {
+        self.start.len() - 1
+    }
+
     /// The number of registrations (items counted once per row they are in).
     #[cfg(test)]
     pub(crate) fn registrations(&self) -> usize {
         self.items.len()
-    }
-
-    /// The number of rows.
-    #[cfg(test)]
-    pub(crate) fn rows(&self) -> usize {
-        self.start.len() - 1
     }
 }
 
@@ -195,7 +200,7 @@ mod tests {
                 }
             }
             assert!(
-                rows.registrations() <= REGISTRATIONS_PER_BOX * boxes.len() + rows.rows(),
+                rows.registrations() <= REGISTRATIONS_PER_BOX * boxes.len() + rows.len(),
                 "{name}: {} registrations of {} boxes",
                 rows.registrations(),
                 boxes.len()

@@ -9,6 +9,7 @@ mod fast;
 mod lazy_tests;
 mod on_boundary;
 mod raycast;
+mod span_rows;
 mod sum;
 
 use rs_boxes::{BoxError, BoxGrid, BoxOptions, MonotoneBoxes};

@@ -363,6 +363,13 @@ impl WindingSum {
         self.crossings += i64::from(up_a) - i64::from(up_b);
     }
 
+    /// Adds `n` signed crossings of chords lying wholly left of the query, counted before
+    /// (the sum of their [`WindingSum::left_crossing`]s).
+    #[inline]
+    pub(crate) fn add_left_crossings(&mut self, n: i64) {
+        self.crossings += n;
+    }
+
     /// [`ChainEnds::add_to`] scaling each factor by its own power of two: any finite
     /// coordinates. A chain with `q` on the segment `s e` or an end within `1e-140` of `q`
     /// takes its two `atan2`s.
