@@ -452,7 +452,8 @@ enum Kind {
 /// of their height, and in its row a query adds the crossings of the leaves spanning the row
 /// wholly left of it by one binary search (their chords' crossings summed beforehand, sorted
 /// by their right sides), and visits the few others one by one (half the walk's time on the
-/// GWN paper's large shapes, the same values bit for bit).
+/// GWN paper's large shapes, the same values bit for bit); a row with more than 64 others is
+/// left to the walk.
 ///
 /// # Examples
 ///
@@ -657,14 +658,16 @@ impl<'a> FastWindingField<'a> {
             // The pieces whose leaf holds q, refined in boundary order as the walk refines
             // them (their coincidence terms add in the same order).
             let mut hits: SmallVec<[u32; 8]> = SmallVec::new();
-            stats.curve_evaluations += rows.add(q, &mut sum, &mut hits);
-            hits.sort_unstable();
-            for p in hits {
-                if skip.binary_search(&p).is_err() {
-                    self.refine_piece(p as usize, q, &mut sum, stats);
+            if let Some(decided) = rows.add(q, &mut sum, &mut hits) {
+                stats.curve_evaluations += decided;
+                hits.sort_unstable();
+                for p in hits {
+                    if skip.binary_search(&p).is_err() {
+                        self.refine_piece(p as usize, q, &mut sum, stats);
+                    }
                 }
+                return sum;
             }
-            return sum;
         }
         // A NaN ordinate takes the walk (no row is its).
         if let Some(rows) = self.rows.as_ref().filter(|_| !q.y.is_nan()) {
@@ -1086,8 +1089,18 @@ mod tests {
         Domain::new(curves).unwrap()
     }
 
+    /// A comb of 600 teeth as tall as the comb, one polyline: its rows coarsen, and the rows
+    /// holding the teeth's ends are left to the walk.
+    fn comb() -> Domain {
+        let teeth: Vec<Point> = (0..1200)
+            .map(|k| Point::new((k / 2) as f64, if (k + 1) % 4 < 2 { 0.0 } else { 100.0 }))
+            .collect();
+        Domain::new(vec![rs_spline::polyline(&teeth).unwrap()]).unwrap()
+    }
+
     /// Reading a large field's span rows gives the walk's sums bit for bit, and the same
-    /// near marks: on the GWN paper's three large shapes and a field of shared heights, at
+    /// near marks: on the GWN paper's three large shapes, a field of shared heights and a comb
+    /// (some of whose rows are left to the walk), at
     /// every leaf's box sides, its chord's ends and the floats beside them, on the pieces'
     /// ends (where coincidence terms add) with and without the piece skipped, and at random
     /// points.
@@ -1100,14 +1113,15 @@ mod tests {
                 .unwrap();
             domains.push((name.to_string(), d));
         }
+        domains.push(("comb".to_string(), comb()));
         for (name, d) in domains {
             let field = WindingField::new(&d, crate::DEFAULT_RELATIVE_TOLERANCE).unwrap();
             let fast = FastWindingField::new(&field);
-            assert!(
-                fast.span_rows.is_some(),
-                "{name}: {} pieces",
-                field.pieces().len()
-            );
+            let rows = fast.span_rows.as_ref();
+            assert!(rows.is_some(), "{name}: {} pieces", field.pieces().len());
+            if name == "comb" {
+                assert!(rows.is_some_and(|r| r.rows_left_to_walk() > 0), "{name}");
+            }
             let mut queries: Vec<(Point, Vec<u32>)> = Vec::new();
             let around = |v: f64| [v.next_down(), v, v.next_up()];
             for l in leaves(&fast.nodes, &fast.chords) {

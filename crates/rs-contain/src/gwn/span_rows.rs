@@ -38,16 +38,36 @@ struct Span {
     crossings: i32,
 }
 
-/// The leaves by rows (see the module): per row, its spans and its other leaves.
+/// Where a row's spans and other leaves start in [`SpanRows`]' lists (the next row's start
+/// ends them).
+#[derive(Clone, Copy, Debug, Default)]
+struct RowStart {
+    spans: u32,
+    /// Its other leaves' start, with [`WALK`] set for a row left to the walk (which keeps
+    /// none).
+    loose: u32,
+}
+
+/// The flag of a row left to the walk ([`MOST_LOOSE`]) in [`RowStart::loose`].
+const WALK: u32 = 1 << 31;
+
+impl RowStart {
+    /// Its other leaves' start.
+    fn loose(self) -> usize {
+        (self.loose & !WALK) as usize
+    }
+}
+
+/// The leaves by rows (see the module): per row, its spans and its other leaves (indices into
+/// the leaves given, in boundary order).
 #[derive(Clone, Debug)]
 pub(super) struct SpanRows {
     rows: Rows,
-    /// Row `r`'s spans are `spans[span_start[r]..span_start[r + 1]]`.
-    span_start: Vec<u32>,
+    /// Per row and one past the last: where its spans and its other leaves start (see
+    /// [`RowStart`]).
+    starts: Vec<RowStart>,
     spans: Vec<Span>,
-    /// Row `r`'s other leaves (indices into the leaves given), in boundary order, are
-    /// `loose[loose_start[r]..loose_start[r + 1]]`.
-    loose_start: Vec<u32>,
+
     loose: Vec<u32>,
     leaves: Vec<Leaf>,
 }
@@ -58,6 +78,12 @@ const ROWS_PER_LEAF: usize = 4;
 /// Registrations allowed per leaf on average before the rows coarsen (a leaf as tall as the
 /// field would otherwise be in every row).
 const REGISTRATIONS_PER_LEAF: usize = 16;
+
+/// A row with more leaves than this not spanning it is left to the walk: a query there would
+/// visit them one by one (a comb of thousands of teeth as tall as the field, whose ends share
+/// the coarsened rows at its top and bottom), where the walk decides whole runs of them by
+/// their chain's chord.
+const MOST_LOOSE: usize = 64;
 
 impl SpanRows {
     /// The rows of `leaves` (in boundary order).
@@ -72,8 +98,9 @@ impl SpanRows {
             ROWS_PER_LEAF * leaves.len(),
             REGISTRATIONS_PER_LEAF,
         );
-        let (mut span_start, mut spans) = (vec![0u32], Vec::new());
-        let (mut loose_start, mut loose) = (vec![0u32], Vec::new());
+        let mut starts = Vec::with_capacity(rows.len() + 1);
+        starts.push(RowStart::default());
+        let (mut spans, mut loose) = (Vec::new(), Vec::new());
         for r in 0..rows.len() {
             let first = spans.len();
             for &i in rows.items_of(r) {
@@ -107,14 +134,20 @@ impl SpanRows {
             for k in (0..row.len().saturating_sub(1)).rev() {
                 row[k].least_lo_x = row[k].lo_x.min(row[k + 1].least_lo_x);
             }
-            span_start.push(spans.len() as u32);
-            loose_start.push(loose.len() as u32);
+            let loose_first = starts[r].loose();
+            if loose.len() - loose_first > MOST_LOOSE {
+                loose.truncate(loose_first);
+                starts[r].loose |= WALK;
+            }
+            starts.push(RowStart {
+                spans: spans.len() as u32,
+                loose: loose.len() as u32,
+            });
         }
         Self {
             rows,
-            span_start,
+            starts,
             spans,
-            loose_start,
             loose,
             leaves,
         }
@@ -124,19 +157,23 @@ impl SpanRows {
     /// [`WindingSum::left_crossing`] counts them), and pushes onto `hits` the pieces whose
     /// leaf's box holds `q` (in no particular order), for a `q` with no NaN coordinate; a leaf
     /// above, below or right of `q` adds nothing. Returns the leaves decided by their chord
-    /// one by one.
+    /// one by one; or `None`, adding nothing, if `q`'s row is left to the walk.
     #[inline]
     pub(super) fn add(
         &self,
         q: Point,
         sum: &mut WindingSum,
         hits: &mut SmallVec<[u32; 8]>,
-    ) -> usize {
+    ) -> Option<usize> {
         if !self.rows.spans(q.y) {
-            return 0;
+            return Some(0);
         }
         let r = self.rows.row(q.y);
-        let spans = &self.spans[self.span_start[r] as usize..self.span_start[r + 1] as usize];
+        let (start, end) = (self.starts[r], self.starts[r + 1]);
+        if start.loose & WALK != 0 {
+            return None;
+        }
+        let spans = &self.spans[start.spans as usize..end.spans as usize];
         let left = spans.partition_point(|s| s.hi_x < q.x);
         if left > 0 {
             sum.add_left_crossings(i64::from(spans[left - 1].crossings));
@@ -150,7 +187,7 @@ impl SpanRows {
             }
         }
         let mut decided = 0;
-        for &i in &self.loose[self.loose_start[r] as usize..self.loose_start[r + 1] as usize] {
+        for &i in &self.loose[start.loose()..end.loose()] {
             let l = &self.leaves[i as usize];
             if misses_cut(l.lo, l.hi, q) {
                 continue;
@@ -162,6 +199,12 @@ impl SpanRows {
                 hits.push(l.piece);
             }
         }
-        decided
+        Some(decided)
+    }
+
+    /// The rows left to the walk. (A probe for the tests.)
+    #[cfg(test)]
+    pub(super) fn rows_left_to_walk(&self) -> usize {
+        self.starts.iter().filter(|s| s.loose & WALK != 0).count()
     }
 }
