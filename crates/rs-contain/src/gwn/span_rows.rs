@@ -58,16 +58,16 @@ impl RowStart {
     }
 }
 
-/// The leaves by rows (see the module): per row, its spans and its other leaves (indices into
-/// the leaves given, in boundary order).
+/// The leaves by rows (see the module): per row, its spans and its other leaves.
 #[derive(Clone, Debug)]
 pub(super) struct SpanRows {
     rows: Rows,
     /// Per row and one past the last: where its spans and its other leaves start (see
     /// [`RowStart`]).
     starts: Vec<RowStart>,
+    /// The rows' spans, row after row.
     spans: Vec<Span>,
-
+    /// The rows' other leaves (indices into `leaves`, in boundary order), row after row.
     loose: Vec<u32>,
     leaves: Vec<Leaf>,
 }
@@ -113,7 +113,8 @@ impl SpanRows {
                     && rows.row(a.y) != r
                     && rows.row(b.y) != r;
                 if spanning {
-                    // `left_crossing`: +1 for each end at or above the query, -1 for the end.
+                    // As `left_crossing` counts it: +1 if the start is at or above the
+                    // query, -1 if the end is.
                     let crossing = i32::from(rows.row(a.y) > r) - i32::from(rows.row(b.y) > r);
                     spans.push(Span {
                         hi_x: l.hi.x,
