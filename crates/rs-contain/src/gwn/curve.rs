@@ -109,26 +109,49 @@ pub(crate) fn polygon_area(p: &[Point]) -> f64 {
 /// A query on an edge's line within that rounding is not outside it: on the closing edge, the
 /// chord, the chord's angle at `q` would be `+-pi`, decided by the rounding (a point of the
 /// chord of a quarter circle, with the two other edges' sides clear, got half a turn wrong).
+///
+/// The answer is `Far` if `q` is outside some edge by more than `reach`, else `Near` if it is
+/// outside some edge, whatever the order the edges are tested in: every edge is tested, without
+/// a branch, on arrays of three and four points (quadratic and cubic sub-curves) unrolled.
+#[inline(always)]
 fn outside_convex(p: &[Point], area: f64, q: Point, reach: f64) -> Outside {
     if area == 0.0 {
         return Outside::No;
     }
+    if let Ok(p) = <&[Point; 4]>::try_from(p) {
+        return outside_edges(p, area, q, reach);
+    }
+    if let Ok(p) = <&[Point; 3]>::try_from(p) {
+        return outside_edges(p, area, q, reach);
+    }
+    outside_edges(p, area, q, reach)
+}
+
+/// [`outside_convex`]'s tests of every edge of `p` (a slice, or an array whose length the
+/// compiler then knows), with `area` not 0.
+#[inline(always)]
+fn outside_edges<P: AsRef<[Point]> + ?Sized>(p: &P, area: f64, q: Point, reach: f64) -> Outside {
+    let p = p.as_ref();
     let n = p.len();
-    let mut seen = Outside::No;
+    // `c` below is rounded by a few units in the last place of `|e| |d|`.
+    let rounding = 4.0 * f64::EPSILON;
+    let (mut out, mut far) = (false, false);
     for i in 0..n {
         let (a, b) = (p[i], p[if i + 1 == n { 0 } else { i + 1 }]);
         let (e, d) = (b - a, q - a);
         let c = e.cross(d);
-        // `c` is rounded by a few units in the last place of `|e| |d|`.
-        let rounding = 4.0 * f64::EPSILON;
-        if area * c < 0.0 && c * c > rounding * rounding * e.dot(e) * d.dot(d) {
-            if c * c > reach * reach * e.dot(e) {
-                return Outside::Far;
-            }
-            seen = Outside::Near;
-        }
+        let ee = e.dot(e);
+        let outside = (area * c < 0.0) & (c * c > rounding * rounding * ee * d.dot(d));
+        out |= outside;
+        far |= outside & (c * c > reach * reach * ee);
     }
-    seen
+    if far {
+        Outside::Far
+    } else if out {
+        Outside::Near
+    } else {
+        Outside::No
+    }
 }
 
 /// Where `q` lies against the box with corners `lo` and `hi` (see [`Outside`]).
@@ -638,4 +661,76 @@ pub(crate) fn settle<S: SubCurves, K: ChordSink>(
         return None;
     }
     Some(convex)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The edge tests with the first edge found outside by more than `reach` returned at once
+    /// (the loop `outside_convex` had before it tested every edge).
+    fn first_far(p: &[Point], area: f64, q: Point, reach: f64) -> Outside {
+        let n = p.len();
+        let mut seen = Outside::No;
+        for i in 0..n {
+            let (a, b) = (p[i], p[if i + 1 == n { 0 } else { i + 1 }]);
+            let (e, d) = (b - a, q - a);
+            let c = e.cross(d);
+            let rounding = 4.0 * f64::EPSILON;
+            if area * c < 0.0 && c * c > rounding * rounding * e.dot(e) * d.dot(d) {
+                if c * c > reach * reach * e.dot(e) {
+                    return Outside::Far;
+                }
+                seen = Outside::Near;
+            }
+        }
+        seen
+    }
+
+    /// Testing every edge gives the answer of stopping at the first far one, on convex
+    /// polygons of 3, 4 and 6 points (the arrays and the general loop) at queries inside, on
+    /// the edges' lines, just outside, within and beyond the reach.
+    #[test]
+    fn every_edge_tested_gives_the_first_far_edges_answer() {
+        let mut seed = 5u64;
+        let mut unit = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut seen = [0usize; 3];
+        for n in [3usize, 4, 6] {
+            for _ in 0..2000 {
+                // A convex polygon: points on an ellipse at increasing angles.
+                let (rx, ry, turn) = (0.5 + unit(), 0.5 + unit(), unit());
+                let p: Vec<Point> = (0..n)
+                    .map(|k| {
+                        let t = std::f64::consts::TAU * (k as f64 + turn * 0.9) / n as f64;
+                        Point::new(rx * t.cos(), ry * t.sin())
+                    })
+                    .collect();
+                let area = polygon_area(&p);
+                for _ in 0..20 {
+                    let k = (unit() * n as f64) as usize % n;
+                    let (a, b) = (p[k], p[(k + 1) % n]);
+                    let along = a + (b - a) * unit();
+                    let step = [0.0, 1e-17, 1e-9, 1e-3, 0.3][(unit() * 5.0) as usize % 5];
+                    let normal = Point::new(b.y - a.y, a.x - b.x) * (step * area.signum());
+                    for q in [
+                        along + normal,
+                        along - normal,
+                        Point::new(unit() - 0.5, unit() - 0.5),
+                    ] {
+                        for reach in [0.0, 1e-6, 0.1] {
+                            let want = first_far(&p, area, q, reach);
+                            assert_eq!(outside_convex(&p, area, q, reach), want, "{p:?} {q:?}");
+                            seen[want as usize] += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&k| k > 1000), "{seen:?}");
+    }
 }
