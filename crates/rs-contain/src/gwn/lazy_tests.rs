@@ -291,3 +291,45 @@ fn hierarchies_wait_for_a_second_query() {
         );
     }
 }
+
+/// With no tolerance at all (the band only the rounding margins), and on rational pieces of
+/// weight ratios up to the limit, every point of the band is still one the walks find near and
+/// lies in its piece's frame: the per-field margin, not twice the tolerance, covers the
+/// rounding there.
+#[test]
+fn the_band_is_near_without_tolerance_and_with_heavy_weights() {
+    let mut domains = fixtures();
+    for w in [10.0, 1e3, 1e6] {
+        domains.push((format!("weights {w}"), super::tests::heavy_weights(w)));
+    }
+    let mut band = 0;
+    for (name, d) in domains {
+        for tolerance in [0.0, 1e-15, DEFAULT_RELATIVE_TOLERANCE] {
+            let field = WindingField::new(&d, tolerance).expect("field");
+            let fast = FastWindingField::new(&field);
+            for q in queries(&d, 100, 0x0ba5e) {
+                if !in_band(&field, q) && field.passages(q).is_empty() {
+                    continue;
+                }
+                band += 1;
+                let mut sum = WindingSum::tracking(q, field.near_reach());
+                field.add_pieces(q, &[], &mut sum, &mut QueryStats::default());
+                assert!(
+                    sum.near(),
+                    "{name} ({tolerance}): {q:?} not near by the walk"
+                );
+                let (mut stack, mut stats) = ([0; super::fast::STACK], QueryStats::default());
+                let fast_sum = fast.crossing_sum(q, &[], &mut stack, &mut stats);
+                assert!(
+                    fast_sum.near(),
+                    "{name} ({tolerance}): {q:?} not near by the fast walk"
+                );
+                assert!(
+                    field.frames.iter().any(|f| !outside(f.lo, f.hi, q)),
+                    "{name} ({tolerance}): {q:?} outside every frame"
+                );
+            }
+        }
+    }
+    assert!(band > 1000, "{band} band points");
+}

@@ -22,16 +22,17 @@ pub(super) struct Leaf {
 }
 
 /// A leaf spanning a row: every height of the row lies strictly inside its box's, and its
-/// chord's ends lie in other rows, so its chord crosses every height of the row alike.
+/// chord's ends lie in other rows, so its chord crosses every height of the row alike. A row's
+/// spans, sorted by their right sides, have their left sides in order too (a leaf whose box
+/// would reach left of one kept before it is kept with the row's other leaves instead): the
+/// spans right of a query that hold it come first, and the scan stops at the first that does
+/// not.
 #[derive(Clone, Copy, Debug)]
 struct Span {
     /// Its box's right side; the row's spans are sorted by it.
     hi_x: f64,
     /// Its box's left side.
     lo_x: f64,
-    /// The least `lo_x` of this span and those after it in the row: past a query's abscissa,
-    /// no later span holds the query.
-    least_lo_x: f64,
     piece: u32,
     /// The signed crossings of the chords of the row's spans up to this one (included): what
     /// they add for a query right of all of them.
@@ -103,6 +104,7 @@ impl SpanRows {
         let (mut spans, mut loose) = (Vec::new(), Vec::new());
         for r in 0..rows.len() {
             let first = spans.len();
+            let loose_first = starts[r].loose();
             for &i in rows.items_of(r) {
                 let l = &leaves[i as usize];
                 // The row of a height is monotone in it, rounding included: a height in a
@@ -116,26 +118,39 @@ impl SpanRows {
                     // As `left_crossing` counts it: +1 if the start is at or above the
                     // query, -1 if the end is.
                     let crossing = i32::from(rows.row(a.y) > r) - i32::from(rows.row(b.y) > r);
-                    spans.push(Span {
-                        hi_x: l.hi.x,
-                        lo_x: l.lo.x,
-                        least_lo_x: l.lo.x,
-                        piece: l.piece,
-                        crossings: crossing,
-                    });
+                    spans.push((
+                        i,
+                        Span {
+                            hi_x: l.hi.x,
+                            lo_x: l.lo.x,
+                            piece: l.piece,
+                            crossings: crossing,
+                        },
+                    ));
                 } else {
                     loose.push(i);
                 }
             }
             let row = &mut spans[first..];
-            row.sort_by(|s, t| s.hi_x.total_cmp(&t.hi_x));
-            for k in 1..row.len() {
-                row[k].crossings += row[k - 1].crossings;
+            row.sort_by(|s, t| s.1.hi_x.total_cmp(&t.1.hi_x));
+            // Left sides in order: a span reaching left of one kept before it joins the
+            // others.
+            let (mut kept, mut least, mut crossings) = (first, f64::NEG_INFINITY, 0);
+            for k in first..spans.len() {
+                let (i, mut s) = spans[k];
+                if s.lo_x >= least {
+                    least = s.lo_x;
+                    crossings += s.crossings;
+                    s.crossings = crossings;
+                    spans[kept] = (i, s);
+                    kept += 1;
+                } else {
+                    loose.push(i);
+                }
             }
-            for k in (0..row.len().saturating_sub(1)).rev() {
-                row[k].least_lo_x = row[k].lo_x.min(row[k + 1].least_lo_x);
-            }
-            let loose_first = starts[r].loose();
+            spans.truncate(kept);
+            // Boundary order (the hits are sorted anyway; this keeps the list as documented).
+            loose[loose_first..].sort_unstable();
             if loose.len() - loose_first > MOST_LOOSE {
                 loose.truncate(loose_first);
                 starts[r].loose |= WALK;
@@ -148,7 +163,7 @@ impl SpanRows {
         Self {
             rows,
             starts,
-            spans,
+            spans: spans.into_iter().map(|(_, s)| s).collect(),
             loose,
             leaves,
         }
@@ -179,13 +194,9 @@ impl SpanRows {
         if left > 0 {
             sum.add_left_crossings(i64::from(spans[left - 1].crossings));
         }
-        for s in &spans[left..] {
-            if s.least_lo_x > q.x {
-                break;
-            }
-            if s.lo_x <= q.x {
-                hits.push(s.piece);
-            }
+        // Right of `left`, a span holds q exactly when its left side is not right of q.
+        for s in spans[left..].iter().take_while(|s| s.lo_x <= q.x) {
+            hits.push(s.piece);
         }
         let mut decided = 0;
         for &i in &self.loose[start.loose()..end.loose()] {
@@ -201,6 +212,17 @@ impl SpanRows {
             }
         }
         Some(decided)
+    }
+
+    /// Are every row's spans in order of both sides (so a query's scan stops at its first
+    /// span that does not hold it)? (A probe for the tests.)
+    #[cfg(test)]
+    pub(super) fn spans_in_order(&self) -> bool {
+        self.starts.windows(2).all(|w| {
+            self.spans[w[0].spans as usize..w[1].spans as usize]
+                .windows(2)
+                .all(|p| p[0].hi_x <= p[1].hi_x && p[0].lo_x <= p[1].lo_x)
+        })
     }
 
     /// The rows left to the walk. (A probe for the tests.)
