@@ -101,6 +101,12 @@ impl SpanRows {
         );
         let mut starts = Vec::with_capacity(rows.len() + 1);
         starts.push(RowStart::default());
+        // Per leaf, the rows of its box's bottom and top and of its chord's start and end,
+        // computed once for all the rows it is in.
+        let leaf_rows: Vec<[usize; 4]> = leaves
+            .iter()
+            .map(|l| [l.lo.y, l.hi.y, l.chord.0.y, l.chord.1.y].map(|y| rows.row(y)))
+            .collect();
         let (mut spans, mut loose) = (Vec::new(), Vec::new());
         for r in 0..rows.len() {
             let first = spans.len();
@@ -109,15 +115,12 @@ impl SpanRows {
                 let l = &leaves[i as usize];
                 // The row of a height is monotone in it, rounding included: a height in a
                 // higher row is higher than every height of row r, one in a lower row lower.
-                let (a, b) = l.chord;
-                let spanning = rows.row(l.lo.y) < r
-                    && rows.row(l.hi.y) > r
-                    && rows.row(a.y) != r
-                    && rows.row(b.y) != r;
+                let [bottom, top, a, b] = leaf_rows[i as usize];
+                let spanning = bottom < r && top > r && a != r && b != r;
                 if spanning {
                     // As `left_crossing` counts it: +1 if the start is at or above the
                     // query, -1 if the end is.
-                    let crossing = i32::from(rows.row(a.y) > r) - i32::from(rows.row(b.y) > r);
+                    let crossing = i32::from(a > r) - i32::from(b > r);
                     spans.push((
                         i,
                         Span {
