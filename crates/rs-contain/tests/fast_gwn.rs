@@ -140,11 +140,9 @@ fn far_queries_take_one_angle_per_chain() {
 /// `atan2` per edge, an independent reference) away from the curves.
 #[test]
 fn axom_shapes_match_dense_angle_sums() {
-    use rs_io::svg::{OpenSubpaths, domain_from_svg_file_with};
     use rs_testkit::{DensePolygon, NearBoundary};
-    for name in ["butterfly", "rose", "fish", "bubble", "twirl"] {
-        let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
-        let d = domain_from_svg_file_with(&path, OpenSubpaths::Keep).unwrap();
+    for name in rs_testkit::GWN_SHAPES {
+        let d = rs_testkit::gwn_shape(name);
         let field = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
         let fast = FastWindingField::new(&field);
         let size = d.bounding_box().diagonal();

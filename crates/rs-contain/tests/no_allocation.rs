@@ -3,7 +3,6 @@
 
 use rs_contain::baselines::halton_points;
 use rs_contain::{FastWindingField, WindingField};
-use rs_io::svg::{OpenSubpaths, domain_from_svg_file_with};
 use rs_spline::Point;
 use rs_spline::prelude::*;
 
@@ -22,8 +21,7 @@ fn queries(field: &WindingField) -> Vec<Point> {
 #[test]
 fn winding_queries_do_not_allocate() {
     for name in ["butterfly", "bubble", "twirl"] {
-        let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
-        let d = domain_from_svg_file_with(&path, OpenSubpaths::Keep).unwrap();
+        let d = rs_testkit::gwn_shape(name);
         let field = WindingField::new(&d, rs_contain::DEFAULT_RELATIVE_TOLERANCE).unwrap();
         let fast = FastWindingField::new(&field);
         let pts = queries(&field);

@@ -121,6 +121,16 @@ pub fn fixture_path(relative: &str) -> std::path::PathBuf {
     std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures")).join(relative)
 }
 
+/// The GWN paper's five shapes (`fixtures/axom-contours/`, LLNL Axom's contours).
+pub const GWN_SHAPES: [&str; 5] = ["butterfly", "rose", "fish", "bubble", "twirl"];
+
+/// The GWN paper's shape `name` (one of [`GWN_SHAPES`]) as drawn: its open subpaths stay open,
+/// for winding numbers (panics if missing).
+pub fn gwn_shape(name: &str) -> Domain {
+    let path = fixture_path(&format!("axom-contours/{name}.svg"));
+    rs_io::svg::domain_from_svg_file_with(&path, rs_io::svg::OpenSubpaths::Keep).unwrap()
+}
+
 /// The fixture `fixtures/inrs-paper/{name}.json` with its reference data (panics if missing).
 pub fn inrs_fixture(name: &str) -> FixtureMeta {
     FixtureMeta::load(&fixture_path(&format!("inrs-paper/{name}.json"))).unwrap()

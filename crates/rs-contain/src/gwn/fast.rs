@@ -448,12 +448,12 @@ enum Kind {
 /// subdivision hierarchy ([`CurveHierarchy`], built the second time a query needs it and kept;
 /// the first query walks the piece's sub-curves on the fly, with the same result).
 /// A query far from the boundary costs a few node tests; one near it visits the nodes along
-/// its ray. Fields of 33 to 16,384 pieces mostly answer without the walk: the leaves are kept by rows
-/// of their height, and in its row a query adds the crossings of the leaves spanning the row
-/// wholly left of it by one binary search (their chords' crossings summed beforehand, sorted
-/// by their right sides), and visits the few others one by one (half the walk's time on the
-/// GWN paper's large shapes, the same values bit for bit); a row with more than 64 others is
-/// left to the walk.
+/// its ray. Fields of 33 to 16,384 pieces mostly answer without the walk: the leaves are kept
+/// by rows of their height, and in its row a query adds the crossings of the leaves spanning
+/// the row wholly left of it by one binary search (their chords' crossings summed beforehand,
+/// sorted by their right sides), and visits the few others one by one (half the walk's time
+/// on the GWN paper's large shapes, the same values bit for bit); a row with more than 64
+/// others is left to the walk.
 ///
 /// # Examples
 ///
@@ -1110,10 +1110,7 @@ mod tests {
     fn span_rows_give_the_walks_sums_bit_for_bit() {
         let mut domains = vec![("shared heights".to_string(), shared_heights())];
         for name in ["butterfly", "rose", "fish"] {
-            let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
-            let d = rs_io::svg::domain_from_svg_file_with(&path, rs_io::svg::OpenSubpaths::Keep)
-                .unwrap();
-            domains.push((name.to_string(), d));
+            domains.push((name.to_string(), rs_testkit::gwn_shape(name)));
         }
         domains.push(("comb".to_string(), comb()));
         for (name, d) in domains {

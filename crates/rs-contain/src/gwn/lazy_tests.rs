@@ -14,11 +14,8 @@ use crate::{Classifier, ContainOptions, DEFAULT_RELATIVE_TOLERANCE, Location, Po
 /// The five GWN shapes, the paper's three domains and the 500-petal flower.
 fn fixtures() -> Vec<(String, Domain)> {
     let mut out = Vec::new();
-    for name in ["butterfly", "rose", "fish", "bubble", "twirl"] {
-        let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
-        let d = rs_io::svg::domain_from_svg_file_with(&path, rs_io::svg::OpenSubpaths::Keep)
-            .expect("GWN shape");
-        out.push((name.to_string(), d));
+    for name in rs_testkit::GWN_SHAPES {
+        out.push((name.to_string(), rs_testkit::gwn_shape(name)));
     }
     for name in [
         "inrs-paper/s3_m_shape.json",
@@ -69,6 +66,24 @@ fn queries(d: &Domain, random: usize, seed: u64) -> Vec<Point> {
     pts
 }
 
+/// Asserts that the band point `q` is one both walks (the per-curve field's and the fast
+/// field's) find near, and that it lies in some piece's frame.
+fn assert_near_by_both_walks(name: &str, field: &WindingField, fast: &FastWindingField, q: Point) {
+    let mut sum = WindingSum::tracking(q, field.near_reach());
+    field.add_pieces(q, &[], &mut sum, &mut QueryStats::default());
+    assert!(
+        sum.near(),
+        "{name}: {q:?} in the band, not near by the walk"
+    );
+    let (mut stack, mut stats) = ([0; super::fast::STACK], QueryStats::default());
+    let fast_sum = fast.crossing_sum(q, &[], &mut stack, &mut stats);
+    assert!(fast_sum.near(), "{name}: {q:?} not near by the fast walk");
+    assert!(
+        field.frames.iter().any(|f| !outside(f.lo, f.hi, q)),
+        "{name}: {q:?} outside every frame"
+    );
+}
+
 /// `q` in the band without the frames' gate: some box is near it.
 fn in_band(field: &WindingField, q: Point) -> bool {
     let index = field.boundary_index().expect("boxes");
@@ -101,19 +116,7 @@ fn the_band_is_near_and_gating_changes_no_answer() {
             let has_passages = !eager.passages(q).is_empty();
             if on || has_passages {
                 band += 1;
-                let mut sum = WindingSum::tracking(q, eager.near_reach());
-                eager.add_pieces(q, &[], &mut sum, &mut QueryStats::default());
-                assert!(
-                    sum.near(),
-                    "{name}: {q:?} in the band, not near by the walk"
-                );
-                let (mut stack, mut stats) = ([0; super::fast::STACK], QueryStats::default());
-                let fast_sum = fast_eager.crossing_sum(q, &[], &mut stack, &mut stats);
-                assert!(fast_sum.near(), "{name}: {q:?} not near by the fast walk");
-                assert!(
-                    eager.frames.iter().any(|f| !outside(f.lo, f.hi, q)),
-                    "{name}: {q:?} outside every frame"
-                );
+                assert_near_by_both_walks(&name, &eager, &fast_eager, q);
             }
             let want = if on {
                 Location::Boundary
@@ -312,22 +315,7 @@ fn the_band_is_near_without_tolerance_and_with_heavy_weights() {
                     continue;
                 }
                 band += 1;
-                let mut sum = WindingSum::tracking(q, field.near_reach());
-                field.add_pieces(q, &[], &mut sum, &mut QueryStats::default());
-                assert!(
-                    sum.near(),
-                    "{name} ({tolerance}): {q:?} not near by the walk"
-                );
-                let (mut stack, mut stats) = ([0; super::fast::STACK], QueryStats::default());
-                let fast_sum = fast.crossing_sum(q, &[], &mut stack, &mut stats);
-                assert!(
-                    fast_sum.near(),
-                    "{name} ({tolerance}): {q:?} not near by the fast walk"
-                );
-                assert!(
-                    field.frames.iter().any(|f| !outside(f.lo, f.hi, q)),
-                    "{name} ({tolerance}): {q:?} outside every frame"
-                );
+                assert_near_by_both_walks(&format!("{name} ({tolerance})"), &field, &fast, q);
             }
         }
     }

@@ -851,11 +851,8 @@ mod tests {
             .into_iter()
             .map(|c| (c.name, c.domain))
             .collect();
-        for name in ["butterfly", "rose", "fish", "bubble", "twirl"] {
-            let path = rs_testkit::fixture_path(&format!("axom-contours/{name}.svg"));
-            let d = rs_io::svg::domain_from_svg_file_with(&path, rs_io::svg::OpenSubpaths::Keep)
-                .unwrap();
-            domains.push((name.to_string(), d));
+        for name in rs_testkit::GWN_SHAPES {
+            domains.push((name.to_string(), rs_testkit::gwn_shape(name)));
         }
         for w in [10.0, 1e3, 1e6] {
             domains.push((format!("weights {w}"), heavy_weights(w)));
