@@ -23,6 +23,84 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + tail
 }
 
+/// Vectors [`head_products`] multiplies side by side.
+const DOT_LANES: usize = 4;
+
+/// `heads[e * k0 + i] = dot(q_i, columns[e])` for the `k0 = q.len() / n` columns `q_i` of `q`
+/// (`n` rows, column-major), each bit for bit [`dot`]'s (the same eight sums in the same
+/// order, products commute, no fused multiply-add): one pass over `q`, each of its columns
+/// multiplied by [`DOT_LANES`] of `columns` at a time while it is in the cache, with the
+/// best instruction set at hand (chosen at run time).
+fn head_products(q: &[f64], n: usize, columns: &[&[f64]], heads: &mut [f64]) {
+    pulp::Arch::new().dispatch(HeadProducts {
+        q,
+        n,
+        columns,
+        heads,
+    });
+}
+
+/// [`head_products`] as an operation `pulp` compiles for each instruction set.
+struct HeadProducts<'a> {
+    q: &'a [f64],
+    n: usize,
+    columns: &'a [&'a [f64]],
+    heads: &'a mut [f64],
+}
+
+impl pulp::WithSimd for HeadProducts<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Self {
+            q,
+            n,
+            columns,
+            heads,
+        } = self;
+        let k0 = q.len() / n.max(1);
+        for (i, qi) in q.chunks_exact(n.max(1)).enumerate() {
+            let mut groups = columns.chunks_exact(DOT_LANES);
+            let mut e = 0;
+            for group in groups.by_ref() {
+                let x = [group[0], group[1], group[2], group[3]];
+                for d in dots4(x, qi) {
+                    heads[e * k0 + i] = d;
+                    e += 1;
+                }
+            }
+            for &column in groups.remainder() {
+                heads[e * k0 + i] = dot(column, qi);
+                e += 1;
+            }
+        }
+    }
+}
+
+/// [`dot`] of each of four vectors `x` with `v`, side by side (each its own eight sums).
+#[inline(always)]
+fn dots4(x: [&[f64]; DOT_LANES], v: &[f64]) -> [f64; DOT_LANES] {
+    let whole = v.len() / 8 * 8;
+    let mut acc = [[0.0f64; 8]; DOT_LANES];
+    for (s, y) in v[..whole].chunks_exact(8).enumerate() {
+        for (acc, x) in acc.iter_mut().zip(&x) {
+            let x = &x[8 * s..8 * s + 8];
+            for k in 0..8 {
+                acc[k] += x[k] * y[k];
+            }
+        }
+    }
+    let mut out = [0.0; DOT_LANES];
+    for ((o, acc), x) in out.iter_mut().zip(&acc).zip(&x) {
+        let mut tail = 0.0;
+        for (a, b) in x[whole..].iter().zip(&v[whole..]) {
+            tail += a * b;
+        }
+        *o = acc.iter().sum::<f64>() + tail;
+    }
+    out
+}
+
 /// `y += alpha x`.
 fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
@@ -65,16 +143,45 @@ impl PassiveQr {
         self.cols.len()
     }
 
-    /// Appends column `a` (candidate `j`) unless it is numerically in the span of the passive
-    /// columns (`false` then: `|R_kk| <= 1e-12 |a|`) or the set is full.
+    /// Appends the columns `a_j` (column `j` of `a`, `n` rows, column-major) of `entering` in
+    /// order, each as [`PassiveQr::insert_with`] appends it; `added(j, inserted)` reports each.
+    ///
+    /// Each `Q^T a_j` is the one inserting the columns one by one computes, bit for bit, with
+    /// less memory traffic: an insert changes only the columns of `Q` from its position on, so
+    /// the entries of every entering column against the columns before the first insert's
+    /// position `k0` are taken in one pass over them ([`head_products`]), and only the rest
+    /// after each insert. At degree 40 `Q` holds `861^2` values (6 MB, past the caches): one
+    /// pass over them instead of one per entering column.
+    fn insert_all(&mut self, a: &[f64], entering: &[usize], mut added: impl FnMut(usize, bool)) {
+        let (n, k0) = (self.n, self.cols.len());
+        let column = |j: usize| &a[j * n..(j + 1) * n];
+        let mut heads = vec![0.0; entering.len() * k0];
+        let columns: Vec<&[f64]> = entering.iter().map(|&j| column(j)).collect();
+        head_products(&self.q[..k0 * n], n, &columns, &mut heads);
+        for (e, &j) in entering.iter().enumerate() {
+            let mut c = vec![0.0; n];
+            c[..k0].copy_from_slice(&heads[e * k0..(e + 1) * k0]);
+            let inserted = self.insert_with(column(j), j, k0, c);
+            added(j, inserted);
+        }
+    }
+
+    /// [`PassiveQr::insert_with`] with no entry of `Q^T a` known.
+    #[cfg(test)]
     fn insert(&mut self, a: &[f64], j: usize) -> bool {
+        self.insert_with(a, j, 0, vec![0.0; self.n])
+    }
+
+    /// Appends column `a` (candidate `j`) unless it is numerically in the span of the passive
+    /// columns (`false` then: `|R_kk| <= 1e-12 |a|`) or the set is full; `c` (`n` entries)
+    /// holds `(Q^T a)[..known]` already.
+    fn insert_with(&mut self, a: &[f64], j: usize, known: usize, mut c: Vec<f64>) -> bool {
         let (n, k) = (self.n, self.cols.len());
         if k == n {
             return false;
         }
-        // c = Q^T a.
-        let mut c = vec![0.0; n];
-        for (i, ci) in c.iter_mut().enumerate() {
+        // c = Q^T a (its first `known` entries given).
+        for (i, ci) in c.iter_mut().enumerate().skip(known) {
             *ci = dot(&self.q[i * n..(i + 1) * n], a);
         }
         let tail = c[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -349,15 +456,15 @@ pub(crate) fn nnls(
             }
         }
         let mut added = 0;
-        for &j in &entering {
-            if qr.insert(column(j), j) {
+        qr.insert_all(a, &entering, |j, inserted| {
+            if inserted {
                 passive[j] = true;
                 x.push(0.0);
                 added += 1;
             } else {
                 blocked[j] = true;
             }
-        }
+        });
         if added == 0 {
             continue;
         }
@@ -566,6 +673,87 @@ mod tests {
         let s = nnls(&a, 2, &[1.0, 2.0], LH, |_| false);
         assert!(!s.stalled());
         assert_eq!(s.columns().len(), 2);
+    }
+
+    /// Values of many sizes and signs, from a fixed sequence.
+    fn values(count: usize, seed: u64) -> Vec<f64> {
+        let mut state = seed;
+        (0..count)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                let unit = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+                unit * 10f64.powi((state % 7) as i32 - 3)
+            })
+            .collect()
+    }
+
+    /// The products side by side are [`dot`]'s bit for bit: lengths with and without a tail
+    /// past the eight sums, groups of four columns and the rest.
+    #[test]
+    fn head_products_are_dot_bit_for_bit() {
+        for n in [1, 7, 8, 9, 23, 64, 231] {
+            let q = values(5 * n, n as u64);
+            for count in [1, 3, 4, 5, 9] {
+                let all = values(count * n, 1000 + count as u64);
+                let columns: Vec<&[f64]> = all.chunks_exact(n).collect();
+                let mut heads = vec![f64::NAN; count * 5];
+                head_products(&q, n, &columns, &mut heads);
+                for (e, column) in columns.iter().enumerate() {
+                    for (i, qi) in q.chunks_exact(n).enumerate() {
+                        let want = dot(qi, column);
+                        assert_eq!(
+                            heads[e * 5 + i].to_bits(),
+                            want.to_bits(),
+                            "n {n} e {e} i {i}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// Entering columns inserted together leave the factorisation one-by-one inserts leave,
+    /// bit for bit, including a column in the span of the others (refused) and a full set.
+    #[test]
+    fn inserting_together_is_inserting_one_by_one() {
+        let n = 13;
+        let mut a = values(n * 20, 7);
+        // Column 5 is column 1 + column 2: in their span once both are in.
+        for i in 0..n {
+            a[5 * n + i] = a[n + i] + a[2 * n + i];
+        }
+        let b = values(n, 3);
+        let batches: [&[usize]; 4] = [
+            &[0, 3],
+            &[1, 2, 5, 4, 6],
+            &[7, 8, 9, 10, 11, 12, 13],
+            &[14, 15, 16, 17, 18, 19],
+        ];
+        let mut one = PassiveQr::new(n, &b);
+        let mut together = PassiveQr::new(n, &b);
+        let mut refused = Vec::new();
+        for batch in batches {
+            let mut got = Vec::new();
+            together.insert_all(&a, batch, |j, inserted| got.push((j, inserted)));
+            let want: Vec<(usize, bool)> = batch
+                .iter()
+                .map(|&j| (j, one.insert(&a[j * n..(j + 1) * n], j)))
+                .collect();
+            assert_eq!(got, want);
+            refused.extend(got.iter().filter(|g| !g.1).map(|g| g.0));
+            // A removal between batches, as the inner loop makes.
+            one.remove(0);
+            together.remove(0);
+        }
+        // Column 5 in the span, and the last ones past a full set.
+        assert!(refused.contains(&5) && refused.contains(&19), "{refused:?}");
+        assert_eq!(together.cols, one.cols);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&together.q), bits(&one.q));
+        assert_eq!(bits(&together.r), bits(&one.r));
+        assert_eq!(bits(&together.qtb), bits(&one.qtb));
     }
 
     #[test]
