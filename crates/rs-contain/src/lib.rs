@@ -53,6 +53,7 @@ mod error;
 mod filled_area;
 mod gwn;
 mod halton;
+mod locality;
 mod location;
 mod locator;
 mod many;

@@ -18,6 +18,7 @@ use super::curve::{
 use super::span_rows::{Leaf, SpanRows};
 use super::sum::{BATCH, ChordSink, WindingSum};
 use super::{QueryStats, WindingField};
+use crate::locality::locality_order;
 use crate::rows::Rows;
 use crate::{Location, PointQuery, PointSource};
 
@@ -517,6 +518,11 @@ const ROW_PIECES: usize = 32;
 /// on average plus the rows, would coarsen them.)
 const SPAN_ROW_PIECES: usize = 1 << 14;
 
+/// Points the batch queries put in their locality order at a time: the order takes 6 bytes a
+/// point of a block. (Measured on the GWN paper's shapes with 10^5 points: blocks of `2^15`
+/// gained as much as `2^16` and more than `2^14`.)
+const LOCALITY_BLOCK: usize = 1 << 15;
+
 /// Rows per piece of a small field's [`Rows`].
 const ROWS_PER_PIECE: usize = 4;
 
@@ -796,6 +802,13 @@ impl<'a> FastWindingField<'a> {
 
     /// For each group of [`BATCH`] points: their crossing sums, the open chains' ends added to
     /// all at once, then `finish(q, sum, stack, stats)` per point writes its output.
+    ///
+    /// The points are taken block by block ([`LOCALITY_BLOCK`]), each in its locality order
+    /// ([`locality_order`] over the field's box): a query then mostly reads the hierarchies
+    /// and rows its predecessor read, and takes its branches. Each value is the one its point
+    /// gets alone, written to its place: 10^5 points near the curves of the GWN paper's shapes
+    /// took 0.72-0.92 of the time they took in their given (random) order, random points in
+    /// their boxes 0.80-0.89.
     #[inline(always)]
     fn sums_into<T>(
         &self,
@@ -806,14 +819,24 @@ impl<'a> FastWindingField<'a> {
         let mut stats = QueryStats::default();
         let mut sums = [WindingSum::new(Point::default()); BATCH];
         let mut stack = [0; STACK];
-        for (g, group) in out.chunks_mut(BATCH).enumerate() {
-            let sums = &mut sums[..group.len()];
-            for (k, sum) in sums.iter_mut().enumerate() {
-                *sum = self.crossing_sum(point(g * BATCH + k), &[], &mut stack, &mut stats);
-            }
-            self.field.add_open_chain_ends(sums);
-            for (o, sum) in group.iter_mut().zip(sums.iter()) {
-                *o = finish(sum.q(), sum, &mut stack, &mut stats);
+        let (lo, hi) = self
+            .nodes
+            .last()
+            .map_or_else(Default::default, |n| (n.lo, n.hi));
+        let mut order = Vec::new();
+        for (b, block) in out.chunks_mut(LOCALITY_BLOCK).enumerate() {
+            let first = b * LOCALITY_BLOCK;
+            locality_order(block.len(), |i| point(first + i), lo, hi, &mut order);
+            for group in order.chunks(BATCH) {
+                let sums = &mut sums[..group.len()];
+                for (sum, &i) in sums.iter_mut().zip(group) {
+                    let q = point(first + i as usize);
+                    *sum = self.crossing_sum(q, &[], &mut stack, &mut stats);
+                }
+                self.field.add_open_chain_ends(sums);
+                for (&i, sum) in group.iter().zip(sums.iter()) {
+                    block[i as usize] = finish(sum.q(), sum, &mut stack, &mut stats);
+                }
             }
         }
     }
@@ -1191,6 +1214,88 @@ mod tests {
                 "{name}: {near} of {} queries near",
                 queries.len()
             );
+        }
+    }
+
+    /// Batches answered in their locality order give each point its own value, bit for bit,
+    /// in its place: random points over a shape's box, points near its curves, a grid row by
+    /// row (taken as it comes), points far outside, on the curves' ends and not numbers; in
+    /// batches of fewer points than the order takes, of one block and of several blocks, for
+    /// the winding numbers and the locations, on one thread and in parallel tasks.
+    #[test]
+    fn batches_in_locality_order_give_each_point_its_own_value() {
+        for name in ["twirl", "fish"] {
+            let d = rs_testkit::gwn_shape(name);
+            let field = WindingField::new(&d, crate::DEFAULT_RELATIVE_TOLERANCE).unwrap();
+            let (lo, hi) = {
+                let b = d.bounding_box();
+                (b.min, b.max)
+            };
+            let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+            let mut rng = rs_testkit::XorShift64::new(7);
+            let mut random = |count: usize| -> Vec<Point> {
+                (0..count)
+                    .map(|_| {
+                        Point::new(
+                            lo.x - 0.1 * w + 1.2 * w * rng.next_f64(),
+                            lo.y - 0.1 * h + 1.2 * h * rng.next_f64(),
+                        )
+                    })
+                    .collect()
+            };
+            let mut near = Vec::new();
+            for (k, (_, b)) in d.bezier_pieces().into_iter().enumerate() {
+                for j in 0..=64 {
+                    let t = j as f64 / 64.0;
+                    let (p, tangent) = b.point_and_tangent(t);
+                    let s = 10f64.powi(-(((j + k) % 12) as i32)) / tangent.length().max(1e-300);
+                    near.push(Point::new(p.x - s * tangent.y, p.y + s * tangent.x));
+                    near.push(p);
+                }
+            }
+            let grid: Vec<Point> = (0..200 * 200)
+                .map(|k| {
+                    Point::new(
+                        lo.x + w * (k % 200) as f64 / 199.0,
+                        lo.y + h * (k / 200) as f64 / 199.0,
+                    )
+                })
+                .collect();
+            let odd = [
+                Point::new(f64::NAN, lo.y),
+                Point::new(lo.x, f64::NAN),
+                Point::new(f64::INFINITY, 0.0),
+                Point::new(1e300, -1e300),
+            ];
+            let mut mixed = random(3 * LOCALITY_BLOCK / 2);
+            mixed.extend_from_slice(&near);
+            mixed.extend_from_slice(&odd);
+            let mut shuffled = near.clone();
+            shuffled.extend(random(5000));
+            let mut swaps = rs_testkit::XorShift64::new(11);
+            for i in (1..shuffled.len()).rev() {
+                shuffled.swap(i, (swaps.next_u64() % (i as u64 + 1)) as usize);
+            }
+            let batches: Vec<(&str, Vec<Point>)> = vec![
+                ("few", random(crate::locality::MIN_ORDERED - 1)),
+                ("shuffled", shuffled),
+                ("grid", grid),
+                ("blocks", mixed),
+            ];
+            let fast = FastWindingField::new(&field);
+            for (what, points) in batches {
+                let values = fast.winding_numbers(&points);
+                let parallel = fast.winding_numbers_parallel(&points);
+                let mut locations = vec![Location::Outside; points.len()];
+                fast.values_into(&points[..], &mut locations);
+                for (i, &q) in points.iter().enumerate() {
+                    let want = fast.winding_number(q).to_bits();
+                    assert_eq!(values[i].to_bits(), want, "{name} {what} {i}: {q:?}");
+                    assert_eq!(parallel[i].to_bits(), want, "{name} {what} {i}: {q:?}");
+                    let location = PointQuery::<Location>::value(&fast, q);
+                    assert_eq!(locations[i], location, "{name} {what} {i}: {q:?}");
+                }
+            }
         }
     }
 }
