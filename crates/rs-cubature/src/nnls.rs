@@ -6,37 +6,24 @@
 //! candidate points, one column per candidate). The passive set never holds more than `n`
 //! columns, so a solution has at most `n` positive entries: the Caratheodory bound.
 
-/// One dot product, in eight independent sums (vectorised).
+/// One dot product, in eight independent sums (vectorised): [`dots`] of one vector.
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0; 8];
-    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for k in 0..8 {
-            acc[k] += x[k] * y[k];
-        }
-    }
-    let mut tail = 0.0;
-    for (x, y) in ra.iter().zip(rb) {
-        tail += x * y;
-    }
-    acc.iter().sum::<f64>() + tail
+    dots([a], b)[0]
 }
 
 /// Vectors [`head_products`] multiplies side by side.
 const DOT_LANES: usize = 4;
 
-/// `heads[e * k0 + i] = dot(q_i, columns[e])` for the `k0 = q.len() / n` columns `q_i` of `q`
-/// (`n` rows, column-major), each bit for bit [`dot`]'s (the same eight sums in the same
-/// order, products commute, no fused multiply-add): one pass over `q`, each of its columns
-/// multiplied by [`DOT_LANES`] of `columns` at a time while it is in the cache, with the
-/// best instruction set at hand (chosen at run time).
-fn head_products(q: &[f64], n: usize, columns: &[&[f64]], heads: &mut [f64]) {
+/// `products[e][i] = q_i . columns[e]` for the first `k0` columns `q_i` of `q` (`n` rows,
+/// column-major), each bit for bit [`dot`]'s (the same [`dots`], products commute): one pass
+/// over `q`, each of its columns multiplied by [`DOT_LANES`] of `columns` at a time while it
+/// is in the cache, with the best instruction set at hand (chosen at run time).
+fn head_products(q: &[f64], n: usize, k0: usize, columns: &[&[f64]], products: &mut [Vec<f64>]) {
     pulp::Arch::new().dispatch(HeadProducts {
-        q,
+        q: &q[..k0 * n],
         n,
         columns,
-        heads,
+        products,
     });
 }
 
@@ -45,7 +32,7 @@ struct HeadProducts<'a> {
     q: &'a [f64],
     n: usize,
     columns: &'a [&'a [f64]],
-    heads: &'a mut [f64],
+    products: &'a mut [Vec<f64>],
 }
 
 impl pulp::WithSimd for HeadProducts<'_> {
@@ -56,41 +43,44 @@ impl pulp::WithSimd for HeadProducts<'_> {
             q,
             n,
             columns,
-            heads,
+            products,
         } = self;
-        let k0 = q.len() / n.max(1);
         for (i, qi) in q.chunks_exact(n.max(1)).enumerate() {
             let mut groups = columns.chunks_exact(DOT_LANES);
             let mut e = 0;
             for group in groups.by_ref() {
                 let x = [group[0], group[1], group[2], group[3]];
-                for d in dots4(x, qi) {
-                    heads[e * k0 + i] = d;
+                for d in dots(x, qi) {
+                    products[e][i] = d;
                     e += 1;
                 }
             }
             for &column in groups.remainder() {
-                heads[e * k0 + i] = dot(column, qi);
+                products[e][i] = dot(column, qi);
                 e += 1;
             }
         }
     }
 }
 
-/// [`dot`] of each of four vectors `x` with `v`, side by side (each its own eight sums).
+/// The dot products of `L` vectors `x` (each as long as `v`) with `v`, side by side, each in
+/// eight independent sums over the whole eights of entries, then the rest in order: the one
+/// definition of the products' rounding (several vectors side by side keep the adder busy).
 #[inline(always)]
-fn dots4(x: [&[f64]; DOT_LANES], v: &[f64]) -> [f64; DOT_LANES] {
+fn dots<const L: usize>(x: [&[f64]; L], v: &[f64]) -> [f64; L] {
+    debug_assert!(x.iter().all(|x| x.len() == v.len()));
     let whole = v.len() / 8 * 8;
-    let mut acc = [[0.0f64; 8]; DOT_LANES];
+    let heads = x.map(|x| &x[..whole]);
+    let mut acc = [[0.0f64; 8]; L];
     for (s, y) in v[..whole].chunks_exact(8).enumerate() {
-        for (acc, x) in acc.iter_mut().zip(&x) {
+        for (acc, x) in acc.iter_mut().zip(&heads) {
             let x = &x[8 * s..8 * s + 8];
             for k in 0..8 {
                 acc[k] += x[k] * y[k];
             }
         }
     }
-    let mut out = [0.0; DOT_LANES];
+    let mut out = [0.0; L];
     for ((o, acc), x) in out.iter_mut().zip(&acc).zip(&x) {
         let mut tail = 0.0;
         for (a, b) in x[whole..].iter().zip(&v[whole..]) {
@@ -155,13 +145,11 @@ impl PassiveQr {
     fn insert_all(&mut self, a: &[f64], entering: &[usize], mut added: impl FnMut(usize, bool)) {
         let (n, k0) = (self.n, self.cols.len());
         let column = |j: usize| &a[j * n..(j + 1) * n];
-        let mut heads = vec![0.0; entering.len() * k0];
         let columns: Vec<&[f64]> = entering.iter().map(|&j| column(j)).collect();
-        head_products(&self.q[..k0 * n], n, &columns, &mut heads);
-        for (e, &j) in entering.iter().enumerate() {
-            let mut c = vec![0.0; n];
-            c[..k0].copy_from_slice(&heads[e * k0..(e + 1) * k0]);
-            let inserted = self.insert_with(column(j), j, k0, c);
+        let mut products = vec![vec![0.0; n]; entering.len()];
+        head_products(&self.q, n, k0, &columns, &mut products);
+        for ((&j, &a_j), c) in entering.iter().zip(&columns).zip(products) {
+            let inserted = self.insert_with(a_j, j, k0, c);
             added(j, inserted);
         }
     }
@@ -677,14 +665,11 @@ mod tests {
 
     /// Values of many sizes and signs, from a fixed sequence.
     fn values(count: usize, seed: u64) -> Vec<f64> {
-        let mut state = seed;
+        let mut rng = rs_testkit::XorShift64::new(seed);
         (0..count)
             .map(|_| {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                let unit = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-                unit * 10f64.powi((state % 7) as i32 - 3)
+                let unit = rng.next_f64() - 0.5;
+                unit * 10f64.powi((rng.next_u64() % 7) as i32 - 3)
             })
             .collect()
     }
@@ -698,13 +683,13 @@ mod tests {
             for count in [1, 3, 4, 5, 9] {
                 let all = values(count * n, 1000 + count as u64);
                 let columns: Vec<&[f64]> = all.chunks_exact(n).collect();
-                let mut heads = vec![f64::NAN; count * 5];
-                head_products(&q, n, &columns, &mut heads);
+                let mut products = vec![vec![f64::NAN; 5]; count];
+                head_products(&q, n, 5, &columns, &mut products);
                 for (e, column) in columns.iter().enumerate() {
                     for (i, qi) in q.chunks_exact(n).enumerate() {
                         let want = dot(qi, column);
                         assert_eq!(
-                            heads[e * 5 + i].to_bits(),
+                            products[e][i].to_bits(),
                             want.to_bits(),
                             "n {n} e {e} i {i}"
                         );
