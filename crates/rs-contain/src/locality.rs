@@ -58,8 +58,12 @@ pub(crate) fn locality_order(
     };
     // Points that come in an order of their own (a grid row by row, a curve's samples along
     // it) are taken as they come: their first ones seldom change cell.
+    let mut previous = cell(point(0));
     let changes = (1..SAMPLE.min(n))
-        .filter(|&i| cell(point(i)) != cell(point(i - 1)))
+        .filter(|&i| {
+            let c = cell(point(i));
+            std::mem::replace(&mut previous, c) != c
+        })
         .count();
     if changes <= SAMPLE / 4 {
         order.extend(0..n as u32);
@@ -117,14 +121,10 @@ mod tests {
     use super::*;
 
     fn random_points(count: usize, seed: u64) -> Vec<Point> {
-        let mut state = seed;
-        let mut unit = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        (0..count).map(|_| Point::new(unit(), unit())).collect()
+        let mut rng = rs_testkit::XorShift64::new(seed);
+        (0..count)
+            .map(|_| Point::new(rng.next_f64(), rng.next_f64()))
+            .collect()
     }
 
     /// Every index comes once, for batches of every kind: random points with some outside the
