@@ -51,6 +51,24 @@ impl XorShift64 {
         lo + (hi - lo) * self.next_f64()
     }
 
+    /// `count` points of the bounding box of `d` grown by `grow` times its width on each side
+    /// in `x` (its height in `y`): each [`XorShift64::uniform`] in `x`, then in `y`.
+    pub fn points_around(
+        &mut self,
+        d: &rs_spline::Domain,
+        grow: f64,
+        count: usize,
+    ) -> Vec<rs_spline::Point> {
+        let b = d.bounding_box();
+        let (gx, gy) = (grow * b.width(), grow * b.height());
+        (0..count)
+            .map(|_| {
+                let x = self.uniform(b.min.x - gx, b.max.x + gx);
+                rs_spline::Point::new(x, self.uniform(b.min.y - gy, b.max.y + gy))
+            })
+            .collect()
+    }
+
     /// An integer in `0..n`: [`XorShift64::next_u64`] modulo `n` (its bias, below `n / 2^64`,
     /// does not matter for test inputs).
     ///

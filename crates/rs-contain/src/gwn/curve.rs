@@ -503,6 +503,13 @@ impl SmallPolynomial {
     }
 }
 
+impl std::ops::Deref for SubCurve {
+    type Target = [Point];
+    fn deref(&self) -> &[Point] {
+        self.points()
+    }
+}
+
 impl std::ops::Deref for SmallPolynomial {
     type Target = [Point];
     fn deref(&self) -> &[Point] {

@@ -4,6 +4,7 @@
 #[cfg(test)]
 mod compact_tests;
 mod curve;
+mod far_cells;
 mod fast;
 #[cfg(test)]
 mod lazy_tests;
@@ -570,6 +571,11 @@ impl WindingField {
         self.add_passages(q, &passages, &mut sum, stats);
         self.add_open_chain_ends(std::slice::from_mut(&mut sum));
         Some(sum.value())
+    }
+
+    /// Each open chain's start and end.
+    pub(crate) fn open_chain_ends(&self) -> &[(Point, Point)] {
+        self.open_chains.ends()
     }
 
     /// The turns between the ends of every open chain, added to each of `sums`.

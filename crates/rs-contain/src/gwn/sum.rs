@@ -80,6 +80,11 @@ impl ChainEnds {
         self.ends.is_empty()
     }
 
+    /// Each open chain's start and end.
+    pub(crate) fn ends(&self) -> &[(Point, Point)] {
+        &self.ends
+    }
+
     /// Adds to each of `sums` the turns of every chain: `(theta(e) - theta(s)) / 2 pi` for each
     /// chain from `s` to `e`, with one `atan2` for all of them. Each term is
     /// `angle(s -> e) - 2 pi k(s -> e)`; the angles are added as the argument of the product of
@@ -347,6 +352,20 @@ impl WindingSum {
             reach,
             near: false,
         }
+    }
+
+    /// `crossings` added already, as the walk counts them at a query in a far cell (see
+    /// `far_cells`): nothing else, and no curve within reach.
+    pub(crate) fn with_crossings(q: Point, reach: f64, crossings: i64) -> Self {
+        Self {
+            crossings,
+            ..Self::tracking(q, reach)
+        }
+    }
+
+    /// The crossings counted, if nothing else was added (no curve through or at the query).
+    pub(crate) fn crossings_alone(&self) -> Option<i64> {
+        (self.turns == 0.0).then_some(self.crossings)
     }
 
     /// May some curve added lie within the reach of the query (see
