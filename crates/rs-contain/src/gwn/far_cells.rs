@@ -189,8 +189,9 @@ impl FarCells {
     /// runs of far cells, a run joined to every run of the row below that shares a column
     /// (union-find): a pass over the cells and one over the runs.
     fn count_regions(&mut self, crossings: &mut impl FnMut(Point) -> Option<i64>) {
-        // Runs as (first cell, end cell), row by row; `rows[r]..rows[r + 1]` are row r's.
-        let mut runs: Vec<(usize, usize)> = Vec::new();
+        // Runs as (row, first column, end column), row by row; `rows[r]..rows[r + 1]` are
+        // row r's.
+        let mut runs: Vec<(usize, usize, usize)> = Vec::new();
         let mut rows = Vec::with_capacity(SIDE + 1);
         for r in 0..SIDE {
             rows.push(runs.len());
@@ -202,7 +203,7 @@ impl FarCells {
                     while c < SIDE && row[c] == UNSEEN {
                         c += 1;
                     }
-                    runs.push((r * SIDE + start, r * SIDE + c));
+                    runs.push((r, start, c));
                 } else {
                     c += 1;
                 }
@@ -214,8 +215,7 @@ impl FarCells {
             let (below, this) = (rows[r - 1]..rows[r], rows[r]..rows[r + 1]);
             let (mut i, mut j) = (below.start, this.start);
             while i < below.end && j < this.end {
-                let (a0, a1) = (runs[i].0 % SIDE, (runs[i].1 - 1) % SIDE + 1);
-                let (b0, b1) = (runs[j].0 % SIDE, (runs[j].1 - 1) % SIDE + 1);
+                let ((_, a0, a1), (_, b0, b1)) = (runs[i], runs[j]);
                 if a0 < b1 && b0 < a1 {
                     let (ra, rb) = (root(&mut parent, i), root(&mut parent, j));
                     parent[ra.max(rb)] = ra.min(rb);
@@ -228,15 +228,17 @@ impl FarCells {
                 }
             }
         }
+        // A set's root is its first run (the lesser root becomes the parent), so it gets its
+        // count before the set's other runs read it.
         let mut count = vec![NEAR; runs.len()];
-        for k in 0..runs.len() {
-            let r = root(&mut parent, k);
-            if r == k {
-                count[k] = self.region_count(runs[k].0, crossings);
-            }
-            count[k] = count[r];
-            let (first, end) = runs[k];
-            self.counts[first..end].fill(count[k]);
+        for (k, &(r, start, end)) in runs.iter().enumerate() {
+            let first = root(&mut parent, k);
+            count[k] = if first == k {
+                self.region_count(r * SIDE + start, crossings)
+            } else {
+                count[first]
+            };
+            self.counts[r * SIDE + start..r * SIDE + end].fill(count[k]);
         }
     }
 
