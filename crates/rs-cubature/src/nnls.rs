@@ -7,12 +7,13 @@
 //! columns, so a solution has at most `n` positive entries: the Caratheodory bound.
 
 /// One dot product, in eight independent sums (vectorised): [`dots`] of one vector.
+#[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     dots([a], b)[0]
 }
 
 /// Vectors [`head_products`] multiplies side by side.
-const DOT_LANES: usize = 4;
+const DOT_LANES: usize = 8;
 
 /// `products[e][i] = q_i . columns[e]` for the first `k0` columns `q_i` of `q` (`n` rows,
 /// column-major), each bit for bit [`dot`]'s (the same [`dots`], products commute): one pass
@@ -49,7 +50,7 @@ impl pulp::WithSimd for HeadProducts<'_> {
             let mut groups = columns.chunks_exact(DOT_LANES);
             let mut e = 0;
             for group in groups.by_ref() {
-                let x = [group[0], group[1], group[2], group[3]];
+                let x: [&[f64]; DOT_LANES] = std::array::from_fn(|l| group[l]);
                 for d in dots(x, qi) {
                     products[e][i] = d;
                     e += 1;
@@ -92,6 +93,7 @@ fn dots<const L: usize>(x: [&[f64]; L], v: &[f64]) -> [f64; L] {
 }
 
 /// `y += alpha x`.
+#[inline(always)]
 fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
         *yi += alpha * xi;
@@ -142,6 +144,7 @@ impl PassiveQr {
     /// position `k0` are taken in one pass over them ([`head_products`]), and only the rest
     /// after each insert. At degree 40 `Q` holds `861^2` values (6 MB, past the caches): one
     /// pass over them instead of one per entering column.
+    #[inline(always)]
     fn insert_all(&mut self, a: &[f64], entering: &[usize], mut added: impl FnMut(usize, bool)) {
         let (n, k0) = (self.n, self.cols.len());
         let column = |j: usize| &a[j * n..(j + 1) * n];
@@ -163,6 +166,7 @@ impl PassiveQr {
     /// Appends column `a` (candidate `j`) unless it is numerically in the span of the passive
     /// columns (`false` then: `|R_kk| <= 1e-12 |a|`) or the set is full; `c` (`n` entries)
     /// holds `(Q^T a)[..known]` already.
+    #[inline(always)]
     fn insert_with(&mut self, a: &[f64], j: usize, known: usize, mut c: Vec<f64>) -> bool {
         let (n, k) = (self.n, self.cols.len());
         if k == n {
@@ -209,6 +213,7 @@ impl PassiveQr {
 
     /// Removes the passive column at position `pos`, restoring the triangle by Givens
     /// rotations of rows `pos..` (applied to `R`, `Q^T b` and `Q`).
+    #[inline(always)]
     fn remove(&mut self, pos: usize) {
         let n = self.n;
         let k = self.cols.len();
@@ -242,11 +247,13 @@ impl PassiveQr {
     }
 
     /// The least-squares solution on the passive columns: `R z = (Q^T b)[..k]`.
+    #[inline(always)]
     fn solve(&self, z: &mut Vec<f64>) {
         self.back_substitute(&self.qtb, z);
     }
 
     /// `z = R^{-1} c[..k]` for the passive triangle `R`.
+    #[inline(always)]
     fn back_substitute(&self, c: &[f64], z: &mut Vec<f64>) {
         let (n, k) = (self.n, self.cols.len());
         z.clear();
@@ -337,7 +344,48 @@ impl NnlsSolution {
 /// needs no more), so this changes which columns enter, not what the method converges to.
 /// Optimality (no gradient above rounding) is only ever declared after a full pass: when the
 /// working set offers no column, a full pass is made at once.
+///
+/// The whole iteration is compiled for each instruction set `pulp` knows and the best one at
+/// hand is chosen at run time (the same arithmetic in the same order: Rust never fuses a
+/// product and a sum, so the bits do not depend on the choice; wider vectors only do more of
+/// the independent operations at once).
 pub(crate) fn nnls(
+    a: &[f64],
+    n: usize,
+    b: &[f64],
+    options: NnlsOptions,
+    stalled: impl FnMut(&[f64]) -> bool,
+) -> NnlsSolution {
+    pulp::Arch::new().dispatch(Nnls {
+        a,
+        n,
+        b,
+        options,
+        stalled,
+    })
+}
+
+/// [`nnls`] as an operation `pulp` compiles for each instruction set.
+struct Nnls<'a, F> {
+    a: &'a [f64],
+    n: usize,
+    b: &'a [f64],
+    options: NnlsOptions,
+    stalled: F,
+}
+
+impl<F: FnMut(&[f64]) -> bool> pulp::WithSimd for Nnls<'_, F> {
+    type Output = NnlsSolution;
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) -> NnlsSolution {
+        nnls_iteration(self.a, self.n, self.b, self.options, self.stalled)
+    }
+}
+
+/// The body of [`nnls`], inlined into each of its instruction sets' copies (as is every
+/// function it calls that does arithmetic on vectors).
+#[inline(always)]
+fn nnls_iteration(
     a: &[f64],
     n: usize,
     b: &[f64],
@@ -529,6 +577,7 @@ pub(crate) fn nnls(
 
 /// `working <-` the (at most) `size` indices `j` with the largest `g[j] > floor`, in no
 /// particular order.
+#[inline(always)]
 fn keep_largest(working: &mut Vec<usize>, g: &[f64], size: usize, floor: f64) {
     working.clear();
     working.extend((0..g.len()).filter(|&j| g[j] > floor));
@@ -541,6 +590,7 @@ fn keep_largest(working: &mut Vec<usize>, g: &[f64], size: usize, floor: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use pulp::WithSimd;
 
     const LH: NnlsOptions = NnlsOptions {
         residual_tolerance: 1e-14,
@@ -675,12 +725,12 @@ mod tests {
     }
 
     /// The products side by side are [`dot`]'s bit for bit: lengths with and without a tail
-    /// past the eight sums, groups of four columns and the rest.
+    /// past the eight sums, groups of eight columns and the rest.
     #[test]
     fn head_products_are_dot_bit_for_bit() {
         for n in [1, 7, 8, 9, 23, 64, 231] {
             let q = values(5 * n, n as u64);
-            for count in [1, 3, 4, 5, 9] {
+            for count in [1, 3, 7, 8, 9, 17] {
                 let all = values(count * n, 1000 + count as u64);
                 let columns: Vec<&[f64]> = all.chunks_exact(n).collect();
                 let mut products = vec![vec![f64::NAN; 5]; count];
@@ -696,6 +746,52 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// The iteration compiled for the best instruction set at hand (`nnls`) gives the bits of
+    /// its baseline copy: the same passive columns, values and factorisation, for
+    /// Lawson-Hanson, LHDM and a working set, on a problem of several dozen iterations with
+    /// removals.
+    #[test]
+    fn the_dispatched_iteration_is_the_baseline_bit_for_bit() {
+        let (n, m) = (45, 400);
+        let a = values(n * m, 21);
+        // Moments of positive weights on a few columns, and of a mix that needs more.
+        let mut b = vec![0.0; n];
+        for (k, j) in (0..m).step_by(13).enumerate() {
+            axpy(0.5 + (k % 7) as f64, &a[j * n..(j + 1) * n], &mut b);
+        }
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let wide = NnlsOptions {
+            max_entering: 5,
+            gradient_fraction: 0.5,
+            max_cosine: 0.2,
+            ..LH
+        };
+        for options in [
+            LH,
+            wide,
+            NnlsOptions {
+                working_set: 60,
+                full_pass_every: 4,
+                ..wide
+            },
+        ] {
+            let fast = nnls(&a, n, &b, options, |_| false);
+            let base = Nnls {
+                a: &a,
+                n,
+                b: &b,
+                options,
+                stalled: |_: &[f64]| false,
+            }
+            .with_simd(pulp::Scalar);
+            assert!(fast.columns().len() > 10, "{options:?}");
+            assert_eq!(fast.columns(), base.columns(), "{options:?}");
+            assert_eq!(bits(fast.values()), bits(base.values()), "{options:?}");
+            assert_eq!(bits(&fast.qr.q), bits(&base.qr.q), "{options:?}");
+            assert_eq!(bits(&fast.qr.r), bits(&base.qr.r), "{options:?}");
         }
     }
 
