@@ -12,8 +12,40 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     dots([a], b)[0]
 }
 
-/// Vectors [`head_products`] multiplies side by side.
+/// Vectors [`head_products`] and [`dots_into`] multiply side by side.
 const DOT_LANES: usize = 8;
+
+/// `out(t, x(t) . v)` for `t` in `0..count`, in order, each bit for bit [`dot`]'s: eight of
+/// the vectors side by side ([`dots`]), then four, then one at a time. One dot product alone
+/// is a single chain of additions (its eight sums fill one vector register), so it waits on
+/// each addition; several side by side keep the adder busy.
+#[inline(always)]
+fn dots_into<'x>(
+    count: usize,
+    x: impl Fn(usize) -> &'x [f64],
+    v: &[f64],
+    mut out: impl FnMut(usize, f64),
+) {
+    let mut t = 0;
+    while t + DOT_LANES <= count {
+        let group: [&[f64]; DOT_LANES] = std::array::from_fn(|l| x(t + l));
+        for (l, d) in dots(group, v).into_iter().enumerate() {
+            out(t + l, d);
+        }
+        t += DOT_LANES;
+    }
+    while t + 4 <= count {
+        let group: [&[f64]; 4] = std::array::from_fn(|l| x(t + l));
+        for (l, d) in dots(group, v).into_iter().enumerate() {
+            out(t + l, d);
+        }
+        t += 4;
+    }
+    while t < count {
+        out(t, dot(x(t), v));
+        t += 1;
+    }
+}
 
 /// `products[e][i] = q_i . columns[e]` for the first `k0` columns `q_i` of `q` (`n` rows,
 /// column-major), each bit for bit [`dot`]'s (the same [`dots`], products commute): one pass
@@ -56,10 +88,8 @@ impl pulp::WithSimd for HeadProducts<'_> {
                     e += 1;
                 }
             }
-            for &column in groups.remainder() {
-                products[e][i] = dot(column, qi);
-                e += 1;
-            }
+            let rest = groups.remainder();
+            dots_into(rest.len(), |t| rest[t], qi, |t, d| products[e + t][i] = d);
         }
     }
 }
@@ -97,6 +127,42 @@ fn dots<const L: usize>(x: [&[f64]; L], v: &[f64]) -> [f64; L] {
 fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
         *yi += alpha * xi;
+    }
+}
+
+/// `y += alpha_t x(t)` for `t` in `0..count`, in order, bit for bit [`axpy`] after [`axpy`]:
+/// each entry of `y` takes the same additions in the same order, four vectors at a time in
+/// one pass over `y` (a quarter of its loads and stores).
+#[inline(always)]
+fn axpys<'x>(
+    count: usize,
+    alpha: impl Fn(usize) -> f64,
+    x: impl Fn(usize) -> &'x [f64],
+    y: &mut [f64],
+) {
+    let len = y.len();
+    let mut t = 0;
+    while t + 4 <= count {
+        let (a0, a1, a2, a3) = (alpha(t), alpha(t + 1), alpha(t + 2), alpha(t + 3));
+        let (x0, x1, x2, x3) = (
+            &x(t)[..len],
+            &x(t + 1)[..len],
+            &x(t + 2)[..len],
+            &x(t + 3)[..len],
+        );
+        for i in 0..len {
+            let mut v = y[i];
+            v += a0 * x0[i];
+            v += a1 * x1[i];
+            v += a2 * x2[i];
+            v += a3 * x3[i];
+            y[i] = v;
+        }
+        t += 4;
+    }
+    while t < count {
+        axpy(alpha(t), x(t), y);
+        t += 1;
     }
 }
 
@@ -173,9 +239,13 @@ impl PassiveQr {
             return false;
         }
         // c = Q^T a (its first `known` entries given).
-        for (i, ci) in c.iter_mut().enumerate().skip(known) {
-            *ci = dot(&self.q[i * n..(i + 1) * n], a);
-        }
+        let q = &self.q;
+        dots_into(
+            n - known.min(n),
+            |t| &q[(known + t) * n..(known + t + 1) * n],
+            a,
+            |t, d| c[known + t] = d,
+        );
         let tail = c[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
         let size = dot(a, a).sqrt();
         if tail.is_nan() || tail <= 1e-12 * size {
@@ -192,10 +262,8 @@ impl PassiveQr {
             // s = Q[:, k..] v; Q[:, k + l] -= (2 v_l / vv) s.
             let s = &mut self.scratch;
             s.fill(0.0);
-            for (l, &vl) in v.iter().enumerate() {
-                let col = (k + l) * n;
-                axpy(vl, &self.q[col..col + n], s);
-            }
+            let q = &self.q;
+            axpys(v.len(), |l| v[l], |l| &q[(k + l) * n..(k + l + 1) * n], s);
             for (l, &vl) in v.iter().enumerate() {
                 let col = (k + l) * n;
                 axpy(-2.0 * vl / vv, s, &mut self.q[col..col + n]);
@@ -258,11 +326,43 @@ impl PassiveQr {
         let (n, k) = (self.n, self.cols.len());
         z.clear();
         z.extend_from_slice(&c[..k]);
-        for i in (0..k).rev() {
-            let zi = z[i] / self.r[i * n + i];
+        let r = &self.r;
+        // Columns i = k - 1 down to 0: z_i = z_i / r_ii, then z_l -= r_li z_i for l < i. By
+        // blocks of four columns: their triangle first, then each entry above it takes the
+        // four columns' updates in the same order, in one pass (the same bits, a quarter of
+        // the passes over z).
+        let mut end = k;
+        while end >= 4 {
+            let top = end - 4;
+            for i in (top..end).rev() {
+                let zi = z[i] / r[i * n + i];
+                z[i] = zi;
+                for l in top..i {
+                    z[l] -= r[i * n + l] * zi;
+                }
+            }
+            let (c0, c1, c2, c3) = (
+                &r[(end - 1) * n..(end - 1) * n + top],
+                &r[(end - 2) * n..(end - 2) * n + top],
+                &r[(end - 3) * n..(end - 3) * n + top],
+                &r[top * n..top * n + top],
+            );
+            let (z0, z1, z2, z3) = (z[end - 1], z[end - 2], z[end - 3], z[top]);
+            for (l, zl) in z[..top].iter_mut().enumerate() {
+                let mut v = *zl;
+                v -= c0[l] * z0;
+                v -= c1[l] * z1;
+                v -= c2[l] * z2;
+                v -= c3[l] * z3;
+                *zl = v;
+            }
+            end = top;
+        }
+        for i in (0..end).rev() {
+            let zi = z[i] / r[i * n + i];
             z[i] = zi;
             for (l, zl) in z[..i].iter_mut().enumerate() {
-                *zl -= self.r[i * n + l] * zi;
+                *zl -= r[i * n + l] * zi;
             }
         }
     }
@@ -412,6 +512,7 @@ fn nnls_iteration(
     let mut entering: Vec<usize> = Vec::new();
     // The columns scored this iteration: all of them after a full pass, else the working set.
     let mut scored: Vec<usize> = Vec::with_capacity(m);
+    let mut live: Vec<usize> = Vec::with_capacity(m);
     let mut working: Vec<usize> = Vec::new();
     let all_columns = options.working_set == 0 || options.working_set >= m;
     let mut since_full = usize::MAX;
@@ -439,17 +540,22 @@ fn nnls_iteration(
             } else {
                 scored.extend_from_slice(&working);
             }
+            // The gradients of the columns free to enter, several side by side; then the
+            // best in the order scored.
+            live.clear();
+            for &j in &scored {
+                if passive[j] || blocked[j] {
+                    g[j] = f64::NEG_INFINITY;
+                } else {
+                    live.push(j);
+                }
+            }
+            dots_into(live.len(), |t| column(live[t]), &r, |t, d| g[live[t]] = d);
             let mut best = (usize::MAX, f64::NEG_INFINITY);
             for &j in &scored {
-                let gj = if passive[j] || blocked[j] {
-                    f64::NEG_INFINITY
-                } else {
-                    dot(column(j), &r)
-                };
-                g[j] = gj;
                 // The last of equal maxima, as `Iterator::max_by` picks.
-                if gj.total_cmp(&best.1).is_ge() {
-                    best = (j, gj);
+                if g[j].total_cmp(&best.1).is_ge() {
+                    best = (j, g[j]);
                 }
             }
             if full && !all_columns {
@@ -564,9 +670,7 @@ fn nnls_iteration(
             blocked.iter_mut().for_each(|b| *b = false);
         }
         r.copy_from_slice(b);
-        for (&j, &xj) in qr.cols.iter().zip(&x) {
-            axpy(-xj, column(j), &mut r);
-        }
+        axpys(x.len(), |p| -x[p], |p| column(qr.cols[p]), &mut r);
     }
     NnlsSolution {
         qr,
@@ -792,6 +896,78 @@ mod tests {
             assert_eq!(bits(fast.values()), bits(base.values()), "{options:?}");
             assert_eq!(bits(&fast.qr.q), bits(&base.qr.q), "{options:?}");
             assert_eq!(bits(&fast.qr.r), bits(&base.qr.r), "{options:?}");
+        }
+    }
+
+    /// `dots_into` gives `dot`'s bits for every count (groups of eight, of four and single
+    /// vectors), in order.
+    #[test]
+    fn dots_into_is_dot_bit_for_bit() {
+        for n in [1, 8, 13, 231] {
+            let v = values(n, 5 + n as u64);
+            let all = values(21 * n, 77);
+            let x: Vec<&[f64]> = all.chunks_exact(n).collect();
+            for count in 0..=21 {
+                let mut got = Vec::new();
+                dots_into(count, |t| x[t], &v, |t, d| got.push((t, d.to_bits())));
+                let want: Vec<(usize, u64)> =
+                    (0..count).map(|t| (t, dot(x[t], &v).to_bits())).collect();
+                assert_eq!(got, want, "n {n} count {count}");
+            }
+        }
+    }
+
+    /// `axpys` is `axpy` after `axpy`, bit for bit, for every count.
+    #[test]
+    fn axpys_is_axpy_in_order_bit_for_bit() {
+        for n in [1, 7, 64] {
+            let all = values(11 * n, 9);
+            let x: Vec<&[f64]> = all.chunks_exact(n).collect();
+            let alpha = values(11, 4);
+            for count in 0..=11 {
+                let mut got = values(n, 3);
+                let mut want = got.clone();
+                axpys(count, |t| alpha[t], |t| x[t], &mut got);
+                for t in 0..count {
+                    axpy(alpha[t], x[t], &mut want);
+                }
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&got), bits(&want), "n {n} count {count}");
+            }
+        }
+    }
+
+    /// The back substitution by blocks of four columns gives column-by-column substitution's
+    /// bits, for every size of the triangle (whole blocks and a remainder).
+    #[test]
+    fn blocked_back_substitution_is_column_by_column_bit_for_bit() {
+        let n = 19;
+        let mut qr = PassiveQr::new(n, &values(n, 1));
+        let entries = values(n * n, 2);
+        for i in 0..n {
+            for l in 0..=i {
+                qr.r[i * n + l] = if l == i {
+                    2.0 + entries[i * n + l].abs()
+                } else {
+                    entries[i * n + l]
+                };
+            }
+        }
+        let c = values(n, 8);
+        for k in 0..=n {
+            qr.cols = (0..k).collect();
+            let mut got = Vec::new();
+            qr.back_substitute(&c, &mut got);
+            let mut want = c[..k].to_vec();
+            for i in (0..k).rev() {
+                let zi = want[i] / qr.r[i * n + i];
+                want[i] = zi;
+                for (l, w) in want[..i].iter_mut().enumerate() {
+                    *w -= qr.r[i * n + l] * zi;
+                }
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&got), bits(&want), "k {k}");
         }
     }
 
