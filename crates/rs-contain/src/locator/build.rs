@@ -4,7 +4,7 @@
 //! runs between them, the blocks), not the grid's area: no table of `n x n` cells is built.
 
 use std::ops::Range;
-use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
 
 use rs_spline::grid::GridFrame;
 use rs_spline::{BoundingBox, Point};
@@ -68,6 +68,7 @@ impl LocatorIndex {
                 .map(|_| AtomicU8::new(UNBUILT))
                 .collect(),
             strips: (0..strips).map(|_| OnceLock::new()).collect(),
+            taken: (0..strips).map(|_| AtomicBool::new(false)).collect(),
             built: std::sync::atomic::AtomicUsize::new(0),
             complete: OnceLock::new(),
             lookup: Lookup::new(&frame, blocks),
@@ -88,10 +89,38 @@ impl LocatorIndex {
         }
     }
 
-    /// [`LocatorIndex::strip`]'s first call for strip `s` (or a wait for another thread's).
+    /// [`LocatorIndex::strip`]'s first call for strip `s`: builds it, or, when another thread
+    /// has taken it, builds the strips no thread has taken (from the next one on, round the
+    /// grid) until `s` is ready, then waits for it. Threads whose points come in the same
+    /// order (the runs of a stream of Halton or grid points, each starting on the same
+    /// columns) otherwise build one strip at a time, each waiting for the other's: two
+    /// workers on 10^6 Halton points spent 1.4 ms on their first runs, the 17 strips built
+    /// one after the other. A thread that helps so builds at most one strip past the moment
+    /// `s` is ready (it looks before each), and only strips some query may yet need.
     #[cold]
     #[inline(never)]
     fn build_strip(&self, classifier: &Classifier, s: usize) -> &Strip {
+        if self.taken[s].swap(true, Ordering::AcqRel) {
+            let count = self.strips.len();
+            for t in (s + 1..count).chain(0..s) {
+                if let Some(strip) = self.strips[s].get() {
+                    return strip;
+                }
+                if !self.taken[t].load(Ordering::Relaxed)
+                    && !self.taken[t].swap(true, Ordering::AcqRel)
+                {
+                    self.build_taken(classifier, t);
+                }
+            }
+        }
+        // Taken here, or every other strip is taken: build `s` or wait for the thread that
+        // builds it (should that thread have failed, build it here).
+        self.build_taken(classifier, s)
+    }
+
+    /// Builds strip `s` unless it is built or being built (then waits for it), publishes its
+    /// coarse states and, with the last strip, makes the flat tables.
+    fn build_taken(&self, classifier: &Classifier, s: usize) -> &Strip {
         let mut built_here = false;
         let strip = self.strips[s].get_or_init(|| {
             built_here = true;

@@ -3,7 +3,7 @@
 //! and read by the queries of `mod.rs`.
 
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
 
 use rs_spline::Point;
 use rs_spline::grid::GridFrame;
@@ -60,7 +60,8 @@ pub(super) struct MixedCell {
 ///
 /// The grid is built one *strip* (32 columns of cells, four of blocks) at a time, when a
 /// query first needs it: until then its blocks' coarse states read "not built", which sends
-/// the query to the strip (built then, once, whichever thread asks first). What a strip holds
+/// the query to the strip (built then, once, by the first thread to take it; a thread that
+/// finds its strip taken builds untaken ones until it is ready). What a strip holds
 /// depends on nothing outside its columns (the states of a column come from a walk up that
 /// column), so the strips built on demand are the ones an eager build makes.
 #[derive(Debug)]
@@ -74,6 +75,10 @@ pub struct LocatorIndex {
     pub(super) coarse: Vec<AtomicU8>,
     /// The strips, each built on first use.
     pub(super) strips: Vec<OnceLock<Strip>>,
+    /// Whether a thread has taken strip `s` to build (set before it builds, never cleared): a
+    /// thread that needs a strip another is building builds strips no thread has taken
+    /// meanwhile (`build::LocatorIndex::build_strip`).
+    pub(super) taken: Vec<AtomicBool>,
     /// How many strips are built; when all are, `complete` is set.
     pub(super) built: AtomicUsize,
     /// The flat tables, made when the last strip is built: queries then read them as they
@@ -101,6 +106,12 @@ impl Clone for LocatorIndex {
                 .map(|s| AtomicU8::new(s.load(Ordering::Relaxed)))
                 .collect(),
             strips: self.strips.clone(),
+            // A strip being built elsewhere is not in the copy: the copy builds its own.
+            taken: self
+                .strips
+                .iter()
+                .map(|s| AtomicBool::new(s.get().is_some()))
+                .collect(),
             built: AtomicUsize::new(self.built.load(Ordering::Acquire)),
             complete: self.complete.clone(),
             lookup: self.lookup,

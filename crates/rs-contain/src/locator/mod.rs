@@ -427,6 +427,7 @@ const VERTICAL_FLAG: u32 = 1 << 31;
 mod tests {
     use super::*;
     use rs_spline::grid::GridFrame;
+    use std::sync::atomic::Ordering;
 
     /// A locator whose strips are built by the queries that first need them, from several
     /// threads at once (the same strip asked for by many), answers as inRS2 does, point by
@@ -468,6 +469,58 @@ mod tests {
             let ix = c.grid.get().unwrap();
             assert!(ix.strips.iter().all(|s| s.get().is_some()));
             assert!(ix.complete.get().is_some(), "{}", case.name);
+            // Each strip built once, however many threads asked for it or helped.
+            assert_eq!(ix.built.load(Ordering::Acquire), ix.strips.len());
+            assert_eq!(loc.locate_all(&pts), expected, "{}", case.name);
+        }
+    }
+
+    /// Threads whose points come in the same order (each asks for the strips in the same
+    /// order, so each finds the others building the strip it needs and builds untaken ones
+    /// meanwhile): every answer is inRS2's, each strip is built once, and the flat tables are
+    /// made; a copy of a locator some of whose strips are built builds the rest itself.
+    #[test]
+    fn threads_asking_for_strips_in_the_same_order_build_each_once() {
+        use crate::{ContainOptions, Locate, Method};
+        for case in rs_testkit::fixtures() {
+            let c = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
+            let b = c.outer();
+            // Halton points: the same columns at the start of every thread's share.
+            let pts = crate::baselines::halton_points(4_096, b.grown_by(0.05 * b.diagonal()));
+            let expected = c.locate_all_with(Method::InRS2, &pts);
+            for threads in [2, 3, 8] {
+                let fresh = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
+                let loc = fresh.locator();
+                let got: Vec<Vec<Location>> = std::thread::scope(|scope| {
+                    let handles: Vec<_> = (0..threads)
+                        .map(|_| {
+                            let (loc, pts) = (&loc, &pts);
+                            scope.spawn(move || loc.locate_all(pts))
+                        })
+                        .collect();
+                    handles.into_iter().map(|h| h.join().unwrap()).collect()
+                });
+                assert!(
+                    got.iter().all(|g| g == &expected),
+                    "{} x{threads}",
+                    case.name
+                );
+                let ix = fresh.grid.get().unwrap();
+                assert_eq!(ix.built.load(Ordering::Acquire), ix.strips.len());
+                assert!(ix.taken.iter().all(|t| t.load(Ordering::Acquire)));
+                assert!(ix.complete.get().is_some(), "{}", case.name);
+            }
+            // A copy taken with one strip built: its other strips are not taken in it.
+            let one = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
+            let _ = one.locator().locate(pts[0]);
+            let copy = one.grid.get().unwrap().clone();
+            let taken = copy
+                .taken
+                .iter()
+                .filter(|t| t.load(Ordering::Acquire))
+                .count();
+            assert_eq!(taken, 1, "{}", case.name);
+            let loc = PointLocator::with_index(&one, &copy);
             assert_eq!(loc.locate_all(&pts), expected, "{}", case.name);
         }
     }
