@@ -95,8 +95,9 @@ impl LocatorIndex {
     /// order (the runs of a stream of Halton or grid points, each starting on the same
     /// columns) otherwise build one strip at a time, each waiting for the other's: two
     /// workers on 10^6 Halton points spent 1.4 ms on their first runs, the 17 strips built
-    /// one after the other. A thread that helps so builds at most one strip past the moment
-    /// `s` is ready (it looks before each), and only strips some query may yet need.
+    /// one after the other. A thread that helps so looks for `s` before each strip it builds,
+    /// so it builds at most one past the moment `s` is ready; a batch confined to a few strips
+    /// may so build strips it does not need (a few each time it finds its strip taken).
     #[cold]
     #[inline(never)]
     fn build_strip(&self, classifier: &Classifier, s: usize) -> &Strip {
