@@ -12,7 +12,7 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     dots([a], b)[0]
 }
 
-/// Vectors [`head_products`] and [`dots_into`] multiply side by side.
+/// Vectors [`dots_into`] multiplies side by side.
 const DOT_LANES: usize = 8;
 
 /// `out(t, x(t) . v)` for `t` in `0..count`, in order, each bit for bit [`dot`]'s: eight of
@@ -49,8 +49,9 @@ fn dots_into<'x>(
 
 /// `products[e][i] = q_i . columns[e]` for the first `k0` columns `q_i` of `q` (`n` rows,
 /// column-major), each bit for bit [`dot`]'s (the same [`dots`], products commute): one pass
-/// over `q`, each of its columns multiplied by [`DOT_LANES`] of `columns` at a time while it
-/// is in the cache, with the best instruction set at hand (chosen at run time).
+/// over `q`, each of its columns multiplied by all of `columns` ([`dots_into`], several side
+/// by side) while it is in the cache, with the best instruction set at hand (chosen at run
+/// time).
 fn head_products(q: &[f64], n: usize, k0: usize, columns: &[&[f64]], products: &mut [Vec<f64>]) {
     pulp::Arch::new().dispatch(HeadProducts {
         q: &q[..k0 * n],
@@ -79,17 +80,7 @@ impl pulp::WithSimd for HeadProducts<'_> {
             products,
         } = self;
         for (i, qi) in q.chunks_exact(n.max(1)).enumerate() {
-            let mut groups = columns.chunks_exact(DOT_LANES);
-            let mut e = 0;
-            for group in groups.by_ref() {
-                let x: [&[f64]; DOT_LANES] = std::array::from_fn(|l| group[l]);
-                for d in dots(x, qi) {
-                    products[e][i] = d;
-                    e += 1;
-                }
-            }
-            let rest = groups.remainder();
-            dots_into(rest.len(), |t| rest[t], qi, |t, d| products[e + t][i] = d);
+            dots_into(columns.len(), |e| columns[e], qi, |e, d| products[e][i] = d);
         }
     }
 }

@@ -429,7 +429,7 @@ mod tests {
             }
             .with_simd(pulp::Scalar);
             assert_eq!(o.moment_error(&r).to_bits(), base.to_bits());
-            // And both the plain column-by-column sums' bits.
+            // Both give the plain column-by-column sums' bits.
             let mut sums = vec![0.0; n];
             for (k, &rk) in r.iter().enumerate() {
                 for (l, s) in sums.iter_mut().enumerate().skip(k) {
