@@ -14,7 +14,7 @@
 //! not rest on this factorisation: the rule refines them against the residual in the basis
 //! itself, through [`Orthonormal::map`].
 
-use nalgebra::{Cholesky, DMatrix, DMatrixView, DMatrixViewMut, DVector};
+use nalgebra::{DMatrix, DMatrixView, DVector};
 
 /// Above this ratio of the largest to the least diagonal entry of a pass's factor (about
 /// `cond` of what it factored), another pass is made: one pass leaves `Q^T Q - I` of about
@@ -93,9 +93,9 @@ pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64], uniform: usize) -> Opt
     let mut rt = DMatrix::<f64>::identity(n, n);
     let mut regularised = false;
     for _ in 0..MAX_PASSES {
-        let gram = gram_lower(qt.as_view());
-        let (l, shifted) = match Cholesky::new(gram.clone()) {
-            Some(c) => (c.unpack(), false),
+        let gram = gram_lower(&qt, qt.ncols());
+        let (l, shifted) = match cholesky_lower(gram.clone()) {
+            Some(l) => (l, false),
             None => (shifted_cholesky(gram, qt.ncols())?, true),
         };
         if !solve_lower_blocked(&l, &mut qt) {
@@ -153,11 +153,10 @@ fn normalising_pass(
     uniform: usize,
 ) -> bool {
     let (n, cols) = qt.shape();
-    let prefix = qt.columns(0, (PREFIX_PER_POLYNOMIAL * n).min(cols));
-    if Cholesky::new(gram_lower(prefix)).is_none() {
+    if cholesky_lower(gram_lower(qt, PREFIX_PER_POLYNOMIAL * n)).is_none() {
         return true;
     }
-    let Some(l) = Cholesky::new(gram_lower(qt.as_view())).map(Cholesky::unpack) else {
+    let Some(l) = cholesky_lower(gram_lower(qt, cols)) else {
         return true;
     };
     let area = m.first().copied().unwrap_or(0.0);
@@ -212,19 +211,27 @@ pub(crate) const HIGH_DEGREE_BASIS: usize = 231;
 /// all the rows above it (4 to 7 at degrees 30 to 40), each large enough for `gemm`'s speed.
 const GRAM_BLOCK: usize = 128;
 
-/// A matrix whose lower triangle is the Gram matrix `A A^T` of `a` (`N x M`): what a
-/// Cholesky factorisation reads. Above [`HIGH_DEGREE_BASIS`] rows only the lower triangle is
-/// multiplied out, a block of rows `I` at a time (`A_I A_J^T` for every row `J` up to the end
-/// of `I`; the upper triangle is left zero outside the diagonal blocks): half the work of the
-/// full product (the Gram products were about a quarter of a degree-30 rule's time). The
-/// full product stays below, where it moves no rule (a regrouped sum may differ by rounding).
-fn gram_lower(a: DMatrixView<'_, f64>) -> DMatrix<f64> {
+/// A matrix whose lower triangle is the Gram matrix `A A^T` of the first `cols` columns `A` of
+/// `a` (`N x M`): what a Cholesky factorisation reads. Above [`HIGH_DEGREE_BASIS`] rows only
+/// the lower triangle is multiplied out, a block of rows `I` at a time (`A_I A_J^T` for every
+/// row `J` up to the end of `I`; the upper triangle is left zero outside the diagonal blocks):
+/// half the work of the full product (the Gram products were about a quarter of a degree-30
+/// rule's time). `A^T` is read in place, through a view with swapped strides: `gemm` packs its
+/// operands into the same panels whatever their strides, so the product is the one of a
+/// transposed copy bit for bit, without the copy (`M N` entries, 49 MB at degree 40, written
+/// across the cache lines: 60 ms a pass on `s3_m_shape`). The full product stays below
+/// [`HIGH_DEGREE_BASIS`], where it moves no rule (a regrouped sum may differ by rounding).
+fn gram_lower(a: &DMatrix<f64>, cols: usize) -> DMatrix<f64> {
     let n = a.nrows();
+    let cols = cols.min(a.ncols());
+    // The first `cols` columns: the first `n cols` entries of the column-major storage.
+    let data = &a.as_slice()[..n * cols];
+    let a = DMatrixView::from_slice(data, n, cols);
     if n <= HIGH_DEGREE_BASIS {
         return a * a.transpose();
     }
-    // One transposed copy (`nalgebra` has no transposed view to multiply by).
-    let at = a.transpose();
+    // Entry (j, i) of `A^T` is entry (i, j) of `A`, at `i + j n`: row stride `n`, column 1.
+    let at = DMatrixView::from_slice_with_strides(data, cols, n, n, 1);
     let mut g = DMatrix::zeros(n, n);
     let mut start = 0;
     while start < n {
@@ -244,14 +251,16 @@ fn gram_lower(a: DMatrixView<'_, f64>) -> DMatrix<f64> {
 /// unlike multiplying by a computed inverse, whose error grows with `cond(L)`. `false` if a
 /// diagonal entry is zero.
 fn solve_lower_blocked(l: &DMatrix<f64>, x: &mut DMatrix<f64>) -> bool {
-    solve_lower_by_blocks(l.as_view(), x.as_view_mut(), SOLVE_BLOCK)
+    solve_lower_by_blocks(l.as_view(), x, 0, SOLVE_BLOCK)
 }
 
-/// [`solve_lower_blocked`] with diagonal blocks of `block` rows (solved by blocks of
-/// [`INNER_SOLVE_BLOCK`] rows when larger, for `L` of more than [`HIGH_DEGREE_BASIS`] rows).
+/// [`solve_lower_blocked`] for the rows `first..first + L.nrows()` of `x`, with diagonal blocks
+/// of `block` rows (solved by blocks of [`INNER_SOLVE_BLOCK`] rows when larger, for `L` of more
+/// than [`HIGH_DEGREE_BASIS`] rows).
 fn solve_lower_by_blocks(
     l: DMatrixView<'_, f64>,
-    mut x: DMatrixViewMut<'_, f64>,
+    x: &mut DMatrix<f64>,
+    first: usize,
     block: usize,
 ) -> bool {
     let n = l.nrows();
@@ -259,22 +268,197 @@ fn solve_lower_by_blocks(
     while start < n {
         let size = block.min(n - start);
         let end = start + size;
-        let (mut top, mut below) = x.rows_range_pair_mut(start..end, end..);
         let diagonal = l.view((start, start), (size, size));
         let solved = if size > INNER_SOLVE_BLOCK && n > HIGH_DEGREE_BASIS {
-            solve_lower_by_blocks(diagonal, top.as_view_mut(), INNER_SOLVE_BLOCK)
+            solve_lower_by_blocks(diagonal, x, first + start, INNER_SOLVE_BLOCK)
         } else {
-            diagonal.solve_lower_triangular_mut(&mut top)
+            forward_substitute(diagonal, x, first + start)
         };
         if !solved {
             return false;
         }
         if end < n {
+            let (top, mut below) =
+                x.rows_range_pair_mut(first + start..first + end, first + end..first + n);
             below.gemm(-1.0, &l.view((end, start), (n - end, size)), &top, 1.0);
         }
         start = end;
     }
     true
+}
+
+/// Columns of [`cholesky_lower`] updated together by each finished column before them.
+const CHOLESKY_COLUMNS: usize = 8;
+
+/// The lower Cholesky factor `L` of `g` (`g = L L^T`; only its lower triangle is read), with
+/// zeros above the diagonal; `None` if a pivot is zero, negative or not a number. The same
+/// factor as `nalgebra`'s `Cholesky::new(g).map(Cholesky::unpack)`, bit for bit: column `j` is
+/// `g`'s minus `L_jk` times column `k` for `k = 0, 1, .., j - 1` in that order (each entry
+/// `y <- (-L_jk) x + y`), then its pivot's square root, the entries below divided by it. Here
+/// each finished column is read once for [`CHOLESKY_COLUMNS`] columns after it (each entry
+/// still takes its updates in the same order): column by column, every column read all those
+/// before it again, the whole factor (6 MB at degree 40) from beyond the core's cache, which
+/// made the factorisation about 5% of a degree-40 rule (an 861 x 861 factor: 27 -> 18 ms).
+fn cholesky_lower(mut g: DMatrix<f64>) -> Option<DMatrix<f64>> {
+    let n = g.nrows();
+    let a = g.as_mut_slice();
+    let mut j0 = 0;
+    while j0 < n {
+        let j1 = (j0 + CHOLESKY_COLUMNS).min(n);
+        let (done, rest) = a.split_at_mut(j0 * n);
+        let block = &mut rest[..(j1 - j0) * n];
+        // The columns finished before the block, each read once for all of the block;
+        // compiled for each instruction set `pulp` knows (the same operations in the same
+        // order whichever).
+        pulp::Arch::new().dispatch(UpdateBlock { done, block, n, j0 });
+        // The block's own columns, one after the other.
+        for t in 0..j1 - j0 {
+            let j = j0 + t;
+            let (before, from_j) = block.split_at_mut(t * n);
+            let col_j = &mut from_j[..n];
+            for col_k in before.chunks_exact(n) {
+                axpy_below(j, col_j, col_k);
+            }
+            let pivot = col_j[j];
+            // `nalgebra`'s test: a zero pivot, or one whose square root is not taken
+            // (negative or not a number).
+            if pivot == 0.0 || pivot.partial_cmp(&0.0).is_none_or(|o| o.is_lt()) {
+                return None;
+            }
+            let root = pivot.sqrt();
+            col_j[j] = root;
+            for y in &mut col_j[j + 1..] {
+                *y /= root;
+            }
+        }
+        j0 = j1;
+    }
+    g.fill_upper_triangle(0.0, 1);
+    Some(g)
+}
+
+/// The updates of [`cholesky_lower`]'s block of columns `j0..` (`block`, at most
+/// [`CHOLESKY_COLUMNS`] columns of `n` entries) by every finished column before it (`done`),
+/// in order: each finished column read once for all of the block's columns.
+struct UpdateBlock<'a> {
+    done: &'a [f64],
+    block: &'a mut [f64],
+    n: usize,
+    j0: usize,
+}
+
+impl pulp::WithSimd for UpdateBlock<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Self { done, block, n, j0 } = self;
+        for col_k in done.chunks_exact(n) {
+            for (t, col_j) in block.chunks_exact_mut(n).enumerate() {
+                axpy_below(j0 + t, col_j, col_k);
+            }
+        }
+    }
+}
+
+/// `y <- (-L_jk) x + y` on rows `j..` of column `j` (`col_j`) by finished column `k` (`col_k`,
+/// whose row `j` is `L_jk`): one step of [`cholesky_lower`].
+#[inline(always)]
+fn axpy_below(j: usize, col_j: &mut [f64], col_k: &[f64]) {
+    let f = -col_k[j];
+    for (y, &x) in col_j[j..].iter_mut().zip(&col_k[j..]) {
+        *y += f * x;
+    }
+}
+
+/// Entries of the buffer [`forward_substitute`] solves a chunk of columns in (16 KB: the
+/// chunk stays in the core's first-level cache).
+const SUBSTITUTION_CHUNK: usize = 2048;
+
+/// Entries [`forward_substitute`] leaves between the end of a row of its buffer and the next
+/// row: rows a power of two apart (2 KB) fell into the same few sets of the first-level cache,
+/// and stores to them waited on each other.
+const SUBSTITUTION_PAD: usize = 8;
+
+/// `x <- L^{-1} x` for a small lower triangular `L` (`s x s`, a diagonal block of
+/// [`solve_lower_by_blocks`]) and the rows `first..first + s` of `x` (`s x M` of them), by
+/// forward substitution: `false` if a diagonal entry is zero. The same operations as `nalgebra`'s `solve_lower_triangular_mut`, bit for
+/// bit: in each column, for `i = 0, 1, ..`, `x_i <- x_i / L_ii`, then `x_r <- x_r - x_i L_ri`
+/// for every `r > i`. Here the columns are taken a chunk at a time, copied into rows (a
+/// column's `s` entries are contiguous, a row's are `N` apart), and each step runs along the
+/// rows, across the chunk's columns: column by column, a step was a loop of fewer than `s`
+/// entries and the whole substitution a chain of dependent steps per column, 13% of a
+/// degree-40 rule.
+fn forward_substitute(l: DMatrixView<'_, f64>, x: &mut DMatrix<f64>, first: usize) -> bool {
+    if (0..l.nrows()).any(|i| l[(i, i)] == 0.0) {
+        return false;
+    }
+    let rows = x.nrows();
+    // Compiled for each instruction set `pulp` knows, the best at hand chosen at run time:
+    // the same operations in the same order whichever, so the same bits.
+    pulp::Arch::new().dispatch(ForwardSubstitute {
+        l,
+        x: x.as_mut_slice(),
+        rows,
+        first,
+    });
+    true
+}
+
+/// [`forward_substitute`] as an operation `pulp` compiles for each instruction set: `x` the
+/// column-major storage of a matrix of `rows` rows.
+struct ForwardSubstitute<'a, 'b> {
+    l: DMatrixView<'a, f64>,
+    x: &'b mut [f64],
+    rows: usize,
+    first: usize,
+}
+
+impl pulp::WithSimd for ForwardSubstitute<'_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Self { l, x, rows, first } = self;
+        let s = l.nrows();
+        if s == 0 || rows == 0 {
+            return;
+        }
+        let m = x.len() / rows;
+        let chunk = (SUBSTITUTION_CHUNK / s).max(1);
+        // Row i of a chunk at `rows[i stride..i stride + width]`.
+        let stride = chunk + SUBSTITUTION_PAD;
+        let mut buffer = vec![0.0; s * stride];
+        let mut start = 0;
+        while start < m {
+            let width = chunk.min(m - start);
+            let columns = x.chunks_exact(rows).skip(start).take(width);
+            for (c, column) in columns.enumerate() {
+                for (i, &v) in column[first..first + s].iter().enumerate() {
+                    buffer[i * stride + c] = v;
+                }
+            }
+            for i in 0..s {
+                let (head, tail) = buffer.split_at_mut((i + 1) * stride);
+                let row_i = &mut head[i * stride..i * stride + width];
+                let d = l[(i, i)];
+                for v in row_i.iter_mut() {
+                    *v /= d;
+                }
+                for (r, row_r) in tail.chunks_mut(stride).enumerate() {
+                    let f = l[(i + 1 + r, i)];
+                    for (y, &v) in row_r[..width].iter_mut().zip(row_i.iter()) {
+                        *y -= v * f;
+                    }
+                }
+            }
+            let columns = x.chunks_exact_mut(rows).skip(start).take(width);
+            for (c, column) in columns.enumerate() {
+                for (i, v) in column[first..first + s].iter_mut().enumerate() {
+                    *v = buffer[i * stride + c];
+                }
+            }
+            start += width;
+        }
+    }
 }
 
 /// The Cholesky factor of `gram + s I` with the shift of shifted Cholesky QR,
@@ -285,13 +469,113 @@ fn shifted_cholesky(mut gram: DMatrix<f64>, m: usize) -> Option<DMatrix<f64>> {
     for i in 0..n {
         gram[(i, i)] += shift;
     }
-    Cholesky::new(gram).map(Cholesky::unpack)
+    cholesky_lower(gram)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Cholesky;
     use pulp::WithSimd;
+
+    /// A symmetric positive definite matrix of size `n` from `B B^T + I` (`B` of pseudo-random
+    /// entries), with a spread of scales like a Gram matrix's.
+    fn spd(n: usize, seed: u64) -> DMatrix<f64> {
+        let mut state = seed;
+        let b = DMatrix::from_fn(n, n + 3, |i, _| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * (1.0 + i as f64)
+        });
+        &b * b.transpose() + DMatrix::identity(n, n)
+    }
+
+    /// The blocked factorisation is `nalgebra`'s bit for bit, for sizes around the block's and
+    /// a degree-30-like one, with the upper triangle zero and garbage there ignored; and it
+    /// fails where `nalgebra`'s does (a zero, a negative and a not-a-number pivot, in the
+    /// first block and past it).
+    #[test]
+    fn blocked_cholesky_is_nalgebras_bit_for_bit() {
+        for (n, seed) in [
+            (1, 1),
+            (7, 2),
+            (8, 3),
+            (9, 4),
+            (17, 5),
+            (64, 6),
+            (100, 7),
+            (497, 8),
+        ] {
+            let mut g = spd(n, seed);
+            // Only the lower triangle is read.
+            for j in 1..n {
+                g[(0, j)] = f64::NAN;
+            }
+            let want = Cholesky::new(g.clone())
+                .map(Cholesky::unpack)
+                .expect("factor");
+            let got = cholesky_lower(g).expect("factor");
+            assert!(
+                got.iter()
+                    .zip(want.iter())
+                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                "n {n}"
+            );
+        }
+        for bad in [0.0, -1.0, f64::NAN] {
+            for (n, at) in [(12, 3), (30, 21)] {
+                let mut g = spd(n, 9);
+                // Make the pivot at `at` exactly `bad` after its updates: take the factor of
+                // the leading part and set the diagonal entry to its squared row plus `bad`.
+                let l = Cholesky::new(g.clone())
+                    .map(Cholesky::unpack)
+                    .expect("factor");
+                let row_sq: f64 = (0..at).map(|k| l[(at, k)] * l[(at, k)]).sum();
+                g[(at, at)] = row_sq + bad;
+                let want = Cholesky::new(g.clone()).map(Cholesky::unpack);
+                let got = cholesky_lower(g);
+                assert_eq!(got.is_some(), want.is_some(), "n {n} at {at} pivot {bad}");
+                if bad.is_nan() || bad < 0.0 {
+                    assert!(got.is_none(), "n {n} at {at} pivot {bad}");
+                }
+            }
+        }
+    }
+
+    /// The Gram product through the strided view of `A^T` is the product with a transposed
+    /// copy bit for bit (above `HIGH_DEGREE_BASIS`, blocks of `GRAM_BLOCK` rows), for all the
+    /// columns and for a prefix of them.
+    #[test]
+    fn gram_through_the_strided_view_equals_the_copy_bit_for_bit() {
+        let n = 2 * GRAM_BLOCK + 45;
+        let a = DMatrix::from_fn(n, 3 * n / 2, |i, j| {
+            (((i * 37 + j * 11) % 23) as f64 - 11.0) / 7.0 + 1e-3 * (i as f64).sqrt()
+        });
+        for cols in [a.ncols(), 4 * n / 3] {
+            let view = a.columns(0, cols);
+            let at = view.transpose();
+            let mut want = DMatrix::zeros(n, n);
+            let mut start = 0;
+            while start < n {
+                let end = (start + GRAM_BLOCK).min(n);
+                want.view_mut((start, 0), (end - start, end)).gemm(
+                    1.0,
+                    &view.rows_range(start..end),
+                    &at.columns_range(..end),
+                    0.0,
+                );
+                start = end;
+            }
+            let got = gram_lower(&a, cols);
+            assert!(
+                got.iter()
+                    .zip(want.iter())
+                    .all(|(x, y)| x.to_bits() == y.to_bits()),
+                "cols {cols}"
+            );
+        }
+    }
 
     /// Above `HIGH_DEGREE_BASIS` rows (with a last block shorter than the others) the lower
     /// triangle equals the full product's up to rounding, and so does the Cholesky factor;
@@ -307,7 +591,7 @@ mod tests {
                 (((i * 37 + j * 11) % 23) as f64 - 11.0) / 7.0
             });
             let full = &a * a.transpose();
-            let g = gram_lower(a.as_view());
+            let g = gram_lower(&a, a.ncols());
             if n <= HIGH_DEGREE_BASIS {
                 assert_eq!(g, full);
             } else {
@@ -321,6 +605,52 @@ mod tests {
                 let (l, want) = (l.expect("factor"), want.expect("factor"));
                 assert!((&l - &want).amax() <= 1e-12 * want.amax(), "n {n}");
             }
+        }
+    }
+
+    /// The forward substitution by chunks of columns is `nalgebra`'s bit for bit, for block
+    /// sizes 1 to 64 and column counts around a chunk's, and reports a zero diagonal entry.
+    #[test]
+    fn chunked_forward_substitution_is_nalgebras_bit_for_bit() {
+        for s in [1, 2, 5, 16, 17, 64] {
+            let l = DMatrix::from_fn(s, s, |i, j| {
+                if i == j {
+                    0.5 + ((i * 7) % 5) as f64 / 3.0
+                } else if i > j {
+                    (((i * 31 + j * 17) % 13) as f64 - 6.0) / 11.0
+                } else {
+                    f64::NAN // never read
+                }
+            });
+            let chunk = SUBSTITUTION_CHUNK / s;
+            for m in [1, chunk - 1, chunk, 2 * chunk + 3] {
+                let x = DMatrix::from_fn(s, m, |i, j| {
+                    (((i * 13 + j * 7) % 19) as f64 - 9.0) / 7.0 + 1e-3 * j as f64
+                });
+                let mut want = x.clone();
+                assert!(l.solve_lower_triangular_mut(&mut want));
+                // Inside a taller matrix, as the blocked solve calls it.
+                let mut tall = DMatrix::from_element(s + 5, m, 7.0);
+                tall.rows_mut(3, s).copy_from(&x);
+                assert!(forward_substitute(l.as_view(), &mut tall, 3));
+                let got = tall.rows(3, s).into_owned();
+                assert!(
+                    tall.rows(0, 3)
+                        .iter()
+                        .chain(tall.rows(s + 3, 2).iter())
+                        .all(|&v| v == 7.0)
+                );
+                assert!(
+                    got.iter()
+                        .zip(want.iter())
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "s {s} m {m}"
+                );
+            }
+            let mut singular = l.clone();
+            singular[(s - 1, s - 1)] = 0.0;
+            let mut x = DMatrix::from_element(s, 3, 1.0);
+            assert!(!forward_substitute(singular.as_view(), &mut x, 0));
         }
     }
 
