@@ -43,7 +43,8 @@
 //!   is not: matrix products at `gemm` speed), and the moments carried along:
 //!   `Q^T w = R^{-T} m` is `V^T w = m`. After three shifted passes one more, unshifted, pass
 //!   makes `Q` orthonormal when that keeps the moments consistent with the candidates (the
-//!   shift leaves `Q` regularised, and the NNLS on it takes several times the iterations).
+//!   shift leaves `Q` regularised, and the NNLS on it takes several times the iterations); a
+//!   rule made on the normalised basis that misses its target is made again without it.
 //! - **Compression.** Non-negative least squares on `min ||Q^T w - R^{-T} m||`, `w >= 0`:
 //!   Lawson-Hanson's active-set method with the deviation-maximisation choice of entering
 //!   columns (LHDM, Dessole, Marcuzzi and Vianello: several nearly orthogonal columns with
@@ -129,9 +130,10 @@ pub use rule::{
 /// matrix, `7 000 x 861` values, 49 MB, at degree 40 on the paper's M-shaped domain; at most
 /// `20 000 x 861`, 138 MB, with the default cap). Measured on one core on the inRS paper's
 /// three domains with the default options: degree 20 in about 40-55 ms, degree 30 in
-/// 0.13-0.18 s, degree 40 in 1.6-2.1 s (the box-scaled Legendre basis is so ill-conditioned
-/// on two of these domains that the orthonormalisation needs three shifted Cholesky passes and
-/// `Q` stays regularised at degree 40, where the NNLS then takes most of the time). A domain
+/// 0.15-0.22 s, degree 40 in 1.4-2.2 s (the box-scaled Legendre basis is so ill-conditioned
+/// on two of these domains that the orthonormalisation needs three shifted Cholesky passes;
+/// on `s4_disk_ellipse_segment` `Q` stays regularised at degree 40, where the NNLS then takes
+/// most of the time). A domain
 /// on which positive weights need more candidates than the cap gets an error
 /// (`ResidualNotReached`), not a wrong rule. Moments alone ([`monomial_moments`]) are cheap at
 /// any degree up to it.

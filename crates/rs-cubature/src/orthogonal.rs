@@ -33,6 +33,9 @@ pub(crate) struct Orthonormal {
     pub(crate) b: DVector<f64>,
     /// `R^T`, `N x N`, lower triangular.
     rt: DMatrix<f64>,
+    /// Whether [`normalising_pass`] made `Q` orthonormal after shifted passes had left it
+    /// regularised.
+    pub(crate) normalised: bool,
 }
 
 impl Orthonormal {
@@ -87,7 +90,14 @@ impl pulp::WithSimd for MomentError<'_> {
 /// candidates do not resolve the basis (a factor not invertible). The first `uniform`
 /// candidates are quasi-uniform (Halton points; all of them up to degree 20): the
 /// [`normalising_pass`]'s consistency test takes equal weights on them as its reference rule.
-pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64], uniform: usize) -> Option<Orthonormal> {
+/// With `normalise` false, no normalising pass is tried (`Q` stays regularised where the
+/// shifted passes left it so).
+pub(crate) fn orthonormalise(
+    vt: DMatrix<f64>,
+    m: &[f64],
+    uniform: usize,
+    normalise: bool,
+) -> Option<Orthonormal> {
     let n = vt.nrows();
     let mut qt = vt;
     let mut rt = DMatrix::<f64>::identity(n, n);
@@ -108,9 +118,7 @@ pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64], uniform: usize) -> Opt
             break;
         }
     }
-    if regularised && !normalising_pass(&mut qt, &mut rt, m, uniform) {
-        return None;
-    }
+    let normalised = regularised && normalise && normalising_pass(&mut qt, &mut rt, m, uniform)?;
     // A factor with a zero or non-finite diagonal entry: the candidates do not resolve the
     // basis (a shifted factor is always invertible, so this is rank deficiency or overflow).
     let d = rt.diagonal();
@@ -118,17 +126,18 @@ pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64], uniform: usize) -> Opt
         return None;
     }
     let b = rt.solve_lower_triangular(&DVector::from_column_slice(m))?;
-    Some(Orthonormal { qt, b, rt })
+    Some(Orthonormal {
+        qt,
+        b,
+        rt,
+        normalised,
+    })
 }
 
 /// After [`MAX_PASSES`] passes of which the last was shifted: one more, unshifted, pass when it
 /// is safe, i.e. when
-/// 1. the Gram matrix of the first [`PREFIX_PER_POLYNOMIAL`]` x N` candidates (a prefix of a
-///    Halton sequence) has a Cholesky factor: a cheap test, as a prefix's Gram matrix is below
-///    that of all the candidates (when it is numerically non-singular theirs usually is too,
-///    and when it is not theirs was in none of the cases measured);
-/// 2. the Gram matrix of all the candidates has one (not the shifted one);
-/// 3. the moments stay consistent with the candidates: with the pass's factor `L`,
+/// 1. the Gram matrix of all the candidates has a Cholesky factor (not the shifted one);
+/// 2. the moments stay consistent with the candidates: with the pass's factor `L`,
 ///    `rho = ||L^{-1} (b - Q^T w)|| / ||L^{-1} Q^T w||` for the equal weights `w = area / U` on
 ///    the first `U = uniform` candidates, the Halton points (all `M` of them up to degree 20;
 ///    above, the boundary layers that follow them are not uniform and get no weight)
@@ -136,28 +145,27 @@ pub(crate) fn orthonormalise(vt: DMatrix<f64>, m: &[f64], uniform: usize) -> Opt
 ///    [`MAX_MOMENT_INCONSISTENCY`]. Normalising directions the shift had damped also scales
 ///    up the moments' rounding errors in them; `rho` then grows far beyond the rule's error.
 ///
-/// Measured on the paper's domains: at degree 30 the shifted passes left `Q` regularised on
-/// `s5_lune` and the NNLS took 359-371 iterations, 88-132 with this pass (`rho` 0.19), the
-/// rule's residual `1e-14` -> `8e-16`; where the pass is refused (degrees 35 and 40 on
-/// `s4_disk_ellipse_segment` and `s5_lune`: the prefix's Cholesky fails) nothing changes
-/// but the prefix's Gram matrix. Without the tests, an unshifted pass after shifted ones gave
+/// The pass orthonormalises `Q`, and the NNLS on it then takes a fraction of the iterations:
+/// at degree 30 on `s5_lune` 88-132 instead of 359-371 (`rho` 0.19), the rule's residual
+/// `1e-14` -> `8e-16`; at degree 40 on the unit disc and `s5_lune` (`rho` 0.66 and 0.59) the
+/// whole rule 2.38 -> 1.22 s and 2.10 -> 1.52 s, the residual `2.2e-15` -> `2.8e-16` and
+/// `2.8e-15` -> `1.0e-15`. Without the tests, an unshifted pass after shifted ones gave
 /// `rho` 0.8 at degree 35 and 2.4 at degree 40 on `s4_disk_ellipse_segment`, and at 40 a
-/// failed rule (residual 0.16; `rho` of the accepted passes 0.07-0.28).
+/// failed rule (residual 0.16); there, at degrees 31 to 40, `rho` is 0.8 to 3 or the Gram
+/// matrix has no factor, and the pass is refused. (A rule made after the pass that misses
+/// its target is made again without it: see `compress`.)
 ///
-/// `false` if the pass made a non-finite or zero factor (then the candidates do not resolve
-/// the basis).
+/// `Some(true)` if the pass was made, `Some(false)` if refused; `None` if it made a non-finite
+/// or zero factor (then the candidates do not resolve the basis).
 fn normalising_pass(
     qt: &mut DMatrix<f64>,
     rt: &mut DMatrix<f64>,
     m: &[f64],
     uniform: usize,
-) -> bool {
-    let (n, cols) = qt.shape();
-    if cholesky_lower(gram_lower(qt, PREFIX_PER_POLYNOMIAL * n)).is_none() {
-        return true;
-    }
+) -> Option<bool> {
+    let cols = qt.ncols();
     let Some(l) = cholesky_lower(gram_lower(qt, cols)) else {
-        return true;
+        return Some(false);
     };
     let area = m.first().copied().unwrap_or(0.0);
     let uniform = uniform.clamp(1, cols);
@@ -173,24 +181,23 @@ fn normalising_pass(
         .map(|(b, qw)| (&b - &qw).norm() / qw.norm())
         .is_some_and(|rho| rho <= MAX_MOMENT_INCONSISTENCY);
     if !consistent {
-        return true;
+        return Some(false);
     }
     if !solve_lower_blocked(&l, qt) {
-        return false;
+        return None;
     }
     *rt = &*rt * &l;
-    true
+    Some(true)
 }
 
-/// Candidates per basis polynomial in the prefix of [`normalising_pass`]'s first test. With
-/// `2 N` it failed at degree 30 on `s5_lune`, where all the candidates (`18 N`) pass; `4 N`,
-/// `6 N` and `8 N` pass there, and all fail at degrees 35 and 40 on `s4_disk_ellipse_segment`
-/// and `s5_lune`, whose full Gram matrices are singular or inconsistent.
-const PREFIX_PER_POLYNOMIAL: usize = 4;
-
-/// The largest `rho` of [`normalising_pass`]: accepted passes measured 0.07-0.28, refused
-/// ones 0.56 (a rule at `3.4e-14`, near the target), 0.8 and 2.4 (a failed rule).
-const MAX_MOMENT_INCONSISTENCY: f64 = 0.4;
+/// The largest `rho` of [`normalising_pass`]. Surveyed at degrees 21 to 40 on the paper's six
+/// domains and the three nested fill-rule fixtures (180 rules): the passes with `rho` up to 0.67
+/// (`s5_lune` at degrees 31 to 40, the disc at 38 and 40, the nested discs at 37 to 40, the
+/// L shape at 22) made rules at residuals of `2.8e-16` to `2.6e-15`, those refused had `rho`
+/// 0.8 to 4.4 (`s4_disk_ellipse_segment`, the L shape); earlier, a pass at 0.8 made a failed
+/// rule. (A limit of 0.4, with a cheaper
+/// test on a prefix of the candidates before it, refused every pass above degree 30.)
+const MAX_MOMENT_INCONSISTENCY: f64 = 0.7;
 
 /// Rows of the diagonal blocks of [`solve_lower_blocked`]: the work off the diagonal, all but
 /// `1 / (number of blocks)` of it, runs as matrix products.
@@ -695,23 +702,19 @@ mod tests {
         let area = 2.5;
         let moments = &v * DVector::from_element(m, area / m as f64);
         let (mut qt, mut rt) = (v.clone(), DMatrix::identity(n, n));
-        assert!(normalising_pass(
-            &mut qt,
-            &mut rt,
-            moments.as_slice(),
-            usize::MAX
-        ));
+        assert_eq!(
+            normalising_pass(&mut qt, &mut rt, moments.as_slice(), usize::MAX),
+            Some(true)
+        );
         assert!((&qt * qt.transpose() - DMatrix::<f64>::identity(n, n)).amax() < 1e-12);
         assert!((&rt * &qt - &v).amax() < 1e-12 * v.amax());
         let mut far = moments.clone();
         far[n - 1] += 100.0 * moments.amax();
         let (mut qt, mut rt) = (v.clone(), DMatrix::identity(n, n));
-        assert!(normalising_pass(
-            &mut qt,
-            &mut rt,
-            far.as_slice(),
-            usize::MAX
-        ));
+        assert_eq!(
+            normalising_pass(&mut qt, &mut rt, far.as_slice(), usize::MAX),
+            Some(false)
+        );
         assert_eq!(qt, v);
         assert_eq!(rt, DMatrix::identity(n, n));
     }
@@ -728,6 +731,7 @@ mod tests {
             qt: DMatrix::zeros(4, 4),
             b: DVector::zeros(4),
             rt: rt.clone(),
+            normalised: false,
         };
         let r = [0.5, -1.0, 2.0, 0.25];
         let want = (&rt * DVector::from_column_slice(&r)).amax();
@@ -746,6 +750,7 @@ mod tests {
             qt: DMatrix::zeros(n, 1),
             b: DVector::zeros(n),
             rt,
+            normalised: false,
         };
         // Several residuals, each with its largest entry in another row; and a short one.
         for seed in 1..=6u64 {
