@@ -130,7 +130,7 @@ pub use rule::{
 /// matrix, `7 000 x 861` values, 49 MB, at degree 40 on the paper's M-shaped domain; at most
 /// `20 000 x 861`, 138 MB, with the default cap). Measured on one core on the inRS paper's
 /// three domains with the default options: degree 20 in about 40-55 ms, degree 30 in
-/// 0.15-0.22 s, degree 40 in 1.4-2.2 s (the box-scaled Legendre basis is so ill-conditioned
+/// 0.12-0.19 s, degree 40 in 1.3-2.0 s (the box-scaled Legendre basis is so ill-conditioned
 /// on two of these domains that the orthonormalisation needs three shifted Cholesky passes;
 /// on `s4_disk_ellipse_segment` `Q` stays regularised at degree 40, where the NNLS then takes
 /// most of the time). A domain
