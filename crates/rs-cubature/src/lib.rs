@@ -44,7 +44,8 @@
 //!   `Q^T w = R^{-T} m` is `V^T w = m`. After three shifted passes one more, unshifted, pass
 //!   makes `Q` orthonormal when that keeps the moments consistent with the candidates (the
 //!   shift leaves `Q` regularised, and the NNLS on it takes several times the iterations); a
-//!   rule made on the normalised basis that misses its target is made again without it.
+//!   rule made on the normalised basis that misses its target is made again without it, the
+//!   one with the smaller residual kept.
 //! - **Compression.** Non-negative least squares on `min ||Q^T w - R^{-T} m||`, `w >= 0`:
 //!   Lawson-Hanson's active-set method with the deviation-maximisation choice of entering
 //!   columns (LHDM, Dessole, Marcuzzi and Vianello: several nearly orthogonal columns with
