@@ -26,25 +26,29 @@ fn dots_into<'x>(
     v: &[f64],
     mut out: impl FnMut(usize, f64),
 ) {
-    let mut t = 0;
-    while t + DOT_LANES <= count {
-        let group: [&[f64]; DOT_LANES] = std::array::from_fn(|l| x(t + l));
+    let t = dots_by::<DOT_LANES, _, _>(0, count, &x, v, &mut out);
+    let t = dots_by::<4, _, _>(t, count, &x, v, &mut out);
+    dots_by::<1, _, _>(t, count, &x, v, &mut out);
+}
+
+/// [`dots_into`] from `t` on, `L` vectors side by side while `L` are left; returns where it
+/// stopped.
+#[inline(always)]
+fn dots_by<'x, const L: usize, X: Fn(usize) -> &'x [f64], O: FnMut(usize, f64)>(
+    mut t: usize,
+    count: usize,
+    x: &X,
+    v: &[f64],
+    out: &mut O,
+) -> usize {
+    while t + L <= count {
+        let group: [&[f64]; L] = std::array::from_fn(|l| x(t + l));
         for (l, d) in dots(group, v).into_iter().enumerate() {
             out(t + l, d);
         }
-        t += DOT_LANES;
+        t += L;
     }
-    while t + 4 <= count {
-        let group: [&[f64]; 4] = std::array::from_fn(|l| x(t + l));
-        for (l, d) in dots(group, v).into_iter().enumerate() {
-            out(t + l, d);
-        }
-        t += 4;
-    }
-    while t < count {
-        out(t, dot(x(t), v));
-        t += 1;
-    }
+    t
 }
 
 /// `products[e][i] = q_i . columns[e]` for the first `k0` columns `q_i` of `q` (`n` rows,

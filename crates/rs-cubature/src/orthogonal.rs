@@ -153,7 +153,8 @@ pub(crate) fn orthonormalise(
 /// `rho` 0.8 at degree 35 and 2.4 at degree 40 on `s4_disk_ellipse_segment`, and at 40 a
 /// failed rule (residual 0.16); there, at degrees 31 to 40, `rho` is 0.8 to 3 or the Gram
 /// matrix has no factor, and the pass is refused. (A rule made after the pass that misses
-/// its target is made again without it: see `compress`.)
+/// its target is made again without it, the one with the smaller residual kept: see
+/// `compress`.)
 ///
 /// `Some(true)` if the pass was made, `Some(false)` if refused; `None` if it made a non-finite
 /// or zero factor (then the candidates do not resolve the basis).
@@ -195,8 +196,8 @@ fn normalising_pass(
 /// (`s5_lune` at degrees 31 to 40, the disc at 38 and 40, the nested discs at 37 to 40, the
 /// L shape at 22) made rules at residuals of `2.8e-16` to `2.6e-15`, those refused had `rho`
 /// 0.8 to 4.4 (`s4_disk_ellipse_segment`, the L shape); earlier, a pass at 0.8 made a failed
-/// rule. (A limit of 0.4, with a cheaper
-/// test on a prefix of the candidates before it, refused every pass above degree 30.)
+/// rule. (A limit of 0.4, with a cheaper test on a prefix of the candidates before it,
+/// refused every pass above degree 30.)
 const MAX_MOMENT_INCONSISTENCY: f64 = 0.7;
 
 /// Rows of the diagonal blocks of [`solve_lower_blocked`]: the work off the diagonal, all but
@@ -388,9 +389,9 @@ const SUBSTITUTION_PAD: usize = 8;
 
 /// `x <- L^{-1} x` for a small lower triangular `L` (`s x s`, a diagonal block of
 /// [`solve_lower_by_blocks`]) and the rows `first..first + s` of `x` (`s x M` of them), by
-/// forward substitution: `false` if a diagonal entry is zero. The same operations as `nalgebra`'s `solve_lower_triangular_mut`, bit for
-/// bit: in each column, for `i = 0, 1, ..`, `x_i <- x_i / L_ii`, then `x_r <- x_r - x_i L_ri`
-/// for every `r > i`. Here the columns are taken a chunk at a time, copied into rows (a
+/// forward substitution: `false` if a diagonal entry is zero. The same operations as
+/// `nalgebra`'s `solve_lower_triangular_mut`, bit for bit: in each column, for
+/// `i = 0, 1, ..`, `x_i <- x_i / L_ii`, then `x_r <- x_r - x_i L_ri` for every `r > i`. Here the columns are taken a chunk at a time, copied into rows (a
 /// column's `s` entries are contiguous, a row's are `N` apart), and each step runs along the
 /// rows, across the chunk's columns: column by column, a step was a loop of fewer than `s`
 /// entries and the whole substitution a chain of dependent steps per column, 13% of a
@@ -431,7 +432,7 @@ impl pulp::WithSimd for ForwardSubstitute<'_, '_> {
         }
         let m = x.len() / rows;
         let chunk = (SUBSTITUTION_CHUNK / s).max(1);
-        // Row i of a chunk at `rows[i stride..i stride + width]`.
+        // Row i of a chunk at `buffer[i stride..i stride + width]`.
         let stride = chunk + SUBSTITUTION_PAD;
         let mut buffer = vec![0.0; s * stride];
         let mut start = 0;
@@ -488,13 +489,8 @@ mod tests {
     /// A symmetric positive definite matrix of size `n` from `B B^T + I` (`B` of pseudo-random
     /// entries), with a spread of scales like a Gram matrix's.
     fn spd(n: usize, seed: u64) -> DMatrix<f64> {
-        let mut state = seed;
-        let b = DMatrix::from_fn(n, n + 3, |i, _| {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * (1.0 + i as f64)
-        });
+        let mut rng = rs_testkit::XorShift64::new(seed);
+        let b = DMatrix::from_fn(n, n + 3, |i, _| rng.uniform(-0.5, 0.5) * (1.0 + i as f64));
         &b * b.transpose() + DMatrix::identity(n, n)
     }
 

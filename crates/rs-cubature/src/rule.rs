@@ -5,7 +5,7 @@ use nalgebra::{DMatrix, DVector};
 use rs_contain::{Classifier, ContainOptions, FillRule};
 use rs_spline::{Domain, Point};
 
-use crate::basis::LegendreBasis;
+use crate::basis::{LegendreBasis, dim_polynomials};
 use crate::candidates::{Candidates, LayerDensity, boundary_layers};
 use crate::moments::basis_moments;
 use crate::nnls::{NnlsOptions, dot, nnls};
@@ -235,17 +235,18 @@ impl CubatureRule {
         let mut with_layers = Vec::new();
         for attempt in 0..=options.max_retries {
             let (wanted, points, uniform) = if layered {
-                // Halton points, then the boundary layers (see `boundary_layers`).
-                let halton = (dim << attempt).min(options.max_candidates / 2).max(1);
-                candidates.grow_to(halton);
-                with_layers.clear();
-                with_layers.extend_from_slice(candidates.points());
-                let room = options.max_candidates - with_layers.len();
-                let density = layer_density(attempt);
-                let mut layers = boundary_layers(domain, &classifier, degree, area, density, room);
-                layers.truncate(room);
-                with_layers.extend(layers);
-                let uniform = candidates.points().len();
+                let uniform = layered_candidates(
+                    LayeredAttempt {
+                        domain,
+                        classifier: &classifier,
+                        degree,
+                        area,
+                        attempt,
+                        max_candidates: options.max_candidates,
+                    },
+                    &mut candidates,
+                    &mut with_layers,
+                );
                 (with_layers.len(), with_layers.as_slice(), uniform)
             } else {
                 let wanted = options
@@ -376,6 +377,39 @@ impl CubatureRule {
 /// `16-18 N` and degree 40 about `22 N`): a positive rule of high degree has nodes near the
 /// boundary that uniform points reach only in large numbers.
 const CANDIDATES_GROWTH_DEGREE: usize = 20;
+
+/// What [`layered_candidates`] needs of a rule's attempt above degree 20.
+struct LayeredAttempt<'a> {
+    domain: &'a Domain,
+    classifier: &'a Classifier,
+    degree: usize,
+    /// The domain's area (the first moment).
+    area: f64,
+    attempt: usize,
+    max_candidates: usize,
+}
+
+/// The candidates of attempt `a` above degree 20 into `out`: `dim P_n` Halton points inside
+/// (doubled per retry, at most half of `max_candidates`, grown in `candidates`), then the
+/// boundary layers ([`boundary_layers`], at [`layer_density`]) up to `max_candidates` in
+/// all. Returns how many of them are Halton points (they come first).
+fn layered_candidates(
+    a: LayeredAttempt<'_>,
+    candidates: &mut Candidates<'_>,
+    out: &mut Vec<Point>,
+) -> usize {
+    let dim = dim_polynomials(a.degree);
+    let halton = (dim << a.attempt).min(a.max_candidates / 2).max(1);
+    candidates.grow_to(halton);
+    out.clear();
+    out.extend_from_slice(candidates.points());
+    let room = a.max_candidates - out.len();
+    let density = layer_density(a.attempt);
+    let mut layers = boundary_layers(a.domain, a.classifier, a.degree, a.area, density, room);
+    layers.truncate(room);
+    out.extend(layers);
+    candidates.points().len()
+}
 
 /// The density of the boundary layers of attempt `attempt` above degree 20 (see
 /// [`boundary_layers`]): `1.5` times the Gauss points' density across the domain, `2.5 (n + 1)`
@@ -682,19 +716,19 @@ mod tests {
         let moments = basis_moments(&domain, FillRule::EvenOdd, &basis, degree).unwrap();
         let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
         let mut candidates = Candidates::new(&classifier);
-        candidates.grow_to(basis.len());
-        let mut points = candidates.points().to_vec();
-        let uniform = points.len();
-        let room = DEFAULT_MAX_CANDIDATES - uniform;
-        let layers = boundary_layers(
-            &domain,
-            &classifier,
-            degree,
-            moments[0],
-            layer_density(0),
-            room,
+        let mut points = Vec::new();
+        let uniform = layered_candidates(
+            LayeredAttempt {
+                domain: &domain,
+                classifier: &classifier,
+                degree,
+                area: moments[0],
+                attempt: 0,
+                max_candidates: DEFAULT_MAX_CANDIDATES,
+            },
+            &mut candidates,
+            &mut points,
         );
-        points.extend(layers.into_iter().take(room));
         let bits = |a: &Attempt| -> Vec<u64> {
             a.nodes
                 .iter()

@@ -429,6 +429,15 @@ mod tests {
     use rs_spline::grid::GridFrame;
     use std::sync::atomic::Ordering;
 
+    /// What `each(t)` returns on each of `threads` threads run at once, in thread order.
+    fn on_threads<T: Send>(threads: usize, each: impl Fn(usize) -> T + Sync) -> Vec<T> {
+        std::thread::scope(|scope| {
+            let each = &each;
+            let handles: Vec<_> = (0..threads).map(|t| scope.spawn(move || each(t))).collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        })
+    }
+
     /// A locator whose strips are built by the queries that first need them, from several
     /// threads at once (the same strip asked for by many), answers as inRS2 does, point by
     /// point and in batches; once every strip is built its flat tables are made and give the
@@ -448,20 +457,12 @@ mod tests {
             assert_eq!(built, 1, "{}", case.name);
             assert!(ix.complete.get().is_none());
             let loc = c.locator();
-            let got: Vec<Vec<Location>> = std::thread::scope(|scope| {
-                let handles: Vec<_> = (0..4)
-                    .map(|t| {
-                        let (loc, pts) = (&loc, &pts);
-                        scope.spawn(move || {
-                            if t % 2 == 0 {
-                                loc.locate_all(pts)
-                            } else {
-                                pts.iter().map(|&p| loc.locate(p)).collect()
-                            }
-                        })
-                    })
-                    .collect();
-                handles.into_iter().map(|h| h.join().unwrap()).collect()
+            let got = on_threads(4, |t| {
+                if t % 2 == 0 {
+                    loc.locate_all(&pts)
+                } else {
+                    pts.iter().map(|&p| loc.locate(p)).collect()
+                }
             });
             for g in &got {
                 assert_eq!(g, &expected, "{}", case.name);
@@ -491,15 +492,7 @@ mod tests {
             for threads in [2, 3, 8] {
                 let fresh = Classifier::new(&case.domain, ContainOptions::default()).unwrap();
                 let loc = fresh.locator();
-                let got: Vec<Vec<Location>> = std::thread::scope(|scope| {
-                    let handles: Vec<_> = (0..threads)
-                        .map(|_| {
-                            let (loc, pts) = (&loc, &pts);
-                            scope.spawn(move || loc.locate_all(pts))
-                        })
-                        .collect();
-                    handles.into_iter().map(|h| h.join().unwrap()).collect()
-                });
+                let got = on_threads(threads, |_| loc.locate_all(&pts));
                 assert!(
                     got.iter().all(|g| g == &expected),
                     "{} x{threads}",
