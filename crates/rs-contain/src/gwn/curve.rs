@@ -8,6 +8,7 @@ use rs_spline::{Hpoint, Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::QueryStats;
+use super::monotone::monotone_crossing;
 use super::sum::{AngleSum, ChordSink, cut_crossing};
 
 /// Bisection depth cap: a subcurve on a parameter interval of `2^-64` is below `f64`
@@ -388,6 +389,12 @@ pub(crate) trait SubCurves {
         let (lo, hi) = control_box(&self.points(node));
         outside_box_reach(lo, hi, q, reach)
     }
+    /// Its signed crossing of the cut from the root of `y(t) = q.y`, for a polynomial
+    /// sub-curve ([`monotone_crossing`]); `None` where that does not decide or apply (the
+    /// default: rational and higher-degree sub-curves).
+    fn monotone_crossing(&self, _node: &Self::Node, _q: Point, _reach: f64) -> Option<i64> {
+        None
+    }
 }
 
 /// Sub-curves computed on demand, halves included.
@@ -566,6 +573,10 @@ impl SubCurves for OnTheFlySmall {
     fn convex(&self, node: &SmallPolynomial, parent_convex: bool) -> bool {
         parent_convex || is_simple_convex(node.points())
     }
+    #[inline(always)]
+    fn monotone_crossing(&self, node: &SmallPolynomial, q: Point, reach: f64) -> Option<i64> {
+        monotone_crossing(node.points(), q, reach)
+    }
 }
 
 /// The adaptive algorithm from `c` down on the fly: depth-first, the left half first, at most
@@ -590,6 +601,12 @@ pub(crate) fn walk<S: SubCurves, K: ChordSink>(
             stats.curve_evaluations += 1;
         }
         if let Some(convex) = settle(source, &c, q, depth, parent_convex, sink) {
+            if K::COUNTS_CROSSINGS
+                && let Some(k) = source.monotone_crossing(&c, q, sink.reach())
+            {
+                sink.crossings(k);
+                continue;
+            }
             let (l, r) = c.halves();
             stats.subdivisions += 1;
             // Sub-curves of a simple convex curve are simple and convex (paper, section 5).

@@ -16,8 +16,9 @@ use super::curve::{
     refine_below_small, settle,
 };
 use super::far_cells::FarCells;
+use super::monotone::monotone_crossing;
 use super::span_rows::{Leaf, SpanRows};
-use super::sum::{BATCH, ChordSink, WindingSum};
+use super::sum::{BATCH, ChordSink, CrossingSum, WindingSum};
 use super::{QueryStats, WindingField};
 use crate::locality::locality_order;
 use crate::rows::Rows;
@@ -294,6 +295,12 @@ fn walk_hierarchy<H: Hierarchy, K: ChordSink>(
         let Some(convex) = settle(h, &i, q, depth, parent_convex, sink) else {
             continue;
         };
+        if K::COUNTS_CROSSINGS
+            && let Some(k) = h.monotone_crossing(&i, q, sink.reach())
+        {
+            sink.crossings(k);
+            continue;
+        }
         if i < INNER_SUB_CURVES {
             pending[len] = (2 * i + 2, depth + 1, convex);
             len += 1;
@@ -341,6 +348,10 @@ impl SubCurves for SmallView<'_> {
     fn outside_box(&self, i: &u32, q: Point, reach: f64) -> Outside {
         let b = &self.boxes[*i as usize];
         outside_box_reach(b.lo, b.hi, q, reach)
+    }
+    #[inline(always)]
+    fn monotone_crossing(&self, i: &u32, q: Point, reach: f64) -> Option<i64> {
+        monotone_crossing(self.tests[*i as usize].points(), q, reach)
     }
 }
 
@@ -448,7 +459,13 @@ enum Kind {
 /// pieces form several chains as their chords do, without opening the node; other nodes
 /// are opened, and a leaf whose box holds `q` runs the adaptive algorithm on its piece's
 /// subdivision hierarchy ([`CurveHierarchy`], built the second time a query needs it and kept;
-/// the first query walks the piece's sub-curves on the fly, with the same result).
+/// the first query walks the piece's sub-curves on the fly, with the same result). Where
+/// the walk would halve a polynomial sub-curve of degree 3 or less monotone in `y`, the
+/// sub-curve's crossing is decided instead from the root of `y(t) = q.y` by Newton's method,
+/// with a bound on the root's error, when `q` is certainly farther than twice the band's reach
+/// from it (`monotone`): the chords' crossings would add up to the same whole number, so the
+/// values are the reference walk's bit for bit, and a query near a curve takes a few Newton
+/// steps instead of halving down to its distance (two sub-curves' tests a level).
 /// A query far from the boundary costs a few node tests; one near it visits the nodes along
 /// its ray. Fields of 33 to 16,384 pieces mostly answer without the walk: the leaves are kept
 /// by rows of their height, and in its row a query adds the crossings of the leaves spanning
@@ -827,6 +844,7 @@ impl<'a> FastWindingField<'a> {
     #[inline(always)]
     fn refine_piece(&self, p: usize, q: Point, sum: &mut WindingSum, stats: &mut QueryStats) {
         let slot = &self.hierarchies[p];
+        let sum = &mut CrossingSum(sum);
         if let Some(h) = slot.hierarchy.get() {
             h.refine(q, sum, stats);
         } else if slot.refined.swap(true, Ordering::Relaxed) {

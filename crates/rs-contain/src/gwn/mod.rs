@@ -8,6 +8,7 @@ mod far_cells;
 mod fast;
 #[cfg(test)]
 mod lazy_tests;
+mod monotone;
 mod on_boundary;
 mod raycast;
 mod span_rows;

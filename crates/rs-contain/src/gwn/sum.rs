@@ -35,6 +35,13 @@ pub(crate) trait ChordSink {
     }
     /// The query may be within [`ChordSink::reach`] of the curve.
     fn mark_near(&mut self) {}
+    /// Whether the sink takes a sub-curve's signed crossings of the cut whole
+    /// ([`ChordSink::crossings`]): then the walks settle a polynomial sub-curve monotone in
+    /// `y` from the root of `y(t) = q.y` instead of halving it (see
+    /// [`super::monotone::monotone_crossing`]).
+    const COUNTS_CROSSINGS: bool = false;
+    /// Adds `k`, a sub-curve's signed crossings of the cut (what its chords would add).
+    fn crossings(&mut self, _k: i64) {}
 }
 
 /// Below this, `u . v` and `u x v` of a chain's ends may have lost digits to underflow.
@@ -480,6 +487,44 @@ impl ChordSink for WindingSum {
     #[inline]
     fn mark_near(&mut self) {
         self.near = true;
+    }
+}
+
+/// A [`WindingSum`] that takes a sub-curve's crossings whole ([`ChordSink::COUNTS_CROSSINGS`]):
+/// the fast field's walks. The sum is the same as the chords' (the same whole number of
+/// crossings; a settled monotone sub-curve adds no coincidence term, `q` being certainly off
+/// it), and so is the value; the reference field ([`super::WindingField`]) keeps the paper's
+/// walk, halving every sub-curve.
+pub(crate) struct CrossingSum<'a>(pub(crate) &'a mut WindingSum);
+
+impl ChordSink for CrossingSum<'_> {
+    #[inline(always)]
+    fn chord(&mut self, a: Point, b: Point) {
+        self.0.chord(a, b);
+    }
+
+    #[inline(always)]
+    fn special(&mut self, value: f64, a: Point, b: Point) {
+        self.0.special(value, a, b);
+    }
+
+    const TRACKS_NEAR: bool = true;
+
+    #[inline(always)]
+    fn reach(&self) -> f64 {
+        self.0.reach
+    }
+
+    #[inline(always)]
+    fn mark_near(&mut self) {
+        self.0.near = true;
+    }
+
+    const COUNTS_CROSSINGS: bool = true;
+
+    #[inline(always)]
+    fn crossings(&mut self, k: i64) {
+        self.0.crossings += k;
     }
 }
 
