@@ -89,8 +89,7 @@ fn small_walk_on_the_fly_matches_the_sub_curve_walk() {
             walk(
                 &OnTheFly,
                 SubCurve::of(&b),
-                0,
-                false,
+                (0, false, true),
                 q,
                 &mut general,
                 &mut s2,
@@ -121,8 +120,7 @@ fn compact_hierarchy_matches_the_general_one_and_the_walk_on_the_fly() {
                 walk(
                     &OnTheFly,
                     SubCurve::of(&b),
-                    0,
-                    false,
+                    (0, false, true),
                     q,
                     &mut sums[2],
                     &mut stats[2],

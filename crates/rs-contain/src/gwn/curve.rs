@@ -8,7 +8,7 @@ use rs_spline::{Hpoint, Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::QueryStats;
-use super::monotone::monotone_crossing;
+use super::monotone::{RootCrossing, monotone_crossing};
 use super::sum::{AngleSum, ChordSink, cut_crossing};
 
 /// Bisection depth cap: a subcurve on a parameter interval of `2^-64` is below `f64`
@@ -389,11 +389,11 @@ pub(crate) trait SubCurves {
         let (lo, hi) = control_box(&self.points(node));
         outside_box_reach(lo, hi, q, reach)
     }
-    /// Its signed crossing of the cut from the root of `y(t) = q.y`, for a polynomial
-    /// sub-curve ([`monotone_crossing`]); `None` where that does not decide or apply (the
+    /// Its signed crossing of the cut from the root of `y(t) = q.y`, for a small polynomial
+    /// sub-curve ([`monotone_crossing`]); [`RootCrossing::NotMonotone`] for the others (the
     /// default: rational and higher-degree sub-curves).
-    fn monotone_crossing(&self, _node: &Self::Node, _q: Point, _reach: f64) -> Option<i64> {
-        None
+    fn monotone_crossing(&self, _node: &Self::Node, _q: Point, _reach: f64) -> RootCrossing {
+        RootCrossing::NotMonotone
     }
 }
 
@@ -459,9 +459,10 @@ pub(crate) fn refine_below<K: ChordSink>(
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
+    let state = (depth, parent_convex, true);
     match SmallPolynomial::of(&c) {
-        Some(small) => walk(&OnTheFlySmall, small, depth, parent_convex, q, sink, stats),
-        None => walk(&OnTheFly, c, depth, parent_convex, q, sink, stats),
+        Some(small) => walk(&OnTheFlySmall, small, state, q, sink, stats),
+        None => walk(&OnTheFly, c, state, q, sink, stats),
     }
 }
 
@@ -526,15 +527,23 @@ impl std::ops::Deref for SmallPolynomial {
 
 /// The adaptive algorithm from the small polynomial sub-curve `c` (at `depth`, its parent
 /// simple and convex or not) down: [`refine_below`] on the same sub-curve.
+/// `roots`: whether its sub-curves may still be settled by their roots (see
+/// [`settle_by_root`]).
 pub(crate) fn refine_below_small<K: ChordSink>(
     c: SmallPolynomial,
-    depth: u32,
-    parent_convex: bool,
+    (depth, parent_convex, roots): (u32, bool, bool),
     q: Point,
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
-    walk(&OnTheFlySmall, c, depth, parent_convex, q, sink, stats);
+    walk(
+        &OnTheFlySmall,
+        c,
+        (depth, parent_convex, roots),
+        q,
+        sink,
+        stats,
+    );
 }
 
 /// A sub-curve the walk on the fly can halve.
@@ -574,7 +583,7 @@ impl SubCurves for OnTheFlySmall {
         parent_convex || is_simple_convex(node.points())
     }
     #[inline(always)]
-    fn monotone_crossing(&self, node: &SmallPolynomial, q: Point, reach: f64) -> Option<i64> {
+    fn monotone_crossing(&self, node: &SmallPolynomial, q: Point, reach: f64) -> RootCrossing {
         monotone_crossing(node.points(), q, reach)
     }
 }
@@ -583,37 +592,66 @@ impl SubCurves for OnTheFlySmall {
 /// one pending right half per level (on the stack for any query not within `2^-32` of the
 /// piece's size from it).
 #[inline(always)]
+///
+/// `(depth, parent_convex, roots)`: `c`'s depth, whether its parent is simple and convex, and
+/// whether it may be settled by its root ([`settle_by_root`]).
 pub(crate) fn walk<S: SubCurves, K: ChordSink>(
     source: &S,
     c: S::Node,
-    depth: u32,
-    parent_convex: bool,
+    (depth, parent_convex, roots): (u32, bool, bool),
     q: Point,
     sink: &mut K,
     stats: &mut QueryStats,
 ) where
     S::Node: Halve,
 {
-    let mut stack: SmallVec<[(S::Node, u32, bool); 32]> = SmallVec::new();
-    let mut next = Some((c, depth, parent_convex));
-    while let Some((c, depth, parent_convex)) = next.take().or_else(|| stack.pop()) {
+    let mut stack: SmallVec<[Pending<S::Node>; 32]> = SmallVec::new();
+    let mut next = Some((c, depth, parent_convex, roots));
+    while let Some((c, depth, parent_convex, roots)) = next.take().or_else(|| stack.pop()) {
         if depth > 0 {
             stats.curve_evaluations += 1;
         }
         if let Some(convex) = settle(source, &c, q, depth, parent_convex, sink) {
-            if K::COUNTS_CROSSINGS
-                && let Some(k) = source.monotone_crossing(&c, q, sink.reach())
-            {
-                sink.crossings(k);
+            let Some(roots) = settle_by_root(source, &c, q, roots, sink) else {
                 continue;
-            }
+            };
             let (l, r) = c.halves();
             stats.subdivisions += 1;
             // Sub-curves of a simple convex curve are simple and convex (paper, section 5).
             // The left half next, the right one after all of the left's sub-curves.
-            stack.push((r, depth + 1, convex));
-            next = Some((l, depth + 1, convex));
+            stack.push((r, depth + 1, convex, roots));
+            next = Some((l, depth + 1, convex, roots));
         }
+    }
+}
+
+/// A sub-curve [`walk`] has still to visit: it, its depth, whether its parent is simple and
+/// convex, and whether it may be settled by its root.
+type Pending<N> = (N, u32, bool, bool);
+
+/// After [`settle`] opened sub-curve `c`, for a sink that takes crossings whole
+/// ([`ChordSink::COUNTS_CROSSINGS`]) and with `roots` true: its crossing from its root
+/// ([`monotone_crossing`]), sent to `sink` (`None`: settled). Otherwise `Some` of whether its
+/// halves may ask in turn: not once the query was found too near where it meets the query's
+/// height, as theirs is the same place.
+#[inline(always)]
+pub(crate) fn settle_by_root<S: SubCurves, K: ChordSink>(
+    source: &S,
+    c: &S::Node,
+    q: Point,
+    roots: bool,
+    sink: &mut K,
+) -> Option<bool> {
+    if !(K::COUNTS_CROSSINGS && roots) {
+        return Some(roots);
+    }
+    match source.monotone_crossing(c, q, sink.reach()) {
+        RootCrossing::Decided(k) => {
+            sink.crossings(k);
+            None
+        }
+        RootCrossing::TooNear => Some(false),
+        RootCrossing::NotMonotone => Some(true),
     }
 }
 

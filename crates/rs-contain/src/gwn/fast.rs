@@ -13,10 +13,10 @@ use smallvec::SmallVec;
 use super::curve::{
     Halve, Outside, SMALL, SmallPolynomial, SubCurve, SubCurves, control_box, is_linear,
     is_simple_convex, misses_cut, outside_box_reach, polygon_area, refine_below,
-    refine_below_small, settle,
+    refine_below_small, settle, settle_by_root,
 };
 use super::far_cells::FarCells;
-use super::monotone::monotone_crossing;
+use super::monotone::{RootCrossing, monotone_crossing};
 use super::span_rows::{Leaf, SpanRows};
 use super::sum::{BATCH, ChordSink, CrossingSum, WindingSum};
 use super::{QueryStats, WindingField};
@@ -253,13 +253,13 @@ impl CurveHierarchy {
 
 /// A [`CurveHierarchy`]'s sub-curves, by index, and the walk on the fly below its leaves.
 trait Hierarchy: SubCurves<Node = u32> {
-    /// The adaptive algorithm below leaf `i` (at `depth`, simple and convex or not): its
+    /// The adaptive algorithm below leaf `i`, with `state` its depth, whether it is simple and
+    /// convex, and whether its halves may be settled by their roots ([`settle_by_root`]): its
     /// halves, each walked on the fly.
     fn below<K: ChordSink>(
         &self,
         i: u32,
-        depth: u32,
-        convex: bool,
+        state: (u32, bool, bool),
         q: Point,
         sink: &mut K,
         stats: &mut QueryStats,
@@ -279,11 +279,11 @@ fn walk_hierarchy<H: Hierarchy, K: ChordSink>(
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
-    let mut pending = [(0u32, 0u32, false); HIERARCHY_DEPTH as usize];
+    let mut pending = [(0u32, 0u32, false, false); HIERARCHY_DEPTH as usize];
     let mut len = 0;
-    let mut next = Some((0u32, 0u32, false));
+    let mut next = Some((0u32, 0u32, false, true));
     loop {
-        let (i, depth, parent_convex) = match next.take() {
+        let (i, depth, parent_convex, roots) = match next.take() {
             Some(n) => n,
             None if len > 0 => {
                 len -= 1;
@@ -295,18 +295,15 @@ fn walk_hierarchy<H: Hierarchy, K: ChordSink>(
         let Some(convex) = settle(h, &i, q, depth, parent_convex, sink) else {
             continue;
         };
-        if K::COUNTS_CROSSINGS
-            && let Some(k) = h.monotone_crossing(&i, q, sink.reach())
-        {
-            sink.crossings(k);
+        let Some(roots) = settle_by_root(h, &i, q, roots, sink) else {
             continue;
-        }
+        };
         if i < INNER_SUB_CURVES {
-            pending[len] = (2 * i + 2, depth + 1, convex);
+            pending[len] = (2 * i + 2, depth + 1, convex, roots);
             len += 1;
-            next = Some((2 * i + 1, depth + 1, convex));
+            next = Some((2 * i + 1, depth + 1, convex, roots));
         } else {
-            h.below(i, depth, convex, q, sink, stats);
+            h.below(i, (depth, convex, roots), q, sink, stats);
         }
     }
 }
@@ -350,7 +347,7 @@ impl SubCurves for SmallView<'_> {
         outside_box_reach(b.lo, b.hi, q, reach)
     }
     #[inline(always)]
-    fn monotone_crossing(&self, i: &u32, q: Point, reach: f64) -> Option<i64> {
+    fn monotone_crossing(&self, i: &u32, q: Point, reach: f64) -> RootCrossing {
         monotone_crossing(self.tests[*i as usize].points(), q, reach)
     }
 }
@@ -361,8 +358,7 @@ impl Hierarchy for SmallView<'_> {
     fn below<K: ChordSink>(
         &self,
         i: u32,
-        depth: u32,
-        convex: bool,
+        (depth, convex, roots): (u32, bool, bool),
         q: Point,
         sink: &mut K,
         stats: &mut QueryStats,
@@ -370,8 +366,8 @@ impl Hierarchy for SmallView<'_> {
         let t = &self.tests[i as usize];
         let (l, r) = SmallPolynomial::from_array(t.pts, usize::from(t.len)).halves();
         stats.subdivisions += 1;
-        refine_below_small(l, depth + 1, convex, q, sink, stats);
-        refine_below_small(r, depth + 1, convex, q, sink, stats);
+        refine_below_small(l, (depth + 1, convex, roots), q, sink, stats);
+        refine_below_small(r, (depth + 1, convex, roots), q, sink, stats);
     }
 }
 
@@ -413,8 +409,7 @@ impl Hierarchy for GeneralView<'_> {
     fn below<K: ChordSink>(
         &self,
         i: u32,
-        depth: u32,
-        convex: bool,
+        (depth, convex, _roots): (u32, bool, bool),
         q: Point,
         sink: &mut K,
         stats: &mut QueryStats,
@@ -460,7 +455,8 @@ enum Kind {
 /// are opened, and a leaf whose box holds `q` runs the adaptive algorithm on its piece's
 /// subdivision hierarchy ([`CurveHierarchy`], built the second time a query needs it and kept;
 /// the first query walks the piece's sub-curves on the fly, with the same result). Where
-/// the walk would halve a polynomial sub-curve of degree 3 or less monotone in `y`, the
+/// the walk would halve a polynomial sub-curve of degree 3 or less whose control points'
+/// ordinates strictly rise or fall (so that it is monotone in `y`), the
 /// sub-curve's crossing is decided instead from the root of `y(t) = q.y` by Newton's method,
 /// with a bound on the root's error, when `q` is certainly farther than twice the band's reach
 /// from it (`monotone`): the chords' crossings would add up to the same whole number, so the

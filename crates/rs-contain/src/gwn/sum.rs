@@ -491,10 +491,14 @@ impl ChordSink for WindingSum {
 }
 
 /// A [`WindingSum`] that takes a sub-curve's crossings whole ([`ChordSink::COUNTS_CROSSINGS`]):
-/// the fast field's walks. The sum is the same as the chords' (the same whole number of
-/// crossings; a settled monotone sub-curve adds no coincidence term, `q` being certainly off
-/// it), and so is the value; the reference field ([`super::WindingField`]) keeps the paper's
-/// walk, halving every sub-curve.
+/// the fast field's walks. The crossings are the chords' (the same whole number; a sub-curve
+/// settled by its root adds no coincidence term, `q` being certainly off it), and so is the
+/// value; the reference field ([`super::WindingField`]) keeps the paper's walk, halving every
+/// sub-curve. The near mark may stay unset where the walk below a sub-curve settled by its
+/// root would have set it (a box or control polygon within reach of `q`, the curve itself
+/// farther): that changes no value, as a query in the band is within the band's tolerance and
+/// gaps of a curve, less than twice the reach from every sub-curve holding its nearest point,
+/// which the root then never settles, so the walk through them still sets the mark.
 pub(crate) struct CrossingSum<'a>(pub(crate) &'a mut WindingSum);
 
 impl ChordSink for CrossingSum<'_> {
