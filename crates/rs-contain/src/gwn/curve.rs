@@ -525,25 +525,17 @@ impl std::ops::Deref for SmallPolynomial {
     }
 }
 
-/// The adaptive algorithm from the small polynomial sub-curve `c` (at `depth`, its parent
-/// simple and convex or not) down: [`refine_below`] on the same sub-curve.
-/// `roots`: whether its sub-curves may still be settled by their roots (see
-/// [`settle_by_root`]).
+/// The adaptive algorithm from the small polynomial sub-curve `c` down, with `state` as
+/// [`walk`] takes it (its depth, whether its parent is simple and convex, whether it may be
+/// settled by its root): [`refine_below`] on the same sub-curve.
 pub(crate) fn refine_below_small<K: ChordSink>(
     c: SmallPolynomial,
-    (depth, parent_convex, roots): (u32, bool, bool),
+    state: (u32, bool, bool),
     q: Point,
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
-    walk(
-        &OnTheFlySmall,
-        c,
-        (depth, parent_convex, roots),
-        q,
-        sink,
-        stats,
-    );
+    walk(&OnTheFlySmall, c, state, q, sink, stats);
 }
 
 /// A sub-curve the walk on the fly can halve.
@@ -591,10 +583,10 @@ impl SubCurves for OnTheFlySmall {
 /// The adaptive algorithm from `c` down on the fly: depth-first, the left half first, at most
 /// one pending right half per level (on the stack for any query not within `2^-32` of the
 /// piece's size from it).
-#[inline(always)]
 ///
 /// `(depth, parent_convex, roots)`: `c`'s depth, whether its parent is simple and convex, and
 /// whether it may be settled by its root ([`settle_by_root`]).
+#[inline(always)]
 pub(crate) fn walk<S: SubCurves, K: ChordSink>(
     source: &S,
     c: S::Node,
@@ -625,9 +617,10 @@ pub(crate) fn walk<S: SubCurves, K: ChordSink>(
     }
 }
 
-/// A sub-curve [`walk`] has still to visit: it, its depth, whether its parent is simple and
-/// convex, and whether it may be settled by its root.
-type Pending<N> = (N, u32, bool, bool);
+/// A sub-curve a walk has still to visit ([`walk`], and the fast field's walk down a cached
+/// hierarchy, by index): it, its depth, whether its parent is simple and convex, and whether
+/// it may be settled by its root.
+pub(crate) type Pending<N> = (N, u32, bool, bool);
 
 /// After [`settle`] opened sub-curve `c`, for a sink that takes crossings whole
 /// ([`ChordSink::COUNTS_CROSSINGS`]) and with `roots` true: its crossing from its root

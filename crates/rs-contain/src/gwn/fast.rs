@@ -11,7 +11,7 @@ use rs_spline::{Point, RationalBezier};
 use smallvec::SmallVec;
 
 use super::curve::{
-    Halve, Outside, SMALL, SmallPolynomial, SubCurve, SubCurves, control_box, is_linear,
+    Halve, Outside, Pending, SMALL, SmallPolynomial, SubCurve, SubCurves, control_box, is_linear,
     is_simple_convex, misses_cut, outside_box_reach, polygon_area, refine_below,
     refine_below_small, settle, settle_by_root,
 };
@@ -279,9 +279,10 @@ fn walk_hierarchy<H: Hierarchy, K: ChordSink>(
     sink: &mut K,
     stats: &mut QueryStats,
 ) {
-    let mut pending = [(0u32, 0u32, false, false); HIERARCHY_DEPTH as usize];
+    let mut pending: [Pending<u32>; HIERARCHY_DEPTH as usize] =
+        [(0, 0, false, false); HIERARCHY_DEPTH as usize];
     let mut len = 0;
-    let mut next = Some((0u32, 0u32, false, true));
+    let mut next: Option<Pending<u32>> = Some((0, 0, false, true));
     loop {
         let (i, depth, parent_convex, roots) = match next.take() {
             Some(n) => n,
