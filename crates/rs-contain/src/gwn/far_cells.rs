@@ -11,12 +11,20 @@
 //! of a connected region of such cells. One walk per region (from a cell's centre) finds them,
 //! and the query adds only its chains' ends, as the walk's query does: the same value bit for
 //! bit.
+//!
+//! Once the near cells' queries are many ([`SPLIT_AFTER_WALKS_PER_NEAR_CELL`] per near cell),
+//! the near cells that qualify become *split cells* (see `split_cells`): a base count and the
+//! few sub-curves through the cell, whose crossings a query decides from their roots.
 
 use rs_spline::{Point, RationalBezier};
 
 use std::ops::Deref;
+use std::ops::RangeInclusive;
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::curve::{Halve, SmallPolynomial, SubCurve, control_box};
+use super::split_cells::{MOST_LISTED, RootedSub, SplitCells, ends_shared};
 
 /// Cells per side: `2^8` (256 KiB of counts). On the GWN paper's shapes, random points of the
 /// shapes' boxes took 0.87-0.95 of the time at `2^8` they took at `2^7` (where 54-82% of them
@@ -26,15 +34,34 @@ const SIDE_BITS: u32 = 8;
 /// Cells per side.
 const SIDE: usize = 1 << SIDE_BITS;
 
-/// A cell within reach of a curve, or holding a chain end's height: its queries walk.
+/// A cell within reach of a curve, or holding a chain end's height: its queries walk (unless
+/// it is made a split cell).
 const NEAR: i32 = i32::MIN;
 
 /// A far cell whose region has no count yet (only while building).
 const UNSEEN: i32 = i32::MIN + 1;
 
+/// A near cell's entry `SPLIT_FIRST + s` marks split cell `s` (see `split_cells`).
+const SPLIT_FIRST: i32 = i32::MIN + 2;
+
+/// The least count a far cell holds (lower counts, of no real domain, leave it near).
+const FIRST_COUNT: i32 = SPLIT_FIRST + (SIDE * SIDE) as i32;
+
+// The split cells' marks and the counts must not overlap.
+const _: () = assert!(SIDE * SIDE < (i32::MAX / 2) as usize);
+
+/// Most cells one sub-curve's grown box may mark and still be listed by them: a larger box
+/// (a piece not halved small enough) leaves its cells to the walk.
+const MOST_CELLS_LISTED: usize = 16;
+
 /// Halvings of a piece at most, to cover it by boxes of about two cells (a sub-curve still
 /// larger after them marks its whole box, which is only coarser).
 const MAX_SPLITS: u32 = 12;
+
+/// Halvings of a piece beyond [`MAX_SPLITS`], at most, for the split cells' sub-curves: a
+/// polynomial leaf the roots cannot take is halved while one of its halves can be taken, down
+/// to `MAX_SPLITS + EXTRA_SPLITS` halvings of the piece.
+const EXTRA_SPLITS: u32 = 4;
 
 /// The widest growth of the curves' boxes, in cells, for which a field has far cells.
 const MAX_GROW_CELLS: f64 = 2.0;
@@ -52,6 +79,75 @@ pub(super) struct FarCells {
     per_unit: Point,
     /// Per cell, row by row: the crossings of its queries, or [`NEAR`].
     counts: Vec<i32>,
+    /// The band's reach (the split cells' roots decide only beyond twice it).
+    reach: f64,
+    /// How far the curves' boxes were grown to mark the near cells.
+    grow: f64,
+    /// The rows holding an open chain's end (all of them for an end not a number).
+    chain_rows: Vec<bool>,
+    /// The split cells, once made.
+    split: LazySplits,
+}
+
+/// The split cells, made once the near cells' queries are many: their making costs about
+/// half a microsecond a near cell on the shapes of the GWN paper (1.5-6 ms, listing their
+/// sub-curves included: more where many small pieces give many sub-curves a cell), and a query
+/// they answer saves a few hundredths of one.
+#[derive(Debug, Default)]
+struct LazySplits {
+    /// The counts with the split cells, and the split cells.
+    made: OnceLock<Splits>,
+    /// Queries that found no count so far (in near cells, or outside the grid).
+    walks: AtomicUsize,
+    /// The split cells are made once `walks` reaches this.
+    after: usize,
+}
+
+impl Clone for LazySplits {
+    fn clone(&self) -> Self {
+        Self {
+            made: self.made.clone(),
+            walks: AtomicUsize::new(self.walks.load(Ordering::Relaxed)),
+            after: self.after,
+        }
+    }
+}
+
+/// The counts with the split cells marked in them (`SPLIT_FIRST + s` for split cell `s`), and
+/// the split cells.
+#[derive(Clone, Debug)]
+struct Splits {
+    counts: Vec<i32>,
+    cells: SplitCells,
+}
+
+/// Most sub-curves listed for the split cells (about 100 bytes each while they are made):
+/// a field of more, many small pieces, gets none.
+const MOST_SUB_CURVES: usize = 1 << 18;
+
+/// Near-cell queries per near cell after which the split cells are made: about as many as the
+/// queries whose savings pay for them (a split cell costs about half a microsecond to make,
+/// and saves 0.03-0.08 us a query), so that a run of few queries near the curves does not pay
+/// for them (a fresh field's first batch of random points on the GWN paper's shapes makes
+/// them not at all, one of 10^5 points near the curves of the large shapes after about
+/// 60,000 of them).
+const SPLIT_AFTER_WALKS_PER_NEAR_CELL: usize = 8;
+
+/// What the marking of the curves records for the split cells: the sub-curves, the cells
+/// each one's grown box marks, and the cells no split can serve.
+#[derive(Debug, Default)]
+struct Listing {
+    subs: Vec<RootedSub>,
+    /// `(cell, sub-curve)`.
+    pairs: Vec<(u32, u32)>,
+    /// Cells marked by a sub-curve no split cell may list (rational, of a box marking more
+    /// than [`MOST_CELLS_LISTED`] cells, or outside the grid).
+    unlisted: Vec<bool>,
+    /// Every sub-curve's start and end, with its index in `subs` ([`UNLISTED`] if no split
+    /// cell may list it).
+    ends: Vec<(Point, Point, u32)>,
+    /// More sub-curves than [`MOST_SUB_CURVES`]: no split cells.
+    too_many: bool,
 }
 
 impl FarCells {
@@ -86,22 +182,55 @@ impl FarCells {
             hi,
             per_unit,
             counts: vec![UNSEEN; SIDE * SIDE],
+            reach,
+            grow,
+            chain_rows: Vec::new(),
+            split: LazySplits::default(),
         };
-        cells.mark_curves(pieces, grow);
+        cells.mark_curves(pieces);
         let mut marked = [false; SIDE];
         for &(s, e) in chain_ends {
             cells.mark_row_of(s.y, &mut marked);
             cells.mark_row_of(e.y, &mut marked);
         }
         cells.count_regions(&mut crossings);
+        cells.chain_rows = marked.to_vec();
+        let near = cells.counts.iter().filter(|&&k| k == NEAR).count();
+        cells.split = LazySplits {
+            after: SPLIT_AFTER_WALKS_PER_NEAR_CELL * near,
+            ..LazySplits::default()
+        };
         Some(cells)
     }
 
-    /// The crossings the walk counts at `q`, if `q` lies in a far cell.
+    /// The crossings the walk counts at `q`, if `q` lies in a far cell, or in a split cell whose
+    /// sub-curves' roots decide them.
     #[inline(always)]
     pub(super) fn crossings(&self, q: Point) -> Option<i64> {
-        let k = self.counts[self.cell(q)?];
-        (k != NEAR).then_some(i64::from(k))
+        let i = self.cell(q)?;
+        match self.split.made.get() {
+            None => Some(self.counts[i]).filter(|&k| k != NEAR).map(i64::from),
+            Some(s) => s.crossings(i, q, self.reach),
+        }
+    }
+
+    /// Tells the grid that `n` queries found no count ([`FarCells::crossings`] gave `None`):
+    /// once they reach [`SPLIT_AFTER_WALKS_PER_NEAR_CELL`] per near cell, the split cells are
+    /// made (by the call that reaches that count) for the field's `pieces` (those the grid was
+    /// made for).
+    pub(super) fn note_walks(&self, n: usize, pieces: &[RationalBezier]) {
+        let split = &self.split;
+        if n == 0 || split.made.get().is_some() {
+            return;
+        }
+        // Only the call that brings the count to the threshold makes them; others, meanwhile,
+        // walk on.
+        let before = split.walks.fetch_add(n, Ordering::Relaxed);
+        if before < split.after && before.saturating_add(n) >= split.after {
+            split
+                .made
+                .get_or_init(|| self.splits(self.list_curves(pieces)));
+        }
     }
 
     /// The cell holding `q`; `None` outside the grid (or not a number).
@@ -125,28 +254,33 @@ impl FarCells {
         (((y - self.lo.y) * self.per_unit.y) as usize).min(SIDE - 1)
     }
 
-    /// Marks every cell holding a point within `grow` of a curve: each piece halved until its
-    /// sub-curves' control boxes (which hold them) span about two cells, each box grown by
-    /// `grow`.
-    fn mark_curves(&mut self, pieces: &[RationalBezier], grow: f64) {
+    /// Marks every cell holding a point within the growth of a curve: each piece halved until
+    /// its sub-curves' control boxes (which hold them) span about two cells, each box grown by
+    /// the growth.
+    fn mark_curves(&mut self, pieces: &[RationalBezier]) {
         for piece in pieces {
             let c = SubCurve::of(piece);
             match SmallPolynomial::of(&c) {
-                Some(small) => self.mark_curve(small, grow),
-                None => self.mark_curve(c, grow),
+                Some(small) => self.mark_curve(small),
+                None => self.mark_curve(c),
             }
         }
     }
 
     /// [`FarCells::mark_curves`] for one piece, `c`.
-    fn mark_curve<C: Halve + Deref<Target = [Point]>>(&mut self, c: C, grow: f64) {
+    fn mark_curve<C: Halve + Deref<Target = [Point]>>(&mut self, c: C) {
         let (cell_x, cell_y) = (1.0 / self.per_unit.x, 1.0 / self.per_unit.y);
         let mut stack = vec![(c, 0)];
         while let Some((c, splits)) = stack.pop() {
             let (blo, bhi) = control_box(&c);
             let small = bhi.x - blo.x <= 2.0 * cell_x && bhi.y - blo.y <= 2.0 * cell_y;
             if small || splits >= MAX_SPLITS {
-                self.mark_box(blo, bhi, grow);
+                if let Some((columns, rows)) = self.box_cells(blo, bhi, self.grow) {
+                    for r in rows {
+                        self.counts[r * SIDE + columns.start()..=r * SIDE + columns.end()]
+                            .fill(NEAR);
+                    }
+                }
             } else {
                 let (l, r) = c.halves();
                 stack.push((r, splits + 1));
@@ -155,18 +289,109 @@ impl FarCells {
         }
     }
 
-    /// Marks every cell holding a point of the box `[blo, bhi]` grown by `grow`.
-    fn mark_box(&mut self, blo: Point, bhi: Point, grow: f64) {
+    /// The columns and rows of the cells holding a point of the box `[blo, bhi]` grown by
+    /// `grow`; a box with a NaN corner holds them all, one wholly outside the grid none.
+    fn box_cells(
+        &self,
+        blo: Point,
+        bhi: Point,
+        grow: f64,
+    ) -> Option<(RangeInclusive<usize>, RangeInclusive<usize>)> {
         let (x0, x1) = (blo.x - grow, bhi.x + grow);
         let (y0, y1) = (blo.y - grow, bhi.y + grow);
-        // A box with a NaN corner marks everything (every comparison below fails).
+        // (Every comparison with a NaN fails: its box is not missed, and `max` and `min`
+        // below take the grid's side.)
         let misses = x1 < self.lo.x || x0 > self.hi.x || y1 < self.lo.y || y0 > self.hi.y;
         if misses {
-            return;
+            return None;
         }
         let columns = self.column(x0.max(self.lo.x))..=self.column(x1.min(self.hi.x));
-        for r in self.row(y0.max(self.lo.y))..=self.row(y1.min(self.hi.y)) {
-            self.counts[r * SIDE + columns.start()..=r * SIDE + columns.end()].fill(NEAR);
+        let rows = self.row(y0.max(self.lo.y))..=self.row(y1.min(self.hi.y));
+        Some((columns, rows))
+    }
+
+    /// The sub-curves that cover the curves for the split cells (none past
+    /// [`MOST_SUB_CURVES`]), as [`FarCells::mark_curves`]
+    /// halves the pieces, each with the cells its box grown by the growth holds (all near);
+    /// except that a polynomial sub-curve the roots cannot take (a horizontal tangent in it
+    /// or at an end) is halved a few more times, where one of its halves can be taken.
+    fn list_curves(&self, pieces: &[RationalBezier]) -> Listing {
+        let mut listing = Listing {
+            unlisted: vec![false; SIDE * SIDE],
+            ..Listing::default()
+        };
+        for piece in pieces {
+            let c = SubCurve::of(piece);
+            match SmallPolynomial::of(&c) {
+                Some(small) => self.list_curve(small, true, &mut listing),
+                None => self.list_curve(c, false, &mut listing),
+            }
+            if listing.ends.len() > MOST_SUB_CURVES {
+                listing.too_many = true;
+                break;
+            }
+        }
+        listing
+    }
+
+    /// [`FarCells::list_curves`] for one piece, `c`.
+    fn list_curve<C: Halve + Deref<Target = [Point]>>(
+        &self,
+        c: C,
+        polynomial: bool,
+        listing: &mut Listing,
+    ) {
+        let (cell_x, cell_y) = (1.0 / self.per_unit.x, 1.0 / self.per_unit.y);
+        // (A rational sub-curve's points are not its curve's Bezier points.)
+        let rooted = |c: &C| {
+            polynomial
+                .then(|| SmallPolynomial::from_points(c))
+                .flatten()
+                .and_then(RootedSub::of)
+        };
+        let monotone = |c: &C| rooted(c).is_some_and(|r| r.monotone());
+        let mut stack = vec![(c, 0)];
+        while let Some((c, splits)) = stack.pop() {
+            let (blo, bhi) = control_box(&c);
+            let small = bhi.x - blo.x <= 2.0 * cell_x && bhi.y - blo.y <= 2.0 * cell_y;
+            let leaf = small || splits >= MAX_SPLITS;
+            let halves = if !leaf {
+                Some(c.halves())
+            } else if polynomial && !monotone(&c) && splits < MAX_SPLITS + EXTRA_SPLITS {
+                // Only where it helps: a half without the tangent (a leaf that stays not
+                // monotone in both halves, such as one with coincident control points at
+                // both ends, is kept whole).
+                Some(c.halves()).filter(|(l, r)| monotone(l) || monotone(r))
+            } else {
+                None
+            };
+            if let Some((l, r)) = halves {
+                stack.push((r, splits + 1));
+                stack.push((l, splits + 1));
+                continue;
+            }
+            let cells = self.box_cells(blo, bhi, self.grow);
+            let marks = cells
+                .as_ref()
+                .map_or(0, |(c, r)| c.clone().count() * r.clone().count());
+            let sub = rooted(&c)
+                .filter(|_| (1..=MOST_CELLS_LISTED).contains(&marks))
+                .map(|r| {
+                    listing.subs.push(r);
+                    (listing.subs.len() - 1) as u32
+                });
+            listing
+                .ends
+                .push((c[0], c[c.len() - 1], sub.unwrap_or(UNLISTED)));
+            if let Some((columns, rows)) = cells {
+                for r in rows {
+                    let row = r * SIDE + columns.start()..=r * SIDE + columns.end();
+                    match sub {
+                        Some(s) => listing.pairs.extend(row.map(|i| (i as u32, s))),
+                        None => listing.unlisted[row].fill(true),
+                    }
+                }
+            }
         }
     }
 
@@ -179,7 +404,9 @@ impl FarCells {
                 self.counts[r * SIDE..(r + 1) * SIDE].fill(NEAR);
             }
         } else if y.is_nan() {
+            // Every row may hold it: every cell is near, and no row may be split.
             self.counts.fill(NEAR);
+            marked.fill(true);
         }
     }
 
@@ -242,6 +469,144 @@ impl FarCells {
         }
     }
 
+    /// Makes split cells (see `split_cells`) of the near cells that qualify: outside the rows
+    /// of the open chains' ends (`chain_rows`), marked only by sub-curves the roots take, at
+    /// most [`MOST_LISTED`] of them, whose ends at the cell's heights (grown by `grow`) they
+    /// share. Each takes its base from a neighbour whose count is known at a point of their
+    /// common side, breadth first from the far cells; one a neighbour cannot give its base
+    /// (every point tried too near a sub-curve) stays near.
+    fn splits(&self, listing: Listing) -> Splits {
+        let Listing {
+            subs,
+            mut pairs,
+            unlisted,
+            ends,
+            too_many,
+        } = listing;
+        if too_many {
+            pairs.clear();
+        }
+        let grow = self.grow;
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut made = Splits {
+            counts: self.counts.clone(),
+            cells: SplitCells::over(subs),
+        };
+        let partners = partners(&ends, made.cells.subs.len());
+        // Per candidate cell, its listed sub-curves' range in `lists`.
+        let mut lists: Vec<u32> = Vec::new();
+        let mut candidate: Vec<(u32, u32)> = Vec::new();
+        let mut candidate_of = vec![u32::MAX; SIDE * SIDE];
+        let mut indices: Vec<u32> = Vec::with_capacity(MOST_LISTED);
+        for run in pairs.chunk_by(|a, b| a.0 == b.0) {
+            let i = run[0].0 as usize;
+            let r = i / SIDE;
+            if unlisted.get(i) != Some(&false)
+                || self.chain_rows.get(r) != Some(&false)
+                || run.len() > MOST_LISTED
+                || self.counts[i] != NEAR
+            {
+                continue;
+            }
+            let y0 = self.lo.y + r as f64 / self.per_unit.y - grow;
+            let y1 = self.lo.y + (r + 1) as f64 / self.per_unit.y + grow;
+            indices.clear();
+            indices.extend(run.iter().map(|&(_, s)| s));
+            if !made.close_listing(&mut indices, (y0, y1), &partners) {
+                continue;
+            }
+            let first = lists.len() as u32;
+            lists.extend_from_slice(&indices);
+            candidate_of[i] = candidate.len() as u32;
+            candidate.push((first, lists.len() as u32));
+        }
+        let neighbours = |i: usize| {
+            let (c, r) = (i % SIDE, i / SIDE);
+            [
+                (c > 0).then(|| i - 1),
+                (c + 1 < SIDE).then(|| i + 1),
+                (r > 0).then(|| i - SIDE),
+                (r + 1 < SIDE).then(|| i + SIDE),
+            ]
+            .into_iter()
+            .flatten()
+        };
+        let mut queue: std::collections::VecDeque<usize> = (0..SIDE * SIDE)
+            .filter(|&i| {
+                self.counts[i] >= FIRST_COUNT && neighbours(i).any(|j| candidate_of[j] != u32::MAX)
+            })
+            .collect();
+        while let Some(a) = queue.pop_front() {
+            for b in neighbours(a) {
+                let k = candidate_of[b];
+                if k == u32::MAX || made.counts[b] != NEAR {
+                    continue;
+                }
+                let (first, end) = candidate[k as usize];
+                let listed = &lists[first as usize..end as usize];
+                if let Some(base) = self.base_across(&made, a, b, listed) {
+                    made.counts[b] = SPLIT_FIRST + made.cells.len() as i32;
+                    made.cells.push(base, listed, self.cell_box(b), self.reach);
+                    queue.push_back(b);
+                }
+            }
+        }
+        made.cells.drop_unread();
+        made
+    }
+
+    /// Cell `i`'s box grown by the curves' growth (which holds every query the grid puts in
+    /// it).
+    fn cell_box(&self, i: usize) -> (Point, Point) {
+        let grow = self.grow;
+        let (c, r) = ((i % SIDE) as f64, (i / SIDE) as f64);
+        let at = |c: f64, r: f64| {
+            Point::new(
+                self.lo.x + c / self.per_unit.x,
+                self.lo.y + r / self.per_unit.y,
+            )
+        };
+        let g = Point::new(grow, grow);
+        (at(c, r) - g, at(c + 1.0, r + 1.0) + g)
+    }
+
+    /// The base of candidate cell `b` (listing the sub-curves `listed`) from its neighbour
+    /// `a`'s count at points of their common side (the middle, then the quarters): the first
+    /// point that decides gives it, and the next that decides, if any, must agree (which the
+    /// argument ensures: a second opinion where one is at hand), else `None`.
+    fn base_across(&self, made: &Splits, a: usize, b: usize, listed: &[u32]) -> Option<i64> {
+        let (ca, ra) = (a % SIDE, a / SIDE);
+        let (cb, rb) = (b % SIDE, b / SIDE);
+        let side = |f: f64| {
+            if ra == rb {
+                Point::new(
+                    self.lo.x + ca.max(cb) as f64 / self.per_unit.x,
+                    self.lo.y + (ra as f64 + f) / self.per_unit.y,
+                )
+            } else {
+                Point::new(
+                    self.lo.x + (ca as f64 + f) / self.per_unit.x,
+                    self.lo.y + ra.max(rb) as f64 / self.per_unit.y,
+                )
+            }
+        };
+        let mut base = None;
+        for f in [0.5, 0.25, 0.75] {
+            let e = side(f);
+            let at_a = made.crossings(a, e, self.reach);
+            let listed = made.cells.listed_crossings(listed, e, self.reach);
+            if let (Some(at_a), Some(listed)) = (at_a, listed) {
+                let here = at_a - listed;
+                match base {
+                    None => base = Some(here),
+                    Some(b) => return (b == here).then_some(b),
+                }
+            }
+        }
+        base
+    }
+
     /// The walk's count at the centre of cell `i`, [`NEAR`] if it has none.
     fn region_count(&self, i: usize, crossings: &mut impl FnMut(Point) -> Option<i64>) -> i32 {
         let (c, r) = (i % SIDE, i / SIDE);
@@ -253,15 +618,133 @@ impl FarCells {
             .then(|| crossings(centre))
             .flatten()
             .and_then(|k| i32::try_from(k).ok())
-            .filter(|&k| k > UNSEEN)
+            .filter(|&k| k >= FIRST_COUNT)
             .unwrap_or(NEAR)
     }
 
     /// The share of cells that are far (for the tests).
     #[cfg(test)]
     pub(super) fn far_share(&self) -> f64 {
-        self.counts.iter().filter(|&&k| k != NEAR).count() as f64 / self.counts.len() as f64
+        self.counts.iter().filter(|&&k| k >= FIRST_COUNT).count() as f64 / self.counts.len() as f64
     }
+
+    /// The share of cells that are split (for the tests); `None` before they are made.
+    #[cfg(test)]
+    pub(super) fn split_share(&self) -> Option<f64> {
+        let made = self.split.made.get()?;
+        Some(made.cells.len() as f64 / self.counts.len() as f64)
+    }
+}
+
+impl Splits {
+    /// The crossings of a query `q` in cell `i` ([`FarCells::crossings`]).
+    #[inline(always)]
+    fn crossings(&self, i: usize, q: Point, reach: f64) -> Option<i64> {
+        let k = self.counts[i];
+        if k >= FIRST_COUNT {
+            Some(i64::from(k))
+        } else if k == NEAR {
+            None
+        } else {
+            self.cells.crossings((k - SPLIT_FIRST) as usize, q, reach)
+        }
+    }
+
+    /// Adds to `indices` (sub-curves listed by a cell of heights `y0..=y1`) the sub-curves
+    /// that share their ends at those heights, until every such end is shared among them
+    /// ([`ends_shared`]); `false` if that takes a sub-curve the roots cannot take or more than
+    /// [`MOST_LISTED`].
+    fn close_listing(
+        &self,
+        indices: &mut Vec<u32>,
+        (y0, y1): (f64, f64),
+        partners: &[[u32; 2]],
+    ) -> bool {
+        // Each listed sub-curve's ends at the cell's heights bring in their partners (those
+        // starting where it ends, those ending where it starts), and theirs in turn.
+        let mut k = 0;
+        while k < indices.len() {
+            let i = indices[k] as usize;
+            let s = &self.cells.subs[i];
+            for (side, p) in [s.end(), s.start()].into_iter().enumerate() {
+                if p.y < y0 || p.y > y1 {
+                    continue;
+                }
+                match partners[i][side] {
+                    NO_PARTNER => {}
+                    UNLISTED => return false,
+                    j if !indices.contains(&j) => {
+                        if indices.len() == MOST_LISTED {
+                            return false;
+                        }
+                        indices.push(j);
+                    }
+                    _ => {}
+                }
+            }
+            k += 1;
+        }
+        ends_shared(&self.cells.subs, indices, y0, y1)
+    }
+}
+
+/// [`partners`]' entry for an end no other sub-curve shares.
+const NO_PARTNER: u32 = u32::MAX - 1;
+
+/// [`partners`]' entry for an end shared with a sub-curve the split cells cannot list (and
+/// [`Listing::ends`]' for such a sub-curve).
+const UNLISTED: u32 = u32::MAX;
+
+/// Per listed sub-curve (of `count`), a sub-curve starting where it ends and one ending where
+/// it starts (exactly), as indices of the listed ones, [`UNLISTED`] or [`NO_PARTNER`]: from
+/// `ends` (every sub-curve's start, end and listed index, in the order the marking made them,
+/// along each piece and piece after piece), where it is mostly the next or the one before;
+/// the rest (a loop's first and last, pieces not joined in order) are looked up among the
+/// ends not joined to their neighbour. One partner an end suffices: a cell whose listed ends
+/// still do not balance (three sub-curves meeting at a point) stays near.
+fn partners(ends: &[(Point, Point, u32)], count: usize) -> Vec<[u32; 2]> {
+    let key = |p: Point| (p.x.to_bits(), p.y.to_bits());
+    let listed = |k: usize| ends[k].2;
+    let joined = |k: usize| k + 1 < ends.len() && ends[k].1 == ends[k + 1].0;
+    // The starts and ends not joined to their neighbour's, by their bits.
+    let mut starts: Vec<((u64, u64), u32)> = Vec::new();
+    let mut tails: Vec<((u64, u64), u32)> = Vec::new();
+    for (k, &(start, end, i)) in ends.iter().enumerate() {
+        if k == 0 || !joined(k - 1) {
+            starts.push((key(start), i));
+        }
+        if !joined(k) {
+            tails.push((key(end), i));
+        }
+    }
+    starts.sort_unstable();
+    tails.sort_unstable();
+    let find = |sorted: &[((u64, u64), u32)], p: Point| {
+        let at = key(p);
+        let i = sorted.partition_point(|e| e.0 < at);
+        sorted
+            .get(i)
+            .filter(|e| e.0 == at)
+            .map_or(NO_PARTNER, |e| e.1)
+    };
+    let mut out = vec![[NO_PARTNER; 2]; count];
+    for (k, &(start, end, i)) in ends.iter().enumerate() {
+        if i == UNLISTED {
+            continue;
+        }
+        let next = if joined(k) {
+            listed(k + 1)
+        } else {
+            find(&starts, end)
+        };
+        let prev = if k > 0 && joined(k - 1) {
+            listed(k - 1)
+        } else {
+            find(&tails, start)
+        };
+        out[i as usize] = [next, prev];
+    }
+    out
 }
 
 /// The root of run `k`'s set, halving the path to it on the way.
@@ -279,7 +762,7 @@ mod tests {
     use crate::gwn::fast::FAR_CELLS_MIN_POINTS;
     use crate::gwn::{FastWindingField, WindingField};
     use crate::{DEFAULT_RELATIVE_TOLERANCE, Location, PointQuery};
-    use rs_spline::{Domain, ParamCurve, circle, circular_arc, segment};
+    use rs_spline::{Domain, ParamCurve, ParamCurveDeriv, circle, circular_arc, segment};
 
     /// Curves of every kind a far cell meets: two loops round one region (winding 2 there),
     /// a reversed loop, an open arc, a polyline with gaps between its segments (a wide band
@@ -298,6 +781,20 @@ mod tests {
             curves.push(segment(Point::new(x, 2.2), Point::new(x + 0.75, 2.6)).unwrap());
         }
         Domain::new(curves).unwrap()
+    }
+
+    /// A batch gives every point of `points` the winding number and the location a single
+    /// query gives it (the walk), bit for bit.
+    fn batches_match_single_queries(name: &str, fast: &FastWindingField, points: &[Point]) {
+        let values = fast.winding_numbers(points);
+        let mut locations = vec![Location::Outside; points.len()];
+        fast.values_into(points, &mut locations);
+        for (i, &q) in points.iter().enumerate() {
+            let want = fast.winding_number(q);
+            assert_eq!(values[i].to_bits(), want.to_bits(), "{name} {i}: {q:?}");
+            let location = PointQuery::<Location>::value(fast, q);
+            assert_eq!(locations[i], location, "{name} {i}: {q:?}");
+        }
     }
 
     /// Batches reading the far cells give every point the value the walk gives it alone, bit
@@ -363,15 +860,7 @@ mod tests {
                 .count();
             assert!(far > points.len() / 3, "{name}: {far} of {}", points.len());
 
-            let values = fast.winding_numbers(&points);
-            let mut locations = vec![Location::Outside; points.len()];
-            fast.values_into(&points[..], &mut locations);
-            for (i, &q) in points.iter().enumerate() {
-                let want = fast.winding_number(q);
-                assert_eq!(values[i].to_bits(), want.to_bits(), "{name} {i}: {q:?}");
-                let location = PointQuery::<Location>::value(&fast, q);
-                assert_eq!(locations[i], location, "{name} {i}: {q:?}");
-            }
+            batches_match_single_queries(name, &fast, &points);
         }
     }
 
@@ -430,5 +919,121 @@ mod tests {
         }
         // Far from every curve and every end's height, the cells are far.
         assert_eq!(cells.crossings(Point::new(0.9, 0.9)), Some(0));
+    }
+
+    /// Points near the curves of `d`: on its pieces at random parameters, moved along the
+    /// normal by `1e-1` to `1e-14` of the diagonal (log-uniform, either side), and along the
+    /// cut by as much.
+    fn near_points(d: &Domain, count: usize, seed: u64) -> Vec<Point> {
+        let pieces: Vec<_> = d.bezier_pieces().into_iter().map(|(_, b)| b).collect();
+        let diagonal = d.bounding_box().diagonal();
+        let mut rng = rs_testkit::XorShift64::new(seed);
+        let mut out = Vec::with_capacity(count);
+        while out.len() < count {
+            let piece = &pieces[(rng.next_u64() % pieces.len() as u64) as usize];
+            let (t0, t1) = piece.param_range();
+            let (p, tangent) = piece.point_and_tangent(t0 + rng.next_f64() * (t1 - t0));
+            let length = tangent.x.hypot(tangent.y);
+            if !(length > 0.0 && length.is_finite()) {
+                continue;
+            }
+            let distance = diagonal * 10f64.powf(-1.0 - 13.0 * rng.next_f64());
+            let s = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 } * distance;
+            out.push(Point::new(
+                p.x - s * tangent.y / length,
+                p.y + s * tangent.x / length,
+            ));
+            out.push(Point::new(p.x + s, p.y));
+        }
+        out
+    }
+
+    /// Batches reading the split cells give every point the value the walk gives it alone, bit
+    /// for bit (the winding number and the location): points near the curves (most of them
+    /// in split cells), on the cells' edges and at every open chain's end height and one ulp
+    /// either side; the split cells are made once the near cells' queries are many, and not
+    /// before.
+    #[test]
+    fn split_cells_give_each_point_the_walks_value() {
+        // With the least share of the points answered by split cells (the mixed shape's
+        // circles are rational: their cells walk).
+        let shapes = [
+            ("twirl", rs_testkit::gwn_shape("twirl"), 4),
+            ("bubble", rs_testkit::gwn_shape("bubble"), 4),
+            ("fish", rs_testkit::gwn_shape("fish"), 4),
+            ("mixed", mixed(), 20),
+        ];
+        for (name, d, least) in shapes {
+            let field = WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).unwrap();
+            let fast = FastWindingField::new(&field);
+            let mut points = near_points(&d, 20_000, 11);
+            fast.winding_numbers(&points[..FAR_CELLS_MIN_POINTS]);
+            let cells = fast.built_far_cells().expect("far cells built");
+            assert!(
+                cells.split_share().is_none(),
+                "{name}: split cells too soon"
+            );
+            // Enough queries in near cells make them.
+            for _ in 0..100 {
+                if cells.split_share().is_some() {
+                    break;
+                }
+                fast.winding_numbers(&points);
+            }
+            let share = cells.split_share().expect("split cells made");
+            assert!(share > 0.004, "{name}: {share}");
+            // Every listed sub-curve's ends' heights, and one ulp either side, across the
+            // columns about its box (where the chords' rule at an end and the balance of the
+            // listings matter).
+            let made = cells.split.made.get().expect("made");
+            let cell_x = 1.0 / cells.per_unit.x;
+            for sub in made.cells.subs.iter().step_by(3) {
+                for y in [sub.start().y, sub.end().y] {
+                    for y in [y.next_down(), y, y.next_up()] {
+                        for k in 0..24 {
+                            let left = sub.start().x.min(sub.end().x);
+                            let x = left - 4.0 * cell_x + k as f64 * 0.37 * cell_x;
+                            points.push(Point::new(x, y));
+                        }
+                    }
+                }
+            }
+
+            let (lo, hi) = (cells.lo, cells.hi);
+            for &(s, e) in field.open_chain_ends() {
+                for y in [s.y, e.y] {
+                    for y in [y.next_down(), y, y.next_up()] {
+                        for k in 0..200 {
+                            let x = lo.x + (hi.x - lo.x) * (k as f64 + 0.5) / 200.0;
+                            points.push(Point::new(x, y));
+                        }
+                    }
+                }
+            }
+            let near = points.clone();
+            for q in near.iter().take(4_000) {
+                // The edges of the cell holding a near point.
+                let c = ((q.x - lo.x) * cells.per_unit.x).floor();
+                let r = ((q.y - lo.y) * cells.per_unit.y).floor();
+                let x = lo.x + c / cells.per_unit.x;
+                let y = lo.y + r / cells.per_unit.y;
+                points.push(Point::new(x, q.y));
+                points.push(Point::new(q.x, y));
+            }
+            let split = points
+                .iter()
+                .filter(|&&q| {
+                    let base = cells.cell(q).map(|i| cells.counts[i]);
+                    base == Some(NEAR) && cells.crossings(q).is_some()
+                })
+                .count();
+            assert!(
+                split > points.len() / least,
+                "{name}: {split} of {}",
+                points.len()
+            );
+
+            batches_match_single_queries(name, &fast, &points);
+        }
     }
 }

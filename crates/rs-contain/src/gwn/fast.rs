@@ -882,8 +882,9 @@ impl<'a> FastWindingField<'a> {
         out
     }
 
-    /// For each group of [`BATCH`] points: their crossing sums (from the far cells where they
-    /// are built and hold the point), the open chains' ends added to all at once, then
+    /// For each group of [`BATCH`] points: their crossing sums (from the far cells or the split
+    /// cells where they are made and hold the point, telling the far cells how many walked),
+    /// the open chains' ends added to all at once, then
     /// `finish(q, sum, stack, stats)` per point writes its output.
     ///
     /// The points are taken block by block ([`LOCALITY_BLOCK`]), each in its locality order
@@ -912,19 +913,26 @@ impl<'a> FastWindingField<'a> {
         for (b, block) in out.chunks_mut(LOCALITY_BLOCK).enumerate() {
             let first = b * LOCALITY_BLOCK;
             locality_order(block.len(), |i| point(first + i), lo, hi, &mut order);
+            let mut walks = 0;
             for group in order.chunks(BATCH) {
                 let sums = &mut sums[..group.len()];
                 for (sum, &i) in sums.iter_mut().zip(group) {
                     let q = point(first + i as usize);
                     *sum = match far.and_then(|f| f.crossings(q)) {
                         Some(k) => WindingSum::with_crossings(q, reach, k),
-                        None => self.crossing_sum(q, &[], &mut stack, &mut stats),
+                        None => {
+                            walks += 1;
+                            self.crossing_sum(q, &[], &mut stack, &mut stats)
+                        }
                     };
                 }
                 self.field.add_open_chain_ends(sums);
                 for (&i, sum) in group.iter().zip(sums.iter()) {
                     block[i as usize] = finish(sum.q(), sum, &mut stack, &mut stats);
                 }
+            }
+            if let Some(f) = far {
+                f.note_walks(walks, self.field.pieces());
             }
         }
     }

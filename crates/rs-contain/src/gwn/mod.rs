@@ -12,6 +12,7 @@ mod monotone;
 mod on_boundary;
 mod raycast;
 mod span_rows;
+mod split_cells;
 mod sum;
 
 use rs_boxes::{BoxError, BoxGrid, BoxOptions, MonotoneBoxes};

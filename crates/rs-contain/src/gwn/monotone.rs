@@ -9,6 +9,8 @@ use std::cmp::Ordering;
 use rs_roots::de_casteljau_with_derivative;
 use rs_spline::Point;
 
+use super::sum::chord_crossing;
+
 /// Control points of a sub-curve [`monotone_crossing`] takes at most: cubics, as the walks'
 /// small polynomial sub-curves (`curve::SMALL`, which this module does not import: the walks
 /// import it).
@@ -95,8 +97,8 @@ pub(crate) fn monotone_crossing(p: &[Point], q: Point, reach: f64) -> RootCrossi
     if slope_y.partial_cmp(&0.0) != Some(Ordering::Greater) {
         return RootCrossing::NotMonotone;
     }
-    let (up_a, up_b) = (c[0].y >= 0.0, c[n - 1].y >= 0.0);
-    let crossing = i64::from(up_a) - i64::from(up_b);
+    let up_a = c[0].y >= 0.0;
+    let crossing = chord_crossing(c[0].y, c[n - 1].y, 0.0);
     let (mut size_y, mut size_x) = (0.0f64, 0.0f64);
     for v in c {
         (size_y, size_x) = (size_y.max(v.y.abs()), size_x.max(v.x.abs()));

@@ -385,8 +385,7 @@ impl WindingSum {
     /// crosses the query's height downwards or upwards, else `0`: a comparison per end.
     #[inline]
     pub(crate) fn left_crossing(&mut self, a: Point, b: Point) {
-        let (up_a, up_b) = (a.y >= self.q.y, b.y >= self.q.y);
-        self.crossings += i64::from(up_a) - i64::from(up_b);
+        self.crossings += chord_crossing(a.y, b.y, self.q.y);
     }
 
     /// Adds `n` signed crossings of chords lying wholly left of the query, counted before
@@ -556,6 +555,14 @@ impl ChordSink for AngleSum {
     fn special(&mut self, value: f64, _a: Point, _b: Point) {
         self.turns += value;
     }
+}
+
+/// The signed crossing of the height `q_y` by a chord from height `a_y` to `b_y` lying wholly
+/// left of the query: `+1` downwards, `-1` upwards, `0` if it does not cross (an end with
+/// `y >= q_y` counts as above: the one rule every sum of chords' crossings keeps).
+#[inline(always)]
+pub(crate) fn chord_crossing(a_y: f64, b_y: f64, q_y: f64) -> i64 {
+    i64::from(a_y >= q_y) - i64::from(b_y >= q_y)
 }
 
 #[cfg(test)]

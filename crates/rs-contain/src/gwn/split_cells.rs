@@ -1,0 +1,469 @@
+//! Split cells: near cells of the far-cell grid ([`FarCells`](super::far_cells::FarCells))
+//! whose queries count the crossings from a base and the roots of the few sub-curves that
+//! pass through them, instead of walking.
+//!
+//! Why a base serves a whole cell: cover the curves by the far cells' sub-curves (each piece
+//! halved until its sub-curves' boxes span about two cells). A cell's *listed* sub-curves are
+//! those whose boxes, grown by the far cells' growth, meet it (the others stay farther than
+//! the band's reach from every point of the cell), and those that share an end with a listed
+//! one at a height of the cell, in turn. Beyond the reach, the crossings the walk counts
+//! are those of the curves themselves (see `WindingField`'s Semantics), the sum over the listed
+//! sub-curves plus the sum over the others. The others' sum is the same for every query in the
+//! cell when none of their ends that they do not share with another of them lies at a height
+//! of the cell: their curves do not come near the cell, and where two of them meet the crossing
+//! passes from one to the other. Those unshared ends are the open chains' ends (whose rows the
+//! far cells mark) and the ends the others share with listed sub-curves; so a cell qualifies
+//! when every end of a listed sub-curve at a height of the cell is shared among the listed ones
+//! (as many of them end there as start there). The open chains' ends lie in the rows the far
+//! cells mark, which split cells avoid: every query of a split cell, and every point of a side
+//! its base is taken at (in its row or its neighbour's, neither such a row), lies strictly
+//! above or below every chain end's height, as rows are monotone in the height. Its base, the
+//! others' sum, comes from a
+//! neighbouring cell whose count at a point of their common side is known: that count minus
+//! the listed sub-curves' crossings there. A query then adds its listed sub-curves' crossings,
+//! each decided by [`monotone_crossing`] (or by its box, from beyond twice the reach), and the
+//! open chains' ends, as a far cell's query does: the walk's value bit for bit. A query the
+//! roots cannot decide (too near a sub-curve) walks.
+
+use rs_spline::Point;
+
+use super::curve::{SmallPolynomial, control_box, outside_by};
+use super::monotone::{RootCrossing, monotone_crossing};
+use super::sum::chord_crossing;
+
+/// Most sub-curves listed in a split cell: more, and the walk is left to it. (A curve nearly
+/// level across a row lists the sub-curves along it until it leaves the row's heights; with 8
+/// at most, 13-19% of the points near the large GWN shapes' curves fell in cells left to the
+/// walk, with 24 4-7%. A query decides most of them by their boxes.)
+pub(super) const MOST_LISTED: usize = 24;
+
+/// A sub-curve a split cell lists: its control points (a polynomial of degree at most 3), its
+/// control box, and whether [`monotone_crossing`] takes it (its control ordinates strictly
+/// increase or strictly decrease); one it does not take decides only queries outside its box.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RootedSub {
+    curve: SmallPolynomial,
+    lo: Point,
+    hi: Point,
+    monotone: bool,
+}
+
+impl RootedSub {
+    /// `c` if it has 2 to 4 control points, all finite.
+    pub(super) fn of(c: SmallPolynomial) -> Option<Self> {
+        let p = c.points();
+        let finite = p.iter().all(|v| v.x.is_finite() && v.y.is_finite());
+        if !(finite && p.len() >= 2) {
+            return None;
+        }
+        let rising = p.windows(2).all(|w| w[1].y > w[0].y);
+        let falling = p.windows(2).all(|w| w[1].y < w[0].y);
+        let (lo, hi) = control_box(p);
+        Some(Self {
+            curve: c,
+            lo,
+            hi,
+            monotone: rising || falling,
+        })
+    }
+
+    /// Whether [`monotone_crossing`] takes it.
+    pub(super) fn monotone(&self) -> bool {
+        self.monotone
+    }
+
+    /// Its first control point.
+    pub(super) fn start(&self) -> Point {
+        self.curve.points()[0]
+    }
+
+    /// Its last control point.
+    pub(super) fn end(&self) -> Point {
+        let p = self.curve.points();
+        p[p.len() - 1]
+    }
+
+    /// Its signed crossing of the cut at `q`, as the walk counts it, or `None` if `q` may be
+    /// within twice `reach` of it (then the walk must decide): from its chord when `q` lies
+    /// outside its box grown by twice the reach (its curve, within the reach of its control
+    /// polygon, then lies wholly left of `q`, right of it, above or below it), else from its
+    /// root ([`monotone_crossing`]).
+    #[inline(always)]
+    pub(super) fn crossing(&self, q: Point, reach: f64) -> Option<i64> {
+        match outside_box_crossing((self.lo, self.hi), (self.start().y, self.end().y), q, reach) {
+            Some(k) => Some(k),
+            None => self.root_crossing(q, reach),
+        }
+    }
+
+    /// Its crossing from its root ([`monotone_crossing`]) for a `q` in or near its box, `None`
+    /// if the root declines or it is not monotone.
+    #[inline(always)]
+    fn root_crossing(&self, q: Point, reach: f64) -> Option<i64> {
+        if !self.monotone {
+            return None;
+        }
+        match monotone_crossing(self.curve.points(), q, reach) {
+            RootCrossing::Decided(k) => Some(k),
+            RootCrossing::TooNear | RootCrossing::NotMonotone => None,
+        }
+    }
+}
+
+/// The crossing at `q` of a sub-curve with control box `(lo, hi)` and ends at heights
+/// `ends`, if `q` lies outside the box grown by twice `reach` (its curve, within the reach of
+/// its control polygon, then lies wholly left of `q`, right of it, above or below it): left of
+/// the query its chord's crossing (0 above or below it), right of it none. `None` otherwise.
+#[inline(always)]
+fn outside_box_crossing(
+    (lo, hi): (Point, Point),
+    (start_y, end_y): (f64, f64),
+    q: Point,
+    reach: f64,
+) -> Option<i64> {
+    outside_by(lo, hi, q, 2.0 * reach).then(|| {
+        if q.x > hi.x {
+            chord_crossing(start_y, end_y, q.y)
+        } else {
+            0
+        }
+    })
+}
+
+/// A split cell: its base (the crossings of the sub-curves it does not list, and of those it
+/// lists that give every query in it the same) and its entries, `entries[first..end]`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Split {
+    base: i64,
+    first: u32,
+    end: u32,
+}
+
+/// A listed sub-curve as a split cell's queries read it: its control box, its ends' heights,
+/// and its index in [`SplitCells::subs`] ([`CHORD_ONLY`] for one wholly left of the cell, whose
+/// chord decides every query there).
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    lo: Point,
+    hi: Point,
+    start_y: f64,
+    end_y: f64,
+    sub: u32,
+}
+
+/// [`Entry::sub`] of a sub-curve wholly left of its cell.
+const CHORD_ONLY: u32 = u32::MAX;
+
+/// The split cells of a grid: their bases and listed sub-curves.
+#[derive(Clone, Debug, Default)]
+pub(super) struct SplitCells {
+    splits: Vec<Split>,
+    entries: Vec<Entry>,
+    /// The sub-curves the entries read.
+    pub(super) subs: Vec<RootedSub>,
+}
+
+impl SplitCells {
+    /// No split cells yet, over the sub-curves `subs`.
+    pub(super) fn over(subs: Vec<RootedSub>) -> Self {
+        Self {
+            subs,
+            ..Self::default()
+        }
+    }
+
+    /// The split cells made so far.
+    pub(super) fn len(&self) -> usize {
+        self.splits.len()
+    }
+
+    /// The crossings at `q` in split cell `s`, `None` if a listed sub-curve cannot decide.
+    #[inline(always)]
+    pub(super) fn crossings(&self, s: usize, q: Point, reach: f64) -> Option<i64> {
+        let split = self.splits[s];
+        let mut total = split.base;
+        for e in &self.entries[split.first as usize..split.end as usize] {
+            total += if e.sub == CHORD_ONLY {
+                chord_crossing(e.start_y, e.end_y, q.y)
+            } else {
+                // As `RootedSub::crossing`, from the entry's copy of the box and ends.
+                match outside_box_crossing((e.lo, e.hi), (e.start_y, e.end_y), q, reach) {
+                    Some(k) => k,
+                    None => self.subs[e.sub as usize].root_crossing(q, reach)?,
+                }
+            };
+        }
+        Some(total)
+    }
+
+    /// The sum of the crossings at `q` of the sub-curves `listed` (indices into
+    /// [`SplitCells::subs`]), `None` if one cannot decide.
+    pub(super) fn listed_crossings(&self, listed: &[u32], q: Point, reach: f64) -> Option<i64> {
+        let mut total = 0;
+        for &i in listed {
+            total += self.subs[i as usize].crossing(q, reach)?;
+        }
+        Some(total)
+    }
+
+    /// Makes split cell number [`SplitCells::len`]: base `base` for the sub-curves `listed`,
+    /// of a cell that holds every query it serves within `(lo, hi)`. The entries keep only the
+    /// sub-curves whose crossing varies over that box: one whose box grown by twice `reach`
+    /// lies right of it, above it or below it crosses no query's cut there, and one wholly
+    /// left of it is decided by its chord, a constant if both its ends lie above or below the
+    /// box (added to the base).
+    pub(super) fn push(&mut self, base: i64, listed: &[u32], (lo, hi): (Point, Point), reach: f64) {
+        let r = 2.0 * reach;
+        let first = self.entries.len() as u32;
+        let mut base = base;
+        for &i in listed {
+            let sub = &self.subs[i as usize];
+            let (slo, shi) = (sub.lo, sub.hi);
+            let (start_y, end_y) = (sub.start().y, sub.end().y);
+            if slo.x - r > hi.x || slo.y - r > hi.y || shi.y + r < lo.y {
+                continue;
+            }
+            let left = shi.x + r < lo.x;
+            let side = |y: f64| {
+                if y > hi.y {
+                    Some(1)
+                } else if y < lo.y {
+                    Some(0)
+                } else {
+                    None
+                }
+            };
+            if left && let (Some(a), Some(b)) = (side(start_y), side(end_y)) {
+                base += a - b;
+                continue;
+            }
+            self.entries.push(Entry {
+                lo: slo,
+                hi: shi,
+                start_y,
+                end_y,
+                sub: if left { CHORD_ONLY } else { i },
+            });
+        }
+        let end = self.entries.len() as u32;
+        self.splits.push(Split { base, first, end });
+    }
+
+    /// Keeps only the sub-curves some entry reads (the others, most of a field's, were listed
+    /// by cells that did not become split cells, or are decided by their chords alone).
+    pub(super) fn drop_unread(&mut self) {
+        let mut new_index = vec![u32::MAX; self.subs.len()];
+        let mut kept = Vec::new();
+        for e in self.entries.iter_mut().filter(|e| e.sub != CHORD_ONLY) {
+            let i = e.sub as usize;
+            if new_index[i] == u32::MAX {
+                new_index[i] = kept.len() as u32;
+                kept.push(self.subs[i]);
+            }
+            e.sub = new_index[i];
+        }
+        self.subs = kept;
+    }
+}
+
+/// Does every end of the sub-curves `listed` (indices into `subs`) at a height within
+/// `[y0, y1]` have as many of them ending as starting there (compared exactly)? Then the
+/// crossings the listed ones pass to the others happen only at heights outside the cell's.
+pub(super) fn ends_shared(subs: &[RootedSub], listed: &[u32], y0: f64, y1: f64) -> bool {
+    let mut ends: smallvec::SmallVec<[((u64, u64), i32); 32]> = smallvec::SmallVec::new();
+    for &i in listed {
+        let s = &subs[i as usize];
+        for (p, sign) in [(s.start(), 1), (s.end(), -1)] {
+            // (Listed sub-curves have finite control points.)
+            if p.y >= y0 && p.y <= y1 {
+                ends.push(((p.x.to_bits(), p.y.to_bits()), sign));
+            }
+        }
+    }
+    ends.sort_unstable_by_key(|e| e.0);
+    ends.chunk_by(|a, b| a.0 == b.0)
+        .all(|run| run.iter().map(|e| e.1).sum::<i32>() == 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rs_testkit::XorShift64;
+
+    fn sub(p: &[Point]) -> RootedSub {
+        RootedSub::of(SmallPolynomial::from_points(p).unwrap()).unwrap()
+    }
+
+    /// The signed crossing of the ray from `q` towards `-x` by a dense polyline on the cubic
+    /// `p` (+1 downwards), counted as the chords count it (an end with `y >= q.y` above).
+    fn polyline_crossing(p: &[Point], q: Point) -> i64 {
+        let at = |t: f64| {
+            let s = 1.0 - t;
+            let b = [s * s * s, 3.0 * s * s * t, 3.0 * s * t * t, t * t * t];
+            p.iter()
+                .zip(b)
+                .fold(Point::new(0.0, 0.0), |a, (&v, w)| a + v * w)
+        };
+        let n = 20_000;
+        let mut total = 0;
+        for k in 0..n {
+            let (a, b) = (at(k as f64 / n as f64), at((k + 1) as f64 / n as f64));
+            let (up_a, up_b) = (a.y >= q.y, b.y >= q.y);
+            if up_a != up_b {
+                let x = a.x + (b.x - a.x) * (q.y - a.y) / (b.y - a.y);
+                if x < q.x {
+                    total += i64::from(up_a) - i64::from(up_b);
+                }
+            }
+        }
+        total
+    }
+
+    /// A listed sub-curve's crossing, where it decides, is the curve's: random cubics whose
+    /// ordinates rise or fall, queries in and around their boxes farther than `1e-5` of the box
+    /// from them (where a dense polyline crosses as the curve does); one not monotone decides
+    /// only outside its box grown by twice the reach, and declines inside it.
+    #[test]
+    fn a_listed_sub_curves_crossing_is_the_curves() {
+        let mut rng = XorShift64::new(17);
+        let reach = 1e-12;
+        let (mut decided, mut tried) = (0, 0);
+        for _ in 0..300 {
+            let sign = if rng.next_f64() < 0.5 { 1.0 } else { -1.0 };
+            let mut y = 0.0;
+            let p: Vec<Point> = (0..4)
+                .map(|_| {
+                    y += 0.05 + rng.next_f64();
+                    Point::new(2.0 * rng.next_f64() - 1.0, sign * y)
+                })
+                .collect();
+            let s = sub(&p);
+            assert!(s.monotone());
+            for _ in 0..100 {
+                let q = Point::new(
+                    s.lo.x - 0.5 + (s.hi.x - s.lo.x + 1.0) * rng.next_f64(),
+                    s.lo.y - 0.5 + (s.hi.y - s.lo.y + 1.0) * rng.next_f64(),
+                );
+                // Keep away from the curve and from its ends' heights.
+                let near = (0..=2000).any(|k| {
+                    let t = k as f64 / 2000.0;
+                    let u = 1.0 - t;
+                    let b = [u * u * u, 3.0 * u * u * t, 3.0 * u * t * t, t * t * t];
+                    let c = p
+                        .iter()
+                        .zip(b)
+                        .fold(Point::new(0.0, 0.0), |a, (&v, w)| a + v * w);
+                    (c - q).length() < 1e-3
+                }) || (q.y - p[0].y).abs() < 1e-3
+                    || (q.y - p[3].y).abs() < 1e-3;
+                if near {
+                    continue;
+                }
+                tried += 1;
+                if let Some(k) = s.crossing(q, reach) {
+                    decided += 1;
+                    assert_eq!(k, polyline_crossing(&p, q), "{p:?} {q:?}");
+                }
+            }
+        }
+        assert!(decided == tried && tried > 10_000, "{decided} of {tried}");
+        // A cubic with a horizontal tangent inside: decided outside its grown box only.
+        let bump = sub(&[
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 2.0),
+            Point::new(2.0, 2.0),
+            Point::new(3.0, 0.0),
+        ]);
+        assert!(!bump.monotone());
+        assert_eq!(bump.crossing(Point::new(5.0, 1.0), reach), Some(0));
+        assert_eq!(bump.crossing(Point::new(5.0, -1.0), reach), Some(0));
+        assert_eq!(bump.crossing(Point::new(-1.0, 1.0), reach), Some(0));
+        assert_eq!(bump.crossing(Point::new(1.5, 1.0), reach), None);
+        assert_eq!(
+            bump.crossing(Point::new(3.0 + 1.5 * reach, 1.0), reach),
+            None
+        );
+    }
+
+    /// A split cell's entries give every query in its box the sum of its listed sub-curves'
+    /// crossings, or decline where one of them does: the sub-curves right of the box, above
+    /// it or below it dropped, those left of it read by their chords (their constant part
+    /// folded into the base), the others by box and root. Random cubics (rising, falling,
+    /// bumps) around a box, queries in it and on its sides.
+    #[test]
+    fn a_split_cells_entries_sum_as_its_listed_sub_curves() {
+        let mut rng = XorShift64::new(29);
+        let reach = 1e-12;
+        let (lo, hi) = (Point::new(0.0, 0.0), Point::new(1.0, 1.0));
+        let (mut decided, mut dropped, mut chords) = (0, 0, 0);
+        for round in 0..300 {
+            let mut subs: Vec<RootedSub> = (0..8)
+                .map(|_| {
+                    let o = Point::new(4.0 * rng.next_f64() - 1.5, 4.0 * rng.next_f64() - 1.5);
+                    let tall = 1.0 + 3.0 * rng.next_f64();
+                    let p: Vec<Point> = (0..4)
+                        .map(|_| {
+                            o + Point::new(rng.next_f64() - 0.5, tall * (rng.next_f64() - 0.5))
+                        })
+                        .collect();
+                    sub(&p)
+                })
+                .collect();
+            // One grazing the box from above, below or the right, half the reach away.
+            let (g, h) = (0.5 * reach, rng.next_f64());
+            subs.push(sub(&match round % 3 {
+                0 => [Point::new(h, 1.0 + g), Point::new(h + 0.1, 1.5)],
+                1 => [Point::new(h, -0.5), Point::new(h + 0.1, -g)],
+                _ => [Point::new(1.0 + g, h), Point::new(1.5, h + 0.1)],
+            }));
+            let listed: Vec<u32> = (0..subs.len() as u32).collect();
+            let base = round as i64 - 150;
+            let mut cells = SplitCells::over(subs.clone());
+            cells.push(base, &listed, (lo, hi), reach);
+            cells.drop_unread();
+            let entries = &cells.entries;
+            dropped += listed.len() - entries.len();
+            chords += entries.iter().filter(|e| e.sub == CHORD_ONLY).count();
+            for k in 0..200 {
+                let t = if k % 10 < 5 { rng.next_f64() } else { h };
+                let q = match k % 5 {
+                    0 => Point::new(t, 0.0),
+                    1 => Point::new(t, 1.0),
+                    2 => Point::new(0.0, t),
+                    3 => Point::new(1.0, t),
+                    _ => Point::new(t, rng.next_f64()),
+                };
+                let want: Option<i64> = subs.iter().map(|s| s.crossing(q, reach)).sum();
+                let got = cells.crossings(0, q, reach);
+                assert_eq!(got, want.map(|w| base + w), "round {round} q {q:?}");
+                decided += usize::from(got.is_some());
+            }
+        }
+        assert!(
+            decided > 30_000 && dropped > 300 && chords > 100,
+            "{decided} {dropped} {chords}"
+        );
+    }
+
+    /// Ends at the cell's heights must be shared among the listed sub-curves (as many ending
+    /// as starting at each point, exactly); ends outside those heights need not be.
+    #[test]
+    fn ends_at_the_cells_heights_must_be_shared() {
+        let a = Point::new(0.0, 0.0);
+        let b = Point::new(1.0, 1.0);
+        let c = Point::new(2.0, 2.0);
+        let subs = vec![sub(&[a, b]), sub(&[b, c]), sub(&[b, Point::new(3.0, 3.0)])];
+        // `a` and `c` outside [0.5, 1.5]; `b` shared by the first two.
+        assert!(ends_shared(&subs, &[0, 1], 0.5, 1.5));
+        // `b` ends one and starts none.
+        assert!(!ends_shared(&subs, &[0], 0.5, 1.5));
+        // `b` ends one and starts two.
+        assert!(!ends_shared(&subs, &[0, 1, 2], 0.5, 1.5));
+        // The heights of `a` too: it starts one and ends none.
+        assert!(!ends_shared(&subs, &[0, 1], -0.5, 1.5));
+        // One ulp off is not shared.
+        let b2 = Point::new(1.0, 1.0f64.next_up());
+        let off = vec![sub(&[a, b]), sub(&[b2, c])];
+        assert!(!ends_shared(&off, &[0, 1], 0.5, 1.5));
+    }
+}
