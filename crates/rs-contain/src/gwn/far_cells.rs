@@ -469,12 +469,13 @@ impl FarCells {
         }
     }
 
-    /// Makes split cells (see `split_cells`) of the near cells that qualify: outside the rows
-    /// of the open chains' ends (`chain_rows`), marked only by sub-curves the roots take, at
-    /// most [`MOST_LISTED`] of them, whose ends at the cell's heights (grown by `grow`) they
-    /// share. Each takes its base from a neighbour whose count is known at a point of their
-    /// common side, breadth first from the far cells; one a neighbour cannot give its base
-    /// (every point tried too near a sub-curve) stays near.
+    /// The split cells (see `split_cells`) of the near cells that qualify, from `listing`:
+    /// outside the rows of the open chains' ends (`chain_rows`), marked only by polynomial
+    /// sub-curves of small boxes, listing at most [`MOST_LISTED`] once closed
+    /// ([`Splits::close_listing`]: their ends at the cell's heights, grown by the growth,
+    /// shared among them). Each takes its base from a neighbour whose count is known at a
+    /// point of their common side, breadth first from the far cells; one no neighbour can give
+    /// its base (every point tried too near a sub-curve) stays near.
     fn splits(&self, listing: Listing) -> Splits {
         let Listing {
             subs,
