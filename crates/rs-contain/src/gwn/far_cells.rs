@@ -233,6 +233,15 @@ impl FarCells {
         }
     }
 
+    /// The point at grid coordinates `(c, r)` (for whole ones, cell `(c, r)`'s lower left
+    /// corner).
+    fn at(&self, c: f64, r: f64) -> Point {
+        Point::new(
+            self.lo.x + c / self.per_unit.x,
+            self.lo.y + r / self.per_unit.y,
+        )
+    }
+
     /// The cell holding `q`; `None` outside the grid (or not a number).
     #[inline(always)]
     fn cell(&self, q: Point) -> Option<usize> {
@@ -254,37 +263,71 @@ impl FarCells {
         (((y - self.lo.y) * self.per_unit.y) as usize).min(SIDE - 1)
     }
 
-    /// Marks every cell holding a point within the growth of a curve: each piece halved until
-    /// its sub-curves' control boxes (which hold them) span about two cells, each box grown by
-    /// the growth.
+    /// Marks every cell holding a point within the growth of a curve: each covering
+    /// sub-curve's control box ([`FarCells::cover`]) grown by the growth.
     fn mark_curves(&mut self, pieces: &[RationalBezier]) {
+        let mut counts = std::mem::take(&mut self.counts);
+        self.cover(pieces, false, &mut |_, _, (blo, bhi)| {
+            if let Some((columns, rows)) = self.box_cells(blo, bhi, self.grow) {
+                for r in rows {
+                    counts[r * SIDE + columns.start()..=r * SIDE + columns.end()].fill(NEAR);
+                }
+            }
+        });
+        self.counts = counts;
+    }
+
+    /// Gives `leaf(points, polynomial, (lo, hi))` each sub-curve covering `pieces`: its control
+    /// points (a rational one's are not its curve's Bezier points), whether its piece is
+    /// polynomial, and its control box (which holds it). Each piece is halved until its
+    /// sub-curves' boxes span about two cells, at most [`MAX_SPLITS`] times; with `extra`, a
+    /// polynomial one the split cells' roots cannot take (a horizontal tangent in it or at an
+    /// end) is halved further while one of its halves can be taken (see [`EXTRA_SPLITS`]).
+    fn cover(
+        &self,
+        pieces: &[RationalBezier],
+        extra: bool,
+        leaf: &mut impl FnMut(&[Point], bool, (Point, Point)),
+    ) {
         for piece in pieces {
             let c = SubCurve::of(piece);
             match SmallPolynomial::of(&c) {
-                Some(small) => self.mark_curve(small),
-                None => self.mark_curve(c),
+                Some(small) => self.cover_piece(small, true, extra, leaf),
+                None => self.cover_piece(c, false, extra, leaf),
             }
         }
     }
 
-    /// [`FarCells::mark_curves`] for one piece, `c`.
-    fn mark_curve<C: Halve + Deref<Target = [Point]>>(&mut self, c: C) {
+    /// [`FarCells::cover`] for one piece, `c`.
+    fn cover_piece<C: Halve + Deref<Target = [Point]>>(
+        &self,
+        c: C,
+        polynomial: bool,
+        extra: bool,
+        leaf: &mut impl FnMut(&[Point], bool, (Point, Point)),
+    ) {
         let (cell_x, cell_y) = (1.0 / self.per_unit.x, 1.0 / self.per_unit.y);
+        let monotone = |c: &C| rooted(c, polynomial).is_some_and(|r| r.monotone());
         let mut stack = vec![(c, 0)];
         while let Some((c, splits)) = stack.pop() {
             let (blo, bhi) = control_box(&c);
             let small = bhi.x - blo.x <= 2.0 * cell_x && bhi.y - blo.y <= 2.0 * cell_y;
-            if small || splits >= MAX_SPLITS {
-                if let Some((columns, rows)) = self.box_cells(blo, bhi, self.grow) {
-                    for r in rows {
-                        self.counts[r * SIDE + columns.start()..=r * SIDE + columns.end()]
-                            .fill(NEAR);
-                    }
-                }
+            let halves = if !(small || splits >= MAX_SPLITS) {
+                Some(c.halves())
+            } else if extra && !monotone(&c) && splits < MAX_SPLITS + EXTRA_SPLITS {
+                // Only where it helps: a half without the tangent (a leaf that stays not
+                // monotone in both halves, such as one with coincident control points at
+                // both ends, is kept whole).
+                Some(c.halves()).filter(|(l, r)| monotone(l) || monotone(r))
             } else {
-                let (l, r) = c.halves();
-                stack.push((r, splits + 1));
-                stack.push((l, splits + 1));
+                None
+            };
+            match halves {
+                Some((l, r)) => {
+                    stack.push((r, splits + 1));
+                    stack.push((l, splits + 1));
+                }
+                None => leaf(&c, polynomial, (blo, bhi)),
             }
         }
     }
@@ -310,71 +353,23 @@ impl FarCells {
         Some((columns, rows))
     }
 
-    /// The sub-curves that cover the curves for the split cells (none past
-    /// [`MOST_SUB_CURVES`]), as [`FarCells::mark_curves`]
-    /// halves the pieces, each with the cells its box grown by the growth holds (all near);
-    /// except that a polynomial sub-curve the roots cannot take (a horizontal tangent in it
-    /// or at an end) is halved a few more times, where one of its halves can be taken.
+    /// The sub-curves that cover the curves for the split cells ([`FarCells::cover`], halving
+    /// further where that helps the roots; none past [`MOST_SUB_CURVES`]), each with the cells
+    /// its box grown by the growth holds (all near).
     fn list_curves(&self, pieces: &[RationalBezier]) -> Listing {
         let mut listing = Listing {
             unlisted: vec![false; SIDE * SIDE],
             ..Listing::default()
         };
-        for piece in pieces {
-            let c = SubCurve::of(piece);
-            match SmallPolynomial::of(&c) {
-                Some(small) => self.list_curve(small, true, &mut listing),
-                None => self.list_curve(c, false, &mut listing),
-            }
-            if listing.ends.len() > MOST_SUB_CURVES {
-                listing.too_many = true;
-                break;
-            }
-        }
-        listing
-    }
-
-    /// [`FarCells::list_curves`] for one piece, `c`.
-    fn list_curve<C: Halve + Deref<Target = [Point]>>(
-        &self,
-        c: C,
-        polynomial: bool,
-        listing: &mut Listing,
-    ) {
-        let (cell_x, cell_y) = (1.0 / self.per_unit.x, 1.0 / self.per_unit.y);
-        // (A rational sub-curve's points are not its curve's Bezier points.)
-        let rooted = |c: &C| {
-            polynomial
-                .then(|| SmallPolynomial::from_points(c))
-                .flatten()
-                .and_then(RootedSub::of)
-        };
-        let monotone = |c: &C| rooted(c).is_some_and(|r| r.monotone());
-        let mut stack = vec![(c, 0)];
-        while let Some((c, splits)) = stack.pop() {
-            let (blo, bhi) = control_box(&c);
-            let small = bhi.x - blo.x <= 2.0 * cell_x && bhi.y - blo.y <= 2.0 * cell_y;
-            let leaf = small || splits >= MAX_SPLITS;
-            let halves = if !leaf {
-                Some(c.halves())
-            } else if polynomial && !monotone(&c) && splits < MAX_SPLITS + EXTRA_SPLITS {
-                // Only where it helps: a half without the tangent (a leaf that stays not
-                // monotone in both halves, such as one with coincident control points at
-                // both ends, is kept whole).
-                Some(c.halves()).filter(|(l, r)| monotone(l) || monotone(r))
-            } else {
-                None
-            };
-            if let Some((l, r)) = halves {
-                stack.push((r, splits + 1));
-                stack.push((l, splits + 1));
-                continue;
+        self.cover(pieces, true, &mut |p, polynomial, (blo, bhi)| {
+            if listing.too_many {
+                return;
             }
             let cells = self.box_cells(blo, bhi, self.grow);
             let marks = cells
                 .as_ref()
                 .map_or(0, |(c, r)| c.clone().count() * r.clone().count());
-            let sub = rooted(&c)
+            let sub = rooted(p, polynomial)
                 .filter(|_| (1..=MOST_CELLS_LISTED).contains(&marks))
                 .map(|r| {
                     listing.subs.push(r);
@@ -382,7 +377,8 @@ impl FarCells {
                 });
             listing
                 .ends
-                .push((c[0], c[c.len() - 1], sub.unwrap_or(UNLISTED)));
+                .push((p[0], p[p.len() - 1], sub.unwrap_or(UNLISTED)));
+            listing.too_many = listing.ends.len() > MOST_SUB_CURVES;
             if let Some((columns, rows)) = cells {
                 for r in rows {
                     let row = r * SIDE + columns.start()..=r * SIDE + columns.end();
@@ -392,7 +388,8 @@ impl FarCells {
                     }
                 }
             }
-        }
+        });
+        listing
     }
 
     /// Marks the row holding ordinate `y` (if the grid reaches it) unless `marked` says it is
@@ -487,7 +484,6 @@ impl FarCells {
         if too_many {
             pairs.clear();
         }
-        let grow = self.grow;
         pairs.sort_unstable();
         pairs.dedup();
         let mut made = Splits {
@@ -503,18 +499,17 @@ impl FarCells {
         for run in pairs.chunk_by(|a, b| a.0 == b.0) {
             let i = run[0].0 as usize;
             let r = i / SIDE;
-            if unlisted.get(i) != Some(&false)
-                || self.chain_rows.get(r) != Some(&false)
+            if unlisted[i]
+                || self.chain_rows[r]
                 || run.len() > MOST_LISTED
                 || self.counts[i] != NEAR
             {
                 continue;
             }
-            let y0 = self.lo.y + r as f64 / self.per_unit.y - grow;
-            let y1 = self.lo.y + (r + 1) as f64 / self.per_unit.y + grow;
+            let (lo, hi) = self.cell_box(i);
             indices.clear();
             indices.extend(run.iter().map(|&(_, s)| s));
-            if !made.close_listing(&mut indices, (y0, y1), &partners) {
+            if !made.close_listing(&mut indices, (lo.y, hi.y), &partners) {
                 continue;
             }
             let first = lists.len() as u32;
@@ -560,16 +555,9 @@ impl FarCells {
     /// Cell `i`'s box grown by the curves' growth (which holds every query the grid puts in
     /// it).
     fn cell_box(&self, i: usize) -> (Point, Point) {
-        let grow = self.grow;
         let (c, r) = ((i % SIDE) as f64, (i / SIDE) as f64);
-        let at = |c: f64, r: f64| {
-            Point::new(
-                self.lo.x + c / self.per_unit.x,
-                self.lo.y + r / self.per_unit.y,
-            )
-        };
-        let g = Point::new(grow, grow);
-        (at(c, r) - g, at(c + 1.0, r + 1.0) + g)
+        let g = Point::new(self.grow, self.grow);
+        (self.at(c, r) - g, self.at(c + 1.0, r + 1.0) + g)
     }
 
     /// The base of candidate cell `b` (listing the sub-curves `listed`) from its neighbour
@@ -581,15 +569,9 @@ impl FarCells {
         let (cb, rb) = (b % SIDE, b / SIDE);
         let side = |f: f64| {
             if ra == rb {
-                Point::new(
-                    self.lo.x + ca.max(cb) as f64 / self.per_unit.x,
-                    self.lo.y + (ra as f64 + f) / self.per_unit.y,
-                )
+                self.at(ca.max(cb) as f64, ra as f64 + f)
             } else {
-                Point::new(
-                    self.lo.x + (ca as f64 + f) / self.per_unit.x,
-                    self.lo.y + ra.max(rb) as f64 / self.per_unit.y,
-                )
+                self.at(ca as f64 + f, ra.max(rb) as f64)
             }
         };
         let mut base = None;
@@ -611,10 +593,7 @@ impl FarCells {
     /// The walk's count at the centre of cell `i`, [`NEAR`] if it has none.
     fn region_count(&self, i: usize, crossings: &mut impl FnMut(Point) -> Option<i64>) -> i32 {
         let (c, r) = (i % SIDE, i / SIDE);
-        let centre = Point::new(
-            self.lo.x + (c as f64 + 0.5) / self.per_unit.x,
-            self.lo.y + (r as f64 + 0.5) / self.per_unit.y,
-        );
+        let centre = self.at(c as f64 + 0.5, r as f64 + 0.5);
         (self.cell(centre) == Some(i))
             .then(|| crossings(centre))
             .flatten()
@@ -687,6 +666,15 @@ impl Splits {
         }
         ends_shared(&self.cells.subs, indices, y0, y1)
     }
+}
+
+/// The sub-curve with control points `p` as the split cells list it, if its piece is
+/// `polynomial` (a rational sub-curve's points are not its curve's Bezier points).
+fn rooted(p: &[Point], polynomial: bool) -> Option<RootedSub> {
+    polynomial
+        .then(|| SmallPolynomial::from_points(p))
+        .flatten()
+        .and_then(RootedSub::of)
 }
 
 /// [`partners`]' entry for an end no other sub-curve shares.
