@@ -21,14 +21,14 @@
 //! others' sum, comes from a
 //! neighbouring cell whose count at a point of their common side is known: that count minus
 //! the listed sub-curves' crossings there. A query then adds its listed sub-curves' crossings,
-//! each decided by [`monotone_crossing`] (or by its box, from beyond twice the reach), and the
-//! open chains' ends, as a far cell's query does: the walk's value bit for bit. A query the
-//! roots cannot decide (too near a sub-curve) walks.
+//! each decided by [`monotone_crossing`](super::monotone::monotone_crossing) (or by its box,
+//! from beyond twice the reach), and the open chains' ends, as a far cell's query does: the
+//! walk's value bit for bit. A query the roots cannot decide (too near a sub-curve) walks.
 
 use rs_spline::Point;
 
 use super::curve::{SmallPolynomial, control_box, outside_by};
-use super::monotone::{RootCrossing, monotone_crossing};
+use super::monotone::{MonotoneCurve, RootCrossing};
 use super::sum::chord_crossing;
 
 /// Most sub-curves listed in a split cell: more, and the walk is left to it. (A curve nearly
@@ -38,14 +38,16 @@ use super::sum::chord_crossing;
 pub(super) const MOST_LISTED: usize = 24;
 
 /// A sub-curve a split cell lists: its control points (a polynomial of degree at most 3), its
-/// control box, and whether [`monotone_crossing`] takes it (its control ordinates strictly
-/// increase or strictly decrease); one it does not take decides only queries outside its box.
+/// control box, and, if [`monotone_crossing`](super::monotone::monotone_crossing) takes it (its
+/// control ordinates strictly increase or strictly decrease), that function's form made once,
+/// with the start its many queries are worth ([`MonotoneCurve::with_inverse_start`]); one it
+/// does not take decides only queries outside its box.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct RootedSub {
     curve: SmallPolynomial,
     lo: Point,
     hi: Point,
-    monotone: bool,
+    root: Option<MonotoneCurve>,
 }
 
 impl RootedSub {
@@ -56,20 +58,18 @@ impl RootedSub {
         if !(finite && p.len() >= 2) {
             return None;
         }
-        let rising = p.windows(2).all(|w| w[1].y > w[0].y);
-        let falling = p.windows(2).all(|w| w[1].y < w[0].y);
         let (lo, hi) = control_box(p);
         Some(Self {
             curve: c,
             lo,
             hi,
-            monotone: rising || falling,
+            root: MonotoneCurve::new(p).map(MonotoneCurve::with_inverse_start),
         })
     }
 
-    /// Whether [`monotone_crossing`] takes it.
+    /// Whether [`monotone_crossing`](super::monotone::monotone_crossing) takes it.
     pub(super) fn monotone(&self) -> bool {
-        self.monotone
+        self.root.is_some()
     }
 
     /// Its first control point.
@@ -87,7 +87,7 @@ impl RootedSub {
     /// within twice `reach` of it (then the walk must decide): from its chord when `q` lies
     /// outside its box grown by twice the reach (its curve, within the reach of its control
     /// polygon, then lies wholly left of `q`, right of it, above or below it), else from its
-    /// root ([`monotone_crossing`]).
+    /// root ([`MonotoneCurve::crossing`]).
     #[inline(always)]
     pub(super) fn crossing(&self, q: Point, reach: f64) -> Option<i64> {
         match outside_box_crossing((self.lo, self.hi), (self.start().y, self.end().y), q, reach) {
@@ -96,14 +96,11 @@ impl RootedSub {
         }
     }
 
-    /// Its crossing from its root ([`monotone_crossing`]) for a `q` in or near its box, `None`
-    /// if the root declines or it is not monotone.
+    /// Its crossing from its root ([`MonotoneCurve::crossing`]) for a `q` in or near its box,
+    /// `None` if the root declines or it is not monotone.
     #[inline(always)]
     fn root_crossing(&self, q: Point, reach: f64) -> Option<i64> {
-        if !self.monotone {
-            return None;
-        }
-        match monotone_crossing(self.curve.points(), q, reach) {
+        match self.root.as_ref()?.crossing(q, reach) {
             RootCrossing::Decided(k) => Some(k),
             RootCrossing::TooNear | RootCrossing::NotMonotone => None,
         }
