@@ -24,7 +24,7 @@ use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::curve::{Halve, SmallPolynomial, SubCurve, control_box};
-use super::split_cells::{MOST_LISTED, RootedSub, SplitCells, ends_shared};
+use super::split_cells::{MOST_LISTED, RootedSub, SplitCells, Step, steps_at, steps_of};
 
 /// Cells per side: `2^8` (256 KiB of counts). On the GWN paper's shapes, random points of the
 /// shapes' boxes took 0.87-0.95 of the time at `2^8` they took at `2^7` (where 54-82% of them
@@ -143,9 +143,8 @@ struct Listing {
     /// Cells marked by a sub-curve no split cell may list (rational, of a box marking more
     /// than [`MOST_CELLS_LISTED`] cells, or outside the grid).
     unlisted: Vec<bool>,
-    /// Every sub-curve's start and end, with its index in `subs` ([`UNLISTED`] if no split
-    /// cell may list it).
-    ends: Vec<(Point, Point, u32)>,
+    /// The sub-curves covering the curves, listed or not.
+    covering: usize,
     /// More sub-curves than [`MOST_SUB_CURVES`]: no split cells.
     too_many: bool,
 }
@@ -375,10 +374,8 @@ impl FarCells {
                     listing.subs.push(r);
                     (listing.subs.len() - 1) as u32
                 });
-            listing
-                .ends
-                .push((p[0], p[p.len() - 1], sub.unwrap_or(UNLISTED)));
-            listing.too_many = listing.ends.len() > MOST_SUB_CURVES;
+            listing.covering += 1;
+            listing.too_many = listing.covering > MOST_SUB_CURVES;
             if let Some((columns, rows)) = cells {
                 for r in rows {
                     let row = r * SIDE + columns.start()..=r * SIDE + columns.end();
@@ -468,18 +465,18 @@ impl FarCells {
 
     /// The split cells (see `split_cells`) of the near cells that qualify, from `listing`:
     /// outside the rows of the open chains' ends (`chain_rows`), marked only by polynomial
-    /// sub-curves of small boxes, listing at most [`MOST_LISTED`] once closed
-    /// ([`Splits::close_listing`]: their ends at the cell's heights, grown by the growth,
-    /// shared among them). Each takes its base from a neighbour whose count is known at a
-    /// point of their common side, breadth first from the far cells; one no neighbour can give
-    /// its base (every point tried too near a sub-curve) stays near.
+    /// sub-curves of small boxes, at most [`MOST_LISTED`], whose ends at the cell's heights
+    /// (grown by the growth) balance within its columns (their steps, [`steps_of`], taken
+    /// where they do not, left of it). Each takes its base from a neighbour whose count is
+    /// known at a point of their common side, breadth first from the far cells; one no
+    /// neighbour can give its base (every point tried too near a sub-curve) stays near.
     fn splits(&self, listing: Listing) -> Splits {
         let Listing {
             subs,
             mut pairs,
             unlisted,
-            ends,
             too_many,
+            ..
         } = listing;
         if too_many {
             pairs.clear();
@@ -490,12 +487,12 @@ impl FarCells {
             counts: self.counts.clone(),
             cells: SplitCells::over(subs),
         };
-        let partners = partners(&ends, made.cells.subs.len());
-        // Per candidate cell, its listed sub-curves' range in `lists`.
+        // Per candidate cell, its listed sub-curves' range in `lists` and its steps' in
+        // `steps`.
         let mut lists: Vec<u32> = Vec::new();
-        let mut candidate: Vec<(u32, u32)> = Vec::new();
+        let mut steps: Vec<Step> = Vec::new();
+        let mut candidate: Vec<[u32; 4]> = Vec::new();
         let mut candidate_of = vec![u32::MAX; SIDE * SIDE];
-        let mut indices: Vec<u32> = Vec::with_capacity(MOST_LISTED);
         for run in pairs.chunk_by(|a, b| a.0 == b.0) {
             let i = run[0].0 as usize;
             let r = i / SIDE;
@@ -506,16 +503,22 @@ impl FarCells {
             {
                 continue;
             }
-            let (lo, hi) = self.cell_box(i);
-            indices.clear();
-            indices.extend(run.iter().map(|&(_, s)| s));
-            if !made.close_listing(&mut indices, (lo.y, hi.y), &partners) {
+            let first = lists.len() as u32;
+            lists.extend(run.iter().map(|&(_, s)| s));
+            let first_step = steps.len();
+            let listed = &lists[first as usize..];
+            if !steps_of(&made.cells.subs, listed, self.cell_box(i), &mut steps) {
+                lists.truncate(first as usize);
+                steps.truncate(first_step);
                 continue;
             }
-            let first = lists.len() as u32;
-            lists.extend_from_slice(&indices);
             candidate_of[i] = candidate.len() as u32;
-            candidate.push((first, lists.len() as u32));
+            candidate.push([
+                first,
+                lists.len() as u32,
+                first_step as u32,
+                steps.len() as u32,
+            ]);
         }
         let neighbours = |i: usize| {
             let (c, r) = (i % SIDE, i / SIDE);
@@ -539,11 +542,13 @@ impl FarCells {
                 if k == u32::MAX || made.counts[b] != NEAR {
                     continue;
                 }
-                let (first, end) = candidate[k as usize];
+                let [first, end, first_step, end_step] = candidate[k as usize];
                 let listed = &lists[first as usize..end as usize];
-                if let Some(base) = self.base_across(&made, a, b, listed) {
+                let steps = &steps[first_step as usize..end_step as usize];
+                if let Some(base) = self.base_across(&made, a, b, listed, steps) {
                     made.counts[b] = SPLIT_FIRST + made.cells.len() as i32;
-                    made.cells.push(base, listed, self.cell_box(b), self.reach);
+                    made.cells
+                        .push(base, listed, steps, self.cell_box(b), self.reach);
                     queue.push_back(b);
                 }
             }
@@ -564,7 +569,14 @@ impl FarCells {
     /// `a`'s count at points of their common side (the middle, then the quarters): the first
     /// point that decides gives it, and the next that decides, if any, must agree (which the
     /// argument ensures: a second opinion where one is at hand), else `None`.
-    fn base_across(&self, made: &Splits, a: usize, b: usize, listed: &[u32]) -> Option<i64> {
+    fn base_across(
+        &self,
+        made: &Splits,
+        a: usize,
+        b: usize,
+        listed: &[u32],
+        steps: &[Step],
+    ) -> Option<i64> {
         let (ca, ra) = (a % SIDE, a / SIDE);
         let (cb, rb) = (b % SIDE, b / SIDE);
         let side = |f: f64| {
@@ -580,7 +592,7 @@ impl FarCells {
             let at_a = made.crossings(a, e, self.reach);
             let listed = made.cells.listed_crossings(listed, e, self.reach);
             if let (Some(at_a), Some(listed)) = (at_a, listed) {
-                let here = at_a - listed;
+                let here = at_a - listed - steps_at(steps, e.y);
                 match base {
                     None => base = Some(here),
                     Some(b) => return (b == here).then_some(b),
@@ -629,43 +641,6 @@ impl Splits {
             self.cells.crossings((k - SPLIT_FIRST) as usize, q, reach)
         }
     }
-
-    /// Adds to `indices` (sub-curves listed by a cell of heights `y0..=y1`) the sub-curves
-    /// that share their ends at those heights, until every such end is shared among them
-    /// ([`ends_shared`]); `false` if that takes a sub-curve the roots cannot take or more than
-    /// [`MOST_LISTED`].
-    fn close_listing(
-        &self,
-        indices: &mut Vec<u32>,
-        (y0, y1): (f64, f64),
-        partners: &[[u32; 2]],
-    ) -> bool {
-        // Each listed sub-curve's ends at the cell's heights bring in their partners (those
-        // starting where it ends, those ending where it starts), and theirs in turn.
-        let mut k = 0;
-        while k < indices.len() {
-            let i = indices[k] as usize;
-            let s = &self.cells.subs[i];
-            for (side, p) in [s.end(), s.start()].into_iter().enumerate() {
-                if p.y < y0 || p.y > y1 {
-                    continue;
-                }
-                match partners[i][side] {
-                    NO_PARTNER => {}
-                    UNLISTED => return false,
-                    j if !indices.contains(&j) => {
-                        if indices.len() == MOST_LISTED {
-                            return false;
-                        }
-                        indices.push(j);
-                    }
-                    _ => {}
-                }
-            }
-            k += 1;
-        }
-        ends_shared(&self.cells.subs, indices, y0, y1)
-    }
 }
 
 /// The sub-curve with control points `p` as the split cells list it, if its piece is
@@ -675,65 +650,6 @@ fn rooted(p: &[Point], polynomial: bool) -> Option<RootedSub> {
         .then(|| SmallPolynomial::from_points(p))
         .flatten()
         .and_then(RootedSub::of)
-}
-
-/// [`partners`]' entry for an end no other sub-curve shares.
-const NO_PARTNER: u32 = u32::MAX - 1;
-
-/// [`partners`]' entry for an end shared with a sub-curve the split cells cannot list (and
-/// [`Listing::ends`]' for such a sub-curve).
-const UNLISTED: u32 = u32::MAX;
-
-/// Per listed sub-curve (of `count`), a sub-curve starting where it ends and one ending where
-/// it starts (exactly), as indices of the listed ones, [`UNLISTED`] or [`NO_PARTNER`]: from
-/// `ends` (every sub-curve's start, end and listed index, in the order the marking made them,
-/// along each piece and piece after piece), where it is mostly the next or the one before;
-/// the rest (a loop's first and last, pieces not joined in order) are looked up among the
-/// ends not joined to their neighbour. One partner an end suffices: a cell whose listed ends
-/// still do not balance (three sub-curves meeting at a point) stays near.
-fn partners(ends: &[(Point, Point, u32)], count: usize) -> Vec<[u32; 2]> {
-    let key = |p: Point| (p.x.to_bits(), p.y.to_bits());
-    let listed = |k: usize| ends[k].2;
-    let joined = |k: usize| k + 1 < ends.len() && ends[k].1 == ends[k + 1].0;
-    // The starts and ends not joined to their neighbour's, by their bits.
-    let mut starts: Vec<((u64, u64), u32)> = Vec::new();
-    let mut tails: Vec<((u64, u64), u32)> = Vec::new();
-    for (k, &(start, end, i)) in ends.iter().enumerate() {
-        if k == 0 || !joined(k - 1) {
-            starts.push((key(start), i));
-        }
-        if !joined(k) {
-            tails.push((key(end), i));
-        }
-    }
-    starts.sort_unstable();
-    tails.sort_unstable();
-    let find = |sorted: &[((u64, u64), u32)], p: Point| {
-        let at = key(p);
-        let i = sorted.partition_point(|e| e.0 < at);
-        sorted
-            .get(i)
-            .filter(|e| e.0 == at)
-            .map_or(NO_PARTNER, |e| e.1)
-    };
-    let mut out = vec![[NO_PARTNER; 2]; count];
-    for (k, &(start, end, i)) in ends.iter().enumerate() {
-        if i == UNLISTED {
-            continue;
-        }
-        let next = if joined(k) {
-            listed(k + 1)
-        } else {
-            find(&starts, end)
-        };
-        let prev = if k > 0 && joined(k - 1) {
-            listed(k - 1)
-        } else {
-            find(&tails, start)
-        };
-        out[i as usize] = [next, prev];
-    }
-    out
 }
 
 /// The root of run `k`'s set, halving the path to it on the way.

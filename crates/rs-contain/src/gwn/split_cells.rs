@@ -4,26 +4,31 @@
 //!
 //! Why a base serves a whole cell: cover the curves by the far cells' sub-curves (each piece
 //! halved until its sub-curves' boxes span about two cells). A cell's *listed* sub-curves are
-//! those whose boxes, grown by the far cells' growth, meet it (the others stay farther than
-//! the band's reach from every point of the cell), and those that share an end with a listed
-//! one at a height of the cell, in turn. Beyond the reach, the crossings the walk counts
-//! are those of the curves themselves (see `WindingField`'s Semantics), the sum over the listed
-//! sub-curves plus the sum over the others. The others' sum is the same for every query in the
-//! cell when none of their ends that they do not share with another of them lies at a height
-//! of the cell: their curves do not come near the cell, and where two of them meet the crossing
-//! passes from one to the other. Those unshared ends are the open chains' ends (whose rows the
-//! far cells mark) and the ends the others share with listed sub-curves; so a cell qualifies
-//! when every end of a listed sub-curve at a height of the cell is shared among the listed ones
-//! (as many of them end there as start there). The open chains' ends lie in the rows the far
-//! cells mark, which split cells avoid: every query of a split cell, and every point of a side
-//! its base is taken at (in its row or its neighbour's, neither such a row), lies strictly
-//! above or below every chain end's height, as rows are monotone in the height. Its base, the
-//! others' sum, comes from a
-//! neighbouring cell whose count at a point of their common side is known: that count minus
-//! the listed sub-curves' crossings there. A query then adds its listed sub-curves' crossings,
-//! each decided by [`monotone_crossing`](super::monotone::monotone_crossing) (or by its box,
-//! from beyond twice the reach), and the open chains' ends, as a far cell's query does: the
-//! walk's value bit for bit. A query the roots cannot decide (too near a sub-curve) walks.
+//! those whose boxes, grown by the far cells' growth, meet it; every other one stays farther
+//! than the band's reach from every point of the cell, wholly left of it, right of it, above
+//! it or below it. Beyond the reach, the crossings the walk counts are those of the curves
+//! themselves (see `WindingField`'s Semantics): the sum over the listed sub-curves plus the
+//! sum over the others. Of the others, one right of the cell, above it or below it crosses
+//! no query's cut there; one left of it crosses as its chord does, `side(start) - side(end)`
+//! with `side(e) = [e.y >= q.y]`. Summed over the others left of the cell, the sides of the
+//! ends they share with one another cancel, and so do those of ends outside the cell's
+//! heights (constant there); what varies with the query is the sides of the ends they share
+//! with the listed sub-curves (and the open chains' ends, whose rows the far cells mark and
+//! split cells avoid). At a point `p` of the cell's heights, as many sub-curves start as end
+//! (the curves are closed chains there), so the others there add up to minus the listed
+//! ones' count `l_p`; if `p` lies left of the cell, those others are left of it too (they
+//! hold `p`), and they add the *step* `-l_p [p.y >= q.y]`; right of it they add nothing;
+//! within the cell's columns there are none (their boxes would meet it), and a cell whose
+//! listed ends do not balance there stays near. So a query's count is the listed sub-curves'
+//! crossings, the steps, and a constant, the cell's base: every query of a split cell, and
+//! every point of a side its base is taken at (in its row or its neighbour's, neither a chain
+//! end's row), lies strictly above or below every chain end's height, as rows are monotone
+//! in the height. The base comes from a neighbouring cell whose count at a point of their
+//! common side is known: that count less the listed sub-curves' crossings and the steps
+//! there. A query then adds its listed sub-curves' crossings, each decided by
+//! [`monotone_crossing`](super::monotone::monotone_crossing) (or by its box, from beyond twice
+//! the reach), its steps, and the open chains' ends, as a far cell's query does: the walk's
+//! value bit for bit. A query the roots cannot decide (too near a sub-curve) walks.
 
 use rs_spline::Point;
 
@@ -203,16 +208,41 @@ impl SplitCells {
         Some(total)
     }
 
-    /// Makes split cell number [`SplitCells::len`]: base `base` for the sub-curves `listed`,
-    /// of a cell that holds every query it serves within `(lo, hi)`. The entries keep only the
+    /// Makes split cell number [`SplitCells::len`]: base `base` for the sub-curves `listed`
+    /// and the steps `steps` (each read as chords from its height to `-inf` or back: the same
+    /// sides), of a cell that holds every query it serves within `(lo, hi)`. The entries keep only the
     /// sub-curves whose crossing varies over that box: one whose box grown by twice `reach`
     /// lies right of it, above it or below it crosses no query's cut there, and one wholly
     /// left of it is decided by its chord, a constant if both its ends lie above or below the
     /// box (added to the base).
-    pub(super) fn push(&mut self, base: i64, listed: &[u32], (lo, hi): (Point, Point), reach: f64) {
+    pub(super) fn push(
+        &mut self,
+        base: i64,
+        listed: &[u32],
+        steps: &[Step],
+        (lo, hi): (Point, Point),
+        reach: f64,
+    ) {
         let r = 2.0 * reach;
         let first = self.entries.len() as u32;
         let mut base = base;
+        // A step of `k` reads as `|k|` chords from its height to below every query (or back).
+        for &(h, k) in steps {
+            let (start_y, end_y) = if k > 0 {
+                (h, f64::NEG_INFINITY)
+            } else {
+                (f64::NEG_INFINITY, h)
+            };
+            let entry = Entry {
+                lo,
+                hi,
+                start_y,
+                end_y,
+                sub: CHORD_ONLY,
+            };
+            self.entries
+                .extend(std::iter::repeat_n(entry, k.unsigned_abs() as usize));
+        }
         for &i in listed {
             let sub = &self.subs[i as usize];
             let (slo, shi) = (sub.lo, sub.hi);
@@ -263,23 +293,52 @@ impl SplitCells {
     }
 }
 
-/// Does every end of the sub-curves `listed` (indices into `subs`) at a height within
-/// `[y0, y1]` have as many of them ending as starting there (compared exactly)? Then the
-/// crossings the listed ones pass to the others happen only at heights outside the cell's.
-pub(super) fn ends_shared(subs: &[RootedSub], listed: &[u32], y0: f64, y1: f64) -> bool {
-    let mut ends: smallvec::SmallVec<[((u64, u64), i32); 32]> = smallvec::SmallVec::new();
+/// A step of a split cell: `k [h >= q.y]` at height `h`, the sides of the ends at `h` of the
+/// sub-curves it does not list, left of it, that end where listed ones start or start where
+/// they end.
+pub(super) type Step = (f64, i64);
+
+/// The steps (see the module's documentation) of a cell of box `(lo, hi)` (its queries'
+/// box) listing the sub-curves `listed` (indices into `subs`), pushed to `steps`: at every
+/// point of the box's heights where as many of the listed sub-curves do not end as start
+/// (compared exactly), lying left of the box, the step of the others there. `false` (the cell
+/// must stay near) if such a point lies within the box's columns.
+pub(super) fn steps_of(
+    subs: &[RootedSub],
+    listed: &[u32],
+    (lo, hi): (Point, Point),
+    steps: &mut Vec<Step>,
+) -> bool {
+    // The point's bits, the point, and +1 for a start, -1 for an end.
+    type EndAt = ((u64, u64), Point, i64);
+    let mut ends: smallvec::SmallVec<[EndAt; 64]> = smallvec::SmallVec::new();
     for &i in listed {
         let s = &subs[i as usize];
         for (p, sign) in [(s.start(), 1), (s.end(), -1)] {
             // (Listed sub-curves have finite control points.)
-            if p.y >= y0 && p.y <= y1 {
-                ends.push(((p.x.to_bits(), p.y.to_bits()), sign));
+            if p.y >= lo.y && p.y <= hi.y {
+                ends.push(((p.x.to_bits(), p.y.to_bits()), p, sign));
             }
         }
     }
     ends.sort_unstable_by_key(|e| e.0);
-    ends.chunk_by(|a, b| a.0 == b.0)
-        .all(|run| run.iter().map(|e| e.1).sum::<i32>() == 0)
+    for run in ends.chunk_by(|a, b| a.0 == b.0) {
+        let listed_count: i64 = run.iter().map(|e| e.2).sum();
+        let p = run[0].1;
+        if listed_count == 0 || p.x > hi.x {
+            continue;
+        }
+        if p.x >= lo.x {
+            return false;
+        }
+        steps.push((p.y, -listed_count));
+    }
+    true
+}
+
+/// The steps' sum at height `y`.
+pub(super) fn steps_at(steps: &[Step], y: f64) -> i64 {
+    steps.iter().map(|&(h, k)| k * i64::from(h >= y)).sum()
 }
 
 #[cfg(test)]
@@ -385,8 +444,8 @@ mod tests {
     /// A split cell's entries give every query in its box the sum of its listed sub-curves'
     /// crossings, or decline where one of them does: the sub-curves right of the box, above
     /// it or below it dropped, those left of it read by their chords (their constant part
-    /// folded into the base), the others by box and root. Random cubics (rising, falling,
-    /// bumps) around a box, queries in it and on its sides.
+    /// folded into the base), the others by box and root; and its steps' sum. Random cubics
+    /// (rising, falling, bumps) around a box, queries in it and on its sides.
     #[test]
     fn a_split_cells_entries_sum_as_its_listed_sub_curves() {
         let mut rng = XorShift64::new(29);
@@ -415,12 +474,20 @@ mod tests {
             }));
             let listed: Vec<u32> = (0..subs.len() as u32).collect();
             let base = round as i64 - 150;
+            // Steps at random heights of the box (and at its ends and at a query's height).
+            let steps: Vec<Step> = (0..round % 4)
+                .map(|j| {
+                    let y = [rng.next_f64(), 0.0, 1.0, h][j];
+                    (y, [1, -1, 2, -2][(round / 4) % 4])
+                })
+                .collect();
             let mut cells = SplitCells::over(subs.clone());
-            cells.push(base, &listed, (lo, hi), reach);
+            cells.push(base, &listed, &steps, (lo, hi), reach);
             cells.drop_unread();
             let entries = &cells.entries;
-            dropped += listed.len() - entries.len();
-            chords += entries.iter().filter(|e| e.sub == CHORD_ONLY).count();
+            let step_entries: usize = steps.iter().map(|s| s.1.unsigned_abs() as usize).sum();
+            dropped += listed.len() + step_entries - entries.len();
+            chords += entries.iter().filter(|e| e.sub == CHORD_ONLY).count() - step_entries;
             for k in 0..200 {
                 let t = if k % 10 < 5 { rng.next_f64() } else { h };
                 let q = match k % 5 {
@@ -432,7 +499,8 @@ mod tests {
                 };
                 let want: Option<i64> = subs.iter().map(|s| s.crossing(q, reach)).sum();
                 let got = cells.crossings(0, q, reach);
-                assert_eq!(got, want.map(|w| base + w), "round {round} q {q:?}");
+                let want = want.map(|w| base + w + steps_at(&steps, q.y));
+                assert_eq!(got, want, "round {round} q {q:?}");
                 decided += usize::from(got.is_some());
             }
         }
@@ -442,25 +510,52 @@ mod tests {
         );
     }
 
-    /// Ends at the cell's heights must be shared among the listed sub-curves (as many ending
-    /// as starting at each point, exactly); ends outside those heights need not be.
+    /// A cell's steps: at each point of its heights where the listed sub-curves do not
+    /// balance (as many starting as ending, exactly), left of the cell, minus their count;
+    /// none right of it or outside its heights; a point within its columns refuses the cell.
     #[test]
-    fn ends_at_the_cells_heights_must_be_shared() {
-        let a = Point::new(0.0, 0.0);
-        let b = Point::new(1.0, 1.0);
-        let c = Point::new(2.0, 2.0);
-        let subs = vec![sub(&[a, b]), sub(&[b, c]), sub(&[b, Point::new(3.0, 3.0)])];
-        // `a` and `c` outside [0.5, 1.5]; `b` shared by the first two.
-        assert!(ends_shared(&subs, &[0, 1], 0.5, 1.5));
-        // `b` ends one and starts none.
-        assert!(!ends_shared(&subs, &[0], 0.5, 1.5));
-        // `b` ends one and starts two.
-        assert!(!ends_shared(&subs, &[0, 1, 2], 0.5, 1.5));
-        // The heights of `a` too: it starts one and ends none.
-        assert!(!ends_shared(&subs, &[0, 1], -0.5, 1.5));
-        // One ulp off is not shared.
-        let b2 = Point::new(1.0, 1.0f64.next_up());
-        let off = vec![sub(&[a, b]), sub(&[b2, c])];
-        assert!(!ends_shared(&off, &[0, 1], 0.5, 1.5));
+    fn steps_where_the_listed_ends_do_not_balance() {
+        let p = Point::new;
+        // The cell: [0, 1] x [0, 1]. A chain through it from the left, at height 0.5, to the
+        // right, and one from (-1, 0.25) up out of it.
+        let subs = vec![
+            sub(&[p(-2.0, 0.5), p(-0.5, 0.5)]),
+            sub(&[p(-0.5, 0.5), p(1.5, 0.6)]),
+            sub(&[p(1.5, 0.6), p(3.0, 0.6)]),
+            sub(&[p(-1.0, 0.25), p(0.5, 2.0)]),
+        ];
+        let cell = (p(0.0, 0.0), p(1.0, 1.0));
+        let steps = |listed: &[u32]| {
+            let mut out = Vec::new();
+            steps_of(&subs, listed, cell, &mut out).then_some(out)
+        };
+        // Listing the middle one: it starts at (-0.5, 0.5), left: the unlisted one ending
+        // there adds -(+1) [0.5 >= y]; its end, right of the cell, adds nothing.
+        assert_eq!(steps(&[1]), Some(vec![(0.5, -1)]));
+        // Listing the first two too: their shared end balances; (-2, 0.5) starts the first.
+        assert_eq!(steps(&[0, 1]), Some(vec![(0.5, -1)]));
+        // The fourth's start, left of the cell at 0.25; its end above the cell's heights.
+        assert_eq!(steps(&[3]), Some(vec![(0.25, -1)]));
+        let mut both = steps(&[1, 3]).unwrap();
+        both.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert_eq!(both, vec![(0.25, -1), (0.5, -1)]);
+        // An end within the cell's columns that does not balance refuses it.
+        let inside = vec![sub(&[p(-1.0, 0.5), p(0.5, 0.5)])];
+        assert!(
+            !steps_of(&inside, &[0], cell, &mut Vec::new()),
+            "an unbalanced end inside the cell"
+        );
+        // One ulp off does not balance.
+        let off = vec![
+            sub(&[p(-2.0, 0.5), p(-0.5, 0.5)]),
+            sub(&[p(-0.5, 0.5f64.next_up()), p(1.5, 0.6)]),
+        ];
+        let mut out = Vec::new();
+        assert!(steps_of(&off, &[0, 1], cell, &mut out));
+        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        assert_eq!(out, vec![(0.5, -1), (0.5, 1), (0.5f64.next_up(), -1)]);
+        // The steps' sum at a height.
+        assert_eq!(steps_at(&[(0.25, -1), (0.5, 2)], 0.3), 2);
+        assert_eq!(steps_at(&[(0.25, -1), (0.5, 2)], 0.25), 1);
     }
 }
