@@ -13,8 +13,9 @@
 //! bit.
 //!
 //! Once the near cells' queries are many ([`SPLIT_AFTER_WALKS_PER_NEAR_CELL`] per near cell),
-//! the near cells that qualify become *split cells* (see `split_cells`): a base count and the
-//! few sub-curves through the cell, whose crossings a query decides from their roots.
+//! the near cells that qualify become *split cells* (see `split_cells`): a base count, the
+//! few sub-curves through the cell, whose crossings a query decides from their roots, and the
+//! steps where the others' ends left of the cell meet them at its heights.
 
 use rs_spline::{Point, RationalBezier};
 
@@ -688,6 +689,28 @@ mod tests {
         Domain::new(curves).unwrap()
     }
 
+    /// A loop of a rational arc (a circle's left part) joined, exactly at its ends, to nearly
+    /// level segments running right and a vertical one: the split cells along the segments
+    /// right of the joins take steps there, where their unlisted partners are the arc's
+    /// rational sub-curves.
+    fn joined() -> Domain {
+        let arc = circular_arc(Point::new(0.0, 0.0), 1.0, 1.9, 4.4).unwrap();
+        let pieces = arc.to_bezier();
+        let top = pieces[0].start_point();
+        let bottom = pieces[pieces.len() - 1].end_point();
+        let (c, d) = (
+            Point::new(2.0, bottom.y - 0.01),
+            Point::new(2.0, top.y + 0.02),
+        );
+        let curves = vec![
+            arc,
+            segment(bottom, c).unwrap(),
+            segment(c, d).unwrap(),
+            segment(d, top).unwrap(),
+        ];
+        Domain::new(curves).unwrap()
+    }
+
     /// A batch gives every point of `points` the winding number and the location a single
     /// query gives it (the walk), bit for bit.
     fn batches_match_single_queries(name: &str, fast: &FastWindingField, points: &[Point]) {
@@ -860,13 +883,14 @@ mod tests {
     /// before.
     #[test]
     fn split_cells_give_each_point_the_walks_value() {
-        // With the least share of the points answered by split cells (the mixed shape's
-        // circles are rational: their cells walk).
+        // With the least share of the points answered by split cells (the mixed and joined
+        // shapes' circles are rational: their cells walk).
         let shapes = [
             ("twirl", rs_testkit::gwn_shape("twirl"), 4),
             ("bubble", rs_testkit::gwn_shape("bubble"), 4),
             ("fish", rs_testkit::gwn_shape("fish"), 4),
             ("mixed", mixed(), 20),
+            ("joined", joined(), 20),
         ];
         for (name, d, least) in shapes {
             let field = WindingField::new(&d, DEFAULT_RELATIVE_TOLERANCE).unwrap();
@@ -874,8 +898,9 @@ mod tests {
             let mut points = near_points(&d, 20_000, 11);
             fast.winding_numbers(&points[..FAR_CELLS_MIN_POINTS]);
             let cells = fast.built_far_cells().expect("far cells built");
+            // (The joined loop has so few near cells that the first batch makes them.)
             assert!(
-                cells.split_share().is_none(),
+                cells.split_share().is_none() || name == "joined",
                 "{name}: split cells too soon"
             );
             // Enough queries in near cells make them.
@@ -887,6 +912,19 @@ mod tests {
             }
             let share = cells.split_share().expect("split cells made");
             assert!(share > 0.004, "{name}: {share}");
+            if name == "joined" {
+                // Steps where the segments meet the arc (rational, never listed).
+                let pieces = d.bezier_pieces();
+                let (top, bottom) = (
+                    pieces[0].1.start_point(),
+                    pieces[pieces.len() - 4].1.end_point(),
+                );
+                let heights = cells.split.made.get().expect("made").cells.step_heights();
+                assert!(
+                    heights.contains(&top.y) && heights.contains(&bottom.y),
+                    "{heights:?}"
+                );
+            }
             // Every listed sub-curve's ends' heights, and one ulp either side, across the
             // columns about its box (where the chords' rule at an end and the balance of the
             // listings matter).

@@ -407,6 +407,41 @@ mod tests {
         assert!(much_nearer * 10 >= cases * 9, "{much_nearer} of {cases}");
     }
 
+    /// The walk's sub-curves start from the chord's root itself: with no bend the first
+    /// iterate is `s` bit for bit (at 0, 1, subnormal and random `s`), so the walk's
+    /// decisions are those of the chord-started search.
+    #[test]
+    fn no_bend_starts_at_the_chords_root() {
+        let p = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.5, 3.0),
+        ];
+        let m = MonotoneCurve::new(&p).unwrap();
+        let mut rng = XorShift64::new(17);
+        let fixed = [0.0, 1.0, f64::MIN_POSITIVE, 5e-324, 1.0f64.next_down(), 0.5];
+        for s in fixed
+            .into_iter()
+            .chain((0..100_000).map(|_| rng.next_f64()))
+        {
+            assert_eq!(m.first_iterate(s).to_bits(), s.to_bits(), "{s:e}");
+        }
+        // With a bend, the start stays within [0, 1] even for extreme slopes at the ends.
+        let steep = [
+            Point::new(0.0, 0.0),
+            Point::new(0.0, 1e-300),
+            Point::new(0.0, 1.0),
+        ];
+        let m = MonotoneCurve::new(&steep).unwrap().with_inverse_start();
+        for s in fixed
+            .into_iter()
+            .chain((0..100_000).map(|_| rng.next_f64()))
+        {
+            let t = m.first_iterate(s);
+            assert!((0.0..=1.0).contains(&t), "{s:e}: {t:e}");
+        }
+    }
+
     /// It declines at the curve's ends and points, within its rounding of the curve (one ulp
     /// from a point of it), within twice the reach along the cut, and on curves not strictly
     /// monotone in `y` (a flat step, a turn, a horizontal line) or not finite; and with
