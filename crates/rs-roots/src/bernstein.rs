@@ -267,6 +267,7 @@ fn value_fixed<T: Blend, const N: usize>(c: &[T], s: f64) -> T {
 /// Value and first derivative at `s` of the Bernstein form `c` of degree `n = c.len() - 1`:
 /// after `n - 1` de Casteljau levels the two remaining entries `a`, `b` give
 /// `b(s) = (1 - s) a + s b` and `b'(s) = n (b - a)`.
+#[inline]
 pub fn de_casteljau_with_derivative<T: Blend>(c: &[T], s: f64) -> (T, T) {
     let n = c.len();
     match n {

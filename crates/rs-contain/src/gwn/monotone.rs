@@ -69,7 +69,42 @@ pub(crate) enum RootCrossing {
 /// control points, two-point sub-curves being straight and settled first; the branches for a
 /// `q` above or below the sub-curve serve other callers and the tests.)
 pub(crate) fn monotone_crossing(p: &[Point], q: Point, reach: f64) -> RootCrossing {
-    MonotoneCurve::new(p).map_or(RootCrossing::NotMonotone, |m| m.crossing(q, reach))
+    // (On the walk's path: the points read in place, no copy, and the chord's root as the
+    // first iterate.)
+    slopes(p).map_or(RootCrossing::NotMonotone, |(rising, slope_ratio)| {
+        crossing_from(p, rising, slope_ratio, |s| s, q, reach)
+    })
+}
+
+/// Whether the ordinates of the control points `p` (2 to [`MAX_POINTS`]) rise, and `L`, a
+/// bound on `|x'| / |y'|` from their differences; `None` unless they strictly increase or
+/// strictly decrease (finite, with a slope bound above zero).
+#[inline(always)]
+fn slopes(p: &[Point]) -> Option<(bool, f64)> {
+    let n = p.len();
+    if !(2..=MAX_POINTS).contains(&n) {
+        return None;
+    }
+    let rising = p[n - 1].y > p[0].y;
+    let (mut min_dy, mut max_dx) = (f64::INFINITY, 0.0f64);
+    for w in p.windows(2) {
+        let (dy, dx) = (w[1].y - w[0].y, (w[1].x - w[0].x).abs());
+        let dy = if rising { dy } else { -dy };
+        // Written to fail on NaN, which `min` and `max` would skip.
+        if !(dy > 0.0 && dx <= f64::MAX) {
+            return None;
+        }
+        (min_dy, max_dx) = (min_dy.min(dy), max_dx.max(dx));
+    }
+    let degree = (n - 1) as f64;
+    // Bounds on the exact slopes from the rounded differences (and their products' rounding
+    // near the least normal number).
+    let slope_y = degree * min_dy * (1.0 - 2.0 * f64::EPSILON) - ROUNDING_TINY;
+    let slope_x = degree * max_dx * (1.0 + 2.0 * f64::EPSILON) + ROUNDING_TINY;
+    if slope_y.partial_cmp(&0.0) != Some(Ordering::Greater) {
+        return None;
+    }
+    Some((rising, slope_x / slope_y))
 }
 
 /// A polynomial sub-curve [`monotone_crossing`] takes (2 to [`MAX_POINTS`] finite control
@@ -83,10 +118,11 @@ pub(crate) struct MonotoneCurve {
     rising: bool,
     /// `L`: a bound on `|x'| / |y'|`.
     slope_ratio: f64,
-    /// `(m0 - 1, m1 - 1)` for the first iterate ([`MonotoneCurve::first_iterate`]): zero for
-    /// the chord's root, else the slopes at the ends of `t` as a function of the height's
-    /// fraction `s` of the way from the first end's to the last's.
-    bend: (f64, f64),
+    /// `(m0 - 1, m1 - 1)` for the first iterate ([`MonotoneCurve::first_iterate`]): the
+    /// slopes at the ends of `t` as a function of the height's fraction `s` of the way from the
+    /// first end's to the last's; `None` for the chord's root (the walk's start: no operation
+    /// added to its path).
+    bend: Option<(f64, f64)>,
 }
 
 impl MonotoneCurve {
@@ -94,37 +130,15 @@ impl MonotoneCurve {
     /// it. Its first iterate is the chord's root.
     #[inline(always)]
     pub(crate) fn new(p: &[Point]) -> Option<Self> {
-        let n = p.len();
-        if !(2..=MAX_POINTS).contains(&n) {
-            return None;
-        }
-        let rising = p[n - 1].y > p[0].y;
-        let (mut min_dy, mut max_dx) = (f64::INFINITY, 0.0f64);
-        for w in p.windows(2) {
-            let (dy, dx) = (w[1].y - w[0].y, (w[1].x - w[0].x).abs());
-            let dy = if rising { dy } else { -dy };
-            // Written to fail on NaN, which `min` and `max` would skip.
-            if !(dy > 0.0 && dx <= f64::MAX) {
-                return None;
-            }
-            (min_dy, max_dx) = (min_dy.min(dy), max_dx.max(dx));
-        }
-        let degree = (n - 1) as f64;
-        // Bounds on the exact slopes from the rounded differences (and their products'
-        // rounding near the least normal number).
-        let slope_y = degree * min_dy * (1.0 - 2.0 * f64::EPSILON) - ROUNDING_TINY;
-        let slope_x = degree * max_dx * (1.0 + 2.0 * f64::EPSILON) + ROUNDING_TINY;
-        if slope_y.partial_cmp(&0.0) != Some(Ordering::Greater) {
-            return None;
-        }
+        let (rising, slope_ratio) = slopes(p)?;
         let mut points = [Point::default(); MAX_POINTS];
-        points[..n].copy_from_slice(p);
+        points[..p.len()].copy_from_slice(p);
         Some(Self {
             p: points,
-            n,
+            n: p.len(),
             rising,
-            slope_ratio: slope_x / slope_y,
-            bend: (0.0, 0.0),
+            slope_ratio,
+            bend: None,
         })
     }
 
@@ -144,7 +158,7 @@ impl MonotoneCurve {
         let bend = (m0 - 1.0, m1 - 1.0);
         let finite = bend.0.is_finite() && bend.1.is_finite();
         Self {
-            bend: if finite { bend } else { (0.0, 0.0) },
+            bend: finite.then_some(bend),
             ..self
         }
     }
@@ -152,70 +166,94 @@ impl MonotoneCurve {
     /// The first iterate for the root of `y(t) = q.y` at the height's fraction `s` of the way
     /// from the first end's to the last's (the chord's root): `t(s) = s + s (1 - s) ((1 - s)
     /// a - s b)` with `(a, b)` [`MonotoneCurve::bend`], the cubic through `(0, 0)` and
-    /// `(1, 1)` with slopes `a + 1` and `b + 1` there (`s` itself for a zero bend), kept
-    /// within `[0, 1]`.
+    /// `(1, 1)` with slopes `a + 1` and `b + 1` there, kept within `[0, 1]`; `s` itself
+    /// without a bend.
     #[inline(always)]
     fn first_iterate(&self, s: f64) -> f64 {
-        let (a, b) = self.bend;
+        let Some((a, b)) = self.bend else {
+            return s;
+        };
         let r = 1.0 - s;
         let t = s + s * r * (r * a - s * b);
         t.clamp(0.0, 1.0)
     }
 
-    /// Its signed crossing of the cut at `q` ([`monotone_crossing`]).
+    /// Its signed crossing of the cut at `q` ([`monotone_crossing`], from its first
+    /// iterate).
     #[inline(always)]
     pub(crate) fn crossing(&self, q: Point, reach: f64) -> RootCrossing {
-        if !(q.x.is_finite() && q.y.is_finite()) {
-            return RootCrossing::NotMonotone;
-        }
-        let n = self.n;
-        let mut c = [Point::default(); MAX_POINTS];
-        for (c, &p) in c.iter_mut().zip(&self.p[..n]) {
-            *c = p - q;
-        }
-        let c = &c[..n];
-        let rising = self.rising;
-        let up_a = c[0].y >= 0.0;
-        let crossing = chord_crossing(c[0].y, c[n - 1].y, 0.0);
-        let (mut size_y, mut size_x) = (0.0f64, 0.0f64);
-        for v in c {
-            (size_y, size_x) = (size_y.max(v.y.abs()), size_x.max(v.x.abs()));
-        }
-        let slope_ratio = self.slope_ratio;
-        let bounds = Bounds {
-            e_f: ROUNDING * size_y + ROUNDING_TINY,
-            e_g: ROUNDING * size_x + ROUNDING_TINY,
-            slope_ratio,
-            margin: 2.0 * reach * (1.0 + slope_ratio),
-        };
-        // The curve meets the query's height within its control box, at most `size_x` from
-        // `q` along the cut: no closer to deciding than that.
-        if size_x.partial_cmp(&bounds.margin) != Some(Ordering::Greater) {
-            return RootCrossing::TooNear;
-        }
-        let g = if crossing == 0 {
-            // Both ends above the query's height (the lower one perhaps at it) or both below:
-            // the curve meets that height at most at its lower end.
-            let (low, high) = if rising { (0, n - 1) } else { (n - 1, 0) };
-            if up_a && c[low].y == 0.0 {
-                Some(c[low].x).filter(|&g| bounds.decides(g, 0.0))
-            } else {
-                // It keeps a vertical distance of at least |y - q.y| at its end nearest the
-                // height.
-                let gap = if up_a { c[low].y } else { -c[high].y };
-                return if gap > 2.0 * reach {
-                    RootCrossing::Decided(0)
-                } else {
-                    RootCrossing::TooNear
-                };
-            }
+        let start = |s| self.first_iterate(s);
+        crossing_from(
+            &self.p[..self.n],
+            self.rising,
+            self.slope_ratio,
+            start,
+            q,
+            reach,
+        )
+    }
+}
+
+/// [`monotone_crossing`] of the sub-curve with control points `p` (taken by it: [`slopes`]
+/// gave `rising` and `slope_ratio`), Newton's iterates starting at `start` of the chord's
+/// root.
+#[inline(always)]
+fn crossing_from(
+    p: &[Point],
+    rising: bool,
+    slope_ratio: f64,
+    start: impl Fn(f64) -> f64,
+    q: Point,
+    reach: f64,
+) -> RootCrossing {
+    if !(q.x.is_finite() && q.y.is_finite()) {
+        return RootCrossing::NotMonotone;
+    }
+    let n = p.len();
+    let mut c = [Point::default(); MAX_POINTS];
+    for (c, &p) in c.iter_mut().zip(p) {
+        *c = p - q;
+    }
+    let c = &c[..n];
+    let up_a = c[0].y >= 0.0;
+    let crossing = chord_crossing(c[0].y, c[n - 1].y, 0.0);
+    let (mut size_y, mut size_x) = (0.0f64, 0.0f64);
+    for v in c {
+        (size_y, size_x) = (size_y.max(v.y.abs()), size_x.max(v.x.abs()));
+    }
+    let bounds = Bounds {
+        e_f: ROUNDING * size_y + ROUNDING_TINY,
+        e_g: ROUNDING * size_x + ROUNDING_TINY,
+        slope_ratio,
+        margin: 2.0 * reach * (1.0 + slope_ratio),
+    };
+    // The curve meets the query's height within its control box, at most `size_x` from
+    // `q` along the cut: no closer to deciding than that.
+    if size_x.partial_cmp(&bounds.margin) != Some(Ordering::Greater) {
+        return RootCrossing::TooNear;
+    }
+    let g = if crossing == 0 {
+        // Both ends above the query's height (the lower one perhaps at it) or both below:
+        // the curve meets that height at most at its lower end.
+        let (low, high) = if rising { (0, n - 1) } else { (n - 1, 0) };
+        if up_a && c[low].y == 0.0 {
+            Some(c[low].x).filter(|&g| bounds.decides(g, 0.0))
         } else {
-            bounds.decisive_abscissa(c, |s| self.first_iterate(s))
-        };
-        match g {
-            Some(g) => RootCrossing::Decided(if g < 0.0 { crossing } else { 0 }),
-            None => RootCrossing::TooNear,
+            // It keeps a vertical distance of at least |y - q.y| at its end nearest the
+            // height.
+            let gap = if up_a { c[low].y } else { -c[high].y };
+            return if gap > 2.0 * reach {
+                RootCrossing::Decided(0)
+            } else {
+                RootCrossing::TooNear
+            };
         }
+    } else {
+        bounds.decisive_abscissa(c, start)
+    };
+    match g {
+        Some(g) => RootCrossing::Decided(if g < 0.0 { crossing } else { 0 }),
+        None => RootCrossing::TooNear,
     }
 }
 
@@ -407,7 +445,7 @@ mod tests {
         assert!(much_nearer * 10 >= cases * 9, "{much_nearer} of {cases}");
     }
 
-    /// The walk's sub-curves start from the chord's root itself: with no bend the first
+    /// The walk's sub-curves start from the chord's root itself: without a bend the first
     /// iterate is `s` bit for bit (at 0, 1, subnormal and random `s`), so the walk's
     /// decisions are those of the chord-started search.
     #[test]
