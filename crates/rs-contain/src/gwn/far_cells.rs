@@ -307,7 +307,7 @@ impl FarCells {
         leaf: &mut impl FnMut(&[Point], bool, (Point, Point)),
     ) {
         let (cell_x, cell_y) = (1.0 / self.per_unit.x, 1.0 / self.per_unit.y);
-        let monotone = |c: &C| rooted(c, polynomial).is_some_and(|r| r.monotone());
+        let monotone = |c: &C| polynomial && RootedSub::would_have_root(c);
         let mut stack = vec![(c, 0)];
         while let Some((c, splits)) = stack.pop() {
             let (blo, bhi) = control_box(&c);

@@ -49,9 +49,10 @@ pub(super) const MOST_LISTED: usize = 24;
 
 /// A sub-curve a split cell lists: its control points (a polynomial of degree at most 3), its
 /// control box, and, if [`monotone_crossing`](super::monotone::monotone_crossing) takes it (its
-/// control ordinates strictly increase or strictly decrease), that function's form made once,
-/// with the start its many queries are worth ([`MonotoneCurve::with_inverse_start`]); one it
-/// does not take decides only queries outside its box.
+/// control ordinates strictly increase or strictly decrease), that function's form made once
+/// (given the start its many queries are worth, [`MonotoneCurve::with_inverse_start`], once
+/// the split cells are made: [`SplitCells::drop_unread`]); one it does not take decides only
+/// queries outside its box.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct RootedSub {
     curve: SmallPolynomial,
@@ -73,13 +74,14 @@ impl RootedSub {
             curve: c,
             lo,
             hi,
-            root: MonotoneCurve::new(p).map(MonotoneCurve::with_inverse_start),
+            root: MonotoneCurve::new(p),
         })
     }
 
-    /// Whether [`monotone_crossing`](super::monotone::monotone_crossing) takes it.
-    pub(super) fn monotone(&self) -> bool {
-        self.root.is_some()
+    /// Whether the sub-curve with control points `p` would be listed with a root (what
+    /// `RootedSub::of(p)` would tell), without making it.
+    pub(super) fn would_have_root(p: &[Point]) -> bool {
+        p.iter().all(|v| v.x.is_finite() && v.y.is_finite()) && MonotoneCurve::new(p).is_some()
     }
 
     /// Its first control point.
@@ -300,7 +302,10 @@ impl SplitCells {
     }
 
     /// Keeps only the sub-curves some entry reads (the others, most of a field's, were listed
-    /// by cells that did not become split cells, or are decided by their chords alone).
+    /// by cells that did not become split cells, or are decided by their chords alone), their
+    /// roots starting from [`MonotoneCurve::with_inverse_start`] from now on (worth its two
+    /// divisions only for a sub-curve the queries read; while the cells were being made, the
+    /// chord's root served, deciding the same crossings).
     pub(super) fn drop_unread(&mut self) {
         let mut new_index = vec![u32::MAX; self.subs.len()];
         let mut kept = Vec::new();
@@ -308,7 +313,9 @@ impl SplitCells {
             let i = e.sub as usize;
             if new_index[i] == u32::MAX {
                 new_index[i] = kept.len() as u32;
-                kept.push(self.subs[i]);
+                let mut sub = self.subs[i];
+                sub.root = sub.root.map(MonotoneCurve::with_inverse_start);
+                kept.push(sub);
             }
             e.sub = new_index[i];
         }
@@ -417,7 +424,7 @@ mod tests {
                 })
                 .collect();
             let s = sub(&p);
-            assert!(s.monotone());
+            assert!(s.root.is_some());
             for _ in 0..100 {
                 let q = Point::new(
                     s.lo.x - 0.5 + (s.hi.x - s.lo.x + 1.0) * rng.next_f64(),
@@ -453,7 +460,7 @@ mod tests {
             Point::new(2.0, 2.0),
             Point::new(3.0, 0.0),
         ]);
-        assert!(!bump.monotone());
+        assert!(bump.root.is_none());
         assert_eq!(bump.crossing(Point::new(5.0, 1.0), reach), Some(0));
         assert_eq!(bump.crossing(Point::new(5.0, -1.0), reach), Some(0));
         assert_eq!(bump.crossing(Point::new(-1.0, 1.0), reach), Some(0));
