@@ -102,8 +102,7 @@ pub(crate) fn orthonormalise(
     let mut qt = vt;
     let mut rt = DMatrix::<f64>::identity(n, n);
     let mut regularised = false;
-    let mut first = true;
-    for _ in 0..MAX_PASSES {
+    for pass in 0..MAX_PASSES {
         let gram = gram_lower(&qt, qt.ncols());
         let (l, shifted) = match cholesky_lower(gram.clone()) {
             Some(l) => (l, false),
@@ -115,8 +114,7 @@ pub(crate) fn orthonormalise(
         // The first pass's factor is `R^T` itself (`I L` is `L` bit for bit: a product
         // with ones and exact zeros; the N^3 product was 2% of a degree-40 rule).
         let d = l.diagonal();
-        rt = if first { l } else { &rt * &l };
-        first = false;
+        rt = if pass == 0 { l } else { &rt * &l };
         regularised = shifted;
         if !shifted && d.max() <= NEXT_PASS_RATIO * d.min() {
             break;
