@@ -39,6 +39,17 @@ pub enum CubatureError {
         /// The computed area.
         area: f64,
     },
+    /// The domain's area is below [`SMALLEST_AREA`](crate::SMALLEST_AREA): its moments would
+    /// be sums of subnormal numbers, short of the precision a rule needs.
+    #[error(
+        "the domain's area {area:e} is below {smallest:e}: its moments lose precision (scale the coordinates up)"
+    )]
+    AreaTooSmall {
+        /// The computed area.
+        area: f64,
+        /// [`SMALLEST_AREA`](crate::SMALLEST_AREA).
+        smallest: f64,
+    },
     /// Too few candidate points fell strictly inside the domain, or they did not resolve the
     /// polynomials of the degree, after the bounded retries: the domain is too thin or too
     /// small against its bounding box.

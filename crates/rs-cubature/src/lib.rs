@@ -121,7 +121,7 @@ pub use moments::monomial_moments;
 pub use rs_spline::Point;
 pub use rule::{
     CubatureOptions, CubatureRule, DEFAULT_CANDIDATES_PER_POLYNOMIAL, DEFAULT_MAX_CANDIDATES,
-    DEFAULT_MAX_RETRIES, DEFAULT_TARGET_RESIDUAL, MAX_CANDIDATES, MAX_RETRIES,
+    DEFAULT_MAX_RETRIES, DEFAULT_TARGET_RESIDUAL, MAX_CANDIDATES, MAX_RETRIES, SMALLEST_AREA,
 };
 
 /// The highest degree of exactness a rule or a moment vector may have: 40, `dim P_40 = 861`

@@ -210,6 +210,7 @@ impl CubatureRule {
     /// [`CubatureError::DegreeTooHigh`], [`CubatureError::InvalidOption`];
     /// [`CubatureError::OpenBoundary`]; [`CubatureError::Nesting`];
     /// [`CubatureError::MomentsNotConverged`]; [`CubatureError::NoArea`];
+    /// [`CubatureError::AreaTooSmall`] below [`SMALLEST_AREA`];
     /// [`CubatureError::TooFewCandidates`] when the last attempt had fewer than `dim P_n`
     /// candidates inside or they did not resolve the polynomials (a domain too thin or too
     /// small against its bounding box); [`CubatureError::ResidualNotReached`].
@@ -223,6 +224,13 @@ impl CubatureRule {
         if !(area > 0.0 && area.is_finite()) {
             return Err(CubatureError::NoArea { area });
         }
+        if area < SMALLEST_AREA {
+            return Err(CubatureError::AreaTooSmall {
+                area,
+                smallest: SMALLEST_AREA,
+            });
+        }
+        let unit = UnitMoments::of(&moments);
         let classifier = Classifier::new(
             domain,
             ContainOptions::DEFAULT.with_fill_rule(options.fill_rule),
@@ -266,7 +274,13 @@ impl CubatureRule {
             if points.len() < dim {
                 error = Some(too_few("fewer than dim P_n"));
             } else {
-                match compress(&basis, points, uniform, &moments, options.target_residual) {
+                match compress(
+                    &basis,
+                    points,
+                    uniform,
+                    &unit.moments,
+                    options.target_residual,
+                ) {
                     None => {
                         error = Some(too_few("they do not resolve the polynomials of the degree"))
                     }
@@ -274,7 +288,7 @@ impl CubatureRule {
                         return Ok(Self {
                             degree,
                             nodes: a.nodes,
-                            weights: a.weights,
+                            weights: unit.weights(a.weights),
                             residual: a.residual,
                             candidates: points.len(),
                         });
@@ -369,6 +383,53 @@ impl CubatureRule {
         let mut at = values.iter();
         self.integrate(|_| at.next().copied().unwrap_or(f64::NAN))
     }
+}
+
+/// The least area a rule is made for, `2^-970` (about `1e-292`): the moments of a smaller
+/// domain come out of sums whose terms are subnormal, each rounded to `2^-1074`, more than
+/// `eps^2` of the area.
+pub const SMALLEST_AREA: f64 = f64::MIN_POSITIVE / f64::EPSILON;
+
+/// The moments divided by the power of two `2^e` nearest below the area, and `e`: the rule is
+/// made for them, and its weights multiplied back by `2^e` ([`UnitMoments::weights`]). The
+/// compression squares the moments' size (the NNLS's norms of residuals and gradients), which
+/// overflowed for a domain larger than about `1e77` across and underflowed for one smaller than
+/// `1e-77`; scaled so that the area is in `[1, 2)` it squares numbers near 1. A power of two
+/// scales every value, every rounding and every comparison of the rule's making exactly: a
+/// rule is the one the moments themselves gave, bit for bit, wherever they gave one, and a
+/// domain of any size gets the rule of its unit-sized copy, scaled (test `scale.rs`).
+struct UnitMoments {
+    moments: Vec<f64>,
+    exponent: i32,
+}
+
+impl UnitMoments {
+    /// For `moments` whose first, the area, is at least [`SMALLEST_AREA`] and finite.
+    fn of(moments: &[f64]) -> Self {
+        let exponent = moments.first().map_or(0, |a| a.log2().floor() as i32);
+        Self {
+            moments: moments
+                .iter()
+                .map(|&m| times_power_of_two(m, -exponent))
+                .collect(),
+            exponent,
+        }
+    }
+
+    /// The weights of the domain's rule from those of the rule made for [`UnitMoments::moments`].
+    fn weights(&self, weights: Vec<f64>) -> Vec<f64> {
+        weights
+            .into_iter()
+            .map(|w| times_power_of_two(w, self.exponent))
+            .collect()
+    }
+}
+
+/// `x 2^e` for `|e| <= 1100`, exactly where the result and `x 2^(e / 2)` are normal: two
+/// factors, each a normal power of two (`2^e` alone is not one for `e < -1022` or `e > 1023`).
+fn times_power_of_two(x: f64, e: i32) -> f64 {
+    let half = e / 2;
+    x * 2f64.powi(half) * 2f64.powi(e - half)
 }
 
 /// Above this degree the candidates are `dim P_n` Halton points and boundary layers
