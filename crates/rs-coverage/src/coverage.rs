@@ -424,10 +424,13 @@ impl GridCoverage {
     }
 
     /// Checks that `options` can be computed: revolved, the domain and the grid each on one
-    /// side of the axis, and neither boundary geometry nor face centroids (planar only).
+    /// side of the axis, and neither boundary geometry nor face centroids (planar only); the
+    /// cells neither so large nor so small that the moments of the outputs asked overflow or
+    /// lose their precision.
     ///
     /// # Errors
-    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`].
+    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`],
+    /// [`CoverageError::CellsOutOfRange`].
     pub fn check_options(&self, options: CoverageOptions) -> Result<(), CoverageError> {
         check_options(&self.grid, self.extent.as_ref(), options)
     }
@@ -449,8 +452,9 @@ impl GridCoverage {
     /// # Errors
     /// [`CoverageError::BadRows`] for an empty range or one beyond the grid;
     /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`];
-    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`]
-    /// ([`GridCoverage::check_options`]); [`CoverageError::OutOfMemory`].
+    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`],
+    /// [`CoverageError::CellsOutOfRange`] ([`GridCoverage::check_options`]);
+    /// [`CoverageError::OutOfMemory`].
     pub fn rows(
         &self,
         rows: Range<usize>,
@@ -584,8 +588,9 @@ impl GridCoverage {
     ///
     /// # Errors
     /// [`CoverageError::TooManyCells`] beyond [`MAX_CELLS`] (use [`GridCoverage::bands`]);
-    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`]
-    /// ([`GridCoverage::check_options`]); [`CoverageError::OutOfMemory`].
+    /// [`CoverageError::AcrossAxis`], [`CoverageError::PlanarOnly`],
+    /// [`CoverageError::CellsOutOfRange`] ([`GridCoverage::check_options`]);
+    /// [`CoverageError::OutOfMemory`].
     pub fn all(&self, options: CoverageOptions) -> Result<Coverage, CoverageError> {
         let ny = self.grid.ny();
         self.check_all(options)?;
@@ -728,6 +733,7 @@ pub(crate) fn check_options(
     extent: Option<&BoundingBox>,
     options: CoverageOptions,
 ) -> Result<(), CoverageError> {
+    check_moment_range(grid, options)?;
     let Some(axis) = options.axisymmetric else {
         return Ok(());
     };
@@ -761,6 +767,56 @@ pub(crate) fn check_options(
             axis,
             low: d0,
             high: d1,
+        });
+    }
+    Ok(())
+}
+
+/// The largest power of two the moments behind a cell's outputs may reach: headroom of
+/// `2^23` below `f64::MAX` for the sums of a cell's parts.
+const MOMENT_MAX_EXPONENT: f64 = 1000.0;
+/// The least: below `2^-970 = f64::MIN_POSITIVE / eps` subnormal rounding (`2^-1074`) is more
+/// than `eps^2` of the value.
+const MOMENT_MIN_EXPONENT: f64 = -970.0;
+
+/// [`CoverageError::CellsOutOfRange`] where `options` ask for outputs whose moments, for the
+/// sizes of `grid`'s cells, would overflow or fall among the subnormal numbers (a silent
+/// `NaN` or a wrong value, not an error, before this check). With `s` a cell's side and `r`
+/// the grid's largest radius, the moments grow like `s^3` for planar centroids (the first
+/// moments of a covered part), `r s^2` for revolved fractions (the revolved volume) and
+/// `r s^3` and `s^4` for revolved centroids; the fractions, apertures, boundary and face
+/// outputs of planar cells like `s^2` at most, within range for every grid
+/// ([`CellGrid::new`] refuses cells whose area underflows; edges are at most `1e150`). So
+/// planar centroids need cells from about `1e-97` to `1e100` across; revolved volumes and
+/// centroids tighter bounds, by the radius.
+fn check_moment_range(grid: &CellGrid, options: CoverageOptions) -> Result<(), CoverageError> {
+    let (smallest, largest) = grid.cell_sides();
+    let (lo, hi) = (smallest.log2(), largest.log2());
+    let radius = options.axisymmetric.map(|axis| {
+        let b = grid.bounding_box();
+        let r = axis.other();
+        b.min.coord(r).abs().max(b.max.coord(r).abs()).max(largest)
+    });
+    let log_r = radius.map_or(0.0, f64::log2);
+    // (what, the largest moment's log2, the smallest one's)
+    let needs = match (options.axisymmetric.is_some(), options.centroids) {
+        (false, false) => return Ok(()),
+        (false, true) => ("centroids", 3.0 * hi, 3.0 * lo),
+        (true, false) => ("revolved fractions", log_r + 2.0 * hi, 3.0 * lo),
+        (true, true) => (
+            "revolved centroids",
+            (log_r + 2.0 * hi).max(log_r + 3.0 * hi).max(4.0 * hi),
+            (3.0 * lo).min(4.0 * lo),
+        ),
+    };
+    let (what, top, bottom) = needs;
+    if top > MOMENT_MAX_EXPONENT || bottom < MOMENT_MIN_EXPONENT {
+        return Err(CoverageError::CellsOutOfRange {
+            what,
+            smallest,
+            largest,
+            radius: radius.unwrap_or(0.0),
+            overflow: top > MOMENT_MAX_EXPONENT,
         });
     }
     Ok(())

@@ -64,6 +64,26 @@ pub enum CoverageError {
         /// The lowest row height.
         height: f64,
     },
+    /// The cells are too large or too small for an output whose moments grow like a power of
+    /// their size (centroids, revolved volumes): the moments would overflow or lose their
+    /// precision among the subnormal numbers.
+    #[error(
+        "cells from {smallest:e} to {largest:e} across are out of range for {what}: their moments would {} (scale the coordinates{})",
+        if *overflow { "overflow" } else { "lose their precision" },
+        if *radius > 0.0 { format!("; radius up to {radius:e}") } else { String::new() }
+    )]
+    CellsOutOfRange {
+        /// `"centroids"`, `"revolved fractions"` or `"revolved centroids"`.
+        what: &'static str,
+        /// The shortest side of a cell.
+        smallest: f64,
+        /// The longest side of a cell.
+        largest: f64,
+        /// Revolved: the grid's largest distance from the axis (0 for planar cells).
+        radius: f64,
+        /// Whether the moments would overflow (else underflow).
+        overflow: bool,
+    },
     /// More cells in one call than [`crate::MAX_CELLS`].
     #[error(
         "{rows} rows of {columns} cells exceed the limit of {limit} cells for one call: compute the grid in row bands"

@@ -25,6 +25,8 @@ pub const MAX_EDGES: usize = 1 << 26;
 pub struct CellGrid {
     x: Vec<f64>,
     y: Vec<f64>,
+    /// The shortest and the longest side of a cell, over both axes.
+    sides: (f64, f64),
 }
 
 impl CellGrid {
@@ -37,14 +39,15 @@ impl CellGrid {
     /// [`CoverageError::NotIncreasing`], [`CoverageError::CellsTooSmall`] (the smallest cell's
     /// area underflows).
     pub fn new(x_edges: Vec<f64>, y_edges: Vec<f64>) -> Result<Self, CoverageError> {
-        let width = check_edges('x', &x_edges)?;
-        let height = check_edges('y', &y_edges)?;
+        let (width, widest) = check_edges('x', &x_edges)?;
+        let (height, highest) = check_edges('y', &y_edges)?;
         if width * height < f64::MIN_POSITIVE {
             return Err(CoverageError::CellsTooSmall { width, height });
         }
         Ok(Self {
             x: x_edges,
             y: y_edges,
+            sides: (width.min(height), widest.max(highest)),
         })
     }
 
@@ -97,6 +100,11 @@ impl CellGrid {
         (self.x[i + 1] - self.x[i]) * (self.y[j + 1] - self.y[j])
     }
 
+    /// The shortest and the longest side of a cell, over both axes.
+    pub fn cell_sides(&self) -> (f64, f64) {
+        self.sides
+    }
+
     /// The rectangle `[x_0, x_nx] x [y_0, y_ny]`.
     pub fn bounding_box(&self) -> BoundingBox {
         BoundingBox {
@@ -106,8 +114,9 @@ impl CellGrid {
     }
 }
 
-/// Checks one axis' edges; returns the smallest gap between consecutive edges.
-fn check_edges(axis: char, edges: &[f64]) -> Result<f64, CoverageError> {
+/// Checks one axis' edges; returns the smallest and the largest gap between consecutive
+/// edges.
+fn check_edges(axis: char, edges: &[f64]) -> Result<(f64, f64), CoverageError> {
     if edges.len() < 2 {
         return Err(CoverageError::TooFewEdges {
             axis,
@@ -132,7 +141,7 @@ fn check_edges(axis: char, edges: &[f64]) -> Result<f64, CoverageError> {
             limit: MAX_COORDINATE,
         });
     }
-    let mut smallest = f64::INFINITY;
+    let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
     for (index, pair) in edges.windows(2).enumerate() {
         if pair[1] <= pair[0] {
             return Err(CoverageError::NotIncreasing {
@@ -143,8 +152,9 @@ fn check_edges(axis: char, edges: &[f64]) -> Result<f64, CoverageError> {
             });
         }
         smallest = smallest.min(pair[1] - pair[0]);
+        largest = largest.max(pair[1] - pair[0]);
     }
-    Ok(smallest)
+    Ok((smallest, largest))
 }
 
 /// `n + 1` uniform edges on `[a, b]`, the last exactly `b`.
