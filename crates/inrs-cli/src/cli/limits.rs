@@ -12,7 +12,7 @@ Limits (inputs beyond them are errors, never a crash or a hang):
   input files (domain, SVG, DXF, font, curve)   256 MiB; points files are streamed (any size,
                                                 lines up to 64 KiB), with several --domain too
   curve degree                                  32
-  |control point coordinate|                    1e150 (meshing: 3.2e60)
+  |control point coordinate|                    1e150 (meshing: 3.2e60, nonzero >= 1.8e-43)
   weight ratio max/min within one curve         1e12 (uniform scaling of weights is free)
   arc sweep                                     1024 turns
   SVG group nesting / XML nodes                 256 / 10^7
