@@ -54,6 +54,20 @@ fn assert_close(what: &str, a: &[f64], b: &[f64]) {
     }
 }
 
+/// `c`'s fractions and cell centroids those of `unit` scaled by `2^k`, bit for bit.
+fn assert_cells_scaled(unit: &Coverage, c: &Coverage, k: i32) {
+    let s = 2f64.powi(k);
+    assert_scaled(
+        &format!("fractions 2^{k}"),
+        &unit.fractions,
+        &c.fractions,
+        s,
+        0,
+    );
+    let (a, b) = (flat(&unit.centroids), flat(&c.centroids));
+    assert_scaled(&format!("centroids 2^{k}"), &a, &b, s, 1);
+}
+
 fn flat(v: &Option<Vec<[f64; 2]>>) -> Vec<f64> {
     v.as_ref().unwrap().iter().flatten().copied().collect()
 }
@@ -69,20 +83,7 @@ fn planar_outputs_scale_exactly_and_centroids_out_of_range_are_refused() {
     for k in [-260, -90, 77, 260, 330] {
         let s = 2f64.powi(k);
         let c = cover(s, 0.0, all).unwrap_or_else(|e| panic!("2^{k}: {e}"));
-        assert_scaled(
-            &format!("fractions 2^{k}"),
-            &unit.fractions,
-            &c.fractions,
-            s,
-            0,
-        );
-        assert_scaled(
-            "centroids",
-            &flat(&unit.centroids),
-            &flat(&c.centroids),
-            s,
-            1,
-        );
+        assert_cells_scaled(&unit, &c, k);
         let same = |a: &Option<Vec<f64>>, b: &Option<Vec<f64>>, power, what| {
             assert_scaled(what, a.as_ref().unwrap(), b.as_ref().unwrap(), s, power)
         };
@@ -90,6 +91,7 @@ fn planar_outputs_scale_exactly_and_centroids_out_of_range_are_refused() {
         same(&unit.y_apertures, &c.y_apertures, 0, "y apertures");
         same(&unit.boundary_lengths, &c.boundary_lengths, 1, "lengths");
         same(&unit.x_face_centroids, &c.x_face_centroids, 1, "x faces");
+        same(&unit.y_face_centroids, &c.y_face_centroids, 1, "y faces");
         let (bu, bc) = (flat(&unit.boundary_centroids), flat(&c.boundary_centroids));
         assert_scaled("boundary centroids", &bu, &bc, s, 1);
     }
@@ -120,20 +122,7 @@ fn revolved_outputs_scale_exactly_and_moments_out_of_range_are_refused() {
     for k in [-180, 200] {
         let s = 2f64.powi(k);
         let c = cover(s, 1.4, options(true)).unwrap_or_else(|e| panic!("2^{k}: {e}"));
-        assert_scaled(
-            &format!("fractions 2^{k}"),
-            &unit.fractions,
-            &c.fractions,
-            s,
-            0,
-        );
-        assert_scaled(
-            "centroids",
-            &flat(&unit.centroids),
-            &flat(&c.centroids),
-            s,
-            1,
-        );
+        assert_cells_scaled(&unit, &c, k);
     }
     // Revolved centroids (moments like r s^3 and s^4) leave the range before the fractions
     // (r s^2 and s^3) do.
