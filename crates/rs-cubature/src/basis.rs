@@ -54,6 +54,11 @@ impl LegendreBasis {
         }
     }
 
+    /// The total degree `n`.
+    pub(crate) fn degree(&self) -> usize {
+        self.degree
+    }
+
     /// The number of basis functions.
     pub(crate) fn len(&self) -> usize {
         dim_polynomials(self.degree)

@@ -36,6 +36,25 @@
 //!   `4.9-8.3 dim P_n` candidates in all on the paper's domains at degrees 30 and 40. Each
 //!   retry doubles the Halton points and the layers' points (`sqrt 2` more along the boundary
 //!   and across).
+//! - **Chord formula** (from degree 35). Before those attempts, the candidates are the nodes
+//!   of a positive interior formula of the filled set itself: the `x` axis is cut at the end
+//!   abscissas of the boundary's monotone pieces, so that over each interval the same pieces
+//!   span it and pair up, sorted by ordinate, into vertical chords of the set; each chord gets
+//!   `n / 2 + 1` Gauss-Legendre nodes (exact in `y`), each interval Gauss-Legendre nodes in a
+//!   variable `s` with `x = a + (b - a) I_s(p, q)` (an incomplete beta function that undoes
+//!   vertical tangents at the interval's ends), their number raised by half from 4 until the
+//!   interval's moments agree with the next order's (an interval that needs more than 32 is
+//!   halved instead). Every weight is positive and every node strictly inside its chord (kept
+//!   when the grid locator says `Inside`). The compression then takes the moments from the
+//!   formula, `b = Q^T w`, consistent with the candidates by construction, so the Cholesky QR
+//!   needs a shift `1e-7` times the usual one: two or three passes, `Q` near orthonormal and
+//!   an NNLS of a few dozen iterations. The weights are refined against Green's theorem's
+//!   moments (as below, then by conjugate gradients on the nodes' Vandermonde matrix, stopped
+//!   early, from the moments' errors in compensated sums: the rounding of plain sums was as
+//!   large as the errors) and the rule accepted on its residual, as any other. The formula is
+//!   skipped when it would have more than `10 dim P_n` nodes (many loops stacked over the same
+//!   abscissas), and an attempt on it that misses the target falls back to the Halton points
+//!   and layers.
 //! - **Orthonormal basis.** The Vandermonde matrix `V` at the candidates is orthonormalised,
 //!   `V = Q R`, by Cholesky QR (a second pass when the first factor is ill-conditioned, a
 //!   shifted pass when the Gram matrix is numerically singular; each pass applies its factor
@@ -108,6 +127,7 @@
 
 mod basis;
 mod candidates;
+mod chords;
 mod error;
 mod moments;
 mod nnls;

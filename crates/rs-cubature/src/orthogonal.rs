@@ -86,16 +86,46 @@ impl pulp::WithSimd for MomentError<'_> {
     }
 }
 
+/// The rule the moments are checked against, and taken from, in the orthonormal basis.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Reference<'a> {
+    /// Equal weights on the first `U` candidates, quasi-uniform (Halton points): a
+    /// quasi-Monte Carlo rule, only a check of the moments' consistency ([`normalising_pass`]);
+    /// the moments in the orthonormal basis are `b = R^{-T} m`.
+    Uniform(usize),
+    /// A positive rule on all the candidates whose moments are those wanted (the chord
+    /// formula, see `chords`): `b = Q^T w`, consistent with the candidates by construction, so
+    /// the shifted passes need only a [`RULE_SHIFT_SCALE`] of the usual shift.
+    Rule(&'a [f64]),
+}
+
+impl Reference<'_> {
+    /// The factor of the shift of [`shifted_cholesky`].
+    fn shift_scale(self) -> f64 {
+        match self {
+            Reference::Uniform(_) => 1.0,
+            Reference::Rule(_) => RULE_SHIFT_SCALE,
+        }
+    }
+}
+
+/// The shift of [`shifted_cholesky`] for a [`Reference::Rule`], times the usual one. The
+/// usual shift keeps the moments, mapped through an ill-conditioned factor, consistent with
+/// the candidates (a smaller one left the L shape and `s4_disk_ellipse_segment` without rules
+/// at degrees 32 to 40); with `b = Q^T w` there is nothing to keep consistent, and the smaller
+/// shift leaves `Q` nearer orthonormal: fewer passes, fewer NNLS iterations.
+const RULE_SHIFT_SCALE: f64 = 1e-7;
+
 /// The orthonormalisation of `vt = V^T` (`N x M`, one column per candidate), or `None` if the
-/// candidates do not resolve the basis (a factor not invertible). The first `uniform`
-/// candidates are quasi-uniform (Halton points; all of them up to degree 20): the
-/// [`normalising_pass`]'s consistency test takes equal weights on them as its reference rule.
-/// With `normalise` false, no normalising pass is tried (`Q` stays regularised where the
+/// candidates do not resolve the basis (a factor not invertible). `reference` is the rule
+/// the [`normalising_pass`]'s consistency test takes (equal weights on the first `U`
+/// candidates, the Halton points, all of them up to degree 20; or a positive rule on all the
+/// candidates), and decides `b` and the shift (see [`Reference`]). With `normalise` false, no normalising pass is tried (`Q` stays regularised where the
 /// shifted passes left it so).
 pub(crate) fn orthonormalise(
     vt: DMatrix<f64>,
     m: &[f64],
-    uniform: usize,
+    reference: Reference<'_>,
     normalise: bool,
 ) -> Option<Orthonormal> {
     let n = vt.nrows();
@@ -106,7 +136,10 @@ pub(crate) fn orthonormalise(
         let gram = gram_lower(&qt, qt.ncols());
         let (l, shifted) = match cholesky_lower(gram.clone()) {
             Some(l) => (l, false),
-            None => (shifted_cholesky(gram, qt.ncols())?, true),
+            None => (
+                shifted_cholesky(gram, qt.ncols(), reference.shift_scale())?,
+                true,
+            ),
         };
         if !solve_lower_blocked(&l, &mut qt) {
             return None;
@@ -120,14 +153,17 @@ pub(crate) fn orthonormalise(
             break;
         }
     }
-    let normalised = regularised && normalise && normalising_pass(&mut qt, &mut rt, m, uniform)?;
+    let normalised = regularised && normalise && normalising_pass(&mut qt, &mut rt, m, reference)?;
     // A factor with a zero or non-finite diagonal entry: the candidates do not resolve the
     // basis (a shifted factor is always invertible, so this is rank deficiency or overflow).
     let d = rt.diagonal();
     if !d.iter().all(|v| v.is_finite() && *v > 0.0) {
         return None;
     }
-    let b = rt.solve_lower_triangular(&DVector::from_column_slice(m))?;
+    let b = match reference {
+        Reference::Uniform(_) => rt.solve_lower_triangular(&DVector::from_column_slice(m))?,
+        Reference::Rule(w) => &qt * DVector::from_column_slice(w),
+    };
     Some(Orthonormal {
         qt,
         b,
@@ -140,10 +176,11 @@ pub(crate) fn orthonormalise(
 /// is safe, i.e. when
 /// 1. the Gram matrix of all the candidates has a Cholesky factor (not the shifted one);
 /// 2. the moments stay consistent with the candidates: with the pass's factor `L`,
-///    `rho = ||L^{-1} (b - Q^T w)|| / ||L^{-1} Q^T w||` for the equal weights `w = area / U` on
-///    the first `U = uniform` candidates, the Halton points (all `M` of them up to degree 20;
-///    above, the boundary layers that follow them are not uniform and get no weight)
-///    (a quasi-Monte Carlo rule: `rho` is its error in the new orthonormal basis) is at most
+///    `rho = ||L^{-1} (b - Q^T w)|| / ||L^{-1} Q^T w||` for the reference rule `w`: the equal
+///    weights `w = area / U` on the first `U` candidates, the Halton points (all `M` of them
+///    up to degree 20; above, the boundary layers that follow them are not uniform and get no
+///    weight) (a quasi-Monte Carlo rule: `rho` is its error in the new orthonormal basis), or
+///    a [`Reference::Rule`] (then `b = Q^T w` and `rho` is rounding), is at most
 ///    [`MAX_MOMENT_INCONSISTENCY`]. Normalising directions the shift had damped also scales
 ///    up the moments' rounding errors in them; `rho` then grows far beyond the rule's error.
 ///
@@ -164,15 +201,20 @@ fn normalising_pass(
     qt: &mut DMatrix<f64>,
     rt: &mut DMatrix<f64>,
     m: &[f64],
-    uniform: usize,
+    reference: Reference<'_>,
 ) -> Option<bool> {
     let cols = qt.ncols();
     let Some(l) = cholesky_lower(gram_lower(qt, cols)) else {
         return Some(false);
     };
-    let area = m.first().copied().unwrap_or(0.0);
-    let uniform = uniform.clamp(1, cols);
-    let qw: DVector<f64> = qt.columns(0, uniform).column_sum() * (area / uniform as f64);
+    let qw = match reference {
+        Reference::Uniform(uniform) => {
+            let area = m.first().copied().unwrap_or(0.0);
+            let uniform = uniform.clamp(1, cols);
+            qt.columns(0, uniform).column_sum() * (area / uniform as f64)
+        }
+        Reference::Rule(w) => &*qt * DVector::from_column_slice(w),
+    };
     let consistent = rt
         .solve_lower_triangular(&DVector::from_column_slice(m))
         .and_then(|b| {
@@ -508,9 +550,9 @@ impl pulp::WithSimd for ForwardSubstitute<'_, '_> {
 
 /// The Cholesky factor of `gram + s I` with the shift of shifted Cholesky QR,
 /// `s = 11 (M N + N (N + 1)) eps ||V||^2` (`||V||^2` bounded by the trace of the Gram matrix).
-fn shifted_cholesky(mut gram: DMatrix<f64>, m: usize) -> Option<DMatrix<f64>> {
+fn shifted_cholesky(mut gram: DMatrix<f64>, m: usize, scale: f64) -> Option<DMatrix<f64>> {
     let n = gram.nrows();
-    let shift = 11.0 * ((m * n + n * (n + 1)) as f64) * f64::EPSILON * gram.trace();
+    let shift = scale * 11.0 * ((m * n + n * (n + 1)) as f64) * f64::EPSILON * gram.trace();
     for i in 0..n {
         gram[(i, i)] += shift;
     }
@@ -777,7 +819,12 @@ mod tests {
         let moments = &v * DVector::from_element(m, area / m as f64);
         let (mut qt, mut rt) = (v.clone(), DMatrix::identity(n, n));
         assert_eq!(
-            normalising_pass(&mut qt, &mut rt, moments.as_slice(), usize::MAX),
+            normalising_pass(
+                &mut qt,
+                &mut rt,
+                moments.as_slice(),
+                Reference::Uniform(usize::MAX)
+            ),
             Some(true)
         );
         assert!((&qt * qt.transpose() - DMatrix::<f64>::identity(n, n)).amax() < 1e-12);
@@ -786,7 +833,12 @@ mod tests {
         far[n - 1] += 100.0 * moments.amax();
         let (mut qt, mut rt) = (v.clone(), DMatrix::identity(n, n));
         assert_eq!(
-            normalising_pass(&mut qt, &mut rt, far.as_slice(), usize::MAX),
+            normalising_pass(
+                &mut qt,
+                &mut rt,
+                far.as_slice(),
+                Reference::Uniform(usize::MAX)
+            ),
             Some(false)
         );
         assert_eq!(qt, v);

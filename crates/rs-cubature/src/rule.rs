@@ -2,14 +2,15 @@
 //! Caratheodory-Tchakaloff compression by non-negative least squares.
 
 use nalgebra::{DMatrix, DVector};
-use rs_contain::{Classifier, ContainOptions, FillRule};
+use rs_contain::{Classifier, ContainOptions, FillRule, Locate, Location};
 use rs_spline::{Domain, Point};
 
 use crate::basis::{LegendreBasis, dim_polynomials};
 use crate::candidates::{Candidates, LayerDensity, boundary_layers};
+use crate::chords::chord_formula;
 use crate::moments::basis_moments;
 use crate::nnls::{NnlsOptions, dot, nnls};
-use crate::orthogonal::{HIGH_DEGREE_BASIS, orthonormalise};
+use crate::orthogonal::{HIGH_DEGREE_BASIS, Reference, orthonormalise};
 use crate::{CubatureError, MAX_DEGREE};
 
 /// Default of [`CubatureOptions::candidates_per_polynomial`].
@@ -199,7 +200,9 @@ impl CubatureRule {
     /// The rule of degree `options.degree`.
     ///
     /// Exact moments of the scaled Legendre basis (Green's theorem); then, attempt by attempt
-    /// (the first with `candidates_per_polynomial x dim P_n` Halton candidates up to degree
+    /// (from degree 35, first the nodes of a positive formula of vertical chords when it has at
+    /// most `10 dim P_n` of them, see the crate documentation; then
+    /// the first with `candidates_per_polynomial x dim P_n` Halton candidates up to degree
     /// 20, `dim P_n` and boundary layers above, each retry with twice as many, up to
     /// `max_candidates`): candidates strictly inside, a discrete
     /// orthonormal basis at them, Lawson-Hanson NNLS for non-negative weights matching the
@@ -241,6 +244,9 @@ impl CubatureRule {
         let mut best_residual = f64::INFINITY;
         let layered = degree > CANDIDATES_GROWTH_DEGREE;
         let mut with_layers = Vec::new();
+        if let Some(rule) = chord_rule(domain, &classifier, &options, &basis, &unit) {
+            return Ok(rule);
+        }
         for attempt in 0..=options.max_retries {
             let (wanted, points, uniform) = if layered {
                 let uniform = layered_candidates(
@@ -277,7 +283,7 @@ impl CubatureRule {
                 match compress(
                     &basis,
                     points,
-                    uniform,
+                    Reference::Uniform(uniform),
                     &unit.moments,
                     options.target_residual,
                 ) {
@@ -383,6 +389,64 @@ impl CubatureRule {
         let mut at = values.iter();
         self.integrate(|_| at.next().copied().unwrap_or(f64::NAN))
     }
+}
+
+/// From this degree on, the first attempt compresses the vertical-chord formula (see
+/// `chords`) when it has at most [`CHORD_NODES_PER_POLYNOMIAL`] `x dim P_n` nodes; the
+/// Halton points and boundary layers are the attempts after it.
+const CHORD_DEGREE: usize = 35;
+
+/// The most nodes of the chord formula per polynomial of the basis: beyond, it is left for
+/// the layered candidates (a domain with many loops over one abscissa).
+const CHORD_NODES_PER_POLYNOMIAL: usize = 10;
+
+/// The rule compressed from the vertical-chord formula (see `chords`), when its degree is at
+/// least [`CHORD_DEGREE`], the formula exists within its budget, and the rule is within the
+/// target; else `None` (the layered attempts follow).
+fn chord_rule(
+    domain: &Domain,
+    classifier: &Classifier,
+    options: &CubatureOptions,
+    basis: &LegendreBasis,
+    unit: &UnitMoments,
+) -> Option<CubatureRule> {
+    let degree = options.degree;
+    if degree < CHORD_DEGREE {
+        return None;
+    }
+    let signs = rs_contain::curve_boundary_signs(domain, options.fill_rule).ok()?;
+    let budget = (CHORD_NODES_PER_POLYNOMIAL * basis.len()).min(options.max_candidates);
+    let area = unit.moments.first().copied()?;
+    let formula = chord_formula(domain, &signs, basis, degree, area, budget)?;
+    // The nodes the grid locator says are inside (a Gauss node within the boundary
+    // tolerance of a loop, on a short chord, is left out with its weight), with the weights
+    // of the unit moments (the same power of two).
+    let locations = classifier.locator().locate_all(&formula.points);
+    let (points, weights): (Vec<Point>, Vec<f64>) = formula
+        .points
+        .iter()
+        .zip(&formula.weights)
+        .zip(&locations)
+        .filter(|(_, l)| **l == Location::Inside)
+        .map(|((&p, &w), _)| (p, times_power_of_two(w, -unit.exponent)))
+        .unzip();
+    if points.len() < basis.len() {
+        return None;
+    }
+    let a = compress(
+        basis,
+        &points,
+        Reference::Rule(&weights),
+        &unit.moments,
+        options.target_residual,
+    )?;
+    (a.residual <= options.target_residual).then(|| CubatureRule {
+        degree,
+        nodes: a.nodes,
+        weights: unit.weights(a.weights),
+        residual: a.residual,
+        candidates: points.len(),
+    })
 }
 
 /// The least area a rule is made for, `2^-970` (about `1e-292`): the moments of a smaller
@@ -503,8 +567,8 @@ const FULL_GRADIENT_PASS_EVERY: usize = 4;
 /// factorisation, `O(N^2)`); one or two bring the residual to rounding on the paper's domains.
 const MAX_REFINEMENTS: usize = 3;
 
-/// The rule from the candidates `points` (at least `dim P_n` of them, the first `uniform` of
-/// them Halton points), or `None` if they do not resolve the basis. A rule made on a basis
+/// The rule from the candidates `points` (at least `dim P_n` of them) with their `reference`
+/// rule (see [`Reference`]), or `None` if they do not resolve the basis. A rule made on a basis
 /// the normalising pass orthonormalised (see `orthogonal`) that misses `target_residual` is
 /// made again on the regularised one, and the one with the smaller residual is kept: the pass
 /// never costs a rule the candidates allow without it (in the survey that set its limit, no
@@ -512,12 +576,19 @@ const MAX_REFINEMENTS: usize = 3;
 fn compress(
     basis: &LegendreBasis,
     points: &[Point],
-    uniform: usize,
+    reference: Reference<'_>,
     moments: &[f64],
     target_residual: f64,
 ) -> Option<Attempt> {
     better_of_passes(target_residual, |normalise| {
-        compress_with(basis, points, uniform, moments, target_residual, normalise)
+        compress_with(
+            basis,
+            points,
+            reference,
+            moments,
+            target_residual,
+            normalise,
+        )
     })
 }
 
@@ -544,7 +615,7 @@ fn better_of_passes(
 fn compress_with(
     basis: &LegendreBasis,
     points: &[Point],
-    uniform: usize,
+    reference: Reference<'_>,
     moments: &[f64],
     target_residual: f64,
     normalise: bool,
@@ -555,7 +626,7 @@ fn compress_with(
     for (p, column) in points.iter().zip(vt.as_mut_slice().chunks_exact_mut(n)) {
         basis.values_into(*p, &mut scratch, column);
     }
-    let orthonormal = orthonormalise(vt, moments, uniform, normalise)?;
+    let orthonormal = orthonormalise(vt, moments, reference, normalise)?;
     let b = orthonormal.b.as_slice();
     // LHDM: up to N / 20 columns enter at once, those within half the best gradient whose
     // mutual cosines are at most 0.2. Measured at degree 20 on the paper's domains: about 30
@@ -615,6 +686,11 @@ fn compress_with(
         } else {
             break;
         }
+    }
+    if let Reference::Rule(_) = reference
+        && let Some(better) = refine_by_conjugate_gradients(&values, &weights, moments)
+    {
+        weights = better;
     }
     // Nodes and weights by candidate index; zero weights (an inner loop cut short) dropped.
     let mut chosen: Vec<(usize, Point, f64)> = solution
@@ -694,6 +770,91 @@ fn values_times(values: &DMatrix<f64>, weights: &[f64]) -> Vec<f64> {
     (values * DVector::from_column_slice(weights))
         .as_slice()
         .to_vec()
+}
+
+/// Most conjugate-gradient steps of [`refine_by_conjugate_gradients`].
+const MAX_CG_STEPS: usize = 40;
+
+/// Refinement of the weights in the directions the nodes resolve well: conjugate gradients on
+/// the normal equations (CGLS) of `V_P^T c = rho`, `rho = m - V_P^T w` compensated
+/// ([`moment_errors`]), stopped early. The residual of a rule
+/// compressed from the chord formula lies mostly along the large singular values of its
+/// nodes' Vandermonde matrix (measured on `s3_m_shape` at degree 40: `1.8e-14` of its
+/// `1.8e-14` in directions of singular value `>= 1`, where a correction of norm `7e-16`
+/// removes it), while the full solve of the refinement above also inverts directions of
+/// singular value `1e-8` and below, where the rounding of `rho` in plain sums (about
+/// `eps x sum |w phi|`, as large as `rho` itself) becomes corrections far larger than the
+/// weights. CGLS reaches the large singular values first. The weights `w + c` of the step
+/// with the smallest residual (by the recurrence's) whose weights are all positive are
+/// returned when their compensated residual is below `w`'s; else `None`. Measured at degree
+/// 40 against moments to 34 digits (mpmath), true residuals without / with it: `s3_m_shape`
+/// `2.1e-15` / `7.3e-16`, `s4_disk_ellipse_segment` `2.2e-15` / `5.9e-16`, `s5_lune`
+/// `3.6e-15` / `6.6e-16`.
+fn refine_by_conjugate_gradients(
+    values: &DMatrix<f64>,
+    weights: &[f64],
+    moments: &[f64],
+) -> Option<Vec<f64>> {
+    let worst = |r: &[f64]| r.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let rho = moment_errors(values, weights, moments);
+    let start = worst(&rho);
+    let mut best: Option<(f64, Vec<f64>)> = None;
+    // CGLS for min ||A c - rho||, A = V_P^T (`values`, one column per node).
+    let mut c = DVector::zeros(weights.len());
+    let mut r = DVector::from_column_slice(&rho);
+    let mut g = values.tr_mul(&r);
+    let mut p = g.clone();
+    let mut gamma = g.norm_squared();
+    for _ in 0..MAX_CG_STEPS {
+        if gamma.is_nan() || gamma <= 0.0 {
+            break;
+        }
+        let q = values * &p;
+        let qq = q.norm_squared();
+        if qq.is_nan() || qq <= 0.0 {
+            break;
+        }
+        let alpha = gamma / qq;
+        c.axpy(alpha, &p, 1.0);
+        r.axpy(-alpha, &q, 1.0);
+        // The recurrence's residual `r` stands for `rho - A c` (its rounding is relative to
+        // its own size, not the moments'); the step kept is checked, compensated, at the end.
+        let e = worst(r.as_slice());
+        if e < best.as_ref().map_or(start, |b| b.0) {
+            let tried: Vec<f64> = weights.iter().zip(c.iter()).map(|(w, d)| w + d).collect();
+            if tried.iter().all(|&w| w > 0.0) {
+                best = Some((e, tried));
+            }
+        }
+        g = values.tr_mul(&r);
+        let next = g.norm_squared();
+        p = &g + &p * (next / gamma);
+        gamma = next;
+    }
+    let (_, tried) = best?;
+    (worst(&moment_errors(values, &tried, moments)) < start).then_some(tried)
+}
+
+/// `m - V^T w` from the basis values `values` (one column per node), compensated: each
+/// product's and each sum's rounding error kept exactly (`fma`, Knuth's two-sum) and added
+/// up beside the sums (Ogita, Rump and Oishi's `Dot2`: as accurate as plain sums in twice the
+/// working precision), so that `rho` is known to far below its own size.
+fn moment_errors(values: &DMatrix<f64>, weights: &[f64], moments: &[f64]) -> Vec<f64> {
+    let n = values.nrows();
+    let mut high = moments.to_vec();
+    let mut low = vec![0.0; n];
+    for (column, &w) in values.as_slice().chunks_exact(n).zip(weights) {
+        for ((h, l), &v) in high.iter_mut().zip(&mut low).zip(column) {
+            let product = -w * v;
+            let product_error = (-w).mul_add(v, -product);
+            let sum = *h + product;
+            let back = sum - *h;
+            let sum_error = (*h - (sum - back)) + (product - back);
+            *h = sum;
+            *l += sum_error + product_error;
+        }
+    }
+    high.iter().zip(&low).map(|(h, l)| h + l).collect()
 }
 
 /// [`residual`] from the basis values at the nodes.
@@ -800,16 +961,70 @@ mod tests {
         };
         for target in [DEFAULT_TARGET_RESIDUAL, 1e-30] {
             let run = |normalise| {
-                compress_with(&basis, &points, uniform, &moments, target, normalise).unwrap()
+                compress_with(
+                    &basis,
+                    &points,
+                    Reference::Uniform(uniform),
+                    &moments,
+                    target,
+                    normalise,
+                )
+                .unwrap()
             };
             let (normalised, made) = run(true);
             assert!(made, "the pass is made here");
             let (regularised, made) = run(false);
             assert!(!made);
             assert!(normalised.residual < regularised.residual);
-            let got = compress(&basis, &points, uniform, &moments, target).unwrap();
+            let got = compress(
+                &basis,
+                &points,
+                Reference::Uniform(uniform),
+                &moments,
+                target,
+            )
+            .unwrap();
             assert_eq!(bits(&got), bits(&normalised));
         }
+    }
+
+    /// From degree 35 the first attempt compresses the chord formula: on the disc with an
+    /// ellipse segment (vertical tangents, a corner) at degree 36 it makes a rule within the
+    /// target from the formula's nodes (fewer than the layered attempt's, about `5 dim P_n`);
+    /// at degree 34 it is not tried.
+    #[test]
+    fn the_chord_formula_makes_the_first_rule_from_degree_35() {
+        let domain = rs_testkit::inrs_fixture("s4_disk_ellipse_segment").domain;
+        let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
+        for (degree, made) in [(34, false), (36, true)] {
+            let options = CubatureOptions::new(degree);
+            let basis = LegendreBasis::new(degree, domain.bounding_box());
+            let moments = basis_moments(&domain, FillRule::EvenOdd, &basis, degree).unwrap();
+            let unit = UnitMoments::of(&moments);
+            let rule = chord_rule(&domain, &classifier, &options, &basis, &unit);
+            assert_eq!(rule.is_some(), made, "degree {degree}");
+            if let Some(rule) = rule {
+                assert!(rule.residual() <= DEFAULT_TARGET_RESIDUAL);
+                assert!(rule.weights().iter().all(|&w| w > 0.0));
+                assert!(rule.nodes().len() <= basis.len());
+                // The formula's nodes, fewer than the layered attempt's (about 5 dim P_n).
+                assert!(rule.candidates() < 4 * basis.len(), "{}", rule.candidates());
+            }
+        }
+    }
+
+    /// The moments' errors are compensated: `0 - (1 + 1e16 - 1e16)` is `-1`, where plain sums
+    /// lose the `1` (`1 + 1e16` rounds to `1e16`); and a product's rounding is kept too.
+    #[test]
+    fn moment_errors_keep_what_plain_sums_lose() {
+        let values = DMatrix::from_column_slice(1, 3, &[1.0, 1e16, -1e16]);
+        assert_eq!(values_times(&values, &[1.0; 3]), vec![0.0]);
+        assert_eq!(moment_errors(&values, &[1.0; 3], &[0.0]), vec![-1.0]);
+        // (1 + 2^-30)^2 = 1 + 2^-29 + 2^-60: the product rounds the last term away.
+        let x = 1.0 + 2f64.powi(-30);
+        let values = DMatrix::from_column_slice(1, 1, &[x]);
+        let got = moment_errors(&values, &[x], &[1.0 + 2f64.powi(-29)]);
+        assert_eq!(got, vec![-(2f64.powi(-60))]);
     }
 
     #[test]

@@ -207,3 +207,19 @@ fn a_rule_of_degree_40_on_the_cubic_leaf() {
     let d = rs_io::json::domain_from_json_file(&path).unwrap();
     check_rule("leaf_cubic", &d, 40);
 }
+
+/// Degree 36 (703 polynomials), where the first attempt compresses the vertical-chord formula:
+/// a disc with an off-centre hole (vertical tangents on both loops) and the lune (rational
+/// pieces, corners) get rules with every property of `check_rule` (every monomial within
+/// `1e-12` of Green's theorem's moment, every node `Inside` by inRS2, weights `> 0`).
+#[test]
+fn rules_of_degree_36_from_the_chord_formula() {
+    let holed = Domain::new(vec![
+        circle(Point::new(0.0, 0.0), 1.25).unwrap(),
+        circle(Point::new(0.3, -0.2), 0.5).unwrap(),
+    ])
+    .unwrap();
+    check_rule("holed disc", &holed, 36);
+    let lune = rs_testkit::inrs_fixture("s5_lune").domain;
+    check_rule("s5_lune", &lune, 36);
+}
