@@ -48,7 +48,9 @@
 //!   when the grid locator says `Inside`). The compression then takes the moments from the
 //!   formula, `b = Q^T w`, consistent with the candidates by construction, so the Cholesky QR
 //!   needs a shift `1e-7` times the usual one: two or three passes, `Q` near orthonormal and
-//!   an NNLS of a few dozen iterations. The weights are refined against Green's theorem's
+//!   an NNLS of a few dozen iterations, whose entering columns' Householder reflections are
+//!   applied to its `Q` together, by two matrix products (compact WY), not one pass over `Q`
+//!   each. The weights are refined against Green's theorem's
 //!   moments (as below, then by conjugate gradients on the nodes' Vandermonde matrix, stopped
 //!   early, from the moments' errors in compensated sums: the rounding of plain sums was as
 //!   large as the errors) and the rule accepted on its residual, as any other. The formula is

@@ -641,6 +641,9 @@ fn compress_with(
         // Above degree 20 only (see `HIGH_DEGREE_BASIS`).
         working_set: if n > HIGH_DEGREE_BASIS { n } else { 0 },
         full_pass_every: FULL_GRADIENT_PASS_EVERY,
+        // The chord formula's rules are new: they take the faster, differently rounded,
+        // inserts (the layered candidates' rules keep their bits).
+        blocked_inserts: matches!(reference, Reference::Rule(_)),
     };
     let scale = moments.iter().fold(0.0f64, |a, m| a.max(m.abs()));
     let mut stall = StallTest::new(n, target_residual);
