@@ -114,6 +114,11 @@ pub(crate) fn chord_formula(
     }
     let mut formula = ChordFormula::default();
     let mut scratch = vec![0.0; basis.scratch_len()];
+    let fit = Fit {
+        basis,
+        area,
+        max_points,
+    };
     for (k, pieces) in spanning.iter().enumerate() {
         if pieces.is_empty() {
             continue;
@@ -123,12 +128,17 @@ pub(crate) fn chord_formula(
         }
         let pieces: Vec<&MonotoneBox> = pieces.iter().map(|&i| kept[i]).collect();
         let interval = Interval::new(cuts[k], cuts[k + 1], &pieces, inner);
-        interval.append_converged(basis, area, 0, &mut scratch, &mut formula)?;
-        if formula.points.len() > max_points {
-            return None;
-        }
+        interval.append_converged(&fit, 0, &mut scratch, &mut formula)?;
     }
     Some(formula)
+}
+
+/// What every interval's orders are chosen against: the basis whose moments must agree, the
+/// moments' scale (the area), and the most nodes of the whole formula.
+struct Fit<'a> {
+    basis: &'a LegendreBasis,
+    area: f64,
+    max_points: usize,
 }
 
 /// How an interval's outer variable `s` of `[0, 1]` maps to `x`: `x = a + h I_s(p, q)`, with
@@ -257,12 +267,12 @@ impl<'a> Interval<'a> {
     /// two halves' nodes instead (at most [`MAX_SPLITS`] deep, where the last order is taken).
     fn append_converged(
         &self,
-        basis: &LegendreBasis,
-        area: f64,
+        fit: &Fit<'_>,
         depth: usize,
         scratch: &mut [f64],
         out: &mut ChordFormula,
     ) -> Option<()> {
+        let (basis, area) = (fit.basis, fit.area);
         let mut order = FIRST_OUTER_ORDER;
         let mut current = ChordFormula::default();
         self.nodes(order, &mut current)?;
@@ -273,8 +283,8 @@ impl<'a> Interval<'a> {
                 if depth < MAX_SPLITS {
                     let middle = 0.5 * (self.a + self.b);
                     let (left, right) = self.halves(middle);
-                    left.append_converged(basis, area, depth + 1, scratch, out)?;
-                    return right.append_converged(basis, area, depth + 1, scratch, out);
+                    left.append_converged(fit, depth + 1, scratch, out)?;
+                    return right.append_converged(fit, depth + 1, scratch, out);
                 }
                 break;
             }
@@ -296,6 +306,11 @@ impl<'a> Interval<'a> {
                 break;
             }
             (current, moments, order) = (next, next_moments, next_order);
+        }
+        // The budget bounds the work too: halvings could otherwise make `2^MAX_SPLITS`
+        // intervals of an interval whose moments never agree.
+        if out.points.len() + current.points.len() > fit.max_points {
+            return None;
         }
         out.points.extend_from_slice(&current.points);
         out.weights.extend_from_slice(&current.weights);
