@@ -416,7 +416,8 @@ fn chord_rule(
     }
     let signs = rs_contain::curve_boundary_signs(domain, options.fill_rule).ok()?;
     let budget = (CHORD_NODES_PER_POLYNOMIAL * basis.len()).min(options.max_candidates);
-    let area = unit.moments.first().copied()?;
+    // The domain's own area: the formula's weights, and so its moments, are in its units.
+    let area = times_power_of_two(unit.moments.first().copied()?, unit.exponent);
     let formula = chord_formula(domain, &signs, basis, degree, area, budget)?;
     // The nodes the grid locator says are inside (a Gauss node within the boundary
     // tolerance of a loop, on a short chord, is left out with its weight), with the weights
