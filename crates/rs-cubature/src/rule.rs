@@ -42,8 +42,8 @@ pub struct CubatureOptions {
     pub degree: usize,
     /// `k` (`1..=1000`): the first attempt wants `k x dim P_n` Halton candidates inside the
     /// domain up to degree 20; each retry doubles it. Above degree 20 the candidates are
-    /// `dim P_n` Halton points and boundary layers (see the crate documentation) and `k` is not
-    /// used.
+    /// `dim P_n` Halton points and boundary layers, from degree 35 after a first attempt on
+    /// the nodes of the chord formula (see the crate documentation), and `k` is not used.
     pub candidates_per_polynomial: usize,
     /// Retries after the first attempt (at most [`MAX_RETRIES`]), each with twice the
     /// candidates, up to `max_candidates`.
