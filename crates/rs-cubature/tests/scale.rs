@@ -19,9 +19,15 @@ fn holed_disc(s: f64) -> Domain {
 
 #[test]
 fn a_rule_scaled_by_a_power_of_two_is_the_same_rule_bit_for_bit() {
-    for degree in [6, 12, 36] {
+    // Degree 36 takes the chord formula's first attempt (its orders' tolerance in the
+    // domain's units); two sizes there, each a second of the test profile.
+    for (degree, powers) in [
+        (6, &[-480, -260, -7, 9, 260, 480][..]),
+        (12, &[-480, -260, -7, 9, 260, 480][..]),
+        (36, &[-480, 480][..]),
+    ] {
         let unit = CubatureRule::new(&holed_disc(1.0), degree).unwrap();
-        for k in [-480, -260, -7, 9, 260, 480] {
+        for &k in powers {
             let s = 2f64.powi(k);
             let rule = CubatureRule::new(&holed_disc(s), degree)
                 .unwrap_or_else(|e| panic!("degree {degree}, 2^{k}: {e}"));
