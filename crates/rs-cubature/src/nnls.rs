@@ -163,6 +163,14 @@ fn axpys<'x>(
     }
 }
 
+/// A Householder reflection of [`PassiveQr::reflection`]: the new diagonal entry of `R`,
+/// `v` on rows `k..` and `v^T v`.
+struct Reflection {
+    alpha: f64,
+    v: Vec<f64>,
+    vv: f64,
+}
+
 /// The QR factorisation `A_P = Q R` of the passive columns, with `Q` (`n x n`, orthogonal) and
 /// `Q^T b` kept up to date as columns come and go.
 ///
@@ -249,30 +257,14 @@ impl PassiveQr {
                 axpy(-t, v, &mut c[*k..]);
             }
             let k = self.cols.len();
-            let tail = if k < n {
-                c[k..].iter().map(|x| x * x).sum::<f64>().sqrt()
-            } else {
-                f64::NAN
-            };
-            let size = dot(a_j, a_j).sqrt();
-            if tail.is_nan() || tail <= 1e-12 * size {
+            let Some(h) = self.reflection(a_j, &c) else {
                 added(j, false);
                 continue;
+            };
+            self.append(j, &c, &h);
+            if h.vv > 0.0 {
+                reflections.push((k, h.v, 2.0 / h.vv));
             }
-            let alpha = if c[k] > 0.0 { -tail } else { tail };
-            let mut v = c[k..].to_vec();
-            v[0] -= alpha;
-            let vv = dot(&v, &v);
-            if vv > 0.0 {
-                let t = dot(&v, &self.qtb[k..]);
-                axpy(-2.0 * t / vv, &v, &mut self.qtb[k..]);
-                reflections.push((k, v, 2.0 / vv));
-            }
-            let col = &mut self.r[k * n..(k + 1) * n];
-            col[..k].copy_from_slice(&c[..k]);
-            col[k] = alpha;
-            col[k + 1..].fill(0.0);
-            self.cols.push(j);
             added(j, true);
         }
         self.reflect_q(k0, &reflections);
@@ -330,18 +322,10 @@ impl PassiveQr {
             a,
             |t, d| c[known + t] = d,
         );
-        let tail = c[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
-        let size = dot(a, a).sqrt();
-        if tail.is_nan() || tail <= 1e-12 * size {
+        let Some(h) = self.reflection(a, &c) else {
             return false;
-        }
-        // A Householder reflection H = I - 2 v v^T / (v^T v) on rows k.. maps c[k..] to
-        // (alpha, 0, ...); Q <- Q H keeps A_P = Q R for the old columns (H fixes rows < k of
-        // their R, which are zero below).
-        let alpha = if c[k] > 0.0 { -tail } else { tail };
-        let mut v = c[k..].to_vec();
-        v[0] -= alpha;
-        let vv = dot(&v, &v);
+        };
+        let (v, vv) = (&h.v, h.vv);
         if vv > 0.0 {
             // s = Q[:, k..] v; Q[:, k + l] -= (2 v_l / vv) s.
             let s = &mut self.scratch;
@@ -352,15 +336,49 @@ impl PassiveQr {
                 let col = (k + l) * n;
                 axpy(-2.0 * vl / vv, s, &mut self.q[col..col + n]);
             }
-            let t = dot(&v, &self.qtb[k..]);
-            axpy(-2.0 * t / vv, &v, &mut self.qtb[k..]);
+        }
+        self.append(j, &c, &h);
+        true
+    }
+
+    /// The Householder reflection `H = I - 2 v v^T / (v^T v)` on rows `k..` (`k` the passive
+    /// columns) that maps `c[k..]` to `(alpha, 0, ..)`, for `c = Q^T a`; `Q <- Q H` keeps
+    /// `A_P = Q R` for the passive columns (`H` fixes rows `< k` of their `R`, which are zero
+    /// below). `None` when the set is full or `a` is numerically in the span of the passive
+    /// columns (`|alpha| <= 1e-12 |a|`).
+    #[inline(always)]
+    fn reflection(&self, a: &[f64], c: &[f64]) -> Option<Reflection> {
+        let k = self.cols.len();
+        if k >= self.n {
+            return None;
+        }
+        let tail = c[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
+        let size = dot(a, a).sqrt();
+        if tail.is_nan() || tail <= 1e-12 * size {
+            return None;
+        }
+        let alpha = if c[k] > 0.0 { -tail } else { tail };
+        let mut v = c[k..].to_vec();
+        v[0] -= alpha;
+        let vv = dot(&v, &v);
+        Some(Reflection { alpha, v, vv })
+    }
+
+    /// Appends candidate `j` with `c = Q^T a` under the reflection `h` (made for it by
+    /// [`PassiveQr::reflection`]): `Q^T b` reflected, `R`'s new column `(c[..k], alpha, 0..)`.
+    /// `Q` itself is the caller's to reflect (at once, or with others).
+    #[inline(always)]
+    fn append(&mut self, j: usize, c: &[f64], h: &Reflection) {
+        let (n, k) = (self.n, self.cols.len());
+        if h.vv > 0.0 {
+            let t = dot(&h.v, &self.qtb[k..]);
+            axpy(-2.0 * t / h.vv, &h.v, &mut self.qtb[k..]);
         }
         let col = &mut self.r[k * n..(k + 1) * n];
         col[..k].copy_from_slice(&c[..k]);
-        col[k] = alpha;
+        col[k] = h.alpha;
         col[k + 1..].fill(0.0);
         self.cols.push(j);
-        true
     }
 
     /// Removes the passive column at position `pos`, restoring the triangle by Givens
@@ -1065,15 +1083,10 @@ mod tests {
         }
     }
 
-    /// Entering columns inserted together leave the factorisation one-by-one inserts leave,
-    /// bit for bit, including a column in the span of the others (refused) and a full set.
-    /// The blocked inserts (reflections applied to `Q` together, compact WY) make the
-    /// factorisation the one-by-one inserts make, to rounding: the same columns accepted and
-    /// refused (one in the span, the last past a full set), `Q`, `R` and `Q^T b` within
-    /// `1e-14` of their largest entries, and the invariants `Q^T Q = I`, `A_P = Q R`, `Q^T b` kept, through removals
-    /// between the batches.
-    #[test]
-    fn blocked_inserts_are_one_by_one_inserts_to_rounding() {
+    /// Thirteen rows, twenty columns (column 5 is column 1 + column 2: in their span once both
+    /// are in) and a right-hand side, with four batches of entering columns (the last past a
+    /// full set): what the insert tests feed both ways of inserting.
+    fn insert_problem() -> (usize, Vec<f64>, Vec<f64>, [&'static [usize]; 4]) {
         let n = 13;
         let mut a = values(n * 20, 7);
         for i in 0..n {
@@ -1086,6 +1099,17 @@ mod tests {
             &[7, 8, 9, 10, 11, 12, 13],
             &[14, 15, 16, 17, 18, 19],
         ];
+        (n, a, b, batches)
+    }
+
+    /// The blocked inserts (reflections applied to `Q` together, compact WY) make the
+    /// factorisation the one-by-one inserts make, to rounding: the same columns accepted and
+    /// refused (one in the span, the last past a full set), `Q`, `R` and `Q^T b` within
+    /// `1e-14` of their largest entries, and the invariants `Q^T Q = I`, `A_P = Q R` and
+    /// `Q^T b` kept, through removals between the batches.
+    #[test]
+    fn blocked_inserts_are_one_by_one_inserts_to_rounding() {
+        let (n, a, b, batches) = insert_problem();
         let mut one = PassiveQr::new(n, &b);
         let mut blocked = PassiveQr::new(n, &b);
         for batch in batches {
@@ -1121,21 +1145,11 @@ mod tests {
         assert_eq!(blocked.cols, one.cols);
     }
 
+    /// Entering columns inserted together leave the factorisation one-by-one inserts leave,
+    /// bit for bit, including a column in the span of the others (refused) and a full set.
     #[test]
     fn inserting_together_is_inserting_one_by_one() {
-        let n = 13;
-        let mut a = values(n * 20, 7);
-        // Column 5 is column 1 + column 2: in their span once both are in.
-        for i in 0..n {
-            a[5 * n + i] = a[n + i] + a[2 * n + i];
-        }
-        let b = values(n, 3);
-        let batches: [&[usize]; 4] = [
-            &[0, 3],
-            &[1, 2, 5, 4, 6],
-            &[7, 8, 9, 10, 11, 12, 13],
-            &[14, 15, 16, 17, 18, 19],
-        ];
+        let (n, a, b, batches) = insert_problem();
         let mut one = PassiveQr::new(n, &b);
         let mut together = PassiveQr::new(n, &b);
         let mut refused = Vec::new();
