@@ -26,9 +26,9 @@
 //! boundary layers take theirs from Green's theorem through the factor.
 
 use nalgebra::DMatrix;
-use rs_boxes::{BoxOptions, MonotoneBox, MonotoneBoxes, Monotonicity};
+use rs_boxes::{MonotoneBox, Monotonicity};
+use rs_spline::Point;
 use rs_spline::quadrature::gauss_rule;
-use rs_spline::{Domain, Point};
 
 use crate::basis::LegendreBasis;
 
@@ -61,21 +61,20 @@ const MAX_OUTER_ORDER: usize = 48;
 /// Most halvings of an interval (a width of `2^-12` of it); the last order is taken there.
 const MAX_SPLITS: usize = 12;
 
-/// The formula of degree `degree` on `domain`, the pieces of curve `c` counted when
-/// `signs[c] != 0` (the loops that bound the filled set); `None` when it would have more than
-/// `max_points` nodes, or when a vertical line meets the counted pieces an odd number of
-/// times (loops touching where the rounding of the crossings decides their order).
+/// The formula of degree `degree` on the domain of the monotone pieces `pieces`
+/// ([`MonotoneBoxes::pieces`](rs_boxes::MonotoneBoxes::pieces)), the pieces of curve `c`
+/// counted when `signs[c] != 0` (the loops that bound the filled set); `None` when it would
+/// have more than `max_points` nodes, or when a vertical line meets the counted pieces an odd
+/// number of times (loops touching where the rounding of the crossings decides their order).
 pub(crate) fn chord_formula(
-    domain: &Domain,
+    pieces: &[MonotoneBox],
     signs: &[i64],
     basis: &LegendreBasis,
     degree: usize,
     area: f64,
     max_points: usize,
 ) -> Option<ChordFormula> {
-    let boxes = MonotoneBoxes::new(domain, BoxOptions::DEFAULT.with_subdivisions(1)).ok()?;
-    let kept: Vec<&MonotoneBox> = boxes
-        .pieces()
+    let kept: Vec<&MonotoneBox> = pieces
         .iter()
         .filter(|b| signs.get(b.curve).is_some_and(|&s| s != 0))
         .filter(|b| b.x_dir != Monotonicity::Constant)
@@ -91,7 +90,8 @@ pub(crate) fn chord_formula(
     cuts.dedup();
     // Every interval but those between loops (at most one fewer than the loops) holds a chord
     // and so at least 4 nodes: more intervals than that cannot fit the budget.
-    if cuts.len() > max_points.saturating_add(domain.loops().len() + 1) {
+    let loops = kept.iter().map(|b| b.boundary_loop + 1).max().unwrap_or(0);
+    if cuts.len() > max_points.saturating_add(loops + 1) {
         return None;
     }
     let inner = degree / 2 + 1;
@@ -370,19 +370,25 @@ fn end_order(b: &MonotoneBox, at_start: bool) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::moments::basis_moments;
-    use rs_contain::{
-        Classifier, ContainOptions, FillRule, Location, Method, curve_boundary_signs,
-    };
-    use rs_spline::circle;
+    use crate::moments::{basis_moments, fill_signs};
+    use rs_boxes::{BoxOptions, MonotoneBoxes};
+    use rs_contain::{Classifier, ContainOptions, FillRule, Location, Method};
     use rs_spline::prelude::*;
+    use rs_spline::{Domain, circle};
+
+    /// The domain's monotone pieces and its curves' even-odd signs.
+    fn pieces_and_signs(d: &Domain) -> (MonotoneBoxes, Vec<i64>) {
+        let boxes = MonotoneBoxes::new(d, BoxOptions::DEFAULT).unwrap();
+        (boxes, fill_signs(d, FillRule::EvenOdd).unwrap())
+    }
 
     /// The formula of `domain` at `degree` with no budget, and the domain's exact moments.
     fn formula_and_moments(domain: &Domain, degree: usize) -> (ChordFormula, Vec<f64>, f64) {
         let basis = LegendreBasis::new(degree, domain.bounding_box());
-        let exact = basis_moments(domain, FillRule::EvenOdd, &basis, degree).unwrap();
-        let signs = curve_boundary_signs(domain, FillRule::EvenOdd).unwrap();
-        let f = chord_formula(domain, &signs, &basis, degree, exact[0], usize::MAX).unwrap();
+        let (boxes, signs) = pieces_and_signs(domain);
+        let exact = basis_moments(domain, &signs, &basis, degree).unwrap();
+        let f = chord_formula(boxes.pieces(), &signs, &basis, degree, exact[0], usize::MAX);
+        let f = f.unwrap();
         let mut scratch = vec![0.0; basis.scratch_len()];
         let got = formula_moments(&basis, &f, &mut scratch);
         let worst = got
@@ -442,10 +448,11 @@ mod tests {
         let d = Domain::new(loops).unwrap();
         let degree = 20;
         let basis = LegendreBasis::new(degree, d.bounding_box());
-        let signs = curve_boundary_signs(&d, FillRule::EvenOdd).unwrap();
+        let (boxes, signs) = pieces_and_signs(&d);
+        let pieces = boxes.pieces();
         let budget = 10 * basis.len();
-        assert!(chord_formula(&d, &signs, &basis, degree, 1.0, budget).is_none());
-        let f = chord_formula(&d, &signs, &basis, degree, 1.0, usize::MAX).unwrap();
+        assert!(chord_formula(pieces, &signs, &basis, degree, 1.0, budget).is_none());
+        let f = chord_formula(pieces, &signs, &basis, degree, 1.0, usize::MAX).unwrap();
         assert!(f.points.len() > budget, "{}", f.points.len());
     }
 }

@@ -26,20 +26,30 @@ use crate::{CubatureError, MAX_DEGREE};
 /// moment is at most a small multiple of the area).
 const RELATIVE_QUADRATURE_TOLERANCE: f64 = 1e-15;
 
-/// `integral F_k(C(t)) y'(t) dt` over the boundary of the set `domain` fills under `rule`
-/// for the `dim` functions `F_k` that `antiderivatives(p, out)` writes at `p` (returning
-/// `max_k |F_k(p)|`), `F_k` of total degree at most `degree + 1`; `abs_tol` for rational
-/// pieces. One running sum over all the pieces ([`Jacobian::OnEachWeight`]).
+/// Each curve's boundary sign under `rule` ([`curve_boundary_signs`]): what the moments and
+/// the chord formula count every curve with.
+///
+/// # Errors
+/// [`CubatureError::OpenBoundary`] for a loop that does not close, [`CubatureError::Nesting`]
+/// for loops whose nesting does not decide the fill.
+pub(crate) fn fill_signs(domain: &Domain, rule: FillRule) -> Result<Vec<i64>, CubatureError> {
+    domain.require_closed()?;
+    curve_boundary_signs(domain, rule).map_err(CubatureError::Nesting)
+}
+
+/// `integral F_k(C(t)) y'(t) dt` over the boundary of the filled set, each curve counted
+/// with its sign in `curve_sign` ([`fill_signs`]), for the `dim` functions `F_k` that
+/// `antiderivatives(p, out)` writes at `p` (returning `max_k |F_k(p)|`), `F_k` of total
+/// degree at most `degree + 1`; `abs_tol` for rational pieces. One running sum over all the
+/// pieces ([`Jacobian::OnEachWeight`]).
 fn green_integrals(
     domain: &Domain,
-    rule: FillRule,
+    curve_sign: &[i64],
     degree: usize,
     dim: usize,
     abs_tol: f64,
     antiderivatives: &mut dyn FnMut(Point, &mut [f64]) -> f64,
 ) -> Result<Vec<f64>, CubatureError> {
-    domain.require_closed()?;
-    let curve_sign = curve_boundary_signs(domain, rule).map_err(CubatureError::Nesting)?;
     let mut total = vec![0.0; dim];
     let mut at = vec![0.0; dim];
     for (curve, piece) in domain.bezier_pieces() {
@@ -115,17 +125,18 @@ fn box_area(bbox: BoundingBox) -> f64 {
     (bbox.width() * bbox.height()).max(f64::MIN_POSITIVE)
 }
 
-/// The exact integrals of the scaled Legendre basis over the set `domain` fills under `rule`.
+/// The exact integrals of the scaled Legendre basis over the set `domain` fills, its curves
+/// counted with their signs `curve_sign` ([`fill_signs`]).
 pub(crate) fn basis_moments(
     domain: &Domain,
-    rule: FillRule,
+    curve_sign: &[i64],
     basis: &LegendreBasis,
     degree: usize,
 ) -> Result<Vec<f64>, CubatureError> {
     let dim = basis.len();
     let mut scratch = vec![0.0; basis.scratch_len()];
     let abs_tol = RELATIVE_QUADRATURE_TOLERANCE * box_area(domain.bounding_box());
-    green_integrals(domain, rule, degree, dim, abs_tol, &mut |p, out| {
+    green_integrals(domain, curve_sign, degree, dim, abs_tol, &mut |p, out| {
         basis.x_antiderivatives_into(p, &mut scratch, out)
     })
 }
@@ -195,7 +206,8 @@ pub fn monomial_moments(
     }
     let (mut xs, mut ys) = (vec![0.0; degree + 2], vec![0.0; degree + 1]);
     let abs_tol = RELATIVE_QUADRATURE_TOLERANCE * box_area(bbox);
-    let scaled = green_integrals(domain, rule, degree, dim, abs_tol, &mut |p, out| {
+    let curve_sign = fill_signs(domain, rule)?;
+    let scaled = green_integrals(domain, &curve_sign, degree, dim, abs_tol, &mut |p, out| {
         // Powers of x / rx and y / ry: every component at most |x| / (a + 1) <= rx.
         let (u, v) = (p.x / rx, p.y / ry);
         xs[0] = 1.0;

@@ -8,7 +8,7 @@ use rs_spline::{Domain, Point};
 use crate::basis::{LegendreBasis, dim_polynomials};
 use crate::candidates::{Candidates, LayerDensity, boundary_layers};
 use crate::chords::chord_formula;
-use crate::moments::basis_moments;
+use crate::moments::{basis_moments, fill_signs};
 use crate::nnls::{NnlsOptions, dot, nnls};
 use crate::orthogonal::{HIGH_DEGREE_BASIS, Reference, orthonormalise};
 use crate::{CubatureError, MAX_DEGREE};
@@ -219,10 +219,11 @@ impl CubatureRule {
     /// small against its bounding box); [`CubatureError::ResidualNotReached`].
     pub fn with_options(domain: &Domain, options: CubatureOptions) -> Result<Self, CubatureError> {
         options.check()?;
-        domain.require_closed()?;
+        // Checks the loops close, as everything after needs.
+        let signs = fill_signs(domain, options.fill_rule)?;
         let degree = options.degree;
         let basis = LegendreBasis::new(degree, domain.bounding_box());
-        let moments = basis_moments(domain, options.fill_rule, &basis, degree)?;
+        let moments = basis_moments(domain, &signs, &basis, degree)?;
         let area = moments[0];
         if !(area > 0.0 && area.is_finite()) {
             return Err(CubatureError::NoArea { area });
@@ -244,7 +245,7 @@ impl CubatureRule {
         let mut best_residual = f64::INFINITY;
         let layered = degree > CANDIDATES_GROWTH_DEGREE;
         let mut with_layers = Vec::new();
-        if let Some(rule) = chord_rule(domain, &classifier, &options, &basis, &unit) {
+        if let Some(rule) = chord_rule(&classifier, &signs, &basis, area, &unit, &options) {
             return Ok(rule);
         }
         for attempt in 0..=options.max_retries {
@@ -402,23 +403,24 @@ const CHORD_NODES_PER_POLYNOMIAL: usize = 10;
 
 /// The rule compressed from the vertical-chord formula (see `chords`), when its degree is at
 /// least [`CHORD_DEGREE`], the formula exists within its budget, and the rule is within the
-/// target; else `None` (the layered attempts follow).
+/// target; else `None` (the layered attempts follow). `signs` are the curves' boundary signs
+/// the moments took, `area` the domain's area in its own units (the formula's weights are).
 fn chord_rule(
-    domain: &Domain,
     classifier: &Classifier,
-    options: &CubatureOptions,
+    signs: &[i64],
     basis: &LegendreBasis,
+    area: f64,
     unit: &UnitMoments,
+    options: &CubatureOptions,
 ) -> Option<CubatureRule> {
     let degree = options.degree;
     if degree < CHORD_DEGREE {
         return None;
     }
-    let signs = rs_contain::curve_boundary_signs(domain, options.fill_rule).ok()?;
     let budget = (CHORD_NODES_PER_POLYNOMIAL * basis.len()).min(options.max_candidates);
-    // The domain's own area: the formula's weights, and so its moments, are in its units.
-    let area = times_power_of_two(unit.moments.first().copied()?, unit.exponent);
-    let formula = chord_formula(domain, &signs, basis, degree, area, budget)?;
+    // The classifier's monotone pieces are the domain's (its refinement does not change them).
+    let pieces = classifier.boxes().pieces();
+    let formula = chord_formula(pieces, signs, basis, degree, area, budget)?;
     // The nodes the grid locator says are inside (a Gauss node within the boundary
     // tolerance of a loop, on a short chord, is left out with its weight), with the weights
     // of the unit moments (the same power of two).
@@ -939,7 +941,13 @@ mod tests {
         let domain = rs_testkit::inrs_fixture("l_shape").domain;
         let degree = 22;
         let basis = LegendreBasis::new(degree, domain.bounding_box());
-        let moments = basis_moments(&domain, FillRule::EvenOdd, &basis, degree).unwrap();
+        let moments = basis_moments(
+            &domain,
+            &fill_signs(&domain, FillRule::EvenOdd).unwrap(),
+            &basis,
+            degree,
+        )
+        .unwrap();
         let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
         let mut candidates = Candidates::new(&classifier);
         let mut points = Vec::new();
@@ -1000,12 +1008,13 @@ mod tests {
     fn the_chord_formula_makes_the_first_rule_from_degree_35() {
         let domain = rs_testkit::inrs_fixture("s4_disk_ellipse_segment").domain;
         let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
+        let signs = fill_signs(&domain, FillRule::EvenOdd).unwrap();
         for (degree, made) in [(34, false), (36, true)] {
             let options = CubatureOptions::new(degree);
             let basis = LegendreBasis::new(degree, domain.bounding_box());
-            let moments = basis_moments(&domain, FillRule::EvenOdd, &basis, degree).unwrap();
+            let moments = basis_moments(&domain, &signs, &basis, degree).unwrap();
             let unit = UnitMoments::of(&moments);
-            let rule = chord_rule(&domain, &classifier, &options, &basis, &unit);
+            let rule = chord_rule(&classifier, &signs, &basis, moments[0], &unit, &options);
             assert_eq!(rule.is_some(), made, "degree {degree}");
             if let Some(rule) = rule {
                 assert!(rule.residual() <= DEFAULT_TARGET_RESIDUAL);
