@@ -82,22 +82,33 @@ impl LegendreBasis {
     /// least `2 (degree + 2)` values.
     pub(crate) fn values_into(&self, p: Point, scratch: &mut [f64], out: &mut [f64]) {
         let n = self.degree;
-        let (u, v) = self.scaled(p);
         let (pu, pv) = scratch.split_at_mut(n + 2);
-        legendre_into(u, &mut pu[..=n]);
-        legendre_into(v, &mut pv[..=n]);
-        for (pi, ni) in pu[..=n].iter_mut().zip(&self.norms) {
-            *pi *= ni;
-        }
-        for (pj, nj) in pv[..=n].iter_mut().zip(&self.norms) {
-            *pj *= nj;
-        }
+        self.x_factors_into(p.x, &mut pu[..=n]);
+        self.y_factors_into(p.y, &mut pv[..=n]);
         let mut at = 0;
         for k in 0..=n {
             for j in 0..=k {
                 out[at] = pu[k - j] * pv[j];
                 at += 1;
             }
+        }
+    }
+
+    /// Writes the factors in `x` of the basis, `sqrt(2i + 1) P_i(u)` for `i = 0 ..= degree`
+    /// (`u` the scaled abscissa), into `out` (`degree + 1` values): `phi_ij(p)` is the
+    /// product of the `i`-th factor in `x` and the `j`-th in `y`.
+    pub(crate) fn x_factors_into(&self, x: f64, out: &mut [f64]) {
+        legendre_into((x - self.centre.x) / self.half.x, out);
+        for (pi, ni) in out.iter_mut().zip(&self.norms) {
+            *pi *= ni;
+        }
+    }
+
+    /// The factors in `y`, `sqrt(2j + 1) P_j(v)`, as [`LegendreBasis::x_factors_into`].
+    pub(crate) fn y_factors_into(&self, y: f64, out: &mut [f64]) {
+        legendre_into((y - self.centre.y) / self.half.y, out);
+        for (pj, nj) in out.iter_mut().zip(&self.norms) {
+            *pj *= nj;
         }
     }
 

@@ -25,7 +25,6 @@
 //! only a small shift in the orthonormalisation (see `orthogonal`), where Halton points and
 //! boundary layers take theirs from Green's theorem through the factor.
 
-use nalgebra::DMatrix;
 use rs_boxes::{MonotoneBox, Monotonicity};
 use rs_spline::Point;
 use rs_spline::quadrature::gauss_rule;
@@ -334,19 +333,39 @@ impl<'a> Interval<'a> {
     }
 }
 
-/// `sum_i w_i phi_k(x_i)` for every basis polynomial.
+/// `sum_i w_i phi_k(x_i)` for every basis polynomial. The nodes of one outer node's chords
+/// share its abscissa and come one after another (`Interval::nodes`), and `phi_ij` is the
+/// product of a factor in `x` and one in `y`: over each run of nodes with the same `x`, the
+/// sums `S_j = sum w P_j(y)` (`n + 1` values a node) and then `P_i(x) S_j` (`dim P_n` a run),
+/// instead of `dim P_n` products a node (the formula took a tenth of a degree-40 rule).
 fn formula_moments(basis: &LegendreBasis, f: &ChordFormula, scratch: &mut [f64]) -> Vec<f64> {
-    let n = basis.len();
-    let mut values = DMatrix::zeros(n, f.points.len());
-    for (p, column) in f
-        .points
-        .iter()
-        .zip(values.as_mut_slice().chunks_exact_mut(n))
-    {
-        basis.values_into(*p, scratch, column);
+    let n = basis.degree();
+    let mut moments = vec![0.0; basis.len()];
+    let (px, rest) = scratch.split_at_mut(n + 1);
+    let py = &mut rest[..=n];
+    let mut sums = vec![0.0; n + 1];
+    let mut at = 0;
+    while at < f.points.len() {
+        let x = f.points[at].x;
+        let run = f.points[at..].iter().take_while(|p| p.x == x).count();
+        sums.fill(0.0);
+        for (p, w) in f.points[at..at + run].iter().zip(&f.weights[at..at + run]) {
+            basis.y_factors_into(p.y, py);
+            for (s, v) in sums.iter_mut().zip(py.iter()) {
+                *s += w * v;
+            }
+        }
+        basis.x_factors_into(x, px);
+        let mut k = 0;
+        for degree in 0..=n {
+            for j in 0..=degree {
+                moments[k] += px[degree - j] * sums[j];
+                k += 1;
+            }
+        }
+        at += run;
     }
-    let w = nalgebra::DVector::from_column_slice(&f.weights);
-    (values * w).as_slice().to_vec()
+    moments
 }
 
 /// The order to which the piece's `x(t)` stops moving at its start (`at_start`) or end: the
