@@ -36,7 +36,7 @@
 //!   `4.9-8.3 dim P_n` candidates in all on the paper's domains at degrees 30 and 40. Each
 //!   retry doubles the Halton points and the layers' points (`sqrt 2` more along the boundary
 //!   and across).
-//! - **Chord formula** (from degree 35). Before those attempts, the candidates are the nodes
+//! - **Chord formula** (above degree 20). Before those attempts, the candidates are the nodes
 //!   of a positive interior formula of the filled set itself: the `x` axis is cut at the end
 //!   abscissas of the boundary's monotone pieces, so that over each interval the same pieces
 //!   span it and pair up, sorted by ordinate, into vertical chords of the set; each chord gets

@@ -42,8 +42,8 @@ pub struct CubatureOptions {
     pub degree: usize,
     /// `k` (`1..=1000`): the first attempt wants `k x dim P_n` Halton candidates inside the
     /// domain up to degree 20; each retry doubles it. Above degree 20 the candidates are
-    /// `dim P_n` Halton points and boundary layers, from degree 35 after a first attempt on
-    /// the nodes of the chord formula (see the crate documentation), and `k` is not used.
+    /// `dim P_n` Halton points and boundary layers, after a first attempt on the nodes of the
+    /// chord formula (see the crate documentation), and `k` is not used.
     pub candidates_per_polynomial: usize,
     /// Retries after the first attempt (at most [`MAX_RETRIES`]), each with twice the
     /// candidates, up to `max_candidates`.
@@ -200,7 +200,7 @@ impl CubatureRule {
     /// The rule of degree `options.degree`.
     ///
     /// Exact moments of the scaled Legendre basis (Green's theorem); then, attempt by attempt
-    /// (from degree 35, first the nodes of a positive formula of vertical chords when it has at
+    /// (above degree 20, first the nodes of a positive formula of vertical chords when it has at
     /// most `10 dim P_n` of them, see the crate documentation; then
     /// the first with `candidates_per_polynomial x dim P_n` Halton candidates up to degree
     /// 20, `dim P_n` and boundary layers above, each retry with twice as many, up to
@@ -392,19 +392,15 @@ impl CubatureRule {
     }
 }
 
-/// From this degree on, the first attempt compresses the vertical-chord formula (see
-/// `chords`) when it has at most [`CHORD_NODES_PER_POLYNOMIAL`] `x dim P_n` nodes; the
-/// Halton points and boundary layers are the attempts after it.
-const CHORD_DEGREE: usize = 35;
-
 /// The most nodes of the chord formula per polynomial of the basis: beyond, it is left for
 /// the layered candidates (a domain with many loops over one abscissa).
 const CHORD_NODES_PER_POLYNOMIAL: usize = 10;
 
-/// The rule compressed from the vertical-chord formula (see `chords`), when its degree is at
-/// least [`CHORD_DEGREE`], the formula exists within its budget, and the rule is within the
-/// target; else `None` (the layered attempts follow). `signs` are the curves' boundary signs
-/// the moments took, `area` the domain's area in its own units (the formula's weights are).
+/// The rule compressed from the vertical-chord formula (see `chords`), when its degree is
+/// above [`CANDIDATES_GROWTH_DEGREE`] (where the layered candidates would be tried), the
+/// formula exists within its budget, and the rule is within the target; else `None` (the
+/// layered attempts follow). `signs` are the curves' boundary signs the moments took, `area`
+/// the domain's area in its own units (the formula's weights are).
 fn chord_rule(
     classifier: &Classifier,
     signs: &[i64],
@@ -414,7 +410,7 @@ fn chord_rule(
     options: &CubatureOptions,
 ) -> Option<CubatureRule> {
     let degree = options.degree;
-    if degree < CHORD_DEGREE {
+    if degree <= CANDIDATES_GROWTH_DEGREE {
         return None;
     }
     let budget = (CHORD_NODES_PER_POLYNOMIAL * basis.len()).min(options.max_candidates);
@@ -503,7 +499,8 @@ fn times_power_of_two(x: f64, e: i32) -> f64 {
 /// ([`boundary_layers`]) instead of `k x dim P_n` Halton points. Halton points alone needed
 /// more per polynomial as the degree grew (degree 20 succeeded with `12 N`, degree 30 needed
 /// `16-18 N` and degree 40 about `22 N`): a positive rule of high degree has nodes near the
-/// boundary that uniform points reach only in large numbers.
+/// boundary that uniform points reach only in large numbers. Above it too, the chord
+/// formula's nodes are the first attempt ([`chord_rule`]).
 const CANDIDATES_GROWTH_DEGREE: usize = 20;
 
 /// What [`layered_candidates`] needs of a rule's attempt above degree 20.
@@ -1000,16 +997,16 @@ mod tests {
         }
     }
 
-    /// From degree 35 the first attempt compresses the chord formula: on the disc with an
-    /// ellipse segment (vertical tangents, a corner) at degree 36 it makes a rule within the
-    /// target from the formula's nodes (fewer than the layered attempt's, about `5 dim P_n`);
-    /// at degree 34 it is not tried.
+    /// Above degree 20 the first attempt compresses the chord formula: on the disc with an
+    /// ellipse segment (vertical tangents, a corner) at degrees 21, 30 and 36 it makes a rule
+    /// within the target from the formula's nodes (fewer than the layered attempt's, about
+    /// `2 dim P_n` against `5 dim P_n`); at degree 20 it is not tried.
     #[test]
-    fn the_chord_formula_makes_the_first_rule_from_degree_35() {
+    fn the_chord_formula_makes_the_first_rule_above_degree_20() {
         let domain = rs_testkit::inrs_fixture("s4_disk_ellipse_segment").domain;
         let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
         let signs = fill_signs(&domain, FillRule::EvenOdd).unwrap();
-        for (degree, made) in [(34, false), (36, true)] {
+        for (degree, made) in [(20, false), (21, true), (30, true), (36, true)] {
             let options = CubatureOptions::new(degree);
             let basis = LegendreBasis::new(degree, domain.bounding_box());
             let moments = basis_moments(&domain, &signs, &basis, degree).unwrap();
