@@ -63,8 +63,8 @@ fn timings(md: &mut String, domains: &[(String, Domain)], o: &BenchOptions) {
         "\nPositive interior cubature (`CubatureRule::new`, default options: candidates \
          {DEFAULT_CANDIDATES_PER_POLYNOMIAL} x dim P_n Halton points inside up to degree 20; \
          above, dim P_n Halton points and layers of points offset inward from the boundary, \
-         doubled on a retry; from degree 35 first the nodes of a positive formula of vertical \
-         chords; \
+         doubled on a retry, after a first attempt on the nodes of a positive formula of \
+         vertical chords; \
          target residual {DEFAULT_TARGET_RESIDUAL:.0e}) on one thread \
          (inside a one-thread rayon pool; the library uses none): *nodes* (at most dim P_n), \
          *candidates* of the attempt that made the rule, *residual* (`CubatureRule::residual`: \
