@@ -347,7 +347,8 @@ fn formula_moments(basis: &LegendreBasis, f: &ChordFormula, scratch: &mut [f64])
     let mut at = 0;
     while at < f.points.len() {
         let x = f.points[at].x;
-        let run = f.points[at..].iter().take_while(|p| p.x == x).count();
+        // At least the node itself (a NaN abscissa equals nothing, its own too).
+        let run = 1 + f.points[at + 1..].iter().take_while(|p| p.x == x).count();
         sums.fill(0.0);
         for (p, w) in f.points[at..at + run].iter().zip(&f.weights[at..at + run]) {
             basis.y_factors_into(p.y, py);

@@ -148,15 +148,14 @@ pub use rule::{
 
 /// The highest degree of exactness a rule or a moment vector may have: 40, `dim P_40 = 861`
 /// basis polynomials. The work of a rule grows like `n^6` (the orthonormalisation costs
-/// `M N^2` with `N = dim P_n` and `M` candidates, `12 N` up to degree 20 and about `5-8 N`
-/// beyond, with the boundary layers) and its memory like `n^4` (the candidates' Vandermonde
-/// matrix, `7 000 x 861` values, 49 MB, at degree 40 on the paper's M-shaped domain; at most
-/// `20 000 x 861`, 138 MB, with the default cap). Measured on one core on the inRS paper's
-/// three domains with the default options: degree 20 in about 40-55 ms, degree 30 in
-/// 0.12-0.19 s, degree 40 in 1.3-2.0 s (the box-scaled Legendre basis is so ill-conditioned
-/// on two of these domains that the orthonormalisation needs three shifted Cholesky passes;
-/// on `s4_disk_ellipse_segment` `Q` stays regularised at degree 40, where the NNLS then takes
-/// most of the time). A domain
+/// `M N^2` with `N = dim P_n` and `M` candidates, `12 N` up to degree 20 and about `2-10 N`
+/// beyond, the chord formula's nodes or the boundary layers) and its memory like `n^4` (the
+/// candidates' Vandermonde matrix, `4 900 x 861` values, 34 MB, at degree 40 on the paper's
+/// lune; at most `20 000 x 861`, 138 MB, with the default cap). Measured on one core on the
+/// inRS paper's three domains with the default options: degree 20 in about 30-55 ms, degree
+/// 30 in 0.10-0.18 s, degree 40 in 0.55-0.95 s (the box-scaled Legendre basis is so
+/// ill-conditioned on these domains that the orthonormalisation takes two or three Cholesky
+/// passes, the first shifted). A domain
 /// on which positive weights need more candidates than the cap gets an error
 /// (`ResidualNotReached`), not a wrong rule. Moments alone ([`monomial_moments`]) are cheap at
 /// any degree up to it.

@@ -45,8 +45,9 @@ pub struct CubatureOptions {
     /// `dim P_n` Halton points and boundary layers, after a first attempt on the nodes of the
     /// chord formula (see the crate documentation), and `k` is not used.
     pub candidates_per_polynomial: usize,
-    /// Retries after the first attempt (at most [`MAX_RETRIES`]), each with twice the
-    /// candidates, up to `max_candidates`.
+    /// Retries after the first attempt of Halton candidates (at most [`MAX_RETRIES`]), each
+    /// with twice the candidates, up to `max_candidates` (above degree 20 the chord formula's
+    /// attempt comes before them and is not counted).
     pub max_retries: usize,
     /// Most candidates of any attempt (at most [`MAX_CANDIDATES`]).
     pub max_candidates: usize,
@@ -930,7 +931,7 @@ mod tests {
         }
     }
 
-    /// On the L shape at degree 22 (the first attempt's candidates) the normalising pass is
+    /// On the L shape at degree 22 (the layered candidates' first attempt) the normalising pass is
     /// made, and `compress` keeps that rule: within the target, and also with a target no
     /// rule reaches (the rule without the pass has the larger residual there).
     #[test]
@@ -1021,6 +1022,39 @@ mod tests {
                 assert!(rule.candidates() < 4 * basis.len(), "{}", rule.candidates());
             }
         }
+    }
+
+    /// Where the chord formula is over its budget (three nested discs at degree 21: their
+    /// stacked chords need more than `10 dim P_n` nodes) the rule comes from the Halton points
+    /// and boundary layers after it, within the target: the layered attempts above degree 20,
+    /// end to end.
+    #[test]
+    fn a_formula_over_its_budget_falls_back_to_the_layered_candidates() {
+        let path = rs_testkit::fixture_path("fill-rule/three_nested.json");
+        let domain = rs_io::json::domain_from_json_file(&path).unwrap();
+        let degree = 21;
+        let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
+        let signs = fill_signs(&domain, FillRule::EvenOdd).unwrap();
+        let basis = LegendreBasis::new(degree, domain.bounding_box());
+        let moments = basis_moments(&domain, &signs, &basis, degree).unwrap();
+        let unit = UnitMoments::of(&moments);
+        let options = CubatureOptions::new(degree);
+        let chord = chord_rule(&classifier, &signs, &basis, moments[0], &unit, &options);
+        assert!(chord.is_none());
+        let rule = CubatureRule::new(&domain, degree).unwrap();
+        assert!(
+            rule.residual() <= DEFAULT_TARGET_RESIDUAL,
+            "{}",
+            rule.residual()
+        );
+        assert!(rule.weights().iter().all(|&w| w > 0.0));
+        assert!(rule.nodes().len() <= basis.len());
+        let sum: f64 = rule.weights().iter().sum();
+        assert!(
+            (sum - moments[0]).abs() <= 1e-13 * moments[0],
+            "{sum} vs {}",
+            moments[0]
+        );
     }
 
     /// The moments' errors are compensated: `0 - (1 + 1e16 - 1e16)` is `-1`, where plain sums

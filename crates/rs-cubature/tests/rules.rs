@@ -86,8 +86,8 @@ fn rules_on_the_paper_domains() {
     }
 }
 
-/// Degree 30 (496 polynomials) on S(3), the first attempt's candidates grown with the degree;
-/// about 0.5 s in a release build.
+/// Degree 30 (496 polynomials) on S(3), from the chord formula's nodes; about 0.2 s in a
+/// release build.
 #[test]
 fn a_rule_of_degree_30_on_the_m_shaped_domain() {
     let path = rs_testkit::fixture_path("inrs-paper/s3_m_shape.json");
@@ -176,7 +176,7 @@ fn disc_monomial(r: f64, a: usize, b: usize) -> f64 {
     r.powi((a + b + 2) as i32) / (a + b + 2) as f64 * angular
 }
 
-/// Degree 30 on a disc (the boundary-layer candidates): every monomial `x^a y^b`, `a + b <= 30`,
+/// Degree 30 on a disc (from the chord formula's nodes): every monomial `x^a y^b`, `a + b <= 30`,
 /// integrated within `1e-12` of its closed form relative to `area r^(a+b)`, and the rule's
 /// properties (every node `Inside` by inRS2, weights `> 0`, at most `dim P_30` nodes).
 #[test]
