@@ -165,3 +165,35 @@ fn a_wrong_number_of_values_is_refused() {
     );
     one_line(&e);
 }
+
+/// The quadratic `(0, 0), (1/2, 1), (1, 0)` with weights `1, w, 1`, closed by its chord.
+fn weighted_arc(w: f64) -> Domain {
+    let arc = rs_spline::NurbsCurve::bezier(
+        vec![p(0.0, 0.0), p(0.5, 1.0), p(1.0, 0.0)],
+        Some(vec![1.0, w, 1.0]),
+    )
+    .unwrap();
+    Domain::new(vec![arc, polyline(&[p(1.0, 0.0), p(0.0, 0.0)]).unwrap()]).unwrap()
+}
+
+/// Weights spread so far (a middle weight of `1e10`) that the piece moves within `1e-10` of
+/// its parameter ends: the moments' quadrature once accepted a wrong area there and a degree-0
+/// rule carried it (a weight of `9e-16` for an area of `0.5`); now the moments are refused.
+/// With a middle weight of `1e3` the rule's weights add up to the area (`0.49999669954369455`
+/// by a 40-digit integral, mpmath).
+#[test]
+fn strongly_weighted_pieces_are_refused_not_integrated_wrong() {
+    for w in [1e8, 1e10, 1e11] {
+        for degree in [0, 1, 4] {
+            let e = CubatureRule::new(&weighted_arc(w), degree).unwrap_err();
+            assert!(
+                matches!(e, CubatureError::MomentsNotConverged { curve: 0, .. }),
+                "w {w:e}, degree {degree}: {e}"
+            );
+            assert!(one_line(&e).contains("did not converge"));
+        }
+    }
+    let rule = CubatureRule::new(&weighted_arc(1e3), 4).unwrap();
+    let sum: f64 = rule.weights().iter().sum();
+    assert!((sum - 0.499_996_699_543_694_5).abs() < 1e-14, "{sum}");
+}
