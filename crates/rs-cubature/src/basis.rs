@@ -70,14 +70,6 @@ impl LegendreBasis {
         2 * (self.degree + 2)
     }
 
-    /// The scaled coordinates `(u, v)` of `p`.
-    fn scaled(&self, p: Point) -> (f64, f64) {
-        (
-            (p.x - self.centre.x) / self.half.x,
-            (p.y - self.centre.y) / self.half.y,
-        )
-    }
-
     /// Writes `phi_ij(p)` in graded order into `out` (`len()` values); `scratch` holds at
     /// least `2 (degree + 2)` values.
     pub(crate) fn values_into(&self, p: Point, scratch: &mut [f64], out: &mut [f64]) {
@@ -85,13 +77,7 @@ impl LegendreBasis {
         let (pu, pv) = scratch.split_at_mut(n + 2);
         self.x_factors_into(p.x, &mut pu[..=n]);
         self.y_factors_into(p.y, &mut pv[..=n]);
-        let mut at = 0;
-        for k in 0..=n {
-            for j in 0..=k {
-                out[at] = pu[k - j] * pv[j];
-                at += 1;
-            }
-        }
+        graded_products(n, pu, pv, |k, value| out[k] = value);
     }
 
     /// Writes the factors in `x` of the basis, `sqrt(2i + 1) P_i(u)` for `i = 0 ..= degree`
@@ -124,10 +110,10 @@ impl LegendreBasis {
         out: &mut [f64],
     ) -> f64 {
         let n = self.degree;
-        let (u, v) = self.scaled(p);
+        let u = (p.x - self.centre.x) / self.half.x;
         let (pu, pv) = scratch.split_at_mut(n + 2);
         legendre_into(u, &mut pu[..n + 2]);
-        legendre_into(v, &mut pv[..=n]);
+        self.y_factors_into(p.y, &mut pv[..=n]);
         // Q_i in place, upwards, keeping P_{i-1} aside (its slot already holds Q_{i-1}).
         let mut previous = pu[0];
         pu[0] = self.half.x * u;
@@ -136,20 +122,26 @@ impl LegendreBasis {
             pu[i] = self.half.x * self.norms[i] * (pu[i + 1] - previous) / (2 * i + 1) as f64;
             previous = current;
         }
-        for (pj, nj) in pv[..=n].iter_mut().zip(&self.norms) {
-            *pj *= nj;
-        }
-        let mut at = 0;
         let mut largest = 0.0f64;
-        for k in 0..=n {
-            for j in 0..=k {
-                let f = pu[k - j] * pv[j];
-                largest = largest.max(f.abs());
-                out[at] = f;
-                at += 1;
-            }
-        }
+        graded_products(n, pu, pv, |k, f| {
+            largest = largest.max(f.abs());
+            out[k] = f;
+        });
         largest
+    }
+}
+
+/// Calls `each(k, a[i] b[j])` for every pair `i + j <= n` in graded order, `k` its index
+/// ([`graded_index`]): a factor in `x` times one in `y`, as the basis's values and their
+/// antiderivatives and sums are.
+#[inline(always)]
+pub(crate) fn graded_products(n: usize, a: &[f64], b: &[f64], mut each: impl FnMut(usize, f64)) {
+    let mut at = 0;
+    for k in 0..=n {
+        for j in 0..=k {
+            each(at, a[k - j] * b[j]);
+            at += 1;
+        }
     }
 }
 

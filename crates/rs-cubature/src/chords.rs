@@ -29,7 +29,7 @@ use rs_boxes::{MonotoneBox, Monotonicity};
 use rs_spline::Point;
 use rs_spline::quadrature::gauss_rule;
 
-use crate::basis::LegendreBasis;
+use crate::basis::{LegendreBasis, graded_products};
 
 /// A positive formula: nodes and their weights.
 #[derive(Clone, Debug, Default)]
@@ -357,13 +357,7 @@ fn formula_moments(basis: &LegendreBasis, f: &ChordFormula, scratch: &mut [f64])
             }
         }
         basis.x_factors_into(x, px);
-        let mut k = 0;
-        for degree in 0..=n {
-            for j in 0..=degree {
-                moments[k] += px[degree - j] * sums[j];
-                k += 1;
-            }
-        }
+        graded_products(n, px, &sums, |k, value| moments[k] += value);
         at += run;
     }
     moments

@@ -85,7 +85,7 @@ fn green_integrals(
         // A rational piece whose weights are spread so far (a middle weight of `1e8` and
         // more) that it moves within a sliver of its parameter ends can have its moments'
         // quadrature accept a wrong integral as converged (its nodes miss the motion: at
-        // degree 0 a one-node rule of weight `1e-15` for an area of `0.5`); its own area
+        // degree 0 a one-node rule of weight `9e-16` for an area of `0.5`); its own area
         // integral does not converge there, and refuses it too.
         if !polynomial {
             let area = piece.area_integral();
