@@ -998,6 +998,22 @@ mod tests {
         }
     }
 
+    /// [`chord_rule`] of `domain` at `degree` with the default options (even-odd), and the
+    /// basis and moments it was made against.
+    fn chord_rule_of(
+        domain: &Domain,
+        degree: usize,
+    ) -> (Option<CubatureRule>, LegendreBasis, Vec<f64>) {
+        let classifier = Classifier::new(domain, ContainOptions::DEFAULT).unwrap();
+        let signs = fill_signs(domain, FillRule::EvenOdd).unwrap();
+        let basis = LegendreBasis::new(degree, domain.bounding_box());
+        let moments = basis_moments(domain, &signs, &basis, degree).unwrap();
+        let unit = UnitMoments::of(&moments);
+        let options = CubatureOptions::new(degree);
+        let rule = chord_rule(&classifier, &signs, &basis, moments[0], &unit, &options);
+        (rule, basis, moments)
+    }
+
     /// Above degree 20 the first attempt compresses the chord formula: on the disc with an
     /// ellipse segment (vertical tangents, a corner) at degrees 21, 30 and 36 it makes a rule
     /// within the target from the formula's nodes (fewer than the layered attempt's, about
@@ -1005,14 +1021,8 @@ mod tests {
     #[test]
     fn the_chord_formula_makes_the_first_rule_above_degree_20() {
         let domain = rs_testkit::inrs_fixture("s4_disk_ellipse_segment").domain;
-        let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
-        let signs = fill_signs(&domain, FillRule::EvenOdd).unwrap();
         for (degree, made) in [(20, false), (21, true), (30, true), (36, true)] {
-            let options = CubatureOptions::new(degree);
-            let basis = LegendreBasis::new(degree, domain.bounding_box());
-            let moments = basis_moments(&domain, &signs, &basis, degree).unwrap();
-            let unit = UnitMoments::of(&moments);
-            let rule = chord_rule(&classifier, &signs, &basis, moments[0], &unit, &options);
+            let (rule, basis, _) = chord_rule_of(&domain, degree);
             assert_eq!(rule.is_some(), made, "degree {degree}");
             if let Some(rule) = rule {
                 assert!(rule.residual() <= DEFAULT_TARGET_RESIDUAL);
@@ -1033,13 +1043,7 @@ mod tests {
         let path = rs_testkit::fixture_path("fill-rule/three_nested.json");
         let domain = rs_io::json::domain_from_json_file(&path).unwrap();
         let degree = 21;
-        let classifier = Classifier::new(&domain, ContainOptions::DEFAULT).unwrap();
-        let signs = fill_signs(&domain, FillRule::EvenOdd).unwrap();
-        let basis = LegendreBasis::new(degree, domain.bounding_box());
-        let moments = basis_moments(&domain, &signs, &basis, degree).unwrap();
-        let unit = UnitMoments::of(&moments);
-        let options = CubatureOptions::new(degree);
-        let chord = chord_rule(&classifier, &signs, &basis, moments[0], &unit, &options);
+        let (chord, basis, moments) = chord_rule_of(&domain, degree);
         assert!(chord.is_none());
         let rule = CubatureRule::new(&domain, degree).unwrap();
         assert!(
