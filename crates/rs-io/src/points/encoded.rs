@@ -62,21 +62,25 @@ pub struct EncodedPoints<'a> {
 }
 
 /// Whether every little-endian `ty` number in `bytes` is finite: no exponent field all ones,
-/// tested for all of them without a branch (the compiler vectorises it; the search for the
-/// first bad point runs only if there is one).
+/// tested for all of them without a branch or a comparison (the compiler vectorises it with
+/// the baseline instructions; the search for the first bad point runs only if there is one).
+/// The exponent field masked out and its lowest bit added carries into the sign bit exactly
+/// when the field is all ones; the sums' bits are or-ed together and the sign bit read once.
 fn all_finite(ty: NpyType, bytes: &[u8]) -> bool {
     fn none_all_ones<const N: usize>(
         bytes: &[u8],
         exponent: u64,
         bits: impl Fn([u8; N]) -> u64,
     ) -> bool {
-        let mut bad = 0u64;
+        // The lowest bit of the field, and the sign bit the carry reaches.
+        let (low, sign) = (exponent & exponent.wrapping_neg(), 1u64 << (8 * N - 1));
+        let mut carries = 0u64;
         for c in bytes.chunks_exact(N) {
             let mut a = [0u8; N];
             a.copy_from_slice(c);
-            bad |= u64::from(bits(a) & exponent == exponent);
+            carries |= (bits(a) & exponent) + low;
         }
-        bad == 0
+        carries & sign == 0
     }
     if ty == NpyType::F32 {
         none_all_ones::<4>(bytes, 0x7f80_0000, |b| u64::from(u32::from_le_bytes(b)))
