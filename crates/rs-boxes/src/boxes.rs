@@ -5,6 +5,7 @@ use rs_spline::{Axis, BoundingBox, Domain, Point};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use crate::monotone_box::odds_map;
 use crate::piece::HalvedPiece;
 use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 
@@ -412,10 +413,29 @@ fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
     }
     let ((t_prev, t), (u0, u1)) = (r.t, r.span);
     let param = |t: f64| u0 + t * (u1 - u0);
-    let range = |j: usize| {
-        let a = t_prev + (t - t_prev) * j as f64 / k as f64;
-        let e = t_prev + (t - t_prev) * (j + 1) as f64 / k as f64;
-        (param(a), param(e))
+    // The parts are equal in the piece's parameter `s`; the `j`-th starts at the fraction
+    // `odds_map(odds, j / k)` of the box's span of the Bezier piece (`j / k` unless the piece
+    // was reparametrised), and its own parameter maps onto its span by the odds factor of
+    // that Mobius map's restriction to its part: its slope at the part's start over the
+    // part's share of the span.
+    let odds = b.odds;
+    let fraction = |j: usize| odds_map(odds, j as f64 / k as f64);
+    // (`(t - t_prev) * j / k` as before for a piece not reparametrised: the same bits.)
+    let at = |j: usize| {
+        if odds == 1.0 {
+            t_prev + (t - t_prev) * j as f64 / k as f64
+        } else {
+            t_prev + (t - t_prev) * fraction(j)
+        }
+    };
+    let range = |j: usize| (param(at(j)), param(at(j + 1)));
+    let part_odds = |j: usize| {
+        if odds == 1.0 {
+            return 1.0;
+        }
+        let s = j as f64 / k as f64;
+        let slope = odds / ((1.0 - s) + odds * s).powi(2);
+        slope / k as f64 / (fraction(j + 1) - fraction(j))
     };
     // Degree <= 7 (every piece in practice): the cuts on fixed-size arrays, bit for bit
     // `BezierPiece::split`'s, without its SmallVec copies and moves.
@@ -432,6 +452,7 @@ fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
                 b.curve,
                 b.boundary_loop,
                 range(j),
+                part_odds(j),
             ));
         }
         return;
@@ -445,7 +466,13 @@ fn refine(b: &MonotoneBox, r: &Refinement, mut push: impl FnMut(MonotoneBox)) {
         } else {
             part.clone()
         };
-        push(MonotoneBox::new(sub, b.curve, b.boundary_loop, range(j)));
+        push(MonotoneBox::new(
+            sub,
+            b.curve,
+            b.boundary_loop,
+            range(j),
+            part_odds(j),
+        ));
     }
 }
 
@@ -578,6 +605,62 @@ fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
     Ok((merged, at_start, at_end))
 }
 
+/// A part of a monotone piece ([`balanced_parts`]): the part, the fractions of the piece's
+/// parameter it spans, and the odds factor mapping its own parameter onto that span (see
+/// [`MonotoneBox::odds`]).
+struct BalancedPart {
+    piece: BezierPiece,
+    fractions: (f64, f64),
+    odds: f64,
+}
+
+/// The most halvings [`balanced_parts`] makes of a piece: each takes about the square root of
+/// the weights' spread, so six bring the format's largest ratio, `1e12`, far below
+/// [`crate::BALANCE_RATIO`] (at most 64 parts).
+const MAX_BALANCE_HALVINGS: u32 = 6;
+
+/// A monotone piece as parts whose motion fills their parameter: the piece with its end
+/// weights balanced ([`BezierPiece::balanced`]), and, while a part's largest weight exceeds
+/// its end weights by more than [`crate::BALANCE_RATIO`] (it then moves within a sliver at
+/// both ends: a quadratic of weights `1, w, 1` stays near its middle control point for
+/// parameters between about `1 / w` and `1 - 1 / w`), the part halved and each half balanced
+/// again, at most [`MAX_BALANCE_HALVINGS`] times. An ordinary piece is one part, itself, with
+/// odds 1. Each part's odds compose its own balancing with the restriction of its parent's
+/// Mobius map to the half (whose factor is the map's slope at the half's start over the
+/// half's share of its image: `(1 + a) / 2` for the first half of a map of factor `a`,
+/// `2 a / (1 + a)` for the second).
+fn balanced_parts(piece: BezierPiece) -> Vec<BalancedPart> {
+    fn walk(
+        piece: BezierPiece,
+        fractions: (f64, f64),
+        odds: f64,
+        depth: u32,
+        out: &mut Vec<BalancedPart>,
+    ) {
+        let (piece, c) = piece.balanced();
+        let odds = odds * c;
+        let w = piece.weights();
+        let ends = w[0].min(w[w.len() - 1]);
+        let largest = w.iter().copied().fold(0.0f64, f64::max);
+        if depth >= MAX_BALANCE_HALVINGS || largest <= crate::BALANCE_RATIO * ends {
+            out.push(BalancedPart {
+                piece,
+                fractions,
+                odds,
+            });
+            return;
+        }
+        let (f0, f1) = fractions;
+        let mid = f0 + (f1 - f0) * crate::monotone_box::odds_map(odds, 0.5);
+        let (left, right) = piece.split(0.5);
+        walk(left, (f0, mid), (1.0 + odds) / 2.0, depth + 1, out);
+        walk(right, (mid, f1), 2.0 * odds / (1.0 + odds), depth + 1, out);
+    }
+    let mut out = Vec::with_capacity(1);
+    walk(piece, (0.0, 1.0), 1.0, 0, &mut out);
+    out
+}
+
 /// Split parameters with their tangency flags, and the flags at the piece's two ends.
 type Splits = (Vec<(f64, EndFlags)>, EndFlags, EndFlags);
 
@@ -602,18 +685,37 @@ fn split_piece(
     let mut push = |monotone: BezierPiece, (t_prev, t): (f64, f64), flags_prev: EndFlags| {
         // The parameter range a refinement into one box gives (`refine`'s formula with
         // k = 1), so that a piece left whole is bit for bit its own refined box.
-        let range = (
-            param(t_prev + (t - t_prev) * 0.0 / 1.0),
-            param(t_prev + (t - t_prev) * 1.0 / 1.0),
-        );
-        boxes.push(MonotoneBox::new(monotone, curve, loop_index, range));
-        refinement.push(Refinement {
-            t: (t_prev, t),
-            span: (u0, u1),
-            count: 1,
-            first: 0,
-        });
-        start_flags.push(flags_prev);
+        // At the piece's ends: `t_prev` and `t` themselves in the record, `refine`'s formula in
+        // the range.
+        let record = |f: f64| match f {
+            0.0 => t_prev,
+            1.0 => t,
+            _ => t_prev + (t - t_prev) * f,
+        };
+        let range = |f: f64| match f {
+            0.0 | 1.0 => param(t_prev + (t - t_prev) * f / 1.0),
+            _ => param(t_prev + (t - t_prev) * f),
+        };
+        let mut flags = flags_prev;
+        for part in balanced_parts(monotone) {
+            let (fa, fb) = part.fractions;
+            boxes.push(MonotoneBox::new(
+                part.piece,
+                curve,
+                loop_index,
+                (range(fa), range(fb)),
+                part.odds,
+            ));
+            refinement.push(Refinement {
+                t: (record(fa), record(fb)),
+                span: (u0, u1),
+                count: 1,
+                first: 0,
+            });
+            start_flags.push(flags);
+            // A cut inside a monotone piece is no tangency.
+            flags = (false, false);
+        }
     };
     // Every split lies in (0, 1) (roots at the ends mark tangencies instead); the piece is
     // moved, not copied, into its last part (the whole piece when it has no split).

@@ -53,6 +53,11 @@ pub struct MonotoneBox {
     pub boundary_loop: usize,
     /// Its parameter interval in the NURBS parameter of that curve.
     pub param_range: (f64, f64),
+    /// How the piece's parameter `s` maps onto `param_range` ([`MonotoneBox::nurbs_parameter`]):
+    /// the odds `tau / (1 - tau)` of the fraction `tau` of the range are `odds` times
+    /// `s / (1 - s)`. 1 (the map is linear) unless the piece was reparametrised to balance
+    /// its end weights ([`crate::BALANCE_RATIO`]).
+    pub odds: f64,
     /// The piece's end points `C(u0)`, `C(u1)`, their rectangle `[xmin, xmax] x [ymin, ymax]`
     /// (the box), and the band round its chord that decides most containment queries without a
     /// solve ([`MonotoneBox::is_near`], [`MonotoneBox::crosses_below`]).
@@ -61,6 +66,17 @@ pub struct MonotoneBox {
     pub x_dir: Monotonicity,
     /// Direction of `y(t)`.
     pub y_dir: Monotonicity,
+}
+
+/// The fraction `tau` of `[0, 1]` whose odds `tau / (1 - tau)` are `odds` times those of `s`:
+/// `odds s / ((1 - s) + odds s)`, `s` itself when `odds` is 1 (the Mobius maps of `[0, 1]`
+/// onto itself that fix both ends; they compose by multiplying their factors).
+pub(crate) fn odds_map(odds: f64, s: f64) -> f64 {
+    if odds == 1.0 {
+        s
+    } else {
+        odds * s / ((1.0 - s) + odds * s)
+    }
 }
 
 /// Halving depth cap of [`MonotoneBox::for_cells_near`].
@@ -191,6 +207,7 @@ impl MonotoneBox {
         curve: usize,
         boundary_loop: usize,
         param_range: (f64, f64),
+        odds: f64,
     ) -> Self {
         let (start, end) = (piece.start(), piece.end());
         let x_dir = if piece.is_constant(Axis::X) {
@@ -209,9 +226,25 @@ impl MonotoneBox {
             curve,
             boundary_loop,
             param_range,
+            odds,
             band,
             x_dir,
             y_dir,
+        }
+    }
+
+    /// The NURBS parameter of the curve [`MonotoneBox::curve`] at the piece's parameter `s`
+    /// (`0 <= s <= 1`): `u0 + tau (u1 - u0)` over [`MonotoneBox::param_range`], with `tau = s`
+    /// unless the piece was reparametrised ([`MonotoneBox::odds`]); exactly `u0` and `u1` at
+    /// the ends.
+    pub fn nurbs_parameter(&self, s: f64) -> f64 {
+        let (u0, u1) = self.param_range;
+        if s == 0.0 {
+            u0
+        } else if s == 1.0 {
+            u1
+        } else {
+            u0 + odds_map(self.odds, s) * (u1 - u0)
         }
     }
 

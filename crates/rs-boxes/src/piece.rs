@@ -11,6 +11,13 @@ use smallvec::SmallVec;
 
 use rs_spline::{Axis, Point, RationalBezier, SplineError};
 
+/// End-weight ratio above which a monotone piece is reparametrised to equal end weights (its
+/// weights `w_i` become `w_i c^i` for a power of two `c`, the same curve; see
+/// [`crate::MonotoneBox::odds`]): `2^10`, far above the ratios of conics and ordinary NURBS
+/// (whose pieces so keep their parametrisation), far below the `1e7` from which a piece's
+/// integrals lose digits.
+pub const BALANCE_RATIO: f64 = 1024.0;
+
 /// Coefficients kept on the stack (degree <= 7).
 const INLINE_COEFFS: usize = 8;
 
@@ -135,6 +142,42 @@ impl BezierPiece {
     /// `C(1)`.
     pub fn end(&self) -> Point {
         self.control_point(self.degree())
+    }
+
+    /// The piece with its end weights balanced when they differ by more than
+    /// [`BALANCE_RATIO`], and the factor `c` of the reparametrisation: the weights become
+    /// `w_i c^i` (`c` the power of two nearest `(w_0 / w_n)^(1/n)`, so every weight and
+    /// homogeneous coefficient is scaled exactly and the control points are unchanged), and
+    /// the new piece at `s` is the old one at `t = c s / ((1 - s) + c s)` (the odds
+    /// `t / (1 - t)` are `c` times `s / (1 - s)`): the same curve, whose motion no longer
+    /// crowds into a sliver at one parameter end, where the parameter's own resolution and an
+    /// adaptive integral would lose it (a quadratic of weights `1, w, 1` cut at its apex: each
+    /// half moves within `1 / w` of one end). `c = 1` (the piece untouched) below the ratio,
+    /// so ordinary pieces keep their parametrisation bit for bit.
+    pub(crate) fn balanced(mut self) -> (Self, f64) {
+        let n = self.degree();
+        let ratio = self.w[0] / self.w[n];
+        if n == 0 || (1.0 / BALANCE_RATIO..=BALANCE_RATIO).contains(&ratio) {
+            return (self, 1.0);
+        }
+        // |log2 ratio| < 2^11, so `k i` stays far inside `powi`'s range. Weights so far apart
+        // that a scaled one would leave the normal range keep the piece as it is.
+        let k = (ratio.log2() / n as f64).round() as i32;
+        let scale = |i: usize| 2f64.powi(k * i as i32);
+        let normal = (0..=n).all(|i| {
+            [self.w[i], self.hx[i], self.hy[i]]
+                .iter()
+                .all(|&v| v == 0.0 || (v * scale(i)).is_normal())
+        });
+        if !normal {
+            return (self, 1.0);
+        }
+        for i in 0..=n {
+            self.w[i] *= scale(i);
+            self.hx[i] *= scale(i);
+            self.hy[i] *= scale(i);
+        }
+        (self, 2f64.powi(k))
     }
 
     /// Moves the first control point to `p`, keeping its weight (used to make loops
@@ -478,6 +521,44 @@ mod tests {
             )
             .unwrap(),
         )
+    }
+
+    /// A piece whose end weights differ by more than the ratio is the same curve after
+    /// balancing: its point at `s` is the old one at `t = c s / ((1 - s) + c s)`, its ends and
+    /// control points are the same bits, its end weights within a factor `2^(n/2)` of each
+    /// other; ordinary pieces (a quarter circle, ratio 1; a ratio of 1000) are left alone.
+    #[test]
+    fn balancing_end_weights_keeps_the_curve() {
+        assert_eq!(arc().balanced(), (arc(), 1.0));
+        let piece = |w: Vec<f64>| {
+            let n = w.len();
+            let pts = (0..n)
+                .map(|i| Point::new(i as f64 / (n - 1) as f64, (i % 2) as f64))
+                .collect();
+            BezierPiece::from_bezier(&RationalBezier::new(pts, w).unwrap())
+        };
+        let mild = piece(vec![1.0, 3.0, 1000.0]);
+        assert_eq!(mild.clone().balanced(), (mild, 1.0));
+        for w in [
+            vec![1.0, 5e9, 5e9],
+            vec![5e9, 5e9, 1.0],
+            vec![3e-7, 1.0, 2.0, 0.5],
+            vec![1e11, 1.0, 1e3, 7.0, 1e-1],
+        ] {
+            let old = piece(w.clone());
+            let (new, c) = old.clone().balanced();
+            let n = old.degree();
+            assert!(c != 1.0 && c.log2().fract() == 0.0, "{w:?}: {c}");
+            let ratio = new.weights()[0] / new.weights()[n];
+            assert!(ratio.log2().abs() <= n as f64 / 2.0, "{w:?}: {ratio}");
+            assert_eq!((new.xs(), new.ys()), (old.xs(), old.ys()), "{w:?}");
+            for i in 0..=32 {
+                let s = f64::from(i) / 32.0;
+                let t = c * s / ((1.0 - s) + c * s);
+                let (p, q) = (new.point_at(s), old.point_at(t));
+                assert!(p.distance(q) < 1e-12, "{w:?} at {s}: {p:?} {q:?}");
+            }
+        }
     }
 
     #[test]

@@ -5,7 +5,7 @@ use rs_spline::prelude::*;
 use std::f64::consts::PI;
 
 use rs_boxes::{BOXES_PER_DIAGONAL, BoxOptions, CriticalKind, MonotoneBoxes, Monotonicity};
-use rs_spline::{Domain, Point, circle, circular_arc, polyline, segment};
+use rs_spline::{Domain, NurbsCurve, Point, circle, circular_arc, polyline, segment};
 
 fn all_domains() -> Vec<(String, Domain)> {
     let mut v = rs_testkit::fixtures();
@@ -458,4 +458,58 @@ fn tangency_roots_are_the_analytic_ones() {
         kinds.contains(&(p(1.0, 0.0), CriticalKind::VerticalTangent)),
         "{kinds:?}"
     );
+}
+
+/// A quadratic of weights `1, w, 1` cut at its apex: each half moves within `1 / w` of one
+/// parameter end, so its end weights are balanced (reparametrised) and, at `w = 1e10`, it is
+/// halved until each part's weights are within `2^10` of its end weights; every box, refined
+/// or not, still maps its parameter onto the curve's: its point at `s` is the curve's at
+/// `nurbs_parameter(s)` (within what the curve's speed there, up to `w` times its size, makes
+/// of the parameter's rounding), and consecutive boxes meet at the same point and parameter.
+#[test]
+fn balanced_boxes_map_their_parameters_onto_the_curve() {
+    for (w, tol) in [(1e4, 1e-11), (1e10, 1e-5)] {
+        let arc = NurbsCurve::bezier(
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(0.5, 1.0),
+                Point::new(1.0, 0.0),
+            ],
+            Some(vec![1.0, w, 1.0]),
+        )
+        .unwrap();
+        let d = Domain::new(vec![
+            arc.clone(),
+            polyline(&[Point::new(1.0, 0.0), Point::new(0.0, 0.0)]).unwrap(),
+        ])
+        .unwrap();
+        for most in [1, 5] {
+            let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(most)).unwrap();
+            let on_arc: Vec<_> = mb.boxes().iter().filter(|b| b.curve == 0).collect();
+            assert!(
+                on_arc.len() >= 2 * most.min(2),
+                "w {w}: {} boxes",
+                on_arc.len()
+            );
+            assert!(on_arc.iter().any(|b| b.odds != 1.0), "w {w}: none balanced");
+            for pair in on_arc.windows(2) {
+                assert_eq!(pair[0].param_range.1, pair[1].param_range.0);
+                assert_eq!(pair[0].band.end, pair[1].band.start);
+            }
+            if most == 1 {
+                for b in &on_arc {
+                    let w = b.piece().weights();
+                    let ends = w[0].min(w[w.len() - 1]);
+                    assert!(w.iter().all(|&x| x <= rs_boxes::BALANCE_RATIO * ends));
+                }
+            }
+            for b in &on_arc {
+                for i in 0..=16 {
+                    let s = f64::from(i) / 16.0;
+                    let (p, q) = (b.point_at(s), arc.point_at(b.nurbs_parameter(s)));
+                    assert!(p.distance(q) < tol, "w {w}, {most}: s {s}: {p:?} {q:?}");
+                }
+            }
+        }
+    }
 }

@@ -33,6 +33,10 @@ const N: usize = 32;
 /// the adaptive rule.
 pub(crate) const MAX_SPANS: usize = 256;
 
+/// The factors by which [`ArcLengthTable::new`] takes the speed's rounding larger, in turn,
+/// until its series converge within [`MAX_SPANS`] sub-intervals.
+const NOISE_RETRIES: [f64; 3] = [1.0, 8.0, 64.0];
+
 /// `cos(pi m / N)` for `m` in `0 .. 2N`.
 fn cosines() -> &'static [f64; 2 * N] {
     static TABLE: OnceLock<[f64; 2 * N]> = OnceLock::new();
@@ -57,16 +61,12 @@ pub(crate) struct ArcLengthTable {
 
 impl ArcLengthTable {
     /// The table of `piece` on `[0, 1]`, or `None` if it needs more than [`MAX_SPANS`]
-    /// sub-intervals.
+    /// sub-intervals even with the speed's rounding taken [`NOISE_RETRIES`] times larger.
     pub(crate) fn new(piece: &BezierPiece) -> Option<Self> {
-        let reference = piece.control_point(0);
-        let relative = piece.relative_to(reference);
-        let f = |t: f64| {
-            let (u, v, dx, dy) = relative.point_and_derivatives(t);
-            let ds = (dx * dx + dy * dy).sqrt();
-            [ds, u * ds, v * ds]
-        };
-        // The rounding the speed's values carry, relative to their size.
+        // The rounding the speed's values carry, relative to their size: about the weights'
+        // ratio in units of rounding; where the series' tails do not fall below that (the
+        // speed cancels more: a part halved from a strongly weighted piece, nearly straight
+        // and turning within a sliver), eight and 64 times it.
         let weights = piece.weights();
         let (wmin, wmax) = weights
             .iter()
@@ -74,6 +74,20 @@ impl ArcLengthTable {
                 (lo.min(w), hi.max(w))
             });
         let noise = 4.0 * f64::EPSILON * (wmax / wmin).max(1.0);
+        NOISE_RETRIES
+            .iter()
+            .find_map(|&k| Self::with_noise(piece, k * noise))
+    }
+
+    /// [`ArcLengthTable::new`] with the speed's rounding taken as `noise` (relative).
+    fn with_noise(piece: &BezierPiece, noise: f64) -> Option<Self> {
+        let reference = piece.control_point(0);
+        let relative = piece.relative_to(reference);
+        let f = |t: f64| {
+            let (u, v, dx, dy) = relative.point_and_derivatives(t);
+            let ds = (dx * dx + dy * dy).sqrt();
+            [ds, u * ds, v * ds]
+        };
         let mut spans = Vec::new();
         let mut stack = vec![(0.0, 1.0)];
         let mut start = [0.0; 3];

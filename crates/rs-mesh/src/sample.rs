@@ -83,8 +83,7 @@ pub fn well_spaced_points(domain: &Domain, ny: usize) -> Result<WellSpacedPoints
                 && y < bx.band.ymax
                 && let Some((t, x)) = bx.at_y(y)
             {
-                let (u0, u1) = bx.param_range;
-                hits.push((x, bx.curve, u0 + t * (u1 - u0)));
+                hits.push((x, bx.curve, bx.nurbs_parameter(t)));
             }
         }
         if hits.len() % 2 == 1 {

@@ -17,7 +17,7 @@ Limits (inputs beyond them are errors, never a crash or a hang):
   arc sweep                                     1024 turns
   SVG group nesting / XML nodes                 256 / 10^7
   --subdivisions                                1..4096, reduced so a domain has at most about
-                                                131072 boxes (536 bytes a box)
+                                                131072 boxes (544 bytes a box)
   sample --count / points from sample           10^7
   mesh vertices                                 2 x 10^6 (memory about 1 KB a vertex;
                                                 fit: 1.8 KB at degree 2, 3.8 KB at degree 5)

@@ -156,14 +156,7 @@ impl WindingField {
     /// The local parameter on piece `piece` of box `b`'s local parameter `t` (exactly 0 or 1
     /// at the piece's ends).
     fn piece_parameter(&self, piece: u32, b: &MonotoneBox, t: f64) -> f64 {
-        let (u0, u1) = b.param_range;
-        let u = if t == 0.0 {
-            u0
-        } else if t == 1.0 {
-            u1
-        } else {
-            u0 + t * (u1 - u0)
-        };
+        let u = b.nurbs_parameter(t);
         let (a, z) = self.pieces[piece as usize].knot_span();
         ((u - a) / (z - a)).clamp(0.0, 1.0)
     }
