@@ -5,8 +5,7 @@ use rs_spline::{Axis, BoundingBox, Domain, Point};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use crate::monotone_box::odds_map;
-use crate::piece::HalvedPiece;
+use crate::piece::{HalvedPiece, odds_map};
 use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
 
 /// Default most sub-boxes a monotone piece is cut into (Remark 2.1), chosen by
@@ -605,62 +604,6 @@ fn monotone_splits(piece: &BezierPiece) -> Result<Splits, PieceError> {
     Ok((merged, at_start, at_end))
 }
 
-/// A part of a monotone piece ([`balanced_parts`]): the part, the fractions of the piece's
-/// parameter it spans, and the odds factor mapping its own parameter onto that span (see
-/// [`MonotoneBox::odds`]).
-struct BalancedPart {
-    piece: BezierPiece,
-    fractions: (f64, f64),
-    odds: f64,
-}
-
-/// The most halvings [`balanced_parts`] makes of a piece: each takes about the square root of
-/// the weights' spread, so six bring the format's largest ratio, `1e12`, far below
-/// [`crate::BALANCE_RATIO`] (at most 64 parts).
-const MAX_BALANCE_HALVINGS: u32 = 6;
-
-/// A monotone piece as parts whose motion fills their parameter: the piece with its end
-/// weights balanced ([`BezierPiece::balanced`]), and, while a part's largest weight exceeds
-/// its end weights by more than [`crate::BALANCE_RATIO`] (it then moves within a sliver at
-/// both ends: a quadratic of weights `1, w, 1` stays near its middle control point for
-/// parameters between about `1 / w` and `1 - 1 / w`), the part halved and each half balanced
-/// again, at most [`MAX_BALANCE_HALVINGS`] times. An ordinary piece is one part, itself, with
-/// odds 1. Each part's odds compose its own balancing with the restriction of its parent's
-/// Mobius map to the half (whose factor is the map's slope at the half's start over the
-/// half's share of its image: `(1 + a) / 2` for the first half of a map of factor `a`,
-/// `2 a / (1 + a)` for the second).
-fn balanced_parts(piece: BezierPiece) -> Vec<BalancedPart> {
-    fn walk(
-        piece: BezierPiece,
-        fractions: (f64, f64),
-        odds: f64,
-        depth: u32,
-        out: &mut Vec<BalancedPart>,
-    ) {
-        let (piece, c) = piece.balanced();
-        let odds = odds * c;
-        let w = piece.weights();
-        let ends = w[0].min(w[w.len() - 1]);
-        let largest = w.iter().copied().fold(0.0f64, f64::max);
-        if depth >= MAX_BALANCE_HALVINGS || largest <= crate::BALANCE_RATIO * ends {
-            out.push(BalancedPart {
-                piece,
-                fractions,
-                odds,
-            });
-            return;
-        }
-        let (f0, f1) = fractions;
-        let mid = f0 + (f1 - f0) * crate::monotone_box::odds_map(odds, 0.5);
-        let (left, right) = piece.split(0.5);
-        walk(left, (f0, mid), (1.0 + odds) / 2.0, depth + 1, out);
-        walk(right, (mid, f1), 2.0 * odds / (1.0 + odds), depth + 1, out);
-    }
-    let mut out = Vec::with_capacity(1);
-    walk(piece, (0.0, 1.0), 1.0, 0, &mut out);
-    out
-}
-
 /// Split parameters with their tangency flags, and the flags at the piece's two ends.
 type Splits = (Vec<(f64, EndFlags)>, EndFlags, EndFlags);
 
@@ -697,7 +640,7 @@ fn split_piece(
             _ => param(t_prev + (t - t_prev) * f),
         };
         let mut flags = flags_prev;
-        for part in balanced_parts(monotone) {
+        for part in monotone.balanced_parts() {
             let (fa, fb) = part.fractions;
             boxes.push(MonotoneBox::new(
                 part.piece,

@@ -8,7 +8,7 @@ use smallvec::SmallVec;
 
 use crate::BezierPiece;
 use crate::chord_band::{ChordBand, halving_margin};
-use crate::piece::HalvedPiece;
+use crate::piece::{HalvedPiece, odds_map};
 
 /// How a coordinate varies along a piece, from its start to its end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,17 +66,6 @@ pub struct MonotoneBox {
     pub x_dir: Monotonicity,
     /// Direction of `y(t)`.
     pub y_dir: Monotonicity,
-}
-
-/// The fraction `tau` of `[0, 1]` whose odds `tau / (1 - tau)` are `odds` times those of `s`:
-/// `odds s / ((1 - s) + odds s)`, `s` itself when `odds` is 1 (the Mobius maps of `[0, 1]`
-/// onto itself that fix both ends; they compose by multiplying their factors).
-pub(crate) fn odds_map(odds: f64, s: f64) -> f64 {
-    if odds == 1.0 {
-        s
-    } else {
-        odds * s / ((1.0 - s) + odds * s)
-    }
 }
 
 /// Halving depth cap of [`MonotoneBox::for_cells_near`].

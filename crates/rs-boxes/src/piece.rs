@@ -18,6 +18,34 @@ use rs_spline::{Axis, Point, RationalBezier, SplineError};
 /// integrals lose digits.
 pub const BALANCE_RATIO: f64 = 1024.0;
 
+/// A part of a piece ([`BezierPiece::balanced_parts`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BalancedPart {
+    /// The part, on `[0, 1]`.
+    pub piece: BezierPiece,
+    /// The fractions of the piece's parameter it spans.
+    pub fractions: (f64, f64),
+    /// The odds factor mapping its own parameter onto that span (see
+    /// [`crate::MonotoneBox::odds`]).
+    pub odds: f64,
+}
+
+/// The most halvings [`BezierPiece::balanced_parts`] makes of a piece: each takes about the square root of
+/// the weights' spread, so six bring the format's largest ratio, `1e12`, far below
+/// [`crate::BALANCE_RATIO`] (at most 64 parts).
+const MAX_BALANCE_HALVINGS: u32 = 6;
+
+/// The fraction `tau` of `[0, 1]` whose odds `tau / (1 - tau)` are `odds` times those of `s`:
+/// `odds s / ((1 - s) + odds s)`, `s` itself when `odds` is 1 (the Mobius maps of `[0, 1]`
+/// onto itself that fix both ends; they compose by multiplying their factors).
+pub(crate) fn odds_map(odds: f64, s: f64) -> f64 {
+    if odds == 1.0 {
+        s
+    } else {
+        odds * s / ((1.0 - s) + odds * s)
+    }
+}
+
 /// Coefficients kept on the stack (degree <= 7).
 const INLINE_COEFFS: usize = 8;
 
@@ -178,6 +206,49 @@ impl BezierPiece {
             self.hy[i] *= scale(i);
         }
         (self, 2f64.powi(k))
+    }
+
+    /// The piece as parts whose motion fills their parameter: the piece with its end
+    /// weights balanced (if they differ by more than [`crate::BALANCE_RATIO`], its weights
+    /// become `w_i c^i`, `c` a power of two: the same curve), and, while a part's largest weight exceeds
+    /// its end weights by more than [`crate::BALANCE_RATIO`] (it then moves within a sliver at
+    /// both ends: a quadratic of weights `1, w, 1` stays near its middle control point for
+    /// parameters between about `1 / w` and `1 - 1 / w`), the part halved and each half balanced
+    /// again, at most six times (64 parts). An ordinary piece is one part, itself, with
+    /// odds 1. Each part's odds compose its own balancing with the restriction of its parent's
+    /// Mobius map to the half (whose factor is the map's slope at the half's start over the
+    /// half's share of its image: `(1 + a) / 2` for the first half of a map of factor `a`,
+    /// `2 a / (1 + a)` for the second).
+    pub fn balanced_parts(self) -> Vec<BalancedPart> {
+        fn walk(
+            piece: BezierPiece,
+            fractions: (f64, f64),
+            odds: f64,
+            depth: u32,
+            out: &mut Vec<BalancedPart>,
+        ) {
+            let (piece, c) = piece.balanced();
+            let odds = odds * c;
+            let w = piece.weights();
+            let ends = w[0].min(w[w.len() - 1]);
+            let largest = w.iter().copied().fold(0.0f64, f64::max);
+            if depth >= MAX_BALANCE_HALVINGS || largest <= crate::BALANCE_RATIO * ends {
+                out.push(BalancedPart {
+                    piece,
+                    fractions,
+                    odds,
+                });
+                return;
+            }
+            let (f0, f1) = fractions;
+            let mid = f0 + (f1 - f0) * odds_map(odds, 0.5);
+            let (left, right) = piece.split(0.5);
+            walk(left, (f0, mid), (1.0 + odds) / 2.0, depth + 1, out);
+            walk(right, (mid, f1), 2.0 * odds / (1.0 + odds), depth + 1, out);
+        }
+        let mut out = Vec::with_capacity(1);
+        walk(self, (0.0, 1.0), 1.0, 0, &mut out);
+        out
     }
 
     /// Moves the first control point to `p`, keeping its weight (used to make loops

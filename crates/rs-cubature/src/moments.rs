@@ -12,6 +12,7 @@
 //! is an error. Both through `rs_spline::green`, the Green's-theorem kernel cell coverage
 //! integrates with too.
 
+use rs_boxes::BezierPiece;
 use rs_contain::{FillRule, curve_boundary_signs};
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 use rs_spline::prelude::*;
@@ -57,47 +58,112 @@ fn green_integrals(
         if sign == 0.0 {
             continue;
         }
-        let p = piece.degree();
-        let polynomial = piece.is_polynomial();
-        // F_k(C(t)) y'(t): degree p (degree + 1) + p - 1.
-        let quadrature =
-            PieceRule::for_piece(polynomial, p * (degree + 2) - 1, MAX_GAUSS_NODES, abs_tol);
-        let mut integrand = MomentIntegrand {
-            piece: &piece,
-            sign,
-            per_parameter: 2.0 * p as f64,
-            antiderivatives: &mut *antiderivatives,
-            at: &mut at,
-        };
-        let got = integrate_piece(
-            &mut integrand,
-            (0.0, 1.0),
-            quadrature,
-            Jacobian::OnEachWeight,
-            &mut total,
-        );
-        if !got.converged {
-            return Err(CubatureError::MomentsNotConverged {
+        let parts = balanced_parts(&piece, curve)?;
+        for part in parts.as_deref().unwrap_or(std::slice::from_ref(&piece)) {
+            green_piece(
+                part,
                 curve,
-                error: got.error,
-            });
-        }
-        // A rational piece whose weights are spread so far (a middle weight of `1e8` and
-        // more) that it moves within a sliver of its parameter ends can have its moments'
-        // quadrature accept a wrong integral as converged (its nodes miss the motion: at
-        // degree 0 a one-node rule of weight `9e-16` for an area of `0.5`); its own area
-        // integral does not converge there, and refuses it too.
-        if !polynomial {
-            let area = piece.area_integral();
-            if !area.converged {
-                return Err(CubatureError::MomentsNotConverged {
-                    curve,
-                    error: area.error,
-                });
-            }
+                sign,
+                degree,
+                abs_tol,
+                &mut *antiderivatives,
+                &mut at,
+                &mut total,
+            )?;
         }
     }
     Ok(total)
+}
+
+/// The balanced parts of a rational piece of curve `curve` whose weights crowd its motion into
+/// slivers at its parameter ends ([`BezierPiece::balanced_parts`]: the same curve,
+/// reparametrised and halved), whose ends the adaptive rule's nodes would miss; `None` for an
+/// ordinary piece, integrated as it is, bit for bit.
+///
+/// # Errors
+/// [`CubatureError::MomentsNotConverged`] should a part not be a valid curve.
+fn balanced_parts(
+    piece: &RationalBezier,
+    curve: usize,
+) -> Result<Option<Vec<RationalBezier>>, CubatureError> {
+    if piece.is_polynomial() {
+        return Ok(None);
+    }
+    let parts = BezierPiece::from_bezier(piece).balanced_parts();
+    if matches!(&parts[..], [p] if p.odds == 1.0) {
+        return Ok(None);
+    }
+    parts
+        .iter()
+        .map(|p| {
+            p.piece
+                .to_bezier()
+                .map_err(|_| CubatureError::MomentsNotConverged {
+                    curve,
+                    error: f64::INFINITY,
+                })
+        })
+        .collect::<Result<_, _>>()
+        .map(Some)
+}
+
+/// Adds to `total` the integrals of `sign F_k(C(t)) y'(t)` along `piece` of curve `curve`
+/// ([`green_integrals`]), `at` the antiderivatives' scratch.
+///
+/// # Errors
+/// [`CubatureError::MomentsNotConverged`] if the piece's integrals, or for a rational piece
+/// its own area integral, do not converge.
+#[allow(clippy::too_many_arguments)]
+fn green_piece(
+    piece: &RationalBezier,
+    curve: usize,
+    sign: f64,
+    degree: usize,
+    abs_tol: f64,
+    antiderivatives: &mut dyn FnMut(Point, &mut [f64]) -> f64,
+    at: &mut [f64],
+    total: &mut [f64],
+) -> Result<(), CubatureError> {
+    let p = piece.degree();
+    let polynomial = piece.is_polynomial();
+    // F_k(C(t)) y'(t): degree p (degree + 1) + p - 1.
+    let quadrature =
+        PieceRule::for_piece(polynomial, p * (degree + 2) - 1, MAX_GAUSS_NODES, abs_tol);
+    let mut integrand = MomentIntegrand {
+        piece,
+        sign,
+        per_parameter: 2.0 * p as f64,
+        antiderivatives,
+        at,
+    };
+    let got = integrate_piece(
+        &mut integrand,
+        (0.0, 1.0),
+        quadrature,
+        Jacobian::OnEachWeight,
+        total,
+    );
+    if !got.converged {
+        return Err(CubatureError::MomentsNotConverged {
+            curve,
+            error: got.error,
+        });
+    }
+    // A rational piece whose weights are spread so far that it moves within a sliver of its
+    // parameter ends can have its moments' quadrature accept a wrong integral as converged
+    // (its nodes miss the motion: at degree 0 a one-node rule of weight `9e-16` for an area
+    // of `0.5`, before such pieces were balanced); its own area integral does not converge
+    // there, and refuses it too.
+    if !polynomial {
+        let area = piece.area_integral();
+        if !area.converged {
+            return Err(CubatureError::MomentsNotConverged {
+                curve,
+                error: area.error,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// `sign F_k(C(t)) y'(t)` along one Bezier piece of a loop whose boundary sign is `sign`.
