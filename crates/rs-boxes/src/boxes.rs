@@ -5,8 +5,9 @@ use rs_spline::{Axis, BoundingBox, Domain, Point};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use crate::piece::{HalvedPiece, odds_map};
+use crate::piece::HalvedPiece;
 use crate::{BezierPiece, BoxError, MonotoneBox, Monotonicity, PieceError};
+use rs_spline::odds_map;
 
 /// Default most sub-boxes a monotone piece is cut into (Remark 2.1), chosen by
 /// measurement (`cargo xtask bench --sweep`, table in the README). Smaller boxes let most points
@@ -282,7 +283,8 @@ impl MonotoneBoxes {
     }
 
     /// The monotone pieces, one box each, loop by loop in boundary order (built by
-    /// [`MonotoneBoxes::new`]).
+    /// [`MonotoneBoxes::new`]); a strongly weighted one as its balanced parts
+    /// ([`BezierPiece::balanced_parts`]).
     pub fn pieces(&self) -> &[MonotoneBox] {
         &self.pieces
     }
@@ -611,8 +613,9 @@ fn or(a: EndFlags, b: EndFlags) -> EndFlags {
     (a.0 || b.0, a.1 || b.1)
 }
 
-/// Cuts `piece` at `splits` into monotone pieces, pushing one box for each, its refinement
-/// record (count still to be set) and the tangency flags at its start.
+/// Cuts `piece` at `splits` into monotone pieces, pushing one box for each (for each of its
+/// balanced parts, [`BezierPiece::balanced_parts`], where strong weights crowd its ends), its
+/// refinement record (count still to be set) and the tangency flags at its start.
 #[allow(clippy::too_many_arguments)]
 fn split_piece(
     piece: BezierPiece,

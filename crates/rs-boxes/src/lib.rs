@@ -32,4 +32,4 @@ pub use chord_band::ChordBand;
 pub use error::{BoxError, PieceError};
 pub use grid::BoxGrid;
 pub use monotone_box::{MonotoneBox, Monotonicity};
-pub use piece::{BALANCE_RATIO, BalancedPart, BezierPiece, RelativePiece};
+pub use piece::{BalancedPart, BezierPiece, RelativePiece};

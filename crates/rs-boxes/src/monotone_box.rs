@@ -8,7 +8,8 @@ use smallvec::SmallVec;
 
 use crate::BezierPiece;
 use crate::chord_band::{ChordBand, halving_margin};
-use crate::piece::{HalvedPiece, odds_map};
+use crate::piece::HalvedPiece;
+use rs_spline::odds_map;
 
 /// How a coordinate varies along a piece, from its start to its end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,7 +57,7 @@ pub struct MonotoneBox {
     /// How the piece's parameter `s` maps onto `param_range` ([`MonotoneBox::nurbs_parameter`]):
     /// the odds `tau / (1 - tau)` of the fraction `tau` of the range are `odds` times
     /// `s / (1 - s)`. 1 (the map is linear) unless the piece was reparametrised to balance
-    /// its end weights ([`crate::BALANCE_RATIO`]).
+    /// its end weights ([`rs_spline::BALANCE_RATIO`]).
     pub odds: f64,
     /// The piece's end points `C(u0)`, `C(u1)`, their rectangle `[xmin, xmax] x [ymin, ymax]`
     /// (the box), and the band round its chord that decides most containment queries without a

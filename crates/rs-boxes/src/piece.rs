@@ -9,14 +9,7 @@ use rs_roots::{
 };
 use smallvec::SmallVec;
 
-use rs_spline::{Axis, Point, RationalBezier, SplineError};
-
-/// End-weight ratio above which a monotone piece is reparametrised to equal end weights (its
-/// weights `w_i` become `w_i c^i` for a power of two `c`, the same curve; see
-/// [`crate::MonotoneBox::odds`]): `2^10`, far above the ratios of conics and ordinary NURBS
-/// (whose pieces so keep their parametrisation), far below the `1e7` from which a piece's
-/// integrals lose digits.
-pub const BALANCE_RATIO: f64 = 1024.0;
+use rs_spline::{Axis, Point, RationalBezier, SplineError, odds_map};
 
 /// A part of a piece ([`BezierPiece::balanced_parts`]).
 #[derive(Clone, Debug, PartialEq)]
@@ -28,22 +21,6 @@ pub struct BalancedPart {
     /// The odds factor mapping its own parameter onto that span (see
     /// [`crate::MonotoneBox::odds`]).
     pub odds: f64,
-}
-
-/// The most halvings [`BezierPiece::balanced_parts`] makes of a piece: each takes about the square root of
-/// the weights' spread, so six bring the format's largest ratio, `1e12`, far below
-/// [`crate::BALANCE_RATIO`] (at most 64 parts).
-const MAX_BALANCE_HALVINGS: u32 = 6;
-
-/// The fraction `tau` of `[0, 1]` whose odds `tau / (1 - tau)` are `odds` times those of `s`:
-/// `odds s / ((1 - s) + odds s)`, `s` itself when `odds` is 1 (the Mobius maps of `[0, 1]`
-/// onto itself that fix both ends; they compose by multiplying their factors).
-pub(crate) fn odds_map(odds: f64, s: f64) -> f64 {
-    if odds == 1.0 {
-        s
-    } else {
-        odds * s / ((1.0 - s) + odds * s)
-    }
 }
 
 /// Coefficients kept on the stack (degree <= 7).
@@ -172,35 +149,25 @@ impl BezierPiece {
         self.control_point(self.degree())
     }
 
-    /// The piece with its end weights balanced when they differ by more than
-    /// [`BALANCE_RATIO`], and the factor `c` of the reparametrisation: the weights become
-    /// `w_i c^i` (`c` the power of two nearest `(w_0 / w_n)^(1/n)`, so every weight and
-    /// homogeneous coefficient is scaled exactly and the control points are unchanged), and
-    /// the new piece at `s` is the old one at `t = c s / ((1 - s) + c s)` (the odds
-    /// `t / (1 - t)` are `c` times `s / (1 - s)`): the same curve, whose motion no longer
-    /// crowds into a sliver at one parameter end, where the parameter's own resolution and an
-    /// adaptive integral would lose it (a quadratic of weights `1, w, 1` cut at its apex: each
-    /// half moves within `1 / w` of one end). `c = 1` (the piece untouched) below the ratio,
-    /// so ordinary pieces keep their parametrisation bit for bit.
+    /// The piece with its end weights balanced (`rs_spline::balancing_exponent`'s rule), and
+    /// the factor `c` of the reparametrisation: the weights and homogeneous coefficients become
+    /// `w_i c^i` times theirs (`c` a power of two: scaled exactly, the control points
+    /// unchanged), and the new piece at `s` is the old one at `t = c s / ((1 - s) + c s)` (the
+    /// odds `t / (1 - t)` are `c` times `s / (1 - s)`). `c = 1` (the piece untouched) for
+    /// ends within [`rs_spline::BALANCE_RATIO`], or when a scaled value would leave the normal
+    /// range.
     pub(crate) fn balanced(mut self) -> (Self, f64) {
-        let n = self.degree();
-        let ratio = self.w[0] / self.w[n];
-        if n == 0 || (1.0 / BALANCE_RATIO..=BALANCE_RATIO).contains(&ratio) {
-            return (self, 1.0);
-        }
-        // |log2 ratio| < 2^11, so `k i` stays far inside `powi`'s range. Weights so far apart
-        // that a scaled one would leave the normal range keep the piece as it is.
-        let k = (ratio.log2() / n as f64).round() as i32;
+        let k = rs_spline::balancing_exponent(&self.w);
         let scale = |i: usize| 2f64.powi(k * i as i32);
-        let normal = (0..=n).all(|i| {
+        let normal = (0..self.w.len()).all(|i| {
             [self.w[i], self.hx[i], self.hy[i]]
                 .iter()
                 .all(|&v| v == 0.0 || (v * scale(i)).is_normal())
         });
-        if !normal {
+        if k == 0 || !normal {
             return (self, 1.0);
         }
-        for i in 0..=n {
+        for i in 0..self.w.len() {
             self.w[i] *= scale(i);
             self.hx[i] *= scale(i);
             self.hy[i] *= scale(i);
@@ -208,17 +175,15 @@ impl BezierPiece {
         (self, 2f64.powi(k))
     }
 
-    /// The piece as parts whose motion fills their parameter: the piece with its end
-    /// weights balanced (if they differ by more than [`crate::BALANCE_RATIO`], its weights
-    /// become `w_i c^i`, `c` a power of two: the same curve), and, while a part's largest weight exceeds
-    /// its end weights by more than [`crate::BALANCE_RATIO`] (it then moves within a sliver at
-    /// both ends: a quadratic of weights `1, w, 1` stays near its middle control point for
-    /// parameters between about `1 / w` and `1 - 1 / w`), the part halved and each half balanced
-    /// again, at most six times (64 parts). An ordinary piece is one part, itself, with
-    /// odds 1. Each part's odds compose its own balancing with the restriction of its parent's
-    /// Mobius map to the half (whose factor is the map's slope at the half's start over the
-    /// half's share of its image: `(1 + a) / 2` for the first half of a map of factor `a`,
-    /// `2 a / (1 + a)` for the second).
+    /// The piece as parts whose motion fills their parameter, by `rs_spline::balance`'s rules
+    /// (as [`RationalBezier::balanced_parts`] cuts a Bezier piece): its end weights balanced,
+    /// and, while a part [`crowds its ends`](rs_spline::crowds_ends), the part halved and each
+    /// half balanced again, at most [`rs_spline::MAX_BALANCE_HALVINGS`] times. An ordinary
+    /// piece is one part, itself, with odds 1. Each part also carries the fractions of this
+    /// piece's parameter it spans and its odds, which compose its own balancing with the
+    /// restriction of its parent's Mobius map to the half (whose factor is the map's slope at
+    /// the half's start over the half's share of its image: `(1 + a) / 2` for the first half
+    /// of a map of factor `a`, `2 a / (1 + a)` for the second).
     pub fn balanced_parts(self) -> Vec<BalancedPart> {
         fn walk(
             piece: BezierPiece,
@@ -229,10 +194,8 @@ impl BezierPiece {
         ) {
             let (piece, c) = piece.balanced();
             let odds = odds * c;
-            let w = piece.weights();
-            let ends = w[0].min(w[w.len() - 1]);
-            let largest = w.iter().copied().fold(0.0f64, f64::max);
-            if depth >= MAX_BALANCE_HALVINGS || largest <= crate::BALANCE_RATIO * ends {
+            if depth >= rs_spline::MAX_BALANCE_HALVINGS || !rs_spline::crowds_ends(piece.weights())
+            {
                 out.push(BalancedPart {
                     piece,
                     fractions,

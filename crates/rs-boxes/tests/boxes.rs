@@ -500,7 +500,7 @@ fn balanced_boxes_map_their_parameters_onto_the_curve() {
                 for b in &on_arc {
                     let w = b.piece().weights();
                     let ends = w[0].min(w[w.len() - 1]);
-                    assert!(w.iter().all(|&x| x <= rs_boxes::BALANCE_RATIO * ends));
+                    assert!(w.iter().all(|&x| x <= rs_spline::BALANCE_RATIO * ends));
                 }
             }
             for b in &on_arc {

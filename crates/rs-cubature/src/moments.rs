@@ -12,7 +12,6 @@
 //! is an error. Both through `rs_spline::green`, the Green's-theorem kernel cell coverage
 //! integrates with too.
 
-use rs_boxes::BezierPiece;
 use rs_contain::{FillRule, curve_boundary_signs};
 use rs_spline::green::{Jacobian, PieceIntegrand, PieceRule, integrate_piece};
 use rs_spline::prelude::*;
@@ -58,7 +57,10 @@ fn green_integrals(
         if sign == 0.0 {
             continue;
         }
-        let parts = balanced_parts(&piece, curve)?;
+        // A strongly weighted piece as its balanced parts (the same curve, reparametrised and
+        // halved: the adaptive rule's nodes would miss the slivers it moves in); an ordinary
+        // piece as it is, bit for bit.
+        let parts = piece.balanced_parts();
         for part in parts.as_deref().unwrap_or(std::slice::from_ref(&piece)) {
             green_piece(
                 part,
@@ -73,38 +75,6 @@ fn green_integrals(
         }
     }
     Ok(total)
-}
-
-/// The balanced parts of a rational piece of curve `curve` whose weights crowd its motion into
-/// slivers at its parameter ends ([`BezierPiece::balanced_parts`]: the same curve,
-/// reparametrised and halved), whose ends the adaptive rule's nodes would miss; `None` for an
-/// ordinary piece, integrated as it is, bit for bit.
-///
-/// # Errors
-/// [`CubatureError::MomentsNotConverged`] should a part not be a valid curve.
-fn balanced_parts(
-    piece: &RationalBezier,
-    curve: usize,
-) -> Result<Option<Vec<RationalBezier>>, CubatureError> {
-    if piece.is_polynomial() {
-        return Ok(None);
-    }
-    let parts = BezierPiece::from_bezier(piece).balanced_parts();
-    if matches!(&parts[..], [p] if p.odds == 1.0) {
-        return Ok(None);
-    }
-    parts
-        .iter()
-        .map(|p| {
-            p.piece
-                .to_bezier()
-                .map_err(|_| CubatureError::MomentsNotConverged {
-                    curve,
-                    error: f64::INFINITY,
-                })
-        })
-        .collect::<Result<_, _>>()
-        .map(Some)
 }
 
 /// Adds to `total` the integrals of `sign F_k(C(t)) y'(t)` along `piece` of curve `curve`

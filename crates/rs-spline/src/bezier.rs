@@ -124,6 +124,53 @@ impl RationalBezier {
         self.range
     }
 
+    /// The piece as parts whose motion fills their parameter (the rules of `balance.rs`,
+    /// [`crate::BALANCE_RATIO`]): its end weights balanced
+    /// ([`balancing_exponent`](crate::balancing_exponent)) and, while a part
+    /// [`crowds_ends`](crate::crowds_ends), the part halved and each half balanced again,
+    /// at most [`MAX_BALANCE_HALVINGS`](crate::MAX_BALANCE_HALVINGS) times: the same curve, in
+    /// order. `None` for a piece that is its own one part (every ordinary piece).
+    pub fn balanced_parts(&self) -> Option<Vec<Self>> {
+        fn walk(piece: RationalBezier, depth: u32, out: &mut Vec<RationalBezier>) {
+            let piece = piece.balanced();
+            if depth >= crate::MAX_BALANCE_HALVINGS || !crate::crowds_ends(&piece.weights) {
+                out.push(piece);
+                return;
+            }
+            let (left, right) = piece.split_unchecked(0.5);
+            walk(left, depth + 1, out);
+            walk(right, depth + 1, out);
+        }
+        if self.is_polynomial()
+            || (crate::balancing_exponent(&self.weights) == 0 && !crate::crowds_ends(&self.weights))
+        {
+            return None;
+        }
+        let mut out = Vec::new();
+        walk(self.clone(), 0, &mut out);
+        Some(out)
+    }
+
+    /// The same curve with its end weights balanced: weights `w_i 2^(k i)`,
+    /// [`balancing_exponent`](crate::balancing_exponent)'s `k` (itself when 0, or when a scaled
+    /// weight would leave the normal range).
+    fn balanced(mut self) -> Self {
+        let k = crate::balancing_exponent(&self.weights);
+        let scale = |i: usize| 2f64.powi(k * i as i32);
+        if k != 0
+            && self
+                .weights
+                .iter()
+                .enumerate()
+                .all(|(i, w)| (w * scale(i)).is_normal())
+        {
+            for (i, w) in self.weights.iter_mut().enumerate() {
+                *w *= scale(i);
+            }
+        }
+        self
+    }
+
     /// Splits at local `t` in `[0, 1]` (one de Casteljau pass in homogeneous coordinates) into
     /// the pieces on `[0, t]` and `[t, 1]`, each reparametrised to `[0, 1]`, with the knot span
     /// split accordingly. Total on `[0, 1]`; [`ParamCurve::split_at`] is the checked form.
@@ -343,6 +390,15 @@ impl ParamCurveDeriv for RationalBezier {
 }
 
 impl ParamCurveArea for RationalBezier {
+    /// Over a strongly weighted piece, the sum over its balanced parts
+    /// ([`RationalBezier::balanced_parts`]), whose motion the adaptive rule follows.
+    fn area_integral(&self) -> Integral {
+        match self.balanced_parts() {
+            None => self.area_integral_on(0.0, 1.0),
+            Some(parts) => parts.iter().map(|p| p.area_integral_on(0.0, 1.0)).sum(),
+        }
+    }
+
     fn area_integral_on(&self, t0: f64, t1: f64) -> Integral {
         let scale = self.control_bounding_box().diagonal().powi(2);
         // The rounding magnitude of `x y' - y x'`: `|C|` times that of `C'` (a small piece far

@@ -53,6 +53,7 @@
 
 mod affine;
 mod arc;
+mod balance;
 mod bezier;
 mod bezier_extraction;
 mod crossing;
@@ -79,6 +80,7 @@ mod vector;
 
 pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
+pub use balance::{BALANCE_RATIO, MAX_BALANCE_HALVINGS, balancing_exponent, crowds_ends, odds_map};
 pub use bezier::RationalBezier;
 pub use crossing::{certain_crossing, closed_in_crossing};
 pub use curve::{

@@ -1,0 +1,61 @@
+//! Rational pieces whose weights crowd their motion into slivers at their parameter ends, and
+//! the reparametrisation that spreads it out again: **the** decision, shared by the Bezier
+//! pieces here ([`RationalBezier::balanced_parts`](crate::RationalBezier::balanced_parts)) and
+//! the monotone boxes of `rs-boxes`.
+//!
+//! A rational piece of weights `w_i` is the same curve with weights `w_i c^i` for any `c > 0`
+//! (a Mobius reparametrisation: the new piece at `s` is the old one at
+//! `t = c s / ((1 - s) + c s)`); with `c` a power of two every weight is scaled exactly. A
+//! piece whose end weights differ greatly moves within a sliver at one parameter end, and one
+//! whose inner weights dwarf both ends (a quadratic of weights `1, w, 1` stays near its middle
+//! control point for parameters between about `1 / w` and `1 - 1 / w`) at both: there an
+//! adaptive rule started from Gauss nodes does not look, and near `t = 1` the parameter's own
+//! resolution is too coarse. Balanced end weights and halving fix both.
+
+/// End-weight ratio above which a piece is reparametrised to equal end weights, and the ratio
+/// of its largest weight to its end weights above which it is halved: `2^10`, far above the
+/// ratios of conics and ordinary NURBS (whose pieces so keep their parametrisation), far below
+/// the `1e7` from which a piece's integrals lose digits.
+pub const BALANCE_RATIO: f64 = 1024.0;
+
+/// The most halvings of a piece: each takes about the square root of the weights' spread, so
+/// six bring the format's largest ratio, `1e12`, far below [`BALANCE_RATIO`] (at most 64
+/// parts).
+pub const MAX_BALANCE_HALVINGS: u32 = 6;
+
+/// The exponent `k` that balances `weights` (of a piece of degree `n = len - 1 >= 1`): with
+/// `c = 2^k` the power of two nearest `(w_0 / w_n)^(1/n)`, the weights `w_i c^i` have end
+/// weights within `2^(n/2)` of each other. 0 when the end weights are within
+/// [`BALANCE_RATIO`] of each other (the piece is left as it is).
+pub fn balancing_exponent(weights: &[f64]) -> i32 {
+    let n = weights.len().saturating_sub(1);
+    if n == 0 {
+        return 0;
+    }
+    let ratio = weights[0] / weights[n];
+    if (1.0 / BALANCE_RATIO..=BALANCE_RATIO).contains(&ratio) {
+        return 0;
+    }
+    // |log2 ratio| < 2^11 for positive normal weights, so `k i` stays inside `powi`'s range.
+    (ratio.log2() / n as f64).round() as i32
+}
+
+/// Whether the largest of `weights` exceeds the smaller end weight by more than
+/// [`BALANCE_RATIO`]: a piece (with balanced ends) that moves within slivers at both ends,
+/// to be halved.
+pub fn crowds_ends(weights: &[f64]) -> bool {
+    let ends = weights[0].min(weights[weights.len() - 1]);
+    let largest = weights.iter().copied().fold(0.0f64, f64::max);
+    largest > BALANCE_RATIO * ends
+}
+
+/// The fraction `tau` of `[0, 1]` whose odds `tau / (1 - tau)` are `odds` times those of `s`:
+/// `odds s / ((1 - s) + odds s)`, `s` itself when `odds` is 1 (the Mobius maps of `[0, 1]`
+/// onto itself that fix both ends; they compose by multiplying their factors).
+pub fn odds_map(odds: f64, s: f64) -> f64 {
+    if odds == 1.0 {
+        s
+    } else {
+        odds * s / ((1.0 - s) + odds * s)
+    }
+}
