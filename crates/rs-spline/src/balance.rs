@@ -32,12 +32,14 @@ pub fn balancing_exponent(weights: &[f64]) -> i32 {
     if n == 0 {
         return 0;
     }
-    let ratio = weights[0] / weights[n];
-    if (1.0 / BALANCE_RATIO..=BALANCE_RATIO).contains(&ratio) {
+    // The ratio's logarithm as a difference (the ratio itself of weights `1e-300` and `1e300`
+    // would underflow): within 2^11 for positive weights, so `|k i| <= |log2 ratio| + n / 2`
+    // stays inside `powi`'s range whatever the degree.
+    let log_ratio = weights[0].log2() - weights[n].log2();
+    if !log_ratio.is_finite() || log_ratio.abs() <= BALANCE_RATIO.log2() {
         return 0;
     }
-    // |log2 ratio| < 2^11 for positive normal weights, so `k i` stays inside `powi`'s range.
-    (ratio.log2() / n as f64).round() as i32
+    (log_ratio / n as f64).round() as i32
 }
 
 /// Whether the largest of `weights` exceeds the smaller end weight by more than
@@ -57,5 +59,53 @@ pub fn odds_map(odds: f64, s: f64) -> f64 {
         s
     } else {
         odds * s / ((1.0 - s) + odds * s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Ends within the ratio stay; beyond it the exponent balances them within `2^(n/2)`,
+    /// however far apart the weights (no overflow of the ratio or of `k i`); a middle weight
+    /// that dwarfs both ends crowds them.
+    #[test]
+    fn exponents_balance_any_positive_weights() {
+        assert_eq!(balancing_exponent(&[1.0, 0.7, 1.0]), 0);
+        assert_eq!(balancing_exponent(&[1.0, 5.0, 1000.0]), 0);
+        assert_eq!(balancing_exponent(&[1.0]), 0);
+        for w in [
+            vec![1.0, 1.0, 4096.0],
+            vec![1e-300, 1.0, 1e300],
+            vec![1e300, 1.0, 1e-300],
+            vec![f64::MIN_POSITIVE / 1e10, 2.0, 3.0, f64::MAX],
+        ] {
+            let n = w.len() - 1;
+            let k = balancing_exponent(&w);
+            // The new end weights are `w_0` and `w_n 2^(k n)`.
+            let log_ratio = w[0].log2() - w[n].log2() - f64::from(k) * n as f64;
+            assert!(log_ratio.abs() <= n as f64 / 2.0, "{w:?}: k {k}");
+        }
+        assert!(crowds_ends(&[1.0, 1e4, 1.0]));
+        assert!(!crowds_ends(&[1.0, 1000.0, 2.0]));
+        // Weights as far apart as a curve may have them (`limits::MAX_WEIGHT_RATIO`): the parts
+        // are bounded (at most 64) and the area converges.
+        use crate::ParamCurveArea;
+        for w in [
+            vec![1.0, 1e12, 1.0],
+            vec![1e-6, 1.0, 1e6],
+            vec![1e6, 1e-6, 1.0],
+        ] {
+            let p = crate::Point::new;
+            let piece =
+                crate::RationalBezier::new(vec![p(0.0, 0.0), p(0.5, 1.0), p(1.0, 0.0)], w.clone())
+                    .unwrap();
+            let parts = piece.balanced_parts().unwrap();
+            assert!(!parts.is_empty() && parts.len() <= 64, "{w:?}");
+            let area = piece.area_integral();
+            assert!(area.converged && area.value.is_finite(), "{w:?}: {area:?}");
+        }
+        assert_eq!(odds_map(1.0, 0.3), 0.3);
+        assert!((odds_map(4.0, 0.5) - 0.8).abs() < 1e-16);
     }
 }
