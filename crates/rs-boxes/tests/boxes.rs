@@ -5,7 +5,7 @@ use rs_spline::prelude::*;
 use std::f64::consts::PI;
 
 use rs_boxes::{BOXES_PER_DIAGONAL, BoxOptions, CriticalKind, MonotoneBoxes, Monotonicity};
-use rs_spline::{Domain, NurbsCurve, Point, circle, circular_arc, polyline, segment};
+use rs_spline::{Domain, Point, circle, circular_arc, polyline, segment};
 
 fn all_domains() -> Vec<(String, Domain)> {
     let mut v = rs_testkit::fixtures();
@@ -469,20 +469,8 @@ fn tangency_roots_are_the_analytic_ones() {
 #[test]
 fn balanced_boxes_map_their_parameters_onto_the_curve() {
     for (w, tol) in [(1e4, 1e-11), (1e10, 1e-5)] {
-        let arc = NurbsCurve::bezier(
-            vec![
-                Point::new(0.0, 0.0),
-                Point::new(0.5, 1.0),
-                Point::new(1.0, 0.0),
-            ],
-            Some(vec![1.0, w, 1.0]),
-        )
-        .unwrap();
-        let d = Domain::new(vec![
-            arc.clone(),
-            polyline(&[Point::new(1.0, 0.0), Point::new(0.0, 0.0)]).unwrap(),
-        ])
-        .unwrap();
+        let d = rs_testkit::weighted_arc(w);
+        let arc = &d.curves()[0];
         for most in [1, 5] {
             let mb = MonotoneBoxes::new(&d, BoxOptions::DEFAULT.with_subdivisions(most)).unwrap();
             let on_arc: Vec<_> = mb.boxes().iter().filter(|b| b.curve == 0).collect();

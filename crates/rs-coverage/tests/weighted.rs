@@ -1,23 +1,8 @@
 //! Cell fractions over strongly weighted rational pieces against 20-digit areas.
 
 use rs_coverage::{CellGrid, CoverageOptions, GridCoverage};
-use rs_spline::{Domain, NurbsCurve, Point, polyline};
-
-/// The Bezier curve on `points` from `(0, 0)` to `(1, 0)` with `weights`, closed by its chord.
-fn closed_by_chord(points: &[(f64, f64)], weights: &[f64]) -> Domain {
-    let p = Point::new;
-    let arc = NurbsCurve::bezier(
-        points.iter().map(|&(x, y)| p(x, y)).collect(),
-        Some(weights.to_vec()),
-    )
-    .unwrap();
-    Domain::new(vec![arc, polyline(&[p(1.0, 0.0), p(0.0, 0.0)]).unwrap()]).unwrap()
-}
-
-/// The quadratic `(0, 0), (1/2, 1), (1, 0)` with weights `1, w, 1`, closed by its chord.
-fn weighted_arc(w: f64) -> Domain {
-    closed_by_chord(&[(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)], &[1.0, w, 1.0])
-}
+use rs_spline::Domain;
+use rs_testkit::{closed_by_chord, weighted_arc};
 
 /// The covered area of `d` on `cells`^2 cells over `[-1/2, 3/2]^2`, every fraction checked
 /// within `[0, 1]`.

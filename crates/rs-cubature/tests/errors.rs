@@ -166,16 +166,6 @@ fn a_wrong_number_of_values_is_refused() {
     one_line(&e);
 }
 
-/// The quadratic `(0, 0), (1/2, 1), (1, 0)` with weights `1, w, 1`, closed by its chord.
-fn weighted_arc(w: f64) -> Domain {
-    let arc = rs_spline::NurbsCurve::bezier(
-        vec![p(0.0, 0.0), p(0.5, 1.0), p(1.0, 0.0)],
-        Some(vec![1.0, w, 1.0]),
-    )
-    .unwrap();
-    Domain::new(vec![arc, polyline(&[p(1.0, 0.0), p(0.0, 0.0)]).unwrap()]).unwrap()
-}
-
 /// Weights spread so far (a middle weight of `1e8` and more) that the piece moves within
 /// `1 / w` of its parameter ends: its moments' quadrature once accepted a wrong area there (a
 /// degree-0 rule of weight `9e-16` for an area of `0.5`), then such pieces were refused; now
@@ -192,7 +182,7 @@ fn strongly_weighted_pieces_are_integrated_as_balanced_parts() {
         (1e12, 0.5),
     ] {
         for degree in [0, 1, 4, 10] {
-            let rule = CubatureRule::new(&weighted_arc(w), degree)
+            let rule = CubatureRule::new(&rs_testkit::weighted_arc(w), degree)
                 .unwrap_or_else(|e| panic!("w {w:e}, degree {degree}: {e}"));
             assert!(rule.weights().iter().all(|&x| x > 0.0));
             let sum: f64 = rule.weights().iter().sum();

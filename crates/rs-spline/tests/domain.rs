@@ -1,7 +1,7 @@
 //! Domains: loops close within the closure tolerance only; holes and components.
 
 use rs_spline::prelude::*;
-use rs_spline::{Domain, DomainError, NurbsCurve, Point, circle, polyline, segment};
+use rs_spline::{Domain, DomainError, NurbsCurve, Point, circle, segment};
 
 #[test]
 fn loops_close_within_tolerance_only() {
@@ -104,22 +104,11 @@ fn the_open_loop_error_names_the_two_curves_that_miss() {
 #[test]
 fn strongly_weighted_pieces_have_their_areas() {
     let p = Point::new;
-    let closed = |pts: Vec<Point>, w: Vec<f64>| {
-        let end = pts[pts.len() - 1];
-        let start = pts[0];
-        let arc = NurbsCurve::bezier(pts, Some(w)).unwrap();
-        Domain::new(vec![arc, polyline(&[end, start]).unwrap()]).unwrap()
-    };
-    let quadratic = |w: f64| {
-        closed(
-            vec![p(0.0, 0.0), p(0.5, 1.0), p(1.0, 0.0)],
-            vec![1.0, w, 1.0],
-        )
-    };
+    let quadratic = rs_testkit::weighted_arc;
     let cubic = |w: f64| {
-        closed(
-            vec![p(0.0, 0.0), p(0.3, 1.0), p(0.8, 1.2), p(1.0, 0.0)],
-            vec![1.0, w, 1.0, 1.0],
+        rs_testkit::closed_by_chord(
+            &[(0.0, 0.0), (0.3, 1.0), (0.8, 1.2), (1.0, 0.0)],
+            &[1.0, w, 1.0, 1.0],
         )
     };
     for (d, area) in [

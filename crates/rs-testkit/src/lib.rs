@@ -246,6 +246,21 @@ pub fn lens() -> Case {
     )
 }
 
+/// The Bezier curve on `points` (from the first to the last) with `weights`, closed by the
+/// segment from its end back to its start: the strongly weighted test domains.
+pub fn closed_by_chord(points: &[(f64, f64)], weights: &[f64]) -> Domain {
+    let pts: Vec<Point> = points.iter().map(|&(x, y)| Point::new(x, y)).collect();
+    let (start, end) = (pts[0], pts[pts.len() - 1]);
+    let arc = NurbsCurve::bezier(pts, Some(weights.to_vec())).unwrap();
+    Domain::new(vec![arc, polyline(&[end, start]).unwrap()]).unwrap()
+}
+
+/// The quadratic `(0, 0), (1/2, 1), (1, 0)` with weights `1, w, 1`, closed by its chord: a
+/// middle weight `w` moves it within about `1 / w` of its parameter ends.
+pub fn weighted_arc(w: f64) -> Domain {
+    closed_by_chord(&[(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)], &[1.0, w, 1.0])
+}
+
 /// A closed periodic rational B-spline of `degree` around a star-shaped control polygon.
 pub fn periodic_spline(degree: usize, n: usize) -> Case {
     let mut pts = Vec::new();
