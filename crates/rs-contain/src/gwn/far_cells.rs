@@ -25,7 +25,9 @@ use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::curve::{Halve, SmallPolynomial, SubCurve, control_box};
-use super::split_cells::{MOST_LISTED, RootedSub, SplitCells, Step, steps_at, steps_of};
+use super::split_cells::{
+    MOST_LISTED, QuickTests, RootedSub, SplitCells, Step, steps_at, steps_of,
+};
 
 /// Cells per side: `2^8` (256 KiB of counts). On the GWN paper's shapes, random points of the
 /// shapes' boxes took 0.87-0.95 of the time at `2^8` they took at `2^7` (where 54-82% of them
@@ -102,6 +104,11 @@ struct LazySplits {
     walks: AtomicUsize,
     /// The split cells are made once `walks` reaches this.
     after: usize,
+    /// The split cells' side tests, made once `split_queries` reaches
+    /// [`QUICK_AFTER_QUERIES_PER_ENTRY`] per entry.
+    quick: OnceLock<QuickTests>,
+    /// Queries the split cells answered so far.
+    split_queries: AtomicUsize,
 }
 
 impl Clone for LazySplits {
@@ -110,9 +117,17 @@ impl Clone for LazySplits {
             made: self.made.clone(),
             walks: AtomicUsize::new(self.walks.load(Ordering::Relaxed)),
             after: self.after,
+            quick: self.quick.clone(),
+            split_queries: AtomicUsize::new(self.split_queries.load(Ordering::Relaxed)),
         }
     }
 }
+
+/// Queries answered by the split cells, per entry of theirs, after which their side tests
+/// are made: a test costs about two microseconds to make (butterfly: 14,412 entries, about 30
+/// ms), and saves a query in its cell about two hundredths of one, so the tests are made once
+/// the queries they would have saved (about a hundred a test) would have paid for them.
+const QUICK_AFTER_QUERIES_PER_ENTRY: usize = 64;
 
 /// The counts with the split cells marked in them (`SPLIT_FIRST + s` for split cell `s`), and
 /// the split cells.
@@ -204,13 +219,14 @@ impl FarCells {
     }
 
     /// The crossings the walk counts at `q`, if `q` lies in a far cell, or in a split cell whose
-    /// sub-curves' roots decide them.
+    /// sub-curves' roots (or side tests) decide them; a query in a split cell adds one to
+    /// `split_queries`.
     #[inline(always)]
-    pub(super) fn crossings(&self, q: Point) -> Option<i64> {
+    pub(super) fn crossings(&self, q: Point, split_queries: &mut usize) -> Option<i64> {
         let i = self.cell(q)?;
         match self.split.made.get() {
             None => Some(self.counts[i]).filter(|&k| k != NEAR).map(i64::from),
-            Some(s) => s.crossings(i, q, self.reach),
+            Some(s) => s.crossings(i, q, self.reach, self.split.quick.get(), split_queries),
         }
     }
 
@@ -218,9 +234,27 @@ impl FarCells {
     /// once they reach [`SPLIT_AFTER_WALKS_PER_NEAR_CELL`] per near cell, the split cells are
     /// made (by the call that reaches that count) for the field's `pieces` (those the grid was
     /// made for).
-    pub(super) fn note_walks(&self, n: usize, pieces: &[RationalBezier]) {
+    ///
+    /// Once the split cells are made, `split_queries` (the queries they answered) count
+    /// towards their side tests ([`QUICK_AFTER_QUERIES_PER_ENTRY`]).
+    pub(super) fn note_walks(&self, n: usize, split_queries: usize, pieces: &[RationalBezier]) {
         let split = &self.split;
-        if n == 0 || split.made.get().is_some() {
+        if let Some(made) = split.made.get() {
+            if split_queries == 0 || split.quick.get().is_some() {
+                return;
+            }
+            let after = QUICK_AFTER_QUERIES_PER_ENTRY.saturating_mul(made.cells.entry_count());
+            let before = split
+                .split_queries
+                .fetch_add(split_queries, Ordering::Relaxed);
+            if before < after && before.saturating_add(split_queries) >= after {
+                split
+                    .quick
+                    .get_or_init(|| made.cells.quick_tests(self.reach));
+            }
+            return;
+        }
+        if n == 0 {
             return;
         }
         // Only the call that brings the count to the threshold makes them; others, meanwhile,
@@ -590,7 +624,7 @@ impl FarCells {
         let mut base = None;
         for f in [0.5, 0.25, 0.75] {
             let e = side(f);
-            let at_a = made.crossings(a, e, self.reach);
+            let at_a = made.crossings(a, e, self.reach, None, &mut 0);
             let listed = made.cells.listed_crossings(listed, e, self.reach);
             if let (Some(at_a), Some(listed)) = (at_a, listed) {
                 let here = at_a - listed - steps_at(steps, e.y);
@@ -630,16 +664,27 @@ impl FarCells {
 }
 
 impl Splits {
-    /// The crossings of a query `q` in cell `i` ([`FarCells::crossings`]).
+    /// The crossings of a query `q` in cell `i` ([`FarCells::crossings`]), with the split
+    /// cells' side tests `tests` once made; a query in a split cell adds one to
+    /// `split_queries`.
     #[inline(always)]
-    fn crossings(&self, i: usize, q: Point, reach: f64) -> Option<i64> {
+    fn crossings(
+        &self,
+        i: usize,
+        q: Point,
+        reach: f64,
+        tests: Option<&QuickTests>,
+        split_queries: &mut usize,
+    ) -> Option<i64> {
         let k = self.counts[i];
         if k >= FIRST_COUNT {
             Some(i64::from(k))
         } else if k == NEAR {
             None
         } else {
-            self.cells.crossings((k - SPLIT_FIRST) as usize, q, reach)
+            *split_queries += 1;
+            self.cells
+                .crossings((k - SPLIT_FIRST) as usize, q, reach, tests)
         }
     }
 }
@@ -784,7 +829,7 @@ mod tests {
             }
             let far = points
                 .iter()
-                .filter(|&&q| cells.crossings(q).is_some())
+                .filter(|&&q| cells.crossings(q, &mut 0).is_some())
                 .count();
             assert!(far > points.len() / 3, "{name}: {far} of {}", points.len());
 
@@ -828,7 +873,7 @@ mod tests {
             Point::new(0.8, edge + 0.5 * reach),
         ];
         for q in near {
-            assert!(cells.crossings(q).is_none(), "{q:?}");
+            assert!(cells.crossings(q, &mut 0).is_none(), "{q:?}");
         }
         for b in &pieces {
             for k in 0..=100 {
@@ -841,12 +886,12 @@ mod tests {
                         p.x + 0.9 * reach * angle.cos(),
                         p.y + 0.9 * reach * angle.sin(),
                     );
-                    assert!(cells.crossings(q).is_none(), "{q:?}");
+                    assert!(cells.crossings(q, &mut 0).is_none(), "{q:?}");
                 }
             }
         }
         // Far from every curve and every end's height, the cells are far.
-        assert_eq!(cells.crossings(Point::new(0.9, 0.9)), Some(0));
+        assert_eq!(cells.crossings(Point::new(0.9, 0.9), &mut 0), Some(0));
     }
 
     /// Points near the curves of `d`: on its pieces at random parameters, moved along the
@@ -967,7 +1012,7 @@ mod tests {
                 .iter()
                 .filter(|&&q| {
                     let base = cells.cell(q).map(|i| cells.counts[i]);
-                    base == Some(NEAR) && cells.crossings(q).is_some()
+                    base == Some(NEAR) && cells.crossings(q, &mut 0).is_some()
                 })
                 .count();
             assert!(
@@ -976,6 +1021,17 @@ mod tests {
                 points.len()
             );
 
+            batches_match_single_queries(name, &fast, &points);
+            // And with the split cells' side tests made (the queries that make them are many).
+            assert!(
+                cells.split.quick.get().is_none(),
+                "{name}: side tests too soon"
+            );
+            let made = cells.split.made.get().expect("made");
+            cells
+                .split
+                .quick
+                .get_or_init(|| made.cells.quick_tests(cells.reach));
             batches_match_single_queries(name, &fast, &points);
         }
     }

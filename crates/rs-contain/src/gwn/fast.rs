@@ -920,11 +920,11 @@ impl<'a> FastWindingField<'a> {
             // the query waited on it: perf put 16% of a near query's time on butterfly there.
             sorted.clear();
             sorted.extend(order.iter().map(|&i| point(first + i as usize)));
-            let mut walks = 0;
+            let (mut walks, mut split_queries) = (0, 0);
             for (group, points) in order.chunks(BATCH).zip(sorted.chunks(BATCH)) {
                 let sums = &mut sums[..group.len()];
                 for (sum, &q) in sums.iter_mut().zip(points) {
-                    *sum = match far.and_then(|f| f.crossings(q)) {
+                    *sum = match far.and_then(|f| f.crossings(q, &mut split_queries)) {
                         Some(k) => WindingSum::with_crossings(q, reach, k),
                         None => {
                             walks += 1;
@@ -938,7 +938,7 @@ impl<'a> FastWindingField<'a> {
                 }
             }
             if let Some(f) = far {
-                f.note_walks(walks, self.field.pieces());
+                f.note_walks(walks, split_queries, self.field.pieces());
             }
         }
     }

@@ -6,6 +6,7 @@ mod compact_tests;
 mod curve;
 mod far_cells;
 mod fast;
+mod inverse_fit;
 #[cfg(test)]
 mod lazy_tests;
 mod monotone;

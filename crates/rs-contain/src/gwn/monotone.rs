@@ -163,6 +163,11 @@ impl MonotoneCurve {
         }
     }
 
+    /// `L`: its bound on `|x'| / |y'|`.
+    pub(crate) fn slope_ratio(&self) -> f64 {
+        self.slope_ratio
+    }
+
     /// The first iterate for the root of `y(t) = q.y` at the height's fraction `s` of the way
     /// from the first end's to the last's (the chord's root): `t(s) = s + s (1 - s) ((1 - s)
     /// a - s b)` with `(a, b)` [`MonotoneCurve::bend`], the cubic through `(0, 0)` and

@@ -34,10 +34,17 @@
 //! nearer first iterate) or by its box (from beyond twice the reach), its steps, and the
 //! open chains' ends, as a far cell's query does: the walk's value bit for bit. A query the
 //! roots cannot decide (too near a sub-curve) walks.
+//!
+//! Once the split cells have answered many queries, each entry also gets a side test
+//! ([`InverseFit`]: a certified polynomial of its sub-curve's piece at the cell's heights), and
+//! a query reads its cell's tests first, without branches; only an entry whose test cannot
+//! decide (the query within the test's bound of the curve) is read again by its box and root.
+//! Where a test decides, the root decides the same, so the values stay the walk's bit for bit.
 
 use rs_spline::Point;
 
 use super::curve::{SmallPolynomial, control_box, outside_by};
+use super::inverse_fit::{Frame, InverseFit, MAX_DEGREE};
 use super::monotone::{MonotoneCurve, RootCrossing};
 use super::sum::chord_crossing;
 
@@ -146,6 +153,29 @@ pub(super) struct Split {
     base: i64,
     first: u32,
     end: u32,
+    /// The heights of the cell's box (which holds every query it serves).
+    band: (f64, f64),
+}
+
+/// An entry as a split cell's queries read it first, branch-free: its sub-curve's ends'
+/// heights and the test of its side ([`InverseFit`]: a certified polynomial over the cell's
+/// piece of the sub-curve, the control box's middle, or always left for a chord).
+#[derive(Clone, Copy, Debug)]
+struct Quick {
+    start_y: f64,
+    end_y: f64,
+    side: InverseFit,
+}
+
+/// The split cells' entries' side tests ([`Quick`], one for each of [`SplitCells::entries`]),
+/// made once the split cells' queries are many ([`SplitCells::quick_tests`]): a test costs
+/// about two microseconds to make, and saves a query that reads it a few hundredths of one.
+#[derive(Clone, Debug, Default)]
+pub(super) struct QuickTests {
+    tests: Vec<Quick>,
+    /// Per split cell, whether its tests serve: every sub-curve it reads by its root is
+    /// monotone (one that is not is read by its box and the walk).
+    usable: Vec<bool>,
 }
 
 /// A listed sub-curve as a split cell's queries read it: its control box, its ends' heights,
@@ -187,22 +217,85 @@ impl SplitCells {
     }
 
     /// The crossings at `q` in split cell `s`, `None` if a listed sub-curve cannot decide.
+    ///
+    /// First, once they are made (`tests`), from the entries' side tests, branch-free: an entry whose sub-curve's ends'
+    /// heights hold `q.y` adds its chord's crossing if its test puts the curve left of `q`,
+    /// and must be decided by it; outside those heights by more than twice `reach` (where its
+    /// control box, whose heights are its ends', leaves `q` above or below it) it adds its
+    /// chord's crossing, 0, like the box does. Nearer those heights, or where a test does not
+    /// decide, every entry is read again by its box and root ([`SplitCells::exact_crossings`]),
+    /// which give the same crossing wherever a test decides.
     #[inline(always)]
-    pub(super) fn crossings(&self, s: usize, q: Point, reach: f64) -> Option<i64> {
+    pub(super) fn crossings(
+        &self,
+        s: usize,
+        q: Point,
+        reach: f64,
+        tests: Option<&QuickTests>,
+    ) -> Option<i64> {
         let split = self.splits[s];
+        if let Some(tests) = tests.filter(|t| t.usable[s]) {
+            let two_reach = 2.0 * reach;
+            let mut total = split.base;
+            // Bit `i`: entry `i` undecided; and whether its test put the curve left.
+            let (mut undecided, mut lefts) = (0u64, 0u64);
+            let quick = &tests.tests[split.first as usize..split.end as usize];
+            for (i, e) in quick.iter().enumerate() {
+                let (left, decided) = e.side.side(q);
+                let (low, high) = (e.start_y.min(e.end_y), e.start_y.max(e.end_y));
+                let within = q.y >= low && q.y <= high;
+                let near = q.y >= low - two_reach && q.y <= high + two_reach;
+                let bit = 1u64 << (i & 63);
+                undecided |= bit & (u64::from(near & !(within & decided))).wrapping_neg();
+                lefts |= bit & u64::from(left).wrapping_neg();
+                total += i64::from(left) * chord_crossing(e.start_y, e.end_y, q.y);
+            }
+            if undecided == 0 {
+                return Some(total);
+            }
+            if quick.len() <= 64 {
+                // Only the undecided entries again, by box and root.
+                let entries = &self.entries[split.first as usize..split.end as usize];
+                while undecided != 0 {
+                    let i = undecided.trailing_zeros() as usize;
+                    undecided &= undecided - 1;
+                    let e = &entries[i];
+                    let quick_crossing = if lefts >> i & 1 == 1 {
+                        chord_crossing(e.start_y, e.end_y, q.y)
+                    } else {
+                        0
+                    };
+                    total += self.entry_crossing(e, q, reach)? - quick_crossing;
+                }
+                return Some(total);
+            }
+        }
+        self.exact_crossings(split, q, reach)
+    }
+
+    /// The crossings at `q` in split cell `split` from its entries' boxes and roots, `None` if
+    /// a listed sub-curve cannot decide.
+    #[inline(never)]
+    fn exact_crossings(&self, split: Split, q: Point, reach: f64) -> Option<i64> {
         let mut total = split.base;
         for e in &self.entries[split.first as usize..split.end as usize] {
-            total += if e.sub == CHORD_ONLY {
-                chord_crossing(e.start_y, e.end_y, q.y)
-            } else {
-                // As `RootedSub::crossing`, from the entry's copy of the box and ends.
-                match outside_box_crossing((e.lo, e.hi), (e.start_y, e.end_y), q, reach) {
-                    Some(k) => k,
-                    None => self.subs[e.sub as usize].root_crossing(q, reach)?,
-                }
-            };
+            total += self.entry_crossing(e, q, reach)?;
         }
         Some(total)
+    }
+
+    /// Entry `e`'s crossing at `q` from its chord, box or root, `None` if its root cannot
+    /// decide.
+    #[inline(always)]
+    fn entry_crossing(&self, e: &Entry, q: Point, reach: f64) -> Option<i64> {
+        if e.sub == CHORD_ONLY {
+            return Some(chord_crossing(e.start_y, e.end_y, q.y));
+        }
+        // As `RootedSub::crossing`, from the entry's copy of the box and ends.
+        match outside_box_crossing((e.lo, e.hi), (e.start_y, e.end_y), q, reach) {
+            Some(k) => Some(k),
+            None => self.subs[e.sub as usize].root_crossing(q, reach),
+        }
     }
 
     /// The sum of the crossings at `q` of the sub-curves `listed` (indices into
@@ -280,7 +373,12 @@ impl SplitCells {
             });
         }
         let end = self.entries.len() as u32;
-        self.splits.push(Split { base, first, end });
+        self.splits.push(Split {
+            base,
+            first,
+            end,
+            band: (lo.y, hi.y),
+        });
     }
 
     /// The heights of the steps' entries (for the tests).
@@ -320,6 +418,71 @@ impl SplitCells {
             e.sub = new_index[i];
         }
         self.subs = kept;
+    }
+}
+
+/// The side test of the monotone sub-curve `sub` (slope ratio `slope_ratio`) in a cell of
+/// heights `band`: of the tests its box and a fit over each [`Frame`] give, the one that
+/// leaves the narrowest band about the curve undecided ([`InverseFit::width_across`] its
+/// chord).
+fn side_test(sub: &RootedSub, slope_ratio: f64, band: (f64, f64), reach: f64) -> InverseFit {
+    let chord = sub.end() - sub.start();
+    let chord = chord * (1.0 / chord.x.hypot(chord.y));
+    let mut best = InverseFit::of_box(sub.lo.x, sub.hi.x, reach);
+    let mut width = best.width_across(chord);
+    // The chord's frame first: on most pieces its fit is tight, and the others are not made.
+    let p = sub.curve.points();
+    for frame in [Frame::Chord, Frame::Heights, Frame::Abscissas] {
+        if let Some((f, tight)) = InverseFit::new(p, band, frame, MAX_DEGREE, reach, slope_ratio) {
+            let w = f.width_across(chord);
+            if w < width {
+                (best, width) = (f, w);
+            }
+            if tight {
+                break;
+            }
+        }
+    }
+    best
+}
+
+impl SplitCells {
+    /// The side tests of every split cell's entries, for the field's `reach`: a chord's
+    /// always left, a monotone sub-curve's [`side_test`] over its cell's heights; a cell
+    /// reading a sub-curve that is not monotone is left to its boxes and roots.
+    pub(super) fn quick_tests(&self, reach: f64) -> QuickTests {
+        let mut tests = Vec::with_capacity(self.entries.len());
+        let mut usable = Vec::with_capacity(self.splits.len());
+        for split in &self.splits {
+            let mut all = true;
+            for e in &self.entries[split.first as usize..split.end as usize] {
+                let side = if e.sub == CHORD_ONLY {
+                    InverseFit::always_left()
+                } else {
+                    let sub = &self.subs[e.sub as usize];
+                    match &sub.root {
+                        Some(root) => side_test(sub, root.slope_ratio(), split.band, reach),
+                        None => {
+                            all = false;
+                            InverseFit::always_left()
+                        }
+                    }
+                };
+                tests.push(Quick {
+                    start_y: e.start_y,
+                    end_y: e.end_y,
+                    side,
+                });
+            }
+            usable.push(all);
+        }
+        QuickTests { tests, usable }
+    }
+
+    /// The entries the split cells read (the making of their side tests costs about this
+    /// many times two microseconds).
+    pub(super) fn entry_count(&self) -> usize {
+        self.entries.len()
     }
 }
 
@@ -482,6 +645,8 @@ mod tests {
         let reach = 1e-12;
         let (lo, hi) = (Point::new(0.0, 0.0), Point::new(1.0, 1.0));
         let (mut decided, mut dropped, mut chords) = (0, 0, 0);
+        // Queries in cells whose side tests serve, and those every test decides.
+        let (mut usable, mut by_tests) = (0, 0);
         for round in 0..300 {
             let mut subs: Vec<RootedSub> = (0..8)
                 .map(|_| {
@@ -514,6 +679,7 @@ mod tests {
             let mut cells = SplitCells::over(subs.clone());
             cells.push(base, &listed, &steps, (lo, hi), reach);
             cells.drop_unread();
+            let tests = cells.quick_tests(reach);
             let entries = &cells.entries;
             let step_entries: usize = steps.iter().map(|s| s.1.unsigned_abs() as usize).sum();
             dropped += listed.len() + step_entries - entries.len();
@@ -528,15 +694,30 @@ mod tests {
                     _ => Point::new(t, rng.next_f64()),
                 };
                 let want: Option<i64> = subs.iter().map(|s| s.crossing(q, reach)).sum();
-                let got = cells.crossings(0, q, reach);
+                let got = cells.crossings(0, q, reach, None);
                 let want = want.map(|w| base + w + steps_at(&steps, q.y));
                 assert_eq!(got, want, "round {round} q {q:?}");
+                // The side tests give the same, or walk where the roots walk.
+                let quick = cells.crossings(0, q, reach, Some(&tests));
+                assert_eq!(quick, want, "round {round} q {q:?}: side tests");
+                if tests.usable[0] {
+                    usable += 1;
+                    let all = tests.tests.iter().all(|t| {
+                        let (low, high) = (t.start_y.min(t.end_y), t.start_y.max(t.end_y));
+                        !(q.y >= low && q.y <= high) || t.side.side(q).1
+                    });
+                    by_tests += usize::from(all);
+                }
                 decided += usize::from(got.is_some());
             }
         }
         assert!(
             decided > 30_000 && dropped > 300 && chords > 100,
             "{decided} {dropped} {chords}"
+        );
+        assert!(
+            usable > 5_000 && by_tests * 10 >= usable * 9,
+            "{by_tests} of {usable} decided by the side tests"
         );
     }
 
