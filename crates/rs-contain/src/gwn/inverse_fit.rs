@@ -133,13 +133,13 @@ impl InverseFit {
     /// The test of degree `degree` (1 to [`MAX_DEGREE`]) in `frame` of the polynomial
     /// sub-curve with control points `p` (2 to 4, finite, ordinates strictly rising or falling,
     /// their slope ratio `slope_ratio` as [`MonotoneCurve`](super::monotone::MonotoneCurve)
-    /// bounds it) at its heights within `band` (a split cell's, which holds every query it
-    /// serves), deciding only where its root would ([`root_guard`]) for the field's `reach`;
-    /// `None` if the band holds none of its heights, its piece there does not advance along
-    /// the frame, or a step fails (then the root decides, as before).
+    /// bounds it) at its heights within those of `cell` (a split cell's box, which holds every
+    /// query it serves), deciding only where its root would ([`root_guard`]) for the field's
+    /// `reach`; `None` if the cell's heights hold none of its own, its piece there does not
+    /// advance along the frame, or a step fails (then the root decides, as before).
     pub(super) fn new(
         p: &[Point],
-        band: (f64, f64),
+        cell: (Point, Point),
         frame: Frame,
         degree: usize,
         reach: f64,
@@ -156,6 +156,7 @@ impl InverseFit {
         } else {
             (p[n].y, p[0].y)
         };
+        let band = (cell.0.y, cell.1.y);
         let (a, b) = (band.0.max(y_min), band.1.min(y_max));
         if a.partial_cmp(&b) != Some(std::cmp::Ordering::Less) {
             return None;
@@ -211,8 +212,14 @@ impl InverseFit {
         let guard_along_cut = root_guard(p, reach, slope_ratio);
         // Along a row, `w - G(s)` changes by at most `|sn| + slope |cs|` per unit of `x`.
         let guard = (sn.abs() + slope * cs.abs()) * guard_along_cut * (1.0 + 4.0 * eps);
-        // The queries' coordinates' size, for the rounding of their `s` and `w`.
-        let scale = o.x.abs() + o.y.abs() + 2.0 * (size_x + size_y) + 4.0 * reach;
+        // The size of the queries' coordinates (in the cell) and of the sub-curve's, for the
+        // rounding of their `s` and `w` and of the origin's.
+        let scale = cell.0.x.abs().max(cell.1.x.abs())
+            + cell.0.y.abs().max(cell.1.y.abs())
+            + o.x.abs()
+            + o.y.abs()
+            + 2.0 * (size_x + size_y)
+            + 4.0 * reach;
         let mut fit = Self::fit(framed, degree, guard, turn_rounding, scale)?;
         // From the sub-curve's first point to the plane's origin.
         let (s_origin, w_origin) = (o.x * cs + o.y * sn, o.y * cs - o.x * sn);
@@ -602,19 +609,24 @@ mod tests {
                 _ => (y0 - 0.5 * h, y0 + 0.5 * h),
             };
             let frame = [Frame::Heights, Frame::Abscissas, Frame::Chord][cases % 3];
+            let (lo, hi) = crate::gwn::curve::control_box(&p);
+            let size = (hi.x - lo.x).max(hi.y - lo.y);
+            let cell = (
+                Point::new(lo.x - size, band.0),
+                Point::new(hi.x + size, band.1),
+            );
             let Some((fit, is_tight)) =
-                InverseFit::new(&p, band, frame, MAX_DEGREE, reach, root.slope_ratio())
+                InverseFit::new(&p, cell, frame, MAX_DEGREE, reach, root.slope_ratio())
             else {
                 continue;
             };
             cases += 1;
             tight += usize::from(is_tight);
             let curve = RationalBezier::new(p.clone(), vec![1.0; 4]).unwrap();
-            let (lo, hi) = crate::gwn::curve::control_box(&p);
-            let size = (hi.x - lo.x).max(hi.y - lo.y);
             for k in 0..60 {
                 let q = if k < 39 {
                     let on = curve.point_at(rng.next_f64());
+                    debug_assert!(on.x >= cell.0.x && on.x <= cell.1.x);
                     let d = size * 10f64.powi(-(1 + (k % 13)));
                     Point::new(on.x + if k % 2 == 0 { d } else { -d }, on.y)
                 } else {

@@ -153,8 +153,8 @@ pub(super) struct Split {
     base: i64,
     first: u32,
     end: u32,
-    /// The heights of the cell's box (which holds every query it serves).
-    band: (f64, f64),
+    /// The cell's box (which holds every query it serves).
+    cell: (Point, Point),
 }
 
 /// An entry as a split cell's queries read it first, branch-free: its sub-curve's ends'
@@ -377,7 +377,7 @@ impl SplitCells {
             base,
             first,
             end,
-            band: (lo.y, hi.y),
+            cell: (lo, hi),
         });
     }
 
@@ -421,11 +421,11 @@ impl SplitCells {
     }
 }
 
-/// The side test of the monotone sub-curve `sub` (slope ratio `slope_ratio`) in a cell of
-/// heights `band`: of the tests its box and a fit over each [`Frame`] give, the one that
+/// The side test of the monotone sub-curve `sub` (slope ratio `slope_ratio`) in a cell of box
+/// `cell`: of the tests its box and a fit over each [`Frame`] give, the one that
 /// leaves the narrowest band about the curve undecided ([`InverseFit::width_across`] its
 /// chord).
-fn side_test(sub: &RootedSub, slope_ratio: f64, band: (f64, f64), reach: f64) -> InverseFit {
+fn side_test(sub: &RootedSub, slope_ratio: f64, cell: (Point, Point), reach: f64) -> InverseFit {
     let chord = sub.end() - sub.start();
     let chord = chord * (1.0 / chord.x.hypot(chord.y));
     let mut best = InverseFit::of_box(sub.lo.x, sub.hi.x, reach);
@@ -433,7 +433,7 @@ fn side_test(sub: &RootedSub, slope_ratio: f64, band: (f64, f64), reach: f64) ->
     // The chord's frame first: on most pieces its fit is tight, and the others are not made.
     let p = sub.curve.points();
     for frame in [Frame::Chord, Frame::Heights, Frame::Abscissas] {
-        if let Some((f, tight)) = InverseFit::new(p, band, frame, MAX_DEGREE, reach, slope_ratio) {
+        if let Some((f, tight)) = InverseFit::new(p, cell, frame, MAX_DEGREE, reach, slope_ratio) {
             let w = f.width_across(chord);
             if w < width {
                 (best, width) = (f, w);
@@ -461,7 +461,7 @@ impl SplitCells {
                 } else {
                     let sub = &self.subs[e.sub as usize];
                     match &sub.root {
-                        Some(root) => side_test(sub, root.slope_ratio(), split.band, reach),
+                        Some(root) => side_test(sub, root.slope_ratio(), split.cell, reach),
                         None => {
                             all = false;
                             InverseFit::always_left()
