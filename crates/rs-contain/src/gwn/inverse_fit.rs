@@ -237,9 +237,9 @@ impl InverseFit {
 
     /// The polynomial of degree `degree` through the graph `x = X(y)` of the curve with
     /// control points `p` (`y` strictly rising: the frame's across and along) at the
-    /// Chebyshev points of its span, its tolerance twice the sum of its certified bound, every
-    /// rounding (`point_rounding`: of the control points; `scale`: the size of the queries'
-    /// coordinates, whose `s` and `w` round with it) and `guard`.
+    /// Chebyshev points of its span, its tolerance twice the sum of its certified bound and
+    /// every rounding (`point_rounding`: of the control points; `scale`: the size of the
+    /// queries' coordinates, whose `s` and `w` round with it), plus `guard`.
     fn fit(
         p: &[Point],
         degree: usize,
