@@ -124,9 +124,9 @@ impl Clone for LazySplits {
 }
 
 /// Queries answered by the split cells, per entry of theirs, after which their side tests
-/// are made: a test costs about two microseconds to make (butterfly: 14,412 entries, about 30
-/// ms), and saves a query in its cell about two hundredths of one, so the tests are made once
-/// the queries they would have saved (about a hundred a test) would have paid for them.
+/// are made: a test costs about two microseconds to make (butterfly: 14,412 entries, about 25
+/// ms), and saves a query in its cell about two hundredths of one, so by then the queries
+/// answered would about have paid for the tests had they had them.
 const QUICK_AFTER_QUERIES_PER_ENTRY: usize = 64;
 
 /// The counts with the split cells marked in them (`SPLIT_FIRST + s` for split cell `s`), and

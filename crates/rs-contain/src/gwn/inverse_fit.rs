@@ -29,6 +29,8 @@
 use rs_roots::{bernstein_sign_change_root, de_casteljau_split, de_casteljau_with_derivative};
 use rs_spline::Point;
 
+use super::monotone::MonotoneCurve;
+
 /// Highest degree of a fit.
 pub(super) const MAX_DEGREE: usize = 8;
 
@@ -37,10 +39,6 @@ const MAX_POINTS: usize = 4;
 
 /// Coefficients of the bound's polynomial at most (degree `3 MAX_DEGREE`).
 const MAX_PRODUCT: usize = 3 * MAX_DEGREE + 1;
-
-/// The rounding bound of [`monotone_crossing`](super::monotone::monotone_crossing) (which
-/// the fit's tolerance must exceed where the root would not decide).
-const ROOT_ROUNDING: f64 = 16.0 * f64::EPSILON;
 
 /// A fit whose tolerance is at most this multiple of the root's guard (scaled to the frame)
 /// is *tight*: no other frame would decide many more queries.
@@ -80,21 +78,6 @@ pub(super) struct InverseFit {
     c: [f64; MAX_DEGREE + 1],
 }
 
-/// How far from a sub-curve with control points `p` (slope ratio `slope_ratio`) along the
-/// cut a query in its box grown by twice `reach` must lie for
-/// [`monotone_crossing`](super::monotone::monotone_crossing) to decide it: the margin `2 reach
-/// (1 + L)` plus eight times the error bound its converged root carries (`e_g + 2 L e_f`,
-/// `e_g` and `e_f` its rounding bounds for coefficients as large as the grown box's sides).
-fn root_guard(p: &[Point], reach: f64, slope_ratio: f64) -> f64 {
-    let o = p[0];
-    let (size_x, size_y) = p.iter().fold((0.0f64, 0.0f64), |(sx, sy), v| {
-        (sx.max((v.x - o.x).abs()), sy.max((v.y - o.y).abs()))
-    });
-    let e_g = ROOT_ROUNDING * 2.0 * (size_x + reach) + f64::MIN_POSITIVE;
-    let e_f = ROOT_ROUNDING * 2.0 * (size_y + reach) + f64::MIN_POSITIVE;
-    8.0 * (e_g + 2.0 * slope_ratio * e_f) + 2.0 * reach * (1.0 + slope_ratio)
-}
-
 /// `C(n, i)` for `n` up to `3 MAX_DEGREE` (exact in `f64`), from a table made at compile time.
 fn binomial(n: usize, i: usize) -> f64 {
     BINOMIALS[n][i] as f64
@@ -130,24 +113,23 @@ fn product(a: &[f64], b: &[f64], out: &mut [f64]) -> usize {
 }
 
 impl InverseFit {
-    /// The test of degree `degree` (1 to [`MAX_DEGREE`]) in `frame` of the polynomial
-    /// sub-curve with control points `p` (2 to 4, finite, ordinates strictly rising or falling,
-    /// their slope ratio `slope_ratio` as [`MonotoneCurve`](super::monotone::MonotoneCurve)
-    /// bounds it) at its heights within those of `cell` (a split cell's box, which holds every
-    /// query it serves), deciding only where its root would ([`root_guard`]) for the field's
-    /// `reach`; `None` if the cell's heights hold none of its own, its piece there does not
-    /// advance along the frame, or a step fails (then the root decides, as before).
+    /// The test of degree [`MAX_DEGREE`] in `frame` of the polynomial sub-curve `root` (2 to
+    /// 4 finite control points, ordinates strictly rising or falling) at its heights within
+    /// those of `cell` (a split cell's box, which holds every query it serves), deciding only
+    /// beyond its root's guard ([`MonotoneCurve::guard`]) for the field's `reach`; with whether
+    /// it is tight ([`TIGHT`]). `None` if the cell's heights hold none of its own, its piece
+    /// there does not advance along the frame, or a step fails (then the root decides, as
+    /// before).
     pub(super) fn new(
-        p: &[Point],
+        root: &MonotoneCurve,
         cell: (Point, Point),
         frame: Frame,
-        degree: usize,
         reach: f64,
-        slope_ratio: f64,
     ) -> Option<(Self, bool)> {
         let eps = f64::EPSILON;
+        let p = root.points();
         let n = p.len().checked_sub(1)?;
-        if !(1..MAX_POINTS).contains(&n) || !(1..=MAX_DEGREE).contains(&degree) {
+        if !(1..MAX_POINTS).contains(&n) {
             return None;
         }
         let rising = p[n].y > p[0].y;
@@ -209,7 +191,7 @@ impl InverseFit {
         if !slope.is_finite() {
             return None;
         }
-        let guard_along_cut = root_guard(p, reach, slope_ratio);
+        let guard_along_cut = root.guard(reach);
         // Along a row, `w - G(s)` changes by at most `|sn| + slope |cs|` per unit of `x`.
         let guard = (sn.abs() + slope * cs.abs()) * guard_along_cut * (1.0 + 4.0 * eps);
         // The size of the queries' coordinates (in the cell) and of the sub-curve's, for the
@@ -220,7 +202,7 @@ impl InverseFit {
             + o.y.abs()
             + 2.0 * (size_x + size_y)
             + 4.0 * reach;
-        let mut fit = Self::fit(framed, degree, guard, turn_rounding, scale)?;
+        let mut fit = Self::fit(framed, MAX_DEGREE, guard, turn_rounding, scale)?;
         // From the sub-curve's first point to the plane's origin.
         let (s_origin, w_origin) = (o.x * cs + o.y * sn, o.y * cs - o.x * sn);
         fit.mid += s_origin;
@@ -423,28 +405,17 @@ fn chebyshev_angle(j: usize, nodes: usize) -> f64 {
     std::f64::consts::PI * (2 * j + 1) as f64 / (2 * nodes) as f64
 }
 
-/// `sum c_j u^j` by Estrin's scheme (three dependent steps instead of Horner's six).
+/// `sum c_j u^j` by Estrin's scheme: the pairs `c_2i + c_2i+1 u`, by Horner's scheme in `u^2`
+/// (five dependent steps at degree 8 instead of Horner's eight).
 #[inline(always)]
 fn estrin(c: &[f64; MAX_DEGREE + 1], u: f64) -> f64 {
     let u2 = u * u;
-    match MAX_DEGREE {
-        4 => (c[0] + c[1] * u) + u2 * ((c[2] + c[3] * u) + u2 * c[4]),
-        5 => (c[0] + c[1] * u) + u2 * ((c[2] + c[3] * u) + u2 * (c[4] + c[5] * u)),
-        6 => {
-            let (a, b, e) = (c[0] + c[1] * u, c[2] + c[3] * u, c[4] + c[5] * u);
-            a + u2 * (b + u2 * (e + u2 * c[MAX_DEGREE.min(6)]))
-        }
-        _ => {
-            // Pairs `c_2i + c_2i+1 u`, by Horner's scheme in `u^2`.
-            let mut p = 0.0;
-            for i in (0..MAX_DEGREE.div_ceil(2) + 1).rev() {
-                let a = c.get(2 * i).copied().unwrap_or(0.0);
-                let b = c.get(2 * i + 1).copied().unwrap_or(0.0);
-                p = p * u2 + (a + b * u);
-            }
-            p
-        }
+    let mut p = 0.0;
+    for pair in c.chunks(2).rev() {
+        let b = pair.get(1).copied().unwrap_or(0.0);
+        p = p * u2 + (pair[0] + b * u);
     }
+    p
 }
 
 /// The parameter where the polynomial curve `c` (at most [`MAX_POINTS`] control points) meets
@@ -505,11 +476,10 @@ fn chebyshev_to_monomial(values: &[f64], us: &[f64]) -> [f64; MAX_DEGREE + 1] {
     out
 }
 
-/// A bound on `|x(s) - P(u(s))|` over `s` in `[0, 1]` for the curve with control points `r`
-/// (abscissas relative to the fit's `x0`, ordinates relative to `o_y`), `u = (y + shift) *
-/// inv_half` with `shift = o_y - mid`, and `P` of coefficients `c`: the largest Bernstein
-/// coefficient of the difference, a polynomial of degree `n k`; and the largest of the same
-/// coefficients computed from the terms' absolute values (the scale of their rounding).
+/// A bound on `|x(s) - P(u(s))|` over `s` in `[0, 1]` for the curve with control points `r`,
+/// `u = (y + shift) * inv_half`, and `P` of coefficients `c`: the largest Bernstein
+/// coefficient of the difference, a polynomial of degree `n k`; and a bound on the size of
+/// the terms those coefficients sum (the scale of their rounding).
 fn certify(r: &[Point], shift: f64, inv_half: f64, c: &[f64]) -> (f64, f64) {
     let n = r.len() - 1;
     let k = c.len() - 1;
@@ -566,7 +536,7 @@ fn certify(r: &[Point], shift: f64, inv_half: f64, c: &[f64]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gwn::monotone::{MonotoneCurve, RootCrossing, monotone_crossing};
+    use crate::gwn::monotone::{RootCrossing, monotone_crossing};
     use crate::gwn::sum::chord_crossing;
     use rs_spline::RationalBezier;
     use rs_spline::prelude::*;
@@ -615,9 +585,7 @@ mod tests {
                 Point::new(lo.x - size, band.0),
                 Point::new(hi.x + size, band.1),
             );
-            let Some((fit, is_tight)) =
-                InverseFit::new(&p, cell, frame, MAX_DEGREE, reach, root.slope_ratio())
-            else {
+            let Some((fit, is_tight)) = InverseFit::new(&root, cell, frame, reach) else {
                 continue;
             };
             cases += 1;
@@ -626,7 +594,6 @@ mod tests {
             for k in 0..60 {
                 let q = if k < 39 {
                     let on = curve.point_at(rng.next_f64());
-                    debug_assert!(on.x >= cell.0.x && on.x <= cell.1.x);
                     let d = size * 10f64.powi(-(1 + (k % 13)));
                     Point::new(on.x + if k % 2 == 0 { d } else { -d }, on.y)
                 } else {

@@ -163,9 +163,26 @@ impl MonotoneCurve {
         }
     }
 
-    /// `L`: its bound on `|x'| / |y'|`.
-    pub(crate) fn slope_ratio(&self) -> f64 {
-        self.slope_ratio
+    /// Its control points.
+    pub(crate) fn points(&self) -> &[Point] {
+        &self.p[..self.n]
+    }
+
+    /// How far from it along the cut a query in its box grown by twice `reach` must lie for
+    /// [`MonotoneCurve::crossing`] to decide: the margin `2 reach (1 + L)` plus eight times the
+    /// error bound its converged root carries (`e_g + 2 L e_f`, [`ROUNDING`] times
+    /// coefficients as large as the grown box's sides; `f64::MIN_POSITIVE` bounds
+    /// [`ROUNDING_TINY`]).
+    pub(crate) fn guard(&self, reach: f64) -> f64 {
+        let p = self.points();
+        let o = p[0];
+        let (size_x, size_y) = p.iter().fold((0.0f64, 0.0f64), |(sx, sy), v| {
+            (sx.max((v.x - o.x).abs()), sy.max((v.y - o.y).abs()))
+        });
+        let e_g = ROUNDING * 2.0 * (size_x + reach) + f64::MIN_POSITIVE;
+        let e_f = ROUNDING * 2.0 * (size_y + reach) + f64::MIN_POSITIVE;
+        let l = self.slope_ratio;
+        8.0 * (e_g + 2.0 * l * e_f) + 2.0 * reach * (1.0 + l)
     }
 
     /// The first iterate for the root of `y(t) = q.y` at the height's fraction `s` of the way

@@ -44,7 +44,7 @@
 use rs_spline::Point;
 
 use super::curve::{SmallPolynomial, control_box, outside_by};
-use super::inverse_fit::{Frame, InverseFit, MAX_DEGREE};
+use super::inverse_fit::{Frame, InverseFit};
 use super::monotone::{MonotoneCurve, RootCrossing};
 use super::sum::chord_crossing;
 
@@ -218,13 +218,14 @@ impl SplitCells {
 
     /// The crossings at `q` in split cell `s`, `None` if a listed sub-curve cannot decide.
     ///
-    /// First, once they are made (`tests`), from the entries' side tests, branch-free: an entry whose sub-curve's ends'
-    /// heights hold `q.y` adds its chord's crossing if its test puts the curve left of `q`,
-    /// and must be decided by it; outside those heights by more than twice `reach` (where its
-    /// control box, whose heights are its ends', leaves `q` above or below it) it adds its
-    /// chord's crossing, 0, like the box does. Nearer those heights, or where a test does not
-    /// decide, every entry is read again by its box and root ([`SplitCells::exact_crossings`]),
-    /// which give the same crossing wherever a test decides.
+    /// First, once they are made (`tests`), from the entries' side tests, branch-free (in a
+    /// cell of at most 64 entries, all of whose rooted sub-curves are monotone): an entry whose
+    /// sub-curve's ends' heights hold `q.y` adds its chord's crossing if its test puts the
+    /// curve left of `q`, and must be decided by it; outside those heights by more than twice
+    /// `reach` (where its control box, whose heights are its ends', leaves `q` above or below
+    /// it) it adds its chord's crossing, 0, as the box does. An entry nearer those heights, or
+    /// whose test does not decide, is read again by its box and root
+    /// ([`SplitCells::entry_crossing`]), which give the same crossing wherever a test decides.
     #[inline(always)]
     pub(super) fn crossings(
         &self,
@@ -234,41 +235,39 @@ impl SplitCells {
         tests: Option<&QuickTests>,
     ) -> Option<i64> {
         let split = self.splits[s];
-        if let Some(tests) = tests.filter(|t| t.usable[s]) {
+        let quick = tests
+            .filter(|t| t.usable[s])
+            .map(|t| &t.tests[split.first as usize..split.end as usize])
+            .filter(|quick| quick.len() <= 64);
+        if let Some(quick) = quick {
             let two_reach = 2.0 * reach;
             let mut total = split.base;
             // Bit `i`: entry `i` undecided; and whether its test put the curve left.
             let (mut undecided, mut lefts) = (0u64, 0u64);
-            let quick = &tests.tests[split.first as usize..split.end as usize];
             for (i, e) in quick.iter().enumerate() {
                 let (left, decided) = e.side.side(q);
                 let (low, high) = (e.start_y.min(e.end_y), e.start_y.max(e.end_y));
                 let within = q.y >= low && q.y <= high;
                 let near = q.y >= low - two_reach && q.y <= high + two_reach;
-                let bit = 1u64 << (i & 63);
+                let bit = 1u64 << i;
                 undecided |= bit & (u64::from(near & !(within & decided))).wrapping_neg();
                 lefts |= bit & u64::from(left).wrapping_neg();
                 total += i64::from(left) * chord_crossing(e.start_y, e.end_y, q.y);
             }
-            if undecided == 0 {
-                return Some(total);
+            // Only the undecided entries again, by box and root.
+            let entries = &self.entries[split.first as usize..split.end as usize];
+            while undecided != 0 {
+                let i = undecided.trailing_zeros() as usize;
+                undecided &= undecided - 1;
+                let e = &entries[i];
+                let quick_crossing = if lefts >> i & 1 == 1 {
+                    chord_crossing(e.start_y, e.end_y, q.y)
+                } else {
+                    0
+                };
+                total += self.entry_crossing(e, q, reach)? - quick_crossing;
             }
-            if quick.len() <= 64 {
-                // Only the undecided entries again, by box and root.
-                let entries = &self.entries[split.first as usize..split.end as usize];
-                while undecided != 0 {
-                    let i = undecided.trailing_zeros() as usize;
-                    undecided &= undecided - 1;
-                    let e = &entries[i];
-                    let quick_crossing = if lefts >> i & 1 == 1 {
-                        chord_crossing(e.start_y, e.end_y, q.y)
-                    } else {
-                        0
-                    };
-                    total += self.entry_crossing(e, q, reach)? - quick_crossing;
-                }
-                return Some(total);
-            }
+            return Some(total);
         }
         self.exact_crossings(split, q, reach)
     }
@@ -421,19 +420,23 @@ impl SplitCells {
     }
 }
 
-/// The side test of the monotone sub-curve `sub` (slope ratio `slope_ratio`) in a cell of box
+/// The side test of the monotone sub-curve `sub` (its root's form `root`) in a cell of box
 /// `cell`: of the tests its box and a fit over each [`Frame`] give, the one that
 /// leaves the narrowest band about the curve undecided ([`InverseFit::width_across`] its
 /// chord).
-fn side_test(sub: &RootedSub, slope_ratio: f64, cell: (Point, Point), reach: f64) -> InverseFit {
+fn side_test(
+    sub: &RootedSub,
+    root: &MonotoneCurve,
+    cell: (Point, Point),
+    reach: f64,
+) -> InverseFit {
     let chord = sub.end() - sub.start();
     let chord = chord * (1.0 / chord.x.hypot(chord.y));
     let mut best = InverseFit::of_box(sub.lo.x, sub.hi.x, reach);
     let mut width = best.width_across(chord);
     // The chord's frame first: on most pieces its fit is tight, and the others are not made.
-    let p = sub.curve.points();
     for frame in [Frame::Chord, Frame::Heights, Frame::Abscissas] {
-        if let Some((f, tight)) = InverseFit::new(p, cell, frame, MAX_DEGREE, reach, slope_ratio) {
+        if let Some((f, tight)) = InverseFit::new(root, cell, frame, reach) {
             let w = f.width_across(chord);
             if w < width {
                 (best, width) = (f, w);
@@ -461,7 +464,7 @@ impl SplitCells {
                 } else {
                     let sub = &self.subs[e.sub as usize];
                     match &sub.root {
-                        Some(root) => side_test(sub, root.slope_ratio(), split.cell, reach),
+                        Some(root) => side_test(sub, root, split.cell, reach),
                         None => {
                             all = false;
                             InverseFit::always_left()
