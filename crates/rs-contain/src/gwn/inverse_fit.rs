@@ -79,7 +79,7 @@ pub(super) struct InverseFit {
 }
 
 /// `C(n, i)` for `n` up to `3 MAX_DEGREE` (exact in `f64`), from a table made at compile time.
-fn binomial(n: usize, i: usize) -> f64 {
+pub(super) fn binomial(n: usize, i: usize) -> f64 {
     BINOMIALS[n][i] as f64
 }
 
@@ -101,7 +101,7 @@ const BINOMIALS: [[u64; MAX_PRODUCT]; MAX_PRODUCT] = {
 
 /// The product of two polynomials in scaled Bernstein form (`sum a_i s^i (1 - s)^(m - i)`),
 /// a convolution.
-fn product(a: &[f64], b: &[f64], out: &mut [f64]) -> usize {
+pub(super) fn product(a: &[f64], b: &[f64], out: &mut [f64]) -> usize {
     let len = a.len() + b.len() - 1;
     out[..len].fill(0.0);
     for (i, &x) in a.iter().enumerate() {
@@ -127,29 +127,13 @@ impl InverseFit {
         reach: f64,
     ) -> Option<(Self, bool)> {
         let eps = f64::EPSILON;
-        let p = root.points();
-        let n = p.len().checked_sub(1)?;
-        if !(1..MAX_POINTS).contains(&n) {
-            return None;
-        }
-        let rising = p[n].y > p[0].y;
-        let (y_min, y_max) = if rising {
-            (p[0].y, p[n].y)
-        } else {
-            (p[n].y, p[0].y)
-        };
-        let band = (cell.0.y, cell.1.y);
-        let (a, b) = (band.0.max(y_min), band.1.min(y_max));
-        if a.partial_cmp(&b) != Some(std::cmp::Ordering::Less) {
-            return None;
-        }
-        let o = p[0];
-        let mut local = [Point::default(); MAX_POINTS];
-        for (l, &v) in local.iter_mut().zip(p) {
-            *l = v - o;
-        }
-        let whole = a <= y_min && b >= y_max;
-        let r = restricted_to_heights(&local[..=n], (a - o.y, b - o.y), rising, whole)?;
+        let CellPiece {
+            origin: o,
+            points: r,
+            n,
+            rising,
+            ..
+        } = piece_in_cell(root, cell)?;
         let r = &r[..=n];
         let (cs, sn) = match frame {
             Frame::Heights => (0.0, if rising { 1.0 } else { -1.0 }),
@@ -350,6 +334,57 @@ impl InverseFit {
     }
 }
 
+/// A monotone sub-curve's piece at a cell's heights ([`piece_in_cell`]).
+pub(super) struct CellPiece {
+    /// The sub-curve's first control point, which the piece's are relative to.
+    pub(super) origin: Point,
+    /// The piece's control points, relative to `origin` (`n + 1` of them).
+    pub(super) points: [Point; MAX_POINTS],
+    /// Its degree.
+    pub(super) n: usize,
+    /// Whether its heights rise.
+    pub(super) rising: bool,
+    /// The heights it covers, the cell's and the sub-curve's in common, relative to `origin`.
+    pub(super) heights: (f64, f64),
+}
+
+/// The piece of the polynomial sub-curve `root` (2 to [`MAX_POINTS`] control points, heights
+/// strictly rising or falling) at its heights within those of `cell`, relative to its first
+/// point ([`restricted_to_heights`]); `None` if they hold none of its own or a height is not
+/// found.
+pub(super) fn piece_in_cell(root: &MonotoneCurve, cell: (Point, Point)) -> Option<CellPiece> {
+    let p = root.points();
+    let n = p.len().checked_sub(1)?;
+    if !(1..MAX_POINTS).contains(&n) {
+        return None;
+    }
+    let rising = p[n].y > p[0].y;
+    let (y_min, y_max) = if rising {
+        (p[0].y, p[n].y)
+    } else {
+        (p[n].y, p[0].y)
+    };
+    let (a, b) = (cell.0.y.max(y_min), cell.1.y.min(y_max));
+    if a.partial_cmp(&b) != Some(std::cmp::Ordering::Less) {
+        return None;
+    }
+    let o = p[0];
+    let mut local = [Point::default(); MAX_POINTS];
+    for (l, &v) in local.iter_mut().zip(p) {
+        *l = v - o;
+    }
+    let whole = a <= y_min && b >= y_max;
+    let heights = (a - o.y, b - o.y);
+    let points = restricted_to_heights(&local[..=n], heights, rising, whole)?;
+    Some(CellPiece {
+        origin: o,
+        points,
+        n,
+        rising,
+        heights,
+    })
+}
+
 /// The sub-curve with control points `c` (relative to its first point; heights strictly
 /// rising if `rising`, else falling) restricted to parameters covering its heights in
 /// `(a, b)` (widened, its ends' heights clearing the band by their rounding), or all of it if
@@ -536,92 +571,39 @@ fn certify(r: &[Point], shift: f64, inv_half: f64, c: &[f64]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gwn::monotone::{RootCrossing, monotone_crossing};
-    use crate::gwn::sum::chord_crossing;
-    use rs_spline::RationalBezier;
-    use rs_spline::prelude::*;
+    use crate::gwn::side_cases::SideCase;
     use rs_testkit::XorShift64;
-
-    /// A small piece (1/64 of the parameter range) of a random cubic, if its ordinates
-    /// strictly rise or fall, moved by `offset`.
-    fn small_monotone_cubic(rng: &mut XorShift64, offset: Point) -> Option<Vec<Point>> {
-        let p: Vec<Point> = (0..4)
-            .map(|_| offset + Point::new(rng.next_f64(), rng.next_f64()))
-            .collect();
-        let curve = RationalBezier::new(p, vec![1.0; 4]).ok()?;
-        let a = rng.next_f64() * (1.0 - 1.0 / 64.0);
-        let part = curve.subsegment((a, a + 1.0 / 64.0)).ok()?;
-        let q = part.control_points().to_vec();
-        MonotoneCurve::new(&q).map(|_| q)
-    }
 
     /// Wherever a side test decides, the root decides the same crossing: small cubics (at the
     /// origin and moved by `1e3`), bands over part or all of their heights, every frame,
     /// queries displaced along the cut from the curve by `1e-1` to `1e-13` of its size (either
-    /// side), anywhere in and around its box, and past its ends; and the tests decide nearly
-    /// all queries farther than a thousand times their tolerance.
+    /// side), anywhere in and around its box, and past its ends ([`SideCase`]); and the tests
+    /// decide nearly all queries farther than a thousand times their tolerance.
     #[test]
     fn side_tests_decide_as_the_root_does() {
         let mut rng = XorShift64::new(7);
         let (mut cases, mut tight, mut decided, mut far, mut far_decided) = (0, 0, 0, 0, 0);
         while cases < 1500 {
-            let offset = if cases % 2 == 0 { 0.0 } else { 1e3 };
-            let Some(p) = small_monotone_cubic(&mut rng, Point::new(offset, offset)) else {
+            let Some(case) = SideCase::draw(&mut rng, cases) else {
                 continue;
             };
-            let reach = 4e-12 * (offset + 2.0);
-            let root = MonotoneCurve::new(&p).unwrap();
-            let (y0, y1) = (p[0].y.min(p[3].y), p[0].y.max(p[3].y));
-            let h = y1 - y0;
-            let band = match cases % 3 {
-                0 => (y0 - h, y1 + h),
-                1 => (y0 + 0.3 * h, y0 + 0.8 * h),
-                _ => (y0 - 0.5 * h, y0 + 0.5 * h),
-            };
             let frame = [Frame::Heights, Frame::Abscissas, Frame::Chord][cases % 3];
-            let (lo, hi) = crate::gwn::curve::control_box(&p);
-            let size = (hi.x - lo.x).max(hi.y - lo.y);
-            let cell = (
-                Point::new(lo.x - size, band.0),
-                Point::new(hi.x + size, band.1),
-            );
-            let Some((fit, is_tight)) = InverseFit::new(&root, cell, frame, reach) else {
+            let Some((fit, is_tight)) = InverseFit::new(&case.root, case.cell, frame, case.reach)
+            else {
                 continue;
             };
             cases += 1;
             tight += usize::from(is_tight);
-            let curve = RationalBezier::new(p.clone(), vec![1.0; 4]).unwrap();
-            for k in 0..60 {
-                let q = if k < 39 {
-                    let on = curve.point_at(rng.next_f64());
-                    let d = size * 10f64.powi(-(1 + (k % 13)));
-                    Point::new(on.x + if k % 2 == 0 { d } else { -d }, on.y)
-                } else {
-                    Point::new(
-                        lo.x - size + 3.0 * size * rng.next_f64(),
-                        lo.y - size + 3.0 * size * rng.next_f64(),
-                    )
-                };
-                // Only queries at heights of the band and of the sub-curve count.
-                if !(q.y >= band.0 && q.y <= band.1 && q.y >= y0 && q.y <= y1) {
-                    continue;
-                }
+            for (q, displaced) in case.queries(&mut rng) {
                 let (left, sure) = fit.side(q);
-                let along_cut = matches!(monotone_crossing(&p, q, 0.0), RootCrossing::Decided(_));
                 if sure {
                     decided += 1;
-                    let want = if left {
-                        chord_crossing(p[0].y, p[3].y, q.y)
-                    } else {
-                        0
-                    };
-                    assert_eq!(
-                        monotone_crossing(&p, q, reach),
-                        RootCrossing::Decided(want),
-                        "{p:?} {frame:?} band {band:?} at {q:?}"
-                    );
+                    case.assert_root_agrees(q, left, &format!("{frame:?}"));
                 }
-                if k < 39 && along_cut && size * 10f64.powi(-(1 + (k % 13))) > 1e3 * fit.tol {
+                if let Some(d) = displaced
+                    && d > 1e3 * fit.tol
+                    && case.root_decides_without_margin(q)
+                {
                     far += 1;
                     far_decided += usize::from(sure);
                 }

@@ -6,12 +6,15 @@ mod compact_tests;
 mod curve;
 mod far_cells;
 mod fast;
+mod implicit_side;
 mod inverse_fit;
 #[cfg(test)]
 mod lazy_tests;
 mod monotone;
 mod on_boundary;
 mod raycast;
+#[cfg(test)]
+mod side_cases;
 mod span_rows;
 mod split_cells;
 mod sum;

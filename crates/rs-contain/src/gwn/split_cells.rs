@@ -35,15 +35,18 @@
 //! open chains' ends, as a far cell's query does: the walk's value bit for bit. A query the
 //! roots cannot decide (too near a sub-curve) walks.
 //!
-//! Once the split cells have answered many queries, each entry also gets a side test
-//! ([`InverseFit`]: a certified polynomial of its sub-curve's piece at the cell's heights), and
-//! a query reads its cell's tests first, without branches; only an entry whose test cannot
-//! decide (the query within the test's bound of the curve) is read again by its box and root.
-//! Where a test decides, the root decides the same, so the values stay the walk's bit for bit.
+//! Once the split cells have answered many queries, each entry also gets a side test, and a
+//! query reads its cell's tests first, without branches; only an entry whose test cannot
+//! decide (the query within the test's margin of the curve) is read again by its box and root.
+//! A cell's tests are its sub-curves' implicit equations ([`ImplicitSide`]: exact but for
+//! rounding, deciding down to about the root's own margin) where each certifies over its
+//! piece's region, else certified polynomial fits ([`InverseFit`]). Where a test decides, the
+//! root decides the same, so the values stay the walk's bit for bit.
 
 use rs_spline::Point;
 
 use super::curve::{SmallPolynomial, control_box, outside_by};
+use super::implicit_side::ImplicitSide;
 use super::inverse_fit::{Frame, InverseFit};
 use super::monotone::{MonotoneCurve, RootCrossing};
 use super::sum::chord_crossing;
@@ -158,24 +161,95 @@ pub(super) struct Split {
 }
 
 /// An entry as a split cell's queries read it first, branch-free: its sub-curve's ends'
-/// heights and the test of its side ([`InverseFit`]: a certified polynomial over the cell's
-/// piece of the sub-curve, the control box's middle, or always left for a chord).
+/// heights and the test of its side ([`ImplicitSide`] or [`InverseFit`]; always left for a
+/// chord).
 #[derive(Clone, Copy, Debug)]
-struct Quick {
+struct Quick<T> {
     start_y: f64,
     end_y: f64,
-    side: InverseFit,
+    side: T,
 }
 
-/// The split cells' entries' side tests ([`Quick`], one for each of [`SplitCells::entries`]),
-/// made once the split cells' queries are many ([`SplitCells::quick_tests`]): a test costs
-/// about two microseconds to make, and saves a query that reads it a few hundredths of one.
+impl<T> Quick<T> {
+    /// Entry `e`'s heights with the test `side`.
+    fn of(e: &Entry, side: T) -> Self {
+        Self {
+            start_y: e.start_y,
+            end_y: e.end_y,
+            side,
+        }
+    }
+}
+
+/// A test of the side of an entry's sub-curve a query lies on, as a cell's first pass reads
+/// it: `(left, decided)` at `q`, a query in the cell at a height of the sub-curve (elsewhere
+/// the answer does not count), whether the curve passes left of `q` at `q`'s height, and
+/// whether that, or its passing right of it, is certain. Branch-free.
+trait SideTest {
+    fn side(&self, q: Point) -> (bool, bool);
+}
+
+impl SideTest for InverseFit {
+    #[inline(always)]
+    fn side(&self, q: Point) -> (bool, bool) {
+        InverseFit::side(self, q)
+    }
+}
+
+impl SideTest for ImplicitSide {
+    #[inline(always)]
+    fn side(&self, q: Point) -> (bool, bool) {
+        ImplicitSide::side(self, q)
+    }
+}
+
+/// The first pass over a cell's side tests at `q`, without branches: the crossings of the
+/// chords of the entries whose tests put the curve left of `q`, and the bit masks of the
+/// entries left undecided (at most 64) and of those put left. An entry whose sub-curve's ends'
+/// heights hold `q.y` must be decided by its test; outside those heights by more than
+/// `two_reach` (where its control box, whose heights are its ends', leaves `q` above or below
+/// it) it adds its chord's crossing, 0, as the box does; nearer, it is undecided.
+#[inline(always)]
+fn first_pass<T: SideTest>(quick: &[Quick<T>], q: Point, two_reach: f64) -> (i64, u64, u64) {
+    let mut total = 0;
+    let (mut undecided, mut lefts) = (0u64, 0u64);
+    for (i, e) in quick.iter().enumerate() {
+        let (left, decided) = e.side.side(q);
+        let (low, high) = (e.start_y.min(e.end_y), e.start_y.max(e.end_y));
+        let within = q.y >= low && q.y <= high;
+        let near = q.y >= low - two_reach && q.y <= high + two_reach;
+        let bit = 1u64 << i;
+        undecided |= bit & (u64::from(near & !(within & decided))).wrapping_neg();
+        lefts |= bit & u64::from(left).wrapping_neg();
+        total += i64::from(left) * chord_crossing(e.start_y, e.end_y, q.y);
+    }
+    (total, undecided, lefts)
+}
+
+/// Where a split cell's side tests are ([`QuickTests`]): its first in one of the lists.
+#[derive(Clone, Copy, Debug)]
+enum CellTests {
+    /// None: a sub-curve it reads by its root is not monotone (read by its box and the walk),
+    /// or it has more than 64 entries.
+    Roots,
+    /// In [`QuickTests::implicit`] from this index.
+    Implicit(u32),
+    /// In [`QuickTests::fits`] from this index.
+    Fits(u32),
+}
+
+/// The split cells' entries' side tests ([`Quick`], one for each entry of a cell that has
+/// them), made once the split cells' queries are many ([`SplitCells::quick_tests`]): a test
+/// costs about two microseconds to make, and saves a query that reads it a few hundredths of
+/// one.
 #[derive(Clone, Debug, Default)]
 pub(super) struct QuickTests {
-    tests: Vec<Quick>,
-    /// Per split cell, whether its tests serve: every sub-curve it reads by its root is
-    /// monotone (one that is not is read by its box and the walk).
-    usable: Vec<bool>,
+    /// The cells whose every entry's implicit test certifies, their tests in order.
+    implicit: Vec<Quick<ImplicitSide>>,
+    /// The other cells' fits, in order.
+    fits: Vec<Quick<InverseFit>>,
+    /// Per split cell, where its tests are.
+    cells: Vec<CellTests>,
 }
 
 /// A listed sub-curve as a split cell's queries read it: its control box, its ends' heights,
@@ -235,27 +309,23 @@ impl SplitCells {
         tests: Option<&QuickTests>,
     ) -> Option<i64> {
         let split = self.splits[s];
-        let quick = tests
-            .filter(|t| t.usable[s])
-            .map(|t| &t.tests[split.first as usize..split.end as usize])
-            .filter(|quick| quick.len() <= 64);
-        if let Some(quick) = quick {
-            let two_reach = 2.0 * reach;
-            let mut total = split.base;
-            // Bit `i`: entry `i` undecided; and whether its test put the curve left.
-            let (mut undecided, mut lefts) = (0u64, 0u64);
-            for (i, e) in quick.iter().enumerate() {
-                let (left, decided) = e.side.side(q);
-                let (low, high) = (e.start_y.min(e.end_y), e.start_y.max(e.end_y));
-                let within = q.y >= low && q.y <= high;
-                let near = q.y >= low - two_reach && q.y <= high + two_reach;
-                let bit = 1u64 << i;
-                undecided |= bit & (u64::from(near & !(within & decided))).wrapping_neg();
-                lefts |= bit & u64::from(left).wrapping_neg();
-                total += i64::from(left) * chord_crossing(e.start_y, e.end_y, q.y);
+        let (first, end) = (split.first as usize, split.end as usize);
+        let len = end - first;
+        let pass = tests.and_then(|t| match t.cells[s] {
+            CellTests::Roots => None,
+            CellTests::Implicit(k) => {
+                let k = k as usize;
+                Some(first_pass(&t.implicit[k..k + len], q, 2.0 * reach))
             }
+            CellTests::Fits(k) => {
+                let k = k as usize;
+                Some(first_pass(&t.fits[k..k + len], q, 2.0 * reach))
+            }
+        });
+        if let Some((left_chords, mut undecided, lefts)) = pass {
+            let mut total = split.base + left_chords;
             // Only the undecided entries again, by box and root.
-            let entries = &self.entries[split.first as usize..split.end as usize];
+            let entries = &self.entries[first..end];
             while undecided != 0 {
                 let i = undecided.trailing_zeros() as usize;
                 undecided &= undecided - 1;
@@ -451,41 +521,95 @@ fn side_test(
 
 impl SplitCells {
     /// The side tests of every split cell's entries, for the field's `reach`: a chord's
-    /// always left, a monotone sub-curve's [`side_test`] over its cell's heights; a cell
-    /// reading a sub-curve that is not monotone is left to its boxes and roots.
+    /// always left; a monotone sub-curve's [`ImplicitSide`] over its piece at the cell's
+    /// heights if every entry's certifies, else each one's [`side_test`]; a cell reading a
+    /// sub-curve that is not monotone, or of more than 64 entries, is left to its boxes and
+    /// roots.
     pub(super) fn quick_tests(&self, reach: f64) -> QuickTests {
-        let mut tests = Vec::with_capacity(self.entries.len());
-        let mut usable = Vec::with_capacity(self.splits.len());
+        let mut tests = QuickTests {
+            cells: Vec::with_capacity(self.splits.len()),
+            implicit: Vec::with_capacity(self.entries.len()),
+            fits: Vec::new(),
+        };
         for split in &self.splits {
-            let mut all = true;
-            for e in &self.entries[split.first as usize..split.end as usize] {
-                let side = if e.sub == CHORD_ONLY {
-                    InverseFit::always_left()
-                } else {
-                    let sub = &self.subs[e.sub as usize];
-                    match &sub.root {
-                        Some(root) => side_test(sub, root, split.cell, reach),
-                        None => {
-                            all = false;
-                            InverseFit::always_left()
-                        }
-                    }
+            let entries = &self.entries[split.first as usize..split.end as usize];
+            let roots = entries
+                .iter()
+                .map(|e| match e.sub {
+                    CHORD_ONLY => Some(None),
+                    k => self.subs[k as usize].root.as_ref().map(Some),
+                })
+                .collect::<Option<Vec<_>>>();
+            let (Some(roots), true) = (roots, entries.len() <= 64) else {
+                tests.cells.push(CellTests::Roots);
+                continue;
+            };
+            let from = tests.implicit.len();
+            let all = entries.iter().zip(&roots).all(|(e, root)| {
+                // An entry whose heights miss the cell's decides none of its queries (they
+                // are not within them): any test serves.
+                let apart = e.start_y.max(e.end_y) < split.cell.0.y
+                    || e.start_y.min(e.end_y) > split.cell.1.y;
+                let side = match root {
+                    Some(root) if !apart => ImplicitSide::new(root, split.cell, reach),
+                    _ => Some(ImplicitSide::always_left()),
                 };
-                tests.push(Quick {
-                    start_y: e.start_y,
-                    end_y: e.end_y,
-                    side,
-                });
+                side.map(|side| tests.implicit.push(Quick::of(e, side)))
+                    .is_some()
+            });
+            let index = |v: usize| u32::try_from(v).ok();
+            match (all, index(from), index(tests.fits.len())) {
+                (true, Some(k), _) => tests.cells.push(CellTests::Implicit(k)),
+                (false, _, Some(k)) => {
+                    tests.implicit.truncate(from);
+                    for (e, root) in entries.iter().zip(&roots) {
+                        let side = match root {
+                            None => InverseFit::always_left(),
+                            Some(root) => {
+                                side_test(&self.subs[e.sub as usize], root, split.cell, reach)
+                            }
+                        };
+                        tests.fits.push(Quick::of(e, side));
+                    }
+                    tests.cells.push(CellTests::Fits(k));
+                }
+                _ => {
+                    tests.implicit.truncate(from);
+                    tests.cells.push(CellTests::Roots);
+                }
             }
-            usable.push(all);
         }
-        QuickTests { tests, usable }
+        tests
     }
 
     /// The entries the split cells read (the making of their side tests costs about this
     /// many times two microseconds).
     pub(super) fn entry_count(&self) -> usize {
         self.entries.len()
+    }
+}
+
+#[cfg(test)]
+impl QuickTests {
+    /// Whether split cell `s`'s side tests are implicit equations.
+    fn implicit_in(&self, s: usize) -> bool {
+        matches!(self.cells[s], CellTests::Implicit(_))
+    }
+
+    /// Whether the side tests of split cell `s` (of `len` entries) decide every entry at
+    /// whose heights `q` lies; `None` if the cell has none.
+    fn decide_all(&self, s: usize, q: Point, len: usize) -> Option<bool> {
+        fn all<T: SideTest>(quick: &[Quick<T>], q: Point) -> bool {
+            quick.iter().all(|t| {
+                let (low, high) = (t.start_y.min(t.end_y), t.start_y.max(t.end_y));
+                !(q.y >= low && q.y <= high) || t.side.side(q).1
+            })
+        }
+        match self.cells[s] {
+            CellTests::Roots => None,
+            CellTests::Implicit(k) => Some(all(&self.implicit[k as usize..k as usize + len], q)),
+            CellTests::Fits(k) => Some(all(&self.fits[k as usize..k as usize + len], q)),
+        }
     }
 }
 
@@ -648,8 +772,9 @@ mod tests {
         let reach = 1e-12;
         let (lo, hi) = (Point::new(0.0, 0.0), Point::new(1.0, 1.0));
         let (mut decided, mut dropped, mut chords) = (0, 0, 0);
-        // Queries in cells whose side tests serve, and those every test decides.
-        let (mut usable, mut by_tests) = (0, 0);
+        // Queries in cells whose side tests serve, and those every test decides; cells whose
+        // tests are implicit equations.
+        let (mut usable, mut by_tests, mut implicit) = (0, 0, 0);
         for round in 0..300 {
             let mut subs: Vec<RootedSub> = (0..8)
                 .map(|_| {
@@ -683,6 +808,7 @@ mod tests {
             cells.push(base, &listed, &steps, (lo, hi), reach);
             cells.drop_unread();
             let tests = cells.quick_tests(reach);
+            implicit += usize::from(tests.implicit_in(0));
             let entries = &cells.entries;
             let step_entries: usize = steps.iter().map(|s| s.1.unsigned_abs() as usize).sum();
             dropped += listed.len() + step_entries - entries.len();
@@ -703,12 +829,8 @@ mod tests {
                 // The side tests give the same, or walk where the roots walk.
                 let quick = cells.crossings(0, q, reach, Some(&tests));
                 assert_eq!(quick, want, "round {round} q {q:?}: side tests");
-                if tests.usable[0] {
+                if let Some(all) = tests.decide_all(0, q, cells.entries.len()) {
                     usable += 1;
-                    let all = tests.tests.iter().all(|t| {
-                        let (low, high) = (t.start_y.min(t.end_y), t.start_y.max(t.end_y));
-                        !(q.y >= low && q.y <= high) || t.side.side(q).1
-                    });
                     by_tests += usize::from(all);
                 }
                 decided += usize::from(got.is_some());
@@ -721,6 +843,11 @@ mod tests {
         assert!(
             usable > 5_000 && by_tests * 10 >= usable * 9,
             "{by_tests} of {usable} decided by the side tests"
+        );
+        // Both kinds of tests served (33 cells' implicit equations certify at this seed).
+        assert!(
+            (15..=285).contains(&implicit),
+            "{implicit} of 300 cells implicit"
         );
     }
 
