@@ -9,7 +9,7 @@ use rs_roots::{
 };
 use smallvec::SmallVec;
 
-use rs_spline::{Axis, Point, RationalBezier, SplineError, odds_map};
+use rs_spline::{Axis, Point, RationalBezier, SplineError};
 
 /// A part of a piece ([`BezierPiece::balanced_parts`]).
 #[derive(Clone, Debug, PartialEq)]
@@ -149,69 +149,21 @@ impl BezierPiece {
         self.control_point(self.degree())
     }
 
-    /// The piece with its end weights balanced (`rs_spline::balancing_exponent`'s rule), and
-    /// the factor `c` of the reparametrisation: the weights and homogeneous coefficients become
-    /// `w_i c^i` times theirs (`c` a power of two: scaled exactly, the control points
-    /// unchanged), and the new piece at `s` is the old one at `t = c s / ((1 - s) + c s)` (the
-    /// odds `t / (1 - t)` are `c` times `s / (1 - s)`). `c = 1` (the piece untouched) for
-    /// ends within [`rs_spline::BALANCE_RATIO`], or when a scaled value would leave the normal
-    /// range.
-    pub(crate) fn balanced(mut self) -> (Self, f64) {
-        let k = rs_spline::balancing_exponent(&self.w);
-        let scale = |i: usize| 2f64.powi(k * i as i32);
-        let normal = (0..self.w.len()).all(|i| {
-            [self.w[i], self.hx[i], self.hy[i]]
-                .iter()
-                .all(|&v| v == 0.0 || (v * scale(i)).is_normal())
-        });
-        if k == 0 || !normal {
-            return (self, 1.0);
-        }
-        for i in 0..self.w.len() {
-            self.w[i] *= scale(i);
-            self.hx[i] *= scale(i);
-            self.hy[i] *= scale(i);
-        }
-        (self, 2f64.powi(k))
-    }
-
     /// The piece as parts whose motion fills their parameter, by `rs_spline::balance`'s rules
     /// (as [`RationalBezier::balanced_parts`] cuts a Bezier piece): its end weights balanced,
     /// and, while a part [`crowds its ends`](rs_spline::crowds_ends), the part halved and each
-    /// half balanced again, at most [`rs_spline::MAX_BALANCE_HALVINGS`] times. An ordinary
-    /// piece is one part, itself, with odds 1. Each part also carries the fractions of this
-    /// piece's parameter it spans and its odds, which compose its own balancing with the
-    /// restriction of its parent's Mobius map to the half (whose factor is the map's slope at
-    /// the half's start over the half's share of its image: `(1 + a) / 2` for the first half
-    /// of a map of factor `a`, `2 a / (1 + a)` for the second).
+    /// half balanced again ([`rs_spline::balanced_parts`]). An ordinary piece is one part,
+    /// itself, with odds 1. Each part also carries the fractions of this piece's parameter it
+    /// spans and its odds.
     pub fn balanced_parts(self) -> Vec<BalancedPart> {
-        fn walk(
-            piece: BezierPiece,
-            fractions: (f64, f64),
-            odds: f64,
-            depth: u32,
-            out: &mut Vec<BalancedPart>,
-        ) {
-            let (piece, c) = piece.balanced();
-            let odds = odds * c;
-            if depth >= rs_spline::MAX_BALANCE_HALVINGS || !rs_spline::crowds_ends(piece.weights())
-            {
-                out.push(BalancedPart {
-                    piece,
-                    fractions,
-                    odds,
-                });
-                return;
-            }
-            let (f0, f1) = fractions;
-            let mid = f0 + (f1 - f0) * odds_map(odds, 0.5);
-            let (left, right) = piece.split(0.5);
-            walk(left, (f0, mid), (1.0 + odds) / 2.0, depth + 1, out);
-            walk(right, (mid, f1), 2.0 * odds / (1.0 + odds), depth + 1, out);
-        }
-        let mut out = Vec::with_capacity(1);
-        walk(self, (0.0, 1.0), 1.0, 0, &mut out);
-        out
+        rs_spline::balanced_parts(self)
+            .into_iter()
+            .map(|(piece, fractions, odds)| BalancedPart {
+                piece,
+                fractions,
+                odds,
+            })
+            .collect()
     }
 
     /// Moves the first control point to `p`, keeping its weight (used to make loops
@@ -538,6 +490,37 @@ fn split_coeffs(c: &[f64], t: f64) -> (Coeffs, Coeffs) {
     (left, right)
 }
 
+/// The balancing rules' view of a piece ([`rs_spline::balanced_parts`]).
+impl rs_spline::Balance for BezierPiece {
+    fn balance_weights(&self) -> &[f64] {
+        self.weights()
+    }
+
+    /// Weights and homogeneous coefficients `w_i 2^(k i)` times theirs (scaled exactly, the
+    /// control points unchanged); itself when a scaled value would leave the normal range.
+    fn reweighted(mut self, k: i32) -> (Self, f64) {
+        let scale = |i: usize| 2f64.powi(k * i as i32);
+        let normal = (0..self.w.len()).all(|i| {
+            [self.w[i], self.hx[i], self.hy[i]]
+                .iter()
+                .all(|&v| v == 0.0 || (v * scale(i)).is_normal())
+        });
+        if !normal {
+            return (self, 1.0);
+        }
+        for i in 0..self.w.len() {
+            self.w[i] *= scale(i);
+            self.hx[i] *= scale(i);
+            self.hy[i] *= scale(i);
+        }
+        (self, 2f64.powi(k))
+    }
+
+    fn halves(&self) -> (Self, Self) {
+        self.split(0.5)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -563,6 +546,7 @@ mod tests {
     /// other; ordinary pieces (a quarter circle, ratio 1; a ratio of 1000) are left alone.
     #[test]
     fn balancing_end_weights_keeps_the_curve() {
+        use rs_spline::Balance;
         assert_eq!(arc().balanced(), (arc(), 1.0));
         let piece = |w: Vec<f64>| {
             let n = w.len();

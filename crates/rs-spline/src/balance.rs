@@ -62,6 +62,68 @@ pub fn odds_map(odds: f64, s: f64) -> f64 {
     }
 }
 
+/// A rational piece that [`balanced_parts`] cuts: its weights, its reweighting by a power of
+/// two, and its halves. (The Bezier pieces here and the monotone boxes' pieces of `rs-boxes`,
+/// which keep homogeneous coefficients beside their points.)
+pub trait Balance: Sized {
+    /// Its weights `w_0 .. w_n` (all positive).
+    fn balance_weights(&self) -> &[f64];
+
+    /// The same curve with weights `w_i 2^(k i)` and the factor `c = 2^k` of the
+    /// reparametrisation (the new piece at `s` is the old one at `t = odds_map(c, s)`);
+    /// itself and 1 when a scaled value would leave the normal range.
+    fn reweighted(self, k: i32) -> (Self, f64);
+
+    /// Its halves, on `[0, 1/2]` and `[1/2, 1]`, each reparametrised to `[0, 1]`.
+    fn halves(&self) -> (Self, Self);
+
+    /// The same curve with its end weights balanced ([`balancing_exponent`]), and the factor
+    /// of the reparametrisation (1 for a piece left as it is).
+    fn balanced(self) -> (Self, f64) {
+        match balancing_exponent(self.balance_weights()) {
+            0 => (self, 1.0),
+            k => self.reweighted(k),
+        }
+    }
+}
+
+/// A part of a piece ([`balanced_parts`]): the part, on `[0, 1]`, the fractions of the piece's
+/// parameter it spans, and the odds factor mapping its own parameter onto that span
+/// (`odds_map(odds, s)` of the way along it).
+pub type Part<P> = (P, (f64, f64), f64);
+
+/// The piece as parts whose motion fills their parameter, in order: its end weights balanced
+/// ([`balancing_exponent`]), and, while a part [`crowds_ends`], the part halved and each half
+/// balanced again, at most [`MAX_BALANCE_HALVINGS`] times (at most 64 parts). Each part's odds
+/// compose its own balancing with the restriction of its parent's Mobius map to the half
+/// (whose factor is the map's slope at the half's start over the half's share of its image:
+/// `(1 + a) / 2` for the first half of a map of factor `a`, `2 a / (1 + a)` for the second).
+/// An ordinary piece is one part, itself, with odds 1.
+pub fn balanced_parts<P: Balance>(piece: P) -> Vec<Part<P>> {
+    fn walk<P: Balance>(
+        piece: P,
+        fractions: (f64, f64),
+        odds: f64,
+        depth: u32,
+        out: &mut Vec<Part<P>>,
+    ) {
+        let (piece, c) = piece.balanced();
+        let odds = odds * c;
+        if depth >= MAX_BALANCE_HALVINGS || !crowds_ends(piece.balance_weights()) {
+            out.push((piece, fractions, odds));
+            return;
+        }
+        let (f0, f1) = fractions;
+        let mid = f0 + (f1 - f0) * odds_map(odds, 0.5);
+        let (left, right) = piece.halves();
+        walk(left, (f0, mid), (1.0 + odds) / 2.0, depth + 1, out);
+        walk(right, (mid, f1), 2.0 * odds / (1.0 + odds), depth + 1, out);
+    }
+    let mut out = Vec::with_capacity(1);
+    walk(piece, (0.0, 1.0), 1.0, 0, &mut out);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -131,44 +131,13 @@ impl RationalBezier {
     /// at most [`MAX_BALANCE_HALVINGS`](crate::MAX_BALANCE_HALVINGS) times: the same curve, in
     /// order. `None` for a piece that is its own one part (every ordinary piece).
     pub fn balanced_parts(&self) -> Option<Vec<Self>> {
-        fn walk(piece: RationalBezier, depth: u32, out: &mut Vec<RationalBezier>) {
-            let piece = piece.balanced();
-            if depth >= crate::MAX_BALANCE_HALVINGS || !crate::crowds_ends(&piece.weights) {
-                out.push(piece);
-                return;
-            }
-            let (left, right) = piece.split_unchecked(0.5);
-            walk(left, depth + 1, out);
-            walk(right, depth + 1, out);
-        }
         if self.is_polynomial()
             || (crate::balancing_exponent(&self.weights) == 0 && !crate::crowds_ends(&self.weights))
         {
             return None;
         }
-        let mut out = Vec::new();
-        walk(self.clone(), 0, &mut out);
-        Some(out)
-    }
-
-    /// The same curve with its end weights balanced: weights `w_i 2^(k i)`,
-    /// [`balancing_exponent`](crate::balancing_exponent)'s `k` (itself when 0, or when a scaled
-    /// weight would leave the normal range).
-    fn balanced(mut self) -> Self {
-        let k = crate::balancing_exponent(&self.weights);
-        let scale = |i: usize| 2f64.powi(k * i as i32);
-        if k != 0
-            && self
-                .weights
-                .iter()
-                .enumerate()
-                .all(|(i, w)| (w * scale(i)).is_normal())
-        {
-            for (i, w) in self.weights.iter_mut().enumerate() {
-                *w *= scale(i);
-            }
-        }
-        self
+        let parts = crate::balanced_parts(self.clone());
+        Some(parts.into_iter().map(|(part, _, _)| part).collect())
     }
 
     /// Splits at local `t` in `[0, 1]` (one de Casteljau pass in homogeneous coordinates) into
@@ -490,6 +459,34 @@ fn flatten_into(b: &RationalBezier, tol: f64, depth: u32, emit: &mut dyn FnMut(P
         let (l, r) = b.subdivide();
         flatten_into(&l, tol, depth + 1, emit);
         flatten_into(&r, tol, depth + 1, emit);
+    }
+}
+
+impl crate::Balance for RationalBezier {
+    fn balance_weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// Weights `w_i 2^(k i)`, the control points unchanged (itself when a scaled weight would
+    /// leave the normal range).
+    fn reweighted(mut self, k: i32) -> (Self, f64) {
+        let scale = |i: usize| 2f64.powi(k * i as i32);
+        if !self
+            .weights
+            .iter()
+            .enumerate()
+            .all(|(i, w)| (w * scale(i)).is_normal())
+        {
+            return (self, 1.0);
+        }
+        for (i, w) in self.weights.iter_mut().enumerate() {
+            *w *= scale(i);
+        }
+        (self, 2f64.powi(k))
+    }
+
+    fn halves(&self) -> (Self, Self) {
+        self.split_unchecked(0.5)
     }
 }
 

@@ -80,7 +80,10 @@ mod vector;
 
 pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
-pub use balance::{BALANCE_RATIO, MAX_BALANCE_HALVINGS, balancing_exponent, crowds_ends, odds_map};
+pub use balance::{
+    BALANCE_RATIO, Balance, MAX_BALANCE_HALVINGS, Part, balanced_parts, balancing_exponent,
+    crowds_ends, odds_map,
+};
 pub use bezier::RationalBezier;
 pub use crossing::{certain_crossing, closed_in_crossing};
 pub use curve::{
