@@ -499,21 +499,9 @@ impl rs_spline::Balance for BezierPiece {
     /// Weights and homogeneous coefficients `w_i 2^(k i)` times theirs (scaled exactly, the
     /// control points unchanged); itself when a scaled value would leave the normal range.
     fn reweighted(mut self, k: i32) -> (Self, f64) {
-        let scale = |i: usize| 2f64.powi(k * i as i32);
-        let normal = (0..self.w.len()).all(|i| {
-            [self.w[i], self.hx[i], self.hy[i]]
-                .iter()
-                .all(|&v| v == 0.0 || (v * scale(i)).is_normal())
-        });
-        if !normal {
-            return (self, 1.0);
-        }
-        for i in 0..self.w.len() {
-            self.w[i] *= scale(i);
-            self.hx[i] *= scale(i);
-            self.hy[i] *= scale(i);
-        }
-        (self, 2f64.powi(k))
+        let columns: &mut [&mut [f64]] = &mut [&mut self.w, &mut self.hx, &mut self.hy];
+        let c = rs_spline::scale_by_powers_of_two(k, columns);
+        (self, c.unwrap_or(1.0))
     }
 
     fn halves(&self) -> (Self, Self) {

@@ -87,6 +87,27 @@ pub trait Balance: Sized {
     }
 }
 
+/// Scales entry `i` of every one of `columns` (a piece's weights, and any coefficients that
+/// carry them) by `2^(k i)`, exactly, and returns the factor `2^k`; leaves them all as they
+/// are and returns `None` when a nonzero entry would leave the normal range.
+pub fn scale_by_powers_of_two(k: i32, columns: &mut [&mut [f64]]) -> Option<f64> {
+    let scale = |i: usize| 2f64.powi(k * i as i32);
+    let normal = columns.iter().all(|c| {
+        c.iter()
+            .enumerate()
+            .all(|(i, &v)| v == 0.0 || (v * scale(i)).is_normal())
+    });
+    if !normal {
+        return None;
+    }
+    for c in columns.iter_mut() {
+        for (i, v) in c.iter_mut().enumerate() {
+            *v *= scale(i);
+        }
+    }
+    Some(2f64.powi(k))
+}
+
 /// A part of a piece ([`balanced_parts`]): the part, on `[0, 1]`, the fractions of the piece's
 /// parameter it spans, and the odds factor mapping its own parameter onto that span
 /// (`odds_map(odds, s)` of the way along it).
@@ -168,6 +189,14 @@ mod tests {
             assert!(area.converged && area.value.is_finite(), "{w:?}: {area:?}");
         }
         assert_eq!(odds_map(1.0, 0.3), 0.3);
+        // Scaling by powers of two: exact, zeros kept, nothing touched when a value would leave
+        // the normal range.
+        let (mut w, mut h) = ([1.0, 3.0, 0.1], [0.0, -1.5, 7.0]);
+        assert_eq!(scale_by_powers_of_two(2, &mut [&mut w, &mut h]), Some(4.0));
+        assert_eq!((w, h), ([1.0, 12.0, 1.6], [0.0, -6.0, 112.0]));
+        let mut tiny = [1.0, 1e-300];
+        assert_eq!(scale_by_powers_of_two(-100, &mut [&mut tiny]), None);
+        assert_eq!(tiny, [1.0, 1e-300]);
         assert!((odds_map(4.0, 0.5) - 0.8).abs() < 1e-16);
     }
 }

@@ -470,19 +470,8 @@ impl crate::Balance for RationalBezier {
     /// Weights `w_i 2^(k i)`, the control points unchanged (itself when a scaled weight would
     /// leave the normal range).
     fn reweighted(mut self, k: i32) -> (Self, f64) {
-        let scale = |i: usize| 2f64.powi(k * i as i32);
-        if !self
-            .weights
-            .iter()
-            .enumerate()
-            .all(|(i, w)| (w * scale(i)).is_normal())
-        {
-            return (self, 1.0);
-        }
-        for (i, w) in self.weights.iter_mut().enumerate() {
-            *w *= scale(i);
-        }
-        (self, 2f64.powi(k))
+        let c = crate::scale_by_powers_of_two(k, &mut [&mut self.weights]);
+        (self, c.unwrap_or(1.0))
     }
 
     fn halves(&self) -> (Self, Self) {

@@ -82,7 +82,7 @@ pub use affine::Affine;
 pub use arc::{circle, circular_arc, ellipse, elliptic_arc};
 pub use balance::{
     BALANCE_RATIO, Balance, MAX_BALANCE_HALVINGS, Part, balanced_parts, balancing_exponent,
-    crowds_ends, odds_map,
+    crowds_ends, odds_map, scale_by_powers_of_two,
 };
 pub use bezier::RationalBezier;
 pub use crossing::{certain_crossing, closed_in_crossing};
