@@ -3,7 +3,7 @@
 
 use nalgebra::{DMatrix, DVector};
 use rs_contain::{Classifier, ContainOptions, FillRule, Locate, Location};
-use rs_spline::{Domain, Point};
+use rs_spline::{Domain, Point, times_power_of_two};
 
 use crate::basis::{LegendreBasis, dim_polynomials};
 use crate::candidates::{Candidates, LayerDensity, boundary_layers};
@@ -487,13 +487,6 @@ impl UnitMoments {
             .map(|w| times_power_of_two(w, self.exponent))
             .collect()
     }
-}
-
-/// `x 2^e` for `|e| <= 1100`, exactly where the result and `x 2^(e / 2)` are normal: two
-/// factors, each a normal power of two (`2^e` alone is not one for `e < -1022` or `e > 1023`).
-fn times_power_of_two(x: f64, e: i32) -> f64 {
-    let half = e / 2;
-    x * 2f64.powi(half) * 2f64.powi(e - half)
 }
 
 /// Above this degree the candidates are `dim P_n` Halton points and boundary layers

@@ -63,16 +63,10 @@ pub(crate) fn normalized_weights(mut weights: Vec<f64>) -> Vec<f64> {
     let hi = weights.iter().copied().fold(0.0f64, f64::max);
     let bound = 2f64.powi(32);
     if hi > bound || hi < 1.0 / bound {
-        // hi = m 2^e with m in [0.5, 1): multiply by 2^-e, done in steps that stay normal.
+        // hi = m 2^e with m in [0.5, 1): multiply by 2^-e (|e| <= 1075).
         let e = hi.log2().floor() as i32 + 1;
-        let mut k = -e;
-        while k != 0 {
-            let step = k.clamp(-1000, 1000);
-            let s = 2f64.powi(step);
-            for w in &mut weights {
-                *w *= s;
-            }
-            k -= step;
+        for w in &mut weights {
+            *w = crate::times_power_of_two(*w, -e);
         }
     }
     weights
