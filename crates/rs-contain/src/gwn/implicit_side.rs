@@ -27,7 +27,7 @@
 
 use rs_spline::Point;
 
-use super::inverse_fit::{CellPiece, binomial, piece_in_cell, product};
+use super::inverse_fit::{CellPiece, binomial, elevated, piece_in_cell, product};
 use super::monotone::MonotoneCurve;
 
 /// Control points of a sub-curve the test takes at most (cubics).
@@ -226,7 +226,6 @@ fn on_curve_bound(f: &Bivariate, us: &[f64], vs: &[f64]) -> f64 {
     let mut sum = [0.0; LEN];
     let mut term = [0.0; LEN];
     let mut raised = [0.0; LEN];
-    let mut ones = [0.0; LEN];
     for (i, j, s) in Bivariate::exponents() {
         let c = f.0[s];
         if c == 0.0 {
@@ -234,10 +233,7 @@ fn on_curve_bound(f: &Bivariate, us: &[f64], vs: &[f64]) -> f64 {
         }
         let d = n * (i + j);
         product(&upow[i][..=n * i], &vpow[j][..=n * j], &mut term);
-        for (k, o) in ones.iter_mut().enumerate().take(total - d + 1) {
-            *o = binomial(total - d, k);
-        }
-        product(&term[..=d], &ones[..=total - d], &mut raised);
+        elevated(&term[..=d], total, &mut raised);
         for (acc, r) in sum.iter_mut().zip(&raised).take(total + 1) {
             *acc += c * r;
         }

@@ -112,6 +112,18 @@ pub(super) fn product(a: &[f64], b: &[f64], out: &mut [f64]) -> usize {
     len
 }
 
+/// The scaled Bernstein form `a` (degree `a.len() - 1`) raised to degree `to` (at most
+/// `3 MAX_DEGREE`), into `out`: times `(s + (1 - s))^(to - deg)`, a convolution with that
+/// power's binomials.
+pub(super) fn elevated(a: &[f64], to: usize, out: &mut [f64]) {
+    let by = to + 1 - a.len();
+    let mut ones = [0.0; MAX_PRODUCT];
+    for (i, o) in ones.iter_mut().enumerate().take(by + 1) {
+        *o = binomial(by, i);
+    }
+    product(a, &ones[..=by], out);
+}
+
 impl InverseFit {
     /// The test of degree [`MAX_DEGREE`] in `frame` of the polynomial sub-curve `root` (2 to
     /// 4 finite control points, ordinates strictly rising or falling) at its heights within
@@ -186,7 +198,7 @@ impl InverseFit {
             + o.y.abs()
             + 2.0 * (size_x + size_y)
             + 4.0 * reach;
-        let mut fit = Self::fit(framed, MAX_DEGREE, guard, turn_rounding, scale)?;
+        let mut fit = Self::fit(framed, guard, turn_rounding, scale)?;
         // From the sub-curve's first point to the plane's origin.
         let (s_origin, w_origin) = (o.x * cs + o.y * sn, o.y * cs - o.x * sn);
         fit.mid += s_origin;
@@ -201,18 +213,12 @@ impl InverseFit {
         (fit.s_lo <= fit.s_hi && fit.beyond.is_finite()).then_some((fit, tight))
     }
 
-    /// The polynomial of degree `degree` through the graph `x = X(y)` of the curve with
+    /// The polynomial of degree [`MAX_DEGREE`] through the graph `x = X(y)` of the curve with
     /// control points `p` (`y` strictly rising: the frame's across and along) at the
     /// Chebyshev points of its span, its tolerance twice the sum of its certified bound and
     /// every rounding (`point_rounding`: of the control points; `scale`: the size of the
     /// queries' coordinates, whose `s` and `w` round with it), plus `guard`.
-    fn fit(
-        p: &[Point],
-        degree: usize,
-        guard: f64,
-        point_rounding: f64,
-        scale: f64,
-    ) -> Option<Self> {
+    fn fit(p: &[Point], guard: f64, point_rounding: f64, scale: f64) -> Option<Self> {
         let eps = f64::EPSILON;
         let n = p.len() - 1;
         let (a, b) = (p[0].y, p[n].y);
@@ -221,7 +227,7 @@ impl InverseFit {
         if !(inv_half.is_finite() && half > 0.0) {
             return None;
         }
-        let k = degree;
+        let k = MAX_DEGREE;
         let nodes = k + 1;
         let mut values = [0.0; MAX_DEGREE + 1];
         let mut us = [0.0; MAX_DEGREE + 1];
@@ -230,7 +236,7 @@ impl InverseFit {
             let t = parameter_at(p, mid + half * *u)?;
             *value = de_casteljau_with_derivative(p, t).0.x;
         }
-        let mut c = chebyshev_to_monomial(&values[..nodes], &us[..nodes]);
+        let c = chebyshev_to_monomial(&values[..nodes], &us[..nodes]);
         let (bound, magnitude) = certify(p, -mid, inv_half, &c[..nodes]);
         if !(bound.is_finite() && magnitude.is_finite()) {
             return None;
@@ -255,7 +261,6 @@ impl InverseFit {
         let tol = 2.0
             * (bound + rounding_fit + restriction + point_rounding * carry + evaluation + query)
             + guard * (1.0 + 16.0 * eps);
-        c[nodes..].fill(0.0);
         tol.is_finite().then_some(Self {
             cs: 0.0,
             sn: 1.0,
@@ -549,12 +554,8 @@ fn certify(r: &[Point], shift: f64, inv_half: f64, c: &[f64]) -> (f64, f64) {
         x[i] = binomial(n, i) * r[i].x;
         x_size = x_size.max(r[i].x.abs());
     }
-    let mut ones = [0.0; MAX_PRODUCT];
-    for (i, o) in ones.iter_mut().enumerate().take(d - n + 1) {
-        *o = binomial(d - n, i);
-    }
     let mut xe = [0.0; MAX_PRODUCT];
-    product(&x[..=n], &ones[..=d - n], &mut xe);
+    elevated(&x[..=n], d, &mut xe);
     let mut bound = 0.0f64;
     for i in 0..=d {
         bound = bound.max(((xe[i] - p[i]) / binomial(d, i)).abs());
