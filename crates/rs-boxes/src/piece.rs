@@ -11,17 +11,9 @@ use smallvec::SmallVec;
 
 use rs_spline::{Axis, Point, RationalBezier, SplineError};
 
-/// A part of a piece ([`BezierPiece::balanced_parts`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct BalancedPart {
-    /// The part, on `[0, 1]`.
-    pub piece: BezierPiece,
-    /// The fractions of the piece's parameter it spans.
-    pub fractions: (f64, f64),
-    /// The odds factor mapping its own parameter onto that span (see
-    /// [`crate::MonotoneBox::odds`]).
-    pub odds: f64,
-}
+/// A part of a piece ([`BezierPiece::balanced_parts`]); its odds are those of
+/// [`crate::MonotoneBox::odds`].
+pub type BalancedPart = rs_spline::Part<BezierPiece>;
 
 /// Coefficients kept on the stack (degree <= 7).
 const INLINE_COEFFS: usize = 8;
@@ -157,13 +149,6 @@ impl BezierPiece {
     /// spans and its odds.
     pub fn balanced_parts(self) -> Vec<BalancedPart> {
         rs_spline::balanced_parts(self)
-            .into_iter()
-            .map(|(piece, fractions, odds)| BalancedPart {
-                piece,
-                fractions,
-                odds,
-            })
-            .collect()
     }
 
     /// Moves the first control point to `p`, keeping its weight (used to make loops

@@ -108,10 +108,17 @@ pub fn scale_by_powers_of_two(k: i32, columns: &mut [&mut [f64]]) -> Option<f64>
     Some(2f64.powi(k))
 }
 
-/// A part of a piece ([`balanced_parts`]): the part, on `[0, 1]`, the fractions of the piece's
-/// parameter it spans, and the odds factor mapping its own parameter onto that span
-/// (`odds_map(odds, s)` of the way along it).
-pub type Part<P> = (P, (f64, f64), f64);
+/// A part of a piece ([`balanced_parts`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Part<P> {
+    /// The part, on `[0, 1]`.
+    pub piece: P,
+    /// The fractions of the piece's parameter it spans.
+    pub fractions: (f64, f64),
+    /// The odds factor mapping its own parameter onto that span: its `s` lies
+    /// [`odds_map`]`(odds, s)` of the way along it.
+    pub odds: f64,
+}
 
 /// The piece as parts whose motion fills their parameter, in order: its end weights balanced
 /// ([`balancing_exponent`]), and, while a part [`crowds_ends`], the part halved and each half
@@ -131,7 +138,11 @@ pub fn balanced_parts<P: Balance>(piece: P) -> Vec<Part<P>> {
         let (piece, c) = piece.balanced();
         let odds = odds * c;
         if depth >= MAX_BALANCE_HALVINGS || !crowds_ends(piece.balance_weights()) {
-            out.push((piece, fractions, odds));
+            out.push(Part {
+                piece,
+                fractions,
+                odds,
+            });
             return;
         }
         let (f0, f1) = fractions;

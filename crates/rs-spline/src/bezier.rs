@@ -137,7 +137,7 @@ impl RationalBezier {
             return None;
         }
         let parts = crate::balanced_parts(self.clone());
-        Some(parts.into_iter().map(|(part, _, _)| part).collect())
+        Some(parts.into_iter().map(|part| part.piece).collect())
     }
 
     /// Splits at local `t` in `[0, 1]` (one de Casteljau pass in homogeneous coordinates) into
