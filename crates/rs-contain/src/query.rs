@@ -28,6 +28,10 @@ impl<Q, P: PointSource<Q> + ?Sized> PointSource<Q> for Window<'_, P> {
     fn point(&self, i: usize) -> Q {
         self.points.point(self.first + i)
     }
+    #[inline]
+    fn points_into(&self, first: usize, out: &mut [Q]) {
+        self.points.points_into(self.first + first, out);
+    }
 }
 
 /// One value of type `T` per point of type `Q` (a [`Point`] of the plane unless said otherwise;

@@ -26,6 +26,17 @@ pub trait PointSource<Q = Point> {
     fn as_slice(&self) -> Option<&[Q]> {
         None
     }
+
+    /// Points `first .. first + out.len()` into `out`, the same as [`PointSource::point`]
+    /// gives them one by one: a source whose points are decoded (a `.npy` file's bytes)
+    /// decodes a block at once, without deciding its layout per point, in a loop the compiler
+    /// can vectorise.
+    #[inline]
+    fn points_into(&self, first: usize, out: &mut [Q]) {
+        for (i, q) in out.iter_mut().enumerate() {
+            *q = self.point(first + i);
+        }
+    }
 }
 
 impl<Q: Copy> PointSource<Q> for [Q] {

@@ -314,19 +314,18 @@ impl PointQuery<Location> for PointLocator<'_> {
     /// points in mixed cells), then the points in mixed cells one by one.
     fn values_into<P: PointSource + ?Sized>(&self, points: &P, out: &mut [Location]) {
         assert_eq!(points.len(), out.len(), "one location per point");
-        let point = |i| points.point(i);
         // The final table once the grid is built; the one being filled in before.
         match self.ix.complete() {
             Some(tables) => pulp::Arch::new().dispatch(LocateChunks {
                 locator: self,
                 tables,
-                point,
+                points,
                 out,
             }),
             None => pulp::Arch::new().dispatch(LocateChunks {
                 locator: self,
                 tables: self.ix.filling(),
-                point,
+                points,
                 out,
             }),
         }
@@ -341,12 +340,13 @@ impl PointQuery<Location> for PointLocator<'_> {
 impl PointLocator<'_> {
     /// [`PointQuery::values_into`], inlined into each instruction set's copy.
     #[inline(always)]
-    fn locate_chunks<G: GridView>(
+    fn locate_chunks<G: GridView, P: PointSource + ?Sized>(
         &self,
         tables: Tables<G>,
-        point: impl Fn(usize) -> Point,
+        points: &P,
         out: &mut [Location],
     ) {
+        let point = |i| points.point(i);
         const CHUNK: usize = 2048;
         let mut refined = [0u16; CHUNK];
         let mut entries = [0u32; CHUNK];
@@ -357,12 +357,13 @@ impl PointLocator<'_> {
             let first = c * CHUNK;
             let mut k = 0;
             let (mut xs, mut ys, mut blocks) = ([0.0; LANES], [0.0; LANES], [0u64; LANES]);
+            let mut group_points = [Point::default(); LANES];
             for (g, group) in out.chunks_mut(LANES).enumerate() {
                 let base = g * LANES;
                 let n = group.len();
-                for l in 0..n {
-                    let p = point(first + base + l);
-                    (xs[l], ys[l]) = (p.x, p.y);
+                points.points_into(first + base, &mut group_points[..n]);
+                for ((x, y), p) in xs.iter_mut().zip(&mut ys).zip(&group_points[..n]) {
+                    (*x, *y) = (p.x, p.y);
                 }
                 tables.lookup.blocks(&xs, &ys, &mut blocks);
                 for (l, o) in group.iter_mut().enumerate() {
@@ -404,19 +405,19 @@ const PARALLEL_TASK: usize = 1 << 16;
 
 /// [`PointQuery::values_into`] as an operation `pulp` runs with the best instruction
 /// set at hand.
-struct LocateChunks<'l, 'a, G, F> {
+struct LocateChunks<'l, 'a, G, P: ?Sized> {
     locator: &'l PointLocator<'a>,
     tables: Tables<G>,
-    point: F,
+    points: &'l P,
     out: &'l mut [Location],
 }
 
-impl<G: GridView, F: Fn(usize) -> Point> pulp::WithSimd for LocateChunks<'_, '_, G, F> {
+impl<G: GridView, P: PointSource + ?Sized> pulp::WithSimd for LocateChunks<'_, '_, G, P> {
     type Output = ();
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
         self.locator
-            .locate_chunks(self.tables, self.point, self.out);
+            .locate_chunks(self.tables, self.points, self.out);
     }
 }
 
