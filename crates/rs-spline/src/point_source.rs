@@ -27,10 +27,11 @@ pub trait PointSource<Q = Point> {
         None
     }
 
-    /// Points `first .. first + out.len()` into `out`, the same as [`PointSource::point`]
-    /// gives them one by one: a source whose points are decoded (a `.npy` file's bytes)
-    /// decodes a block at once, without deciding its layout per point, in a loop the compiler
-    /// can vectorise.
+    /// Points `first .. first + out.len()` into `out` (all below `len()`; an implementation
+    /// may panic otherwise), the same as [`PointSource::point`] gives them one by one: a
+    /// source whose points are decoded (a `.npy` file's bytes) decodes a block at once,
+    /// without deciding its layout per point, in a loop the compiler can vectorise; a slice
+    /// copies it.
     #[inline]
     fn points_into(&self, first: usize, out: &mut [Q]) {
         for (i, q) in out.iter_mut().enumerate() {
@@ -51,6 +52,10 @@ impl<Q: Copy> PointSource<Q> for [Q] {
     fn as_slice(&self) -> Option<&[Q]> {
         Some(self)
     }
+    #[inline]
+    fn points_into(&self, first: usize, out: &mut [Q]) {
+        out.copy_from_slice(&self[first..first + out.len()]);
+    }
 }
 
 impl<Q: Copy> PointSource<Q> for Vec<Q> {
@@ -64,6 +69,10 @@ impl<Q: Copy> PointSource<Q> for Vec<Q> {
     }
     fn as_slice(&self) -> Option<&[Q]> {
         Some(self)
+    }
+    #[inline]
+    fn points_into(&self, first: usize, out: &mut [Q]) {
+        self[..].points_into(first, out);
     }
 }
 
@@ -96,5 +105,31 @@ impl<Q, F: Fn(usize) -> Q> PointSource<Q> for PointsFn<F> {
     #[inline]
     fn point(&self, i: usize) -> Q {
         (self.f)(i)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A block of points is its points one by one, from every first point, for slices,
+    /// vectors and an accessor (the default).
+    #[test]
+    fn a_block_is_its_points_one_by_one() {
+        let pts: Vec<Point> = (0..9)
+            .map(|i| Point::new(i as f64, -0.5 * i as f64))
+            .collect();
+        let by_fn = points_from_fn(pts.len(), |i| pts[i]);
+        for first in 0..pts.len() {
+            let expected = &pts[first..];
+            let mut block = vec![Point::default(); expected.len()];
+            pts.points_into(first, &mut block);
+            assert_eq!(block, expected);
+            pts[..].points_into(first, &mut block);
+            assert_eq!(block, expected);
+            block.fill(Point::default());
+            by_fn.points_into(first, &mut block);
+            assert_eq!(block, expected);
+        }
     }
 }

@@ -357,12 +357,19 @@ impl PointLocator<'_> {
             let first = c * CHUNK;
             let mut k = 0;
             let (mut xs, mut ys, mut blocks) = ([0.0; LANES], [0.0; LANES], [0u64; LANES]);
-            let mut group_points = [Point::default(); LANES];
+            let mut decoded = [Point::default(); LANES];
             for (g, group) in out.chunks_mut(LANES).enumerate() {
                 let base = g * LANES;
                 let n = group.len();
-                points.points_into(first + base, &mut group_points[..n]);
-                for ((x, y), p) in xs.iter_mut().zip(&mut ys).zip(&group_points[..n]) {
+                // A slice is read in place; other sources decode their block first.
+                let group_points = match points.as_slice() {
+                    Some(all) => &all[first + base..first + base + n],
+                    None => {
+                        points.points_into(first + base, &mut decoded[..n]);
+                        &decoded[..n]
+                    }
+                };
+                for ((x, y), p) in xs.iter_mut().zip(&mut ys).zip(group_points) {
                     (*x, *y) = (p.x, p.y);
                 }
                 tables.lookup.blocks(&xs, &ys, &mut blocks);

@@ -138,15 +138,25 @@ impl<'a> EncodedPoints<'a> {
     #[inline]
     pub fn point(&self, i: usize) -> Point {
         if self.ty == NpyType::F32 {
-            let c = &self.bytes[8 * i..8 * i + 8];
-            let v = |b: &[u8]| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]));
-            Point::new(v(&c[..4]), v(&c[4..]))
+            f32_pair(&self.bytes[8 * i..8 * i + 8])
         } else {
-            let c = &self.bytes[16 * i..16 * i + 16];
-            let v = |b: &[u8]| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]);
-            Point::new(v(&c[..8]), v(&c[8..]))
+            f64_pair(&self.bytes[16 * i..16 * i + 16])
         }
     }
+}
+
+/// The point of 8 bytes `c`: two little-endian float32 coordinates, converted exactly.
+#[inline(always)]
+fn f32_pair(c: &[u8]) -> Point {
+    let v = |b: &[u8]| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+    Point::new(v(&c[..4]), v(&c[4..8]))
+}
+
+/// The point of 16 bytes `c`: two little-endian float64 coordinates.
+#[inline(always)]
+fn f64_pair(c: &[u8]) -> Point {
+    let v = |b: &[u8]| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]);
+    Point::new(v(&c[..8]), v(&c[8..16]))
 }
 
 /// Queries read the points by index straight from the bytes.
@@ -166,14 +176,12 @@ impl rs_spline::PointSource for EncodedPoints<'_> {
         let size = 2 * self.ty.size();
         let bytes = &self.bytes[first * size..(first + out.len()) * size];
         if self.ty == NpyType::F32 {
-            let v = |b: &[u8]| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]));
             for (q, c) in out.iter_mut().zip(bytes.chunks_exact(8)) {
-                *q = Point::new(v(&c[..4]), v(&c[4..]));
+                *q = f32_pair(c);
             }
         } else {
-            let v = |b: &[u8]| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]);
             for (q, c) in out.iter_mut().zip(bytes.chunks_exact(16)) {
-                *q = Point::new(v(&c[..8]), v(&c[8..]));
+                *q = f64_pair(c);
             }
         }
     }
