@@ -353,16 +353,17 @@ impl PointLocator<'_> {
         // The column of each refined point's cell, for its strip if it is mixed.
         let mut columns = [0u16; CHUNK];
         let mut mixed = [0u16; CHUNK];
+        // A slice is read in place; other sources decode each block of points into `decoded`.
+        let slice = points.as_slice();
+        let mut decoded = [Point::default(); LANES];
         for (c, out) in out.chunks_mut(CHUNK).enumerate() {
             let first = c * CHUNK;
             let mut k = 0;
             let (mut xs, mut ys, mut blocks) = ([0.0; LANES], [0.0; LANES], [0u64; LANES]);
-            let mut decoded = [Point::default(); LANES];
             for (g, group) in out.chunks_mut(LANES).enumerate() {
                 let base = g * LANES;
                 let n = group.len();
-                // A slice is read in place; other sources decode their block first.
-                let group_points = match points.as_slice() {
+                let group_points = match slice {
                     Some(all) => &all[first + base..first + base + n],
                     None => {
                         points.points_into(first + base, &mut decoded[..n]);
