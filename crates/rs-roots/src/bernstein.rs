@@ -312,9 +312,20 @@ pub fn de_casteljau_split<T: Blend>(c: &[T], s: f64, left: &mut [T], right: &mut
         left.len() == n && right.len() == n,
         "split buffers must match the coefficients"
     );
-    if n == 0 {
-        return;
+    // As in `de_casteljau`: the common degrees unrolled on fixed-size copies, the same steps.
+    match n {
+        0 => {}
+        2 => split_fixed::<T, 2>(c, s, left, right),
+        3 => split_fixed::<T, 3>(c, s, left, right),
+        4 => split_fixed::<T, 4>(c, s, left, right),
+        _ => split_any(c, s, left, right),
     }
+}
+
+/// [`de_casteljau_split`] of any number of coefficients (at least one; `left` and `right` as
+/// long as `c`).
+fn split_any<T: Blend>(c: &[T], s: f64, left: &mut [T], right: &mut [T]) {
+    let n = c.len();
     // `right` is the work array: after level k its entry n-1-k is final, and later levels only
     // touch lower entries.
     right.copy_from_slice(c);
@@ -326,8 +337,64 @@ pub fn de_casteljau_split<T: Blend>(c: &[T], s: f64, left: &mut [T], right: &mut
     }
 }
 
+/// [`de_casteljau_split`] of `N` coefficients (`c`, `left` and `right` all `N` long) on
+/// fixed-size copies: level `k` blends the `N - k` entries still active, `(1 - s) a + s b` as
+/// [`reduce`] does, and its first entry is `left[k]`; what remains is `right`.
+#[inline(always)]
+fn split_fixed<T: Blend, const N: usize>(c: &[T], s: f64, left: &mut [T], right: &mut [T]) {
+    let r = 1.0 - s;
+    let mut work = [T::default(); N];
+    work.copy_from_slice(c);
+    let mut first = [T::default(); N];
+    first[0] = work[0];
+    for (level, out) in first.iter_mut().enumerate().skip(1) {
+        for i in 0..N - level {
+            work[i] = work[i] * r + work[i + 1] * s;
+        }
+        *out = work[0];
+    }
+    left.copy_from_slice(&first);
+    right.copy_from_slice(&work);
+}
+
 #[cfg(test)]
 mod tests {
+    /// The unrolled splits of two to four coefficients give the very bits of the general
+    /// loop, on coefficients and parameters of every scale and sign (a deterministic
+    /// pseudo-random sequence).
+    #[test]
+    fn unrolled_splits_are_the_general_split_bit_for_bit() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let mut value = || {
+            let bits = next();
+            let mantissa = (bits >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            mantissa * 2f64.powi((bits % 61) as i32 - 30)
+        };
+        for n in 2..=4 {
+            for round in 0..2000 {
+                let c: Vec<f64> = (0..n).map(|_| value()).collect();
+                let s = match round % 4 {
+                    0 => 0.5,
+                    1 => 1.0 / 3.0,
+                    _ => value().abs().fract(),
+                };
+                let (mut l, mut r) = (vec![0.0; n], vec![0.0; n]);
+                let (mut gl, mut gr) = (vec![0.0; n], vec![0.0; n]);
+                super::de_casteljau_split(&c, s, &mut l, &mut r);
+                super::split_any(&c, s, &mut gl, &mut gr);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&l), bits(&gl), "left, {c:?} at {s}");
+                assert_eq!(bits(&r), bits(&gr), "right, {c:?} at {s}");
+            }
+        }
+    }
+
     #[test]
     fn product_sum_and_scale_evaluate_pointwise() {
         let a = Bernstein::new(vec![1.0, -2.0, 0.5, 3.0]);

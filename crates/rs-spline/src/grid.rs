@@ -114,17 +114,20 @@ impl GridFrame {
     }
 
     /// Cells per side of a square grid ([`GridFrame::new`]); the columns of another.
+    #[inline]
     pub fn n(&self) -> usize {
         debug_assert_eq!(self.columns, self.rows, "n() of a grid that is not square");
         self.columns
     }
 
     /// Columns of cells (along x).
+    #[inline]
     pub fn columns(&self) -> usize {
         self.columns
     }
 
     /// Rows of cells (along y).
+    #[inline]
     pub fn rows(&self) -> usize {
         self.rows
     }
@@ -151,6 +154,7 @@ impl GridFrame {
     }
 
     /// The width and height of a cell.
+    #[inline]
     pub fn cell_size(&self) -> (f64, f64) {
         (
             self.bbox.width() / self.columns as f64,
@@ -159,16 +163,19 @@ impl GridFrame {
     }
 
     /// The column of abscissa `x` (clamped into the grid).
+    #[inline]
     pub fn col(&self, x: f64) -> usize {
         (((x - self.bbox.min.x) * self.inv_w).max(0.0) as usize).min(self.columns - 1)
     }
 
     /// The row of ordinate `y` (clamped into the grid).
+    #[inline]
     pub fn row(&self, y: f64) -> usize {
         (((y - self.bbox.min.y) * self.inv_h).max(0.0) as usize).min(self.rows - 1)
     }
 
     /// The index of the cell holding `p`, or `None` outside the box.
+    #[inline]
     pub fn cell_of(&self, p: Point) -> Option<usize> {
         self.bbox
             .contains(p)
@@ -176,6 +183,7 @@ impl GridFrame {
     }
 
     /// Columns `c0..=c1` and rows `r0..=r1` of the cells meeting the rectangle `r` (clamped).
+    #[inline]
     pub fn cell_range(&self, r: BoundingBox) -> (usize, usize, usize, usize) {
         (
             self.col(r.min.x),

@@ -282,7 +282,8 @@ impl Strip {
         for bc in 0..columns.ncols.div_ceil(BLOCK) {
             let cols = (bc * BLOCK)..((bc + 1) * BLOCK).min(columns.ncols);
             let mut next = [0usize; BLOCK];
-            for br in 0..blocks {
+            let mut br = 0;
+            while br < blocks {
                 let block = bc * blocks + br;
                 let rows = (br * BLOCK)..((br + 1) * BLOCK).min(n);
                 for (i, c) in cols.clone().enumerate() {
@@ -303,7 +304,27 @@ impl Strip {
                     }
                 });
                 if uniform {
-                    self.coarse[block] = shared.unwrap_or(OUTSIDE);
+                    // The blocks above, up to the first occupied cell of these columns, hold
+                    // none either and lie in the same runs: the same state, each block's
+                    // `next` the same.
+                    let free_until = cols
+                        .clone()
+                        .enumerate()
+                        .map(|(i, c)| {
+                            columns
+                                .occupied_rows(c)
+                                .get(next[i])
+                                .map_or(n, |&x| x as usize)
+                        })
+                        .min()
+                        .unwrap_or(n);
+                    let end = if free_until >= n {
+                        blocks
+                    } else {
+                        (free_until / BLOCK).clamp(br + 1, blocks)
+                    };
+                    self.coarse[block..bc * blocks + end].fill(shared.unwrap_or(OUTSIDE));
+                    br = end;
                     continue;
                 }
                 self.coarse[block] = REFINED;
@@ -328,6 +349,7 @@ impl Strip {
                         };
                     }
                 }
+                br += 1;
             }
         }
     }
@@ -348,14 +370,28 @@ fn register(
     let tol = classifier.abs_tol();
     let all = classifier.boxes().boxes();
     let rows = frame.rows();
+    // Sized once: a box is halved into about as many parts as its end points' rectangle
+    // spans cells along its longer side (each part spans at most two), and a part meets a
+    // few cells (growing the vectors instead took a tenth of a strip's build).
+    let expected_parts: usize = boxes
+        .iter()
+        .map(|&bi| {
+            let band = &all[bi as usize].band;
+            let (c0, c1, r0, r1) = frame.cell_range(BoundingBox {
+                min: Point::new(band.xmin, band.ymin),
+                max: Point::new(band.xmax, band.ymax),
+            });
+            (c1 - c0).max(r1 - r0) + 1
+        })
+        .sum();
     // Each pair as one integer, `cell << 32 | item`, so that sorting compares one word (a
-    // grid has at most 8192^2 < 2^32 cells). A part meets a few cells.
-    let mut pairs: Vec<u64> = Vec::with_capacity(4 * boxes.len());
+    // grid has at most 8192^2 < 2^32 cells).
+    let mut pairs: Vec<u64> = Vec::with_capacity(6 * expected_parts);
     let mut parts = Parts {
-        bands: Vec::with_capacity(boxes.len()),
-        owner: Vec::with_capacity(boxes.len()),
+        bands: Vec::with_capacity(expected_parts),
+        owner: Vec::with_capacity(expected_parts),
     };
-    let mut owner_local: Vec<u32> = Vec::with_capacity(boxes.len());
+    let mut owner_local: Vec<u32> = Vec::with_capacity(expected_parts);
     // Halves farther than this from the columns are not halved further (a cell covers the
     // halving's rounding; `add` drops the parts that meet none of the columns).
     let reach = tol + frame.cell_size().0;
