@@ -370,9 +370,10 @@ fn register(
     let tol = classifier.abs_tol();
     let all = classifier.boxes().boxes();
     let rows = frame.rows();
-    // Sized once: a box is halved into about as many parts as its end points' rectangle
-    // spans cells along its longer side (each part spans at most two), and a part meets a
-    // few cells (growing the vectors instead took a tenth of a strip's build).
+    // Sized once: a box has about as many parts in these columns as its end points'
+    // rectangle, cut to the columns, spans cells along its longer side (each part spans at
+    // most two), and a part meets a few cells (growing the vectors instead took a tenth of a
+    // strip's build).
     let expected_parts: usize = boxes
         .iter()
         .map(|&bi| {
@@ -381,12 +382,15 @@ fn register(
                 min: Point::new(band.xmin, band.ymin),
                 max: Point::new(band.xmax, band.ymax),
             });
-            (c1 - c0).max(r1 - r0) + 1
+            let across = c1
+                .min(columns.end - 1)
+                .saturating_sub(c0.max(columns.start));
+            across.max(r1 - r0) + 1
         })
         .sum();
     // Each pair as one integer, `cell << 32 | item`, so that sorting compares one word (a
     // grid has at most 8192^2 < 2^32 cells).
-    let mut pairs: Vec<u64> = Vec::with_capacity(6 * expected_parts);
+    let mut pairs: Vec<u64> = Vec::with_capacity(4 * expected_parts);
     let mut parts = Parts {
         bands: Vec::with_capacity(expected_parts),
         owner: Vec::with_capacity(expected_parts),
