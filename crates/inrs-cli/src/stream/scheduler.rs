@@ -197,4 +197,67 @@ mod tests {
         }
         assert_eq!(workers_for(None, 0), 1);
     }
+
+    /// A column of bytes, as `.npy` `int8`.
+    struct Bytes;
+
+    impl Column<u8> for Bytes {
+        fn header(&self) -> &str {
+            "x,y,b"
+        }
+        fn initial(&self) -> u8 {
+            0
+        }
+        fn csv(&self, value: u8, out: &mut Vec<u8>) {
+            out.push(b'0' + value);
+        }
+        fn npy_type(&self) -> inrs::NpyType {
+            inrs::NpyType::I8
+        }
+        fn npy(&self, values: &[u8], out: &mut Vec<u8>) {
+            out.extend_from_slice(values);
+        }
+    }
+
+    /// 1 at every point of the right half-plane; a stage that fails (panics) on the left.
+    struct PanicsOnTheLeft;
+
+    impl PointQuery<u8> for PanicsOnTheLeft {
+        fn value(&self, p: inrs::Point) -> u8 {
+            assert!(p.x >= 0.0, "a point on the left");
+            1
+        }
+    }
+
+    /// A stage that panics on a run fails the stream with one error and leaves no output
+    /// (the other workers stop, the process goes on); without that point every value is
+    /// written, in order.
+    #[test]
+    fn a_panicking_stage_fails_the_stream_and_leaves_no_output() {
+        let dir = std::env::temp_dir().join(format!("inrs-scheduler-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let n = 60_000;
+        let lines: String = (0..n).map(|i| format!("{i}.5,1\n")).collect();
+        let out = dir.join("out.npy");
+        for failing in [true, false] {
+            let points = dir.join("points.csv");
+            let last = if failing { "-1,1\n" } else { "" };
+            std::fs::write(&points, format!("x,y\n{lines}{last}")).unwrap();
+            let input = PointsInput::open(&points, 1).unwrap();
+            let result = stream_points(input, Some(&out), &Bytes, &[PanicsOnTheLeft]);
+            if failing {
+                match result {
+                    Err(CliError::Message(m)) => assert_eq!(m, "a streaming thread failed"),
+                    other => panic!("expected the stream to fail, got {other:?}"),
+                }
+                assert!(!out.exists(), "no output after a failed stream");
+            } else {
+                result.unwrap();
+                let bytes = std::fs::read(&out).unwrap();
+                assert!(bytes.len() > n);
+                assert!(bytes[bytes.len() - n..].iter().all(|&b| b == 1));
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
