@@ -163,6 +163,29 @@ pub(super) fn has_extension(path: &Path, ext: &str) -> bool {
 /// A run's results, formatted, and how many points it held.
 pub(super) type Formatted = (Vec<u8>, usize);
 
+/// A column of bytes for the stream's tests: `.npy` `int8`, a digit per value in CSV.
+#[cfg(test)]
+pub(super) struct Bytes;
+
+#[cfg(test)]
+impl Column<u8> for Bytes {
+    fn header(&self) -> &str {
+        "x,y,b"
+    }
+    fn initial(&self) -> u8 {
+        0
+    }
+    fn csv(&self, value: u8, out: &mut Vec<u8>) {
+        out.push(b'0' + value);
+    }
+    fn npy_type(&self) -> NpyType {
+        NpyType::I8
+    }
+    fn npy(&self, values: &[u8], out: &mut Vec<u8>) {
+        out.extend_from_slice(values);
+    }
+}
+
 /// What a worker needs to turn a run into formatted results.
 pub(super) struct Stage<'a, C, K> {
     pub(super) format: Format,

@@ -181,28 +181,8 @@ impl InOrder {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stream::format::Bytes;
     use crate::stream::spares::Spares;
-
-    /// A column of bytes (only its header is written here).
-    struct Bytes;
-
-    impl Column<u8> for Bytes {
-        fn header(&self) -> &str {
-            "x,y,b"
-        }
-        fn initial(&self) -> u8 {
-            0
-        }
-        fn csv(&self, value: u8, out: &mut Vec<u8>) {
-            out.push(value);
-        }
-        fn npy_type(&self) -> inrs::NpyType {
-            inrs::NpyType::I8
-        }
-        fn npy(&self, values: &[u8], out: &mut Vec<u8>) {
-            out.extend_from_slice(values);
-        }
-    }
 
     fn with_stage(test: impl FnOnce(&Stage<'_, Bytes, ()>, &Path)) {
         let dir = std::env::temp_dir().join(format!(

@@ -187,6 +187,7 @@ fn compute<T: Copy, C: Column<T>, K: PointQuery<T>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stream::format::Bytes;
 
     #[test]
     fn workers_follow_rayon_num_threads_else_the_cores() {
@@ -196,27 +197,6 @@ mod tests {
             assert_eq!(workers_for(ignored, 2), 2, "{ignored:?}");
         }
         assert_eq!(workers_for(None, 0), 1);
-    }
-
-    /// A column of bytes, as `.npy` `int8`.
-    struct Bytes;
-
-    impl Column<u8> for Bytes {
-        fn header(&self) -> &str {
-            "x,y,b"
-        }
-        fn initial(&self) -> u8 {
-            0
-        }
-        fn csv(&self, value: u8, out: &mut Vec<u8>) {
-            out.push(b'0' + value);
-        }
-        fn npy_type(&self) -> inrs::NpyType {
-            inrs::NpyType::I8
-        }
-        fn npy(&self, values: &[u8], out: &mut Vec<u8>) {
-            out.extend_from_slice(values);
-        }
     }
 
     /// 1 at every point of the right half-plane; a stage that fails (panics) on the left.
