@@ -225,7 +225,9 @@ fn with_scratch<T: Blend, R>(c: &[T], f: impl FnOnce(&mut [T]) -> R) -> R {
 /// Reduces `work` by `levels` de Casteljau steps at `s`: afterwards `work[i]` for
 /// `i < len - levels` holds the level-`levels` blend `(1 - s) a + s b` of its neighbours.
 /// This loop is the one de Casteljau kernel of the workspace; every evaluation, split and
-/// derivative of a Bernstein form (scalar or rational curve) goes through it.
+/// derivative of a Bernstein form (scalar or rational curve) goes through it, or through
+/// [`split_fixed`]'s unrolled copy of its steps (the same operations in the same order, bit
+/// for bit: a test checks them).
 #[inline(always)]
 fn reduce<T: Blend>(work: &mut [T], s: f64, levels: usize) {
     let r = 1.0 - s;
@@ -302,7 +304,8 @@ fn last_level<T: Blend>(work: &mut [T], s: f64) -> (T, T) {
 
 /// Splits the Bernstein coefficients `c` at `s` (de Casteljau): `left` and `right` (each as
 /// long as `c`) receive the coefficients of the form on `[0, s]` and on `[s, 1]`, each
-/// reparametrised to `[0, 1]`; `left[n]` and `right[0]` are the same value, bit for bit.
+/// reparametrised to `[0, 1]`; `left[n - 1]` and `right[0]` are the same value, bit for bit
+/// (`n = c.len()`).
 ///
 /// # Panics
 /// If `left` or `right` is not as long as `c`.

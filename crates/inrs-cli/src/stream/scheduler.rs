@@ -199,30 +199,42 @@ mod tests {
         assert_eq!(workers_for(None, 0), 1);
     }
 
-    /// 1 at every point of the right half-plane; a stage that fails (panics) on the left.
+    /// `floor(x) mod 7` at every point of the right half-plane; a stage that fails (panics)
+    /// on the left.
     struct PanicsOnTheLeft;
 
     impl PointQuery<u8> for PanicsOnTheLeft {
         fn value(&self, p: inrs::Point) -> u8 {
             assert!(p.x >= 0.0, "a point on the left");
-            1
+            (p.x as u64 % 7) as u8
         }
     }
 
-    /// A stage that panics on a run fails the stream with one error and leaves no output
-    /// (the other workers stop, the process goes on); without that point every value is
-    /// written, in order.
+    /// A scratch directory of this test process, emptied first and removed when dropped.
+    struct Scratch(std::path::PathBuf);
+
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
+    /// A stage that panics on the first run fails the stream with one error and leaves no
+    /// output (the other workers stop taking runs; the process goes on); without that point
+    /// every value is written, in input order, over several runs.
     #[test]
     fn a_panicking_stage_fails_the_stream_and_leaves_no_output() {
         let dir = std::env::temp_dir().join(format!("inrs-scheduler-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
-        let n = 60_000;
+        let scratch = Scratch(dir);
+        // About 1.3 MB of CSV: five runs of 256 KiB.
+        let n = 120_000;
         let lines: String = (0..n).map(|i| format!("{i}.5,1\n")).collect();
-        let out = dir.join("out.npy");
+        let (points, out) = (scratch.0.join("points.csv"), scratch.0.join("out.npy"));
         for failing in [true, false] {
-            let points = dir.join("points.csv");
-            let last = if failing { "-1,1\n" } else { "" };
-            std::fs::write(&points, format!("x,y\n{lines}{last}")).unwrap();
+            let first = if failing { "-1,1\n" } else { "" };
+            std::fs::write(&points, format!("x,y\n{first}{lines}")).unwrap();
             let input = PointsInput::open(&points, 1).unwrap();
             let result = stream_points(input, Some(&out), &Bytes, &[PanicsOnTheLeft]);
             if failing {
@@ -230,14 +242,18 @@ mod tests {
                     Err(CliError::Message(m)) => assert_eq!(m, "a streaming thread failed"),
                     other => panic!("expected the stream to fail, got {other:?}"),
                 }
-                assert!(!out.exists(), "no output after a failed stream");
+                let left: Vec<_> = std::fs::read_dir(&scratch.0)
+                    .unwrap()
+                    .map(|e| e.unwrap().file_name())
+                    .collect();
+                assert_eq!(left, ["points.csv"], "no output, no temporary file");
             } else {
                 result.unwrap();
                 let bytes = std::fs::read(&out).unwrap();
-                assert!(bytes.len() > n);
-                assert!(bytes[bytes.len() - n..].iter().all(|&b| b == 1));
+                let expected: Vec<u8> = (0..n).map(|i| (i % 7) as u8).collect();
+                assert!(bytes.len() > n, "a header, then the values");
+                assert_eq!(&bytes[bytes.len() - n..], &expected[..]);
             }
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -276,7 +276,9 @@ impl Strip {
     /// The blocks are visited in the order of the table (block columns, then blocks upwards),
     /// and each column of a block column is walked upwards once: `next[i]` is the first of
     /// column `cols.start + i`'s occupied cells at or above the current block's first row (the
-    /// index a binary search would give, found by moving forward).
+    /// index a binary search would give, found by moving forward). A uniform block and the
+    /// blocks above it that lie wholly below the next occupied cell of its columns are filled
+    /// at once (they share its runs, so its state).
     fn two_levels(&mut self, columns: &Columns, by_inrs2: u32) {
         let (n, blocks) = (columns.n, self.blocks);
         for bc in 0..columns.ncols.div_ceil(BLOCK) {
@@ -305,8 +307,8 @@ impl Strip {
                 });
                 if uniform {
                     // The blocks above, up to the first occupied cell of these columns, hold
-                    // none either and lie in the same runs: the same state, each block's
-                    // `next` the same.
+                    // none either and lie in the same runs: the same state, and `next` is
+                    // already right for the first block after them.
                     let free_until = cols
                         .clone()
                         .enumerate()
@@ -318,10 +320,14 @@ impl Strip {
                         })
                         .min()
                         .unwrap_or(n);
+                    // A uniform block holds no occupied cell: the next one is at or above
+                    // its end, so at least this block is filled (and, below the grid's
+                    // last row, the block holding that cell is not).
+                    debug_assert!(free_until >= rows.end);
                     let end = if free_until >= n {
                         blocks
                     } else {
-                        (free_until / BLOCK).clamp(br + 1, blocks)
+                        free_until / BLOCK
                     };
                     self.coarse[block..bc * blocks + end].fill(shared.unwrap_or(OUTSIDE));
                     br = end;
@@ -370,10 +376,11 @@ fn register(
     let tol = classifier.abs_tol();
     let all = classifier.boxes().boxes();
     let rows = frame.rows();
-    // Sized once: a box has about as many parts in these columns as its end points'
-    // rectangle, cut to the columns, spans cells along its longer side (each part spans at
-    // most two), and a part meets a few cells (growing the vectors instead took a tenth of a
-    // strip's build).
+    // Sized once: a box has about as many parts in these columns as the share of its end
+    // points' rectangle in them spans cells along its longer side (each part spans at most
+    // two; the rows taken in proportion to the columns, so that a long box does not reserve
+    // its whole length in every strip it reaches, which the strip would keep), and a part
+    // meets a few cells (growing the vectors instead took a tenth of a strip's build).
     let expected_parts: usize = boxes
         .iter()
         .map(|&bi| {
@@ -384,8 +391,10 @@ fn register(
             });
             let across = c1
                 .min(columns.end - 1)
-                .saturating_sub(c0.max(columns.start));
-            across.max(r1 - r0) + 1
+                .saturating_sub(c0.max(columns.start))
+                + 1;
+            let up = (r1 - r0 + 1) * across / (c1 - c0 + 1);
+            across.max(up)
         })
         .sum();
     // Each pair as one integer, `cell << 32 | item`, so that sorting compares one word (a
