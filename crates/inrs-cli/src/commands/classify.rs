@@ -1,6 +1,7 @@
 //! `inrs classify`: inside, outside or boundary for every point of a points file, against one
 //! domain or several ([`super::classify_many`] reads and prepares them), streamed alike.
 
+use std::cell::OnceCell;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -10,7 +11,7 @@ use inrs::{ContainOptions, Containment, Location, NpyType, engines_many};
 use crate::args::{DomainsArg, FillRuleArg, MethodArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_subdivisions, parse_tolerance};
-use crate::stream::{Column, PointsInput, stream_points};
+use crate::stream::{Column, PointsInput, stream_points, stream_prepared};
 
 use super::{classify_many, classify_solid};
 
@@ -137,12 +138,25 @@ impl ClassifyArgs {
         }
         self.refuse_points_of_space()?;
         if let Some(domain) = self.domains.single() {
-            let d = domain.load()?;
-            let input = PointsInput::open(&self.points, 1)?;
-            let containment = Containment::new(&d, options).map_err(|e| domain.error(e))?;
-            // The library picks the algorithm for the whole stream's size.
-            let engine = containment.engine(input.estimated_points());
-            return stream_points(input, output, &Locations::one(), &[engine]);
+            let input = match PointsInput::open(&self.points, 1) {
+                Ok(input) => input,
+                Err(e) => {
+                    // A domain that cannot be read is named first.
+                    domain.load()?;
+                    return Err(e);
+                }
+            };
+            // Prepared while the workers start reading the points.
+            let (containment, engine) = (OnceCell::new(), OnceCell::new());
+            let column = Locations::one();
+            return stream_prepared(input, output, |points| {
+                let d = domain.load()?;
+                let c = Containment::new(&d, options).map_err(|e| domain.error(e))?;
+                let c: &Containment = containment.get_or_init(|| c);
+                // The library picks the algorithm for the whole stream's size.
+                let engine = engine.get_or_init(|| [c.engine(points)]);
+                Ok((&column, &engine[..]))
+            });
         }
         let skip = self.skip_unreadable;
         let domains = classify_many::read(&self.domains, skip)?;

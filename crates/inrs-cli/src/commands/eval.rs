@@ -1,15 +1,16 @@
 //! `inrs eval`: a spline file's values at the points of a points file.
 
+use std::cell::OnceCell;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use clap::Args;
 use inrs::NpyType;
 use inrs::trispline::bb::{Jet, Order};
-use inrs::trispline::load_spline;
+use inrs::trispline::{Spline, TriSplineError, load_spline};
 
 use crate::cli::error::CliError;
-use crate::stream::{Column, PointsInput, stream_points, write_f64};
+use crate::stream::{Column, PointsInput, stream_prepared, write_f64};
 
 /// The spline's columns: the value, and with `gradient` also `dx,dy` (CSV only: `.npy` holds
 /// the value); NaN outside the domain, counted as they are written.
@@ -84,28 +85,35 @@ pub(crate) struct EvalArgs {
 
 impl EvalArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let s = load_spline(&self.spline)
-            .map_err(|e| CliError::Message(format!("{}: {e}", self.spline.display())))?;
-        let eval = s
-            .evaluator()
-            .map_err(|e| CliError::Message(format!("{}: {e}", self.spline.display())))?;
-        let input = PointsInput::open(&self.points, 1)?;
+        let named =
+            |e: TriSplineError| CliError::Message(format!("{}: {e}", self.spline.display()));
+        let input = match PointsInput::open(&self.points, 1) {
+            Ok(input) => input,
+            Err(e) => {
+                // A spline that cannot be read is named first.
+                load_spline(&self.spline).map_err(named)?;
+                return Err(e);
+            }
+        };
         let order = if self.derivatives {
             Order::Gradient
         } else {
             Order::Value
         };
-        // The library's evaluator is the query, streamed as classify streams its engine.
+        // The library's evaluator is the query, streamed as classify streams its engine, and
+        // prepared while the workers start reading the points.
         let column = Jets {
             gradient: self.derivatives,
             outside: AtomicUsize::new(0),
         };
-        stream_points(
-            input,
-            self.output.as_deref(),
-            &column,
-            std::slice::from_ref(&eval.with_order(order)),
-        )?;
+        let (spline, eval) = (OnceCell::new(), OnceCell::new());
+        stream_prepared(input, self.output.as_deref(), |_| {
+            let s = load_spline(&self.spline).map_err(named)?;
+            let s: &Spline = spline.get_or_init(|| s);
+            let e = s.evaluator().map_err(named)?;
+            let eval = eval.get_or_init(|| [e.with_order(order)]);
+            Ok((&column, &eval[..]))
+        })?;
         let outside = column.outside.into_inner();
         if outside > 0 {
             eprintln!("{outside} points outside the domain: their values are nan");

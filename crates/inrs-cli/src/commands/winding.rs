@@ -1,5 +1,6 @@
 //! `inrs winding`: the generalized winding number of every point.
 
+use std::cell::OnceCell;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -9,7 +10,7 @@ use inrs::contain::WindingField;
 use crate::args::{AlgorithmArg, DomainArg};
 use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_tolerance};
-use crate::stream::{Column, PointsInput, stream_points, write_f64};
+use crate::stream::{Column, PointsInput, stream_prepared, write_f64};
 
 /// Generalized winding number of every point; writes CSV `x,y,winding`.
 ///
@@ -63,10 +64,22 @@ impl Column<f64> for Windings {
 
 impl WindingArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let d = self.domain.load()?;
-        let input = PointsInput::open(&self.points, 1)?;
-        let field = WindingField::new(&d, self.tol).map_err(|e| self.domain.error(e))?;
-        let numbers = field.winding_numbers_by(self.algorithm.into());
-        stream_points(input, self.output.as_deref(), &Windings, &[numbers])
+        let input = match PointsInput::open(&self.points, 1) {
+            Ok(input) => input,
+            Err(e) => {
+                // A domain that cannot be read is named first.
+                self.domain.load()?;
+                return Err(e);
+            }
+        };
+        // Prepared while the workers start reading the points.
+        let (field, numbers) = (OnceCell::new(), OnceCell::new());
+        stream_prepared(input, self.output.as_deref(), |_| {
+            let d = self.domain.load()?;
+            let f = WindingField::new(&d, self.tol).map_err(|e| self.domain.error(e))?;
+            let f: &WindingField = field.get_or_init(|| f);
+            let numbers = numbers.get_or_init(|| [f.winding_numbers_by(self.algorithm.into())]);
+            Ok((&Windings, &numbers[..]))
+        })
     }
 }

@@ -20,5 +20,5 @@ mod spares;
 
 pub(crate) use format::{Column, write_f64};
 pub(crate) use progress::Progress;
-pub(crate) use scheduler::stream_points;
+pub(crate) use scheduler::{stream_points, stream_prepared};
 pub(crate) use source::PointsInput;
