@@ -10,7 +10,8 @@ use inrs::contain::baselines::WindingAlgorithm;
 
 use crate::cli::error::CliError;
 
-/// `--domain`: the domain every subcommand but `convex-domain` reads.
+// `--domain`: the domain every subcommand but `convex-domain` reads. (Not a doc comment: clap
+// would take it for the help of the subcommands that flatten it in.)
 #[derive(Args, Debug)]
 pub(crate) struct DomainArg {
     /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, a font
@@ -52,8 +53,8 @@ impl DomainArg {
     }
 }
 
-/// `classify --domain`, which may be given several times: the domains every point is
-/// classified against.
+// `classify --domain`, which may be given several times: the domains every point is
+// classified against. (Not a doc comment: clap would take it for the help of `classify`.)
 #[derive(Args, Debug)]
 pub(crate) struct DomainsArg {
     /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, a font

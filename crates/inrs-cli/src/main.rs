@@ -9,13 +9,10 @@ mod stream;
 use std::io::Write;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::Parser;
 
 use cli::error::CliError;
-use commands::{
-    classify, convert, convex_domain, cubature, eval, fit, fractions, info, integrate, mesh,
-    properties, sample, winding,
-};
+use commands::Command;
 
 /// Exact point containment for planar domains bounded by NURBS curves.
 #[derive(Parser)]
@@ -28,43 +25,6 @@ use commands::{
 struct Cli {
     #[command(subcommand)]
     command: Command,
-}
-
-#[derive(Subcommand)]
-enum Command {
-    Classify(classify::ClassifyArgs),
-    Winding(winding::WindingArgs),
-    Convert(convert::ConvertArgs),
-    Sample(sample::SampleArgs),
-    Mesh(mesh::MeshArgs),
-    Fit(fit::FitArgs),
-    Eval(eval::EvalArgs),
-    ConvexDomain(convex_domain::ConvexDomainArgs),
-    Info(info::InfoArgs),
-    Fractions(fractions::FractionsArgs),
-    Cubature(cubature::CubatureArgs),
-    Integrate(integrate::IntegrateArgs),
-    Properties(properties::PropertiesArgs),
-}
-
-impl Command {
-    fn run(self) -> Result<(), CliError> {
-        match self {
-            Command::Classify(a) => a.run(),
-            Command::Winding(a) => a.run(),
-            Command::Convert(a) => a.run(),
-            Command::Sample(a) => a.run(),
-            Command::Mesh(a) => a.run(),
-            Command::Fit(a) => a.run(),
-            Command::Eval(a) => a.run(),
-            Command::ConvexDomain(a) => a.run(),
-            Command::Info(a) => a.run(),
-            Command::Fractions(a) => a.run(),
-            Command::Cubature(a) => a.run(),
-            Command::Integrate(a) => a.run(),
-            Command::Properties(a) => a.run(),
-        }
-    }
 }
 
 /// A usage error as one line: clap's message without its usage block.
@@ -105,6 +65,44 @@ fn main() -> ExitCode {
         Err(CliError::Message(e)) => {
             let _ = writeln!(std::io::stderr(), "inrs: {e}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    /// Every subcommand's arguments are consistent (clap's own checks, on the whole tree: a
+    /// subcommand's arguments are otherwise defined only when it runs).
+    #[test]
+    fn the_whole_command_tree_passes_clap_checks() {
+        Cli::command().debug_assert();
+    }
+
+    /// A subcommand's help, as `inrs --help` lists it (before its arguments are defined), is
+    /// the one its own `--help` shows once they are: no doc comment of an argument struct (one
+    /// flattened in, say) takes its place.
+    #[test]
+    fn each_subcommand_has_one_help_before_and_after_its_arguments_are_defined() {
+        let listed = Cli::command();
+        let mut built = Cli::command();
+        built.build();
+        let text = |s: Option<&clap::builder::StyledStr>| s.map(ToString::to_string);
+        assert_eq!(listed.get_subcommands().count(), 13);
+        for (a, b) in listed.get_subcommands().zip(built.get_subcommands()) {
+            assert_eq!(a.get_name(), b.get_name());
+            assert!(a.get_about().is_some(), "{}", a.get_name());
+            assert_eq!(text(a.get_about()), text(b.get_about()), "{}", a.get_name());
+            assert_eq!(
+                text(a.get_long_about()),
+                text(b.get_long_about()),
+                "{}",
+                a.get_name()
+            );
+            // Defined once built (never before: they are deferred).
+            assert!(b.get_arguments().count() > 0, "{}", b.get_name());
         }
     }
 }

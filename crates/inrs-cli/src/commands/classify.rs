@@ -15,11 +15,8 @@ use crate::stream::{Column, PointsInput, stream_points, stream_prepared};
 
 use super::{classify_many, classify_solid};
 
-/// Inside, outside or boundary of a closed domain; writes CSV `x,y,location` in input order
-/// (with several domains, `x,y` and one column per domain). For a solid of a STEP or IGES part
-/// (`--domain part.step#solid:K`, or `part.step` for every solid), the points are `x,y,z`
-/// (CSV, or `.npy` of shape (N, 3)) and the output `x,y,z,location` (a column `solid:K` per
-/// solid for a whole file).
+// The arguments of `inrs classify`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Classify`.
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct ClassifyArgs {

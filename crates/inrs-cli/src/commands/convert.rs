@@ -8,7 +8,8 @@ use crate::args::DomainArg;
 use crate::cli::error::CliError;
 use crate::cli::output::write_text;
 
-/// Convert a domain (SVG, DXF, font glyph, STEP/IGES face or JSON) to the JSON domain file format.
+// The arguments of `inrs convert`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Convert`.
 #[derive(Args, Debug)]
 pub(crate) struct ConvertArgs {
     #[command(flatten)]

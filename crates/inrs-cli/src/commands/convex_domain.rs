@@ -14,11 +14,8 @@ use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_free_index, parse_level, parse_tolerance};
 use crate::cli::output::write_text;
 
-/// Where one control point may move keeping the sign of curvature (plane) or torsion (space).
-///
-/// Prints, per refinement level, the number of inequalities, vertices (faces in space), area
-/// (volume) and absolute and relative error of the inner approximation, then the sampled
-/// outer bound.
+// The arguments of `inrs convex-domain`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::ConvexDomain`.
 #[derive(Args, Debug)]
 pub(crate) struct ConvexDomainArgs {
     /// The curve: a JSON domain file (curve --curve-index is used) or one curve object

@@ -13,14 +13,8 @@ use crate::cli::limits::{self, parse_cubature_degree};
 use crate::cli::output::Output;
 use crate::stream::write_f64;
 
-/// A positive interior cubature rule of degree n (Sommariva and Vianello); writes CSV `x,y,w`.
-///
-/// At most `(n + 1)(n + 2) / 2` nodes, every one strictly inside the domain (farther than the
-/// boundary tolerance from the boundary), every weight > 0, exact for every polynomial of total
-/// degree <= n up to the residual printed on standard error (with the nodes, the degree and the
-/// candidates tried): `sum_i w_i x_i^a y_i^b` is the integral of `x^a y^b` over the set the
-/// domain fills (--fill-rule) for `a + b <= n`. One node per line, floats in shortest
-/// round-trip form. The boundary must be closed, its loops must not cross.
+// The arguments of `inrs cubature`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Cubature`.
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct CubatureArgs {

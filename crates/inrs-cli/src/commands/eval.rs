@@ -63,10 +63,8 @@ impl Column<Option<Jet>> for Jets {
     }
 }
 
-/// A spline's values at the points of a points file; writes CSV `x,y,value` in input order.
-///
-/// Points on the boundary (within the boundary tolerance) evaluate like any other; points
-/// outside the domain get `nan`, and their number is reported on standard error.
+// The arguments of `inrs eval`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Eval`.
 #[derive(Args, Debug)]
 pub(crate) struct EvalArgs {
     /// The spline file (JSON, as `inrs fit` writes it).

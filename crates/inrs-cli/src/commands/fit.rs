@@ -71,14 +71,8 @@ impl SpaceArg {
 /// The largest data file read by `--data` (about 30 bytes a row: up to the vertex limit).
 const MAX_DATA_BYTES: u64 = 1 << 30;
 
-/// A spline approximating a formula on a domain, or interpolating scattered data; writes the
-/// spline file (JSON).
-///
-/// With --function: the curved triangulation of Algorithm 11.1 with --ny lines (as `inrs mesh`
-/// builds it), optionally refined, and the quasi-interpolant Q f among continuous splines of
-/// degree d (Algorithm 6.1). With --data: the curved triangulation whose vertices are the data
-/// points, and a C1 spline of --space through the data (a two-stage method, or minimal
-/// energy). A summary line goes to standard error.
+// The arguments of `inrs fit`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Fit`.
 #[derive(Args, Debug)]
 pub(crate) struct FitArgs {
     #[command(flatten)]

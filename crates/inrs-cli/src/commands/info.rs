@@ -9,13 +9,8 @@ use crate::args::{DomainArg, FillRuleArg};
 use crate::cli::error::CliError;
 use crate::cli::output::write_text;
 
-/// Print a summary of a domain: curves, Bezier pieces, loops, orientation, the area it fills
-/// (--fill-rule; "-" with the reason where its loops' nesting does not decide it: open,
-/// coincident or crossing loops), size. For a
-/// STEP or IGES file without `#face:K`: its solids with their shells, then one line per face
-/// (index, entity, surface, loops, curves, (u, v) area and box, natural bounds, the bound of
-/// fitted pcurves, faces narrower than their closure tolerance, or why the face is refused);
-/// `part.step#solid:K`: that solid and its faces.
+// The arguments of `inrs info`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Info`.
 #[derive(Args, Debug)]
 pub(crate) struct InfoArgs {
     #[command(flatten)]

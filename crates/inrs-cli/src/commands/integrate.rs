@@ -15,15 +15,8 @@ use inrs::io::formula::Formula;
 /// The degree of `inrs integrate` when `--degree` is not given.
 const DEFAULT_DEGREE: usize = 20;
 
-/// The integral of a formula over a domain; prints it on standard output (shortest round-trip
-/// form).
-///
-/// The sum `sum_i w_i f(x_i)` over the rule `inrs cubature --degree n` writes: exact (up to
-/// the residual printed on standard error) when f is a polynomial of degree <= n, and as close
-/// as f is to such a polynomial otherwise (for a smooth f the error falls fast with n). f is
-/// evaluated only at the nodes, all strictly inside the domain; a value there that is not
-/// finite (a division by zero, the square root of a negative number) is an error naming the
-/// node.
+// The arguments of `inrs integrate`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Integrate`.
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct IntegrateArgs {

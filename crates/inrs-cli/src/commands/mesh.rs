@@ -14,12 +14,8 @@ use crate::commands::fit::RefineArg;
 /// Plot-area width of the `--svg` figure, in pixels.
 const FIGURE_WIDTH: f64 = 800.0;
 
-/// Curved triangulation of a domain; writes JSON (vertices, triangles, `curved_edges`).
-///
-/// Well-spaced points (--ny), constrained Delaunay inscribed triangulation, boundary points
-/// inserted until it is convertible, boundary edges replaced by boundary arcs, optionally
-/// refined (--refine). A summary line
-/// goes to standard error.
+// The arguments of `inrs mesh`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Mesh`.
 #[derive(Args, Debug)]
 pub(crate) struct MeshArgs {
     #[command(flatten)]

@@ -11,19 +11,8 @@ use crate::cli::error::CliError;
 use crate::cli::output::Output;
 use crate::stream::write_f64;
 
-/// Mass properties of a STEP or IGES part: each face's area and centroid; each solid's volume,
-/// boundary area, centroid, inertia tensor about the centroid (unit density) and principal
-/// moments and axes.
-///
-/// `part.step` gives every face and every solid (a file without solids, such as an IGES file
-/// of trimmed surfaces, gives its faces), `part.step#face:K` face K, `part.step#solid:K` solid
-/// K. Lengths are in the file's length unit (areas its square, volumes its cube, moments of
-/// inertia its fifth power). Polynomial integrands (planes, polynomial B-spline surfaces) are
-/// exact to rounding; the others are integrated adaptively to their rounding noise, with the
-/// error estimate in the table's header. The table has 12 significant digits (a coordinate
-/// below 1e-12 of the part's size is written 0), the JSON every digit. A face or solid that cannot be computed (an open
-/// shell: its free edges are named) is a row with the reason, and the command still succeeds
-/// unless nothing could be computed; a bad selection is an error.
+// The arguments of `inrs properties`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Properties`.
 #[derive(Args, Debug)]
 pub(crate) struct PropertiesArgs {
     /// The CAD file: `part.step` (every face and solid), `part.step#face:K` or

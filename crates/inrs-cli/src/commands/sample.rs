@@ -9,11 +9,8 @@ use crate::cli::error::CliError;
 use crate::cli::limits::{parse_count, parse_ny};
 use crate::cli::output::Output;
 
-/// Sample points in a domain; writes CSV `x,y,kind` (kind `interior` or `boundary`).
-///
-/// Well-spaced points (Schumaker-Yu Algorithm 11.1: horizontal lines h apart cut exactly with
-/// the boundary, interior points ~h apart, boundary points ~h apart by arc length) or the first
-/// --count Halton points inside.
+// The arguments of `inrs sample`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Sample`.
 #[derive(Args, Debug)]
 pub(crate) struct SampleArgs {
     #[command(flatten)]

@@ -12,12 +12,8 @@ use crate::cli::error::CliError;
 use crate::cli::limits::{self, parse_tolerance};
 use crate::stream::{Column, PointsInput, stream_prepared, write_f64};
 
-/// Generalized winding number of every point; writes CSV `x,y,winding`.
-///
-/// Any collection of curves is fine: open chains, gaps and overlaps. A point within the
-/// boundary tolerance of a curve (`--tol`; the points `classify` calls `boundary`) gets the
-/// average across the jump: 0 inside a straight piece, 1/2 on a smooth closed curve, the
-/// interior angle over 2 pi at a corner, from every algorithm.
+// The arguments of `inrs winding`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Winding`.
 #[derive(Args, Debug)]
 #[command(after_help = limits::AFTER_HELP)]
 pub(crate) struct WindingArgs {

@@ -43,44 +43,10 @@ impl From<AxisArg> for Axis {
     }
 }
 
-/// Exact covered fraction of every cell of a grid, planar or revolved; writes float64 .npy arrays
-///
-/// The closed loops are filled by the even-odd or the nonzero rule; the grid is uniform (--grid)
-/// or rectilinear (--x-edges, --y-edges).
-///
-/// `F.npy` has shape (ny, nx): row j, column i is the cell `[x_i, x_i+1] x [y_j, y_j+1]`
-/// (y increases with the row), with `x_i = x0 + i (x1 - x0) / nx` for --grid, or the edges of
-/// --x-edges / --y-edges. Extra files beside it, `F.<name>.npy` (NaN where a value does not
-/// exist; shapes for one --domain):
-///   --centroids       `centroids` (ny, nx, 2): [x, y] of each cell's covered part (NaN: empty)
-///   --apertures       `x_apertures` (ny, nx + 1): covered fraction of each vertical face
-///                     `x = x_i`; `y_apertures` (ny + 1, nx): of each horizontal face `y = y_j`
-///   --boundary        `boundary_lengths` (ny, nx): length of the boundary in each cell (0: none);
-///                     `boundary_centroids` (ny, nx, 2): its [x, y] centroid (NaN: none);
-///                     `boundary_normals` (ny, nx, 2): unit integral of its normal, pointing out
-///                     of the covered part (NaN: none, or an integral of 0)
-///   --face-centroids  `x_face_centroids` (ny, nx + 1): y of the centroid of each vertical
-///                     face's covered part; `y_face_centroids` (ny + 1, nx): x of each
-///                     horizontal face's (NaN: not covered)
-/// With --axisymmetric a cell stands for the ring it sweeps about the axis: F holds the
-/// covered fraction of the ring's volume, the centroids are weighted by the radius, the
-/// apertures of faces across the axis are fractions of annuli (--boundary and
-/// --face-centroids are planar only).
-///
-/// Several materials: give --domain k >= 2 times and every file gets a leading axis of k, one
-/// slice per domain in the order given (`F.npy` (k, ny, nx), `F.centroids.npy`
-/// (k, ny, nx, 2), ...). A later domain replaces the earlier ones where it lies (material m
-/// holds its domain minus the domains after it; a cell's fractions sum to at most 1); with
-/// --no-replace each slice is its domain's own coverage (overlaps counted in each), equal to a
-/// run with that domain alone. One --fill-rule and --closure-tol apply to every domain. Errors
-/// name the domain: `--domain b.json (material 1): ...`.
-///
-/// The grid is computed in row bands on all cores and written as it goes (material after
-/// material): memory stays a few bands whatever the grid (at most 2^32 cells). The
-/// boundary must be closed (`inrs winding` handles open curves). Files appear only when the
-/// run succeeds. `docs/CLI.md` maps the files to embedded-boundary names (`volfrac`, `vcent`, ...).
+// The arguments of `inrs fractions`. Not a doc comment: clap would take it for the help, which is
+// the doc of `Command::Fractions`.
 #[derive(Args, Debug)]
-#[command(after_help = limits::AFTER_HELP, verbatim_doc_comment)]
+#[command(after_help = limits::AFTER_HELP)]
 #[command(group(ArgGroup::new("grid_form").required(true).args(["grid", "x_edges"])))]
 pub(crate) struct FractionsArgs {
     /// The domain: a JSON domain file (docs/FORMATS.md), an .svg or .dxf file, a font
