@@ -25,7 +25,13 @@ pub(super) fn release_binary(root: &Path) -> Result<PathBuf, String> {
     Ok(root.join("target/release/inrs"))
 }
 
-/// Writes `n` Halton points of the box `[-1, 1]^2` as CSV and as `.npy`.
+/// Writes `n` Halton points of the box `[-1, 1]^2` as CSV and as `.npy`, anew at each run, in
+/// writes of 1 MiB (as `numpy.save` writes an array: in one call). How a file was written
+/// decides how fast the operating system's cache gives it back: a file written 8 KiB at a
+/// time (the files of this benchmark before 2026-12-08, kept from run to run) was read 0.6-1.0
+/// ms slower at 10^6 `.npy` points than the same file copied by `cp` (in the cache's
+/// larger blocks), which made the I/O floor and the ratios over it depend on the history of
+/// the checkout.
 fn write_points(dir: &Path, n: usize) -> Result<(PathBuf, PathBuf), String> {
     let b = inrs::BoundingBox {
         min: inrs::Point::new(-1.0, -1.0),
@@ -33,12 +39,11 @@ fn write_points(dir: &Path, n: usize) -> Result<(PathBuf, PathBuf), String> {
     };
     let csv = dir.join(format!("points-{n}.csv"));
     let npy = dir.join(format!("points-{n}.npy"));
-    if csv.exists() && npy.exists() {
-        return Ok((csv, npy));
-    }
     let io = |e: std::io::Error| e.to_string();
-    let mut c = std::io::BufWriter::new(std::fs::File::create(&csv).map_err(io)?);
-    let mut p = std::io::BufWriter::new(std::fs::File::create(&npy).map_err(io)?);
+    let mut c =
+        std::io::BufWriter::with_capacity(1 << 20, std::fs::File::create(&csv).map_err(io)?);
+    let mut p =
+        std::io::BufWriter::with_capacity(1 << 20, std::fs::File::create(&npy).map_err(io)?);
     p.write_all(&inrs::npy_header(inrs::NpyType::F64, &[n, 2]))
         .map_err(io)?;
     writeln!(c, "x,y").map_err(io)?;
