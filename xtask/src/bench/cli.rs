@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-use inrs::contain::baselines::halton_points;
+use inrs::contain::baselines::halton_points_from;
 
 use super::{BenchOptions, median};
 
@@ -28,10 +28,11 @@ pub(super) fn release_binary(root: &Path) -> Result<PathBuf, String> {
 /// Writes `n` Halton points of the box `[-1, 1]^2` as CSV and as `.npy`, anew at each run, in
 /// writes of 1 MiB (as `numpy.save` writes an array: in one call). How a file was written
 /// decides how fast the operating system's cache gives it back: a file written 8 KiB at a
-/// time (the files of this benchmark before 2026-12-08, kept from run to run) was read 0.6-1.0
-/// ms slower at 10^6 `.npy` points than the same file copied by `cp` (in the cache's
-/// larger blocks), which made the I/O floor and the ratios over it depend on the history of
-/// the checkout.
+/// time (the files of this benchmark before 2026-12-08, kept from run to run) gave this
+/// benchmark's I/O floor at 10^6 `.npy` points as 2.7-3.6 ms, against 1.6-1.7 ms for files
+/// written so (a reader of blocks of 256 KiB on one thread: 3.2-3.7 against 2.5-2.6 ms for
+/// the same file copied by `cp`), which made the floor and the ratios over it depend on the
+/// history of the checkout.
 fn write_points(dir: &Path, n: usize) -> Result<(PathBuf, PathBuf), String> {
     let b = inrs::BoundingBox {
         min: inrs::Point::new(-1.0, -1.0),
@@ -49,8 +50,8 @@ fn write_points(dir: &Path, n: usize) -> Result<(PathBuf, PathBuf), String> {
     writeln!(c, "x,y").map_err(io)?;
     const CHUNK: usize = 1 << 20;
     for start in (0..n).step_by(CHUNK) {
-        let pts = halton_points((start + CHUNK).min(n), b);
-        for q in &pts[start..] {
+        let pts = halton_points_from(start as u64, CHUNK.min(n - start), b);
+        for q in &pts {
             writeln!(c, "{},{}", q.x, q.y).map_err(io)?;
             p.write_all(&q.x.to_le_bytes()).map_err(io)?;
             p.write_all(&q.y.to_le_bytes()).map_err(io)?;

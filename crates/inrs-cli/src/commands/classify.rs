@@ -143,7 +143,8 @@ impl ClassifyArgs {
                     return Err(e);
                 }
             };
-            // Prepared while the workers start reading the points.
+            // Prepared while the workers start reading the points. (The points file is opened
+            // first: a named pipe with no writer yet is waited for before a bad domain is named.)
             let (containment, engine) = (OnceCell::new(), OnceCell::new());
             let column = Locations::one();
             return stream_prepared(input, output, |points| {

@@ -88,8 +88,11 @@ impl EvalArgs {
         let input = match PointsInput::open(&self.points, 1) {
             Ok(input) => input,
             Err(e) => {
-                // A spline that cannot be read is named first.
-                load_spline(&self.spline).map_err(named)?;
+                // A spline that cannot be read, or evaluated, is named first.
+                load_spline(&self.spline)
+                    .map_err(named)?
+                    .evaluator()
+                    .map_err(named)?;
                 return Err(e);
             }
         };

@@ -68,7 +68,8 @@ impl WindingArgs {
                 return Err(e);
             }
         };
-        // Prepared while the workers start reading the points.
+        // Prepared while the workers start reading the points. (The points file is opened
+        // first: a named pipe with no writer yet is waited for before a bad domain is named.)
         let (field, numbers) = (OnceCell::new(), OnceCell::new());
         stream_prepared(input, self.output.as_deref(), |_| {
             let d = self.domain.load()?;

@@ -2,7 +2,7 @@
 //! and hand them to the ordered writing.
 
 use std::path::Path;
-use std::sync::{Condvar, Mutex, OnceLock};
+use std::sync::{Condvar, Mutex, MutexGuard, OnceLock};
 use std::time::Duration;
 
 use inrs::{PointQuery, PointRun, PointsReader, RunPoints};
@@ -67,6 +67,9 @@ where
     let ready = Ready::new();
     let (prepared, ended) = std::thread::scope(|scope| {
         let ready = &ready;
+        // Should a worker fail to start, or the preparation panic, the workers started are
+        // released before the scope joins them.
+        let _release = EndOnDrop(ready);
         // Each worker holds a sender; the channel closes when the last one has finished.
         let (alive_tx, alive_rx) = std::sync::mpsc::channel::<()>();
         let handles: Vec<_> = (0..workers)
@@ -86,8 +89,6 @@ where
             })
             .collect();
         drop(alive_tx);
-        // Should the preparation panic, the workers are released before the scope joins them.
-        let _release = EndOnDrop(ready);
         let prepared = prepare(points).and_then(|(column, queries)| {
             let stage = Stage {
                 format,
@@ -130,23 +131,47 @@ where
 /// The stage and the ordered writing, set once the calling thread has prepared them; the
 /// workers wait for them after reading their first runs.
 struct Ready<'s, C, K> {
+    /// The stage and the ordered writing, once prepared (never if the preparation failed).
     stage: OnceLock<(Stage<'s, C, K>, InOrder)>,
-    /// False until the preparation has ended (set or failed).
-    done: Mutex<bool>,
+    /// Whether the preparation has ended, and whether a worker failed before it did.
+    state: Mutex<Preparation>,
+    /// Signalled when the preparation ends.
     ended: Condvar,
 }
 
+/// [`Ready`]'s state.
+#[derive(Default)]
+struct Preparation {
+    /// The preparation has ended (the stage set, or not if it failed).
+    ended: bool,
+    /// A worker panicked before the stage was set: the stream fails as soon as it is (the run
+    /// that worker took would never be written, and the workers after it would wait for room
+    /// forever).
+    worker_failed: bool,
+}
+
+/// A worker's panic, as the stream's failure.
+fn thread_failed() -> WriteFailure {
+    WriteFailure::Output(CliError::Message("a streaming thread failed".into()))
+}
+
 impl<'s, C, K> Ready<'s, C, K> {
+    /// Not prepared yet.
     fn new() -> Self {
         Self {
             stage: OnceLock::new(),
-            done: Mutex::new(false),
+            state: Mutex::new(Preparation::default()),
             ended: Condvar::new(),
         }
     }
 
-    /// Ends the preparation: sets the stage if it was prepared, and wakes the workers (who
-    /// stop if it was not); returns the preparation's error, if any.
+    fn lock(&self) -> MutexGuard<'_, Preparation> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Ends the preparation: sets the stage if it was prepared (failed at once if a worker
+    /// panicked meanwhile), and wakes the workers (who stop if it was not); returns the
+    /// preparation's error, if any.
     fn open(&self, prepared: Result<(Stage<'s, C, K>, InOrder), CliError>) -> Result<(), CliError> {
         let result = prepared.map(|stage| {
             // Set once, here: `set` cannot find it set.
@@ -156,23 +181,65 @@ impl<'s, C, K> Ready<'s, C, K> {
         result
     }
 
-    /// Marks the preparation ended and wakes the workers waiting for it.
+    /// Marks the preparation ended (failing the stage if a worker panicked before it) and
+    /// wakes the workers waiting for it.
     fn end(&self) {
-        *self.done.lock().unwrap_or_else(|e| e.into_inner()) = true;
+        let mut state = self.lock();
+        state.ended = true;
+        if state.worker_failed
+            && let Some((_, in_order)) = self.stage.get()
+        {
+            in_order.fail(thread_failed());
+        }
+        drop(state);
         self.ended.notify_all();
+    }
+
+    /// A worker panicked: fails the stream now if the stage is set, else once it is. (Under
+    /// the lock that [`Ready::end`] takes after setting the stage: one of the two sees the
+    /// other.)
+    fn worker_failed(&self) {
+        let mut state = self.lock();
+        match self.stage.get() {
+            Some((_, in_order)) => in_order.fail(thread_failed()),
+            None => state.worker_failed = true,
+        }
     }
 
     /// The stage and the ordered writing, once prepared; `None` if the preparation failed.
     fn wait(&self) -> Option<&(Stage<'s, C, K>, InOrder)> {
-        let mut done = self.done.lock().unwrap_or_else(|e| e.into_inner());
-        while !*done {
-            done = self.ended.wait(done).unwrap_or_else(|e| e.into_inner());
+        let mut state = self.lock();
+        while !state.ended {
+            state = self.ended.wait(state).unwrap_or_else(|e| e.into_inner());
         }
         self.stage.get()
     }
 
+    /// The stage and the ordered writing, if they were prepared.
     fn into_inner(self) -> Option<(Stage<'s, C, K>, InOrder)> {
         self.stage.into_inner()
+    }
+}
+
+/// Ends the preparation when dropped (again, harmlessly, after [`Ready::open`]; or on a
+/// panic in the preparation or in a worker's start, so that no worker waits for it forever).
+struct EndOnDrop<'r, 's, C, K>(&'r Ready<'s, C, K>);
+
+impl<C, K> Drop for EndOnDrop<'_, '_, C, K> {
+    fn drop(&mut self) {
+        self.0.end();
+    }
+}
+
+/// Fails the stream if dropped while its thread panics, at once or as soon as the stage is
+/// set: the other threads then stop taking runs.
+struct FailOnPanic<'r, 's, C, K>(&'r Ready<'s, C, K>);
+
+impl<C, K> Drop for FailOnPanic<'_, '_, C, K> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.worker_failed();
+        }
     }
 }
 
@@ -234,32 +301,6 @@ fn work<T: Copy, C: Column<T>, K: PointQuery<T>>(
     }
 }
 
-/// Ends the preparation when dropped (again, harmlessly, after [`Ready::open`]; or on a
-/// panic in the preparation, so that no worker waits for it forever).
-struct EndOnDrop<'r, 's, C, K>(&'r Ready<'s, C, K>);
-
-impl<C, K> Drop for EndOnDrop<'_, '_, C, K> {
-    fn drop(&mut self) {
-        self.0.end();
-    }
-}
-
-/// Fails the stream if dropped while its thread panics: the other threads then stop taking
-/// runs. (A panic before the stage is set shows in the worker's join.)
-struct FailOnPanic<'r, 's, C, K>(&'r Ready<'s, C, K>);
-
-impl<C, K> Drop for FailOnPanic<'_, '_, C, K> {
-    fn drop(&mut self) {
-        if std::thread::panicking()
-            && let Some((_, in_order)) = self.0.stage.get()
-        {
-            in_order.fail(WriteFailure::Output(CliError::Message(
-                "a streaming thread failed".into(),
-            )));
-        }
-    }
-}
-
 /// Computes the values of `run`'s points, query by query into `values`, and formats them;
 /// returns the bytes (from the stage's pool) and the number of points.
 fn compute<T: Copy, C: Column<T>, K: PointQuery<T>>(
@@ -302,6 +343,8 @@ fn compute<T: Copy, C: Column<T>, K: PointQuery<T>>(
 mod tests {
     use super::*;
     use crate::stream::format::Bytes;
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
 
     #[test]
     fn workers_follow_rayon_num_threads_else_the_cores() {
@@ -390,6 +433,85 @@ mod tests {
         let bytes = std::fs::read(&out).unwrap();
         let expected: Vec<u8> = (0..n).map(|i| (i % 7) as u8).collect();
         assert_eq!(&bytes[bytes.len() - n..], &expected[..]);
+    }
+
+    /// A reader that panics when it has taken run 0 (as a CSV parse that panicked would), and
+    /// sets its flag as the panic leaves it.
+    struct PanicsOnTheFirstRun(Box<dyn PointsReader>, Arc<AtomicBool>);
+
+    /// Sets its flag when dropped.
+    struct SetOnDrop<'a>(&'a AtomicBool);
+
+    impl Drop for SetOnDrop<'_> {
+        fn drop(&mut self) {
+            self.0.store(true, Ordering::Release);
+        }
+    }
+
+    impl PointsReader for PanicsOnTheFirstRun {
+        fn next_run(&self, run: &mut PointRun) -> Option<(usize, Result<(), inrs::PointsError>)> {
+            let taken = self.0.next_run(run);
+            let unwound = SetOnDrop(&self.1);
+            assert!(!matches!(taken, Some((0, _))), "a read that panics");
+            std::mem::forget(unwound);
+            taken
+        }
+        fn points(&self) -> Option<usize> {
+            self.0.points()
+        }
+        fn progress(&self) -> inrs::ReadProgress {
+            self.0.progress()
+        }
+    }
+
+    /// A worker that panics before the stage is set fails the stream once it is (and leaves
+    /// no output): the run it took is never written, so the workers past the runs in flight
+    /// would otherwise wait for room forever. The preparation ends only once the panic has
+    /// left the reader (and, 20 ms later, the worker). Run on a thread of its own, so that a
+    /// hang fails the test.
+    #[test]
+    fn a_worker_that_panics_before_the_stage_is_set_fails_the_stream() {
+        let dir = std::env::temp_dir().join(format!("inrs-early-panic-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let scratch = Scratch(dir);
+        // Runs of 256 KiB of lines of 11 bytes: more runs than may be in flight.
+        let runs = runs_in_flight(worker_count()) + 4;
+        let n = runs * (1 << 18) / 11;
+        let lines: String = (0..n)
+            .map(|i| format!("{:06}.5,1\n", i % 1_000_000))
+            .collect();
+        let (points, out) = (scratch.0.join("points.csv"), scratch.0.join("out.npy"));
+        std::fs::write(&points, format!("x,y\n{lines}")).unwrap();
+        let (tx, rx) = std::sync::mpsc::channel();
+        let (p, o) = (points.clone(), out.clone());
+        std::thread::spawn(move || {
+            let input = PointsInput::open(&p, 1).unwrap();
+            let panicked = Arc::new(AtomicBool::new(false));
+            let input = PointsInput {
+                reader: Box::new(PanicsOnTheFirstRun(input.reader, panicked.clone())),
+                ..input
+            };
+            let result = stream_prepared(input, Some(&o), |_| {
+                for _ in 0..10_000 {
+                    if panicked.load(Ordering::Acquire) {
+                        break;
+                    }
+                    std::thread::sleep(Duration::from_millis(1));
+                }
+                std::thread::sleep(Duration::from_millis(20));
+                Ok((&Bytes, &[PanicsOnTheLeft][..]))
+            });
+            let _ = tx.send(result.map_err(|e| format!("{e:?}")));
+        });
+        let result = rx
+            .recv_timeout(Duration::from_secs(120))
+            .expect("the stream ends");
+        assert_eq!(
+            result,
+            Err("Message(\"a streaming thread failed\")".to_string())
+        );
+        assert!(!out.exists());
     }
 
     /// A stage that panics on the first run fails the stream with one error and leaves no
