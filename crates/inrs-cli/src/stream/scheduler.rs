@@ -370,6 +370,16 @@ mod tests {
     /// A scratch directory of this test process, emptied first and removed when dropped.
     struct Scratch(std::path::PathBuf);
 
+    impl Scratch {
+        /// An empty directory `name-<process id>` in the system's temporary directory.
+        fn new(name: &str) -> Self {
+            let dir = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&dir);
+            std::fs::create_dir_all(&dir).unwrap();
+            Self(dir)
+        }
+    }
+
     impl Drop for Scratch {
         fn drop(&mut self) {
             let _ = std::fs::remove_dir_all(&self.0);
@@ -382,10 +392,7 @@ mod tests {
     /// workers waiting.
     #[test]
     fn the_stream_waits_for_its_preparation_and_a_failed_one_writes_nothing() {
-        let dir = std::env::temp_dir().join(format!("inrs-prepared-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let scratch = Scratch(dir);
+        let scratch = Scratch::new("inrs-prepared");
         // About 1.3 MB of CSV: five runs of 256 KiB.
         let n = 120_000;
         let lines: String = (0..n).map(|i| format!("{i}.5,1\n")).collect();
@@ -471,10 +478,7 @@ mod tests {
     /// hang fails the test.
     #[test]
     fn a_worker_that_panics_before_the_stage_is_set_fails_the_stream() {
-        let dir = std::env::temp_dir().join(format!("inrs-early-panic-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let scratch = Scratch(dir);
+        let scratch = Scratch::new("inrs-early-panic");
         // Runs of 256 KiB of lines of 11 bytes: more runs than may be in flight.
         let runs = runs_in_flight(worker_count()) + 4;
         let n = runs * (1 << 18) / 11;
@@ -519,10 +523,7 @@ mod tests {
     /// every value is written, in input order, over several runs.
     #[test]
     fn a_panicking_stage_fails_the_stream_and_leaves_no_output() {
-        let dir = std::env::temp_dir().join(format!("inrs-scheduler-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let scratch = Scratch(dir);
+        let scratch = Scratch::new("inrs-scheduler");
         // About 1.3 MB of CSV: five runs of 256 KiB.
         let n = 120_000;
         let lines: String = (0..n).map(|i| format!("{i}.5,1\n")).collect();
