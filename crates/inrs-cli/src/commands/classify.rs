@@ -135,14 +135,9 @@ impl ClassifyArgs {
         }
         self.refuse_points_of_space()?;
         if let Some(domain) = self.domains.single() {
-            let input = match PointsInput::open(&self.points, 1) {
-                Ok(input) => input,
-                Err(e) => {
-                    // A domain that cannot be read is named first.
-                    domain.load()?;
-                    return Err(e);
-                }
-            };
+            // A domain that cannot be read is named first.
+            let input =
+                PointsInput::open_after_errors_of(&self.points, 1, || domain.load().map(drop))?;
             // Prepared while the workers start reading the points. (The points file is opened
             // first: a named pipe with no writer yet is waited for before a bad domain is named.)
             let (containment, engine) = (OnceCell::new(), OnceCell::new());

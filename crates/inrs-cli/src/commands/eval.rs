@@ -85,17 +85,11 @@ impl EvalArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
         let named =
             |e: TriSplineError| CliError::Message(format!("{}: {e}", self.spline.display()));
-        let input = match PointsInput::open(&self.points, 1) {
-            Ok(input) => input,
-            Err(e) => {
-                // A spline that cannot be read, or evaluated, is named first.
-                load_spline(&self.spline)
-                    .map_err(named)?
-                    .evaluator()
-                    .map_err(named)?;
-                return Err(e);
-            }
-        };
+        // A spline that cannot be read, or evaluated, is named first.
+        let input = PointsInput::open_after_errors_of(&self.points, 1, || {
+            let s = load_spline(&self.spline).map_err(named)?;
+            s.evaluator().map(drop).map_err(named)
+        })?;
         let order = if self.derivatives {
             Order::Gradient
         } else {

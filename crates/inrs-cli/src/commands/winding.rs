@@ -60,14 +60,9 @@ impl Column<f64> for Windings {
 
 impl WindingArgs {
     pub(crate) fn run(self) -> Result<(), CliError> {
-        let input = match PointsInput::open(&self.points, 1) {
-            Ok(input) => input,
-            Err(e) => {
-                // A domain that cannot be read is named first.
-                self.domain.load()?;
-                return Err(e);
-            }
-        };
+        // A domain that cannot be read is named first.
+        let input =
+            PointsInput::open_after_errors_of(&self.points, 1, || self.domain.load().map(drop))?;
         // Prepared while the workers start reading the points. (The points file is opened
         // first: a named pipe with no writer yet is waited for before a bad domain is named.)
         let (field, numbers) = (OnceCell::new(), OnceCell::new());

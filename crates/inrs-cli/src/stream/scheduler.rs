@@ -124,7 +124,7 @@ where
         written.finish()
     } else {
         // A run taken was never written: a stage failed; the output is dropped (removed).
-        Err(CliError::Message("a streaming thread failed".into()))
+        Err(thread_failed())
     }
 }
 
@@ -150,9 +150,9 @@ struct Preparation {
     worker_failed: bool,
 }
 
-/// A worker's panic, as the stream's failure.
-fn thread_failed() -> WriteFailure {
-    WriteFailure::Output(CliError::Message("a streaming thread failed".into()))
+/// The stream's error when a worker panicked (or a run taken was never written).
+fn thread_failed() -> CliError {
+    CliError::Message("a streaming thread failed".into())
 }
 
 impl<'s, C, K> Ready<'s, C, K> {
@@ -189,7 +189,7 @@ impl<'s, C, K> Ready<'s, C, K> {
         if state.worker_failed
             && let Some((_, in_order)) = self.stage.get()
         {
-            in_order.fail(thread_failed());
+            in_order.fail(thread_failed().into());
         }
         drop(state);
         self.ended.notify_all();
@@ -201,7 +201,7 @@ impl<'s, C, K> Ready<'s, C, K> {
     fn worker_failed(&self) {
         let mut state = self.lock();
         match self.stage.get() {
-            Some((_, in_order)) => in_order.fail(thread_failed()),
+            Some((_, in_order)) => in_order.fail(thread_failed().into()),
             None => state.worker_failed = true,
         }
     }
@@ -343,6 +343,7 @@ fn compute<T: Copy, C: Column<T>, K: PointQuery<T>>(
 mod tests {
     use super::*;
     use crate::stream::format::Bytes;
+    use std::path::PathBuf;
     use std::sync::Arc;
     use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -378,6 +379,32 @@ mod tests {
             std::fs::create_dir_all(&dir).unwrap();
             Self(dir)
         }
+
+        /// Writes `points.csv` here: a header, `first`, then the points `(i + 0.5, 1)` for `i`
+        /// in `0..n` (lines of 6 bytes or more); returns its path and that of an output `out.npy`.
+        fn points(&self, first: &str, n: usize) -> (PathBuf, PathBuf) {
+            let lines: String = (0..n).map(|i| format!("{i}.5,1\n")).collect();
+            let points = self.0.join("points.csv");
+            std::fs::write(&points, format!("x,y\n{first}{lines}")).unwrap();
+            (points, self.0.join("out.npy"))
+        }
+
+        /// The names of the files here.
+        fn files(&self) -> Vec<std::ffi::OsString> {
+            std::fs::read_dir(&self.0)
+                .unwrap()
+                .map(|e| e.unwrap().file_name())
+                .collect()
+        }
+    }
+
+    /// `out` holds, after its header, the values of `PanicsOnTheLeft` at the `n` points of
+    /// [`Scratch::points`], in order.
+    fn assert_values_in_order(out: &Path, n: usize) {
+        let bytes = std::fs::read(out).unwrap();
+        let expected: Vec<u8> = (0..n).map(|i| (i % 7) as u8).collect();
+        assert!(bytes.len() > n, "a header, then the values");
+        assert_eq!(&bytes[bytes.len() - n..], &expected[..]);
     }
 
     impl Drop for Scratch {
@@ -395,9 +422,7 @@ mod tests {
         let scratch = Scratch::new("inrs-prepared");
         // About 1.3 MB of CSV: five runs of 256 KiB.
         let n = 120_000;
-        let lines: String = (0..n).map(|i| format!("{i}.5,1\n")).collect();
-        let (points, out) = (scratch.0.join("points.csv"), scratch.0.join("out.npy"));
-        std::fs::write(&points, format!("x,y\n{lines}")).unwrap();
+        let (points, out) = scratch.points("", n);
         let input = PointsInput::open(&points, 1).unwrap();
         let failed = stream_prepared(
             input,
@@ -410,11 +435,11 @@ mod tests {
             Err(CliError::Message(m)) => assert_eq!(m, "no domain"),
             other => panic!("expected the preparation's error, got {other:?}"),
         }
-        let left: Vec<_> = std::fs::read_dir(&scratch.0)
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(left, ["points.csv"], "no output, no temporary file");
+        assert_eq!(
+            scratch.files(),
+            ["points.csv"],
+            "no output, no temporary file"
+        );
         // A preparation that panics releases the workers (no hang) and the panic goes on.
         let input = PointsInput::open(&points, 1).unwrap();
         let panicked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
@@ -437,9 +462,7 @@ mod tests {
             Ok((&Bytes, &[PanicsOnTheLeft][..]))
         })
         .unwrap();
-        let bytes = std::fs::read(&out).unwrap();
-        let expected: Vec<u8> = (0..n).map(|i| (i % 7) as u8).collect();
-        assert_eq!(&bytes[bytes.len() - n..], &expected[..]);
+        assert_values_in_order(&out, n);
     }
 
     /// A reader that panics when it has taken run 0 (as a CSV parse that panicked would), and
@@ -479,14 +502,9 @@ mod tests {
     #[test]
     fn a_worker_that_panics_before_the_stage_is_set_fails_the_stream() {
         let scratch = Scratch::new("inrs-early-panic");
-        // Runs of 256 KiB of lines of 11 bytes: more runs than may be in flight.
+        // Runs of 256 KiB of lines of 6 bytes or more: more runs than may be in flight.
         let runs = runs_in_flight(worker_count()) + 4;
-        let n = runs * (1 << 18) / 11;
-        let lines: String = (0..n)
-            .map(|i| format!("{:06}.5,1\n", i % 1_000_000))
-            .collect();
-        let (points, out) = (scratch.0.join("points.csv"), scratch.0.join("out.npy"));
-        std::fs::write(&points, format!("x,y\n{lines}")).unwrap();
+        let (points, out) = scratch.points("", runs * (1 << 18) / 6);
         let (tx, rx) = std::sync::mpsc::channel();
         let (p, o) = (points.clone(), out.clone());
         std::thread::spawn(move || {
@@ -526,11 +544,8 @@ mod tests {
         let scratch = Scratch::new("inrs-scheduler");
         // About 1.3 MB of CSV: five runs of 256 KiB.
         let n = 120_000;
-        let lines: String = (0..n).map(|i| format!("{i}.5,1\n")).collect();
-        let (points, out) = (scratch.0.join("points.csv"), scratch.0.join("out.npy"));
         for failing in [true, false] {
-            let first = if failing { "-1,1\n" } else { "" };
-            std::fs::write(&points, format!("x,y\n{first}{lines}")).unwrap();
+            let (points, out) = scratch.points(if failing { "-1,1\n" } else { "" }, n);
             let input = PointsInput::open(&points, 1).unwrap();
             let result = stream_points(input, Some(&out), &Bytes, &[PanicsOnTheLeft]);
             if failing {
@@ -538,17 +553,14 @@ mod tests {
                     Err(CliError::Message(m)) => assert_eq!(m, "a streaming thread failed"),
                     other => panic!("expected the stream to fail, got {other:?}"),
                 }
-                let left: Vec<_> = std::fs::read_dir(&scratch.0)
-                    .unwrap()
-                    .map(|e| e.unwrap().file_name())
-                    .collect();
-                assert_eq!(left, ["points.csv"], "no output, no temporary file");
+                assert_eq!(
+                    scratch.files(),
+                    ["points.csv"],
+                    "no output, no temporary file"
+                );
             } else {
                 result.unwrap();
-                let bytes = std::fs::read(&out).unwrap();
-                let expected: Vec<u8> = (0..n).map(|i| (i % 7) as u8).collect();
-                assert!(bytes.len() > n, "a header, then the values");
-                assert_eq!(&bytes[bytes.len() - n..], &expected[..]);
+                assert_values_in_order(&out, n);
             }
         }
     }

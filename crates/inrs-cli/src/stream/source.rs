@@ -54,6 +54,18 @@ impl PointsInput {
         })
     }
 
+    /// [`PointsInput::open`] for a command that prepares what it computes while the points
+    /// are read ([`super::stream_prepared`]): if the file cannot be opened, `named_first`
+    /// (reading the domain, say) runs first and its error wins, as it did when the preparation
+    /// came before the points.
+    pub(crate) fn open_after_errors_of(
+        path: &Path,
+        columns: usize,
+        named_first: impl FnOnce() -> Result<(), CliError>,
+    ) -> Result<Self, CliError> {
+        Self::open(path, columns).or_else(|e| named_first().and(Err(e)))
+    }
+
     /// The number of points, exact for `.npy`, estimated from the size for CSV (at least 16
     /// bytes a line).
     pub(crate) fn estimated_points(&self) -> usize {
