@@ -152,9 +152,14 @@ pub(super) fn end_to_end(md: &mut String, root: &Path, o: &BenchOptions) -> Resu
         &[1_000_000, 10_000_000]
     };
     // Runs of a second or so (10^7 points as CSV) get fewer rounds than runs of milliseconds.
+    // Those get at least 11 even with `--quick` (a round of the four cases at 10^6 points takes
+    // about 0.15 s): the median of `--quick`'s 3 rounds of the `.npy` case moved between 3.4
+    // and 4.7x its floor in two runs one after the other.
     let rounds = |n: usize| {
         if n > 1_000_000 {
             o.reps.min(3)
+        } else if o.quick {
+            o.reps.max(11)
         } else {
             o.reps.max(1)
         }
