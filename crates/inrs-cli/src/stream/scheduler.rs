@@ -396,6 +396,16 @@ mod tests {
                 .map(|e| e.unwrap().file_name())
                 .collect()
         }
+
+        /// `result` is the error `message`, and no output (nor temporary file) is left beside
+        /// the points.
+        fn assert_failed_with(&self, result: Result<(), CliError>, message: &str) {
+            match result {
+                Err(CliError::Message(m)) => assert_eq!(m, message),
+                other => panic!("expected the error {message:?}, got {other:?}"),
+            }
+            assert_eq!(self.files(), ["points.csv"], "no output, no temporary file");
+        }
     }
 
     /// `out` holds, after its header, the values of `PanicsOnTheLeft` at the `n` points of
@@ -431,15 +441,7 @@ mod tests {
                 Err(CliError::Message("no domain".into()))
             },
         );
-        match failed {
-            Err(CliError::Message(m)) => assert_eq!(m, "no domain"),
-            other => panic!("expected the preparation's error, got {other:?}"),
-        }
-        assert_eq!(
-            scratch.files(),
-            ["points.csv"],
-            "no output, no temporary file"
-        );
+        scratch.assert_failed_with(failed, "no domain");
         // A preparation that panics releases the workers (no hang) and the panic goes on.
         let input = PointsInput::open(&points, 1).unwrap();
         let panicked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
@@ -549,15 +551,7 @@ mod tests {
             let input = PointsInput::open(&points, 1).unwrap();
             let result = stream_points(input, Some(&out), &Bytes, &[PanicsOnTheLeft]);
             if failing {
-                match result {
-                    Err(CliError::Message(m)) => assert_eq!(m, "a streaming thread failed"),
-                    other => panic!("expected the stream to fail, got {other:?}"),
-                }
-                assert_eq!(
-                    scratch.files(),
-                    ["points.csv"],
-                    "no output, no temporary file"
-                );
+                scratch.assert_failed_with(result, "a streaming thread failed");
             } else {
                 result.unwrap();
                 assert_values_in_order(&out, n);
